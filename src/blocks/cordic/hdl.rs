@@ -1,0 +1,239 @@
+//! rust-hdl description of the quadrant mapper and one vectoring CORDIC stage.
+use crate::blocks::{c32, fill, mask};
+use crate::config::Derived;
+use rust_hdl::prelude::*;
+
+/// Registers the mapped first-quadrant vector, the quadrant and the valid bit.
+#[derive(LogicBlock)]
+pub struct QuadrantMapper {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high (clears the valid bit).
+    pub rst: Signal<In, Bit>,
+    /// Sample strobe.
+    pub in_valid: Signal<In, Bit>,
+    /// Sine sample, A-bit two's complement in the low bits.
+    pub in_sin: Signal<In, Bits<16>>,
+    /// Cosine sample, A-bit two's complement in the low bits.
+    pub in_cos: Signal<In, Bits<16>>,
+    /// Mapped x' (W-bit, G guard bits).
+    pub x: Signal<Out, Bits<32>>,
+    /// Mapped y' (W-bit, G guard bits).
+    pub y: Signal<Out, Bits<32>>,
+    /// Quadrant of the sample, 0..3.
+    pub q: Signal<Out, Bits<2>>,
+    /// Valid bit travelling with the sample.
+    pub v: Signal<Out, Bit>,
+    x_reg: DFF<Bits<32>>,
+    y_reg: DFF<Bits<32>>,
+    q_reg: DFF<Bits<2>>,
+    v_reg: DFF<Bit>,
+    sx: Signal<Local, Bits<32>>,
+    sy: Signal<Local, Bits<32>>,
+    nx: Signal<Local, Bits<32>>,
+    ny: Signal<Local, Bits<32>>,
+    mx: Signal<Local, Bits<32>>,
+    my: Signal<Local, Bits<32>>,
+    /// Mask of the A input bits.
+    amask: Constant<Bits<32>>,
+    /// Sign bit of an A-bit input.
+    asign: Constant<Bits<32>>,
+    /// Bits A..31: sign extension of a negative input.
+    asext: Constant<Bits<32>>,
+    /// Guard-bit shift G.
+    gshift: Constant<Bits<32>>,
+    /// Mask of the W datapath bits.
+    xmask: Constant<Bits<32>>,
+    /// Zero, for negation.
+    zero: Constant<Bits<32>>,
+}
+
+impl QuadrantMapper {
+    /// Mapper for the derived parameters.
+    pub fn new(d: &Derived) -> Self {
+        let a = d.adc_width;
+        Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            in_valid: Default::default(),
+            in_sin: Default::default(),
+            in_cos: Default::default(),
+            x: Default::default(),
+            y: Default::default(),
+            q: Default::default(),
+            v: Default::default(),
+            x_reg: Default::default(),
+            y_reg: Default::default(),
+            q_reg: Default::default(),
+            v_reg: Default::default(),
+            sx: Default::default(),
+            sy: Default::default(),
+            nx: Default::default(),
+            ny: Default::default(),
+            mx: Default::default(),
+            my: Default::default(),
+            amask: c32(mask(a)),
+            asign: c32(1 << (a - 1)),
+            asext: c32(fill(32, 32 - a)),
+            gshift: c32(d.xy_guard as u64),
+            xmask: c32(mask(d.xy_width)),
+            zero: c32(0),
+        }
+    }
+}
+
+impl Logic for QuadrantMapper {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clk, x_reg, y_reg, q_reg, v_reg);
+        // Sign-extend the A-bit inputs to 32 bits.
+        self.sx.next = bit_cast::<32, 16>(self.in_cos.val()) & self.amask.val();
+        if (self.sx.val() & self.asign.val()).any() {
+            self.sx.next = self.sx.val() | self.asext.val();
+        }
+        self.sy.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
+        if (self.sy.val() & self.asign.val()).any() {
+            self.sy.next = self.sy.val() | self.asext.val();
+        }
+        self.nx.next = self.zero.val() - self.sx.val();
+        self.ny.next = self.zero.val() - self.sy.val();
+        // Table 2-3.
+        self.mx.next = self.sx.val();
+        self.my.next = self.sy.val();
+        self.q_reg.d.next = 0.into();
+        if (self.sy.val() & self.asign.val()).any() {
+            if (self.sx.val() & self.asign.val()).any() {
+                self.mx.next = self.nx.val();
+                self.my.next = self.ny.val();
+                self.q_reg.d.next = 2.into();
+            } else {
+                self.mx.next = self.ny.val();
+                self.my.next = self.sx.val();
+                self.q_reg.d.next = 3.into();
+            }
+        } else if (self.sx.val() & self.asign.val()).any() {
+            self.mx.next = self.sy.val();
+            self.my.next = self.nx.val();
+            self.q_reg.d.next = 1.into();
+        }
+        self.x_reg.d.next = (self.mx.val() << self.gshift.val()) & self.xmask.val();
+        self.y_reg.d.next = (self.my.val() << self.gshift.val()) & self.xmask.val();
+        self.v_reg.d.next = self.in_valid.val() & !self.rst.val();
+        self.x.next = self.x_reg.q.val();
+        self.y.next = self.y_reg.q.val();
+        self.q.next = self.q_reg.q.val();
+        self.v.next = self.v_reg.q.val();
+    }
+}
+
+/// One registered vectoring iteration i: rotates (x, y) towards the x axis and accumulates
+/// the angle.
+#[derive(LogicBlock)]
+pub struct CordicStage {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high (clears the valid bit).
+    pub rst: Signal<In, Bit>,
+    /// x from the previous stage (W-bit).
+    pub x_in: Signal<In, Bits<32>>,
+    /// y from the previous stage (W-bit two's complement).
+    pub y_in: Signal<In, Bits<32>>,
+    /// Angle so far (ZW-bit two's complement, 2^-(F+Gz) quadrant).
+    pub z_in: Signal<In, Bits<32>>,
+    /// Quadrant travelling with the sample.
+    pub q_in: Signal<In, Bits<2>>,
+    /// Valid bit travelling with the sample.
+    pub v_in: Signal<In, Bit>,
+    /// Registered x.
+    pub x_out: Signal<Out, Bits<32>>,
+    /// Registered y.
+    pub y_out: Signal<Out, Bits<32>>,
+    /// Registered z.
+    pub z_out: Signal<Out, Bits<32>>,
+    /// Registered quadrant.
+    pub q_out: Signal<Out, Bits<2>>,
+    /// Registered valid bit.
+    pub v_out: Signal<Out, Bit>,
+    x_reg: DFF<Bits<32>>,
+    y_reg: DFF<Bits<32>>,
+    z_reg: DFF<Bits<32>>,
+    q_reg: DFF<Bits<2>>,
+    v_reg: DFF<Bit>,
+    xs: Signal<Local, Bits<32>>,
+    ys: Signal<Local, Bits<32>>,
+    /// Shift amount i.
+    shift: Constant<Bits<32>>,
+    /// Fill for an arithmetic shift by i of a W-bit word.
+    sfill: Constant<Bits<32>>,
+    /// Sign bit of a W-bit word.
+    xsign: Constant<Bits<32>>,
+    /// Mask of W bits.
+    xmask: Constant<Bits<32>>,
+    /// Mask of ZW bits.
+    zmask: Constant<Bits<32>>,
+    /// atan(2^-i) in 2^-(F+Gz) quadrant.
+    atan: Constant<Bits<32>>,
+}
+
+impl CordicStage {
+    /// Stage `i` for the derived parameters.
+    pub fn new(d: &Derived, i: u32) -> Self {
+        let w = d.xy_width;
+        Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            x_in: Default::default(),
+            y_in: Default::default(),
+            z_in: Default::default(),
+            q_in: Default::default(),
+            v_in: Default::default(),
+            x_out: Default::default(),
+            y_out: Default::default(),
+            z_out: Default::default(),
+            q_out: Default::default(),
+            v_out: Default::default(),
+            x_reg: Default::default(),
+            y_reg: Default::default(),
+            z_reg: Default::default(),
+            q_reg: Default::default(),
+            v_reg: Default::default(),
+            xs: Default::default(),
+            ys: Default::default(),
+            shift: c32(i as u64),
+            sfill: c32(fill(w, i)),
+            xsign: c32(1 << (w - 1)),
+            xmask: c32(mask(w)),
+            zmask: c32(mask(d.z_width)),
+            atan: c32(d.atan_table[i as usize]),
+        }
+    }
+}
+
+impl Logic for CordicStage {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clk, x_reg, y_reg, z_reg, q_reg, v_reg);
+        self.xs.next = self.x_in.val() >> self.shift.val();
+        if (self.x_in.val() & self.xsign.val()).any() {
+            self.xs.next = self.xs.val() | self.sfill.val();
+        }
+        self.ys.next = self.y_in.val() >> self.shift.val();
+        if (self.y_in.val() & self.xsign.val()).any() {
+            self.ys.next = self.ys.val() | self.sfill.val();
+            self.x_reg.d.next = (self.x_in.val() - self.ys.val()) & self.xmask.val();
+            self.y_reg.d.next = (self.y_in.val() + self.xs.val()) & self.xmask.val();
+            self.z_reg.d.next = (self.z_in.val() - self.atan.val()) & self.zmask.val();
+        } else {
+            self.x_reg.d.next = (self.x_in.val() + self.ys.val()) & self.xmask.val();
+            self.y_reg.d.next = (self.y_in.val() - self.xs.val()) & self.xmask.val();
+            self.z_reg.d.next = (self.z_in.val() + self.atan.val()) & self.zmask.val();
+        }
+        self.q_reg.d.next = self.q_in.val();
+        self.v_reg.d.next = self.v_in.val() & !self.rst.val();
+        self.x_out.next = self.x_reg.q.val();
+        self.y_out.next = self.y_reg.q.val();
+        self.z_out.next = self.z_reg.q.val();
+        self.q_out.next = self.q_reg.q.val();
+        self.v_out.next = self.v_reg.q.val();
+    }
+}

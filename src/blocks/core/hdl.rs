@@ -1,0 +1,150 @@
+//! rust-hdl description of the whole core.
+use crate::blocks::cordic::hdl::{CordicStage, QuadrantMapper};
+use crate::blocks::counter::hdl::{Combiner, QuadrantCounter};
+use crate::blocks::c32;
+use crate::config::Derived;
+use rust_hdl::prelude::*;
+
+/// The core as simulated in rust-hdl and exported (inside the `<name>_core` wrapper).
+#[derive(LogicBlock)]
+pub struct CoreRtl {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high.
+    pub rst: Signal<In, Bit>,
+    /// Sample strobe.
+    pub in_valid: Signal<In, Bit>,
+    /// Sine sample (A-bit two's complement in the low bits).
+    pub in_sin: Signal<In, Bits<16>>,
+    /// Cosine sample (A-bit two's complement in the low bits).
+    pub in_cos: Signal<In, Bits<16>>,
+    /// Output strobe.
+    pub out_valid: Signal<Out, Bit>,
+    /// Coarse quadrant count (upper part of out_position).
+    pub out_qc: Signal<Out, Bits<32>>,
+    /// Fine part (lower F bits of out_position).
+    pub out_fine: Signal<Out, Bits<32>>,
+    /// Turn count (M bits).
+    pub out_turns: Signal<Out, Bits<32>>,
+    /// Error flag.
+    pub out_error: Signal<Out, Bit>,
+    /// Warning flag.
+    pub out_warning: Signal<Out, Bit>,
+    mapper: QuadrantMapper,
+    stages: Vec<CordicStage>,
+    combiner: Combiner,
+    counter: QuadrantCounter,
+    /// Zero: the initial angle.
+    zero: Constant<Bits<32>>,
+}
+
+impl CoreRtl {
+    /// Core for the derived parameters (N = `d.iterations` stages).
+    pub fn new(d: &Derived) -> Self {
+        Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            in_valid: Default::default(),
+            in_sin: Default::default(),
+            in_cos: Default::default(),
+            out_valid: Default::default(),
+            out_qc: Default::default(),
+            out_fine: Default::default(),
+            out_turns: Default::default(),
+            out_error: Default::default(),
+            out_warning: Default::default(),
+            mapper: QuadrantMapper::new(d),
+            stages: (0..d.iterations).map(|i| CordicStage::new(d, i)).collect(),
+            combiner: Combiner::new(d),
+            counter: QuadrantCounter::new(d),
+            zero: c32(0),
+        }
+    }
+}
+
+impl Logic for CoreRtl {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.mapper.clk.next = self.clk.val();
+        self.mapper.rst.next = self.rst.val();
+        self.mapper.in_valid.next = self.in_valid.val();
+        self.mapper.in_sin.next = self.in_sin.val();
+        self.mapper.in_cos.next = self.in_cos.val();
+        // Every stage first takes the mapper's output; stages 1.. are then rewired to
+        // their predecessor (the last assignment wins, in rust-hdl and in Verilog alike).
+        for i in 0..self.stages.len() {
+            self.stages[i].clk.next = self.clk.val();
+            self.stages[i].rst.next = self.rst.val();
+            self.stages[i].x_in.next = self.mapper.x.val();
+            self.stages[i].y_in.next = self.mapper.y.val();
+            self.stages[i].z_in.next = self.zero.val();
+            self.stages[i].q_in.next = self.mapper.q.val();
+            self.stages[i].v_in.next = self.mapper.v.val();
+        }
+        for i in 1..self.stages.len() {
+            self.stages[i].x_in.next = self.stages[i - 1].x_out.val();
+            self.stages[i].y_in.next = self.stages[i - 1].y_out.val();
+            self.stages[i].z_in.next = self.stages[i - 1].z_out.val();
+            self.stages[i].q_in.next = self.stages[i - 1].q_out.val();
+            self.stages[i].v_in.next = self.stages[i - 1].v_out.val();
+        }
+        // The combiner takes the last stage's output (last assignment wins).
+        self.combiner.clk.next = self.clk.val();
+        self.combiner.rst.next = self.rst.val();
+        for i in 0..self.stages.len() {
+            self.combiner.z_in.next = self.stages[i].z_out.val();
+            self.combiner.x_in.next = self.stages[i].x_out.val();
+            self.combiner.q_in.next = self.stages[i].q_out.val();
+            self.combiner.v_in.next = self.stages[i].v_out.val();
+        }
+        self.counter.clk.next = self.clk.val();
+        self.counter.rst.next = self.rst.val();
+        self.counter.p_in.next = self.combiner.p.val();
+        self.counter.ok_in.next = self.combiner.mag_ok.val();
+        self.counter.v_in.next = self.combiner.v.val();
+        self.out_valid.next = self.counter.valid.val();
+        self.out_qc.next = self.counter.qc.val();
+        self.out_fine.next = self.counter.fine.val();
+        self.out_turns.next = self.counter.turns.val();
+        self.out_error.next = self.counter.error.val();
+        self.out_warning.next = self.counter.warning.val();
+    }
+}
+
+impl crate::sim::step::Clocked for CoreRtl {
+    fn set_clock(&mut self, high: bool) {
+        self.clk.next = Clock::from(high);
+    }
+}
+
+/// Runs the rust-hdl simulation of the core, stepped by hand, on a stimulus; returns the
+/// outputs after every clock edge with the widths of `<name>_core`.
+pub fn simulate_rtl(
+    d: &Derived,
+    inputs: &[super::model::CoreIn],
+) -> Result<Vec<super::model::CoreOut>, crate::sim::step::NoConvergence> {
+    use crate::blocks::mask;
+    use crate::sim::step::{prepare, tick};
+    let mut uut = Box::new(CoreRtl::new(d));
+    prepare(uut.as_mut())?;
+    let am = mask(d.adc_width);
+    let mut out = Vec::with_capacity(inputs.len());
+    for i in inputs {
+        uut.rst.next = i.rst;
+        uut.in_valid.next = i.valid;
+        uut.in_sin.next = Bits::<16>::from(i.sin as u64 & am);
+        uut.in_cos.next = Bits::<16>::from(i.cos as u64 & am);
+        tick(uut.as_mut())?;
+        let qc = uut.out_qc.val().to_u64();
+        let fine = uut.out_fine.val().to_u64();
+        out.push(super::model::CoreOut {
+            valid: uut.out_valid.val(),
+            position: (qc << d.fine_bits) | fine,
+            turns: uut.out_turns.val().to_u64() & mask(d.turns_width),
+            fine,
+            error: uut.out_error.val(),
+            warning: uut.out_warning.val(),
+        });
+    }
+    Ok(out)
+}

@@ -1,0 +1,44 @@
+//! Position combiner and state-machine quadrant counter (thesis section 3.2.2), with the
+//! multi-turn counter.
+//!
+//! ```text
+//!  zN ──►┌──────────┐ p (F+2 bits)  ┌─────────────────────────────┐
+//!  qN ──►│ combiner ├──────────────►│ quadrant counter            ├─► qc  (0 .. 4PPR-1)
+//!  xN ──►│ round,   │ mag_ok        │ delta = p - p_prev (F+2 b)  ├─► fine (F bits)
+//!  vN ──►│ |v| test │ v             │ qc += carry, wrap at 4PPR   ├─► turns (M bits)
+//!        └──────reg─┘               └──────────────────────reg────┘ ─► valid, error, warning
+//! ```
+//!
+//! Combiner (one register stage):
+//! * fine = round(z / 2^Gz) = (z + 2^(Gz-1)) >> Gz, taken modulo 2^(F+2): z has
+//!   ZW = F + Gz + 2 bits, so the shifted value has exactly F+2 bits and no sign fill is
+//!   needed. fine may be slightly negative (angle 0 approached from below by the CORDIC
+//!   residual) or reach 2^F and beyond (the boundary case): both are absorbed below.
+//! * p = (q * 2^F + fine) mod 2^(F+2): the electrical angle within one signal period in
+//!   units of 2^-F quadrant. The quadrant q comes from the sign bits of the same sample
+//!   that fed the CORDIC, delayed through the pipeline with it, so coarse and fine can
+//!   never disagree; a fine value that rounds up to a full quadrant carries into q here.
+//! * mag_ok = xN >= K_N * min_amplitude * 2^(A-1) * 2^G (unsigned W-bit compare): below
+//!   it the sample has no usable angle (zero input included) and is rejected.
+//!
+//! Quadrant counter (one register stage, the state is (p_prev, qc, fine, turns)):
+//! * The thesis's state machine takes the quadrant from sign(sin), sign(cos) and counts
+//!   +-1 on adjacent transitions. Here the transition table is computed arithmetically:
+//!   delta = (p - p_prev) mod 2^(F+2), read as signed (F+2)-bit, is the step in fine LSB.
+//!   Adjacent-quadrant steps give delta within +-1 quadrant (the +-1 of the thesis); a
+//!   two-quadrant jump, ambiguous for the sign-only state machine, is resolved by the fine
+//!   angle: any step of |delta| < 2 quadrants is unwrapped exactly.
+//! * |delta| >= 1.75 quadrants (7 * 2^(F-2) LSB) raises `warning`: the step is near the
+//!   ambiguity at exactly 2 quadrants, where noise can flip its direction. The maximum speed
+//!   at full resolution is therefore 1.75 quadrants per sample.
+//! * total = fine + delta (signed, F+3 bits); carry = floor(total / 2^F) in -2..=2;
+//!   fine' = total mod 2^F (= p mod 2^F); qc' = qc + carry wrapped into 0..4PPR-1 (PPR need
+//!   not be a power of two: one compare against 4PPR, one add/subtract of 4PPR), and each
+//!   wrap steps the M-bit two's-complement turn counter by +-1 (modulo 2^M).
+//! * The first accepted sample after reset sets qc = p >> F, fine = p mod 2^F, turns = 0.
+//! * A rejected sample (mag_ok = 0) holds the position and sets `error` for that sample.
+//! * Widths: qc needs ceil(log2(4PPR)) bits (18 at PPR = 65535); out_position =
+//!   qc * 2^F + fine needs that plus F bits (34 at most), assembled by the Verilog wrapper
+//!   from qc and fine so no simulated word exceeds 32 bits.
+pub mod hdl;
+pub mod model;

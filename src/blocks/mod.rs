@@ -1,0 +1,43 @@
+//! Hardware blocks. Each block has `hdl.rs` (the rust-hdl description that is simulated and
+//! exported), `model.rs` (a plain-Rust bit-accurate model of the same datapath) and a module
+//! doc comment with its bit-growth maths, an ASCII sketch and its ports.
+//!
+//! Configurable widths: rust-hdl widths are const generics, and stable Rust cannot compute
+//! `Bits<{W+1}>`. Every datapath word is therefore a `Bits<32>` that holds a W-bit
+//! two's-complement value in its low W bits (upper bits always zero); W comes from the
+//! config and reaches the hardware as per-instance `Constant` masks. After every add the
+//! result is ANDed with the mask, so Yosys sees constant-zero upper bits and removes them:
+//! the synthesized width is W, not 32. Right shifts are arithmetic by OR-ing a constant
+//! fill mask when the sign bit (a constant-mask test, never a literal index) is set.
+//! No unsized literal takes part in any expression (rust-hdl pitfall 4).
+pub mod cordic;
+pub mod core;
+pub mod counter;
+
+use rust_hdl::prelude::*;
+
+/// A 32-bit constant word.
+pub(crate) fn c32(v: u64) -> Constant<Bits<32>> {
+    Constant::new(Bits::<32>::from(v & 0xffff_ffff))
+}
+
+/// Mask of the low `w` bits.
+pub(crate) fn mask(w: u32) -> u64 {
+    if w >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << w) - 1
+    }
+}
+
+/// Sign-extends the low `w` bits of `v`.
+#[inline]
+pub(crate) fn sext(v: u64, w: u32) -> i64 {
+    let s = 64 - w;
+    ((v << s) as i64) >> s
+}
+
+/// Bits `k..w` set: the fill OR-ed after a logical right shift by k of a negative w-bit word.
+pub(crate) fn fill(w: u32, k: u32) -> u64 {
+    mask(w) & !(mask(w) >> k.min(w))
+}

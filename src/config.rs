@@ -1,0 +1,496 @@
+//! Configuration: the TOML schema, its validation, and the parameters derived from it.
+//!
+//! Parameters flow one way: TOML text -> [`Config`] (parsed, ranges checked while
+//! deserializing so errors carry line and column) -> [`Derived`] (cross-field checks,
+//! widths, tables and figures computed once) -> the rust-hdl blocks and the Rust model.
+//!
+//! Supported ranges (enforced here, stated in the README):
+//!
+//! | key | range |
+//! |---|---|
+//! | `adc.width` | 10..=16 bits |
+//! | `cordic.iterations` | 1..=20 |
+//! | `cordic.fine_bits` | 2..=16 |
+//! | `cordic.guard_bits` | 0..=20 (default: derived) |
+//! | `encoder.ppr` | 1..=65535 |
+//! | `encoder.multiturn_bits` | 0..=16 |
+//! | `clock.frequency_hz` | 1 MHz..=500 MHz |
+//! | `adc.sample_rate_hz` | up to the ADC's limit and the clock |
+
+use crate::error::{Error, Result};
+use crate::exact;
+use serde::{Deserialize, Deserializer};
+
+/// The default configuration (the thesis's Spartan-3AN Starter Kit design), embedded.
+pub const DEFAULT_CONFIG: &str = include_str!("../configs/spartan3an.toml");
+/// Name used in messages for the embedded default.
+pub const DEFAULT_NAME: &str = "<default spartan3an.toml>";
+
+/// Largest internal datapath word: rust-hdl stores words above 32 bits bit by bit.
+pub const MAX_WORD_BITS: u32 = 31;
+
+macro_rules! ranged {
+    ($fn_name:ident, $ty:ty, $key:expr, $lo:expr, $hi:expr, $unit:expr) => {
+        #[allow(unused_comparisons)]
+        fn $fn_name<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<$ty, D::Error> {
+            let v = <$ty>::deserialize(d)?;
+            if v < $lo || v > $hi {
+                return Err(serde::de::Error::custom(format!(
+                    "`{}` = {} is out of range: allowed {}..={}{}",
+                    $key, v, $lo, $hi, $unit
+                )));
+            }
+            Ok(v)
+        }
+    };
+}
+
+ranged!(r_width, u32, "adc.width", 10, 16, " bits");
+ranged!(r_iter, u32, "cordic.iterations", 1, 20, "");
+ranged!(r_fine, u32, "cordic.fine_bits", 2, 16, " bits");
+ranged!(r_ppr, u32, "encoder.ppr", 1, 65535, " periods per turn");
+ranged!(r_mt, u32, "encoder.multiturn_bits", 0, 16, " bits");
+ranged!(r_clk, f64, "clock.frequency_hz", 1.0e6, 500.0e6, " Hz");
+ranged!(r_amp, f64, "monitor.min_amplitude", 0.0, 0.9, " (fraction of full scale)");
+
+fn r_guard<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<Option<u32>, D::Error> {
+    let v = u32::deserialize(d)?;
+    if v > 20 {
+        return Err(serde::de::Error::custom(format!(
+            "`cordic.guard_bits` = {v} is out of range: allowed 0..=20 (omit it to derive it)"
+        )));
+    }
+    Ok(Some(v))
+}
+
+fn r_name<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<String, D::Error> {
+    let v = String::deserialize(d)?;
+    let ok = !v.is_empty()
+        && v.len() <= 32
+        && v.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+        && v.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if !ok {
+        return Err(serde::de::Error::custom(format!(
+            "`name` = {v:?} is not allowed: 1 to 32 characters of [A-Za-z0-9_], starting with a letter"
+        )));
+    }
+    Ok(v)
+}
+
+/// The FPGA family the design is emitted for.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Target {
+    /// Xilinx Spartan-3AN (XC3S700AN, Starter Kit).
+    Spartan3an,
+    /// Intel/Altera Cyclone III (EP3C40F324C8).
+    Cyclone3,
+}
+
+/// ADC chip presets.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+pub enum AdcPreset {
+    /// LTC1407A-1: dual 14-bit, 3 Msps total (1.5 Msps per channel).
+    #[serde(rename = "ltc1407a-1")]
+    Ltc1407a1,
+    /// Any other SPI ADC (limits come from `adc.max_sample_rate_hz`).
+    #[serde(rename = "generic")]
+    Generic,
+}
+
+/// Whole configuration file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    /// Prefix of every emitted module name.
+    #[serde(deserialize_with = "r_name")]
+    pub name: String,
+    /// FPGA family.
+    pub target: Target,
+    /// System clock.
+    pub clock: ClockConfig,
+    /// The encoder being read.
+    pub encoder: EncoderConfig,
+    /// The ADC that samples sin and cos.
+    pub adc: AdcConfig,
+    /// The CORDIC fine interpolator.
+    pub cordic: CordicConfig,
+    /// Signal monitoring.
+    #[serde(default)]
+    pub monitor: MonitorConfig,
+}
+
+/// `[clock]`
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClockConfig {
+    /// System clock frequency in Hz.
+    #[serde(deserialize_with = "r_clk")]
+    pub frequency_hz: f64,
+}
+
+/// `[encoder]`
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EncoderConfig {
+    /// Signal periods (sine cycles) per mechanical turn.
+    #[serde(deserialize_with = "r_ppr")]
+    pub ppr: u32,
+    /// Width of the signed multi-turn counter (0 = single-turn only).
+    #[serde(deserialize_with = "r_mt")]
+    pub multiturn_bits: u32,
+}
+
+/// `[adc]`
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdcConfig {
+    /// Chip preset.
+    pub preset: AdcPreset,
+    /// Sample width in bits (two's complement).
+    #[serde(deserialize_with = "r_width")]
+    pub width: u32,
+    /// Sample rate per channel delivered to the core, in samples per second.
+    pub sample_rate_hz: f64,
+    /// Upper limit of the chip's per-channel rate (required for `generic`).
+    #[serde(default)]
+    pub max_sample_rate_hz: Option<f64>,
+}
+
+/// `[cordic]`
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CordicConfig {
+    /// Number of vectoring iterations N (one pipeline stage each).
+    #[serde(deserialize_with = "r_iter")]
+    pub iterations: u32,
+    /// Fine bits F: the interpolated angle is a fraction of a quadrant in units of 2^-F.
+    #[serde(deserialize_with = "r_fine")]
+    pub fine_bits: u32,
+    /// Fractional guard bits of the x/y datapath; derived when omitted.
+    #[serde(default, deserialize_with = "r_guard")]
+    pub guard_bits: Option<u32>,
+}
+
+/// `[monitor]`
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MonitorConfig {
+    /// Signal amplitude (fraction of ADC full scale) below which a sample is rejected
+    /// and the error flag raised.
+    #[serde(default = "default_min_amplitude", deserialize_with = "r_amp")]
+    pub min_amplitude: f64,
+}
+
+fn default_min_amplitude() -> f64 {
+    0.0625
+}
+
+impl Default for MonitorConfig {
+    fn default() -> Self {
+        MonitorConfig {
+            min_amplitude: default_min_amplitude(),
+        }
+    }
+}
+
+/// Parameters computed once from a validated [`Config`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Derived {
+    /// ADC sample width A.
+    pub adc_width: u32,
+    /// CORDIC iterations N.
+    pub iterations: u32,
+    /// Fine bits F.
+    pub fine_bits: u32,
+    /// Fractional guard bits of x/y (below the input LSB).
+    pub xy_guard: u32,
+    /// x/y datapath width: A + 2 integer bits (sign, quadrant mapping of -2^(A-1), CORDIC
+    /// growth K*sqrt(2) < 2.33) + guard bits.
+    pub xy_width: u32,
+    /// Fractional guard bits of the angle accumulator (below the fine LSB).
+    pub z_guard: u32,
+    /// Angle accumulator width: F + guard + 2 (sign and the 1.11-quadrant reach).
+    pub z_width: u32,
+    /// atan(2^-i)/(pi/2) in units of 2^-(F + z_guard) quadrant, i = 0..N.
+    pub atan_table: Vec<u64>,
+    /// CORDIC gain K_N.
+    pub gain: f64,
+    /// Magnitude threshold in x units (K * min_amplitude * 2^(A-1) * 2^xy_guard, rounded up).
+    pub min_magnitude: u64,
+    /// Quadrants per turn: 4 * PPR.
+    pub quadrants_per_turn: u64,
+    /// Bits of the coarse quadrant count (enough for 4*PPR - 1).
+    pub quadrant_bits: u32,
+    /// Width of `out_position`: quadrant_bits + F.
+    pub position_width: u32,
+    /// Width of `out_turns` (at least 1; always zero when multiturn_bits = 0).
+    pub turns_width: u32,
+    /// Multi-turn bits M as configured.
+    pub multiturn_bits: u32,
+    /// A step of at least this many fine LSB between samples raises the warning.
+    pub warn_step: u64,
+    /// Latency from the `in_valid` cycle to the `out_valid` cycle.
+    pub latency_cycles: u32,
+    /// Clock frequency in Hz.
+    pub clock_hz: f64,
+    /// Sample rate per channel in Hz.
+    pub sample_rate_hz: f64,
+    /// Highest speed (rpm) at which every sample stays below `warn_step`.
+    pub max_speed_rpm_full_res: f64,
+    /// Resolution bits per turn: log2(4 * PPR * 2^F).
+    pub resolution_bits: f64,
+}
+
+fn ceil_log2(v: u32) -> u32 {
+    if v <= 1 {
+        0
+    } else {
+        32 - (v - 1).leading_zeros()
+    }
+}
+
+/// Finds `key` in the TOML text under `[table]` and returns "line:column: " or "".
+pub fn locate(text: &str, table: &str, key: &str) -> String {
+    let mut current = String::new();
+    for (n, line) in text.lines().enumerate() {
+        let t = line.trim_start();
+        if let Some(rest) = t.strip_prefix('[') {
+            current = rest.split(']').next().unwrap_or("").trim().to_string();
+            continue;
+        }
+        if current == table {
+            if let Some(rest) = t.strip_prefix(key) {
+                if rest.trim_start().starts_with('=') {
+                    let col = line.len() - t.len() + 1;
+                    return format!("{}:{}: ", n + 1, col);
+                }
+            }
+        }
+    }
+    String::new()
+}
+
+/// A parsed configuration together with the text it came from.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    /// The validated config.
+    pub config: Config,
+    /// Derived parameters.
+    pub derived: Derived,
+    /// The exact TOML text (hashed into file headers).
+    pub text: String,
+    /// Name of the source for messages.
+    pub source_name: String,
+}
+
+impl Loaded {
+    /// Parses and validates `text`; `source_name` is used in error messages.
+    pub fn parse(text: &str, source_name: &str) -> Result<Loaded> {
+        let config: Config = toml::from_str(text).map_err(|e| {
+            let (line, column) = e
+                .span()
+                .map(|s| line_col(text, s.start))
+                .unwrap_or((1, 1));
+            Error::ConfigSyntax {
+                source_name: source_name.to_string(),
+                line,
+                column,
+                message: e.message().trim().to_string(),
+            }
+        })?;
+        let derived = Derived::compute(&config, text, source_name)?;
+        Ok(Loaded {
+            config,
+            derived,
+            text: text.to_string(),
+            source_name: source_name.to_string(),
+        })
+    }
+
+    /// The embedded default configuration.
+    pub fn default_config() -> Result<Loaded> {
+        Loaded::parse(DEFAULT_CONFIG, DEFAULT_NAME)
+    }
+
+    /// Reads and parses a file.
+    pub fn from_file(path: &std::path::Path) -> Result<Loaded> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Loaded::parse(&text, &path.display().to_string())
+    }
+
+    /// FNV-1a 64-bit hash of the config text, printed in every file header.
+    pub fn hash(&self) -> String {
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for b in self.text.bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+        format!("{h:016x}")
+    }
+}
+
+/// 1-based line and column of byte offset `pos` in `text`.
+pub fn line_col(text: &str, pos: usize) -> (usize, usize) {
+    let before = &text[..pos.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.len() - before.rfind('\n').map(|i| i + 1).unwrap_or(0) + 1;
+    (line, col)
+}
+
+impl Derived {
+    /// Cross-field validation and derivation.
+    pub fn compute(c: &Config, text: &str, source_name: &str) -> Result<Derived> {
+        let err = |table: &str, key: &str, message: String| Error::ConfigValue {
+            source_name: source_name.to_string(),
+            location: locate(text, table, key),
+            key: format!("{table}.{key}"),
+            message,
+        };
+        let a = c.adc.width;
+        let n = c.cordic.iterations;
+        let f = c.cordic.fine_bits;
+        // Guard bits so that truncation in the x/y shifts stays below 1/4 fine LSB for
+        // inputs of at least 1/8 full scale: each stage truncates by < 1 unit of
+        // 2^-G input LSB; the final angle error is about 2N * 2^-G / (K |v|) rad with
+        // |v| >= 2^(A-4), which in fine LSB ((pi/2) 2^-F rad) is 0.78 N 2^(F+4-A-G).
+        let auto_guard = (f as i64 + 4 - a as i64 + ceil_log2(n) as i64 + 2).max(1) as u32;
+        let xy_guard = c.cordic.guard_bits.unwrap_or(auto_guard);
+        let xy_width = a + 2 + xy_guard;
+        if xy_width > MAX_WORD_BITS {
+            return Err(err(
+                "cordic",
+                "guard_bits",
+                format!(
+                    "x/y datapath would be {xy_width} bits (adc.width {a} + 2 + guard {xy_guard}); at most {MAX_WORD_BITS} are supported"
+                ),
+            ));
+        }
+        // Angle table rounding: N entries each within 1/2 unit of 2^-(F+Gz) -> N/2^(Gz+1)
+        // fine LSB; ceil(log2 N) + 2 keeps it below 1/8 LSB.
+        let z_guard = ceil_log2(n) + 2;
+        let z_width = f + z_guard + 2;
+        if n > a + xy_guard {
+            return Err(err(
+                "cordic",
+                "iterations",
+                format!(
+                    "{n} iterations shift beyond the {} bits of the x/y datapath (adc.width {a} + guard {xy_guard}); use at most {}",
+                    a + xy_guard,
+                    a + xy_guard
+                ),
+            ));
+        }
+        let atan_table = exact::atan_table_quadrant(n, f + z_guard);
+        let gain = exact::cordic_gain(n);
+        let full_scale = 1u64 << (a - 1);
+        let min_in = (c.monitor.min_amplitude * full_scale as f64).ceil() as u64;
+        let min_magnitude = exact::gain_times_ceil(n, min_in << xy_guard);
+        let quadrants_per_turn = 4 * c.encoder.ppr as u64;
+        let quadrant_bits = 64 - (quadrants_per_turn - 1).leading_zeros();
+        let position_width = quadrant_bits + f;
+        let clock_hz = c.clock.frequency_hz;
+        let rate = c.adc.sample_rate_hz;
+        let limit = match c.adc.preset {
+            AdcPreset::Ltc1407a1 => 1.5e6,
+            AdcPreset::Generic => c.adc.max_sample_rate_hz.ok_or_else(|| {
+                err(
+                    "adc",
+                    "preset",
+                    "preset \"generic\" needs `adc.max_sample_rate_hz` (the chip's per-channel limit)"
+                        .into(),
+                )
+            })?,
+        };
+        if c.adc.preset == AdcPreset::Ltc1407a1 && a != 14 {
+            return Err(err(
+                "adc",
+                "width",
+                format!("the LTC1407A-1 delivers 14-bit samples; width {a} needs preset \"generic\""),
+            ));
+        }
+        if !(rate > 0.0 && rate <= limit && rate <= clock_hz) {
+            return Err(err(
+                "adc",
+                "sample_rate_hz",
+                format!(
+                    "{rate} Hz is not allowed: 0 < rate <= {limit} (the ADC's per-channel limit) and <= the clock"
+                ),
+            ));
+        }
+        // Warn at 1.75 quadrants per sample: the fine-angle unwrap is exact below 2.
+        let warn_step = 7u64 << (f - 2);
+        let max_speed_rpm_full_res =
+            (warn_step - 1) as f64 / (1u64 << f) as f64 * rate / quadrants_per_turn as f64 * 60.0;
+        let latency_cycles = n + 2;
+        Ok(Derived {
+            adc_width: a,
+            iterations: n,
+            fine_bits: f,
+            xy_guard,
+            xy_width,
+            z_guard,
+            z_width,
+            atan_table,
+            gain,
+            min_magnitude,
+            quadrants_per_turn,
+            quadrant_bits,
+            position_width,
+            turns_width: c.encoder.multiturn_bits.max(1),
+            multiturn_bits: c.encoder.multiturn_bits,
+            warn_step,
+            latency_cycles,
+            clock_hz,
+            sample_rate_hz: rate,
+            max_speed_rpm_full_res,
+            resolution_bits: (quadrants_per_turn as f64).log2() + f as f64,
+        })
+    }
+
+    /// Latency in nanoseconds at the configured clock.
+    pub fn latency_ns(&self) -> f64 {
+        self.latency_cycles as f64 * 1e9 / self.clock_hz
+    }
+
+    /// Human-readable listing printed by `sinedec check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "adc width A                 {} bits\n\
+             cordic iterations N         {}\n\
+             fine bits F                 {} (1 LSB = {:.4} arc-seconds of electrical angle)\n\
+             x/y datapath                {} bits ({} guard bits)\n\
+             angle accumulator           {} bits ({} guard bits)\n\
+             cordic gain K_N             {:.12}\n\
+             min magnitude (x units)     {}\n\
+             quadrant count              {} bits (4 x PPR = {} quadrants per turn)\n\
+             out_position width          {} bits ({:.2} bits per turn)\n\
+             out_turns width             {} bits\n\
+             latency                     {} cycles = {:.1} ns at {:.3} MHz\n\
+             throughput                  1 sample per clock\n\
+             sample rate                 {:.0} samples/s per channel\n\
+             max speed at full res.      {:.0} rpm (steps below {:.2} quadrants per sample)\n",
+            self.adc_width,
+            self.iterations,
+            self.fine_bits,
+            90.0 * 3600.0 / (1u64 << self.fine_bits) as f64,
+            self.xy_width,
+            self.xy_guard,
+            self.z_width,
+            self.z_guard,
+            self.gain,
+            self.min_magnitude,
+            self.quadrant_bits,
+            self.quadrants_per_turn,
+            self.position_width,
+            self.resolution_bits,
+            self.turns_width,
+            self.latency_cycles,
+            self.latency_ns(),
+            self.clock_hz / 1e6,
+            self.sample_rate_hz,
+            self.max_speed_rpm_full_res,
+            self.warn_step as f64 / (1u64 << self.fine_bits) as f64,
+        )
+    }
+}

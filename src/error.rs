@@ -1,0 +1,68 @@
+//! The library's error type.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in sinedec's library functions.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The TOML text does not parse or does not match the schema (unknown key, wrong type,
+    /// value out of range); `line`/`column` are 1-based.
+    #[error("{source_name}:{line}:{column}: {message}")]
+    ConfigSyntax {
+        /// File name (or `<default>` for the embedded config).
+        source_name: String,
+        /// 1-based line of the offending text.
+        line: usize,
+        /// 1-based column of the offending text.
+        column: usize,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// The config parses but a value or a combination of values is not supported.
+    #[error("{source_name}:{location}key `{key}`: {message}")]
+    ConfigValue {
+        /// File name (or `<default>`).
+        source_name: String,
+        /// `line:column: ` of the key when it can be found in the text, else empty.
+        location: String,
+        /// Dotted key, e.g. `cordic.iterations`.
+        key: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// rust-hdl rejected the generated design (a connection or latch check failed).
+    #[error("rust-hdl check of `{block}` failed: {message}")]
+    HdlCheck {
+        /// The block that failed.
+        block: String,
+        /// rust-hdl's description.
+        message: String,
+    },
+    /// Internal consistency check of emitted Verilog (identifier clash, bad name).
+    #[error("Verilog export: {0}")]
+    Export(String),
+    /// An external tool (Yosys, Icarus, Verilator) is missing or failed.
+    #[error(transparent)]
+    Tool(#[from] crate::sim::cosim::CosimError),
+}
+
+/// Shorthand result type.
+pub type Result<T> = std::result::Result<T, Error>;
+
+impl Error {
+    /// I/O error with the path it concerns.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Error {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
