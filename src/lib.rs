@@ -6,3 +6,4 @@ pub mod error;
 pub mod exact;
 pub mod blocks;
 pub mod emit;
+pub mod verify;

@@ -1,20 +1,10 @@
 //! rust-hdl simulation of the core == the bit-accurate model, cycle for cycle.
 use sinedec::blocks::core::hdl::simulate_rtl;
 use sinedec::blocks::core::model::{CoreIn, CoreModel};
-use sinedec::config::{Loaded, DEFAULT_CONFIG};
+use sinedec::config::Loaded;
 use sinedec::sim::stimulus;
-
-fn cfg(n: u32, f: u32, a: u32, ppr: u32, mt: u32) -> Loaded {
-    let preset = if a == 14 { "ltc1407a-1" } else { "generic\"\nmax_sample_rate_hz = 2e6\n#\"" };
-    let text = DEFAULT_CONFIG
-        .replace("iterations = 14", &format!("iterations = {n}"))
-        .replace("fine_bits = 14", &format!("fine_bits = {f}"))
-        .replace("width = 14", &format!("width = {a}"))
-        .replace("ppr = 2048", &format!("ppr = {ppr}"))
-        .replace("multiturn_bits = 12", &format!("multiturn_bits = {mt}"))
-        .replace("preset = \"ltc1407a-1\"", &format!("preset = \"{preset}\""));
-    Loaded::parse(&text, "test").expect("config")
-}
+mod common;
+use common::cfg;
 
 fn check(l: &Loaded, stim: &[CoreIn]) {
     let d = &l.derived;

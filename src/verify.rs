@@ -1,0 +1,121 @@
+//! Four-way check of the core: the rust-hdl simulation, the bit-accurate model, Icarus
+//! Verilog and Verilator on the exported Verilog, all driven by one stimulus.
+use crate::blocks::core::hdl::simulate_rtl;
+use crate::blocks::core::model::{CoreIn, CoreModel};
+use crate::blocks::mask;
+use crate::config::Loaded;
+use crate::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
+use crate::error::{Error, Result};
+use crate::sim::cosim::{first_mismatch, run_icarus, run_verilator, CosimSpec, Trace};
+use std::path::Path;
+
+/// Which simulators to run besides rust-hdl and the model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Simulators {
+    /// Run Icarus Verilog.
+    pub icarus: bool,
+    /// Run Verilator.
+    pub verilator: bool,
+}
+
+impl Simulators {
+    /// Both Verilog simulators.
+    pub const ALL: Simulators = Simulators {
+        icarus: true,
+        verilator: true,
+    };
+}
+
+/// The traces of one run, all in `<name>_core` port order.
+#[derive(Clone, Debug)]
+pub struct CoreTraces {
+    /// rust-hdl simulation, stepped by hand.
+    pub rust_hdl: Trace,
+    /// Bit-accurate model.
+    pub model: Trace,
+    /// Icarus Verilog, when run.
+    pub icarus: Option<Trace>,
+    /// Verilator, when run.
+    pub verilator: Option<Trace>,
+}
+
+impl CoreTraces {
+    /// None when every trace equals the rust-hdl one; otherwise the first difference.
+    pub fn mismatch(&self, loaded: &Loaded) -> Option<String> {
+        let outs = core_output_ports(&loaded.derived);
+        let mut others: Vec<(&str, &Trace)> = vec![("model", &self.model)];
+        if let Some(t) = &self.icarus {
+            others.push(("icarus", t));
+        }
+        if let Some(t) = &self.verilator {
+            others.push(("verilator", t));
+        }
+        others
+            .into_iter()
+            .find_map(|(name, t)| first_mismatch("rust-hdl", &self.rust_hdl, name, t, &outs))
+    }
+}
+
+/// Stimulus rows for the Verilog simulators (`core_input_ports` order).
+pub fn stimulus_rows(loaded: &Loaded, inputs: &[CoreIn]) -> Vec<Vec<u64>> {
+    let am = mask(loaded.derived.adc_width);
+    inputs
+        .iter()
+        .map(|i| {
+            vec![
+                i.rst as u64,
+                i.valid as u64,
+                i.sin as u64 & am,
+                i.cos as u64 & am,
+            ]
+        })
+        .collect()
+}
+
+/// Runs every simulator on `inputs`; `workdir` holds the Verilog runs' files.
+pub fn core_traces(
+    loaded: &Loaded,
+    inputs: &[CoreIn],
+    sims: Simulators,
+    workdir: &Path,
+) -> Result<CoreTraces> {
+    let d = &loaded.derived;
+    let rust_hdl = simulate_rtl(d, inputs)
+        .map_err(|e| Error::HdlCheck {
+            block: "core".into(),
+            message: e.to_string(),
+        })?
+        .iter()
+        .map(|o| o.row())
+        .collect();
+    let mut m = CoreModel::new(d);
+    let model = inputs.iter().map(|i| m.step(*i).row()).collect();
+    let verilog = core_verilog(loaded)?;
+    let top = core_name(loaded);
+    let ins = core_input_ports(d);
+    let outs = core_output_ports(d);
+    let spec = CosimSpec {
+        verilog: &verilog,
+        top: &top,
+        clock: "clk",
+        inputs: &ins,
+        outputs: &outs,
+    };
+    let rows = stimulus_rows(loaded, inputs);
+    let icarus = if sims.icarus {
+        Some(run_icarus(&spec, &rows, workdir)?)
+    } else {
+        None
+    };
+    let verilator = if sims.verilator {
+        Some(run_verilator(&spec, &rows, workdir)?)
+    } else {
+        None
+    };
+    Ok(CoreTraces {
+        rust_hdl,
+        model,
+        icarus,
+        verilator,
+    })
+}

@@ -1,0 +1,34 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
+
+/// The default config with the given core parameters (A != 14 switches to the generic ADC).
+pub fn cfg(n: u32, f: u32, a: u32, ppr: u32, mt: u32) -> Loaded {
+    cfg_named("sd", n, f, a, ppr, mt)
+}
+
+/// As [`cfg`] with a module-name prefix.
+pub fn cfg_named(name: &str, n: u32, f: u32, a: u32, ppr: u32, mt: u32) -> Loaded {
+    let mut text = DEFAULT_CONFIG
+        .replace("name = \"sd\"", &format!("name = \"{name}\""))
+        .replace("iterations = 14", &format!("iterations = {n}"))
+        .replace("fine_bits = 14", &format!("fine_bits = {f}"))
+        .replace("width = 14", &format!("width = {a}"))
+        .replace("ppr = 2048", &format!("ppr = {ppr}"))
+        .replace("multiturn_bits = 12", &format!("multiturn_bits = {mt}"));
+    if a != 14 {
+        text = text.replace(
+            "preset = \"ltc1407a-1\"",
+            "preset = \"generic\"\nmax_sample_rate_hz = 2e6",
+        );
+    }
+    Loaded::parse(&text, "test").expect("test config parses")
+}
+
+/// A fresh work directory for tool runs (kept under target/ for inspection).
+pub fn workdir(tag: &str) -> std::path::PathBuf {
+    let p = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(tag);
+    let _ = std::fs::remove_dir_all(&p);
+    std::fs::create_dir_all(&p).expect("create work dir");
+    p
+}
