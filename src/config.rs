@@ -354,7 +354,10 @@ impl Derived {
         // inputs of at least 1/8 full scale: each stage truncates by < 1 unit of
         // 2^-G input LSB; the final angle error is about 2N * 2^-G / (K |v|) rad with
         // |v| >= 2^(A-4), which in fine LSB ((pi/2) 2^-F rad) is 0.78 N 2^(F+4-A-G).
-        let auto_guard = (f as i64 + 4 - a as i64 + ceil_log2(n) as i64 + 2).max(1) as u32;
+        // At least enough that the last stage's shift stays inside the word.
+        let auto_guard = (f as i64 + 4 - a as i64 + ceil_log2(n) as i64 + 2)
+            .max(n as i64 - a as i64)
+            .max(1) as u32;
         let xy_guard = c.cordic.guard_bits.unwrap_or(auto_guard);
         let xy_width = a + 2 + xy_guard;
         if xy_width > MAX_WORD_BITS {

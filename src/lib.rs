@@ -7,3 +7,4 @@ pub mod exact;
 pub mod blocks;
 pub mod emit;
 pub mod verify;
+pub mod synth;

@@ -1,0 +1,212 @@
+//! Yosys synthesis for Spartan-3A (`synth_xilinx -family xc3sa`) and Cyclone III
+//! (`synth_intel -family cycloneive`: the Cyclone IV E logic element is the Cyclone III
+//! one), with the design rules of the project:
+//!
+//! * no latch after `proc` (`select -assert-none` on every latch cell type);
+//! * `check -assert` before and after synthesis: no undriven or multiply driven nets, no
+//!   combinational loops;
+//! * no Yosys warning outside a short list of known, result-neutral ones.
+//!
+//! Counts come from `stat` on the flattened netlist.
+use crate::error::{Error, Result};
+use crate::sim::cosim::{require_tool, CosimError};
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
+
+/// FPGA family to synthesize for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    /// Spartan-3A / 3AN.
+    Xc3sa,
+    /// Cyclone IV E (= Cyclone III logic element).
+    CycloneIve,
+}
+
+impl Family {
+    /// Yosys family name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Xc3sa => "xc3sa",
+            Family::CycloneIve => "cycloneive",
+        }
+    }
+    fn synth_command(self, top: &str) -> String {
+        match self {
+            Family::Xc3sa => format!("synth_xilinx -family xc3sa -top {top} -flatten"),
+            Family::CycloneIve => format!("synth_intel -family cycloneive -top {top}"),
+        }
+    }
+}
+
+/// Cell counts of a synthesized design.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SynthStats {
+    /// Every cell type and its count.
+    pub cells: BTreeMap<String, u64>,
+    /// LUTs (LUT1..LUT4 and INV on xc3sa; logic cells on cycloneive).
+    pub luts: u64,
+    /// Flip-flops.
+    pub ffs: u64,
+    /// Carry cells (MUXCY on xc3sa; cycloneive carries inside its logic cells: 0).
+    pub carry: u64,
+    /// Hard multipliers.
+    pub multipliers: u64,
+    /// Block RAMs.
+    pub brams: u64,
+}
+
+/// Yosys warnings that do not change results.
+const HARMLESS: &[&str] = &[
+    "Shift register inference not yet supported for family xc3sa",
+    "Feature 'synth_intel' is experimental",
+];
+
+fn classify(cells: &BTreeMap<String, u64>, family: Family) -> SynthStats {
+    let mut s = SynthStats {
+        cells: cells.clone(),
+        ..Default::default()
+    };
+    for (name, &n) in cells {
+        let is = |p: &str| name.starts_with(p);
+        match family {
+            Family::Xc3sa => {
+                if is("LUT") || name == "INV" {
+                    s.luts += n;
+                } else if is("FD") {
+                    s.ffs += n;
+                } else if name == "MUXCY" {
+                    s.carry += n;
+                } else if is("MULT18X18") {
+                    s.multipliers += n;
+                } else if is("RAMB16") {
+                    s.brams += n;
+                }
+            }
+            Family::CycloneIve => {
+                if name == "cycloneive_lcell_comb" {
+                    s.luts += n;
+                } else if name == "dffeas" {
+                    s.ffs += n;
+                } else if is("cycloneive_mac_mult") {
+                    s.multipliers += n;
+                } else if is("cycloneive_ram_block") {
+                    s.brams += n;
+                }
+            }
+        }
+    }
+    s
+}
+
+/// Parses the cell table of Yosys `stat` output for module `top`.
+pub fn parse_stat(text: &str, top: &str) -> BTreeMap<String, u64> {
+    let mut cells = BTreeMap::new();
+    let mut in_top = false;
+    let mut in_cells = false;
+    for line in text.lines() {
+        let t = line.trim();
+        if t.starts_with("===") {
+            in_top = t.trim_matches('=').trim() == top;
+            in_cells = false;
+            continue;
+        }
+        if !in_top {
+            continue;
+        }
+        if t.starts_with("Number of cells:") {
+            in_cells = true;
+            continue;
+        }
+        if in_cells {
+            let mut it = t.split_whitespace();
+            match (it.next(), it.next(), it.next()) {
+                (Some(name), Some(count), None) => match count.parse::<u64>() {
+                    Ok(c) => {
+                        cells.insert(name.to_string(), c);
+                    }
+                    Err(_) => in_cells = false,
+                },
+                _ => in_cells = false,
+            }
+        }
+    }
+    cells
+}
+
+/// Synthesizes `verilog` (top module `top`) for `family` in `workdir`.
+pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> Result<SynthStats> {
+    require_tool("yosys")?;
+    let tag = family.name();
+    let vfile = workdir.join(format!("synth_{tag}.v"));
+    std::fs::write(&vfile, verilog).map_err(|e| Error::io(&vfile, e))?;
+    let stat = workdir.join(format!("synth_{tag}_stat.txt"));
+    let script = format!(
+        "read_verilog {v}\n\
+         hierarchy -check -top {top}\n\
+         proc\n\
+         select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr\n\
+         check -assert\n\
+         {synth}\n\
+         check -assert\n\
+         tee -q -o {stat} stat\n",
+        v = vfile.display(),
+        synth = family.synth_command(top),
+        stat = stat.display(),
+    );
+    let ys = workdir.join(format!("synth_{tag}.ys"));
+    std::fs::write(&ys, script).map_err(|e| Error::io(&ys, e))?;
+    let out = Command::new("yosys")
+        .arg("-q")
+        .arg("-s")
+        .arg(&ys)
+        .output()
+        .map_err(|e| CosimError::ToolFailed {
+            tool: "yosys".into(),
+            stage: "launch".into(),
+            message: e.to_string(),
+        })?;
+    let log = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    if !out.status.success() {
+        let lines: Vec<&str> = log.lines().collect();
+        let tail = lines[lines.len().saturating_sub(40)..].join("\n");
+        let what = if log.contains("selection is not empty") {
+            "latch inferred"
+        } else if log.contains("problems in 'check -assert'") {
+            "check failed: undriven or multiply driven net, or a logic loop"
+        } else {
+            "synthesis error"
+        };
+        return Err(CosimError::ToolFailed {
+            tool: "yosys".into(),
+            stage: format!("synth {tag}: {what}"),
+            message: tail,
+        }
+        .into());
+    }
+    let bad: Vec<&str> = log
+        .lines()
+        .filter(|l| l.contains("Warning:") && !HARMLESS.iter().any(|h| l.contains(h)))
+        .collect();
+    if !bad.is_empty() {
+        return Err(CosimError::ToolFailed {
+            tool: "yosys".into(),
+            stage: format!("synth {tag} warnings"),
+            message: bad.join("\n"),
+        }
+        .into());
+    }
+    let text = std::fs::read_to_string(&stat).map_err(|e| Error::io(&stat, e))?;
+    let cells = parse_stat(&text, top);
+    if cells.is_empty() {
+        return Err(Error::Export(format!(
+            "no cell statistics for `{top}` in {}",
+            stat.display()
+        )));
+    }
+    Ok(classify(&cells, family))
+}
