@@ -119,3 +119,92 @@ pub fn core_traces(
         verilator,
     })
 }
+
+/// A rust-hdl block that can be co-simulated as the top of its own exported Verilog: its
+/// ports (besides the clock) are listed with their Verilog names and widths, and rows of
+/// values are applied to / read from the block in that order.
+pub trait CosimBlock: crate::sim::step::Clocked + Sized {
+    /// Inputs besides the clock, in stimulus-row order (names = the struct's field names).
+    fn input_ports(&self) -> Vec<crate::sim::cosim::Port>;
+    /// Outputs in trace-row order.
+    fn output_ports(&self) -> Vec<crate::sim::cosim::Port>;
+    /// Drives the inputs from one stimulus row (`.next` of each input).
+    fn apply(&mut self, row: &[u64]);
+    /// Reads the outputs into one trace row.
+    fn sample(&self) -> Vec<u64>;
+}
+
+/// Traces of one block run: rust-hdl, and the Verilog simulators that were asked for.
+#[derive(Clone, Debug)]
+pub struct BlockTraces {
+    /// rust-hdl simulation, stepped by hand.
+    pub rust_hdl: Trace,
+    /// Icarus Verilog, when run.
+    pub icarus: Option<Trace>,
+    /// Verilator, when run.
+    pub verilator: Option<Trace>,
+    /// The output ports (for messages).
+    pub outputs: Vec<crate::sim::cosim::Port>,
+}
+
+impl BlockTraces {
+    /// None when Icarus and Verilator equal rust-hdl; otherwise the first difference.
+    pub fn mismatch(&self) -> Option<String> {
+        [("icarus", &self.icarus), ("verilator", &self.verilator)]
+            .into_iter()
+            .filter_map(|(n, t)| t.as_ref().map(|t| (n, t)))
+            .find_map(|(n, t)| first_mismatch("rust-hdl", &self.rust_hdl, n, t, &self.outputs))
+    }
+}
+
+/// Exports `uut` as Verilog (top module `top_name`, every module prefixed with it), runs
+/// the rust-hdl simulation of it on `rows`, and the chosen Verilog simulators in `workdir`.
+/// The clock input must be named `clk` (or `clock`: give its name in `clock`).
+pub fn block_traces<B: CosimBlock>(
+    mut uut: B,
+    top_name: &str,
+    clock: &str,
+    rows: &[Vec<u64>],
+    sims: Simulators,
+    workdir: &Path,
+) -> Result<BlockTraces> {
+    use crate::sim::step::{prepare, tick};
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let verilog = crate::emit::verilog::export(&uut, top_name, top_name)?;
+    let ins = uut.input_ports();
+    let outs = uut.output_ports();
+    let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
+        block: top_name.to_string(),
+        message: e.to_string(),
+    };
+    prepare(&mut uut).map_err(settle)?;
+    let mut rust_hdl = Vec::with_capacity(rows.len());
+    for r in rows {
+        uut.apply(r);
+        tick(&mut uut).map_err(settle)?;
+        rust_hdl.push(uut.sample());
+    }
+    let spec = CosimSpec {
+        verilog: &verilog,
+        top: top_name,
+        clock,
+        inputs: &ins,
+        outputs: &outs,
+    };
+    let icarus = if sims.icarus {
+        Some(run_icarus(&spec, rows, workdir)?)
+    } else {
+        None
+    };
+    let verilator = if sims.verilator {
+        Some(run_verilator(&spec, rows, workdir)?)
+    } else {
+        None
+    };
+    Ok(BlockTraces {
+        rust_hdl,
+        icarus,
+        verilator,
+        outputs: outs,
+    })
+}

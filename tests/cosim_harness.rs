@@ -7,7 +7,6 @@ use sinedec::sim::cosim::{
     CosimSpec, Port, Trace,
 };
 use std::path::Path;
-use std::time::Instant;
 
 /// Unwraps a harness result, panicking with the error's human-readable message.
 fn ok<T>(r: Result<T, CosimError>) -> T {
@@ -218,9 +217,7 @@ fn icarus_matches_reference() {
     let spec = demo_spec(&inputs, &outputs);
     let stim = demo_stimulus(2000);
     let dir = workdir();
-    let t = Instant::now();
     let got = ok(run_icarus(&spec, &stim, dir.path()));
-    eprintln!("icarus: {} cycles in {:.2?}", stim.len(), t.elapsed());
     assert_eq!(got.len(), stim.len());
     assert_same("icarus", &got, &demo_reference(&stim), &outputs);
 }
@@ -232,9 +229,7 @@ fn verilator_matches_reference() {
     let spec = demo_spec(&inputs, &outputs);
     let stim = demo_stimulus(2000);
     let dir = workdir();
-    let t = Instant::now();
     let got = ok(run_verilator(&spec, &stim, dir.path()));
-    eprintln!("verilator: {} cycles in {:.2?}", stim.len(), t.elapsed());
     assert_eq!(got.len(), stim.len());
     assert_same("verilator", &got, &demo_reference(&stim), &outputs);
 }
@@ -507,11 +502,10 @@ fn pipeline_verilog(stages: usize) -> String {
     v
 }
 
-/// Times both simulators on a 20-module design for 20 000 cycles and cross-checks them.
-/// Run with `cargo test --test cosim_harness -- --ignored --nocapture`.
+/// Icarus and Verilator agree on a 20-module pipeline over 5 000 cycles, and a second
+/// Verilator build in the same work directory gives the same trace.
 #[test]
-#[ignore]
-fn bench_pipeline_20_modules_20k_cycles() {
+fn icarus_and_verilator_agree_on_a_20_module_pipeline() {
     let verilog = pipeline_verilog(20);
     let inputs = [Port::new("din", 16)];
     let outputs = [Port::new("dout", 16), Port::new("parity", 16)];
@@ -523,25 +517,13 @@ fn bench_pipeline_20_modules_20k_cycles() {
         outputs: &outputs,
     };
     let mut rng = Rng(12345);
-    let stim: Vec<Vec<u64>> = (0..20_000).map(|_| vec![rng.next() & 0xFFFF]).collect();
+    let stim: Vec<Vec<u64>> = (0..5_000).map(|_| vec![rng.next() & 0xFFFF]).collect();
     let dir = workdir();
-    let t = Instant::now();
     let iv = ok(run_icarus(&spec, &stim, dir.path()));
-    eprintln!("icarus: compile+run {:.2?}", t.elapsed());
-    let t = Instant::now();
     let vl = ok(run_verilator(&spec, &stim, dir.path()));
-    eprintln!("verilator (fresh obj dir): compile+run {:.2?}", t.elapsed());
     if let Some(m) = first_mismatch("icarus", &iv, "verilator", &vl, &outputs) {
         panic!("{m}");
     }
-    let t = Instant::now();
     let vl2 = ok(run_verilator(&spec, &stim, dir.path()));
-    eprintln!(
-        "verilator (same design, reused obj dir): compile+run {:.2?}",
-        t.elapsed()
-    );
     assert_eq!(vl, vl2);
-    if std::env::var_os("COSIM_KEEP").is_some() {
-        eprintln!("work dir kept: {}", dir.keep().display());
-    }
 }

@@ -17,12 +17,12 @@ pub mod counter;
 use rust_hdl::prelude::*;
 
 /// A 32-bit constant word.
-pub(crate) fn c32(v: u64) -> Constant<Bits<32>> {
+pub fn c32(v: u64) -> Constant<Bits<32>> {
     Constant::new(Bits::<32>::from(v & 0xffff_ffff))
 }
 
 /// Mask of the low `w` bits.
-pub(crate) fn mask(w: u32) -> u64 {
+pub fn mask(w: u32) -> u64 {
     if w >= 64 {
         u64::MAX
     } else {
@@ -32,12 +32,12 @@ pub(crate) fn mask(w: u32) -> u64 {
 
 /// Sign-extends the low `w` bits of `v`.
 #[inline]
-pub(crate) fn sext(v: u64, w: u32) -> i64 {
+pub fn sext(v: u64, w: u32) -> i64 {
     let s = 64 - w;
     ((v << s) as i64) >> s
 }
 
 /// Bits `k..w` set: the fill OR-ed after a logical right shift by k of a negative w-bit word.
-pub(crate) fn fill(w: u32, k: u32) -> u64 {
+pub fn fill(w: u32, k: u32) -> u64 {
     mask(w) & !(mask(w) >> k.min(w))
 }

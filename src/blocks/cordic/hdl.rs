@@ -237,3 +237,50 @@ impl Logic for CordicStage {
         self.v_out.next = self.v_reg.q.val();
     }
 }
+
+impl crate::sim::step::Clocked for CordicStage {
+    fn set_clock(&mut self, high: bool) {
+        self.clk.next = Clock::from(high);
+    }
+}
+
+impl crate::verify::CosimBlock for CordicStage {
+    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        vec![
+            Port::new("rst", 1),
+            Port::new("x_in", 32),
+            Port::new("y_in", 32),
+            Port::new("z_in", 32),
+            Port::new("q_in", 2),
+            Port::new("v_in", 1),
+        ]
+    }
+    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        vec![
+            Port::new("x_out", 32),
+            Port::new("y_out", 32),
+            Port::new("z_out", 32),
+            Port::new("q_out", 2),
+            Port::new("v_out", 1),
+        ]
+    }
+    fn apply(&mut self, r: &[u64]) {
+        self.rst.next = r[0] != 0;
+        self.x_in.next = Bits::<32>::from(r[1]);
+        self.y_in.next = Bits::<32>::from(r[2]);
+        self.z_in.next = Bits::<32>::from(r[3]);
+        self.q_in.next = Bits::<2>::from(r[4]);
+        self.v_in.next = r[5] != 0;
+    }
+    fn sample(&self) -> Vec<u64> {
+        vec![
+            self.x_out.val().to_u64(),
+            self.y_out.val().to_u64(),
+            self.z_out.val().to_u64(),
+            self.q_out.val().to_u64(),
+            self.v_out.val() as u64,
+        ]
+    }
+}
