@@ -3,6 +3,7 @@
 //! `generate` returns every file as a string (library first); only [`write_output`] touches
 //! the file system: it writes into a fresh temporary directory beside the destination and
 //! renames it into place, so a failure leaves nothing partial behind.
+pub mod testbench;
 pub mod verilog;
 
 use crate::blocks::core::hdl::CoreRtl;
@@ -163,11 +164,25 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             .collect::<String>(),
         loaded.derived.describe()
     );
+    let tb = format!(
+        "{}`timescale 1ns / 1ps\n\n{}",
+        header(
+            loaded,
+            command,
+            "Self-checking testbench of the core (expected outputs from the Rust model).",
+            "//"
+        ),
+        testbench::core_testbench(loaded)
+    );
     Ok(Generation {
         files: vec![
             OutFile {
                 name: format!("{name}_core.v"),
                 text: v,
+            },
+            OutFile {
+                name: format!("{name}_core_tb.v"),
+                text: tb,
             },
             OutFile {
                 name: format!("{name}_params.md"),
