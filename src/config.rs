@@ -34,7 +34,7 @@ macro_rules! ranged {
         #[allow(unused_comparisons)]
         fn $fn_name<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<$ty, D::Error> {
             let v = <$ty>::deserialize(d)?;
-            if v < $lo || v > $hi {
+            if !($lo..=$hi).contains(&v) {
                 return Err(serde::de::Error::custom(format!(
                     "`{}` = {} is out of range: allowed {}..={}{}",
                     $key, v, $lo, $hi, $unit
@@ -51,7 +51,14 @@ ranged!(r_fine, u32, "cordic.fine_bits", 2, 16, " bits");
 ranged!(r_ppr, u32, "encoder.ppr", 1, 65535, " periods per turn");
 ranged!(r_mt, u32, "encoder.multiturn_bits", 0, 16, " bits");
 ranged!(r_clk, f64, "clock.frequency_hz", 1.0e6, 500.0e6, " Hz");
-ranged!(r_amp, f64, "monitor.min_amplitude", 0.0, 0.9, " (fraction of full scale)");
+ranged!(
+    r_amp,
+    f64,
+    "monitor.min_amplitude",
+    0.0,
+    0.9,
+    " (fraction of full scale)"
+);
 
 fn r_guard<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<Option<u32>, D::Error> {
     let v = u32::deserialize(d)?;
@@ -250,25 +257,49 @@ fn ceil_log2(v: u32) -> u32 {
     }
 }
 
-/// Finds `key` in the TOML text under `[table]` and returns "line:column: " or "".
+/// Finds `key` in `[table]` (`""`: top level) of the TOML text, in any layout (table headers,
+/// dotted keys, inline tables, quoted names), and returns "line:column: " of the key or "".
 pub fn locate(text: &str, table: &str, key: &str) -> String {
-    let mut current = String::new();
-    for (n, line) in text.lines().enumerate() {
-        let t = line.trim_start();
-        if let Some(rest) = t.strip_prefix('[') {
-            current = rest.split(']').next().unwrap_or("").trim().to_string();
-            continue;
-        }
-        if current == table {
-            if let Some(rest) = t.strip_prefix(key) {
-                if rest.trim_start().starts_with('=') {
-                    let col = line.len() - t.len() + 1;
-                    return format!("{}:{}: ", n + 1, col);
-                }
-            }
+    let Ok(doc) = toml::de::DeTable::parse(text) else {
+        return String::new();
+    };
+    let mut t = doc.get_ref();
+    if !table.is_empty() {
+        match t.get(table).and_then(|v| v.get_ref().as_table()) {
+            Some(inner) => t = inner,
+            None => return String::new(),
         }
     }
-    String::new()
+    match t.get_key_value(key) {
+        Some((k, _)) => {
+            let (line, col) = line_col(text, k.span().start);
+            format!("{line}:{col}: ")
+        }
+        None => String::new(),
+    }
+}
+
+/// toml's message, plus the dotted key it concerns when the message does not name it.
+fn syntax_message(e: &toml::de::Error, text: &str) -> String {
+    let message = e.message().trim().to_string();
+    // toml keeps the key path private; without input its Display ends with "in `a.b`".
+    let mut bare = e.clone();
+    bare.set_input(None);
+    let shown = bare.to_string();
+    let keys = shown
+        .lines()
+        .next_back()
+        .and_then(|l| l.strip_prefix("in `"))
+        .and_then(|l| l.strip_suffix('`'));
+    match keys {
+        Some(k) if !message.contains(&format!("`{k}`")) => format!("{message} (in `{k}`)"),
+        Some(_) => message,
+        None if message == "duplicate key" => match e.span().and_then(|s| text.get(s)) {
+            Some(k) if !k.is_empty() => format!("duplicate key `{k}`"),
+            _ => message,
+        },
+        None => message,
+    }
 }
 
 /// A parsed configuration together with the text it came from.
@@ -288,15 +319,12 @@ impl Loaded {
     /// Parses and validates `text`; `source_name` is used in error messages.
     pub fn parse(text: &str, source_name: &str) -> Result<Loaded> {
         let config: Config = toml::from_str(text).map_err(|e| {
-            let (line, column) = e
-                .span()
-                .map(|s| line_col(text, s.start))
-                .unwrap_or((1, 1));
+            let (line, column) = e.span().map(|s| line_col(text, s.start)).unwrap_or((1, 1));
             Error::ConfigSyntax {
                 source_name: source_name.to_string(),
                 line,
                 column,
-                message: e.message().trim().to_string(),
+                message: syntax_message(&e, text),
             }
         })?;
         let derived = Derived::compute(&config, text, source_name)?;
@@ -409,7 +437,9 @@ impl Derived {
             return Err(err(
                 "adc",
                 "width",
-                format!("the LTC1407A-1 delivers 14-bit samples; width {a} needs preset \"generic\""),
+                format!(
+                    "the LTC1407A-1 delivers 14-bit samples; width {a} needs preset \"generic\""
+                ),
             ));
         }
         if !(rate > 0.0 && rate <= limit && rate <= clock_hz) {

@@ -158,10 +158,15 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
     );
     let report = format!(
         "{}\n# {name}: derived parameters\n\n```\n{}```\n",
-        header(loaded, command, "Derived parameters of the configuration.", "<!--")
-            .lines()
-            .map(|l| format!("{l} -->\n"))
-            .collect::<String>(),
+        header(
+            loaded,
+            command,
+            "Derived parameters of the configuration.",
+            "<!--"
+        )
+        .lines()
+        .map(|l| format!("{l} -->\n"))
+        .collect::<String>(),
         loaded.derived.describe()
     );
     let tb = format!(
@@ -215,9 +220,14 @@ pub fn write_output(generation: &Generation, dir: &Path) -> Result<()> {
             std::fs::write(&p, &f.text).map_err(|e| Error::io(&p, e))?;
         }
         if dir.exists() {
+            // Two renames: the old directory moves aside, the new one takes its place; if
+            // the second rename fails the old one is put back.
             let old = parent.join(format!(".{base}.sinedec-old-{}", std::process::id()));
             std::fs::rename(dir, &old).map_err(|e| Error::io(dir, e))?;
-            std::fs::rename(&tmp, dir).map_err(|e| Error::io(dir, e))?;
+            if let Err(e) = std::fs::rename(&tmp, dir) {
+                let _ = std::fs::rename(&old, dir);
+                return Err(Error::io(dir, e));
+            }
             std::fs::remove_dir_all(&old).map_err(|e| Error::io(&old, e))?;
         } else {
             std::fs::rename(&tmp, dir).map_err(|e| Error::io(dir, e))?;
