@@ -5,7 +5,13 @@ use sinedec::emit::{core_name, core_verilog};
 use sinedec::synth::{synthesize, Family};
 
 fn main() -> anyhow::Result<()> {
-    let thesis = [(2, 313, 8), (5, 4231, 11), (8, 8782, 14), (11, 13177, 17), (14, 17521, 20)];
+    let thesis = [
+        (2, 313, 8),
+        (5, 4231, 11),
+        (8, 8782, 14),
+        (11, 13177, 17),
+        (14, 17521, 20),
+    ];
     println!("| N | latency (cycles) | xc3sa LUT4 | xc3sa FF | xc3sa MUXCY | cycloneive LE | cycloneive FF | thesis gates | thesis cycles |");
     println!("|---|---|---|---|---|---|---|---|---|");
     let dir = std::env::temp_dir().join("sinedec_synth_table");

@@ -197,8 +197,16 @@ mod tests {
     fn profiles_integrate_their_speed() {
         let ps = [
             Profile::Constant { rpm: 300.0 },
-            Profile::Ramp { from: 0.0, to: 3000.0, over: 0.01 },
-            Profile::Reversal { rpm: 600.0, at: 0.002, over: 0.004 },
+            Profile::Ramp {
+                from: 0.0,
+                to: 3000.0,
+                over: 0.01,
+            },
+            Profile::Reversal {
+                rpm: 600.0,
+                at: 0.002,
+                over: 0.004,
+            },
         ];
         for p in ps {
             // d(turns)/dt == rpm/60 by central differences.
@@ -206,7 +214,10 @@ mod tests {
                 let t = k as f64 * 1e-4;
                 let h = 1e-7;
                 let d = (p.turns(t + h) - p.turns(t - h)) / (2.0 * h) * 60.0;
-                assert!((d - p.rpm(t)).abs() < 1e-3 * (1.0 + p.rpm(t).abs()), "{p:?} at {t}: {d}");
+                assert!(
+                    (d - p.rpm(t)).abs() < 1e-3 * (1.0 + p.rpm(t).abs()),
+                    "{p:?} at {t}: {d}"
+                );
             }
         }
     }

@@ -1,10 +1,10 @@
 //! sinedec: generator of verified Verilog for a sine/cosine encoder decoder.
-#[path = "../sim/mod.rs"]
-pub mod sim;
+pub mod blocks;
 pub mod config;
+pub mod emit;
 pub mod error;
 pub mod exact;
-pub mod blocks;
-pub mod emit;
-pub mod verify;
+#[path = "../sim/mod.rs"]
+pub mod sim;
 pub mod synth;
+pub mod verify;

@@ -5,7 +5,11 @@ use sinedec::config::Loaded;
 use std::path::{Path, PathBuf};
 
 #[derive(Parser)]
-#[command(name = "sinedec", version, about = "Generates verified Verilog for an FPGA sine/cosine encoder decoder")]
+#[command(
+    name = "sinedec",
+    version,
+    about = "Generates verified Verilog for an FPGA sine/cosine encoder decoder"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

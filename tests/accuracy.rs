@@ -33,14 +33,26 @@ fn worst(n: u32, f: u32, a: u32) -> (f64, f64) {
         let rad = full * rf;
         for k in 0..angles {
             let th = (k as f64 + 0.37) / angles as f64 * std::f64::consts::TAU;
-            check((rad * th.sin()).round() as i64, (rad * th.cos()).round() as i64);
+            check(
+                (rad * th.sin()).round() as i64,
+                (rad * th.cos()).round() as i64,
+            );
         }
     }
     // Axes, diagonals and their neighbours at full scale and at the 1/8 limit.
     let m = full as i64;
     let e = (m / 8) + 1;
     for r in [m, e] {
-        for (s, c) in [(0, r), (r, 0), (0, -r), (-r, 0), (1, r), (-1, r), (r, 1), (r, -1)] {
+        for (s, c) in [
+            (0, r),
+            (r, 0),
+            (0, -r),
+            (-r, 0),
+            (1, r),
+            (-1, r),
+            (r, 1),
+            (r, -1),
+        ] {
             check(s, c);
             check(-s, -c);
         }
@@ -49,7 +61,8 @@ fn worst(n: u32, f: u32, a: u32) -> (f64, f64) {
             check(s, c);
         }
     }
-    let bound = (2.0 / std::f64::consts::PI) * (2f64.powi(1 - n as i32)).atan() * (1u64 << f) as f64 + 1.0;
+    let bound =
+        (2.0 / std::f64::consts::PI) * (2f64.powi(1 - n as i32)).atan() * (1u64 << f) as f64 + 1.0;
     (worst, bound)
 }
 
@@ -59,8 +72,13 @@ fn within_cordic_residual_plus_one_lsb() {
     for (a, f) in [(14, 14), (14, 16), (10, 16), (16, 16), (16, 8), (12, 2)] {
         for n in 1..=20 {
             let (w, b) = worst(n, f, a);
-            table.push_str(&format!("A={a} F={f} N={n}: max {w:.3} LSB, bound {b:.3}\n"));
-            assert!(w <= b, "A={a} F={f} N={n}: max error {w} LSB exceeds {b}\n{table}");
+            table.push_str(&format!(
+                "A={a} F={f} N={n}: max {w:.3} LSB, bound {b:.3}\n"
+            ));
+            assert!(
+                w <= b,
+                "A={a} F={f} N={n}: max error {w} LSB exceeds {b}\n{table}"
+            );
         }
     }
     eprintln!("{table}");
@@ -75,7 +93,10 @@ fn the_bound_is_tight_enough_to_fail() {
         .replace("fine_bits = 14", "fine_bits = 16")
         .replace("iterations = 14", "iterations = 10")
         .replace("# guard_bits = 10", "guard_bits = 0")
-        .replace("preset = \"ltc1407a-1\"", "preset = \"generic\"\nmax_sample_rate_hz = 2e6");
+        .replace(
+            "preset = \"ltc1407a-1\"",
+            "preset = \"generic\"\nmax_sample_rate_hz = 2e6",
+        );
     let l = sinedec::config::Loaded::parse(&text, "t").expect("parses");
     let d = &l.derived;
     let full = 511.0;
@@ -83,11 +104,17 @@ fn the_bound_is_tight_enough_to_fail() {
     let mut worst: f64 = 0.0;
     for k in 0..20000 {
         let th = k as f64 / 20000.0 * std::f64::consts::TAU;
-        let (s, c) = ((full * th.sin()).round() as i32, (full * th.cos()).round() as i32);
+        let (s, c) = (
+            (full * th.sin()).round() as i32,
+            (full * th.cos()).round() as i32,
+        );
         let o = sample(d, s, c);
         let mut e = o.p as f64 - (s as f64).atan2(c as f64).rem_euclid(std::f64::consts::TAU) * lsb;
         e -= 262144.0 * (e / 262144.0).round();
         worst = worst.max(e.abs());
     }
-    assert!(worst > 2.0, "expected a visible degradation without guard bits, got {worst}");
+    assert!(
+        worst > 2.0,
+        "expected a visible degradation without guard bits, got {worst}"
+    );
 }

@@ -62,7 +62,10 @@ fn track(l: &sinedec::config::Loaded, step: f64, samples: usize, use_rtl: bool) 
         // The true electrical angle, unwrapped, relative to the position the core started
         // from (its first sample sets turns = 0 at the first period's angle).
         let truth = (start + step * k as f64) * lsb_per_rad;
-        assert!((u as f64 - truth).abs() <= tol, "sample {k}: {u} vs {truth}");
+        assert!(
+            (u as f64 - truth).abs() <= tol,
+            "sample {k}: {u} vs {truth}"
+        );
         if let Some(p) = prev {
             if step > 0.0 {
                 assert!(u >= p, "monotonic up at {k}");
@@ -116,7 +119,12 @@ fn zero_input_sets_error_and_holds_position() {
     let d = &l.derived;
     let mut s = vec![reset()];
     s.extend(stimulus::rotation(14, 0.8, 0.5, 0.0, 3));
-    s.push(CoreIn { rst: false, valid: true, sin: 0, cos: 0 });
+    s.push(CoreIn {
+        rst: false,
+        valid: true,
+        sin: 0,
+        cos: 0,
+    });
     // 5 % of full scale: below the 6.25 % threshold.
     s.extend(stimulus::rotation(14, 0.05, 1.5, 0.0, 2));
     s.extend(stimulus::rotation(14, 0.8, 0.6, 0.0, 1));
@@ -127,7 +135,10 @@ fn zero_input_sets_error_and_holds_position() {
     let good = v[2].position;
     for o in &v[3..6] {
         assert!(o.error, "{o:?}");
-        assert_eq!(o.position, good, "position held while the signal is missing");
+        assert_eq!(
+            o.position, good,
+            "position held while the signal is missing"
+        );
     }
     assert!(!v[6].error);
     let expect = (0.6 / FRAC_PI_2 * 16384.0) as i64;
@@ -151,7 +162,10 @@ fn reset_mid_stream_drops_samples_in_flight_and_restarts() {
     assert_eq!(after[0].turns, 0);
     let expect = (2.0 / FRAC_PI_2 * 16384.0) as i64;
     assert!((after[0].position as i64 - expect).abs() <= 3);
-    assert!(!out[21].valid && out[21].position == 0, "reset clears the outputs");
+    assert!(
+        !out[21].valid && out[21].position == 0,
+        "reset clears the outputs"
+    );
 }
 
 #[test]
@@ -169,7 +183,11 @@ fn two_quadrant_jumps_resolved_and_warned() {
     let u0 = unwrapped(&outs[0], l2);
     let last = unwrapped(&outs[39], l2);
     let expect = 39.0 * 1.6 * 16384.0;
-    assert!(((last - u0) as f64 - expect).abs() < 4.0, "{} vs {expect}", last - u0);
+    assert!(
+        ((last - u0) as f64 - expect).abs() < 4.0,
+        "{} vs {expect}",
+        last - u0
+    );
     assert!(outs.iter().all(|o| !o.warning));
     // 1.9 quadrants per sample: still unwrapped in the right direction, but flagged.
     let mut m = CoreModel::new(d);

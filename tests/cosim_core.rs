@@ -10,8 +10,20 @@ fn run(n: u32, f: u32, a: u32, ppr: u32, mt: u32, seed: u64) {
     s.extend(stimulus::random(a, 1500, 0.25, seed));
     // Slow rotation over several turns both ways, to wrap the counters.
     let step = std::f64::consts::FRAC_PI_2 * 0.9;
-    s.extend(stimulus::rotation(a, 0.7, 0.0, step, 4 * ppr as usize * 2 + 40));
-    s.extend(stimulus::rotation(a, 0.7, 0.0, -step, 4 * ppr as usize * 3 + 40));
+    s.extend(stimulus::rotation(
+        a,
+        0.7,
+        0.0,
+        step,
+        4 * ppr as usize * 2 + 40,
+    ));
+    s.extend(stimulus::rotation(
+        a,
+        0.7,
+        0.0,
+        -step,
+        4 * ppr as usize * 3 + 40,
+    ));
     let dir = common::workdir(&format!("cosim_core_n{n}_f{f}_a{a}"));
     let t = core_traces(&l, &s, Simulators::ALL, &dir).expect("all simulators ran");
     assert!(t.rust_hdl.iter().filter(|r| r[0] == 1).count() > 1000);

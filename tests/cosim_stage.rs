@@ -19,12 +19,26 @@ fn one_stage_in_three_simulators() {
             let x = r.next_u64() & mask(w - 1); // x >= 0
             let y = r.next_u64() & mask(w);
             let z = r.next_u64() & mask(d.z_width);
-            vec![(k % 97 == 0) as u64, x, y, z, r.next_u64() & 3, r.next_u64() & 1]
+            vec![
+                (k % 97 == 0) as u64,
+                x,
+                y,
+                z,
+                r.next_u64() & 3,
+                r.next_u64() & 1,
+            ]
         })
         .collect();
     let dir = common::workdir("cosim_stage");
-    let t = block_traces(CordicStage::new(d, i), "st3", "clk", &rows, Simulators::ALL, &dir)
-        .expect("simulators ran");
+    let t = block_traces(
+        CordicStage::new(d, i),
+        "st3",
+        "clk",
+        &rows,
+        Simulators::ALL,
+        &dir,
+    )
+    .expect("simulators ran");
     if let Some(m) = t.mismatch() {
         panic!("{m}");
     }

@@ -21,7 +21,11 @@ fn default_core_synthesizes_for_both_families() {
         + (2 * d.xy_width + 3) as u64
         + 200;
     for (name, s) in [("xc3sa", &x), ("cycloneive", &c)] {
-        assert!(s.ffs > upper / 2 && s.ffs <= upper, "{name}: {} FF vs bound {upper}", s.ffs);
+        assert!(
+            s.ffs > upper / 2 && s.ffs <= upper,
+            "{name}: {} FF vs bound {upper}",
+            s.ffs
+        );
         assert!(s.luts > 500, "{name}: {} LUT", s.luts);
     }
     assert!(x.carry > 0, "Spartan-3A adders use the carry chain");

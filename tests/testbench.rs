@@ -15,7 +15,10 @@ fn run_tb(core: &str, tb: &str, dir: &std::path::Path) -> String {
         .output()
         .expect("iverilog runs");
     assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
-    let r = Command::new("vvp").arg(dir.join("tb.vvp")).output().expect("vvp runs");
+    let r = Command::new("vvp")
+        .arg(dir.join("tb.vvp"))
+        .output()
+        .expect("vvp runs");
     String::from_utf8_lossy(&r.stdout).to_string()
 }
 
@@ -23,13 +26,27 @@ fn run_tb(core: &str, tb: &str, dir: &std::path::Path) -> String {
 fn emitted_testbench_passes_and_catches_a_change() {
     let l = common::cfg(6, 12, 14, 5, 3);
     let g = sinedec::emit::generate(&l, "test").expect("generate");
-    let core = &g.files.iter().find(|f| f.name == "sd_core.v").expect("core file").text;
-    let tb = &g.files.iter().find(|f| f.name == "sd_core_tb.v").expect("tb file").text;
+    let core = &g
+        .files
+        .iter()
+        .find(|f| f.name == "sd_core.v")
+        .expect("core file")
+        .text;
+    let tb = &g
+        .files
+        .iter()
+        .find(|f| f.name == "sd_core_tb.v")
+        .expect("tb file")
+        .text;
     let dir = common::workdir("testbench");
     let out = run_tb(core, tb, &dir);
     assert!(out.contains("PASS"), "{out}");
     // Break the wrapper: drop the fine part's LSB.
-    let broken = core.replacen("assign out_fine = fine[11:0];", "assign out_fine = fine[11:0] & 12'hffe;", 1);
+    let broken = core.replacen(
+        "assign out_fine = fine[11:0];",
+        "assign out_fine = fine[11:0] & 12'hffe;",
+        1,
+    );
     assert_ne!(&broken, core);
     let out = run_tb(&broken, tb, &dir);
     assert!(out.contains("FAIL"), "{out}");

@@ -42,7 +42,12 @@ pub fn core_testbench(loaded: &Loaded) -> String {
     let mut vectors = String::new();
     for (k, i) in stim.iter().enumerate() {
         let o = model.step(*i);
-        let iv = [i.rst as u64, i.valid as u64, i.sin as u64 & am, i.cos as u64 & am];
+        let iv = [
+            i.rst as u64,
+            i.valid as u64,
+            i.sin as u64 & am,
+            i.cos as u64 & am,
+        ];
         let ov = o.row();
         vectors.push_str(&format!(
             "        stim[{k}] = {in_bits}'b{}; expect[{k}] = {out_bits}'b{};\n",
@@ -51,8 +56,16 @@ pub fn core_testbench(loaded: &Loaded) -> String {
         ));
     }
     let n = stim.len();
-    let in_list = ins.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", ");
-    let out_list = outs.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", ");
+    let in_list = ins
+        .iter()
+        .map(|p| p.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let out_list = outs
+        .iter()
+        .map(|p| p.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ");
     let decl = |ports: &[crate::sim::cosim::Port], kind: &str| {
         ports
             .iter()

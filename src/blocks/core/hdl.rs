@@ -1,7 +1,7 @@
 //! rust-hdl description of the whole core.
+use crate::blocks::c32;
 use crate::blocks::cordic::hdl::{CordicStage, QuadrantMapper};
 use crate::blocks::counter::hdl::{Combiner, QuadrantCounter};
-use crate::blocks::c32;
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 
