@@ -31,6 +31,7 @@ fn valid(sin: i64, cos: i64) -> CoreIn {
         valid: true,
         sin: sin as i32,
         cos: cos as i32,
+        load: None,
     }
 }
 

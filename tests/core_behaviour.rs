@@ -124,6 +124,7 @@ fn zero_input_sets_error_and_holds_position() {
         valid: true,
         sin: 0,
         cos: 0,
+        load: None,
     });
     // 5 % of full scale: below the 6.25 % threshold.
     s.extend(stimulus::rotation(14, 0.05, 1.5, 0.0, 2));

@@ -112,7 +112,8 @@ module {name} (
         .clk(clk), .rst(rst), .in_valid(in_valid),
         .in_sin({sin}), .in_cos({cos}),
         .out_valid(out_valid), .out_qc(qc), .out_fine(fine), .out_turns(turns),
-        .out_error(out_error), .out_warning(out_warning)
+        .out_error(out_error), .out_warning(out_warning),
+        .load(1'b0), .load_qc(32'd0), .load_turns(32'd0), .out_mag(), .out_mag_valid()
     );
     assign out_position = {{qc[{qb}:0], fine[{fm}:0]}};
     assign out_turns = {turns};

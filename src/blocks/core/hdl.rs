@@ -18,6 +18,12 @@ pub struct CoreRtl {
     pub in_sin: Signal<In, Bits<16>>,
     /// Cosine sample (A-bit two's complement in the low bits).
     pub in_cos: Signal<In, Bits<16>>,
+    /// Resynchronise the coarse count at the next accepted sample (see the counter).
+    pub load: Signal<In, Bit>,
+    /// Coarse count to resynchronise to.
+    pub load_qc: Signal<In, Bits<32>>,
+    /// Turn count to resynchronise to.
+    pub load_turns: Signal<In, Bits<32>>,
     /// Output strobe.
     pub out_valid: Signal<Out, Bit>,
     /// Coarse quadrant count (upper part of out_position).
@@ -30,6 +36,10 @@ pub struct CoreRtl {
     pub out_error: Signal<Out, Bit>,
     /// Warning flag.
     pub out_warning: Signal<Out, Bit>,
+    /// CORDIC magnitude K_N |v| 2^G of the sample leaving the last stage (W bits).
+    pub out_mag: Signal<Out, Bits<32>>,
+    /// `out_mag` holds a sample (two cycles before that sample's `out_valid`).
+    pub out_mag_valid: Signal<Out, Bit>,
     mapper: QuadrantMapper,
     stages: Vec<CordicStage>,
     combiner: Combiner,
@@ -47,12 +57,17 @@ impl CoreRtl {
             in_valid: Default::default(),
             in_sin: Default::default(),
             in_cos: Default::default(),
+            load: Default::default(),
+            load_qc: Default::default(),
+            load_turns: Default::default(),
             out_valid: Default::default(),
             out_qc: Default::default(),
             out_fine: Default::default(),
             out_turns: Default::default(),
             out_error: Default::default(),
             out_warning: Default::default(),
+            out_mag: Default::default(),
+            out_mag_valid: Default::default(),
             mapper: QuadrantMapper::new(d),
             stages: (0..d.iterations).map(|i| CordicStage::new(d, i)).collect(),
             combiner: Combiner::new(d),
@@ -96,12 +111,17 @@ impl Logic for CoreRtl {
             self.combiner.x_in.next = self.stages[i].x_out.val();
             self.combiner.q_in.next = self.stages[i].q_out.val();
             self.combiner.v_in.next = self.stages[i].v_out.val();
+            self.out_mag.next = self.stages[i].x_out.val();
+            self.out_mag_valid.next = self.stages[i].v_out.val();
         }
         self.counter.clk.next = self.clk.val();
         self.counter.rst.next = self.rst.val();
         self.counter.p_in.next = self.combiner.p.val();
         self.counter.ok_in.next = self.combiner.mag_ok.val();
         self.counter.v_in.next = self.combiner.v.val();
+        self.counter.load.next = self.load.val();
+        self.counter.load_qc.next = self.load_qc.val();
+        self.counter.load_turns.next = self.load_turns.val();
         self.out_valid.next = self.counter.valid.val();
         self.out_qc.next = self.counter.qc.val();
         self.out_fine.next = self.counter.fine.val();
@@ -134,6 +154,10 @@ pub fn simulate_rtl(
         uut.in_valid.next = i.valid;
         uut.in_sin.next = Bits::<16>::from(i.sin as u64 & am);
         uut.in_cos.next = Bits::<16>::from(i.cos as u64 & am);
+        let l = i.load.unwrap_or_default();
+        uut.load.next = i.load.is_some();
+        uut.load_qc.next = Bits::<32>::from(l.qc & mask(32));
+        uut.load_turns.next = Bits::<32>::from(l.turns & mask(32));
         tick(uut.as_mut())?;
         let qc = uut.out_qc.val().to_u64();
         let fine = uut.out_fine.val().to_u64();
@@ -147,4 +171,53 @@ pub fn simulate_rtl(
         });
     }
     Ok(out)
+}
+
+impl crate::verify::CosimBlock for CoreRtl {
+    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        vec![
+            Port::new("rst", 1),
+            Port::new("in_valid", 1),
+            Port::new("in_sin", 16),
+            Port::new("in_cos", 16),
+            Port::new("load", 1),
+            Port::new("load_qc", 32),
+            Port::new("load_turns", 32),
+        ]
+    }
+    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        vec![
+            Port::new("out_valid", 1),
+            Port::new("out_qc", 32),
+            Port::new("out_fine", 32),
+            Port::new("out_turns", 32),
+            Port::new("out_error", 1),
+            Port::new("out_warning", 1),
+            Port::new("out_mag", 32),
+            Port::new("out_mag_valid", 1),
+        ]
+    }
+    fn apply(&mut self, r: &[u64]) {
+        self.rst.next = r[0] != 0;
+        self.in_valid.next = r[1] != 0;
+        self.in_sin.next = Bits::<16>::from(r[2]);
+        self.in_cos.next = Bits::<16>::from(r[3]);
+        self.load.next = r[4] != 0;
+        self.load_qc.next = Bits::<32>::from(r[5]);
+        self.load_turns.next = Bits::<32>::from(r[6]);
+    }
+    fn sample(&self) -> Vec<u64> {
+        vec![
+            self.out_valid.val() as u64,
+            self.out_qc.val().to_u64(),
+            self.out_fine.val().to_u64(),
+            self.out_turns.val().to_u64(),
+            self.out_error.val() as u64,
+            self.out_warning.val() as u64,
+            self.out_mag.val().to_u64(),
+            self.out_mag_valid.val() as u64,
+        ]
+    }
 }

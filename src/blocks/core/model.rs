@@ -1,6 +1,6 @@
 //! Cycle-accurate, bit-accurate model of `<name>_core`.
 use crate::blocks::cordic::model::cordic;
-use crate::blocks::counter::model::{combine, Combined, Counter};
+use crate::blocks::counter::model::{combine, Combined, Counter, Load};
 use crate::blocks::mask;
 use crate::config::Derived;
 use std::collections::VecDeque;
@@ -16,6 +16,8 @@ pub struct CoreIn {
     pub sin: i32,
     /// Cosine sample (A-bit signed value).
     pub cos: i32,
+    /// Resynchronisation request for the counter.
+    pub load: Option<Load>,
 }
 
 /// Outputs after one clock edge, with the port widths of `<name>_core`.
@@ -85,7 +87,7 @@ impl CoreModel {
     /// One clock cycle: inputs applied before the edge, outputs after it.
     pub fn step(&mut self, i: CoreIn) -> CoreOut {
         let head = self.line.pop_back().flatten();
-        self.counter.clock(&self.d, i.rst, head);
+        self.counter.clock(&self.d, i.rst, head, i.load);
         if i.rst {
             self.line.iter_mut().for_each(|s| *s = None);
         }

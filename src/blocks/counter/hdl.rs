@@ -98,6 +98,12 @@ pub struct QuadrantCounter {
     pub ok_in: Signal<In, Bit>,
     /// Valid bit of the sample.
     pub v_in: Signal<In, Bit>,
+    /// Resynchronisation request (one-cycle pulse); applied at the next accepted sample.
+    pub load: Signal<In, Bit>,
+    /// Coarse count to resynchronise to (0..4PPR-1).
+    pub load_qc: Signal<In, Bits<32>>,
+    /// Turn count to resynchronise to (M bits).
+    pub load_turns: Signal<In, Bits<32>>,
     /// Coarse quadrant count 0..4PPR-1.
     pub qc: Signal<Out, Bits<32>>,
     /// Fine part 0..2^F-1.
@@ -118,6 +124,12 @@ pub struct QuadrantCounter {
     valid_reg: DFF<Bit>,
     error_reg: DFF<Bit>,
     warning_reg: DFF<Bit>,
+    pending_reg: DFF<Bit>,
+    lqc_reg: DFF<Bits<32>>,
+    lturns_reg: DFF<Bits<32>>,
+    base_qc: Signal<Local, Bits<32>>,
+    base_turns: Signal<Local, Bits<32>>,
+    dq: Signal<Local, Bits<32>>,
     delta: Signal<Local, Bits<32>>,
     total: Signal<Local, Bits<32>>,
     carry: Signal<Local, Bits<32>>,
@@ -146,6 +158,10 @@ pub struct QuadrantCounter {
     tmask: Constant<Bits<32>>,
     /// One.
     one: Constant<Bits<32>>,
+    /// Three (also the 2-bit mask).
+    three: Constant<Bits<32>>,
+    /// Minus one (32-bit two's complement).
+    minus_one: Constant<Bits<32>>,
     /// Zero.
     zero: Constant<Bits<32>>,
 }
@@ -160,6 +176,9 @@ impl QuadrantCounter {
             p_in: Default::default(),
             ok_in: Default::default(),
             v_in: Default::default(),
+            load: Default::default(),
+            load_qc: Default::default(),
+            load_turns: Default::default(),
             qc: Default::default(),
             fine: Default::default(),
             turns: Default::default(),
@@ -174,6 +193,12 @@ impl QuadrantCounter {
             valid_reg: Default::default(),
             error_reg: Default::default(),
             warning_reg: Default::default(),
+            pending_reg: Default::default(),
+            lqc_reg: Default::default(),
+            lturns_reg: Default::default(),
+            base_qc: Default::default(),
+            base_turns: Default::default(),
+            dq: Default::default(),
             delta: Default::default(),
             total: Default::default(),
             carry: Default::default(),
@@ -190,6 +215,8 @@ impl QuadrantCounter {
             qturn: c32(d.quadrants_per_turn),
             tmask: c32(mask(d.multiturn_bits)),
             one: c32(1),
+            three: c32(3),
+            minus_one: c32(mask(32)),
             zero: c32(0),
         }
     }
@@ -208,7 +235,10 @@ impl Logic for QuadrantCounter {
             turns_reg,
             valid_reg,
             error_reg,
-            warning_reg
+            warning_reg,
+            pending_reg,
+            lqc_reg,
+            lturns_reg
         );
         self.delta.next = (self.p_in.val() - self.pprev_reg.q.val()) & self.pmask.val();
         if (self.delta.val() & self.psign.val()).any() {
@@ -220,8 +250,28 @@ impl Logic for QuadrantCounter {
         if (self.total.val() & self.sign32.val()).any() {
             self.carry.next = self.carry.val() | self.cfill.val();
         }
-        self.qn.next = self.qc_reg.q.val() + self.carry.val();
+        // Base and step: the running count and the unwrapped carry, or, when a
+        // resynchronisation is pending, the latched count and the nearest step (+0, +1,
+        // +2, -1) to the sample's own quadrant.
+        self.base_qc.next = self.qc_reg.q.val();
+        self.base_turns.next = self.turns_reg.q.val();
+        self.dq.next =
+            ((self.p_in.val() >> self.fshift.val()) - self.lqc_reg.q.val()) & self.three.val();
+        if self.pending_reg.q.val() {
+            self.base_qc.next = self.lqc_reg.q.val();
+            self.base_turns.next = self.lturns_reg.q.val();
+            self.carry.next = self.dq.val();
+            if self.dq.val() == self.three.val() {
+                self.carry.next = self.minus_one.val();
+            }
+        }
+        self.qn.next = self.base_qc.val() + self.carry.val();
         self.valid_reg.d.next = self.v_in.val() & !self.rst.val();
+        if self.load.val() {
+            self.pending_reg.d.next = true;
+            self.lqc_reg.d.next = self.load_qc.val();
+            self.lturns_reg.d.next = self.load_turns.val();
+        }
         if self.rst.val() {
             self.init_reg.d.next = false;
             self.pprev_reg.d.next = self.zero.val();
@@ -230,6 +280,9 @@ impl Logic for QuadrantCounter {
             self.turns_reg.d.next = self.zero.val();
             self.error_reg.d.next = false;
             self.warning_reg.d.next = false;
+            self.pending_reg.d.next = false;
+            self.lqc_reg.d.next = self.zero.val();
+            self.lturns_reg.d.next = self.zero.val();
         } else if self.v_in.val() {
             if !self.ok_in.val() {
                 self.error_reg.d.next = true;
@@ -244,18 +297,26 @@ impl Logic for QuadrantCounter {
                 self.pprev_reg.d.next = self.p_in.val();
             } else {
                 self.error_reg.d.next = false;
-                self.warning_reg.d.next =
-                    (self.delta.val() >= self.wlo.val()) & (self.delta.val() <= self.whi.val());
+                if self.pending_reg.q.val() {
+                    self.warning_reg.d.next = false;
+                    if !self.load.val() {
+                        self.pending_reg.d.next = false;
+                    }
+                } else {
+                    self.warning_reg.d.next = (self.delta.val() >= self.wlo.val())
+                        & (self.delta.val() <= self.whi.val());
+                }
                 if (self.qn.val() & self.sign32.val()).any() {
                     self.qc_reg.d.next = self.qn.val() + self.qturn.val();
                     self.turns_reg.d.next =
-                        (self.turns_reg.q.val() - self.one.val()) & self.tmask.val();
+                        (self.base_turns.val() - self.one.val()) & self.tmask.val();
                 } else if self.qn.val() >= self.qturn.val() {
                     self.qc_reg.d.next = self.qn.val() - self.qturn.val();
                     self.turns_reg.d.next =
-                        (self.turns_reg.q.val() + self.one.val()) & self.tmask.val();
+                        (self.base_turns.val() + self.one.val()) & self.tmask.val();
                 } else {
                     self.qc_reg.d.next = self.qn.val();
+                    self.turns_reg.d.next = self.base_turns.val() & self.tmask.val();
                 }
                 self.fine_reg.d.next = self.p_in.val() & self.fmask.val();
                 self.pprev_reg.d.next = self.p_in.val();
