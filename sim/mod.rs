@@ -1,5 +1,10 @@
 //! Simulation support: co-simulation in Icarus Verilog and Verilator, hand-stepping of
-//! rust-hdl designs, and (later) encoder, ADC and BiSS master models.
+//! rust-hdl designs, encoder, ADC and amplifier models, stimulus.
 pub mod cosim;
+pub mod encoder;
+pub mod ltc1407a;
+pub mod ltc6912;
 pub mod step;
 pub mod stimulus;
+pub mod biss_master;
+pub mod ssi_master;

@@ -10,9 +10,15 @@
 //! the synthesized width is W, not 32. Right shifts are arithmetic by OR-ing a constant
 //! fill mask when the sign bit (a constant-mask test, never a literal index) is set.
 //! No unsized literal takes part in any expression (rust-hdl pitfall 4).
+pub mod adc;
 pub mod cordic;
 pub mod core;
 pub mod counter;
+pub mod preamp;
+pub mod biss;
+pub mod ssi;
+pub mod spi_slave;
+pub mod parallel;
 
 use rust_hdl::prelude::*;
 

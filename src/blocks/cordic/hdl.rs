@@ -161,6 +161,16 @@ pub struct CordicStage {
     v_reg: DFF<Bit>,
     xs: Signal<Local, Bits<32>>,
     ys: Signal<Local, Bits<32>>,
+    m: Signal<Local, Bits<32>>,
+    c: Signal<Local, Bits<32>>,
+    nm: Signal<Local, Bits<32>>,
+    nc: Signal<Local, Bits<32>>,
+    /// All ones: operand inversion mask for a subtraction.
+    ones: Constant<Bits<32>>,
+    /// One: carry-in of a subtraction.
+    one: Constant<Bits<32>>,
+    /// Zero.
+    zero: Constant<Bits<32>>,
     /// Shift amount i.
     shift: Constant<Bits<32>>,
     /// Fill for an arithmetic shift by i of a W-bit word.
@@ -199,6 +209,13 @@ impl CordicStage {
             v_reg: Default::default(),
             xs: Default::default(),
             ys: Default::default(),
+            m: Default::default(),
+            c: Default::default(),
+            nm: Default::default(),
+            nc: Default::default(),
+            ones: c32(mask(32)),
+            one: c32(1),
+            zero: c32(0),
             shift: c32(i as u64),
             sfill: c32(fill(w, i)),
             xsign: c32(1 << (w - 1)),
@@ -218,16 +235,26 @@ impl Logic for CordicStage {
             self.xs.next = self.xs.val() | self.sfill.val();
         }
         self.ys.next = self.y_in.val() >> self.shift.val();
+        // Direction: y < 0 rotates up (x - ys, y + xs, z - atan), else down. Each of the
+        // three add/subtracts is one adder: a - b = a + (b ^ ones) + 1, with the inversion
+        // mask and carry-in chosen by the sign (Yosys maps the carry-in into the chain).
+        self.m.next = self.zero.val();
+        self.c.next = self.zero.val();
+        self.nm.next = self.ones.val();
+        self.nc.next = self.one.val();
         if (self.y_in.val() & self.xsign.val()).any() {
             self.ys.next = self.ys.val() | self.sfill.val();
-            self.x_reg.d.next = (self.x_in.val() - self.ys.val()) & self.xmask.val();
-            self.y_reg.d.next = (self.y_in.val() + self.xs.val()) & self.xmask.val();
-            self.z_reg.d.next = (self.z_in.val() - self.atan.val()) & self.zmask.val();
-        } else {
-            self.x_reg.d.next = (self.x_in.val() + self.ys.val()) & self.xmask.val();
-            self.y_reg.d.next = (self.y_in.val() - self.xs.val()) & self.xmask.val();
-            self.z_reg.d.next = (self.z_in.val() + self.atan.val()) & self.zmask.val();
+            self.m.next = self.ones.val();
+            self.c.next = self.one.val();
+            self.nm.next = self.zero.val();
+            self.nc.next = self.zero.val();
         }
+        self.x_reg.d.next =
+            (self.x_in.val() + (self.ys.val() ^ self.m.val()) + self.c.val()) & self.xmask.val();
+        self.y_reg.d.next =
+            (self.y_in.val() + (self.xs.val() ^ self.nm.val()) + self.nc.val()) & self.xmask.val();
+        self.z_reg.d.next =
+            (self.z_in.val() + (self.atan.val() ^ self.m.val()) + self.c.val()) & self.zmask.val();
         self.q_reg.d.next = self.q_in.val();
         self.v_reg.d.next = self.v_in.val() & !self.rst.val();
         self.x_out.next = self.x_reg.q.val();

@@ -1,0 +1,582 @@
+//! SPI ADC controller: drives CONV and SCK of a simultaneous-sampling serial ADC, shifts in
+//! one frame per conversion and delivers the samples with a one-clock strobe.
+//!
+//! Two presets build an [`AdcParams`]: [`AdcParams::ltc1407a`] (the LTC1407A-1 of the
+//! Spartan-3A/3AN Starter Kit) and [`AdcParams::generic`] (any SPI ADC described by frame
+//! length, channels, bit offsets, width, sign format, CPOL/CPHA). The rust-hdl block is
+//! [`hdl::AdcController`]; [`model::AdcModel`] is a plain-Rust model of the same registers.
+//!
+//! # LTC1407A-1 frame (preset `ltc1407a-1`, D = 3 system clocks per SCK shown)
+//!
+//! ```text
+//! pc (clk)   0  1  2  3  4  5  6  7  8     ...    96 97 98 99 100 101 | 0  1  2
+//! CONV     __/‾‾\_______________________   ...   ______________________/‾‾\____
+//! SCK      ______/‾\__/‾\__/‾\__/‾\__/‾\   ...   /‾\__/‾\__/‾\__/‾\____/‾\__/‾\
+//! SCK cycle  |  0  |  1  |  2  |  3  |     ...   | 31  | 32  | 33  |  0  |  1 ...
+//! SDO      ---- Z --|-- Z --|D13 (ch0)|D12 ... D0|Z|Z|D13 (ch1) ... D0 | Z | Z |
+//!                      slots: 0,1 idle | 2..15 ch0 | 16,17 idle | 18..31 ch1 | 32,33 idle
+//! capture           ^ slot k is read at the clock edge that launches the rising SCK
+//!                     edge of cycle k+1 (D clocks after the edge that shifted it out)
+//! ```
+//!
+//! * The chip samples both inputs on the rising CONV edge and converts during the next 32
+//!   SCK rising edges (CONV edges are ignored until then). The data shifted out in a frame
+//!   are those of the *previous* conversion (datasheet pin function of SDO), so the
+//!   controller runs one flush frame (SCK without CONV, which completes any conversion left
+//!   running by a reset) and discards the first `pipeline` frames after reset or enable:
+//!   every sample delivered belongs to a CONV edge this controller issued.
+//! * SDO changes after each rising SCK edge (new bit valid within t8 = 8 ns, old bit held
+//!   for t10 = 2 ns). Capturing D clocks after the shifting edge, at the edge that launches
+//!   the next rising SCK edge, gives D*T - t8 of set-up and Tco + t10 of hold, so odd
+//!   dividers work: D = 3 at 133.33 MHz is SCK = 44.4 MHz (22.5 ns >= tSCK,min = 19.6 ns).
+//!
+//! # Timing maths (T = 1/f_clk, D = SCK period, H = high clocks, L = D - H low clocks)
+//!
+//! * SCK cycle j (0-based) occupies pc = lead + j*D .. lead + (j+1)*D - 1: idle level (CPOL)
+//!   for L clocks, then the active level for H clocks. Leading edge at lead + j*D + L,
+//!   trailing edge at lead + (j+1)*D.
+//! * Slot k (the k-th bit of the frame) is captured at pc = lead + (k+1)*D + c with
+//!   c = L for CPHA = 1 (the slave shifts on leading edges) and c = 0 for CPHA = 0 (it
+//!   shifts on trailing edges): in both cases one full SCK period after the shifting edge.
+//! * CONV (or chip select) is active for pc = 0 .. conv_clocks - 1 of every period of P
+//!   clocks. Sample rate per channel = f_clk / P.
+//! * Latency from the CONV edge that samples the inputs (first clock it is active) to the
+//!   `out_valid` strobe carrying that sample: pipeline*P + lead + (s_last+1)*D + c clocks,
+//!   where s_last is the last slot holding a data bit. LTC1407A-1 at D = 3, P = 102:
+//!   102 + 32*3 + 2 = 200 clocks (1.50 us at 133.33 MHz).
+//! * Checks (see [`AdcParams::validate`]): D*T >= tSCK,min; H*T, L*T >= SCK pulse minimum;
+//!   D*T >= SDO valid delay; conv_clocks*T >= CONV pulse minimum and the inactive part of
+//!   the period >= CONV low minimum; (lead + L)*T >= CONV-to-SCK set-up; the time from the
+//!   rising edge that ends the conversion to the next CONV >= acquisition minimum;
+//!   P >= lead + frame*D; P <= 65535; f_clk / P <= the chip's per-channel rate.
+//!
+//! | f_clk | D | SCK | P (clocks) | rate per channel | latency |
+//! |---|---|---|---|---|---|
+//! | 133.33 MHz | 3 | 44.4 MHz | 102 | 1.307 Msps | 200 clk = 1.50 us |
+//! | 50 MHz | 2 | 25 MHz | 68 | 735 ksps | 133 clk = 2.66 us |
+//!
+//! # Ports of [`hdl::AdcController`]
+//!
+//! ```text
+//! clk       in   system clock
+//! rst       in   synchronous reset, active high: pins idle, counters cleared
+//! enable    in   run; low = idle like reset (held low until the preamp set-up is done)
+//! adc_miso  in   serial data from the ADC (SDO / AD_DOUT)
+//! adc_sck   out  serial clock to the ADC (idle at CPOL)
+//! adc_conv  out  CONV pulse (LTC1407A-1) or chip select (generic, polarity configurable)
+//! out_valid out  one-clock strobe: out_ch0/out_ch1 hold a new sample pair
+//! out_ch0   out  Bits<16>: channel 0, W-bit two's complement in the low bits, upper 0
+//! out_ch1   out  Bits<16>: channel 1 (0 with one channel)
+//! ```
+pub mod hdl;
+pub mod model;
+
+/// The chip the parameters were made for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AdcChip {
+    /// Linear Technology LTC1407A-1 (Spartan-3A/3AN Starter Kit).
+    Ltc1407a1,
+    /// Any other SPI ADC.
+    Generic,
+}
+
+/// Coding of the samples in the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SignFormat {
+    /// Two's complement (delivered as is).
+    TwosComplement,
+    /// Offset binary (the MSB is inverted to give two's complement).
+    OffsetBinary,
+}
+
+/// Timing limits of the ADC chip, in nanoseconds (0 = no limit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdcTiming {
+    /// Minimum SCK period.
+    pub sck_min_period_ns: f64,
+    /// Maximum SCK period while a conversion runs (0 = none).
+    pub sck_max_period_ns: f64,
+    /// Minimum SCK high and low time.
+    pub sck_min_pulse_ns: f64,
+    /// Delay from the shifting SCK edge to valid data on SDO (maximum).
+    pub data_valid_ns: f64,
+    /// Minimum CONV active pulse width.
+    pub conv_min_pulse_ns: f64,
+    /// Minimum CONV inactive time.
+    pub conv_min_low_ns: f64,
+    /// Minimum set-up from the CONV edge to the first SCK edge.
+    pub conv_to_sck_ns: f64,
+    /// Minimum time from the SCK edge that ends a conversion to the next CONV edge.
+    pub acquisition_ns: f64,
+    /// SCK rising edges a conversion needs (the acquisition is counted from the last one;
+    /// 0 = no such constraint).
+    pub conversion_edges: u32,
+    /// Maximum sample rate per channel.
+    pub max_sample_rate_hz: f64,
+}
+
+impl AdcTiming {
+    /// LTC1407A-1 at VDD = 3 V (datasheet 14071fb, Timing Characteristics and
+    /// Applications Information): tSCK >= 19.6 ns (<= 10 us), t1 >= 2 ns, t8 = 8 ns,
+    /// t4 >= 4 ns (CONV low kept >= 15 ns), t2 >= 3 ns, t7 (32nd SCK rise to CONV rise)
+    /// >= 45 ns, conversion over 32 SCK rising edges, 1.5 Msps per channel.
+    pub const LTC1407A_1: AdcTiming = AdcTiming {
+        sck_min_period_ns: 19.6,
+        sck_max_period_ns: 10_000.0,
+        sck_min_pulse_ns: 2.0,
+        data_valid_ns: 8.0,
+        conv_min_pulse_ns: 4.0,
+        conv_min_low_ns: 15.0,
+        conv_to_sck_ns: 3.0,
+        acquisition_ns: 45.0,
+        conversion_edges: 32,
+        max_sample_rate_hz: 1.5e6,
+    };
+}
+
+/// Frame format of a generic SPI ADC.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AdcFrame {
+    /// SCK cycles per frame (1..=250).
+    pub frame_sck: u32,
+    /// Channels in the frame: 1 or 2.
+    pub channels: u32,
+    /// Slot index (0-based SCK cycle) of each channel's MSB; MSB first.
+    pub offsets: [u32; 2],
+    /// Sample width W (10..=16).
+    pub width: u32,
+    /// Coding of the samples.
+    pub sign: SignFormat,
+    /// SCK idle level.
+    pub cpol: bool,
+    /// false: the slave shifts on trailing edges (first bit valid at CONV/CS);
+    /// true: the slave shifts on leading edges.
+    pub cpha: bool,
+    /// CONV / chip-select active level.
+    pub conv_active_high: bool,
+    /// CONV active clocks from the period start (0 = the minimum pulse from the timing;
+    /// a chip select that frames the whole transfer needs >= lead + frame*D).
+    pub conv_clocks: u32,
+    /// Clocks from the CONV assertion to the first SCK cycle.
+    pub lead_clocks: u32,
+    /// Frames between a conversion and its data on SDO (0, 1 or 2).
+    pub pipeline: u32,
+}
+
+impl AdcFrame {
+    /// The LTC1407A-1 frame: 34 SCK, 2 idle, 14 bits channel 0, 2 idle, 14 bits channel 1,
+    /// 2 idle; two's complement; SCK idle low, data shifted on rising edges; CONV pulse
+    /// active high; data one conversion late.
+    pub const LTC1407A_1: AdcFrame = AdcFrame {
+        frame_sck: 34,
+        channels: 2,
+        offsets: [2, 18],
+        width: 14,
+        sign: SignFormat::TwosComplement,
+        cpol: false,
+        cpha: true,
+        conv_active_high: true,
+        conv_clocks: 0,
+        lead_clocks: 0,
+        pipeline: 1,
+    };
+}
+
+/// Parameters of one ADC controller instance, all in system clocks (derived once).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AdcParams {
+    /// Which preset made these parameters.
+    pub chip: AdcChip,
+    /// System clock in Hz.
+    pub clock_hz: f64,
+    /// Frame format.
+    pub frame: AdcFrame,
+    /// Chip limits.
+    pub timing: AdcTiming,
+    /// SCK period D in system clocks (>= 2, odd allowed).
+    pub sck_period_clocks: u32,
+    /// SCK active-level clocks H (1..D-1); the idle-level part is L = D - H.
+    pub sck_high_clocks: u32,
+    /// CONV active clocks per period.
+    pub conv_clocks: u32,
+    /// Conversion period P in system clocks.
+    pub period_clocks: u32,
+}
+
+/// Largest supported period (16-bit period counter).
+pub const MAX_PERIOD_CLOCKS: u32 = 65_535;
+
+fn ceil_clocks(ns: f64, clock_hz: f64) -> u32 {
+    if ns <= 0.0 {
+        return 0;
+    }
+    // Small tolerance so that an exact multiple is not rounded up by float error.
+    (ns * clock_hz / 1e9 - 1e-9).ceil().max(0.0) as u32
+}
+
+impl AdcParams {
+    /// LTC1407A-1 at `clock_hz` with an SCK period of `sck_period_clocks` system clocks and
+    /// a conversion period of `period_clocks` (None: the shortest the chip allows, at least
+    /// the 34-SCK frame). Call [`validate`](Self::validate) before use.
+    pub fn ltc1407a(clock_hz: f64, sck_period_clocks: u32, period_clocks: Option<u32>) -> Self {
+        Self::build(
+            AdcChip::Ltc1407a1,
+            clock_hz,
+            AdcFrame::LTC1407A_1,
+            AdcTiming::LTC1407A_1,
+            sck_period_clocks,
+            period_clocks,
+        )
+    }
+
+    /// LTC1407A-1 with the fastest SCK divider the chip allows at `clock_hz`.
+    pub fn ltc1407a_fastest(clock_hz: f64) -> Result<Self, String> {
+        let d = ceil_clocks(AdcTiming::LTC1407A_1.sck_min_period_ns, clock_hz).max(2);
+        let p = Self::ltc1407a(clock_hz, d, None);
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// Any SPI ADC: frame format, chip limits, SCK divider and conversion period (None: the
+    /// shortest allowed). Call [`validate`](Self::validate) before use.
+    pub fn generic(
+        clock_hz: f64,
+        frame: AdcFrame,
+        timing: AdcTiming,
+        sck_period_clocks: u32,
+        period_clocks: Option<u32>,
+    ) -> Self {
+        Self::build(
+            AdcChip::Generic,
+            clock_hz,
+            frame,
+            timing,
+            sck_period_clocks,
+            period_clocks,
+        )
+    }
+
+    fn build(
+        chip: AdcChip,
+        clock_hz: f64,
+        frame: AdcFrame,
+        timing: AdcTiming,
+        d: u32,
+        period_clocks: Option<u32>,
+    ) -> Self {
+        let conv_clocks = if frame.conv_clocks > 0 {
+            frame.conv_clocks
+        } else {
+            ceil_clocks(timing.conv_min_pulse_ns, clock_hz).max(1)
+        };
+        let mut p = AdcParams {
+            chip,
+            clock_hz,
+            frame,
+            timing,
+            sck_period_clocks: d,
+            sck_high_clocks: d / 2,
+            conv_clocks,
+            period_clocks: 0,
+        };
+        p.period_clocks = period_clocks.unwrap_or_else(|| p.min_period_clocks());
+        p
+    }
+
+    /// Period for a target sample rate per channel (rounded up to whole clocks: the rate
+    /// reached is at most the target).
+    pub fn period_for_rate(clock_hz: f64, rate_hz: f64) -> u32 {
+        if rate_hz.is_nan() || rate_hz <= 0.0 || !clock_hz.is_finite() {
+            return 0;
+        }
+        (clock_hz / rate_hz - 1e-9).ceil().max(0.0) as u32
+    }
+
+    /// Shortest period the frame and the chip's timing allow at this divider.
+    pub fn min_period_clocks(&self) -> u32 {
+        let f = &self.frame;
+        let d = self.sck_period_clocks;
+        let frame_end = f.lead_clocks + f.frame_sck * d;
+        let mut p = frame_end.max(self.last_capture_clock() + 1);
+        p = p.max(self.conv_clocks + ceil_clocks(self.timing.conv_min_low_ns, self.clock_hz));
+        if self.timing.conversion_edges > 0 {
+            let end = self.conversion_end_clock();
+            p = p.max(end + ceil_clocks(self.timing.acquisition_ns, self.clock_hz).max(1));
+        }
+        if self.timing.max_sample_rate_hz > 0.0 {
+            p = p.max(Self::period_for_rate(
+                self.clock_hz,
+                self.timing.max_sample_rate_hz,
+            ));
+        }
+        p
+    }
+
+    /// SCK idle-level clocks L = D - H.
+    pub fn sck_low_clocks(&self) -> u32 {
+        self.sck_period_clocks.saturating_sub(self.sck_high_clocks)
+    }
+
+    /// Clocks after the start of an SCK cycle at which a slot is captured (in the next
+    /// cycle): L for CPHA = 1, 0 for CPHA = 0.
+    pub fn capture_phase(&self) -> u32 {
+        if self.frame.cpha {
+            self.sck_low_clocks()
+        } else {
+            0
+        }
+    }
+
+    /// Slots holding data bits: (first, last) over all channels.
+    pub fn data_slots(&self) -> (u32, u32) {
+        let f = &self.frame;
+        let n = f.channels.clamp(1, 2) as usize;
+        let first = f.offsets[..n].iter().copied().min().unwrap_or(0);
+        let last = f.offsets[..n]
+            .iter()
+            .map(|o| o + f.width.max(1) - 1)
+            .max()
+            .unwrap_or(0);
+        (first, last)
+    }
+
+    /// Period counter value (clocks after the CONV edge) at which slot `k` is captured.
+    pub fn capture_clock(&self, k: u32) -> u32 {
+        self.frame.lead_clocks + (k + 1) * self.sck_period_clocks + self.capture_phase()
+    }
+
+    /// Period counter value at which the last data bit is captured and `out_valid` rises.
+    pub fn last_capture_clock(&self) -> u32 {
+        self.capture_clock(self.data_slots().1)
+    }
+
+    /// Period counter value of the SCK rising (leading) edge that completes a conversion.
+    pub fn conversion_end_clock(&self) -> u32 {
+        let e = self.timing.conversion_edges.max(1);
+        self.frame.lead_clocks + (e - 1) * self.sck_period_clocks + self.sck_low_clocks()
+    }
+
+    /// SCK frequency in Hz.
+    pub fn sck_hz(&self) -> f64 {
+        self.clock_hz / self.sck_period_clocks.max(1) as f64
+    }
+
+    /// Sample rate per channel in samples per second.
+    pub fn sample_rate_hz(&self) -> f64 {
+        self.clock_hz / self.period_clocks.max(1) as f64
+    }
+
+    /// Clocks from the first clock CONV is active (the sampling edge) to the `out_valid`
+    /// strobe that delivers that sample.
+    pub fn conv_to_valid_clocks(&self) -> u32 {
+        self.frame.pipeline * self.period_clocks + self.last_capture_clock()
+    }
+
+    /// [`conv_to_valid_clocks`](Self::conv_to_valid_clocks) in seconds.
+    pub fn conv_to_valid_s(&self) -> f64 {
+        self.conv_to_valid_clocks() as f64 / self.clock_hz
+    }
+
+    /// Clocks from reset release (with `enable` high) to the first `out_valid`: one flush
+    /// period, `pipeline` discarded frames, then the latency of the first sample.
+    pub fn startup_clocks(&self) -> u32 {
+        // Row 0 after release enters pc = 0 of the flush period.
+        self.period_clocks + self.conv_to_valid_clocks()
+    }
+
+    /// Checks every limit; the error names the value, the limit and what to change.
+    pub fn validate(&self) -> Result<(), String> {
+        let f = &self.frame;
+        let t = &self.timing;
+        let name = match self.chip {
+            AdcChip::Ltc1407a1 => "LTC1407A-1",
+            AdcChip::Generic => "ADC",
+        };
+        if !(self.clock_hz.is_finite() && self.clock_hz > 0.0) {
+            return Err(format!(
+                "clock {} Hz is not a positive frequency",
+                self.clock_hz
+            ));
+        }
+        let ns = 1e9 / self.clock_hz;
+        let mhz = self.clock_hz / 1e6;
+        if !(1..=2).contains(&f.channels) {
+            return Err(format!("{} channels: 1 or 2 are supported", f.channels));
+        }
+        if !(10..=16).contains(&f.width) {
+            return Err(format!(
+                "sample width {} bits: 10..=16 are supported",
+                f.width
+            ));
+        }
+        if !(1..=250).contains(&f.frame_sck) {
+            return Err(format!(
+                "frame of {} SCK cycles: 1..=250 are supported",
+                f.frame_sck
+            ));
+        }
+        if f.pipeline > 2 {
+            return Err(format!(
+                "pipeline of {} frames: 0..=2 are supported",
+                f.pipeline
+            ));
+        }
+        for c in 0..f.channels as usize {
+            if f.offsets[c] + f.width > f.frame_sck {
+                return Err(format!(
+                    "channel {c}: bits {}..{} do not fit in the {}-SCK frame",
+                    f.offsets[c],
+                    f.offsets[c] + f.width - 1,
+                    f.frame_sck
+                ));
+            }
+        }
+        if f.channels == 2 {
+            let (a, b) = (f.offsets[0], f.offsets[1]);
+            if a < b + f.width && b < a + f.width {
+                return Err(format!(
+                    "channel bit ranges overlap: {a}..{} and {b}..{}",
+                    a + f.width - 1,
+                    b + f.width - 1
+                ));
+            }
+        }
+        let d = self.sck_period_clocks;
+        if !(2..=255).contains(&d) {
+            return Err(format!(
+                "SCK period of {d} system clocks: 2..=255 are supported (SCK needs a high and a low clock)"
+            ));
+        }
+        let (h, l) = (self.sck_high_clocks, self.sck_low_clocks());
+        if h == 0 || h >= d {
+            return Err(format!("SCK high time {h} clocks must be 1..={}", d - 1));
+        }
+        let tsck = d as f64 * ns;
+        if tsck + 1e-9 < t.sck_min_period_ns {
+            let need = ceil_clocks(t.sck_min_period_ns, self.clock_hz).max(2);
+            return Err(format!(
+                "SCK of {:.2} MHz ({d} clocks = {tsck:.2} ns at {mhz:.2} MHz) is above the {name} limit of {:.2} MHz (tSCK >= {} ns); use an SCK period of at least {need} clocks",
+                1e3 / tsck,
+                1e3 / t.sck_min_period_ns,
+                t.sck_min_period_ns
+            ));
+        }
+        if t.sck_max_period_ns > 0.0 && tsck > t.sck_max_period_ns {
+            return Err(format!(
+                "SCK period {tsck:.1} ns is above the {name} maximum of {} ns during a conversion",
+                t.sck_max_period_ns
+            ));
+        }
+        if (h.min(l) as f64 * ns) + 1e-9 < t.sck_min_pulse_ns {
+            return Err(format!(
+                "SCK pulse of {:.2} ns is shorter than the {name} minimum of {} ns",
+                h.min(l) as f64 * ns,
+                t.sck_min_pulse_ns
+            ));
+        }
+        if tsck + 1e-9 < t.data_valid_ns {
+            return Err(format!(
+                "SCK period {tsck:.2} ns is shorter than the {name} data-valid delay of {} ns: data would be read before it is valid",
+                t.data_valid_ns
+            ));
+        }
+        if self.conv_clocks == 0 || (self.conv_clocks as f64 * ns) + 1e-9 < t.conv_min_pulse_ns {
+            return Err(format!(
+                "CONV pulse of {} clocks ({:.2} ns) is shorter than the {name} minimum of {} ns",
+                self.conv_clocks,
+                self.conv_clocks as f64 * ns,
+                t.conv_min_pulse_ns
+            ));
+        }
+        if (f.lead_clocks + l) as f64 * ns + 1e-9 < t.conv_to_sck_ns {
+            return Err(format!(
+                "CONV to first SCK edge is {:.2} ns, below the {name} set-up of {} ns; raise the lead clocks",
+                (f.lead_clocks + l) as f64 * ns,
+                t.conv_to_sck_ns
+            ));
+        }
+        let p = self.period_clocks;
+        if p > MAX_PERIOD_CLOCKS {
+            return Err(format!(
+                "conversion period of {p} clocks exceeds the supported {MAX_PERIOD_CLOCKS} (sample rate {:.0} Hz is too low for {mhz:.2} MHz)",
+                self.sample_rate_hz()
+            ));
+        }
+        let frame_end = f.lead_clocks + f.frame_sck * d;
+        if p < frame_end {
+            return Err(format!(
+                "conversion period of {p} clocks is shorter than the frame ({} + {} SCK x {d} clocks = {frame_end} clocks); the shortest allowed is {}",
+                f.lead_clocks,
+                f.frame_sck,
+                self.min_period_clocks()
+            ));
+        }
+        if p <= self.last_capture_clock() {
+            return Err(format!(
+                "conversion period of {p} clocks ends before the last data bit is read (clock {}); the shortest allowed is {}",
+                self.last_capture_clock(),
+                self.min_period_clocks()
+            ));
+        }
+        if self.conv_clocks >= p || ((p - self.conv_clocks) as f64 * ns) + 1e-9 < t.conv_min_low_ns
+        {
+            return Err(format!(
+                "CONV is active {} of {p} clocks; it must stay inactive at least {} ns per period",
+                self.conv_clocks, t.conv_min_low_ns
+            ));
+        }
+        if t.conversion_edges > 0 {
+            if t.conversion_edges > f.frame_sck {
+                return Err(format!(
+                    "the {name} needs {} SCK edges per conversion but the frame has {}",
+                    t.conversion_edges, f.frame_sck
+                ));
+            }
+            let acq = (p - self.conversion_end_clock()) as f64 * ns;
+            if acq + 1e-9 < t.acquisition_ns {
+                return Err(format!(
+                    "conversion period of {p} clocks leaves {acq:.1} ns from the {}th SCK rising edge to the next CONV, below the {name} acquisition time of {} ns; the shortest allowed is {}",
+                    t.conversion_edges,
+                    t.acquisition_ns,
+                    self.min_period_clocks()
+                ));
+            }
+        }
+        if t.max_sample_rate_hz > 0.0
+            && self.sample_rate_hz() > t.max_sample_rate_hz * (1.0 + 1e-12)
+        {
+            return Err(format!(
+                "sample rate {:.0} Hz per channel is above the {name} limit of {:.0} Hz; the shortest period is {} clocks",
+                self.sample_rate_hz(),
+                t.max_sample_rate_hz,
+                self.min_period_clocks()
+            ));
+        }
+        Ok(())
+    }
+
+    /// Derived figures, one per line (for `check` and reports).
+    pub fn describe(&self) -> String {
+        format!(
+            "adc chip                    {:?}\n\
+             system clock                {:.3} MHz\n\
+             SCK                         {:.3} MHz ({} clocks: {} high, {} low)\n\
+             conversion period           {} clocks ({:.1} ns)\n\
+             sample rate per channel     {:.0} samples/s\n\
+             CONV to out_valid latency   {} clocks ({:.1} ns)\n\
+             first sample after reset    {} clocks\n",
+            self.chip,
+            self.clock_hz / 1e6,
+            self.sck_hz() / 1e6,
+            self.sck_period_clocks,
+            self.sck_high_clocks,
+            self.sck_low_clocks(),
+            self.period_clocks,
+            self.period_clocks as f64 * 1e9 / self.clock_hz,
+            self.sample_rate_hz(),
+            self.conv_to_valid_clocks(),
+            self.conv_to_valid_s() * 1e9,
+            self.startup_clocks(),
+        )
+    }
+}

@@ -1,0 +1,154 @@
+//! Plain-Rust model of the ADC controller's registers, clock for clock (same cycle
+//! semantics as the co-simulation harness: inputs applied, clock edge, outputs read).
+use super::{AdcParams, SignFormat};
+use crate::blocks::mask;
+
+/// Inputs of one clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AdcIn {
+    /// Synchronous reset.
+    pub rst: bool,
+    /// Run enable.
+    pub enable: bool,
+    /// Serial data from the ADC.
+    pub miso: bool,
+}
+
+/// Outputs after one clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AdcOut {
+    /// SCK pin.
+    pub sck: bool,
+    /// CONV pin.
+    pub conv: bool,
+    /// Sample strobe.
+    pub valid: bool,
+    /// Channel 0 (W-bit two's complement in the low bits).
+    pub ch0: u16,
+    /// Channel 1.
+    pub ch1: u16,
+}
+
+impl AdcOut {
+    /// Trace row in `AdcController` output-port order.
+    pub fn row(&self) -> Vec<u64> {
+        vec![
+            self.sck as u64,
+            self.conv as u64,
+            self.valid as u64,
+            self.ch0 as u64,
+            self.ch1 as u64,
+        ]
+    }
+    /// Channel `c` sign-extended from W bits.
+    pub fn signed(&self, c: usize, width: u32) -> i32 {
+        let v = if c == 0 { self.ch0 } else { self.ch1 } as u64;
+        crate::blocks::sext(v, width) as i32
+    }
+}
+
+/// The controller's state.
+#[derive(Clone, Debug)]
+pub struct AdcModel {
+    p: AdcParams,
+    live: bool,
+    pc: u32,
+    ph: u32,
+    cyc: u32,
+    warm: u32,
+    sr: [u16; 2],
+    out: AdcOut,
+}
+
+impl AdcModel {
+    /// Model for validated parameters, in the power-up state (all registers zero).
+    pub fn new(p: &AdcParams) -> Self {
+        AdcModel {
+            p: p.clone(),
+            live: false,
+            pc: 0,
+            ph: 0,
+            cyc: 0,
+            warm: 0,
+            sr: [0; 2],
+            out: AdcOut::default(),
+        }
+    }
+
+    /// One clock.
+    pub fn step(&mut self, i: AdcIn) -> AdcOut {
+        let p = &self.p;
+        let f = &p.frame;
+        let run = i.enable && !i.rst;
+        let warm_init = 1 + f.pipeline;
+        let (mut pc_n, mut warm_n) = (0, warm_init);
+        if run && self.live {
+            if self.pc == p.period_clocks - 1 {
+                pc_n = 0;
+                warm_n = self.warm.saturating_sub(1);
+            } else {
+                pc_n = (self.pc + 1) & 0xffff;
+                warm_n = self.warm;
+            }
+        }
+        let stop = f.frame_sck + 1;
+        let (mut ph_n, mut cyc_n) = (0, stop);
+        if run {
+            if pc_n == f.lead_clocks {
+                (ph_n, cyc_n) = (0, 0);
+            } else if self.cyc == stop {
+                (ph_n, cyc_n) = (self.ph, self.cyc);
+            } else if self.ph == p.sck_period_clocks - 1 {
+                (ph_n, cyc_n) = (0, (self.cyc + 1) & 0xff);
+            } else {
+                (ph_n, cyc_n) = ((self.ph + 1) & 0xff, self.cyc);
+            }
+        }
+        let sck_act = run && cyc_n < f.frame_sck && ph_n >= p.sck_low_clocks();
+        let conv_act = run && pc_n < p.conv_clocks && warm_n < warm_init;
+        let cap = run && ph_n == p.capture_phase() && cyc_n >= 1 && cyc_n <= f.frame_sck;
+        let slot = cyc_n.wrapping_sub(1) & 0xff;
+        let wmask = mask(f.width) as u16;
+        let mut sr_n = self.sr;
+        let chans = f.channels.min(2) as usize;
+        for (c, (sr, old)) in sr_n.iter_mut().zip(self.sr).enumerate().take(chans) {
+            if cap && slot >= f.offsets[c] && slot < f.offsets[c] + f.width {
+                *sr = ((old << 1) | i.miso as u16) & wmask;
+            }
+        }
+        let flip = match f.sign {
+            SignFormat::TwosComplement => 0,
+            SignFormat::OffsetBinary => 1u16 << (f.width - 1),
+        };
+        let mut out = AdcOut {
+            sck: sck_act ^ f.cpol,
+            conv: conv_act ^ !f.conv_active_high,
+            valid: false,
+            ch0: self.out.ch0,
+            ch1: self.out.ch1,
+        };
+        if cap && slot == p.data_slots().1 && warm_n == 0 {
+            out.valid = true;
+            out.ch0 = (sr_n[0] ^ flip) & wmask;
+            out.ch1 = if f.channels >= 2 {
+                (sr_n[1] ^ flip) & wmask
+            } else {
+                0
+            };
+        }
+        if i.rst {
+            sr_n = [0; 2];
+            out.valid = false;
+            out.ch0 = 0;
+            out.ch1 = 0;
+        }
+        self.live = run;
+        self.pc = pc_n;
+        self.ph = ph_n;
+        self.cyc = cyc_n;
+        self.warm = warm_n;
+        self.sr = sr_n;
+        self.out = out;
+        out
+    }
+}
