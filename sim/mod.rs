@@ -6,5 +6,3 @@ pub mod ltc1407a;
 pub mod ltc6912;
 pub mod step;
 pub mod stimulus;
-pub mod biss_master;
-pub mod ssi_master;

@@ -17,6 +17,8 @@
 //! | `clock.frequency_hz` | 1 MHz..=500 MHz |
 //! | `adc.sample_rate_hz` | up to the ADC's limit and the clock |
 
+use crate::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
+use crate::blocks::preamp::PreampParams;
 use crate::error::{Error, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
@@ -125,6 +127,9 @@ pub struct Config {
     /// Signal monitoring.
     #[serde(default)]
     pub monitor: MonitorConfig,
+    /// Pre-amplifier gains (LTC1407A-1 preset).
+    #[serde(default)]
+    pub preamp: Option<PreampConfig>,
 }
 
 /// `[clock]`
@@ -157,11 +162,88 @@ pub struct AdcConfig {
     /// Sample width in bits (two's complement).
     #[serde(deserialize_with = "r_width")]
     pub width: u32,
-    /// Sample rate per channel delivered to the core, in samples per second.
-    pub sample_rate_hz: f64,
+    /// Target sample rate per channel (the rate reached is at most this); omitted: the
+    /// fastest the chip and the clock allow.
+    #[serde(default)]
+    pub sample_rate_hz: Option<f64>,
+    /// SCK period in system clocks (>= 2, odd allowed); omitted: the fastest allowed.
+    #[serde(default)]
+    pub sck_period_clocks: Option<u32>,
     /// Upper limit of the chip's per-channel rate (required for `generic`).
     #[serde(default)]
     pub max_sample_rate_hz: Option<f64>,
+    /// Frame format of a `generic` ADC.
+    #[serde(default)]
+    pub frame: Option<FrameConfig>,
+    /// Timing limits of a `generic` ADC, in ns.
+    #[serde(default)]
+    pub timing: Option<TimingConfig>,
+}
+
+/// `[adc.frame]` (preset `generic`): defaults describe two channels of W bits, MSB first,
+/// one idle slot before each, shifted on rising SCK edges after a CONV pulse.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameConfig {
+    /// SCK cycles per frame (default 2W + 4).
+    pub frame_sck: Option<u32>,
+    /// Channels: 1 or 2 (default 2).
+    pub channels: Option<u32>,
+    /// Slot of each channel's MSB (default [1, W + 2]).
+    pub offsets: Option<[u32; 2]>,
+    /// "twos-complement" (default) or "offset-binary".
+    pub sign: Option<String>,
+    /// SCK idle level (default false).
+    pub cpol: Option<bool>,
+    /// The slave shifts on leading edges (default true).
+    pub cpha: Option<bool>,
+    /// CONV / chip select active high (default true).
+    pub conv_active_high: Option<bool>,
+    /// CONV active clocks (default 0 = the minimum pulse).
+    pub conv_clocks: Option<u32>,
+    /// Clocks from CONV to the first SCK cycle (default 0).
+    pub lead_clocks: Option<u32>,
+    /// Frames between a conversion and its data (default 0).
+    pub pipeline: Option<u32>,
+}
+
+/// `[adc.timing]` (preset `generic`), all in ns.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimingConfig {
+    /// Minimum SCK period (default 20).
+    pub sck_min_period_ns: Option<f64>,
+    /// Minimum SCK high/low time (default 5).
+    pub sck_min_pulse_ns: Option<f64>,
+    /// SDO valid after the shifting edge (default 10).
+    pub data_valid_ns: Option<f64>,
+    /// Minimum CONV pulse (default 10).
+    pub conv_min_pulse_ns: Option<f64>,
+    /// Minimum CONV inactive time (default 10).
+    pub conv_min_low_ns: Option<f64>,
+    /// CONV to first SCK edge (default 5).
+    pub conv_to_sck_ns: Option<f64>,
+    /// Acquisition time before the next CONV (default 0).
+    pub acquisition_ns: Option<f64>,
+}
+
+/// `[preamp]`: LTC6912-1 gains (preset `ltc1407a-1` only).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PreampConfig {
+    /// Gain of amplifier A (ADC channel 0, sin): -1, -2, -5, -10, -20, -50 or -100.
+    pub gain_a: i32,
+    /// Gain of amplifier B (ADC channel 1, cos).
+    pub gain_b: i32,
+}
+
+impl Default for PreampConfig {
+    fn default() -> Self {
+        PreampConfig {
+            gain_a: -1,
+            gain_b: -1,
+        }
+    }
 }
 
 /// `[cordic]`
@@ -204,6 +286,10 @@ impl Default for MonitorConfig {
 /// Parameters computed once from a validated [`Config`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Derived {
+    /// ADC controller parameters (validated).
+    pub adc: AdcParams,
+    /// Pre-amplifier set-up (LTC1407A-1 preset only).
+    pub preamp: Option<PreampParams>,
     /// ADC sample width A.
     pub adc_width: u32,
     /// CORDIC iterations N.
@@ -421,42 +507,16 @@ impl Derived {
         let quadrant_bits = 64 - (quadrants_per_turn - 1).leading_zeros();
         let position_width = quadrant_bits + f;
         let clock_hz = c.clock.frequency_hz;
-        let rate = c.adc.sample_rate_hz;
-        let limit = match c.adc.preset {
-            AdcPreset::Ltc1407a1 => 1.5e6,
-            AdcPreset::Generic => c.adc.max_sample_rate_hz.ok_or_else(|| {
-                err(
-                    "adc",
-                    "preset",
-                    "preset \"generic\" needs `adc.max_sample_rate_hz` (the chip's per-channel limit)"
-                        .into(),
-                )
-            })?,
-        };
-        if c.adc.preset == AdcPreset::Ltc1407a1 && a != 14 {
-            return Err(err(
-                "adc",
-                "width",
-                format!(
-                    "the LTC1407A-1 delivers 14-bit samples; width {a} needs preset \"generic\""
-                ),
-            ));
-        }
-        if !(rate > 0.0 && rate <= limit && rate <= clock_hz) {
-            return Err(err(
-                "adc",
-                "sample_rate_hz",
-                format!(
-                    "{rate} Hz is not allowed: 0 < rate <= {limit} (the ADC's per-channel limit) and <= the clock"
-                ),
-            ));
-        }
+        let (adc, preamp) = adc_params(c, &err)?;
+        let rate = adc.sample_rate_hz();
         // Warn at 1.75 quadrants per sample: the fine-angle unwrap is exact below 2.
         let warn_step = 7u64 << (f - 2);
         let max_speed_rpm_full_res =
             (warn_step - 1) as f64 / (1u64 << f) as f64 * rate / quadrants_per_turn as f64 * 60.0;
         let latency_cycles = n + 2;
         Ok(Derived {
+            adc,
+            preamp,
             adc_width: a,
             iterations: n,
             fine_bits: f,
@@ -526,4 +586,156 @@ impl Derived {
             self.warn_step as f64 / (1u64 << self.fine_bits) as f64,
         )
     }
+}
+
+type ErrFn<'a> = dyn Fn(&str, &str, String) -> Error + 'a;
+
+/// ADC and preamp parameters from the config, validated against the chips' limits.
+fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams>)> {
+    let a = c.adc.width;
+    let clock_hz = c.clock.frequency_hz;
+    let (frame, timing) = match c.adc.preset {
+        AdcPreset::Ltc1407a1 => {
+            if a != 14 {
+                return Err(err(
+                    "adc",
+                    "width",
+                    format!(
+                        "the LTC1407A-1 delivers 14-bit samples; width {a} needs preset \"generic\""
+                    ),
+                ));
+            }
+            if c.adc.frame.is_some() || c.adc.timing.is_some() || c.adc.max_sample_rate_hz.is_some()
+            {
+                return Err(err(
+                    "adc",
+                    "preset",
+                    "[adc.frame], [adc.timing] and max_sample_rate_hz apply to preset \"generic\" only".into(),
+                ));
+            }
+            (AdcFrame::LTC1407A_1, AdcTiming::LTC1407A_1)
+        }
+        AdcPreset::Generic => {
+            let max = c.adc.max_sample_rate_hz.ok_or_else(|| {
+                err(
+                    "adc",
+                    "preset",
+                    "preset \"generic\" needs `adc.max_sample_rate_hz` (the chip's per-channel limit)"
+                        .into(),
+                )
+            })?;
+            let f = c.adc.frame.clone().unwrap_or_default();
+            let sign = match f.sign.as_deref() {
+                None | Some("twos-complement") => SignFormat::TwosComplement,
+                Some("offset-binary") => SignFormat::OffsetBinary,
+                Some(other) => {
+                    return Err(err(
+                        "adc.frame",
+                        "sign",
+                        format!("{other:?}: allowed \"twos-complement\" or \"offset-binary\""),
+                    ))
+                }
+            };
+            let frame = AdcFrame {
+                frame_sck: f.frame_sck.unwrap_or(2 * a + 4),
+                channels: f.channels.unwrap_or(2),
+                offsets: f.offsets.unwrap_or([1, a + 2]),
+                width: a,
+                sign,
+                cpol: f.cpol.unwrap_or(false),
+                cpha: f.cpha.unwrap_or(true),
+                conv_active_high: f.conv_active_high.unwrap_or(true),
+                conv_clocks: f.conv_clocks.unwrap_or(0),
+                lead_clocks: f.lead_clocks.unwrap_or(0),
+                pipeline: f.pipeline.unwrap_or(0),
+            };
+            let t = c.adc.timing.clone().unwrap_or_default();
+            let timing = AdcTiming {
+                sck_min_period_ns: t.sck_min_period_ns.unwrap_or(20.0),
+                sck_max_period_ns: 0.0,
+                sck_min_pulse_ns: t.sck_min_pulse_ns.unwrap_or(5.0),
+                data_valid_ns: t.data_valid_ns.unwrap_or(10.0),
+                conv_min_pulse_ns: t.conv_min_pulse_ns.unwrap_or(10.0),
+                conv_min_low_ns: t.conv_min_low_ns.unwrap_or(10.0),
+                conv_to_sck_ns: t.conv_to_sck_ns.unwrap_or(5.0),
+                acquisition_ns: t.acquisition_ns.unwrap_or(0.0),
+                conversion_edges: 0,
+                max_sample_rate_hz: max,
+            };
+            (frame, timing)
+        }
+    };
+    // SCK divider: as configured, or the smallest the chip's SCK limit allows.
+    let d = match c.adc.sck_period_clocks {
+        Some(d) => d,
+        None => ((timing.sck_min_period_ns * clock_hz / 1e9) - 1e-9)
+            .ceil()
+            .max(2.0) as u32,
+    };
+    let build = |period: Option<u32>| match c.adc.preset {
+        AdcPreset::Ltc1407a1 => AdcParams::ltc1407a(clock_hz, d, period),
+        AdcPreset::Generic => AdcParams::generic(clock_hz, frame, timing, d, period),
+    };
+    let fastest = build(None);
+    // The shortest period that respects the chip's rate limit too.
+    let limit_period = AdcParams::period_for_rate(clock_hz, timing.max_sample_rate_hz);
+    let mut params = if fastest.period_clocks < limit_period {
+        build(Some(limit_period))
+    } else {
+        fastest
+    };
+    let key = if c.adc.sck_period_clocks.is_some() {
+        "sck_period_clocks"
+    } else {
+        "preset"
+    };
+    params.validate().map_err(|m| err("adc", key, m))?;
+    if let Some(rate) = c.adc.sample_rate_hz {
+        let p = AdcParams::period_for_rate(clock_hz, rate);
+        if !(rate > 0.0) || p < params.period_clocks {
+            return Err(err(
+                "adc",
+                "sample_rate_hz",
+                format!(
+                    "{rate} Hz is not reachable: at most {:.0} samples/s per channel at the clock of {} MHz with an SCK period of {d} clocks (the ADC's per-channel limit is {} samples/s); omit the key for the fastest",
+                    params.sample_rate_hz(),
+                    clock_hz / 1e6,
+                    timing.max_sample_rate_hz
+                ),
+            ));
+        }
+        params = build(Some(p));
+        params
+            .validate()
+            .map_err(|m| err("adc", "sample_rate_hz", m))?;
+    }
+    let preamp = match c.adc.preset {
+        AdcPreset::Ltc1407a1 => {
+            let pc = c.preamp.clone().unwrap_or_default();
+            Some(
+                PreampParams::new(clock_hz, pc.gain_a, pc.gain_b).map_err(|m| {
+                    err(
+                        "preamp",
+                        if m.contains("gain B") {
+                            "gain_b"
+                        } else {
+                            "gain_a"
+                        },
+                        m,
+                    )
+                })?,
+            )
+        }
+        AdcPreset::Generic => {
+            if c.preamp.is_some() {
+                return Err(err(
+                    "preamp",
+                    "gain_a",
+                    "the LTC6912-1 pre-amplifier belongs to preset \"ltc1407a-1\"".into(),
+                ));
+            }
+            None
+        }
+    };
+    Ok((params, preamp))
 }

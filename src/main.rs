@@ -69,6 +69,16 @@ fn run(cli: Cli) -> Result<()> {
             let loaded = load(&config)?;
             println!("{}: ok", loaded.source_name);
             print!("{}", loaded.derived.describe());
+            print!("{}", loaded.derived.adc.describe());
+            if let Some(p) = &loaded.derived.preamp {
+                println!(
+                    "preamp                      LTC6912-1 gains A {} B {}, word 0x{:02x}, set-up {} clocks",
+                    p.gain_a,
+                    p.gain_b,
+                    p.word(),
+                    p.done_clocks()
+                );
+            }
         }
         Command::Init { path, force } => {
             if path.exists() && !force {

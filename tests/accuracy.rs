@@ -96,7 +96,8 @@ fn the_bound_is_tight_enough_to_fail() {
         .replace(
             "preset = \"ltc1407a-1\"",
             "preset = \"generic\"\nmax_sample_rate_hz = 2e6",
-        );
+        )
+        .replace("[preamp]\n# LTC6912-1 gains (inverting): -1, -2, -5, -10, -20, -50 or -100. A feeds sin, B cos.\ngain_a = -1\ngain_b = -1\n", "");
     let l = sinedec::config::Loaded::parse(&text, "t").expect("parses");
     let d = &l.derived;
     let full = 511.0;

@@ -366,9 +366,10 @@ fn check_default_prints_derived_parameters() {
         "{lat}"
     );
     // Highest speed with steps below 1.75 quadrants (minus one fine LSB) per sample:
-    // 2048 PPR = 8192 quadrants per turn, 1.5 Msps, F = 14.
+    // 2048 PPR = 8192 quadrants per turn, F = 14, and the LTC1407A-1's fastest rate at
+    // 133.33 MHz: a 34-SCK frame of 3-clock SCK periods = 102 clocks per sample.
     let q_per_sample = 1.75 - 1.0 / 16384.0;
-    let rpm = q_per_sample * 1.5e6 / 8192.0 * 60.0;
+    let rpm = q_per_sample * (133.33e6 / 102.0) / 8192.0 * 60.0;
     let speed = line_of(&out, "max speed");
     assert!(
         speed.contains(&format!("{rpm:.0} rpm")),

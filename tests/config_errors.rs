@@ -40,6 +40,12 @@ const GENERIC: (&str, &str) = (
     "preset = \"generic\"\nmax_sample_rate_hz = 2e6",
 );
 
+/// The generic preset has no LTC6912-1: its `[preamp]` section goes.
+const NO_PREAMP: (&str, &str) = (
+    "[preamp]\n# LTC6912-1 gains (inverting): -1, -2, -5, -10, -20, -50 or -100. A feeds sin, B cos.\ngain_a = -1\ngain_b = -1\n",
+    "",
+);
+
 /// 1-based (line, column) of byte offset `off`, counted independently of the crate.
 fn line_col_of(text: &str, off: usize) -> (usize, usize) {
     let before = &text[..off];
@@ -368,7 +374,7 @@ fn adc_width_9_generic() {
     range_case(
         "width = 14",
         "width = 9",
-        &[GENERIC],
+        &[GENERIC, NO_PREAMP],
         &["`adc.width` = 9", "10..=16"],
     );
 }
@@ -507,7 +513,7 @@ fn name_too_long() {
 #[test]
 fn sample_rate_above_ltc1407a1_limit() {
     let t = default_with(&[(
-        "sample_rate_hz = 1_500_000.0",
+        "# sample_rate_hz = 1_000_000.0",
         "sample_rate_hz = 1_500_001.0",
     )]);
     expect_bad(
@@ -528,7 +534,7 @@ fn sample_rate_above_clock() {
     let t = default_with(&[
         ("frequency_hz = 133_330_000.0", "frequency_hz = 1_000_000.0"),
         (
-            "sample_rate_hz = 1_500_000.0",
+            "# sample_rate_hz = 1_000_000.0",
             "sample_rate_hz = 1_200_000.0",
         ),
     ]);
@@ -569,6 +575,7 @@ fn generic_preset_without_max_sample_rate() {
 fn guard_bits_overflow_31_bit_datapath() {
     let t = default_with(&[
         GENERIC,
+        NO_PREAMP,
         ("width = 14", "width = 16"),
         ("# guard_bits = 10", "guard_bits = 20"),
     ]);
@@ -584,6 +591,7 @@ fn guard_bits_overflow_31_bit_datapath() {
 fn iterations_beyond_datapath() {
     let t = default_with(&[
         GENERIC,
+        NO_PREAMP,
         ("width = 14", "width = 10"),
         ("iterations = 14", "iterations = 20"),
         ("# guard_bits = 10", "guard_bits = 0"),
@@ -684,11 +692,15 @@ fn value_error_key_named_in_a_comment_first() {
 #[test]
 fn default_and_generic_base_configs_are_accepted() {
     Loaded::parse(DEFAULT_CONFIG, SRC).expect("default");
-    Loaded::parse(&default_with(&[GENERIC, ("width = 14", "width = 16")]), SRC)
-        .expect("generic 16");
+    Loaded::parse(
+        &default_with(&[GENERIC, NO_PREAMP, ("width = 14", "width = 16")]),
+        SRC,
+    )
+    .expect("generic 16");
     Loaded::parse(
         &default_with(&[
             GENERIC,
+            NO_PREAMP,
             ("width = 14", "width = 10"),
             ("iterations = 14", "iterations = 10"),
             ("# guard_bits = 10", "guard_bits = 0"),
@@ -696,4 +708,38 @@ fn default_and_generic_base_configs_are_accepted() {
         SRC,
     )
     .expect("generic 10, guard 0, 10 iterations (the most that fit)");
+}
+
+#[test]
+fn sck_beyond_the_adc_limit() {
+    // 2 clocks at 133.33 MHz = 66.7 MHz, above the LTC1407A-1's 1/19.6 ns = 51 MHz.
+    let t = default_with(&[("# sck_period_clocks = 3", "sck_period_clocks = 2")]);
+    expect_bad(
+        &t,
+        Kind::Value("adc.sck_period_clocks"),
+        at(&t, "sck_period_clocks = 2"),
+        &["adc.sck_period_clocks", "LTC1407A-1", "at least 3 clocks"],
+    );
+}
+
+#[test]
+fn preamp_gain_not_in_the_ltc6912_set() {
+    let t = default_with(&[("gain_b = -1", "gain_b = -3")]);
+    expect_bad(
+        &t,
+        Kind::Value("preamp.gain_b"),
+        at(&t, "gain_b = -3"),
+        &["preamp.gain_b", "-3", "-1, -2, -5, -10, -20, -50, -100"],
+    );
+}
+
+#[test]
+fn preamp_section_with_the_generic_preset() {
+    let t = default_with(&[GENERIC, ("width = 14", "width = 12")]);
+    expect_bad(
+        &t,
+        Kind::Value("preamp.gain_a"),
+        at(&t, "gain_a = -1"),
+        &["preamp", "ltc1407a-1"],
+    );
 }

@@ -15,10 +15,6 @@ pub mod cordic;
 pub mod core;
 pub mod counter;
 pub mod preamp;
-pub mod biss;
-pub mod ssi;
-pub mod spi_slave;
-pub mod parallel;
 
 use rust_hdl::prelude::*;
 
