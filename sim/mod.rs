@@ -6,3 +6,4 @@ pub mod ltc1407a;
 pub mod ltc6912;
 pub mod step;
 pub mod stimulus;
+pub mod system;

@@ -15,6 +15,7 @@ pub mod cordic;
 pub mod core;
 pub mod counter;
 pub mod preamp;
+pub mod top;
 
 use rust_hdl::prelude::*;
 

@@ -140,8 +140,10 @@ impl Logic for PreampSetup {
             }
         }
         // Pins for the step being entered.
-        self.cs_reg.d.next = !((self.step_n.val() >= self.s_cs_low.val())
-            & (self.step_n.val() <= self.s_cs_last.val()));
+        // The register holds "selected", so its power-up value 0 keeps AMP_CS high (no
+        // spurious select between configuration and reset).
+        self.cs_reg.d.next = (self.step_n.val() >= self.s_cs_low.val())
+            & (self.step_n.val() <= self.s_cs_last.val());
         self.sck_reg.d.next = (self.step_n.val() >= self.s_first_high.val())
             & (self.step_n.val() <= self.s_last_high.val())
             & ((self.step_n.val() & self.one8.val()) == self.zero8.val());
@@ -158,7 +160,7 @@ impl Logic for PreampSetup {
             self.spi_sck.next = self.adc_sck.val();
         }
         self.spi_mosi.next = self.mosi_reg.q.val();
-        self.amp_cs.next = self.cs_reg.q.val();
+        self.amp_cs.next = !self.cs_reg.q.val();
         self.done.next = self.done_reg.q.val();
         self.amp_shdn.next = false;
         self.dac_cs.next = true;

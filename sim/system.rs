@@ -1,0 +1,239 @@
+//! Closed-loop simulation of `<name>_top` (sinewave path): the rust-hdl design stepped by
+//! hand, clock by clock, against the encoder model, the LTC1407A-1 model answering its SPI
+//! frames and the LTC6912-1 model recording the gain word.
+//!
+//! ```text
+//!  EncoderModel ──v_sin,v_cos──► Ltc1407a ──AD_DOUT──► TopRtl ──par_*──► records
+//!        ▲ (voltages at each CONV rise)     ◄─SCK,CONV──  │
+//!        │                                  Ltc6912 ◄─────┘ CS, SCK, MOSI
+//!   true angle at the conversion time of every decoded sample (for the error figures)
+//! ```
+//!
+//! Every decoded sample is matched to the ADC conversion that produced it by the design's
+//! fixed latency (CONV rise to `par_valid` = the ADC controller's latency + the core's
+//! N + 2 cycles); a sample with no conversion at that clock is reported as a latency error.
+use crate::blocks::sext;
+use crate::blocks::top::hdl::TopRtl;
+use crate::config::Derived;
+use crate::sim::encoder::EncoderModel;
+use crate::sim::ltc1407a::Ltc1407a;
+use crate::sim::ltc6912::Ltc6912;
+use crate::sim::step::{prepare, tick, NoConvergence};
+use rust_hdl::prelude::*;
+use std::collections::HashMap;
+use std::f64::consts::FRAC_PI_2;
+
+/// One decoded sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Record {
+    /// Clock cycle of `par_valid`.
+    pub cycle: u64,
+    /// Clock cycle of the CONV rise that sampled it.
+    pub conv_cycle: u64,
+    /// Single-turn position (2^-F quadrant units).
+    pub position: u64,
+    /// Signed turn count.
+    pub turns: i64,
+    /// Error flag.
+    pub error: bool,
+    /// Warning flag.
+    pub warning: bool,
+    /// Unwrapped decoded position in fine LSB: turns * 4PPR * 2^F + position.
+    pub unwrapped: i64,
+    /// The encoder's true electrical angle at the conversion, in fine LSB (unwrapped).
+    pub truth: f64,
+}
+
+/// Result of a closed-loop run.
+#[derive(Clone, Debug, Default)]
+pub struct SimResult {
+    /// Decoded samples in order.
+    pub records: Vec<Record>,
+    /// Clock cycles simulated.
+    pub cycles: u64,
+    /// Decoded samples whose conversion could not be found at the expected latency.
+    pub latency_mismatches: u64,
+    /// LTC1407A-1 protocol violations (messages).
+    pub adc_violations: Vec<String>,
+    /// LTC6912-1 protocol violations (messages).
+    pub amp_violations: Vec<String>,
+    /// Gains the LTC6912-1 model decoded, if a word was shifted in.
+    pub amp_gains: Option<(i32, i32)>,
+}
+
+/// Error statistics of a run, after a settling time.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ErrorStats {
+    /// Samples counted.
+    pub samples: usize,
+    /// Largest |error| in fine LSB.
+    pub max_lsb: f64,
+    /// RMS error in fine LSB.
+    pub rms_lsb: f64,
+    /// Mean error in fine LSB.
+    pub mean_lsb: f64,
+    /// Samples with the error flag.
+    pub errors: usize,
+    /// Samples with the warning flag.
+    pub warnings: usize,
+}
+
+impl SimResult {
+    /// Error statistics over the records from index `skip` on. The decoded position is
+    /// compared with the true angle plus the constant offset fixed by the first record:
+    /// the inverting pre-amplifier turns the vector by two quadrants, and the first sample
+    /// fixes which signal period counts as turn 0.
+    pub fn stats(&self, d: &Derived, skip: usize) -> ErrorStats {
+        let Some(first) = self.records.first() else {
+            return ErrorStats::default();
+        };
+        let q = (1u64 << d.fine_bits) as f64;
+        let period = 4.0 * q;
+        let raw = first.unwrapped as f64 - first.truth - 2.0 * q;
+        let offset = 2.0 * q + period * (raw / period).round();
+        let mut s = ErrorStats::default();
+        let (mut sum, mut sum2) = (0.0, 0.0);
+        for r in self.records.iter().skip(skip) {
+            let e = r.unwrapped as f64 - r.truth - offset;
+            s.samples += 1;
+            s.max_lsb = s.max_lsb.max(e.abs());
+            sum += e;
+            sum2 += e * e;
+            s.errors += r.error as usize;
+            s.warnings += r.warning as usize;
+        }
+        if s.samples > 0 {
+            s.mean_lsb = sum / s.samples as f64;
+            s.rms_lsb = (sum2 / s.samples as f64).sqrt();
+        }
+        s
+    }
+}
+
+/// The closed loop.
+pub struct System {
+    d: Derived,
+    top: Box<TopRtl>,
+    adc: Ltc1407a,
+    amp: Ltc6912,
+    truth: EncoderModel,
+    conv_times: HashMap<u64, f64>,
+    cycle: u64,
+    latency: u64,
+    clock_hz: f64,
+    result: SimResult,
+    rst_cycles: u64,
+}
+
+impl System {
+    /// A system for the derived parameters and an encoder (the voltages go through the
+    /// LTC6912-1 gains configured for the preamp).
+    pub fn new(d: &Derived, encoder: EncoderModel) -> Result<System, String> {
+        let top = Box::new(TopRtl::new(d)?);
+        let pre = d
+            .preamp
+            .as_ref()
+            .ok_or("the sinewave top needs the LTC1407A-1 preset")?;
+        let gains = [pre.gain_a as f64, pre.gain_b as f64];
+        let truth = encoder.clone();
+        let mut enc = encoder;
+        let adc = Ltc1407a::new(d.clock_hz, 7).with_voltages(gains, move |_k, t| {
+            let (s, c) = enc.voltages(t);
+            [s, c]
+        });
+        Ok(System {
+            d: d.clone(),
+            top,
+            adc,
+            amp: Ltc6912::new(d.clock_hz),
+            truth,
+            conv_times: HashMap::new(),
+            cycle: 0,
+            latency: d.adc.conv_to_valid_clocks() as u64 + d.latency_cycles as u64,
+            clock_hz: d.clock_hz,
+            result: SimResult::default(),
+            rst_cycles: 2,
+        })
+    }
+
+    /// Connects the design; call once.
+    pub fn start(&mut self) -> Result<(), NoConvergence> {
+        prepare(self.top.as_mut())
+    }
+
+    /// Simulates `cycles` clock cycles.
+    pub fn run(&mut self, cycles: u64) -> Result<(), NoConvergence> {
+        let fine = self.d.fine_bits;
+        let lsb_per_rad = (1u64 << fine) as f64 / FRAC_PI_2;
+        let qturn = self.d.quadrants_per_turn as i64;
+        for _ in 0..cycles {
+            // Pins are read before the edge: the chip models see the levels the design
+            // drove during the previous cycle, as real chips do.
+            let conv = self.top.adc_conv.val();
+            let sck = self.top.adc_sck.val();
+            let n_conv = self.adc.conversions().len();
+            let miso = self.adc.step(conv, sck);
+            if self.adc.conversions().len() > n_conv {
+                self.conv_times
+                    .insert(self.cycle, self.cycle as f64 / self.clock_hz);
+            }
+            self.amp.step(
+                self.top.amp_cs.val(),
+                sck,
+                self.top.amp_mosi.val(),
+                self.top.amp_shdn.val(),
+            );
+            self.top.rst.next = self.cycle < self.rst_cycles;
+            self.top.adc_miso.next = miso;
+            tick(self.top.as_mut())?;
+            self.cycle += 1;
+            if self.top.par_valid.val() {
+                let qc = self.top.par_qc.val().to_u64();
+                let pos = (qc << fine) | self.top.par_fine.val().to_u64();
+                let turns = if self.d.multiturn_bits == 0 {
+                    0
+                } else {
+                    sext(self.top.par_turns.val().to_u64(), self.d.multiturn_bits)
+                };
+                let conv_cycle = self.cycle.saturating_sub(self.latency + 1);
+                let t = match self.conv_times.remove(&conv_cycle) {
+                    Some(t) => t,
+                    None => {
+                        self.result.latency_mismatches += 1;
+                        conv_cycle as f64 / self.clock_hz
+                    }
+                };
+                self.result.records.push(Record {
+                    cycle: self.cycle,
+                    conv_cycle,
+                    position: pos,
+                    turns,
+                    error: self.top.par_error.val(),
+                    warning: self.top.par_warning.val(),
+                    unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
+                    truth: self.truth.electrical_angle(t) * lsb_per_rad,
+                });
+            }
+        }
+        self.result.cycles = self.cycle;
+        Ok(())
+    }
+
+    /// Finishes the run and returns its result.
+    pub fn finish(mut self) -> SimResult {
+        self.result.adc_violations = self
+            .adc
+            .violations()
+            .iter()
+            .map(|v| v.message.clone())
+            .collect();
+        self.result.amp_violations = self
+            .amp
+            .violations()
+            .iter()
+            .map(|v| format!("{v:?}"))
+            .collect();
+        self.result.amp_gains = self.amp.gains();
+        self.result
+    }
+}

@@ -1,0 +1,128 @@
+//! rust-hdl description of the sinewave board top.
+use crate::blocks::adc::hdl::AdcController;
+use crate::blocks::c32;
+use crate::blocks::core::hdl::CoreRtl;
+use crate::blocks::preamp::hdl::PreampSetup;
+use crate::config::Derived;
+use rust_hdl::prelude::*;
+
+/// The sinewave-path top as simulated in rust-hdl and exported (inside `<name>_top`).
+#[derive(LogicBlock)]
+pub struct TopRtl {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high (also restarts the preamp set-up).
+    pub rst: Signal<In, Bit>,
+    /// AD_DOUT: serial data from the LTC1407A-1.
+    pub adc_miso: Signal<In, Bit>,
+    /// SPI_SCK: the shared SPI clock (preamp set-up, then the ADC).
+    pub adc_sck: Signal<Out, Bit>,
+    /// AD_CONV: conversion start.
+    pub adc_conv: Signal<Out, Bit>,
+    /// AMP_CS: LTC6912-1 chip select, active low.
+    pub amp_cs: Signal<Out, Bit>,
+    /// SPI_MOSI: gain word to the LTC6912-1.
+    pub amp_mosi: Signal<Out, Bit>,
+    /// AMP_SHDN: 0, amplifier on.
+    pub amp_shdn: Signal<Out, Bit>,
+    /// DAC_CS: 1, DAC deselected.
+    pub dac_cs: Signal<Out, Bit>,
+    /// DAC_CLR: 1, DAC not cleared.
+    pub dac_clr: Signal<Out, Bit>,
+    /// SPI_SS_B: 1, SPI flash deselected.
+    pub spi_ss_b: Signal<Out, Bit>,
+    /// SF_CE0: 1, parallel flash disabled.
+    pub sf_ce0: Signal<Out, Bit>,
+    /// Parallel bus: position strobe.
+    pub par_valid: Signal<Out, Bit>,
+    /// Parallel bus: coarse quadrant count (upper part of the position).
+    pub par_qc: Signal<Out, Bits<32>>,
+    /// Parallel bus: fine part of the position.
+    pub par_fine: Signal<Out, Bits<32>>,
+    /// Parallel bus: turn count (M bits).
+    pub par_turns: Signal<Out, Bits<32>>,
+    /// Parallel bus: error flag.
+    pub par_error: Signal<Out, Bit>,
+    /// Parallel bus: warning flag.
+    pub par_warning: Signal<Out, Bit>,
+    preamp: PreampSetup,
+    adc: AdcController,
+    core: CoreRtl,
+    zero: Constant<Bits<32>>,
+}
+
+impl TopRtl {
+    /// The top for the derived parameters (preset `ltc1407a-1`).
+    pub fn new(d: &Derived) -> Result<Self, String> {
+        let pre = d
+            .preamp
+            .as_ref()
+            .ok_or_else(|| "the sinewave board top needs the LTC1407A-1 preset".to_string())?;
+        Ok(Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            adc_miso: Default::default(),
+            adc_sck: Default::default(),
+            adc_conv: Default::default(),
+            amp_cs: Default::default(),
+            amp_mosi: Default::default(),
+            amp_shdn: Default::default(),
+            dac_cs: Default::default(),
+            dac_clr: Default::default(),
+            spi_ss_b: Default::default(),
+            sf_ce0: Default::default(),
+            par_valid: Default::default(),
+            par_qc: Default::default(),
+            par_fine: Default::default(),
+            par_turns: Default::default(),
+            par_error: Default::default(),
+            par_warning: Default::default(),
+            preamp: PreampSetup::new(pre),
+            adc: AdcController::new(&d.adc),
+            core: CoreRtl::new(d),
+            zero: c32(0),
+        })
+    }
+}
+
+impl Logic for TopRtl {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.preamp.clk.next = self.clk.val();
+        self.preamp.rst.next = self.rst.val();
+        self.preamp.adc_sck.next = self.adc.adc_sck.val();
+        self.adc.clk.next = self.clk.val();
+        self.adc.rst.next = self.rst.val();
+        self.adc.enable.next = self.preamp.done.val();
+        self.adc.adc_miso.next = self.adc_miso.val();
+        self.core.clk.next = self.clk.val();
+        self.core.rst.next = self.rst.val();
+        self.core.in_valid.next = self.adc.out_valid.val();
+        self.core.in_sin.next = self.adc.out_ch0.val();
+        self.core.in_cos.next = self.adc.out_ch1.val();
+        self.core.load.next = false;
+        self.core.load_qc.next = self.zero.val();
+        self.core.load_turns.next = self.zero.val();
+        self.adc_sck.next = self.preamp.spi_sck.val();
+        self.adc_conv.next = self.adc.adc_conv.val();
+        self.amp_cs.next = self.preamp.amp_cs.val();
+        self.amp_mosi.next = self.preamp.spi_mosi.val();
+        self.amp_shdn.next = self.preamp.amp_shdn.val();
+        self.dac_cs.next = self.preamp.dac_cs.val();
+        self.dac_clr.next = self.preamp.dac_clr.val();
+        self.spi_ss_b.next = self.preamp.spi_ss_b.val();
+        self.sf_ce0.next = self.preamp.sf_ce0.val();
+        self.par_valid.next = self.core.out_valid.val();
+        self.par_qc.next = self.core.out_qc.val();
+        self.par_fine.next = self.core.out_fine.val();
+        self.par_turns.next = self.core.out_turns.val();
+        self.par_error.next = self.core.out_error.val();
+        self.par_warning.next = self.core.out_warning.val();
+    }
+}
+
+impl crate::sim::step::Clocked for TopRtl {
+    fn set_clock(&mut self, high: bool) {
+        self.clk.next = Clock::from(high);
+    }
+}
