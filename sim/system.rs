@@ -59,6 +59,9 @@ pub struct SimResult {
     pub amp_violations: Vec<String>,
     /// Gains the LTC6912-1 model decoded, if a word was shifted in.
     pub amp_gains: Option<(i32, i32)>,
+    /// Per-cycle inputs of the design `[rst, adc_miso]`, when recording was asked for: a
+    /// stimulus that replays the run in a Verilog simulator.
+    pub inputs: Vec<Vec<u64>>,
 }
 
 /// Error statistics of a run, after a settling time.
@@ -123,6 +126,7 @@ pub struct System {
     clock_hz: f64,
     result: SimResult,
     rst_cycles: u64,
+    record_inputs: bool,
 }
 
 impl System {
@@ -153,7 +157,18 @@ impl System {
             clock_hz: d.clock_hz,
             result: SimResult::default(),
             rst_cycles: 2,
+            record_inputs: false,
         })
+    }
+
+    /// Records the design's inputs of every cycle (see [`SimResult::inputs`]).
+    pub fn record_inputs(&mut self) {
+        self.record_inputs = true;
+    }
+
+    /// The design (to read its outputs after a cycle).
+    pub fn top(&self) -> &TopRtl {
+        &self.top
     }
 
     /// Connects the design; call once.
@@ -183,8 +198,12 @@ impl System {
                 self.top.amp_mosi.val(),
                 self.top.amp_shdn.val(),
             );
-            self.top.rst.next = self.cycle < self.rst_cycles;
+            let rst = self.cycle < self.rst_cycles;
+            self.top.rst.next = rst;
             self.top.adc_miso.next = miso;
+            if self.record_inputs {
+                self.result.inputs.push(vec![rst as u64, miso as u64]);
+            }
             tick(self.top.as_mut())?;
             self.cycle += 1;
             if self.top.par_valid.val() {

@@ -126,3 +126,57 @@ impl crate::sim::step::Clocked for TopRtl {
         self.clk.next = Clock::from(high);
     }
 }
+
+impl crate::verify::CosimBlock for TopRtl {
+    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        vec![Port::new("rst", 1), Port::new("adc_miso", 1)]
+    }
+    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        let mut v: Vec<Port> = [
+            "adc_sck",
+            "adc_conv",
+            "amp_cs",
+            "amp_mosi",
+            "amp_shdn",
+            "dac_cs",
+            "dac_clr",
+            "spi_ss_b",
+            "sf_ce0",
+            "par_valid",
+        ]
+        .iter()
+        .map(|n| Port::new(n, 1))
+        .collect();
+        v.push(Port::new("par_qc", 32));
+        v.push(Port::new("par_fine", 32));
+        v.push(Port::new("par_turns", 32));
+        v.push(Port::new("par_error", 1));
+        v.push(Port::new("par_warning", 1));
+        v
+    }
+    fn apply(&mut self, r: &[u64]) {
+        self.rst.next = r[0] != 0;
+        self.adc_miso.next = r[1] != 0;
+    }
+    fn sample(&self) -> Vec<u64> {
+        vec![
+            self.adc_sck.val() as u64,
+            self.adc_conv.val() as u64,
+            self.amp_cs.val() as u64,
+            self.amp_mosi.val() as u64,
+            self.amp_shdn.val() as u64,
+            self.dac_cs.val() as u64,
+            self.dac_clr.val() as u64,
+            self.spi_ss_b.val() as u64,
+            self.sf_ce0.val() as u64,
+            self.par_valid.val() as u64,
+            self.par_qc.val().to_u64(),
+            self.par_fine.val().to_u64(),
+            self.par_turns.val().to_u64(),
+            self.par_error.val() as u64,
+            self.par_warning.val() as u64,
+        ]
+    }
+}
