@@ -19,7 +19,6 @@ use crate::sim::encoder::EncoderModel;
 use crate::sim::ltc1407a::Ltc1407a;
 use crate::sim::ltc6912::Ltc6912;
 use crate::sim::step::{prepare, tick, NoConvergence};
-use rust_hdl::prelude::*;
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 

@@ -11,10 +11,14 @@
 //! fill mask when the sign bit (a constant-mask test, never a literal index) is set.
 //! No unsized literal takes part in any expression (rust-hdl pitfall 4).
 pub mod adc;
+pub mod biss;
 pub mod cordic;
 pub mod core;
 pub mod counter;
+pub mod parallel;
 pub mod preamp;
+pub mod spi_slave;
+pub mod ssi;
 pub mod top;
 
 use rust_hdl::prelude::*;

@@ -144,6 +144,79 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
     Ok(format!("{}\n{body}", core_wrapper(loaded, &rtl_name)))
 }
 
+/// Name of the board top module.
+pub fn top_name(loaded: &Loaded) -> String {
+    format!("{}_top", loaded.config.name)
+}
+
+/// Verilog of `<name>_top` (sinewave path, LTC1407A-1 preset), without header; None when
+/// the configuration has no board top yet (other presets and targets).
+pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
+    let d = &loaded.derived;
+    if d.preamp.is_none() || loaded.config.target != crate::config::Target::Spartan3an {
+        return Ok(None);
+    }
+    let name = top_name(loaded);
+    let rtl_name = format!("{name}_rtl");
+    let mut uut = crate::blocks::top::hdl::TopRtl::new(d).map_err(Error::Export)?;
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let body = verilog::export(&uut, "top", &rtl_name)?;
+    let f = d.fine_bits;
+    let turns = if d.multiturn_bits == 0 {
+        "1'b0".to_string()
+    } else {
+        format!("turns[{}:0]", d.multiturn_bits - 1)
+    };
+    let wrapper = format!(
+        r#"// {name}: sinewave encoder decoder for the Spartan-3AN Starter Kit: LTC6912-1 set-up,
+// LTC1407A-1 controller ({rate:.0} samples/s per channel), QEP-CORDIC core, parallel bus.
+module {name} (
+    input  wire         clk,          // system clock
+    input  wire         rst,          // synchronous reset, active high (restarts the set-up)
+    input  wire         adc_miso,     // AD_DOUT: LTC1407A-1 serial data
+    output wire         adc_sck,      // SPI_SCK: shared SPI clock (amp set-up, then ADC)
+    output wire         adc_conv,     // AD_CONV: conversion start
+    output wire         amp_cs,       // AMP_CS: LTC6912-1 chip select, active low
+    output wire         amp_mosi,     // SPI_MOSI: LTC6912-1 gain word
+    output wire         amp_shdn,     // AMP_SHDN: 0 = amplifier on
+    output wire         dac_cs,       // DAC_CS: 1 = DAC deselected
+    output wire         dac_clr,      // DAC_CLR: 1 = DAC not cleared
+    output wire         spi_ss_b,     // SPI_SS_B: 1 = SPI flash deselected
+    output wire         sf_ce0,       // SF_CE0: 1 = parallel flash disabled
+    output wire         par_valid,    // parallel bus: one-cycle strobe per position
+    output wire [{pm}:0]  par_position, // parallel bus: single-turn position, 2^-{f} quadrant
+    output wire [{tm}:0]  par_turns,    // parallel bus: signed multi-turn count
+    output wire [{fm}:0]  par_fine,     // parallel bus: fine part of the position
+    output wire         par_error,    // parallel bus: error flag
+    output wire         par_warning   // parallel bus: warning flag
+);
+    wire [31:0] qc;    // coarse quadrant count
+    wire [31:0] fine;  // fine part
+    wire [31:0] turns; // turn count
+    {rtl_name} rtl (
+        .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_sck(adc_sck), .adc_conv(adc_conv),
+        .amp_cs(amp_cs), .amp_mosi(amp_mosi), .amp_shdn(amp_shdn), .dac_cs(dac_cs),
+        .dac_clr(dac_clr), .spi_ss_b(spi_ss_b), .sf_ce0(sf_ce0), .par_valid(par_valid),
+        .par_qc(qc), .par_fine(fine), .par_turns(turns), .par_error(par_error),
+        .par_warning(par_warning)
+    );
+    assign par_position = {{qc[{qb}:0], fine[{fm}:0]}};
+    assign par_turns = {turns};
+    assign par_fine = fine[{fm}:0];
+endmodule // {name}
+"#,
+        rate = d.sample_rate_hz,
+        pm = d.position_width - 1,
+        tm = d.turns_width - 1,
+        fm = f - 1,
+        qb = d.quadrant_bits - 1,
+    );
+    Ok(Some(format!(
+        "{wrapper}
+{body}"
+    )))
+}
+
 /// All files for one configuration; `command` is the command line quoted in headers.
 pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
     let name = &loaded.config.name;
@@ -180,22 +253,35 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         ),
         testbench::core_testbench(loaded)
     );
-    Ok(Generation {
-        files: vec![
-            OutFile {
-                name: format!("{name}_core.v"),
-                text: v,
-            },
-            OutFile {
-                name: format!("{name}_core_tb.v"),
-                text: tb,
-            },
-            OutFile {
-                name: format!("{name}_params.md"),
-                text: report,
-            },
-        ],
-    })
+    let mut files = vec![
+        OutFile {
+            name: format!("{name}_core.v"),
+            text: v,
+        },
+        OutFile {
+            name: format!("{name}_core_tb.v"),
+            text: tb,
+        },
+        OutFile {
+            name: format!("{name}_params.md"),
+            text: report,
+        },
+    ];
+    if let Some(top) = top_verilog(loaded)? {
+        files.push(OutFile {
+            name: format!("{name}_top.v"),
+            text: format!(
+                "{}`timescale 1ns / 1ps\n\n{top}",
+                header(
+                    loaded,
+                    command,
+                    "Board top: pre-amplifier set-up, ADC controller, decoder core (Verilog-2001).",
+                    "//"
+                )
+            ),
+        });
+    }
+    Ok(Generation { files })
 }
 
 /// Writes the files into `dir` atomically: a temporary sibling directory is filled and then

@@ -1,0 +1,226 @@
+//! rust-hdl description of the SPI slave.
+use crate::blocks::biss::hdl::{LineSync, PosWord};
+use crate::blocks::spi_slave::SpiSlaveParams;
+use crate::blocks::{c32, mask};
+use rust_hdl::prelude::*;
+
+/// Where the SPI slave is in its word.
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum SpiState {
+    /// Not selected.
+    Off,
+    /// Data bits on MISO.
+    Data,
+    /// Error flag on MISO.
+    Err,
+    /// Warning flag on MISO.
+    Warn,
+    /// Zeros after the word.
+    Tail,
+}
+
+/// SPI slave (modes 0 and 3) that sends the position word.
+#[derive(LogicBlock)]
+pub struct SpiSlave {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high.
+    pub rst: Signal<In, Bit>,
+    /// SPI clock (asynchronous).
+    pub sck: Signal<In, Bit>,
+    /// Chip select, active low (asynchronous).
+    pub cs_n: Signal<In, Bit>,
+    /// Single-turn position (low `position_bits`).
+    pub pos: Signal<In, Bits<32>>,
+    /// Turn count (low `multiturn_bits`).
+    pub turns: Signal<In, Bits<32>>,
+    /// `pos` and `turns` are new.
+    pub pos_valid: Signal<In, Bit>,
+    /// Decoder error.
+    pub error: Signal<In, Bit>,
+    /// Decoder warning.
+    pub warning: Signal<In, Bit>,
+    /// Serial data out (registered; 0 while deselected).
+    pub miso: Signal<Out, Bit>,
+    /// MISO output enable (registered; high while selected).
+    pub miso_oe: Signal<Out, Bit>,
+    sck_sync: LineSync,
+    cs_sync: LineSync,
+    posw: PosWord,
+    state: DFF<SpiState>,
+    miso_reg: DFF<Bit>,
+    oe_reg: DFF<Bit>,
+    armed: DFF<Bit>,
+    sh: DFF<Bits<32>>,
+    cnt: DFF<Bits<32>>,
+    errl: DFF<Bit>,
+    warnl: DFF<Bit>,
+    dbit: Signal<Local, Bit>,
+    step: Signal<Local, Bit>,
+    /// Mask of the N data bits.
+    nmask: Constant<Bits<32>>,
+    /// Bit N-1.
+    msb: Constant<Bits<32>>,
+    /// N.
+    nbits: Constant<Bits<32>>,
+    /// Mask of the bit counter.
+    cmask: Constant<Bits<32>>,
+    /// One.
+    one: Constant<Bits<32>>,
+}
+
+impl SpiSlave {
+    /// Slave for validated parameters.
+    pub fn new(p: &SpiSlaveParams) -> Result<Self, String> {
+        p.validate()?;
+        let n = p.data_bits();
+        Ok(Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            sck: Default::default(),
+            cs_n: Default::default(),
+            pos: Default::default(),
+            turns: Default::default(),
+            pos_valid: Default::default(),
+            error: Default::default(),
+            warning: Default::default(),
+            miso: Default::default(),
+            miso_oe: Default::default(),
+            sck_sync: LineSync::new(p.glitch_filter),
+            cs_sync: LineSync::new(p.glitch_filter),
+            posw: PosWord::new(p.position_bits, p.multiturn_bits, p.gray),
+            state: Default::default(),
+            miso_reg: Default::default(),
+            oe_reg: Default::default(),
+            armed: Default::default(),
+            sh: Default::default(),
+            cnt: Default::default(),
+            errl: Default::default(),
+            warnl: Default::default(),
+            dbit: Default::default(),
+            step: Default::default(),
+            nmask: c32(mask(n)),
+            msb: c32(1 << (n - 1)),
+            nbits: c32(n as u64),
+            cmask: c32(mask(7)),
+            one: c32(1),
+        })
+    }
+}
+
+impl Logic for SpiSlave {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clk, state, miso_reg, oe_reg, armed, sh, cnt, errl, warnl);
+        self.sck_sync.clk.next = self.clk.val();
+        self.sck_sync.rst.next = self.rst.val();
+        self.sck_sync.pin.next = self.sck.val();
+        self.cs_sync.clk.next = self.clk.val();
+        self.cs_sync.rst.next = self.rst.val();
+        self.cs_sync.pin.next = self.cs_n.val();
+        self.posw.clk.next = self.clk.val();
+        self.posw.rst.next = self.rst.val();
+        self.posw.pos.next = self.pos.val();
+        self.posw.turns.next = self.turns.val();
+        self.posw.pos_valid.next = self.pos_valid.val();
+        self.posw.error.next = self.error.val();
+        self.posw.warning.next = self.warning.val();
+        self.posw.take.next = false;
+        self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
+        // A falling SCK edge after a rising one moves to the next bit.
+        self.step.next = self.sck_sync.fall.val() & self.armed.q.val();
+        if self.sck_sync.rise.val() {
+            self.armed.d.next = true;
+        }
+        if self.step.val() {
+            self.armed.d.next = false;
+        }
+        match self.state.q.val() {
+            SpiState::Off => {}
+            SpiState::Data => {
+                if self.step.val() {
+                    if self.cnt.q.val() == self.nbits.val() {
+                        self.miso_reg.d.next = self.errl.q.val();
+                        self.state.d.next = SpiState::Err;
+                    } else {
+                        self.miso_reg.d.next = self.dbit.val();
+                        self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
+                        self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
+                    }
+                }
+            }
+            SpiState::Err => {
+                if self.step.val() {
+                    self.miso_reg.d.next = self.warnl.q.val();
+                    self.state.d.next = SpiState::Warn;
+                }
+            }
+            SpiState::Warn => {
+                if self.step.val() {
+                    self.miso_reg.d.next = false;
+                    self.state.d.next = SpiState::Tail;
+                }
+            }
+            SpiState::Tail => {}
+        }
+        // Chip select: falling edge latches the word and shows its MSB; rising edge ends it.
+        if self.cs_sync.fall.val() {
+            self.posw.take.next = true;
+            self.miso_reg.d.next = (self.posw.word.val() & self.msb.val()).any();
+            self.sh.d.next = (self.posw.word.val() << self.one.val()) & self.nmask.val();
+            self.errl.d.next = self.posw.err.val();
+            self.warnl.d.next = self.posw.warn.val();
+            self.cnt.d.next = self.one.val();
+            self.armed.d.next = false;
+            self.oe_reg.d.next = true;
+            self.state.d.next = SpiState::Data;
+        }
+        if self.cs_sync.rise.val() | self.rst.val() {
+            self.miso_reg.d.next = false;
+            self.oe_reg.d.next = false;
+            self.armed.d.next = false;
+            self.state.d.next = SpiState::Off;
+        }
+        self.miso.next = self.miso_reg.q.val();
+        self.miso_oe.next = self.oe_reg.q.val();
+    }
+}
+
+impl crate::sim::step::Clocked for SpiSlave {
+    fn set_clock(&mut self, high: bool) {
+        self.clk.next = Clock::from(high);
+    }
+}
+
+impl crate::verify::CosimBlock for SpiSlave {
+    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        vec![
+            Port::new("rst", 1),
+            Port::new("sck", 1),
+            Port::new("cs_n", 1),
+            Port::new("pos", 32),
+            Port::new("turns", 32),
+            Port::new("pos_valid", 1),
+            Port::new("error", 1),
+            Port::new("warning", 1),
+        ]
+    }
+    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
+        use crate::sim::cosim::Port;
+        vec![Port::new("miso", 1), Port::new("miso_oe", 1)]
+    }
+    fn apply(&mut self, r: &[u64]) {
+        self.rst.next = r[0] != 0;
+        self.sck.next = r[1] != 0;
+        self.cs_n.next = r[2] != 0;
+        self.pos.next = Bits::<32>::from(r[3] & 0xffff_ffff);
+        self.turns.next = Bits::<32>::from(r[4] & 0xffff_ffff);
+        self.pos_valid.next = r[5] != 0;
+        self.error.next = r[6] != 0;
+        self.warning.next = r[7] != 0;
+    }
+    fn sample(&self) -> Vec<u64> {
+        vec![self.miso.val() as u64, self.miso_oe.val() as u64]
+    }
+}
