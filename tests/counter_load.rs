@@ -52,8 +52,15 @@ fn loads_agree_in_every_simulator() {
         })
         .collect();
     let dir = common::workdir("counter_load");
-    let t = block_traces(CoreRtl::new(d), "core_load", "clk", &rows, Simulators::ALL, &dir)
-        .expect("simulators ran");
+    let t = block_traces(
+        CoreRtl::new(d),
+        "core_load",
+        "clk",
+        &rows,
+        Simulators::ALL,
+        &dir,
+    )
+    .expect("simulators ran");
     if let Some(m) = t.mismatch() {
         panic!("{m}");
     }

@@ -303,8 +303,8 @@ impl Logic for QuadrantCounter {
                         self.pending_reg.d.next = false;
                     }
                 } else {
-                    self.warning_reg.d.next = (self.delta.val() >= self.wlo.val())
-                        & (self.delta.val() <= self.whi.val());
+                    self.warning_reg.d.next =
+                        (self.delta.val() >= self.wlo.val()) & (self.delta.val() <= self.whi.val());
                 }
                 if (self.qn.val() & self.sign32.val()).any() {
                     self.qc_reg.d.next = self.qn.val() + self.qturn.val();
