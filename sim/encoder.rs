@@ -124,6 +124,9 @@ pub struct EncoderModel {
     pub start_turns: f64,
     /// Speed profile.
     pub profile: Profile,
+    /// Amplitude fault: from `.0` to `.1` seconds the amplitude is multiplied by `.2`
+    /// (loss of signal, e.g. a dirty scale).
+    pub fault: Option<(f64, f64, f64)>,
     rng: SplitMix64,
 }
 
@@ -142,6 +145,7 @@ impl EncoderModel {
             noise_rms: 0.0,
             start_turns: 0.0,
             profile: Profile::Constant { rpm },
+            fault: None,
             rng: SplitMix64(1),
         }
     }
@@ -172,7 +176,10 @@ impl EncoderModel {
     /// (v_sin, v_cos) in volts at time t, noise drawn fresh on each call.
     pub fn voltages(&mut self, t: f64) -> (f64, f64) {
         let th = self.electrical_angle(t);
-        let a = self.amplitude;
+        let a = match self.fault {
+            Some((t0, t1, k)) if t >= t0 && t < t1 => self.amplitude * k,
+            _ => self.amplitude,
+        };
         let g = self.gain_mismatch;
         let h = self.third_harmonic;
         let ns = self.noise_rms * self.gauss();

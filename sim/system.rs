@@ -126,6 +126,9 @@ pub struct System {
     result: SimResult,
     rst_cycles: u64,
     record_inputs: bool,
+    ma: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
+    /// Parallel-bus position (unwrapped) after every cycle, when recording.
+    positions: Vec<i64>,
 }
 
 impl System {
@@ -157,12 +160,25 @@ impl System {
             result: SimResult::default(),
             rst_cycles: 2,
             record_inputs: false,
+            ma: None,
+            positions: Vec::new(),
         })
     }
 
     /// Records the design's inputs of every cycle (see [`SimResult::inputs`]).
     pub fn record_inputs(&mut self) {
         self.record_inputs = true;
+    }
+
+    /// Connects a BiSS (or SSI) master model to `biss_ma`/`biss_slo` (MA idles high
+    /// without one).
+    pub fn attach_master(&mut self, m: Box<dyn crate::sim::biss_master::LineMaster>) {
+        self.ma = Some(m);
+    }
+
+    /// Detaches the master model and returns it (with its frame reports).
+    pub fn detach_master(&mut self) -> Option<Box<dyn crate::sim::biss_master::LineMaster>> {
+        self.ma.take()
     }
 
     /// The design (to read its outputs after a cycle).
@@ -200,10 +216,20 @@ impl System {
             let rst = self.cycle < self.rst_cycles;
             self.top.rst.next = rst;
             self.top.adc_miso.next = miso;
+            let ma = match self.ma.as_mut() {
+                Some(m) => m.ma_for_cycle(self.cycle as usize),
+                None => true,
+            };
+            self.top.biss_ma.next = ma;
             if self.record_inputs {
-                self.result.inputs.push(vec![rst as u64, miso as u64]);
+                self.result
+                    .inputs
+                    .push(vec![rst as u64, miso as u64, ma as u64]);
             }
             tick(self.top.as_mut())?;
+            if let Some(m) = self.ma.as_mut() {
+                m.push_slo(self.top.biss_slo.val());
+            }
             self.cycle += 1;
             if self.top.par_valid.val() {
                 let qc = self.top.par_qc.val().to_u64();
@@ -253,5 +279,18 @@ impl System {
             .collect();
         self.result.amp_gains = self.amp.gains();
         self.result
+    }
+}
+
+/// A shared master: the system drives it while the caller keeps a handle to read its
+/// frame reports.
+impl<M: crate::sim::biss_master::LineMaster> crate::sim::biss_master::LineMaster
+    for std::rc::Rc<std::cell::RefCell<M>>
+{
+    fn ma_for_cycle(&mut self, k: usize) -> bool {
+        self.borrow_mut().ma_for_cycle(k)
+    }
+    fn push_slo(&mut self, slo: bool) {
+        self.borrow_mut().push_slo(slo)
     }
 }

@@ -18,6 +18,7 @@
 //! | `adc.sample_rate_hz` | up to the ADC's limit and the clock |
 
 use crate::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
+use crate::blocks::biss::BissParams;
 use crate::blocks::preamp::PreampParams;
 use crate::error::{Error, Result};
 use crate::exact;
@@ -130,6 +131,27 @@ pub struct Config {
     /// Pre-amplifier gains (LTC1407A-1 preset).
     #[serde(default)]
     pub preamp: Option<PreampConfig>,
+    /// BiSS-C output of the board top.
+    #[serde(default)]
+    pub biss: BissConfig,
+}
+
+/// `[biss]`: the BiSS-C slave of `<name>_top` (pins `biss_ma`, `biss_slo`).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BissConfig {
+    /// Single-turn data bits: the most significant bits of `out_position` (default: all of
+    /// them, at most 32).
+    pub position_bits: Option<u32>,
+    /// Multi-turn bits sent ahead of the position (default 0; at most encoder.multiturn_bits
+    /// and position_bits + multiturn_bits <= 32).
+    pub multiturn_bits: Option<u32>,
+    /// Gray-code the data word (default false).
+    pub gray: Option<bool>,
+    /// MA periods of Ack before Start (1..=64, default 1).
+    pub ack_periods: Option<u32>,
+    /// Timeout in microseconds (default 20).
+    pub timeout_us: Option<f64>,
 }
 
 /// `[clock]`
@@ -290,6 +312,8 @@ pub struct Derived {
     pub adc: AdcParams,
     /// Pre-amplifier set-up (LTC1407A-1 preset only).
     pub preamp: Option<PreampParams>,
+    /// BiSS-C slave of the board top.
+    pub biss: BissParams,
     /// ADC sample width A.
     pub adc_width: u32,
     /// CORDIC iterations N.
@@ -514,9 +538,11 @@ impl Derived {
         let max_speed_rpm_full_res =
             (warn_step - 1) as f64 / (1u64 << f) as f64 * rate / quadrants_per_turn as f64 * 60.0;
         let latency_cycles = n + 2;
+        let biss = biss_params(c, position_width, &err)?;
         Ok(Derived {
             adc,
             preamp,
+            biss,
             adc_width: a,
             iterations: n,
             fine_bits: f,
@@ -738,4 +764,41 @@ fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams
         }
     };
     Ok((params, preamp))
+}
+
+/// BiSS-C parameters: data bits default to the whole single-turn position (at most 32).
+fn biss_params(c: &Config, position_width: u32, err: &ErrFn) -> Result<BissParams> {
+    let b = &c.biss;
+    let pb = b.position_bits.unwrap_or(position_width.min(32));
+    if pb == 0 || pb > position_width.min(32) {
+        return Err(err(
+            "biss",
+            "position_bits",
+            format!(
+                "{pb} bits: allowed 1..={} (out_position has {position_width} bits; BiSS words hold 32)",
+                position_width.min(32)
+            ),
+        ));
+    }
+    let mb = b.multiturn_bits.unwrap_or(0);
+    if mb > c.encoder.multiturn_bits || pb + mb > 32 {
+        return Err(err(
+            "biss",
+            "multiturn_bits",
+            format!(
+                "{mb} bits: at most encoder.multiturn_bits ({}) and position_bits + multiturn_bits <= 32 (position_bits = {pb})",
+                c.encoder.multiturn_bits
+            ),
+        ));
+    }
+    let mut p = BissParams::new(pb, mb, c.clock.frequency_hz)
+        .map_err(|m| err("biss", "position_bits", m))?;
+    p.gray = b.gray.unwrap_or(false);
+    p.ack_periods = b.ack_periods.unwrap_or(1);
+    if let Some(t) = b.timeout_us {
+        p.set_timeout_us(t)
+            .map_err(|m| err("biss", "timeout_us", m))?;
+    }
+    p.validate().map_err(|m| err("biss", "ack_periods", m))?;
+    Ok(p)
 }

@@ -61,3 +61,70 @@ fn closed_loop_replayed_in_icarus_and_verilator() {
         panic!("{m}");
     }
 }
+
+/// BiSS-C end to end: encoder -> ADC -> top -> BiSS master model. Every frame's CRC checks,
+/// the position read is the one on the parallel bus when the frame's first MA edge reached
+/// the slave, and a loss of signal shows as nE = 0.
+#[test]
+fn biss_frames_end_to_end() {
+    use sinedec::sim::biss_master::{BissMaster, BissMasterConfig, FrameRequest, LineTiming};
+    use std::cell::RefCell;
+    use std::rc::Rc;
+    // A 2 us BiSS timeout, so that many frames fit in a short simulation.
+    let text = sinedec::config::DEFAULT_CONFIG.replace("timeout_us = 20.0", "timeout_us = 2.0");
+    let l = Loaded::parse(&text, "t").expect("config");
+    let d = &l.derived;
+    let clock = d.clock_hz;
+    let mut enc = EncoderModel::ideal(2048, 1.0, 300.0);
+    // Signal lost from 60 us to 90 us.
+    enc.fault = Some((60e-6, 90e-6, 0.02));
+    let mut s = System::new(d, enc).expect("system");
+    let timing = LineTiming {
+        clock_hz: clock,
+        line_delay_ns: 25.0,
+    };
+    let cfg = BissMasterConfig::new(timing, d.biss.position_bits, 0);
+    let reqs: Vec<FrameRequest> = (0..40)
+        .map(|k| FrameRequest::new(if k % 2 == 0 { 5e6 } else { 10e6 }).gap(300.0))
+        .collect();
+    let master = Rc::new(RefCell::new(BissMaster::new(cfg, reqs, 5_000.0)));
+    s.attach_master(Box::new(master.clone()));
+    s.start().expect("settles");
+    let drop = d.position_width - d.biss.position_bits;
+    let mut words = vec![];
+    let cycles = (150e-6 * clock) as u64;
+    for _ in 0..cycles {
+        s.run(1).expect("runs");
+        let t = s.top();
+        let pos = (t.par_qc.val().to_u64() << d.fine_bits) | t.par_fine.val().to_u64();
+        words.push((pos >> drop, t.par_error.val()));
+    }
+    let frames = master.borrow().frames().to_vec();
+    assert!(frames.len() >= 15, "{} frames", frames.len());
+    let mut lost_seen = false;
+    for f in &frames {
+        let g = f.good().unwrap_or_else(|| panic!("bad frame {f:?}"));
+        // The first MA edge leaves the master at t_start and reaches the slave one line
+        // delay later; the slave latches within its synchronizer and filter delay.
+        let c0 = ((f.t_start_ns + 25.0) * clock / 1e9) as usize;
+        let window = &words[c0.saturating_sub(1)..(c0 + 6).min(words.len())];
+        assert!(
+            window.iter().any(|(w, _)| *w == g.position),
+            "frame at {} ns: position {} not among {:?}",
+            f.t_start_ns,
+            g.position,
+            window
+        );
+        if !g.n_e {
+            lost_seen = true;
+            assert!(
+                f.t_start_ns > 60_000.0 && f.t_start_ns < 100_000.0,
+                "nE=0 outside the fault: {f:?}"
+            );
+        }
+    }
+    assert!(
+        lost_seen,
+        "the loss of signal showed as nE = 0 in some frame"
+    );
+}

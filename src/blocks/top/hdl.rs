@@ -1,5 +1,6 @@
 //! rust-hdl description of the sinewave board top.
 use crate::blocks::adc::hdl::AdcController;
+use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::c32;
 use crate::blocks::core::hdl::CoreRtl;
 use crate::blocks::preamp::hdl::PreampSetup;
@@ -33,6 +34,10 @@ pub struct TopRtl {
     pub spi_ss_b: Signal<Out, Bit>,
     /// SF_CE0: 1, parallel flash disabled.
     pub sf_ce0: Signal<Out, Bit>,
+    /// BiSS-C MA clock from the master.
+    pub biss_ma: Signal<In, Bit>,
+    /// BiSS-C SLO data to the master.
+    pub biss_slo: Signal<Out, Bit>,
     /// Parallel bus: position strobe.
     pub par_valid: Signal<Out, Bit>,
     /// Parallel bus: coarse quadrant count (upper part of the position).
@@ -48,7 +53,15 @@ pub struct TopRtl {
     preamp: PreampSetup,
     adc: AdcController,
     core: CoreRtl,
+    biss_slave: BissSlave,
+    word: Signal<Local, Bits<32>>,
     zero: Constant<Bits<32>>,
+    /// BiSS data word = ((qc << qshl) >> qshr) | (fine >> fshr): the top bits of the position.
+    qshl: Constant<Bits<32>>,
+    /// See `qshl`.
+    qshr: Constant<Bits<32>>,
+    /// See `qshl`.
+    fshr: Constant<Bits<32>>,
 }
 
 impl TopRtl {
@@ -58,6 +71,8 @@ impl TopRtl {
             .preamp
             .as_ref()
             .ok_or_else(|| "the sinewave board top needs the LTC1407A-1 preset".to_string())?;
+        let f = d.fine_bits;
+        let drop = d.position_width - d.biss.position_bits;
         Ok(Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -71,6 +86,8 @@ impl TopRtl {
             dac_clr: Default::default(),
             spi_ss_b: Default::default(),
             sf_ce0: Default::default(),
+            biss_ma: Default::default(),
+            biss_slo: Default::default(),
             par_valid: Default::default(),
             par_qc: Default::default(),
             par_fine: Default::default(),
@@ -80,7 +97,12 @@ impl TopRtl {
             preamp: PreampSetup::new(pre),
             adc: AdcController::new(&d.adc),
             core: CoreRtl::new(d),
+            biss_slave: BissSlave::new(&d.biss)?,
+            word: Default::default(),
             zero: c32(0),
+            qshl: c32(f.saturating_sub(drop) as u64),
+            qshr: c32(drop.saturating_sub(f) as u64),
+            fshr: c32(drop.min(32) as u64),
         })
     }
 }
@@ -103,6 +125,18 @@ impl Logic for TopRtl {
         self.core.load.next = false;
         self.core.load_qc.next = self.zero.val();
         self.core.load_turns.next = self.zero.val();
+        // BiSS data: the top position_bits of the position (qc and fine side by side).
+        self.word.next = ((self.core.out_qc.val() << self.qshl.val()) >> self.qshr.val())
+            | (self.core.out_fine.val() >> self.fshr.val());
+        self.biss_slave.clk.next = self.clk.val();
+        self.biss_slave.rst.next = self.rst.val();
+        self.biss_slave.ma.next = self.biss_ma.val();
+        self.biss_slave.pos.next = self.word.val();
+        self.biss_slave.turns.next = self.core.out_turns.val();
+        self.biss_slave.pos_valid.next = self.core.out_valid.val();
+        self.biss_slave.error.next = self.core.out_error.val();
+        self.biss_slave.warning.next = self.core.out_warning.val();
+        self.biss_slo.next = self.biss_slave.slo.val();
         self.adc_sck.next = self.preamp.spi_sck.val();
         self.adc_conv.next = self.adc.adc_conv.val();
         self.amp_cs.next = self.preamp.amp_cs.val();
@@ -130,7 +164,11 @@ impl crate::sim::step::Clocked for TopRtl {
 impl crate::verify::CosimBlock for TopRtl {
     fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
         use crate::sim::cosim::Port;
-        vec![Port::new("rst", 1), Port::new("adc_miso", 1)]
+        vec![
+            Port::new("rst", 1),
+            Port::new("adc_miso", 1),
+            Port::new("biss_ma", 1),
+        ]
     }
     fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
         use crate::sim::cosim::Port;
@@ -144,6 +182,7 @@ impl crate::verify::CosimBlock for TopRtl {
             "dac_clr",
             "spi_ss_b",
             "sf_ce0",
+            "biss_slo",
             "par_valid",
         ]
         .iter()
@@ -159,6 +198,7 @@ impl crate::verify::CosimBlock for TopRtl {
     fn apply(&mut self, r: &[u64]) {
         self.rst.next = r[0] != 0;
         self.adc_miso.next = r[1] != 0;
+        self.biss_ma.next = r[2] != 0;
     }
     fn sample(&self) -> Vec<u64> {
         vec![
@@ -171,6 +211,7 @@ impl crate::verify::CosimBlock for TopRtl {
             self.dac_clr.val() as u64,
             self.spi_ss_b.val() as u64,
             self.sf_ce0.val() as u64,
+            self.biss_slo.val() as u64,
             self.par_valid.val() as u64,
             self.par_qc.val().to_u64(),
             self.par_fine.val().to_u64(),
