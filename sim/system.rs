@@ -127,8 +127,6 @@ pub struct System {
     rst_cycles: u64,
     record_inputs: bool,
     ma: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
-    /// Parallel-bus position (unwrapped) after every cycle, when recording.
-    positions: Vec<i64>,
 }
 
 impl System {
@@ -161,7 +159,6 @@ impl System {
             rst_cycles: 2,
             record_inputs: false,
             ma: None,
-            positions: Vec::new(),
         })
     }
 

@@ -6,5 +6,6 @@ pub mod error;
 pub mod exact;
 #[path = "../sim/mod.rs"]
 pub mod sim;
+pub mod simulate;
 pub mod synth;
 pub mod verify;

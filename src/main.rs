@@ -25,6 +25,44 @@ enum Command {
         #[arg(short, long, default_value = "out")]
         output: PathBuf,
     },
+    /// Simulates the board top cycle by cycle against encoder, ADC and amplifier models.
+    Simulate {
+        /// Configuration file (TOML); the embedded default when omitted.
+        config: Option<PathBuf>,
+        /// Speed profile: constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep.
+        #[arg(long, default_value = "constant:300")]
+        profile: String,
+        /// Simulated time in seconds.
+        #[arg(long, default_value_t = 0.002)]
+        duration: f64,
+        /// Track amplitude as a fraction of the ADC input range.
+        #[arg(long, default_value_t = 0.8)]
+        amplitude: f64,
+        /// Gaussian noise, RMS in ADC LSB.
+        #[arg(long, default_value_t = 0.0)]
+        noise_lsb: f64,
+        /// Offset of the sin track, fraction of the amplitude.
+        #[arg(long, default_value_t = 0.0)]
+        offset_sin: f64,
+        /// Offset of the cos track, fraction of the amplitude.
+        #[arg(long, default_value_t = 0.0)]
+        offset_cos: f64,
+        /// Relative gain mismatch of the tracks.
+        #[arg(long, default_value_t = 0.0)]
+        gain_mismatch: f64,
+        /// Quadrature phase error in degrees.
+        #[arg(long, default_value_t = 0.0)]
+        phase_error: f64,
+        /// Third-harmonic ratio.
+        #[arg(long, default_value_t = 0.0)]
+        harmonic3: f64,
+        /// Noise seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Write every decoded sample as CSV.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+    },
     /// Validates a configuration and prints its derived parameters.
     Check {
         /// Configuration file (TOML); the embedded default when omitted.
@@ -65,6 +103,50 @@ fn run(cli: Cli) -> Result<()> {
                 println!("wrote {}", output.join(&f.name).display());
             }
         }
+        Command::Simulate {
+            config,
+            profile,
+            duration,
+            amplitude,
+            noise_lsb,
+            offset_sin,
+            offset_cos,
+            gain_mismatch,
+            phase_error,
+            harmonic3,
+            seed,
+            csv,
+        } => {
+            let loaded = load(&config)?;
+            if !(duration > 0.0 && duration <= 10.0) {
+                bail!("--duration {duration}: allowed 0 < seconds <= 10");
+            }
+            let o = sinedec::simulate::SimOptions {
+                profile: sinedec::simulate::parse_profile(&profile).map_err(anyhow::Error::msg)?,
+                duration_s: duration,
+                amplitude,
+                noise_lsb,
+                offset: (offset_sin, offset_cos),
+                gain_mismatch,
+                phase_error_deg: phase_error,
+                third_harmonic: harmonic3,
+                seed,
+                ..Default::default()
+            };
+            let total = (duration * loaded.derived.clock_hz).ceil() as u64;
+            let bar = indicatif::ProgressBar::new(total);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            let report = sinedec::simulate::run(&loaded, &o, |done, _| bar.set_position(done))?;
+            bar.finish_and_clear();
+            print!("{}", report.summary(&loaded));
+            if let Some(p) = csv {
+                write_new(&p, &report.csv(&loaded))?;
+                println!("wrote {}", p.display());
+            }
+        }
         Command::Check { config } => {
             let loaded = load(&config)?;
             println!("{}: ok", loaded.source_name);
@@ -92,7 +174,9 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 fn write_new(path: &Path, text: &str) -> Result<()> {
-    let tmp = path.with_extension("toml.tmp");
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = PathBuf::from(tmp);
     std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
     std::fs::rename(&tmp, path).with_context(|| format!("renaming onto {}", path.display()))?;
     Ok(())

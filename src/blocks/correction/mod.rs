@@ -1,0 +1,261 @@
+//! Front-end correction (SPEC 2.2): per-channel offset and gain correction
+//! x' = (x - b) * g with g = 1/m (the thesis's two-point calibration, eqs. 3.3-3.6),
+//! static from the config or updated online by an automatic calibration that tracks the
+//! peaks of each channel over whole signal periods (as interpolator ICs do).
+//!
+//! ```text
+//!            stage 1 (reg)              stage 2 (reg)        stage 3 (reg)
+//!  in_sin ─►[sext]─► d = x - b ─► sign ─────────► sign ──► r = (P + 2^(GF-1)) >> GF
+//!                         │       |d| ─┐                    saturate to A bits,
+//!                         │       g ───┴─► P = |d| * g ───► apply sign ──────────► out_sin
+//!  (same for in_cos)      │                  16x16->32
+//!                         ▼  u = x + 2^(A-1), sign(d) of both channels
+//!              ┌──────────────────────────────────────────────────────┐
+//!              │ AutoCal (only in auto mode)                          │
+//!              │  quadrant tracker: net +-1 per adjacent step,        │
+//!              │  period = net reaches +-4; max/min of u per channel  │
+//!              │  window of K periods -> snapshot -> serial divider   │
+//!              │  (sin then cos, 32 + 32 clocks) -> b, g registers ───┼──► b, g (stage 1)
+//!              └──────────────────────────────────────────────────────┘
+//! ```
+//!
+//! # Datapath and bit growth (A = ADC width 10..=16, GF = gain fraction bits 8..=15)
+//! * x, b in [-2^(A-1), 2^(A-1)-1] (b is an integer offset in LSB).
+//!   d = x - b in [-(2^A - 1), 2^A - 1]: A+1 bits signed, exact in a 32-bit word.
+//! * Sign/magnitude: |d| <= 2^A - 1 <= 2^16 - 1 fits the unsigned 16-bit multiplier operand
+//!   (rust-hdl's only multiply is `Bits<16> * Bits<16> -> Bits<32>`, emitted as a Verilog
+//!   `*` with a 32-bit destination, so the product is never truncated). Signed operands are
+//!   never multiplied: the sign bypasses the multiplier.
+//! * g: 16-bit unsigned, UQ(16-GF).GF, value g / 2^GF in [0, 2^(16-GF)) (GF = 14: [0, 4)).
+//! * P = |d| * g <= (2^16 - 1)^2 = 2^32 - 2^17 + 1, and P + 2^(GF-1) <= 2^32 - 2^17 + 1 +
+//!   2^14 < 2^32: the rounding add cannot overflow the 32-bit word.
+//! * r = floor((P + 2^(GF-1)) / 2^GF) = |d| g / 2^GF rounded half up; with the sign applied
+//!   afterwards the rule is **round half away from zero**:
+//!   `x' = sgn(d) * floor(|d| g / 2^GF + 1/2)`.
+//! * Saturation (never wraps): d >= 0: x' = min(r, 2^(A-1) - 1); d < 0:
+//!   x' = -min(r, 2^(A-1)).
+//! * Latency: 3 clocks. A sample presented with `in_valid` before rising edge k appears on
+//!   `out_*` with `out_valid` after edge k+2; one sample per clock (back-to-back) is fine.
+//!   `g` travels with the sample through stage 1, so a calibration update never mixes an
+//!   old offset with a new gain within one sample.
+//!
+//! # Automatic calibration (mode `Auto`)
+//! * Offset binary u = x + 2^(A-1) (sign bit flipped): u in [0, 2^A - 1], so max/min are
+//!   unsigned compares.
+//! * Period detection: the quadrant of each sample from the signs of d = x - b of both
+//!   channels (the current offset estimate centres it), with the CORDIC mapper's convention
+//!   q = {sign(sin), sign(sin) ^ sign(cos)}. step = (q - q_prev) mod 4: 1 -> net += 1,
+//!   3 -> net -= 1, 0 -> nothing, 2 (ambiguous, both signs flipped) -> the window is
+//!   discarded. After reset or a discard the tracker waits for the next quadrant boundary
+//!   (a +-1 step) and opens the window at that sample, so every window runs from boundary
+//!   to boundary. A period is complete when net reaches +4 or -4: the vector has gone
+//!   once around in either direction, so both channels have passed their positive and
+//!   negative peaks (the peaks of one channel are the other's zero crossings, i.e. the
+//!   boundaries). Chatter at a zero crossing (noise) only adds +1 -1; no hysteresis is
+//!   needed because only the net count matters.
+//! * Window: K periods (`periods`, 1..=256). max/min of u per channel over the window
+//!   (the sample that completes a window also starts the next one). At the window's end,
+//!   if the divider is idle, max/min are copied to snapshot registers; if it is busy (only
+//!   when K periods take fewer than 66 clocks) the window is dropped.
+//! * From the snapshot: S = max - min (span, 0..2^A - 1), centre
+//!   b = floor((max_u + min_u + 1) / 2) - 2^(A-1) (the mean of the peaks rounded half up),
+//!   and g = min(2^16 - 1, floor((T 2^(GF+1) + floor(S/2)) / S)), i.e. T / (S/2) in
+//!   UQ.GF rounded to nearest, T = `target_amplitude` in LSB. Dividend
+//!   T 2^(GF+1) + S/2 <= (2^15 - 1) 2^16 + 2^15 < 2^32: a 32-bit restoring divider, one
+//!   quotient bit per clock, remainder < S < 2^16. One divider serves both channels.
+//! * The update is skipped (values kept) unless S >= 2 `min_amplitude` on both channels
+//!   (loss of signal, or a window that did not see the peaks).
+//! * Timing: a window that completes with the input sample presented before edge k gives
+//!   new b and g (both channels at once, `cal_update` high for one clock) after edge
+//!   k + 66: 1 (stage 1) + 1 (tracker/snapshot) + 1 (divider set-up) + 32 (sin) + 32 (cos)
+//!   - 1. Samples presented from edge k + 67 on use them.
+//! * Convergence: b and g come straight from the raw peaks (open loop), so the first
+//!   complete window after reset (at most one quadrant to the first boundary, then K
+//!   periods, then 66 clocks) already gives the final estimate; later windows track
+//!   drift. Peak sampling with n samples per period underestimates each peak by at most
+//!   amp (1 - cos(pi/n)) (n = 100: 0.05%, i.e. g 0.05% high); the offset is unaffected
+//!   to first order; b is rounded to 1 LSB, so the residual offset is <= 0.5 LSB times g.
+//! * Reset (synchronous, active high) restores the configured offsets and gains (they are
+//!   also the power-up values) and restarts the tracker; it aborts a division.
+pub mod hdl;
+pub mod model;
+
+/// Parameters of the automatic calibration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AutoCalParams {
+    target_amplitude: u32,
+    periods: u32,
+    min_amplitude: u32,
+}
+
+impl AutoCalParams {
+    /// Target amplitude T (LSB) the corrected signals get.
+    pub fn target_amplitude(&self) -> u32 {
+        self.target_amplitude
+    }
+    /// Periods K per window.
+    pub fn periods(&self) -> u32 {
+        self.periods
+    }
+    /// Smallest peak amplitude (LSB) that allows an update.
+    pub fn min_amplitude(&self) -> u32 {
+        self.min_amplitude
+    }
+}
+
+/// Parameters of [`hdl::Correction`] and [`model::CorrectionModel`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CorrectionParams {
+    adc_width: u32,
+    gain_frac_bits: u32,
+    offset: [i32; 2],
+    gain: [u32; 2],
+    auto: Option<AutoCalParams>,
+}
+
+/// Channel index of sine in the `[sin, cos]` arrays.
+pub const SIN: usize = 0;
+/// Channel index of cosine in the `[sin, cos]` arrays.
+pub const COS: usize = 1;
+
+impl CorrectionParams {
+    /// Static correction: `adc_width` A = 10..=16; `gain_frac_bits` GF = 8..=15;
+    /// `offset` = [b_sin, b_cos] in LSB within the A-bit range; `gain` = [g_sin, g_cos] as
+    /// UQ(16-GF).GF codes 0..=65535 (g = round(2^GF / m), see [`gain_code`]).
+    pub fn new(
+        adc_width: u32,
+        gain_frac_bits: u32,
+        offset: [i32; 2],
+        gain: [u32; 2],
+    ) -> Result<Self, String> {
+        if !(10..=16).contains(&adc_width) {
+            return Err(format!(
+                "correction ADC width {adc_width} bits is out of range: 10..=16"
+            ));
+        }
+        if !(8..=15).contains(&gain_frac_bits) {
+            return Err(format!(
+                "gain fraction bits {gain_frac_bits} out of range: 8..=15 (16-bit gain word)"
+            ));
+        }
+        let lim = 1i32 << (adc_width - 1);
+        for (name, b) in [("sin", offset[SIN]), ("cos", offset[COS])] {
+            if b < -lim || b >= lim {
+                return Err(format!(
+                    "{name} offset {b} LSB is outside the {adc_width}-bit range {}..={}",
+                    -lim,
+                    lim - 1
+                ));
+            }
+        }
+        for (name, g) in [("sin", gain[SIN]), ("cos", gain[COS])] {
+            if g > 0xffff {
+                return Err(format!(
+                    "{name} gain code {g} does not fit 16 bits (max 65535 = {:.5})",
+                    65535.0 / (1u32 << gain_frac_bits) as f64
+                ));
+            }
+        }
+        Ok(Self {
+            adc_width,
+            gain_frac_bits,
+            offset,
+            gain,
+            auto: None,
+        })
+    }
+
+    /// Unity correction (b = 0, g = 1).
+    pub fn identity(adc_width: u32, gain_frac_bits: u32) -> Result<Self, String> {
+        let one = 1u32 << gain_frac_bits.min(15);
+        Self::new(adc_width, gain_frac_bits, [0, 0], [one, one])
+    }
+
+    /// Turns on the automatic calibration (the static offsets/gains become the values
+    /// after reset): `target_amplitude` T = 1..=2^(A-1)-1 LSB; `periods` K = 1..=256 signal
+    /// periods per update; `min_amplitude` = 1..=2^(A-1)-1 LSB (no update below it).
+    pub fn with_auto(
+        self,
+        target_amplitude: u32,
+        periods: u32,
+        min_amplitude: u32,
+    ) -> Result<Self, String> {
+        let max = (1u32 << (self.adc_width - 1)) - 1;
+        if !(1..=max).contains(&target_amplitude) {
+            return Err(format!(
+                "calibration target amplitude {target_amplitude} LSB is out of range: 1..={max}"
+            ));
+        }
+        if !(1..=256).contains(&periods) {
+            return Err(format!(
+                "calibration window of {periods} periods is out of range: 1..=256"
+            ));
+        }
+        if !(1..=max).contains(&min_amplitude) {
+            return Err(format!(
+                "calibration minimum amplitude {min_amplitude} LSB is out of range: 1..={max}"
+            ));
+        }
+        Ok(Self {
+            auto: Some(AutoCalParams {
+                target_amplitude,
+                periods,
+                min_amplitude,
+            }),
+            ..self
+        })
+    }
+
+    /// ADC width A.
+    pub fn adc_width(&self) -> u32 {
+        self.adc_width
+    }
+    /// Gain fraction bits GF.
+    pub fn gain_frac_bits(&self) -> u32 {
+        self.gain_frac_bits
+    }
+    /// Offsets [sin, cos] in LSB (after reset).
+    pub fn offset(&self) -> [i32; 2] {
+        self.offset
+    }
+    /// Gain codes [sin, cos] (after reset).
+    pub fn gain(&self) -> [u32; 2] {
+        self.gain
+    }
+    /// Automatic calibration, if on.
+    pub fn auto(&self) -> Option<AutoCalParams> {
+        self.auto
+    }
+}
+
+/// Gain code for a correction factor `g` (= 1/m, the inverse of the channel's gain):
+/// round(g 2^GF), which must fit 16 bits.
+pub fn gain_code(gain_frac_bits: u32, g: f64) -> Result<u32, String> {
+    let c = (g * (1u64 << gain_frac_bits) as f64).round();
+    if !(0.0..=65535.0).contains(&c) {
+        return Err(format!(
+            "gain correction {g} is outside 0..{} for {gain_frac_bits} fraction bits",
+            65536.0 / (1u64 << gain_frac_bits) as f64
+        ));
+    }
+    Ok(c as u32)
+}
+
+/// Two-point calibration (thesis eqs. 3.3-3.6 with the ideal gain mi = 1): reference
+/// inputs x_h, x_l (ideal codes) read back as y_h, y_l. ma = (y_h - y_l) / (x_h - x_l),
+/// b = y_l - x_l ma; the corrected code is (y - b) / ma. Returns (offset b rounded to an
+/// integer LSB, gain code round(2^GF / ma)).
+pub fn two_point(
+    gain_frac_bits: u32,
+    y_h: f64,
+    y_l: f64,
+    x_h: f64,
+    x_l: f64,
+) -> Result<(i32, u32), String> {
+    if x_h == x_l || y_h == y_l {
+        return Err("two-point calibration needs two distinct reference points".into());
+    }
+    let ma = (y_h - y_l) / (x_h - x_l);
+    let b = y_l - x_l * ma;
+    Ok((b.round() as i32, gain_code(gain_frac_bits, 1.0 / ma)?))
+}

@@ -1,0 +1,385 @@
+//! Bit-accurate model of the front-end correction and its automatic calibration: the RTL's
+//! registers, all next values computed from the current ones, then committed.
+use super::{CorrectionParams, COS, SIN};
+use crate::blocks::{mask, sext};
+
+/// Inputs of one clock cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CorrectionIn {
+    /// Synchronous reset.
+    pub rst: bool,
+    /// Sample strobe.
+    pub valid: bool,
+    /// Sine word (the low 16 bits drive the port; the low A bits are the sample).
+    pub sin: i32,
+    /// Cosine word.
+    pub cos: i32,
+}
+
+impl CorrectionIn {
+    /// Stimulus row in input-port order.
+    pub fn row(&self) -> Vec<u64> {
+        vec![
+            self.rst as u64,
+            self.valid as u64,
+            self.sin as u64 & 0xffff,
+            self.cos as u64 & 0xffff,
+        ]
+    }
+}
+
+/// Outputs after one clock edge (signed values sign-extended from A bits).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CorrectionOut {
+    /// Output strobe.
+    pub valid: bool,
+    /// Corrected sine.
+    pub sin: i64,
+    /// Corrected cosine.
+    pub cos: i64,
+    /// Offsets in use [sin, cos].
+    pub offset: [i64; 2],
+    /// Gain codes in use [sin, cos].
+    pub gain: [u64; 2],
+    /// New calibration values applied this clock.
+    pub cal_update: bool,
+}
+
+impl CorrectionOut {
+    /// Trace row in output-port order, for A-bit samples.
+    pub fn row(&self, a: u32) -> Vec<u64> {
+        let m = mask(a);
+        vec![
+            self.valid as u64,
+            self.sin as u64 & m,
+            self.cos as u64 & m,
+            self.offset[SIN] as u64 & m,
+            self.offset[COS] as u64 & m,
+            self.gain[SIN],
+            self.gain[COS],
+            self.cal_update as u64,
+        ]
+    }
+}
+
+/// The datapath arithmetic of one channel (stages 1-3 without the registers):
+/// sat_A(sgn(x - b) * floor((|x - b| g + 2^(GF-1)) / 2^GF)).
+pub fn correct(x: i64, b: i64, g: u64, a: u32, gf: u32) -> i64 {
+    let d = x - b;
+    let m = (d.unsigned_abs() & 0xffff) * (g & 0xffff);
+    let r = ((m + (1 << (gf - 1))) & mask(32)) >> gf;
+    let half = 1u64 << (a - 1);
+    if d < 0 {
+        -(r.min(half) as i64)
+    } else {
+        r.min(half - 1) as i64
+    }
+}
+
+/// Divider states (as [`super::hdl::CalState`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Div {
+    Idle,
+    Sin,
+    Cos,
+}
+
+/// Registers of the automatic calibration.
+#[derive(Clone, Debug)]
+struct Cal {
+    tinit: bool,
+    wopen: bool,
+    tq: u64,
+    net: u64,
+    nper: u64,
+    mx: [u64; 2],
+    mn: [u64; 2],
+    go: bool,
+    sx: [u64; 2],
+    sn: [u64; 2],
+    state: Div,
+    it: u64,
+    rem: u64,
+    dq: u64,
+    dv: u64,
+    ng_s: u64,
+    b: [u64; 2],
+    g: [u64; 2],
+    upd: bool,
+}
+
+/// Registers of the pipeline.
+#[derive(Clone, Debug, Default)]
+struct Pipe {
+    v1: bool,
+    sg1: [bool; 2],
+    m1: [u64; 2],
+    g1: [u64; 2],
+    u1: [u64; 2],
+    v2: bool,
+    sg2: [bool; 2],
+    p2: [u64; 2],
+    v3: bool,
+    o3: [u64; 2],
+}
+
+/// Model of [`super::hdl::Correction`].
+#[derive(Clone, Debug)]
+pub struct CorrectionModel {
+    p: CorrectionParams,
+    pipe: Pipe,
+    cal: Option<Cal>,
+}
+
+impl CorrectionModel {
+    /// Model at power-up (pipeline registers 0; offsets and gains at their configured
+    /// values, as the RTL's initialized registers).
+    pub fn new(p: &CorrectionParams) -> Self {
+        let a = p.adc_width();
+        let cal = p.auto().map(|_| Cal {
+            tinit: false,
+            wopen: false,
+            tq: 0,
+            net: 0,
+            nper: 0,
+            mx: [0; 2],
+            mn: [0; 2],
+            go: false,
+            sx: [0; 2],
+            sn: [0; 2],
+            state: Div::Idle,
+            it: 0,
+            rem: 0,
+            dq: 0,
+            dv: 0,
+            ng_s: 0,
+            b: [
+                p.offset()[SIN] as u64 & mask(a),
+                p.offset()[COS] as u64 & mask(a),
+            ],
+            g: [p.gain()[SIN] as u64, p.gain()[COS] as u64],
+            upd: false,
+        });
+        Self {
+            p: *p,
+            pipe: Pipe::default(),
+            cal,
+        }
+    }
+
+    /// Offsets (A-bit raw) and gains in use now.
+    fn in_use(&self) -> ([u64; 2], [u64; 2], bool) {
+        let a = self.p.adc_width();
+        match &self.cal {
+            Some(c) => (c.b, c.g, c.upd),
+            None => (
+                [
+                    self.p.offset()[SIN] as u64 & mask(a),
+                    self.p.offset()[COS] as u64 & mask(a),
+                ],
+                [self.p.gain()[SIN] as u64, self.p.gain()[COS] as u64],
+                false,
+            ),
+        }
+    }
+
+    fn outputs(&self) -> CorrectionOut {
+        let a = self.p.adc_width();
+        let (b, g, upd) = self.in_use();
+        CorrectionOut {
+            valid: self.pipe.v3,
+            sin: sext(self.pipe.o3[SIN], a),
+            cos: sext(self.pipe.o3[COS], a),
+            offset: [sext(b[SIN], a), sext(b[COS], a)],
+            gain: g,
+            cal_update: upd,
+        }
+    }
+
+    /// One clock edge.
+    pub fn step(&mut self, i: CorrectionIn) -> CorrectionOut {
+        let a = self.p.adc_width();
+        let gf = self.p.gain_frac_bits();
+        let am = mask(a);
+        let m32 = mask(32);
+        let (b, g, _) = self.in_use();
+        let old = self.pipe.clone();
+        let mut n = old.clone();
+        // Stage 1.
+        let raw = [i.sin as u64 & am, i.cos as u64 & am];
+        for c in [SIN, COS] {
+            let d = (sext(raw[c], a) - sext(b[c], a)) as u64 & m32;
+            let neg = d >> 31 != 0;
+            let md = if neg { d.wrapping_neg() & m32 } else { d };
+            n.sg1[c] = neg;
+            n.m1[c] = md & am;
+            n.g1[c] = g[c];
+            n.u1[c] = raw[c] ^ (1 << (a - 1));
+        }
+        n.v1 = i.valid && !i.rst;
+        // Stage 2.
+        n.v2 = old.v1 && !i.rst;
+        for c in [SIN, COS] {
+            n.sg2[c] = old.sg1[c];
+            n.p2[c] = old.m1[c] * old.g1[c];
+        }
+        // Stage 3.
+        n.v3 = old.v2 && !i.rst;
+        for c in [SIN, COS] {
+            let r = ((old.p2[c] + (1 << (gf - 1))) & m32) >> gf;
+            let half = 1u64 << (a - 1);
+            let o = if old.sg2[c] {
+                if r >= half {
+                    half
+                } else {
+                    r.wrapping_neg() & am
+                }
+            } else {
+                r.min(half - 1)
+            };
+            n.o3[c] = o & 0xffff;
+        }
+        // Calibration (sees the old stage-1 registers).
+        if let Some(cal) = self.cal.as_mut() {
+            cal_step(cal, &self.p, &old, i.rst);
+        }
+        self.pipe = n;
+        self.outputs()
+    }
+}
+
+/// One edge of the calibration.
+fn cal_step(c: &mut Cal, p: &CorrectionParams, s1: &Pipe, rst: bool) {
+    let a = p.adc_width();
+    let gf = p.gain_frac_bits();
+    let ac = p.auto().expect("auto");
+    let m32 = mask(32);
+    let kmask = mask(crate::blocks::monitor::count_bits(ac.periods()));
+    let num = (ac.target_amplitude() as u64) << (gf + 1);
+    let minspan = 2 * ac.min_amplitude() as u64;
+    let old = c.clone();
+    // Quadrant and step.
+    let q: u64 = match (s1.sg1[SIN], s1.sg1[COS]) {
+        (false, false) => 0,
+        (false, true) => 1,
+        (true, true) => 2,
+        (true, false) => 3,
+    };
+    let stp = q.wrapping_sub(old.tq) & 3;
+    let netn = match stp {
+        1 => (old.net + 1) & 15,
+        3 => (old.net + 15) & 15,
+        _ => old.net,
+    };
+    let am = mask(a);
+    let u = [s1.u1[0] & am, s1.u1[1] & am];
+    let mxn = [old.mx[0].max(s1.u1[0]), old.mx[1].max(s1.u1[1])];
+    let mnn = [old.mn[0].min(s1.u1[0]), old.mn[1].min(s1.u1[1])];
+    let (mxn, mnn) = ([mxn[0] & am, mxn[1] & am], [mnn[0] & am, mnn[1] & am]);
+    // Divider.
+    let span = [
+        old.sx[0].wrapping_sub(old.sn[0]) & m32,
+        old.sx[1].wrapping_sub(old.sn[1]) & m32,
+    ];
+    let t = ((old.rem << 1) | (old.dq >> 31)) & m32;
+    let (remn, dqn) = if t >= old.dv {
+        (t - old.dv, ((old.dq << 1) | 1) & m32)
+    } else {
+        (t, (old.dq << 1) & m32)
+    };
+    let gsat = dqn.min(0xffff);
+    c.upd = false;
+    match old.state {
+        Div::Idle => {
+            if old.go {
+                c.go = false;
+                if span[0] >= minspan && span[1] >= minspan {
+                    c.dv = span[0] & am;
+                    c.rem = 0;
+                    c.dq = (num + (span[0] >> 1)) & m32;
+                    c.it = 0;
+                    c.state = Div::Sin;
+                }
+            }
+        }
+        Div::Sin => {
+            c.rem = remn & am;
+            c.dq = dqn;
+            c.it = (old.it + 1) & 31;
+            if old.it == 31 {
+                c.ng_s = gsat;
+                c.dv = span[1] & am;
+                c.rem = 0;
+                c.dq = (num + (span[1] >> 1)) & m32;
+                c.state = Div::Cos;
+            }
+        }
+        Div::Cos => {
+            c.rem = remn & am;
+            c.dq = dqn;
+            c.it = (old.it + 1) & 31;
+            if old.it == 31 {
+                c.g[COS] = gsat;
+                c.g[SIN] = old.ng_s;
+                for ch in [SIN, COS] {
+                    c.b[ch] = ((((old.sx[ch] + old.sn[ch] + 1) & m32) >> 1)
+                        .wrapping_sub(1 << (a - 1)))
+                        & mask(a);
+                }
+                c.upd = true;
+                c.state = Div::Idle;
+            }
+        }
+    }
+    // Tracker.
+    if s1.v1 {
+        c.tq = q;
+        if !old.tinit || stp == 2 {
+            c.tinit = true;
+            c.wopen = false;
+        } else if !old.wopen {
+            if stp == 1 || stp == 3 {
+                c.wopen = true;
+                c.net = 0;
+                c.nper = 0;
+                c.mx = u;
+                c.mn = u;
+            }
+        } else if netn == 4 || netn == 12 {
+            c.net = 0;
+            if old.nper == ac.periods() as u64 - 1 {
+                c.nper = 0;
+                c.mx = u;
+                c.mn = u;
+                if old.state == Div::Idle && !old.go {
+                    c.go = true;
+                    c.sx = mxn;
+                    c.sn = mnn;
+                }
+            } else {
+                c.nper = (old.nper + 1) & kmask;
+                c.mx = mxn;
+                c.mn = mnn;
+            }
+        } else {
+            c.net = netn;
+            c.mx = mxn;
+            c.mn = mnn;
+        }
+    }
+    if rst {
+        c.tinit = false;
+        c.wopen = false;
+        c.net = 0;
+        c.nper = 0;
+        c.go = false;
+        c.state = Div::Idle;
+        c.it = 0;
+        c.b = [
+            p.offset()[SIN] as u64 & mask(a),
+            p.offset()[COS] as u64 & mask(a),
+        ];
+        c.g = [p.gain()[SIN] as u64, p.gain()[COS] as u64];
+        c.upd = false;
+    }
+}

@@ -1,0 +1,160 @@
+//! Signal monitor (SPEC 2.2): loss of signal, clipping and ADC full scale drive `error`;
+//! overspeed and QEP disagreement drive `warning`.
+//!
+//! ```text
+//!  mag_valid ─┐  ┌───────────────────────────────┐ los
+//!  magnitude ─┴─►│ mag < los_threshold: low       ├───────┐
+//!                │ mag >= los_release:  good      │       │
+//!                │ N consecutive low  -> los = 1  │       │
+//!                │ N consecutive good -> los = 0  │       ├──OR──► error
+//!                │ mag > clip_threshold: clip = 1 │ clip  │
+//!                │ H clean samples     -> clip = 0├───────┤
+//!                └───────────────────────────reg──┘       │
+//!  in_valid ──┐  ┌───────────────────────────────┐ fs     │
+//!  in_sin ────┼─►│ sin or cos = -2^(A-1) or      ├───────┘
+//!  in_cos ────┘  │ 2^(A-1)-1 -> fs = 1; H clean   │
+//!                │ raw samples -> fs = 0          │
+//!                └───────────────────────────reg──┘
+//!  overspeed ────┐
+//!  qep_mismatch ─┴──OR──►[reg]──► warning
+//! ```
+//!
+//! # Exact rules
+//! Units: `magnitude` is the CORDIC magnitude, a W-bit unsigned word (W = 1..=32, e.g. the
+//! core's x output, |v| K_N 2^G); every threshold is in the same units. All flags are
+//! registers updated at the clock edge of the sample that decides them, so an output
+//! changes in the output cycle of that sample (one clock after the input is presented).
+//! * Loss of signal (`los`): a magnitude sample is *low* if `mag < los_threshold` and *good*
+//!   if `mag >= los_release` (`los_release >= los_threshold`: hysteresis in amplitude). A
+//!   counter counts consecutive low samples while `los = 0` and consecutive good samples
+//!   while `los = 1`; any other sample clears it. `los` sets on the N-th consecutive low
+//!   sample and clears on the N-th consecutive good sample (N = `window`). So when the
+//!   amplitude drops (e.g. to 10%) at magnitude sample k0, `error` rises at the edge of
+//!   sample k0+N-1 (the window's end), never earlier; when it returns at sample k1, `error`
+//!   falls at the edge of sample k1+N-1 (if no other flag is set).
+//! * After reset `los = 1` (no signal confirmed yet): the first N good samples clear it.
+//! * Clipping (`clip`): a magnitude sample with `mag > clip_threshold` sets it at once; it
+//!   clears on the H-th consecutive magnitude sample at or below the threshold
+//!   (H = `hold`).
+//! * Full scale (`full_scale`): a raw sample (`in_valid`) with sin or cos at the most
+//!   negative (-2^(A-1)) or most positive (2^(A-1)-1) A-bit code sets it at once; it clears
+//!   on the H-th consecutive raw sample with neither.
+//! * `error = los | clip | full_scale` (combinational OR of the three registers).
+//! * `warning` = `overspeed | qep_mismatch`, registered (one clock).
+//!
+//! # Widths
+//! Magnitude and thresholds are W-bit unsigned (compared in 32-bit words whose upper bits
+//! are masked to 0); the two counters hold 0..N-1 and 0..H-1 (ceil(log2) bits, masked, so
+//! Yosys keeps only those bits). A raw sample is masked to A bits before the code compare.
+pub mod hdl;
+pub mod model;
+
+/// Parameters of [`hdl::Monitor`] and [`model::MonitorModel`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MonitorParams {
+    adc_width: u32,
+    mag_width: u32,
+    los_threshold: u64,
+    los_release: u64,
+    window: u32,
+    clip_threshold: u64,
+    hold: u32,
+}
+
+/// Bits needed for a counter holding 0..n-1 (at least 1).
+pub(crate) fn count_bits(n: u32) -> u32 {
+    (32 - n.saturating_sub(1).leading_zeros()).max(1)
+}
+
+impl MonitorParams {
+    /// `adc_width` A = 10..=16; `mag_width` W = 1..=32; `los_threshold` (low below it),
+    /// `los_release` (good at or above it, >= los_threshold), `clip_threshold` (clipping
+    /// above it, >= los_release, < 2^W), all in magnitude units; `window` N = 1..=65535
+    /// magnitude samples; `hold` H = 1..=65535 samples to clear clip/full scale.
+    pub fn new(
+        adc_width: u32,
+        mag_width: u32,
+        los_threshold: u64,
+        los_release: u64,
+        window: u32,
+        clip_threshold: u64,
+        hold: u32,
+    ) -> Result<Self, String> {
+        if !(10..=16).contains(&adc_width) {
+            return Err(format!(
+                "monitor ADC width {adc_width} bits is out of range: 10..=16"
+            ));
+        }
+        if !(1..=32).contains(&mag_width) {
+            return Err(format!(
+                "monitor magnitude width {mag_width} bits is out of range: 1..=32"
+            ));
+        }
+        let top = (1u64 << mag_width) - 1;
+        if los_threshold == 0 || los_threshold > top {
+            return Err(format!(
+                "loss-of-signal threshold {los_threshold} is out of range: 1..={top} \
+                 ({mag_width}-bit magnitude)"
+            ));
+        }
+        if los_release < los_threshold || los_release > top {
+            return Err(format!(
+                "loss-of-signal release level {los_release} must be in \
+                 {los_threshold}..={top} (>= the threshold)"
+            ));
+        }
+        if clip_threshold < los_release || clip_threshold >= top {
+            return Err(format!(
+                "clipping threshold {clip_threshold} must be in {los_release}..{top} \
+                 (>= the release level, below the magnitude's full scale)"
+            ));
+        }
+        if !(1..=65535).contains(&window) {
+            return Err(format!(
+                "loss-of-signal window {window} samples is out of range: 1..=65535"
+            ));
+        }
+        if !(1..=65535).contains(&hold) {
+            return Err(format!(
+                "flag hold {hold} samples is out of range: 1..=65535"
+            ));
+        }
+        Ok(Self {
+            adc_width,
+            mag_width,
+            los_threshold,
+            los_release,
+            window,
+            clip_threshold,
+            hold,
+        })
+    }
+    /// ADC width A.
+    pub fn adc_width(&self) -> u32 {
+        self.adc_width
+    }
+    /// Magnitude width W.
+    pub fn mag_width(&self) -> u32 {
+        self.mag_width
+    }
+    /// Magnitude below this is low.
+    pub fn los_threshold(&self) -> u64 {
+        self.los_threshold
+    }
+    /// Magnitude at or above this is good.
+    pub fn los_release(&self) -> u64 {
+        self.los_release
+    }
+    /// Window N in magnitude samples.
+    pub fn window(&self) -> u32 {
+        self.window
+    }
+    /// Magnitude above this is clipping.
+    pub fn clip_threshold(&self) -> u64 {
+        self.clip_threshold
+    }
+    /// Clean samples H that clear clip / full scale.
+    pub fn hold(&self) -> u32 {
+        self.hold
+    }
+}

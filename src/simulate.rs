@@ -1,0 +1,235 @@
+//! `sinedec simulate`: the cycle-accurate closed-loop simulation of `<name>_top` against the
+//! encoder and chip models (see `sim::system`), with error statistics, CSV and VCD output.
+use crate::config::Loaded;
+use crate::error::{Error, Result};
+use crate::sim::encoder::{EncoderModel, Profile};
+use crate::sim::system::{ErrorStats, SimResult, System};
+use std::fmt::Write as _;
+
+/// What to simulate.
+#[derive(Clone, Debug)]
+pub struct SimOptions {
+    /// Speed profile.
+    pub profile: Profile,
+    /// Simulated time in seconds.
+    pub duration_s: f64,
+    /// Track amplitude as a fraction of the ADC's input range (1.25 V): 0.8 = 1.0 V.
+    pub amplitude: f64,
+    /// Gaussian noise RMS in ADC LSB.
+    pub noise_lsb: f64,
+    /// Offsets of the sin and cos tracks as fractions of the amplitude.
+    pub offset: (f64, f64),
+    /// Relative gain mismatch between the tracks.
+    pub gain_mismatch: f64,
+    /// Quadrature phase error in degrees.
+    pub phase_error_deg: f64,
+    /// Third-harmonic ratio.
+    pub third_harmonic: f64,
+    /// Noise seed.
+    pub seed: u64,
+    /// Decoded samples skipped before the statistics (settling).
+    pub skip: usize,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        SimOptions {
+            profile: Profile::Constant { rpm: 300.0 },
+            duration_s: 0.002,
+            amplitude: 0.8,
+            noise_lsb: 0.0,
+            offset: (0.0, 0.0),
+            gain_mismatch: 0.0,
+            phase_error_deg: 0.0,
+            third_harmonic: 0.0,
+            seed: 1,
+            skip: 4,
+        }
+    }
+}
+
+/// Parses a profile: `constant:RPM`, `ramp:FROM:TO:SECONDS`, `reversal:RPM:AT_S:OVER_S`,
+/// or `creep` (0.3 rpm).
+pub fn parse_profile(s: &str) -> std::result::Result<Profile, String> {
+    let parts: Vec<&str> = s.split(':').collect();
+    let num = |i: usize| -> std::result::Result<f64, String> {
+        parts
+            .get(i)
+            .ok_or_else(|| format!("profile `{s}`: missing field {i}"))?
+            .parse::<f64>()
+            .map_err(|e| format!("profile `{s}`: field {i}: {e}"))
+    };
+    let p = match parts[0] {
+        "constant" if parts.len() == 2 => Profile::Constant { rpm: num(1)? },
+        "ramp" if parts.len() == 4 => Profile::Ramp {
+            from: num(1)?,
+            to: num(2)?,
+            over: num(3)?,
+        },
+        "reversal" if parts.len() == 4 => Profile::Reversal {
+            rpm: num(1)?,
+            at: num(2)?,
+            over: num(3)?,
+        },
+        "creep" if parts.len() == 1 => Profile::creep(),
+        _ => {
+            return Err(format!(
+                "profile `{s}`: allowed constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep"
+            ))
+        }
+    };
+    Ok(p)
+}
+
+/// The encoder model for the options (2048 PPR etc. from the config).
+pub fn encoder(loaded: &Loaded, o: &SimOptions) -> EncoderModel {
+    let d = &loaded.derived;
+    let gain = d
+        .preamp
+        .as_ref()
+        .map(|p| p.gain_a.unsigned_abs().max(1) as f64)
+        .unwrap_or(1.0);
+    // Volts per ADC LSB at the ADC input referred back to the encoder: 1.25 V / 8192 / |G|.
+    let lsb_v = 1.25 / (1u64 << (d.adc_width - 1)) as f64 / gain;
+    let amp_v = o.amplitude * 1.25 / gain;
+    let mut e = EncoderModel::ideal(loaded.config.encoder.ppr, amp_v, 0.0).with_seed(o.seed);
+    e.profile = o.profile.clone();
+    e.noise_rms = o.noise_lsb * lsb_v;
+    e.offset_sin = o.offset.0 * amp_v;
+    e.offset_cos = o.offset.1 * amp_v;
+    e.gain_mismatch = o.gain_mismatch;
+    e.phase_error = o.phase_error_deg.to_radians();
+    e.third_harmonic = o.third_harmonic;
+    e
+}
+
+/// A finished simulation.
+pub struct SimReport {
+    /// Raw result.
+    pub result: SimResult,
+    /// Error statistics.
+    pub stats: ErrorStats,
+    /// Wall-clock seconds the simulation took.
+    pub wall_s: f64,
+}
+
+/// Runs the simulation; `progress(done, total)` is called every 2^14 cycles.
+pub fn run(
+    loaded: &Loaded,
+    o: &SimOptions,
+    mut progress: impl FnMut(u64, u64),
+) -> Result<SimReport> {
+    let d = &loaded.derived;
+    let mut sys = System::new(d, encoder(loaded, o)).map_err(Error::Export)?;
+    let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
+        block: "top".into(),
+        message: e.to_string(),
+    };
+    sys.start().map_err(settle)?;
+    let total = (o.duration_s * d.clock_hz).ceil() as u64;
+    let t0 = std::time::Instant::now();
+    let chunk = 1 << 14;
+    let mut done = 0;
+    while done < total {
+        let n = chunk.min(total - done);
+        sys.run(n).map_err(settle)?;
+        done += n;
+        progress(done, total);
+    }
+    let wall_s = t0.elapsed().as_secs_f64();
+    let result = sys.finish();
+    let stats = result.stats(d, o.skip);
+    Ok(SimReport {
+        result,
+        stats,
+        wall_s,
+    })
+}
+
+impl SimReport {
+    /// Human-readable summary.
+    pub fn summary(&self, loaded: &Loaded) -> String {
+        let d = &loaded.derived;
+        let counts_per_turn = d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64;
+        let arcsec = 360.0 * 3600.0 / counts_per_turn;
+        let s = &self.stats;
+        let r = &self.result;
+        let mut o = String::new();
+        let _ = writeln!(o, "simulated cycles            {}", r.cycles);
+        let _ = writeln!(
+            o,
+            "decoded samples             {} ({} in the statistics)",
+            r.records.len(),
+            s.samples
+        );
+        let _ = writeln!(
+            o,
+            "sample rate                 {:.0} samples/s per channel",
+            d.sample_rate_hz
+        );
+        let _ = writeln!(
+            o,
+            "latency CONV -> position    {} cycles = {:.0} ns",
+            d.adc.conv_to_valid_clocks() + d.latency_cycles,
+            (d.adc.conv_to_valid_clocks() + d.latency_cycles) as f64 * 1e9 / d.clock_hz
+        );
+        let _ = writeln!(
+            o,
+            "max |error|                 {:.2} LSB = {:.2} arc-seconds",
+            s.max_lsb,
+            s.max_lsb * arcsec
+        );
+        let _ = writeln!(
+            o,
+            "RMS error                   {:.2} LSB = {:.2} arc-seconds",
+            s.rms_lsb,
+            s.rms_lsb * arcsec
+        );
+        let _ = writeln!(o, "mean error                  {:.2} LSB", s.mean_lsb);
+        let _ = writeln!(o, "samples with error flag     {}", s.errors);
+        let _ = writeln!(o, "samples with warning flag   {}", s.warnings);
+        let _ = writeln!(o, "latency mismatches          {}", r.latency_mismatches);
+        let _ = writeln!(o, "ADC protocol violations     {}", r.adc_violations.len());
+        let _ = writeln!(o, "preamp gains read back      {:?}", r.amp_gains);
+        let _ = writeln!(
+            o,
+            "simulation speed            {:.0} cycles/s ({:.2} s)",
+            r.cycles as f64 / self.wall_s.max(1e-9),
+            self.wall_s
+        );
+        o
+    }
+
+    /// CSV of every decoded sample.
+    pub fn csv(&self, loaded: &Loaded) -> String {
+        let d = &loaded.derived;
+        let st = &self.stats;
+        let _ = st;
+        let first = self.result.records.first();
+        let q = (1u64 << d.fine_bits) as f64;
+        let offset = first.map(|f| {
+            let raw = f.unwrapped as f64 - f.truth - 2.0 * q;
+            2.0 * q + 4.0 * q * (raw / (4.0 * q)).round()
+        });
+        let mut o = String::from(
+            "cycle,conv_cycle,position,turns,unwrapped,truth_lsb,error_lsb,error,warning\n",
+        );
+        for r in &self.result.records {
+            let e = r.unwrapped as f64 - r.truth - offset.unwrap_or(0.0);
+            let _ = writeln!(
+                o,
+                "{},{},{},{},{},{:.3},{:.3},{},{}",
+                r.cycle,
+                r.conv_cycle,
+                r.position,
+                r.turns,
+                r.unwrapped,
+                r.truth,
+                e,
+                r.error as u8,
+                r.warning as u8
+            );
+        }
+        o
+    }
+}
