@@ -1,0 +1,90 @@
+//! End to end in the Rust simulation (encoder model -> LTC1407A-1 model -> `<name>_top`),
+//! default configuration: position error against the true angle under noise, and creep.
+use sinedec::config::Loaded;
+use sinedec::sim::encoder::Profile;
+use sinedec::simulate::{run, SimOptions};
+use std::f64::consts::FRAC_PI_2;
+
+/// Error bounds in fine LSB for ADC noise of `noise_lsb` RMS per channel at amplitude
+/// `amp` (fraction of full scale), derived from the noise and the quantization:
+/// * angle noise: sigma_n / A rad for a vector of amplitude A LSB (noise perpendicular to
+///   the vector), plus the ADC's own quantization (1/sqrt(12) LSB per channel) the same way;
+/// * output rounding: uniform +-1/2 LSB (1/sqrt(12));
+/// * the CORDIC's systematic residual at N = 14: at most 2.27 - 1 = 1.27 LSB
+///   (tests/accuracy.rs bound minus its rounding allowance).
+/// RMS <= sqrt(noise^2 + adc_q^2 + 1/12) + 1.27; max <= 5.5 sigma(noise + adc_q) + 0.5 + 1.27
+/// (5.5 sigma: a Gaussian exceeds it with probability 4e-8 per sample, over ~2000 samples).
+fn bounds(l: &Loaded, noise_lsb: f64, amp: f64) -> (f64, f64) {
+    let d = &l.derived;
+    let a = amp * ((1u64 << (d.adc_width - 1)) - 1) as f64;
+    let per_rad = (1u64 << d.fine_bits) as f64 / FRAC_PI_2;
+    let s_noise = noise_lsb / a * per_rad;
+    let s_q = (1.0f64 / 12.0).sqrt() / a * per_rad;
+    let s = (s_noise * s_noise + s_q * s_q).sqrt();
+    let rms = (s * s + 1.0 / 12.0).sqrt() + 1.27;
+    let max = 5.5 * s + 0.5 + 1.27;
+    (rms, max)
+}
+
+#[test]
+fn error_within_the_noise_bound_at_10_300_3000_rpm() {
+    let l = Loaded::default_config().expect("default");
+    let (rms_b, max_b) = bounds(&l, 1.0, 0.8);
+    for rpm in [10.0, 300.0, 3000.0] {
+        let o = SimOptions {
+            profile: Profile::Constant { rpm },
+            duration_s: 1.5e-3,
+            amplitude: 0.8,
+            noise_lsb: 1.0,
+            seed: rpm as u64,
+            ..Default::default()
+        };
+        let r = run(&l, &o, |_, _| {}).expect("simulation runs");
+        let s = r.stats;
+        eprintln!(
+            "{rpm} rpm: {} samples, max {:.2} LSB (bound {max_b:.2}), RMS {:.2} LSB (bound {rms_b:.2})",
+            s.samples, s.max_lsb, s.rms_lsb
+        );
+        assert!(s.samples > 1800);
+        assert_eq!(r.result.latency_mismatches, 0);
+        assert!(r.result.adc_violations.is_empty());
+        assert_eq!(s.errors + s.warnings, 0);
+        assert!(s.max_lsb <= max_b, "{rpm} rpm: {s:?}");
+        assert!(s.rms_lsb <= rms_b, "{rpm} rpm: {s:?}");
+    }
+}
+
+#[test]
+fn creep_at_0_3_rpm_is_monotonic_in_the_mean_without_quadrant_jumps() {
+    let l = Loaded::default_config().expect("default");
+    let o = SimOptions {
+        profile: Profile::creep(),
+        duration_s: 2e-3,
+        amplitude: 0.8,
+        noise_lsb: 1.0,
+        seed: 5,
+        ..Default::default()
+    };
+    let r = run(&l, &o, |_, _| {}).expect("simulation runs");
+    let u: Vec<i64> = r.result.records.iter().map(|x| x.unwrapped).collect();
+    assert!(u.len() > 2500);
+    let q = 1i64 << l.derived.fine_bits;
+    for w in u.windows(2) {
+        assert!(
+            (w[1] - w[0]).abs() < q,
+            "a step of a quadrant or more: {w:?}"
+        );
+    }
+    // Means of blocks of 200 samples rise (0.3 rpm = 10.24 periods/s: 1.6 LSB per block).
+    let means: Vec<f64> = u
+        .chunks(200)
+        .filter(|c| c.len() == 200)
+        .map(|c| c.iter().sum::<i64>() as f64 / 200.0)
+        .collect();
+    for m in means.windows(2) {
+        assert!(m[1] >= m[0] - 0.5, "block means fall: {means:?}");
+    }
+    assert!(means.last().unwrap_or(&0.0) > means.first().unwrap_or(&0.0));
+    let s = r.stats;
+    eprintln!("creep: {:?}", s);
+}
