@@ -153,7 +153,7 @@ impl System {
             truth,
             conv_times: HashMap::new(),
             cycle: 0,
-            latency: d.adc.conv_to_valid_clocks() as u64 + d.latency_cycles as u64,
+            latency: crate::blocks::top::hdl::conv_to_position_cycles(d) as u64,
             clock_hz: d.clock_hz,
             result: SimResult::default(),
             rst_cycles: 2,

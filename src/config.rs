@@ -19,6 +19,8 @@
 
 use crate::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
 use crate::blocks::biss::BissParams;
+use crate::blocks::correction::{gain_code, CorrectionParams};
+use crate::blocks::monitor::MonitorParams;
 use crate::blocks::preamp::PreampParams;
 use crate::error::{Error, Result};
 use crate::exact;
@@ -134,6 +136,9 @@ pub struct Config {
     /// BiSS-C output of the board top.
     #[serde(default)]
     pub biss: BissConfig,
+    /// Offset and gain correction of the board top.
+    #[serde(default)]
+    pub correction: CorrectionConfig,
 }
 
 /// `[biss]`: the BiSS-C slave of `<name>_top` (pins `biss_ma`, `biss_slo`).
@@ -291,6 +296,87 @@ pub struct MonitorConfig {
     /// and the error flag raised.
     #[serde(default = "default_min_amplitude", deserialize_with = "r_amp")]
     pub min_amplitude: f64,
+    /// Loss of signal: amplitude below this fraction of full scale for `los_window`
+    /// samples raises the error flag (board top).
+    #[serde(default)]
+    pub los_amplitude: Option<f64>,
+    /// The loss of signal clears after `los_window` samples at or above this amplitude.
+    #[serde(default)]
+    pub los_release: Option<f64>,
+    /// Samples in the loss-of-signal window.
+    #[serde(default)]
+    pub los_window: Option<u32>,
+    /// Clipping: amplitude above this fraction of full scale raises the error flag.
+    #[serde(default)]
+    pub clip_amplitude: Option<f64>,
+    /// Clean samples before clipping / full-scale errors clear.
+    #[serde(default)]
+    pub clip_hold: Option<u32>,
+}
+
+/// `[correction]`: offset and gain correction between the ADC and the core.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CorrectionConfig {
+    /// "static" (the values below) or "auto" (peak tracking; the values below are the
+    /// start values after reset).
+    pub mode: String,
+    /// Offset of the sin channel in LSB (b of x' = (x - b) / m).
+    #[serde(default)]
+    pub offset_sin: i32,
+    /// Offset of the cos channel in LSB.
+    #[serde(default)]
+    pub offset_cos: i32,
+    /// Gain correction 1/m of the sin channel.
+    #[serde(default = "one")]
+    pub gain_sin: f64,
+    /// Gain correction 1/m of the cos channel.
+    #[serde(default = "one")]
+    pub gain_cos: f64,
+    /// Fraction bits of the gain words (8..=15).
+    #[serde(default = "fourteen")]
+    pub gain_frac_bits: u32,
+    /// Auto: amplitude both channels are scaled to, fraction of full scale.
+    #[serde(default = "target")]
+    pub target_amplitude: f64,
+    /// Auto: signal periods per update (1..=256).
+    #[serde(default = "one_u32")]
+    pub periods: u32,
+    /// Auto: no update below this amplitude, fraction of full scale.
+    #[serde(default = "min_cal")]
+    pub min_amplitude: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn one_u32() -> u32 {
+    1
+}
+fn fourteen() -> u32 {
+    14
+}
+fn target() -> f64 {
+    0.75
+}
+fn min_cal() -> f64 {
+    0.1
+}
+
+impl Default for CorrectionConfig {
+    fn default() -> Self {
+        CorrectionConfig {
+            mode: "static".into(),
+            offset_sin: 0,
+            offset_cos: 0,
+            gain_sin: 1.0,
+            gain_cos: 1.0,
+            gain_frac_bits: 14,
+            target_amplitude: target(),
+            periods: 1,
+            min_amplitude: min_cal(),
+        }
+    }
 }
 
 fn default_min_amplitude() -> f64 {
@@ -301,6 +387,11 @@ impl Default for MonitorConfig {
     fn default() -> Self {
         MonitorConfig {
             min_amplitude: default_min_amplitude(),
+            los_amplitude: None,
+            los_release: None,
+            los_window: None,
+            clip_amplitude: None,
+            clip_hold: None,
         }
     }
 }
@@ -314,6 +405,10 @@ pub struct Derived {
     pub preamp: Option<PreampParams>,
     /// BiSS-C slave of the board top.
     pub biss: BissParams,
+    /// Offset/gain correction of the board top.
+    pub correction: CorrectionParams,
+    /// Signal monitor of the board top.
+    pub monitor: MonitorParams,
     /// ADC sample width A.
     pub adc_width: u32,
     /// CORDIC iterations N.
@@ -539,10 +634,14 @@ impl Derived {
             (warn_step - 1) as f64 / (1u64 << f) as f64 * rate / quadrants_per_turn as f64 * 60.0;
         let latency_cycles = n + 2;
         let biss = biss_params(c, position_width, &err)?;
+        let correction = correction_params(c, &err)?;
+        let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
         Ok(Derived {
             adc,
             preamp,
             biss,
+            correction,
+            monitor,
             adc_width: a,
             iterations: n,
             fine_bits: f,
@@ -801,4 +900,89 @@ fn biss_params(c: &Config, position_width: u32, err: &ErrFn) -> Result<BissParam
     }
     p.validate().map_err(|m| err("biss", "ack_periods", m))?;
     Ok(p)
+}
+
+fn frac_of_fs(c: &Config, table: &str, key: &str, v: f64, err: &ErrFn) -> Result<u32> {
+    let fs = (1u32 << (c.adc.width - 1)) - 1;
+    if !(v > 0.0 && v <= 1.0) {
+        return Err(err(
+            table,
+            key,
+            format!("{v}: allowed 0 < value <= 1 (fraction of full scale)"),
+        ));
+    }
+    Ok(((v * fs as f64).round() as u32).max(1))
+}
+
+/// Correction parameters from `[correction]`.
+fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionParams> {
+    let k = &c.correction;
+    let a = c.adc.width;
+    let gf = k.gain_frac_bits;
+    let gs = gain_code(gf, k.gain_sin).map_err(|m| err("correction", "gain_sin", m))?;
+    let gc = gain_code(gf, k.gain_cos).map_err(|m| err("correction", "gain_cos", m))?;
+    let p = CorrectionParams::new(a, gf, [k.offset_sin, k.offset_cos], [gs, gc]).map_err(|m| {
+        err(
+            "correction",
+            if m.contains("offset") {
+                "offset_sin"
+            } else {
+                "gain_frac_bits"
+            },
+            m,
+        )
+    })?;
+    match k.mode.as_str() {
+        "static" => Ok(p),
+        "auto" => {
+            let t = frac_of_fs(c, "correction", "target_amplitude", k.target_amplitude, err)?;
+            let m = frac_of_fs(c, "correction", "min_amplitude", k.min_amplitude, err)?;
+            p.with_auto(t, k.periods, m)
+                .map_err(|e| err("correction", "periods", e))
+        }
+        other => Err(err(
+            "correction",
+            "mode",
+            format!("{other:?}: allowed \"static\" or \"auto\""),
+        )),
+    }
+}
+
+/// Monitor parameters: thresholds in CORDIC magnitude units (K_N * amplitude * 2^G).
+fn monitor_params(
+    c: &Config,
+    n: u32,
+    xy_guard: u32,
+    xy_width: u32,
+    err: &ErrFn,
+) -> Result<MonitorParams> {
+    let m = &c.monitor;
+    let fs = ((1u64 << (c.adc.width - 1)) - 1) as f64;
+    let units = |v: f64| exact::gain_times_ceil(n, ((v * fs).round() as u64) << xy_guard);
+    let los = m.los_amplitude.unwrap_or(0.25);
+    let rel = m.los_release.unwrap_or(0.3);
+    let clip = m.clip_amplitude.unwrap_or(1.0);
+    for (key, v) in [
+        ("los_amplitude", los),
+        ("los_release", rel),
+        ("clip_amplitude", clip),
+    ] {
+        if !(v > 0.0 && v <= 1.3) {
+            return Err(err(
+                "monitor",
+                key,
+                format!("{v}: allowed 0 < value <= 1.3 (fraction of full scale)"),
+            ));
+        }
+    }
+    MonitorParams::new(
+        c.adc.width,
+        xy_width,
+        units(los),
+        units(rel),
+        m.los_window.unwrap_or(8),
+        units(clip),
+        m.clip_hold.unwrap_or(16),
+    )
+    .map_err(|e| err("monitor", "los_amplitude", e))
 }

@@ -27,7 +27,8 @@ pub struct SimOptions {
     pub third_harmonic: f64,
     /// Noise seed.
     pub seed: u64,
-    /// Decoded samples skipped before the statistics (settling).
+    /// Decoded samples skipped before the statistics (settling: the monitor reports a
+    /// loss of signal until its window of good samples has passed after reset).
     pub skip: usize,
 }
 
@@ -43,7 +44,7 @@ impl Default for SimOptions {
             phase_error_deg: 0.0,
             third_harmonic: 0.0,
             seed: 1,
-            skip: 4,
+            skip: 12,
         }
     }
 }
@@ -170,8 +171,8 @@ impl SimReport {
         let _ = writeln!(
             o,
             "latency CONV -> position    {} cycles = {:.0} ns",
-            d.adc.conv_to_valid_clocks() + d.latency_cycles,
-            (d.adc.conv_to_valid_clocks() + d.latency_cycles) as f64 * 1e9 / d.clock_hz
+            crate::blocks::top::hdl::conv_to_position_cycles(d),
+            crate::blocks::top::hdl::conv_to_position_cycles(d) as f64 * 1e9 / d.clock_hz
         );
         let _ = writeln!(
             o,

@@ -88,3 +88,105 @@ fn creep_at_0_3_rpm_is_monotonic_in_the_mean_without_quadrant_jumps() {
     let s = r.stats;
     eprintln!("creep: {:?}", s);
 }
+
+/// Automatic calibration: with 5 % offsets and a 5 % gain mismatch, the error of the
+/// uncorrected decoder is large; with `correction.mode = "auto"` it comes back within twice
+/// the clean figure after the first calibrated periods.
+#[test]
+fn auto_calibration_removes_offset_and_gain_mismatch() {
+    let clean = {
+        let l = Loaded::default_config().expect("default");
+        let o = SimOptions {
+            profile: Profile::Constant { rpm: 300.0 },
+            duration_s: 3e-3,
+            amplitude: 0.8,
+            noise_lsb: 1.0,
+            seed: 11,
+            ..Default::default()
+        };
+        run(&l, &o, |_, _| {}).expect("runs").stats
+    };
+    let bad = SimOptions {
+        profile: Profile::Constant { rpm: 300.0 },
+        duration_s: 3e-3,
+        amplitude: 0.8,
+        noise_lsb: 1.0,
+        offset: (0.05, -0.05),
+        gain_mismatch: 0.05,
+        seed: 11,
+        // 300 rpm = 10.24 periods/ms, 127 samples per period: skip the first 2 periods
+        // (the first update comes after one whole period).
+        skip: 260,
+        ..Default::default()
+    };
+    let uncorrected = run(&Loaded::default_config().expect("default"), &bad, |_, _| {})
+        .expect("runs")
+        .stats;
+    let text = sinedec::config::DEFAULT_CONFIG.replace("mode = \"static\"", "mode = \"auto\"");
+    let auto = Loaded::parse(&text, "auto").expect("auto config");
+    let corrected = run(&auto, &bad, |_, _| {}).expect("runs").stats;
+    eprintln!("clean {clean:?}\nuncorrected {uncorrected:?}\nauto {corrected:?}");
+    assert!(
+        uncorrected.max_lsb > 4.0 * clean.max_lsb,
+        "the fault is visible"
+    );
+    assert!(
+        corrected.max_lsb <= 2.0 * clean.max_lsb,
+        "{corrected:?} vs clean {clean:?}"
+    );
+    assert!(corrected.rms_lsb <= 2.0 * clean.rms_lsb);
+}
+
+/// Loss of signal: the amplitude drops to 10 % from 2.0 ms to 2.5 ms. The error flag is up
+/// by the sample that completes the monitor's window (the window-th low sample, +1 for the
+/// flag register) and clears within a window of the signal's return.
+#[test]
+fn loss_of_signal_raises_and_clears_the_error_flag() {
+    use sinedec::sim::system::System;
+    let l = Loaded::default_config().expect("default");
+    let d = &l.derived;
+    let o = SimOptions {
+        profile: Profile::Constant { rpm: 300.0 },
+        amplitude: 0.8,
+        noise_lsb: 1.0,
+        ..Default::default()
+    };
+    let mut enc = sinedec::simulate::encoder(&l, &o);
+    let (t0, t1) = (0.5e-3, 1.0e-3);
+    enc.fault = Some((t0, t1, 0.1));
+    let mut s = System::new(d, enc).expect("system");
+    s.start().expect("settles");
+    s.run((1.5e-3 * d.clock_hz) as u64).expect("runs");
+    let r = s.finish();
+    let window = 8;
+    let conv_t = |x: &sinedec::sim::system::Record| x.conv_cycle as f64 / d.clock_hz;
+    let k0 = r
+        .records
+        .iter()
+        .position(|x| conv_t(x) >= t0)
+        .expect("fault starts");
+    let k1 = r
+        .records
+        .iter()
+        .position(|x| conv_t(x) >= t1)
+        .expect("fault ends");
+    // Before the fault (after start-up): no error.
+    assert!(r.records[20..k0].iter().all(|x| !x.error));
+    let first_err = r.records[k0..]
+        .iter()
+        .position(|x| x.error)
+        .expect("error raised");
+    eprintln!("error after {first_err} low samples; window {window}");
+    assert!(first_err <= window, "raised after {first_err} samples");
+    assert!(
+        r.records[k0 + window..k1].iter().all(|x| x.error),
+        "held during the fault"
+    );
+    let cleared = r.records[k1..]
+        .iter()
+        .position(|x| !x.error)
+        .expect("cleared");
+    eprintln!("cleared after {cleared} good samples");
+    assert!(cleared <= window + 1, "cleared after {cleared} samples");
+    assert!(r.records[k1 + window + 1..].iter().all(|x| !x.error));
+}

@@ -118,6 +118,10 @@ pub const SIN: usize = 0;
 /// Channel index of cosine in the `[sin, cos]` arrays.
 pub const COS: usize = 1;
 
+/// Clock cycles from a sample at the input to the corrected sample at the output (the
+/// block's fixed latency, both modes).
+pub const LATENCY_CYCLES: u32 = 3;
+
 impl CorrectionParams {
     /// Static correction: `adc_width` A = 10..=16; `gain_frac_bits` GF = 8..=15;
     /// `offset` = [b_sin, b_cos] in LSB within the A-bit range; `gain` = [g_sin, g_cos] as

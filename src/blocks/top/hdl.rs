@@ -3,6 +3,8 @@ use crate::blocks::adc::hdl::AdcController;
 use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::c32;
 use crate::blocks::core::hdl::CoreRtl;
+use crate::blocks::correction::hdl::Correction;
+use crate::blocks::monitor::hdl::Monitor;
 use crate::blocks::preamp::hdl::PreampSetup;
 use crate::config::Derived;
 use rust_hdl::prelude::*;
@@ -52,8 +54,12 @@ pub struct TopRtl {
     pub par_warning: Signal<Out, Bit>,
     preamp: PreampSetup,
     adc: AdcController,
+    correction: Correction,
     core: CoreRtl,
+    monitor: Monitor,
     biss_slave: BissSlave,
+    error: Signal<Local, Bit>,
+    warning: Signal<Local, Bit>,
     word: Signal<Local, Bits<32>>,
     zero: Constant<Bits<32>>,
     /// BiSS data word = ((qc << qshl) >> qshr) | (fine >> fshr): the top bits of the position.
@@ -62,6 +68,12 @@ pub struct TopRtl {
     qshr: Constant<Bits<32>>,
     /// See `qshl`.
     fshr: Constant<Bits<32>>,
+}
+
+/// Clock cycles from the CONV rise that samples the inputs to `par_valid` for that sample:
+/// ADC controller + correction + core.
+pub fn conv_to_position_cycles(d: &Derived) -> u32 {
+    d.adc.conv_to_valid_clocks() + crate::blocks::correction::LATENCY_CYCLES + d.latency_cycles
 }
 
 impl TopRtl {
@@ -96,7 +108,11 @@ impl TopRtl {
             par_warning: Default::default(),
             preamp: PreampSetup::new(pre),
             adc: AdcController::new(&d.adc),
+            correction: Correction::new(&d.correction),
             core: CoreRtl::new(d),
+            monitor: Monitor::new(&d.monitor),
+            error: Default::default(),
+            warning: Default::default(),
             biss_slave: BissSlave::new(&d.biss)?,
             word: Default::default(),
             zero: c32(0),
@@ -119,9 +135,26 @@ impl Logic for TopRtl {
         self.adc.adc_miso.next = self.adc_miso.val();
         self.core.clk.next = self.clk.val();
         self.core.rst.next = self.rst.val();
-        self.core.in_valid.next = self.adc.out_valid.val();
-        self.core.in_sin.next = self.adc.out_ch0.val();
-        self.core.in_cos.next = self.adc.out_ch1.val();
+        self.correction.clk.next = self.clk.val();
+        self.correction.rst.next = self.rst.val();
+        self.correction.in_valid.next = self.adc.out_valid.val();
+        self.correction.in_sin.next = self.adc.out_ch0.val();
+        self.correction.in_cos.next = self.adc.out_ch1.val();
+        self.core.in_valid.next = self.correction.out_valid.val();
+        self.core.in_sin.next = self.correction.out_sin.val();
+        self.core.in_cos.next = self.correction.out_cos.val();
+        // Monitor: raw samples (full scale), CORDIC magnitude (loss of signal, clipping).
+        self.monitor.clk.next = self.clk.val();
+        self.monitor.rst.next = self.rst.val();
+        self.monitor.in_valid.next = self.adc.out_valid.val();
+        self.monitor.in_sin.next = self.adc.out_ch0.val();
+        self.monitor.in_cos.next = self.adc.out_ch1.val();
+        self.monitor.mag_valid.next = self.core.out_mag_valid.val();
+        self.monitor.magnitude.next = self.core.out_mag.val();
+        self.monitor.overspeed.next = false;
+        self.monitor.qep_mismatch.next = false;
+        self.error.next = self.core.out_error.val() | self.monitor.error.val();
+        self.warning.next = self.core.out_warning.val() | self.monitor.warning.val();
         self.core.load.next = false;
         self.core.load_qc.next = self.zero.val();
         self.core.load_turns.next = self.zero.val();
@@ -134,8 +167,8 @@ impl Logic for TopRtl {
         self.biss_slave.pos.next = self.word.val();
         self.biss_slave.turns.next = self.core.out_turns.val();
         self.biss_slave.pos_valid.next = self.core.out_valid.val();
-        self.biss_slave.error.next = self.core.out_error.val();
-        self.biss_slave.warning.next = self.core.out_warning.val();
+        self.biss_slave.error.next = self.error.val();
+        self.biss_slave.warning.next = self.warning.val();
         self.biss_slo.next = self.biss_slave.slo.val();
         self.adc_sck.next = self.preamp.spi_sck.val();
         self.adc_conv.next = self.adc.adc_conv.val();
@@ -150,8 +183,8 @@ impl Logic for TopRtl {
         self.par_qc.next = self.core.out_qc.val();
         self.par_fine.next = self.core.out_fine.val();
         self.par_turns.next = self.core.out_turns.val();
-        self.par_error.next = self.core.out_error.val();
-        self.par_warning.next = self.core.out_warning.val();
+        self.par_error.next = self.error.val();
+        self.par_warning.next = self.warning.val();
     }
 }
 
