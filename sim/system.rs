@@ -218,10 +218,26 @@ impl System {
                 None => true,
             };
             self.top.biss_ma.next = ma;
+            // Comparators on the noise-free tracks: A = cos > 0, B = sin > 0 (forward = the
+            // angle increasing), Z = index in the first quadrant of every turn.
+            let th = self
+                .truth
+                .electrical_angle(self.cycle as f64 / self.clock_hz);
+            let (qa, qb) = (th.cos() >= 0.0, th.sin() >= 0.0);
+            let turn = std::f64::consts::TAU * self.d.quadrants_per_turn as f64 / 4.0;
+            let qz = th.rem_euclid(turn) < std::f64::consts::FRAC_PI_2;
+            self.top.qep_a.next = qa;
+            self.top.qep_b.next = qb;
+            self.top.qep_z.next = qz;
             if self.record_inputs {
-                self.result
-                    .inputs
-                    .push(vec![rst as u64, miso as u64, ma as u64]);
+                self.result.inputs.push(vec![
+                    rst as u64,
+                    miso as u64,
+                    ma as u64,
+                    qa as u64,
+                    qb as u64,
+                    qz as u64,
+                ]);
             }
             tick(self.top.as_mut())?;
             if let Some(m) = self.ma.as_mut() {

@@ -22,6 +22,7 @@ use crate::blocks::biss::BissParams;
 use crate::blocks::correction::{gain_code, CorrectionParams};
 use crate::blocks::monitor::MonitorParams;
 use crate::blocks::preamp::PreampParams;
+use crate::blocks::qep::QepParams;
 use crate::error::{Error, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
@@ -139,6 +140,28 @@ pub struct Config {
     /// Offset and gain correction of the board top.
     #[serde(default)]
     pub correction: CorrectionConfig,
+    /// External QEP A/B/Z inputs of the board top.
+    #[serde(default)]
+    pub qep: QepConfig,
+}
+
+/// `[qep]`: comparator outputs A (cos > 0), B (sin > 0), Z (index) on `qep_a/b/z`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct QepConfig {
+    /// Use the QEP count as cross-check and high-speed fallback.
+    pub enabled: bool,
+    /// Glitch filter: clocks a level must be stable (1..=65535).
+    pub filter_clocks: u32,
+}
+
+impl Default for QepConfig {
+    fn default() -> Self {
+        QepConfig {
+            enabled: false,
+            filter_clocks: 4,
+        }
+    }
 }
 
 /// `[biss]`: the BiSS-C slave of `<name>_top` (pins `biss_ma`, `biss_slo`).
@@ -409,6 +432,10 @@ pub struct Derived {
     pub correction: CorrectionParams,
     /// Signal monitor of the board top.
     pub monitor: MonitorParams,
+    /// QEP decoder of the board top.
+    pub qep: QepParams,
+    /// QEP fallback enabled.
+    pub qep_enabled: bool,
     /// ADC sample width A.
     pub adc_width: u32,
     /// CORDIC iterations N.
@@ -636,12 +663,16 @@ impl Derived {
         let biss = biss_params(c, position_width, &err)?;
         let correction = correction_params(c, &err)?;
         let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
+        let qep =
+            QepParams::new(c.qep.filter_clocks, 32).map_err(|m| err("qep", "filter_clocks", m))?;
         Ok(Derived {
             adc,
             preamp,
             biss,
             correction,
             monitor,
+            qep,
+            qep_enabled: c.qep.enabled,
             adc_width: a,
             iterations: n,
             fine_bits: f,

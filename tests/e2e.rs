@@ -190,3 +190,53 @@ fn loss_of_signal_raises_and_clears_the_error_flag() {
     assert!(cleared <= window + 1, "cleared after {cleared} samples");
     assert!(r.records[k1 + window + 1..].iter().all(|x| !x.error));
 }
+
+/// Overspeed: a ramp from 0 to 25,000 rpm (2.6 quadrants per sample at the end, beyond
+/// the 1.75-quadrant unwrap limit of 16,754 rpm). With the QEP fallback the position stays
+/// right all the way (the QEP count resynchronises the CORDIC counter at every sample) and
+/// the warning flag is raised above the limit; without it the count is lost.
+#[test]
+fn overspeed_raises_the_warning_and_the_qep_fallback_keeps_the_count() {
+    let o = SimOptions {
+        profile: Profile::Ramp {
+            from: 0.0,
+            to: 25_000.0,
+            over: 1.5e-3,
+        },
+        duration_s: 1.5e-3,
+        amplitude: 0.8,
+        noise_lsb: 1.0,
+        skip: 12,
+        ..Default::default()
+    };
+    let l = Loaded::default_config().expect("default");
+    let r = run(&l, &o, |_, _| {}).expect("runs");
+    let s = r.stats;
+    let limit_rpm = l.derived.max_speed_rpm_full_res;
+    // Speed at a record's conversion time.
+    let rpm_at = |x: &sinedec::sim::system::Record| {
+        25_000.0 * (x.conv_cycle as f64 / l.derived.clock_hz) / 1.5e-3
+    };
+    let warned_fast = r
+        .result
+        .records
+        .iter()
+        .filter(|x| rpm_at(x) > limit_rpm + 500.0)
+        .all(|x| x.warning);
+    let quiet_slow = r.result.records[12..]
+        .iter()
+        .filter(|x| rpm_at(x) < 0.8 * limit_rpm)
+        .all(|x| !x.warning);
+    eprintln!("with fallback: {s:?}, limit {limit_rpm:.0} rpm");
+    assert!(warned_fast, "warning above the limit");
+    assert!(quiet_slow, "no warning well below the limit");
+    assert!(s.max_lsb < 20.0, "{s:?}");
+    let text = sinedec::config::DEFAULT_CONFIG.replace("enabled = true", "enabled = false");
+    let no_qep = Loaded::parse(&text, "no qep").expect("config");
+    let s2 = run(&no_qep, &o, |_, _| {}).expect("runs").stats;
+    eprintln!("without fallback: {s2:?}");
+    assert!(
+        s2.max_lsb > 16384.0,
+        "without the fallback the count is lost: {s2:?}"
+    );
+}

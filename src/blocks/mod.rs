@@ -16,6 +16,7 @@ pub mod cordic;
 pub mod core;
 pub mod correction;
 pub mod counter;
+pub mod fallback;
 pub mod monitor;
 pub mod parallel;
 pub mod preamp;

@@ -183,6 +183,9 @@ module {name} (
     output wire         dac_clr,      // DAC_CLR: 1 = DAC not cleared
     output wire         spi_ss_b,     // SPI_SS_B: 1 = SPI flash deselected
     output wire         sf_ce0,       // SF_CE0: 1 = parallel flash disabled
+    input  wire         qep_a,        // QEP A: comparator cos > 0
+    input  wire         qep_b,        // QEP B: comparator sin > 0
+    input  wire         qep_z,        // QEP Z: index
     input  wire         biss_ma,      // BiSS-C MA clock from the master
     output wire         biss_slo,     // BiSS-C SLO data to the master
     output wire         par_valid,    // parallel bus: one-cycle strobe per position
@@ -198,7 +201,8 @@ module {name} (
     {rtl_name} rtl (
         .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_sck(adc_sck), .adc_conv(adc_conv),
         .amp_cs(amp_cs), .amp_mosi(amp_mosi), .amp_shdn(amp_shdn), .dac_cs(dac_cs),
-        .dac_clr(dac_clr), .spi_ss_b(spi_ss_b), .sf_ce0(sf_ce0), .biss_ma(biss_ma),
+        .dac_clr(dac_clr), .spi_ss_b(spi_ss_b), .sf_ce0(sf_ce0), .qep_a(qep_a), .qep_b(qep_b),
+        .qep_z(qep_z), .biss_ma(biss_ma),
         .biss_slo(biss_slo), .par_valid(par_valid),
         .par_qc(qc), .par_fine(fine), .par_turns(turns), .par_error(par_error),
         .par_warning(par_warning)

@@ -4,8 +4,10 @@ use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::c32;
 use crate::blocks::core::hdl::CoreRtl;
 use crate::blocks::correction::hdl::Correction;
+use crate::blocks::fallback::hdl::Fallback;
 use crate::blocks::monitor::hdl::Monitor;
 use crate::blocks::preamp::hdl::PreampSetup;
+use crate::blocks::qep::hdl::QepDecoder;
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 
@@ -36,6 +38,12 @@ pub struct TopRtl {
     pub spi_ss_b: Signal<Out, Bit>,
     /// SF_CE0: 1, parallel flash disabled.
     pub sf_ce0: Signal<Out, Bit>,
+    /// QEP A: comparator (cos > 0).
+    pub qep_a: Signal<In, Bit>,
+    /// QEP B: comparator (sin > 0).
+    pub qep_b: Signal<In, Bit>,
+    /// QEP Z: index.
+    pub qep_z: Signal<In, Bit>,
     /// BiSS-C MA clock from the master.
     pub biss_ma: Signal<In, Bit>,
     /// BiSS-C SLO data to the master.
@@ -57,6 +65,10 @@ pub struct TopRtl {
     correction: Correction,
     core: CoreRtl,
     monitor: Monitor,
+    qep_decoder: QepDecoder,
+    fallback: Fallback,
+    /// 1 when the QEP fallback is enabled in the config.
+    qep_enable: Constant<Bit>,
     biss_slave: BissSlave,
     error: Signal<Local, Bit>,
     warning: Signal<Local, Bit>,
@@ -98,6 +110,9 @@ impl TopRtl {
             dac_clr: Default::default(),
             spi_ss_b: Default::default(),
             sf_ce0: Default::default(),
+            qep_a: Default::default(),
+            qep_b: Default::default(),
+            qep_z: Default::default(),
             biss_ma: Default::default(),
             biss_slo: Default::default(),
             par_valid: Default::default(),
@@ -111,6 +126,9 @@ impl TopRtl {
             correction: Correction::new(&d.correction),
             core: CoreRtl::new(d),
             monitor: Monitor::new(&d.monitor),
+            qep_decoder: QepDecoder::new(&d.qep),
+            fallback: Fallback::new(d),
+            qep_enable: Constant::new(d.qep_enabled),
             error: Default::default(),
             warning: Default::default(),
             biss_slave: BissSlave::new(&d.biss)?,
@@ -152,12 +170,29 @@ impl Logic for TopRtl {
         self.monitor.mag_valid.next = self.core.out_mag_valid.val();
         self.monitor.magnitude.next = self.core.out_mag.val();
         self.monitor.overspeed.next = false;
-        self.monitor.qep_mismatch.next = false;
+        self.monitor.qep_mismatch.next = self.fallback.mismatch.val();
         self.error.next = self.core.out_error.val() | self.monitor.error.val();
-        self.warning.next = self.core.out_warning.val() | self.monitor.warning.val();
-        self.core.load.next = false;
-        self.core.load_qc.next = self.zero.val();
-        self.core.load_turns.next = self.zero.val();
+        self.warning.next =
+            self.core.out_warning.val() | self.monitor.warning.val() | self.fallback.active.val();
+        self.qep_decoder.clk.next = self.clk.val();
+        self.qep_decoder.rst.next = self.rst.val();
+        self.qep_decoder.qep_a.next = self.qep_a.val();
+        self.qep_decoder.qep_b.next = self.qep_b.val();
+        self.qep_decoder.qep_z.next = self.qep_z.val();
+        self.fallback.clk.next = self.clk.val();
+        self.fallback.rst.next = self.rst.val();
+        self.fallback.enable.next = self.qep_enable.val();
+        self.fallback.qep_count.next = self.qep_decoder.count.val();
+        self.fallback.conv.next = self.adc.adc_conv.val();
+        self.fallback.adc_valid.next = self.adc.out_valid.val();
+        self.fallback.core_valid.next = self.core.out_valid.val();
+        self.fallback.core_error.next = self.core.out_error.val();
+        self.fallback.core_warning.next = self.core.out_warning.val();
+        self.fallback.core_qc.next = self.core.out_qc.val();
+        self.fallback.core_turns.next = self.core.out_turns.val();
+        self.core.load.next = self.fallback.load.val();
+        self.core.load_qc.next = self.fallback.load_qc.val();
+        self.core.load_turns.next = self.fallback.load_turns.val();
         // BiSS data: the top position_bits of the position (qc and fine side by side).
         self.word.next = ((self.core.out_qc.val() << self.qshl.val()) >> self.qshr.val())
             | (self.core.out_fine.val() >> self.fshr.val());
@@ -201,6 +236,9 @@ impl crate::verify::CosimBlock for TopRtl {
             Port::new("rst", 1),
             Port::new("adc_miso", 1),
             Port::new("biss_ma", 1),
+            Port::new("qep_a", 1),
+            Port::new("qep_b", 1),
+            Port::new("qep_z", 1),
         ]
     }
     fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
@@ -232,6 +270,9 @@ impl crate::verify::CosimBlock for TopRtl {
         self.rst.next = r[0] != 0;
         self.adc_miso.next = r[1] != 0;
         self.biss_ma.next = r[2] != 0;
+        self.qep_a.next = r[3] != 0;
+        self.qep_b.next = r[4] != 0;
+        self.qep_z.next = r[5] != 0;
     }
     fn sample(&self) -> Vec<u64> {
         vec![

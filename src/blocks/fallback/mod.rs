@@ -1,0 +1,34 @@
+//! QEP fallback and cross-check: a quadrant count kept from the external QEP A/B signals,
+//! aligned with the CORDIC counter at low speed and used to resynchronise it at high speed.
+//!
+//! ```text
+//!  qep count ──step──► tracker (qq 0..4PPR-1, qt turns) ──┬─ captured at every CONV rise
+//!   offset (oq, ot) = core - capture (normal mode)        │  (c1 -> c2: the conversion whose
+//!                                                         │   data the ADC delivers next)
+//!                                                         ▼
+//!  ADC out_valid ── (sq, st) = c2 ──► at core out_valid: dd = qc - sq (mod 4PPR, signed)
+//!                                       active: load core with (sq, st) at every sample
+//! ```
+//!
+//! * Tracker: every clock qq += step (the QEP decoder's count difference, -1/0/+1), wrapped
+//!   into 0..4PPR-1 with the turn count qt.
+//! * Each sample is matched to the tracker value at its conversion: (qq, qt) is captured at
+//!   every CONV rise into c1, c1 moves to c2, and the ADC delivers the data of the
+//!   conversion before the last CONV (LTC1407A-1: one frame of pipeline), so at the ADC's
+//!   `out_valid` the sample's capture is c2. It waits in (sq, st) for the sample to leave the
+//!   core (correction + core latency, far shorter than a sample period).
+//! * The tracker runs free on the QEP steps; an offset (oq, ot) relates it to the CORDIC
+//!   count. Normal mode: at each good core sample the offset is set to (qc - sq, turns - st),
+//!   so the QEP count follows the CORDIC count (exact at low speed); dd = qc - sq - oq with
+//!   |dd| > 1 quadrant (after three aligned samples, so that the captures in flight are
+//!   consistent) is a QEP/CORDIC disagreement: `mismatch` (a warning). The offset is
+//!   assigned, not accumulated, so stale captures cannot add up.
+//! * Fallback mode (`active`): entered on the core's overspeed warning, on a mismatch, or when
+//!   the tracker moved 3 or more quadrants between two conversions; left after
+//!   `QUIET_SAMPLES` samples with none of these and with the tracker moving less than 2
+//!   quadrants per sample (so the mode never ends above the unwrap limit). While active the offset is frozen, and every sample loads
+//!   the core's counter with the capture plus the offset: the core takes the nearest count congruent with
+//!   its own quadrant, so the position keeps the CORDIC's fine resolution and the QEP's
+//!   count, and the core is in step when the speed falls again.
+//! * Widths: 32-bit words holding qq (< 4PPR <= 2^18), qt (M bits) and the QEP count.
+pub mod hdl;
