@@ -143,7 +143,27 @@ pub struct Config {
     /// External QEP A/B/Z inputs of the board top.
     #[serde(default)]
     pub qep: QepConfig,
+    /// Board pins: with this section `generate` writes `<name>_top.ucf`.
+    #[serde(default)]
+    pub board: Option<BoardConfig>,
 }
+
+/// `[board]`: pin locations of `<name>_top`'s ports for the UCF.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoardConfig {
+    /// I/O standard of every pin (e.g. "LVCMOS33").
+    pub iostandard: String,
+    /// Port name -> package pin (e.g. adc_conv = "Y6"). Every port of the top except the
+    /// parallel bus (`par_*`, meant for logic in the same FPGA) needs one.
+    pub pins: std::collections::BTreeMap<String, String>,
+}
+
+/// Ports of the sinewave board top that need a pin.
+pub const TOP_PINS: &[&str] = &[
+    "clk", "rst", "adc_miso", "adc_sck", "adc_conv", "amp_cs", "amp_mosi", "amp_shdn", "dac_cs",
+    "dac_clr", "spi_ss_b", "sf_ce0", "qep_a", "qep_b", "qep_z", "biss_ma", "biss_slo",
+];
 
 /// `[qep]`: comparator outputs A (cos > 0), B (sin > 0), Z (index) on `qep_a/b/z`.
 #[derive(Clone, Debug, Deserialize)]
@@ -663,6 +683,35 @@ impl Derived {
         let biss = biss_params(c, position_width, &err)?;
         let correction = correction_params(c, &err)?;
         let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
+        if let Some(b) = &c.board {
+            let valid = |v: &str| !v.is_empty() && v.chars().all(|ch| ch.is_ascii_alphanumeric());
+            if let Some((k, v)) = b
+                .pins
+                .iter()
+                .find(|(k, v)| !TOP_PINS.contains(&k.as_str()) || !valid(v))
+            {
+                return Err(err(
+                    "board.pins",
+                    k,
+                    format!(
+                        "`{k}` = {v:?}: the key must be one of the top's ports ({}) and the value a package pin like \"Y6\"",
+                        TOP_PINS.join(", ")
+                    ),
+                ));
+            }
+            let missing: Vec<&str> = TOP_PINS
+                .iter()
+                .copied()
+                .filter(|p| !b.pins.contains_key(*p))
+                .collect();
+            if !missing.is_empty() {
+                return Err(err(
+                    "board",
+                    "pins",
+                    format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one)", missing.join(", ")),
+                ));
+            }
+        }
         let qep =
             QepParams::new(c.qep.filter_clocks, 32).map_err(|m| err("qep", "filter_clocks", m))?;
         Ok(Derived {

@@ -144,6 +144,10 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
     Ok(format!("{}\n{body}", core_wrapper(loaded, &rtl_name)))
 }
 
+fn has_top(loaded: &Loaded) -> bool {
+    loaded.derived.preamp.is_some() && loaded.config.target == crate::config::Target::Spartan3an
+}
+
 /// Name of the board top module.
 pub fn top_name(loaded: &Loaded) -> String {
     format!("{}_top", loaded.config.name)
@@ -274,6 +278,36 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             text: report,
         },
     ];
+    if let (Some(b), true) = (&loaded.config.board, has_top(loaded)) {
+        let mut u = header(
+            loaded,
+            command,
+            "UCF: pins and clock of the board top (Xilinx ISE).",
+            "#",
+        );
+        let top = top_name(loaded);
+        let period = 1e9 / loaded.derived.clock_hz;
+        u.push_str(&format!(
+            "# Top module: {top}. The parallel bus (par_*) is not constrained: it is meant for\n\
+             # logic in the same FPGA.\n\
+             NET \"clk\" TNM_NET = \"clk\";\n\
+             TIMESPEC \"TS_clk\" = PERIOD \"clk\" {period:.3} ns HIGH 50 %;\n\
+             # MA and the QEP inputs are asynchronous: they enter through synchronizers.\n\
+             NET \"biss_ma\" TIG;\nNET \"qep_a\" TIG;\nNET \"qep_b\" TIG;\nNET \"qep_z\" TIG;\n"
+        ));
+        for p in crate::config::TOP_PINS {
+            if let Some(loc) = b.pins.get(*p) {
+                u.push_str(&format!(
+                    "NET \"{p}\" LOC = \"{loc}\" | IOSTANDARD = {};\n",
+                    b.iostandard
+                ));
+            }
+        }
+        files.push(OutFile {
+            name: format!("{name}_top.ucf"),
+            text: u,
+        });
+    }
     if let Some(top) = top_verilog(loaded)? {
         files.push(OutFile {
             name: format!("{name}_top.v"),
