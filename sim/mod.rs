@@ -9,3 +9,4 @@ pub mod ssi_master;
 pub mod step;
 pub mod stimulus;
 pub mod system;
+pub mod vcd;

@@ -58,9 +58,11 @@ pub struct SimResult {
     pub amp_violations: Vec<String>,
     /// Gains the LTC6912-1 model decoded, if a word was shifted in.
     pub amp_gains: Option<(i32, i32)>,
-    /// Per-cycle inputs of the design `[rst, adc_miso]`, when recording was asked for: a
-    /// stimulus that replays the run in a Verilog simulator.
+    /// Per-cycle inputs of the design (`TopRtl`'s `CosimBlock` input order), when recording
+    /// was asked for: a stimulus that replays the run in a Verilog simulator.
     pub inputs: Vec<Vec<u64>>,
+    /// Per-cycle outputs (`CosimBlock` output order), when recording was asked for.
+    pub outputs: Vec<Vec<u64>>,
 }
 
 /// Error statistics of a run, after a settling time.
@@ -242,6 +244,11 @@ impl System {
             tick(self.top.as_mut())?;
             if let Some(m) = self.ma.as_mut() {
                 m.push_slo(self.top.biss_slo.val());
+            }
+            if self.record_inputs {
+                self.result
+                    .outputs
+                    .push(crate::verify::CosimBlock::sample(self.top.as_ref()));
             }
             self.cycle += 1;
             if self.top.par_valid.val() {

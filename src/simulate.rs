@@ -27,6 +27,8 @@ pub struct SimOptions {
     pub third_harmonic: f64,
     /// Noise seed.
     pub seed: u64,
+    /// Record every cycle's pins (for a VCD).
+    pub record: bool,
     /// Decoded samples skipped before the statistics (settling: the monitor reports a
     /// loss of signal until its window of good samples has passed after reset).
     pub skip: usize,
@@ -44,6 +46,7 @@ impl Default for SimOptions {
             phase_error_deg: 0.0,
             third_harmonic: 0.0,
             seed: 1,
+            record: false,
             skip: 12,
         }
     }
@@ -126,6 +129,9 @@ pub fn run(
         block: "top".into(),
         message: e.to_string(),
     };
+    if o.record {
+        sys.record_inputs();
+    }
     sys.start().map_err(settle)?;
     let total = (o.duration_s * d.clock_hz).ceil() as u64;
     let t0 = std::time::Instant::now();
@@ -232,5 +238,29 @@ impl SimReport {
             );
         }
         o
+    }
+}
+
+impl SimReport {
+    /// VCD of the top's pins (needs `SimOptions::record`).
+    pub fn vcd(&self, loaded: &Loaded) -> Result<String> {
+        use crate::verify::CosimBlock;
+        let top = crate::blocks::top::hdl::TopRtl::new(&loaded.derived).map_err(Error::Export)?;
+        let mut ports = top.input_ports();
+        ports.extend(top.output_ports());
+        let rows: Vec<Vec<u64>> = self
+            .result
+            .inputs
+            .iter()
+            .zip(&self.result.outputs)
+            .map(|(i, o)| i.iter().chain(o.iter()).copied().collect())
+            .collect();
+        let period_ps = (1e12 / loaded.derived.clock_hz).round() as u64;
+        Ok(crate::sim::vcd::write_vcd(
+            &crate::emit::top_name(loaded),
+            &ports,
+            &rows,
+            period_ps,
+        ))
     }
 }
