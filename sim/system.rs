@@ -129,6 +129,7 @@ pub struct System {
     rst_cycles: u64,
     record_inputs: bool,
     ma: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
+    ssi: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
 }
 
 impl System {
@@ -161,6 +162,7 @@ impl System {
             rst_cycles: 2,
             record_inputs: false,
             ma: None,
+            ssi: None,
         })
     }
 
@@ -173,6 +175,12 @@ impl System {
     /// without one).
     pub fn attach_master(&mut self, m: Box<dyn crate::sim::biss_master::LineMaster>) {
         self.ma = Some(m);
+    }
+
+    /// Connects an SSI master model to `ssi_clk`/`ssi_data` (the clock idles high without
+    /// one).
+    pub fn attach_ssi_master(&mut self, m: Box<dyn crate::sim::biss_master::LineMaster>) {
+        self.ssi = Some(m);
     }
 
     /// Detaches the master model and returns it (with its frame reports).
@@ -231,6 +239,13 @@ impl System {
             self.top.qep_a.next = qa;
             self.top.qep_b.next = qb;
             self.top.qep_z.next = qz;
+            let ssi_clk = match self.ssi.as_mut() {
+                Some(m) => m.ma_for_cycle(self.cycle as usize),
+                None => true,
+            };
+            self.top.ssi_clk.next = ssi_clk;
+            self.top.enc_sck.next = false;
+            self.top.enc_cs_n.next = true;
             if self.record_inputs {
                 self.result.inputs.push(vec![
                     rst as u64,
@@ -239,11 +254,17 @@ impl System {
                     qa as u64,
                     qb as u64,
                     qz as u64,
+                    ssi_clk as u64,
+                    0,
+                    1,
                 ]);
             }
             tick(self.top.as_mut())?;
             if let Some(m) = self.ma.as_mut() {
                 m.push_slo(self.top.biss_slo.val());
+            }
+            if let Some(m) = self.ssi.as_mut() {
+                m.push_slo(self.top.ssi_data.val());
             }
             if self.record_inputs {
                 self.result

@@ -12,6 +12,7 @@
 //! | `cordic.iterations` | 1..=20 |
 //! | `cordic.fine_bits` | 2..=16 |
 //! | `cordic.guard_bits` | 0..=20 (default: derived) |
+//! | `cordic.architecture` | `"unrolled"` (default) or `"iterative"` |
 //! | `encoder.ppr` | 1..=65535 |
 //! | `encoder.multiturn_bits` | 0..=16 |
 //! | `clock.frequency_hz` | 1 MHz..=500 MHz |
@@ -23,6 +24,8 @@ use crate::blocks::correction::{gain_code, CorrectionParams};
 use crate::blocks::monitor::MonitorParams;
 use crate::blocks::preamp::PreampParams;
 use crate::blocks::qep::QepParams;
+use crate::blocks::spi_slave::SpiSlaveParams;
+use crate::blocks::ssi::SsiParams;
 use crate::error::{Error, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
@@ -146,6 +149,40 @@ pub struct Config {
     /// Board pins: with this section `generate` writes `<name>_top.ucf`.
     #[serde(default)]
     pub board: Option<BoardConfig>,
+    /// SSI output of the board top (pins `ssi_clk`, `ssi_data`).
+    #[serde(default)]
+    pub ssi: SsiConfig,
+    /// SPI-slave output of the board top (pins `enc_sck`, `enc_cs_n`, `enc_miso`,
+    /// `enc_miso_oe`).
+    #[serde(default)]
+    pub spi: SpiConfig,
+}
+
+/// `[ssi]`: SSI slave sending the same data word as BiSS (biss.position_bits and
+/// biss.multiturn_bits).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SsiConfig {
+    /// Include the SSI slave.
+    #[serde(default)]
+    pub enabled: bool,
+    /// Gray-coded data word.
+    #[serde(default)]
+    pub gray: bool,
+    /// Monoflop time in microseconds (default 20).
+    pub timeout_us: Option<f64>,
+}
+
+/// `[spi]`: SPI slave (modes 0 and 3) sending the BiSS data word then E and W.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpiConfig {
+    /// Include the SPI slave.
+    #[serde(default)]
+    pub enabled: bool,
+    /// Gray-coded data word.
+    #[serde(default)]
+    pub gray: bool,
 }
 
 /// `[board]`: pin locations of `<name>_top`'s ports for the UCF.
@@ -159,7 +196,12 @@ pub struct BoardConfig {
     pub pins: std::collections::BTreeMap<String, String>,
 }
 
-/// Ports of the sinewave board top that need a pin.
+/// Pins of the optional SSI slave.
+pub const SSI_PINS: &[&str] = &["ssi_clk", "ssi_data"];
+/// Pins of the optional SPI slave.
+pub const SPI_PINS: &[&str] = &["enc_sck", "enc_cs_n", "enc_miso", "enc_miso_oe"];
+
+/// Ports of the sinewave board top that need a pin (plus SSI_PINS / SPI_PINS when enabled).
 pub const TOP_PINS: &[&str] = &[
     "clk", "rst", "adc_miso", "adc_sck", "adc_conv", "amp_cs", "amp_mosi", "amp_shdn", "dac_cs",
     "dac_clr", "spi_ss_b", "sf_ce0", "qep_a", "qep_b", "qep_z", "biss_ma", "biss_slo",
@@ -329,6 +371,21 @@ pub struct CordicConfig {
     /// Fractional guard bits of the x/y datapath; derived when omitted.
     #[serde(default, deserialize_with = "r_guard")]
     pub guard_bits: Option<u32>,
+    /// CORDIC architecture: N unrolled stages (one sample per clock) or one iterative
+    /// stage (one sample per N clocks, see `crate::blocks::cordic::iterative`).
+    #[serde(default)]
+    pub architecture: Architecture,
+}
+
+/// `cordic.architecture`.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Architecture {
+    /// N registered stages: latency N + 2, one sample per clock.
+    #[default]
+    Unrolled,
+    /// One shift-add stage reused N times: latency N + 2, one sample per N clocks.
+    Iterative,
 }
 
 /// `[monitor]`
@@ -448,6 +505,10 @@ pub struct Derived {
     pub preamp: Option<PreampParams>,
     /// BiSS-C slave of the board top.
     pub biss: BissParams,
+    /// SSI slave of the board top, when enabled.
+    pub ssi: Option<SsiParams>,
+    /// SPI slave of the board top, when enabled.
+    pub spi: Option<SpiSlaveParams>,
     /// Offset/gain correction of the board top.
     pub correction: CorrectionParams,
     /// Signal monitor of the board top.
@@ -491,6 +552,10 @@ pub struct Derived {
     pub warn_step: u64,
     /// Latency from the `in_valid` cycle to the `out_valid` cycle.
     pub latency_cycles: u32,
+    /// CORDIC architecture.
+    pub architecture: Architecture,
+    /// Clocks per accepted sample: 1 (unrolled) or N (iterative).
+    pub cycles_per_sample: u32,
     /// Clock frequency in Hz.
     pub clock_hz: f64,
     /// Sample rate per channel in Hz.
@@ -507,6 +572,31 @@ fn ceil_log2(v: u32) -> u32 {
     } else {
         32 - (v - 1).leading_zeros()
     }
+}
+
+/// Checks that the CORDIC keeps up with the ADC: the iterative architecture accepts one
+/// sample per N clocks, so clock / N must be at least the sample rate. With the SPI ADCs
+/// supported (a frame takes at least 24 clocks) this holds for every N <= 20; the check
+/// guards the rule itself.
+pub fn check_throughput(
+    architecture: Architecture,
+    n: u32,
+    clock_hz: f64,
+    rate: f64,
+) -> std::result::Result<(), String> {
+    let cycles = match architecture {
+        Architecture::Unrolled => 1,
+        Architecture::Iterative => n,
+    };
+    if rate * cycles as f64 > clock_hz * (1.0 + 1e-9) {
+        return Err(format!(
+            "the iterative CORDIC accepts one sample per {cycles} clocks (N = {n}): {:.0} samples/s at {:.3} MHz, below the ADC sample rate of {rate:.0} samples/s; use at most {} iterations, a faster clock, a lower sample rate, or architecture = \"unrolled\"",
+            clock_hz / cycles as f64,
+            clock_hz / 1e6,
+            (clock_hz / rate + 1e-9).floor() as u64
+        ));
+    }
+    Ok(())
 }
 
 /// Finds `key` in `[table]` (`""`: top level) of the TOML text, in any layout (table headers,
@@ -680,26 +770,61 @@ impl Derived {
         let max_speed_rpm_full_res =
             (warn_step - 1) as f64 / (1u64 << f) as f64 * rate / quadrants_per_turn as f64 * 60.0;
         let latency_cycles = n + 2;
+        let architecture = c.cordic.architecture;
+        let cycles_per_sample = match architecture {
+            Architecture::Unrolled => 1,
+            Architecture::Iterative => n,
+        };
+        check_throughput(architecture, n, clock_hz, rate)
+            .map_err(|m| err("cordic", "architecture", m))?;
         let biss = biss_params(c, position_width, &err)?;
         let correction = correction_params(c, &err)?;
+        let ssi = if c.ssi.enabled {
+            let mut p = SsiParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
+                .map_err(|m| err("ssi", "enabled", m))?;
+            p.gray = c.ssi.gray;
+            if let Some(t) = c.ssi.timeout_us {
+                p.set_timeout_us(t).map_err(|m| err("ssi", "timeout_us", m))?;
+            }
+            p.validate().map_err(|m| err("ssi", "enabled", m))?;
+            Some(p)
+        } else {
+            None
+        };
+        let spi = if c.spi.enabled {
+            let mut p = SpiSlaveParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
+                .map_err(|m| err("spi", "enabled", m))?;
+            p.gray = c.spi.gray;
+            p.validate().map_err(|m| err("spi", "enabled", m))?;
+            Some(p)
+        } else {
+            None
+        };
         let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
         if let Some(b) = &c.board {
             let valid = |v: &str| !v.is_empty() && v.chars().all(|ch| ch.is_ascii_alphanumeric());
+            let mut required: Vec<&str> = TOP_PINS.to_vec();
+            if c.ssi.enabled {
+                required.extend_from_slice(SSI_PINS);
+            }
+            if c.spi.enabled {
+                required.extend_from_slice(SPI_PINS);
+            }
             if let Some((k, v)) = b
                 .pins
                 .iter()
-                .find(|(k, v)| !TOP_PINS.contains(&k.as_str()) || !valid(v))
+                .find(|(k, v)| !required.contains(&k.as_str()) || !valid(v))
             {
                 return Err(err(
                     "board.pins",
                     k,
                     format!(
                         "`{k}` = {v:?}: the key must be one of the top's ports ({}) and the value a package pin like \"Y6\"",
-                        TOP_PINS.join(", ")
+                        required.join(", ")
                     ),
                 ));
             }
-            let missing: Vec<&str> = TOP_PINS
+            let missing: Vec<&str> = required
                 .iter()
                 .copied()
                 .filter(|p| !b.pins.contains_key(*p))
@@ -718,6 +843,8 @@ impl Derived {
             adc,
             preamp,
             biss,
+            ssi,
+            spi,
             correction,
             monitor,
             qep,
@@ -739,6 +866,8 @@ impl Derived {
             multiturn_bits: c.encoder.multiturn_bits,
             warn_step,
             latency_cycles,
+            architecture,
+            cycles_per_sample,
             clock_hz,
             sample_rate_hz: rate,
             max_speed_rpm_full_res,
@@ -765,7 +894,7 @@ impl Derived {
              out_position width          {} bits ({:.2} bits per turn)\n\
              out_turns width             {} bits\n\
              latency                     {} cycles = {:.1} ns at {:.3} MHz\n\
-             throughput                  1 sample per clock\n\
+             throughput                  1 sample per {} clock(s) ({:?} CORDIC)\n\
              sample rate                 {:.0} samples/s per channel\n\
              max speed at full res.      {:.0} rpm (steps below {:.2} quadrants per sample)\n",
             self.adc_width,
@@ -786,6 +915,8 @@ impl Derived {
             self.latency_cycles,
             self.latency_ns(),
             self.clock_hz / 1e6,
+            self.cycles_per_sample,
+            self.architecture,
             self.sample_rate_hz,
             self.max_speed_rpm_full_res,
             self.warn_step as f64 / (1u64 << self.fine_bits) as f64,

@@ -91,7 +91,7 @@ fn core_wrapper(loaded: &Loaded, rtl: &str) -> String {
     };
     format!(
         r#"// {name}: QEP-CORDIC decoder core, {n} iterations, {f} fine bits, {ppr} PPR.
-// Latency {lat} cycles from in_valid to out_valid; one sample per clock.
+// Latency {lat} cycles from in_valid to out_valid; {thr}.
 module {name} (
     input  wire                 clk,          // system clock
     input  wire                 rst,          // synchronous reset, active high
@@ -103,7 +103,8 @@ module {name} (
     output wire signed [{tm}:0]  out_turns,    // multi-turn count ({mt} bits)
     output wire        [{fm}:0]  out_fine,     // fine part of out_position
     output wire                 out_error,    // sample rejected: amplitude too low
-    output wire                 out_warning   // step near the 2-quadrant ambiguity
+    output wire                 out_warning,  // step near the 2-quadrant ambiguity (or a dropped sample)
+    output wire                 in_ready      // a sample offered in this cycle is accepted
 );
     wire [31:0] qc;    // coarse quadrant count, 0..{qmax}
     wire [31:0] fine;  // fine part, {f} bits
@@ -113,7 +114,8 @@ module {name} (
         .in_sin({sin}), .in_cos({cos}),
         .out_valid(out_valid), .out_qc(qc), .out_fine(fine), .out_turns(turns),
         .out_error(out_error), .out_warning(out_warning),
-        .load(1'b0), .load_qc(32'd0), .load_turns(32'd0), .out_mag(), .out_mag_valid()
+        .load(1'b0), .load_qc(32'd0), .load_turns(32'd0), .out_mag(), .out_mag_valid(),
+        .in_ready(in_ready)
     );
     assign out_position = {{qc[{qb}:0], fine[{fm}:0]}};
     assign out_turns = {turns};
@@ -123,6 +125,14 @@ endmodule // {name}
         n = d.iterations,
         ppr = loaded.config.encoder.ppr,
         lat = d.latency_cycles,
+        thr = if d.cycles_per_sample == 1 {
+            "one sample per clock".to_string()
+        } else {
+            format!(
+                "one sample per {} clocks (iterative CORDIC; hold samples off while in_ready is low)",
+                d.cycles_per_sample
+            )
+        },
         am = a - 1,
         pm = d.position_width - 1,
         tm = d.turns_width - 1,
@@ -192,6 +202,12 @@ module {name} (
     input  wire         qep_z,        // QEP Z: index
     input  wire         biss_ma,      // BiSS-C MA clock from the master
     output wire         biss_slo,     // BiSS-C SLO data to the master
+    input  wire         ssi_clk,      // SSI clock (when [ssi] is enabled)
+    output wire         ssi_data,     // SSI data (idle high)
+    input  wire         enc_sck,      // SPI-slave clock (when [spi] is enabled)
+    input  wire         enc_cs_n,     // SPI-slave chip select, active low
+    output wire         enc_miso,     // SPI-slave data
+    output wire         enc_miso_oe,  // SPI-slave output enable
     output wire         par_valid,    // parallel bus: one-cycle strobe per position
     output wire [{pm}:0]  par_position, // parallel bus: single-turn position, 2^-{f} quadrant
     output wire [{tm}:0]  par_turns,    // parallel bus: signed multi-turn count
@@ -207,7 +223,8 @@ module {name} (
         .amp_cs(amp_cs), .amp_mosi(amp_mosi), .amp_shdn(amp_shdn), .dac_cs(dac_cs),
         .dac_clr(dac_clr), .spi_ss_b(spi_ss_b), .sf_ce0(sf_ce0), .qep_a(qep_a), .qep_b(qep_b),
         .qep_z(qep_z), .biss_ma(biss_ma),
-        .biss_slo(biss_slo), .par_valid(par_valid),
+        .biss_slo(biss_slo), .ssi_clk(ssi_clk), .ssi_data(ssi_data), .enc_sck(enc_sck),
+        .enc_cs_n(enc_cs_n), .enc_miso(enc_miso), .enc_miso_oe(enc_miso_oe), .par_valid(par_valid),
         .par_qc(qc), .par_fine(fine), .par_turns(turns), .par_error(par_error),
         .par_warning(par_warning)
     );
@@ -295,7 +312,17 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
              # MA and the QEP inputs are asynchronous: they enter through synchronizers.\n\
              NET \"biss_ma\" TIG;\nNET \"qep_a\" TIG;\nNET \"qep_b\" TIG;\nNET \"qep_z\" TIG;\n"
         ));
-        for p in crate::config::TOP_PINS {
+        let c = &loaded.config;
+        let extra: Vec<&str> = c
+            .ssi
+            .enabled
+            .then_some(crate::config::SSI_PINS)
+            .into_iter()
+            .chain(c.spi.enabled.then_some(crate::config::SPI_PINS))
+            .flatten()
+            .copied()
+            .collect();
+        for p in crate::config::TOP_PINS.iter().chain(extra.iter()) {
             if let Some(loc) = b.pins.get(*p) {
                 u.push_str(&format!(
                     "NET \"{p}\" LOC = \"{loc}\" | IOSTANDARD = {};\n",

@@ -8,6 +8,8 @@ use crate::blocks::fallback::hdl::Fallback;
 use crate::blocks::monitor::hdl::Monitor;
 use crate::blocks::preamp::hdl::PreampSetup;
 use crate::blocks::qep::hdl::QepDecoder;
+use crate::blocks::spi_slave::hdl::SpiSlave;
+use crate::blocks::ssi::hdl::SsiSlave;
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 
@@ -48,6 +50,18 @@ pub struct TopRtl {
     pub biss_ma: Signal<In, Bit>,
     /// BiSS-C SLO data to the master.
     pub biss_slo: Signal<Out, Bit>,
+    /// SSI clock from the master (used when `[ssi] enabled`).
+    pub ssi_clk: Signal<In, Bit>,
+    /// SSI data to the master (idle high when disabled).
+    pub ssi_data: Signal<Out, Bit>,
+    /// SPI-slave clock (used when `[spi] enabled`).
+    pub enc_sck: Signal<In, Bit>,
+    /// SPI-slave chip select, active low.
+    pub enc_cs_n: Signal<In, Bit>,
+    /// SPI-slave data out.
+    pub enc_miso: Signal<Out, Bit>,
+    /// SPI-slave output enable (drive `enc_miso` only when high).
+    pub enc_miso_oe: Signal<Out, Bit>,
     /// Parallel bus: position strobe.
     pub par_valid: Signal<Out, Bit>,
     /// Parallel bus: coarse quadrant count (upper part of the position).
@@ -70,6 +84,8 @@ pub struct TopRtl {
     /// 1 when the QEP fallback is enabled in the config.
     qep_enable: Constant<Bit>,
     biss_slave: BissSlave,
+    ssi_slave: Vec<SsiSlave>,
+    spi_slave: Vec<SpiSlave>,
     error: Signal<Local, Bit>,
     warning: Signal<Local, Bit>,
     word: Signal<Local, Bits<32>>,
@@ -115,6 +131,12 @@ impl TopRtl {
             qep_z: Default::default(),
             biss_ma: Default::default(),
             biss_slo: Default::default(),
+            ssi_clk: Default::default(),
+            ssi_data: Default::default(),
+            enc_sck: Default::default(),
+            enc_cs_n: Default::default(),
+            enc_miso: Default::default(),
+            enc_miso_oe: Default::default(),
             par_valid: Default::default(),
             par_qc: Default::default(),
             par_fine: Default::default(),
@@ -132,6 +154,14 @@ impl TopRtl {
             error: Default::default(),
             warning: Default::default(),
             biss_slave: BissSlave::new(&d.biss)?,
+            ssi_slave: match &d.ssi {
+                Some(p) => vec![SsiSlave::new(p)?],
+                None => vec![],
+            },
+            spi_slave: match &d.spi {
+                Some(p) => vec![SpiSlave::new(p)?],
+                None => vec![],
+            },
             word: Default::default(),
             zero: c32(0),
             qshl: c32(f.saturating_sub(drop) as u64),
@@ -205,6 +235,33 @@ impl Logic for TopRtl {
         self.biss_slave.error.next = self.error.val();
         self.biss_slave.warning.next = self.warning.val();
         self.biss_slo.next = self.biss_slave.slo.val();
+        // Optional SSI and SPI slaves (a Vec of length 0 or 1), same data word as BiSS.
+        self.ssi_data.next = true;
+        for i in 0..self.ssi_slave.len() {
+            self.ssi_slave[i].clk.next = self.clk.val();
+            self.ssi_slave[i].rst.next = self.rst.val();
+            self.ssi_slave[i].ma.next = self.ssi_clk.val();
+            self.ssi_slave[i].pos.next = self.word.val();
+            self.ssi_slave[i].turns.next = self.core.out_turns.val();
+            self.ssi_slave[i].pos_valid.next = self.core.out_valid.val();
+            self.ssi_slave[i].error.next = self.error.val();
+            self.ssi_data.next = self.ssi_slave[i].slo.val();
+        }
+        self.enc_miso.next = false;
+        self.enc_miso_oe.next = false;
+        for i in 0..self.spi_slave.len() {
+            self.spi_slave[i].clk.next = self.clk.val();
+            self.spi_slave[i].rst.next = self.rst.val();
+            self.spi_slave[i].sck.next = self.enc_sck.val();
+            self.spi_slave[i].cs_n.next = self.enc_cs_n.val();
+            self.spi_slave[i].pos.next = self.word.val();
+            self.spi_slave[i].turns.next = self.core.out_turns.val();
+            self.spi_slave[i].pos_valid.next = self.core.out_valid.val();
+            self.spi_slave[i].error.next = self.error.val();
+            self.spi_slave[i].warning.next = self.warning.val();
+            self.enc_miso.next = self.spi_slave[i].miso.val();
+            self.enc_miso_oe.next = self.spi_slave[i].miso_oe.val();
+        }
         self.adc_sck.next = self.preamp.spi_sck.val();
         self.adc_conv.next = self.adc.adc_conv.val();
         self.amp_cs.next = self.preamp.amp_cs.val();
@@ -239,6 +296,9 @@ impl crate::verify::CosimBlock for TopRtl {
             Port::new("qep_a", 1),
             Port::new("qep_b", 1),
             Port::new("qep_z", 1),
+            Port::new("ssi_clk", 1),
+            Port::new("enc_sck", 1),
+            Port::new("enc_cs_n", 1),
         ]
     }
     fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
@@ -254,6 +314,9 @@ impl crate::verify::CosimBlock for TopRtl {
             "spi_ss_b",
             "sf_ce0",
             "biss_slo",
+            "ssi_data",
+            "enc_miso",
+            "enc_miso_oe",
             "par_valid",
         ]
         .iter()
@@ -273,6 +336,9 @@ impl crate::verify::CosimBlock for TopRtl {
         self.qep_a.next = r[3] != 0;
         self.qep_b.next = r[4] != 0;
         self.qep_z.next = r[5] != 0;
+        self.ssi_clk.next = r.get(6).is_none_or(|v| *v != 0);
+        self.enc_sck.next = r.get(7).is_some_and(|v| *v != 0);
+        self.enc_cs_n.next = r.get(8).is_none_or(|v| *v != 0);
     }
     fn sample(&self) -> Vec<u64> {
         vec![
@@ -286,6 +352,9 @@ impl crate::verify::CosimBlock for TopRtl {
             self.spi_ss_b.val() as u64,
             self.sf_ce0.val() as u64,
             self.biss_slo.val() as u64,
+            self.ssi_data.val() as u64,
+            self.enc_miso.val() as u64,
+            self.enc_miso_oe.val() as u64,
             self.par_valid.val() as u64,
             self.par_qc.val().to_u64(),
             self.par_fine.val().to_u64(),
