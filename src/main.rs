@@ -62,6 +62,9 @@ enum Command {
         /// Write every decoded sample as CSV.
         #[arg(long)]
         csv: Option<PathBuf>,
+        /// Write the top's pins, cycle by cycle, as VCD.
+        #[arg(long)]
+        vcd: Option<PathBuf>,
     },
     /// Validates a configuration and prints its derived parameters.
     Check {
@@ -116,6 +119,7 @@ fn run(cli: Cli) -> Result<()> {
             harmonic3,
             seed,
             csv,
+            vcd,
         } => {
             let loaded = load(&config)?;
             if !(duration > 0.0 && duration <= 10.0) {
@@ -131,6 +135,7 @@ fn run(cli: Cli) -> Result<()> {
                 phase_error_deg: phase_error,
                 third_harmonic: harmonic3,
                 seed,
+                record: vcd.is_some(),
                 ..Default::default()
             };
             let total = (duration * loaded.derived.clock_hz).ceil() as u64;
@@ -144,6 +149,10 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", report.summary(&loaded));
             if let Some(p) = csv {
                 write_new(&p, &report.csv(&loaded))?;
+                println!("wrote {}", p.display());
+            }
+            if let Some(p) = vcd {
+                write_new(&p, &report.vcd(&loaded)?)?;
                 println!("wrote {}", p.display());
             }
         }
