@@ -784,7 +784,8 @@ impl Derived {
                 .map_err(|m| err("ssi", "enabled", m))?;
             p.gray = c.ssi.gray;
             if let Some(t) = c.ssi.timeout_us {
-                p.set_timeout_us(t).map_err(|m| err("ssi", "timeout_us", m))?;
+                p.set_timeout_us(t)
+                    .map_err(|m| err("ssi", "timeout_us", m))?;
             }
             p.validate().map_err(|m| err("ssi", "enabled", m))?;
             Some(p)

@@ -80,6 +80,29 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
+    /// Gates, LUTs, flip-flops, latency and accuracy for a range of CORDIC iteration counts.
+    Report {
+        /// Configuration file (TOML); the embedded default when omitted.
+        config: Option<PathBuf>,
+        /// Iteration counts: A..=B, A..B, A-B, N or a comma-separated list (1..=20).
+        #[arg(long, default_value = "2..=20")]
+        iterations: String,
+        /// Output directory (replaced atomically).
+        #[arg(short, long, default_value = "report")]
+        output: PathBuf,
+        /// Files to write: comma-separated md, csv, json, svg.
+        #[arg(long, default_value = "md,csv,json,svg")]
+        format: String,
+        /// N of the error-against-angle plot (default: the config's N).
+        #[arg(long)]
+        angle_n: Option<u32>,
+        /// Yosys result cache (default: $XDG_CACHE_HOME/sinedec/yosys or ~/.cache/sinedec/yosys).
+        #[arg(long)]
+        cache_dir: Option<PathBuf>,
+        /// Run every Yosys synthesis again instead of using the cache.
+        #[arg(long)]
+        no_cache: bool,
+    },
 }
 
 fn load(config: &Option<PathBuf>) -> Result<Loaded> {
@@ -170,6 +193,34 @@ fn run(cli: Cli) -> Result<()> {
                     p.done_clocks()
                 );
             }
+        }
+        Command::Report {
+            config,
+            iterations,
+            output,
+            format,
+            angle_n,
+            cache_dir,
+            no_cache,
+        } => {
+            let loaded = load(&config)?;
+            let mut o = sinedec::report::Options::new(&command_line());
+            o.iterations =
+                sinedec::report::parse_iterations(&iterations).map_err(anyhow::Error::msg)?;
+            o.formats = sinedec::report::Formats::parse(&format).map_err(anyhow::Error::msg)?;
+            o.angle_n = angle_n;
+            o.cache_dir = (!no_cache).then(|| {
+                cache_dir.unwrap_or_else(|| sinedec::report::yosys::default_cache_dir(&output))
+            });
+            o.progress = true;
+            let (generation, report) = sinedec::report::run(&loaded, &o, &output)?;
+            for f in &generation.files {
+                println!("wrote {}", output.join(&f.name).display());
+            }
+            eprintln!(
+                "yosys: {} runs, {} answered from the cache",
+                report.yosys_runs, report.cache_hits
+            );
         }
         Command::Init { path, force } => {
             if path.exists() && !force {

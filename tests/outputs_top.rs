@@ -20,7 +20,10 @@ fn config() -> Loaded {
             "enc_miso: the BiSS data word, then E and W.\nenabled = true",
         );
     let l = Loaded::parse(&text, "outputs").expect("config");
-    assert!(l.derived.ssi.is_some() && l.derived.spi.is_some(), "both slaves enabled");
+    assert!(
+        l.derived.ssi.is_some() && l.derived.spi.is_some(),
+        "both slaves enabled"
+    );
     l
 }
 
@@ -30,7 +33,10 @@ fn ssi_master_reads_the_position_through_the_top() {
     let d = &l.derived;
     let clock = d.clock_hz;
     let mut s = System::new(d, EncoderModel::ideal(2048, 1.0, 300.0)).expect("system");
-    let timing = LineTiming { clock_hz: clock, line_delay_ns: 25.0 };
+    let timing = LineTiming {
+        clock_hz: clock,
+        line_delay_ns: 25.0,
+    };
     let cfg = SsiMasterConfig::new(timing, d.biss.position_bits, 0);
     let reqs: Vec<FrameRequest> = (0..30).map(|_| FrameRequest::new(2e6).gap(300.0)).collect();
     let master = Rc::new(RefCell::new(SsiMaster::new(cfg, reqs, 15_000.0)));
@@ -46,10 +52,17 @@ fn ssi_master_reads_the_position_through_the_top() {
     let frames = master.borrow().frames().to_vec();
     assert!(frames.len() >= 3, "{} frames", frames.len());
     for f in &frames {
-        let SsiOutcome::Data(g) = &f.outcome else { panic!("bad frame {f:?}") };
+        let SsiOutcome::Data(g) = &f.outcome else {
+            panic!("bad frame {f:?}")
+        };
         let c0 = ((f.t_start_ns + 25.0) * clock / 1e9) as usize;
         let window = &words[c0.saturating_sub(1)..(c0 + 6).min(words.len())];
-        assert!(window.contains(&g.position), "{} not in {:?}", g.position, window);
+        assert!(
+            window.contains(&g.position),
+            "{} not in {:?}",
+            g.position,
+            window
+        );
     }
 }
 
@@ -81,6 +94,10 @@ fn top_with_ssi_and_spi_replays_in_icarus_and_verilator() {
         panic!("{m}");
     }
     // The SPI slave drove its output while selected.
-    let oe = t.outputs.iter().position(|p| p.name == "enc_miso_oe").expect("port");
+    let oe = t
+        .outputs
+        .iter()
+        .position(|p| p.name == "enc_miso_oe")
+        .expect("port");
     assert!(t.rust_hdl.iter().any(|row| row[oe] == 1));
 }

@@ -34,5 +34,12 @@
 //! * Residual after N stages: |angle - z| <= atan(2^-(N-1)), the CORDIC's own bound.
 //!
 //! Ports of [`hdl::QuadrantMapper`] and [`hdl::CordicStage`] are listed on the structs.
+//!
+//! Architectures (`cordic.architecture`): `"unrolled"` (default) instantiates the N stages
+//! above, one sample per clock; `"iterative"` ([`iterative::IterativeCordic`]) reuses one
+//! stage with a variable shift and an angle ROM, one sample per N clocks, with an
+//! `in_ready` handshake. Both have latency N + 2 and the same arithmetic, bit for bit (the
+//! model of both is [`model::cordic`]).
 pub mod hdl;
+pub mod iterative;
 pub mod model;

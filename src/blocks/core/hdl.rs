@@ -1,8 +1,9 @@
 //! rust-hdl description of the whole core.
 use crate::blocks::c32;
 use crate::blocks::cordic::hdl::{CordicStage, QuadrantMapper};
+use crate::blocks::cordic::iterative::IterativeCordic;
 use crate::blocks::counter::hdl::{Combiner, QuadrantCounter};
-use crate::config::Derived;
+use crate::config::{Architecture, Derived};
 use rust_hdl::prelude::*;
 
 /// The core as simulated in rust-hdl and exported (inside the `<name>_core` wrapper).
@@ -40,8 +41,14 @@ pub struct CoreRtl {
     pub out_mag: Signal<Out, Bits<32>>,
     /// `out_mag` holds a sample (two cycles before that sample's `out_valid`).
     pub out_mag_valid: Signal<Out, Bit>,
+    /// A sample offered in this cycle is accepted (always high for the unrolled CORDIC;
+    /// see `crate::blocks::cordic::iterative` for the iterative one).
+    pub in_ready: Signal<Out, Bit>,
     mapper: QuadrantMapper,
+    /// The N unrolled stages (empty for the iterative architecture).
     stages: Vec<CordicStage>,
+    /// The iterative engine (one for the iterative architecture, else none).
+    iter: Vec<IterativeCordic>,
     combiner: Combiner,
     counter: QuadrantCounter,
     /// Zero: the initial angle.
@@ -68,8 +75,18 @@ impl CoreRtl {
             out_warning: Default::default(),
             out_mag: Default::default(),
             out_mag_valid: Default::default(),
+            in_ready: Default::default(),
             mapper: QuadrantMapper::new(d),
-            stages: (0..d.iterations).map(|i| CordicStage::new(d, i)).collect(),
+            stages: if d.architecture == Architecture::Unrolled {
+                (0..d.iterations).map(|i| CordicStage::new(d, i)).collect()
+            } else {
+                Vec::new()
+            },
+            iter: if d.architecture == Architecture::Iterative {
+                vec![IterativeCordic::new(d)]
+            } else {
+                Vec::new()
+            },
             combiner: Combiner::new(d),
             counter: QuadrantCounter::new(d),
             zero: c32(0),
@@ -83,6 +100,19 @@ impl Logic for CoreRtl {
         self.mapper.clk.next = self.clk.val();
         self.mapper.rst.next = self.rst.val();
         self.mapper.in_valid.next = self.in_valid.val();
+        self.in_ready.next = true;
+        // Iterative architecture: the mapper only takes samples the engine can accept.
+        for i in 0..self.iter.len() {
+            self.iter[i].clk.next = self.clk.val();
+            self.iter[i].rst.next = self.rst.val();
+            self.iter[i].in_valid.next = self.in_valid.val();
+            self.iter[i].x_in.next = self.mapper.x.val();
+            self.iter[i].y_in.next = self.mapper.y.val();
+            self.iter[i].q_in.next = self.mapper.q.val();
+            self.iter[i].v_in.next = self.mapper.v.val();
+            self.mapper.in_valid.next = self.in_valid.val() & self.iter[i].in_ready.val();
+            self.in_ready.next = self.iter[i].in_ready.val();
+        }
         self.mapper.in_sin.next = self.in_sin.val();
         self.mapper.in_cos.next = self.in_cos.val();
         // Every stage first takes the mapper's output; stages 1.. are then rewired to
@@ -114,6 +144,14 @@ impl Logic for CoreRtl {
             self.out_mag.next = self.stages[i].x_out.val();
             self.out_mag_valid.next = self.stages[i].v_out.val();
         }
+        for i in 0..self.iter.len() {
+            self.combiner.z_in.next = self.iter[i].z_out.val();
+            self.combiner.x_in.next = self.iter[i].x_out.val();
+            self.combiner.q_in.next = self.iter[i].q_out.val();
+            self.combiner.v_in.next = self.iter[i].v_out.val();
+            self.out_mag.next = self.iter[i].x_out.val();
+            self.out_mag_valid.next = self.iter[i].v_out.val();
+        }
         self.counter.clk.next = self.clk.val();
         self.counter.rst.next = self.rst.val();
         self.counter.p_in.next = self.combiner.p.val();
@@ -128,6 +166,10 @@ impl Logic for CoreRtl {
         self.out_turns.next = self.counter.turns.val();
         self.out_error.next = self.counter.error.val();
         self.out_warning.next = self.counter.warning.val();
+        // A dropped sample (iterative only) raises the warning of the next one.
+        for i in 0..self.iter.len() {
+            self.out_warning.next = self.counter.warning.val() | self.iter[i].lost.val();
+        }
     }
 }
 
@@ -143,6 +185,17 @@ pub fn simulate_rtl(
     d: &Derived,
     inputs: &[super::model::CoreIn],
 ) -> Result<Vec<super::model::CoreOut>, crate::sim::step::NoConvergence> {
+    Ok(simulate_rtl_ready(d, inputs)?
+        .into_iter()
+        .map(|(o, _)| o)
+        .collect())
+}
+
+/// As [`simulate_rtl`], with `in_ready` after every edge (the value for the next cycle).
+pub fn simulate_rtl_ready(
+    d: &Derived,
+    inputs: &[super::model::CoreIn],
+) -> Result<Vec<(super::model::CoreOut, bool)>, crate::sim::step::NoConvergence> {
     use crate::blocks::mask;
     use crate::sim::step::{prepare, tick};
     let mut uut = Box::new(CoreRtl::new(d));
@@ -161,14 +214,17 @@ pub fn simulate_rtl(
         tick(uut.as_mut())?;
         let qc = uut.out_qc.val().to_u64();
         let fine = uut.out_fine.val().to_u64();
-        out.push(super::model::CoreOut {
-            valid: uut.out_valid.val(),
-            position: (qc << d.fine_bits) | fine,
-            turns: uut.out_turns.val().to_u64() & mask(d.turns_width),
-            fine,
-            error: uut.out_error.val(),
-            warning: uut.out_warning.val(),
-        });
+        out.push((
+            super::model::CoreOut {
+                valid: uut.out_valid.val(),
+                position: (qc << d.fine_bits) | fine,
+                turns: uut.out_turns.val().to_u64() & mask(d.turns_width),
+                fine,
+                error: uut.out_error.val(),
+                warning: uut.out_warning.val(),
+            },
+            uut.in_ready.val(),
+        ));
     }
     Ok(out)
 }
@@ -197,6 +253,7 @@ impl crate::verify::CosimBlock for CoreRtl {
             Port::new("out_warning", 1),
             Port::new("out_mag", 32),
             Port::new("out_mag_valid", 1),
+            Port::new("in_ready", 1),
         ]
     }
     fn apply(&mut self, r: &[u64]) {
@@ -218,6 +275,7 @@ impl crate::verify::CosimBlock for CoreRtl {
             self.out_warning.val() as u64,
             self.out_mag.val().to_u64(),
             self.out_mag_valid.val() as u64,
+            self.in_ready.val() as u64,
         ]
     }
 }

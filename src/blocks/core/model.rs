@@ -1,8 +1,9 @@
 //! Cycle-accurate, bit-accurate model of `<name>_core`.
+use crate::blocks::cordic::iterative::IterTiming;
 use crate::blocks::cordic::model::cordic;
 use crate::blocks::counter::model::{combine, Combined, Counter, Load};
 use crate::blocks::mask;
-use crate::config::Derived;
+use crate::config::{Architecture, Derived};
 use std::collections::VecDeque;
 
 /// Inputs of one clock cycle.
@@ -66,12 +67,15 @@ pub fn sample(d: &Derived, sin: i32, cos: i32) -> Combined {
     combine(d, &cordic(d, sin, cos))
 }
 
-/// Cycle-level model: the pipeline as a delay line of N + 2 stages, then the counter.
+/// Cycle-level model: the pipeline as a delay line of N + 2 stages, then the counter
+/// (unrolled CORDIC), or the iterative engine's timing, then the counter (iterative).
 #[derive(Clone, Debug)]
 pub struct CoreModel {
     d: Derived,
     line: VecDeque<Option<Combined>>,
     counter: Counter,
+    /// Iterative architecture: mapper/engine/combiner timing and the drop marks.
+    iter: Option<IterTiming<Combined>>,
 }
 
 impl CoreModel {
@@ -81,11 +85,38 @@ impl CoreModel {
             d: d.clone(),
             line: (0..d.iterations + 2).map(|_| None).collect(),
             counter: Counter::default(),
+            iter: (d.architecture == Architecture::Iterative).then(IterTiming::new),
         }
+    }
+
+    /// `in_ready` for the coming cycle (always true for the unrolled CORDIC).
+    pub fn in_ready(&self) -> bool {
+        self.iter
+            .as_ref()
+            .map_or(true, |t| t.ready(self.d.iterations))
     }
 
     /// One clock cycle: inputs applied before the edge, outputs after it.
     pub fn step(&mut self, i: CoreIn) -> CoreOut {
+        if let Some(t) = self.iter.as_mut() {
+            let d = &self.d;
+            let head = t.clock(d.iterations, i.rst, i.valid, || {
+                let a = d.adc_width;
+                let sin = crate::blocks::sext(i.sin as u64 & mask(a), a) as i32;
+                let cos = crate::blocks::sext(i.cos as u64 & mask(a), a) as i32;
+                sample(d, sin, cos)
+            });
+            self.counter.clock(d, i.rst, head, i.load);
+            let c = &self.counter;
+            return CoreOut {
+                valid: c.valid,
+                position: (c.qc << d.fine_bits) | c.fine,
+                turns: c.turns,
+                fine: c.fine,
+                error: c.error,
+                warning: c.warning | t.hold,
+            };
+        }
         let head = self.line.pop_back().flatten();
         self.counter.clock(&self.d, i.rst, head, i.load);
         if i.rst {

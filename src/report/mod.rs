@@ -1,0 +1,1180 @@
+//! `sinedec report`: timing, resources, gate count, logic depth and accuracy of
+//! `<name>_core` for a range of CORDIC iteration counts N, as Markdown, CSV, JSON and SVG.
+//!
+//! For each N the configuration is re-derived with `cordic.iterations = N` (guard bits
+//! derived for that N unless the config fixes them), the core's Verilog is generated and
+//! synthesized with Yosys (xc3sa, cycloneive, generic gates; [`yosys`]), and the
+//! bit-accurate datapath is swept against exact atan2 ([`sweep`]). The thesis's own figures
+//! are listed beside ours, marked as the paper's ([`predict`]).
+//!
+//! Nothing is written until everything succeeded: the files are assembled as a
+//! [`Generation`] and written with [`crate::emit::write_output`] (temp dir, then rename).
+//! The output is deterministic except for one line of the Markdown (`Generated: ...`).
+pub mod plot;
+pub mod predict;
+pub mod sweep;
+pub mod yosys;
+
+use crate::config::{Derived, Loaded};
+use crate::emit::{core_name, core_verilog, Generation, OutFile};
+use crate::error::{Error, Result};
+use crate::synth::{Family, SynthStats};
+use predict::{predict, thesis_error, thesis_gates, Predicted, THESIS_PPR};
+use rayon::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use sweep::{ErrAcc, SweepPlan};
+use yosys::{GateStats, Yosys};
+
+/// Output formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Formats {
+    /// `<name>_report.md`.
+    pub md: bool,
+    /// `<name>_report.csv`.
+    pub csv: bool,
+    /// `<name>_report.json`.
+    pub json: bool,
+    /// The three SVG plots.
+    pub svg: bool,
+}
+
+impl Default for Formats {
+    fn default() -> Self {
+        Formats {
+            md: true,
+            csv: true,
+            json: true,
+            svg: true,
+        }
+    }
+}
+
+impl Formats {
+    /// Parses a comma-separated list of `md`, `csv`, `json`, `svg` (or `all`).
+    pub fn parse(s: &str) -> std::result::Result<Formats, String> {
+        let mut f = Formats {
+            md: false,
+            csv: false,
+            json: false,
+            svg: false,
+        };
+        for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+            match part {
+                "md" | "markdown" => f.md = true,
+                "csv" => f.csv = true,
+                "json" => f.json = true,
+                "svg" => f.svg = true,
+                "all" => f = Formats::default(),
+                other => {
+                    return Err(format!(
+                    "unknown format `{other}`: allowed md, csv, json, svg (comma-separated) or all"
+                ))
+                }
+            }
+        }
+        if f == (Formats {
+            md: false,
+            csv: false,
+            json: false,
+            svg: false,
+        }) {
+            return Err("no output format given: allowed md, csv, json, svg".into());
+        }
+        Ok(f)
+    }
+}
+
+/// Parses iteration counts: `A..=B`, `A..B` (exclusive), `A-B`, `N`, or a comma-separated
+/// list of those; each in 1..=20. The result is sorted and free of duplicates.
+pub fn parse_iterations(s: &str) -> std::result::Result<Vec<u32>, String> {
+    let num = |t: &str| -> std::result::Result<u32, String> {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("`{t}` in --iterations `{s}` is not a number"))
+    };
+    let mut v = Vec::new();
+    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let (lo, hi) = if let Some((a, b)) = part.split_once("..=") {
+            (num(a)?, num(b)?)
+        } else if let Some((a, b)) = part.split_once("..") {
+            let b = num(b)?;
+            if b == 0 {
+                return Err(format!("empty range `{part}`"));
+            }
+            (num(a)?, b - 1)
+        } else if let Some((a, b)) = part.split_once('-') {
+            (num(a)?, num(b)?)
+        } else {
+            let n = num(part)?;
+            (n, n)
+        };
+        if lo > hi {
+            return Err(format!("empty range `{part}` in --iterations"));
+        }
+        if lo < 1 || hi > 20 {
+            return Err(format!(
+                "--iterations `{part}`: cordic.iterations is allowed in 1..=20"
+            ));
+        }
+        v.extend(lo..=hi);
+    }
+    v.sort_unstable();
+    v.dedup();
+    if v.is_empty() {
+        return Err(format!("--iterations `{s}` names no iteration count"));
+    }
+    Ok(v)
+}
+
+/// What to report and how.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Iteration counts N (sorted, distinct).
+    pub iterations: Vec<u32>,
+    /// Files to write.
+    pub formats: Formats,
+    /// N of the error-against-angle plot (default: the config's N if listed, else the
+    /// largest listed).
+    pub angle_n: Option<u32>,
+    /// Yosys result cache (None: no cache).
+    pub cache_dir: Option<PathBuf>,
+    /// Draw a progress bar on stderr.
+    pub progress: bool,
+    /// Command line quoted in the headers.
+    pub command: String,
+    /// Text of the `Generated:` line (None: the current UTC time, or SOURCE_DATE_EPOCH).
+    pub timestamp: Option<String>,
+}
+
+impl Options {
+    /// Defaults: N = 2..=20, every format, no cache, no progress bar.
+    pub fn new(command: &str) -> Options {
+        Options {
+            iterations: (2..=20).collect(),
+            formats: Formats::default(),
+            angle_n: None,
+            cache_dir: None,
+            progress: false,
+            command: command.to_string(),
+            timestamp: None,
+        }
+    }
+}
+
+/// Figures of one iteration count.
+#[derive(Clone, Debug)]
+pub struct Row {
+    /// N.
+    pub n: u32,
+    /// Derived parameters of the design with N iterations.
+    pub derived: Derived,
+    /// xc3sa synthesis.
+    pub xc3sa: SynthStats,
+    /// cycloneive synthesis.
+    pub cyclone: SynthStats,
+    /// Generic gates and logic depth.
+    pub gates: GateStats,
+    /// Measured error.
+    pub acc: ErrAcc,
+    /// Predicted error.
+    pub predicted: Predicted,
+}
+
+/// Everything the report shows.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// One row per N.
+    pub rows: Vec<Row>,
+    /// The sweep's input set.
+    pub plan: SweepPlan,
+    /// N of the error-against-angle curve.
+    pub angle_n: u32,
+    /// (angle within the quadrant in electrical degrees, min error, max error) in LSB.
+    pub envelope: Vec<(f64, f64, f64)>,
+    /// `yosys -V`.
+    pub yosys_version: String,
+    /// Yosys runs answered from the cache / run.
+    pub cache_hits: usize,
+    /// Yosys runs executed.
+    pub yosys_runs: usize,
+}
+
+/// The configuration with `cordic.iterations = n`, re-derived.
+pub fn with_iterations(loaded: &Loaded, n: u32) -> Result<Loaded> {
+    let mut config = loaded.config.clone();
+    config.cordic.iterations = n;
+    let derived = Derived::compute(&config, &loaded.text, &loaded.source_name)?;
+    Ok(Loaded {
+        config,
+        derived,
+        text: loaded.text.clone(),
+        source_name: loaded.source_name.clone(),
+    })
+}
+
+fn progress_bar(show: bool, total: u64) -> indicatif::ProgressBar {
+    if !show {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(total),
+        indicatif::ProgressDrawTarget::stderr(),
+    );
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{msg:24} {bar:40} {pos}/{len} {elapsed} (eta {eta})",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+/// Synthesizes and sweeps every design; writes nothing but Yosys cache entries and scratch
+/// files (removed afterwards).
+pub fn build(loaded: &Loaded, opts: &Options) -> Result<Report> {
+    let bad = |what: String| Error::ConfigValue {
+        source_name: loaded.source_name.clone(),
+        location: String::new(),
+        key: "cordic.iterations".into(),
+        message: what,
+    };
+    let mut iterations = opts.iterations.clone();
+    iterations.sort_unstable();
+    iterations.dedup();
+    if iterations.is_empty() {
+        return Err(bad("the report needs at least one iteration count".into()));
+    }
+    let angle_n = opts.angle_n.unwrap_or_else(|| {
+        let own = loaded.config.cordic.iterations;
+        if iterations.contains(&own) {
+            own
+        } else {
+            *iterations.last().unwrap_or(&own)
+        }
+    });
+    for &n in iterations.iter().chain([&angle_n]) {
+        if !(1..=20).contains(&n) {
+            return Err(bad(format!(
+                "{n} iterations requested by the report: allowed 1..=20"
+            )));
+        }
+    }
+    // Every design first: a bad N fails before any tool runs.
+    let designs: Vec<Loaded> = iterations
+        .iter()
+        .map(|&n| with_iterations(loaded, n))
+        .collect::<Result<_>>()?;
+    let angle_design = match designs.iter().position(|l| l.derived.iterations == angle_n) {
+        Some(i) => (i, None),
+        None => (designs.len(), Some(with_iterations(loaded, angle_n)?)),
+    };
+    let work = std::env::temp_dir().join(format!(
+        "sinedec-report-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map(|d| d.as_nanos())
+            .unwrap_or(0)
+    ));
+    let ys = Yosys::new(opts.cache_dir.clone(), work.clone())?;
+    let result = build_inner(opts, &designs, angle_design, angle_n, &ys);
+    let _ = std::fs::remove_dir_all(&work);
+    result
+}
+
+#[derive(Clone, Copy)]
+enum Job {
+    Family(usize, Family),
+    Generic(usize),
+}
+
+enum JobOut {
+    Family(SynthStats, bool),
+    Generic(GateStats, bool),
+}
+
+fn build_inner(
+    opts: &Options,
+    designs: &[Loaded],
+    angle_design: (usize, Option<Loaded>),
+    angle_n: u32,
+    ys: &Yosys,
+) -> Result<Report> {
+    let plan = SweepPlan::for_width(designs[0].derived.adc_width);
+    let jobs: Vec<Job> = (0..designs.len())
+        .flat_map(|i| {
+            [
+                Job::Generic(i),
+                Job::Family(i, Family::Xc3sa),
+                Job::Family(i, Family::CycloneIve),
+            ]
+        })
+        .collect();
+    let bar = progress_bar(
+        opts.progress,
+        designs.len() as u64 + jobs.len() as u64 + sweep::rows(plan),
+    );
+    bar.set_message("generating Verilog");
+    let verilog: Vec<String> = designs
+        .par_iter()
+        .map(|l| {
+            let v = core_verilog(l);
+            bar.inc(1);
+            v
+        })
+        .collect::<Result<_>>()?;
+    bar.set_message("synthesizing (Yosys)");
+    // Longest runs first (large N, generic) so the two cores stay busy.
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by_key(|&j| std::cmp::Reverse(job_weight(&jobs[j], designs)));
+    let outs: Vec<(usize, JobOut)> = order
+        .par_iter()
+        .map(|&j| {
+            let r = match jobs[j] {
+                Job::Family(i, fam) => {
+                    let l = &designs[i];
+                    let tag = format!("n{}_{}", l.derived.iterations, fam.name());
+                    ys.family(&verilog[i], &core_name(l), fam, &tag)
+                        .map(|(s, hit)| JobOut::Family(s, hit))
+                }
+                Job::Generic(i) => {
+                    let l = &designs[i];
+                    let tag = format!("n{}_generic", l.derived.iterations);
+                    ys.generic(&verilog[i], &core_name(l), &tag)
+                        .map(|(g, hit)| JobOut::Generic(g, hit))
+                }
+            };
+            bar.inc(1);
+            r.map(|o| (j, o))
+        })
+        .collect::<Result<_>>()?;
+    let mut xc = vec![SynthStats::default(); designs.len()];
+    let mut cy = vec![SynthStats::default(); designs.len()];
+    let mut ge = vec![GateStats::default(); designs.len()];
+    let (mut hits, mut runs) = (0, 0);
+    for (j, o) in outs {
+        let hit = match (jobs[j], o) {
+            (Job::Family(i, Family::Xc3sa), JobOut::Family(s, h)) => {
+                xc[i] = s;
+                h
+            }
+            (Job::Family(i, Family::CycloneIve), JobOut::Family(s, h)) => {
+                cy[i] = s;
+                h
+            }
+            (Job::Generic(i), JobOut::Generic(g, h)) => {
+                ge[i] = g;
+                h
+            }
+            _ => {
+                return Err(Error::Export(
+                    "report: Yosys job and result disagree".into(),
+                ))
+            }
+        };
+        if hit {
+            hits += 1;
+        } else {
+            runs += 1;
+        }
+    }
+    bar.set_message("sweeping the model");
+    let mut ds: Vec<&Derived> = designs.iter().map(|l| &l.derived).collect();
+    if let Some(extra) = &angle_design.1 {
+        ds.push(&extra.derived);
+    }
+    let bins_for = Some(angle_design.0);
+    let tick = || bar.inc(1);
+    let mut accs = sweep::sweep(&ds, plan, bins_for, &tick);
+    bar.finish_and_clear();
+    let envelope = bins_for
+        .and_then(|i| accs.get(i))
+        .map(|a| a.envelope())
+        .unwrap_or_default();
+    accs.truncate(designs.len());
+    let rows = designs
+        .iter()
+        .zip(accs)
+        .enumerate()
+        .map(|(i, (l, acc))| Row {
+            n: l.derived.iterations,
+            derived: l.derived.clone(),
+            xc3sa: std::mem::take(&mut xc[i]),
+            cyclone: std::mem::take(&mut cy[i]),
+            gates: std::mem::take(&mut ge[i]),
+            predicted: predict(&l.derived),
+            acc,
+        })
+        .collect();
+    Ok(Report {
+        rows,
+        plan,
+        angle_n,
+        envelope,
+        yosys_version: ys.version().to_string(),
+        cache_hits: hits,
+        yosys_runs: runs,
+    })
+}
+
+fn job_weight(j: &Job, designs: &[Loaded]) -> u32 {
+    match *j {
+        Job::Generic(i) => designs[i].derived.iterations * 3 + 2,
+        Job::Family(i, _) => designs[i].derived.iterations * 2,
+    }
+}
+
+/// Builds the report and writes the selected files into `dir` atomically; returns the
+/// files and the report.
+pub fn run(loaded: &Loaded, opts: &Options, dir: &Path) -> Result<(Generation, Report)> {
+    let report = build(loaded, opts)?;
+    let g = report.render(loaded, opts)?;
+    crate::emit::write_output(&g, dir)?;
+    Ok((g, report))
+}
+
+// ------------------------------------------------------------------------------------------
+// Table model shared by Markdown, CSV and JSON.
+
+/// Every column of the report table: (key used in CSV and JSON, title used in Markdown).
+pub const COLUMNS: &[(&str, &str)] = &[
+    ("n", "N"),
+    ("latency_cycles", "latency (cycles)"),
+    ("latency_ns", "latency (ns)"),
+    ("throughput_msps", "throughput (Msample/s)"),
+    ("xc3sa_lut", "xc3sa LUT4 (incl. INV)"),
+    ("xc3sa_ff", "xc3sa FF"),
+    ("xc3sa_carry", "xc3sa MUXCY"),
+    ("xc3sa_mult", "xc3sa MULT18X18"),
+    ("xc3sa_bram", "xc3sa RAMB16"),
+    ("cycloneive_lut", "cycloneive LE"),
+    ("cycloneive_ff", "cycloneive FF"),
+    ("cycloneive_carry", "cycloneive carry"),
+    ("cycloneive_mult", "cycloneive mult"),
+    ("cycloneive_bram", "cycloneive M9K"),
+    ("gates", "gates (2-input, MUX = 1)"),
+    ("gates_mux", "of which MUX"),
+    ("gates_not", "NOT"),
+    ("gates_ff", "FF (generic)"),
+    ("logic_depth", "logic depth (gates)"),
+    ("err_max_lsb", "max error (LSB)"),
+    ("err_rms_lsb", "RMS error (LSB)"),
+    ("err_mean_lsb", "mean error (LSB)"),
+    ("err_max_el_deg", "max error (el. deg)"),
+    ("err_rms_el_deg", "RMS error (el. deg)"),
+    ("err_max_el_arcsec", "max error (el. arcsec)"),
+    ("err_rms_el_arcsec", "RMS error (el. arcsec)"),
+    ("err_max_mech_arcsec", "max error (mech. arcsec)"),
+    ("err_rms_mech_arcsec", "RMS error (mech. arcsec)"),
+    ("err_max_mech_deg", "max error (mech. deg)"),
+    ("err_max_quadrant_pct", "max error (% of quadrant)"),
+    ("enob", "ENOB (bits per period)"),
+    ("bits_per_turn", "bits per turn from max error"),
+    ("samples", "samples"),
+    ("rejected", "rejected"),
+    ("pred_residual_lsb", "residual bound (LSB)"),
+    ("pred_bound_lsb", "residual bound + 1 (LSB)"),
+    ("pred_quant_rms_lsb", "quantization RMS, ZipCPU (LSB)"),
+    ("pred_rms_lsb", "predicted RMS (LSB)"),
+    ("paper_gates", "paper: gates (Table 3-2)"),
+    ("paper_cycles", "paper: cycles (Table 3-2)"),
+    (
+        "paper_max_mech_deg",
+        "paper: max error (mech. deg, 2048 PPR, Table 2-2)",
+    ),
+    ("paper_max_quadrant_pct", "paper: max error (% of quadrant)"),
+    ("paper_bits_per_turn", "paper: bits per turn"),
+];
+
+/// Markdown tables: (heading, column keys).
+const TABLES: &[(&str, &[&str])] = &[
+    (
+        "Timing and resources",
+        &[
+            "n",
+            "latency_cycles",
+            "latency_ns",
+            "throughput_msps",
+            "xc3sa_lut",
+            "xc3sa_ff",
+            "xc3sa_carry",
+            "xc3sa_mult",
+            "xc3sa_bram",
+            "cycloneive_lut",
+            "cycloneive_ff",
+            "cycloneive_mult",
+            "cycloneive_bram",
+            "gates",
+            "gates_mux",
+            "gates_not",
+            "gates_ff",
+            "logic_depth",
+        ],
+    ),
+    (
+        "Accuracy (measured)",
+        &[
+            "n",
+            "err_max_lsb",
+            "err_rms_lsb",
+            "err_mean_lsb",
+            "err_max_el_deg",
+            "err_rms_el_deg",
+            "err_max_el_arcsec",
+            "err_rms_el_arcsec",
+            "err_max_mech_arcsec",
+            "err_rms_mech_arcsec",
+            "enob",
+            "bits_per_turn",
+            "rejected",
+        ],
+    ),
+    (
+        "Predicted and measured error",
+        &[
+            "n",
+            "pred_residual_lsb",
+            "pred_bound_lsb",
+            "err_max_lsb",
+            "pred_quant_rms_lsb",
+            "pred_rms_lsb",
+            "err_rms_lsb",
+        ],
+    ),
+];
+
+/// Key of a Markdown column title (for tests and tools reading the Markdown).
+pub fn column_key(title: &str) -> Option<&'static str> {
+    COLUMNS.iter().find(|c| c.1 == title).map(|c| c.0)
+}
+
+/// A number with `digits` significant digits: fixed notation for 1e-3 <= |x| < 1e6,
+/// exponent notation otherwise (both parse as f64).
+pub fn sig(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x.is_finite() {
+            "0".into()
+        } else {
+            String::new()
+        };
+    }
+    let mag = x.abs().log10().floor() as i32;
+    if (-3..6).contains(&mag) {
+        let dec = (digits as i32 - 1 - mag).max(0) as usize;
+        format!("{x:.dec$}")
+    } else {
+        format!("{:.*e}", digits.saturating_sub(1), x)
+    }
+}
+
+impl Report {
+    fn cells(&self, loaded: &Loaded, r: &Row) -> Vec<(&'static str, String)> {
+        let d = &r.derived;
+        let f = d.fine_bits;
+        let ppr = loaded.config.encoder.ppr as f64;
+        let lsb_el_deg = 90.0 / (1u64 << f) as f64;
+        let max = r.acc.max_lsb();
+        let rms = r.acc.rms_lsb();
+        let enob = (f + 2) as f64 - (rms * 12f64.sqrt()).log2();
+        let bits_per_turn = ((4.0 * ppr) * (1u64 << f) as f64 / max).log2();
+        let paper_g = thesis_gates(r.n);
+        let paper_e = thesis_error(r.n);
+        let int = |v: u64| v.to_string();
+        vec![
+            ("n", int(r.n as u64)),
+            ("latency_cycles", int(d.latency_cycles as u64)),
+            ("latency_ns", format!("{:.1}", d.latency_ns())),
+            (
+                "throughput_msps",
+                format!(
+                    "{:.3}",
+                    d.clock_hz / d.cycles_per_sample.max(1) as f64 / 1e6
+                ),
+            ),
+            ("xc3sa_lut", int(r.xc3sa.luts)),
+            ("xc3sa_ff", int(r.xc3sa.ffs)),
+            ("xc3sa_carry", int(r.xc3sa.carry)),
+            ("xc3sa_mult", int(r.xc3sa.multipliers)),
+            ("xc3sa_bram", int(r.xc3sa.brams)),
+            ("cycloneive_lut", int(r.cyclone.luts)),
+            ("cycloneive_ff", int(r.cyclone.ffs)),
+            ("cycloneive_carry", int(r.cyclone.carry)),
+            ("cycloneive_mult", int(r.cyclone.multipliers)),
+            ("cycloneive_bram", int(r.cyclone.brams)),
+            ("gates", int(r.gates.gates)),
+            ("gates_mux", int(r.gates.muxes)),
+            ("gates_not", int(r.gates.inverters)),
+            ("gates_ff", int(r.gates.ffs)),
+            ("logic_depth", int(r.gates.depth)),
+            ("err_max_lsb", format!("{max:.4}")),
+            ("err_rms_lsb", format!("{rms:.4}")),
+            ("err_mean_lsb", format!("{:.4}", r.acc.mean_lsb())),
+            ("err_max_el_deg", sig(max * lsb_el_deg, 5)),
+            ("err_rms_el_deg", sig(rms * lsb_el_deg, 5)),
+            ("err_max_el_arcsec", sig(max * lsb_el_deg * 3600.0, 5)),
+            ("err_rms_el_arcsec", sig(rms * lsb_el_deg * 3600.0, 5)),
+            (
+                "err_max_mech_arcsec",
+                sig(max * lsb_el_deg * 3600.0 / ppr, 5),
+            ),
+            (
+                "err_rms_mech_arcsec",
+                sig(rms * lsb_el_deg * 3600.0 / ppr, 5),
+            ),
+            ("err_max_mech_deg", sig(max * lsb_el_deg / ppr, 5)),
+            (
+                "err_max_quadrant_pct",
+                sig(max / (1u64 << f) as f64 * 100.0, 5),
+            ),
+            ("enob", format!("{enob:.2}")),
+            ("bits_per_turn", format!("{bits_per_turn:.2}")),
+            ("samples", int(r.acc.count)),
+            ("rejected", int(r.acc.rejected)),
+            (
+                "pred_residual_lsb",
+                format!("{:.4}", r.predicted.residual_lsb),
+            ),
+            (
+                "pred_bound_lsb",
+                format!("{:.4}", r.predicted.residual_lsb + 1.0),
+            ),
+            (
+                "pred_quant_rms_lsb",
+                format!("{:.4}", r.predicted.quant_rms_lsb),
+            ),
+            ("pred_rms_lsb", format!("{:.4}", r.predicted.rms_lsb)),
+            ("paper_gates", paper_g.map(|g| int(g.0)).unwrap_or_default()),
+            (
+                "paper_cycles",
+                paper_g.map(|g| int(g.1 as u64)).unwrap_or_default(),
+            ),
+            (
+                "paper_max_mech_deg",
+                paper_e.map(|e| sig(e.1, 5)).unwrap_or_default(),
+            ),
+            (
+                "paper_max_quadrant_pct",
+                paper_e.map(|e| sig(e.0 * 100.0, 5)).unwrap_or_default(),
+            ),
+            (
+                "paper_bits_per_turn",
+                paper_e.map(|e| int(e.2 as u64)).unwrap_or_default(),
+            ),
+        ]
+    }
+
+    /// The table: one row per N, each cell as shown (empty = not applicable), in
+    /// [`COLUMNS`] order.
+    pub fn table(&self, loaded: &Loaded) -> Vec<Vec<String>> {
+        self.rows
+            .iter()
+            .map(|r| self.cells(loaded, r).into_iter().map(|c| c.1).collect())
+            .collect()
+    }
+
+    /// CSV: a header of column keys, then one line per N (no quoting needed: no cell holds
+    /// a comma or a quote).
+    pub fn csv(&self, loaded: &Loaded) -> String {
+        let mut s = COLUMNS.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
+        s.push('\n');
+        for row in self.table(loaded) {
+            s.push_str(&row.join(","));
+            s.push('\n');
+        }
+        s
+    }
+
+    fn markdown_table(&self, table: &[Vec<String>], keys: &[&str], only: Option<&[u32]>) -> String {
+        let idx: Vec<usize> = keys
+            .iter()
+            .filter_map(|k| COLUMNS.iter().position(|c| c.0 == *k))
+            .collect();
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "| {} |",
+            idx.iter()
+                .map(|&i| COLUMNS[i].1)
+                .collect::<Vec<_>>()
+                .join(" | ")
+        );
+        let _ = writeln!(s, "|{}", "---|".repeat(idx.len()));
+        for (r, row) in self.rows.iter().zip(table) {
+            if only.is_some_and(|o| !o.contains(&r.n)) {
+                continue;
+            }
+            let cells: Vec<&str> = idx
+                .iter()
+                .map(|&i| {
+                    if row[i].is_empty() {
+                        "-"
+                    } else {
+                        row[i].as_str()
+                    }
+                })
+                .collect();
+            let _ = writeln!(s, "| {} |", cells.join(" | "));
+        }
+        s
+    }
+
+    /// Names of the files for `formats`.
+    pub fn file_names(name: &str) -> [String; 6] {
+        [
+            format!("{name}_report.md"),
+            format!("{name}_report.csv"),
+            format!("{name}_report.json"),
+            format!("{name}_report_error_vs_n.svg"),
+            format!("{name}_report_resources_vs_n.svg"),
+            format!("{name}_report_error_vs_angle.svg"),
+        ]
+    }
+
+    fn methods(&self, loaded: &Loaded) -> Vec<(&'static str, String)> {
+        let d = &loaded.derived;
+        vec![
+            (
+                "sweep",
+                format!(
+                    "Accuracy: the bit-accurate model of the datapath (quadrant mapping, N CORDIC stages, rounding to F bits; `blocks::core::model::sample`, proven equal to the RTL by the co-simulation tests and cross-checked against the rust-hdl simulation by tests/report.rs) over {}. The error of a sample is its electrical angle minus atan2(sin, cos) of the same integer inputs in f64, in fine LSB (2^-F quadrant), wrapped into +-2 quadrants; max is the largest |error|, RMS the root of the mean square, mean the signed mean. Samples the magnitude monitor rejects are counted under `rejected` and left out. Sums are exact fixed-point integers (2^-40 LSB), so the figures do not depend on thread count.",
+                    self.plan.describe()
+                ),
+            ),
+            (
+                "units",
+                format!(
+                    "1 LSB = 2^-F quadrant = 90/2^F electrical degrees; mechanical = electrical / PPR ({} PPR). ENOB (bits per electrical period) = F + 2 - log2(RMS x sqrt(12)): the bits of an ideal quantizer of one period with the same RMS error. Bits per turn from max error = log2(4 PPR 2^F / max LSB) = log2(360 deg / max mechanical error), the thesis's Table 2-2 way of turning a max error into a resolution (the thesis rounds it down).",
+                    loaded.config.encoder.ppr
+                ),
+            ),
+            (
+                "predicted",
+                "Residual bound: (2/pi) atan(2^-(N-1)) 2^F LSB, the angle N stages cannot resolve; the design's guarantee (README, tests/accuracy.rs) is max <= bound + 1 LSB for inputs of at least 1/8 full scale. Quantization RMS as ZipCPU's cordic generator estimates the phase variance (sw/cordiclib.cpp, phase_variance): 1/12 LSB^2 for the output quantization plus the squared rounding error of each angle-table entry (its table truncates; ours rounds, and our table errors are used). Predicted RMS adds the CORDIC residual as uniform within +-bound (bound^2/3). Neither estimate models the truncation of the x/y shifts (kept small by the guard bits).".into(),
+            ),
+            (
+                "fpga",
+                "FPGA resources: Yosys `synth_xilinx -family xc3sa -flatten` and `synth_intel -family cycloneive` through `sinedec::synth` (the project's design rules: no latch, `check -assert`, no unexpected warning). xc3sa LUT4 counts LUT1..LUT4 and INV; MUXCY are carry cells; cycloneive LE counts cycloneive_lcell_comb (its carry chain is inside the LE, so the carry column is 0). Multipliers: MULT18X18*, cycloneive_mac_mult*; block RAM: RAMB16*, cycloneive_ram_block*.".into(),
+            ),
+            (
+                "gates",
+                format!(
+                    "Generic gate count: Yosys `synth -flatten -top T; abc -g {}; opt_clean; stat`. `gates` counts the two-input gates of that set, a 2:1 MUX counted as ONE gate (the MUX count is listed, so 3 per MUX can be computed: gates + 2 x MUX); inverters (NOT) and flip-flops are listed apart and not included. The thesis does not state how it counted its gates (most likely the ISE map report's equivalent gate count, which weighs LUTs and flip-flops differently): compare trends, not absolute values.",
+                    yosys::GATE_SET
+                ),
+            ),
+            (
+                "depth",
+                "Logic depth: Yosys `ltp -noff` on the same generic netlist: the number of gates (MUX and NOT included, one level each) on the longest combinational path between flip-flops or ports. The path's start and end are listed per N.".into(),
+            ),
+            (
+                "timing",
+                format!(
+                    "Latency: cycles from the in_valid cycle to the out_valid cycle of `<name>_core` (N + 2: one stage per iteration, the combiner and the counter), in ns at the configured clock of {:.3} MHz. Throughput: samples per second the core accepts: the clock for the unrolled CORDIC (one sample per clock), the clock / N for the iterative one (cordic.architecture = {:?}).",
+                    d.clock_hz / 1e6,
+                    d.architecture
+                ),
+            ),
+            (
+                "thesis",
+                format!(
+                    "Rows marked `paper:` are the thesis's own figures for its own design (XC3S700AN, 14-bit ADC, {THESIS_PPR} PPR), not measured here. Table 3-2: gates and cycles of its unrolled QEP-CORDIC (6 + N cycles). Table 2-2: max error in MECHANICAL degrees for {THESIS_PPR} PPR; the text derives them from the max error as a fraction of a quadrant (+-0.24853 %, +-0.01552 %, +-3.8674e-5 at N = 8, 12, 14) times 360/2048/4. Method difference: the thesis simulated a floating-point CORDIC over one period at 2000 angles (0.18 deg apart), without input or output quantization, and its figures equal (2/pi) atan(2^-N) of a quadrant, the residual after N + 1 micro-rotations (i = 0..N); our N counts stages i = 0..N-1 (residual (2/pi) atan(2^-(N-1))), our figure is exhaustive over quantized {}-bit inputs and includes the rounding to F = {} bits, and our mechanical figures use the configured {} PPR. Compare the paper's N with our N + 1, and the % of a quadrant when the PPR differs.",
+                    d.adc_width,
+                    d.fine_bits,
+                    loaded.config.encoder.ppr
+                ),
+            ),
+        ]
+    }
+
+    fn markdown(&self, loaded: &Loaded, opts: &Options, timestamp: &str) -> String {
+        let d = &loaded.derived;
+        let name = &loaded.config.name;
+        let table = self.table(loaded);
+        let mut s = crate::emit::header(
+            loaded,
+            &opts.command,
+            "Report: timing, resources, gates, logic depth and accuracy per CORDIC iteration count.",
+            "<!--",
+        )
+        .lines()
+        .map(|l| format!("{l} -->\n"))
+        .collect::<String>();
+        let ns: Vec<String> = self.rows.iter().map(|r| r.n.to_string()).collect();
+        let _ = writeln!(
+            s,
+            "\n# {name}_core: QEP-CORDIC report for N = {}\n",
+            ns.join(", ")
+        );
+        let _ = writeln!(s, "Generated: {timestamp}\n");
+        let f = d.fine_bits;
+        let ppr = loaded.config.encoder.ppr;
+        let lsb_el = 90.0 * 3600.0 / (1u64 << f) as f64;
+        let coarse = (d.quadrants_per_turn as f64).log2();
+        let _ = writeln!(s, "## Configuration\n");
+        let _ = writeln!(
+            s,
+            "- ADC input width A = {} bits; fine bits F = {f}: 1 LSB = 2^-{f} quadrant = {} electrical arc-seconds = {} mechanical arc-seconds at {ppr} PPR.",
+            d.adc_width,
+            sig(lsb_el, 5),
+            sig(lsb_el / ppr as f64, 5),
+        );
+        let _ = writeln!(
+            s,
+            "- Resolution for {ppr} PPR: {} coarse bits (4 x {ppr} = {} quadrants per turn) + {f} fine bits = {} bits per turn.",
+            sig(coarse, 4),
+            d.quadrants_per_turn,
+            sig(d.resolution_bits, 4)
+        );
+        let _ = writeln!(
+            s,
+            "- Clock {:.3} MHz; CORDIC architecture {:?}: the core takes one sample per {} (throughput column). The ADC delivers {:.0} samples/s per channel.",
+            d.clock_hz / 1e6,
+            d.architecture,
+            if d.cycles_per_sample > 1 { "N clocks" } else { "clock" },
+            d.sample_rate_hz
+        );
+        let _ = writeln!(
+            s,
+            "- Maximum speed at full resolution: {:.0} rpm (steps below {:.2} quadrants per sample at {:.0} samples/s; independent of N).",
+            d.max_speed_rpm_full_res,
+            d.warn_step as f64 / (1u64 << f) as f64,
+            d.sample_rate_hz
+        );
+        let _ = writeln!(
+            s,
+            "- Input set of the accuracy sweep: {}.",
+            self.plan.describe()
+        );
+        let _ = writeln!(s, "- {}.\n", self.yosys_version);
+        for (heading, keys) in TABLES {
+            let _ = writeln!(s, "## {heading}\n");
+            s.push_str(&self.markdown_table(&table, keys, None));
+            s.push('\n');
+        }
+        let paper_ns: Vec<u32> = self
+            .rows
+            .iter()
+            .map(|r| r.n)
+            .filter(|&n| thesis_gates(n).is_some() || thesis_error(n).is_some())
+            .collect();
+        if !paper_ns.is_empty() {
+            let _ = writeln!(
+                s,
+                "## The thesis's figures (paper) next to this design's\n\nColumns marked `paper:` are quoted from the thesis, not measured (see Methods for what differs).\n"
+            );
+            s.push_str(&self.markdown_table(
+                &table,
+                &[
+                    "n",
+                    "gates",
+                    "paper_gates",
+                    "latency_cycles",
+                    "paper_cycles",
+                    "err_max_mech_deg",
+                    "paper_max_mech_deg",
+                    "err_max_quadrant_pct",
+                    "paper_max_quadrant_pct",
+                    "bits_per_turn",
+                    "paper_bits_per_turn",
+                ],
+                Some(&paper_ns),
+            ));
+            s.push('\n');
+        }
+        let _ = writeln!(s, "## Longest path (logic depth) per N\n");
+        for r in &self.rows {
+            let _ = writeln!(
+                s,
+                "- N = {}: {} gates, from `{}` to `{}`",
+                r.n, r.gates.depth, r.gates.path_from, r.gates.path_to
+            );
+        }
+        let _ = writeln!(s, "\n## Worst-case inputs per N\n");
+        for r in &self.rows {
+            match r.acc.worst_input(d.adc_width) {
+                Some((sin, cos)) => {
+                    let _ = writeln!(
+                        s,
+                        "- N = {}: {} LSB at (sin, cos) = ({sin}, {cos})",
+                        r.n,
+                        format_args!("{:.4}", r.acc.max_lsb())
+                    );
+                }
+                None => {
+                    let _ = writeln!(s, "- N = {}: no sample", r.n);
+                }
+            }
+        }
+        let _ = writeln!(s, "\n## Methods\n");
+        for (k, m) in self.methods(loaded) {
+            let _ = writeln!(s, "- **{k}**: {m}");
+        }
+        if opts.formats.svg {
+            let [_, _, _, e, r, a] = Report::file_names(name);
+            let _ = writeln!(
+                s,
+                "\n## Plots\n\n![error against N]({e})\n\n![resources against N]({r})\n\n![error against angle, N = {}]({a})",
+                self.angle_n
+            );
+        }
+        s
+    }
+
+    fn json(&self, loaded: &Loaded, opts: &Options) -> Result<String> {
+        use serde_json::{json, Map, Value};
+        let d = &loaded.derived;
+        let rows: Vec<Value> = self
+            .table(loaded)
+            .into_iter()
+            .map(|row| {
+                let mut m = Map::new();
+                for ((key, _), cell) in COLUMNS.iter().zip(row) {
+                    let v = if cell.is_empty() {
+                        Value::Null
+                    } else if let Ok(i) = cell.parse::<u64>() {
+                        Value::from(i)
+                    } else if let Ok(x) = cell.parse::<f64>() {
+                        Value::from(x)
+                    } else {
+                        Value::from(cell)
+                    };
+                    m.insert((*key).to_string(), v);
+                }
+                Value::Object(m)
+            })
+            .collect();
+        let methods: Map<String, Value> = self
+            .methods(loaded)
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), Value::from(v)))
+            .collect();
+        let worst: Vec<Value> = self
+            .rows
+            .iter()
+            .map(|r| {
+                let w = r.acc.worst_input(d.adc_width);
+                json!({
+                    "n": r.n,
+                    "worst_input": w.map(|(s, c)| json!({"sin": s, "cos": c})),
+                    "path_from": r.gates.path_from,
+                    "path_to": r.gates.path_to,
+                })
+            })
+            .collect();
+        let v = json!({
+            "tool": format!("sinedec {}", crate::emit::VERSION),
+            "config": loaded.source_name,
+            "config_hash": loaded.hash(),
+            "command": opts.command,
+            "yosys": self.yosys_version,
+            "configuration": {
+                "name": loaded.config.name,
+                "adc_width": d.adc_width,
+                "fine_bits": d.fine_bits,
+                "ppr": loaded.config.encoder.ppr,
+                "clock_hz": d.clock_hz,
+                "sample_rate_hz": d.sample_rate_hz,
+                "coarse_bits": (d.quadrants_per_turn as f64).log2(),
+                "resolution_bits": d.resolution_bits,
+                "max_speed_rpm_full_res": d.max_speed_rpm_full_res,
+                "sweep_exhaustive": self.plan.exhaustive(),
+                "sweep_stride": self.plan.stride,
+            },
+            "columns": COLUMNS.iter().map(|(k, t)| json!({"key": k, "title": t})).collect::<Vec<_>>(),
+            "rows": rows,
+            "details": worst,
+            "error_vs_angle": {
+                "n": self.angle_n,
+                "bins": self.envelope.iter().map(|&(a, lo, hi)| json!([a, lo, hi])).collect::<Vec<_>>(),
+            },
+            "methods": methods,
+        });
+        let mut s = serde_json::to_string_pretty(&v)
+            .map_err(|e| Error::Export(format!("report JSON: {e}")))?;
+        s.push('\n');
+        Ok(s)
+    }
+
+    fn plots(&self, loaded: &Loaded) -> Result<[String; 3]> {
+        use plot::{chart, Series};
+        let pts = |g: &dyn Fn(&Row) -> f64| -> Vec<(f64, f64)> {
+            self.rows.iter().map(|r| (r.n as f64, g(r))).collect()
+        };
+        let line = |label: &str, points: Vec<(f64, f64)>| Series {
+            label: label.to_string(),
+            points,
+            markers_only: false,
+        };
+        let mut errs = vec![
+            line("measured max", pts(&|r| r.acc.max_lsb())),
+            line("measured RMS", pts(&|r| r.acc.rms_lsb())),
+            line(
+                "residual bound + 1 LSB",
+                pts(&|r| r.predicted.residual_lsb + 1.0),
+            ),
+            line("predicted RMS", pts(&|r| r.predicted.rms_lsb)),
+        ];
+        let full = (1u64 << loaded.derived.fine_bits) as f64;
+        let paper: Vec<(f64, f64)> = self
+            .rows
+            .iter()
+            .filter_map(|r| thesis_error(r.n).map(|e| (r.n as f64, e.0 * full)))
+            .collect();
+        if !paper.is_empty() {
+            errs.push(Series {
+                label: "paper: max error (Table 2-2, as LSB of this F)".into(),
+                points: paper,
+                markers_only: true,
+            });
+        }
+        let err = chart(
+            &format!("{}_core: angle error against N", loaded.config.name),
+            "CORDIC iterations N",
+            "error (LSB = 2^-F quadrant)",
+            &errs,
+            true,
+            false,
+            false,
+        )?;
+        let mut res = vec![
+            line("xc3sa LUT4", pts(&|r| r.xc3sa.luts as f64)),
+            line("xc3sa FF", pts(&|r| r.xc3sa.ffs as f64)),
+            line("xc3sa MUXCY", pts(&|r| r.xc3sa.carry as f64)),
+            line("cycloneive LE", pts(&|r| r.cyclone.luts as f64)),
+            line("cycloneive FF", pts(&|r| r.cyclone.ffs as f64)),
+            line("generic 2-input gates", pts(&|r| r.gates.gates as f64)),
+        ];
+        let paper: Vec<(f64, f64)> = self
+            .rows
+            .iter()
+            .filter_map(|r| thesis_gates(r.n).map(|g| (r.n as f64, g.0 as f64)))
+            .collect();
+        if !paper.is_empty() {
+            res.push(Series {
+                label: "paper: gates (Table 3-2)".into(),
+                points: paper,
+                markers_only: true,
+            });
+        }
+        let resources = chart(
+            &format!("{}_core: resources against N", loaded.config.name),
+            "CORDIC iterations N",
+            "count",
+            &res,
+            false,
+            false,
+            false,
+        )?;
+        let bound = self
+            .rows
+            .iter()
+            .find(|r| r.n == self.angle_n)
+            .map(|r| r.predicted.residual_lsb)
+            .unwrap_or_else(|| {
+                (2.0 / std::f64::consts::PI)
+                    * 2f64.powi(1 - self.angle_n as i32).atan()
+                    * (1u64 << loaded.derived.fine_bits) as f64
+            });
+        let angle = chart(
+            &format!(
+                "{}_core: error against angle, N = {} (min/max per {} deg)",
+                loaded.config.name,
+                self.angle_n,
+                90.0 / sweep::ANGLE_BINS as f64
+            ),
+            "electrical angle within the quadrant (deg)",
+            "error (LSB)",
+            &[
+                line(
+                    "max error",
+                    self.envelope.iter().map(|e| (e.0, e.2)).collect(),
+                ),
+                line(
+                    "min error",
+                    self.envelope.iter().map(|e| (e.0, e.1)).collect(),
+                ),
+                line(
+                    "+(residual bound + 1 LSB)",
+                    vec![(0.0, bound + 1.0), (90.0, bound + 1.0)],
+                ),
+                line(
+                    "-(residual bound + 1 LSB)",
+                    vec![(0.0, -bound - 1.0), (90.0, -bound - 1.0)],
+                ),
+                line("+ residual bound", vec![(0.0, bound), (90.0, bound)]),
+                line("- residual bound", vec![(0.0, -bound), (90.0, -bound)]),
+            ],
+            false,
+            true,
+            true,
+        )?;
+        Ok([err, resources, angle])
+    }
+
+    /// The selected files.
+    pub fn render(&self, loaded: &Loaded, opts: &Options) -> Result<Generation> {
+        let names = Report::file_names(&loaded.config.name);
+        let mut files = Vec::new();
+        if opts.formats.md {
+            let ts = opts.timestamp.clone().unwrap_or_else(now_utc);
+            files.push(OutFile {
+                name: names[0].clone(),
+                text: self.markdown(loaded, opts, &ts),
+            });
+        }
+        if opts.formats.csv {
+            files.push(OutFile {
+                name: names[1].clone(),
+                text: self.csv(loaded),
+            });
+        }
+        if opts.formats.json {
+            files.push(OutFile {
+                name: names[2].clone(),
+                text: self.json(loaded, opts)?,
+            });
+        }
+        if opts.formats.svg {
+            let [e, r, a] = self.plots(loaded)?;
+            for (name, text) in names[3..].iter().zip([e, r, a]) {
+                files.push(OutFile {
+                    name: name.clone(),
+                    text,
+                });
+            }
+        }
+        Ok(Generation { files })
+    }
+}
+
+/// Current UTC time as `YYYY-MM-DD HH:MM:SS UTC` (SOURCE_DATE_EPOCH when set).
+pub fn now_utc() -> String {
+    let secs = std::env::var("SOURCE_DATE_EPOCH")
+        .ok()
+        .and_then(|v| v.trim().parse::<i64>().ok())
+        .unwrap_or_else(|| {
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map(|d| d.as_secs() as i64)
+                .unwrap_or(0)
+        });
+    let days = secs.div_euclid(86_400);
+    let rem = secs.rem_euclid(86_400);
+    // Civil date from days since 1970-01-01 (H. Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02}:{:02} UTC",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}

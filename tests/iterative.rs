@@ -1,0 +1,360 @@
+//! `cordic.architecture = "iterative"`: bit-identical to the unrolled core and the model,
+//! rust-hdl == model == Icarus == Verilator, in_ready/drop behaviour, the throughput check,
+//! and the LUT saving.
+use sinedec::blocks::core::hdl::{simulate_rtl, simulate_rtl_ready, CoreRtl};
+use sinedec::blocks::core::model::{CoreIn, CoreModel, CoreOut};
+use sinedec::config::{check_throughput, Architecture, Loaded, DEFAULT_CONFIG};
+use sinedec::sim::stimulus;
+use sinedec::verify::{block_traces, core_traces, Simulators};
+mod common;
+
+/// Default config (A = 14, F = 14) with N iterations and the given architecture.
+fn cfg(n: u32, arch: &str) -> Loaded {
+    let text = DEFAULT_CONFIG
+        .replace("name = \"sd\"", &format!("name = \"it{n}\""))
+        .replace("iterations = 14", &format!("iterations = {n}"))
+        .replace(
+            "architecture = \"unrolled\"",
+            &format!("architecture = \"{arch}\""),
+        );
+    let l = Loaded::parse(&text, "test").expect("config parses");
+    assert_eq!(l.config.cordic.iterations, n);
+    l
+}
+
+/// Stimulus with every sample followed by N - 1 idle cycles (the iterative core keeps up)
+/// and N + 3 idle cycles before every reset (nothing in flight is cut off).
+fn spaced(s: &[CoreIn], n: u32) -> Vec<CoreIn> {
+    let mut v = Vec::new();
+    for i in s {
+        if i.rst {
+            v.extend((0..n + 3).map(|_| stimulus::idle()));
+            v.push(*i);
+        } else if i.valid {
+            v.push(*i);
+            v.extend((1..n).map(|_| stimulus::idle()));
+        } else {
+            v.push(*i);
+        }
+    }
+    v.extend((0..n + 4).map(|_| stimulus::idle()));
+    v
+}
+
+fn stim(seed: u64, count: usize) -> Vec<CoreIn> {
+    let mut s = stimulus::directed(14);
+    s.extend(stimulus::random(14, count, 0.25, seed));
+    s.extend(stimulus::rotation(14, 0.7, 0.0, 0.4, 60));
+    s.extend(stimulus::rotation(14, 0.7, 0.0, -0.4, 60));
+    s
+}
+
+fn valid_outputs(o: &[CoreOut]) -> Vec<CoreOut> {
+    o.iter().copied().filter(|o| o.valid).collect()
+}
+
+/// rust-hdl == model cycle for cycle, in_ready included; returns the rust-hdl outputs.
+fn rtl_eq_model(l: &Loaded, s: &[CoreIn]) -> Vec<(CoreOut, bool)> {
+    let d = &l.derived;
+    let rtl = simulate_rtl_ready(d, s).expect("rust-hdl settles");
+    let mut m = CoreModel::new(d);
+    assert!(m.in_ready(), "ready after power-up");
+    for (k, (i, (r, rdy))) in s.iter().zip(&rtl).enumerate() {
+        let o = m.step(*i);
+        assert_eq!(o, *r, "cycle {k}, input {i:?}, N={}", d.iterations);
+        assert_eq!(
+            m.in_ready(),
+            *rdy,
+            "in_ready after cycle {k}, N={}",
+            d.iterations
+        );
+    }
+    rtl
+}
+
+#[test]
+fn iterative_equals_unrolled_equals_model_every_n() {
+    for n in 1..=20u32 {
+        let li = cfg(n, "iterative");
+        let lu = cfg(n, "unrolled");
+        assert_eq!(li.derived.architecture, Architecture::Iterative);
+        assert_eq!(li.derived.cycles_per_sample, n);
+        let s = spaced(&stim(n as u64, 300), n);
+        let it = rtl_eq_model(&li, &s);
+        // Spaced this way, the iterative core never holds a sample off.
+        for (k, i) in s.iter().enumerate() {
+            if i.valid && !i.rst && k > 0 {
+                assert!(it[k - 1].1, "N={n}: sample at cycle {k} not ready");
+            }
+        }
+        let it: Vec<CoreOut> = it.into_iter().map(|(o, _)| o).collect();
+        let un = simulate_rtl(&lu.derived, &s).expect("settles");
+        let mut mu = CoreModel::new(&lu.derived);
+        let mo: Vec<CoreOut> = s.iter().map(|i| mu.step(*i)).collect();
+        assert_eq!(un, mo, "unrolled rust-hdl == model, N={n}");
+        let (vi, vu) = (valid_outputs(&it), valid_outputs(&un));
+        assert!(vi.len() > 250, "N={n}: {} outputs", vi.len());
+        assert_eq!(vi.len(), vu.len(), "N={n}");
+        for (k, (a, b)) in vi.iter().zip(&vu).enumerate() {
+            assert_eq!(a, b, "N={n}: output sample {k}");
+        }
+        // Same latency (N + 2): cycle for cycle identical when no sample is held off.
+        assert_eq!(it, un, "N={n}: cycle-for-cycle");
+    }
+}
+
+#[test]
+fn unspaced_stimulus_rtl_equals_model_with_drops() {
+    for n in [1u32, 2, 3, 7, 14, 20] {
+        let l = cfg(n, "iterative");
+        let s = stim(100 + n as u64, 400);
+        let out = rtl_eq_model(&l, &s);
+        if n > 1 {
+            assert!(out.iter().any(|o| !o.1), "N={n}: in_ready never low");
+        } else {
+            assert!(out.iter().all(|o| o.1), "N=1 is always ready");
+        }
+    }
+}
+
+/// A producer that honours in_ready (holds its sample until accepted) loses nothing and
+/// gets every sample's result, equal to the unrolled core's; the closed-loop input trace
+/// is replayed on rust-hdl (== model, in_ready included).
+#[test]
+fn held_off_samples_are_all_decoded() {
+    for n in [2u32, 5, 14, 20] {
+        let l = cfg(n, "iterative");
+        let d = &l.derived;
+        let samples: Vec<CoreIn> = stimulus::rotation(14, 0.8, 0.2, 0.05, 200);
+        let mut m = CoreModel::new(d);
+        let mut trace = vec![stimulus::reset()];
+        m.step(stimulus::reset());
+        let mut next = 0;
+        while next < samples.len() {
+            // Offered as soon as in_ready is high; held (in_valid low) while it is low.
+            let i = if m.in_ready() {
+                next += 1;
+                samples[next - 1]
+            } else {
+                stimulus::idle()
+            };
+            trace.push(i);
+            m.step(i);
+        }
+        trace.extend((0..n + 4).map(|_| stimulus::idle()));
+        let out = rtl_eq_model(&l, &trace);
+        let v: Vec<CoreOut> = out.iter().map(|o| o.0).filter(|o| o.valid).collect();
+        assert_eq!(v.len(), samples.len(), "N={n}: every sample decoded");
+        assert!(
+            v.iter().all(|o| !o.warning && !o.error),
+            "N={n}: no warning"
+        );
+        // Same results as the unrolled core on the bare sample sequence.
+        let lu = cfg(n, "unrolled");
+        let mut mu = CoreModel::new(&lu.derived);
+        let mut bare = vec![stimulus::reset()];
+        bare.extend(samples.iter().copied());
+        bare.extend((0..n + 4).map(|_| stimulus::idle()));
+        let vu: Vec<CoreOut> = bare
+            .iter()
+            .map(|i| mu.step(*i))
+            .filter(|o| o.valid)
+            .collect();
+        assert_eq!(v, vu, "N={n}");
+        // Throughput: back to back, one sample per N clocks.
+        let accepted: Vec<usize> = (1..trace.len()).filter(|&k| trace[k].valid).collect();
+        assert!(accepted.iter().all(|&k| out[k - 1].1));
+        assert_eq!(accepted.len(), samples.len());
+        assert!(
+            accepted.windows(2).all(|w| w[1] - w[0] == n as usize),
+            "N={n}: {:?}",
+            &accepted[..5]
+        );
+    }
+}
+
+/// A producer that ignores in_ready: every sample offered while in_ready is low is
+/// dropped, and the next decoded sample carries out_warning; nothing is lost silently.
+#[test]
+fn ignored_ready_drops_are_flagged() {
+    for n in [2u32, 3, 14] {
+        let l = cfg(n, "iterative");
+        let d = &l.derived;
+        // A slow rotation: the counter itself never warns.
+        let mut s = vec![stimulus::reset()];
+        let rot = stimulus::rotation(14, 0.8, 0.2, 0.002, 400);
+        // Offer back to back for a while, then spaced, then in bursts.
+        for (k, i) in rot.iter().enumerate() {
+            s.push(*i);
+            if (100..200).contains(&k) || (k >= 300 && k % 3 == 0) {
+                s.extend((1..n).map(|_| stimulus::idle()));
+            }
+        }
+        s.extend((0..n + 4).map(|_| stimulus::idle()));
+        let out = rtl_eq_model(&l, &s);
+        // Which offers were accepted (in_ready of the cycle = value after the previous edge).
+        let mut lost_before = Vec::new(); // per accepted sample: drops since the previous
+        let mut drops = 0usize;
+        let mut pending = false;
+        for k in 1..s.len() {
+            if s[k].valid {
+                if out[k - 1].1 {
+                    lost_before.push(pending);
+                    pending = false;
+                } else {
+                    drops += 1;
+                    pending = true;
+                }
+            }
+        }
+        assert!(drops > 100, "N={n}: {drops} drops");
+        let v: Vec<CoreOut> = out.iter().map(|o| o.0).filter(|o| o.valid).collect();
+        assert_eq!(v.len(), lost_before.len(), "N={n}");
+        for (k, (o, lost)) in v.iter().zip(&lost_before).enumerate() {
+            assert_eq!(o.warning, *lost, "N={n}: decoded sample {k}");
+        }
+        assert!(lost_before.iter().any(|l| !l) && lost_before.iter().any(|l| *l));
+        // The flag holds between strobes, like the counter's flags.
+        let mut last = false;
+        for (o, _) in &out {
+            if !o.valid {
+                assert_eq!(o.warning, last);
+            }
+            last = o.warning;
+        }
+        let _ = d;
+    }
+}
+
+#[test]
+fn rust_hdl_icarus_verilator_every_n() {
+    for n in 1..=20u32 {
+        let l = cfg(n, "iterative");
+        // Spaced (all samples decoded) and then unspaced (drops), in one run.
+        let mut s = spaced(&stim(200 + n as u64, 120), n);
+        s.extend(stim(300 + n as u64, 120));
+        let dir = common::workdir(&format!("iterative_cosim_n{n}"));
+        let t = core_traces(&l, &s, Simulators::ALL, &dir).expect("all simulators ran");
+        assert!(t.rust_hdl.iter().filter(|r| r[0] == 1).count() > 100);
+        if let Some(m) = t.mismatch(&l) {
+            panic!("N={n}: {m}");
+        }
+    }
+}
+
+/// in_ready (not a port of core_traces' comparison) through the CoreRtl block itself.
+#[test]
+fn in_ready_in_icarus_and_verilator() {
+    for n in [3u32, 14] {
+        let l = cfg(n, "iterative");
+        let d = &l.derived;
+        let s = stim(400 + n as u64, 200);
+        let rows: Vec<Vec<u64>> = s
+            .iter()
+            .map(|i| {
+                vec![
+                    i.rst as u64,
+                    i.valid as u64,
+                    i.sin as u64 & 0x3fff,
+                    i.cos as u64 & 0x3fff,
+                    0,
+                    0,
+                    0,
+                ]
+            })
+            .collect();
+        let dir = common::workdir(&format!("iterative_block_n{n}"));
+        let t = block_traces(
+            CoreRtl::new(d),
+            &format!("it{n}_blk"),
+            "clk",
+            &rows,
+            Simulators::ALL,
+            &dir,
+        )
+        .expect("simulators ran");
+        if let Some(m) = t.mismatch() {
+            panic!("N={n}: {m}");
+        }
+        let ready = t
+            .rust_hdl
+            .iter()
+            .map(|r| *r.last().unwrap())
+            .collect::<Vec<_>>();
+        assert!(ready.contains(&0) && ready.contains(&1));
+    }
+}
+
+#[test]
+fn throughput_check_rejects_too_slow_iterative_designs() {
+    // 20 iterations at 20 MHz: 1 Msample/s; a 1.5 Msample/s ADC cannot be served.
+    let e = check_throughput(Architecture::Iterative, 20, 20e6, 1.5e6).unwrap_err();
+    for part in [
+        "20 clocks",
+        "1000000 samples/s",
+        "20.000 MHz",
+        "1500000",
+        "at most 13",
+    ] {
+        assert!(e.contains(part), "{part:?} missing in: {e}");
+    }
+    assert!(check_throughput(Architecture::Iterative, 20, 20e6, 1.0e6).is_ok());
+    assert!(check_throughput(Architecture::Unrolled, 20, 20e6, 1.5e6).is_ok());
+    // The default ADC (102 clocks per frame) leaves room for N = 20.
+    let l = cfg(20, "iterative");
+    assert!(l.derived.clock_hz / l.derived.sample_rate_hz >= 20.0);
+    assert!(l.derived.describe().contains("1 sample per 20 clock"));
+    // An unknown architecture is rejected.
+    let bad = DEFAULT_CONFIG.replace("architecture = \"unrolled\"", "architecture = \"fast\"");
+    let e = Loaded::parse(&bad, "test").unwrap_err().to_string();
+    assert!(e.contains("unrolled") && e.contains("iterative"), "{e}");
+}
+
+/// Synthesis figures of both cores at N = 14, default widths (xc3sa): the iterative core
+/// must be smaller, its CORDIC part (core minus the shared mapper/combiner/counter) at most
+/// 60% of the unrolled one's. Measured: 972 vs 1444 LUT for the whole core, 565 vs 1037 for
+/// the CORDIC part. The "at most a third of the whole core" is NOT met: the shared
+/// mapper + combiner + counter alone are about 330 LUT (23% of the unrolled core) and the
+/// two 26-bit shifters about 200 LUT4.
+#[test]
+fn iterative_core_uses_fewer_luts() {
+    let (whole, part) = lut_figures();
+    assert!(10 * whole.1 <= 7 * whole.0, "{whole:?}");
+    assert!(10 * part.1 <= 6 * part.0, "{part:?}");
+}
+
+/// ((unrolled, iterative) whole-core LUTs, (unrolled, iterative) CORDIC-part LUTs).
+fn lut_figures() -> ((u64, u64), (u64, u64)) {
+    use sinedec::emit::{core_name, core_verilog};
+    use sinedec::synth::{synthesize, Family};
+    let mut luts = Vec::new();
+    for arch in ["unrolled", "iterative"] {
+        let l = cfg(14, arch);
+        let v = core_verilog(&l).expect("export");
+        let dir = common::workdir(&format!("iterative_synth_{arch}"));
+        let s = synthesize(&v, &core_name(&l), Family::Xc3sa, &dir).expect("synthesis");
+        eprintln!("{arch}: {} LUT, {} FF, {} carry", s.luts, s.ffs, s.carry);
+        luts.push(s.luts);
+    }
+    // The part both architectures share (mapper, combiner, counter): unrolled N = 1 minus
+    // one stage, i.e. bounded above by the N = 1 core.
+    let l1 = cfg(1, "unrolled");
+    let dir = common::workdir("iterative_synth_n1");
+    let s1 = synthesize(
+        &core_verilog(&l1).unwrap(),
+        &core_name(&l1),
+        Family::Xc3sa,
+        &dir,
+    )
+    .expect("synthesis");
+    eprintln!(
+        "unrolled N=1 (shared part + 1 stage): {} LUT; CORDIC part at N=14 (minus that): unrolled {} LUT, iterative {} LUT",
+        s1.luts,
+        luts[0] - s1.luts,
+        luts[1] as i64 - s1.luts as i64
+    );
+    (
+        (luts[0], luts[1]),
+        (luts[0] - s1.luts, luts[1].saturating_sub(s1.luts)),
+    )
+}

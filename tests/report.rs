@@ -1,0 +1,388 @@
+//! `sinedec report`: the sweep's kernel against the model, the model's accuracy figures
+//! against the rust-hdl simulation, deterministic and consistent Markdown/CSV/JSON output,
+//! and a clear error (with nothing written) without Yosys.
+use sinedec::blocks::cordic::model::{map, quadrant};
+use sinedec::blocks::core::hdl::simulate_rtl;
+use sinedec::blocks::core::model::{sample, CoreIn};
+use sinedec::blocks::mask;
+use sinedec::report::sweep::{self, ErrAcc, Kernel, SweepPlan};
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
+mod common;
+
+const BIN: &str = env!("CARGO_BIN_EXE_sinedec");
+
+/// Every input pair of magnitude at least 1/8 of full scale, row by row.
+fn pairs(a: u32) -> Vec<(i32, i32)> {
+    let h = 1i64 << (a - 1);
+    let r2 = (h / 8) * (h / 8);
+    let mut v = Vec::new();
+    for s in -h..h {
+        for c in -h..h {
+            if s * s + c * c >= r2 {
+                v.push((s as i32, c as i32));
+            }
+        }
+    }
+    v
+}
+
+/// The kernel's fine angle for (sin, cos), as the model's p.
+fn kernel_p(k: &Kernel, f: u32, s: i32, c: i32) -> (u64, bool) {
+    let (mx, my) = map(s, c);
+    let mut out = Vec::new();
+    k.run(&[mx as i32], &[my as i32], &mut out);
+    let (fine, ok) = out[0];
+    (
+        (fine as u64 + ((quadrant(s, c) as u64) << f)) & mask(f + 2),
+        ok,
+    )
+}
+
+#[test]
+fn kernel_equals_the_model() {
+    // Every input pair (zero and small magnitudes included) of a 10-bit design for several
+    // N and F, and random pairs of the 14- and 16-bit designs for every N.
+    for (n, f) in [(1, 10), (6, 10), (10, 16), (3, 2)] {
+        let l = common::cfg(n, f, 10, 2048, 0);
+        let d = &l.derived;
+        let k = Kernel::new(d);
+        let h = 512;
+        let (mut xs, mut ys, mut want) = (Vec::new(), Vec::new(), Vec::new());
+        for s in -h..h {
+            for c in -h..h {
+                let (mx, my) = map(s, c);
+                xs.push(mx as i32);
+                ys.push(my as i32);
+                let o = sample(d, s, c);
+                // The kernel returns the quadrant-0 angle; undo the quadrant.
+                let q = quadrant(s, c) as u64;
+                want.push(((o.p.wrapping_sub(q << f) & mask(f + 2)) as u32, o.mag_ok));
+            }
+        }
+        let mut out = Vec::new();
+        k.run(&xs, &ys, &mut out);
+        assert_eq!(out.len(), want.len());
+        for (i, (o, w)) in out.iter().zip(&want).enumerate() {
+            assert_eq!(o, w, "N={n} F={f} mapped ({}, {})", xs[i], ys[i]);
+        }
+    }
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    for a in [14, 16] {
+        for n in 1..=20 {
+            let l = common::cfg(n, 14, a, 2048, 0);
+            let d = &l.derived;
+            let k = Kernel::new(d);
+            let h = 1i64 << (a - 1);
+            for _ in 0..20_000 {
+                let s = (rnd() % (2 * h as u64)) as i64 - h;
+                let c = (rnd() % (2 * h as u64)) as i64 - h;
+                let o = sample(d, s as i32, c as i32);
+                assert_eq!(
+                    kernel_p(&k, 14, s as i32, c as i32),
+                    (o.p, o.mag_ok),
+                    "A={a} N={n} ({s}, {c})"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn model_accuracy_equals_rust_hdl_simulation() {
+    // A = 10, N = 6, F = 10: every input pair of at least 1/8 full scale through the
+    // rust-hdl simulation of the core; the error figures from its outputs must be identical
+    // to the report's sweep of the bit-accurate model (which runs over mapped vectors with
+    // multiplicities) and to a literal sweep of the model.
+    let l = common::cfg(6, 10, 10, 2048, 0);
+    let d = &l.derived;
+    let inputs = pairs(10);
+    let mut stim: Vec<CoreIn> = inputs
+        .iter()
+        .map(|&(s, c)| CoreIn {
+            valid: true,
+            sin: s,
+            cos: c,
+            ..Default::default()
+        })
+        .collect();
+    stim.extend((0..d.latency_cycles + 2).map(|_| CoreIn::default()));
+    let out = simulate_rtl(d, &stim).expect("rust-hdl simulation converges");
+    let outs: Vec<_> = out.iter().filter(|o| o.valid).collect();
+    assert_eq!(outs.len(), inputs.len(), "one output per sample");
+    let span = mask(d.fine_bits + 2);
+    let mut rtl = ErrAcc::new(false);
+    let mut model = ErrAcc::new(false);
+    for (&(s, c), o) in inputs.iter().zip(&outs) {
+        // The position modulo 4 quadrants is the sample's electrical angle.
+        rtl.add_pair(d, s, c, o.position & span, !o.error);
+        let m = sample(d, s, c);
+        model.add_pair(d, s, c, m.p, m.mag_ok);
+    }
+    let swept = sweep::sweep(&[d], SweepPlan::for_width(10), None, &|| {});
+    let swept = &swept[0];
+    let figures = |a: &ErrAcc| {
+        (
+            a.count,
+            a.rejected,
+            a.max_lsb(),
+            a.rms_lsb(),
+            a.mean_lsb(),
+            a.worst_input(10),
+        )
+    };
+    eprintln!("rtl {:?}", figures(&rtl));
+    assert_eq!(rtl.count, inputs.len() as u64);
+    assert_eq!(figures(&rtl), figures(&model));
+    assert_eq!(figures(&rtl), figures(swept));
+    assert!(rtl.max_lsb() > 0.0 && rtl.rms_lsb() > 0.0);
+    // Within the design's guarantee: residual bound + 1 LSB.
+    let p = sinedec::report::predict::predict(d);
+    assert!(rtl.max_lsb() <= p.residual_lsb + 1.0);
+}
+
+#[test]
+fn dense_sample_above_14_bits_is_stated_and_weighted() {
+    let plan = SweepPlan::for_width(16);
+    assert!(!plan.exhaustive());
+    assert_eq!(plan.stride, 4);
+    assert!(plan.describe().contains("not exhaustive"));
+    assert!(SweepPlan::for_width(14).exhaustive());
+    // The exhaustive sweep counts every pair exactly once.
+    let l = common::cfg(4, 8, 10, 2048, 0);
+    let acc = &sweep::sweep(&[&l.derived], SweepPlan::for_width(10), None, &|| {})[0];
+    assert_eq!(acc.count + acc.rejected, pairs(10).len() as u64);
+}
+
+#[test]
+fn iteration_and_format_arguments() {
+    use sinedec::report::{parse_iterations, Formats};
+    assert_eq!(
+        parse_iterations("2..=20").unwrap(),
+        (2..=20).collect::<Vec<_>>()
+    );
+    assert_eq!(parse_iterations("2..5").unwrap(), vec![2, 3, 4]);
+    assert_eq!(
+        parse_iterations("14,2,5,8,11,8").unwrap(),
+        vec![2, 5, 8, 11, 14]
+    );
+    assert_eq!(parse_iterations("3-4").unwrap(), vec![3, 4]);
+    assert!(parse_iterations("0..=3").is_err());
+    assert!(parse_iterations("5..=21").is_err());
+    assert!(parse_iterations("x").is_err());
+    assert!(parse_iterations("5..=2").is_err());
+    let f = Formats::parse("md,json").unwrap();
+    assert!(f.md && f.json && !f.csv && !f.svg);
+    assert!(Formats::parse("pdf").is_err());
+}
+
+/// Cells of the Markdown tables whose first column is N: (title, N, cell).
+fn markdown_cells(md: &str) -> Vec<(String, u32, String)> {
+    let mut out = Vec::new();
+    let mut header: Option<Vec<String>> = None;
+    for line in md.lines() {
+        if !line.starts_with('|') {
+            header = None;
+            continue;
+        }
+        let cells: Vec<String> = line
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect();
+        match &header {
+            None => header = Some(cells),
+            Some(h) => {
+                if cells.iter().all(|c| c.chars().all(|ch| ch == '-')) {
+                    continue;
+                }
+                if h[0] != "N" {
+                    continue;
+                }
+                let n: u32 = cells[0].parse().expect("N column");
+                for (t, c) in h.iter().zip(&cells) {
+                    out.push((t.clone(), n, c.clone()));
+                }
+            }
+        }
+    }
+    out
+}
+
+fn read_dir(dir: &Path) -> BTreeMap<String, String> {
+    std::fs::read_dir(dir)
+        .expect("output dir")
+        .map(|e| {
+            let e = e.expect("dir entry");
+            (
+                e.file_name().to_string_lossy().to_string(),
+                std::fs::read_to_string(e.path()).expect("text file"),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn report_is_deterministic_and_formats_agree() {
+    // Small design (A = 10, F = 10) and N = 2..=4 keep the Yosys part short. Two runs of
+    // the binary with one cache directory: the second answers from the cache.
+    let work = common::workdir("report_cli");
+    let l = common::cfg(3, 10, 10, 2048, 0);
+    let cfg = work.join("small.toml");
+    std::fs::write(&cfg, &l.text).unwrap();
+    let cache = work.join("cache");
+    let run = |out: &str| {
+        let o = Command::new(BIN)
+            .arg("report")
+            .arg(&cfg)
+            .args(["--iterations", "2..=4", "-o"])
+            .arg(work.join(out))
+            .arg("--cache-dir")
+            .arg(&cache)
+            .output()
+            .expect("run sinedec");
+        assert!(
+            o.status.success(),
+            "sinedec report failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    };
+    // The same command twice (the command line is quoted in the headers).
+    run("r");
+    let a = read_dir(&work.join("r"));
+    run("r");
+    let b = read_dir(&work.join("r"));
+    let names: Vec<&String> = a.keys().collect();
+    assert_eq!(
+        names,
+        vec![
+            "sd_report.csv",
+            "sd_report.json",
+            "sd_report.md",
+            "sd_report_error_vs_angle.svg",
+            "sd_report_error_vs_n.svg",
+            "sd_report_resources_vs_n.svg"
+        ]
+    );
+    assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
+    for (name, text) in &a {
+        let other = &b[name];
+        let strip = |t: &str| {
+            t.lines()
+                .filter(|l| !l.starts_with("Generated: "))
+                .collect::<Vec<_>>()
+                .join("\n")
+        };
+        assert_eq!(strip(text), strip(other), "{name} differs between runs");
+        let stamps = text
+            .lines()
+            .filter(|l| l.starts_with("Generated: "))
+            .count();
+        assert_eq!(stamps, usize::from(name.ends_with(".md")), "{name}");
+    }
+    // CSV, JSON and Markdown hold the same numbers.
+    let csv = &a["sd_report.csv"];
+    let mut lines = csv.lines();
+    let keys: Vec<&str> = lines.next().expect("CSV header").split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 3);
+    for r in &rows {
+        assert_eq!(r.len(), keys.len(), "CSV row width");
+    }
+    let csv_cell = |key: &str, n: u32| -> String {
+        let k = keys.iter().position(|c| *c == key).expect("CSV column");
+        let row = rows
+            .iter()
+            .find(|r| r[0] == n.to_string())
+            .expect("CSV row for N");
+        row[k].to_string()
+    };
+    let json: serde_json::Value = serde_json::from_str(&a["sd_report.json"]).expect("JSON parses");
+    let jrows = json["rows"].as_array().expect("rows");
+    assert_eq!(jrows.len(), 3);
+    for (i, jr) in jrows.iter().enumerate() {
+        let n = 2 + i as u32;
+        assert_eq!(jr["n"].as_u64(), Some(n as u64));
+        for key in &keys {
+            let c = csv_cell(key, n);
+            let j = &jr[*key];
+            if c.is_empty() {
+                assert!(j.is_null(), "{key} N={n}: CSV empty, JSON {j}");
+            } else {
+                let cv: f64 = c.parse().unwrap_or_else(|_| panic!("{key} N={n}: `{c}`"));
+                let jv = j
+                    .as_f64()
+                    .unwrap_or_else(|| panic!("{key} N={n}: JSON {j}"));
+                assert!(
+                    (cv - jv).abs() <= 1e-12 * cv.abs().max(1e-300),
+                    "{key} N={n}: CSV {c} JSON {jv}"
+                );
+            }
+        }
+    }
+    let md = &a["sd_report.md"];
+    let cells = markdown_cells(md);
+    assert!(cells.len() > 100, "Markdown tables found: {}", cells.len());
+    for (title, n, cell) in &cells {
+        let key = sinedec::report::column_key(title)
+            .unwrap_or_else(|| panic!("Markdown column `{title}` has no key"));
+        let c = csv_cell(key, *n);
+        if cell == "-" {
+            assert!(c.is_empty(), "{key} N={n}: Markdown -, CSV {c}");
+        } else {
+            assert_eq!(&c, cell, "{key} N={n}");
+        }
+    }
+    // Sanity of the figures: one sample per clock, N + 2 cycles, a non-empty synthesis,
+    // errors within the design's bound, and the paper's figure for N = 2 marked as such.
+    for n in 2..=4u32 {
+        assert_eq!(csv_cell("latency_cycles", n), (n + 2).to_string());
+        assert!(csv_cell("xc3sa_lut", n).parse::<u64>().unwrap() > 0);
+        assert!(csv_cell("cycloneive_ff", n).parse::<u64>().unwrap() > 0);
+        assert!(csv_cell("gates", n).parse::<u64>().unwrap() > 0);
+        assert!(csv_cell("logic_depth", n).parse::<u64>().unwrap() > 0);
+        let max: f64 = csv_cell("err_max_lsb", n).parse().unwrap();
+        let bound: f64 = csv_cell("pred_bound_lsb", n).parse().unwrap();
+        assert!(max > 0.0 && max <= bound, "N={n}: {max} > {bound}");
+    }
+    assert_eq!(csv_cell("paper_gates", 2), "313");
+    assert_eq!(csv_cell("paper_gates", 3), "");
+    assert!(md.contains("paper: gates (Table 3-2)"));
+    assert!(md.contains("MUX counted as ONE gate"));
+    for svg in ["sd_report_error_vs_n.svg", "sd_report_error_vs_angle.svg"] {
+        assert!(a[svg].starts_with("<svg"), "{svg}");
+    }
+}
+
+#[test]
+fn missing_yosys_is_a_clear_error_and_nothing_is_written() {
+    let work = common::workdir("report_no_yosys");
+    let empty = work.join("empty_path");
+    std::fs::create_dir_all(&empty).unwrap();
+    let out = work.join("out");
+    let o = Command::new(BIN)
+        .args(["report", "--iterations", "2..=3", "-o"])
+        .arg(&out)
+        .arg("--cache-dir")
+        .arg(work.join("cache"))
+        .env("PATH", &empty)
+        .output()
+        .expect("run sinedec");
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("yosys"), "{err}");
+    assert!(err.contains("apt-get install -y yosys"), "{err}");
+    assert!(err.contains("Nothing was written"), "{err}");
+    let left: Vec<String> = std::fs::read_dir(&work)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    assert_eq!(left, vec!["empty_path".to_string()], "files left behind");
+}
