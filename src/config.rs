@@ -189,11 +189,59 @@ pub struct SpiConfig {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoardConfig {
-    /// I/O standard of every pin (e.g. "LVCMOS33").
-    pub iostandard: String,
+    /// Board whose fixed pins are filled in: "spartan3an-starter-kit" (see [`STARTER_KIT_PINS`]).
+    #[serde(default)]
+    pub preset: Option<String>,
+    /// I/O standard of every pin (e.g. "LVCMOS33"); the preset's when omitted.
+    #[serde(default)]
+    pub iostandard: Option<String>,
     /// Port name -> package pin (e.g. adc_conv = "Y6"). Every port of the top except the
-    /// parallel bus (`par_*`, meant for logic in the same FPGA) needs one.
+    /// parallel bus (`par_*`, meant for logic in the same FPGA) needs one; these override
+    /// the preset's.
+    #[serde(default)]
     pub pins: std::collections::BTreeMap<String, String>,
+}
+
+/// The Spartan-3A/3AN Starter Kit's pins that sinedec knows with a source: the SPI bus of
+/// the analog capture circuit (UG334 chapter 9: SPI_SCK, AD_CONV, AD_DOUT, SPI_MOSI,
+/// AMP_CS, AMP_SHDN), the 50 MHz oscillator CLK_50M (E12) and the BTN_SOUTH push button
+/// (T15) as reset. DAC_CS, DAC_CLR, SPI_SS_B and SF_CE0 and the header pins for the
+/// comparators and the BiSS transceiver are not filled in: give them in `[board.pins]`.
+pub const STARTER_KIT_PINS: &[(&str, &str)] = &[
+    ("clk", "E12"),
+    ("rst", "T15"),
+    ("adc_sck", "AA20"),
+    ("adc_conv", "Y6"),
+    ("adc_miso", "D16"),
+    ("amp_mosi", "AB14"),
+    ("amp_cs", "W6"),
+    ("amp_shdn", "W15"),
+];
+
+/// Board presets (`board.preset`).
+pub const BOARD_PRESETS: &[&str] = &["spartan3an-starter-kit"];
+
+impl BoardConfig {
+    /// The preset's pins overridden by `[board.pins]`.
+    pub fn effective_pins(&self) -> std::collections::BTreeMap<String, String> {
+        let mut m = std::collections::BTreeMap::new();
+        if self.preset.as_deref() == Some("spartan3an-starter-kit") {
+            for (k, v) in STARTER_KIT_PINS {
+                m.insert(k.to_string(), v.to_string());
+            }
+        }
+        for (k, v) in &self.pins {
+            m.insert(k.clone(), v.clone());
+        }
+        m
+    }
+
+    /// The I/O standard: the configured one, else the preset's (LVCMOS33 on the kit).
+    pub fn effective_iostandard(&self) -> Option<String> {
+        self.iostandard
+            .clone()
+            .or_else(|| self.preset.as_ref().map(|_| "LVCMOS33".to_string()))
+    }
 }
 
 /// Pins of the optional SSI slave.
@@ -803,6 +851,36 @@ impl Derived {
         };
         let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
         if let Some(b) = &c.board {
+            if let Some(p) = &b.preset {
+                if !BOARD_PRESETS.contains(&p.as_str()) {
+                    return Err(err(
+                        "board",
+                        "preset",
+                        format!(
+                            "unknown board preset {p:?}; allowed: {}",
+                            BOARD_PRESETS.join(", ")
+                        ),
+                    ));
+                }
+            }
+            match b.effective_iostandard() {
+                Some(s)
+                    if !s.is_empty()
+                        && s.chars().all(|ch| ch.is_ascii_alphanumeric() || ch == '_') => {}
+                _ => {
+                    return Err(err(
+                        "board",
+                        if b.iostandard.is_some() {
+                            "iostandard"
+                        } else {
+                            "pins"
+                        },
+                        "`iostandard` (e.g. \"LVCMOS33\") is required without a `preset`"
+                            .to_string(),
+                    ))
+                }
+            }
+            let pins = b.effective_pins();
             let valid = |v: &str| !v.is_empty() && v.chars().all(|ch| ch.is_ascii_alphanumeric());
             let mut required: Vec<&str> = TOP_PINS.to_vec();
             if c.ssi.enabled {
@@ -828,13 +906,18 @@ impl Derived {
             let missing: Vec<&str> = required
                 .iter()
                 .copied()
-                .filter(|p| !b.pins.contains_key(*p))
+                .filter(|p| !pins.contains_key(*p))
                 .collect();
             if !missing.is_empty() {
+                let preset = if b.preset.is_some() {
+                    " (the preset fills in only the pins it knows)"
+                } else {
+                    ""
+                };
                 return Err(err(
                     "board",
                     "pins",
-                    format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one)", missing.join(", ")),
+                    format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one){preset}", missing.join(", ")),
                 ));
             }
         }

@@ -74,3 +74,108 @@ fn an_unknown_pin_name_is_rejected() {
     let e = Loaded::parse(&text, "b.toml").expect_err("unknown port");
     assert!(e.to_string().contains("led7"), "{e}");
 }
+
+/// The Starter Kit's pins as the board's user guides give them (UG334 chapter 9 for the SPI
+/// bus of the analog capture circuit; the 50 MHz oscillator CLK_50M on E12 and BTN_SOUTH on
+/// T15), written here from those sources, not from the code's table.
+const KIT: &[(&str, &str)] = &[
+    ("clk", "E12"),
+    ("rst", "T15"),
+    ("adc_sck", "AA20"),
+    ("adc_conv", "Y6"),
+    ("adc_miso", "D16"),
+    ("amp_mosi", "AB14"),
+    ("amp_cs", "W6"),
+    ("amp_shdn", "W15"),
+];
+
+fn with_preset(extra: &[(&str, &str)]) -> String {
+    let mut t = DEFAULT_CONFIG.to_string();
+    t.push_str("\n[board]\npreset = \"spartan3an-starter-kit\"\n[board.pins]\n");
+    for (k, v) in extra {
+        t.push_str(&format!("{k} = \"{v}\"\n"));
+    }
+    t
+}
+
+/// The pins the preset does not know (board wiring the user decides).
+fn user_pins() -> Vec<(&'static str, String)> {
+    TOP_PINS
+        .iter()
+        .filter(|p| !KIT.iter().any(|(k, _)| k == *p))
+        .enumerate()
+        .map(|(i, p)| (*p, format!("H{}", i + 1)))
+        .collect()
+}
+
+#[test]
+fn the_starter_kit_preset_fills_in_the_known_pins() {
+    let user = user_pins();
+    let extra: Vec<(&str, &str)> = user.iter().map(|(k, v)| (*k, v.as_str())).collect();
+    let l = Loaded::parse(&with_preset(&extra), "b.toml").expect("parses");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    let ucf = &g
+        .files
+        .iter()
+        .find(|f| f.name == "sd_top.ucf")
+        .expect("ucf")
+        .text;
+    for (p, loc) in KIT
+        .iter()
+        .map(|(k, v)| (*k, *v))
+        .chain(extra.iter().copied())
+    {
+        let line = format!("NET \"{p}\" LOC = \"{loc}\" | IOSTANDARD = LVCMOS33;");
+        assert!(ucf.contains(&line), "{line} missing:\n{ucf}");
+    }
+    // A pin given in [board.pins] wins over the preset's.
+    let mut over = extra.clone();
+    over.push(("clk", "AA12"));
+    let l = Loaded::parse(&with_preset(&over), "b.toml").expect("parses");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    let ucf = &g
+        .files
+        .iter()
+        .find(|f| f.name == "sd_top.ucf")
+        .expect("ucf")
+        .text;
+    assert!(ucf.contains("NET \"clk\" LOC = \"AA12\""), "{ucf}");
+    assert!(!ucf.contains("\"E12\""), "{ucf}");
+}
+
+#[test]
+fn the_preset_alone_names_exactly_the_pins_still_missing() {
+    let e = Loaded::parse(&with_preset(&[]), "b.toml").expect_err("pins missing");
+    let msg = e.to_string();
+    let expected: Vec<&str> = user_pins().iter().map(|(k, _)| *k).collect();
+    assert!(
+        msg.contains(&format!(
+            "pins missing for the board: {}",
+            expected.join(", ")
+        )),
+        "{msg}"
+    );
+    for (k, _) in KIT {
+        assert!(
+            !msg.contains(&format!(" {k},")),
+            "{k} is the preset's: {msg}"
+        );
+    }
+}
+
+#[test]
+fn an_unknown_preset_and_a_missing_iostandard_are_rejected() {
+    let e = Loaded::parse(
+        &with_preset(&[]).replace("spartan3an-starter-kit", "de0-nano"),
+        "b.toml",
+    )
+    .expect_err("unknown preset");
+    let msg = e.to_string();
+    assert!(
+        msg.contains("de0-nano") && msg.contains("spartan3an-starter-kit"),
+        "{msg}"
+    );
+    let no_std = with_board(None).replace("iostandard = \"LVCMOS33\"\n", "");
+    let e = Loaded::parse(&no_std, "b.toml").expect_err("iostandard missing");
+    assert!(e.to_string().contains("iostandard"), "{e}");
+}

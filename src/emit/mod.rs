@@ -322,11 +322,12 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             .flatten()
             .copied()
             .collect();
+        let pins = b.effective_pins();
+        let iostandard = b.effective_iostandard().unwrap_or_default();
         for p in crate::config::TOP_PINS.iter().chain(extra.iter()) {
-            if let Some(loc) = b.pins.get(*p) {
+            if let Some(loc) = pins.get(*p) {
                 u.push_str(&format!(
-                    "NET \"{p}\" LOC = \"{loc}\" | IOSTANDARD = {};\n",
-                    b.iostandard
+                    "NET \"{p}\" LOC = \"{loc}\" | IOSTANDARD = {iostandard};\n"
                 ));
             }
         }
