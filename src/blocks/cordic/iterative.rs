@@ -41,7 +41,7 @@
 //! `in_ready` is high in cycle m exactly when the engine will be free at edge m+1: the
 //! engine is idle with no sample waiting in the mapper, or it performs its last iteration
 //! at edge m (or N = 1). Back to back, samples are accepted every N cycles.
-use crate::blocks::{c32, fill, mask};
+use crate::blocks::{c32, mask};
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 use std::collections::BTreeMap;
@@ -91,6 +91,8 @@ pub struct IterativeCordic {
     lostc_reg: DFF<Bit>,
     hold_reg: DFF<Bit>,
     kin: Signal<Local, Bits<5>>,
+    ksh: Signal<Local, Bits<5>>,
+    sy: Signal<Local, Bits<32>>,
     active: Signal<Local, Bit>,
     last: Signal<Local, Bit>,
     rdy: Signal<Local, Bit>,
@@ -121,34 +123,19 @@ pub struct IterativeCordic {
     kone: Constant<Bits<5>>,
     /// Last iteration index N - 1.
     klast: Constant<Bits<5>>,
-    /// Bit j of the iteration index for shifter level j (0 when 2^j >= N: level unused).
-    kb0: Constant<Bits<5>>,
-    kb1: Constant<Bits<5>>,
-    kb2: Constant<Bits<5>>,
-    kb3: Constant<Bits<5>>,
-    kb4: Constant<Bits<5>>,
-    /// Shift amount 2^j of level j.
-    am0: Constant<Bits<32>>,
-    am1: Constant<Bits<32>>,
-    am2: Constant<Bits<32>>,
-    am3: Constant<Bits<32>>,
-    am4: Constant<Bits<32>>,
-    /// Fill of an arithmetic shift by 2^j of a W-bit word.
-    sf0: Constant<Bits<32>>,
-    sf1: Constant<Bits<32>>,
-    sf2: Constant<Bits<32>>,
-    sf3: Constant<Bits<32>>,
-    sf4: Constant<Bits<32>>,
+    /// Iteration-index bits any k < N uses (the shifter levels that exist).
+    kuse: Constant<Bits<5>>,
 }
 
-/// Selector of shifter level j: bit j, or 0 when no index below N has it.
-fn kbit(d: &Derived, j: u32) -> Constant<Bits<5>> {
-    let v = if (1u32 << j) < d.iterations {
-        1u64 << j
-    } else {
+/// The index bits set by some k < N (N - 1 rounded up to all ones below its top bit).
+fn kuse(d: &Derived) -> Constant<Bits<5>> {
+    let top = d.iterations.saturating_sub(1);
+    let v = if top == 0 {
         0
+    } else {
+        mask(32 - top.leading_zeros())
     };
-    Constant::new(Bits::<5>::from(v))
+    Constant::new(Bits::<5>::from(v & 31))
 }
 
 impl IterativeCordic {
@@ -174,21 +161,7 @@ impl IterativeCordic {
             v_out: Default::default(),
             lost: Default::default(),
             rom: ROM::new(table),
-            kb0: kbit(d, 0),
-            kb1: kbit(d, 1),
-            kb2: kbit(d, 2),
-            kb3: kbit(d, 3),
-            kb4: kbit(d, 4),
-            am0: c32(1),
-            am1: c32(2),
-            am2: c32(4),
-            am3: c32(8),
-            am4: c32(16),
-            sf0: c32(fill(w, 1)),
-            sf1: c32(fill(w, 2)),
-            sf2: c32(fill(w, 4)),
-            sf3: c32(fill(w, 8)),
-            sf4: c32(fill(w, 16)),
+            kuse: kuse(d),
             x_reg: Default::default(),
             y_reg: Default::default(),
             z_reg: Default::default(),
@@ -203,6 +176,8 @@ impl IterativeCordic {
             lostc_reg: Default::default(),
             hold_reg: Default::default(),
             kin: Default::default(),
+            ksh: Default::default(),
+            sy: Default::default(),
             active: Default::default(),
             last: Default::default(),
             rdy: Default::default(),
@@ -254,61 +229,19 @@ impl Logic for IterativeCordic {
         self.last.next = self.kin.val() == self.klast.val();
         self.rdy.next = !(self.active.val() & !self.last.val());
         self.rom.address.next = self.kin.val();
-        // Arithmetic shifts by k as a logarithmic shifter: level j shifts by 2^j (constant)
-        // when bit j of k is set and ORs in the fill of a negative word (a 2:1 mux per bit
-        // and level, cheaper in 4-input LUTs than a 32:1 mux tree per bit).
-        self.xs.next = self.xi.val();
-        self.ys.next = self.yi.val();
-        if (self.kin.val() & self.kb0.val()).any() {
-            self.xs.next = self.xs.val() >> self.am0.val();
-            if (self.xi.val() & self.xsign.val()).any() {
-                self.xs.next = self.xs.val() | self.sf0.val();
-            }
-            self.ys.next = self.ys.val() >> self.am0.val();
-            if (self.yi.val() & self.xsign.val()).any() {
-                self.ys.next = self.ys.val() | self.sf0.val();
-            }
+        // Shifts by k: x is never negative (the mapped vector starts in the first quadrant
+        // and x only grows in vectoring mode), so its arithmetic shift is the logical one.
+        // y's arithmetic shift is done as ((y ^ s) >> k) ^ s with s = the W-bit all-ones
+        // word when y < 0 (one's-complement trick: no fill constants). `kin & kuse` clears
+        // the index bits no iteration below N sets, so Yosys builds only the shifter
+        // levels that are used.
+        self.ksh.next = self.kin.val() & self.kuse.val();
+        self.sy.next = self.zero.val();
+        if (self.yi.val() & self.xsign.val()).any() {
+            self.sy.next = self.xmask.val();
         }
-        if (self.kin.val() & self.kb1.val()).any() {
-            self.xs.next = self.xs.val() >> self.am1.val();
-            if (self.xi.val() & self.xsign.val()).any() {
-                self.xs.next = self.xs.val() | self.sf1.val();
-            }
-            self.ys.next = self.ys.val() >> self.am1.val();
-            if (self.yi.val() & self.xsign.val()).any() {
-                self.ys.next = self.ys.val() | self.sf1.val();
-            }
-        }
-        if (self.kin.val() & self.kb2.val()).any() {
-            self.xs.next = self.xs.val() >> self.am2.val();
-            if (self.xi.val() & self.xsign.val()).any() {
-                self.xs.next = self.xs.val() | self.sf2.val();
-            }
-            self.ys.next = self.ys.val() >> self.am2.val();
-            if (self.yi.val() & self.xsign.val()).any() {
-                self.ys.next = self.ys.val() | self.sf2.val();
-            }
-        }
-        if (self.kin.val() & self.kb3.val()).any() {
-            self.xs.next = self.xs.val() >> self.am3.val();
-            if (self.xi.val() & self.xsign.val()).any() {
-                self.xs.next = self.xs.val() | self.sf3.val();
-            }
-            self.ys.next = self.ys.val() >> self.am3.val();
-            if (self.yi.val() & self.xsign.val()).any() {
-                self.ys.next = self.ys.val() | self.sf3.val();
-            }
-        }
-        if (self.kin.val() & self.kb4.val()).any() {
-            self.xs.next = self.xs.val() >> self.am4.val();
-            if (self.xi.val() & self.xsign.val()).any() {
-                self.xs.next = self.xs.val() | self.sf4.val();
-            }
-            self.ys.next = self.ys.val() >> self.am4.val();
-            if (self.yi.val() & self.xsign.val()).any() {
-                self.ys.next = self.ys.val() | self.sf4.val();
-            }
-        }
+        self.xs.next = self.xi.val() >> self.ksh.val();
+        self.ys.next = ((self.yi.val() ^ self.sy.val()) >> self.ksh.val()) ^ self.sy.val();
         self.m.next = self.zero.val();
         self.c.next = self.zero.val();
         self.nm.next = self.ones.val();
