@@ -358,3 +358,66 @@ fn lut_figures() -> ((u64, u64), (u64, u64)) {
         (luts[0] - s1.luts, luts[1].saturating_sub(s1.luts)),
     )
 }
+
+/// End to end at the ADC's fastest rate (the default config omits `sample_rate` and the SCK
+/// period: the fastest the LTC1407A-1 and the clock allow): encoder model -> LTC1407A-1
+/// model -> `<name>_top`, once with each architecture. The iterative core has the same
+/// latency (N + 2) and keeps up with one sample per ADC frame, so the decoded trace (cycle of
+/// every par_valid, position, turns, flags) must be identical, through a reversal and a ramp
+/// past the unwrap limit where the QEP fallback takes over.
+#[test]
+fn iterative_top_gives_the_unrolled_position_trace_end_to_end() {
+    use sinedec::sim::encoder::Profile;
+    use sinedec::simulate::{run, SimOptions};
+    let profiles = [
+        Profile::Reversal {
+            rpm: 3000.0,
+            at: 0.3e-3,
+            over: 0.3e-3,
+        },
+        Profile::Ramp {
+            from: 10_000.0,
+            to: 22_000.0,
+            over: 0.8e-3,
+        },
+    ];
+    for (k, profile) in profiles.into_iter().enumerate() {
+        let o = SimOptions {
+            profile,
+            duration_s: 1.0e-3,
+            amplitude: 0.8,
+            noise_lsb: 1.0,
+            seed: 7 + k as u64,
+            ..Default::default()
+        };
+        let mut traces = Vec::new();
+        for arch in ["unrolled", "iterative"] {
+            let l = cfg(14, arch);
+            let r = run(&l, &o, |_, _| {}).expect("simulation runs");
+            assert!(r.result.adc_violations.is_empty(), "{arch}");
+            assert_eq!(r.result.latency_mismatches, 0, "{arch}");
+            let t: Vec<(u64, u64, i64, bool, bool)> = r
+                .result
+                .records
+                .iter()
+                .map(|x| (x.cycle, x.position, x.turns, x.error, x.warning))
+                .collect();
+            eprintln!(
+                "profile {k} {arch}: {} samples, max error {:.2} LSB",
+                t.len(),
+                r.stats.max_lsb
+            );
+            traces.push(t);
+        }
+        assert!(traces[0].len() > 1000, "{}", traces[0].len());
+        if let Some(i) =
+            (0..traces[0].len().min(traces[1].len())).find(|&i| traces[0][i] != traces[1][i])
+        {
+            panic!(
+                "profile {k}: sample {i} differs: unrolled {:?}, iterative {:?}",
+                traces[0][i], traces[1][i]
+            );
+        }
+        assert_eq!(traces[0].len(), traces[1].len(), "profile {k}");
+    }
+}
