@@ -134,7 +134,7 @@ pub fn design_ideal(spec: &FilterSpec) -> Result<Vec<IdealSection>, FilterError>
     sections.sort_by(|x, y| x.pole_radius().total_cmp(&y.pole_radius()));
     for (i, s) in sections.iter().enumerate() {
         let r = s.pole_radius();
-        if !(r < 1.0) {
+        if r >= 1.0 || r.is_nan() {
             return Err(FilterError::UnstableSection {
                 filter: spec.to_string(),
                 stage: "ideal",
