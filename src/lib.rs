@@ -4,6 +4,7 @@ pub mod config;
 pub mod emit;
 pub mod error;
 pub mod exact;
+pub mod filter;
 pub mod report;
 #[path = "../sim/mod.rs"]
 pub mod sim;
