@@ -5,6 +5,7 @@ pub mod cosim;
 pub mod encoder;
 pub mod ltc1407a;
 pub mod ltc6912;
+pub mod spi_adc;
 pub mod ssi_master;
 pub mod step;
 pub mod stimulus;

@@ -8,6 +8,7 @@ use sinedec::blocks::adc::model::{AdcIn, AdcModel};
 use sinedec::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
 use sinedec::blocks::sext;
 use sinedec::sim::ltc1407a::{Ltc1407a, ViolationKind};
+use sinedec::sim::spi_adc::SpiAdc;
 use sinedec::sim::step::{prepare, tick};
 use sinedec::sim::stimulus::SplitMix64;
 use sinedec::verify::{block_traces, Simulators};
@@ -472,93 +473,9 @@ fn reading_too_early_gives_wrong_data() {
 // ---------------------------------------------------------------------------------------
 // Generic SPI ADC.
 
-/// A plain SPI ADC slave: chip select / CONV framing, CPOL/CPHA, MSB-first channels at the
-/// given slots, offset binary or two's complement, data of the current conversion.
-struct SpiSlave {
-    f: AdcFrame,
-    codes: Vec<[i32; 2]>,
-    taken: Vec<(usize, [i32; 2])>,
-    clock: usize,
-    prev_conv: bool,
-    prev_sck: bool,
-    active: bool,
-    slot: i64,
-    out: bool,
-    rng: SplitMix64,
-}
-
-impl SpiSlave {
-    fn new(f: AdcFrame, codes: Vec<[i32; 2]>) -> Self {
-        SpiSlave {
-            f,
-            codes,
-            taken: Vec::new(),
-            clock: 0,
-            prev_conv: !f.conv_active_high,
-            prev_sck: f.cpol,
-            active: false,
-            slot: -1,
-            out: false,
-            rng: SplitMix64(77),
-        }
-    }
-    fn bit(&mut self, slot: i64) -> bool {
-        let w = self.f.width as i64;
-        let cur = self.taken.last().map(|t| t.1).unwrap_or([0, 0]);
-        let n = self.f.channels as usize;
-        for (&off, &code) in self.f.offsets.iter().zip(cur.iter()).take(n) {
-            let o = off as i64;
-            if slot >= o && slot < o + w {
-                let mut v = code as i64 & ((1 << w) - 1);
-                if self.f.sign == SignFormat::OffsetBinary {
-                    v ^= 1 << (w - 1);
-                }
-                return (v >> (w - 1 - (slot - o))) & 1 == 1;
-            }
-        }
-        self.rng.next_u64() & 1 == 1
-    }
-}
-
-impl Slave for SpiSlave {
+impl Slave for SpiAdc {
     fn step(&mut self, conv: bool, sck: bool) -> bool {
-        let on = conv == self.f.conv_active_high;
-        let was_on = self.prev_conv == self.f.conv_active_high;
-        if on && !was_on {
-            let c = self.codes[self.taken.len() % self.codes.len()];
-            self.taken.push((self.clock, c));
-            self.active = true;
-            self.slot = 0;
-            self.out = if self.f.cpha {
-                self.rng.next_u64() & 1 == 1
-            } else {
-                self.bit(0)
-            };
-        }
-        if !on && self.f.conv_clocks > 1 {
-            self.active = false; // chip select framing: deselected ends the frame
-        }
-        let leading = sck != self.f.cpol && self.prev_sck == self.f.cpol;
-        let trailing = sck == self.f.cpol && self.prev_sck != self.f.cpol;
-        if self.active {
-            if self.f.cpha && leading {
-                let s = self.slot;
-                self.out = self.bit(s);
-                self.slot += 1;
-            } else if !self.f.cpha && trailing {
-                self.slot += 1;
-                let s = self.slot;
-                self.out = self.bit(s);
-            }
-        }
-        self.prev_conv = conv;
-        self.prev_sck = sck;
-        self.clock += 1;
-        if self.active {
-            self.out
-        } else {
-            self.rng.next_u64() & 1 == 1
-        }
+        SpiAdc::step(self, conv, sck)
     }
 }
 
@@ -637,7 +554,7 @@ fn generic_closed_loop(p: &AdcParams, n: usize) -> Run {
     p.validate().expect("feasible");
     let w = p.frame.width;
     let codes = generic_codes(w, n + 4, w as u64);
-    let mut slave = SpiSlave::new(p.frame, codes.clone());
+    let mut slave = SpiAdc::with_codes(p.frame, codes.clone());
     let per = p.period_clocks as usize;
     let cycles = 2 + p.startup_clocks() as usize + (n - 1) * per + 1;
     let run = closed_loop(p, &mut slave, &|k| (k < 2, true), cycles);
@@ -645,7 +562,7 @@ fn generic_closed_loop(p: &AdcParams, n: usize) -> Run {
     assert_eq!(s.len(), n);
     assert_eq!(s[0].0, 2 + p.startup_clocks() as usize);
     for (j, &(row, a, b)) in s.iter().enumerate() {
-        let (conv_row, c) = slave.taken[j];
+        let (conv_row, c) = slave.taken()[j];
         assert_eq!(
             row - conv_row,
             p.conv_to_valid_clocks() as usize,
