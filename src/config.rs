@@ -156,6 +156,83 @@ pub struct Config {
     /// `enc_miso_oe`).
     #[serde(default)]
     pub spi: SpiConfig,
+    /// Capacitive-encoder path (seed 002): with this section `<name>_top` is the
+    /// capacitive top (excitation NCO, band-pass, demodulation, low-pass, CORDIC).
+    #[serde(default)]
+    pub capacitive: Option<CapacitiveConfig>,
+}
+
+/// `[capacitive]`: excitation NCO, filters and widths of the capacitive path. The ADC
+/// (`[adc]`, preset `generic`, one channel) samples the receiver signal A sin(wt + theta);
+/// `encoder.ppr` is the number of signal periods per turn (16 in the paper).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CapacitiveConfig {
+    /// Excitation carrier frequency in Hz (10 kHz..1 MHz, below half the sample rate).
+    pub carrier_hz: f64,
+    /// Excitation amplitude as a fraction of the DAC's full scale, (0, 1].
+    pub amplitude: f64,
+    /// Width of the excitation DAC words exc_sin/exc_cos (8..=16).
+    #[serde(default = "cap_dac_width")]
+    pub dac_width: u32,
+    /// NCO phase accumulator bits (8..=32).
+    #[serde(default = "cap_phase_bits")]
+    pub phase_bits: u32,
+    /// NCO quarter-wave table address bits (4..=12).
+    #[serde(default = "cap_table_bits")]
+    pub table_bits: u32,
+    /// Data width of the filters and of the CORDIC's inputs (12..=20 bits).
+    #[serde(default = "cap_data_width")]
+    pub data_width: u32,
+    /// Fractional guard bits the biquad engine keeps below the data LSB in its state.
+    #[serde(default = "cap_guard_frac")]
+    pub guard_frac: u32,
+    /// Filter coefficient format.
+    pub coef: crate::filter::CoefFormat,
+    /// Band-pass in front of the demodulator (the paper: 15-25 kHz at 400 kHz).
+    pub bandpass: crate::filter::FilterSpec,
+    /// Low-pass after the demodulator (removes 2w), applied to both branches.
+    pub lowpass: crate::filter::FilterSpec,
+}
+
+fn cap_dac_width() -> u32 {
+    16
+}
+fn cap_phase_bits() -> u32 {
+    32
+}
+fn cap_table_bits() -> u32 {
+    8
+}
+fn cap_data_width() -> u32 {
+    18
+}
+fn cap_guard_frac() -> u32 {
+    8
+}
+
+impl PartialEq for CapDerived {
+    /// Equal when the configuration, the rate and the quantized sections are (the rest of a
+    /// design follows from them).
+    fn eq(&self, o: &Self) -> bool {
+        self.config == o.config
+            && self.sample_rate_hz == o.sample_rate_hz
+            && self.bandpass.sos == o.bandpass.sos
+            && self.lowpass.sos == o.lowpass.sos
+    }
+}
+
+/// Derived capacitive-path parameters: the designed, quantized filters.
+#[derive(Clone, Debug)]
+pub struct CapDerived {
+    /// The configuration section.
+    pub config: CapacitiveConfig,
+    /// The ADC's sample rate (= the filters' sample rate and the NCO update rate).
+    pub sample_rate_hz: f64,
+    /// Band-pass design (ideal, quantized, response; attenuation probed at 2 carrier).
+    pub bandpass: crate::filter::Designed,
+    /// Low-pass design (probed at 2 carrier).
+    pub lowpass: crate::filter::Designed,
 }
 
 /// `[ssi]`: SSI slave sending the same data word as BiSS (biss.position_bits and
@@ -567,6 +644,8 @@ pub struct Derived {
     pub qep_enabled: bool,
     /// ADC sample width A.
     pub adc_width: u32,
+    /// Capacitive path, when `[capacitive]` is present.
+    pub capacitive: Option<CapDerived>,
     /// CORDIC iterations N.
     pub iterations: u32,
     /// Fine bits F.
@@ -765,7 +844,11 @@ impl Derived {
             key: format!("{table}.{key}"),
             message,
         };
-        let a = c.adc.width;
+        // The core's input width: the ADC's, or the filters' on the capacitive path.
+        let a = match &c.capacitive {
+            Some(k) => k.data_width,
+            None => c.adc.width,
+        };
         let n = c.cordic.iterations;
         let f = c.cordic.fine_bits;
         // Guard bits so that truncation in the x/y shifts stays below 1/4 fine LSB for
@@ -826,6 +909,10 @@ impl Derived {
         check_throughput(architecture, n, clock_hz, rate)
             .map_err(|m| err("cordic", "architecture", m))?;
         let biss = biss_params(c, position_width, &err)?;
+        let capacitive = match &c.capacitive {
+            Some(k) => Some(cap_params(c, k, rate, &err)?),
+            None => None,
+        };
         let correction = correction_params(c, &err)?;
         let ssi = if c.ssi.enabled {
             let mut p = SsiParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
@@ -934,6 +1021,7 @@ impl Derived {
             qep,
             qep_enabled: c.qep.enabled,
             adc_width: a,
+            capacitive,
             iterations: n,
             fine_bits: f,
             xy_guard,
@@ -1280,4 +1368,87 @@ fn monitor_params(
         m.clip_hold.unwrap_or(16),
     )
     .map_err(|e| err("monitor", "los_amplitude", e))
+}
+
+/// Validates `[capacitive]` and designs its filters at the ADC's sample rate.
+fn cap_params(c: &Config, k: &CapacitiveConfig, rate: f64, err: &ErrFn) -> Result<CapDerived> {
+    let t = "capacitive";
+    if c.adc.preset != AdcPreset::Generic {
+        return Err(err(
+            "adc",
+            "preset",
+            "the capacitive path reads one receiver channel: use preset = \"generic\" with [adc.frame] channels = 1".into(),
+        ));
+    }
+    if c.adc.frame.as_ref().and_then(|f| f.channels) != Some(1) {
+        return Err(err(
+            "adc",
+            "frame",
+            "the capacitive path reads one receiver channel: set [adc.frame] channels = 1".into(),
+        ));
+    }
+    if !(10e3..=1e6).contains(&k.carrier_hz) || k.carrier_hz >= rate / 2.0 {
+        return Err(err(
+            t,
+            "carrier_hz",
+            format!(
+                "{} Hz: allowed 10 kHz..1 MHz and below half the ADC's sample rate ({:.0} Hz)",
+                k.carrier_hz,
+                rate / 2.0
+            ),
+        ));
+    }
+    if !(k.amplitude > 0.0 && k.amplitude <= 1.0) {
+        return Err(err(
+            t,
+            "amplitude",
+            format!("{}: allowed (0, 1]", k.amplitude),
+        ));
+    }
+    let ranged = |key: &str, v: u32, lo: u32, hi: u32| -> Result<()> {
+        if (lo..=hi).contains(&v) {
+            Ok(())
+        } else {
+            Err(err(t, key, format!("{v}: allowed {lo}..={hi}")))
+        }
+    };
+    ranged("dac_width", k.dac_width, 8, 16)?;
+    ranged("phase_bits", k.phase_bits, 8, 32)?;
+    ranged("table_bits", k.table_bits, 4, 12.min(k.phase_bits - 2))?;
+    ranged("data_width", k.data_width, 12, 20)?;
+    ranged("guard_frac", k.guard_frac, 0, 12)?;
+    if k.data_width < c.adc.width {
+        return Err(err(
+            t,
+            "data_width",
+            format!(
+                "{} bits is narrower than the ADC's {} bits",
+                k.data_width, c.adc.width
+            ),
+        ));
+    }
+    let design = |key: &str, spec: &crate::filter::FilterSpec| -> Result<crate::filter::Designed> {
+        if (spec.sample_rate_hz - rate).abs() > rate * 1e-3 {
+            return Err(err(
+                t,
+                key,
+                format!(
+                    "sample_rate_hz = {} but the ADC samples at {:.3} Hz (clock / adc period): make them equal",
+                    spec.sample_rate_hz, rate
+                ),
+            ));
+        }
+        let mut s = spec.clone();
+        s.sample_rate_hz = rate;
+        crate::filter::design_with_probes(&s, k.coef, &[2.0 * k.carrier_hz])
+            .map_err(|e| err(t, key, e.to_string()))
+    };
+    let bandpass = design("bandpass", &k.bandpass)?;
+    let lowpass = design("lowpass", &k.lowpass)?;
+    Ok(CapDerived {
+        config: k.clone(),
+        sample_rate_hz: rate,
+        bandpass,
+        lowpass,
+    })
 }
