@@ -272,11 +272,65 @@ pub struct BoardConfig {
     /// I/O standard of every pin (e.g. "LVCMOS33"); the preset's when omitted.
     #[serde(default)]
     pub iostandard: Option<String>,
-    /// Port name -> package pin (e.g. adc_conv = "Y6"). Every port of the top except the
-    /// parallel bus (`par_*`, meant for logic in the same FPGA) needs one; these override
-    /// the preset's.
+    /// Port name -> package pin (e.g. adc_conv = "Y6"), or a list of pins LSB first for a
+    /// bus (exc_sin = ["A1", "B1", ...]). Every port of the top except the parallel bus
+    /// (`par_*`, meant for logic in the same FPGA) needs one; these override the preset's.
     #[serde(default)]
-    pub pins: std::collections::BTreeMap<String, String>,
+    pub pins: std::collections::BTreeMap<String, PinValue>,
+}
+
+/// A pin (`"Y6"`) or the pins of a bus, LSB first.
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(untagged)]
+pub enum PinValue {
+    /// One package pin.
+    One(String),
+    /// One package pin per bit, LSB first.
+    Bus(Vec<String>),
+}
+
+impl PinValue {
+    /// The single pin, if this is one.
+    pub fn one(&self) -> Option<&str> {
+        match self {
+            PinValue::One(s) => Some(s),
+            PinValue::Bus(_) => None,
+        }
+    }
+}
+
+/// Ports of the capacitive board top that need a pin (plus CAP_TOP_BUSES).
+pub const CAP_TOP_PINS: &[&str] = &[
+    "clk",
+    "rst",
+    "adc_miso",
+    "adc_sck",
+    "adc_conv",
+    "exc_strobe",
+    "biss_ma",
+    "biss_slo",
+];
+/// Buses of the capacitive board top (capacitive.dac_width pins each, LSB first).
+pub const CAP_TOP_BUSES: &[&str] = &["exc_sin", "exc_cos"];
+
+/// The board top's pinned ports for this configuration: (name, None) for a pin,
+/// (name, Some(width)) for a bus.
+pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
+    let mut v: Vec<(&'static str, Option<u32>)> = match &c.capacitive {
+        Some(k) => CAP_TOP_PINS
+            .iter()
+            .map(|p| (*p, None))
+            .chain(CAP_TOP_BUSES.iter().map(|b| (*b, Some(k.dac_width))))
+            .collect(),
+        None => TOP_PINS.iter().map(|p| (*p, None)).collect(),
+    };
+    if c.ssi.enabled {
+        v.extend(SSI_PINS.iter().map(|p| (*p, None)));
+    }
+    if c.spi.enabled {
+        v.extend(SPI_PINS.iter().map(|p| (*p, None)));
+    }
+    v
 }
 
 /// The Spartan-3A/3AN Starter Kit's pins that sinedec knows with a source: the SPI bus of
@@ -300,11 +354,11 @@ pub const BOARD_PRESETS: &[&str] = &["spartan3an-starter-kit"];
 
 impl BoardConfig {
     /// The preset's pins overridden by `[board.pins]`.
-    pub fn effective_pins(&self) -> std::collections::BTreeMap<String, String> {
+    pub fn effective_pins(&self) -> std::collections::BTreeMap<String, PinValue> {
         let mut m = std::collections::BTreeMap::new();
         if self.preset.as_deref() == Some("spartan3an-starter-kit") {
             for (k, v) in STARTER_KIT_PINS {
-                m.insert(k.to_string(), v.to_string());
+                m.insert(k.to_string(), PinValue::One(v.to_string()));
             }
         }
         for (k, v) in &self.pins {
@@ -967,32 +1021,45 @@ impl Derived {
                     ))
                 }
             }
-            let pins = b.effective_pins();
-            let valid = |v: &str| !v.is_empty() && v.chars().all(|ch| ch.is_ascii_alphanumeric());
-            let mut required: Vec<&str> = TOP_PINS.to_vec();
-            if c.ssi.enabled {
-                required.extend_from_slice(SSI_PINS);
-            }
-            if c.spi.enabled {
-                required.extend_from_slice(SPI_PINS);
-            }
-            if let Some((k, v)) = b
-                .pins
-                .iter()
-                .find(|(k, v)| !required.contains(&k.as_str()) || !valid(v))
-            {
+            if b.preset.is_some() && (c.target != Target::Spartan3an || c.capacitive.is_some()) {
                 return Err(err(
-                    "board.pins",
-                    k,
-                    format!(
-                        "`{k}` = {v:?}: the key must be one of the top's ports ({}) and the value a package pin like \"Y6\"",
-                        required.join(", ")
-                    ),
+                    "board",
+                    "preset",
+                    "the spartan3an-starter-kit preset applies to the sinewave top with target = \"spartan3an\"".into(),
                 ));
             }
-            let missing: Vec<&str> = required
+            let pins = b.effective_pins();
+            let valid = |v: &str| !v.is_empty() && v.chars().all(|ch| ch.is_ascii_alphanumeric());
+            let ports = board_ports(c);
+            let names: Vec<String> = ports
                 .iter()
-                .copied()
+                .map(|(p, w)| match w {
+                    Some(w) => format!("{p} ({w} pins)"),
+                    None => p.to_string(),
+                })
+                .collect();
+            for (k, v) in &b.pins {
+                let ok = match (ports.iter().find(|p| p.0 == k.as_str()), v) {
+                    (Some((_, None)), PinValue::One(p)) => valid(p),
+                    (Some((_, Some(w))), PinValue::Bus(ps)) => {
+                        ps.len() == *w as usize && ps.iter().all(|p| valid(p))
+                    }
+                    _ => false,
+                };
+                if !ok {
+                    return Err(err(
+                        "board.pins",
+                        k,
+                        format!(
+                            "`{k}` = {v:?}: the key must be one of the top's ports ({}) and the value a package pin like \"Y6\" (a list of that many pins, LSB first, for a bus)",
+                            names.join(", ")
+                        ),
+                    ));
+                }
+            }
+            let missing: Vec<&str> = ports
+                .iter()
+                .map(|p| p.0)
                 .filter(|p| !pins.contains_key(*p))
                 .collect();
             if !missing.is_empty() {

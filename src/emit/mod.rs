@@ -325,7 +325,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         let pins = b.effective_pins();
         let iostandard = b.effective_iostandard().unwrap_or_default();
         for p in crate::config::TOP_PINS.iter().chain(extra.iter()) {
-            if let Some(loc) = pins.get(*p) {
+            if let Some(loc) = pins.get(*p).and_then(|v| v.one()) {
                 u.push_str(&format!(
                     "NET \"{p}\" LOC = \"{loc}\" | IOSTANDARD = {iostandard};\n"
                 ));
