@@ -243,7 +243,7 @@ pub struct BiquadRtl {
     pub overflow: Signal<Out, Bit>,
     /// Computing or clearing the state: in_valid is dropped.
     pub busy: Signal<Out, Bit>,
-    /// One clock after an in_valid that was dropped.
+    /// One-clock flag set by the edge that ignored an in_valid (busy).
     pub dropped: Signal<Out, Bit>,
     prog: BiquadProgram,
     ram: BiquadStateRam,

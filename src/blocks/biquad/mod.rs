@@ -74,7 +74,7 @@
 //!
 //! # Sequencing
 //!
-//! A program counter `pc` runs 0..P-1 (P = [`BiquadParams::cycles_per_sample`]) after an
+//! A program counter `pc` runs 0..P-1 (P = [`BiquadParams::latency`] = 7 J + 2) after an
 //! accepted `in_valid`; the ROM entry at `pc` holds the coefficient to load and the control
 //! bits of everything that happens in that clock ([`BiquadParams::program`]). Section j
 //! (counted over all branches in order) starts at c0 = 7 j:
@@ -96,9 +96,12 @@
 //! h2 (`base ^ p`) and h1 (`(base + 1) ^ p`); the new value overwrites the h2 word, so each
 //! node costs one write per sample (no h2 <= h1 copy).
 //!
-//! Cycles per sample: P = sum over branches of sections * (5 MACs + 2) + 2 = 7 J + 2 with J
-//! the total number of sections (3 branches of 2 sections: 44 clocks = 0.33 us at 133 MHz,
-//! inside the paper's 2.5 us sample period).
+//! Timing: the edge that accepts `in_valid` latches the inputs; the next P = 7 J + 2 edges
+//! run the program (`busy` high), the last one raises `out_valid`. Cycles per sample
+//! (minimum period of accepted strobes) = P + 1 = sum over branches of sections * (5 MACs
+//! + 2) + 3 = 7 J + 3 ([`BiquadParams::cycles_per_sample`]); the capacitive chain with 2
+//! band-pass and 2 + 2 low-pass sections: 45 clocks = 0.34 us at 133 MHz, 0.9 us at 50 MHz,
+//! inside the paper's 2.5 us sample period.
 //!
 //! # Ports of [`hdl::BiquadRtl`] (data words are `Bits<32>` with the value in the low bits)
 //!
@@ -109,17 +112,18 @@
 //!                   after rst falls)
 //! in_valid     in   start strobe: accepted in a clock where busy is low; in_data latched
 //! in_data_k    in   branch k input, D-bit two's complement
-//! out_valid    out  one-clock strobe, P clocks after the accepted in_valid
+//! out_valid    out  one-clock strobe, P clocks after the edge that accepted in_valid
 //! out_data_k   out  branch k output, D-bit two's complement (saturated); held until the
 //!                   next out_valid (0 after reset)
 //! overflow     out  one-clock flag with out_valid: some section of this sample saturated
 //! busy         out  computing or clearing: an in_valid now is dropped
-//! dropped      out  one-clock flag, the clock after an in_valid that was dropped
+//! dropped      out  one-clock flag set by the edge that ignored an in_valid (busy)
 //! ```
 //!
 //! Back-to-back samples: an `in_valid` while `busy` is not queued: it is dropped and
-//! `dropped` pulses; the computation in progress is not disturbed. The minimum period of
-//! accepted samples is P clocks (`in_valid` in the clock `busy` falls is accepted).
+//! `dropped` pulses; the computation in progress is not disturbed. Seen from the outputs:
+//! the row showing `out_valid` also shows `busy` low, and an `in_valid` in the next clock is
+//! accepted, so strobes every P + 1 clocks are all accepted.
 pub mod hdl;
 pub mod model;
 
@@ -131,7 +135,7 @@ pub const MAX_BRANCHES: usize = 8;
 pub const MAX_SECTIONS: usize = 16;
 /// Clocks per section: 5 MACs + 2 pipeline clocks (RAM read, product register).
 pub const CYCLES_PER_SECTION: u32 = 7;
-/// Clocks per sample beyond the sections: last result and output update.
+/// Busy clocks per sample beyond the sections: last result and output update.
 pub const CYCLES_FIXED: u32 = 2;
 
 /// Control bits of a program word (bits 0..=9 are the state RAM address).
@@ -329,10 +333,17 @@ impl BiquadParams {
         self.branches.iter().map(|b| b.len() as u32).sum()
     }
 
-    /// Clocks per sample P = 7 J + 2: `busy` clocks after an accepted `in_valid`, the
-    /// in_valid-to-out_valid latency and the minimum period of accepted samples.
-    pub fn cycles_per_sample(&self) -> u32 {
+    /// Latency P = 7 J + 2: clocks from the edge that accepts `in_valid` to the edge that
+    /// raises `out_valid`; `busy` is high for these P clocks; the program has P words.
+    pub fn latency(&self) -> u32 {
         CYCLES_PER_SECTION * self.total_sections() + CYCLES_FIXED
+    }
+
+    /// Clocks per sample = P + 1 = 7 J + 3 = sum over branches of sections * (5 MACs + 2)
+    /// + 3: the minimum period of accepted `in_valid` strobes (the accepting clock plus the
+    /// P busy clocks).
+    pub fn cycles_per_sample(&self) -> u32 {
+        self.latency() + 1
     }
 
     /// State RAM words W = sum over branches of 2 (sections + 1); also the clocks of the
@@ -348,12 +359,12 @@ impl BiquadParams {
 
     /// Bits of the program counter.
     pub fn pc_width(&self) -> u32 {
-        bits_for(self.cycles_per_sample())
+        bits_for(self.latency())
     }
 
     /// The program: one word per busy clock (see the module docs' schedule).
     pub fn program(&self) -> Vec<MicroOp> {
-        let p = self.cycles_per_sample() as usize;
+        let p = self.latency() as usize;
         let mut prog = vec![MicroOp::default(); p];
         let mut j = 0usize;
         let mut base = 0u32;

@@ -143,7 +143,7 @@ impl BiquadCycleModel {
         } else if self.busy_left == 0 {
             if i.in_valid {
                 self.pending = self.m.step(&i.data);
-                self.busy_left = self.p.cycles_per_sample();
+                self.busy_left = self.p.latency();
             }
         } else {
             self.dropped = i.in_valid;
