@@ -145,8 +145,11 @@ end
     }
 }
 
-/// The state RAM: `words` x `width` bits, one port, synchronous read (old data on a write),
-/// zero at power-up.
+/// The state RAM: `words` x `width` bits, one port, synchronous read (old data on a write).
+/// Zero at power-up in simulation (rust-hdl, and an `ifndef SYNTHESIS` initial block for
+/// Icarus/Verilator); in hardware its contents are defined by the clearing sweep after
+/// reset (Yosys 0.23's Cyclone III M9K mapping rejects initialized memories), so the
+/// engine needs one reset after configuration.
 #[derive(LogicBlock)]
 pub struct BiquadStateRam {
     /// Clock.
@@ -209,9 +212,11 @@ impl Logic for BiquadStateRam {
         Verilog::Custom(format!(
             "\
 reg [{wm}:0] sr_mem [0:{nm}];
+`ifndef SYNTHESIS
 initial begin
 {init}  q = 32'h00000000;
 end
+`endif
 always @(posedge clk) begin
   if (we) sr_mem[addr[{am}:0]] <= wd[{wm}:0];
   q <= {rd};

@@ -49,9 +49,18 @@
 //!   always in range because the S-bit value was already saturated.
 //!
 //! Default widths of the tests: D = 16, G = 2, C = 18, F = 16 gives an 18 x 18 product
-//! (one Cyclone III 18x18 embedded multiplier) and A = 22; the precise variant D = 16,
-//! G = 8, C = 25, F = 23 gives 24 x 25 (Yosys splits it over several 18x18/9x9 blocks, see
-//! the synthesis test) and A = 28.
+//! (one Cyclone III 18x18 embedded multiplier in Quartus) and A = 22; the precise variant
+//! D = 16, G = 8, C = 25, F = 23 gives 24 x 25 (several embedded multipliers) and A = 28.
+//! Yosys 0.23 `synth_intel -family cycloneive` has no DSP mapping and builds the product
+//! from logic cells; measured (capacitive chain, 2 + 2 + 2 sections, state RAM in one
+//! M9K): 18 x 18: 1342 LE of which 976 are the multiplier, 241 FF; 18 x 25: 1648 LE (1306
+//! multiplier), 246 FF. With S > 18 Yosys maps the RAM to the M9K 36-bit mode with a port
+//! resize warning that the project's synthesis gate rejects.
+//!
+//! Truncation bias: the five floors of a section average about -2.5 S-LSB per sample and
+//! the low-pass recursion amplifies them by its DC gain 1/(1 + a1 + a2) (about 260 for the
+//! 4 kHz / 400 kHz Butterworth), so with G = 2 the output of that low-pass sits up to
+//! ~160 LSB low; G = 8 brings the error below 4 LSB (tests/biquad.rs measures both).
 //!
 //! # Sketch
 //!
