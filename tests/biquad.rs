@@ -204,7 +204,7 @@ fn model_lowpass_matches_float_within_the_quantization_bound() {
     assert!(bound_out < 8.0, "bound {bound_out} output LSB");
     let mut r = SplitMix64(11);
     let mut xs: Vec<i64> = (0..400).map(|_| r.range(-20000, 20000)).collect();
-    xs.extend(std::iter::repeat(15000).take(1500)); // step: settles to DC gain 1
+    xs.extend(std::iter::repeat_n(15000, 1500)); // step: settles to DC gain 1
     let exact = float_branch(&p, 0, &xs);
     let mut m = BiquadModel::new(&p);
     let mut worst = 0.0f64;
@@ -472,8 +472,8 @@ fn cosim_impulse_on_the_capacitive_chain() {
     for (j, (row, _, _)) in outs.iter().enumerate() {
         assert_eq!(*row, start + j * per + lat, "out_valid of sample {j}");
     }
-    for n in start..start + lat {
-        assert_eq!(rows[n][p.branch_count() + 2], 1, "busy at row {n}");
+    for (n, r) in rows.iter().enumerate().skip(start).take(lat) {
+        assert_eq!(r[p.branch_count() + 2], 1, "busy at row {n}");
     }
     assert_eq!(
         rows[start + lat][p.branch_count() + 2],
@@ -618,9 +618,12 @@ fn cosim_back_to_back_strobes_are_dropped_while_busy() {
         .collect();
     let want: Vec<usize> = (0..n).step_by(per).map(|j| start + j).collect();
     assert_eq!(accepted, want);
-    for row in start..start + n {
-        let was_dropped = rows[row][k + 3] == 1;
-        assert_eq!(was_dropped, !want.contains(&row), "row {row}");
+    for (row, r) in rows.iter().enumerate().skip(start).take(n) {
+        assert_eq!(
+            r[k + 3] == 1,
+            !want.contains(&row),
+            "dropped flag at row {row}"
+        );
     }
     // The outputs are those of the accepted samples only.
     let mut m = BiquadModel::new(&p);

@@ -106,11 +106,11 @@
 //! node costs one write per sample (no h2 <= h1 copy).
 //!
 //! Timing: the edge that accepts `in_valid` latches the inputs; the next P = 7 J + 2 edges
-//! run the program (`busy` high), the last one raises `out_valid`. Cycles per sample
-//! (minimum period of accepted strobes) = P + 1 = sum over branches of sections * (5 MACs
-//! + 2) + 3 = 7 J + 3 ([`BiquadParams::cycles_per_sample`]); the capacitive chain with 2
-//! band-pass and 2 + 2 low-pass sections: 45 clocks = 0.34 us at 133 MHz, 0.9 us at 50 MHz,
-//! inside the paper's 2.5 us sample period.
+//! run the program (`busy` high), the last one raises `out_valid`. Cycles per sample, the
+//! minimum period of accepted strobes, is P + 1 = 7 J + 3, i.e. the sum over branches of
+//! sections * (5 MACs + 2 overhead) plus 3 ([`BiquadParams::cycles_per_sample`]). The
+//! capacitive chain with 2 band-pass and 2 + 2 low-pass sections needs 45 clocks: 0.34 us
+//! at 133 MHz, 0.9 us at 50 MHz, inside the paper's 2.5 us sample period.
 //!
 //! # Ports of [`hdl::BiquadRtl`] (data words are `Bits<32>` with the value in the low bits)
 //!
@@ -348,9 +348,9 @@ impl BiquadParams {
         CYCLES_PER_SECTION * self.total_sections() + CYCLES_FIXED
     }
 
-    /// Clocks per sample = P + 1 = 7 J + 3 = sum over branches of sections * (5 MACs + 2)
-    /// + 3: the minimum period of accepted `in_valid` strobes (the accepting clock plus the
-    /// P busy clocks).
+    /// Clocks per sample = P + 1 = 7 J + 3 (sum over branches of sections times 5 MACs plus
+    /// 2, plus 3): the minimum period of accepted `in_valid` strobes (the accepting clock
+    /// and the P busy clocks).
     pub fn cycles_per_sample(&self) -> u32 {
         self.latency() + 1
     }
