@@ -11,6 +11,7 @@
 //! fill mask when the sign bit (a constant-mask test, never a literal index) is set.
 //! No unsized literal takes part in any expression (rust-hdl pitfall 4).
 pub mod adc;
+pub mod biquad;
 pub mod biss;
 pub mod cordic;
 pub mod core;
