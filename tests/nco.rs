@@ -398,7 +398,12 @@ fn bad_parameters_are_rejected_with_a_message() {
 fn synthesizes_for_both_families() {
     use rust_hdl::prelude::Block;
     let dir = common::workdir("nco_synth");
-    for (p, tag) in [(paper(), "sd_nco"), (fast(), "sd_nco_fast")] {
+    let t8 = NcoParams::new(F50, 400e3, 20e3, 32, 8, 16, 1.0).expect("valid");
+    for (p, tag) in [
+        (paper(), "sd_nco"),
+        (t8, "sd_nco_t8"),
+        (fast(), "sd_nco_fast"),
+    ] {
         let mut uut = Nco::new(&p);
         uut.connect_all();
         let v = sinedec::emit::verilog::export(&uut, "nco", tag).expect("export");

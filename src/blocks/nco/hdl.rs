@@ -4,74 +4,77 @@ use crate::blocks::{c32, mask};
 use crate::sim::cosim::Port;
 use rust_hdl::prelude::*;
 
-/// Quarter-wave sine table with two combinational read ports: `data_x = table[addr_x]`.
-/// Modelled on rust-hdl's `ROM` widget (a custom Verilog `always @(*) case` body, the table
-/// kept in a `_`-prefixed field that the derive skips), but the address width T and the
-/// contents come from the parameters at run time. Only the low T address bits are used.
-/// The read is combinational and its data passes through the sign logic before the output
-/// registers, so Yosys builds the table from logic: a synchronous-read table becomes a
-/// block RAM, which Yosys 0.23 maps on xc3sa only with port-resizing warnings and fails to
-/// map on cycloneive (M9K `INIT` defparam error).
+/// The first octant of the carrier: one address j (T-1 bits) reads two words at once,
+/// `data_s = tab[j]` and `data_c = tab[2^T - 1 - j]` (the sin and cos of the angle of
+/// index j), combinationally. With the octant fold in [`Nco`] this is the whole quarter
+/// table in 2^(T-1) two-word entries: half the entries of two quarter-table ports.
+///
+/// Modelled on rust-hdl's `ROM` widget (a custom Verilog `always @(*) case` body, the
+/// tables kept in `_`-prefixed fields that the derive skips), but the address width and the
+/// contents come from the parameters at run time. Only the low T-1 address bits are used.
+/// The read is combinational and its data passes through the fold and sign logic before
+/// the output registers, so Yosys builds it from logic (LUTs). A synchronous-read table
+/// would become a block RAM, which Yosys 0.23 maps on xc3sa only with port-resizing
+/// warnings and fails to map on cycloneive (M9K `INIT` defparam error).
 #[derive(LogicBlock)]
 pub struct SineRom {
-    /// Read address of port A (low T bits).
-    pub addr_a: Signal<In, Bits<16>>,
-    /// Read address of port B (low T bits).
-    pub addr_b: Signal<In, Bits<16>>,
-    /// table[addr_a].
-    pub data_a: Signal<Out, Bits<16>>,
-    /// table[addr_b].
-    pub data_b: Signal<Out, Bits<16>>,
-    _table: Vec<u64>,
+    /// Read address j (low T-1 bits).
+    pub addr: Signal<In, Bits<16>>,
+    /// tab[j]: the sin word of index j.
+    pub data_s: Signal<Out, Bits<16>>,
+    /// tab[2^T - 1 - j]: the cos word of index j.
+    pub data_c: Signal<Out, Bits<16>>,
+    _sin: Vec<u64>,
+    _cos: Vec<u64>,
     _abits: u32,
 }
 
 impl SineRom {
-    /// ROM holding `table` (2^abits entries, each < 2^16).
-    pub fn new(table: Vec<u64>, abits: u32) -> Self {
+    /// ROM of the first octant of the quarter table `table` (2^T entries, each < 2^16).
+    pub fn new(table: &[u64]) -> Self {
+        let n = table.len();
+        let half = n / 2;
         Self {
-            addr_a: Default::default(),
-            addr_b: Default::default(),
-            data_a: Default::default(),
-            data_b: Default::default(),
-            _table: table,
-            _abits: abits,
+            addr: Default::default(),
+            data_s: Default::default(),
+            data_c: Default::default(),
+            _sin: table[..half].to_vec(),
+            _cos: (0..half).map(|j| table[n - 1 - j]).collect(),
+            _abits: half.trailing_zeros(),
         }
     }
-    fn read(&self, addr: Bits<16>) -> Bits<16> {
-        let a = (addr.to_u64() & mask(self._abits)) as usize;
-        Bits::<16>::from(self._table.get(a).copied().unwrap_or(0) & 0xffff)
+    fn read(t: &[u64], abits: u32, addr: Bits<16>) -> Bits<16> {
+        let a = (addr.to_u64() & mask(abits)) as usize;
+        Bits::<16>::from(t.get(a).copied().unwrap_or(0) & 0xffff)
     }
 }
 
 impl Logic for SineRom {
     fn update(&mut self) {
-        self.data_a.next = self.read(self.addr_a.val());
-        self.data_b.next = self.read(self.addr_b.val());
+        self.data_s.next = Self::read(&self._sin, self._abits, self.addr.val());
+        self.data_c.next = Self::read(&self._cos, self._abits, self.addr.val());
     }
     fn connect(&mut self) {
-        self.data_a.connect();
-        self.data_b.connect();
+        self.data_s.connect();
+        self.data_c.connect();
     }
     fn hdl(&self) -> Verilog {
-        let n = 1usize << self._abits;
         let ab = self._abits;
-        let top = ab - 1;
-        let case = |port: &str| {
-            let arms = (0..n)
-                .map(|i| {
-                    format!(
-                        "        {ab}'d{i}: data_{port} = 16'h{:04x};",
-                        self._table.get(i).copied().unwrap_or(0) & 0xffff
-                    )
-                })
-                .collect::<Vec<_>>()
-                .join("\n");
-            format!(
-                "always @(*) begin\n    case (addr_{port}[{top}:0])\n{arms}\n        default: data_{port} = 16'h0000;\n    endcase\nend"
-            )
-        };
-        Verilog::Custom(format!("{}\n{}", case("a"), case("b")))
+        let arms = (0..self._sin.len())
+            .map(|j| {
+                format!(
+                    "        {ab}'d{j}: begin data_s = 16'h{:04x}; data_c = 16'h{:04x}; end",
+                    self._sin[j] & 0xffff,
+                    self._cos.get(j).copied().unwrap_or(0) & 0xffff
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        Verilog::Custom(format!(
+            "always @(*) begin\n    case (addr[{top}:0])\n{arms}\n        \
+             default: begin data_s = 16'h0000; data_c = 16'h0000; end\n    endcase\nend",
+            top = ab - 1
+        ))
     }
 }
 
@@ -99,6 +102,8 @@ pub struct Nco {
     o_cos: DFF<Bits<32>>,
     o_phase: DFF<Bits<32>>,
     idx: Signal<Local, Bits<32>>,
+    jdx: Signal<Local, Bits<32>>,
+    oct: Signal<Local, Bit>,
     ta: Signal<Local, Bits<32>>,
     tb: Signal<Local, Bits<32>>,
     smag: Signal<Local, Bits<32>>,
@@ -113,6 +118,10 @@ pub struct Nco {
     ishift: Constant<Bits<32>>,
     /// Mask of the T index bits.
     tmask: Constant<Bits<32>>,
+    /// Index bit T-1 (upper half of the quadrant).
+    omsb: Constant<Bits<32>>,
+    /// Mask of the T-1 octant index bits.
+    hmask: Constant<Bits<32>>,
     /// Phase bit P-1 (quadrant MSB).
     qhi: Constant<Bits<32>>,
     /// Phase bit P-2 (quadrant LSB).
@@ -137,13 +146,15 @@ impl Nco {
             out_sin: Default::default(),
             out_cos: Default::default(),
             out_phase: Default::default(),
-            rom: SineRom::new(p.table(), t),
+            rom: SineRom::new(&p.table()),
             phase: Default::default(),
             o_valid: Default::default(),
             o_sin: Default::default(),
             o_cos: Default::default(),
             o_phase: Default::default(),
             idx: Default::default(),
+            jdx: Default::default(),
+            oct: Default::default(),
             ta: Default::default(),
             tb: Default::default(),
             smag: Default::default(),
@@ -154,6 +165,8 @@ impl Nco {
             pmask: c32(mask(pb)),
             ishift: c32((pb - t - 2) as u64),
             tmask: c32(mask(t)),
+            omsb: c32(1 << (t - 1)),
+            hmask: c32(mask(t - 1)),
             qhi: c32(1 << (pb - 1)),
             qlo: c32(1 << (pb - 2)),
             wmask: c32(mask(p.width())),
@@ -167,12 +180,22 @@ impl Logic for Nco {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clk, phase, o_valid, o_sin, o_cos, o_phase);
-        // Table look-up of the current phase: tab[i] and tab[~i] (combinational).
+        // Table look-up of the current phase: ta = tab[i], tb = tab[~i] (combinational).
+        // Octant fold: for i in the upper half of the quadrant read index j = ~i (T-1 bits)
+        // and swap, since tab[i] = tab[2^T-1-j] and tab[~i] = tab[j].
         self.idx.next = (self.phase.q.val() >> self.ishift.val()) & self.tmask.val();
-        self.rom.addr_a.next = bit_cast::<16, 32>(self.idx.val());
-        self.rom.addr_b.next = bit_cast::<16, 32>(self.idx.val() ^ self.tmask.val());
-        self.ta.next = bit_cast::<32, 16>(self.rom.data_a.val());
-        self.tb.next = bit_cast::<32, 16>(self.rom.data_b.val());
+        self.oct.next = (self.idx.val() & self.omsb.val()) != self.zero.val();
+        self.jdx.next = self.idx.val() & self.hmask.val();
+        if self.oct.val() {
+            self.jdx.next = (self.idx.val() ^ self.hmask.val()) & self.hmask.val();
+        }
+        self.rom.addr.next = bit_cast::<16, 32>(self.jdx.val());
+        self.ta.next = bit_cast::<32, 16>(self.rom.data_s.val());
+        self.tb.next = bit_cast::<32, 16>(self.rom.data_c.val());
+        if self.oct.val() {
+            self.ta.next = bit_cast::<32, 16>(self.rom.data_c.val());
+            self.tb.next = bit_cast::<32, 16>(self.rom.data_s.val());
+        }
         // Mirror (odd quadrant) and negate (sin: q = 2, 3; cos: q = 1, 2).
         self.qhi_set.next = (self.phase.q.val() & self.qhi.val()) != self.zero.val();
         self.qlo_set.next = (self.phase.q.val() & self.qlo.val()) != self.zero.val();

@@ -3,14 +3,14 @@
 //! so the demodulator gets the carrier value that belongs to each ADC sample.
 //!
 //! ```text
-//!                tick                      ┌──────────────┐
-//!   rst ─┐        │                  i ───►│ quarter-wave │ tab[i]  ┌────────────┐
-//!        ▼        ▼                        │ ROM 2^T x    ├────────►│ mirror by  │ ─►[out_sin]
-//!   ┌►[phase reg]─┬──── k = top T+2 ─┬────►│ (W-1) bits,  │ tab[~i] │ q0, negate │ ─►[out_cos]
-//!   │   (P bits)  │       bits        │~i ─►│ 2 read ports ├────────►│ by q1 ^ q0 │
-//!   └──── + fw ◄──┘                   └── q = 2 MSBs ──────────────►└────────────┘
-//!                 └───────────────────────────────────────────────────────────────►[out_phase]
-//!   tick ─────────────────────────────────────────────────────────────────────────►[out_valid]
+//!                tick                          ┌────────────┐
+//!   rst ─┐        │                   ┌──────┐ │ octant ROM │ tab[j]  ┌────────────────┐
+//!        ▼        ▼                   │ fold ├►│ 2^(T-1) x  ├────────►│ unfold swap,   │─►[out_sin]
+//!   ┌►[phase reg]─┬── k = top T+2 ───►│ i->j │ │ 2 words    ├────────►│ mirror by q0,  │─►[out_cos]
+//!   │   (P bits)  │       bits        └──────┘ └────────────┘ tab[~j] │ negate by q    │
+//!   └──── + fw ◄──┘                   └── q = 2 MSBs, octant bit ────►└────────────────┘
+//!                 └──────────────────────────────────────────────────────────────────►[out_phase]
+//!   tick ────────────────────────────────────────────────────────────────────────────►[out_valid]
 //! ```
 //!
 //! # Stepping: once per `tick`
@@ -54,10 +54,16 @@
 //! Phase P <= 32 bits in a `Bits<32>` word (masked); table T = 4..=12 address bits with
 //! W-1 magnitude bits (W = 4..=16); the outputs are W-bit two's complement in the low bits
 //! of a `Bits<32>` word (upper bits 0), max magnitude A (2^(W-1) - 1) < 2^(W-1), so
-//! negation never overflows. The ROM is a combinational table with two read ports
-//! ([`hdl::SineRom`], modelled on rust-hdl's `ROM` widget but with a run-time address
-//! width): an `always @(*) case` per port, built from logic (LUTs); see [`hdl::SineRom`]
-//! for why not a block RAM. Critical path: phase register -> table -> 2:1 mux ->
+//! negation never overflows.
+//!
+//! # Table storage (octant fold)
+//! Both tab[i] and tab[~i] are needed for every output. Instead of two quarter-table
+//! ports, [`hdl::SineRom`] holds the first octant as 2^(T-1) two-word entries
+//! (tab[j], tab[2^T-1-j]), j < 2^(T-1): for i < 2^(T-1) it is read at j = i, otherwise at
+//! j = ~i (T-1 bits) with the two words swapped. Same words, half the table. The ROM is
+//! combinational (an `always @(*) case`, modelled on rust-hdl's `ROM` widget with a
+//! run-time address width) and built from logic; see [`hdl::SineRom`] for why not a block
+//! RAM. Critical path: phase register -> fold -> table -> swap and quadrant muxes ->
 //! W-bit negation -> output register.
 //!
 //! # Ports of [`hdl::Nco`]
