@@ -19,6 +19,7 @@ pub mod correction;
 pub mod counter;
 pub mod fallback;
 pub mod monitor;
+pub mod nco;
 pub mod parallel;
 pub mod preamp;
 pub mod qep;
