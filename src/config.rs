@@ -181,7 +181,7 @@ pub struct CapacitiveConfig {
     /// NCO quarter-wave table address bits (4..=12).
     #[serde(default = "cap_table_bits")]
     pub table_bits: u32,
-    /// Data width of the filters and of the CORDIC's inputs (12..=20 bits).
+    /// Data width of the filters and of the CORDIC's inputs (12..=16 bits, >= adc.width).
     #[serde(default = "cap_data_width")]
     pub data_width: u32,
     /// Fractional guard bits the biquad engine keeps below the data LSB in its state.
@@ -1454,6 +1454,14 @@ fn cap_params(c: &Config, k: &CapacitiveConfig, rate: f64, err: &ErrFn) -> Resul
             "the capacitive path reads one receiver channel: set [adc.frame] channels = 1".into(),
         ));
     }
+    if c.ssi.enabled || c.spi.enabled {
+        return Err(err(
+            if c.ssi.enabled { "ssi" } else { "spi" },
+            "enabled",
+            "the capacitive top serves BiSS-C and the parallel bus; SSI and SPI are not in it"
+                .into(),
+        ));
+    }
     if !(10e3..=1e6).contains(&k.carrier_hz) || k.carrier_hz >= rate / 2.0 {
         return Err(err(
             t,
@@ -1482,7 +1490,7 @@ fn cap_params(c: &Config, k: &CapacitiveConfig, rate: f64, err: &ErrFn) -> Resul
     ranged("dac_width", k.dac_width, 8, 16)?;
     ranged("phase_bits", k.phase_bits, 8, 32)?;
     ranged("table_bits", k.table_bits, 4, 12.min(k.phase_bits - 2))?;
-    ranged("data_width", k.data_width, 12, 20)?;
+    ranged("data_width", k.data_width, 12, 16)?;
     ranged("guard_frac", k.guard_frac, 0, 12)?;
     if k.data_width < c.adc.width {
         return Err(err(

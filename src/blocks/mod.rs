@@ -14,6 +14,7 @@ pub mod adc;
 pub mod biquad;
 pub mod biss;
 pub mod capacitive;
+pub mod captop;
 pub mod cordic;
 pub mod core;
 pub mod correction;

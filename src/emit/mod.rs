@@ -245,6 +245,134 @@ endmodule // {name}
     )))
 }
 
+/// Verilog of the capacitive `<name>_top` (with `[capacitive]`), without header.
+pub fn cap_top_verilog(loaded: &Loaded) -> Result<Option<String>> {
+    let d = &loaded.derived;
+    let Some(k) = &d.capacitive else {
+        return Ok(None);
+    };
+    let name = top_name(loaded);
+    let rtl_name = format!("{name}_rtl");
+    let mut uut = crate::blocks::captop::hdl::CapTopRtl::new(d)?;
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let body = verilog::export(&uut, "top", &rtl_name)?;
+    let f = d.fine_bits;
+    let turns = if d.multiturn_bits == 0 {
+        "1'b0".to_string()
+    } else {
+        format!("turns[{}:0]", d.multiturn_bits - 1)
+    };
+    let wrapper = format!(
+        r#"// {name}: capacitive encoder decoder: excitation NCO ({carrier:.0} Hz), SPI ADC
+// ({rate:.0} samples/s), band-pass, quadrature demodulation, low-pass, QEP-CORDIC core,
+// BiSS-C and parallel bus.
+module {name} (
+    input  wire         clk,          // system clock
+    input  wire         rst,          // synchronous reset, active high
+    input  wire         adc_miso,     // ADC serial data
+    output wire         adc_sck,      // ADC serial clock
+    output wire         adc_conv,     // ADC conversion start / chip select
+    output wire [{wm}:0]  exc_sin,      // excitation DAC word A sin(wt), two's complement
+    output wire [{wm}:0]  exc_cos,      // excitation DAC word A cos(wt), two's complement
+    output wire         exc_strobe,   // one clock when new excitation words are out
+    input  wire         biss_ma,      // BiSS-C MA clock from the master
+    output wire         biss_slo,     // BiSS-C SLO data to the master
+    output wire         par_valid,    // parallel bus: one-cycle strobe per position
+    output wire [{pm}:0]  par_position, // parallel bus: single-turn position, 2^-{f} quadrant
+    output wire [{tm}:0]  par_turns,    // parallel bus: signed multi-turn count
+    output wire [{fm}:0]  par_fine,     // parallel bus: fine part of the position
+    output wire         par_error,    // parallel bus: error flag
+    output wire         par_warning   // parallel bus: warning flag
+);
+    wire [31:0] qc;    // coarse quadrant count
+    wire [31:0] fine;  // fine part
+    wire [31:0] turns; // turn count
+    wire [31:0] es;    // excitation sin word
+    wire [31:0] ec;    // excitation cos word
+    {rtl_name} rtl (
+        .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_sck(adc_sck), .adc_conv(adc_conv),
+        .exc_sin(es), .exc_cos(ec), .exc_strobe(exc_strobe), .biss_ma(biss_ma),
+        .biss_slo(biss_slo), .par_valid(par_valid), .par_qc(qc), .par_fine(fine),
+        .par_turns(turns), .par_error(par_error), .par_warning(par_warning)
+    );
+    assign exc_sin = es[{wm}:0];
+    assign exc_cos = ec[{wm}:0];
+    assign par_position = {{qc[{qb}:0], fine[{fm}:0]}};
+    assign par_turns = {turns};
+    assign par_fine = fine[{fm}:0];
+endmodule // {name}
+"#,
+        carrier = k.config.carrier_hz,
+        rate = k.sample_rate_hz,
+        wm = k.config.dac_width - 1,
+        pm = d.position_width - 1,
+        tm = d.turns_width - 1,
+        fm = f - 1,
+        qb = d.quadrant_bits - 1,
+    );
+    Ok(Some(format!("{wrapper}\n{body}")))
+}
+
+/// Quartus QSF (pins, I/O standard, device) and SDC (clock) of the capacitive top.
+fn cap_constraints(loaded: &Loaded, command: &str) -> Option<(String, String)> {
+    let k = loaded.derived.capacitive.as_ref()?;
+    let b = loaded.config.board.as_ref();
+    let top = top_name(loaded);
+    let iostd = b
+        .and_then(|b| b.effective_iostandard())
+        .unwrap_or_else(|| "3.3-V LVTTL".to_string());
+    let mut q = header(
+        loaded,
+        command,
+        "QSF: device, top and pins of the board top (Quartus).",
+        "#",
+    );
+    q.push_str(&format!(
+        "set_global_assignment -name FAMILY \"Cyclone III\"\n\
+         set_global_assignment -name DEVICE EP3C40F324C8\n\
+         set_global_assignment -name TOP_LEVEL_ENTITY {top}\n\
+         set_global_assignment -name SDC_FILE {top}.sdc\n\
+         # The parallel bus (par_*) is not constrained: it is meant for logic in the same FPGA.\n"
+    ));
+    if b.is_none() {
+        q.push_str("# No [board] section in the configuration: no pin assignments.\n");
+    }
+    let pins = b.map(|b| b.effective_pins()).unwrap_or_default();
+    for (port, width) in crate::config::board_ports(&loaded.config) {
+        match (pins.get(port), width) {
+            (Some(crate::config::PinValue::One(p)), None) => q.push_str(&format!(
+                "set_location_assignment PIN_{p} -to {port}\nset_instance_assignment -name IO_STANDARD \"{iostd}\" -to {port}\n"
+            )),
+            (Some(crate::config::PinValue::Bus(ps)), Some(_)) => {
+                for (i, p) in ps.iter().enumerate() {
+                    q.push_str(&format!(
+                        "set_location_assignment PIN_{p} -to {port}[{i}]\nset_instance_assignment -name IO_STANDARD \"{iostd}\" -to {port}[{i}]\n"
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    let period = 1e9 / loaded.derived.clock_hz;
+    let mut s = header(
+        loaded,
+        command,
+        "SDC: clock of the board top (Quartus TimeQuest).",
+        "#",
+    );
+    s.push_str(&format!(
+        "create_clock -name clk -period {period:.3} [get_ports clk]\n\
+         derive_clock_uncertainty\n\
+         # MA is asynchronous: it enters through a two-flop synchronizer.\n\
+         set_false_path -from [get_ports biss_ma]\n\
+         # The ADC data is sampled {d} system clocks after the SCK edge that shifts it.\n\
+         set_false_path -from [get_ports adc_miso]\n",
+        d = loaded.derived.adc.sck_period_clocks,
+    ));
+    let _ = k;
+    Some((q, s))
+}
+
 /// All files for one configuration; `command` is the command line quoted in headers.
 pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
     let name = &loaded.config.name;
@@ -349,6 +477,30 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
                 )
             ),
         });
+    }
+    if let Some(top) = cap_top_verilog(loaded)? {
+        files.push(OutFile {
+            name: format!("{name}_top.v"),
+            text: format!(
+                "{}`timescale 1ns / 1ps\n\n{top}",
+                header(
+                    loaded,
+                    command,
+                    "Board top (capacitive path): NCO, ADC controller, filters, decoder core (Verilog-2001).",
+                    "//"
+                )
+            ),
+        });
+        if let Some((qsf, sdc)) = cap_constraints(loaded, command) {
+            files.push(OutFile {
+                name: format!("{name}_top.qsf"),
+                text: qsf,
+            });
+            files.push(OutFile {
+                name: format!("{name}_top.sdc"),
+                text: sdc,
+            });
+        }
     }
     Ok(Generation { files })
 }
