@@ -1,6 +1,7 @@
 //! Simulation support: co-simulation in Icarus Verilog and Verilator, hand-stepping of
 //! rust-hdl designs, encoder, ADC and amplifier models, stimulus.
 pub mod biss_master;
+pub mod cap_system;
 pub mod capacitive;
 pub mod cosim;
 pub mod encoder;

@@ -1,0 +1,182 @@
+//! Closed loop of the capacitive path in the Rust simulation: the capacitive `<name>_top`
+//! (rust-hdl) drives the excitation DACs; the capacitive-encoder model couples them through
+//! the rotor into the receiver signal; the generic SPI ADC model converts it at each CONV;
+//! the decoded position is compared with the model's true angle.
+use crate::blocks::captop::hdl::CapTopRtl;
+use crate::blocks::sext;
+use crate::config::Derived;
+use crate::sim::capacitive::{CapEncoder, CapParams};
+use crate::sim::spi_adc::SpiAdc;
+use crate::sim::step::{prepare, tick, NoConvergence};
+use std::cell::RefCell;
+use std::f64::consts::TAU;
+use std::rc::Rc;
+
+/// One decoded position.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CapRecord {
+    /// Clock cycle of par_valid.
+    pub cycle: u64,
+    /// Unwrapped decoded position in LSB (turns * 4 PPR 2^F + position).
+    pub decoded: i64,
+    /// True mechanical position at par_valid, same units.
+    pub truth: f64,
+    /// Error flag.
+    pub error: bool,
+    /// Warning flag.
+    pub warning: bool,
+}
+
+/// Error figures after removing the mean (the filters' group delay is a constant lag at
+/// constant speed, and the band-pass's phase at the carrier a constant offset).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CapStats {
+    /// Records used.
+    pub samples: usize,
+    /// Mean error (the constant lag/offset), mechanical degrees.
+    pub mean_deg: f64,
+    /// Max |error - mean|, mechanical degrees.
+    pub max_deg: f64,
+    /// Mean |error - mean|, mechanical degrees.
+    pub mean_abs_deg: f64,
+    /// RMS of error - mean, mechanical degrees.
+    pub rms_deg: f64,
+    /// Peak-to-peak of the error, mechanical degrees.
+    pub pp_deg: f64,
+    /// Records with the error or warning flag.
+    pub flagged: usize,
+}
+
+/// The closed loop.
+pub struct CapSystem {
+    top: CapTopRtl,
+    adc: SpiAdc,
+    dac: Rc<RefCell<(i64, i64)>>,
+    enc: Rc<RefCell<CapEncoder>>,
+    clock_hz: f64,
+    dac_width: u32,
+    lsb_per_turn: f64,
+    f: u32,
+    turns_width: u32,
+    cycle: u64,
+    /// Decoded positions.
+    pub records: Vec<CapRecord>,
+}
+
+impl CapSystem {
+    /// A loop for the derived parameters (needs `[capacitive]`) and an encoder model.
+    pub fn new(d: &Derived, p: CapParams) -> Result<CapSystem, String> {
+        let k = d
+            .capacitive
+            .as_ref()
+            .ok_or("the capacitive system needs [capacitive]")?;
+        let top = CapTopRtl::new(d).map_err(|e| e.to_string())?;
+        let enc = Rc::new(RefCell::new(CapEncoder::new(p)?));
+        let dac = Rc::new(RefCell::new((0i64, 0i64)));
+        let clock_hz = d.clock_hz;
+        let (e2, d2) = (enc.clone(), dac.clone());
+        let adc = SpiAdc::new(
+            d.adc.frame,
+            Box::new(move |clock| {
+                let (s, c) = *d2.borrow();
+                let code = e2.borrow_mut().sample(clock as f64 / clock_hz, s, c);
+                [code as i32, 0]
+            }),
+        );
+        Ok(CapSystem {
+            top,
+            adc,
+            dac,
+            enc,
+            clock_hz,
+            dac_width: k.config.dac_width,
+            lsb_per_turn: d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64,
+            f: d.fine_bits,
+            turns_width: d.turns_width,
+            cycle: 0,
+            records: Vec::new(),
+        })
+    }
+
+    /// Resets the design (4 cycles) and settles it.
+    pub fn start(&mut self) -> Result<(), NoConvergence> {
+        prepare(&mut self.top)?;
+        Ok(())
+    }
+
+    /// Runs `cycles` clocks.
+    pub fn run(&mut self, cycles: u64) -> Result<(), NoConvergence> {
+        for _ in 0..cycles {
+            let t = &mut self.top;
+            t.rst.next = self.cycle < 4;
+            t.biss_ma.next = true;
+            let miso = self.adc.step(t.adc_conv.val(), t.adc_sck.val());
+            t.adc_miso.next = miso;
+            tick(t)?;
+            self.cycle += 1;
+            let t = &self.top;
+            if t.exc_strobe.val() {
+                *self.dac.borrow_mut() = (
+                    sext(t.exc_sin.val().to_u64(), self.dac_width),
+                    sext(t.exc_cos.val().to_u64(), self.dac_width),
+                );
+            }
+            if t.par_valid.val() {
+                let pos = (t.par_qc.val().to_u64() << self.f) | t.par_fine.val().to_u64();
+                let turns = sext(t.par_turns.val().to_u64(), self.turns_width);
+                let decoded = turns * self.lsb_per_turn as i64 + pos as i64;
+                let ts = self.cycle as f64 / self.clock_hz;
+                let truth = self.enc.borrow().mech_angle(ts) / TAU * self.lsb_per_turn;
+                self.records.push(CapRecord {
+                    cycle: self.cycle,
+                    decoded,
+                    truth,
+                    error: t.par_error.val(),
+                    warning: t.par_warning.val(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Clock cycles run.
+    pub fn cycles(&self) -> u64 {
+        self.cycle
+    }
+
+    /// Error statistics over the records after `skip_s` seconds (filter settling). The
+    /// decoded position has an arbitrary zero (an incremental position), so the error is
+    /// taken modulo one turn around its first value before the mean is removed.
+    pub fn stats(&self, skip_s: f64) -> CapStats {
+        let skip = (skip_s * self.clock_hz) as u64;
+        let recs: Vec<&CapRecord> = self.records.iter().filter(|r| r.cycle >= skip).collect();
+        if recs.is_empty() {
+            return CapStats::default();
+        }
+        let turn = self.lsb_per_turn;
+        let raw: Vec<f64> = recs.iter().map(|r| r.decoded as f64 - r.truth).collect();
+        let e0 = raw[0];
+        let errs: Vec<f64> = raw
+            .iter()
+            .map(|e| e0 + (e - e0 + turn / 2.0).rem_euclid(turn) - turn / 2.0)
+            .collect();
+        let n = errs.len() as f64;
+        let mean = errs.iter().sum::<f64>() / n;
+        let to_deg = 360.0 / turn;
+        let dev: Vec<f64> = errs.iter().map(|e| e - mean).collect();
+        let max = dev.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+        let mean_abs = dev.iter().map(|e| e.abs()).sum::<f64>() / n;
+        let rms = (dev.iter().map(|e| e * e).sum::<f64>() / n).sqrt();
+        let lo = dev.iter().cloned().fold(f64::MAX, f64::min);
+        let hi = dev.iter().cloned().fold(f64::MIN, f64::max);
+        CapStats {
+            samples: recs.len(),
+            mean_deg: mean.rem_euclid(turn) * to_deg,
+            max_deg: max * to_deg,
+            mean_abs_deg: mean_abs * to_deg,
+            rms_deg: rms * to_deg,
+            pp_deg: (hi - lo) * to_deg,
+            flagged: recs.iter().filter(|r| r.error || r.warning).count(),
+        }
+    }
+}
