@@ -167,6 +167,17 @@ fn run(cli: Cli) -> Result<()> {
                 indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
                     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
             );
+            if loaded.derived.capacitive.is_some() {
+                if csv.is_some() || vcd.is_some() {
+                    bail!("--csv and --vcd are not available for the capacitive path yet");
+                }
+                let s = sinedec::simulate::run_capacitive(&loaded, &o, |done, _| {
+                    bar.set_position(done)
+                })?;
+                bar.finish_and_clear();
+                print!("{s}");
+                return Ok(());
+            }
             let report = sinedec::simulate::run(&loaded, &o, |done, _| bar.set_position(done))?;
             bar.finish_and_clear();
             print!("{}", report.summary(&loaded));
@@ -184,6 +195,12 @@ fn run(cli: Cli) -> Result<()> {
             println!("{}: ok", loaded.source_name);
             print!("{}", loaded.derived.describe());
             print!("{}", loaded.derived.adc.describe());
+            if let Some(k) = &loaded.derived.capacitive {
+                println!("\nband-pass (quantized {}):", k.config.coef.width);
+                print!("{}", k.bandpass.to_markdown());
+                println!("\nlow-pass (both branches):");
+                print!("{}", k.lowpass.to_markdown());
+            }
             if let Some(p) = &loaded.derived.preamp {
                 println!(
                     "preamp                      LTC6912-1 gains A {} B {}, word 0x{:02x}, set-up {} clocks",

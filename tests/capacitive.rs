@@ -325,3 +325,57 @@ fn end_to_end_at_800_rpm_and_static_jitter() {
     // The paper's static jitter: 0.000726 deg.
     assert!(st.pp_deg <= 0.000726 * 2.0, "jitter {} deg p-p", st.pp_deg);
 }
+
+/// `sinedec simulate` and `sinedec check` work on the capacitive configuration.
+#[test]
+fn simulate_and_check_run_on_the_capacitive_config() {
+    let cfg = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/cyclone3_capacitive.toml"
+    );
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
+        .args([
+            "simulate",
+            cfg,
+            "--profile",
+            "constant:800",
+            "--duration",
+            "0.0025",
+        ])
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("capacitive path: 16 periods per turn"),
+        "{text}"
+    );
+    assert!(text.contains("(0 flagged)"), "{text}");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
+        .args(["check", cfg])
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    assert!(
+        text.contains("band-pass") && text.contains("low-pass"),
+        "{text}"
+    );
+}
+
+/// A filter quantized too coarsely is rejected with the key and the section named.
+#[test]
+fn an_unstable_quantized_filter_is_rejected_by_name() {
+    let text = CONFIG.replace(
+        "coef = { width = 25, frac = 22 }",
+        "coef = { width = 10, frac = 7 }",
+    );
+    let e = Loaded::parse(&text, "c.toml").expect_err("unstable");
+    let m = e.to_string();
+    assert!(m.contains("capacitive."), "{m}");
+    assert!(m.contains("section"), "{m}");
+}
