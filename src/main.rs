@@ -80,7 +80,8 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Gates, LUTs, flip-flops, latency and accuracy for a range of CORDIC iteration counts.
+    /// Gates, LUTs, flip-flops, latency and accuracy per CORDIC iteration count (both
+    /// architectures), and every block of the top synthesized alone.
     Report {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,
@@ -90,7 +91,7 @@ enum Command {
         /// Output directory (replaced atomically).
         #[arg(short, long, default_value = "report")]
         output: PathBuf,
-        /// Files to write: comma-separated md, csv, json, svg.
+        /// Files to write: comma-separated md, csv (per N and per block), json, svg.
         #[arg(long, default_value = "md,csv,json,svg")]
         format: String,
         /// N of the error-against-angle plot (default: the config's N).

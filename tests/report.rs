@@ -229,35 +229,98 @@ fn read_dir(dir: &Path) -> BTreeMap<String, String> {
         .collect()
 }
 
+/// Configured N of the shared report's design.
+const OWN_N: u32 = 3;
+
+/// The design of the report tests: the LTC1407A-1 preset (A = 14, so the board top and the
+/// pre-amplifier exist), F = 10, 2048 PPR, no turn bits, N = 3.
+fn small_config() -> sinedec::config::Loaded {
+    common::cfg(OWN_N, 10, 14, 2048, 0)
+}
+
+/// Runs `sinedec report` on [`small_config`] for N = 2..=4 into `work/out` with the cache
+/// `work/cache`.
+fn run_report(work: &Path, out: &str) {
+    let cfg = work.join("small.toml");
+    std::fs::write(&cfg, &small_config().text).unwrap();
+    let o = Command::new(BIN)
+        .arg("report")
+        .arg(&cfg)
+        .args(["--iterations", "2..=4", "-o"])
+        .arg(work.join(out))
+        .arg("--cache-dir")
+        .arg(work.join("cache"))
+        .output()
+        .expect("run sinedec");
+    assert!(
+        o.status.success(),
+        "sinedec report failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// One report shared by the tests of this file (the Yosys runs of the whole top dominate):
+/// (work directory, files of the first run).
+fn shared_report() -> &'static (std::path::PathBuf, BTreeMap<String, String>) {
+    static R: std::sync::OnceLock<(std::path::PathBuf, BTreeMap<String, String>)> =
+        std::sync::OnceLock::new();
+    R.get_or_init(|| {
+        let work = common::workdir("report_cli");
+        run_report(&work, "r");
+        let files = read_dir(&work.join("r"));
+        (work, files)
+    })
+}
+
+/// Rows of the Markdown table whose first column title is `block`: (titles, cells).
+fn markdown_block_rows(md: &str) -> Vec<(Vec<String>, Vec<String>)> {
+    let mut out = Vec::new();
+    let mut header: Option<Vec<String>> = None;
+    for line in md.lines() {
+        if !line.starts_with('|') {
+            header = None;
+            continue;
+        }
+        let cells: Vec<String> = line
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect();
+        match &header {
+            None => header = Some(cells),
+            Some(h) => {
+                if h[0] != "block" || cells.iter().all(|c| c.chars().all(|ch| ch == '-')) {
+                    continue;
+                }
+                out.push((h.clone(), cells));
+            }
+        }
+    }
+    out
+}
+
+/// JSON value equals a table cell: null for an empty cell ("-" in Markdown), the number
+/// for a numeric cell, the text otherwise.
+fn same_value(key: &str, cell: &str, j: &serde_json::Value) -> bool {
+    if cell.is_empty() || cell == "-" {
+        return j.is_null();
+    }
+    match (cell.parse::<f64>(), j.as_f64()) {
+        (Ok(c), Some(v)) if !matches!(key, "block" | "module" | "timing") => {
+            (c - v).abs() <= 1e-12 * c.abs().max(1e-300)
+        }
+        _ => j.as_str() == Some(cell),
+    }
+}
+
 #[test]
 fn report_is_deterministic_and_formats_agree() {
-    // Small design (A = 10, F = 10) and N = 2..=4 keep the Yosys part short. Two runs of
-    // the binary with one cache directory: the second answers from the cache.
-    let work = common::workdir("report_cli");
-    let l = common::cfg(3, 10, 10, 2048, 0);
-    let cfg = work.join("small.toml");
-    std::fs::write(&cfg, &l.text).unwrap();
-    let cache = work.join("cache");
-    let run = |out: &str| {
-        let o = Command::new(BIN)
-            .arg("report")
-            .arg(&cfg)
-            .args(["--iterations", "2..=4", "-o"])
-            .arg(work.join(out))
-            .arg("--cache-dir")
-            .arg(&cache)
-            .output()
-            .expect("run sinedec");
-        assert!(
-            o.status.success(),
-            "sinedec report failed: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-    };
-    // The same command twice (the command line is quoted in the headers).
-    run("r");
-    let a = read_dir(&work.join("r"));
-    run("r");
+    // Small design (F = 10, N = 2..=4) keeps the Yosys part short. Two runs of the binary
+    // with one cache directory: the second answers from the cache.
+    let (work, a) = shared_report();
+    // The same command twice (the command line is quoted in the headers), into the same
+    // directory (the first run's files are held in memory).
+    run_report(work, "r");
     let b = read_dir(&work.join("r"));
     let names: Vec<&String> = a.keys().collect();
     assert_eq!(
@@ -266,13 +329,15 @@ fn report_is_deterministic_and_formats_agree() {
             "sd_report.csv",
             "sd_report.json",
             "sd_report.md",
+            "sd_report_area_vs_n_arch.svg",
+            "sd_report_blocks.csv",
             "sd_report_error_vs_angle.svg",
             "sd_report_error_vs_n.svg",
             "sd_report_resources_vs_n.svg"
         ]
     );
     assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
-    for (name, text) in &a {
+    for (name, text) in a {
         let other = &b[name];
         let strip = |t: &str| {
             t.lines()
@@ -295,6 +360,15 @@ fn report_is_deterministic_and_formats_agree() {
     assert_eq!(rows.len(), 3);
     for r in &rows {
         assert_eq!(r.len(), keys.len(), "CSV row width");
+    }
+    for k in [
+        "unrolled_xc3sa_lut",
+        "unrolled_cycloneive_ff",
+        "iterative_xc3sa_lut",
+        "iterative_throughput_msps",
+        "arch_lut_ratio",
+    ] {
+        assert!(keys.contains(&k), "CSV column {k}");
     }
     let csv_cell = |key: &str, n: u32| -> String {
         let k = keys.iter().position(|c| *c == key).expect("CSV column");
@@ -328,6 +402,7 @@ fn report_is_deterministic_and_formats_agree() {
         }
     }
     let md = &a["sd_report.md"];
+    assert!(md.contains("## Architectures (unrolled vs iterative)"));
     let cells = markdown_cells(md);
     assert!(cells.len() > 100, "Markdown tables found: {}", cells.len());
     for (title, n, cell) in &cells {
@@ -340,14 +415,28 @@ fn report_is_deterministic_and_formats_agree() {
             assert_eq!(&c, cell, "{key} N={n}");
         }
     }
+    for title in ["iterative: xc3sa LUT4", "iterative / unrolled xc3sa LUT4"] {
+        assert_eq!(
+            cells.iter().filter(|c| c.0 == title).count(),
+            3,
+            "Markdown column `{title}`"
+        );
+    }
     // Sanity of the figures: one sample per clock, N + 2 cycles, a non-empty synthesis,
     // errors within the design's bound, and the paper's figure for N = 2 marked as such.
     for n in 2..=4u32 {
         assert_eq!(csv_cell("latency_cycles", n), (n + 2).to_string());
+        assert_eq!(csv_cell("iterative_latency_cycles", n), (n + 2).to_string());
         assert!(csv_cell("xc3sa_lut", n).parse::<u64>().unwrap() > 0);
         assert!(csv_cell("cycloneive_ff", n).parse::<u64>().unwrap() > 0);
         assert!(csv_cell("gates", n).parse::<u64>().unwrap() > 0);
         assert!(csv_cell("logic_depth", n).parse::<u64>().unwrap() > 0);
+        // The configured architecture (unrolled) repeats the main columns.
+        assert_eq!(csv_cell("unrolled_xc3sa_lut", n), csv_cell("xc3sa_lut", n));
+        assert_eq!(
+            csv_cell("unrolled_cycloneive_ff", n),
+            csv_cell("cycloneive_ff", n)
+        );
         let max: f64 = csv_cell("err_max_lsb", n).parse().unwrap();
         let bound: f64 = csv_cell("pred_bound_lsb", n).parse().unwrap();
         assert!(max > 0.0 && max <= bound, "N={n}: {max} > {bound}");
@@ -356,8 +445,187 @@ fn report_is_deterministic_and_formats_agree() {
     assert_eq!(csv_cell("paper_gates", 3), "");
     assert!(md.contains("paper: gates (Table 3-2)"));
     assert!(md.contains("MUX counted as ONE gate"));
-    for svg in ["sd_report_error_vs_n.svg", "sd_report_error_vs_angle.svg"] {
+    assert!(md.contains("proven by tests/iterative.rs"));
+    for svg in [
+        "sd_report_error_vs_n.svg",
+        "sd_report_error_vs_angle.svg",
+        "sd_report_area_vs_n_arch.svg",
+    ] {
         assert!(a[svg].starts_with("<svg"), "{svg}");
+    }
+    for series in ["unrolled: xc3sa LUT4", "iterative: cycloneive LE"] {
+        assert!(
+            a["sd_report_area_vs_n_arch.svg"].contains(series),
+            "{series}"
+        );
+    }
+    // The blocks: Markdown, JSON and the blocks CSV hold the same cells.
+    assert!(md.contains("## Blocks of sd_top"));
+    let jblocks = json["blocks"].as_array().expect("blocks");
+    let jcols: Vec<&str> = json["block_columns"]
+        .as_array()
+        .expect("block_columns")
+        .iter()
+        .map(|c| c["key"].as_str().expect("key"))
+        .collect();
+    let mdb = markdown_block_rows(md);
+    assert_eq!(mdb.len(), jblocks.len(), "Markdown and JSON block rows");
+    assert_eq!(jblocks.len(), 13);
+    let bcsv = &a["sd_report_blocks.csv"];
+    let mut blines = bcsv.lines();
+    let bkeys: Vec<&str> = blines
+        .next()
+        .expect("blocks CSV header")
+        .split(',')
+        .collect();
+    assert_eq!(bkeys, jcols);
+    let brows: Vec<Vec<&str>> = blines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(brows.len(), jblocks.len());
+    for (((titles, mcells), jb), crow) in mdb.iter().zip(jblocks).zip(&brows) {
+        assert_eq!(titles.len(), jcols.len());
+        assert_eq!(crow.len(), jcols.len(), "blocks CSV row width");
+        let label = &mcells[0];
+        for (i, key) in jcols.iter().enumerate() {
+            let title = json["block_columns"][i]["title"].as_str().unwrap();
+            assert_eq!(&titles[i], title, "block column {key}");
+            let m = mcells[i].trim_matches('`');
+            assert!(
+                same_value(key, m, &jb[*key]),
+                "block `{label}` {key}: Markdown `{m}`, JSON {}",
+                jb[*key]
+            );
+            assert!(
+                same_value(key, crow[i], &jb[*key]),
+                "block `{label}` {key}: CSV `{}`, JSON {}",
+                crow[i],
+                jb[*key]
+            );
+        }
+    }
+    let labels: Vec<&str> = jblocks
+        .iter()
+        .map(|b| b["block"].as_str().expect("label"))
+        .collect();
+    assert!(
+        labels.contains(&"SSI slave (disabled in this config)"),
+        "{labels:?}"
+    );
+    assert!(
+        labels.contains(&"SPI slave (disabled in this config)"),
+        "{labels:?}"
+    );
+    assert_eq!(labels.last(), Some(&"sd_top"));
+    let core = jblocks
+        .iter()
+        .find(|b| b["key"] == "core")
+        .expect("core row");
+    assert_eq!(core["latency_cycles"].as_u64(), Some(OWN_N as u64 + 2));
+}
+
+#[test]
+fn architecture_columns_equal_an_independent_synthesis() {
+    // N = 3 of the report against sinedec::synth::synthesize of the core, configured from
+    // the config text (architecture = "iterative" / "unrolled"), for both families.
+    use sinedec::config::Loaded;
+    use sinedec::synth::{synthesize, Family};
+    let (_, files) = shared_report();
+    let json: serde_json::Value =
+        serde_json::from_str(&files["sd_report.json"]).expect("JSON parses");
+    let n = 3u32;
+    let row = json["rows"]
+        .as_array()
+        .expect("rows")
+        .iter()
+        .find(|r| r["n"].as_u64() == Some(n as u64))
+        .expect("row N = 3");
+    let base = common::cfg(n, 10, 14, 2048, 0);
+    assert!(base.text.contains("architecture = \"unrolled\""));
+    let clock = base.config.clock.frequency_hz;
+    let dir = common::workdir("report_arch");
+    let mut luts = Vec::new();
+    for (arch, per_sample) in [("unrolled", 1.0), ("iterative", n as f64)] {
+        let text = base.text.replace(
+            "architecture = \"unrolled\"",
+            &format!("architecture = \"{arch}\""),
+        );
+        let l = Loaded::parse(&text, "test").expect("config parses");
+        let v = sinedec::emit::core_verilog(&l).expect("core Verilog");
+        let top = sinedec::emit::core_name(&l);
+        let x = synthesize(&v, &top, Family::Xc3sa, &dir).expect("xc3sa synthesis");
+        let c = synthesize(&v, &top, Family::CycloneIve, &dir).expect("cycloneive synthesis");
+        eprintln!(
+            "N = {n} {arch}: xc3sa {} LUT {} FF, cycloneive {} LE {} FF",
+            x.luts, x.ffs, c.luts, c.ffs
+        );
+        let col = |k: &str| row[format!("{arch}_{k}")].as_f64().unwrap_or(f64::NAN);
+        assert_eq!(col("xc3sa_lut"), x.luts as f64, "{arch} xc3sa LUT");
+        assert_eq!(col("xc3sa_ff"), x.ffs as f64, "{arch} xc3sa FF");
+        assert_eq!(col("cycloneive_lut"), c.luts as f64, "{arch} cycloneive LE");
+        assert_eq!(col("cycloneive_ff"), c.ffs as f64, "{arch} cycloneive FF");
+        assert_eq!(col("latency_cycles"), (n + 2) as f64, "{arch} latency");
+        let thr = clock / per_sample / 1e6;
+        assert!(
+            (col("throughput_msps") - thr).abs() <= 0.0005 + 1e-9,
+            "{arch} throughput {} vs {thr}",
+            col("throughput_msps")
+        );
+        luts.push(x.luts as f64);
+    }
+    let ratio = row["arch_lut_ratio"].as_f64().expect("ratio");
+    assert!(
+        (ratio - luts[1] / luts[0]).abs() <= 0.0005 + 1e-9,
+        "ratio {ratio} vs {}",
+        luts[1] / luts[0]
+    );
+}
+
+#[test]
+fn every_block_synthesizes_and_the_top_is_the_largest() {
+    let (_, files) = shared_report();
+    let json: serde_json::Value =
+        serde_json::from_str(&files["sd_report.json"]).expect("JSON parses");
+    let blocks = json["blocks"].as_array().expect("blocks");
+    let keys: Vec<&str> = blocks.iter().map(|b| b["key"].as_str().unwrap()).collect();
+    assert_eq!(
+        keys,
+        vec![
+            "adc",
+            "preamp",
+            "correction",
+            "monitor",
+            "core",
+            "counter",
+            "qep",
+            "fallback",
+            "biss",
+            "ssi",
+            "spi",
+            "parallel",
+            "top"
+        ]
+    );
+    for fam in ["xc3sa_lut", "cycloneive_lut"] {
+        let count = |b: &serde_json::Value| {
+            b[fam]
+                .as_u64()
+                .unwrap_or_else(|| panic!("block {} {fam}: {}", b["key"], b[fam]))
+        };
+        for b in blocks {
+            assert!(count(b) > 0, "block {} has no {fam}", b["key"]);
+        }
+        let top = blocks.iter().find(|b| b["key"] == "top").unwrap();
+        let largest = blocks
+            .iter()
+            .filter(|b| b["key"] != "top")
+            .map(|b| (count(b), b["key"].as_str().unwrap()))
+            .max()
+            .unwrap();
+        eprintln!("{fam}: top {}, largest block {largest:?}", count(top));
+        assert!(
+            count(top) >= largest.0,
+            "{fam}: top {} < block {largest:?}",
+            count(top)
+        );
     }
 }
 

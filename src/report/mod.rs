@@ -10,15 +10,17 @@
 //! Nothing is written until everything succeeded: the files are assembled as a
 //! [`Generation`] and written with [`crate::emit::write_output`] (temp dir, then rename).
 //! The output is deterministic except for one line of the Markdown (`Generated: ...`).
+pub mod blocks;
 pub mod plot;
 pub mod predict;
 pub mod sweep;
 pub mod yosys;
 
-use crate::config::{Derived, Loaded};
+use crate::config::{Architecture, Derived, Loaded};
 use crate::emit::{core_name, core_verilog, Generation, OutFile};
 use crate::error::{Error, Result};
 use crate::synth::{Family, SynthStats};
+use blocks::BlockRow;
 use predict::{predict, thesis_error, thesis_gates, Predicted, THESIS_PPR};
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -31,11 +33,11 @@ use yosys::{GateStats, Yosys};
 pub struct Formats {
     /// `<name>_report.md`.
     pub md: bool,
-    /// `<name>_report.csv`.
+    /// `<name>_report.csv` (per N) and `<name>_report_blocks.csv` (per block).
     pub csv: bool,
     /// `<name>_report.json`.
     pub json: bool,
-    /// The three SVG plots.
+    /// The four SVG plots.
     pub svg: bool,
 }
 
@@ -179,6 +181,45 @@ pub struct Row {
     pub acc: ErrAcc,
     /// Predicted error.
     pub predicted: Predicted,
+    /// The same N with the other CORDIC architecture (Err: why it could not be derived).
+    pub other: std::result::Result<ArchFigures, String>,
+}
+
+/// Figures of one CORDIC architecture at one N.
+#[derive(Clone, Debug)]
+pub struct ArchFigures {
+    /// The architecture.
+    pub architecture: Architecture,
+    /// Latency in cycles (in_valid to out_valid).
+    pub latency_cycles: u32,
+    /// Clocks per accepted sample.
+    pub cycles_per_sample: u32,
+    /// xc3sa synthesis of `<name>_core`.
+    pub xc3sa: SynthStats,
+    /// cycloneive synthesis of `<name>_core`.
+    pub cyclone: SynthStats,
+}
+
+impl Row {
+    /// Figures of the configured architecture.
+    pub fn own(&self) -> ArchFigures {
+        ArchFigures {
+            architecture: self.derived.architecture,
+            latency_cycles: self.derived.latency_cycles,
+            cycles_per_sample: self.derived.cycles_per_sample,
+            xc3sa: self.xc3sa.clone(),
+            cyclone: self.cyclone.clone(),
+        }
+    }
+
+    /// Figures of `arch` (None: that architecture could not be derived for this N).
+    pub fn arch(&self, arch: Architecture) -> Option<ArchFigures> {
+        if self.derived.architecture == arch {
+            Some(self.own())
+        } else {
+            self.other.as_ref().ok().cloned()
+        }
+    }
 }
 
 /// Everything the report shows.
@@ -186,6 +227,8 @@ pub struct Row {
 pub struct Report {
     /// One row per N.
     pub rows: Vec<Row>,
+    /// Every block of the configured design synthesized alone ([`blocks::BLOCKS`]).
+    pub blocks: Vec<BlockRow>,
     /// The sweep's input set.
     pub plan: SweepPlan,
     /// N of the error-against-angle curve.
@@ -204,6 +247,20 @@ pub struct Report {
 pub fn with_iterations(loaded: &Loaded, n: u32) -> Result<Loaded> {
     let mut config = loaded.config.clone();
     config.cordic.iterations = n;
+    let derived = Derived::compute(&config, &loaded.text, &loaded.source_name)?;
+    Ok(Loaded {
+        config,
+        derived,
+        text: loaded.text.clone(),
+        source_name: loaded.source_name.clone(),
+    })
+}
+
+/// The configuration with `cordic.architecture = arch`, re-derived (fails like the config
+/// would, e.g. when the iterative CORDIC cannot keep up with the ADC).
+pub fn with_architecture(loaded: &Loaded, arch: Architecture) -> Result<Loaded> {
+    let mut config = loaded.config.clone();
+    config.cordic.architecture = arch;
     let derived = Derived::compute(&config, &loaded.text, &loaded.source_name)?;
     Ok(Loaded {
         config,
@@ -278,9 +335,19 @@ pub fn build(loaded: &Loaded, opts: &Options) -> Result<Report> {
             .unwrap_or(0)
     ));
     let ys = Yosys::new(opts.cache_dir.clone(), work.clone())?;
-    let result = build_inner(opts, &designs, angle_design, angle_n, &ys);
+    let result = build_inner(loaded, opts, &designs, angle_design, angle_n, &ys);
     let _ = std::fs::remove_dir_all(&work);
     result
+}
+
+/// One Verilog design to synthesize (a per-N core, the other architecture's core, or a
+/// block); identical designs are synthesized once.
+struct Unit {
+    verilog: String,
+    top: String,
+    tag: String,
+    generic: bool,
+    weight: u32,
 }
 
 #[derive(Clone, Copy)]
@@ -294,7 +361,36 @@ enum JobOut {
     Generic(GateStats, bool),
 }
 
+fn add_unit(units: &mut Vec<Unit>, u: Unit) -> usize {
+    if let Some(i) = units
+        .iter()
+        .position(|o| o.top == u.top && o.verilog == u.verilog)
+    {
+        units[i].generic |= u.generic;
+        units[i].weight = units[i].weight.max(u.weight);
+        return i;
+    }
+    units.push(u);
+    units.len() - 1
+}
+
+fn arch_name(a: Architecture) -> &'static str {
+    match a {
+        Architecture::Unrolled => "unrolled",
+        Architecture::Iterative => "iterative",
+    }
+}
+
+/// The other CORDIC architecture.
+pub fn other_architecture(a: Architecture) -> Architecture {
+    match a {
+        Architecture::Unrolled => Architecture::Iterative,
+        Architecture::Iterative => Architecture::Unrolled,
+    }
+}
+
 fn build_inner(
+    loaded: &Loaded,
     opts: &Options,
     designs: &[Loaded],
     angle_design: (usize, Option<Loaded>),
@@ -302,46 +398,113 @@ fn build_inner(
     ys: &Yosys,
 ) -> Result<Report> {
     let plan = SweepPlan::for_width(designs[0].derived.adc_width);
-    let jobs: Vec<Job> = (0..designs.len())
-        .flat_map(|i| {
-            [
-                Job::Generic(i),
-                Job::Family(i, Family::Xc3sa),
-                Job::Family(i, Family::CycloneIve),
-            ]
-        })
+    let other_arch = other_architecture(loaded.derived.architecture);
+    // The other architecture per N (an Err keeps the reason, e.g. the throughput check).
+    let others: Vec<std::result::Result<Loaded, String>> = designs
+        .iter()
+        .map(|l| with_architecture(l, other_arch).map_err(|e| e.to_string()))
         .collect();
-    let bar = progress_bar(
-        opts.progress,
-        designs.len() as u64 + jobs.len() as u64 + sweep::rows(plan),
-    );
+    let bar = progress_bar(opts.progress, 1);
     bar.set_message("generating Verilog");
     let verilog: Vec<String> = designs
         .par_iter()
-        .map(|l| {
-            let v = core_verilog(l);
-            bar.inc(1);
-            v
-        })
+        .map(core_verilog)
         .collect::<Result<_>>()?;
+    let other_verilog: Vec<Option<String>> = others
+        .par_iter()
+        .map(|o| o.as_ref().ok().map(core_verilog).transpose())
+        .collect::<Result<_>>()?;
+    let jobs_b = blocks::block_jobs(loaded)?;
+    let mut units = Vec::new();
+    let core_units: Vec<usize> = designs
+        .iter()
+        .zip(&verilog)
+        .map(|(l, v)| {
+            let n = l.derived.iterations;
+            add_unit(
+                &mut units,
+                Unit {
+                    verilog: v.clone(),
+                    top: core_name(l),
+                    tag: format!("n{n}_{}", arch_name(l.derived.architecture)),
+                    generic: true,
+                    weight: n * 2,
+                },
+            )
+        })
+        .collect();
+    let other_units: Vec<Option<usize>> = others
+        .iter()
+        .zip(&other_verilog)
+        .map(|(o, v)| match (o, v) {
+            (Ok(l), Some(v)) => Some(add_unit(
+                &mut units,
+                Unit {
+                    verilog: v.clone(),
+                    top: core_name(l),
+                    tag: format!("n{}_{}", l.derived.iterations, arch_name(other_arch)),
+                    generic: false,
+                    weight: l.derived.iterations * 2,
+                },
+            )),
+            _ => None,
+        })
+        .collect();
+    let block_units: Vec<Option<usize>> = jobs_b
+        .iter()
+        .map(|j| {
+            j.verilog.as_ref().map(|v| {
+                add_unit(
+                    &mut units,
+                    Unit {
+                        verilog: v.clone(),
+                        top: j.module.clone(),
+                        tag: format!("blk_{}", j.key),
+                        generic: false,
+                        weight: match j.key.as_str() {
+                            "top" => 1000,
+                            "core" => loaded.derived.iterations * 2,
+                            _ => 1,
+                        },
+                    },
+                )
+            })
+        })
+        .collect();
+    let jobs: Vec<Job> = units
+        .iter()
+        .enumerate()
+        .flat_map(|(i, u)| {
+            let g = u.generic.then_some(Job::Generic(i));
+            g.into_iter().chain([
+                Job::Family(i, Family::Xc3sa),
+                Job::Family(i, Family::CycloneIve),
+            ])
+        })
+        .collect();
+    bar.set_length(jobs.len() as u64 + sweep::rows(plan));
     bar.set_message("synthesizing (Yosys)");
-    // Longest runs first (large N, generic) so the two cores stay busy.
+    // Longest runs first (the whole top, large N, generic) so the two cores stay busy.
+    let weight = |j: &Job| match *j {
+        Job::Generic(i) => units[i].weight * 3 / 2 + 2,
+        Job::Family(i, _) => units[i].weight,
+    };
     let mut order: Vec<usize> = (0..jobs.len()).collect();
-    order.sort_by_key(|&j| std::cmp::Reverse(job_weight(&jobs[j], designs)));
+    order.sort_by_key(|&j| std::cmp::Reverse(weight(&jobs[j])));
     let outs: Vec<(usize, JobOut)> = order
         .par_iter()
         .map(|&j| {
             let r = match jobs[j] {
                 Job::Family(i, fam) => {
-                    let l = &designs[i];
-                    let tag = format!("n{}_{}", l.derived.iterations, fam.name());
-                    ys.family(&verilog[i], &core_name(l), fam, &tag)
+                    let u = &units[i];
+                    let tag = format!("{}_{}", u.tag, fam.name());
+                    ys.family(&u.verilog, &u.top, fam, &tag)
                         .map(|(s, hit)| JobOut::Family(s, hit))
                 }
                 Job::Generic(i) => {
-                    let l = &designs[i];
-                    let tag = format!("n{}_generic", l.derived.iterations);
-                    ys.generic(&verilog[i], &core_name(l), &tag)
+                    let u = &units[i];
+                    let tag = format!("{}_generic", u.tag);
+                    ys.generic(&u.verilog, &u.top, &tag)
                         .map(|(g, hit)| JobOut::Generic(g, hit))
                 }
             };
@@ -349,9 +512,9 @@ fn build_inner(
             r.map(|o| (j, o))
         })
         .collect::<Result<_>>()?;
-    let mut xc = vec![SynthStats::default(); designs.len()];
-    let mut cy = vec![SynthStats::default(); designs.len()];
-    let mut ge = vec![GateStats::default(); designs.len()];
+    let mut xc = vec![SynthStats::default(); units.len()];
+    let mut cy = vec![SynthStats::default(); units.len()];
+    let mut ge = vec![GateStats::default(); units.len()];
     let (mut hits, mut runs) = (0, 0);
     for (j, o) in outs {
         let hit = match (jobs[j], o) {
@@ -397,18 +560,39 @@ fn build_inner(
         .iter()
         .zip(accs)
         .enumerate()
-        .map(|(i, (l, acc))| Row {
-            n: l.derived.iterations,
-            derived: l.derived.clone(),
-            xc3sa: std::mem::take(&mut xc[i]),
-            cyclone: std::mem::take(&mut cy[i]),
-            gates: std::mem::take(&mut ge[i]),
-            predicted: predict(&l.derived),
-            acc,
+        .map(|(i, (l, acc))| {
+            let u = core_units[i];
+            let other = match (&others[i], other_units[i]) {
+                (Ok(o), Some(k)) => Ok(ArchFigures {
+                    architecture: other_arch,
+                    latency_cycles: o.derived.latency_cycles,
+                    cycles_per_sample: o.derived.cycles_per_sample,
+                    xc3sa: xc[k].clone(),
+                    cyclone: cy[k].clone(),
+                }),
+                (Err(e), _) => Err(e.clone()),
+                (Ok(_), None) => Err("no Verilog".into()),
+            };
+            Row {
+                n: l.derived.iterations,
+                derived: l.derived.clone(),
+                xc3sa: xc[u].clone(),
+                cyclone: cy[u].clone(),
+                gates: ge[u].clone(),
+                predicted: predict(&l.derived),
+                acc,
+                other,
+            }
         })
+        .collect();
+    let blocks = jobs_b
+        .iter()
+        .zip(&block_units)
+        .map(|(j, u)| blocks::block_row(j, u.map(|k| xc[k].clone()), u.map(|k| cy[k].clone())))
         .collect();
     Ok(Report {
         rows,
+        blocks,
         plan,
         angle_n,
         envelope,
@@ -416,13 +600,6 @@ fn build_inner(
         cache_hits: hits,
         yosys_runs: runs,
     })
-}
-
-fn job_weight(j: &Job, designs: &[Loaded]) -> u32 {
-    match *j {
-        Job::Generic(i) => designs[i].derived.iterations * 3 + 2,
-        Job::Family(i, _) => designs[i].derived.iterations * 2,
-    }
 }
 
 /// Builds the report and writes the selected files into `dir` atomically; returns the
@@ -485,6 +662,43 @@ pub const COLUMNS: &[(&str, &str)] = &[
     ),
     ("paper_max_quadrant_pct", "paper: max error (% of quadrant)"),
     ("paper_bits_per_turn", "paper: bits per turn"),
+    ("unrolled_xc3sa_lut", "unrolled: xc3sa LUT4"),
+    ("unrolled_xc3sa_ff", "unrolled: xc3sa FF"),
+    ("unrolled_cycloneive_lut", "unrolled: cycloneive LE"),
+    ("unrolled_cycloneive_ff", "unrolled: cycloneive FF"),
+    ("unrolled_latency_cycles", "unrolled: latency (cycles)"),
+    (
+        "unrolled_throughput_msps",
+        "unrolled: throughput (Msample/s)",
+    ),
+    ("iterative_xc3sa_lut", "iterative: xc3sa LUT4"),
+    ("iterative_xc3sa_ff", "iterative: xc3sa FF"),
+    ("iterative_cycloneive_lut", "iterative: cycloneive LE"),
+    ("iterative_cycloneive_ff", "iterative: cycloneive FF"),
+    ("iterative_latency_cycles", "iterative: latency (cycles)"),
+    (
+        "iterative_throughput_msps",
+        "iterative: throughput (Msample/s)",
+    ),
+    ("arch_lut_ratio", "iterative / unrolled xc3sa LUT4"),
+];
+
+/// Columns of the architecture table, in order.
+const ARCH_KEYS: &[&str] = &[
+    "n",
+    "unrolled_xc3sa_lut",
+    "unrolled_xc3sa_ff",
+    "unrolled_cycloneive_lut",
+    "unrolled_cycloneive_ff",
+    "unrolled_latency_cycles",
+    "unrolled_throughput_msps",
+    "iterative_xc3sa_lut",
+    "iterative_xc3sa_ff",
+    "iterative_cycloneive_lut",
+    "iterative_cycloneive_ff",
+    "iterative_latency_cycles",
+    "iterative_throughput_msps",
+    "arch_lut_ratio",
 ];
 
 /// Markdown tables: (heading, column keys).
@@ -542,6 +756,7 @@ const TABLES: &[(&str, &[&str])] = &[
             "err_rms_lsb",
         ],
     ),
+    ("Architectures (unrolled vs iterative)", ARCH_KEYS),
 ];
 
 /// Key of a Markdown column title (for tests and tools reading the Markdown).
@@ -581,7 +796,7 @@ impl Report {
         let paper_g = thesis_gates(r.n);
         let paper_e = thesis_error(r.n);
         let int = |v: u64| v.to_string();
-        vec![
+        let mut cells = vec![
             ("n", int(r.n as u64)),
             ("latency_cycles", int(d.latency_cycles as u64)),
             ("latency_ns", format!("{:.1}", d.latency_ns())),
@@ -661,7 +876,44 @@ impl Report {
                 "paper_bits_per_turn",
                 paper_e.map(|e| int(e.2 as u64)).unwrap_or_default(),
             ),
-        ]
+        ];
+        let un = r.arch(Architecture::Unrolled);
+        let it = r.arch(Architecture::Iterative);
+        for (name, a) in [("unrolled", &un), ("iterative", &it)] {
+            let cell = |f: &dyn Fn(&ArchFigures) -> String| a.as_ref().map(f).unwrap_or_default();
+            let figures: [(&str, String); 6] = [
+                ("xc3sa_lut", cell(&|a| int(a.xc3sa.luts))),
+                ("xc3sa_ff", cell(&|a| int(a.xc3sa.ffs))),
+                ("cycloneive_lut", cell(&|a| int(a.cyclone.luts))),
+                ("cycloneive_ff", cell(&|a| int(a.cyclone.ffs))),
+                ("latency_cycles", cell(&|a| int(a.latency_cycles as u64))),
+                (
+                    "throughput_msps",
+                    cell(&|a| {
+                        format!(
+                            "{:.3}",
+                            d.clock_hz / a.cycles_per_sample.max(1) as f64 / 1e6
+                        )
+                    }),
+                ),
+            ];
+            for (k, v) in figures {
+                let key = COLUMNS
+                    .iter()
+                    .find(|c| c.0.strip_prefix(name).and_then(|x| x.strip_prefix('_')) == Some(k))
+                    .map(|c| c.0)
+                    .unwrap_or("");
+                cells.push((key, v));
+            }
+        }
+        let ratio = match (&un, &it) {
+            (Some(u), Some(i)) if u.xc3sa.luts > 0 => {
+                format!("{:.3}", i.xc3sa.luts as f64 / u.xc3sa.luts as f64)
+            }
+            _ => String::new(),
+        };
+        cells.push(("arch_lut_ratio", ratio));
+        cells
     }
 
     /// The table: one row per N, each cell as shown (empty = not applicable), in
@@ -669,7 +921,11 @@ impl Report {
     pub fn table(&self, loaded: &Loaded) -> Vec<Vec<String>> {
         self.rows
             .iter()
-            .map(|r| self.cells(loaded, r).into_iter().map(|c| c.1).collect())
+            .map(|r| {
+                let cells = self.cells(loaded, r);
+                debug_assert!(cells.iter().map(|c| c.0).eq(COLUMNS.iter().map(|c| c.0)));
+                cells.into_iter().map(|c| c.1).collect()
+            })
             .collect()
     }
 
@@ -720,7 +976,11 @@ impl Report {
     }
 
     /// Names of the files for `formats`.
-    pub fn file_names(name: &str) -> [String; 6] {
+    ///
+    /// Order: Markdown, CSV (per N), JSON, the four SVG plots (error against N, resources
+    /// against N, error against angle, area against N for both architectures), and the
+    /// blocks CSV (written with `csv`).
+    pub fn file_names(name: &str) -> [String; 8] {
         [
             format!("{name}_report.md"),
             format!("{name}_report.csv"),
@@ -728,7 +988,56 @@ impl Report {
             format!("{name}_report_error_vs_n.svg"),
             format!("{name}_report_resources_vs_n.svg"),
             format!("{name}_report_error_vs_angle.svg"),
+            format!("{name}_report_area_vs_n_arch.svg"),
+            format!("{name}_report_blocks.csv"),
         ]
+    }
+
+    /// The blocks CSV: a header of [`blocks::BLOCK_COLUMNS`] keys, then one line per block
+    /// (no cell holds a comma or a quote).
+    pub fn blocks_csv(&self) -> String {
+        let mut s = blocks::BLOCK_COLUMNS
+            .iter()
+            .map(|c| c.0)
+            .collect::<Vec<_>>()
+            .join(",");
+        s.push('\n');
+        for r in &self.blocks {
+            s.push_str(&blocks::block_cells(r).join(","));
+            s.push('\n');
+        }
+        s
+    }
+
+    fn blocks_markdown(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "| {} |",
+            blocks::BLOCK_COLUMNS
+                .iter()
+                .map(|c| c.1)
+                .collect::<Vec<_>>()
+                .join(" | ")
+        );
+        let _ = writeln!(s, "|{}", "---|".repeat(blocks::BLOCK_COLUMNS.len()));
+        for r in &self.blocks {
+            let cells: Vec<String> = blocks::block_cells(r)
+                .into_iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    if c.is_empty() {
+                        "-".to_string()
+                    } else if i == 1 {
+                        format!("`{c}`")
+                    } else {
+                        c
+                    }
+                })
+                .collect();
+            let _ = writeln!(s, "| {} |", cells.join(" | "));
+        }
+        s
     }
 
     fn methods(&self, loaded: &Loaded) -> Vec<(&'static str, String)> {
@@ -773,6 +1082,42 @@ impl Report {
                     "Latency: cycles from the in_valid cycle to the out_valid cycle of `<name>_core` (N + 2: one stage per iteration, the combiner and the counter), in ns at the configured clock of {:.3} MHz. Throughput: samples per second the core accepts: the clock for the unrolled CORDIC (one sample per clock), the clock / N for the iterative one (cordic.architecture = {:?}).",
                     d.clock_hz / 1e6,
                     d.architecture
+                ),
+            ),
+            (
+                "architectures",
+                {
+                    let own = d.architecture;
+                    let other = other_architecture(own);
+                    let failed: Vec<String> = self
+                        .rows
+                        .iter()
+                        .filter_map(|r| r.other.as_ref().err().map(|e| format!("N = {}: {e}", r.n)))
+                        .collect();
+                    format!(
+                        "For every N the core is synthesized a second time with cordic.architecture = \"{}\" (the configured one is \"{}\": its columns repeat the main table's), for xc3sa and cycloneive with the same scripts and cache. Latency is N + 2 cycles for both; throughput is the configured clock ({:.3} MHz) divided by the clocks per accepted sample (1 unrolled, N iterative). The ratio is iterative / unrolled xc3sa LUT4. The accuracy is identical for both architectures (their outputs are bit-identical for every input, proven by tests/iterative.rs), so the accuracy sweep is not repeated: the accuracy columns hold for both. {}",
+                        arch_name(other),
+                        arch_name(own),
+                        d.clock_hz / 1e6,
+                        if failed.is_empty() {
+                            "Both architectures derived for every N.".to_string()
+                        } else {
+                            format!(
+                                "Cells left empty where the other architecture could not be derived for this configuration: {}.",
+                                failed.join("; ")
+                            )
+                        }
+                    )
+                },
+            ),
+            (
+                "blocks",
+                format!(
+                    "Blocks of {}: each block of the sinewave top with the configured parameters, exported alone by `emit::verilog::export` as `<name>_blk_<key>` and synthesized like the core (all its ports are module ports, so logic the top ties off or shares is counted here: the rows do not add up to the top's). The core row is `CoreRtl` (mapper, CORDIC, combiner and quadrant counter; the configured N = {} and architecture) with the ports the top uses (the counter's resynchronisation inputs from the QEP fallback, the CORDIC magnitude to the monitor); the per-N tables measure `<name>_core` as `sinedec generate` writes it, which ties those inputs off and leaves the magnitude open, so its figures are smaller. The counter row is the quadrant counter alone. Blocks disabled in the config (SSI, SPI slave, QEP fallback) are built with the parameters they would get and marked so. The last row is `{}` as `sinedec generate` writes it. Timing: latency and clocks per sample where the block has them (the ADC's frame and sample rate, the core's N + 2 and throughput, the top's CONV-to-par_valid latency); serial slaves run on the master's clock. The blocks are also in `{}` and in the JSON's `blocks` array.",
+                    crate::emit::top_name(loaded),
+                    d.iterations,
+                    crate::emit::top_name(loaded),
+                    Report::file_names(&loaded.config.name)[7],
                 ),
             ),
             (
@@ -882,6 +1227,15 @@ impl Report {
             ));
             s.push('\n');
         }
+        let _ = writeln!(
+            s,
+            "## Blocks of {}\n\nEach block synthesized alone with the configured parameters (N = {}, {} CORDIC); see Methods.\n",
+            crate::emit::top_name(loaded),
+            d.iterations,
+            arch_name(d.architecture)
+        );
+        s.push_str(&self.blocks_markdown());
+        s.push('\n');
         let _ = writeln!(s, "## Longest path (logic depth) per N\n");
         for r in &self.rows {
             let _ = writeln!(
@@ -911,10 +1265,10 @@ impl Report {
             let _ = writeln!(s, "- **{k}**: {m}");
         }
         if opts.formats.svg {
-            let [_, _, _, e, r, a] = Report::file_names(name);
+            let [_, _, _, e, r, a, ar, _] = Report::file_names(name);
             let _ = writeln!(
                 s,
-                "\n## Plots\n\n![error against N]({e})\n\n![resources against N]({r})\n\n![error against angle, N = {}]({a})",
+                "\n## Plots\n\n![error against N]({e})\n\n![resources against N]({r})\n\n![error against angle, N = {}]({a})\n\n![area against N, unrolled and iterative]({ar})",
                 self.angle_n
             );
         }
@@ -930,16 +1284,19 @@ impl Report {
             .map(|row| {
                 let mut m = Map::new();
                 for ((key, _), cell) in COLUMNS.iter().zip(row) {
-                    let v = if cell.is_empty() {
-                        Value::Null
-                    } else if let Ok(i) = cell.parse::<u64>() {
-                        Value::from(i)
-                    } else if let Ok(x) = cell.parse::<f64>() {
-                        Value::from(x)
-                    } else {
-                        Value::from(cell)
-                    };
-                    m.insert((*key).to_string(), v);
+                    m.insert((*key).to_string(), cell_value(&cell, key));
+                }
+                Value::Object(m)
+            })
+            .collect();
+        let blocks_json: Vec<Value> = self
+            .blocks
+            .iter()
+            .map(|r| {
+                let mut m = Map::new();
+                m.insert("key".into(), Value::from(r.key.clone()));
+                for ((key, _), cell) in blocks::BLOCK_COLUMNS.iter().zip(blocks::block_cells(r)) {
+                    m.insert((*key).to_string(), cell_value(&cell, key));
                 }
                 Value::Object(m)
             })
@@ -988,6 +1345,8 @@ impl Report {
                 "n": self.angle_n,
                 "bins": self.envelope.iter().map(|&(a, lo, hi)| json!([a, lo, hi])).collect::<Vec<_>>(),
             },
+            "block_columns": blocks::BLOCK_COLUMNS.iter().map(|(k, t)| json!({"key": k, "title": t})).collect::<Vec<_>>(),
+            "blocks": blocks_json,
             "methods": methods,
         });
         let mut s = serde_json::to_string_pretty(&v)
@@ -996,7 +1355,7 @@ impl Report {
         Ok(s)
     }
 
-    fn plots(&self, loaded: &Loaded) -> Result<[String; 3]> {
+    fn plots(&self, loaded: &Loaded) -> Result<[String; 4]> {
         use plot::{chart, Series};
         let pts = |g: &dyn Fn(&Row) -> f64| -> Vec<(f64, f64)> {
             self.rows.iter().map(|r| (r.n as f64, g(r))).collect()
@@ -1109,7 +1468,42 @@ impl Report {
             true,
             true,
         )?;
-        Ok([err, resources, angle])
+        let arch_pts = |arch: Architecture, g: &dyn Fn(&ArchFigures) -> f64| -> Vec<(f64, f64)> {
+            self.rows
+                .iter()
+                .filter_map(|r| r.arch(arch).map(|a| (r.n as f64, g(&a))))
+                .collect()
+        };
+        let area = chart(
+            &format!(
+                "{}_core: area against N, unrolled and iterative CORDIC",
+                loaded.config.name
+            ),
+            "CORDIC iterations N",
+            "count",
+            &[
+                line(
+                    "unrolled: xc3sa LUT4",
+                    arch_pts(Architecture::Unrolled, &|a| a.xc3sa.luts as f64),
+                ),
+                line(
+                    "unrolled: cycloneive LE",
+                    arch_pts(Architecture::Unrolled, &|a| a.cyclone.luts as f64),
+                ),
+                line(
+                    "iterative: xc3sa LUT4",
+                    arch_pts(Architecture::Iterative, &|a| a.xc3sa.luts as f64),
+                ),
+                line(
+                    "iterative: cycloneive LE",
+                    arch_pts(Architecture::Iterative, &|a| a.cyclone.luts as f64),
+                ),
+            ],
+            false,
+            false,
+            false,
+        )?;
+        Ok([err, resources, angle, area])
     }
 
     /// The selected files.
@@ -1136,15 +1530,38 @@ impl Report {
             });
         }
         if opts.formats.svg {
-            let [e, r, a] = self.plots(loaded)?;
-            for (name, text) in names[3..].iter().zip([e, r, a]) {
+            let [e, r, a, ar] = self.plots(loaded)?;
+            for (name, text) in names[3..7].iter().zip([e, r, a, ar]) {
                 files.push(OutFile {
                     name: name.clone(),
                     text,
                 });
             }
         }
+        if opts.formats.csv {
+            files.push(OutFile {
+                name: names[7].clone(),
+                text: self.blocks_csv(),
+            });
+        }
         Ok(Generation { files })
+    }
+}
+
+/// A table cell as JSON: null when empty, a number when it parses as one (text columns
+/// stay strings).
+fn cell_value(cell: &str, key: &str) -> serde_json::Value {
+    use serde_json::Value;
+    if cell.is_empty() {
+        Value::Null
+    } else if matches!(key, "block" | "module" | "timing") {
+        Value::from(cell)
+    } else if let Ok(i) = cell.parse::<u64>() {
+        Value::from(i)
+    } else if let Ok(x) = cell.parse::<f64>() {
+        Value::from(x)
+    } else {
+        Value::from(cell)
     }
 }
 

@@ -1,0 +1,519 @@
+//! Per-block rows of the report: every block of the sinewave top synthesized alone, and the
+//! whole `<name>_top`.
+//!
+//! Each row comes from a [`BlockDef`] in [`BLOCKS`]: a key, a label and a constructor that
+//! builds the block's rust-hdl description from the configuration, exports it with
+//! [`crate::emit::verilog::export`] under the module name `<name>_blk_<key>` ([`export_block`])
+//! and states its timing ([`BlockTiming`]). The report synthesizes every [`BlockJob`] for
+//! xc3sa and cycloneive in the same parallel pool and Yosys cache as the per-N designs, and
+//! turns the results into [`BlockRow`]s (Markdown table "Blocks of `<name>_top`", the `blocks`
+//! array of the JSON and `<name>_report_blocks.csv`).
+//!
+//! Adding a block (e.g. the biquad engine or the NCO) is one entry of [`BLOCKS`]:
+//!
+//! ```ignore
+//! BlockDef { key: "nco", label: "NCO", build: |l| job(l, "nco", Nco::new(&l.derived.nco)?, BlockTiming::latency(2, "phase to output")) },
+//! ```
+//!
+//! A constructor that returns a job without Verilog ([`BlockJob::absent`]) gives a row with
+//! empty cells and its reason (e.g. the pre-amplifier of a config without the LTC1407A-1
+//! preset); blocks that exist but are disabled in the config are built with their
+//! parameters anyway and marked in their note.
+use crate::blocks::adc::hdl::AdcController;
+use crate::blocks::biss::hdl::BissSlave;
+use crate::blocks::core::hdl::CoreRtl;
+use crate::blocks::correction::hdl::Correction;
+use crate::blocks::counter::hdl::QuadrantCounter;
+use crate::blocks::fallback::hdl::Fallback;
+use crate::blocks::monitor::hdl::Monitor;
+use crate::blocks::parallel::hdl::ParallelBus;
+use crate::blocks::parallel::ParallelParams;
+use crate::blocks::preamp::hdl::PreampSetup;
+use crate::blocks::qep::hdl::QepDecoder;
+use crate::blocks::spi_slave::hdl::SpiSlave;
+use crate::blocks::spi_slave::SpiSlaveParams;
+use crate::blocks::ssi::hdl::SsiSlave;
+use crate::blocks::ssi::SsiParams;
+use crate::config::Loaded;
+use crate::error::{Error, Result};
+use crate::synth::SynthStats;
+use rust_hdl::prelude::Block;
+
+/// Timing of a block, where it has one (all `None` and an explanatory text otherwise).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BlockTiming {
+    /// Cycles from input to output (as defined in `text`).
+    pub latency_cycles: Option<u32>,
+    /// Clocks per sample (conversion frame, or clocks per accepted sample).
+    pub clocks_per_sample: Option<u32>,
+    /// Samples per second at the configured clock.
+    pub rate_sps: Option<f64>,
+    /// What the figures mean (no `|` and no `,`: it is a Markdown and CSV cell).
+    pub text: String,
+}
+
+impl BlockTiming {
+    /// No timing of its own; `text` says why.
+    pub fn none(text: &str) -> Self {
+        BlockTiming {
+            text: text.to_string(),
+            ..Default::default()
+        }
+    }
+
+    /// A latency in cycles.
+    pub fn latency(cycles: u32, text: &str) -> Self {
+        BlockTiming {
+            latency_cycles: Some(cycles),
+            text: text.to_string(),
+            ..Default::default()
+        }
+    }
+}
+
+/// A block to synthesize alone.
+#[derive(Clone, Debug)]
+pub struct BlockJob {
+    /// Key (CSV/JSON, scratch directory names).
+    pub key: String,
+    /// Row label.
+    pub label: String,
+    /// Top module of `verilog`.
+    pub module: String,
+    /// Verilog of the block (None: the block is not part of this config; `note` says why).
+    pub verilog: Option<String>,
+    /// Timing.
+    pub timing: BlockTiming,
+    /// Remark shown after the label (e.g. "disabled in this config"); "" for none.
+    pub note: String,
+}
+
+impl BlockJob {
+    /// A row without synthesis: the block does not exist for this config (`why`).
+    pub fn absent(key: &str, why: &str) -> BlockJob {
+        BlockJob {
+            key: key.to_string(),
+            label: String::new(),
+            module: String::new(),
+            verilog: None,
+            timing: BlockTiming::none(""),
+            note: why.to_string(),
+        }
+    }
+
+    /// The same job with a note.
+    pub fn with_note(mut self, note: &str) -> BlockJob {
+        self.note = note.to_string();
+        self
+    }
+}
+
+/// Builds the job of one block from the configuration.
+pub type BlockCtor = fn(&Loaded) -> Result<BlockJob>;
+
+/// One entry of the block table.
+#[derive(Clone, Copy)]
+pub struct BlockDef {
+    /// Key (also the module suffix `<name>_blk_<key>`; lower case, digits and `_`).
+    pub key: &'static str,
+    /// Row label.
+    pub label: &'static str,
+    /// Constructor.
+    pub build: BlockCtor,
+}
+
+/// Synthesis figures of one block.
+#[derive(Clone, Debug)]
+pub struct BlockRow {
+    /// Key.
+    pub key: String,
+    /// Label (with the note in parentheses when there is one).
+    pub label: String,
+    /// Top module synthesized ("" when absent).
+    pub module: String,
+    /// Timing.
+    pub timing: BlockTiming,
+    /// xc3sa figures (None when the block is absent from this config).
+    pub xc3sa: Option<SynthStats>,
+    /// cycloneive figures.
+    pub cyclone: Option<SynthStats>,
+}
+
+/// Module name of a block: `<name>_blk_<key>`.
+pub fn block_module(loaded: &Loaded, key: &str) -> String {
+    format!("{}_blk_{key}", loaded.config.name)
+}
+
+/// Connects `uut` and exports it as `<name>_blk_<key>`: (module name, Verilog).
+pub fn export_block<B: Block>(loaded: &Loaded, key: &str, mut uut: B) -> Result<(String, String)> {
+    uut.connect_all();
+    let module = block_module(loaded, key);
+    let v = crate::emit::verilog::export(&uut, key, &module)?;
+    Ok((module, v))
+}
+
+/// A job for a rust-hdl block with its timing.
+pub fn job<B: Block>(loaded: &Loaded, key: &str, uut: B, timing: BlockTiming) -> Result<BlockJob> {
+    let (module, verilog) = export_block(loaded, key, uut)?;
+    Ok(BlockJob {
+        key: key.to_string(),
+        label: String::new(),
+        module,
+        verilog: Some(verilog),
+        timing,
+        note: String::new(),
+    })
+}
+
+fn param_err(block: &str) -> impl Fn(String) -> Error + '_ {
+    move |m| Error::Export(format!("report block `{block}`: {m}"))
+}
+
+const NO_PREAMP: &str = "not in this config: needs the LTC1407A-1 preset";
+const DISABLED: &str = "disabled in this config";
+
+fn ssi_params(l: &Loaded) -> Result<(SsiParams, bool)> {
+    let d = &l.derived;
+    if let Some(p) = &d.ssi {
+        return Ok((p.clone(), true));
+    }
+    let e = param_err("ssi");
+    let mut p =
+        SsiParams::new(d.biss.position_bits, d.biss.multiturn_bits, d.clock_hz).map_err(&e)?;
+    p.gray = l.config.ssi.gray;
+    if let Some(t) = l.config.ssi.timeout_us {
+        p.set_timeout_us(t).map_err(&e)?;
+    }
+    p.validate().map_err(&e)?;
+    Ok((p, false))
+}
+
+fn spi_params(l: &Loaded) -> Result<(SpiSlaveParams, bool)> {
+    let d = &l.derived;
+    if let Some(p) = &d.spi {
+        return Ok((p.clone(), true));
+    }
+    let e = param_err("spi");
+    let mut p =
+        SpiSlaveParams::new(d.biss.position_bits, d.biss.multiturn_bits, d.clock_hz).map_err(&e)?;
+    p.gray = l.config.spi.gray;
+    p.validate().map_err(&e)?;
+    Ok((p, false))
+}
+
+fn adc_job(l: &Loaded) -> Result<BlockJob> {
+    let a = &l.derived.adc;
+    let t = BlockTiming {
+        latency_cycles: Some(a.conv_to_valid_clocks()),
+        clocks_per_sample: Some(a.period_clocks),
+        rate_sps: Some(a.sample_rate_hz()),
+        text: "conversion frame of P clocks per sample pair; latency = CONV rise to out_valid"
+            .into(),
+    };
+    job(l, "adc", AdcController::new(a), t)
+}
+
+fn preamp_job(l: &Loaded) -> Result<BlockJob> {
+    match &l.derived.preamp {
+        Some(p) => job(
+            l,
+            "preamp",
+            PreampSetup::new(p),
+            BlockTiming::none(&format!(
+                "one-shot after reset: done after {} clocks",
+                p.done_clocks()
+            )),
+        ),
+        None => Ok(BlockJob::absent("preamp", NO_PREAMP)),
+    }
+}
+
+fn correction_job(l: &Loaded) -> Result<BlockJob> {
+    job(
+        l,
+        "correction",
+        Correction::new(&l.derived.correction),
+        BlockTiming::latency(
+            crate::blocks::correction::LATENCY_CYCLES,
+            "in_valid to out_valid",
+        ),
+    )
+}
+
+fn monitor_job(l: &Loaded) -> Result<BlockJob> {
+    job(
+        l,
+        "monitor",
+        Monitor::new(&l.derived.monitor),
+        BlockTiming::latency(1, "flags one clock after the input"),
+    )
+}
+
+fn core_job(l: &Loaded) -> Result<BlockJob> {
+    let d = &l.derived;
+    let t = BlockTiming {
+        latency_cycles: Some(d.latency_cycles),
+        clocks_per_sample: Some(d.cycles_per_sample),
+        rate_sps: Some(d.clock_hz / d.cycles_per_sample.max(1) as f64),
+        text: format!(
+            "N + 2 cycles in_valid to out_valid ({} CORDIC; rate = throughput)",
+            match d.architecture {
+                crate::config::Architecture::Unrolled => "unrolled",
+                crate::config::Architecture::Iterative => "iterative",
+            }
+        ),
+    };
+    job(l, "core", CoreRtl::new(d), t)
+}
+
+fn counter_job(l: &Loaded) -> Result<BlockJob> {
+    job(
+        l,
+        "counter",
+        QuadrantCounter::new(&l.derived),
+        BlockTiming::latency(1, "one register stage"),
+    )
+}
+
+fn qep_job(l: &Loaded) -> Result<BlockJob> {
+    let p = &l.derived.qep;
+    job(
+        l,
+        "qep",
+        QepDecoder::new(p),
+        BlockTiming::latency(
+            p.filter() + 3,
+            "input level change to count: filter + 3 rising edges",
+        ),
+    )
+}
+
+fn fallback_job(l: &Loaded) -> Result<BlockJob> {
+    let j = job(
+        l,
+        "fallback",
+        Fallback::new(&l.derived),
+        BlockTiming::none("works per sample beside the core"),
+    )?;
+    Ok(if l.derived.qep_enabled {
+        j
+    } else {
+        j.with_note(DISABLED)
+    })
+}
+
+fn biss_job(l: &Loaded) -> Result<BlockJob> {
+    let uut = BissSlave::new(&l.derived.biss).map_err(param_err("biss"))?;
+    job(
+        l,
+        "biss",
+        uut,
+        BlockTiming::none("serial: clocked by the master's MA"),
+    )
+}
+
+fn ssi_job(l: &Loaded) -> Result<BlockJob> {
+    let (p, enabled) = ssi_params(l)?;
+    let uut = SsiSlave::new(&p).map_err(param_err("ssi"))?;
+    let j = job(
+        l,
+        "ssi",
+        uut,
+        BlockTiming::none("serial: clocked by the master"),
+    )?;
+    Ok(if enabled { j } else { j.with_note(DISABLED) })
+}
+
+fn spi_job(l: &Loaded) -> Result<BlockJob> {
+    let (p, enabled) = spi_params(l)?;
+    let uut = SpiSlave::new(&p).map_err(param_err("spi"))?;
+    let j = job(
+        l,
+        "spi",
+        uut,
+        BlockTiming::none("serial: clocked by the master"),
+    )?;
+    Ok(if enabled { j } else { j.with_note(DISABLED) })
+}
+
+fn parallel_job(l: &Loaded) -> Result<BlockJob> {
+    let d = &l.derived;
+    let p = ParallelParams::new(d.position_width.min(32), d.multiturn_bits)
+        .map_err(param_err("parallel"))?;
+    let uut = ParallelBus::new(&p).map_err(param_err("parallel"))?;
+    job(
+        l,
+        "parallel",
+        uut,
+        BlockTiming::latency(1, "registered outputs"),
+    )
+}
+
+fn top_job(l: &Loaded) -> Result<BlockJob> {
+    let d = &l.derived;
+    match crate::emit::top_verilog(l)? {
+        Some(v) => Ok(BlockJob {
+            key: "top".into(),
+            label: String::new(),
+            module: crate::emit::top_name(l),
+            verilog: Some(v),
+            timing: BlockTiming {
+                latency_cycles: Some(crate::blocks::top::hdl::conv_to_position_cycles(d)),
+                clocks_per_sample: Some(d.adc.period_clocks),
+                rate_sps: Some(d.sample_rate_hz),
+                text: "latency = CONV rise to par_valid; one position per ADC frame".into(),
+            },
+            note: String::new(),
+        }),
+        None => Ok(BlockJob::absent(
+            "top",
+            "no board top for this config: needs the LTC1407A-1 preset and target spartan3an",
+        )),
+    }
+}
+
+/// The block table, in row order. The whole top comes last.
+pub const BLOCKS: &[BlockDef] = &[
+    BlockDef {
+        key: "adc",
+        label: "ADC controller",
+        build: adc_job,
+    },
+    BlockDef {
+        key: "preamp",
+        label: "pre-amp set-up",
+        build: preamp_job,
+    },
+    BlockDef {
+        key: "correction",
+        label: "correction",
+        build: correction_job,
+    },
+    BlockDef {
+        key: "monitor",
+        label: "monitor",
+        build: monitor_job,
+    },
+    BlockDef {
+        key: "core",
+        label: "core (mapper + CORDIC + combiner + counter)",
+        build: core_job,
+    },
+    BlockDef {
+        key: "counter",
+        label: "quadrant counter alone",
+        build: counter_job,
+    },
+    BlockDef {
+        key: "qep",
+        label: "QEP decoder",
+        build: qep_job,
+    },
+    BlockDef {
+        key: "fallback",
+        label: "QEP fallback",
+        build: fallback_job,
+    },
+    BlockDef {
+        key: "biss",
+        label: "BiSS-C slave",
+        build: biss_job,
+    },
+    BlockDef {
+        key: "ssi",
+        label: "SSI slave",
+        build: ssi_job,
+    },
+    BlockDef {
+        key: "spi",
+        label: "SPI slave",
+        build: spi_job,
+    },
+    BlockDef {
+        key: "parallel",
+        label: "parallel bus",
+        build: parallel_job,
+    },
+    BlockDef {
+        key: "top",
+        label: "whole top",
+        build: top_job,
+    },
+];
+
+/// Builds every job of [`BLOCKS`] for the configuration (in order); the label of each is
+/// the table's, `whole top` becoming `<name>_top`.
+pub fn block_jobs(loaded: &Loaded) -> Result<Vec<BlockJob>> {
+    use rayon::prelude::*;
+    BLOCKS
+        .par_iter()
+        .map(|b| {
+            let mut j = (b.build)(loaded)?;
+            j.key = b.key.to_string();
+            j.label = if b.key == "top" {
+                crate::emit::top_name(loaded)
+            } else {
+                b.label.to_string()
+            };
+            Ok(j)
+        })
+        .collect()
+}
+
+/// The row of a job, given its synthesis results.
+pub fn block_row(j: &BlockJob, xc3sa: Option<SynthStats>, cyclone: Option<SynthStats>) -> BlockRow {
+    let label = if j.note.is_empty() {
+        j.label.clone()
+    } else {
+        format!("{} ({})", j.label, j.note)
+    };
+    BlockRow {
+        key: j.key.clone(),
+        label,
+        module: j.module.clone(),
+        timing: j.timing.clone(),
+        xc3sa,
+        cyclone,
+    }
+}
+
+/// Columns of the block table: (key used in CSV and JSON, title used in Markdown).
+pub const BLOCK_COLUMNS: &[(&str, &str)] = &[
+    ("block", "block"),
+    ("module", "module"),
+    ("xc3sa_lut", "xc3sa LUT4 (incl. INV)"),
+    ("xc3sa_ff", "xc3sa FF"),
+    ("xc3sa_carry", "xc3sa MUXCY"),
+    ("xc3sa_mult", "xc3sa MULT18X18"),
+    ("cycloneive_lut", "cycloneive LE"),
+    ("cycloneive_ff", "cycloneive FF"),
+    ("cycloneive_mult", "cycloneive mult"),
+    ("latency_cycles", "latency (cycles)"),
+    ("clocks_per_sample", "clocks per sample"),
+    ("rate_sps", "rate (samples/s)"),
+    ("timing", "timing"),
+];
+
+/// Cells of a row in [`BLOCK_COLUMNS`] order ("" = empty).
+pub fn block_cells(r: &BlockRow) -> Vec<String> {
+    let int = |v: Option<u64>| v.map(|v| v.to_string()).unwrap_or_default();
+    let x = r.xc3sa.as_ref();
+    let c = r.cyclone.as_ref();
+    let t = &r.timing;
+    let clean = |s: &str| s.replace(['|', ','], ";");
+    vec![
+        clean(&r.label),
+        r.module.clone(),
+        int(x.map(|s| s.luts)),
+        int(x.map(|s| s.ffs)),
+        int(x.map(|s| s.carry)),
+        int(x.map(|s| s.multipliers)),
+        int(c.map(|s| s.luts)),
+        int(c.map(|s| s.ffs)),
+        int(c.map(|s| s.multipliers)),
+        int(t.latency_cycles.map(u64::from)),
+        int(t.clocks_per_sample.map(u64::from)),
+        t.rate_sps.map(|v| format!("{v:.0}")).unwrap_or_default(),
+        clean(&t.text),
+    ]
+}
