@@ -349,8 +349,81 @@ fn parallel_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
+const CAP_ONLY: &str = "capacitive path only: needs [capacitive]";
+
+fn nco_job(l: &Loaded) -> Result<BlockJob> {
+    if l.derived.capacitive.is_none() {
+        return Ok(BlockJob::absent("nco", CAP_ONLY));
+    }
+    let p = crate::blocks::capacitive::CapFrontParams::new(&l.derived)?;
+    job(
+        l,
+        "nco",
+        crate::blocks::nco::hdl::Nco::new(&p.nco),
+        BlockTiming::latency(1, "one update per ADC sample (tick)"),
+    )
+}
+
+fn biquad_job(l: &Loaded) -> Result<BlockJob> {
+    if l.derived.capacitive.is_none() {
+        return Ok(BlockJob::absent("biquad", CAP_ONLY));
+    }
+    let d = &l.derived;
+    let p = crate::blocks::capacitive::CapFrontParams::new(d)?;
+    let mut t = BlockTiming::latency(
+        p.engine.latency(),
+        "band-pass + 2 low-pass branches on one multiplier: 7 clocks per section",
+    );
+    t.clocks_per_sample = Some(p.engine.cycles_per_sample());
+    t.rate_sps = Some(d.clock_hz / p.engine.cycles_per_sample() as f64);
+    job(
+        l,
+        "biquad",
+        crate::blocks::biquad::hdl::BiquadRtl::new(&p.engine),
+        t,
+    )
+}
+
+fn capfront_job(l: &Loaded) -> Result<BlockJob> {
+    if l.derived.capacitive.is_none() {
+        return Ok(BlockJob::absent("capfront", CAP_ONLY));
+    }
+    let d = &l.derived;
+    let p = crate::blocks::capacitive::CapFrontParams::new(d)?;
+    let mut t = BlockTiming::latency(
+        p.latency(),
+        "NCO + biquad engine + demodulator (2 clocks on its own multiplier)",
+    );
+    t.clocks_per_sample = Some(p.cycles_per_sample());
+    job(
+        l,
+        "capfront",
+        crate::blocks::capacitive::hdl::CapFront::new(&p),
+        t,
+    )
+}
+
 fn top_job(l: &Loaded) -> Result<BlockJob> {
     let d = &l.derived;
+    if let Some(k) = &d.capacitive {
+        let p = crate::blocks::capacitive::CapFrontParams::new(d)?;
+        return match crate::emit::cap_top_verilog(l)? {
+            Some(v) => Ok(BlockJob {
+                key: "top".into(),
+                label: String::new(),
+                module: crate::emit::top_name(l),
+                verilog: Some(v),
+                timing: BlockTiming {
+                    latency_cycles: Some(d.adc.conv_to_valid_clocks() + p.latency() + d.latency_cycles),
+                    clocks_per_sample: Some(d.adc.period_clocks),
+                    rate_sps: Some(k.sample_rate_hz),
+                    text: "latency = CONV rise to par_valid (plus one sample in the demodulator and the filters' group delay)".into(),
+                },
+                note: String::new(),
+            }),
+            None => Ok(BlockJob::absent("top", CAP_ONLY)),
+        };
+    }
     match crate::emit::top_verilog(l)? {
         Some(v) => Ok(BlockJob {
             key: "top".into(),
@@ -433,6 +506,21 @@ pub const BLOCKS: &[BlockDef] = &[
         key: "parallel",
         label: "parallel bus",
         build: parallel_job,
+    },
+    BlockDef {
+        key: "nco",
+        label: "excitation NCO",
+        build: nco_job,
+    },
+    BlockDef {
+        key: "biquad",
+        label: "biquad engine (band-pass + low-pass)",
+        build: biquad_job,
+    },
+    BlockDef {
+        key: "capfront",
+        label: "capacitive front end (NCO + engine + demod)",
+        build: capfront_job,
     },
     BlockDef {
         key: "top",
