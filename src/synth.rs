@@ -62,6 +62,30 @@ const HARMLESS: &[&str] = &[
     "Feature 'synth_intel' is experimental",
 ];
 
+/// Block-RAM ports Yosys's `memory_bram` mapping may resize (the RAM primitive's data and
+/// parity ports are wider than the inferred memory; the extra bits are unused).
+const BRAM_PORTS: &[&str] = &[
+    "DI", "DO", "DIP", "DOP", "DIA", "DIB", "DOA", "DOB", "DIPA", "DIPB", "DOPA", "DOPB",
+];
+
+/// A warning that does not change results: one of [`HARMLESS`], or the resizing of a data
+/// port of a block RAM tile that `memory_bram` made of an inferred memory (cell names end in
+/// `.<row>.<column>.<port>`).
+pub fn harmless_warning(line: &str) -> bool {
+    if HARMLESS.iter().any(|h| line.contains(h)) {
+        return true;
+    }
+    let Some(rest) = line.split("Resizing cell port ").nth(1) else {
+        return false;
+    };
+    let cell = rest.split(' ').next().unwrap_or("");
+    let parts: Vec<&str> = cell.rsplitn(4, '.').collect();
+    parts.len() == 4
+        && BRAM_PORTS.contains(&parts[0])
+        && parts[1].parse::<u32>().is_ok()
+        && parts[2].parse::<u32>().is_ok()
+}
+
 fn classify(cells: &BTreeMap<String, u64>, family: Family) -> SynthStats {
     let mut s = SynthStats {
         cells: cells.clone(),
@@ -190,7 +214,7 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
     }
     let bad: Vec<&str> = log
         .lines()
-        .filter(|l| l.contains("Warning:") && !HARMLESS.iter().any(|h| l.contains(h)))
+        .filter(|l| l.contains("Warning:") && !harmless_warning(l))
         .collect();
     if !bad.is_empty() {
         return Err(CosimError::ToolFailed {
@@ -209,4 +233,29 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
         )));
     }
     Ok(classify(&cells, family))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::harmless_warning;
+
+    #[test]
+    fn only_block_ram_data_ports_may_be_resized() {
+        assert!(harmless_warning(
+            "Warning: Resizing cell port cap_top.rtl.front.engine.ram.sr_mem.0.0.DI from 64 bits to 32 bits."
+        ));
+        assert!(harmless_warning(
+            "Warning: Resizing cell port top.m.1.0.DOP from 8 bits to 4 bits."
+        ));
+        // A width mismatch on an ordinary instance stays an error.
+        assert!(!harmless_warning(
+            "Warning: Resizing cell port top.rtl.core.in_sin from 32 bits to 16 bits."
+        ));
+        assert!(!harmless_warning(
+            "Warning: Resizing cell port top.rtl.core.0.0.in_sin from 32 bits to 16 bits."
+        ));
+        assert!(!harmless_warning(
+            "Warning: wire foo is used but has no driver."
+        ));
+    }
 }
