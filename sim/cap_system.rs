@@ -61,6 +61,8 @@ pub struct CapSystem {
     cycle: u64,
     /// Decoded positions.
     pub records: Vec<CapRecord>,
+    /// Per-cycle input rows (`CapTopRtl`'s CosimBlock order), when recording.
+    pub inputs: Option<Vec<Vec<u64>>>,
 }
 
 impl CapSystem {
@@ -95,7 +97,14 @@ impl CapSystem {
             turns_width: d.turns_width,
             cycle: 0,
             records: Vec::new(),
+            inputs: None,
         })
+    }
+
+    /// Records every cycle's inputs from now on (a stimulus that replays the run in a
+    /// Verilog simulator).
+    pub fn record_inputs(&mut self) {
+        self.inputs = Some(Vec::new());
     }
 
     /// Resets the design (4 cycles) and settles it.
@@ -112,6 +121,9 @@ impl CapSystem {
             t.biss_ma.next = true;
             let miso = self.adc.step(t.adc_conv.val(), t.adc_sck.val());
             t.adc_miso.next = miso;
+            if let Some(v) = &mut self.inputs {
+                v.push(vec![(self.cycle < 4) as u64, miso as u64, 1]);
+            }
             tick(t)?;
             self.cycle += 1;
             let t = &self.top;

@@ -537,6 +537,15 @@ pub fn block_jobs(loaded: &Loaded) -> Result<Vec<BlockJob>> {
         .par_iter()
         .map(|b| {
             let mut j = (b.build)(loaded)?;
+            // On the capacitive path the sinewave-only blocks are built for comparison but
+            // are not part of its top.
+            if loaded.derived.capacitive.is_some()
+                && ["correction", "monitor", "qep", "fallback", "ssi", "spi"].contains(&b.key)
+                && j.verilog.is_some()
+                && j.note.is_empty()
+            {
+                j = j.with_note("not in the capacitive top");
+            }
             j.key = b.key.to_string();
             j.label = if b.key == "top" {
                 crate::emit::top_name(loaded)
