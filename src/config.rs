@@ -1473,7 +1473,7 @@ fn cap_params(c: &Config, k: &CapacitiveConfig, rate: f64, err: &ErrFn) -> Resul
             ),
         ));
     }
-    if !(k.amplitude > 0.0 && k.amplitude <= 1.0) {
+    if k.amplitude.is_nan() || k.amplitude <= 0.0 || k.amplitude > 1.0 {
         return Err(err(
             t,
             "amplitude",
