@@ -160,35 +160,95 @@ impl CapSystem {
     /// decoded position has an arbitrary zero (an incremental position), so the error is
     /// taken modulo one turn around its first value before the mean is removed.
     pub fn stats(&self, skip_s: f64) -> CapStats {
-        let skip = (skip_s * self.clock_hz) as u64;
-        let recs: Vec<&CapRecord> = self.records.iter().filter(|r| r.cycle >= skip).collect();
-        if recs.is_empty() {
-            return CapStats::default();
+        stats_of(
+            &self.records,
+            self.lsb_per_turn,
+            (skip_s * self.clock_hz) as u64,
+        )
+    }
+}
+
+/// The same loop on the bit-accurate models (sample-level front end, cycle-level core) for
+/// long runs: a whole turn at 800 rpm is 30,000 samples. Sample n is converted at n / fs
+/// with the DAC words the NCO holds then; the result's records use sample indices as
+/// cycles. Proven equal to the RTL by tests/capacitive.rs (front end and top replays).
+pub fn model_run(d: &Derived, p: CapParams, samples: usize) -> Result<Vec<CapRecord>, String> {
+    use crate::blocks::capacitive::model::CapFrontModel;
+    use crate::blocks::capacitive::CapFrontParams;
+    use crate::blocks::core::model::{CoreIn, CoreModel};
+    let fp = CapFrontParams::new(d).map_err(|e| e.to_string())?;
+    let mut front = CapFrontModel::new(&fp);
+    let mut core = CoreModel::new(d);
+    let mut enc = CapEncoder::new(p)?;
+    let fs = fp.nco.update_hz();
+    let lsb_per_turn = d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64;
+    let mut out = Vec::with_capacity(samples);
+    let mut t_of: std::collections::VecDeque<f64> = Default::default();
+    for n in 0..samples + d.latency_cycles as usize + 1 {
+        let step = if n < samples {
+            let t = n as f64 / fs;
+            let (s, c) = front.dac_words();
+            let code = enc.sample(t, s, c);
+            let o = front.step(code as i64);
+            t_of.push_back(t);
+            CoreIn {
+                rst: false,
+                valid: true,
+                sin: o.q as i32,
+                cos: o.i as i32,
+                load: None,
+            }
+        } else {
+            CoreIn {
+                rst: false,
+                valid: false,
+                sin: 0,
+                cos: 0,
+                load: None,
+            }
+        };
+        let r = core.step(step);
+        if r.valid {
+            let t = t_of.pop_front().unwrap_or(0.0);
+            out.push(CapRecord {
+                cycle: (t * d.clock_hz) as u64,
+                decoded: r.turns_signed(d) * lsb_per_turn as i64 + r.position as i64,
+                truth: enc.mech_angle(t) / TAU * lsb_per_turn,
+                error: r.error,
+                warning: r.warning,
+            });
         }
-        let turn = self.lsb_per_turn;
-        let raw: Vec<f64> = recs.iter().map(|r| r.decoded as f64 - r.truth).collect();
-        let e0 = raw[0];
-        let errs: Vec<f64> = raw
-            .iter()
-            .map(|e| e0 + (e - e0 + turn / 2.0).rem_euclid(turn) - turn / 2.0)
-            .collect();
-        let n = errs.len() as f64;
-        let mean = errs.iter().sum::<f64>() / n;
-        let to_deg = 360.0 / turn;
-        let dev: Vec<f64> = errs.iter().map(|e| e - mean).collect();
-        let max = dev.iter().fold(0.0f64, |m, e| m.max(e.abs()));
-        let mean_abs = dev.iter().map(|e| e.abs()).sum::<f64>() / n;
-        let rms = (dev.iter().map(|e| e * e).sum::<f64>() / n).sqrt();
-        let lo = dev.iter().cloned().fold(f64::MAX, f64::min);
-        let hi = dev.iter().cloned().fold(f64::MIN, f64::max);
-        CapStats {
-            samples: recs.len(),
-            mean_deg: mean.rem_euclid(turn) * to_deg,
-            max_deg: max * to_deg,
-            mean_abs_deg: mean_abs * to_deg,
-            rms_deg: rms * to_deg,
-            pp_deg: (hi - lo) * to_deg,
-            flagged: recs.iter().filter(|r| r.error || r.warning).count(),
-        }
+    }
+    Ok(out)
+}
+
+/// [`CapSystem::stats`] for records of any source.
+pub fn stats_of(records: &[CapRecord], lsb_per_turn: f64, skip_cycles: u64) -> CapStats {
+    let recs: Vec<&CapRecord> = records.iter().filter(|r| r.cycle >= skip_cycles).collect();
+    if recs.is_empty() {
+        return CapStats::default();
+    }
+    let turn = lsb_per_turn;
+    let raw: Vec<f64> = recs.iter().map(|r| r.decoded as f64 - r.truth).collect();
+    let e0 = raw[0];
+    let errs: Vec<f64> = raw
+        .iter()
+        .map(|e| e0 + (e - e0 + turn / 2.0).rem_euclid(turn) - turn / 2.0)
+        .collect();
+    let n = errs.len() as f64;
+    let mean = errs.iter().sum::<f64>() / n;
+    let to_deg = 360.0 / turn;
+    let dev: Vec<f64> = errs.iter().map(|e| e - mean).collect();
+    let max = dev.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+    let lo = dev.iter().cloned().fold(f64::MAX, f64::min);
+    let hi = dev.iter().cloned().fold(f64::MIN, f64::max);
+    CapStats {
+        samples: recs.len(),
+        mean_deg: mean.rem_euclid(turn) * to_deg,
+        max_deg: max * to_deg,
+        mean_abs_deg: dev.iter().map(|e| e.abs()).sum::<f64>() / n * to_deg,
+        rms_deg: (dev.iter().map(|e| e * e).sum::<f64>() / n).sqrt() * to_deg,
+        pp_deg: (hi - lo) * to_deg,
+        flagged: recs.iter().filter(|r| r.error || r.warning).count(),
     }
 }
