@@ -12,8 +12,12 @@
 //! Adding a block (e.g. the biquad engine or the NCO) is one entry of [`BLOCKS`]:
 //!
 //! ```ignore
-//! BlockDef { key: "nco", label: "NCO", build: |l| job(l, "nco", Nco::new(&l.derived.nco)?, BlockTiming::latency(2, "phase to output")) },
+//! BlockDef { key: "nco", label: "NCO", build: |l| job(l, "nco", Nco::new(&l.derived.nco), BlockTiming::latency(2, "phase to output")) },
 //! ```
+//!
+//! (a non-capturing closure is a [`BlockCtor`]; [`job`] exports the block as
+//! `<name>_blk_nco`; put the entry before the `top` row). A block whose constructor can fail
+//! maps its error into [`crate::error::Error`] (see `biss_job`).
 //!
 //! A constructor that returns a job without Verilog ([`BlockJob::absent`]) gives a row with
 //! empty cells and its reason (e.g. the pre-amplifier of a config without the LTC1407A-1
@@ -266,15 +270,6 @@ fn core_job(l: &Loaded) -> Result<BlockJob> {
     job(l, "core", CoreRtl::new(d), t)
 }
 
-fn counter_job(l: &Loaded) -> Result<BlockJob> {
-    job(
-        l,
-        "counter",
-        QuadrantCounter::new(&l.derived),
-        BlockTiming::latency(1, "one register stage"),
-    )
-}
-
 fn qep_job(l: &Loaded) -> Result<BlockJob> {
     let p = &l.derived.qep;
     job(
@@ -475,7 +470,11 @@ pub const BLOCKS: &[BlockDef] = &[
     BlockDef {
         key: "counter",
         label: "quadrant counter alone",
-        build: counter_job,
+        // A constructor can be a closure in place (non-capturing closures are fn pointers).
+        build: |l| {
+            let t = BlockTiming::latency(1, "one register stage");
+            job(l, "counter", QuadrantCounter::new(&l.derived), t)
+        },
     },
     BlockDef {
         key: "qep",

@@ -7,6 +7,14 @@
 //! bit-accurate datapath is swept against exact atan2 ([`sweep`]). The thesis's own figures
 //! are listed beside ours, marked as the paper's ([`predict`]).
 //!
+//! Two more dimensions: for every N the core is also synthesized with the other CORDIC
+//! architecture ([`with_architecture`]; columns `unrolled_*`, `iterative_*`,
+//! `arch_lut_ratio`, the table "Architectures (unrolled vs iterative)" and the plot
+//! `<name>_report_area_vs_n_arch.svg`; the accuracy is the same for both and is swept once),
+//! and every block of the configured top is synthesized alone ([`blocks`]: the table
+//! "Blocks of `<name>_top`", the JSON's `blocks` array and `<name>_report_blocks.csv`). All
+//! Yosys runs share one parallel pool and the cache; identical designs run once.
+//!
 //! Nothing is written until everything succeeded: the files are assembled as a
 //! [`Generation`] and written with [`crate::emit::write_output`] (temp dir, then rename).
 //! The output is deterministic except for one line of the Markdown (`Generated: ...`).
