@@ -1121,8 +1121,30 @@ impl Derived {
 
     /// Human-readable listing printed by `sinedec check`.
     pub fn describe(&self) -> String {
+        let mut s = self.describe_core();
+        if let Some(k) = &self.capacitive {
+            // theta moves periods_per_turn x rpm / 60 Hz; the low-pass corner bounds it.
+            let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);
+            let ppr = self.quadrants_per_turn as f64 / 4.0;
+            s.push_str(&format!(
+                "core input                  the filters' I/Q outputs ({} bits; ADC {} bits)\n\
+                 carrier                     {:.0} Hz, {:.1} samples per carrier period\n\
+                 theta bandwidth             low-pass corner {:.0} Hz = {:.0} rpm with {} periods per turn (the speed limit of this path)\n",
+                self.adc_width,
+                self.adc.frame.width,
+                k.config.carrier_hz,
+                k.sample_rate_hz / k.config.carrier_hz,
+                corner,
+                corner / ppr * 60.0,
+                ppr
+            ));
+        }
+        s
+    }
+
+    fn describe_core(&self) -> String {
         format!(
-            "adc width A                 {} bits\n\
+            "core input width A          {} bits\n\
              cordic iterations N         {}\n\
              fine bits F                 {} (1 LSB = {:.4} arc-seconds of electrical angle)\n\
              x/y datapath                {} bits ({} guard bits)\n\
