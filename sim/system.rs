@@ -130,6 +130,7 @@ pub struct System {
     record_inputs: bool,
     ma: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
     ssi: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
+    qep_b_stuck: Option<(f64, f64)>,
 }
 
 impl System {
@@ -163,7 +164,13 @@ impl System {
             record_inputs: false,
             ma: None,
             ssi: None,
+            qep_b_stuck: None,
         })
+    }
+
+    /// A comparator fault: QEP B held low from `from` to `to` seconds.
+    pub fn qep_b_stuck_low(&mut self, from: f64, to: f64) {
+        self.qep_b_stuck = Some((from, to));
     }
 
     /// Records the design's inputs of every cycle (see [`SimResult::inputs`]).
@@ -233,7 +240,13 @@ impl System {
             let th = self
                 .truth
                 .electrical_angle(self.cycle as f64 / self.clock_hz);
-            let (qa, qb) = (th.cos() >= 0.0, th.sin() >= 0.0);
+            let (qa, mut qb) = (th.cos() >= 0.0, th.sin() >= 0.0);
+            let now = self.cycle as f64 / self.clock_hz;
+            if let Some((a, b)) = self.qep_b_stuck {
+                if now >= a && now < b {
+                    qb = false;
+                }
+            }
             let turn = std::f64::consts::TAU * self.d.quadrants_per_turn as f64 / 4.0;
             let qz = th.rem_euclid(turn) < std::f64::consts::FRAC_PI_2;
             self.top.qep_a.next = qa;

@@ -249,8 +249,9 @@ impl Logic for Fallback {
         self.nt.next = self.qt.q.val();
         if self.core_valid.val() & !self.core_error.val() & self.enable.val() {
             self.mis.d.next = self.bad.val() & !self.act.q.val();
+            // A disagreement alone only warns: with good signals (no core error) the
+            // CORDIC count is kept, so a faulty comparator line cannot move the position.
             if self.core_warning.val()
-                | self.bad.val()
                 | (self.fast.q.val() & (self.aligned.q.val() == self.three.val()))
             {
                 self.act.d.next = true;

@@ -23,8 +23,10 @@
 //!   |dd| > 1 quadrant (after three aligned samples, so that the captures in flight are
 //!   consistent) is a QEP/CORDIC disagreement: `mismatch` (a warning). The offset is
 //!   assigned, not accumulated, so stale captures cannot add up.
-//! * Fallback mode (`active`): entered on the core's overspeed warning, on a mismatch, or when
-//!   the tracker moved 3 or more quadrants between two conversions; left after
+//! * Fallback mode (`active`): entered on the core's overspeed warning or when the tracker
+//!   moved 3 or more quadrants between two conversions (speed seen on the QEP lines). A
+//!   mismatch alone only raises the warning: at low speed the CORDIC count from good signals
+//!   is right, and a faulty comparator line must not move the position; left after
 //!   `QUIET_SAMPLES` samples with none of these and with the tracker moving less than 2
 //!   quadrants per sample (so the mode never ends above the unwrap limit). While active the offset is frozen, and every sample loads
 //!   the core's counter with the capture plus the offset: the core takes the nearest count congruent with
