@@ -169,14 +169,18 @@ fn run(cli: Cli) -> Result<()> {
                     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
             );
             if loaded.derived.capacitive.is_some() {
-                if csv.is_some() || vcd.is_some() {
-                    bail!("--csv and --vcd are not available for the capacitive path yet");
+                if vcd.is_some() {
+                    bail!("--vcd is not available for the capacitive path yet (--csv is)");
                 }
-                let s = sinedec::simulate::run_capacitive(&loaded, &o, |done, _| {
+                let (s, table) = sinedec::simulate::run_capacitive(&loaded, &o, |done, _| {
                     bar.set_position(done)
                 })?;
                 bar.finish_and_clear();
                 print!("{s}");
+                if let Some(p) = csv {
+                    write_new(&p, &table)?;
+                    println!("wrote {}", p.display());
+                }
                 return Ok(());
             }
             let report = sinedec::simulate::run(&loaded, &o, |done, _| bar.set_position(done))?;

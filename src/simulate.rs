@@ -268,12 +268,13 @@ impl SimReport {
 /// `simulate` for a configuration with `[capacitive]`: the capacitive top against the
 /// capacitive-encoder model (16-bit ADC of 1 V full scale; `amplitude` is the received
 /// amplitude as a fraction of the ADC's range, `noise_lsb` its noise in ADC LSB RMS;
-/// offsets, gain mismatch, phase error and harmonics do not apply). Returns the summary.
+/// offsets, gain mismatch, phase error and harmonics do not apply). Returns the summary
+/// and a CSV of every decoded position.
 pub fn run_capacitive(
     loaded: &Loaded,
     o: &SimOptions,
     mut progress: impl FnMut(u64, u64),
-) -> Result<String> {
+) -> Result<(String, String)> {
     use crate::sim::cap_system::CapSystem;
     use crate::sim::capacitive::CapParams;
     let d = &loaded.derived;
@@ -306,7 +307,22 @@ pub fn run_capacitive(
     let s = sys.stats(skip);
     let front = crate::blocks::capacitive::CapFrontParams::new(d)?;
     let us = |c: u32| c as f64 / d.clock_hz * 1e6;
-    Ok(format!(
+    let mut csv =
+        String::from("cycle,time_s,decoded_lsb,truth_lsb,error_lsb,error_flag,warning_flag\n");
+    for r in &sys.records {
+        let _ = writeln!(
+            csv,
+            "{},{:.9},{},{:.3},{:.3},{},{}",
+            r.cycle,
+            r.cycle as f64 / d.clock_hz,
+            r.decoded,
+            r.truth,
+            r.decoded as f64 - r.truth,
+            r.error as u8,
+            r.warning as u8
+        );
+    }
+    let summary = format!(
         "capacitive path: {} periods per turn, carrier {:.0} Hz, {:.0} samples/s\n\
          positions after {:.1} ms of settling: {} ({} flagged)\n\
          error after removing the constant lag/offset ({:.4} deg): max {:.5} deg, mean |e| {:.5} deg, RMS {:.5} deg, p-p {:.5} deg (mechanical)\n\
@@ -334,5 +350,6 @@ pub fn run_capacitive(
         sys.cycles(),
         wall,
         sys.cycles() as f64 / wall.max(1e-9),
-    ))
+    );
+    Ok((summary, csv))
 }

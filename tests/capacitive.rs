@@ -333,6 +333,8 @@ fn simulate_and_check_run_on_the_capacitive_config() {
         env!("CARGO_MANIFEST_DIR"),
         "/configs/cyclone3_capacitive.toml"
     );
+    let dir = common::workdir("cap_simulate_cli");
+    let csv = dir.join("cap.csv");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
         .args([
             "simulate",
@@ -341,7 +343,9 @@ fn simulate_and_check_run_on_the_capacitive_config() {
             "constant:800",
             "--duration",
             "0.0025",
+            "--csv",
         ])
+        .arg(&csv)
         .output()
         .expect("runs");
     let text = String::from_utf8_lossy(&out.stdout);
@@ -355,6 +359,24 @@ fn simulate_and_check_run_on_the_capacitive_config() {
         "{text}"
     );
     assert!(text.contains("(0 flagged)"), "{text}");
+    // One CSV line per decoded position (400 kHz for 2.5 ms, minus the start-up), each
+    // with 7 numeric fields.
+    let table = std::fs::read_to_string(&csv).expect("csv written");
+    let lines: Vec<&str> = table.lines().collect();
+    assert!(
+        lines[0].starts_with("cycle,time_s,decoded_lsb"),
+        "{}",
+        lines[0]
+    );
+    assert!(
+        (900..=1000).contains(&(lines.len() - 1)),
+        "{} rows",
+        lines.len() - 1
+    );
+    for l in &lines[1..] {
+        let f: Vec<f64> = l.split(',').map(|x| x.parse().expect("number")).collect();
+        assert_eq!(f.len(), 7, "{l}");
+    }
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
         .args(["check", cfg])
         .output()
