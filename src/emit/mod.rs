@@ -84,11 +84,7 @@ fn core_wrapper(loaded: &Loaded, rtl: &str) -> String {
         }
     };
     let f = d.fine_bits;
-    let turns = if d.multiturn_bits == 0 {
-        "1'b0".to_string()
-    } else {
-        format!("turns[{}:0]", d.multiturn_bits - 1)
-    };
+    let turns = turns_expr(d);
     format!(
         r#"// {name}: QEP-CORDIC decoder core, {n} iterations, {f} fine bits, {ppr} PPR.
 // Latency {lat} cycles from in_valid to out_valid; {thr}.
@@ -154,6 +150,15 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
     Ok(format!("{}\n{body}", core_wrapper(loaded, &rtl_name)))
 }
 
+/// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
+fn turns_expr(d: &crate::config::Derived) -> String {
+    if d.multiturn_bits == 0 {
+        "1'b0".to_string()
+    } else {
+        format!("turns[{}:0]", d.multiturn_bits - 1)
+    }
+}
+
 fn has_top(loaded: &Loaded) -> bool {
     loaded.derived.preamp.is_some() && loaded.config.target == crate::config::Target::Spartan3an
 }
@@ -176,11 +181,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let body = verilog::export(&uut, "top", &rtl_name)?;
     let f = d.fine_bits;
-    let turns = if d.multiturn_bits == 0 {
-        "1'b0".to_string()
-    } else {
-        format!("turns[{}:0]", d.multiturn_bits - 1)
-    };
+    let turns = turns_expr(d);
     let wrapper = format!(
         r#"// {name}: sinewave encoder decoder for the Spartan-3AN Starter Kit: LTC6912-1 set-up,
 // LTC1407A-1 controller ({rate:.0} samples/s per channel), QEP-CORDIC core, parallel bus.
@@ -257,11 +258,7 @@ pub fn cap_top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let body = verilog::export(&uut, "top", &rtl_name)?;
     let f = d.fine_bits;
-    let turns = if d.multiturn_bits == 0 {
-        "1'b0".to_string()
-    } else {
-        format!("turns[{}:0]", d.multiturn_bits - 1)
-    };
+    let turns = turns_expr(d);
     let wrapper = format!(
         r#"// {name}: capacitive encoder decoder: excitation NCO ({carrier:.0} Hz), SPI ADC
 // ({rate:.0} samples/s), band-pass, quadrature demodulation, low-pass, QEP-CORDIC core,

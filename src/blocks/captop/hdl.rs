@@ -1,7 +1,6 @@
 //! rust-hdl description of the capacitive board top.
 use crate::blocks::adc::hdl::AdcController;
 use crate::blocks::biss::hdl::BissSlave;
-use crate::blocks::c32;
 use crate::blocks::capacitive::hdl::CapFront;
 use crate::blocks::capacitive::CapFrontParams;
 use crate::blocks::core::hdl::CoreRtl;
@@ -65,8 +64,7 @@ impl CapTopRtl {
     /// The top for the derived parameters (needs `[capacitive]`).
     pub fn new(d: &Derived) -> crate::error::Result<Self> {
         let p = CapFrontParams::new(d)?;
-        let f = d.fine_bits;
-        let drop = d.position_width - d.biss.position_bits;
+        let [qshl, qshr, fshr] = crate::blocks::top::hdl::biss_word_shifts(d);
         Ok(Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -93,9 +91,9 @@ impl CapTopRtl {
             error: Default::default(),
             warning: Default::default(),
             word: Default::default(),
-            qshl: c32(f.saturating_sub(drop) as u64),
-            qshr: c32(drop.saturating_sub(f) as u64),
-            fshr: c32(drop.min(32) as u64),
+            qshl,
+            qshr,
+            fshr,
         })
     }
 }

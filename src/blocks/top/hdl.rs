@@ -104,6 +104,18 @@ pub fn conv_to_position_cycles(d: &Derived) -> u32 {
     d.adc.conv_to_valid_clocks() + crate::blocks::correction::LATENCY_CYCLES + d.latency_cycles
 }
 
+/// Shifts of the BiSS data word ((qc << qshl) >> qshr) | (fine >> fshr): the top
+/// `biss.position_bits` of the position (qc and fine side by side). Shared by both tops.
+pub fn biss_word_shifts(d: &Derived) -> [Constant<Bits<32>>; 3] {
+    let f = d.fine_bits;
+    let drop = d.position_width - d.biss.position_bits;
+    [
+        c32(f.saturating_sub(drop) as u64),
+        c32(drop.saturating_sub(f) as u64),
+        c32(drop.min(32) as u64),
+    ]
+}
+
 impl TopRtl {
     /// The top for the derived parameters (preset `ltc1407a-1`).
     pub fn new(d: &Derived) -> Result<Self, String> {
@@ -111,8 +123,7 @@ impl TopRtl {
             .preamp
             .as_ref()
             .ok_or_else(|| "the sinewave board top needs the LTC1407A-1 preset".to_string())?;
-        let f = d.fine_bits;
-        let drop = d.position_width - d.biss.position_bits;
+        let [qshl, qshr, fshr] = biss_word_shifts(d);
         Ok(Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -164,9 +175,9 @@ impl TopRtl {
             },
             word: Default::default(),
             zero: c32(0),
-            qshl: c32(f.saturating_sub(drop) as u64),
-            qshr: c32(drop.saturating_sub(f) as u64),
-            fshr: c32(drop.min(32) as u64),
+            qshl,
+            qshr,
+            fshr,
         })
     }
 }
