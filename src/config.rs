@@ -314,7 +314,10 @@ pub const CAP_TOP_PINS: &[&str] = &[
 pub const CAP_TOP_BUSES: &[&str] = &["exc_sin", "exc_cos"];
 
 /// The board top's pinned ports for this configuration: (name, None) for a pin,
-/// (name, Some(width)) for a bus.
+/// (name, Some(width)) for a bus. These are exactly the ports of `<name>_top` but the
+/// parallel bus: on the sinewave top [`TOP_PINS`], the [`QEP_PINS`] with `[qep] enabled`,
+/// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled and each of the
+/// [`DESELECT_PINS`] that `[board.pins]` pins. Every one needs a pin.
 pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
     let mut v: Vec<(&'static str, Option<u32>)> = match &c.capacitive {
         Some(k) => CAP_TOP_PINS
@@ -322,7 +325,26 @@ pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
             .map(|p| (*p, None))
             .chain(CAP_TOP_BUSES.iter().map(|b| (*b, Some(k.dac_width))))
             .collect(),
-        None => TOP_PINS.iter().map(|p| (*p, None)).collect(),
+        None => {
+            let pins = c
+                .board
+                .as_ref()
+                .map(|b| b.effective_pins())
+                .unwrap_or_default();
+            let pinned = |p: &&&str| pins.contains_key(**p);
+            // The optional ports go before the BiSS pins, in the wrapper's port order.
+            let at = TOP_PINS
+                .iter()
+                .position(|p| *p == "biss_ma")
+                .unwrap_or(TOP_PINS.len());
+            let (head, biss) = TOP_PINS.split_at(at);
+            head.iter()
+                .chain(DESELECT_PINS.iter().filter(pinned))
+                .chain(QEP_PINS.iter().filter(|_| c.qep.enabled))
+                .chain(biss)
+                .map(|p| (*p, None))
+                .collect()
+        }
     };
     if c.ssi.enabled {
         v.extend(SSI_PINS.iter().map(|p| (*p, None)));
@@ -336,8 +358,17 @@ pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
 /// The Spartan-3A/3AN Starter Kit's pins that sinedec knows with a source: the SPI bus of
 /// the analog capture circuit (UG334 chapter 9: SPI_SCK, AD_CONV, AD_DOUT, SPI_MOSI,
 /// AMP_CS, AMP_SHDN), the 50 MHz oscillator CLK_50M (E12) and the BTN_SOUTH push button
-/// (T15) as reset. DAC_CS, DAC_CLR, SPI_SS_B and SF_CE0 and the header pins for the
-/// comparators and the BiSS transceiver are not filled in: give them in `[board.pins]`.
+/// (T15) as reset.
+///
+/// The header pins for the comparators (`qep_a/b/z` with `[qep] enabled`), the BiSS
+/// transceiver and the SSI / SPI slaves are wiring on the kit's headers: give them in
+/// `[board.pins]`. The other devices on the kit's SPI bus (DAC_CS, DAC_CLR, SPI_SS_B,
+/// SF_CE0; see [`DESELECT_PINS`]) are not filled in either: their locations are not known
+/// here. Each SPI slave on the kit has its own data-out line (UG334 chapter 9: AD_DOUT,
+/// AMP_DOUT; chapter 10: DAC_OUT), so they cannot contend with the ADC or the amplifier;
+/// with the preset, `generate` writes `<name>_top.ut` (BitGen `-g UnusedPin:PullUp`), whose
+/// pull-ups on unused pins hold the active-low selects DAC_CS, SPI_SS_B and SF_CE0
+/// deasserted. Pin a deselect line in `[board.pins]` to have the top drive it.
 pub const STARTER_KIT_PINS: &[(&str, &str)] = &[
     ("clk", "E12"),
     ("rst", "T15"),
@@ -379,11 +410,21 @@ impl BoardConfig {
 pub const SSI_PINS: &[&str] = &["ssi_clk", "ssi_data"];
 /// Pins of the optional SPI slave.
 pub const SPI_PINS: &[&str] = &["enc_sck", "enc_cs_n", "enc_miso", "enc_miso_oe"];
+/// Comparator inputs of the sinewave top: ports (and required pins) only with
+/// `[qep] enabled`.
+pub const QEP_PINS: &[&str] = &["qep_a", "qep_b", "qep_z"];
+/// Outputs of the sinewave top that hold the kit's other SPI-bus devices idle (always 1:
+/// DAC deselected, DAC not cleared, SPI flash deselected, parallel flash disabled).
+/// Optional: a deselect line is a port of `<name>_top` (with a LOC in the UCF) only when
+/// `[board.pins]` pins it; otherwise it stays unconnected inside the top.
+pub const DESELECT_PINS: &[&str] = &["dac_cs", "dac_clr", "spi_ss_b", "sf_ce0"];
 
-/// Ports of the sinewave board top that need a pin (plus SSI_PINS / SPI_PINS when enabled).
+/// Ports of the sinewave board top that always need a pin (plus [`QEP_PINS`] with
+/// `[qep] enabled`, [`SSI_PINS`] / [`SPI_PINS`] when enabled and the pinned
+/// [`DESELECT_PINS`]; see [`board_ports`]).
 pub const TOP_PINS: &[&str] = &[
-    "clk", "rst", "adc_miso", "adc_sck", "adc_conv", "amp_cs", "amp_mosi", "amp_shdn", "dac_cs",
-    "dac_clr", "spi_ss_b", "sf_ce0", "qep_a", "qep_b", "qep_z", "biss_ma", "biss_slo",
+    "clk", "rst", "adc_miso", "adc_sck", "adc_conv", "amp_cs", "amp_mosi", "amp_shdn", "biss_ma",
+    "biss_slo",
 ];
 
 /// `[qep]`: comparator outputs A (cos > 0), B (sin > 0), Z (index) on `qep_a/b/z`.
@@ -1031,13 +1072,17 @@ impl Derived {
             let pins = b.effective_pins();
             let valid = |v: &str| !v.is_empty() && v.chars().all(|ch| ch.is_ascii_alphanumeric());
             let ports = board_ports(c);
-            let names: Vec<String> = ports
+            let mut names: Vec<String> = ports
                 .iter()
+                .filter(|(p, _)| !DESELECT_PINS.contains(p))
                 .map(|(p, w)| match w {
                     Some(w) => format!("{p} ({w} pins)"),
                     None => p.to_string(),
                 })
                 .collect();
+            if c.capacitive.is_none() {
+                names.extend(DESELECT_PINS.iter().map(|p| format!("{p} (optional)")));
+            }
             for (k, v) in &b.pins {
                 let ok = match (ports.iter().find(|p| p.0 == k.as_str()), v) {
                     (Some((_, None)), PinValue::One(p)) => valid(p),
@@ -1064,14 +1109,14 @@ impl Derived {
                 .collect();
             if !missing.is_empty() {
                 let preset = if b.preset.is_some() {
-                    " (the preset fills in only the pins it knows)"
+                    "; the preset fills in the kit's fixed pins, these are wiring on the kit's headers: give them in [board.pins]"
                 } else {
                     ""
                 };
                 return Err(err(
                     "board",
                     "pins",
-                    format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one){preset}", missing.join(", ")),
+                    format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one{preset})", missing.join(", ")),
                 ));
             }
         }

@@ -168,8 +168,76 @@ pub fn top_name(loaded: &Loaded) -> String {
     format!("{}_top", loaded.config.name)
 }
 
+/// One-bit ports of the sinewave `<name>_rtl` besides the parallel bus, in the wrapper's
+/// port order: (name, is an input, port comment, value an input is tied to inside the
+/// wrapper when the port is left out). The wrapper declares a port only when
+/// [`crate::config::board_ports`] lists it, so every non-`par_*` port of `<name>_top` has a
+/// pin; an output left out stays unconnected.
+const TOP_PORTS: &[(&str, bool, &str, &str)] = &[
+    ("clk", true, "system clock", ""),
+    (
+        "rst",
+        true,
+        "synchronous reset, active high (restarts the set-up)",
+        "",
+    ),
+    ("adc_miso", true, "AD_DOUT: LTC1407A-1 serial data", ""),
+    (
+        "adc_sck",
+        false,
+        "SPI_SCK: shared SPI clock (amp set-up, then ADC)",
+        "",
+    ),
+    ("adc_conv", false, "AD_CONV: conversion start", ""),
+    (
+        "amp_cs",
+        false,
+        "AMP_CS: LTC6912-1 chip select, active low",
+        "",
+    ),
+    ("amp_mosi", false, "SPI_MOSI: LTC6912-1 gain word", ""),
+    ("amp_shdn", false, "AMP_SHDN: 0 = amplifier on", ""),
+    ("dac_cs", false, "DAC_CS: 1 = DAC deselected", ""),
+    ("dac_clr", false, "DAC_CLR: 1 = DAC not cleared", ""),
+    ("spi_ss_b", false, "SPI_SS_B: 1 = SPI flash deselected", ""),
+    ("sf_ce0", false, "SF_CE0: 1 = parallel flash disabled", ""),
+    ("qep_a", true, "QEP A: comparator cos > 0", "1'b0"),
+    ("qep_b", true, "QEP B: comparator sin > 0", "1'b0"),
+    ("qep_z", true, "QEP Z: index", "1'b0"),
+    ("biss_ma", true, "BiSS-C MA clock from the master", ""),
+    ("biss_slo", false, "BiSS-C SLO data to the master", ""),
+    (
+        "ssi_clk",
+        true,
+        "SSI clock from the master (idle high)",
+        "1'b1",
+    ),
+    ("ssi_data", false, "SSI data (idle high)", ""),
+    ("enc_sck", true, "SPI-slave clock", "1'b0"),
+    (
+        "enc_cs_n",
+        true,
+        "SPI-slave chip select, active low",
+        "1'b1",
+    ),
+    ("enc_miso", false, "SPI-slave data", ""),
+    (
+        "enc_miso_oe",
+        false,
+        "SPI-slave output enable (drive enc_miso only when high)",
+        "",
+    ),
+];
+
 /// Verilog of `<name>_top` (sinewave path, LTC1407A-1 preset), without header; None when
 /// the configuration has no board top yet (other presets and targets).
+///
+/// The wrapper declares only the ports the configuration uses (see
+/// [`crate::config::board_ports`]): `qep_a/b/z` with `[qep] enabled`, `ssi_*` and `enc_*`
+/// with the SSI / SPI slave, and each deselect line (`dac_cs`, `dac_clr`, `spi_ss_b`,
+/// `sf_ce0`) only when `[board.pins]` pins it. The rtl's inputs of the ports left out are
+/// tied to their idle level (`qep_*` 0, `ssi_clk` 1, `enc_cs_n` 1, `enc_sck` 0) and its
+/// outputs left unconnected, so no output without a LOC reaches a package pin.
 pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     let d = &loaded.derived;
     if d.preamp.is_none() || loaded.config.target != crate::config::Target::Spartan3an {
@@ -182,34 +250,85 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     let body = verilog::export(&uut, "top", &rtl_name)?;
     let f = d.fine_bits;
     let turns = turns_expr(d);
+    let used: Vec<&str> = crate::config::board_ports(&loaded.config)
+        .iter()
+        .map(|p| p.0)
+        .collect();
+    if let Some(p) = used.iter().find(|p| !TOP_PORTS.iter().any(|t| t.0 == **p)) {
+        return Err(Error::Export(format!(
+            "{name}: the pinned port {p} has no place in the wrapper"
+        )));
+    }
+    let mut decl = String::new();
+    let mut conns: Vec<String> = vec![];
+    let mut left_out: Vec<&str> = vec![];
+    for (p, input, comment, tie) in TOP_PORTS {
+        if used.contains(p) {
+            let dir = if *input { "input " } else { "output" };
+            decl.push_str(&format!(
+                "    {dir} wire         {:<14}// {comment}\n",
+                format!("{p},")
+            ));
+            conns.push(format!(".{p}({p})"));
+        } else if *input {
+            if tie.is_empty() {
+                return Err(Error::Export(format!(
+                    "{name}: the required input {p} is not a port of the wrapper"
+                )));
+            }
+            conns.push(format!(".{p}({tie})"));
+            left_out.push(p);
+        } else {
+            conns.push(format!(".{p}()"));
+            left_out.push(p);
+        }
+    }
+    conns.extend(
+        [
+            ".par_valid(par_valid)",
+            ".par_qc(qc)",
+            ".par_fine(fine)",
+            ".par_turns(turns)",
+            ".par_error(par_error)",
+            ".par_warning(par_warning)",
+        ]
+        .map(String::from),
+    );
+    // The connection list, wrapped before 96 columns.
+    let mut inst = String::from("       ");
+    let mut col = inst.len();
+    for (i, c) in conns.iter().enumerate() {
+        let sep = if i + 1 < conns.len() { "," } else { "" };
+        if col + 1 + c.len() + sep.len() > 95 {
+            inst.push_str("\n       ");
+            col = 7;
+        }
+        inst.push_str(&format!(" {c}{sep}"));
+        col += 1 + c.len() + sep.len();
+    }
+    let mut note = String::new();
+    if !left_out.is_empty() {
+        note.push_str(
+            "// Not ports in this configuration (the rtl's inputs tied to their idle level, its\n\
+             // outputs left open):",
+        );
+        let mut col = 95;
+        for (i, p) in left_out.iter().enumerate() {
+            let sep = if i + 1 < left_out.len() { "," } else { "." };
+            if col + 1 + p.len() + sep.len() > 95 {
+                note.push_str("\n//");
+                col = 2;
+            }
+            note.push_str(&format!(" {p}{sep}"));
+            col += 1 + p.len() + sep.len();
+        }
+        note.push('\n');
+    }
     let wrapper = format!(
         r#"// {name}: sinewave encoder decoder for the Spartan-3AN Starter Kit: LTC6912-1 set-up,
 // LTC1407A-1 controller ({rate:.0} samples/s per channel), QEP-CORDIC core, parallel bus.
-module {name} (
-    input  wire         clk,          // system clock
-    input  wire         rst,          // synchronous reset, active high (restarts the set-up)
-    input  wire         adc_miso,     // AD_DOUT: LTC1407A-1 serial data
-    output wire         adc_sck,      // SPI_SCK: shared SPI clock (amp set-up, then ADC)
-    output wire         adc_conv,     // AD_CONV: conversion start
-    output wire         amp_cs,       // AMP_CS: LTC6912-1 chip select, active low
-    output wire         amp_mosi,     // SPI_MOSI: LTC6912-1 gain word
-    output wire         amp_shdn,     // AMP_SHDN: 0 = amplifier on
-    output wire         dac_cs,       // DAC_CS: 1 = DAC deselected
-    output wire         dac_clr,      // DAC_CLR: 1 = DAC not cleared
-    output wire         spi_ss_b,     // SPI_SS_B: 1 = SPI flash deselected
-    output wire         sf_ce0,       // SF_CE0: 1 = parallel flash disabled
-    input  wire         qep_a,        // QEP A: comparator cos > 0
-    input  wire         qep_b,        // QEP B: comparator sin > 0
-    input  wire         qep_z,        // QEP Z: index
-    input  wire         biss_ma,      // BiSS-C MA clock from the master
-    output wire         biss_slo,     // BiSS-C SLO data to the master
-    input  wire         ssi_clk,      // SSI clock (when [ssi] is enabled)
-    output wire         ssi_data,     // SSI data (idle high)
-    input  wire         enc_sck,      // SPI-slave clock (when [spi] is enabled)
-    input  wire         enc_cs_n,     // SPI-slave chip select, active low
-    output wire         enc_miso,     // SPI-slave data
-    output wire         enc_miso_oe,  // SPI-slave output enable
-    output wire         par_valid,    // parallel bus: one-cycle strobe per position
+{note}module {name} (
+{decl}    output wire         par_valid,    // parallel bus: one-cycle strobe per position
     output wire [{pm}:0]  par_position, // parallel bus: single-turn position, 2^-{f} quadrant
     output wire [{tm}:0]  par_turns,    // parallel bus: signed multi-turn count
     output wire [{fm}:0]  par_fine,     // parallel bus: fine part of the position
@@ -220,14 +339,7 @@ module {name} (
     wire [31:0] fine;  // fine part
     wire [31:0] turns; // turn count
     {rtl_name} rtl (
-        .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_sck(adc_sck), .adc_conv(adc_conv),
-        .amp_cs(amp_cs), .amp_mosi(amp_mosi), .amp_shdn(amp_shdn), .dac_cs(dac_cs),
-        .dac_clr(dac_clr), .spi_ss_b(spi_ss_b), .sf_ce0(sf_ce0), .qep_a(qep_a), .qep_b(qep_b),
-        .qep_z(qep_z), .biss_ma(biss_ma),
-        .biss_slo(biss_slo), .ssi_clk(ssi_clk), .ssi_data(ssi_data), .enc_sck(enc_sck),
-        .enc_cs_n(enc_cs_n), .enc_miso(enc_miso), .enc_miso_oe(enc_miso_oe), .par_valid(par_valid),
-        .par_qc(qc), .par_fine(fine), .par_turns(turns), .par_error(par_error),
-        .par_warning(par_warning)
+{inst}
     );
     assign par_position = {{qc[{qb}:0], fine[{fm}:0]}};
     assign par_turns = {turns};
@@ -421,35 +533,57 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         },
     ];
     if let (Some(b), true) = (&loaded.config.board, has_top(loaded)) {
+        let top = top_name(loaded);
+        let kit = b.preset.as_deref() == Some("spartan3an-starter-kit");
+        let ports = crate::config::board_ports(&loaded.config);
         let mut u = header(
             loaded,
             command,
             "UCF: pins and clock of the board top (Xilinx ISE).",
             "#",
         );
-        let top = top_name(loaded);
         let period = 1e9 / loaded.derived.clock_hz;
         u.push_str(&format!(
             "# Top module: {top}. The parallel bus (par_*) is not constrained: it is meant for\n\
-             # logic in the same FPGA.\n\
-             NET \"clk\" TNM_NET = \"clk\";\n\
-             TIMESPEC \"TS_clk\" = PERIOD \"clk\" {period:.3} ns HIGH 50 %;\n\
-             # MA and the QEP inputs are asynchronous: they enter through synchronizers.\n\
-             NET \"biss_ma\" TIG;\nNET \"qep_a\" TIG;\nNET \"qep_b\" TIG;\nNET \"qep_z\" TIG;\n"
+             # logic in the same FPGA.\n"
         ));
-        let c = &loaded.config;
-        let extra: Vec<&str> = c
-            .ssi
-            .enabled
-            .then_some(crate::config::SSI_PINS)
-            .into_iter()
-            .chain(c.spi.enabled.then_some(crate::config::SPI_PINS))
-            .flatten()
+        let open: Vec<&str> = crate::config::DESELECT_PINS
+            .iter()
             .copied()
+            .filter(|p| !ports.iter().any(|q| q.0 == *p))
             .collect();
+        if !open.is_empty() {
+            u.push_str(&format!(
+                "# Not pinned, so not ports of {top}: {}.\n",
+                open.join(", ")
+            ));
+        }
+        if kit {
+            u.push_str(&format!(
+                "# BitGen options: {top}.ut (`bitgen -f {top}.ut {top}.ncd`) pulls the unused pins\n\
+                 # up, which holds the kit's active-low selects DAC_CS, SPI_SS_B and SF_CE0\n\
+                 # deasserted where they are not pinned.\n"
+            ));
+        }
+        u.push_str(&format!(
+            "NET \"clk\" TNM_NET = \"clk\";\n\
+             TIMESPEC \"TS_clk\" = PERIOD \"clk\" {period:.3} ns HIGH 50 %;\n"
+        ));
+        let tig: Vec<&str> = ["biss_ma", "qep_a", "qep_b", "qep_z"]
+            .into_iter()
+            .filter(|p| ports.iter().any(|q| q.0 == *p))
+            .collect();
+        u.push_str(if tig.len() > 1 {
+            "# MA and the QEP inputs are asynchronous: they enter through synchronizers.\n"
+        } else {
+            "# MA is asynchronous: it enters through a synchronizer.\n"
+        });
+        for p in tig {
+            u.push_str(&format!("NET \"{p}\" TIG;\n"));
+        }
         let pins = b.effective_pins();
         let iostandard = b.effective_iostandard().unwrap_or_default();
-        for p in crate::config::TOP_PINS.iter().chain(extra.iter()) {
+        for (p, _) in &ports {
             if let Some(loc) = pins.get(*p).and_then(|v| v.one()) {
                 u.push_str(&format!(
                     "NET \"{p}\" LOC = \"{loc}\" | IOSTANDARD = {iostandard};\n"
@@ -460,6 +594,30 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             name: format!("{name}_top.ucf"),
             text: u,
         });
+        if kit {
+            let mut t = header(
+                loaded,
+                command,
+                &format!(
+                    "BitGen options of the board top (Xilinx ISE): bitgen -f {top}.ut {top}.ncd"
+                ),
+                "#",
+            );
+            t.push_str(&format!(
+                "# -g UnusedPin:PullUp: every package pin the design does not use gets a pull-up.\n\
+                 # On the Spartan-3AN Starter Kit that holds the active-low selects of the other\n\
+                 # SPI-bus devices deasserted (DAC_CS: DAC, SPI_SS_B: SPI flash, SF_CE0: parallel\n\
+                 # flash), which {top} does not drive unless [board.pins] pins them. Each\n\
+                 # device has its own data-out line (UG334 ch. 9 and 10), so this is hygiene, not\n\
+                 # bus arbitration. -w overwrites an existing bitstream.\n\
+                 -w\n\
+                 -g UnusedPin:PullUp\n"
+            ));
+            files.push(OutFile {
+                name: format!("{name}_top.ut"),
+                text: t,
+            });
+        }
     }
     if let Some(top) = top_verilog(loaded)? {
         files.push(OutFile {
