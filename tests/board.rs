@@ -1,16 +1,109 @@
 //! `[board]`: the UCF of `<name>_top` lists every pin with its I/O standard and the clock
-//! period; a missing pin is rejected with the port's name and nothing is written.
-use sinedec::config::{Loaded, DEFAULT_CONFIG, TOP_PINS};
+//! period; a missing pin is rejected with the port's name and nothing is written. The
+//! wrapper declares only the ports the configuration uses (QEP, SSI, SPI slave, pinned
+//! deselect lines), each with a LOC; the kit preset adds the BitGen option file.
+mod common;
+
+use sinedec::config::{Loaded, DEFAULT_CONFIG, QEP_PINS, TOP_PINS};
+use sinedec::emit::Generation;
+
+/// The pins of the default config's top (QEP enabled there, SSI and SPI off).
+fn default_pins() -> Vec<&'static str> {
+    TOP_PINS.iter().chain(QEP_PINS).copied().collect()
+}
 
 fn with_board(skip: Option<&str>) -> String {
     let mut t = DEFAULT_CONFIG.to_string();
     t.push_str("\n[board]\niostandard = \"LVCMOS33\"\n[board.pins]\n");
-    for (i, p) in TOP_PINS.iter().enumerate() {
+    for (i, p) in default_pins().iter().enumerate() {
         if Some(*p) != skip {
             t.push_str(&format!("{p} = \"P{}\"\n", 10 + i));
         }
     }
     t
+}
+
+/// `text` with `from` replaced by `to` in the first line after the section header `section`
+/// that holds it (panics when there is none, so a changed default config fails loudly).
+fn in_section(text: &str, section: &str, from: &str, to: &str) -> String {
+    let at = text
+        .find(&format!("\n{section}\n"))
+        .unwrap_or_else(|| panic!("{section} not in the config"));
+    let rel = text[at..]
+        .find(from)
+        .unwrap_or_else(|| panic!("{from} not in {section}"));
+    format!(
+        "{}{to}{}",
+        &text[..at + rel],
+        &text[at + rel + from.len()..]
+    )
+}
+
+fn file<'a>(g: &'a Generation, name: &str) -> &'a str {
+    &g.files
+        .iter()
+        .find(|f| f.name == name)
+        .unwrap_or_else(|| panic!("{name} not generated"))
+        .text
+}
+
+/// The ports of `module sd_top (...)`: (direction, name), read from the declarations.
+fn wrapper_ports(v: &str) -> Vec<(String, String)> {
+    let start = v.find("module sd_top (").expect("module sd_top");
+    let end = start + v[start..].find(");").expect("end of the port list");
+    v[start..end]
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let code = l.split("//").next().unwrap_or("").replace(',', " ");
+            let words: Vec<&str> = code.split_whitespace().collect();
+            match (words.first(), words.last()) {
+                (Some(d), Some(n)) if *d == "input" || *d == "output" => {
+                    Some((d.to_string(), n.to_string()))
+                }
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// The non-`par_*` port names of `sd_top`, sorted.
+fn pinned_ports(v: &str) -> Vec<String> {
+    let mut p: Vec<String> = wrapper_ports(v)
+        .into_iter()
+        .map(|(_, n)| n)
+        .filter(|n| !n.starts_with("par_"))
+        .collect();
+    p.sort();
+    p
+}
+
+/// (net, loc) of every LOC line of a UCF, sorted by net.
+fn ucf_locs(ucf: &str) -> Vec<(String, String)> {
+    let mut v: Vec<(String, String)> = ucf
+        .lines()
+        .filter(|l| l.starts_with("NET ") && l.contains(" LOC = "))
+        .map(|l| {
+            let q: Vec<&str> = l.split('"').collect();
+            (q[1].to_string(), q[3].to_string())
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// Nets with a TIG line.
+fn ucf_tigs(ucf: &str) -> Vec<String> {
+    ucf.lines()
+        .filter(|l| l.starts_with("NET ") && l.ends_with(" TIG;"))
+        .map(|l| l.split('"').nth(1).unwrap_or("").to_string())
+        .collect()
+}
+
+fn sorted(v: &[&str]) -> Vec<String> {
+    let mut v: Vec<String> = v.iter().map(|s| s.to_string()).collect();
+    v.sort();
+    v
 }
 
 #[test]
@@ -23,25 +116,19 @@ fn ucf_lists_every_pin_and_the_clock() {
         .find(|f| f.name == "sd_top.ucf")
         .expect("ucf")
         .text;
-    for (i, p) in TOP_PINS.iter().enumerate() {
+    for (i, p) in default_pins().iter().enumerate() {
         let line = format!("NET \"{p}\" LOC = \"P{}\" | IOSTANDARD = LVCMOS33;", 10 + i);
         assert!(ucf.contains(&line), "{line} missing:\n{ucf}");
     }
     // 133.33 MHz -> 7.500 ns.
     assert!(ucf.contains("PERIOD \"clk\" 7.500 ns"), "{ucf}");
-    // Every top port with a pin exists in the emitted top.
-    let top = &g
-        .files
-        .iter()
-        .find(|f| f.name == "sd_top.v")
-        .expect("top")
-        .text;
-    for p in TOP_PINS {
-        assert!(
-            top.contains(&format!(" {p},")) || top.contains(&format!(" {p} ")),
-            "{p} not a port"
-        );
-    }
+    // The pinned ports are exactly the top's non-par ports, each with one LOC line.
+    let top = file(&g, "sd_top.v");
+    assert_eq!(pinned_ports(top), sorted(&default_pins()));
+    let locs: Vec<String> = ucf_locs(ucf).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(locs, sorted(&default_pins()));
+    // Without the kit preset there is no BitGen option file.
+    assert!(!g.files.iter().any(|f| f.name.ends_with(".ut")));
 }
 
 #[test]
@@ -100,13 +187,17 @@ fn with_preset(extra: &[(&str, &str)]) -> String {
 
 /// The pins the preset does not know (board wiring the user decides).
 fn user_pins() -> Vec<(&'static str, String)> {
-    TOP_PINS
-        .iter()
-        .filter(|p| !KIT.iter().any(|(k, _)| k == *p))
+    default_pins()
+        .into_iter()
+        .filter(|p| !KIT.iter().any(|(k, _)| k == p))
         .enumerate()
-        .map(|(i, p)| (*p, format!("H{}", i + 1)))
+        .map(|(i, p)| (p, format!("H{}", i + 1)))
         .collect()
 }
+
+/// The deselect lines of the kit's other SPI-bus devices (DAC_CS, DAC_CLR, SPI_SS_B,
+/// SF_CE0), optional since their kit pins are not known.
+const DESELECT: &[&str] = &["dac_cs", "dac_clr", "spi_ss_b", "sf_ce0"];
 
 #[test]
 fn the_starter_kit_preset_fills_in_the_known_pins() {
@@ -147,20 +238,273 @@ fn the_starter_kit_preset_fills_in_the_known_pins() {
 fn the_preset_alone_names_exactly_the_pins_still_missing() {
     let e = Loaded::parse(&with_preset(&[]), "b.toml").expect_err("pins missing");
     let msg = e.to_string();
-    let expected: Vec<&str> = user_pins().iter().map(|(k, _)| *k).collect();
+    // With QEP enabled (the default config), the header wiring: comparators and BiSS.
     assert!(
-        msg.contains(&format!(
-            "pins missing for the board: {}",
-            expected.join(", ")
-        )),
+        msg.contains(
+            "pins missing for the board: qep_a, qep_b, qep_z, biss_ma, biss_slo (every port"
+        ),
         "{msg}"
     );
-    for (k, _) in KIT {
+    assert!(msg.contains("wiring on the kit's headers"), "{msg}");
+    for k in KIT.iter().map(|(k, _)| *k).chain(DESELECT.iter().copied()) {
+        assert!(!msg.contains(k), "{k} should not be required: {msg}");
+    }
+    // Without QEP only the BiSS pins are missing.
+    let no_qep = in_section(
+        &with_preset(&[]),
+        "[qep]",
+        "enabled = true",
+        "enabled = false",
+    );
+    let e = Loaded::parse(&no_qep, "b.toml").expect_err("pins missing");
+    assert!(
+        e.to_string()
+            .contains("pins missing for the board: biss_ma, biss_slo (every port"),
+        "{e}"
+    );
+}
+
+/// The preset plus the header wiring generates: no deselect line is a port or has a LOC,
+/// and the BitGen option file pulls the unused pins up; same config, same bytes.
+#[test]
+fn the_preset_leaves_the_deselect_lines_to_pull_ups() {
+    let wiring = [
+        ("qep_a", "H1"),
+        ("qep_b", "H2"),
+        ("qep_z", "H3"),
+        ("biss_ma", "H4"),
+        ("biss_slo", "H5"),
+    ];
+    let text = with_preset(&wiring);
+    let l = Loaded::parse(&text, "b.toml").expect("parses");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    let top = file(&g, "sd_top.v");
+    let ucf = file(&g, "sd_top.ucf");
+    let expected: Vec<&str> = KIT.iter().chain(wiring.iter()).map(|(k, _)| *k).collect();
+    assert_eq!(pinned_ports(top), sorted(&expected));
+    let mut locs: Vec<(String, String)> = KIT
+        .iter()
+        .chain(wiring.iter())
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect();
+    locs.sort();
+    assert_eq!(ucf_locs(ucf), locs);
+    for p in DESELECT {
         assert!(
-            !msg.contains(&format!(" {k},")),
-            "{k} is the preset's: {msg}"
+            !ucf.contains(&format!("NET \"{p}\"")),
+            "{p} in the UCF:\n{ucf}"
+        );
+        assert!(
+            !wrapper_ports(top).iter().any(|(_, n)| n == p),
+            "{p} is a port"
         );
     }
+    let ut = file(&g, "sd_top.ut");
+    let lines: Vec<&str> = ut.lines().collect();
+    assert!(lines.contains(&"-g UnusedPin:PullUp"), "{ut}");
+    assert!(lines.contains(&"-w"), "{ut}");
+    // Every other line is a comment (the header and the explanation).
+    for l in &lines {
+        assert!(
+            l.starts_with('#') || l.starts_with("-w") || l.starts_with("-g "),
+            "{l}"
+        );
+    }
+    assert!(ut.contains("DAC_CS") && ut.contains("SPI_SS_B") && ut.contains("SF_CE0"));
+    assert!(ucf.contains("sd_top.ut"), "{ucf}");
+    // Deterministic: the same config gives the same bytes.
+    let again = sinedec::emit::generate(&Loaded::parse(&text, "b.toml").expect("parses"), "test")
+        .expect("generates");
+    assert_eq!(g.files, again.files);
+}
+
+/// A pinned deselect line becomes a port (an output, driven 1 by the rtl) with its LOC; it
+/// is validated like any pin.
+#[test]
+fn a_pinned_deselect_line_is_a_port_with_a_loc() {
+    let wiring = [
+        ("qep_a", "H1"),
+        ("qep_b", "H2"),
+        ("qep_z", "H3"),
+        ("biss_ma", "H4"),
+        ("biss_slo", "H5"),
+        ("dac_cs", "H6"),
+    ];
+    let l = Loaded::parse(&with_preset(&wiring), "b.toml").expect("parses");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    let top = file(&g, "sd_top.v");
+    let ports = wrapper_ports(top);
+    assert!(
+        ports.contains(&("output".to_string(), "dac_cs".to_string())),
+        "{ports:?}"
+    );
+    for p in ["dac_clr", "spi_ss_b", "sf_ce0"] {
+        assert!(!ports.iter().any(|(_, n)| n == p), "{p} is a port");
+    }
+    assert!(top.contains(".dac_cs(dac_cs)"), "dac_cs not connected");
+    let ucf = file(&g, "sd_top.ucf");
+    assert!(
+        ucf.contains("NET \"dac_cs\" LOC = \"H6\" | IOSTANDARD = LVCMOS33;"),
+        "{ucf}"
+    );
+    assert_eq!(ucf_locs(ucf).len(), KIT.len() + wiring.len());
+    // A bad pin for a deselect line is rejected like any other.
+    let bad = with_preset(&[("sf_ce0", "H-7")]);
+    let e = Loaded::parse(&bad, "b.toml").expect_err("bad pin");
+    assert!(e.to_string().contains("sf_ce0"), "{e}");
+}
+
+/// Ports follow the configuration: without QEP the comparator inputs are neither required
+/// nor ports nor in the UCF; with SSI (and the SPI slave) their pins are required and present.
+#[test]
+fn ports_follow_the_enabled_blocks() {
+    let base = in_section(DEFAULT_CONFIG, "[qep]", "enabled = true", "enabled = false");
+    let board = |cfg: &str, pins: &[&str]| {
+        let mut t = cfg.to_string();
+        t.push_str("\n[board]\niostandard = \"LVCMOS33\"\n[board.pins]\n");
+        for (i, p) in pins.iter().enumerate() {
+            t.push_str(&format!("{p} = \"P{}\"\n", 10 + i));
+        }
+        t
+    };
+    let l = Loaded::parse(&board(&base, TOP_PINS), "b.toml").expect("no QEP pins needed");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    let (top, ucf) = (file(&g, "sd_top.v"), file(&g, "sd_top.ucf"));
+    assert_eq!(pinned_ports(top), sorted(TOP_PINS));
+    for p in QEP_PINS {
+        assert!(!ucf.contains(p), "{p} in the UCF:\n{ucf}");
+        assert!(top.contains(&format!(".{p}(1'b0)")), "{p} not tied low");
+    }
+    assert_eq!(ucf_tigs(ucf), vec!["biss_ma".to_string()]);
+    // A QEP pin is then not a port of the top.
+    let mut with_qep: Vec<&str> = TOP_PINS.to_vec();
+    with_qep.push("qep_a");
+    let e = Loaded::parse(&board(&base, &with_qep), "b.toml").expect_err("qep_a not a port");
+    assert!(e.to_string().contains("qep_a"), "{e}");
+
+    // SSI and the SPI slave: their pins are required, named when missing, and present.
+    let ssi = in_section(&base, "[ssi]", "enabled = false", "enabled = true");
+    let both = in_section(&ssi, "[spi]", "enabled = false", "enabled = true");
+    let e = Loaded::parse(&board(&ssi, TOP_PINS), "b.toml").expect_err("ssi pins missing");
+    assert!(
+        e.to_string()
+            .contains("pins missing for the board: ssi_clk, ssi_data (every port"),
+        "{e}"
+    );
+    let spi = ["enc_sck", "enc_cs_n", "enc_miso", "enc_miso_oe"];
+    let mut all: Vec<&str> = TOP_PINS.to_vec();
+    all.extend(["ssi_clk", "ssi_data"]);
+    let e = Loaded::parse(&board(&both, &all), "b.toml").expect_err("spi pins missing");
+    assert!(
+        e.to_string().contains(&format!(
+            "pins missing for the board: {} (every port",
+            spi.join(", ")
+        )),
+        "{e}"
+    );
+    all.extend(spi);
+    let l = Loaded::parse(&board(&both, &all), "b.toml").expect("parses");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    let (top, ucf) = (file(&g, "sd_top.v"), file(&g, "sd_top.ucf"));
+    assert_eq!(pinned_ports(top), sorted(&all));
+    let locs: Vec<String> = ucf_locs(ucf).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(locs, sorted(&all));
+    for p in ["ssi_clk", "ssi_data", "enc_sck", "enc_cs_n"] {
+        assert!(top.contains(&format!(".{p}({p})")), "{p} not connected");
+    }
+}
+
+/// Runs the emitted top through Icarus and a Verilator lint; the wrapper itself (the lines
+/// up to `endmodule // sd_top`) must draw no Verilator warning.
+fn compiles(g: &Generation, tag: &str) {
+    for tool in ["iverilog", "verilator"] {
+        if let Err(e) = sinedec::sim::cosim::require_tool(tool) {
+            panic!("{tool} is needed to check the emitted sd_top.v: {e}");
+        }
+    }
+    let dir = common::workdir(tag);
+    let top = file(g, "sd_top.v");
+    let path = dir.join("sd_top.v");
+    std::fs::write(&path, top).expect("write sd_top.v");
+    let out = std::process::Command::new("iverilog")
+        .args(["-g2005", "-o", "/dev/null"])
+        .arg(&path)
+        .output()
+        .expect("iverilog runs");
+    assert!(
+        out.status.success(),
+        "iverilog rejects sd_top.v ({}):\n{}",
+        path.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = std::process::Command::new("verilator")
+        .args(["--lint-only", "-Wno-fatal"])
+        .arg(&path)
+        .args(["--top-module", "sd_top"])
+        .output()
+        .expect("verilator runs");
+    let log = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "verilator rejects sd_top.v ({}):\n{log}",
+        path.display()
+    );
+    let end = top
+        .lines()
+        .position(|l| l == "endmodule // sd_top")
+        .expect("end of the wrapper")
+        + 1;
+    for l in log.lines().filter(|l| l.starts_with("%Warning")) {
+        let line: usize = l
+            .split("sd_top.v:")
+            .nth(1)
+            .and_then(|r| r.split(':').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(usize::MAX);
+        assert!(line > end, "warning in the wrapper: {l}");
+    }
+}
+
+#[test]
+fn the_emitted_top_compiles_in_icarus_and_verilator() {
+    let wiring = [
+        ("qep_a", "H1"),
+        ("qep_b", "H2"),
+        ("qep_z", "H3"),
+        ("biss_ma", "H4"),
+        ("biss_slo", "H5"),
+    ];
+    let l = Loaded::parse(&with_preset(&wiring), "b.toml").expect("parses");
+    compiles(
+        &sinedec::emit::generate(&l, "test").expect("generates"),
+        "board_preset",
+    );
+    // Ties and open outputs: QEP off, SSI and SPI on, one deselect line pinned.
+    let mut t = in_section(DEFAULT_CONFIG, "[qep]", "enabled = true", "enabled = false");
+    t = in_section(&t, "[ssi]", "enabled = false", "enabled = true");
+    t = in_section(&t, "[spi]", "enabled = false", "enabled = true");
+    t.push_str("\n[board]\npreset = \"spartan3an-starter-kit\"\n[board.pins]\n");
+    for (i, p) in [
+        "biss_ma",
+        "biss_slo",
+        "ssi_clk",
+        "ssi_data",
+        "enc_sck",
+        "enc_cs_n",
+        "enc_miso",
+        "enc_miso_oe",
+        "spi_ss_b",
+    ]
+    .iter()
+    .enumerate()
+    {
+        t.push_str(&format!("{p} = \"J{}\"\n", i + 1));
+    }
+    let l = Loaded::parse(&t, "b.toml").expect("parses");
+    compiles(
+        &sinedec::emit::generate(&l, "test").expect("generates"),
+        "board_ties",
+    );
 }
 
 #[test]
