@@ -146,7 +146,8 @@ pub struct Config {
     /// External QEP A/B/Z inputs of the board top.
     #[serde(default)]
     pub qep: QepConfig,
-    /// Board pins: with this section `generate` writes `<name>_top.ucf`.
+    /// Board pins: with this section `generate` writes `<name>_top.ucf` (and, with the kit
+    /// preset, the BitGen option file `<name>_top.ut`).
     #[serde(default)]
     pub board: Option<BoardConfig>,
     /// SSI output of the board top (pins `ssi_clk`, `ssi_data`).
@@ -266,7 +267,8 @@ pub struct SpiConfig {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoardConfig {
-    /// Board whose fixed pins are filled in: "spartan3an-starter-kit" (see [`STARTER_KIT_PINS`]).
+    /// Board whose fixed pins are filled in: "spartan3an-starter-kit" (see
+    /// [`STARTER_KIT_PINS`]; also writes `<name>_top.ut` with `-g UnusedPin:PullUp`).
     #[serde(default)]
     pub preset: Option<String>,
     /// I/O standard of every pin (e.g. "LVCMOS33"); the preset's when omitted.
@@ -274,7 +276,9 @@ pub struct BoardConfig {
     pub iostandard: Option<String>,
     /// Port name -> package pin (e.g. adc_conv = "Y6"), or a list of pins LSB first for a
     /// bus (exc_sin = ["A1", "B1", ...]). Every port of the top except the parallel bus
-    /// (`par_*`, meant for logic in the same FPGA) needs one; these override the preset's.
+    /// (`par_*`, meant for logic in the same FPGA) needs one (see [`board_ports`]); the
+    /// [`DESELECT_PINS`] are optional and become ports when pinned. These override the
+    /// preset's.
     #[serde(default)]
     pub pins: std::collections::BTreeMap<String, PinValue>,
 }
