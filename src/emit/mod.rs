@@ -229,6 +229,25 @@ const TOP_PORTS: &[(&str, bool, &str, &str)] = &[
     ),
 ];
 
+/// `items` separated by ", " and closed by `end`, on lines that start with `prefix` and
+/// stay within 95 columns (an item longer than a line gets a line of its own).
+fn wrap_list(items: &[impl AsRef<str>], prefix: &str, end: &str) -> String {
+    let mut out = String::new();
+    let mut line = String::from(prefix);
+    for (i, item) in items.iter().enumerate() {
+        let sep = if i + 1 < items.len() { "," } else { end };
+        let word = format!(" {}{sep}", item.as_ref());
+        if line.len() > prefix.len() && line.len() + word.len() > 95 {
+            out.push_str(&line);
+            out.push('\n');
+            line = String::from(prefix);
+        }
+        line.push_str(&word);
+    }
+    out.push_str(&line);
+    out
+}
+
 /// Verilog of `<name>_top` (sinewave path, LTC1407A-1 preset), without header; None when
 /// the configuration has no board top yet (other presets and targets).
 ///
@@ -294,36 +313,16 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         ]
         .map(String::from),
     );
-    // The connection list, wrapped before 96 columns.
-    let mut inst = String::from("       ");
-    let mut col = inst.len();
-    for (i, c) in conns.iter().enumerate() {
-        let sep = if i + 1 < conns.len() { "," } else { "" };
-        if col + 1 + c.len() + sep.len() > 95 {
-            inst.push_str("\n       ");
-            col = 7;
-        }
-        inst.push_str(&format!(" {c}{sep}"));
-        col += 1 + c.len() + sep.len();
-    }
-    let mut note = String::new();
-    if !left_out.is_empty() {
-        note.push_str(
+    let inst = wrap_list(&conns, "       ", "");
+    let note = if left_out.is_empty() {
+        String::new()
+    } else {
+        format!(
             "// Not ports in this configuration (the rtl's inputs tied to their idle level, its\n\
-             // outputs left open):",
-        );
-        let mut col = 95;
-        for (i, p) in left_out.iter().enumerate() {
-            let sep = if i + 1 < left_out.len() { "," } else { "." };
-            if col + 1 + p.len() + sep.len() > 95 {
-                note.push_str("\n//");
-                col = 2;
-            }
-            note.push_str(&format!(" {p}{sep}"));
-            col += 1 + p.len() + sep.len();
-        }
-        note.push('\n');
-    }
+             // outputs left open):\n{}\n",
+            wrap_list(&left_out, "//", ".")
+        )
+    };
     let wrapper = format!(
         r#"// {name}: sinewave encoder decoder for the Spartan-3AN Starter Kit: LTC6912-1 set-up,
 // LTC1407A-1 controller ({rate:.0} samples/s per channel), QEP-CORDIC core, parallel bus.
