@@ -559,9 +559,13 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         }
         if kit {
             u.push_str(&format!(
-                "# BitGen options: {top}.ut (`bitgen -f {top}.ut {top}.ncd`) pulls the unused pins\n\
-                 # up, which holds the kit's active-low selects DAC_CS, SPI_SS_B and SF_CE0\n\
-                 # deasserted where they are not pinned.\n"
+                "# BitGen options: {top}.ut (`bitgen -f {top}.ut {top}.ncd`) holds `-w` (overwrite)\n\
+                 # and `-g UnusedPin:PullUp`: every package pin the design does not use gets a\n\
+                 # pull-up. On the Spartan-3AN Starter Kit that holds the active-low selects of\n\
+                 # the other SPI-bus devices deasserted (DAC_CS: DAC, SPI_SS_B: SPI flash,\n\
+                 # SF_CE0: parallel flash), which {top} does not drive unless [board.pins] pins\n\
+                 # them. Each device has its own data-out line (UG334 ch. 9 and 10), so this is\n\
+                 # hygiene, not bus arbitration.\n"
             ));
         }
         u.push_str(&format!(
@@ -594,24 +598,9 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             text: u,
         });
         if kit {
-            let mut t = header(
-                loaded,
-                command,
-                &format!(
-                    "BitGen options of the board top (Xilinx ISE): bitgen -f {top}.ut {top}.ncd"
-                ),
-                "#",
-            );
-            t.push_str(&format!(
-                "# -g UnusedPin:PullUp: every package pin the design does not use gets a pull-up.\n\
-                 # On the Spartan-3AN Starter Kit that holds the active-low selects of the other\n\
-                 # SPI-bus devices deasserted (DAC_CS: DAC, SPI_SS_B: SPI flash, SF_CE0: parallel\n\
-                 # flash), which {top} does not drive unless [board.pins] pins them. Each\n\
-                 # device has its own data-out line (UG334 ch. 9 and 10), so this is hygiene, not\n\
-                 # bus arbitration. -w overwrites an existing bitstream.\n\
-                 -w\n\
-                 -g UnusedPin:PullUp\n"
-            ));
+            // Options only: the explanation is in the UCF header (whether BitGen's -f files
+            // take comment lines is not documented in the sources we have).
+            let t = "-w\n-g UnusedPin:PullUp\n".to_string();
             files.push(OutFile {
                 name: format!("{name}_top.ut"),
                 text: t,
