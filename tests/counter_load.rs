@@ -90,3 +90,35 @@ fn load_takes_the_nearest_congruent_count() {
     assert_eq!(outs[2].position, fine);
     assert_eq!(outs[2].turns, 8);
 }
+
+/// Small and odd PPR (u of 0..2 bits, power of two or not), narrow turn counters, random
+/// loads at every count: the rust-hdl core equals the model, so every wrap of u and of the
+/// turns is exercised with and without a pending load.
+#[test]
+fn loads_and_wraps_agree_with_the_model_for_small_ppr() {
+    for (k, (ppr, mt)) in [(1, 0), (1, 2), (2, 1), (3, 2), (4, 3), (6, 2), (8, 12)]
+        .into_iter()
+        .enumerate()
+    {
+        let l = common::cfg(1, 3 + k as u32 % 3, 10, ppr, mt);
+        let d = &l.derived;
+        let mut r = SplitMix64(50 + k as u64);
+        let mut s = stimulus::random(d.adc_width, 3000, 0.2, 70 + k as u64);
+        for i in s.iter_mut() {
+            if r.unit() < 0.05 {
+                i.load = Some(Load {
+                    qc: r.next_u64() % d.quadrants_per_turn,
+                    turns: r.next_u64() & mask(d.multiturn_bits),
+                });
+            }
+        }
+        let rtl = simulate_rtl(d, &s).expect("settles");
+        let mut m = CoreModel::new(d);
+        let mut loads = 0;
+        for (c, (i, o)) in s.iter().zip(&rtl).enumerate() {
+            loads += i.load.is_some() as usize;
+            assert_eq!(m.step(*i), *o, "PPR {ppr}, M {mt}, cycle {c}");
+        }
+        assert!(loads > 100, "PPR {ppr}: {loads} loads");
+    }
+}

@@ -4,6 +4,10 @@ use crate::config::Derived;
 use rust_hdl::prelude::*;
 
 /// Registers the mapped first-quadrant vector, the quadrant and the valid bit.
+///
+/// Table 2-3 as one conditional negation per output: x' = +-(cos or sin), y' = +-(sin or
+/// cos), swapped when the signs differ, x' negated when sin < 0, y' when cos < 0; each
+/// negation is (a ^ m) + c with m all ones and c one, a single carry chain.
 #[derive(LogicBlock)]
 pub struct QuadrantMapper {
     /// System clock.
@@ -28,12 +32,26 @@ pub struct QuadrantMapper {
     y_reg: DFF<Bits<32>>,
     q_reg: DFF<Bits<2>>,
     v_reg: DFF<Bit>,
+    /// cos sign-extended to 32 bits.
     sx: Signal<Local, Bits<32>>,
+    /// sin sign-extended to 32 bits.
     sy: Signal<Local, Bits<32>>,
-    nx: Signal<Local, Bits<32>>,
-    ny: Signal<Local, Bits<32>>,
+    /// cos < 0.
+    cneg: Signal<Local, Bit>,
+    /// sin < 0.
+    sneg: Signal<Local, Bit>,
+    /// Source of x' before the negation: cos, or sin when the signs differ.
+    ax: Signal<Local, Bits<32>>,
+    /// Source of y' before the negation: sin, or cos when the signs differ.
+    ay: Signal<Local, Bits<32>>,
+    /// Inversion mask of x' (all ones when sin < 0).
     mx: Signal<Local, Bits<32>>,
+    /// Carry-in of x' (one when sin < 0).
+    cx: Signal<Local, Bits<32>>,
+    /// Inversion mask of y' (all ones when cos < 0).
     my: Signal<Local, Bits<32>>,
+    /// Carry-in of y' (one when cos < 0).
+    cy: Signal<Local, Bits<32>>,
     /// Mask of the A input bits.
     amask: Constant<Bits<32>>,
     /// Sign bit of an A-bit input.
@@ -44,7 +62,11 @@ pub struct QuadrantMapper {
     gshift: Constant<Bits<32>>,
     /// Mask of the W datapath bits.
     xmask: Constant<Bits<32>>,
-    /// Zero, for negation.
+    /// All ones: inversion mask of a negation.
+    ones: Constant<Bits<32>>,
+    /// One: carry-in of a negation.
+    one: Constant<Bits<32>>,
+    /// Zero.
     zero: Constant<Bits<32>>,
 }
 
@@ -68,15 +90,21 @@ impl QuadrantMapper {
             v_reg: Default::default(),
             sx: Default::default(),
             sy: Default::default(),
-            nx: Default::default(),
-            ny: Default::default(),
+            cneg: Default::default(),
+            sneg: Default::default(),
+            ax: Default::default(),
+            ay: Default::default(),
             mx: Default::default(),
+            cx: Default::default(),
             my: Default::default(),
+            cy: Default::default(),
             amask: c32(mask(a)),
             asign: c32(1 << (a - 1)),
             asext: c32(fill(32, 32 - a)),
             gshift: c32(d.xy_guard as u64),
             xmask: c32(mask(d.xy_width)),
+            ones: c32(mask(32)),
+            one: c32(1),
             zero: c32(0),
         }
     }
@@ -88,36 +116,50 @@ impl Logic for QuadrantMapper {
         dff_setup!(self, clk, x_reg, y_reg, q_reg, v_reg);
         // Sign-extend the A-bit inputs to 32 bits.
         self.sx.next = bit_cast::<32, 16>(self.in_cos.val()) & self.amask.val();
-        if (self.sx.val() & self.asign.val()).any() {
+        self.cneg.next = (self.sx.val() & self.asign.val()).any();
+        if self.cneg.val() {
             self.sx.next = self.sx.val() | self.asext.val();
         }
         self.sy.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
-        if (self.sy.val() & self.asign.val()).any() {
+        self.sneg.next = (self.sy.val() & self.asign.val()).any();
+        if self.sneg.val() {
             self.sy.next = self.sy.val() | self.asext.val();
         }
-        self.nx.next = self.zero.val() - self.sx.val();
-        self.ny.next = self.zero.val() - self.sy.val();
-        // Table 2-3.
-        self.mx.next = self.sx.val();
-        self.my.next = self.sy.val();
+        // Table 2-3: q0 (x, y), q1 (y, -x), q2 (-x, -y), q3 (-y, x).
+        self.ax.next = self.sx.val();
+        self.ay.next = self.sy.val();
+        if self.cneg.val() ^ self.sneg.val() {
+            self.ax.next = self.sy.val();
+            self.ay.next = self.sx.val();
+        }
+        self.mx.next = self.zero.val();
+        self.cx.next = self.zero.val();
+        if self.sneg.val() {
+            self.mx.next = self.ones.val();
+            self.cx.next = self.one.val();
+        }
+        self.my.next = self.zero.val();
+        self.cy.next = self.zero.val();
+        if self.cneg.val() {
+            self.my.next = self.ones.val();
+            self.cy.next = self.one.val();
+        }
         self.q_reg.d.next = 0.into();
-        if (self.sy.val() & self.asign.val()).any() {
-            if (self.sx.val() & self.asign.val()).any() {
-                self.mx.next = self.nx.val();
-                self.my.next = self.ny.val();
+        if self.sneg.val() {
+            if self.cneg.val() {
                 self.q_reg.d.next = 2.into();
             } else {
-                self.mx.next = self.ny.val();
-                self.my.next = self.sx.val();
                 self.q_reg.d.next = 3.into();
             }
-        } else if (self.sx.val() & self.asign.val()).any() {
-            self.mx.next = self.sy.val();
-            self.my.next = self.nx.val();
+        } else if self.cneg.val() {
             self.q_reg.d.next = 1.into();
         }
-        self.x_reg.d.next = (self.mx.val() << self.gshift.val()) & self.xmask.val();
-        self.y_reg.d.next = (self.my.val() << self.gshift.val()) & self.xmask.val();
+        self.x_reg.d.next = (((self.ax.val() ^ self.mx.val()) + self.cx.val())
+            << self.gshift.val())
+            & self.xmask.val();
+        self.y_reg.d.next = (((self.ay.val() ^ self.my.val()) + self.cy.val())
+            << self.gshift.val())
+            & self.xmask.val();
         self.v_reg.d.next = self.in_valid.val() & !self.rst.val();
         self.x.next = self.x_reg.q.val();
         self.y.next = self.y_reg.q.val();

@@ -1,5 +1,5 @@
 //! rust-hdl description of the combiner and the quadrant counter.
-use crate::blocks::{c32, fill, mask};
+use crate::blocks::{c32, mask};
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 
@@ -86,6 +86,11 @@ impl Logic for Combiner {
 }
 
 /// Unwraps the electrical angle into a single-turn position and a turn count.
+///
+/// The coarse count is kept as qc = 4 u + q, where q = p_prev >> F is the quadrant of the
+/// last accepted sample (so only u, the signal period within the turn, has its own
+/// register) and the carry of the module docs reduces to a period step of -1, 0 or +1
+/// from 2-bit quadrant compares (see the module docs).
 #[derive(LogicBlock)]
 pub struct QuadrantCounter {
     /// System clock.
@@ -100,9 +105,10 @@ pub struct QuadrantCounter {
     pub v_in: Signal<In, Bit>,
     /// Resynchronisation request (one-cycle pulse); applied at the next accepted sample.
     pub load: Signal<In, Bit>,
-    /// Coarse count to resynchronise to (0..4PPR-1).
+    /// Coarse count to resynchronise to; must be within 0..4PPR-1 (only its low
+    /// quadrant_bits are used).
     pub load_qc: Signal<In, Bits<32>>,
-    /// Turn count to resynchronise to (M bits).
+    /// Turn count to resynchronise to (only its low M bits are used).
     pub load_turns: Signal<In, Bits<32>>,
     /// Coarse quadrant count 0..4PPR-1.
     pub qc: Signal<Out, Bits<32>>,
@@ -118,7 +124,8 @@ pub struct QuadrantCounter {
     pub warning: Signal<Out, Bit>,
     init_reg: DFF<Bit>,
     pprev_reg: DFF<Bits<32>>,
-    qc_reg: DFF<Bits<32>>,
+    /// Signal period within the turn, u = qc >> 2 (quadrant_bits - 2 bits).
+    u_reg: DFF<Bits<32>>,
     fine_reg: DFF<Bits<32>>,
     turns_reg: DFF<Bits<32>>,
     valid_reg: DFF<Bit>,
@@ -127,13 +134,31 @@ pub struct QuadrantCounter {
     pending_reg: DFF<Bit>,
     lqc_reg: DFF<Bits<32>>,
     lturns_reg: DFF<Bits<32>>,
-    base_qc: Signal<Local, Bits<32>>,
-    base_turns: Signal<Local, Bits<32>>,
-    dq: Signal<Local, Bits<32>>,
+    /// delta = (p - p_prev) mod 2^(F+2) (F+2 bits).
     delta: Signal<Local, Bits<32>>,
-    total: Signal<Local, Bits<32>>,
-    carry: Signal<Local, Bits<32>>,
-    qn: Signal<Local, Bits<32>>,
+    /// Quadrant of the sample, p >> F (2 bits).
+    qnew: Signal<Local, Bits<32>>,
+    /// Quadrant the step starts from: of p_prev, or of the latched count (2 bits).
+    base_q: Signal<Local, Bits<32>>,
+    /// Period the step starts from: u, or the latched count's (quadrant_bits - 2 bits).
+    base_u: Signal<Local, Bits<32>>,
+    /// Turn count the step starts from (M bits).
+    base_turns: Signal<Local, Bits<32>>,
+    /// The step is backwards (carry in -2..0, or the load's -1).
+    back: Signal<Local, Bit>,
+    /// The step crosses into the next period (carry from quadrant 3 to 0).
+    up: Signal<Local, Bit>,
+    /// The step crosses into the previous period (carry from quadrant 0 to 3).
+    down: Signal<Local, Bit>,
+    /// +1 (up), -1 (down) or 0: the addend of the period and the turn counters.
+    ustep: Signal<Local, Bits<32>>,
+    /// u + ustep modulo 2^(quadrant_bits - 1): bit quadrant_bits - 2 is set when u + ustep
+    /// leaves 0..2^(quadrant_bits - 2) - 1 (u = 0 down, u all ones up).
+    usum: Signal<Local, Bits<32>>,
+    /// The next u without the wrap (quadrant_bits - 2 bits).
+    un: Signal<Local, Bits<32>>,
+    /// The step leaves the turn (u = PPR-1 up, or u = 0 down).
+    wrap: Signal<Local, Bit>,
     /// F.
     fshift: Constant<Bits<32>>,
     /// Mask of F bits.
@@ -142,18 +167,26 @@ pub struct QuadrantCounter {
     pmask: Constant<Bits<32>>,
     /// Sign bit of an (F+2)-bit word.
     psign: Constant<Bits<32>>,
-    /// Bits F+2..31: sign extension of a negative delta.
-    psext: Constant<Bits<32>>,
-    /// Bit 31: sign of a 32-bit word.
-    sign32: Constant<Bits<32>>,
-    /// Fill for an arithmetic shift by F of a 32-bit word.
-    cfill: Constant<Bits<32>>,
-    /// Warning threshold (1.75 quadrants).
+    /// F-2: the warning thresholds are multiples of 2^(F-2).
+    wshift: Constant<Bits<32>>,
+    /// Mask of F-2 bits.
+    wmask: Constant<Bits<32>>,
+    /// Warning threshold (1.75 quadrants) in 2^(F-2) LSB (7).
     wlo: Constant<Bits<32>>,
-    /// 2^(F+2) minus the warning threshold.
+    /// 2^(F+2) minus the warning threshold, in 2^(F-2) LSB (9).
     whi: Constant<Bits<32>>,
-    /// 4 PPR: quadrants per turn.
-    qturn: Constant<Bits<32>>,
+    /// Two: shift from qc to u.
+    two: Constant<Bits<32>>,
+    /// Mask of the quadrant_bits - 2 bits of u.
+    umask: Constant<Bits<32>>,
+    /// Mask of quadrant_bits - 1 bits: the width of usum.
+    usmask: Constant<Bits<32>>,
+    /// Bit quadrant_bits - 2: the wrap bit of usum.
+    ubit: Constant<Bits<32>>,
+    /// PPR is a power of two: u wraps by itself (PPR - 1 is all ones).
+    pow2: Constant<Bit>,
+    /// PPR - 1: the last period of the turn.
+    ulast: Constant<Bits<32>>,
     /// Mask of M turn bits.
     tmask: Constant<Bits<32>>,
     /// One.
@@ -170,6 +203,8 @@ impl QuadrantCounter {
     /// Counter for the derived parameters.
     pub fn new(d: &Derived) -> Self {
         let f = d.fine_bits;
+        // The warning compares delta >> (F-2) only: the thresholds have no lower bits.
+        debug_assert_eq!(d.warn_step & mask(f - 2), 0);
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -187,7 +222,7 @@ impl QuadrantCounter {
             warning: Default::default(),
             init_reg: Default::default(),
             pprev_reg: Default::default(),
-            qc_reg: Default::default(),
+            u_reg: Default::default(),
             fine_reg: Default::default(),
             turns_reg: Default::default(),
             valid_reg: Default::default(),
@@ -196,23 +231,32 @@ impl QuadrantCounter {
             pending_reg: Default::default(),
             lqc_reg: Default::default(),
             lturns_reg: Default::default(),
-            base_qc: Default::default(),
-            base_turns: Default::default(),
-            dq: Default::default(),
             delta: Default::default(),
-            total: Default::default(),
-            carry: Default::default(),
-            qn: Default::default(),
+            qnew: Default::default(),
+            base_q: Default::default(),
+            base_u: Default::default(),
+            base_turns: Default::default(),
+            back: Default::default(),
+            up: Default::default(),
+            down: Default::default(),
+            ustep: Default::default(),
+            usum: Default::default(),
+            un: Default::default(),
+            wrap: Default::default(),
             fshift: c32(f as u64),
             fmask: c32(mask(f)),
             pmask: c32(mask(f + 2)),
             psign: c32(1 << (f + 1)),
-            psext: c32(fill(32, 30 - f)),
-            sign32: c32(1 << 31),
-            cfill: c32(fill(32, f)),
-            wlo: c32(d.warn_step),
-            whi: c32((1 << (f + 2)) - d.warn_step),
-            qturn: c32(d.quadrants_per_turn),
+            wshift: c32((f - 2) as u64),
+            wmask: c32(mask(f - 2)),
+            wlo: c32(d.warn_step >> (f - 2)),
+            whi: c32(((1 << (f + 2)) - d.warn_step) >> (f - 2)),
+            two: c32(2),
+            umask: c32(mask(d.quadrant_bits - 2)),
+            usmask: c32(mask(d.quadrant_bits - 1)),
+            ubit: c32(1 << (d.quadrant_bits - 2)),
+            pow2: Constant::new((d.quadrants_per_turn / 4).is_power_of_two()),
+            ulast: c32(d.quadrants_per_turn / 4 - 1),
             tmask: c32(mask(d.multiturn_bits)),
             one: c32(1),
             three: c32(3),
@@ -230,7 +274,7 @@ impl Logic for QuadrantCounter {
             clk,
             init_reg,
             pprev_reg,
-            qc_reg,
+            u_reg,
             fine_reg,
             turns_reg,
             valid_reg,
@@ -241,31 +285,42 @@ impl Logic for QuadrantCounter {
             lturns_reg
         );
         self.delta.next = (self.p_in.val() - self.pprev_reg.q.val()) & self.pmask.val();
-        if (self.delta.val() & self.psign.val()).any() {
-            self.total.next = self.fine_reg.q.val() + (self.delta.val() | self.psext.val());
-        } else {
-            self.total.next = self.fine_reg.q.val() + self.delta.val();
-        }
-        self.carry.next = self.total.val() >> self.fshift.val();
-        if (self.total.val() & self.sign32.val()).any() {
-            self.carry.next = self.carry.val() | self.cfill.val();
-        }
-        // Base and step: the running count and the unwrapped carry, or, when a
-        // resynchronisation is pending, the latched count and the nearest step (+0, +1,
-        // +2, -1) to the sample's own quadrant.
-        self.base_qc.next = self.qc_reg.q.val();
+        self.qnew.next = (self.p_in.val() >> self.fshift.val()) & self.three.val();
+        // Base: the running count, or, when a resynchronisation is pending, the latched
+        // count. Direction: the sign of delta (carry -2..0 vs 0..2), or for a load the
+        // nearest step to the sample's quadrant (+0, +1, +2 forwards, -1 backwards).
+        self.base_q.next = (self.pprev_reg.q.val() >> self.fshift.val()) & self.three.val();
+        self.base_u.next = self.u_reg.q.val();
         self.base_turns.next = self.turns_reg.q.val();
-        self.dq.next =
-            ((self.p_in.val() >> self.fshift.val()) - self.lqc_reg.q.val()) & self.three.val();
+        self.back.next = (self.delta.val() & self.psign.val()).any();
         if self.pending_reg.q.val() {
-            self.base_qc.next = self.lqc_reg.q.val();
+            self.base_q.next = self.lqc_reg.q.val() & self.three.val();
+            self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
             self.base_turns.next = self.lturns_reg.q.val();
-            self.carry.next = self.dq.val();
-            if self.dq.val() == self.three.val() {
-                self.carry.next = self.minus_one.val();
-            }
+            self.back.next =
+                ((self.qnew.val() - self.lqc_reg.q.val()) & self.three.val()) == self.three.val();
         }
-        self.qn.next = self.base_qc.val() + self.carry.val();
+        // A forward step passes quadrant 3 -> 0 exactly when the quadrant decreases, a
+        // backward one passes 0 -> 3 exactly when it increases.
+        self.up.next = !self.back.val() & (self.qnew.val() < self.base_q.val());
+        self.down.next = self.back.val() & (self.qnew.val() > self.base_q.val());
+        self.ustep.next = self.zero.val();
+        if self.up.val() {
+            self.ustep.next = self.one.val();
+        }
+        if self.down.val() {
+            self.ustep.next = self.minus_one.val();
+        }
+        self.usum.next = (self.base_u.val() + self.ustep.val()) & self.usmask.val();
+        self.un.next = self.usum.val() & self.umask.val();
+        // Wrap at 4PPR: period PPR-1 -> 0 steps the turns up, 0 -> PPR-1 down. u = 0 down
+        // is the borrow of usum; with PPR a power of two, u = PPR-1 up is its carry and u
+        // wraps by itself, else a compare and a constant take over.
+        self.wrap.next = (self.usum.val() & self.ubit.val()).any();
+        if !self.pow2.val() {
+            self.wrap.next = (self.up.val() & (self.base_u.val() == self.ulast.val()))
+                | (self.down.val() & (self.usum.val() & self.ubit.val()).any());
+        }
         self.valid_reg.d.next = self.v_in.val() & !self.rst.val();
         if self.load.val() {
             self.pending_reg.d.next = true;
@@ -275,7 +330,7 @@ impl Logic for QuadrantCounter {
         if self.rst.val() {
             self.init_reg.d.next = false;
             self.pprev_reg.d.next = self.zero.val();
-            self.qc_reg.d.next = self.zero.val();
+            self.u_reg.d.next = self.zero.val();
             self.fine_reg.d.next = self.zero.val();
             self.turns_reg.d.next = self.zero.val();
             self.error_reg.d.next = false;
@@ -288,10 +343,10 @@ impl Logic for QuadrantCounter {
                 self.error_reg.d.next = true;
                 self.warning_reg.d.next = false;
             } else if !self.init_reg.q.val() {
+                // qc = p >> F and turns = 0: u and turns are still 0 from the reset (or the
+                // power-up) since only an initialised counter moves them.
                 self.init_reg.d.next = true;
-                self.qc_reg.d.next = self.p_in.val() >> self.fshift.val();
                 self.fine_reg.d.next = self.p_in.val() & self.fmask.val();
-                self.turns_reg.d.next = self.zero.val();
                 self.error_reg.d.next = false;
                 self.warning_reg.d.next = false;
                 self.pprev_reg.d.next = self.p_in.val();
@@ -303,26 +358,32 @@ impl Logic for QuadrantCounter {
                         self.pending_reg.d.next = false;
                     }
                 } else {
-                    self.warning_reg.d.next =
-                        (self.delta.val() >= self.wlo.val()) & (self.delta.val() <= self.whi.val());
+                    // wlo <= delta <= whi, in units of 2^(F-2) (the thresholds' LSB).
+                    self.warning_reg.d.next = ((self.delta.val() >> self.wshift.val())
+                        >= self.wlo.val())
+                        & (((self.delta.val() >> self.wshift.val()) < self.whi.val())
+                            | (((self.delta.val() >> self.wshift.val()) == self.whi.val())
+                                & ((self.delta.val() & self.wmask.val()) == self.zero.val())));
                 }
-                if (self.qn.val() & self.sign32.val()).any() {
-                    self.qc_reg.d.next = self.qn.val() + self.qturn.val();
+                self.u_reg.d.next = self.un.val();
+                if !self.pow2.val() & self.wrap.val() {
+                    if self.up.val() {
+                        self.u_reg.d.next = self.zero.val();
+                    } else {
+                        self.u_reg.d.next = self.ulast.val();
+                    }
+                }
+                self.turns_reg.d.next = self.base_turns.val() & self.tmask.val();
+                if self.wrap.val() {
                     self.turns_reg.d.next =
-                        (self.base_turns.val() - self.one.val()) & self.tmask.val();
-                } else if self.qn.val() >= self.qturn.val() {
-                    self.qc_reg.d.next = self.qn.val() - self.qturn.val();
-                    self.turns_reg.d.next =
-                        (self.base_turns.val() + self.one.val()) & self.tmask.val();
-                } else {
-                    self.qc_reg.d.next = self.qn.val();
-                    self.turns_reg.d.next = self.base_turns.val() & self.tmask.val();
+                        (self.base_turns.val() + self.ustep.val()) & self.tmask.val();
                 }
                 self.fine_reg.d.next = self.p_in.val() & self.fmask.val();
                 self.pprev_reg.d.next = self.p_in.val();
             }
         }
-        self.qc.next = self.qc_reg.q.val();
+        self.qc.next = (self.u_reg.q.val() << self.two.val())
+            | ((self.pprev_reg.q.val() >> self.fshift.val()) & self.three.val());
         self.fine.next = self.fine_reg.q.val();
         self.turns.next = self.turns_reg.q.val();
         self.valid.next = self.valid_reg.q.val();

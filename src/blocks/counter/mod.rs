@@ -37,8 +37,26 @@
 //!   wrap steps the M-bit two's-complement turn counter by +-1 (modulo 2^M).
 //! * The first accepted sample after reset sets qc = p >> F, fine = p mod 2^F, turns = 0.
 //! * A rejected sample (mag_ok = 0) holds the position and sets `error` for that sample.
-//! * Widths: qc needs ceil(log2(4PPR)) bits (18 at PPR = 65535); out_position =
-//!   qc * 2^F + fine needs that plus F bits (34 at most), assembled by the Verilog wrapper
-//!   from qc and fine so no simulated word exceeds 32 bits.
+//! * Hardware form, bit for bit the same: fine = p_prev mod 2^F and qc mod 4 = p_prev >> F
+//!   at all times (both come from the same p, and carry = q - q_prev mod 4), so the counter
+//!   keeps only p_prev (F+2 bits), u = qc >> 2 (quadrant_bits - 2 bits, 0..PPR-1) and turns
+//!   (M bits), and outputs qc = 4u + (p_prev >> F). carry lies in 0..=2 when delta >= 0 and
+//!   in -2..=0 when delta < 0, so qc + carry leaves the signal period (u +- 1) exactly when
+//!   a forward step goes to a lower quadrant (3 -> 0) or a backward one to a higher
+//!   (0 -> 3): two 2-bit compares replace total and carry. u + {+1, 0, -1} is one
+//!   (quadrant_bits - 1)-bit adder whose top bit flags u = 0 down and (PPR a power of two)
+//!   u = PPR-1 up; otherwise u = PPR-1 is a constant compare and the wrapped u a constant.
+//!   Each wrap adds the same +-1 to the turns (one M-bit adder). The warning compares
+//!   delta >> (F-2) (4 bits) with 7 and 9 plus a zero test of the low F-2 bits.
+//!   u and turns are zero whenever the counter is uninitialised, so the first sample only
+//!   sets p_prev and fine.
+//! * Resynchronisation (`load`, from the QEP fallback): the count moves from the latched
+//!   load_qc by -1..=+2 to the sample's quadrant, wrapping at 4PPR as above; load_qc must lie
+//!   in 0..4PPR-1 (the fallback's does; the capacitive top and `<name>_core` tie load off),
+//!   load_turns is taken modulo 2^M.
+//! * Widths: qc needs quadrant_bits = ceil(log2(4PPR)) bits (18 at PPR = 65535); out_position
+//!   = qc * 2^F + fine needs that plus F bits (34 at most), assembled by the Verilog wrapper
+//!   from qc and fine so no simulated word exceeds 32 bits. The widest adders are delta (F+2
+//!   bits) and the combiner's rounding (ZW bits).
 pub mod hdl;
 pub mod model;
