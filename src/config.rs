@@ -595,8 +595,9 @@ pub struct CordicConfig {
     /// Fractional guard bits of the x/y datapath; derived when omitted.
     #[serde(default, deserialize_with = "r_guard")]
     pub guard_bits: Option<u32>,
-    /// CORDIC architecture: N unrolled stages (one sample per clock) or one iterative
-    /// stage (one sample per N clocks, see `crate::blocks::cordic::iterative`).
+    /// CORDIC architecture: N unrolled stages (one sample per clock) or one digit-serial
+    /// iterative stage (one sample per N·ceil(W/4) clocks, see
+    /// `crate::blocks::cordic::iterative`).
     #[serde(default)]
     pub architecture: Architecture,
 }
@@ -608,7 +609,8 @@ pub enum Architecture {
     /// N registered stages: latency N + 2, one sample per clock.
     #[default]
     Unrolled,
-    /// One shift-add stage reused N times: latency N + 2, one sample per N clocks.
+    /// One digit-serial shift-add stage reused N times: S = N·ceil(W/4) clocks per
+    /// sample, latency S + 2 (see `crate::blocks::cordic::iterative`).
     Iterative,
 }
 
@@ -780,7 +782,7 @@ pub struct Derived {
     pub latency_cycles: u32,
     /// CORDIC architecture.
     pub architecture: Architecture,
-    /// Clocks per accepted sample: 1 (unrolled) or N (iterative).
+    /// Clocks per accepted sample: 1 (unrolled) or N·ceil(W/4) (iterative).
     pub cycles_per_sample: u32,
     /// Clock frequency in Hz.
     pub clock_hz: f64,
@@ -801,25 +803,25 @@ fn ceil_log2(v: u32) -> u32 {
 }
 
 /// Checks that the CORDIC keeps up with the ADC: the iterative architecture accepts one
-/// sample per N clocks, so clock / N must be at least the sample rate. With the SPI ADCs
-/// supported (a frame takes at least 24 clocks) this holds for every N <= 20; the check
-/// guards the rule itself.
+/// sample per `cycles` = N·D clocks (D digit clocks per iteration), so clock / cycles must
+/// be at least the sample rate.
 pub fn check_throughput(
     architecture: Architecture,
     n: u32,
+    cycles: u32,
     clock_hz: f64,
     rate: f64,
 ) -> std::result::Result<(), String> {
-    let cycles = match architecture {
-        Architecture::Unrolled => 1,
-        Architecture::Iterative => n,
-    };
+    if architecture == Architecture::Unrolled {
+        return Ok(());
+    }
     if rate * cycles as f64 > clock_hz * (1.0 + 1e-9) {
+        let per_iter = (cycles / n.max(1)).max(1);
         return Err(format!(
-            "the iterative CORDIC accepts one sample per {cycles} clocks (N = {n}): {:.0} samples/s at {:.3} MHz, below the ADC sample rate of {rate:.0} samples/s; use at most {} iterations, a faster clock, a lower sample rate, or architecture = \"unrolled\"",
+            "the iterative CORDIC accepts one sample per {cycles} clocks (N = {n} iterations of {per_iter} digit clocks): {:.0} samples/s at {:.3} MHz, below the ADC sample rate of {rate:.0} samples/s; use at most {} iterations, a faster clock, a lower sample rate, or architecture = \"unrolled\"",
             clock_hz / cycles as f64,
             clock_hz / 1e6,
-            (clock_hz / rate + 1e-9).floor() as u64
+            ((clock_hz / rate + 1e-9).floor() as u64) / per_iter as u64
         ));
     }
     Ok(())
@@ -999,13 +1001,15 @@ impl Derived {
         let warn_step = 7u64 << (f - 2);
         let max_speed_rpm_full_res =
             (warn_step - 1) as f64 / (1u64 << f) as f64 * rate / quadrants_per_turn as f64 * 60.0;
-        let latency_cycles = n + 2;
         let architecture = c.cordic.architecture;
-        let cycles_per_sample = match architecture {
-            Architecture::Unrolled => 1,
-            Architecture::Iterative => n,
+        let (cycles_per_sample, latency_cycles) = match architecture {
+            Architecture::Unrolled => (1, n + 2),
+            Architecture::Iterative => {
+                let s = crate::blocks::cordic::iterative::steps(n, xy_width);
+                (s, s + 2)
+            }
         };
-        check_throughput(architecture, n, clock_hz, rate)
+        check_throughput(architecture, n, cycles_per_sample, clock_hz, rate)
             .map_err(|m| err("cordic", "architecture", m))?;
         let biss = biss_params(c, position_width, &err)?;
         let capacitive = match &c.capacitive {

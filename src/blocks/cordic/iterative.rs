@@ -1,30 +1,51 @@
-//! Iterative CORDIC (`cordic.architecture = "iterative"`): one vectoring stage with a
-//! variable shift, reused for the N iterations of a sample.
+//! Iterative CORDIC (`cordic.architecture = "iterative"`): one digit-serial vectoring stage,
+//! reused for the N iterations of a sample, [`DIGIT`] bits per clock.
 //!
 //! ```text
-//!              ┌──────────┐ x,y,q,v  ┌───────────────────────────────┐ x,z,q,v
-//!  in_sin ────►│ quadrant ├─────────►│ mux ─► shift-add ─► x,y,z reg ├──► combiner ─► counter
-//!  in_cos ────►│ mapper   │          │  ▲   k ─► barrel shift      │ │
-//!  in_valid ─┬►│ (gated)  │          │  └──────────────────────────┘ │
-//!            │ └──────────┘          │ k reg, busy, atan ROM[k]      │
-//!            └── & in_ready ◄────────┤ in_ready, drop/lost flags     │
-//!                                    └───────────────────────────────┘
+//!              ┌──────────┐ x',y',q  ┌──────────────────────────────────────────────┐
+//!  in_sin ────►│ quadrant ├─────────►│ digit j of x',y' (iteration 0)               │
+//!  in_cos ────►│ mapper   │          │        │                                     │
+//!  in_valid ─┬►│ (gated)  │          │        ▼        4-bit add/sub, carry FF      │ x,z,q,v
+//!            │ └──────────┘          │ xr ─► digit ─► ( x ± tap(y>>k) ) ─► xr top ───┼──► combiner
+//!            │                       │ yr ─► digit ─► ( y ∓ tap(x>>k) ) ─► yr top  │      ─► counter
+//!            │                       │ xr,yr: W'-bit shift registers, 4 bits/clock │
+//!            │                       │ z ± atan ROM[k], once per iteration (W_z)   │
+//!            └── & in_ready ◄────────┤ j, k counters, busy, in_ready, lost mark    │
+//!                                    └──────────────────────────────────────────────┘
 //! ```
 //!
-//! Arithmetic: identical to the unrolled stages ([`super::hdl::CordicStage`]): iteration k
-//! shifts x and y right by k with the arithmetic fill `xmask & !(xmask >> k)` (computed, no
-//! literal), adds/subtracts with the same one-adder form, and takes atan(2^-k) from a ROM
-//! holding `Derived::atan_table`. The model of both architectures is therefore
-//! [`super::model::cordic`]; only the timing differs.
+//! Datapath. x and y live in W'-bit shift registers, W' = 4·D with D = ceil(W / 4) digits
+//! (W = `xy_width`; the bits W..W'-1 hold copies of the sign). Iteration k takes D clocks;
+//! clock j handles bits 4j..4j+3, least significant digit first:
+//! * the own operand is the register's bottom digit (in iteration 0 the digit j of the
+//!   mapper's x', y', selected by a 4-bit-wide D:1 multiplexer);
+//! * the other operand is y >> k (for x) or x >> k (for y): because the register has
+//!   already shifted by 4j, bit 4j + k + b of the old word sits at position k + b, a fixed
+//!   tap per k (a 4-bit-wide N:1 multiplexer instead of a W-bit barrel shifter). Once
+//!   4j + k + b >= W' the tap would read a new digit; there the arithmetic shift's fill is
+//!   used instead (y: its sign, which is the direction bit; x: 0, x is never negative);
+//! * a 4-bit adder with a carry flip-flop adds or subtracts (one's complement plus a carry
+//!   in of 1 at j = 0), exactly the one-adder form of the unrolled stages; the new digit
+//!   enters the top of the register. At j = D - 1 the bits W..W'-1 of the new word are
+//!   replaced by copies of bit W - 1: the result wraps to W bits like the unrolled stage's
+//!   `& xmask`.
+//! * z (W_z bits, parallel) adds or subtracts atan(2^-k) from a ROM holding
+//!   `Derived::atan_table` once per iteration, at j = 0; it starts from 0.
+//! * The direction of iteration k is the sign of y_k: bit W - 1 of the mapper's y' (k = 0)
+//!   or of the register (k >= 1) at j = 0, held for the other digits.
+//!
+//! Bit growth is that of the unrolled stage: the same W-bit x/y words, modulo 2^W, and the
+//! same W_z-bit z, so the model of both architectures is [`super::model::cordic`]; only the
+//! timing differs.
 //!
 //! Timing (cycle k = inputs before clock edge k; the edge that captures the input counts
-//! as the first):
-//! * Edge k: the mapper registers an accepted sample (as in the unrolled core).
-//! * Edges k+1 .. k+N: iterations 0 .. N-1 (the first one reads the mapper's registers, the
-//!   others the engine's own x/y/z registers); the result is held after edge k+N.
-//! * Edge k+N+1: combiner; edge k+N+2: counter. Latency N + 2, the same as the unrolled core.
-//! * Throughput: one sample per N clocks (the engine starts a new sample at the edge after
-//!   its last iteration). For N = 1 that is one per clock.
+//! as the first): with S = N·D clocks per sample ([`steps`]),
+//! * Edge e: the mapper registers an accepted sample (as in the unrolled core).
+//! * Edges e+1 .. e+S: the N iterations, D clocks each; the result is held after edge e+S.
+//! * Edge e+S+1: combiner; edge e+S+2: counter. Latency S + 2 cycles.
+//! * Throughput: one sample per S clocks (the engine starts a new sample at the edge after
+//!   its last clock). At the default widths (W = 26, D = 7) and N = 14, S = 98: 1.36 Msps at
+//!   133.33 MHz, above the LTC1407A-1's 1.307 Msps at that clock.
 //!
 //! Handshake: `in_ready` is a function of registers only (no path from the inputs). A sample
 //! offered with `in_valid` while `in_ready` is high is accepted. A sample offered while it is
@@ -34,17 +55,34 @@
 //! warning OR this mark). This is not an AXI-style handshake: `in_valid` held high while
 //! `in_ready` is low counts as one dropped offer per cycle, so a producer honours `in_ready`
 //! by asserting `in_valid` only in cycles where `in_ready` is high. Such a producer never
-//! loses a sample; in the
-//! board top the ADC delivers one sample per ADC period, and `sinedec check` rejects an
-//! iterative design whose period is shorter than N clocks.
+//! loses a sample; in the board top the ADC delivers one sample per ADC period, and
+//! `sinedec check` rejects an iterative design whose period is shorter than S clocks.
 //!
 //! `in_ready` is high in cycle m exactly when the engine will be free at edge m+1: the
-//! engine is idle with no sample waiting in the mapper, or it performs its last iteration
-//! at edge m (or N = 1). Back to back, samples are accepted every N cycles.
+//! engine is idle with no sample waiting in the mapper, or it performs its last clock at
+//! edge m (or S = 1). Back to back, samples are accepted every S cycles.
 use crate::blocks::{c32, mask};
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 use std::collections::BTreeMap;
+
+/// An 8-bit constant (digit-level signals).
+fn c8(v: u64) -> Constant<Bits<8>> {
+    Constant::new(Bits::<8>::from(v & 0xff))
+}
+
+/// Bits per clock of the digit-serial engine.
+pub const DIGIT: u32 = 4;
+
+/// Digits per x/y word: D = ceil(W / DIGIT).
+pub fn digits(xy_width: u32) -> u32 {
+    xy_width.div_ceil(DIGIT)
+}
+
+/// Clocks per sample of the iterative engine: S = N·D.
+pub fn steps(iterations: u32, xy_width: u32) -> u32 {
+    iterations * digits(xy_width)
+}
 
 /// The iterative engine: takes the mapper's registered outputs, returns what the last
 /// unrolled stage would (x, z, q, valid), plus `in_ready` and the `lost` warning mark.
@@ -77,11 +115,22 @@ pub struct IterativeCordic {
     /// A sample was dropped before the one the counter output last: OR into out_warning.
     pub lost: Signal<Out, Bit>,
     rom: ROM<Bits<32>, 5>,
-    x_reg: DFF<Bits<32>>,
-    y_reg: DFF<Bits<32>>,
-    z_reg: DFF<Bits<32>>,
+    /// x shift register (W' bits, new digits enter at the top).
+    xr: DFF<Bits<32>>,
+    /// y shift register (W' bits).
+    yr: DFF<Bits<32>>,
+    /// z accumulator (W_z bits).
+    zr: DFF<Bits<32>>,
     q_reg: DFF<Bits<2>>,
+    /// Iteration index k.
     k_reg: DFF<Bits<5>>,
+    /// Digit index j.
+    j_reg: DFF<Bits<3>>,
+    /// Carry between the digits of x and of y.
+    cx_reg: DFF<Bit>,
+    cy_reg: DFF<Bit>,
+    /// Direction (sign of y_k) of the current iteration.
+    dir_reg: DFF<Bit>,
     busy_reg: DFF<Bit>,
     done_reg: DFF<Bit>,
     drop_reg: DFF<Bit>,
@@ -92,38 +141,88 @@ pub struct IterativeCordic {
     hold_reg: DFF<Bit>,
     kin: Signal<Local, Bits<5>>,
     ksh: Signal<Local, Bits<5>>,
-    sy: Signal<Local, Bits<32>>,
+    jin: Signal<Local, Bits<3>>,
+    jb: Signal<Local, Bits<5>>,
+    t: Signal<Local, Bits<8>>,
     active: Signal<Local, Bit>,
+    first: Signal<Local, Bit>,
+    j0: Signal<Local, Bit>,
+    jlast: Signal<Local, Bit>,
     last: Signal<Local, Bit>,
     rdy: Signal<Local, Bit>,
-    xi: Signal<Local, Bits<32>>,
-    yi: Signal<Local, Bits<32>>,
+    dir: Signal<Local, Bit>,
+    ysx: Signal<Local, Bits<32>>,
+    xa: Signal<Local, Bits<8>>,
+    ya: Signal<Local, Bits<8>>,
+    xb: Signal<Local, Bits<8>>,
+    yb: Signal<Local, Bits<8>>,
+    fillm: Signal<Local, Bits<8>>,
+    mm: Signal<Local, Bits<8>>,
+    nmm: Signal<Local, Bits<8>>,
+    cxi: Signal<Local, Bits<8>>,
+    cyi: Signal<Local, Bits<8>>,
+    sx: Signal<Local, Bits<8>>,
+    sy: Signal<Local, Bits<8>>,
+    dx: Signal<Local, Bits<8>>,
+    dy: Signal<Local, Bits<8>>,
     zi: Signal<Local, Bits<32>>,
-    xs: Signal<Local, Bits<32>>,
-    ys: Signal<Local, Bits<32>>,
     m: Signal<Local, Bits<32>>,
     c: Signal<Local, Bits<32>>,
-    nm: Signal<Local, Bits<32>>,
-    nc: Signal<Local, Bits<32>>,
     /// All ones.
     ones: Constant<Bits<32>>,
     /// One.
     one: Constant<Bits<32>>,
     /// Zero.
     zero: Constant<Bits<32>>,
+    /// Zero (digit width).
+    zero8: Constant<Bits<8>>,
+    /// One (digit width).
+    one8: Constant<Bits<8>>,
+    /// Digit mask (DIGIT ones).
+    dmask: Constant<Bits<8>>,
+    /// Bit 4 of a digit sum: the carry out.
+    dcarry: Constant<Bits<8>>,
     /// Sign bit of a W-bit word.
     xsign: Constant<Bits<32>>,
     /// Mask of W bits.
     xmask: Constant<Bits<32>>,
+    /// Bits W..W'-1 (sign extension of a W-bit word to W' bits).
+    xext: Constant<Bits<32>>,
     /// Mask of ZW bits.
     zmask: Constant<Bits<32>>,
-    /// Iteration index 0.
+    /// Shift of a digit to the top of the W'-bit register: W' - DIGIT.
+    topsh: Constant<Bits<32>>,
+    /// Shift of the register by one digit.
+    dsh: Constant<Bits<32>>,
+    /// In the top digit: bit W - 1 - (W' - DIGIT), the sign of the W-bit word.
+    tsign: Constant<Bits<8>>,
+    /// In the top digit: the bits above the sign (W..W'-1), zero when W = W'.
+    text: Constant<Bits<8>>,
+    /// Tap b reads fill once t = 4j + k >= W' - b: thresholds for b = 0..3.
+    fth0: Constant<Bits<8>>,
+    fth1: Constant<Bits<8>>,
+    fth2: Constant<Bits<8>>,
+    fth3: Constant<Bits<8>>,
+    /// Fill bit b of a tap digit.
+    fb0: Constant<Bits<8>>,
+    fb1: Constant<Bits<8>>,
+    fb2: Constant<Bits<8>>,
+    fb3: Constant<Bits<8>>,
+    /// Index 0 (k and 4j).
     kzero: Constant<Bits<5>>,
     /// Iteration increment 1.
     kone: Constant<Bits<5>>,
     /// Last iteration index N - 1.
     klast: Constant<Bits<5>>,
-    /// Iteration-index bits any k < N uses (the shifter levels that exist).
+    /// Digit index 0.
+    jzero: Constant<Bits<3>>,
+    /// Digit increment 1.
+    jone: Constant<Bits<3>>,
+    /// Last digit index D - 1.
+    jlastc: Constant<Bits<3>>,
+    /// log2(DIGIT): digit index to bit offset.
+    jsh: Constant<Bits<5>>,
+    /// Iteration-index bits any k < N uses (the tap multiplexer's select lines).
     kuse: Constant<Bits<5>>,
 }
 
@@ -142,10 +241,13 @@ impl IterativeCordic {
     /// Engine for the derived parameters (N = `d.iterations` <= 20 iterations).
     pub fn new(d: &Derived) -> Self {
         let w = d.xy_width;
+        let wp = digits(w) * DIGIT;
         let mut table = BTreeMap::new();
         for (i, &a) in d.atan_table.iter().enumerate() {
             table.insert(Bits::<5>::from(i as u64), Bits::<32>::from(a & mask(32)));
         }
+        let tsign_bit = w - 1 - (wp - DIGIT);
+        let th = |b: u32| Constant::new(Bits::<8>::from((wp - b) as u64));
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -161,12 +263,15 @@ impl IterativeCordic {
             v_out: Default::default(),
             lost: Default::default(),
             rom: ROM::new(table),
-            kuse: kuse(d),
-            x_reg: Default::default(),
-            y_reg: Default::default(),
-            z_reg: Default::default(),
+            xr: Default::default(),
+            yr: Default::default(),
+            zr: Default::default(),
             q_reg: Default::default(),
             k_reg: Default::default(),
+            j_reg: Default::default(),
+            cx_reg: Default::default(),
+            cy_reg: Default::default(),
+            dir_reg: Default::default(),
             busy_reg: Default::default(),
             done_reg: Default::default(),
             drop_reg: Default::default(),
@@ -177,28 +282,64 @@ impl IterativeCordic {
             hold_reg: Default::default(),
             kin: Default::default(),
             ksh: Default::default(),
-            sy: Default::default(),
+            jin: Default::default(),
+            jb: Default::default(),
+            t: Default::default(),
             active: Default::default(),
+            first: Default::default(),
+            j0: Default::default(),
+            jlast: Default::default(),
             last: Default::default(),
             rdy: Default::default(),
-            xi: Default::default(),
-            yi: Default::default(),
+            dir: Default::default(),
+            ysx: Default::default(),
+            xa: Default::default(),
+            ya: Default::default(),
+            xb: Default::default(),
+            yb: Default::default(),
+            fillm: Default::default(),
+            mm: Default::default(),
+            nmm: Default::default(),
+            cxi: Default::default(),
+            cyi: Default::default(),
+            sx: Default::default(),
+            sy: Default::default(),
+            dx: Default::default(),
+            dy: Default::default(),
             zi: Default::default(),
-            xs: Default::default(),
-            ys: Default::default(),
             m: Default::default(),
             c: Default::default(),
-            nm: Default::default(),
-            nc: Default::default(),
             ones: c32(mask(32)),
             one: c32(1),
             zero: c32(0),
+            zero8: c8(0),
+            one8: c8(1),
+            dmask: c8(mask(DIGIT)),
+            dcarry: c8(1 << DIGIT),
             xsign: c32(1 << (w - 1)),
             xmask: c32(mask(w)),
+            xext: c32(mask(wp) & !mask(w)),
             zmask: c32(mask(d.z_width)),
+            topsh: c32((wp - DIGIT) as u64),
+            dsh: c32(DIGIT as u64),
+            tsign: c8(1 << tsign_bit),
+            text: c8(mask(DIGIT) & !mask(tsign_bit + 1)),
+            fth0: th(0),
+            fth1: th(1),
+            fth2: th(2),
+            fth3: th(3),
+            fb0: c8(1),
+            fb1: c8(2),
+            fb2: c8(4),
+            fb3: c8(8),
             kzero: Constant::new(Bits::<5>::from(0u64)),
             kone: Constant::new(Bits::<5>::from(1u64)),
             klast: Constant::new(Bits::<5>::from((d.iterations - 1) as u64)),
+            jzero: Constant::new(Bits::<3>::from(0u64)),
+            jone: Constant::new(Bits::<3>::from(1u64)),
+            jlastc: Constant::new(Bits::<3>::from((digits(w) - 1) as u64)),
+            jsh: Constant::new(Bits::<5>::from(DIGIT.trailing_zeros() as u64)),
+            kuse: kuse(d),
         }
     }
 }
@@ -207,58 +348,149 @@ impl Logic for IterativeCordic {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, x_reg, y_reg, z_reg, q_reg, k_reg, busy_reg, done_reg, drop_reg, lostm_reg,
-            loste_reg, donec_reg, lostc_reg, hold_reg
+            self, clk, xr, yr, zr, q_reg, k_reg, j_reg, cx_reg, cy_reg, dir_reg, busy_reg,
+            done_reg, drop_reg, lostm_reg, loste_reg, donec_reg, lostc_reg, hold_reg
         );
-        // Operands: a new sample from the mapper when idle, else the engine's registers.
+        // Position: iteration k, digit offset 4j (a new sample starts at 0, 0).
         self.kin.next = self.kzero.val();
-        self.xi.next = self.x_in.val();
-        self.yi.next = self.y_in.val();
-        self.zi.next = self.zero.val();
+        self.jin.next = self.jzero.val();
         self.q_reg.d.next = self.q_in.val();
         self.loste_reg.d.next = self.lostm_reg.q.val();
         if self.busy_reg.q.val() {
             self.kin.next = self.k_reg.q.val();
-            self.xi.next = self.x_reg.q.val();
-            self.yi.next = self.y_reg.q.val();
-            self.zi.next = self.z_reg.q.val();
+            self.jin.next = self.j_reg.q.val();
             self.q_reg.d.next = self.q_reg.q.val();
             self.loste_reg.d.next = self.loste_reg.q.val();
         }
         self.active.next = self.busy_reg.q.val() | self.v_in.val();
-        self.last.next = self.kin.val() == self.klast.val();
+        self.first.next = self.kin.val() == self.kzero.val();
+        self.jb.next = bit_cast::<5, 3>(self.jin.val()) << self.jsh.val();
+        self.ksh.next = self.kin.val() & self.kuse.val();
+        self.j0.next = self.jin.val() == self.jzero.val();
+        self.jlast.next = self.jin.val() == self.jlastc.val();
+        self.last.next = (self.kin.val() == self.klast.val()) & self.jlast.val();
         self.rdy.next = !(self.active.val() & !self.last.val());
         self.rom.address.next = self.kin.val();
-        // Shifts by k: x is never negative (the mapped vector starts in the first quadrant
-        // and x only grows in vectoring mode), so its arithmetic shift is the logical one.
-        // y's arithmetic shift is done as ((y ^ s) >> k) ^ s with s = the W-bit all-ones
-        // word when y < 0 (one's-complement trick: no fill constants). `kin & kuse` clears
-        // the index bits no iteration below N sets, so Yosys builds only the shifter
-        // levels that are used.
-        self.ksh.next = self.kin.val() & self.kuse.val();
-        self.sy.next = self.zero.val();
-        if (self.yi.val() & self.xsign.val()).any() {
-            self.sy.next = self.xmask.val();
+        // Direction: sign of y_k, taken at the first digit and held for the others.
+        self.dir.next = self.dir_reg.q.val();
+        if self.j0.val() {
+            if self.first.val() {
+                self.dir.next = (self.y_in.val() & self.xsign.val()).any();
+            } else {
+                self.dir.next = (self.yr.q.val() & self.xsign.val()).any();
+            }
         }
-        self.xs.next = self.xi.val() >> self.ksh.val();
-        self.ys.next = ((self.yi.val() ^ self.sy.val()) >> self.ksh.val()) ^ self.sy.val();
+        // Own digits: the mapper's word in iteration 0 (y' sign-extended to W'), else the
+        // register's bottom digit.
+        self.ysx.next = self.y_in.val();
+        if (self.y_in.val() & self.xsign.val()).any() {
+            self.ysx.next = self.y_in.val() | self.xext.val();
+        }
+        self.xa.next = bit_cast::<8, 32>(self.xr.q.val()) & self.dmask.val();
+        self.ya.next = bit_cast::<8, 32>(self.yr.q.val()) & self.dmask.val();
+        if self.first.val() {
+            self.xa.next = bit_cast::<8, 32>(self.x_in.val() >> self.jb.val()) & self.dmask.val();
+            self.ya.next = bit_cast::<8, 32>(self.ysx.val() >> self.jb.val()) & self.dmask.val();
+        }
+        // Shifted operands: tap k of the other register; bits past the old word take the
+        // fill (y: its sign = dir; x: 0). In iteration 0 the shift is 0: the other own digit.
+        self.t.next = bit_cast::<8, 5>(self.jb.val()) + bit_cast::<8, 5>(self.kin.val());
+        self.fillm.next = self.zero8.val();
+        if self.t.val() >= self.fth0.val() {
+            self.fillm.next = self.fillm.val() | self.fb0.val();
+        }
+        if self.t.val() >= self.fth1.val() {
+            self.fillm.next = self.fillm.val() | self.fb1.val();
+        }
+        if self.t.val() >= self.fth2.val() {
+            self.fillm.next = self.fillm.val() | self.fb2.val();
+        }
+        if self.t.val() >= self.fth3.val() {
+            self.fillm.next = self.fillm.val() | self.fb3.val();
+        }
+        self.xb.next = bit_cast::<8, 32>(self.xr.q.val() >> self.ksh.val())
+            & self.dmask.val()
+            & !self.fillm.val();
+        self.yb.next = bit_cast::<8, 32>(self.yr.q.val() >> self.ksh.val())
+            & self.dmask.val()
+            & !self.fillm.val();
+        if self.dir.val() {
+            self.yb.next = self.yb.val() | self.fillm.val();
+        }
+        if self.first.val() {
+            self.xb.next = self.xa.val();
+            self.yb.next = self.ya.val();
+        }
+        // x - y>>k when y < 0 (x + |y|>>k), else x + y>>k... in the unrolled stage's form:
+        // x + ((y>>k) ^ m) + c and y + ((x>>k) ^ !m) + !c, m = all ones when y < 0.
+        self.mm.next = self.zero8.val();
+        self.nmm.next = self.dmask.val();
         self.m.next = self.zero.val();
         self.c.next = self.zero.val();
-        self.nm.next = self.ones.val();
-        self.nc.next = self.one.val();
-        if (self.yi.val() & self.xsign.val()).any() {
+        if self.dir.val() {
+            self.mm.next = self.dmask.val();
+            self.nmm.next = self.zero8.val();
             self.m.next = self.ones.val();
             self.c.next = self.one.val();
-            self.nm.next = self.zero.val();
-            self.nc.next = self.zero.val();
         }
-        self.x_reg.d.next =
-            (self.xi.val() + (self.ys.val() ^ self.m.val()) + self.c.val()) & self.xmask.val();
-        self.y_reg.d.next =
-            (self.yi.val() + (self.xs.val() ^ self.nm.val()) + self.nc.val()) & self.xmask.val();
-        self.z_reg.d.next = (self.zi.val() + (self.rom.data.val() ^ self.m.val()) + self.c.val())
-            & self.zmask.val();
-        self.k_reg.d.next = self.kin.val() + self.kone.val();
+        self.cxi.next = self.zero8.val();
+        if self.cx_reg.q.val() {
+            self.cxi.next = self.one8.val();
+        }
+        self.cyi.next = self.zero8.val();
+        if self.cy_reg.q.val() {
+            self.cyi.next = self.one8.val();
+        }
+        if self.j0.val() {
+            self.cxi.next = self.zero8.val();
+            self.cyi.next = self.one8.val();
+            if self.dir.val() {
+                self.cxi.next = self.one8.val();
+                self.cyi.next = self.zero8.val();
+            }
+        }
+        self.sx.next = self.xa.val() + (self.yb.val() ^ self.mm.val()) + self.cxi.val();
+        self.sy.next = self.ya.val() + (self.xb.val() ^ self.nmm.val()) + self.cyi.val();
+        self.dx.next = self.sx.val() & self.dmask.val();
+        self.dy.next = self.sy.val() & self.dmask.val();
+        // The top digit wraps the word to W bits: bits W..W'-1 copy bit W - 1.
+        if self.jlast.val() {
+            self.dx.next = self.dx.val() & !self.text.val();
+            if (self.dx.val() & self.tsign.val()).any() {
+                self.dx.next = self.dx.val() | self.text.val();
+            }
+            self.dy.next = self.dy.val() & !self.text.val();
+            if (self.dy.val() & self.tsign.val()).any() {
+                self.dy.next = self.dy.val() | self.text.val();
+            }
+        }
+        self.xr.d.next = self.xr.q.val();
+        self.yr.d.next = self.yr.q.val();
+        self.zr.d.next = self.zr.q.val();
+        self.cx_reg.d.next = (self.sx.val() & self.dcarry.val()).any();
+        self.cy_reg.d.next = (self.sy.val() & self.dcarry.val()).any();
+        self.dir_reg.d.next = self.dir.val();
+        self.zi.next = self.zr.q.val();
+        if self.first.val() {
+            self.zi.next = self.zero.val();
+        }
+        if self.active.val() {
+            self.xr.d.next = (self.xr.q.val() >> self.dsh.val())
+                | (bit_cast::<32, 8>(self.dx.val()) << self.topsh.val());
+            self.yr.d.next = (self.yr.q.val() >> self.dsh.val())
+                | (bit_cast::<32, 8>(self.dy.val()) << self.topsh.val());
+            if self.j0.val() {
+                self.zr.d.next =
+                    (self.zi.val() + (self.rom.data.val() ^ self.m.val()) + self.c.val())
+                        & self.zmask.val();
+            }
+        }
+        self.j_reg.d.next = self.jin.val() + self.jone.val();
+        self.k_reg.d.next = self.kin.val();
+        if self.jlast.val() {
+            self.j_reg.d.next = self.jzero.val();
+            self.k_reg.d.next = self.kin.val() + self.kone.val();
+        }
         self.busy_reg.d.next = self.active.val() & !self.last.val() & !self.rst.val();
         self.done_reg.d.next = self.active.val() & self.last.val() & !self.rst.val();
         // Drop bookkeeping: a sample offered while not ready marks the next accepted one.
@@ -281,8 +513,8 @@ impl Logic for IterativeCordic {
             self.hold_reg.d.next = false;
         }
         self.in_ready.next = self.rdy.val();
-        self.x_out.next = self.x_reg.q.val();
-        self.z_out.next = self.z_reg.q.val();
+        self.x_out.next = self.xr.q.val() & self.xmask.val();
+        self.z_out.next = self.zr.q.val();
         self.q_out.next = self.q_reg.q.val();
         self.v_out.next = self.done_reg.q.val();
         self.lost.next = self.hold_reg.q.val();

@@ -93,14 +93,14 @@ impl CoreModel {
     pub fn in_ready(&self) -> bool {
         self.iter
             .as_ref()
-            .map_or(true, |t| t.ready(self.d.iterations))
+            .map_or(true, |t| t.ready(self.d.cycles_per_sample))
     }
 
     /// One clock cycle: inputs applied before the edge, outputs after it.
     pub fn step(&mut self, i: CoreIn) -> CoreOut {
         if let Some(t) = self.iter.as_mut() {
             let d = &self.d;
-            let head = t.clock(d.iterations, i.rst, i.valid, || {
+            let head = t.clock(d.cycles_per_sample, i.rst, i.valid, || {
                 let a = d.adc_width;
                 let sin = crate::blocks::sext(i.sin as u64 & mask(a), a) as i32;
                 let cos = crate::blocks::sext(i.cos as u64 & mask(a), a) as i32;
