@@ -129,6 +129,9 @@ pub struct IterativeCordic {
     /// Carry between the digits of x and of y.
     cx_reg: DFF<Bit>,
     cy_reg: DFF<Bit>,
+    /// Fill mask of the taps for this clock (bit b set once 4j + k + b >= W'), computed
+    /// the clock before from the next (j, k).
+    fill_reg: DFF<Bits<8>>,
     /// Direction (sign of y_k) of the current iteration.
     dir_reg: DFF<Bit>,
     busy_reg: DFF<Bit>,
@@ -139,11 +142,33 @@ pub struct IterativeCordic {
     donec_reg: DFF<Bit>,
     lostc_reg: DFF<Bit>,
     hold_reg: DFF<Bit>,
+    /// One-hot iteration masks: hot[k] = 0xF during iteration k (hot[0]: iteration 0, whose
+    /// operands come from the mapper), else 0.
+    hot: Vec<DFF<Bits<8>>>,
+    /// One-hot digit masks: jhot[j] = 0xF at digit j, else 0.
+    jhot: Vec<DFF<Bits<8>>>,
+    /// The mapper's x', y', latched at the first clock of a sample (the mapper's registers
+    /// load every clock; iteration 0 reads digits 1.. from here).
+    xl: DFF<Bits<32>>,
+    yl: DFF<Bits<32>>,
+    /// First clock of a sample (a mapped sample waits, the engine is free).
+    start: Signal<Local, Bit>,
+    /// Shifted copies of a register or of a mapper word while the taps are gathered.
+    shx: Signal<Local, Bits<32>>,
+    shy: Signal<Local, Bits<32>>,
+    /// Digit j of the mapper's x', y'.
+    xm: Signal<Local, Bits<8>>,
+    ym: Signal<Local, Bits<8>>,
+    /// The masks advance (not idle, not the last clock of a sample).
+    adv: Signal<Local, Bit>,
     kin: Signal<Local, Bits<5>>,
-    ksh: Signal<Local, Bits<5>>,
     jin: Signal<Local, Bits<3>>,
-    jb: Signal<Local, Bits<5>>,
-    t: Signal<Local, Bits<8>>,
+    /// Next digit index and iteration index, and 4j + k for them.
+    jn: Signal<Local, Bits<3>>,
+    kn: Signal<Local, Bits<5>>,
+    tn: Signal<Local, Bits<8>>,
+    /// The next clock's fill mask.
+    fnx: Signal<Local, Bits<8>>,
     active: Signal<Local, Bit>,
     first: Signal<Local, Bit>,
     j0: Signal<Local, Bit>,
@@ -151,7 +176,6 @@ pub struct IterativeCordic {
     last: Signal<Local, Bit>,
     rdy: Signal<Local, Bit>,
     dir: Signal<Local, Bit>,
-    ysx: Signal<Local, Bits<32>>,
     xa: Signal<Local, Bits<8>>,
     ya: Signal<Local, Bits<8>>,
     xb: Signal<Local, Bits<8>>,
@@ -186,14 +210,14 @@ pub struct IterativeCordic {
     xsign: Constant<Bits<32>>,
     /// Mask of W bits.
     xmask: Constant<Bits<32>>,
-    /// Bits W..W'-1 (sign extension of a W-bit word to W' bits).
-    xext: Constant<Bits<32>>,
     /// Mask of ZW bits.
     zmask: Constant<Bits<32>>,
     /// Shift of a digit to the top of the W'-bit register: W' - DIGIT.
     topsh: Constant<Bits<32>>,
     /// Shift of the register by one digit.
     dsh: Constant<Bits<32>>,
+    /// Shift by one bit (the next tap).
+    bsh: Constant<Bits<32>>,
     /// In the top digit: bit W - 1 - (W' - DIGIT), the sign of the W-bit word.
     tsign: Constant<Bits<8>>,
     /// In the top digit: the bits above the sign (W..W'-1), zero when W = W'.
@@ -221,20 +245,7 @@ pub struct IterativeCordic {
     /// Last digit index D - 1.
     jlastc: Constant<Bits<3>>,
     /// log2(DIGIT): digit index to bit offset.
-    jsh: Constant<Bits<5>>,
-    /// Iteration-index bits any k < N uses (the tap multiplexer's select lines).
-    kuse: Constant<Bits<5>>,
-}
-
-/// The index bits set by some k < N (N - 1 rounded up to all ones below its top bit).
-fn kuse(d: &Derived) -> Constant<Bits<5>> {
-    let top = d.iterations.saturating_sub(1);
-    let v = if top == 0 {
-        0
-    } else {
-        mask(32 - top.leading_zeros())
-    };
-    Constant::new(Bits::<5>::from(v & 31))
+    jsh8: Constant<Bits<8>>,
 }
 
 impl IterativeCordic {
@@ -271,6 +282,7 @@ impl IterativeCordic {
             j_reg: Default::default(),
             cx_reg: Default::default(),
             cy_reg: Default::default(),
+            fill_reg: Default::default(),
             dir_reg: Default::default(),
             busy_reg: Default::default(),
             done_reg: Default::default(),
@@ -280,11 +292,22 @@ impl IterativeCordic {
             donec_reg: Default::default(),
             lostc_reg: Default::default(),
             hold_reg: Default::default(),
+            hot: (0..d.iterations).map(|_| Default::default()).collect(),
+            jhot: (0..digits(w)).map(|_| Default::default()).collect(),
+            xl: Default::default(),
+            yl: Default::default(),
+            start: Default::default(),
+            shx: Default::default(),
+            shy: Default::default(),
+            xm: Default::default(),
+            ym: Default::default(),
+            adv: Default::default(),
             kin: Default::default(),
-            ksh: Default::default(),
             jin: Default::default(),
-            jb: Default::default(),
-            t: Default::default(),
+            jn: Default::default(),
+            kn: Default::default(),
+            tn: Default::default(),
+            fnx: Default::default(),
             active: Default::default(),
             first: Default::default(),
             j0: Default::default(),
@@ -292,7 +315,6 @@ impl IterativeCordic {
             last: Default::default(),
             rdy: Default::default(),
             dir: Default::default(),
-            ysx: Default::default(),
             xa: Default::default(),
             ya: Default::default(),
             xb: Default::default(),
@@ -318,10 +340,10 @@ impl IterativeCordic {
             dcarry: c8(1 << DIGIT),
             xsign: c32(1 << (w - 1)),
             xmask: c32(mask(w)),
-            xext: c32(mask(wp) & !mask(w)),
             zmask: c32(mask(d.z_width)),
             topsh: c32((wp - DIGIT) as u64),
             dsh: c32(DIGIT as u64),
+            bsh: c32(1),
             tsign: c8(1 << tsign_bit),
             text: c8(mask(DIGIT) & !mask(tsign_bit + 1)),
             fth0: th(0),
@@ -338,8 +360,7 @@ impl IterativeCordic {
             jzero: Constant::new(Bits::<3>::from(0u64)),
             jone: Constant::new(Bits::<3>::from(1u64)),
             jlastc: Constant::new(Bits::<3>::from((digits(w) - 1) as u64)),
-            jsh: Constant::new(Bits::<5>::from(DIGIT.trailing_zeros() as u64)),
-            kuse: kuse(d),
+            jsh8: Constant::new(Bits::<8>::from(DIGIT.trailing_zeros() as u64)),
         }
     }
 }
@@ -348,7 +369,7 @@ impl Logic for IterativeCordic {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, xr, yr, zr, q_reg, k_reg, j_reg, cx_reg, cy_reg, dir_reg, busy_reg,
+            self, clk, xr, yr, zr, xl, yl, q_reg, k_reg, j_reg, cx_reg, cy_reg, fill_reg, dir_reg, busy_reg,
             done_reg, drop_reg, lostm_reg, loste_reg, donec_reg, lostc_reg, hold_reg
         );
         // Position: iteration k, digit offset 4j (a new sample starts at 0, 0).
@@ -364,8 +385,6 @@ impl Logic for IterativeCordic {
         }
         self.active.next = self.busy_reg.q.val() | self.v_in.val();
         self.first.next = self.kin.val() == self.kzero.val();
-        self.jb.next = bit_cast::<5, 3>(self.jin.val()) << self.jsh.val();
-        self.ksh.next = self.kin.val() & self.kuse.val();
         self.j0.next = self.jin.val() == self.jzero.val();
         self.jlast.next = self.jin.val() == self.jlastc.val();
         self.last.next = (self.kin.val() == self.klast.val()) & self.jlast.val();
@@ -380,46 +399,81 @@ impl Logic for IterativeCordic {
                 self.dir.next = (self.yr.q.val() & self.xsign.val()).any();
             }
         }
-        // Own digits: the mapper's word in iteration 0 (y' sign-extended to W'), else the
-        // register's bottom digit.
-        self.ysx.next = self.y_in.val();
-        if (self.y_in.val() & self.xsign.val()).any() {
-            self.ysx.next = self.y_in.val() | self.xext.val();
+        // Digit j of the mapper's words (AND-OR over the one-hot digit masks; x', y' are
+        // W-bit words in 0..2^(A-1), so their bits W..W'-1 are already the sign, 0).
+        // Digit 0 comes straight from the mapper (the first clock), digits 1.. from the
+        // latched copy.
+        self.start.next = self.v_in.val() & !self.busy_reg.q.val();
+        self.xl.d.next = self.xl.q.val();
+        self.yl.d.next = self.yl.q.val();
+        if self.start.val() {
+            self.xl.d.next = self.x_in.val();
+            self.yl.d.next = self.y_in.val();
         }
-        self.xa.next = bit_cast::<8, 32>(self.xr.q.val()) & self.dmask.val();
-        self.ya.next = bit_cast::<8, 32>(self.yr.q.val()) & self.dmask.val();
-        if self.first.val() {
-            self.xa.next = bit_cast::<8, 32>(self.x_in.val() >> self.jb.val()) & self.dmask.val();
-            self.ya.next = bit_cast::<8, 32>(self.ysx.val() >> self.jb.val()) & self.dmask.val();
+        self.xm.next = bit_cast::<8, 32>(self.x_in.val()) & self.jhot[0].q.val();
+        self.ym.next = bit_cast::<8, 32>(self.y_in.val()) & self.jhot[0].q.val();
+        self.shx.next = self.xl.q.val();
+        self.shy.next = self.yl.q.val();
+        for i in 1..self.jhot.len() {
+            self.shx.next = self.shx.val() >> self.dsh.val();
+            self.shy.next = self.shy.val() >> self.dsh.val();
+            self.xm.next = self.xm.val() | (bit_cast::<8, 32>(self.shx.val()) & self.jhot[i].q.val());
+            self.ym.next = self.ym.val() | (bit_cast::<8, 32>(self.shy.val()) & self.jhot[i].q.val());
         }
-        // Shifted operands: tap k of the other register; bits past the old word take the
-        // fill (y: its sign = dir; x: 0). In iteration 0 the shift is 0: the other own digit.
-        self.t.next = bit_cast::<8, 5>(self.jb.val()) + bit_cast::<8, 5>(self.kin.val());
-        self.fillm.next = self.zero8.val();
-        if self.t.val() >= self.fth0.val() {
-            self.fillm.next = self.fillm.val() | self.fb0.val();
+        // Own digits: the mapper's in iteration 0 (hot[0]), else the register's bottom digit.
+        self.xa.next = (bit_cast::<8, 32>(self.xr.q.val()) & self.dmask.val() & !self.hot[0].q.val())
+            | (self.xm.val() & self.hot[0].q.val());
+        self.ya.next = (bit_cast::<8, 32>(self.yr.q.val()) & self.dmask.val() & !self.hot[0].q.val())
+            | (self.ym.val() & self.hot[0].q.val());
+        // Shifted operands: tap k of the other register (AND-OR over the one-hot iteration
+        // masks); in iteration 0 the shift is 0 and the operand is the mapper's other digit.
+        self.xb.next = self.xm.val() & self.hot[0].q.val();
+        self.yb.next = self.ym.val() & self.hot[0].q.val();
+        self.shx.next = self.xr.q.val();
+        self.shy.next = self.yr.q.val();
+        for i in 1..self.hot.len() {
+            self.shx.next = self.shx.val() >> self.bsh.val();
+            self.shy.next = self.shy.val() >> self.bsh.val();
+            self.xb.next = self.xb.val() | (bit_cast::<8, 32>(self.shx.val()) & self.hot[i].q.val());
+            self.yb.next = self.yb.val() | (bit_cast::<8, 32>(self.shy.val()) & self.hot[i].q.val());
         }
-        if self.t.val() >= self.fth1.val() {
-            self.fillm.next = self.fillm.val() | self.fb1.val();
-        }
-        if self.t.val() >= self.fth2.val() {
-            self.fillm.next = self.fillm.val() | self.fb2.val();
-        }
-        if self.t.val() >= self.fth3.val() {
-            self.fillm.next = self.fillm.val() | self.fb3.val();
-        }
-        self.xb.next = bit_cast::<8, 32>(self.xr.q.val() >> self.ksh.val())
-            & self.dmask.val()
-            & !self.fillm.val();
-        self.yb.next = bit_cast::<8, 32>(self.yr.q.val() >> self.ksh.val())
-            & self.dmask.val()
-            & !self.fillm.val();
+        // Bits past the old word take the fill (y: its sign = dir; x: 0); never in
+        // iteration 0 (4j + b < W' there). The mask is registered (see fill_reg).
+        self.fillm.next = self.fill_reg.q.val();
+        self.xb.next = self.xb.val() & !self.fillm.val();
+        self.yb.next = self.yb.val() & !self.fillm.val();
         if self.dir.val() {
             self.yb.next = self.yb.val() | self.fillm.val();
         }
-        if self.first.val() {
-            self.xb.next = self.xa.val();
-            self.yb.next = self.ya.val();
+        // One-hot masks: back to (k, j) = (0, 0) when idle or at the last clock of a sample;
+        // else the next digit, and at the last digit the next iteration.
+        self.adv.next = self.active.val() & !self.last.val() & !self.rst.val();
+        for i in 0..self.hot.len() {
+            self.hot[i].clock.next = self.clk.val();
+            self.hot[i].d.next = self.hot[i].q.val();
+        }
+        for i in 0..self.jhot.len() {
+            self.jhot[i].clock.next = self.clk.val();
+            self.jhot[i].d.next = self.zero8.val();
+        }
+        if self.adv.val() {
+            self.jhot[0].d.next = self.zero8.val();
+            for i in 1..self.jhot.len() {
+                self.jhot[i].d.next = self.jhot[i - 1].q.val();
+            }
+            if self.jlast.val() {
+                self.jhot[0].d.next = self.dmask.val();
+                self.hot[0].d.next = self.zero8.val();
+                for i in 1..self.hot.len() {
+                    self.hot[i].d.next = self.hot[i - 1].q.val();
+                }
+            }
+        } else {
+            self.jhot[0].d.next = self.dmask.val();
+            self.hot[0].d.next = self.dmask.val();
+            for i in 1..self.hot.len() {
+                self.hot[i].d.next = self.zero8.val();
+            }
         }
         // x - y>>k when y < 0 (x + |y|>>k), else x + y>>k... in the unrolled stage's form:
         // x + ((y>>k) ^ m) + c and y + ((x>>k) ^ !m) + !c, m = all ones when y < 0.
@@ -485,12 +539,33 @@ impl Logic for IterativeCordic {
                         & self.zmask.val();
             }
         }
-        self.j_reg.d.next = self.jin.val() + self.jone.val();
-        self.k_reg.d.next = self.kin.val();
+        self.jn.next = self.jin.val() + self.jone.val();
+        self.kn.next = self.kin.val();
         if self.jlast.val() {
-            self.j_reg.d.next = self.jzero.val();
-            self.k_reg.d.next = self.kin.val() + self.kone.val();
+            self.jn.next = self.jzero.val();
+            self.kn.next = self.kin.val() + self.kone.val();
         }
+        self.j_reg.d.next = self.jn.val();
+        self.k_reg.d.next = self.kn.val();
+        // The next clock's fill mask: tap bit b reads fill once 4j + k + b >= W'.
+        self.tn.next = (bit_cast::<8, 3>(self.jn.val()) << self.jsh8.val())
+            + bit_cast::<8, 5>(self.kn.val());
+        self.fnx.next = self.zero8.val();
+        if self.adv.val() {
+            if self.tn.val() >= self.fth0.val() {
+                self.fnx.next = self.fnx.val() | self.fb0.val();
+            }
+            if self.tn.val() >= self.fth1.val() {
+                self.fnx.next = self.fnx.val() | self.fb1.val();
+            }
+            if self.tn.val() >= self.fth2.val() {
+                self.fnx.next = self.fnx.val() | self.fb2.val();
+            }
+            if self.tn.val() >= self.fth3.val() {
+                self.fnx.next = self.fnx.val() | self.fb3.val();
+            }
+        }
+        self.fill_reg.d.next = self.fnx.val();
         self.busy_reg.d.next = self.active.val() & !self.last.val() & !self.rst.val();
         self.done_reg.d.next = self.active.val() & self.last.val() & !self.rst.val();
         // Drop bookkeeping: a sample offered while not ready marks the next accepted one.

@@ -49,6 +49,18 @@ pub struct Fallback {
     prevq: DFF<Bits<32>>,
     sq: DFF<Bits<32>>,
     st: DFF<Bits<32>>,
+    /// The previous sample's capture (deep mode: two samples in flight).
+    sq2: DFF<Bits<32>>,
+    st2: DFF<Bits<32>>,
+    /// Deep mode: a load waits for the previous sample to leave the core.
+    lpend: DFF<Bit>,
+    /// Capture of the sample leaving the core now.
+    csq: Signal<Local, Bits<32>>,
+    cst: Signal<Local, Bits<32>>,
+    /// Deep mode: a sample takes longer from the ADC's out_valid to the core's out_valid
+    /// (correction + core latency) than one ADC period, so the next sample's out_valid comes
+    /// first (the digit-serial iterative core).
+    deep: Constant<Bit>,
     fast: DFF<Bit>,
     busy: DFF<Bit>,
     aligned: DFF<Bits<32>>,
@@ -102,6 +114,13 @@ pub struct Fallback {
 /// Quiet samples before the fallback mode ends.
 pub const QUIET_SAMPLES: u32 = 8;
 
+/// Deep mode: correction + core latency longer than one ADC period (see `Fallback::deep`).
+/// At most two samples are ever in flight: the iterative core takes at most one ADC period
+/// per sample (`sinedec check`), so its latency is below two periods.
+pub fn deep(d: &Derived) -> bool {
+    crate::blocks::correction::LATENCY_CYCLES + d.latency_cycles > d.adc.period_clocks
+}
+
 impl Fallback {
     /// Fallback for the derived parameters.
     pub fn new(d: &Derived) -> Self {
@@ -134,6 +153,12 @@ impl Fallback {
             prevq: Default::default(),
             sq: Default::default(),
             st: Default::default(),
+            sq2: Default::default(),
+            st2: Default::default(),
+            lpend: Default::default(),
+            csq: Default::default(),
+            cst: Default::default(),
+            deep: Constant::new(deep(d)),
             fast: Default::default(),
             busy: Default::default(),
             aligned: Default::default(),
@@ -176,7 +201,7 @@ impl Logic for Fallback {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, fast, busy,
+            self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sq2, st2, lpend, fast, busy,
             aligned, act, quiet, load_r, lqc, lturns, mis, oq, ot
         );
         self.cnt_prev.d.next = self.qep_count.val();
@@ -207,6 +232,8 @@ impl Logic for Fallback {
         }
         self.load_r.d.next = false;
         if self.adc_valid.val() {
+            self.sq2.d.next = self.sq.q.val();
+            self.st2.d.next = self.st.q.val();
             self.sq.d.next = self.c2q.q.val();
             self.st.d.next = self.c2t.q.val();
             self.prevq.d.next = self.c2q.q.val();
@@ -219,14 +246,27 @@ impl Logic for Fallback {
                 | (((self.mv.val() & self.sign32.val()).any())
                     & (self.mv.val() <= self.minus_two.val()));
             if self.act.q.val() & self.enable.val() {
-                self.load_r.d.next = true;
+                // Deep mode: the load is issued when the previous sample leaves the core, so
+                // that the counter applies it to this one.
+                self.load_r.d.next = !self.deep.val();
+                self.lpend.d.next = self.deep.val();
                 self.lqc.d.next = self.lq.val();
                 self.lturns.d.next = self.lt.val() & self.tmask.val();
             }
         }
+        if self.core_valid.val() & self.lpend.q.val() {
+            self.load_r.d.next = true;
+            self.lpend.d.next = false;
+        }
+        self.csq.next = self.sq.q.val();
+        self.cst.next = self.st.q.val();
+        if self.deep.val() {
+            self.csq.next = self.sq2.q.val();
+            self.cst.next = self.st2.q.val();
+        }
         // Core sample: offset of this sample (core - capture) in 0..4PPR-1 with its turns.
-        self.dq.next = self.core_qc.val() - self.sq.q.val();
-        self.dt.next = self.core_turns.val() - self.st.q.val();
+        self.dq.next = self.core_qc.val() - self.csq.val();
+        self.dt.next = self.core_turns.val() - self.cst.val();
         if (self.dq.val() & self.sign32.val()).any() {
             self.dq.next = self.dq.val() + self.qturn.val();
             self.dt.next = self.dt.val() - self.one.val();
@@ -289,6 +329,7 @@ impl Logic for Fallback {
             self.act.d.next = false;
             self.quiet.d.next = self.zero.val();
             self.load_r.d.next = false;
+            self.lpend.d.next = false;
             self.mis.d.next = false;
             self.fast.d.next = false;
             self.busy.d.next = false;
