@@ -327,7 +327,10 @@ fn throughput_check_rejects_too_slow_iterative_designs() {
     assert!(l.derived.describe().contains("1 sample per 98 clock"));
     let text = DEFAULT_CONFIG
         .replace("iterations = 14", "iterations = 15")
-        .replace("architecture = \"unrolled\"", "architecture = \"iterative\"");
+        .replace(
+            "architecture = \"unrolled\"",
+            "architecture = \"iterative\"",
+        );
     let e = Loaded::parse(&text, "test").unwrap_err().to_string();
     assert!(e.contains("105 clocks") && e.contains("at most 14"), "{e}");
     // An unknown architecture is rejected.
@@ -336,17 +339,16 @@ fn throughput_check_rejects_too_slow_iterative_designs() {
     assert!(e.contains("unrolled") && e.contains("iterative"), "{e}");
 }
 
-/// Synthesis figures of both cores at N = 14, default widths (xc3sa): the iterative core
-/// must be smaller, its CORDIC part (core minus the shared mapper/combiner/counter) at most
-/// 60% of the unrolled one's. Measured: 972 vs 1444 LUT for the whole core, 565 vs 1037 for
-/// the CORDIC part. The "at most a third of the whole core" is NOT met: the shared
-/// mapper + combiner + counter alone are about 330 LUT (23% of the unrolled core) and the
-/// two 26-bit shifters about 200 LUT4.
+/// Synthesis figures of both cores at N = 14, default widths (Yosys `synth_xilinx -family
+/// xc3sa`, the report's method): the target, the iterative core at most a third of
+/// the unrolled core's LUTs. Measured: 388 vs 1175 LUT (0.330). The CORDIC part alone (core
+/// minus the N = 1 core, which bounds the shared mapper/combiner/counter plus one stage) is
+/// checked too, so that a shrinking shared part cannot hide a growing engine.
 #[test]
-fn iterative_core_uses_fewer_luts() {
+fn iterative_core_uses_at_most_a_third_of_the_luts() {
     let (whole, part) = lut_figures();
-    assert!(10 * whole.1 <= 7 * whole.0, "{whole:?}");
-    assert!(10 * part.1 <= 6 * part.0, "{part:?}");
+    assert!(3 * whole.1 <= whole.0, "{whole:?}");
+    assert!(10 * part.1 <= 3 * part.0, "{part:?}");
 }
 
 /// ((unrolled, iterative) whole-core LUTs, (unrolled, iterative) CORDIC-part LUTs).
@@ -452,5 +454,44 @@ fn iterative_top_gives_the_unrolled_position_trace_end_to_end() {
         }
         // The run may end while the iterative core still holds the last sample.
         assert!(traces[0].len() - traces[1].len() <= 1, "profile {k}");
+    }
+}
+
+/// The iterative top at 20,000 rpm (above the unwrap limit: the QEP fallback, in its deep
+/// mode, resynchronises the counter at every sample), replayed from the closed loop in
+/// Icarus and Verilator: the same pin and position trace as rust-hdl.
+#[test]
+fn iterative_top_replayed_in_icarus_and_verilator() {
+    use sinedec::blocks::fallback::hdl::deep;
+    use sinedec::blocks::top::hdl::TopRtl;
+    use sinedec::sim::encoder::EncoderModel;
+    use sinedec::sim::system::System;
+    use sinedec::verify::CosimBlock;
+    let l = cfg(14, "iterative");
+    let d = &l.derived;
+    assert!(deep(d), "the iterative top needs the fallback's deep mode");
+    assert!(!deep(&cfg(14, "unrolled").derived));
+    let enc = EncoderModel::ideal(2048, 1.0, 20_000.0).with_seed(3);
+    let mut s = System::new(d, enc).expect("system");
+    s.record_inputs();
+    s.start().expect("settles");
+    let mut rust = vec![];
+    for _ in 0..8000 {
+        s.run(1).expect("runs");
+        rust.push(s.top().sample());
+    }
+    let r = s.finish();
+    assert!(r.records.len() > 50, "{}", r.records.len());
+    eprintln!("iterative top at 20,000 rpm: {:?}", r.stats(d, 2));
+    let dir = common::workdir("iterative_top_replay");
+    let top = TopRtl::new(d).expect("top");
+    let t = block_traces(top, "it14_top_rtl", "clk", &r.inputs, Simulators::ALL, &dir)
+        .expect("simulators ran");
+    assert_eq!(
+        t.rust_hdl, rust,
+        "block_traces' own rust-hdl run equals the loop"
+    );
+    if let Some(m) = t.mismatch() {
+        panic!("{m}");
     }
 }

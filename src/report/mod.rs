@@ -1087,7 +1087,7 @@ impl Report {
             (
                 "timing",
                 format!(
-                    "Latency: cycles from the in_valid cycle to the out_valid cycle of `<name>_core` (N + 2: one stage per iteration, the combiner and the counter), in ns at the configured clock of {:.3} MHz. Throughput: samples per second the core accepts: the clock for the unrolled CORDIC (one sample per clock), the clock / N for the iterative one (cordic.architecture = {:?}).",
+                    "Latency: cycles from the in_valid cycle to the out_valid cycle of `<name>_core` (unrolled: N + 2, one stage per iteration, the combiner and the counter; iterative: S + 2 with S = N·ceil(W/4) digit clocks), in ns at the configured clock of {:.3} MHz. Throughput: samples per second the core accepts: the clock for the unrolled CORDIC (one sample per clock), the clock / S for the iterative one (cordic.architecture = {:?}).",
                     d.clock_hz / 1e6,
                     d.architecture
                 ),
@@ -1103,7 +1103,7 @@ impl Report {
                         .filter_map(|r| r.other.as_ref().err().map(|e| format!("N = {}: {e}", r.n)))
                         .collect();
                     format!(
-                        "For every N the core is synthesized a second time with cordic.architecture = \"{}\" (the configured one is \"{}\": its columns repeat the main table's), for xc3sa and cycloneive with the same scripts and cache. Latency is N + 2 cycles for both; throughput is the configured clock ({:.3} MHz) divided by the clocks per accepted sample (1 unrolled, N iterative). The ratio is iterative / unrolled xc3sa LUT4. The accuracy is identical for both architectures (their outputs are bit-identical for every input, proven by tests/iterative.rs), so the accuracy sweep is not repeated: the accuracy columns hold for both. {}",
+                        "For every N the core is synthesized a second time with cordic.architecture = \"{}\" (the configured one is \"{}\": its columns repeat the main table's), for xc3sa and cycloneive with the same scripts and cache. Latency is N + 2 cycles unrolled and S + 2 iterative (S = N·ceil(W/4): the iterative core is digit-serial, 4 bits per clock); throughput is the configured clock ({:.3} MHz) divided by the clocks per accepted sample (1 unrolled, S iterative). The ratio is iterative / unrolled xc3sa LUT4. The accuracy is identical for both architectures (their outputs are bit-identical for every input, proven by tests/iterative.rs), so the accuracy sweep is not repeated: the accuracy columns hold for both. {}",
                         arch_name(other),
                         arch_name(own),
                         d.clock_hz / 1e6,

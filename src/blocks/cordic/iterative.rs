@@ -369,8 +369,8 @@ impl Logic for IterativeCordic {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, xr, yr, zr, xl, yl, q_reg, k_reg, j_reg, cx_reg, cy_reg, fill_reg, dir_reg, busy_reg,
-            done_reg, drop_reg, lostm_reg, loste_reg, donec_reg, lostc_reg, hold_reg
+            self, clk, xr, yr, zr, xl, yl, q_reg, k_reg, j_reg, cx_reg, cy_reg, fill_reg, dir_reg,
+            busy_reg, done_reg, drop_reg, lostm_reg, loste_reg, donec_reg, lostc_reg, hold_reg
         );
         // Position: iteration k, digit offset 4j (a new sample starts at 0, 0).
         self.kin.next = self.kzero.val();
@@ -417,14 +417,18 @@ impl Logic for IterativeCordic {
         for i in 1..self.jhot.len() {
             self.shx.next = self.shx.val() >> self.dsh.val();
             self.shy.next = self.shy.val() >> self.dsh.val();
-            self.xm.next = self.xm.val() | (bit_cast::<8, 32>(self.shx.val()) & self.jhot[i].q.val());
-            self.ym.next = self.ym.val() | (bit_cast::<8, 32>(self.shy.val()) & self.jhot[i].q.val());
+            self.xm.next =
+                self.xm.val() | (bit_cast::<8, 32>(self.shx.val()) & self.jhot[i].q.val());
+            self.ym.next =
+                self.ym.val() | (bit_cast::<8, 32>(self.shy.val()) & self.jhot[i].q.val());
         }
         // Own digits: the mapper's in iteration 0 (hot[0]), else the register's bottom digit.
-        self.xa.next = (bit_cast::<8, 32>(self.xr.q.val()) & self.dmask.val() & !self.hot[0].q.val())
-            | (self.xm.val() & self.hot[0].q.val());
-        self.ya.next = (bit_cast::<8, 32>(self.yr.q.val()) & self.dmask.val() & !self.hot[0].q.val())
-            | (self.ym.val() & self.hot[0].q.val());
+        self.xa.next =
+            (bit_cast::<8, 32>(self.xr.q.val()) & self.dmask.val() & !self.hot[0].q.val())
+                | (self.xm.val() & self.hot[0].q.val());
+        self.ya.next =
+            (bit_cast::<8, 32>(self.yr.q.val()) & self.dmask.val() & !self.hot[0].q.val())
+                | (self.ym.val() & self.hot[0].q.val());
         // Shifted operands: tap k of the other register (AND-OR over the one-hot iteration
         // masks); in iteration 0 the shift is 0 and the operand is the mapper's other digit.
         self.xb.next = self.xm.val() & self.hot[0].q.val();
@@ -434,8 +438,10 @@ impl Logic for IterativeCordic {
         for i in 1..self.hot.len() {
             self.shx.next = self.shx.val() >> self.bsh.val();
             self.shy.next = self.shy.val() >> self.bsh.val();
-            self.xb.next = self.xb.val() | (bit_cast::<8, 32>(self.shx.val()) & self.hot[i].q.val());
-            self.yb.next = self.yb.val() | (bit_cast::<8, 32>(self.shy.val()) & self.hot[i].q.val());
+            self.xb.next =
+                self.xb.val() | (bit_cast::<8, 32>(self.shx.val()) & self.hot[i].q.val());
+            self.yb.next =
+                self.yb.val() | (bit_cast::<8, 32>(self.shy.val()) & self.hot[i].q.val());
         }
         // Bits past the old word take the fill (y: its sign = dir; x: 0); never in
         // iteration 0 (4j + b < W' there). The mask is registered (see fill_reg).
@@ -548,8 +554,8 @@ impl Logic for IterativeCordic {
         self.j_reg.d.next = self.jn.val();
         self.k_reg.d.next = self.kn.val();
         // The next clock's fill mask: tap bit b reads fill once 4j + k + b >= W'.
-        self.tn.next = (bit_cast::<8, 3>(self.jn.val()) << self.jsh8.val())
-            + bit_cast::<8, 5>(self.kn.val());
+        self.tn.next =
+            (bit_cast::<8, 3>(self.jn.val()) << self.jsh8.val()) + bit_cast::<8, 5>(self.kn.val());
         self.fnx.next = self.zero8.val();
         if self.adv.val() {
             if self.tn.val() >= self.fth0.val() {

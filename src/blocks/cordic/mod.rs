@@ -36,9 +36,10 @@
 //! Ports of [`hdl::QuadrantMapper`] and [`hdl::CordicStage`] are listed on the structs.
 //!
 //! Architectures (`cordic.architecture`): `"unrolled"` (default) instantiates the N stages
-//! above, one sample per clock; `"iterative"` ([`iterative::IterativeCordic`]) reuses one
-//! stage with a variable shift and an angle ROM, one sample per N clocks, with an
-//! `in_ready` handshake. Both have latency N + 2 and the same arithmetic, bit for bit (the
+//! above, one sample per clock, latency N + 2; `"iterative"`
+//! ([`iterative::IterativeCordic`]) reuses one digit-serial stage (4 bits per clock) with
+//! one-hot shift taps and an angle ROM, one sample per S = N·ceil(W/4) clocks, latency
+//! S + 2, with an `in_ready` handshake. Both have the same arithmetic, bit for bit (the
 //! model of both is [`model::cordic`]).
 pub mod hdl;
 pub mod iterative;

@@ -201,8 +201,8 @@ impl Logic for Fallback {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sq2, st2, lpend, fast, busy,
-            aligned, act, quiet, load_r, lqc, lturns, mis, oq, ot
+            self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sq2, st2,
+            lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns, mis, oq, ot
         );
         self.cnt_prev.d.next = self.qep_count.val();
         self.conv_prev.d.next = self.conv.val();

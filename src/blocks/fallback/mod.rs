@@ -16,7 +16,11 @@
 //!   every CONV rise into c1, c1 moves to c2, and the ADC delivers the data of the
 //!   conversion before the last CONV (LTC1407A-1: one frame of pipeline), so at the ADC's
 //!   `out_valid` the sample's capture is c2. It waits in (sq, st) for the sample to leave the
-//!   core (correction + core latency, far shorter than a sample period).
+//!   core (correction + core latency: 3 + N + 2 clocks unrolled, far shorter than a sample
+//!   period). Deep mode (the digit-serial iterative core, whose latency exceeds one ADC
+//!   period): the next sample's out_valid comes first, so the capture moves on to
+//!   (sq2, st2) and is used from there, and a fallback load is issued when the previous
+//!   sample leaves the core, so that the counter applies it to the right sample.
 //! * The tracker runs free on the QEP steps; an offset (oq, ot) relates it to the CORDIC
 //!   count. Normal mode: at each good core sample the offset is set to (qc - sq, turns - st),
 //!   so the QEP count follows the CORDIC count (exact at low speed); dd = qc - sq - oq with
