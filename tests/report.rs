@@ -426,7 +426,13 @@ fn report_is_deterministic_and_formats_agree() {
     // errors within the design's bound, and the paper's figure for N = 2 marked as such.
     for n in 2..=4u32 {
         assert_eq!(csv_cell("latency_cycles", n), (n + 2).to_string());
-        assert_eq!(csv_cell("iterative_latency_cycles", n), (n + 2).to_string());
+        // The digit-serial iterative core: S = N * ceil(W / 4) clocks per sample, S + 2.
+        let w = common::cfg(n, 10, 14, 2048, 0).derived.xy_width;
+        let s_it = n * w.div_ceil(4);
+        assert_eq!(
+            csv_cell("iterative_latency_cycles", n),
+            (s_it + 2).to_string()
+        );
         assert!(csv_cell("xc3sa_lut", n).parse::<u64>().unwrap() > 0);
         assert!(csv_cell("cycloneive_ff", n).parse::<u64>().unwrap() > 0);
         assert!(csv_cell("gates", n).parse::<u64>().unwrap() > 0);
@@ -543,7 +549,12 @@ fn architecture_columns_equal_an_independent_synthesis() {
     let clock = base.config.clock.frequency_hz;
     let dir = common::workdir("report_arch");
     let mut luts = Vec::new();
-    for (arch, per_sample) in [("unrolled", 1.0), ("iterative", n as f64)] {
+    // Iterative: digit-serial, S = N * ceil(W / 4) clocks per sample, latency S + 2.
+    let s_it = n * base.derived.xy_width.div_ceil(4);
+    for (arch, per_sample, latency) in [
+        ("unrolled", 1.0, n + 2),
+        ("iterative", s_it as f64, s_it + 2),
+    ] {
         let text = base.text.replace(
             "architecture = \"unrolled\"",
             &format!("architecture = \"{arch}\""),
@@ -562,7 +573,7 @@ fn architecture_columns_equal_an_independent_synthesis() {
         assert_eq!(col("xc3sa_ff"), x.ffs as f64, "{arch} xc3sa FF");
         assert_eq!(col("cycloneive_lut"), c.luts as f64, "{arch} cycloneive LE");
         assert_eq!(col("cycloneive_ff"), c.ffs as f64, "{arch} cycloneive FF");
-        assert_eq!(col("latency_cycles"), (n + 2) as f64, "{arch} latency");
+        assert_eq!(col("latency_cycles"), latency as f64, "{arch} latency");
         let thr = clock / per_sample / 1e6;
         assert!(
             (col("throughput_msps") - thr).abs() <= 0.0005 + 1e-9,
