@@ -12,6 +12,7 @@ use std::f64::consts::FRAC_PI_2;
 /// * output rounding: uniform +-1/2 LSB (1/sqrt(12));
 /// * the CORDIC's systematic residual at N = 14: at most 2.27 - 1 = 1.27 LSB
 ///   (tests/accuracy.rs bound minus its rounding allowance).
+///
 /// RMS <= sqrt(noise^2 + adc_q^2 + 1/12) + 1.27; max <= 5.5 sigma(noise + adc_q) + 0.5 + 1.27
 /// (5.5 sigma: a Gaussian exceeds it with probability 4e-8 per sample, over ~2000 samples).
 fn bounds(l: &Loaded, noise_lsb: f64, amp: f64) -> (f64, f64) {

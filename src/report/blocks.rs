@@ -11,7 +11,7 @@
 //!
 //! Adding a block (e.g. the biquad engine or the NCO) is one entry of [`BLOCKS`]:
 //!
-//! ```ignore
+//! ```text
 //! BlockDef { key: "nco", label: "NCO", build: |l| job(l, "nco", Nco::new(&l.derived.nco), BlockTiming::latency(2, "phase to output")) },
 //! ```
 //!
