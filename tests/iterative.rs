@@ -463,35 +463,12 @@ fn iterative_top_gives_the_unrolled_position_trace_end_to_end() {
 #[test]
 fn iterative_top_replayed_in_icarus_and_verilator() {
     use sinedec::blocks::fallback::hdl::deep;
-    use sinedec::blocks::top::hdl::TopRtl;
-    use sinedec::sim::encoder::EncoderModel;
-    use sinedec::sim::system::System;
-    use sinedec::verify::CosimBlock;
     let l = cfg(14, "iterative");
-    let d = &l.derived;
-    assert!(deep(d), "the iterative top needs the fallback's deep mode");
-    assert!(!deep(&cfg(14, "unrolled").derived));
-    let enc = EncoderModel::ideal(2048, 1.0, 20_000.0).with_seed(3);
-    let mut s = System::new(d, enc).expect("system");
-    s.record_inputs();
-    s.start().expect("settles");
-    let mut rust = vec![];
-    for _ in 0..8000 {
-        s.run(1).expect("runs");
-        rust.push(s.top().sample());
-    }
-    let r = s.finish();
-    assert!(r.records.len() > 50, "{}", r.records.len());
-    eprintln!("iterative top at 20,000 rpm: {:?}", r.stats(d, 2));
-    let dir = common::workdir("iterative_top_replay");
-    let top = TopRtl::new(d).expect("top");
-    let t = block_traces(top, "it14_top_rtl", "clk", &r.inputs, Simulators::ALL, &dir)
-        .expect("simulators ran");
-    assert_eq!(
-        t.rust_hdl, rust,
-        "block_traces' own rust-hdl run equals the loop"
+    assert!(
+        deep(&l.derived),
+        "the iterative top needs the fallback's deep mode"
     );
-    if let Some(m) = t.mismatch() {
-        panic!("{m}");
-    }
+    assert!(!deep(&cfg(14, "unrolled").derived));
+    let r = common::replay_top_in_simulators(&l, 20_000.0, 8000, "iterative_top_replay");
+    eprintln!("iterative top at 20,000 rpm: {:?}", r.stats(&l.derived, 2));
 }

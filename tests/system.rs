@@ -3,6 +3,7 @@
 use sinedec::config::Loaded;
 use sinedec::sim::encoder::EncoderModel;
 use sinedec::sim::system::System;
+mod common;
 
 #[test]
 fn constant_speed_closed_loop() {
@@ -33,34 +34,8 @@ fn constant_speed_closed_loop() {
 /// unwrap limit, so the QEP fallback resynchronises the counter at every sample.
 #[test]
 fn closed_loop_replayed_in_icarus_and_verilator() {
-    use sinedec::blocks::top::hdl::TopRtl;
-    use sinedec::verify::{block_traces, CosimBlock, Simulators};
     let l = Loaded::default_config().expect("default");
-    let d = &l.derived;
-    let enc = EncoderModel::ideal(2048, 1.0, 20_000.0).with_seed(3);
-    let mut s = System::new(d, enc).expect("system");
-    s.record_inputs();
-    s.start().expect("settles");
-    let mut rust = vec![];
-    for _ in 0..8000 {
-        s.run(1).expect("runs");
-        rust.push(s.top().sample());
-    }
-    let r = s.finish();
-    assert!(r.records.len() > 50);
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("system_replay");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("dir");
-    let top = TopRtl::new(d).expect("top");
-    let t = block_traces(top, "sd_top_rtl", "clk", &r.inputs, Simulators::ALL, &dir)
-        .expect("simulators ran");
-    assert_eq!(
-        t.rust_hdl, rust,
-        "block_traces' own rust-hdl run equals the closed loop"
-    );
-    if let Some(m) = t.mismatch() {
-        panic!("{m}");
-    }
+    common::replay_top_in_simulators(&l, 20_000.0, 8000, "system_replay");
 }
 
 /// BiSS-C end to end: encoder -> ADC -> top -> BiSS master model. Every frame's CRC checks,

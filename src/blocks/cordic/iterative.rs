@@ -372,7 +372,7 @@ impl Logic for IterativeCordic {
             self, clk, xr, yr, zr, xl, yl, q_reg, k_reg, j_reg, cx_reg, cy_reg, fill_reg, dir_reg,
             busy_reg, done_reg, drop_reg, lostm_reg, loste_reg, donec_reg, lostc_reg, hold_reg
         );
-        // Position: iteration k, digit offset 4j (a new sample starts at 0, 0).
+        // Position: iteration k, digit j (a new sample starts at 0, 0).
         self.kin.next = self.kzero.val();
         self.jin.next = self.jzero.val();
         self.q_reg.d.next = self.q_in.val();
@@ -608,13 +608,13 @@ impl Logic for IterativeCordic {
 pub struct IterTiming<S: Clone> {
     /// Sample in the mapper register, with its lost mark.
     pub mapper: Option<(S, bool)>,
-    /// Engine busy with iterations 1.. of `cur`.
+    /// Engine busy with clocks 1.. of `cur`.
     pub busy: bool,
-    /// Next iteration index when busy.
+    /// Next clock index (0..S-1) when busy.
     pub k: u32,
     /// Sample in the engine.
     pub cur: Option<(S, bool)>,
-    /// Sample whose iterations finished at the last edge.
+    /// Sample whose S clocks finished at the last edge.
     pub done: Option<(S, bool)>,
     /// Sample in the combiner register.
     pub comb: Option<(S, bool)>,
@@ -639,23 +639,24 @@ impl<S: Clone> IterTiming<S> {
         }
     }
 
-    /// in_ready for the coming cycle (a function of the state only).
-    pub fn ready(&self, n: u32) -> bool {
+    /// in_ready for the coming cycle (a function of the state only); `steps` = S, the
+    /// engine's clocks per sample ([`steps`]).
+    pub fn ready(&self, steps: u32) -> bool {
         let active = self.busy || self.mapper.is_some();
         let kin = if self.busy { self.k } else { 0 };
-        !(active && kin != n - 1)
+        !(active && kin != steps - 1)
     }
 
     /// One clock edge. `offer` is the sample presented with in_valid (computed lazily by
     /// the caller); returns the sample the combiner hands to the counter at this edge.
     pub fn clock(
         &mut self,
-        n: u32,
+        steps: u32,
         rst: bool,
         valid: bool,
         offer: impl FnOnce() -> S,
     ) -> Option<S> {
-        let ready = self.ready(n);
+        let ready = self.ready(steps);
         let to_counter = self.comb.clone().map(|c| c.0);
         let hold = if rst {
             false
@@ -667,7 +668,7 @@ impl<S: Clone> IterTiming<S> {
         let comb = if rst { None } else { self.done.clone() };
         let active = self.busy || self.mapper.is_some();
         let kin = if self.busy { self.k } else { 0 };
-        let last = kin == n - 1;
+        let last = kin == steps - 1;
         let cur = if self.busy {
             self.cur.clone()
         } else {
