@@ -281,6 +281,21 @@ pub struct BoardConfig {
     /// preset's.
     #[serde(default)]
     pub pins: std::collections::BTreeMap<String, PinValue>,
+    /// Oscillator on the `clk` pin, Hz: 50 MHz with the Starter Kit preset, else
+    /// `clock.frequency_hz`. When it differs from the system clock, `generate` writes
+    /// `<name>_board.v` with a DCM_SP (Spartan-3AN) or ALTPLL (Cyclone III) making it.
+    #[serde(default)]
+    pub clock_hz: Option<f64>,
+    /// Budget for the FPGA's clock-to-output of the ADC outputs, ns (default 6; the
+    /// UCF/SDC make the vendor tool verify it). See `crate::board`.
+    #[serde(default)]
+    pub fpga_clock_to_out_ns: Option<f64>,
+    /// Budget for the FPGA's pad set-up at `adc_miso`, ns (default 3; verified likewise).
+    #[serde(default)]
+    pub fpga_input_setup_ns: Option<f64>,
+    /// One board trace between the FPGA and the ADC, ns (default 1: about 15 cm).
+    #[serde(default)]
+    pub trace_delay_ns: Option<f64>,
 }
 
 /// A pin (`"Y6"`) or the pins of a bus, LSB first.
@@ -792,6 +807,107 @@ pub struct Derived {
     pub max_speed_rpm_full_res: f64,
     /// Resolution bits per turn: log2(4 * PPR * 2^F).
     pub resolution_bits: f64,
+    /// The board clock (with `[board]`): the oscillator and the DCM/PLL making the system
+    /// clock from it, if it differs (see `crate::board`).
+    pub board_clock: Option<crate::board::BoardClock>,
+    /// The ADC interface's I/O timing budget (`[board]` keys or defaults).
+    pub io_timing: crate::board::IoTiming,
+}
+
+/// The board clock and the ADC's I/O timing budget, checked: the synthesizer must reach
+/// `clock.frequency_hz` from `board.clock_hz`, and the SCK period must leave room for the
+/// ADC round trip (see `crate::board`).
+fn board_timing(
+    c: &Config,
+    adc: &AdcParams,
+    err: &dyn Fn(&str, &str, String) -> Error,
+) -> Result<(Option<crate::board::BoardClock>, crate::board::IoTiming)> {
+    use crate::board::{IoTiming, STARTER_KIT_CLOCK_HZ};
+    let mut io = IoTiming::DEFAULT;
+    let mut board_clock = None;
+    if let Some(b) = &c.board {
+        for (key, v, slot) in [
+            ("fpga_clock_to_out_ns", b.fpga_clock_to_out_ns, &mut io.clock_to_out_ns),
+            ("fpga_input_setup_ns", b.fpga_input_setup_ns, &mut io.input_setup_ns),
+            ("trace_delay_ns", b.trace_delay_ns, &mut io.trace_ns),
+        ] {
+            if let Some(v) = v {
+                if !(0.0..=100.0).contains(&v) {
+                    return Err(err(
+                        "board",
+                        key,
+                        format!("`{key}` = {v} is out of range: allowed 0..=100 ns"),
+                    ));
+                }
+                *slot = v;
+            }
+        }
+        let kit = b.preset.as_deref() == Some("spartan3an-starter-kit");
+        let osc = match (b.clock_hz, kit) {
+            (Some(f), _) => {
+                if !(1.0e6..=500.0e6).contains(&f) {
+                    return Err(err(
+                        "board",
+                        "clock_hz",
+                        format!("`clock_hz` = {f} is out of range: allowed 1e6..=500e6 Hz"),
+                    ));
+                }
+                f
+            }
+            (None, true) => STARTER_KIT_CLOCK_HZ,
+            (None, false) => c.clock.frequency_hz,
+        };
+        let key = if b.clock_hz.is_some() { "clock_hz" } else { "preset" };
+        board_clock = Some(
+            crate::board::board_clock(c.target, osc, c.clock.frequency_hz)
+                .map_err(|m| err("board", key, m))?,
+        );
+    }
+    let d = adc.sck_period_clocks;
+    let (available, needed) =
+        crate::board::adc_round_trip(&io, adc.timing.data_valid_ns, d, adc.clock_hz);
+    if available + 1e-9 < needed {
+        let t = 1e9 / adc.clock_hz;
+        let min_d = ((needed / t) - 1e-9).ceil() as u32;
+        return Err(err(
+            "adc",
+            "sck_period_clocks",
+            format!(
+                "an SCK period of {d} clocks ({available:.2} ns at {:.3} MHz) is shorter than the ADC round trip of {needed:.2} ns: FPGA clock-to-out {:.2} + 2 x board trace {:.2} + the ADC's SCK-to-data delay {:.2} + FPGA input set-up {:.2} ns (board.fpga_clock_to_out_ns, board.trace_delay_ns, board.fpga_input_setup_ns); use an SCK period of at least {min_d} clocks",
+                adc.clock_hz / 1e6,
+                io.clock_to_out_ns,
+                io.trace_ns,
+                adc.timing.data_valid_ns,
+                io.input_setup_ns,
+            ),
+        ));
+    }
+    Ok((board_clock, io))
+}
+
+/// `s` cut to 40 characters for echoing in a message.
+pub fn clip(s: &str) -> String {
+    if s.chars().count() <= 40 {
+        s.to_string()
+    } else {
+        format!("{}...", s.chars().take(40).collect::<String>())
+    }
+}
+
+/// A `[board.pins]` value as TOML text: "Y6" or ["A1", "B1"].
+fn pin_text(v: &PinValue) -> String {
+    match v {
+        PinValue::One(p) => format!("\"{}\"", clip(p)),
+        PinValue::Bus(ps) => format!(
+            "[{}]",
+            ps.iter()
+                .take(8)
+                .map(|p| format!("\"{}\"", clip(p)))
+                .collect::<Vec<_>>()
+                .join(", ")
+                + if ps.len() > 8 { ", ..." } else { "" }
+        ),
+    }
 }
 
 fn ceil_log2(v: u32) -> u32 {
@@ -834,8 +950,8 @@ pub fn locate(text: &str, table: &str, key: &str) -> String {
         return String::new();
     };
     let mut t = doc.get_ref();
-    if !table.is_empty() {
-        match t.get(table).and_then(|v| v.get_ref().as_table()) {
+    for part in table.split('.').filter(|p| !p.is_empty()) {
+        match t.get(part).and_then(|v| v.get_ref().as_table()) {
             Some(inner) => t = inner,
             None => return String::new(),
         }
@@ -1053,20 +1169,29 @@ impl Derived {
                     ));
                 }
             }
+            let stds = crate::board::iostandards(c.target);
             match b.effective_iostandard() {
-                Some(s)
-                    if !s.is_empty()
-                        && s.chars().all(|ch| ch.is_ascii_alphanumeric() || ch == '_') => {}
-                _ => {
+                Some(s) if stds.contains(&s.as_str()) => {}
+                Some(s) => {
                     return Err(err(
                         "board",
-                        if b.iostandard.is_some() {
-                            "iostandard"
-                        } else {
-                            "pins"
-                        },
-                        "`iostandard` (e.g. \"LVCMOS33\") is required without a `preset`"
-                            .to_string(),
+                        "iostandard",
+                        format!(
+                            "`iostandard` = \"{}\" is not a single-ended I/O standard of {}; allowed: {}",
+                            clip(&s),
+                            crate::board::package(c.target).0,
+                            stds.join(", ")
+                        ),
+                    ))
+                }
+                None => {
+                    return Err(err(
+                        "board",
+                        "pins",
+                        format!(
+                            "`iostandard` is required without a `preset`; allowed: {}",
+                            stds.join(", ")
+                        ),
                     ))
                 }
             }
@@ -1078,7 +1203,8 @@ impl Derived {
                 ));
             }
             let pins = b.effective_pins();
-            let valid = |v: &str| !v.is_empty() && v.chars().all(|ch| ch.is_ascii_alphanumeric());
+            let (package_name, package_file, balls) = crate::board::package(c.target);
+            let valid = |v: &str| balls.contains(&v);
             let ports = board_ports(c);
             let mut names: Vec<String> = ports
                 .iter()
@@ -1104,10 +1230,51 @@ impl Derived {
                         "board.pins",
                         k,
                         format!(
-                            "`{k}` = {v:?}: the key must be one of the top's ports ({}) and the value a package pin like \"Y6\" (a list of that many pins, LSB first, for a bus)",
-                            names.join(", ")
+                            "`{}` = {}: the key must be one of the top's ports ({}) and the value a ball of the {package_name} package like \"{}\" (listed in {package_file}; a list of that many balls, LSB first, for a bus)",
+                            clip(k),
+                            pin_text(v),
+                            names.join(", "),
+                            balls.get(balls.len() / 2).copied().unwrap_or("A1"),
                         ),
                     ));
+                }
+            }
+            // One ball, one port: a pin given twice, or on a pin the preset already uses.
+            let preset_pins = BoardConfig {
+                pins: Default::default(),
+                ..b.clone()
+            }
+            .effective_pins();
+            let mut owner: std::collections::BTreeMap<&str, &str> = Default::default();
+            let in_use: Vec<&str> = ports.iter().map(|p| p.0).collect();
+            for (port, v) in pins.iter().filter(|(p, _)| in_use.contains(&p.as_str())) {
+                let balls_of: Vec<&str> = match v {
+                    PinValue::One(x) => vec![x.as_str()],
+                    PinValue::Bus(xs) => xs.iter().map(String::as_str).collect(),
+                };
+                for ball in balls_of {
+                    if let Some(first) = owner.insert(ball, port.as_str()) {
+                        // Blame the key the user wrote (the later one when both are theirs).
+                        let (blamed, other) = if b.pins.contains_key(port) {
+                            (port.as_str(), first)
+                        } else {
+                            (first, port.as_str())
+                        };
+                        let whose = if preset_pins.get(other).is_some_and(|p| p.one() == Some(ball))
+                            && !b.pins.contains_key(other)
+                        {
+                            format!("the preset's pin for `{other}`")
+                        } else {
+                            format!("already given to `{other}`")
+                        };
+                        return Err(err(
+                            "board.pins",
+                            blamed,
+                            format!(
+                                "`{blamed}`: pin {ball} is {whose}; every port needs a ball of its own"
+                            ),
+                        ));
+                    }
                 }
             }
             let missing: Vec<&str> = ports
@@ -1128,9 +1295,12 @@ impl Derived {
                 ));
             }
         }
+        let (board_clock, io_timing) = board_timing(c, &adc, &err)?;
         let qep =
             QepParams::new(c.qep.filter_clocks, 32).map_err(|m| err("qep", "filter_clocks", m))?;
         Ok(Derived {
+            board_clock,
+            io_timing,
             adc,
             preamp,
             biss,
@@ -1167,6 +1337,45 @@ impl Derived {
         })
     }
 
+    /// The board clock and the ADC round trip, for `describe`.
+    fn describe_board(&self) -> String {
+        let mut s = String::new();
+        if let Some(b) = &self.board_clock {
+            match b.synth {
+                None => s.push_str(&format!(
+                    "board clock                 {:.3} MHz oscillator = the system clock (no clock synthesizer)\n",
+                    b.osc_hz / 1e6
+                )),
+                Some(x) => s.push_str(&format!(
+                    "board clock                 {:.3} MHz oscillator -> {} x {} / {} = {:.3} MHz ({:+.0} ppm from clock.frequency_hz), reset held until locked\n",
+                    b.osc_hz / 1e6,
+                    x.kind.label(),
+                    x.multiply,
+                    x.divide,
+                    x.out_hz / 1e6,
+                    x.error_ppm
+                )),
+            }
+        }
+        let io = &self.io_timing;
+        let (available, needed) = crate::board::adc_round_trip(
+            io,
+            self.adc.timing.data_valid_ns,
+            self.adc.sck_period_clocks,
+            self.adc.clock_hz,
+        );
+        s.push_str(&format!(
+            "ADC round trip              {needed:.2} ns of {available:.2} ns (SCK period {} clocks): clock-to-out {:.2} + 2 x trace {:.2} + SCK-to-data {:.2} + input set-up {:.2}; slack {:.2} ns\n",
+            self.adc.sck_period_clocks,
+            io.clock_to_out_ns,
+            io.trace_ns,
+            self.adc.timing.data_valid_ns,
+            io.input_setup_ns,
+            available - needed
+        ));
+        s
+    }
+
     /// Latency in nanoseconds at the configured clock.
     pub fn latency_ns(&self) -> f64 {
         self.latency_cycles as f64 * 1e9 / self.clock_hz
@@ -1175,6 +1384,7 @@ impl Derived {
     /// Human-readable listing printed by `sinedec check`.
     pub fn describe(&self) -> String {
         let mut s = self.describe_core();
+        s.push_str(&self.describe_board());
         if let Some(k) = &self.capacitive {
             // theta moves periods_per_turn x rpm / 60 Hz; the low-pass corner bounds it.
             let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);

@@ -1,5 +1,6 @@
 //! sinedec: generator of verified Verilog for a sine/cosine encoder decoder.
 pub mod blocks;
+pub mod board;
 pub mod config;
 pub mod emit;
 pub mod error;

@@ -429,6 +429,11 @@ fn cap_constraints(loaded: &Loaded, command: &str) -> Option<(String, String)> {
     let iostd = b
         .and_then(|b| b.effective_iostandard())
         .unwrap_or_else(|| "3.3-V LVTTL".to_string());
+    let clock = board_clock(loaded);
+    let qsf_top = match clock.synth {
+        Some(_) => format!("{}_board", loaded.config.name),
+        None => top.clone(),
+    };
     let mut q = header(
         loaded,
         command,
@@ -438,7 +443,7 @@ fn cap_constraints(loaded: &Loaded, command: &str) -> Option<(String, String)> {
     q.push_str(&format!(
         "set_global_assignment -name FAMILY \"Cyclone III\"\n\
          set_global_assignment -name DEVICE EP3C40F324C8\n\
-         set_global_assignment -name TOP_LEVEL_ENTITY {top}\n\
+         set_global_assignment -name TOP_LEVEL_ENTITY {qsf_top}\n\
          set_global_assignment -name SDC_FILE {top}.sdc\n\
          # The parallel bus (par_*) is not constrained: it is meant for logic in the same FPGA.\n"
     ));
@@ -461,24 +466,118 @@ fn cap_constraints(loaded: &Loaded, command: &str) -> Option<(String, String)> {
             _ => {}
         }
     }
-    let period = 1e9 / loaded.derived.clock_hz;
+    let period = 1e9 / clock.osc_hz;
     let mut s = header(
         loaded,
         command,
         "SDC: clock of the board top (Quartus TimeQuest).",
         "#",
     );
+    s.push_str(&clock_comment(&clock, "#"));
     s.push_str(&format!(
-        "create_clock -name clk -period {period:.3} [get_ports clk]\n\
-         derive_clock_uncertainty\n\
+        "create_clock -name clk -period {period:.3} [get_ports clk]\n"
+    ));
+    // The ADC's I/O delays refer to the clock of the registers that drive and sample it.
+    let sys = match clock.synth {
+        Some(_) => {
+            s.push_str("derive_pll_clocks\n");
+            "[get_clocks {*|clk[0]}]"
+        }
+        None => "[get_clocks clk]",
+    };
+    let io = &loaded.derived.io_timing;
+    let t_sys = 1e9 / loaded.derived.clock_hz;
+    s.push_str(&format!(
+        "derive_clock_uncertainty\n\
          # MA is asynchronous: it enters through a two-flop synchronizer.\n\
          set_false_path -from [get_ports biss_ma]\n\
-         # The ADC data is sampled {d} system clocks after the SCK edge that shifts it.\n\
-         set_false_path -from [get_ports adc_miso]\n",
+         # ADC interface: the I/O timing budget of `sinedec check` (FPGA clock-to-out at most\n\
+         # {tco:.2} ns, pad set-up at most {tsu:.2} ns), verified here on the placed design. The\n\
+         # data itself is sampled {d} system clocks after the SCK edge that shifts it; `check`\n\
+         # verifies that round trip.\n\
+         set_output_delay -clock {sys} -max {omax:.3} [get_ports {{adc_sck adc_conv}}]\n\
+         set_output_delay -clock {sys} -min 0.000 [get_ports {{adc_sck adc_conv}}]\n\
+         set_input_delay -clock {sys} -max {imax:.3} [get_ports adc_miso]\n\
+         set_input_delay -clock {sys} -min 0.000 [get_ports adc_miso]\n",
         d = loaded.derived.adc.sck_period_clocks,
+        tco = io.clock_to_out_ns,
+        tsu = io.input_setup_ns,
+        omax = t_sys - io.clock_to_out_ns,
+        imax = t_sys - io.input_setup_ns,
     ));
     let _ = k;
     Some((q, s))
+}
+
+/// The board clock of the configuration (the system clock itself without `[board]`).
+fn board_clock(loaded: &Loaded) -> crate::board::BoardClock {
+    loaded
+        .derived
+        .board_clock
+        .clone()
+        .unwrap_or(crate::board::BoardClock {
+            osc_hz: loaded.derived.clock_hz,
+            synth: None,
+        })
+}
+
+/// Comment lines on the clock for a constraint file.
+fn clock_comment(clock: &crate::board::BoardClock, c: &str) -> String {
+    match clock.synth {
+        None => format!(
+            "{c} clk: {:.3} MHz, the system clock itself (no clock synthesizer).\n",
+            clock.osc_hz / 1e6
+        ),
+        Some(s) => format!(
+            "{c} clk: the {:.3} MHz board oscillator. Its period is the only clock constraint:\n\
+             {c} the tool derives the system clock, {} x {} / {} = {:.3} MHz ({:.3} ns, {:+.0} ppm\n\
+             {c} from clock.frequency_hz), from it through the synthesizer in <name>_clock.\n",
+            clock.osc_hz / 1e6,
+            s.kind.label(),
+            s.multiply,
+            s.divide,
+            s.out_hz / 1e6,
+            1e9 / s.out_hz,
+            s.error_ppm
+        ),
+    }
+}
+
+/// `<name>_board.v`, `<name>_clock.v` and `<name>_clock_sim.v` when the board clock needs a
+/// synthesizer (see [`crate::board`]); `top` is the text of `<name>_top`'s wrapper.
+fn board_files(loaded: &Loaded, command: &str, top: &str) -> Vec<OutFile> {
+    let clock = board_clock(loaded);
+    if clock.synth.is_none() || loaded.config.board.is_none() {
+        return vec![];
+    }
+    let name = &loaded.config.name;
+    let ports = crate::board::wrapper_ports(top);
+    let v = |purpose: &str, body: String| {
+        format!("{}`timescale 1ns / 1ps\n\n{body}", header(loaded, command, purpose, "//"))
+    };
+    vec![
+        OutFile {
+            name: format!("{name}_board.v"),
+            text: v(
+                "Board-level wrapper: clock synthesizer, reset held until locked, board top (Verilog-2001).",
+                crate::board::board_verilog(name, &top_name(loaded), &clock, &ports),
+            ),
+        },
+        OutFile {
+            name: format!("{name}_clock.v"),
+            text: v(
+                "Clock synthesizer for synthesis (vendor primitive).",
+                crate::board::clock_verilog(name, &clock),
+            ),
+        },
+        OutFile {
+            name: format!("{name}_clock_sim.v"),
+            text: v(
+                "Clock synthesizer, simulation model (Icarus; Verilator with --timing).",
+                crate::board::clock_sim_verilog(name, &clock),
+            ),
+        },
+    ]
 }
 
 /// All files for one configuration; `command` is the command line quoted in headers.
@@ -531,19 +630,26 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             text: report,
         },
     ];
+    let top_text = top_verilog(loaded)?;
+    let cap_text = cap_top_verilog(loaded)?;
     if let (Some(b), true) = (&loaded.config.board, has_top(loaded)) {
         let top = top_name(loaded);
         let kit = b.preset.as_deref() == Some("spartan3an-starter-kit");
         let ports = crate::config::board_ports(&loaded.config);
+        let clock = board_clock(loaded);
         let mut u = header(
             loaded,
             command,
             "UCF: pins and clock of the board top (Xilinx ISE).",
             "#",
         );
-        let period = 1e9 / loaded.derived.clock_hz;
+        let period = 1e9 / clock.osc_hz;
+        let ucf_top = match clock.synth {
+            Some(_) => format!("{name}_board"),
+            None => top.clone(),
+        };
         u.push_str(&format!(
-            "# Top module: {top}. The parallel bus (par_*) is not constrained: it is meant for\n\
+            "# Top module: {ucf_top}. The parallel bus (par_*) is not constrained: it is meant for\n\
              # logic in the same FPGA.\n"
         ));
         let open: Vec<&str> = crate::config::DESELECT_PINS
@@ -568,9 +674,20 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
                  # hygiene, not bus arbitration.\n"
             ));
         }
+        u.push_str(&clock_comment(&clock, "#"));
         u.push_str(&format!(
             "NET \"clk\" TNM_NET = \"clk\";\n\
              TIMESPEC \"TS_clk\" = PERIOD \"clk\" {period:.3} ns HIGH 50 %;\n"
+        ));
+        let io = &loaded.derived.io_timing;
+        u.push_str(&format!(
+            "# ADC interface: the I/O timing budget of `sinedec check` (FPGA clock-to-out at most\n\
+             # {tco:.2} ns, pad set-up at most {tsu:.2} ns); ISE verifies both on the placed design.\n\
+             NET \"adc_sck\" OFFSET = OUT {tco:.2} ns AFTER \"clk\";\n\
+             NET \"adc_conv\" OFFSET = OUT {tco:.2} ns AFTER \"clk\";\n\
+             NET \"adc_miso\" OFFSET = IN {tsu:.2} ns VALID {tsu:.2} ns BEFORE \"clk\";\n",
+            tco = io.clock_to_out_ns,
+            tsu = io.input_setup_ns,
         ));
         let tig: Vec<&str> = ["biss_ma", "qep_a", "qep_b", "qep_z"]
             .into_iter()
@@ -607,7 +724,8 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             });
         }
     }
-    if let Some(top) = top_verilog(loaded)? {
+    if let Some(top) = top_text {
+        files.extend(board_files(loaded, command, &top));
         files.push(OutFile {
             name: format!("{name}_top.v"),
             text: format!(
@@ -621,7 +739,8 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             ),
         });
     }
-    if let Some(top) = cap_top_verilog(loaded)? {
+    if let Some(top) = cap_text {
+        files.extend(board_files(loaded, command, &top));
         files.push(OutFile {
             name: format!("{name}_top.v"),
             text: format!(
