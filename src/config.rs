@@ -869,9 +869,22 @@ fn board_timing(
     if available + 1e-9 < needed {
         let t = 1e9 / adc.clock_hz;
         let min_d = ((needed / t) - 1e-9).ceil() as u32;
+        // Blame the SCK period when the config sets it, else the board budget it sets.
+        let b = c.board.as_ref();
+        let (table, key) = if c.adc.sck_period_clocks.is_some() {
+            ("adc", "sck_period_clocks")
+        } else if b.is_some_and(|b| b.trace_delay_ns.is_some()) {
+            ("board", "trace_delay_ns")
+        } else if b.is_some_and(|b| b.fpga_clock_to_out_ns.is_some()) {
+            ("board", "fpga_clock_to_out_ns")
+        } else if b.is_some_and(|b| b.fpga_input_setup_ns.is_some()) {
+            ("board", "fpga_input_setup_ns")
+        } else {
+            ("adc", "sck_period_clocks")
+        };
         return Err(err(
-            "adc",
-            "sck_period_clocks",
+            table,
+            key,
             format!(
                 "an SCK period of {d} clocks ({available:.2} ns at {:.3} MHz) is shorter than the ADC round trip of {needed:.2} ns: FPGA clock-to-out {:.2} + 2 x board trace {:.2} + the ADC's SCK-to-data delay {:.2} + FPGA input set-up {:.2} ns (board.fpga_clock_to_out_ns, board.trace_delay_ns, board.fpga_input_setup_ns); use an SCK period of at least {min_d} clocks",
                 adc.clock_hz / 1e6,

@@ -758,7 +758,8 @@ fn the_adc_round_trip_is_checked_and_constrained() {
     // ... 10 + 2 + 8 + 3 = 23 ns does not: at least 4 clocks (30 ns).
     let bad = ok.replace("fpga_clock_to_out_ns = 9.0", "fpga_clock_to_out_ns = 10.0");
     let e = Loaded::parse(&bad, "b.toml").expect_err("too tight").to_string();
-    assert!(e.contains("adc.sck_period_clocks"), "{e}");
+    assert!(e.contains("key `board.fpga_clock_to_out_ns`"), "{e}");
+    assert!(e.starts_with("b.toml:"), "no location: {e}");
     assert!(e.contains("22.50 ns") && e.contains("23.00 ns"), "{e}");
     assert!(e.contains("at least 4 clocks"), "{e}");
     // A longer trace fails the same way and is blamed with its numbers.
@@ -767,5 +768,67 @@ fn the_adc_round_trip_is_checked_and_constrained() {
         "[board]\npreset = \"spartan3an-starter-kit\"\ntrace_delay_ns = 3.0\n",
     );
     let e = Loaded::parse(&bad, "b.toml").expect_err("trace").to_string();
-    assert!(e.contains("2 x board trace 3.00") && e.contains("24.00 ns"), "{e}");
+    assert!(e.contains("2 x board trace 3.00") && e.contains("23.00 ns"), "{e}");
+}
+
+/// The capacitive config on Cyclone III with a `[board]`: balls of the EP3C40F324 package
+/// (rows A..V, columns 1..18), the Quartus I/O standard names, and an ALTPLL when the
+/// board's oscillator is not the system clock.
+fn cap_board(osc: Option<&str>, first_ball: &str) -> String {
+    let cfg = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/cyclone3_capacitive.toml"
+    ))
+    .expect("capacitive config");
+    let mut t = cfg + "\n[board]\niostandard = \"3.3-V LVTTL\"\n";
+    if let Some(o) = osc {
+        t.push_str(&format!("clock_hz = {o}\n"));
+    }
+    t.push_str("[board.pins]\n");
+    let mut balls = (0..18 * 18).map(|i| {
+        let rows = ["A", "B", "C", "D", "E", "F", "G", "H", "J", "K", "L", "M", "N", "P", "R", "T", "U", "V"];
+        format!("{}{}", rows[i / 18], i % 18 + 1)
+    });
+    balls.next();
+    for (i, p) in sinedec::config::CAP_TOP_PINS.iter().enumerate() {
+        let ball = if i == 0 {
+            first_ball.to_string()
+        } else {
+            balls.next().expect("ball")
+        };
+        t.push_str(&format!("{p} = \"{ball}\"\n"));
+    }
+    for bus in sinedec::config::CAP_TOP_BUSES {
+        let v: Vec<String> = (0..16).map(|_| format!("\"{}\"", balls.next().expect("ball"))).collect();
+        t.push_str(&format!("{bus} = [{}]\n", v.join(", ")));
+    }
+    t
+}
+
+#[test]
+fn the_cyclone_board_uses_its_package_and_a_pll_when_the_clock_differs() {
+    // 50 MHz system clock from a 25 MHz oscillator: ALTPLL x 2 / 1.
+    let l = Loaded::parse(&cap_board(Some("25e6"), "A1"), "c.toml").expect("parses");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    let qsf = file(&g, "cap_top.qsf");
+    assert!(qsf.contains("TOP_LEVEL_ENTITY cap_board"), "{qsf}");
+    assert!(qsf.contains("set_location_assignment PIN_A1 -to clk"), "{qsf}");
+    let sdc = file(&g, "cap_top.sdc");
+    assert!(sdc.contains("create_clock -name clk -period 40.000 [get_ports clk]"), "{sdc}");
+    assert!(sdc.contains("derive_pll_clocks"), "{sdc}");
+    let pll = file(&g, "cap_clock.v");
+    for want in ["altpll #(", ".clk0_multiply_by(2)", ".clk0_divide_by(1)", ".inclk0_input_frequency(40000)"] {
+        assert!(pll.contains(want), "{want} missing:\n{pll}");
+    }
+    // The same oscillator as the system clock: no PLL, the SDC clock is the system clock.
+    let l = Loaded::parse(&cap_board(None, "A1"), "c.toml").expect("parses");
+    let g = sinedec::emit::generate(&l, "test").expect("generates");
+    assert!(file(&g, "cap_top.qsf").contains("TOP_LEVEL_ENTITY cap_top"));
+    let sdc = file(&g, "cap_top.sdc");
+    assert!(sdc.contains("-period 20.000 [get_ports clk]"), "{sdc}");
+    assert!(sdc.contains("set_input_delay -clock [get_clocks clk] -max 17.000 [get_ports adc_miso]"), "{sdc}");
+    assert!(!g.files.iter().any(|f| f.name == "cap_clock.v"));
+    // W1 is a ball of the FG484 but not of the F324 (its rows end at V).
+    let e = Loaded::parse(&cap_board(None, "W1"), "c.toml").expect_err("W1").to_string();
+    assert!(e.contains("W1") && e.contains("EP3C40F324"), "{e}");
 }
