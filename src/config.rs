@@ -1206,24 +1206,46 @@ impl Derived {
 
     /// Human-readable listing printed by `sinedec check`.
     pub fn describe(&self) -> String {
-        let mut s = self.describe_core();
-        if let Some(k) = &self.capacitive {
-            // theta moves periods_per_turn x rpm / 60 Hz; the low-pass corner bounds it.
-            let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);
-            let ppr = self.quadrants_per_turn as f64 / 4.0;
-            s.push_str(&format!(
-                "core input                  the filters' I/Q outputs ({} bits; ADC {} bits)\n\
-                 carrier                     {:.0} Hz, {:.1} samples per carrier period\n\
-                 theta bandwidth             low-pass corner {:.0} Hz = {:.0} rpm with {} periods per turn (the speed limit of this path)\n",
-                self.adc_width,
-                self.adc.frame.width,
-                k.config.carrier_hz,
-                k.sample_rate_hz / k.config.carrier_hz,
-                corner,
-                corner / ppr * 60.0,
-                ppr
-            ));
-        }
+        let core = self.describe_core();
+        let Some(k) = &self.capacitive else {
+            let mut s = core;
+            if self.preamp.is_some() {
+                // The same quantity, under the same name, as `simulate` prints.
+                let c = crate::blocks::top::hdl::conv_to_position_cycles(self);
+                s.push_str(&format!(
+                    "latency CONV -> position    {c} cycles = {:.0} ns (ADC {} + correction {} + core {})\n",
+                    c as f64 * 1e9 / self.clock_hz,
+                    self.adc.conv_to_valid_clocks(),
+                    crate::blocks::correction::LATENCY_CYCLES,
+                    self.latency_cycles
+                ));
+            }
+            return s;
+        };
+        // One speed limit: theta moves periods_per_turn x rpm / 60 Hz, and the low-pass
+        // corner bounds it far below the CORDIC's unwrap limit.
+        let mut s: String = core
+            .lines()
+            .filter(|l| !l.starts_with("max speed at full res."))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);
+        let ppr = self.quadrants_per_turn as f64 / 4.0;
+        let lp_rpm = corner / ppr * 60.0;
+        let limit = lp_rpm.min(self.max_speed_rpm_full_res);
+        s.push_str(&format!(
+            "core input                  the filters' I/Q outputs ({} bits; ADC {} bits)\n\
+             carrier                     {:.0} Hz, {:.1} samples per carrier period\n\
+             max speed                   {:.0} rpm: the low-pass corner {:.0} Hz with {} periods per turn (the CORDIC's unwrap alone would allow {:.0} rpm)\n",
+            self.adc_width,
+            self.adc.frame.width,
+            k.config.carrier_hz,
+            k.sample_rate_hz / k.config.carrier_hz,
+            limit,
+            corner,
+            ppr,
+            self.max_speed_rpm_full_res
+        ));
         s
     }
 
@@ -1239,7 +1261,7 @@ impl Derived {
              quadrant count              {} bits (4 x PPR = {} quadrants per turn)\n\
              out_position width          {} bits ({:.2} bits per turn)\n\
              out_turns width             {} bits\n\
-             latency                     {} cycles = {:.1} ns at {:.3} MHz\n\
+             core latency in -> out      {} cycles = {:.1} ns at {:.3} MHz\n\
              throughput                  1 sample per {} clock(s) ({:?} CORDIC)\n\
              sample rate                 {:.0} samples/s per channel\n\
              max speed at full res.      {:.0} rpm (steps below {:.2} quadrants per sample)\n",
