@@ -17,6 +17,10 @@ use std::rc::Rc;
 pub struct CapRecord {
     /// Clock cycle of par_valid.
     pub cycle: u64,
+    /// Single-turn position (2^-F quadrant units).
+    pub position: u64,
+    /// Signed turn count.
+    pub turns: i64,
     /// Unwrapped decoded position in LSB (turns * 4 PPR 2^F + position).
     pub decoded: i64,
     /// True mechanical position at par_valid, same units.
@@ -63,6 +67,8 @@ pub struct CapSystem {
     pub records: Vec<CapRecord>,
     /// Per-cycle input rows (`CapTopRtl`'s CosimBlock order), when recording.
     pub inputs: Option<Vec<Vec<u64>>>,
+    trace: Option<crate::sim::vcd::TopTrace>,
+    trace_error: Option<std::io::Error>,
 }
 
 impl CapSystem {
@@ -98,7 +104,25 @@ impl CapSystem {
             cycle: 0,
             records: Vec::new(),
             inputs: None,
+            trace: None,
+            trace_error: None,
         })
+    }
+
+    /// Streams every cycle's pins into `t` from now on (see [`crate::sim::vcd`]).
+    pub fn trace_to(&mut self, t: crate::sim::vcd::TopTrace) {
+        self.trace = Some(t);
+    }
+
+    /// Ends the trace: flushes it and returns the first write error, if any.
+    pub fn finish_trace(&mut self) -> std::io::Result<()> {
+        if let Some(e) = self.trace_error.take() {
+            return Err(e);
+        }
+        match self.trace.take() {
+            Some(t) => t.finish(),
+            None => Ok(()),
+        }
     }
 
     /// Records every cycle's inputs from now on (a stimulus that replays the run in a
@@ -121,10 +145,18 @@ impl CapSystem {
             t.biss_ma.next = true;
             let miso = self.adc.step(t.adc_conv.val(), t.adc_sck.val());
             t.adc_miso.next = miso;
+            let row = [(self.cycle < 4) as u64, miso as u64, 1];
             if let Some(v) = &mut self.inputs {
-                v.push(vec![(self.cycle < 4) as u64, miso as u64, 1]);
+                v.push(row.to_vec());
             }
             tick(t)?;
+            if let Some(tr) = self.trace.as_mut() {
+                let outs = crate::verify::CosimBlock::sample(&*t);
+                if let Err(e) = tr.cycle(&row, &outs) {
+                    self.trace_error = Some(e);
+                    self.trace = None;
+                }
+            }
             self.cycle += 1;
             let t = &self.top;
             if t.exc_strobe.val() {
@@ -141,6 +173,8 @@ impl CapSystem {
                 let truth = self.enc.borrow().mech_angle(ts) / TAU * self.lsb_per_turn;
                 self.records.push(CapRecord {
                     cycle: self.cycle,
+                    position: pos,
+                    turns,
                     decoded,
                     truth,
                     error: t.par_error.val(),
@@ -212,6 +246,8 @@ pub fn model_run(d: &Derived, p: CapParams, samples: usize) -> Result<Vec<CapRec
             let t = t_of.pop_front().unwrap_or(0.0);
             out.push(CapRecord {
                 cycle: (t * d.clock_hz) as u64,
+                position: r.position,
+                turns: r.turns_signed(d),
                 decoded: r.turns_signed(d) * lsb_per_turn as i64 + r.position as i64,
                 truth: enc.mech_angle(t) / TAU * lsb_per_turn,
                 error: r.error,

@@ -83,22 +83,43 @@ pub struct ErrorStats {
 }
 
 impl SimResult {
-    /// Error statistics over the records from index `skip` on. The decoded position is
-    /// compared with the true angle plus the constant offset fixed by the first record:
-    /// the inverting pre-amplifier turns the vector by two quadrants, and the first sample
-    /// fixes which signal period counts as turn 0.
-    pub fn stats(&self, d: &Derived, skip: usize) -> ErrorStats {
+    /// The constant offset between the decoded and the true position, in fine LSB, fixed
+    /// by the first record: two quadrants (the inverting pre-amplifier turns the vector by
+    /// two quadrants) plus the whole signal periods that make the first sample's error
+    /// smallest (the first sample fixes which signal period counts as period 0).
+    pub fn offset_lsb(&self, d: &Derived) -> f64 {
         let Some(first) = self.records.first() else {
-            return ErrorStats::default();
+            return 0.0;
         };
         let q = (1u64 << d.fine_bits) as f64;
         let period = 4.0 * q;
         let raw = first.unwrapped as f64 - first.truth - 2.0 * q;
-        let offset = 2.0 * q + period * (raw / period).round();
+        2.0 * q + period * (raw / period).round()
+    }
+
+    /// Error of record `r` in fine LSB: decoded - truth - [`offset_lsb`](Self::offset_lsb),
+    /// taken modulo the position's range (one turn times 2^M with M multi-turn bits: a
+    /// single-turn position wraps every turn, an M-bit turn count every 2^M turns) into
+    /// [-range/2, range/2).
+    pub fn error_lsb(d: &Derived, r: &Record, offset: f64) -> f64 {
+        let range = d.quadrants_per_turn as f64
+            * (1u64 << d.fine_bits) as f64
+            * (1u64 << d.multiturn_bits) as f64;
+        let e = r.unwrapped as f64 - r.truth - offset;
+        e - range * (e / range).round()
+    }
+
+    /// Error statistics over the records from index `skip` on (see
+    /// [`error_lsb`](Self::error_lsb)).
+    pub fn stats(&self, d: &Derived, skip: usize) -> ErrorStats {
+        if self.records.is_empty() {
+            return ErrorStats::default();
+        }
+        let offset = self.offset_lsb(d);
         let mut s = ErrorStats::default();
         let (mut sum, mut sum2) = (0.0, 0.0);
         for r in self.records.iter().skip(skip) {
-            let e = r.unwrapped as f64 - r.truth - offset;
+            let e = Self::error_lsb(d, r, offset);
             s.samples += 1;
             s.max_lsb = s.max_lsb.max(e.abs());
             sum += e;
@@ -131,6 +152,8 @@ pub struct System {
     ma: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
     ssi: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
     qep_b_stuck: Option<(f64, f64)>,
+    trace: Option<crate::sim::vcd::TopTrace>,
+    trace_error: Option<std::io::Error>,
 }
 
 impl System {
@@ -165,7 +188,25 @@ impl System {
             ma: None,
             ssi: None,
             qep_b_stuck: None,
+            trace: None,
+            trace_error: None,
         })
+    }
+
+    /// Streams every cycle's pins into `t` from now on (see [`crate::sim::vcd`]).
+    pub fn trace_to(&mut self, t: crate::sim::vcd::TopTrace) {
+        self.trace = Some(t);
+    }
+
+    /// Ends the trace: flushes it and returns the first write error, if any.
+    pub fn finish_trace(&mut self) -> std::io::Result<()> {
+        if let Some(e) = self.trace_error.take() {
+            return Err(e);
+        }
+        match self.trace.take() {
+            Some(t) => t.finish(),
+            None => Ok(()),
+        }
     }
 
     /// A comparator fault: QEP B held low from `from` to `to` seconds.
@@ -259,8 +300,8 @@ impl System {
             self.top.ssi_clk.next = ssi_clk;
             self.top.enc_sck.next = false;
             self.top.enc_cs_n.next = true;
-            if self.record_inputs {
-                self.result.inputs.push(vec![
+            let row = (self.record_inputs || self.trace.is_some()).then(|| {
+                vec![
                     rst as u64,
                     miso as u64,
                     ma as u64,
@@ -270,9 +311,21 @@ impl System {
                     ssi_clk as u64,
                     0,
                     1,
-                ]);
-            }
+                ]
+            });
             tick(self.top.as_mut())?;
+            if let (Some(t), Some(r)) = (self.trace.as_mut(), row.as_ref()) {
+                let outs = crate::verify::CosimBlock::sample(self.top.as_ref());
+                if let Err(e) = t.cycle(r, &outs) {
+                    self.trace_error = Some(e);
+                    self.trace = None;
+                }
+            }
+            if self.record_inputs {
+                if let Some(r) = row {
+                    self.result.inputs.push(r);
+                }
+            }
             if let Some(m) = self.ma.as_mut() {
                 m.push_slo(self.top.biss_slo.val());
             }

@@ -11,12 +11,19 @@
 //! | `adc.width` | 10..=16 bits |
 //! | `cordic.iterations` | 1..=20 |
 //! | `cordic.fine_bits` | 2..=16 |
-//! | `cordic.guard_bits` | 0..=20 (default: derived) |
+//! | `cordic.guard_bits` | 0..=19 and `adc.width` + 2 + guard <= 31 (default: derived) |
 //! | `cordic.architecture` | `"unrolled"` (default) or `"iterative"` |
 //! | `encoder.ppr` | 1..=65535 |
 //! | `encoder.multiturn_bits` | 0..=16 |
 //! | `clock.frequency_hz` | 1 MHz..=500 MHz |
 //! | `adc.sample_rate_hz` | up to the ADC's limit and the clock |
+//! | `correction.periods` | 1..=256 |
+//! | `correction.gain_frac_bits` | 8..=15 |
+//! | `monitor.los_window`, `monitor.clip_hold` | 1..=65535 samples |
+//!
+//! `check`, `generate`, `simulate` and `report` all validate through [`Loaded::parse`]
+//! (`Derived::compute`), which also builds the capacitive front end's parameters, so a
+//! configuration one command accepts is accepted by all of them.
 
 use crate::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
 use crate::blocks::biss::BissParams;
@@ -59,6 +66,8 @@ ranged!(r_iter, u32, "cordic.iterations", 1, 20, "");
 ranged!(r_fine, u32, "cordic.fine_bits", 2, 16, " bits");
 ranged!(r_ppr, u32, "encoder.ppr", 1, 65535, " periods per turn");
 ranged!(r_mt, u32, "encoder.multiturn_bits", 0, 16, " bits");
+ranged!(r_periods, u32, "correction.periods", 1, 256, " signal periods");
+ranged!(r_gain_frac, u32, "correction.gain_frac_bits", 8, 15, " bits");
 ranged!(r_clk, f64, "clock.frequency_hz", 1.0e6, 500.0e6, " Hz");
 ranged!(
     r_amp,
@@ -69,11 +78,15 @@ ranged!(
     " (fraction of full scale)"
 );
 
+/// Largest `cordic.guard_bits`: the x/y datapath (adc.width + 2 + guard) holds at most
+/// [`MAX_WORD_BITS`] bits, and adc.width is at least 10.
+pub const MAX_GUARD_BITS: u32 = MAX_WORD_BITS - 2 - 10;
+
 fn r_guard<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<Option<u32>, D::Error> {
     let v = u32::deserialize(d)?;
-    if v > 20 {
+    if v > MAX_GUARD_BITS {
         return Err(serde::de::Error::custom(format!(
-            "`cordic.guard_bits` = {v} is out of range: allowed 0..=20 (omit it to derive it)"
+            "`cordic.guard_bits` = {v} is out of range: allowed 0..={MAX_GUARD_BITS}, and adc.width + 2 + guard_bits <= {MAX_WORD_BITS} (omit it to derive it)"
         )));
     }
     Ok(Some(v))
@@ -675,13 +688,13 @@ pub struct CorrectionConfig {
     #[serde(default = "one")]
     pub gain_cos: f64,
     /// Fraction bits of the gain words (8..=15).
-    #[serde(default = "fourteen")]
+    #[serde(default = "fourteen", deserialize_with = "r_gain_frac")]
     pub gain_frac_bits: u32,
     /// Auto: amplitude both channels are scaled to, fraction of full scale.
     #[serde(default = "target")]
     pub target_amplitude: f64,
-    /// Auto: signal periods per update (1..=256).
-    #[serde(default = "one_u32")]
+    /// Auto: signal periods per update (1..=256; checked in both modes).
+    #[serde(default = "one_u32", deserialize_with = "r_periods")]
     pub periods: u32,
     /// Auto: no update below this amplitude, fraction of full scale.
     #[serde(default = "min_cal")]
@@ -956,8 +969,9 @@ pub fn check_throughput(
     Ok(())
 }
 
-/// Finds `key` in `[table]` (`""`: top level) of the TOML text, in any layout (table headers,
-/// dotted keys, inline tables, quoted names), and returns "line:column: " of the key or "".
+/// Finds `key` in `[table]` (`""`: top level; a dotted path such as `capacitive.coef` for a
+/// nested or inline table) of the TOML text, in any layout (table headers, dotted keys,
+/// inline tables, quoted names), and returns "line:column: " of the key or "".
 pub fn locate(text: &str, table: &str, key: &str) -> String {
     let Ok(doc) = toml::de::DeTable::parse(text) else {
         return String::new();
@@ -1071,9 +1085,14 @@ impl Derived {
         let err = |table: &str, key: &str, message: String| Error::ConfigValue {
             source_name: source_name.to_string(),
             location: locate(text, table, key),
-            key: format!("{table}.{key}"),
+            key: if table.is_empty() {
+                key.to_string()
+            } else {
+                format!("{table}.{key}")
+            },
             message,
         };
+        check_target(c, &err)?;
         // The core's input width: the ADC's, or the filters' on the capacitive path.
         let a = match &c.capacitive {
             Some(k) => k.data_width,
@@ -1311,7 +1330,7 @@ impl Derived {
         let (board_clock, io_timing) = board_timing(c, &adc, &err)?;
         let qep =
             QepParams::new(c.qep.filter_clocks, 32).map_err(|m| err("qep", "filter_clocks", m))?;
-        Ok(Derived {
+        let derived = Derived {
             board_clock,
             io_timing,
             adc,
@@ -1347,7 +1366,20 @@ impl Derived {
             sample_rate_hz: rate,
             max_speed_rpm_full_res,
             resolution_bits: (quadrants_per_turn as f64).log2() + f as f64,
-        })
+        };
+        // The capacitive front end's own checks (NCO, biquad engine widths and
+        // coefficients, clocks per sample) run here too, so that `check` accepts exactly
+        // what `generate` builds, and their errors point at the key.
+        if derived.capacitive.is_some() {
+            crate::blocks::capacitive::CapFrontParams::new(&derived).map_err(|e| match e {
+                Error::ConfigValue { key, message, .. } => {
+                    let (table, key) = key.rsplit_once('.').unwrap_or(("", key.as_str()));
+                    err(table, key, message)
+                }
+                e => e,
+            })?;
+        }
+        Ok(derived)
     }
 
     /// The board clock and the ADC round trip, for `describe`.
@@ -1396,25 +1428,48 @@ impl Derived {
 
     /// Human-readable listing printed by `sinedec check`.
     pub fn describe(&self) -> String {
-        let mut s = self.describe_core();
+        let core = self.describe_core();
+        let Some(k) = &self.capacitive else {
+            let mut s = core;
+            if self.preamp.is_some() {
+                // The same quantity, under the same name, as `simulate` prints.
+                let c = crate::blocks::top::hdl::conv_to_position_cycles(self);
+                s.push_str(&format!(
+                    "latency CONV -> position    {c} cycles = {:.0} ns (ADC {} + correction {} + core {})\n",
+                    c as f64 * 1e9 / self.clock_hz,
+                    self.adc.conv_to_valid_clocks(),
+                    crate::blocks::correction::LATENCY_CYCLES,
+                    self.latency_cycles
+                ));
+            }
+            s.push_str(&self.describe_board());
+            return s;
+        };
+        // One speed limit: theta moves periods_per_turn x rpm / 60 Hz, and the low-pass
+        // corner bounds it far below the CORDIC's unwrap limit.
+        let mut s: String = core
+            .lines()
+            .filter(|l| !l.starts_with("max speed at full res."))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);
+        let ppr = self.quadrants_per_turn as f64 / 4.0;
+        let lp_rpm = corner / ppr * 60.0;
+        let limit = lp_rpm.min(self.max_speed_rpm_full_res);
+        s.push_str(&format!(
+            "core input                  the filters' I/Q outputs ({} bits; ADC {} bits)\n\
+             carrier                     {:.0} Hz, {:.1} samples per carrier period\n\
+             max speed                   {:.0} rpm: the low-pass corner {:.0} Hz with {} periods per turn (the CORDIC's unwrap alone would allow {:.0} rpm)\n",
+            self.adc_width,
+            self.adc.frame.width,
+            k.config.carrier_hz,
+            k.sample_rate_hz / k.config.carrier_hz,
+            limit,
+            corner,
+            ppr,
+            self.max_speed_rpm_full_res
+        ));
         s.push_str(&self.describe_board());
-        if let Some(k) = &self.capacitive {
-            // theta moves periods_per_turn x rpm / 60 Hz; the low-pass corner bounds it.
-            let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);
-            let ppr = self.quadrants_per_turn as f64 / 4.0;
-            s.push_str(&format!(
-                "core input                  the filters' I/Q outputs ({} bits; ADC {} bits)\n\
-                 carrier                     {:.0} Hz, {:.1} samples per carrier period\n\
-                 theta bandwidth             low-pass corner {:.0} Hz = {:.0} rpm with {} periods per turn (the speed limit of this path)\n",
-                self.adc_width,
-                self.adc.frame.width,
-                k.config.carrier_hz,
-                k.sample_rate_hz / k.config.carrier_hz,
-                corner,
-                corner / ppr * 60.0,
-                ppr
-            ));
-        }
         s
     }
 
@@ -1430,7 +1485,7 @@ impl Derived {
              quadrant count              {} bits (4 x PPR = {} quadrants per turn)\n\
              out_position width          {} bits ({:.2} bits per turn)\n\
              out_turns width             {} bits\n\
-             latency                     {} cycles = {:.1} ns at {:.3} MHz\n\
+             core latency in -> out      {} cycles = {:.1} ns at {:.3} MHz\n\
              throughput                  1 sample per {} clock(s) ({:?} CORDIC)\n\
              sample rate                 {:.0} samples/s per channel\n\
              max speed at full res.      {:.0} rpm (steps below {:.2} quadrants per sample)\n",
@@ -1462,6 +1517,24 @@ impl Derived {
 }
 
 type ErrFn<'a> = dyn Fn(&str, &str, String) -> Error + 'a;
+
+/// The target must fit the design: the capacitive top is built for the Cyclone III (QSF and
+/// SDC), the LTC1407A-1 / LTC6912-1 board top for the Spartan-3AN Starter Kit (UCF).
+fn check_target(c: &Config, err: &ErrFn) -> Result<()> {
+    match (c.target, c.capacitive.is_some(), c.adc.preset) {
+        (Target::Spartan3an, true, _) => Err(err(
+            "",
+            "target",
+            "\"spartan3an\" with [capacitive]: the capacitive path's board top is built for the Cyclone III EP3C40F324C8 (Quartus QSF and SDC); set target = \"cyclone3\"".into(),
+        )),
+        (Target::Cyclone3, false, AdcPreset::Ltc1407a1) => Err(err(
+            "",
+            "target",
+            "\"cyclone3\" with adc.preset = \"ltc1407a-1\": the LTC1407A-1 / LTC6912-1 board top (<name>_top, UCF) is the Spartan-3AN Starter Kit's, so nothing but the core would be written; set target = \"spartan3an\" for the board top, or use adc.preset = \"generic\" for the core alone".into(),
+        )),
+        _ => Ok(()),
+    }
+}
 
 /// ADC and preamp parameters from the config, validated against the chips' limits.
 fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams>)> {
@@ -1723,6 +1796,51 @@ fn monitor_params(
             ));
         }
     }
+    // The levels must rise: loss threshold <= release level <= clipping level. The key in
+    // the file is blamed (the later one when both are given); a default is named as such.
+    let shown = |key: &str, v: f64, given: bool| {
+        if given {
+            format!("`monitor.{key}` = {v}")
+        } else {
+            format!("`monitor.{key}` (default {v})")
+        }
+    };
+    for ((lo_key, lo, lo_given), (hi_key, hi, hi_given), what) in [
+        (
+            ("los_amplitude", los, m.los_amplitude.is_some()),
+            ("los_release", rel, m.los_release.is_some()),
+            "the loss-of-signal release level must be at least the loss threshold",
+        ),
+        (
+            ("los_release", rel, m.los_release.is_some()),
+            ("clip_amplitude", clip, m.clip_amplitude.is_some()),
+            "the clipping level must be at least the loss-of-signal release level",
+        ),
+    ] {
+        if hi < lo {
+            let key = if hi_given || !lo_given { hi_key } else { lo_key };
+            return Err(err(
+                "monitor",
+                key,
+                format!(
+                    "{} is below {}: {what} (fractions of full scale)",
+                    shown(hi_key, hi, hi_given),
+                    shown(lo_key, lo, lo_given)
+                ),
+            ));
+        }
+    }
+    for (key, v) in [("los_window", m.los_window), ("clip_hold", m.clip_hold)] {
+        if let Some(v) = v {
+            if !(1..=65535).contains(&v) {
+                return Err(err(
+                    "monitor",
+                    key,
+                    format!("{v} samples: allowed 1..=65535"),
+                ));
+            }
+        }
+    }
     MonitorParams::new(
         c.adc.width,
         xy_width,
@@ -1799,6 +1917,30 @@ fn cap_params(c: &Config, k: &CapacitiveConfig, rate: f64, err: &ErrFn) -> Resul
                 k.data_width, c.adc.width
             ),
         ));
+    }
+    // Each filter's kind must fit its role: the band-pass isolates the carrier in front of
+    // the demodulator, the low-pass removes 2w after it.
+    for (key, spec, want) in [
+        ("bandpass", &k.bandpass, crate::filter::FilterKind::Bandpass),
+        ("lowpass", &k.lowpass, crate::filter::FilterKind::Lowpass),
+    ] {
+        if spec.kind != want {
+            let name = |f: crate::filter::FilterKind| match f {
+                crate::filter::FilterKind::Lowpass => "\"lowpass\"",
+                crate::filter::FilterKind::Highpass => "\"highpass\"",
+                crate::filter::FilterKind::Bandpass => "\"bandpass\"",
+            };
+            let role = if key == "bandpass" {
+                "the band-pass in front of the demodulator isolates the carrier"
+            } else {
+                "the low-pass after the demodulator removes twice the carrier"
+            };
+            return Err(err(
+                &format!("{t}.{key}"),
+                "kind",
+                format!("{}: {role}; allowed {}", name(spec.kind), name(want)),
+            ));
+        }
     }
     let design = |key: &str, spec: &crate::filter::FilterSpec| -> Result<crate::filter::Designed> {
         if (spec.sample_rate_hz - rate).abs() > rate * 1e-3 {

@@ -30,6 +30,15 @@ pub enum Error {
         /// What is wrong and what is allowed.
         message: String,
     },
+    /// A command-line option of `simulate` or `report` is out of range or does not apply
+    /// to the configuration; `option` is spelt as on the command line (`--angle-n`).
+    #[error("`{option}` {message}")]
+    InvalidOption {
+        /// The option, e.g. `--noise-lsb`.
+        option: String,
+        /// The value given, what is wrong and what is allowed.
+        message: String,
+    },
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {
@@ -58,6 +67,14 @@ pub enum Error {
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
+    /// [`Error::InvalidOption`] for `option` (e.g. `--angle-n`).
+    pub fn option(option: &str, message: impl Into<String>) -> Error {
+        Error::InvalidOption {
+            option: option.to_string(),
+            message: message.into(),
+        }
+    }
+
     /// I/O error with the path it concerns.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Error {
         Error::Io {

@@ -159,8 +159,14 @@ fn run(cli: Cli) -> Result<()> {
                 phase_error_deg: phase_error,
                 third_harmonic: harmonic3,
                 seed,
-                record: vcd.is_some(),
                 ..Default::default()
+            };
+            // The VCD streams to disk during the run.
+            let trace: Option<Box<dyn std::io::Write>> = match &vcd {
+                Some(p) => Some(Box::new(std::io::BufWriter::new(
+                    std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?,
+                ))),
+                None => None,
             };
             let total = (duration * loaded.derived.clock_hz).ceil() as u64;
             let bar = indicatif::ProgressBar::new(total);
@@ -169,29 +175,32 @@ fn run(cli: Cli) -> Result<()> {
                     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
             );
             if loaded.derived.capacitive.is_some() {
-                if vcd.is_some() {
-                    bail!("--vcd is not available for the capacitive path yet (--csv is)");
-                }
-                let (s, table) = sinedec::simulate::run_capacitive(&loaded, &o, |done, _| {
-                    bar.set_position(done)
-                })?;
+                let (s, table) = sinedec::simulate::run_capacitive_traced(
+                    &loaded,
+                    &o,
+                    |done, _| bar.set_position(done),
+                    trace,
+                )?;
                 bar.finish_and_clear();
                 print!("{s}");
                 if let Some(p) = csv {
                     write_new(&p, &table)?;
                     println!("wrote {}", p.display());
                 }
+                if let Some(p) = vcd {
+                    println!("wrote {}", p.display());
+                }
                 return Ok(());
             }
-            let report = sinedec::simulate::run(&loaded, &o, |done, _| bar.set_position(done))?;
+            let report =
+                sinedec::simulate::run_traced(&loaded, &o, |done, _| bar.set_position(done), trace)?;
             bar.finish_and_clear();
             print!("{}", report.summary(&loaded));
             if let Some(p) = csv {
-                write_new(&p, &report.csv(&loaded))?;
+                write_new(&p, &report.csv(&loaded, o.skip))?;
                 println!("wrote {}", p.display());
             }
             if let Some(p) = vcd {
-                write_new(&p, &report.vcd(&loaded)?)?;
                 println!("wrote {}", p.display());
             }
         }

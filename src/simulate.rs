@@ -52,6 +52,92 @@ impl Default for SimOptions {
     }
 }
 
+/// Largest speed `simulate` accepts, rpm (either direction): far above any servo motor
+/// (16,667 turns per second) and small enough that the angle stays exact in f64.
+pub const MAX_RPM: f64 = 1.0e6;
+
+/// Largest simulated time, seconds.
+pub const MAX_DURATION_S: f64 = 10.0;
+
+impl SimOptions {
+    /// Rejects meaningless options before anything runs; errors name the command-line
+    /// option and its allowed range. `capacitive`: the capacitive path, whose encoder model
+    /// has one receiver signal (no sin/cos tracks): the track imperfections do not apply.
+    pub fn validate(&self, capacitive: bool) -> Result<()> {
+        let bad = |opt: &str, v: f64, allowed: &str| {
+            Err(Error::option(opt, format!("{v}: allowed {allowed}")))
+        };
+        let speed = |v: f64, what: &str| -> Result<()> {
+            if v.is_finite() && v.abs() <= MAX_RPM {
+                Ok(())
+            } else {
+                Err(Error::option(
+                    "--profile",
+                    format!("{what} {v} rpm: allowed a finite speed within -{MAX_RPM:.0}..={MAX_RPM:.0} rpm"),
+                ))
+            }
+        };
+        let time = |v: f64, what: &str, zero_ok: bool| -> Result<()> {
+            if v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0)) && v <= 1e3 {
+                Ok(())
+            } else {
+                Err(Error::option(
+                    "--profile",
+                    format!(
+                        "{what} {v} s: allowed {} seconds up to 1000",
+                        if zero_ok { "0 <=" } else { "0 <" }
+                    ),
+                ))
+            }
+        };
+        match self.profile {
+            Profile::Constant { rpm } => speed(rpm, "speed")?,
+            Profile::Ramp { from, to, over } => {
+                speed(from, "start speed")?;
+                speed(to, "end speed")?;
+                time(over, "ramp time", false)?;
+            }
+            Profile::Reversal { rpm, at, over } => {
+                speed(rpm, "speed")?;
+                time(at, "reversal start", true)?;
+                time(over, "reversal time", false)?;
+            }
+        }
+        if !(self.duration_s > 0.0 && self.duration_s <= MAX_DURATION_S) {
+            return bad("--duration", self.duration_s, "0 < seconds <= 10");
+        }
+        if !(self.amplitude > 0.0 && self.amplitude <= 1.0) {
+            return bad(
+                "--amplitude",
+                self.amplitude,
+                "0 < amplitude <= 1 (fraction of the ADC's input range)",
+            );
+        }
+        if !(self.noise_lsb >= 0.0 && self.noise_lsb <= 1e4) {
+            return bad("--noise-lsb", self.noise_lsb, "0..=10000 LSB RMS");
+        }
+        let track = [
+            ("--offset-sin", self.offset.0, 1.0, "-1..=1 (fraction of the amplitude)"),
+            ("--offset-cos", self.offset.1, 1.0, "-1..=1 (fraction of the amplitude)"),
+            ("--gain-mismatch", self.gain_mismatch, 1.0, "-1..=1 (relative)"),
+            ("--phase-error", self.phase_error_deg, 45.0, "-45..=45 degrees"),
+            ("--harmonic3", self.third_harmonic, 0.5, "-0.5..=0.5 (ratio)"),
+        ];
+        for (opt, v, lim, allowed) in track {
+            if !(v.abs() <= lim) {
+                return bad(opt, v, allowed);
+            }
+            if capacitive && v != 0.0 {
+                return Err(Error::option(
+                    opt,
+                    format!("{v}: does not apply to the capacitive path (its encoder model has one receiver signal, no sin/cos tracks); leave it at 0"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Parses a profile: `constant:RPM`, `ramp:FROM:TO:SECONDS`, `reversal:RPM:AT_S:OVER_S`,
 /// or `creep` (0.3 rpm).
 pub fn parse_profile(s: &str) -> std::result::Result<Profile, String> {
@@ -121,8 +207,49 @@ pub struct SimReport {
 pub fn run(
     loaded: &Loaded,
     o: &SimOptions,
-    mut progress: impl FnMut(u64, u64),
+    progress: impl FnMut(u64, u64),
 ) -> Result<SimReport> {
+    run_traced(loaded, o, progress, None)
+}
+
+/// The VCD writer for `<name>_top` (see [`crate::sim::vcd`]).
+fn top_trace(
+    loaded: &Loaded,
+    out: Box<dyn std::io::Write>,
+    block: &impl crate::verify::CosimBlock,
+) -> Result<crate::sim::vcd::TopTrace> {
+    let d = &loaded.derived;
+    crate::sim::vcd::TopTrace::new(
+        out,
+        &crate::emit::top_name(loaded),
+        &crate::emit::top_ports(loaded),
+        &block.input_ports(),
+        &block.output_ports(),
+        d.fine_bits,
+        (1e12 / d.clock_hz).round() as u64,
+    )
+    .map_err(|e| Error::io("VCD output", e))
+}
+
+/// The error for a run that decoded no sample past the settling ones.
+fn no_sample(duration_s: f64, decoded: usize, skip: String, need_s: f64) -> Error {
+    Error::option(
+        "--duration",
+        format!(
+            "{duration_s} s: no decoded sample to compare ({decoded} decoded, {skip}); use at least {need_s:.6} s"
+        ),
+    )
+}
+
+/// [`run`], streaming `<name>_top`'s pins as VCD into `vcd` cycle by cycle (bounded
+/// memory).
+pub fn run_traced(
+    loaded: &Loaded,
+    o: &SimOptions,
+    mut progress: impl FnMut(u64, u64),
+    vcd: Option<Box<dyn std::io::Write>>,
+) -> Result<SimReport> {
+    o.validate(false)?;
     let d = &loaded.derived;
     let mut sys = System::new(d, encoder(loaded, o)).map_err(Error::Export)?;
     let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
@@ -131,6 +258,10 @@ pub fn run(
     };
     if o.record {
         sys.record_inputs();
+    }
+    if let Some(out) = vcd {
+        let t = top_trace(loaded, out, sys.top())?;
+        sys.trace_to(t);
     }
     sys.start().map_err(settle)?;
     let total = (o.duration_s * d.clock_hz).ceil() as u64;
@@ -144,8 +275,23 @@ pub fn run(
         progress(done, total);
     }
     let wall_s = t0.elapsed().as_secs_f64();
+    sys.finish_trace().map_err(|e| Error::io("VCD output", e))?;
     let result = sys.finish();
     let stats = result.stats(d, o.skip);
+    if stats.samples == 0 {
+        // The first position leaves the top at the ADC's start-up plus the latency; the
+        // statistics start after `skip` more sample periods.
+        let need = (d.adc.startup_clocks() as f64
+            + crate::blocks::top::hdl::conv_to_position_cycles(d) as f64
+            + (o.skip as f64 + 1.0) * d.adc.period_clocks as f64)
+            / d.clock_hz;
+        return Err(no_sample(
+            o.duration_s,
+            result.records.len(),
+            format!("the first {} are settling", o.skip),
+            need,
+        ));
+    }
     Ok(SimReport {
         result,
         stats,
@@ -207,76 +353,73 @@ impl SimReport {
         o
     }
 
-    /// CSV of every decoded sample.
-    pub fn csv(&self, loaded: &Loaded) -> String {
+    /// CSV of every decoded sample; columns [`CSV_COLUMNS`] (documented in the README).
+    /// `error_lsb` = unwrapped - truth_lsb - the constant offset of
+    /// [`SimResult::offset_lsb`], modulo the position's range; `warmup` marks the settling
+    /// records left out of the statistics.
+    pub fn csv(&self, loaded: &Loaded, skip: usize) -> String {
         let d = &loaded.derived;
-        let st = &self.stats;
-        let _ = st;
-        let first = self.result.records.first();
-        let q = (1u64 << d.fine_bits) as f64;
-        let offset = first.map(|f| {
-            let raw = f.unwrapped as f64 - f.truth - 2.0 * q;
-            2.0 * q + 4.0 * q * (raw / (4.0 * q)).round()
-        });
-        let mut o = String::from(
-            "cycle,conv_cycle,position,turns,unwrapped,truth_lsb,error_lsb,error,warning\n",
-        );
-        for r in &self.result.records {
-            let e = r.unwrapped as f64 - r.truth - offset.unwrap_or(0.0);
+        let offset = self.result.offset_lsb(d);
+        let mut o = format!("{}\n", CSV_COLUMNS.join(","));
+        for (i, r) in self.result.records.iter().enumerate() {
             let _ = writeln!(
                 o,
-                "{},{},{},{},{},{:.3},{:.3},{},{}",
+                "{},{},{},{},{},{:.3},{:.3},{},{},{}",
                 r.cycle,
                 r.conv_cycle,
                 r.position,
                 r.turns,
                 r.unwrapped,
                 r.truth,
-                e,
+                SimResult::error_lsb(d, r, offset),
                 r.error as u8,
-                r.warning as u8
+                r.warning as u8,
+                (i < skip) as u8
             );
         }
         o
     }
 }
 
-impl SimReport {
-    /// VCD of the top's pins (needs `SimOptions::record`).
-    pub fn vcd(&self, loaded: &Loaded) -> Result<String> {
-        use crate::verify::CosimBlock;
-        let top = crate::blocks::top::hdl::TopRtl::new(&loaded.derived).map_err(Error::Export)?;
-        let mut ports = top.input_ports();
-        ports.extend(top.output_ports());
-        let rows: Vec<Vec<u64>> = self
-            .result
-            .inputs
-            .iter()
-            .zip(&self.result.outputs)
-            .map(|(i, o)| i.iter().chain(o.iter()).copied().collect())
-            .collect();
-        let period_ps = (1e12 / loaded.derived.clock_hz).round() as u64;
-        Ok(crate::sim::vcd::write_vcd(
-            &crate::emit::top_name(loaded),
-            &ports,
-            &rows,
-            period_ps,
-        ))
-    }
-}
+/// Columns of `simulate --csv`, the same on both paths (documented in the README):
+/// `truth_cycle` is the cycle at which the true angle `truth_lsb` is taken (the CONV rise
+/// that sampled the inputs on the sinewave path; `par_valid` on the capacitive path).
+pub const CSV_COLUMNS: [&str; 10] = [
+    "cycle",
+    "truth_cycle",
+    "position",
+    "turns",
+    "unwrapped",
+    "truth_lsb",
+    "error_lsb",
+    "error",
+    "warning",
+    "warmup",
+];
 
 /// `simulate` for a configuration with `[capacitive]`: the capacitive top against the
 /// capacitive-encoder model (16-bit ADC of 1 V full scale; `amplitude` is the received
 /// amplitude as a fraction of the ADC's range, `noise_lsb` its noise in ADC LSB RMS;
-/// offsets, gain mismatch, phase error and harmonics do not apply). Returns the summary
-/// and a CSV of every decoded position.
+/// offsets, gain mismatch, phase error and harmonics do not apply and are rejected).
+/// Returns the summary and a CSV of every decoded position ([`CSV_COLUMNS`]).
 pub fn run_capacitive(
     loaded: &Loaded,
     o: &SimOptions,
+    progress: impl FnMut(u64, u64),
+) -> Result<(String, String)> {
+    run_capacitive_traced(loaded, o, progress, None)
+}
+
+/// [`run_capacitive`], streaming the capacitive `<name>_top`'s pins as VCD into `vcd`.
+pub fn run_capacitive_traced(
+    loaded: &Loaded,
+    o: &SimOptions,
     mut progress: impl FnMut(u64, u64),
+    vcd: Option<Box<dyn std::io::Write>>,
 ) -> Result<(String, String)> {
     use crate::sim::cap_system::CapSystem;
     use crate::sim::capacitive::CapParams;
+    o.validate(true)?;
     let d = &loaded.derived;
     let k = d.capacitive.as_ref().ok_or_else(|| {
         Error::Export("run_capacitive needs a configuration with [capacitive]".into())
@@ -288,6 +431,11 @@ pub fn run_capacitive(
     p.noise_rms_v = o.noise_lsb * p.adc_full_scale_v / (1u64 << (d.adc.frame.width - 1)) as f64;
     p.seed = o.seed;
     let mut sys = CapSystem::new(d, p).map_err(Error::Export)?;
+    if let Some(out) = vcd {
+        let top = crate::blocks::captop::hdl::CapTopRtl::new(d)?;
+        let t = top_trace(loaded, out, &top)?;
+        sys.trace_to(t);
+    }
     let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
         block: "top".into(),
         message: e.to_string(),
@@ -303,23 +451,42 @@ pub fn run_capacitive(
         progress(done, total);
     }
     let wall = t0.elapsed().as_secs_f64();
+    sys.finish_trace().map_err(|e| Error::io("VCD output", e))?;
     let skip = 1.5e-3f64.min(o.duration_s / 2.0);
     let s = sys.stats(skip);
+    if s.samples == 0 {
+        let need = 2.0 * (d.adc.startup_clocks() as f64 + 2.0 * d.adc.period_clocks as f64)
+            / d.clock_hz;
+        return Err(no_sample(
+            o.duration_s,
+            sys.records.len(),
+            format!("those of the first {:.3} ms are settling", skip * 1e3),
+            need.max(3.0e-3),
+        ));
+    }
     let front = crate::blocks::capacitive::CapFrontParams::new(d)?;
     let us = |c: u32| c as f64 / d.clock_hz * 1e6;
-    let mut csv =
-        String::from("cycle,time_s,decoded_lsb,truth_lsb,error_lsb,error_flag,warning_flag\n");
+    // error_lsb: decoded - truth minus the constant lag/offset the summary removes (the
+    // mean over the statistics window), taken modulo one turn like the statistics.
+    let turn = d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64;
+    let mean_lsb = s.mean_deg / 360.0 * turn;
+    let skip_cycles = (skip * d.clock_hz) as u64;
+    let mut csv = format!("{}\n", CSV_COLUMNS.join(","));
     for r in &sys.records {
+        let e = r.decoded as f64 - r.truth - mean_lsb;
         let _ = writeln!(
             csv,
-            "{},{:.9},{},{:.3},{:.3},{},{}",
+            "{},{},{},{},{},{:.3},{:.3},{},{},{}",
             r.cycle,
-            r.cycle as f64 / d.clock_hz,
+            r.cycle,
+            r.position,
+            r.turns,
             r.decoded,
             r.truth,
-            r.decoded as f64 - r.truth,
+            e - turn * (e / turn).round(),
             r.error as u8,
-            r.warning as u8
+            r.warning as u8,
+            (r.cycle < skip_cycles) as u8
         );
     }
     let summary = format!(

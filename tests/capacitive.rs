@@ -344,15 +344,11 @@ fn simulate_and_check_run_on_the_capacitive_config() {
         "{text}"
     );
     assert!(text.contains("(0 flagged)"), "{text}");
-    // One CSV line per decoded position (400 kHz for 2.5 ms, minus the start-up), each
-    // with 7 numeric fields.
+    // One CSV line per decoded position (400 kHz for 2.5 ms, minus the start-up), with the
+    // sinewave path's columns (README, "simulate --csv columns"): 10 numeric fields.
     let table = std::fs::read_to_string(&csv).expect("csv written");
     let lines: Vec<&str> = table.lines().collect();
-    assert!(
-        lines[0].starts_with("cycle,time_s,decoded_lsb"),
-        "{}",
-        lines[0]
-    );
+    assert_eq!(lines[0], sinedec::simulate::CSV_COLUMNS.join(","));
     assert!(
         (900..=1000).contains(&(lines.len() - 1)),
         "{} rows",
@@ -360,7 +356,7 @@ fn simulate_and_check_run_on_the_capacitive_config() {
     );
     for l in &lines[1..] {
         let f: Vec<f64> = l.split(',').map(|x| x.parse().expect("number")).collect();
-        assert_eq!(f.len(), 7, "{l}");
+        assert_eq!(f.len(), 10, "{l}");
     }
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
         .args(["check", cfg])

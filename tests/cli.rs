@@ -358,7 +358,7 @@ fn check_default_prints_derived_parameters() {
             == Some("14"),
         "{out}"
     );
-    let lat = line_of(&out, "latency");
+    let lat = line_of(&out, "core latency");
     assert!(lat.contains(" 16 cycles"), "{lat}");
     // 16 cycles at 133.33 MHz.
     assert!(
@@ -388,7 +388,7 @@ fn check_latency_follows_iterations() {
     .unwrap();
     let out = ok(dir, &["check", "n10.toml"]);
     assert!(out.starts_with("n10.toml: ok"), "{out}");
-    assert!(line_of(&out, "latency").contains(" 12 cycles"), "{out}");
+    assert!(line_of(&out, "core latency").contains(" 12 cycles"), "{out}");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -168,6 +168,47 @@ pub fn top_name(loaded: &Loaded) -> String {
     format!("{}_top", loaded.config.name)
 }
 
+/// Ports of `<name>_top` in declaration order as (name, width): the sinewave top's pins
+/// ([`crate::config::board_ports`] in the wrapper's order) or the capacitive top's, then the
+/// parallel bus; empty when the configuration has no board top. The VCD of `simulate` uses
+/// these names and widths.
+pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
+    let d = &loaded.derived;
+    let one = |p: &str| (p.to_string(), 1u32);
+    let mut v: Vec<(String, u32)> = if let Some(k) = &d.capacitive {
+        let w = k.config.dac_width;
+        let mut v: Vec<(String, u32)> = ["clk", "rst", "adc_miso", "adc_sck", "adc_conv"]
+            .into_iter()
+            .map(one)
+            .collect();
+        v.push(("exc_sin".into(), w));
+        v.push(("exc_cos".into(), w));
+        v.extend(["exc_strobe", "biss_ma", "biss_slo"].into_iter().map(one));
+        v
+    } else if has_top(loaded) {
+        let used: Vec<&str> = crate::config::board_ports(&loaded.config)
+            .iter()
+            .map(|p| p.0)
+            .collect();
+        TOP_PORTS
+            .iter()
+            .filter(|t| used.contains(&t.0))
+            .map(|t| one(t.0))
+            .collect()
+    } else {
+        return Vec::new();
+    };
+    v.extend([
+        one("par_valid"),
+        ("par_position".into(), d.position_width),
+        ("par_turns".into(), d.turns_width),
+        ("par_fine".into(), d.fine_bits),
+        one("par_error"),
+        one("par_warning"),
+    ]);
+    v
+}
+
 /// One-bit ports of the sinewave `<name>_rtl` besides the parallel bus, in the wrapper's
 /// port order: (name, is an input, port comment, value an input is tied to inside the
 /// wrapper when the port is left out). The wrapper declares a port only when

@@ -318,7 +318,13 @@ pub fn build(loaded: &Loaded, opts: &Options) -> Result<Report> {
             *iterations.last().unwrap_or(&own)
         }
     });
-    for &n in iterations.iter().chain([&angle_n]) {
+    if !(1..=20).contains(&angle_n) {
+        return Err(Error::option(
+            "--angle-n",
+            format!("{angle_n}: the N of the error-against-angle plot is allowed in 1..=20"),
+        ));
+    }
+    for &n in iterations.iter() {
         if !(1..=20).contains(&n) {
             return Err(bad(format!(
                 "{n} iterations requested by the report: allowed 1..=20"

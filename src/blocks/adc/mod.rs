@@ -563,7 +563,7 @@ impl AdcParams {
              SCK                         {:.3} MHz ({} clocks: {} high, {} low)\n\
              conversion period           {} clocks ({:.1} ns)\n\
              sample rate per channel     {:.0} samples/s\n\
-             CONV to out_valid latency   {} clocks ({:.1} ns)\n\
+             ADC latency CONV -> sample  {} clocks ({:.1} ns)\n\
              first sample after reset    {} clocks\n",
             self.chip,
             self.clock_hz / 1e6,

@@ -108,7 +108,22 @@ impl CapFrontParams {
             c.guard_frac,
             vec![secs(&k.bandpass.sos), lp.clone(), lp],
         )
-        .map_err(|e| bad("coef", e.to_string()))?;
+        .map_err(|e| match e {
+            // The engine names its own parameter: map it onto the config key.
+            Error::ConfigValue { key, message, .. } => {
+                let key = match key.as_str() {
+                    "coef_width" => "coef.width",
+                    "coef_frac" => "coef.frac",
+                    "data_width" => "data_width",
+                    "guard_frac" => "guard_frac",
+                    k if k.starts_with("branches[0]") => "bandpass",
+                    k if k.starts_with("branches[") => "lowpass",
+                    _ => "coef",
+                };
+                bad(key, message)
+            }
+            e => e,
+        })?;
         let p = CapFrontParams {
             adc_width: d.adc.frame.width,
             nco,

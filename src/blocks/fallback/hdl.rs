@@ -309,8 +309,16 @@ impl Logic for Fallback {
                 if self.aligned.q.val() != self.three.val() {
                     self.aligned.d.next = self.aligned.q.val() + self.one.val();
                 }
-                self.oq.d.next = self.dq.val();
-                self.ot.d.next = self.dt.val() & self.tmask.val();
+                // The CORDIC count sets the offset only below the unwrap limit: after the
+                // first sample, a sample with the overspeed warning or with 2 or more QEP
+                // quadrants since the previous conversion (an aliased count) keeps it, so a
+                // decoder started above the limit resynchronises to its first sample's count.
+                if (self.aligned.q.val() == self.zero.val())
+                    | !(self.core_warning.val() | self.busy.q.val())
+                {
+                    self.oq.d.next = self.dq.val();
+                    self.ot.d.next = self.dt.val() & self.tmask.val();
+                }
             }
         }
         if (self.nq.val() & self.sign32.val()).any() {

@@ -23,7 +23,11 @@
 //!   sample leaves the core, so that the counter applies it to the right sample.
 //! * The tracker runs free on the QEP steps; an offset (oq, ot) relates it to the CORDIC
 //!   count. Normal mode: at each good core sample the offset is set to (qc - sq, turns - st),
-//!   so the QEP count follows the CORDIC count (exact at low speed); dd = qc - sq - oq with
+//!   so the QEP count follows the CORDIC count (exact at low speed). After the first
+//!   sample, a sample with the overspeed warning or with 2 or more QEP quadrants since the
+//!   previous conversion does not set the offset (its CORDIC count may be aliased by whole
+//!   periods), so a decoder that starts above the unwrap limit keeps the offset of its first
+//!   sample and its position stays consistent with the QEP count; dd = qc - sq - oq with
 //!   |dd| > 1 quadrant (after three aligned samples, so that the captures in flight are
 //!   consistent) is a QEP/CORDIC disagreement: `mismatch` (a warning). The offset is
 //!   assigned, not accumulated, so stale captures cannot add up.
