@@ -75,7 +75,10 @@ pub fn clip(value: &str, max: usize) -> String {
     let tail = max.saturating_sub(head);
     let start: String = value.chars().take(head).collect();
     let end: String = value.chars().skip(n - tail).collect();
-    format!("{start}...({} characters left out)...{end}", n - head - tail)
+    format!(
+        "{start}...({} characters left out)...{end}",
+        n - head - tail
+    )
 }
 
 /// Shorthand result type.

@@ -241,8 +241,7 @@ fn run(cli: Cli) -> Result<()> {
                 }
                 s
             } else {
-                let report =
-                    sinedec::simulate::run(&loaded, &o, |done, _| bar.set_position(done))?;
+                let report = sinedec::simulate::run(&loaded, &o, |done, _| bar.set_position(done))?;
                 bar.finish_and_clear();
                 if let Some(mut f) = csv_out.take() {
                     f.write_all(report.csv(&loaded).as_bytes())?;
@@ -318,7 +317,10 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Init { path, force } => {
             if path.is_dir() {
-                bail!("{}: is a directory; give the path of the file to write", path.display());
+                bail!(
+                    "{}: is a directory; give the path of the file to write",
+                    path.display()
+                );
             }
             if path.exists() && !force {
                 bail!("{}: exists; pass --force to overwrite it", path.display());

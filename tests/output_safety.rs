@@ -101,7 +101,11 @@ fn new_directory_is_created_with_parents_and_a_manifest() {
     let mut files = listing(&out);
     files.retain(|f| f != MANIFEST);
     assert!(files.contains(&"sd_core.v".to_string()), "{files:?}");
-    assert_eq!(manifest(&out, "generate"), files, "manifest lists every file");
+    assert_eq!(
+        manifest(&out, "generate"),
+        files,
+        "manifest lists every file"
+    );
     assert_eq!(listing(&tmp.path().join("a/b")), vec!["out"]);
 }
 
@@ -136,7 +140,10 @@ fn config_inside_the_output_directory_is_kept() {
     let e = refused(dir, &["generate", "fpga/sinedec.toml", "-o", "fpga"]);
     assert!(e.contains("--force"), "{e}");
     assert_eq!(listing(&dir.join("fpga")), vec!["sinedec.toml"]);
-    ok(dir, &["generate", "fpga/sinedec.toml", "-o", "fpga", "--force"]);
+    ok(
+        dir,
+        &["generate", "fpga/sinedec.toml", "-o", "fpga", "--force"],
+    );
     assert_eq!(std::fs::read(dir.join("fpga/sinedec.toml")).unwrap(), cfg);
     assert!(dir.join("fpga/sd_core.v").is_file());
     assert!(!manifest(&dir.join("fpga"), "generate").contains(&"sinedec.toml".to_string()));
@@ -174,7 +181,10 @@ fn manifest_bounds_what_is_replaced_and_removed() {
     // With a board (the kit preset and header pins as in tests/board.rs) it has one.
     let mut board = DEFAULT_CONFIG.to_string();
     board.push_str("\n[board]\npreset = \"spartan3an-starter-kit\"\n[board.pins]\n");
-    for (i, p) in ["qep_a", "qep_b", "qep_z", "biss_ma", "biss_slo"].iter().enumerate() {
+    for (i, p) in ["qep_a", "qep_b", "qep_z", "biss_ma", "biss_slo"]
+        .iter()
+        .enumerate()
+    {
         board.push_str(&format!("{p} = \"H{}\"\n", i + 1));
     }
     std::fs::write(dir.join("b.toml"), board).unwrap();
@@ -194,7 +204,10 @@ fn manifest_bounds_what_is_replaced_and_removed() {
     assert!(std::fs::read_to_string(out.join("sd_top.ucf"))
         .unwrap()
         .contains("NET \"clk\""));
-    assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
     // Back to the default config: the UCF and .ut it no longer produces are removed.
     ok(dir, &["generate", "-o", "out"]);
     assert!(!out.join("sd_top.ucf").exists() && !out.join("sd_top.ut").exists());
@@ -229,7 +242,10 @@ fn output_at_a_regular_file_is_refused_before_touching_anything() {
     assert_eq!(snapshot(dir), before, "something changed");
     // report: refused up front, before any synthesis (no Yosys summary line).
     let e = refused(dir, &["report", "-o", "target", "--iterations", "2"]);
-    assert!(e.contains("not a directory") && !e.contains("yosys:"), "{e}");
+    assert!(
+        e.contains("not a directory") && !e.contains("yosys:"),
+        "{e}"
+    );
     assert_eq!(snapshot(dir), before, "something changed");
     // report into a foreign non-empty directory: refused up front too.
     std::fs::create_dir(dir.join("rep")).unwrap();
@@ -252,8 +268,14 @@ fn no_fixed_temporary_names() {
         dir,
         &["simulate", "--duration", "0.0001", "--csv", "run.csv"],
     );
-    assert_eq!(std::fs::read_to_string(dir.join("my.toml.tmp")).unwrap(), "mine");
-    assert_eq!(std::fs::read_to_string(dir.join("run.csv.tmp")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("my.toml.tmp")).unwrap(),
+        "mine"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("run.csv.tmp")).unwrap(),
+        "mine"
+    );
     assert_eq!(
         listing(dir),
         vec!["my.toml", "my.toml.tmp", "run.csv", "run.csv.tmp"]
@@ -436,7 +458,10 @@ fn assert_no_debug_text(what: &str, text: &str) {
         "Static",
         "Auto",
     ] {
-        assert!(!text.contains(bad), "{what}: Debug text {bad:?} in:\n{text}");
+        assert!(
+            !text.contains(bad),
+            "{what}: Debug text {bad:?} in:\n{text}"
+        );
     }
 }
 
@@ -446,7 +471,10 @@ fn no_debug_text_in_user_output() {
     let dir = tmp.path();
     let out = ok(dir, &["check"]);
     assert_no_debug_text("check", &out);
-    assert!(out.contains("LTC1407A-1") && out.contains("unrolled"), "{out}");
+    assert!(
+        out.contains("LTC1407A-1") && out.contains("unrolled"),
+        "{out}"
+    );
     let iter = DEFAULT_CONFIG.replace(
         "architecture = \"unrolled\"",
         "architecture = \"iterative\"",
@@ -585,7 +613,10 @@ fn a_bad_manifest_or_a_replaced_file_stops_the_write() {
     }
     // Removing stale entries leaves a link or directory alone as well.
     write_files(&out, &[("c.v", b"c")], &opts("generate")).unwrap();
-    assert_eq!(std::fs::read_to_string(tmp.path().join("precious")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(tmp.path().join("precious")).unwrap(),
+        "mine"
+    );
     assert!(out.join("a.v").is_symlink() && out.join("b.v").is_dir());
 }
 
@@ -597,13 +628,20 @@ fn a_bad_manifest_or_a_replaced_file_stops_the_write() {
 fn a_kill_never_leaves_a_file_missing_or_partial() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
-    std::fs::write(dir.join("b.toml"), DEFAULT_CONFIG.replace("ppr = 2048", "ppr = 1000")).unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        DEFAULT_CONFIG.replace("ppr = 2048", "ppr = 1000"),
+    )
+    .unwrap();
     // The headers quote the command line, so the references are made with `-o out` too.
     ok(dir, &["generate", "-o", "out"]);
     let old = snapshot(&dir.join("out"));
     ok(dir, &["generate", "b.toml", "-o", "out"]);
     let new = snapshot(&dir.join("out"));
-    assert!(old.iter().any(|(k, v)| new.get(k) != Some(v)), "the versions differ");
+    assert!(
+        old.iter().any(|(k, v)| new.get(k) != Some(v)),
+        "the versions differ"
+    );
     let names: Vec<&PathBuf> = old.keys().filter(|p| !p.ends_with(MANIFEST)).collect();
     for i in 0..16u64 {
         let _ = std::fs::remove_dir_all(dir.join("out"));
@@ -620,11 +658,89 @@ fn a_kill_never_leaves_a_file_missing_or_partial() {
         let _ = child.wait();
         let now = snapshot(&dir.join("out"));
         for n in &names {
-            let got = now.get(*n).unwrap_or_else(|| panic!("kill {i}: {n:?} missing"));
+            let got = now
+                .get(*n)
+                .unwrap_or_else(|| panic!("kill {i}: {n:?} missing"));
             assert!(
                 got == &old[*n] || got == &new[*n],
                 "kill {i}: {n:?} is neither the old nor the new version"
             );
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// F. Header text never breaks the file it sits in
+
+/// The comment marker a header line of `file` starts with (None: no header).
+fn marker(file: &str) -> Option<&'static str> {
+    match file.rsplit('.').next() {
+        Some("v") => Some("//"),
+        Some("ucf" | "qsf" | "sdc") => Some("#"),
+        Some("md") => Some("<!--"),
+        _ => None,
+    }
+}
+
+#[test]
+fn control_characters_in_the_config_path_stay_inside_the_header_comment() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let cap = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/cyclone3_capacitive.toml"),
+    )
+    .unwrap();
+    let cases = [
+        (
+            "we\nird\t\u{1b}\r<!-- -->\u{2028}.toml",
+            DEFAULT_CONFIG.to_string(),
+            "o1",
+        ),
+        ("cap\nx\\", cap, "o2\\"),
+    ];
+    for (name, text, out) in cases {
+        std::fs::write(dir.join(name), &text).unwrap();
+        ok(dir, &["generate", name, "-o", out]);
+        let mut seen = 0;
+        for f in listing(&dir.join(out)) {
+            let Some(m) = marker(&f) else { continue };
+            seen += 1;
+            let body = std::fs::read_to_string(dir.join(out).join(&f)).unwrap();
+            let head: Vec<&str> = body.lines().take(4).collect();
+            for l in &head {
+                assert!(
+                    l.starts_with(m),
+                    "{f}: header line {l:?} outside the comment"
+                );
+                let trailing = l.len() - l.trim_end_matches('\\').len();
+                assert!(trailing % 2 == 0, "{f}: {l:?} ends in a line continuation");
+                if m == "<!--" {
+                    assert!(
+                        l.ends_with(" -->") && l.matches("-->").count() == 1,
+                        "{f}: {l:?} closes its comment early"
+                    );
+                    assert_eq!(l.matches("<!--").count(), 1, "{f}: {l:?}");
+                }
+            }
+            assert!(
+                head[1].contains("we\\nird\\t\\u{1b}\\r") || head[1].contains("cap\\nx\\\\"),
+                "{f}: {head:?}"
+            );
+            // The line after the header is the file's own first line.
+            let next = body.lines().nth(4).unwrap_or("");
+            assert!(
+                !next.starts_with(m) || m == "#" || m == "<!--",
+                "{f}: {next:?}"
+            );
+        }
+        assert!(seen >= 3, "{out}: {seen} files with a header");
+    }
+    // The Verilog still compiles.
+    sinedec::sim::cosim::require_tool("iverilog").expect("iverilog installed");
+    let c = Command::new("iverilog")
+        .args(["-g2005", "-o", "tb.vvp", "o1/sd_core.v", "o1/sd_core_tb.v"])
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert!(c.status.success(), "{}", stderr(&c));
 }

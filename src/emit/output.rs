@@ -91,7 +91,10 @@ fn read_manifest(dir: &Path) -> Result<Option<Vec<(String, String)>>> {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(e) => return Err(Error::io(&path, e)),
         Ok(m) if !m.is_file() => {
-            return Err(refuse(&path, "is not a regular file; sinedec writes its manifest as one"))
+            return Err(refuse(
+                &path,
+                "is not a regular file; sinedec writes its manifest as one",
+            ))
         }
         Ok(_) => {}
     }
@@ -356,7 +359,10 @@ impl PendingFile {
             return Err(refuse(path, "an empty path"));
         }
         if path.is_dir() {
-            return Err(refuse(path, "is a directory; give the path of the file to write"));
+            return Err(refuse(
+                path,
+                "is a directory; give the path of the file to write",
+            ));
         }
         let parent = match path.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
