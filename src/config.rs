@@ -642,6 +642,16 @@ pub enum Architecture {
     Iterative,
 }
 
+impl std::fmt::Display for Architecture {
+    /// The spelling of `cordic.architecture`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Architecture::Unrolled => "unrolled",
+            Architecture::Iterative => "iterative",
+        })
+    }
+}
+
 /// `[monitor]`
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -1486,7 +1496,7 @@ impl Derived {
              out_position width          {} bits ({:.2} bits per turn)\n\
              out_turns width             {} bits\n\
              core latency in -> out      {} cycles = {:.1} ns at {:.3} MHz\n\
-             throughput                  1 sample per {} clock(s) ({:?} CORDIC)\n\
+             throughput                  1 sample per {} clock(s) ({} CORDIC)\n\
              sample rate                 {:.0} samples/s per channel\n\
              max speed at full res.      {:.0} rpm (steps below {:.2} quadrants per sample)\n",
             self.adc_width,

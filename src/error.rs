@@ -61,6 +61,33 @@ pub enum Error {
     /// An external tool (Yosys, Icarus, Verilator) is missing or failed.
     #[error(transparent)]
     Tool(#[from] crate::sim::cosim::CosimError),
+    /// sinedec refuses to write where it could lose a file it did not write (see
+    /// `emit::output`); nothing was written.
+    #[error("{}: {message}", path.display())]
+    Refused {
+        /// The directory or file concerned.
+        path: PathBuf,
+        /// Why, and the way out.
+        message: String,
+    },
+}
+
+/// `value` as echoed in a message: at most `max` characters; a longer value keeps its start
+/// and end around `...(N characters left out)...`, so a 100,000-character input does not
+/// flood the terminal.
+pub fn clip(value: &str, max: usize) -> String {
+    let n = value.chars().count();
+    if n <= max {
+        return value.to_string();
+    }
+    let head = max * 2 / 3;
+    let tail = max.saturating_sub(head);
+    let start: String = value.chars().take(head).collect();
+    let end: String = value.chars().skip(n - tail).collect();
+    format!(
+        "{start}...({} characters left out)...{end}",
+        n - head - tail
+    )
 }
 
 /// Shorthand result type.

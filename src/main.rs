@@ -1,8 +1,15 @@
 //! sinedec command line: a thin layer over the library.
-use anyhow::{bail, Context, Result};
+//!
+//! Standard output goes through [`out`]: a reader that went away (`sinedec check | head -1`)
+//! ends the program quietly with status 141, the status a shell shows for `cat` killed by
+//! SIGPIPE; any other write error (`> /dev/full`) is reported with status 1. Errors are
+//! printed once each (see [`message`]), long echoed values clipped.
+use anyhow::{bail, Result};
 use clap::{Parser, Subcommand};
 use sinedec::config::Loaded;
-use std::path::{Path, PathBuf};
+use sinedec::emit::output::{check_output_dir, OutputOptions, PendingFile};
+use std::io::Write;
+use std::path::PathBuf;
 
 #[derive(Parser)]
 #[command(
@@ -21,11 +28,17 @@ enum Command {
     Generate {
         /// Configuration file (TOML); the embedded Spartan-3AN default when omitted.
         config: Option<PathBuf>,
-        /// Output directory (replaced atomically).
+        /// Output directory: created when missing; sinedec replaces only the files its
+        /// manifest (.sinedec-manifest) lists and never overwrites another file.
         #[arg(short, long, default_value = "out")]
         output: PathBuf,
+        /// Use a non-empty directory sinedec did not write (no manifest): add the files next
+        /// to the ones there; an existing file of the same name is still refused.
+        #[arg(long)]
+        force: bool,
     },
     /// Simulates the board top cycle by cycle against encoder, ADC and amplifier models.
+    #[command(allow_negative_numbers = true)]
     Simulate {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,
@@ -59,10 +72,11 @@ enum Command {
         /// Noise seed.
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Write every decoded sample as CSV.
+        /// Write every decoded sample as CSV (checked before the simulation; the directory
+        /// must exist; an existing file is replaced).
         #[arg(long)]
         csv: Option<PathBuf>,
-        /// Write the top's pins, cycle by cycle, as VCD.
+        /// Write the top's pins, cycle by cycle, as VCD (checked like --csv).
         #[arg(long)]
         vcd: Option<PathBuf>,
     },
@@ -73,7 +87,7 @@ enum Command {
     },
     /// Writes a commented example configuration.
     Init {
-        /// Where to write it.
+        /// Where to write it (missing parent directories are created).
         #[arg(default_value = "sinedec.toml")]
         path: PathBuf,
         /// Overwrite an existing file.
@@ -88,9 +102,12 @@ enum Command {
         /// Iteration counts: A..=B, A..B, A-B, N or a comma-separated list (1..=20).
         #[arg(long, default_value = "2..=20")]
         iterations: String,
-        /// Output directory (replaced atomically).
+        /// Output directory, under the same rule as `generate -o` (checked before the run).
         #[arg(short, long, default_value = "report")]
         output: PathBuf,
+        /// As `generate --force`.
+        #[arg(long)]
+        force: bool,
         /// Files to write: comma-separated md, csv (per N and per block), json, svg.
         #[arg(long, default_value = "md,csv,json,svg")]
         format: String,
@@ -114,20 +131,56 @@ fn load(config: &Option<PathBuf>) -> Result<Loaded> {
 }
 
 /// The command line as quoted in file headers (program name normalized so the bytes do not
-/// depend on where the binary lives).
+/// depend on where the binary lives). An argument that is not UTF-8 is quoted lossily (U+FFFD
+/// for each bad byte); the header escapes control characters (`emit::comment_text`).
 fn command_line() -> String {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let args: Vec<String> = std::env::args_os()
+        .skip(1)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
     format!("sinedec {}", args.join(" "))
+}
+
+/// A failed write to standard output.
+#[derive(Debug)]
+struct StdoutError(std::io::Error);
+
+impl std::fmt::Display for StdoutError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "writing to standard output: {}", self.0)
+    }
+}
+
+impl std::error::Error for StdoutError {}
+
+/// Writes `text` to standard output and flushes it, so a full disk is seen here.
+fn out(text: &str) -> Result<()> {
+    let mut o = std::io::stdout().lock();
+    o.write_all(text.as_bytes())
+        .and_then(|_| o.flush())
+        .map_err(|e| anyhow::Error::new(StdoutError(e)))
+}
+
+/// `println!` through [`out`].
+macro_rules! say {
+    ($($t:tt)*) => { out(&format!("{}\n", format_args!($($t)*))) };
 }
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Generate { config, output } => {
+        Command::Generate {
+            config,
+            output,
+            force,
+        } => {
+            let mut opts = OutputOptions::new("generate");
+            opts.force = force;
             let loaded = load(&config)?;
+            check_output_dir(&output, &opts)?;
             let generation = sinedec::emit::generate(&loaded, &command_line())?;
-            sinedec::emit::write_output(&generation, &output)?;
+            sinedec::emit::write_output_with(&generation, &output, &opts)?;
             for f in &generation.files {
-                println!("wrote {}", output.join(&f.name).display());
+                say!("wrote {}", output.join(&f.name).display())?;
             }
         }
         Command::Simulate {
@@ -149,6 +202,10 @@ fn run(cli: Cli) -> Result<()> {
             if !(duration > 0.0 && duration <= 10.0) {
                 bail!("--duration {duration}: allowed 0 < seconds <= 10");
             }
+            // The output files are checked (and their temporary files created beside them)
+            // before the simulation runs.
+            let mut csv_out = csv.as_deref().map(PendingFile::new).transpose()?;
+            let mut vcd_out = vcd.as_deref().map(PendingFile::new).transpose()?;
             let o = sinedec::simulate::SimOptions {
                 profile: sinedec::simulate::parse_profile(&profile).map_err(anyhow::Error::msg)?,
                 duration_s: duration,
@@ -161,10 +218,13 @@ fn run(cli: Cli) -> Result<()> {
                 seed,
                 ..Default::default()
             };
-            // The VCD streams to disk during the run.
-            let trace: Option<Box<dyn std::io::Write>> = match &vcd {
-                Some(p) => Some(Box::new(std::io::BufWriter::new(
-                    std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?,
+            // The VCD streams during the run into its temporary file (checked above, renamed
+            // onto the path when the run is complete).
+            let trace: Option<Box<dyn std::io::Write>> = match vcd_out.as_mut() {
+                Some(f) => Some(Box::new(std::io::BufWriter::new(
+                    f.file()
+                        .try_clone()
+                        .map_err(|e| anyhow::anyhow!("opening the VCD's temporary file: {e}"))?,
                 ))),
                 None => None,
             };
@@ -174,7 +234,9 @@ fn run(cli: Cli) -> Result<()> {
                 indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
                     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
             );
-            if loaded.derived.capacitive.is_some() {
+            // Files first, then standard output: a closed stdout cannot lose them.
+            let mut wrote = vec![];
+            let summary = if loaded.derived.capacitive.is_some() {
                 let (s, table) = sinedec::simulate::run_capacitive_traced(
                     &loaded,
                     &o,
@@ -182,59 +244,68 @@ fn run(cli: Cli) -> Result<()> {
                     trace,
                 )?;
                 bar.finish_and_clear();
-                print!("{s}");
-                if let Some(p) = csv {
-                    write_new(&p, &table)?;
-                    println!("wrote {}", p.display());
+                if let Some(mut f) = csv_out.take() {
+                    f.write_all(table.as_bytes())?;
+                    wrote.push(f.commit()?);
                 }
-                if let Some(p) = vcd {
-                    println!("wrote {}", p.display());
+                s
+            } else {
+                let report = sinedec::simulate::run_traced(
+                    &loaded,
+                    &o,
+                    |done, _| bar.set_position(done),
+                    trace,
+                )?;
+                bar.finish_and_clear();
+                if let Some(mut f) = csv_out.take() {
+                    f.write_all(report.csv(&loaded, o.skip).as_bytes())?;
+                    wrote.push(f.commit()?);
                 }
-                return Ok(());
+                report.summary(&loaded)
+            };
+            if let Some(f) = vcd_out.take() {
+                wrote.push(f.commit()?);
             }
-            let report =
-                sinedec::simulate::run_traced(&loaded, &o, |done, _| bar.set_position(done), trace)?;
-            bar.finish_and_clear();
-            print!("{}", report.summary(&loaded));
-            if let Some(p) = csv {
-                write_new(&p, &report.csv(&loaded, o.skip))?;
-                println!("wrote {}", p.display());
-            }
-            if let Some(p) = vcd {
-                println!("wrote {}", p.display());
+            out(&summary)?;
+            for p in wrote {
+                say!("wrote {}", p.display())?;
             }
         }
         Command::Check { config } => {
             let loaded = load(&config)?;
-            println!("{}: ok", loaded.source_name);
-            print!("{}", loaded.derived.describe());
-            print!("{}", loaded.derived.adc.describe());
+            say!("{}: ok", loaded.source_name)?;
+            out(&loaded.derived.describe())?;
+            out(&loaded.derived.adc.describe())?;
             if let Some(k) = &loaded.derived.capacitive {
-                println!("\nband-pass (quantized {}):", k.config.coef.width);
-                print!("{}", k.bandpass.to_markdown());
-                println!("\nlow-pass (both branches):");
-                print!("{}", k.lowpass.to_markdown());
+                say!("\nband-pass (quantized {}):", k.config.coef.width)?;
+                out(&k.bandpass.to_markdown())?;
+                say!("\nlow-pass (both branches):")?;
+                out(&k.lowpass.to_markdown())?;
             }
             if let Some(p) = &loaded.derived.preamp {
-                println!(
+                say!(
                     "preamp                      LTC6912-1 gains A {} B {}, word 0x{:02x}, set-up {} clocks",
                     p.gain_a,
                     p.gain_b,
                     p.word(),
                     p.done_clocks()
-                );
+                )?;
             }
         }
         Command::Report {
             config,
             iterations,
             output,
+            force,
             format,
             angle_n,
             cache_dir,
             no_cache,
         } => {
+            let mut opts = OutputOptions::new("report");
+            opts.force = force;
             let loaded = load(&config)?;
+            check_output_dir(&output, &opts)?;
             let mut o = sinedec::report::Options::new(&command_line());
             o.iterations =
                 sinedec::report::parse_iterations(&iterations).map_err(anyhow::Error::msg)?;
@@ -244,39 +315,86 @@ fn run(cli: Cli) -> Result<()> {
                 cache_dir.unwrap_or_else(|| sinedec::report::yosys::default_cache_dir(&output))
             });
             o.progress = true;
-            let (generation, report) = sinedec::report::run(&loaded, &o, &output)?;
-            for f in &generation.files {
-                println!("wrote {}", output.join(&f.name).display());
-            }
-            eprintln!(
+            let report = sinedec::report::build(&loaded, &o)?;
+            let generation = report.render(&loaded, &o)?;
+            sinedec::emit::write_output_with(&generation, &output, &opts)?;
+            let _ = writeln!(
+                std::io::stderr(),
                 "yosys: {} runs, {} answered from the cache",
-                report.yosys_runs, report.cache_hits
+                report.yosys_runs,
+                report.cache_hits
             );
+            for f in &generation.files {
+                say!("wrote {}", output.join(&f.name).display())?;
+            }
         }
         Command::Init { path, force } => {
-            if path.exists() && !force {
-                bail!("{} exists; pass --force to overwrite it", path.display());
+            if path.is_dir() {
+                bail!(
+                    "{}: is a directory; give the path of the file to write",
+                    path.display()
+                );
             }
-            write_new(&path, sinedec::config::DEFAULT_CONFIG)?;
-            println!("wrote {}", path.display());
+            if path.exists() && !force {
+                bail!("{}: exists; pass --force to overwrite it", path.display());
+            }
+            if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+                std::fs::create_dir_all(parent)
+                    .map_err(|e| sinedec::error::Error::io(parent, e))?;
+            }
+            let mut f = PendingFile::new(&path)?;
+            f.write_all(sinedec::config::DEFAULT_CONFIG.as_bytes())?;
+            if force {
+                f.commit()?;
+            } else {
+                f.commit_new()?;
+            }
+            say!("wrote {}", path.display())?;
         }
     }
     Ok(())
 }
 
-fn write_new(path: &Path, text: &str) -> Result<()> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("renaming onto {}", path.display()))?;
-    Ok(())
+/// The error and its causes, each said once (a cause whose text the message already holds,
+/// such as the OS error inside `path: No such file or directory`, is not repeated), with
+/// every long word clipped (a 100,000-character value is not echoed whole).
+fn message(e: &anyhow::Error) -> String {
+    let mut msg = String::new();
+    for cause in e.chain() {
+        let t = cause.to_string();
+        if msg.contains(&t) {
+            continue;
+        }
+        if !msg.is_empty() {
+            msg.push_str(": ");
+        }
+        msg.push_str(&t);
+    }
+    let clipped: Vec<String> = msg
+        .split(' ')
+        .map(|w| {
+            if w.chars().count() > 300 {
+                sinedec::error::clip(w, 200)
+            } else {
+                w.to_string()
+            }
+        })
+        .collect();
+    sinedec::error::clip(&clipped.join(" "), 4000)
 }
 
 fn main() {
     let cli = Cli::parse();
     if let Err(e) = run(cli) {
-        eprintln!("error: {e:#}");
+        let broken_pipe = e.chain().any(|c| {
+            c.downcast_ref::<StdoutError>()
+                .is_some_and(|s| s.0.kind() == std::io::ErrorKind::BrokenPipe)
+        });
+        if broken_pipe {
+            // As a Unix tool killed by SIGPIPE looks to its shell: status 128 + 13, no message.
+            std::process::exit(141);
+        }
+        let _ = writeln!(std::io::stderr(), "error: {}", message(&e));
         std::process::exit(1);
     }
 }

@@ -343,7 +343,11 @@ impl SimReport {
         let _ = writeln!(o, "samples with warning flag   {}", s.warnings);
         let _ = writeln!(o, "latency mismatches          {}", r.latency_mismatches);
         let _ = writeln!(o, "ADC protocol violations     {}", r.adc_violations.len());
-        let _ = writeln!(o, "preamp gains read back      {:?}", r.amp_gains);
+        let gains = match r.amp_gains {
+            Some((a, b)) => format!("A {a}, B {b}"),
+            None => "none (no complete gain word reached the amplifier)".to_string(),
+        };
+        let _ = writeln!(o, "preamp gains read back      {gains}");
         let _ = writeln!(
             o,
             "simulation speed            {:.0} cycles/s ({:.2} s)",

@@ -216,9 +216,12 @@ fn markdown_cells(md: &str) -> Vec<(String, u32, String)> {
     out
 }
 
+/// The report's files in `dir` (the manifest of what sinedec wrote, `.sinedec-manifest`,
+/// left out).
 fn read_dir(dir: &Path) -> BTreeMap<String, String> {
     std::fs::read_dir(dir)
         .expect("output dir")
+        .filter(|e| e.as_ref().map_or(true, |e| e.file_name() != ".sinedec-manifest"))
         .map(|e| {
             let e = e.expect("dir entry");
             (

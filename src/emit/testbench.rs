@@ -3,8 +3,14 @@
 //! can re-run the check in any Verilog simulator:
 //!
 //! ```text
-//! iverilog -g2005 -o tb <name>_core.v <name>_core_tb.v && vvp tb    # prints PASS or FAIL
+//! iverilog -g2005 -o tb.vvp <name>_core.v <name>_core_tb.v && vvp -n tb.vvp
+//! verilator --binary --timing --top-module <name>_core_tb <name>_core.v <name>_core_tb.v \
+//!     && ./obj_dir/V<name>_core_tb
 //! ```
+//!
+//! Both print PASS and exit 0, or print FAIL with the first mismatches and exit non-zero
+//! (`$fatal`: vvp exits 1, the Verilator binary aborts), so a CI job can use the exit status.
+//! `-g2012` works as well: no identifier is a SystemVerilog keyword (`tests/testbench.rs`).
 //!
 //! Timing per cycle (the co-simulation harness's semantics): inputs change while `clk` is
 //! low, `clk` rises, outputs are compared 1 ns after the edge.
@@ -50,7 +56,7 @@ pub fn core_testbench(loaded: &Loaded) -> String {
         ];
         let ov = o.row();
         vectors.push_str(&format!(
-            "        stim[{k}] = {in_bits}'b{}; expect[{k}] = {out_bits}'b{};\n",
+            "        stim[{k}] = {in_bits}'b{}; expected[{k}] = {out_bits}'b{};\n",
             bits(&iv, &ins),
             bits(&ov, &outs)
         ));
@@ -90,28 +96,38 @@ pub fn core_testbench(loaded: &Loaded) -> String {
 module {name}_tb;
     reg clk = 1'b0;
 {in_decl}{out_decl}    reg [{im}:0] stim [0:{nm}];   // {{{in_list}}} per cycle
-    reg [{om}:0] expect [0:{nm}]; // {{{out_list}}} per cycle
+    reg [{om}:0] expected [0:{nm}]; // {{{out_list}}} per cycle
     integer k;
-    integer errors;
-    {name} dut(.clk(clk), {conns});
+    // Initialized here, not by the stimulus process: Verilator 5.006 propagates a 0 assigned
+    // there into the final check and reports PASS however many cycles mismatched.
+    integer errors = 0;
+    {name} dut(.clk(clk), {conns}, .in_ready());
     initial begin
 {vectors}    end
+    // Checker: 1 ns after each rising edge, the outputs of cycle k against expected[k].
+    always @(posedge clk) begin
+        #1 if ({{{out_list}}} !== expected[k]) begin
+            errors = errors + 1;
+            if (errors <= 10)
+                $display("cycle %0d: got %b expected %b", k, {{{out_list}}}, expected[k]);
+        end
+    end
+    // Stimulus: inputs change while clk is low, then clk rises.
     initial begin
-        errors = 0;
         {{{in_list}}} = {in_bits}'d0;
         for (k = 0; k <= {nm}; k = k + 1) begin
             {{{in_list}}} = stim[k];
             #5 clk = 1'b1;
-            #1 if ({{{out_list}}} !== expect[k]) begin
-                errors = errors + 1;
-                if (errors <= 10)
-                    $display("cycle %0d: got %b expected %b", k, {{{out_list}}}, expect[k]);
-            end
-            #4 clk = 1'b0;
+            #5 clk = 1'b0;
         end
-        if (errors == 0) $display("PASS: %0d cycles", {n});
-        else $display("FAIL: %0d mismatching cycles", errors);
-        $finish;
+        if (errors == 0) begin
+            $display("PASS: %0d cycles", {n});
+            $finish;
+        end else begin
+            $display("FAIL: %0d mismatching cycles", errors);
+            // Non-zero exit status: vvp exits 1, a Verilator binary aborts.
+            $fatal(1, "{name}_tb: %0d mismatching cycles", errors);
+        end
     end
 endmodule // {name}_tb
 "#,

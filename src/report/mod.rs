@@ -1093,7 +1093,7 @@ impl Report {
             (
                 "timing",
                 format!(
-                    "Latency: cycles from the in_valid cycle to the out_valid cycle of `<name>_core` (unrolled: N + 2, one stage per iteration, the combiner and the counter; iterative: S + 2 with S = N·ceil(W/4) digit clocks), in ns at the configured clock of {:.3} MHz. Throughput: samples per second the core accepts: the clock for the unrolled CORDIC (one sample per clock), the clock / S for the iterative one (cordic.architecture = {:?}).",
+                    "Latency: cycles from the in_valid cycle to the out_valid cycle of `<name>_core` (unrolled: N + 2, one stage per iteration, the combiner and the counter; iterative: S + 2 with S = N·ceil(W/4) digit clocks), in ns at the configured clock of {:.3} MHz. Throughput: samples per second the core accepts: the clock for the unrolled CORDIC (one sample per clock), the clock / S for the iterative one (cordic.architecture = {}).",
                     d.clock_hz / 1e6,
                     d.architecture
                 ),
@@ -1187,7 +1187,7 @@ impl Report {
         );
         let _ = writeln!(
             s,
-            "- Clock {:.3} MHz; CORDIC architecture {:?}: the core takes one sample per {} (throughput column). The ADC delivers {:.0} samples/s per channel.",
+            "- Clock {:.3} MHz; CORDIC architecture {}: the core takes one sample per {} (throughput column). The ADC delivers {:.0} samples/s per channel.",
             d.clock_hz / 1e6,
             d.architecture,
             if d.cycles_per_sample > 1 { "N clocks" } else { "clock" },

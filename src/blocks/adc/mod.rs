@@ -80,6 +80,16 @@ pub enum AdcChip {
     Generic,
 }
 
+impl std::fmt::Display for AdcChip {
+    /// The chip's name as a datasheet spells it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            AdcChip::Ltc1407a1 => "LTC1407A-1",
+            AdcChip::Generic => "generic SPI ADC",
+        })
+    }
+}
+
 /// Coding of the samples in the frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SignFormat {
@@ -558,7 +568,7 @@ impl AdcParams {
     /// Derived figures, one per line (for `check` and reports).
     pub fn describe(&self) -> String {
         format!(
-            "adc chip                    {:?}\n\
+            "adc chip                    {}\n\
              system clock                {:.3} MHz\n\
              SCK                         {:.3} MHz ({} clocks: {} high, {} low)\n\
              conversion period           {} clocks ({:.1} ns)\n\
