@@ -1,4 +1,4 @@
-//! Model of a capacitive encoder with carrier excitation (seed 002), independent of the RTL:
+//! Model of a capacitive encoder with carrier excitation (docs/capacitive.md), independent of the RTL:
 //! the two excitation DAC words in, one received signal sampled by a signed 16-bit ADC out.
 //!
 //! ```text

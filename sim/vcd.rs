@@ -217,8 +217,8 @@ mod tests {
             Port::new("par_qc", 32),
             Port::new("par_fine", 32),
         ];
-        let mut t = TopTrace::new(Box::new(buf.clone()), "m_top", &top, &ins, &outs, 3, 1000)
-            .unwrap();
+        let mut t =
+            TopTrace::new(Box::new(buf.clone()), "m_top", &top, &ins, &outs, 3, 1000).unwrap();
         t.cycle(&[0], &[3, 1, 2]).unwrap();
         t.cycle(&[0], &[3, 1, 2]).unwrap();
         // b is masked to its 4 bits; the position is {qc, fine} = 2 << 3 | 1.
@@ -228,7 +228,10 @@ mod tests {
         assert!(v.contains("$scope module m_top $end"), "{v}");
         assert!(v.contains("$var wire 4 # b $end"), "{v}");
         assert!(v.contains("$var wire 5 $ par_position $end"), "{v}");
-        assert!(v.contains("#0\n1!\n0\"\nb0011 #\nb01010 $\n#500\n0!\n"), "{v}");
+        assert!(
+            v.contains("#0\n1!\n0\"\nb0011 #\nb01010 $\n#500\n0!\n"),
+            "{v}"
+        );
         assert!(v.contains("#1000\n1!\n#1500\n0!\n"), "{v}");
         assert!(v.contains("#2000\n1!\n1\"\nb0101 #\nb10001 $\n"), "{v}");
     }

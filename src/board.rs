@@ -246,7 +246,12 @@ impl IoTiming {
 
 /// The ADC round trip at `sck_period_clocks` D and `clock_hz`: (available D x T, needed
 /// t_co + 2 t_trace + t_sdo + t_su), ns.
-pub fn adc_round_trip(io: &IoTiming, sdo_delay_ns: f64, sck_period_clocks: u32, clock_hz: f64) -> (f64, f64) {
+pub fn adc_round_trip(
+    io: &IoTiming,
+    sdo_delay_ns: f64,
+    sck_period_clocks: u32,
+    clock_hz: f64,
+) -> (f64, f64) {
     let available = sck_period_clocks as f64 * 1e9 / clock_hz;
     let needed = io.clock_to_out_ns + 2.0 * io.trace_ns + sdo_delay_ns + io.input_setup_ns;
     (available, needed)
@@ -311,7 +316,9 @@ pub fn wrapper_ports(text: &str) -> Vec<WrapperPort> {
 /// `<name>_board`: the board clock feeds `<name>_clock`, whose output clocks `top`; reset
 /// is held until the synthesizer locks. `ports` are the top's (see [`wrapper_ports`]).
 pub fn board_verilog(name: &str, top: &str, clock: &BoardClock, ports: &[WrapperPort]) -> String {
-    let synth = clock.synth.expect("board_verilog is called with a synthesizer");
+    let synth = clock
+        .synth
+        .expect("board_verilog is called with a synthesizer");
     let mut decl = String::new();
     for (i, p) in ports.iter().enumerate() {
         let sep = if i + 1 < ports.len() { "," } else { " " };
@@ -367,7 +374,9 @@ pub fn board_verilog(name: &str, top: &str, clock: &BoardClock, ports: &[Wrapper
 
 /// `<name>_clock` for synthesis: DCM_SP (IBUFG -> CLKFX -> BUFG) or ALTPLL (c0).
 pub fn clock_verilog(name: &str, clock: &BoardClock) -> String {
-    let synth = clock.synth.expect("clock_verilog is called with a synthesizer");
+    let synth = clock
+        .synth
+        .expect("clock_verilog is called with a synthesizer");
     let head = format!(
         "// {name}_clock: {kind}: clk_sys = clk_in x {m} / {d} = {out:.3} MHz from {osc:.3} MHz.\n\
          // For synthesis; {name}_clock_sim.v is the simulation model with the same ports.\n\
@@ -435,7 +444,9 @@ pub fn clock_verilog(name: &str, clock: &BoardClock) -> String {
 /// oscillator period and, after [`SIM_LOCK_PERIODS`] periods, toggles clk_sys with the
 /// period x D / M and raises locked.
 pub fn clock_sim_verilog(name: &str, clock: &BoardClock) -> String {
-    let synth = clock.synth.expect("clock_sim_verilog is called with a synthesizer");
+    let synth = clock
+        .synth
+        .expect("clock_sim_verilog is called with a synthesizer");
     format!(
         "// {name}_clock (simulation model): clk_sys = clk_in x {m} / {d}, locked after {n}\n\
          // oscillator periods. Compile this file instead of {name}_clock.v in a simulator without\n\

@@ -66,8 +66,22 @@ ranged!(r_iter, u32, "cordic.iterations", 1, 20, "");
 ranged!(r_fine, u32, "cordic.fine_bits", 2, 16, " bits");
 ranged!(r_ppr, u32, "encoder.ppr", 1, 65535, " periods per turn");
 ranged!(r_mt, u32, "encoder.multiturn_bits", 0, 16, " bits");
-ranged!(r_periods, u32, "correction.periods", 1, 256, " signal periods");
-ranged!(r_gain_frac, u32, "correction.gain_frac_bits", 8, 15, " bits");
+ranged!(
+    r_periods,
+    u32,
+    "correction.periods",
+    1,
+    256,
+    " signal periods"
+);
+ranged!(
+    r_gain_frac,
+    u32,
+    "correction.gain_frac_bits",
+    8,
+    15,
+    " bits"
+);
 ranged!(r_clk, f64, "clock.frequency_hz", 1.0e6, 500.0e6, " Hz");
 ranged!(
     r_amp,
@@ -170,7 +184,7 @@ pub struct Config {
     /// `enc_miso_oe`).
     #[serde(default)]
     pub spi: SpiConfig,
-    /// Capacitive-encoder path (seed 002): with this section `<name>_top` is the
+    /// Capacitive-encoder path (docs/capacitive.md): with this section `<name>_top` is the
     /// capacitive top (excitation NCO, band-pass, demodulation, low-pass, CORDIC).
     #[serde(default)]
     pub capacitive: Option<CapacitiveConfig>,
@@ -850,8 +864,16 @@ fn board_timing(
     let mut board_clock = None;
     if let Some(b) = &c.board {
         for (key, v, slot) in [
-            ("fpga_clock_to_out_ns", b.fpga_clock_to_out_ns, &mut io.clock_to_out_ns),
-            ("fpga_input_setup_ns", b.fpga_input_setup_ns, &mut io.input_setup_ns),
+            (
+                "fpga_clock_to_out_ns",
+                b.fpga_clock_to_out_ns,
+                &mut io.clock_to_out_ns,
+            ),
+            (
+                "fpga_input_setup_ns",
+                b.fpga_input_setup_ns,
+                &mut io.input_setup_ns,
+            ),
             ("trace_delay_ns", b.trace_delay_ns, &mut io.trace_ns),
         ] {
             if let Some(v) = v {
@@ -880,7 +902,11 @@ fn board_timing(
             (None, true) => STARTER_KIT_CLOCK_HZ,
             (None, false) => c.clock.frequency_hz,
         };
-        let key = if b.clock_hz.is_some() { "clock_hz" } else { "preset" };
+        let key = if b.clock_hz.is_some() {
+            "clock_hz"
+        } else {
+            "preset"
+        };
         board_clock = Some(
             crate::board::board_clock(c.target, osc, c.clock.frequency_hz)
                 .map_err(|m| err("board", key, m))?,
@@ -1302,7 +1328,9 @@ impl Derived {
                         } else {
                             (first, port.as_str())
                         };
-                        let whose = if preset_pins.get(other).is_some_and(|p| p.one() == Some(ball))
+                        let whose = if preset_pins
+                            .get(other)
+                            .is_some_and(|p| p.one() == Some(ball))
                             && !b.pins.contains_key(other)
                         {
                             format!("the preset's pin for `{other}`")
@@ -1828,7 +1856,11 @@ fn monitor_params(
         ),
     ] {
         if hi < lo {
-            let key = if hi_given || !lo_given { hi_key } else { lo_key };
+            let key = if hi_given || !lo_given {
+                hi_key
+            } else {
+                lo_key
+            };
             return Err(err(
                 "monitor",
                 key,

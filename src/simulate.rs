@@ -117,11 +117,36 @@ impl SimOptions {
             return bad("--noise-lsb", self.noise_lsb, "0..=10000 LSB RMS");
         }
         let track = [
-            ("--offset-sin", self.offset.0, 1.0, "-1..=1 (fraction of the amplitude)"),
-            ("--offset-cos", self.offset.1, 1.0, "-1..=1 (fraction of the amplitude)"),
-            ("--gain-mismatch", self.gain_mismatch, 1.0, "-1..=1 (relative)"),
-            ("--phase-error", self.phase_error_deg, 45.0, "-45..=45 degrees"),
-            ("--harmonic3", self.third_harmonic, 0.5, "-0.5..=0.5 (ratio)"),
+            (
+                "--offset-sin",
+                self.offset.0,
+                1.0,
+                "-1..=1 (fraction of the amplitude)",
+            ),
+            (
+                "--offset-cos",
+                self.offset.1,
+                1.0,
+                "-1..=1 (fraction of the amplitude)",
+            ),
+            (
+                "--gain-mismatch",
+                self.gain_mismatch,
+                1.0,
+                "-1..=1 (relative)",
+            ),
+            (
+                "--phase-error",
+                self.phase_error_deg,
+                45.0,
+                "-45..=45 degrees",
+            ),
+            (
+                "--harmonic3",
+                self.third_harmonic,
+                0.5,
+                "-0.5..=0.5 (ratio)",
+            ),
         ];
         for (opt, v, lim, allowed) in track {
             if !(v.abs() <= lim) {
@@ -204,11 +229,7 @@ pub struct SimReport {
 }
 
 /// Runs the simulation; `progress(done, total)` is called every 2^14 cycles.
-pub fn run(
-    loaded: &Loaded,
-    o: &SimOptions,
-    progress: impl FnMut(u64, u64),
-) -> Result<SimReport> {
+pub fn run(loaded: &Loaded, o: &SimOptions, progress: impl FnMut(u64, u64)) -> Result<SimReport> {
     run_traced(loaded, o, progress, None)
 }
 
@@ -459,8 +480,8 @@ pub fn run_capacitive_traced(
     let skip = 1.5e-3f64.min(o.duration_s / 2.0);
     let s = sys.stats(skip);
     if s.samples == 0 {
-        let need = 2.0 * (d.adc.startup_clocks() as f64 + 2.0 * d.adc.period_clocks as f64)
-            / d.clock_hz;
+        let need =
+            2.0 * (d.adc.startup_clocks() as f64 + 2.0 * d.adc.period_clocks as f64) / d.clock_hz;
         return Err(no_sample(
             o.duration_s,
             sys.records.len(),

@@ -574,8 +574,14 @@ fn the_kit_clock_is_the_50_mhz_oscillator_and_a_dcm_makes_133_mhz() {
 
 #[test]
 fn a_system_clock_equal_to_the_oscillator_needs_no_dcm() {
-    let t = with_preset(WIRING).replace("frequency_hz = 133_330_000.0", "frequency_hz = 50_000_000.0");
-    assert!(t.contains("50_000_000.0"), "the default config's clock line moved");
+    let t = with_preset(WIRING).replace(
+        "frequency_hz = 133_330_000.0",
+        "frequency_hz = 50_000_000.0",
+    );
+    assert!(
+        t.contains("50_000_000.0"),
+        "the default config's clock line moved"
+    );
     let l = Loaded::parse(&t, "b.toml").expect("parses");
     let g = sinedec::emit::generate(&l, "test").expect("generates");
     let ucf = file(&g, "sd_top.ucf");
@@ -596,7 +602,10 @@ fn an_unreachable_board_clock_is_rejected_with_the_numbers() {
     let e = Loaded::parse(&t, "b.toml").expect_err("unreachable");
     let m = e.to_string();
     assert!(m.contains("board.clock_hz") && m.contains("DCM_SP"), "{m}");
-    assert!(m.contains("133.330000 MHz") && m.contains("27.000000 MHz"), "{m}");
+    assert!(
+        m.contains("133.330000 MHz") && m.contains("27.000000 MHz"),
+        "{m}"
+    );
     assert!(m.starts_with("b.toml:"), "no location: {m}");
 }
 
@@ -647,7 +656,15 @@ endmodule
 "#;
     std::fs::write(dir.join("tb.v"), tb).expect("write tb");
     let out = std::process::Command::new("iverilog")
-        .args(["-g2005", "-o", "tb.vvp", "tb.v", "sd_board.v", "sd_clock_sim.v", "sd_top.v"])
+        .args([
+            "-g2005",
+            "-o",
+            "tb.vvp",
+            "tb.v",
+            "sd_board.v",
+            "sd_clock_sim.v",
+            "sd_top.v",
+        ])
         .current_dir(&dir)
         .output()
         .expect("iverilog runs");
@@ -696,7 +713,8 @@ fn the_board_wrapper_synthesizes_with_the_dcm_for_xc3sa() {
         .current_dir(&dir)
         .output()
         .expect("yosys runs");
-    let log = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    let log =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{log}");
     assert!(log.contains("DCM_SP"), "{log}");
 }
@@ -706,20 +724,32 @@ fn pins_must_be_balls_of_the_package_used_once() {
     // Two ports on one ball.
     let mut w: Vec<(&str, &str)> = WIRING.to_vec();
     w[1] = ("qep_b", "H1");
-    let e = Loaded::parse(&with_preset(&w), "b.toml").expect_err("twice").to_string();
-    assert!(e.contains("H1") && e.contains("qep_a") && e.contains("qep_b"), "{e}");
+    let e = Loaded::parse(&with_preset(&w), "b.toml")
+        .expect_err("twice")
+        .to_string();
+    assert!(
+        e.contains("H1") && e.contains("qep_a") && e.contains("qep_b"),
+        "{e}"
+    );
     assert!(e.starts_with("b.toml:"), "no location: {e}");
     // A header pin on the preset's oscillator ball.
     let mut w: Vec<(&str, &str)> = WIRING.to_vec();
     w[0] = ("qep_a", "E12");
-    let e = Loaded::parse(&with_preset(&w), "b.toml").expect_err("preset pin").to_string();
-    assert!(e.contains("E12") && e.contains("preset's pin for `clk`"), "{e}");
+    let e = Loaded::parse(&with_preset(&w), "b.toml")
+        .expect_err("preset pin")
+        .to_string();
+    assert!(
+        e.contains("E12") && e.contains("preset's pin for `clk`"),
+        "{e}"
+    );
     assert!(e.contains("key `board.pins.qep_a`"), "{e}");
     // A ball the FG484 package does not have (rows stop at AB, columns at 22).
     for bad in ["ZZ99", "AC1", "A23", "I5", "h1"] {
         let mut w: Vec<(&str, &str)> = WIRING.to_vec();
         w[4] = ("biss_slo", bad);
-        let e = Loaded::parse(&with_preset(&w), "b.toml").expect_err(bad).to_string();
+        let e = Loaded::parse(&with_preset(&w), "b.toml")
+            .expect_err(bad)
+            .to_string();
         assert!(e.contains(bad) && e.contains("XC3S700AN FGG484"), "{e}");
         assert!(!e.contains("One("), "Debug text: {e}");
         // Line and column of the key: `biss_slo = ...` is the last line of the config.
@@ -757,7 +787,9 @@ fn the_adc_round_trip_is_checked_and_constrained() {
     );
     // ... 10 + 2 + 8 + 3 = 23 ns does not: at least 4 clocks (30 ns).
     let bad = ok.replace("fpga_clock_to_out_ns = 9.0", "fpga_clock_to_out_ns = 10.0");
-    let e = Loaded::parse(&bad, "b.toml").expect_err("too tight").to_string();
+    let e = Loaded::parse(&bad, "b.toml")
+        .expect_err("too tight")
+        .to_string();
     assert!(e.contains("key `board.fpga_clock_to_out_ns`"), "{e}");
     assert!(e.starts_with("b.toml:"), "no location: {e}");
     assert!(e.contains("22.50 ns") && e.contains("23.00 ns"), "{e}");
@@ -767,8 +799,13 @@ fn the_adc_round_trip_is_checked_and_constrained() {
         "[board]\npreset = \"spartan3an-starter-kit\"\n",
         "[board]\npreset = \"spartan3an-starter-kit\"\ntrace_delay_ns = 3.0\n",
     );
-    let e = Loaded::parse(&bad, "b.toml").expect_err("trace").to_string();
-    assert!(e.contains("2 x board trace 3.00") && e.contains("23.00 ns"), "{e}");
+    let e = Loaded::parse(&bad, "b.toml")
+        .expect_err("trace")
+        .to_string();
+    assert!(
+        e.contains("2 x board trace 3.00") && e.contains("23.00 ns"),
+        "{e}"
+    );
 }
 
 /// The capacitive config on Cyclone III with a `[board]`: balls of the EP3C40F324 package
@@ -786,7 +823,10 @@ fn cap_board(osc: Option<&str>, first_ball: &str) -> String {
     }
     t.push_str("[board.pins]\n");
     let mut balls = (0..18 * 18).map(|i| {
-        let rows = ["A", "B", "C", "D", "E", "F", "G", "H", "J", "K", "L", "M", "N", "P", "R", "T", "U", "V"];
+        let rows = [
+            "A", "B", "C", "D", "E", "F", "G", "H", "J", "K", "L", "M", "N", "P", "R", "T", "U",
+            "V",
+        ];
         format!("{}{}", rows[i / 18], i % 18 + 1)
     });
     balls.next();
@@ -799,7 +839,9 @@ fn cap_board(osc: Option<&str>, first_ball: &str) -> String {
         t.push_str(&format!("{p} = \"{ball}\"\n"));
     }
     for bus in sinedec::config::CAP_TOP_BUSES {
-        let v: Vec<String> = (0..16).map(|_| format!("\"{}\"", balls.next().expect("ball"))).collect();
+        let v: Vec<String> = (0..16)
+            .map(|_| format!("\"{}\"", balls.next().expect("ball")))
+            .collect();
         t.push_str(&format!("{bus} = [{}]\n", v.join(", ")));
     }
     t
@@ -812,12 +854,23 @@ fn the_cyclone_board_uses_its_package_and_a_pll_when_the_clock_differs() {
     let g = sinedec::emit::generate(&l, "test").expect("generates");
     let qsf = file(&g, "cap_top.qsf");
     assert!(qsf.contains("TOP_LEVEL_ENTITY cap_board"), "{qsf}");
-    assert!(qsf.contains("set_location_assignment PIN_A1 -to clk"), "{qsf}");
+    assert!(
+        qsf.contains("set_location_assignment PIN_A1 -to clk"),
+        "{qsf}"
+    );
     let sdc = file(&g, "cap_top.sdc");
-    assert!(sdc.contains("create_clock -name clk -period 40.000 [get_ports clk]"), "{sdc}");
+    assert!(
+        sdc.contains("create_clock -name clk -period 40.000 [get_ports clk]"),
+        "{sdc}"
+    );
     assert!(sdc.contains("derive_pll_clocks"), "{sdc}");
     let pll = file(&g, "cap_clock.v");
-    for want in ["altpll #(", ".clk0_multiply_by(2)", ".clk0_divide_by(1)", ".inclk0_input_frequency(40000)"] {
+    for want in [
+        "altpll #(",
+        ".clk0_multiply_by(2)",
+        ".clk0_divide_by(1)",
+        ".inclk0_input_frequency(40000)",
+    ] {
         assert!(pll.contains(want), "{want} missing:\n{pll}");
     }
     // The same oscillator as the system clock: no PLL, the SDC clock is the system clock.
@@ -826,9 +879,14 @@ fn the_cyclone_board_uses_its_package_and_a_pll_when_the_clock_differs() {
     assert!(file(&g, "cap_top.qsf").contains("TOP_LEVEL_ENTITY cap_top"));
     let sdc = file(&g, "cap_top.sdc");
     assert!(sdc.contains("-period 20.000 [get_ports clk]"), "{sdc}");
-    assert!(sdc.contains("set_input_delay -clock [get_clocks clk] -max 17.000 [get_ports adc_miso]"), "{sdc}");
+    assert!(
+        sdc.contains("set_input_delay -clock [get_clocks clk] -max 17.000 [get_ports adc_miso]"),
+        "{sdc}"
+    );
     assert!(!g.files.iter().any(|f| f.name == "cap_clock.v"));
     // W1 is a ball of the FG484 but not of the F324 (its rows end at V).
-    let e = Loaded::parse(&cap_board(None, "W1"), "c.toml").expect_err("W1").to_string();
+    let e = Loaded::parse(&cap_board(None, "W1"), "c.toml")
+        .expect_err("W1")
+        .to_string();
     assert!(e.contains("W1") && e.contains("EP3C40F324"), "{e}");
 }

@@ -43,7 +43,10 @@ fn listing(dir: &Path) -> Vec<String> {
 /// not fixed.
 fn assert_generated(dir: &Path, name: &str) -> Vec<String> {
     let mut files = listing(dir);
-    assert!(files.contains(&MANIFEST.to_string()), "no manifest in {files:?}");
+    assert!(
+        files.contains(&MANIFEST.to_string()),
+        "no manifest in {files:?}"
+    );
     files.retain(|f| f != MANIFEST);
     for want in [format!("{name}_core.v"), format!("{name}_params.md")] {
         assert!(files.contains(&want), "{want} missing from {files:?}");
@@ -252,7 +255,10 @@ fn header_has_version_hash_and_command_line() {
     );
     assert!(md.contains("Command: sinedec generate -o out"), "{md}");
     // Every emitted file carries the same header in its first lines.
-    for f in listing(&dir.join("out")).into_iter().filter(|f| f != MANIFEST) {
+    for f in listing(&dir.join("out"))
+        .into_iter()
+        .filter(|f| f != MANIFEST)
+    {
         let text = read(dir.join("out").join(&f));
         let head: Vec<&str> = text.lines().take(5).collect();
         let has = |s: &str| head.iter().any(|l| l.contains(s));
@@ -327,7 +333,11 @@ fn generate_replaces_its_previous_generation() {
     let mut want = fresh_listing(None);
     want.push("notes.txt".into());
     want.sort();
-    assert_eq!(listing(&out), want, "old files survived or new ones are missing");
+    assert_eq!(
+        listing(&out),
+        want,
+        "old files survived or new ones are missing"
+    );
     assert_eq!(read(out.join("notes.txt")), "mine");
     let v = read(out.join("sd_core.v"));
     assert!(
@@ -395,7 +405,10 @@ fn check_latency_follows_iterations() {
     .unwrap();
     let out = ok(dir, &["check", "n10.toml"]);
     assert!(out.starts_with("n10.toml: ok"), "{out}");
-    assert!(line_of(&out, "core latency").contains(" 12 cycles"), "{out}");
+    assert!(
+        line_of(&out, "core latency").contains(" 12 cycles"),
+        "{out}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------

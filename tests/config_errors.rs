@@ -870,7 +870,12 @@ fn monitor_keys_blamed_on_themselves_in_user_units() {
         &t,
         Kind::Value("monitor.los_release"),
         at(&t, "los_release = 0.2"),
-        &["monitor.los_release", "0.2", "0.25", "fractions of full scale"],
+        &[
+            "monitor.los_release",
+            "0.2",
+            "0.25",
+            "fractions of full scale",
+        ],
     );
     let t = default_with(&[("clip_amplitude = 1.0", "clip_amplitude = 0.28")]);
     expect_bad(
@@ -897,7 +902,12 @@ fn monitor_keys_blamed_on_themselves_in_user_units() {
         &t,
         Kind::Value("monitor.los_amplitude"),
         at(&t, "los_amplitude = 0.5"),
-        &["monitor.los_amplitude", "0.5", "monitor.los_release", "default 0.3"],
+        &[
+            "monitor.los_amplitude",
+            "0.5",
+            "monitor.los_release",
+            "default 0.3",
+        ],
     );
 }
 
@@ -954,15 +964,55 @@ fn documented_ranges_equal_accepted_ones() {
         ("iterations = 14", "iterations = 10"),
     ];
     let cases: Vec<(&str, &str, &str, Vec<(&str, &str)>)> = vec![
-        ("adc.width", "width = 14", "width = {}", vec![GENERIC, NO_PREAMP]),
-        ("cordic.iterations", "iterations = 14", "iterations = {}", vec![]),
-        ("cordic.fine_bits", "fine_bits = 14", "fine_bits = {}", vec![]),
-        ("cordic.guard_bits", "# guard_bits = 10", "guard_bits = {}", generic10),
+        (
+            "adc.width",
+            "width = 14",
+            "width = {}",
+            vec![GENERIC, NO_PREAMP],
+        ),
+        (
+            "cordic.iterations",
+            "iterations = 14",
+            "iterations = {}",
+            vec![],
+        ),
+        (
+            "cordic.fine_bits",
+            "fine_bits = 14",
+            "fine_bits = {}",
+            vec![],
+        ),
+        (
+            "cordic.guard_bits",
+            "# guard_bits = 10",
+            "guard_bits = {}",
+            generic10,
+        ),
         ("encoder.ppr", "ppr = 2048", "ppr = {}", vec![]),
-        ("encoder.multiturn_bits", "multiturn_bits = 12", "multiturn_bits = {}", vec![]),
-        ("correction.periods", "\nperiods = 1", "\nperiods = {}", vec![]),
-        ("correction.gain_frac_bits", "gain_frac_bits = 14", "gain_frac_bits = {}", vec![]),
-        ("qep.filter_clocks", "filter_clocks = 4", "filter_clocks = {}", vec![]),
+        (
+            "encoder.multiturn_bits",
+            "multiturn_bits = 12",
+            "multiturn_bits = {}",
+            vec![],
+        ),
+        (
+            "correction.periods",
+            "\nperiods = 1",
+            "\nperiods = {}",
+            vec![],
+        ),
+        (
+            "correction.gain_frac_bits",
+            "gain_frac_bits = 14",
+            "gain_frac_bits = {}",
+            vec![],
+        ),
+        (
+            "qep.filter_clocks",
+            "filter_clocks = 4",
+            "filter_clocks = {}",
+            vec![],
+        ),
     ];
     for (key, old, template, extra) in cases {
         let (lo, hi) = documented_range(key);

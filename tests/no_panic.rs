@@ -15,7 +15,10 @@ use sinedec::config::Loaded;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 const CONFIGS: [(&str, &str); 2] = [
-    ("spartan3an.toml", include_str!("../configs/spartan3an.toml")),
+    (
+        "spartan3an.toml",
+        include_str!("../configs/spartan3an.toml"),
+    ),
     (
         "cyclone3_capacitive.toml",
         include_str!("../configs/cyclone3_capacitive.toml"),
@@ -148,7 +151,9 @@ fn edge_value(old: &toml::Value, pick: u64) -> toml::Value {
             2 => V::Array(vec![V::Integer(1)]),
             _ => V::Float(floats[k % floats.len()]),
         },
-        (V::Integer(_), 0..=2) => V::Integer(ints[k % ints.len()] * if k % 3 == 0 { -1 } else { 1 }),
+        (V::Integer(_), 0..=2) => {
+            V::Integer(ints[k % ints.len()] * if k % 3 == 0 { -1 } else { 1 })
+        }
         (V::Integer(i), 3..=4) => V::Integer(i.saturating_add((k % 5) as i64 - 2)),
         (V::Integer(i), _) => V::Integer(i.saturating_mul((k % 4) as i64 + 2)),
         (V::Float(_), 0..=3) => V::Float(floats[k % floats.len()]),
@@ -348,11 +353,19 @@ proptest! {
 fn unmutated_configs_generate_and_a_bad_mutation_is_rejected() {
     for which in 0..CONFIGS.len() {
         let text = mutate(which, &[], None);
-        assert_eq!(run_case(&text, true), Ok(Outcome::Generated), "{}", CONFIGS[which].0);
+        assert_eq!(
+            run_case(&text, true),
+            Ok(Outcome::Generated),
+            "{}",
+            CONFIGS[which].0
+        );
     }
     let mut v: toml::Value = toml::from_str(CONFIGS[0].1).unwrap();
     *get_mut(&mut v, &["cordic".into(), "iterations".into()]).unwrap() = toml::Value::Integer(0);
-    assert_eq!(run_case(&toml::to_string(&v).unwrap(), true), Ok(Outcome::Rejected));
+    assert_eq!(
+        run_case(&toml::to_string(&v).unwrap(), true),
+        Ok(Outcome::Rejected)
+    );
 }
 
 /// The values the sweep tries for a leaf: every edge value of its own type, the leaf
@@ -360,20 +373,74 @@ fn unmutated_configs_generate_and_a_bad_mutation_is_rejected() {
 fn edge_values(old: Option<&toml::Value>) -> Vec<toml::Value> {
     use toml::Value as V;
     let mut v: Vec<V> = match old {
-        Some(V::Integer(i)) => [0, 1, -1, 2, 3, 7, 15, 16, 17, 19, 20, 21, 30, 31, 32, 33, 64, 65, 256, 257, 65535, 65536, 1 << 31, 1 << 32, i64::MAX, i64::MIN, i - 1, i + 1, i * 2]
-            .into_iter()
-            .map(V::Integer)
-            .collect(),
-        Some(V::Float(f)) => [0.0, -0.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e-300, 1e300, -1.0, 0.5, 1.0, 1.3000001, 4.0e9, f * 0.5, f * 2.0, -f]
-            .into_iter()
-            .map(V::Float)
-            .collect(),
+        Some(V::Integer(i)) => [
+            0,
+            1,
+            -1,
+            2,
+            3,
+            7,
+            15,
+            16,
+            17,
+            19,
+            20,
+            21,
+            30,
+            31,
+            32,
+            33,
+            64,
+            65,
+            256,
+            257,
+            65535,
+            65536,
+            1 << 31,
+            1 << 32,
+            i64::MAX,
+            i64::MIN,
+            i - 1,
+            i + 1,
+            i * 2,
+        ]
+        .into_iter()
+        .map(V::Integer)
+        .collect(),
+        Some(V::Float(f)) => [
+            0.0,
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e-300,
+            1e300,
+            -1.0,
+            0.5,
+            1.0,
+            1.3000001,
+            4.0e9,
+            f * 0.5,
+            f * 2.0,
+            -f,
+        ]
+        .into_iter()
+        .map(V::Float)
+        .collect(),
         Some(V::String(_)) => STRINGS.iter().map(|s| V::String(s.to_string())).collect(),
         Some(V::Boolean(b)) => vec![V::Boolean(!b)],
-        Some(V::Array(a)) => vec![V::Array(vec![]), V::Array(a[..a.len().saturating_sub(1)].to_vec())],
+        Some(V::Array(a)) => vec![
+            V::Array(vec![]),
+            V::Array(a[..a.len().saturating_sub(1)].to_vec()),
+        ],
         _ => vec![],
     };
-    v.extend([V::String("x".into()), V::Boolean(true), V::Integer(5), V::Float(0.25)]);
+    v.extend([
+        V::String("x".into()),
+        V::Boolean(true),
+        V::Integer(5),
+        V::Float(0.25),
+    ]);
     v
 }
 
@@ -393,7 +460,9 @@ fn every_leaf_at_every_edge_value() {
             let old = get_mut(&mut v0.clone(), path).cloned();
             for new in edge_values(old.as_ref()) {
                 let mut v = v0.clone();
-                let Some(x) = get_mut(&mut v, path) else { continue };
+                let Some(x) = get_mut(&mut v, path) else {
+                    continue;
+                };
                 *x = new;
                 let text = toml::to_string(&v).unwrap();
                 let full = accepted % 16 == 15;
@@ -405,6 +474,14 @@ fn every_leaf_at_every_edge_value() {
             }
         }
     }
-    assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
-    assert!(accepted > 50, "only {accepted} mutants accepted: the sweep is too narrow");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    assert!(
+        accepted > 50,
+        "only {accepted} mutants accepted: the sweep is too narrow"
+    );
 }

@@ -221,7 +221,10 @@ fn markdown_cells(md: &str) -> Vec<(String, u32, String)> {
 fn read_dir(dir: &Path) -> BTreeMap<String, String> {
     std::fs::read_dir(dir)
         .expect("output dir")
-        .filter(|e| e.as_ref().map_or(true, |e| e.file_name() != ".sinedec-manifest"))
+        .filter(|e| {
+            e.as_ref()
+                .map_or(true, |e| e.file_name() != ".sinedec-manifest")
+        })
         .map(|e| {
             let e = e.expect("dir entry");
             (

@@ -39,24 +39,166 @@ fn meaningless_options_are_rejected_by_name() {
         ..Default::default()
     };
     let cases: Vec<(SimOptions, &str, &str)> = vec![
-        (SimOptions { profile: Profile::Constant { rpm: f64::NAN }, ..base.clone() }, "--profile", "rpm"),
-        (SimOptions { profile: Profile::Constant { rpm: f64::INFINITY }, ..base.clone() }, "--profile", "rpm"),
-        (SimOptions { profile: Profile::Constant { rpm: 1e12 }, ..base.clone() }, "--profile", "1000000"),
-        (SimOptions { profile: Profile::Ramp { from: 0.0, to: 3000.0, over: 0.0 }, ..base.clone() }, "--profile", "ramp time"),
-        (SimOptions { profile: Profile::Ramp { from: 0.0, to: 3000.0, over: -1.0 }, ..base.clone() }, "--profile", "ramp time"),
-        (SimOptions { profile: Profile::Reversal { rpm: 300.0, at: 1e-4, over: 0.0 }, ..base.clone() }, "--profile", "reversal time"),
-        (SimOptions { profile: Profile::Reversal { rpm: 300.0, at: f64::NAN, over: 1e-4 }, ..base.clone() }, "--profile", "reversal start"),
-        (SimOptions { noise_lsb: -1.0, ..base.clone() }, "--noise-lsb", "0..=10000"),
-        (SimOptions { noise_lsb: f64::NAN, ..base.clone() }, "--noise-lsb", "0..=10000"),
-        (SimOptions { amplitude: 0.0, ..base.clone() }, "--amplitude", "0 < amplitude <= 1"),
-        (SimOptions { amplitude: 1.5, ..base.clone() }, "--amplitude", "0 < amplitude <= 1"),
-        (SimOptions { amplitude: f64::NAN, ..base.clone() }, "--amplitude", "0 < amplitude <= 1"),
-        (SimOptions { offset: (f64::NAN, 0.0), ..base.clone() }, "--offset-sin", "-1..=1"),
-        (SimOptions { offset: (0.0, 2.0), ..base.clone() }, "--offset-cos", "-1..=1"),
-        (SimOptions { gain_mismatch: f64::NAN, ..base.clone() }, "--gain-mismatch", "-1..=1"),
-        (SimOptions { phase_error_deg: f64::NAN, ..base.clone() }, "--phase-error", "-45..=45"),
-        (SimOptions { third_harmonic: f64::INFINITY, ..base.clone() }, "--harmonic3", "-0.5..=0.5"),
-        (SimOptions { duration_s: 0.0, ..base.clone() }, "--duration", "0 < seconds <= 10"),
+        (
+            SimOptions {
+                profile: Profile::Constant { rpm: f64::NAN },
+                ..base.clone()
+            },
+            "--profile",
+            "rpm",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Constant { rpm: f64::INFINITY },
+                ..base.clone()
+            },
+            "--profile",
+            "rpm",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Constant { rpm: 1e12 },
+                ..base.clone()
+            },
+            "--profile",
+            "1000000",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Ramp {
+                    from: 0.0,
+                    to: 3000.0,
+                    over: 0.0,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "ramp time",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Ramp {
+                    from: 0.0,
+                    to: 3000.0,
+                    over: -1.0,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "ramp time",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Reversal {
+                    rpm: 300.0,
+                    at: 1e-4,
+                    over: 0.0,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "reversal time",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Reversal {
+                    rpm: 300.0,
+                    at: f64::NAN,
+                    over: 1e-4,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "reversal start",
+        ),
+        (
+            SimOptions {
+                noise_lsb: -1.0,
+                ..base.clone()
+            },
+            "--noise-lsb",
+            "0..=10000",
+        ),
+        (
+            SimOptions {
+                noise_lsb: f64::NAN,
+                ..base.clone()
+            },
+            "--noise-lsb",
+            "0..=10000",
+        ),
+        (
+            SimOptions {
+                amplitude: 0.0,
+                ..base.clone()
+            },
+            "--amplitude",
+            "0 < amplitude <= 1",
+        ),
+        (
+            SimOptions {
+                amplitude: 1.5,
+                ..base.clone()
+            },
+            "--amplitude",
+            "0 < amplitude <= 1",
+        ),
+        (
+            SimOptions {
+                amplitude: f64::NAN,
+                ..base.clone()
+            },
+            "--amplitude",
+            "0 < amplitude <= 1",
+        ),
+        (
+            SimOptions {
+                offset: (f64::NAN, 0.0),
+                ..base.clone()
+            },
+            "--offset-sin",
+            "-1..=1",
+        ),
+        (
+            SimOptions {
+                offset: (0.0, 2.0),
+                ..base.clone()
+            },
+            "--offset-cos",
+            "-1..=1",
+        ),
+        (
+            SimOptions {
+                gain_mismatch: f64::NAN,
+                ..base.clone()
+            },
+            "--gain-mismatch",
+            "-1..=1",
+        ),
+        (
+            SimOptions {
+                phase_error_deg: f64::NAN,
+                ..base.clone()
+            },
+            "--phase-error",
+            "-45..=45",
+        ),
+        (
+            SimOptions {
+                third_harmonic: f64::INFINITY,
+                ..base.clone()
+            },
+            "--harmonic3",
+            "-0.5..=0.5",
+        ),
+        (
+            SimOptions {
+                duration_s: 0.0,
+                ..base.clone()
+            },
+            "--duration",
+            "0 < seconds <= 10",
+        ),
     ];
     for (o, opt, allowed) in cases {
         let t0 = std::time::Instant::now();
@@ -78,10 +220,16 @@ fn a_run_without_a_decoded_sample_is_an_error() {
         ..Default::default()
     };
     let e = err_of(run(&l, &o, |_, _| {}));
-    assert!(e.contains("`--duration`") && e.contains("no decoded sample"), "{e}");
+    assert!(
+        e.contains("`--duration`") && e.contains("no decoded sample"),
+        "{e}"
+    );
     let c = cap();
     let e = err_of(run_capacitive(&c, &o, |_, _| {}));
-    assert!(e.contains("`--duration`") && e.contains("no decoded sample"), "{e}");
+    assert!(
+        e.contains("`--duration`") && e.contains("no decoded sample"),
+        "{e}"
+    );
 }
 
 /// Single-turn: the position wraps every turn, and the comparison does too. Reversing at
@@ -93,14 +241,21 @@ fn single_turn_configs_compare_modulo_one_turn() {
     assert_eq!(l.derived.multiturn_bits, 0);
     let o = SimOptions {
         // Forward for 0.3 ms (0.015 turn), then back through 0 to about -0.03 turn.
-        profile: Profile::Reversal { rpm: 3000.0, at: 3e-4, over: 2e-4 },
+        profile: Profile::Reversal {
+            rpm: 3000.0,
+            at: 3e-4,
+            over: 2e-4,
+        },
         duration_s: 1.2e-3,
         ..Default::default()
     };
     let r = run(&l, &o, |_, _| {}).expect("runs");
     // The decoded position did wrap (so the test exercises the wrap).
     let turn = l.derived.quadrants_per_turn << l.derived.fine_bits;
-    assert!(r.result.records.iter().any(|x| x.position > turn / 2), "never wrapped");
+    assert!(
+        r.result.records.iter().any(|x| x.position > turn / 2),
+        "never wrapped"
+    );
     eprintln!("single-turn reversal: max {:.2} LSB", r.stats.max_lsb);
     assert!(r.stats.max_lsb < 10.0, "{:?}", r.stats);
 }
@@ -121,11 +276,17 @@ fn starting_above_the_unwrap_limit_keeps_a_consistent_count() {
         };
         let r = run(&l, &o, |_, _| {}).expect("runs");
         let s = r.stats;
-        eprintln!("start at {rpm} rpm: {} samples, max {:.2} LSB, mean {:.2} LSB", s.samples, s.max_lsb, s.mean_lsb);
+        eprintln!(
+            "start at {rpm} rpm: {} samples, max {:.2} LSB, mean {:.2} LSB",
+            s.samples, s.max_lsb, s.mean_lsb
+        );
         assert!(s.samples > 250);
         // Far below a period: the noise-free error of the fallback (the ramp test's 5.9 LSB
         // with noise).
-        assert!(s.max_lsb < 8.0, "{rpm} rpm: {s:?} (one period = {period} LSB)");
+        assert!(
+            s.max_lsb < 8.0,
+            "{rpm} rpm: {s:?} (one period = {period} LSB)"
+        );
     }
 }
 
@@ -139,14 +300,47 @@ fn capacitive_path_rejects_track_imperfections() {
         ..Default::default()
     };
     for (o, opt) in [
-        (SimOptions { phase_error_deg: 1.0, ..base.clone() }, "--phase-error"),
-        (SimOptions { third_harmonic: 0.01, ..base.clone() }, "--harmonic3"),
-        (SimOptions { offset: (0.05, 0.0), ..base.clone() }, "--offset-sin"),
-        (SimOptions { offset: (0.0, 0.05), ..base.clone() }, "--offset-cos"),
-        (SimOptions { gain_mismatch: 0.05, ..base.clone() }, "--gain-mismatch"),
+        (
+            SimOptions {
+                phase_error_deg: 1.0,
+                ..base.clone()
+            },
+            "--phase-error",
+        ),
+        (
+            SimOptions {
+                third_harmonic: 0.01,
+                ..base.clone()
+            },
+            "--harmonic3",
+        ),
+        (
+            SimOptions {
+                offset: (0.05, 0.0),
+                ..base.clone()
+            },
+            "--offset-sin",
+        ),
+        (
+            SimOptions {
+                offset: (0.0, 0.05),
+                ..base.clone()
+            },
+            "--offset-cos",
+        ),
+        (
+            SimOptions {
+                gain_mismatch: 0.05,
+                ..base.clone()
+            },
+            "--gain-mismatch",
+        ),
     ] {
         let e = err_of(run_capacitive(&c, &o, |_, _| {}));
-        assert!(e.contains(&format!("`{opt}`")) && e.contains("capacitive"), "{e}");
+        assert!(
+            e.contains(&format!("`{opt}`")) && e.contains("capacitive"),
+            "{e}"
+        );
     }
 }
 
@@ -231,7 +425,11 @@ fn csv_columns_are_documented_and_shared_by_both_paths() {
     assert_eq!(header, cols);
     let w = header.iter().position(|c| *c == "warmup").unwrap();
     let e = header.iter().position(|c| *c == "error_lsb").unwrap();
-    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|x| x.split(',').collect()).collect();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|x| x.split(',').collect())
+        .collect();
     assert_eq!(rows.len(), r.result.records.len());
     assert_eq!(rows.iter().filter(|x| x[w] == "1").count(), o.skip);
     let stat: Vec<f64> = rows
@@ -241,7 +439,11 @@ fn csv_columns_are_documented_and_shared_by_both_paths() {
         .collect();
     assert_eq!(stat.len(), r.stats.samples);
     let max = stat.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    assert!((max - r.stats.max_lsb).abs() < 2e-3, "{max} vs {:?}", r.stats);
+    assert!(
+        (max - r.stats.max_lsb).abs() < 2e-3,
+        "{max} vs {:?}",
+        r.stats
+    );
 
     let c = cap();
     let o = SimOptions {
@@ -251,7 +453,11 @@ fn csv_columns_are_documented_and_shared_by_both_paths() {
     let (_, csv) = run_capacitive(&c, &o, |_, _| {}).expect("capacitive runs");
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     assert_eq!(header, cols, "the capacitive CSV uses the same columns");
-    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|x| x.split(',').collect()).collect();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|x| x.split(',').collect())
+        .collect();
     assert!(rows.iter().any(|x| x[w] == "1") && rows.iter().any(|x| x[w] == "0"));
 }
 
@@ -273,13 +479,20 @@ impl Write for Shared {
 fn emitted_top_ports(l: &Loaded) -> Vec<(String, u32)> {
     let g = sinedec::emit::generate(l, "test").expect("generate");
     let top = format!("{}_top", l.config.name);
-    let v = &g.files.iter().find(|f| f.name == format!("{top}.v")).expect("top file").text;
+    let v = &g
+        .files
+        .iter()
+        .find(|f| f.name == format!("{top}.v"))
+        .expect("top file")
+        .text;
     let start = v.find(&format!("module {top} (")).expect("module");
     let body = &v[start..v[start..].find(");").unwrap() + start];
     body.lines()
         .filter_map(|line| {
             let t = line.trim_start();
-            let rest = t.strip_prefix("input").or_else(|| t.strip_prefix("output"))?;
+            let rest = t
+                .strip_prefix("input")
+                .or_else(|| t.strip_prefix("output"))?;
             let rest = rest.trim_start().strip_prefix("wire")?.trim_start();
             let (width, rest) = if let Some(r) = rest.strip_prefix('[') {
                 let (hi, r) = r.split_once(":0]").unwrap();
@@ -333,22 +546,40 @@ fn vcd_streams_the_top_ports_on_both_paths() {
             run_capacitive_traced(&l, &o, progress, Some(Box::new(buf.clone()))).expect("runs");
             None
         } else {
-            Some(run_traced(&l, &o, progress, Some(Box::new(buf.clone()))).expect("runs").result.records)
+            Some(
+                run_traced(&l, &o, progress, Some(Box::new(buf.clone())))
+                    .expect("runs")
+                    .result
+                    .records,
+            )
         };
         let seen = seen.borrow();
         let total = buf.0.borrow().len();
         assert!(seen.len() >= 2);
-        assert!(seen[0].1 > 0 && seen[0].1 < total, "nothing streamed before the end: {seen:?}");
+        assert!(
+            seen[0].1 > 0 && seen[0].1 < total,
+            "nothing streamed before the end: {seen:?}"
+        );
         let text = buf.0.borrow().clone();
         let (scope, vars) = vcd_vars(&text);
         assert_eq!(scope, format!("{}_top", l.config.name));
         assert_eq!(vars, emitted_top_ports(&l));
-        assert!(vars.iter().all(|(n, _)| !n.ends_with("_rtl") && n != "par_qc"));
+        assert!(vars
+            .iter()
+            .all(|(n, _)| !n.ends_with("_rtl") && n != "par_qc"));
         // The positions in the VCD are the decoded ones.
         if let Some(recs) = records {
             let s = String::from_utf8(text).unwrap();
-            let want = format!("b{:0w$b} ", recs[20].position, w = l.derived.position_width as usize);
-            assert!(s.contains(&want), "position {} not in the VCD", recs[20].position);
+            let want = format!(
+                "b{:0w$b} ",
+                recs[20].position,
+                w = l.derived.position_width as usize
+            );
+            assert!(
+                s.contains(&want),
+                "position {} not in the VCD",
+                recs[20].position
+            );
         }
     }
 }

@@ -631,7 +631,10 @@ fn board_files(loaded: &Loaded, command: &str, top: &str) -> Vec<OutFile> {
     let name = &loaded.config.name;
     let ports = crate::board::wrapper_ports(top);
     let v = |purpose: &str, body: String| {
-        format!("{}`timescale 1ns / 1ps\n\n{body}", header(loaded, command, purpose, "//"))
+        format!(
+            "{}`timescale 1ns / 1ps\n\n{body}",
+            header(loaded, command, purpose, "//")
+        )
     };
     vec![
         OutFile {

@@ -1,4 +1,4 @@
-//! IIR filter design for the capacitive path (SPEC 2.5): Butterworth low-pass, high-pass and
+//! IIR filter design for the capacitive path: Butterworth low-pass, high-pass and
 //! band-pass filters designed in f64, split into second-order sections and quantized to a
 //! two's-complement coefficient format for the time-multiplexed biquad. Pure Rust, no rust-hdl.
 //!

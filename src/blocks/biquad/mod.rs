@@ -1,4 +1,4 @@
-//! Time-multiplexed biquad IIR engine (SPEC 2.5): ONE multiply-accumulate datapath, one
+//! Time-multiplexed biquad IIR engine: ONE multiply-accumulate datapath, one
 //! coefficient (+ control) ROM and one state RAM run every second-order section of every
 //! branch within one sample period, sequenced by a program counter.
 //!

@@ -1,4 +1,4 @@
-//! Capacitive-encoder front end (seed 002, SPEC 2.5): excitation NCO, band-pass,
+//! Capacitive-encoder front end (docs/capacitive.md): excitation NCO, band-pass,
 //! synchronous quadrature demodulation and low-pass, feeding the full-circle CORDIC core.
 //!
 //! ```text

@@ -1,4 +1,4 @@
-//! `<name>_top` for the capacitive path (target `cyclone3`, seed 002): SPI ADC controller
+//! `<name>_top` for the capacitive path (target `cyclone3`, docs/capacitive.md): SPI ADC controller
 //! (one channel), capacitive front end (NCO, band-pass, demodulation, low-pass), the
 //! full-circle QEP-CORDIC core and the drive-side outputs (BiSS-C, parallel bus).
 //!

@@ -13,7 +13,7 @@
 //! counter, counting the edge that captures the input as the first). The thesis's design
 //! needs N + 6. Throughput: one sample per clock; `in_valid` may have gaps of any length.
 //!
-//! Ports of the emitted Verilog `<name>_core` (SPEC section 4; widths from the config):
+//! Ports of the emitted Verilog `<name>_core` (widths from the config):
 //!
 //! | port | dir | width | meaning |
 //! |---|---|---|---|

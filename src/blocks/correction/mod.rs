@@ -1,4 +1,4 @@
-//! Front-end correction (SPEC 2.2): per-channel offset and gain correction
+//! Front-end correction: per-channel offset and gain correction
 //! x' = (x - b) * g with g = 1/m (the thesis's two-point calibration, eqs. 3.3-3.6),
 //! static from the config or updated online by an automatic calibration that tracks the
 //! peaks of each channel over whole signal periods (as interpolator ICs do).

@@ -1,4 +1,4 @@
-//! Signal monitor (SPEC 2.2): loss of signal, clipping and ADC full scale drive `error`;
+//! Signal monitor: loss of signal, clipping and ADC full scale drive `error`;
 //! overspeed and QEP disagreement drive `warning`.
 //!
 //! ```text

@@ -1,4 +1,4 @@
-//! Excitation NCO for the capacitive path (SPEC 2.5): a phase accumulator and a quarter-wave
+//! Excitation NCO for the capacitive path: a phase accumulator and a quarter-wave
 //! sine table giving the two DAC words A sin(wt) and A cos(wt), plus the phase and a strobe
 //! so the demodulator gets the carrier value that belongs to each ADC sample.
 //!
