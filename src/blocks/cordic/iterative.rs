@@ -212,6 +212,10 @@ pub struct IterativeCordic {
     xmask: Constant<Bits<32>>,
     /// Mask of ZW bits.
     zmask: Constant<Bits<32>>,
+    /// 2^(Gz-1): the rounding half in the initial angle (see the combiner).
+    zhalf: Constant<Bits<32>>,
+    /// F + Gz: the shift of the quadrant in the initial angle.
+    zqshift: Constant<Bits<32>>,
     /// Shift of a digit to the top of the W'-bit register: W' - DIGIT.
     topsh: Constant<Bits<32>>,
     /// Shift of the register by one digit.
@@ -341,6 +345,8 @@ impl IterativeCordic {
             xsign: c32(1 << (w - 1)),
             xmask: c32(mask(w)),
             zmask: c32(mask(d.z_width)),
+            zhalf: c32(crate::blocks::counter::hdl::z_start(d).0),
+            zqshift: c32(crate::blocks::counter::hdl::z_start(d).1),
             topsh: c32((wp - DIGIT) as u64),
             dsh: c32(DIGIT as u64),
             bsh: c32(1),
@@ -532,7 +538,9 @@ impl Logic for IterativeCordic {
         self.dir_reg.d.next = self.dir.val();
         self.zi.next = self.zr.q.val();
         if self.first.val() {
-            self.zi.next = self.zero.val();
+            // The angle starts at the rounding half plus the quadrant (see the combiner).
+            self.zi.next =
+                self.zhalf.val() | (bit_cast::<32, 2>(self.q_in.val()) << self.zqshift.val());
         }
         if self.active.val() {
             self.xr.d.next = (self.xr.q.val() >> self.dsh.val())

@@ -2,7 +2,7 @@
 use crate::blocks::c32;
 use crate::blocks::cordic::hdl::{CordicStage, QuadrantMapper};
 use crate::blocks::cordic::iterative::IterativeCordic;
-use crate::blocks::counter::hdl::{Combiner, QuadrantCounter};
+use crate::blocks::counter::hdl::{z_start, Combiner, QuadrantCounter};
 use crate::config::{Architecture, Derived};
 use rust_hdl::prelude::*;
 
@@ -51,13 +51,16 @@ pub struct CoreRtl {
     iter: Vec<IterativeCordic>,
     combiner: Combiner,
     counter: QuadrantCounter,
-    /// Zero: the initial angle.
-    zero: Constant<Bits<32>>,
+    /// 2^(Gz-1): the rounding half in the initial angle.
+    zhalf: Constant<Bits<32>>,
+    /// F + Gz: the shift of the quadrant in the initial angle.
+    zqshift: Constant<Bits<32>>,
 }
 
 impl CoreRtl {
     /// Core for the derived parameters (N = `d.iterations` stages).
     pub fn new(d: &Derived) -> Self {
+        let zs = z_start(d);
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -89,7 +92,8 @@ impl CoreRtl {
             },
             combiner: Combiner::new(d),
             counter: QuadrantCounter::new(d),
-            zero: c32(0),
+            zhalf: c32(zs.0),
+            zqshift: c32(zs.1),
         }
     }
 }
@@ -122,7 +126,9 @@ impl Logic for CoreRtl {
             self.stages[i].rst.next = self.rst.val();
             self.stages[i].x_in.next = self.mapper.x.val();
             self.stages[i].y_in.next = self.mapper.y.val();
-            self.stages[i].z_in.next = self.zero.val();
+            // The angle starts at the rounding half plus the quadrant (see `Combiner`).
+            self.stages[i].z_in.next =
+                self.zhalf.val() | (bit_cast::<32, 2>(self.mapper.q.val()) << self.zqshift.val());
             self.stages[i].q_in.next = self.mapper.q.val();
             self.stages[i].v_in.next = self.mapper.v.val();
         }
@@ -139,7 +145,6 @@ impl Logic for CoreRtl {
         for i in 0..self.stages.len() {
             self.combiner.z_in.next = self.stages[i].z_out.val();
             self.combiner.x_in.next = self.stages[i].x_out.val();
-            self.combiner.q_in.next = self.stages[i].q_out.val();
             self.combiner.v_in.next = self.stages[i].v_out.val();
             self.out_mag.next = self.stages[i].x_out.val();
             self.out_mag_valid.next = self.stages[i].v_out.val();
@@ -147,7 +152,6 @@ impl Logic for CoreRtl {
         for i in 0..self.iter.len() {
             self.combiner.z_in.next = self.iter[i].z_out.val();
             self.combiner.x_in.next = self.iter[i].x_out.val();
-            self.combiner.q_in.next = self.iter[i].q_out.val();
             self.combiner.v_in.next = self.iter[i].v_out.val();
             self.out_mag.next = self.iter[i].x_out.val();
             self.out_mag_valid.next = self.iter[i].v_out.val();
@@ -157,6 +161,9 @@ impl Logic for CoreRtl {
         self.counter.p_in.next = self.combiner.p.val();
         self.counter.ok_in.next = self.combiner.mag_ok.val();
         self.counter.v_in.next = self.combiner.v.val();
+        self.counter.up_in.next = self.combiner.up.val();
+        self.counter.down_in.next = self.combiner.down.val();
+        self.counter.warn_in.next = self.combiner.warn.val();
         self.counter.load.next = self.load.val();
         self.counter.load_qc.next = self.load_qc.val();
         self.counter.load_turns.next = self.load_turns.val();

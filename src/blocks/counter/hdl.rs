@@ -3,19 +3,24 @@ use crate::blocks::{c32, mask};
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 
-/// Rounds the CORDIC angle, assembles the electrical angle p and tests the magnitude.
+/// Assembles the electrical angle p, tests the magnitude and takes the step to the last
+/// accepted sample (the counter's first carry chain, moved here so that each register
+/// stage holds one).
+///
+/// The rounding half 2^(Gz-1) and the quadrant q 2^(F+Gz) are already in z (the CORDIC
+/// starts its angle there instead of at 0: the same value modulo 2^ZW), so p is z >> Gz
+/// with no adder. `plast` is p of the last sample this stage passed with `mag_ok`: the
+/// counter's p_prev one clock early (see the module docs).
 #[derive(LogicBlock)]
 pub struct Combiner {
     /// System clock.
     pub clk: Signal<In, Clock>,
     /// Synchronous reset, active high (clears the valid bit).
     pub rst: Signal<In, Bit>,
-    /// Final angle z (ZW-bit).
+    /// Final angle z (ZW-bit), started at 2^(Gz-1) + q 2^(F+Gz).
     pub z_in: Signal<In, Bits<32>>,
     /// Final x, the magnitude times K_N (W-bit).
     pub x_in: Signal<In, Bits<32>>,
-    /// Quadrant of the sample.
-    pub q_in: Signal<In, Bits<2>>,
     /// Valid bit of the sample.
     pub v_in: Signal<In, Bit>,
     /// Registered electrical angle p (F+2 bits).
@@ -24,20 +29,51 @@ pub struct Combiner {
     pub mag_ok: Signal<Out, Bit>,
     /// Registered valid bit.
     pub v: Signal<Out, Bit>,
+    /// Registered: the step from the last accepted sample crosses quadrant 3 -> 0 forwards.
+    pub up: Signal<Out, Bit>,
+    /// Registered: the step crosses quadrant 0 -> 3 backwards.
+    pub down: Signal<Out, Bit>,
+    /// Registered: the step is at least 1.75 quadrants (the counter's warning).
+    pub warn: Signal<Out, Bit>,
     p_reg: DFF<Bits<32>>,
     ok_reg: DFF<Bit>,
     v_reg: DFF<Bit>,
-    zr: Signal<Local, Bits<32>>,
-    /// 2^(Gz-1): rounding half.
-    zhalf: Constant<Bits<32>>,
-    /// Mask of ZW bits.
-    zmask: Constant<Bits<32>>,
+    plast_reg: DFF<Bits<32>>,
+    up_reg: DFF<Bit>,
+    down_reg: DFF<Bit>,
+    warn_reg: DFF<Bit>,
+    /// p of this sample.
+    pn: Signal<Local, Bits<32>>,
+    /// The magnitude test of this sample.
+    okn: Signal<Local, Bit>,
+    /// delta = (p - plast) mod 2^(F+2).
+    delta: Signal<Local, Bits<32>>,
+    /// The step is backwards (delta negative).
+    back: Signal<Local, Bit>,
+    /// Quadrant of p.
+    qnew: Signal<Local, Bits<32>>,
+    /// Quadrant of plast.
+    qlast: Signal<Local, Bits<32>>,
     /// Gz: shift from z units to fine LSB.
     zshift: Constant<Bits<32>>,
-    /// F: shift of the quadrant into p.
+    /// F: shift of the quadrant out of p.
     fshift: Constant<Bits<32>>,
     /// Mask of F+2 bits.
     pmask: Constant<Bits<32>>,
+    /// Sign bit of an (F+2)-bit word.
+    psign: Constant<Bits<32>>,
+    /// Three (the 2-bit mask).
+    three: Constant<Bits<32>>,
+    /// F-2: the warning thresholds are multiples of 2^(F-2).
+    wshift: Constant<Bits<32>>,
+    /// Mask of F-2 bits.
+    wmask: Constant<Bits<32>>,
+    /// Warning threshold (1.75 quadrants) in 2^(F-2) LSB (7).
+    wlo: Constant<Bits<32>>,
+    /// 2^(F+2) minus the warning threshold, in 2^(F-2) LSB (9).
+    whi: Constant<Bits<32>>,
+    /// Zero.
+    zero: Constant<Bits<32>>,
     /// Magnitude threshold in x units.
     minmag: Constant<Bits<32>>,
 }
@@ -45,43 +81,86 @@ pub struct Combiner {
 impl Combiner {
     /// Combiner for the derived parameters.
     pub fn new(d: &Derived) -> Self {
+        let f = d.fine_bits;
+        // The warning compares delta >> (F-2) only: the thresholds have no lower bits.
+        debug_assert_eq!(d.warn_step & mask(f - 2), 0);
         Self {
             clk: Default::default(),
             rst: Default::default(),
             z_in: Default::default(),
             x_in: Default::default(),
-            q_in: Default::default(),
             v_in: Default::default(),
             p: Default::default(),
             mag_ok: Default::default(),
             v: Default::default(),
+            up: Default::default(),
+            down: Default::default(),
+            warn: Default::default(),
             p_reg: Default::default(),
             ok_reg: Default::default(),
             v_reg: Default::default(),
-            zr: Default::default(),
-            zhalf: c32(1 << (d.z_guard - 1)),
-            zmask: c32(mask(d.z_width)),
+            plast_reg: Default::default(),
+            up_reg: Default::default(),
+            down_reg: Default::default(),
+            warn_reg: Default::default(),
+            pn: Default::default(),
+            okn: Default::default(),
+            delta: Default::default(),
+            back: Default::default(),
+            qnew: Default::default(),
+            qlast: Default::default(),
             zshift: c32(d.z_guard as u64),
-            fshift: c32(d.fine_bits as u64),
-            pmask: c32(mask(d.fine_bits + 2)),
+            fshift: c32(f as u64),
+            pmask: c32(mask(f + 2)),
+            psign: c32(1 << (f + 1)),
+            three: c32(3),
+            wshift: c32((f - 2) as u64),
+            wmask: c32(mask(f - 2)),
+            wlo: c32(d.warn_step >> (f - 2)),
+            whi: c32(((1 << (f + 2)) - d.warn_step) >> (f - 2)),
+            zero: c32(0),
             minmag: c32(d.min_magnitude.min(mask(32))),
         }
     }
 }
 
+/// The initial angle of the CORDIC for a sample in quadrant q: 2^(Gz-1) + q 2^(F+Gz), the
+/// combiner's rounding half and the quadrant (see [`Combiner`]), as the constants
+/// (half, shift of q).
+pub fn z_start(d: &Derived) -> (u64, u64) {
+    (1 << (d.z_guard - 1), (d.fine_bits + d.z_guard) as u64)
+}
+
 impl Logic for Combiner {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, p_reg, ok_reg, v_reg);
-        self.zr.next = (self.z_in.val() + self.zhalf.val()) & self.zmask.val();
-        self.p_reg.d.next = ((self.zr.val() >> self.zshift.val())
-            + (bit_cast::<32, 2>(self.q_in.val()) << self.fshift.val()))
-            & self.pmask.val();
-        self.ok_reg.d.next = self.x_in.val() >= self.minmag.val();
+        dff_setup!(self, clk, p_reg, ok_reg, v_reg, plast_reg, up_reg, down_reg, warn_reg);
+        self.pn.next = (self.z_in.val() >> self.zshift.val()) & self.pmask.val();
+        self.okn.next = self.x_in.val() >= self.minmag.val();
+        self.p_reg.d.next = self.pn.val();
+        self.ok_reg.d.next = self.okn.val();
         self.v_reg.d.next = self.v_in.val() & !self.rst.val();
+        if self.v_in.val() & !self.rst.val() & self.okn.val() {
+            self.plast_reg.d.next = self.pn.val();
+        }
+        // The step to the last accepted sample, as the counter takes it (module docs).
+        self.delta.next = (self.pn.val() - self.plast_reg.q.val()) & self.pmask.val();
+        self.back.next = (self.delta.val() & self.psign.val()).any();
+        self.qnew.next = (self.pn.val() >> self.fshift.val()) & self.three.val();
+        self.qlast.next = (self.plast_reg.q.val() >> self.fshift.val()) & self.three.val();
+        self.up_reg.d.next = !self.back.val() & (self.qnew.val() < self.qlast.val());
+        self.down_reg.d.next = self.back.val() & (self.qnew.val() > self.qlast.val());
+        // wlo <= delta <= whi, in units of 2^(F-2) (the thresholds' LSB).
+        self.warn_reg.d.next = ((self.delta.val() >> self.wshift.val()) >= self.wlo.val())
+            & (((self.delta.val() >> self.wshift.val()) < self.whi.val())
+                | (((self.delta.val() >> self.wshift.val()) == self.whi.val())
+                    & ((self.delta.val() & self.wmask.val()) == self.zero.val())));
         self.p.next = self.p_reg.q.val();
         self.mag_ok.next = self.ok_reg.q.val();
         self.v.next = self.v_reg.q.val();
+        self.up.next = self.up_reg.q.val();
+        self.down.next = self.down_reg.q.val();
+        self.warn.next = self.warn_reg.q.val();
     }
 }
 
@@ -103,6 +182,12 @@ pub struct QuadrantCounter {
     pub ok_in: Signal<In, Bit>,
     /// Valid bit of the sample.
     pub v_in: Signal<In, Bit>,
+    /// The step from the last accepted sample crosses quadrant 3 -> 0 forwards (combiner).
+    pub up_in: Signal<In, Bit>,
+    /// The step crosses quadrant 0 -> 3 backwards (combiner).
+    pub down_in: Signal<In, Bit>,
+    /// The step is at least 1.75 quadrants (combiner).
+    pub warn_in: Signal<In, Bit>,
     /// Resynchronisation request (one-cycle pulse); applied at the next accepted sample.
     pub load: Signal<In, Bit>,
     /// Coarse count to resynchronise to; must be within 0..4PPR-1 (only its low
@@ -134,17 +219,15 @@ pub struct QuadrantCounter {
     pending_reg: DFF<Bit>,
     lqc_reg: DFF<Bits<32>>,
     lturns_reg: DFF<Bits<32>>,
-    /// delta = (p - p_prev) mod 2^(F+2) (F+2 bits).
-    delta: Signal<Local, Bits<32>>,
     /// Quadrant of the sample, p >> F (2 bits).
     qnew: Signal<Local, Bits<32>>,
-    /// Quadrant the step starts from: of p_prev, or of the latched count (2 bits).
+    /// Quadrant of the latched count (2 bits), where a load's step starts.
     base_q: Signal<Local, Bits<32>>,
     /// Period the step starts from: u, or the latched count's (quadrant_bits - 2 bits).
     base_u: Signal<Local, Bits<32>>,
     /// Turn count the step starts from (M bits).
     base_turns: Signal<Local, Bits<32>>,
-    /// The step is backwards (carry in -2..0, or the load's -1).
+    /// The load's step to the sample's quadrant is backwards (-1).
     back: Signal<Local, Bit>,
     /// The step crosses into the next period (carry from quadrant 3 to 0).
     up: Signal<Local, Bit>,
@@ -163,18 +246,6 @@ pub struct QuadrantCounter {
     fshift: Constant<Bits<32>>,
     /// Mask of F bits.
     fmask: Constant<Bits<32>>,
-    /// Mask of F+2 bits.
-    pmask: Constant<Bits<32>>,
-    /// Sign bit of an (F+2)-bit word.
-    psign: Constant<Bits<32>>,
-    /// F-2: the warning thresholds are multiples of 2^(F-2).
-    wshift: Constant<Bits<32>>,
-    /// Mask of F-2 bits.
-    wmask: Constant<Bits<32>>,
-    /// Warning threshold (1.75 quadrants) in 2^(F-2) LSB (7).
-    wlo: Constant<Bits<32>>,
-    /// 2^(F+2) minus the warning threshold, in 2^(F-2) LSB (9).
-    whi: Constant<Bits<32>>,
     /// Two: shift from qc to u.
     two: Constant<Bits<32>>,
     /// Mask of the quadrant_bits - 2 bits of u.
@@ -203,14 +274,15 @@ impl QuadrantCounter {
     /// Counter for the derived parameters.
     pub fn new(d: &Derived) -> Self {
         let f = d.fine_bits;
-        // The warning compares delta >> (F-2) only: the thresholds have no lower bits.
-        debug_assert_eq!(d.warn_step & mask(f - 2), 0);
         Self {
             clk: Default::default(),
             rst: Default::default(),
             p_in: Default::default(),
             ok_in: Default::default(),
             v_in: Default::default(),
+            up_in: Default::default(),
+            down_in: Default::default(),
+            warn_in: Default::default(),
             load: Default::default(),
             load_qc: Default::default(),
             load_turns: Default::default(),
@@ -231,7 +303,6 @@ impl QuadrantCounter {
             pending_reg: Default::default(),
             lqc_reg: Default::default(),
             lturns_reg: Default::default(),
-            delta: Default::default(),
             qnew: Default::default(),
             base_q: Default::default(),
             base_u: Default::default(),
@@ -245,12 +316,6 @@ impl QuadrantCounter {
             wrap: Default::default(),
             fshift: c32(f as u64),
             fmask: c32(mask(f)),
-            pmask: c32(mask(f + 2)),
-            psign: c32(1 << (f + 1)),
-            wshift: c32((f - 2) as u64),
-            wmask: c32(mask(f - 2)),
-            wlo: c32(d.warn_step >> (f - 2)),
-            whi: c32(((1 << (f + 2)) - d.warn_step) >> (f - 2)),
             two: c32(2),
             umask: c32(mask(d.quadrant_bits - 2)),
             usmask: c32(mask(d.quadrant_bits - 1)),
@@ -284,26 +349,26 @@ impl Logic for QuadrantCounter {
             lqc_reg,
             lturns_reg
         );
-        self.delta.next = (self.p_in.val() - self.pprev_reg.q.val()) & self.pmask.val();
         self.qnew.next = (self.p_in.val() >> self.fshift.val()) & self.three.val();
         // Base: the running count, or, when a resynchronisation is pending, the latched
-        // count. Direction: the sign of delta (carry -2..0 vs 0..2), or for a load the
-        // nearest step to the sample's quadrant (+0, +1, +2 forwards, -1 backwards).
-        self.base_q.next = (self.pprev_reg.q.val() >> self.fshift.val()) & self.three.val();
+        // count. The running count's step comes from the combiner (up, down: the sign of
+        // delta and the quadrants); a load's is the nearest step to the sample's quadrant
+        // (+0, +1, +2 forwards, -1 backwards), from 2-bit quadrant compares.
+        self.base_q.next = self.lqc_reg.q.val() & self.three.val();
         self.base_u.next = self.u_reg.q.val();
         self.base_turns.next = self.turns_reg.q.val();
-        self.back.next = (self.delta.val() & self.psign.val()).any();
-        if self.pending_reg.q.val() {
-            self.base_q.next = self.lqc_reg.q.val() & self.three.val();
-            self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
-            self.base_turns.next = self.lturns_reg.q.val();
-            self.back.next =
-                ((self.qnew.val() - self.lqc_reg.q.val()) & self.three.val()) == self.three.val();
-        }
+        self.back.next =
+            ((self.qnew.val() - self.lqc_reg.q.val()) & self.three.val()) == self.three.val();
         // A forward step passes quadrant 3 -> 0 exactly when the quadrant decreases, a
         // backward one passes 0 -> 3 exactly when it increases.
-        self.up.next = !self.back.val() & (self.qnew.val() < self.base_q.val());
-        self.down.next = self.back.val() & (self.qnew.val() > self.base_q.val());
+        self.up.next = self.up_in.val();
+        self.down.next = self.down_in.val();
+        if self.pending_reg.q.val() {
+            self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
+            self.base_turns.next = self.lturns_reg.q.val();
+            self.up.next = !self.back.val() & (self.qnew.val() < self.base_q.val());
+            self.down.next = self.back.val() & (self.qnew.val() > self.base_q.val());
+        }
         self.ustep.next = self.zero.val();
         if self.up.val() {
             self.ustep.next = self.one.val();
@@ -358,12 +423,7 @@ impl Logic for QuadrantCounter {
                         self.pending_reg.d.next = false;
                     }
                 } else {
-                    // wlo <= delta <= whi, in units of 2^(F-2) (the thresholds' LSB).
-                    self.warning_reg.d.next = ((self.delta.val() >> self.wshift.val())
-                        >= self.wlo.val())
-                        & (((self.delta.val() >> self.wshift.val()) < self.whi.val())
-                            | (((self.delta.val() >> self.wshift.val()) == self.whi.val())
-                                & ((self.delta.val() & self.wmask.val()) == self.zero.val())));
+                    self.warning_reg.d.next = self.warn_in.val();
                 }
                 self.u_reg.d.next = self.un.val();
                 if !self.pow2.val() & self.wrap.val() {
