@@ -163,7 +163,8 @@ impl Logic for CoreRtl {
         self.counter.v_in.next = self.combiner.v.val();
         self.counter.up_in.next = self.combiner.up.val();
         self.counter.down_in.next = self.combiner.down.val();
-        self.counter.warn_in.next = self.combiner.warn.val();
+        self.counter.wq_in.next = self.combiner.wq.val();
+        self.counter.wz_in.next = self.combiner.wz.val();
         self.counter.load.next = self.load.val();
         self.counter.load_qc.next = self.load_qc.val();
         self.counter.load_turns.next = self.load_turns.val();

@@ -474,12 +474,23 @@ pub struct Correction {
     xs_c: Signal<Local, Bits<32>>,
     bs_s: Signal<Local, Bits<32>>,
     bs_c: Signal<Local, Bits<32>>,
+    /// d = x - b (32-bit two's complement).
     d_s: Signal<Local, Bits<32>>,
     d_c: Signal<Local, Bits<32>>,
+    /// -d = b - x, a second adder beside d: |d| is a select, not a negation after it.
+    nd_s: Signal<Local, Bits<32>>,
+    nd_c: Signal<Local, Bits<32>>,
     md_s: Signal<Local, Bits<32>>,
     md_c: Signal<Local, Bits<32>>,
+    /// Stage 3: all ones when the sample is negative (the product is inverted).
+    im_s: Signal<Local, Bits<32>>,
+    im_c: Signal<Local, Bits<32>>,
+    /// Stage 3: the rounded, signed result before saturation, modulo 2^(32-GF).
     r_s: Signal<Local, Bits<32>>,
     r_c: Signal<Local, Bits<32>>,
+    /// Stage 3: the rounded magnitude reaches 2^(A-1) (saturate).
+    big_s: Signal<Local, Bit>,
+    big_c: Signal<Local, Bit>,
     o_s: Signal<Local, Bits<32>>,
     o_c: Signal<Local, Bits<32>>,
     /// Mask of the A sample bits.
@@ -490,6 +501,10 @@ pub struct Correction {
     asext: Constant<Bits<32>>,
     /// Largest positive A-bit value 2^(A-1)-1.
     pmax: Constant<Bits<32>>,
+    /// 2^(A-1+GF) - 2^(GF-1): the smallest product whose rounded magnitude is 2^(A-1).
+    pbig: Constant<Bits<32>>,
+    /// All ones.
+    ones: Constant<Bits<32>>,
     /// Bit 31: sign of a 32-bit word.
     sign32: Constant<Bits<32>>,
     /// GF: product shift.
@@ -561,16 +576,24 @@ impl Correction {
             bs_c: Default::default(),
             d_s: Default::default(),
             d_c: Default::default(),
+            nd_s: Default::default(),
+            nd_c: Default::default(),
             md_s: Default::default(),
             md_c: Default::default(),
+            im_s: Default::default(),
+            im_c: Default::default(),
             r_s: Default::default(),
             r_c: Default::default(),
+            big_s: Default::default(),
+            big_c: Default::default(),
             o_s: Default::default(),
             o_c: Default::default(),
             amask: c32(mask(a)),
             asign: c32(1 << (a - 1)),
             asext: c32(fill(32, 32 - a)),
             pmax: c32(mask(a - 1)),
+            pbig: c32((1u64 << (a - 1 + gf)) - (1u64 << (gf - 1))),
+            ones: c32(mask(32)),
             sign32: c32(1 << 31),
             gshift: c32(gf as u64),
             ghalf: c32(1 << (gf - 1)),
@@ -629,13 +652,15 @@ impl Logic for Correction {
         }
         self.d_s.next = self.xs_s.val() - self.bs_s.val();
         self.d_c.next = self.xs_c.val() - self.bs_c.val();
+        self.nd_s.next = self.bs_s.val() - self.xs_s.val();
+        self.nd_c.next = self.bs_c.val() - self.xs_c.val();
         self.md_s.next = self.d_s.val();
         if (self.d_s.val() & self.sign32.val()).any() {
-            self.md_s.next = self.zero.val() - self.d_s.val();
+            self.md_s.next = self.nd_s.val();
         }
         self.md_c.next = self.d_c.val();
         if (self.d_c.val() & self.sign32.val()).any() {
-            self.md_c.next = self.zero.val() - self.d_c.val();
+            self.md_c.next = self.nd_c.val();
         }
         self.v1.d.next = self.in_valid.val() & !self.rst.val();
         self.sg1_s.d.next = (self.d_s.val() & self.sign32.val()).any();
@@ -654,30 +679,38 @@ impl Logic for Correction {
         self.sg2_c.d.next = self.sg1_c.q.val();
         self.p2_s.d.next = self.m1_s.q.val() * self.g1_s.q.val();
         self.p2_c.d.next = self.m1_c.q.val() * self.g1_c.q.val();
-        // Stage 3: round half up (magnitude), saturate, apply the sign.
-        self.r_s.next = (self.p2_s.q.val() + self.ghalf.val()) >> self.gshift.val();
-        self.r_c.next = (self.p2_c.q.val() + self.ghalf.val()) >> self.gshift.val();
+        // Stage 3: round half up (magnitude), apply the sign, saturate. One adder: with
+        // the sign, -floor((P + 2^(GF-1)) / 2^GF) = floor((!P + 2^(GF-1)) / 2^GF) (!P = -P - 1),
+        // taken from the 32-bit word modulo 2^(32-GF) >= 2^A. The magnitude reaches 2^(A-1)
+        // (both saturation limits) exactly when P >= 2^(A-1+GF) - 2^(GF-1), a compare beside
+        // the adder.
+        self.im_s.next = self.zero.val();
         if self.sg2_s.q.val() {
-            if self.r_s.val() >= self.asign.val() {
+            self.im_s.next = self.ones.val();
+        }
+        self.im_c.next = self.zero.val();
+        if self.sg2_c.q.val() {
+            self.im_c.next = self.ones.val();
+        }
+        self.r_s.next = ((self.p2_s.q.val() ^ self.im_s.val()) + self.ghalf.val()) >> self.gshift.val();
+        self.r_c.next = ((self.p2_c.q.val() ^ self.im_c.val()) + self.ghalf.val()) >> self.gshift.val();
+        self.big_s.next = self.p2_s.q.val() >= self.pbig.val();
+        self.big_c.next = self.p2_c.q.val() >= self.pbig.val();
+        self.o_s.next = self.r_s.val();
+        if self.big_s.val() {
+            if self.sg2_s.q.val() {
                 self.o_s.next = self.asign.val();
             } else {
-                self.o_s.next = (self.zero.val() - self.r_s.val()) & self.amask.val();
+                self.o_s.next = self.pmax.val();
             }
-        } else if self.r_s.val() > self.pmax.val() {
-            self.o_s.next = self.pmax.val();
-        } else {
-            self.o_s.next = self.r_s.val();
         }
-        if self.sg2_c.q.val() {
-            if self.r_c.val() >= self.asign.val() {
+        self.o_c.next = self.r_c.val();
+        if self.big_c.val() {
+            if self.sg2_c.q.val() {
                 self.o_c.next = self.asign.val();
             } else {
-                self.o_c.next = (self.zero.val() - self.r_c.val()) & self.amask.val();
+                self.o_c.next = self.pmax.val();
             }
-        } else if self.r_c.val() > self.pmax.val() {
-            self.o_c.next = self.pmax.val();
-        } else {
-            self.o_c.next = self.r_c.val();
         }
         self.v3.d.next = self.v2.q.val() & !self.rst.val();
         self.o3_s.d.next = bit_cast::<16, 32>(self.o_s.val() & self.amask.val());

@@ -33,15 +33,19 @@ pub struct Combiner {
     pub up: Signal<Out, Bit>,
     /// Registered: the step crosses quadrant 0 -> 3 backwards.
     pub down: Signal<Out, Bit>,
-    /// Registered: the step is at least 1.75 quadrants (the counter's warning).
-    pub warn: Signal<Out, Bit>,
+    /// Registered: delta >> (F-2), the step in quarter quadrants (4 bits; the counter's
+    /// warning compares it).
+    pub wq: Signal<Out, Bits<32>>,
+    /// Registered: the low F-2 bits of delta are zero.
+    pub wz: Signal<Out, Bit>,
     p_reg: DFF<Bits<32>>,
     ok_reg: DFF<Bit>,
     v_reg: DFF<Bit>,
     plast_reg: DFF<Bits<32>>,
     up_reg: DFF<Bit>,
     down_reg: DFF<Bit>,
-    warn_reg: DFF<Bit>,
+    wq_reg: DFF<Bits<32>>,
+    wz_reg: DFF<Bit>,
     /// p of this sample.
     pn: Signal<Local, Bits<32>>,
     /// The magnitude test of this sample.
@@ -68,10 +72,6 @@ pub struct Combiner {
     wshift: Constant<Bits<32>>,
     /// Mask of F-2 bits.
     wmask: Constant<Bits<32>>,
-    /// Warning threshold (1.75 quadrants) in 2^(F-2) LSB (7).
-    wlo: Constant<Bits<32>>,
-    /// 2^(F+2) minus the warning threshold, in 2^(F-2) LSB (9).
-    whi: Constant<Bits<32>>,
     /// Zero.
     zero: Constant<Bits<32>>,
     /// Magnitude threshold in x units.
@@ -82,8 +82,6 @@ impl Combiner {
     /// Combiner for the derived parameters.
     pub fn new(d: &Derived) -> Self {
         let f = d.fine_bits;
-        // The warning compares delta >> (F-2) only: the thresholds have no lower bits.
-        debug_assert_eq!(d.warn_step & mask(f - 2), 0);
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -95,14 +93,16 @@ impl Combiner {
             v: Default::default(),
             up: Default::default(),
             down: Default::default(),
-            warn: Default::default(),
+            wq: Default::default(),
+            wz: Default::default(),
             p_reg: Default::default(),
             ok_reg: Default::default(),
             v_reg: Default::default(),
             plast_reg: Default::default(),
             up_reg: Default::default(),
             down_reg: Default::default(),
-            warn_reg: Default::default(),
+            wq_reg: Default::default(),
+            wz_reg: Default::default(),
             pn: Default::default(),
             okn: Default::default(),
             delta: Default::default(),
@@ -116,8 +116,6 @@ impl Combiner {
             three: c32(3),
             wshift: c32((f - 2) as u64),
             wmask: c32(mask(f - 2)),
-            wlo: c32(d.warn_step >> (f - 2)),
-            whi: c32(((1 << (f + 2)) - d.warn_step) >> (f - 2)),
             zero: c32(0),
             minmag: c32(d.min_magnitude.min(mask(32))),
         }
@@ -134,7 +132,7 @@ pub fn z_start(d: &Derived) -> (u64, u64) {
 impl Logic for Combiner {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, p_reg, ok_reg, v_reg, plast_reg, up_reg, down_reg, warn_reg);
+        dff_setup!(self, clk, p_reg, ok_reg, v_reg, plast_reg, up_reg, down_reg, wq_reg, wz_reg);
         self.pn.next = (self.z_in.val() >> self.zshift.val()) & self.pmask.val();
         self.okn.next = self.x_in.val() >= self.minmag.val();
         self.p_reg.d.next = self.pn.val();
@@ -150,17 +148,15 @@ impl Logic for Combiner {
         self.qlast.next = (self.plast_reg.q.val() >> self.fshift.val()) & self.three.val();
         self.up_reg.d.next = !self.back.val() & (self.qnew.val() < self.qlast.val());
         self.down_reg.d.next = self.back.val() & (self.qnew.val() > self.qlast.val());
-        // wlo <= delta <= whi, in units of 2^(F-2) (the thresholds' LSB).
-        self.warn_reg.d.next = ((self.delta.val() >> self.wshift.val()) >= self.wlo.val())
-            & (((self.delta.val() >> self.wshift.val()) < self.whi.val())
-                | (((self.delta.val() >> self.wshift.val()) == self.whi.val())
-                    & ((self.delta.val() & self.wmask.val()) == self.zero.val())));
+        self.wq_reg.d.next = self.delta.val() >> self.wshift.val();
+        self.wz_reg.d.next = (self.delta.val() & self.wmask.val()) == self.zero.val();
         self.p.next = self.p_reg.q.val();
         self.mag_ok.next = self.ok_reg.q.val();
         self.v.next = self.v_reg.q.val();
         self.up.next = self.up_reg.q.val();
         self.down.next = self.down_reg.q.val();
-        self.warn.next = self.warn_reg.q.val();
+        self.wq.next = self.wq_reg.q.val();
+        self.wz.next = self.wz_reg.q.val();
     }
 }
 
@@ -186,8 +182,10 @@ pub struct QuadrantCounter {
     pub up_in: Signal<In, Bit>,
     /// The step crosses quadrant 0 -> 3 backwards (combiner).
     pub down_in: Signal<In, Bit>,
-    /// The step is at least 1.75 quadrants (combiner).
-    pub warn_in: Signal<In, Bit>,
+    /// The step delta >> (F-2) in quarter quadrants (combiner, 4 bits).
+    pub wq_in: Signal<In, Bits<32>>,
+    /// The low F-2 bits of the step are zero (combiner).
+    pub wz_in: Signal<In, Bit>,
     /// Resynchronisation request (one-cycle pulse); applied at the next accepted sample.
     pub load: Signal<In, Bit>,
     /// Coarse count to resynchronise to; must be within 0..4PPR-1 (only its low
@@ -246,6 +244,10 @@ pub struct QuadrantCounter {
     fshift: Constant<Bits<32>>,
     /// Mask of F bits.
     fmask: Constant<Bits<32>>,
+    /// Warning threshold (1.75 quadrants) in 2^(F-2) LSB (7).
+    wlo: Constant<Bits<32>>,
+    /// 2^(F+2) minus the warning threshold, in 2^(F-2) LSB (9).
+    whi: Constant<Bits<32>>,
     /// Two: shift from qc to u.
     two: Constant<Bits<32>>,
     /// Mask of the quadrant_bits - 2 bits of u.
@@ -274,6 +276,8 @@ impl QuadrantCounter {
     /// Counter for the derived parameters.
     pub fn new(d: &Derived) -> Self {
         let f = d.fine_bits;
+        // The warning compares delta >> (F-2) only: the thresholds have no lower bits.
+        debug_assert_eq!(d.warn_step & mask(f - 2), 0);
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -282,7 +286,8 @@ impl QuadrantCounter {
             v_in: Default::default(),
             up_in: Default::default(),
             down_in: Default::default(),
-            warn_in: Default::default(),
+            wq_in: Default::default(),
+            wz_in: Default::default(),
             load: Default::default(),
             load_qc: Default::default(),
             load_turns: Default::default(),
@@ -316,6 +321,8 @@ impl QuadrantCounter {
             wrap: Default::default(),
             fshift: c32(f as u64),
             fmask: c32(mask(f)),
+            wlo: c32(d.warn_step >> (f - 2)),
+            whi: c32(((1 << (f + 2)) - d.warn_step) >> (f - 2)),
             two: c32(2),
             umask: c32(mask(d.quadrant_bits - 2)),
             usmask: c32(mask(d.quadrant_bits - 1)),
@@ -423,7 +430,10 @@ impl Logic for QuadrantCounter {
                         self.pending_reg.d.next = false;
                     }
                 } else {
-                    self.warning_reg.d.next = self.warn_in.val();
+                    // wlo <= delta <= whi, in units of 2^(F-2) (the thresholds' LSB).
+                    self.warning_reg.d.next = (self.wq_in.val() >= self.wlo.val())
+                        & ((self.wq_in.val() < self.whi.val())
+                            | ((self.wq_in.val() == self.whi.val()) & self.wz_in.val()));
                 }
                 self.u_reg.d.next = self.un.val();
                 if !self.pow2.val() & self.wrap.val() {

@@ -49,14 +49,22 @@ pub struct Fallback {
     prevq: DFF<Bits<32>>,
     sq: DFF<Bits<32>>,
     st: DFF<Bits<32>>,
-    /// The previous sample's capture (deep mode: two samples in flight).
+    /// sq - 4PPR and st + 1: the capture with the wrap of dq applied in advance.
+    sqm: DFFWithInit<Bits<32>>,
+    stp: DFFWithInit<Bits<32>>,
+    /// The previous sample's capture (deep mode: two samples in flight), and the same
+    /// with the wrap applied.
     sq2: DFF<Bits<32>>,
     st2: DFF<Bits<32>>,
+    sq2m: DFFWithInit<Bits<32>>,
+    st2p: DFFWithInit<Bits<32>>,
     /// Deep mode: a load waits for the previous sample to leave the core.
     lpend: DFF<Bit>,
-    /// Capture of the sample leaving the core now.
+    /// Capture of the sample leaving the core now (and with the wrap applied).
     csq: Signal<Local, Bits<32>>,
     cst: Signal<Local, Bits<32>>,
+    csqm: Signal<Local, Bits<32>>,
+    cstp: Signal<Local, Bits<32>>,
     /// Deep mode: a sample takes longer from the ADC's out_valid to the core's out_valid
     /// (correction + core latency) than one ADC period, so the next sample's out_valid comes
     /// first (the digit-serial iterative core).
@@ -72,22 +80,45 @@ pub struct Fallback {
     mis: DFF<Bit>,
     oq: DFF<Bits<32>>,
     ot: DFF<Bits<32>>,
+    /// oq - 4PPR and ot + 1: the offset with the wrap of the load value applied.
+    oqm: DFFWithInit<Bits<32>>,
+    otp: DFFWithInit<Bits<32>>,
+    /// Stage k: a good core sample (valid, no error), registered.
+    kv: DFF<Bit>,
+    /// Stage k: its overspeed warning.
+    kw: DFF<Bit>,
+    /// Stage k: its offset core - capture in 0..4PPR-1, and the turns.
+    kq: DFF<Bits<32>>,
+    kt: DFF<Bits<32>>,
+    lq0: Signal<Local, Bits<32>>,
+    lq1: Signal<Local, Bits<32>>,
     lq: Signal<Local, Bits<32>>,
     lt: Signal<Local, Bits<32>>,
-    step: Signal<Local, Bits<32>>,
-    dq: Signal<Local, Bits<32>>,
-    dt: Signal<Local, Bits<32>>,
+    /// QEP count step, low two bits: +1 / -1 (the count moves by at most one per clock).
+    sx: Signal<Local, Bits<32>>,
+    inc: Signal<Local, Bit>,
+    dec: Signal<Local, Bit>,
+    dq0: Signal<Local, Bits<32>>,
+    dq1: Signal<Local, Bits<32>>,
+    /// Difference of the held offset and the sample's (dq - oq), not reduced.
     dd: Signal<Local, Bits<32>>,
+    /// Tracker motion between two conversions, not reduced.
     mv: Signal<Local, Bits<32>>,
     nq: Signal<Local, Bits<32>>,
     nt: Signal<Local, Bits<32>>,
     bad: Signal<Local, Bit>,
     /// 4 PPR.
     qturn: Constant<Bits<32>>,
-    /// 2 PPR (half a turn of quadrants).
-    qhalf: Constant<Bits<32>>,
-    /// Minus 2 PPR.
-    mqhalf: Constant<Bits<32>>,
+    /// 4 PPR - 1 (the last quadrant of a turn).
+    qlast: Constant<Bits<32>>,
+    /// Minus 4 PPR.
+    mqturn: Constant<Bits<32>>,
+    /// 4 PPR - 2.
+    qturn_m2: Constant<Bits<32>>,
+    /// 1 - 4 PPR.
+    mqturn_p1: Constant<Bits<32>>,
+    /// 2 - 4 PPR.
+    mqturn_p2: Constant<Bits<32>>,
     /// Turn mask (M bits).
     tmask: Constant<Bits<32>>,
     /// Bit 31.
@@ -100,8 +131,6 @@ pub struct Fallback {
     two: Constant<Bits<32>>,
     /// -2.
     minus_two: Constant<Bits<32>>,
-    /// -3.
-    minus_three: Constant<Bits<32>>,
     /// 0.
     zero: Constant<Bits<32>>,
     /// 3: aligned samples before the checks start (the captures of the two conversions in
@@ -153,11 +182,17 @@ impl Fallback {
             prevq: Default::default(),
             sq: Default::default(),
             st: Default::default(),
+            sqm: DFFWithInit::new(Bits::<32>::from(q.wrapping_neg() & mask(32))),
+            stp: DFFWithInit::new(Bits::<32>::from(1)),
             sq2: Default::default(),
             st2: Default::default(),
+            sq2m: DFFWithInit::new(Bits::<32>::from(q.wrapping_neg() & mask(32))),
+            st2p: DFFWithInit::new(Bits::<32>::from(1)),
             lpend: Default::default(),
             csq: Default::default(),
             cst: Default::default(),
+            csqm: Default::default(),
+            cstp: Default::default(),
             deep: Constant::new(deep(d)),
             fast: Default::default(),
             busy: Default::default(),
@@ -170,26 +205,38 @@ impl Fallback {
             mis: Default::default(),
             oq: Default::default(),
             ot: Default::default(),
+            oqm: DFFWithInit::new(Bits::<32>::from(q.wrapping_neg() & mask(32))),
+            otp: DFFWithInit::new(Bits::<32>::from(1)),
+            kv: Default::default(),
+            kw: Default::default(),
+            kq: Default::default(),
+            kt: Default::default(),
+            lq0: Default::default(),
+            lq1: Default::default(),
             lq: Default::default(),
             lt: Default::default(),
-            step: Default::default(),
-            dq: Default::default(),
-            dt: Default::default(),
+            sx: Default::default(),
+            inc: Default::default(),
+            dec: Default::default(),
+            dq0: Default::default(),
+            dq1: Default::default(),
             dd: Default::default(),
             mv: Default::default(),
             nq: Default::default(),
             nt: Default::default(),
             bad: Default::default(),
             qturn: c32(q),
-            qhalf: c32(q / 2),
-            mqhalf: c32((q / 2).wrapping_neg() & mask(32)),
+            qlast: c32(q - 1),
+            mqturn: c32(q.wrapping_neg() & mask(32)),
+            qturn_m2: c32(q.wrapping_sub(2) & mask(32)),
+            mqturn_p1: c32(1u64.wrapping_sub(q) & mask(32)),
+            mqturn_p2: c32(2u64.wrapping_sub(q) & mask(32)),
             tmask: c32(mask(d.multiturn_bits)),
             sign32: c32(1 << 31),
             one: c32(1),
             minus_one: c32(mask(32)),
             two: c32(2),
             minus_two: c32(mask(32) - 1),
-            minus_three: c32(mask(32) - 2),
             zero: c32(0),
             three: c32(3),
             quiet_last: c32(QUIET_SAMPLES as u64 - 1),
@@ -201,12 +248,21 @@ impl Logic for Fallback {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sq2, st2,
-            lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns, mis, oq, ot
+            self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sqm, stp,
+            sq2, st2, sq2m, st2p, lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns,
+            mis, oq, ot, oqm, otp, kv, kw, kq, kt
         );
         self.cnt_prev.d.next = self.qep_count.val();
         self.conv_prev.d.next = self.conv.val();
-        self.step.next = self.qep_count.val() - self.cnt_prev.q.val();
+        // The QEP count moves by at most one per clock (and is 0 after reset, like
+        // cnt_prev): +1 / -1 from its two low bits.
+        self.sx.next = self.qep_count.val() ^ self.cnt_prev.q.val();
+        self.inc.next = (self.sx.val() & self.one.val()).any()
+            & !((self.sx.val() & self.two.val()).any()
+                ^ (self.cnt_prev.q.val() & self.one.val()).any());
+        self.dec.next = (self.sx.val() & self.one.val()).any()
+            & ((self.sx.val() & self.two.val()).any()
+                ^ (self.cnt_prev.q.val() & self.one.val()).any());
         // Capture at the CONV rise.
         if self.conv.val() & !self.conv_prev.q.val() {
             self.c1q.d.next = self.qq.q.val();
@@ -214,37 +270,45 @@ impl Logic for Fallback {
             self.c2q.d.next = self.c1q.q.val();
             self.c2t.d.next = self.c1t.q.val();
         }
-        // The sample's capture; the tracker's motion between two conversions.
+        // The tracker's motion between two conversions, mv = c2q - prevq in -4PPR+1..4PPR-1;
+        // modulo 4PPR it is within -2..2 (-1..1) exactly when mv is one of the values
+        // tested below (equality tests, no second adder).
         self.mv.next = self.c2q.q.val() - self.prevq.q.val();
-        if (self.mv.val() & self.sign32.val()).any() {
-            if self.mv.val() < self.mqhalf.val() {
-                self.mv.next = self.mv.val() + self.qturn.val();
-            }
-        } else if self.mv.val() >= self.qhalf.val() {
-            self.mv.next = self.mv.val() - self.qturn.val();
-        }
-        // Load value: the sample's capture plus the QEP-to-CORDIC offset.
-        self.lq.next = self.c2q.q.val() + self.oq.q.val();
-        self.lt.next = self.c2t.q.val() + self.ot.q.val();
-        if self.lq.val() >= self.qturn.val() {
-            self.lq.next = self.lq.val() - self.qturn.val();
-            self.lt.next = self.lt.val() + self.one.val();
+        // Load value: the sample's capture plus the QEP-to-CORDIC offset, wrapped at 4PPR
+        // (lq1 = lq0 - 4PPR is not negative exactly when lq0 >= 4PPR).
+        self.lq0.next = self.c2q.q.val() + self.oq.q.val();
+        self.lq1.next = self.c2q.q.val() + self.oqm.q.val();
+        self.lq.next = self.lq1.val();
+        self.lt.next = self.c2t.q.val() + self.otp.q.val();
+        if (self.lq1.val() & self.sign32.val()).any() {
+            self.lq.next = self.lq0.val();
+            self.lt.next = self.c2t.q.val() + self.ot.q.val();
         }
         self.load_r.d.next = false;
         if self.adc_valid.val() {
             self.sq2.d.next = self.sq.q.val();
             self.st2.d.next = self.st.q.val();
+            self.sq2m.d.next = self.sqm.q.val();
+            self.st2p.d.next = self.stp.q.val();
             self.sq.d.next = self.c2q.q.val();
             self.st.d.next = self.c2t.q.val();
+            self.sqm.d.next = self.c2q.q.val() - self.qturn.val();
+            self.stp.d.next = self.c2t.q.val() + self.one.val();
             self.prevq.d.next = self.c2q.q.val();
-            self.fast.d.next = ((self.mv.val() >= self.three.val())
-                & !(self.mv.val() & self.sign32.val()).any())
-                | (((self.mv.val() & self.sign32.val()).any())
-                    & (self.mv.val() <= self.minus_three.val()));
-            self.busy.d.next = ((self.mv.val() >= self.two.val())
-                & !(self.mv.val() & self.sign32.val()).any())
-                | (((self.mv.val() & self.sign32.val()).any())
-                    & (self.mv.val() <= self.minus_two.val()));
+            self.fast.d.next = !((self.mv.val() == self.zero.val())
+                | (self.mv.val() == self.one.val())
+                | (self.mv.val() == self.two.val())
+                | (self.mv.val() == self.minus_one.val())
+                | (self.mv.val() == self.minus_two.val())
+                | (self.mv.val() == self.qlast.val())
+                | (self.mv.val() == self.qturn_m2.val())
+                | (self.mv.val() == self.mqturn_p1.val())
+                | (self.mv.val() == self.mqturn_p2.val()));
+            self.busy.d.next = !((self.mv.val() == self.zero.val())
+                | (self.mv.val() == self.one.val())
+                | (self.mv.val() == self.minus_one.val())
+                | (self.mv.val() == self.qlast.val())
+                | (self.mv.val() == self.mqturn_p1.val()));
             if self.act.q.val() & self.enable.val() {
                 // Deep mode: the load is issued when the previous sample leaves the core, so
                 // that the counter applies it to this one.
@@ -258,41 +322,61 @@ impl Logic for Fallback {
             self.load_r.d.next = true;
             self.lpend.d.next = false;
         }
+        // Stage k: the sample leaving the core, its offset core - capture in 0..4PPR-1 with
+        // its turns (the wrap by +4PPR, -1 turn taken from the pre-wrapped capture).
         self.csq.next = self.sq.q.val();
         self.cst.next = self.st.q.val();
+        self.csqm.next = self.sqm.q.val();
+        self.cstp.next = self.stp.q.val();
         if self.deep.val() {
             self.csq.next = self.sq2.q.val();
             self.cst.next = self.st2.q.val();
+            self.csqm.next = self.sq2m.q.val();
+            self.cstp.next = self.st2p.q.val();
         }
-        // Core sample: offset of this sample (core - capture) in 0..4PPR-1 with its turns.
-        self.dq.next = self.core_qc.val() - self.csq.val();
-        self.dt.next = self.core_turns.val() - self.cst.val();
-        if (self.dq.val() & self.sign32.val()).any() {
-            self.dq.next = self.dq.val() + self.qturn.val();
-            self.dt.next = self.dt.val() - self.one.val();
+        self.dq0.next = self.core_qc.val() - self.csq.val();
+        self.dq1.next = self.core_qc.val() - self.csqm.val();
+        self.kq.d.next = self.dq0.val();
+        self.kt.d.next = self.core_turns.val() - self.cst.val();
+        if (self.dq0.val() & self.sign32.val()).any() {
+            self.kq.d.next = self.dq1.val();
+            self.kt.d.next = self.core_turns.val() - self.cstp.val();
         }
-        // Disagreement with the held offset, reduced into -2PPR..2PPR-1.
-        self.dd.next = self.dq.val() - self.oq.q.val();
-        if (self.dd.val() & self.sign32.val()).any() {
-            if self.dd.val() < self.mqhalf.val() {
-                self.dd.next = self.dd.val() + self.qturn.val();
-            }
-        } else if self.dd.val() >= self.qhalf.val() {
-            self.dd.next = self.dd.val() - self.qturn.val();
-        }
+        self.kv.d.next = self.core_valid.val() & !self.core_error.val();
+        self.kw.d.next = self.core_warning.val();
+        // Disagreement with the held offset: dq - oq in -4PPR+1..4PPR-1 is -1, 0 or 1
+        // modulo 4PPR exactly when it is one of the values tested here.
+        self.dd.next = self.kq.q.val() - self.oq.q.val();
         self.bad.next = (self.aligned.q.val() == self.three.val())
             & !((self.dd.val() == self.zero.val())
                 | (self.dd.val() == self.one.val())
-                | (self.dd.val() == self.minus_one.val()));
-        // Tracker: the QEP steps only.
-        self.nq.next = self.qq.q.val() + self.step.val();
+                | (self.dd.val() == self.minus_one.val())
+                | (self.dd.val() == self.qlast.val())
+                | (self.dd.val() == self.mqturn_p1.val()));
+        // Tracker: the QEP steps only, wrapped into 0..4PPR-1 with the turns.
+        self.nq.next = self.qq.q.val();
         self.nt.next = self.qt.q.val();
-        if self.core_valid.val() & !self.core_error.val() & self.enable.val() {
+        if self.inc.val() {
+            if self.qq.q.val() == self.qlast.val() {
+                self.nq.next = self.zero.val();
+                self.nt.next = self.qt.q.val() + self.one.val();
+            } else {
+                self.nq.next = self.qq.q.val() + self.one.val();
+            }
+        }
+        if self.dec.val() {
+            if self.qq.q.val() == self.zero.val() {
+                self.nq.next = self.qlast.val();
+                self.nt.next = self.qt.q.val() - self.one.val();
+            } else {
+                self.nq.next = self.qq.q.val() - self.one.val();
+            }
+        }
+        if self.kv.q.val() & self.enable.val() {
             self.mis.d.next = self.bad.val() & !self.act.q.val();
             // A disagreement alone only warns: with good signals (no core error) the
             // CORDIC count is kept, so a faulty comparator line cannot move the position.
-            if self.core_warning.val()
-                | (self.fast.q.val() & (self.aligned.q.val() == self.three.val()))
+            if self.kw.q.val() | (self.fast.q.val() & (self.aligned.q.val() == self.three.val()))
             {
                 self.act.d.next = true;
                 self.quiet.d.next = self.zero.val();
@@ -313,24 +397,19 @@ impl Logic for Fallback {
                 // first sample, a sample with the overspeed warning or with 2 or more QEP
                 // quadrants since the previous conversion (an aliased count) keeps it, so a
                 // decoder started above the limit resynchronises to its first sample's count.
-                if (self.aligned.q.val() == self.zero.val())
-                    | !(self.core_warning.val() | self.busy.q.val())
+                if (self.aligned.q.val() == self.zero.val()) | !(self.kw.q.val() | self.busy.q.val())
                 {
-                    self.oq.d.next = self.dq.val();
-                    self.ot.d.next = self.dt.val() & self.tmask.val();
+                    self.oq.d.next = self.kq.q.val();
+                    self.ot.d.next = self.kt.q.val() & self.tmask.val();
+                    self.oqm.d.next = self.kq.q.val() - self.qturn.val();
+                    self.otp.d.next = (self.kt.q.val() & self.tmask.val()) + self.one.val();
                 }
             }
-        }
-        if (self.nq.val() & self.sign32.val()).any() {
-            self.nq.next = self.nq.val() + self.qturn.val();
-            self.nt.next = self.nt.val() - self.one.val();
-        } else if self.nq.val() >= self.qturn.val() {
-            self.nq.next = self.nq.val() - self.qturn.val();
-            self.nt.next = self.nt.val() + self.one.val();
         }
         self.qq.d.next = self.nq.val();
         self.qt.d.next = self.nt.val() & self.tmask.val();
         if self.rst.val() | !self.enable.val() {
+            self.cnt_prev.d.next = self.zero.val();
             self.qq.d.next = self.zero.val();
             self.qt.d.next = self.zero.val();
             self.aligned.d.next = self.zero.val();
@@ -341,8 +420,11 @@ impl Logic for Fallback {
             self.mis.d.next = false;
             self.fast.d.next = false;
             self.busy.d.next = false;
+            self.kv.d.next = false;
             self.oq.d.next = self.zero.val();
             self.ot.d.next = self.zero.val();
+            self.oqm.d.next = self.mqturn.val();
+            self.otp.d.next = self.one.val();
         }
         self.load.next = self.load_r.q.val();
         self.load_qc.next = self.lqc.q.val();
