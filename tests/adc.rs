@@ -240,9 +240,11 @@ fn closed_loop_ltc(clock_hz: f64, n: usize, seed: u64) {
         );
     }
     assert_eq!(check_against_chip(&p, &run, &chip), n);
-    // CONV: none in the flush period, then one per period, each accepted by the chip.
+    // CONV: none in the flush period, then one per period, each accepted by the chip. The
+    // pins are registered one clock after the state that drives them, so the first rise is
+    // one clock after the flush period.
     let rises = run.conv_rises();
-    assert_eq!(rises[0], release + p.period_clocks as usize);
+    assert_eq!(rises[0], release + p.period_clocks as usize + 1);
     assert_eq!(rises.len(), chip.conversions().len());
     assert!(rises
         .windows(2)

@@ -54,6 +54,12 @@ pub struct AdcController {
     valid_reg: DFF<Bit>,
     ch0_reg: DFF<Bits<16>>,
     ch1_reg: DFF<Bits<16>>,
+    /// adc_miso and rst one clock late: the pins and the capture are decoded from the
+    /// registered state, one clock after it is entered (see the module docs).
+    miso_d: DFF<Bit>,
+    rst_d: DFF<Bit>,
+    /// The state entered at the previous edge starts an SCK frame (pc_n == lead).
+    at_lead: Signal<Local, Bit>,
     // Next-state values.
     run: Signal<Local, Bit>,
     pc_n: Signal<Local, Bits<16>>,
@@ -63,7 +69,6 @@ pub struct AdcController {
     sck_act: Signal<Local, Bit>,
     conv_act: Signal<Local, Bit>,
     cap: Signal<Local, Bit>,
-    slot: Signal<Local, Bits<8>>,
     shifted0: Signal<Local, Bits<16>>,
     shifted1: Signal<Local, Bits<16>>,
     sr0_n: Signal<Local, Bits<16>>,
@@ -102,6 +107,12 @@ pub struct AdcController {
     cpol: Constant<Bit>,
     /// CONV inactive level.
     conv_idle: Constant<Bit>,
+    /// lead - 1 (all ones when lead = 0: never equal to pc).
+    lead_m1: Constant<Bits<16>>,
+    /// lead = 0.
+    lead_zero: Constant<Bit>,
+    /// One channel only: ch1 reads 0.
+    one_ch: Constant<Bit>,
     one16: Constant<Bits<16>>,
     zero16: Constant<Bits<16>>,
     one8: Constant<Bits<8>>,
@@ -143,6 +154,9 @@ impl AdcController {
             valid_reg: Default::default(),
             ch0_reg: Default::default(),
             ch1_reg: Default::default(),
+            miso_d: Default::default(),
+            rst_d: Default::default(),
+            at_lead: Default::default(),
             run: Default::default(),
             pc_n: Default::default(),
             ph_n: Default::default(),
@@ -151,7 +165,6 @@ impl AdcController {
             sck_act: Default::default(),
             conv_act: Default::default(),
             cap: Default::default(),
-            slot: Default::default(),
             shifted0: Default::default(),
             shifted1: Default::default(),
             sr0_n: Default::default(),
@@ -164,11 +177,11 @@ impl AdcController {
             cap_ph: c8(p.capture_phase() as u64),
             frame: c8(f.frame_sck as u64),
             cyc_stop: c8(f.frame_sck as u64 + 1),
-            ch0_first: c8(f.offsets[0] as u64),
-            ch0_end: c8((f.offsets[0] + f.width) as u64),
-            ch1_first: c8(ch1_first),
-            ch1_end: c8(ch1_end),
-            last_slot: c8(last as u64),
+            ch0_first: c8(f.offsets[0] as u64 + 1),
+            ch0_end: c8((f.offsets[0] + f.width) as u64 + 1),
+            ch1_first: c8(ch1_first + 1),
+            ch1_end: c8(ch1_end + 1),
+            last_slot: c8(last as u64 + 1),
             warm_init: c4(1 + f.pipeline as u64),
             wmask: c16(mask(w as u32)),
             flip: c16(match f.sign {
@@ -177,6 +190,9 @@ impl AdcController {
             }),
             cpol: Constant::new(f.cpol),
             conv_idle: Constant::new(!f.conv_active_high),
+            lead_m1: c16((f.lead_clocks as u64).wrapping_sub(1) & 0xffff),
+            lead_zero: Constant::new(f.lead_clocks == 0),
+            one_ch: Constant::new(f.channels < 2),
             one16: c16(1),
             zero16: c16(0),
             one8: c8(1),
@@ -192,12 +208,14 @@ impl Logic for AdcController {
     fn update(&mut self) {
         dff_setup!(
             self, clk, live, pc, ph, cyc, warm, sr0, sr1, sck_reg, conv_reg, valid_reg, ch0_reg,
-            ch1_reg
+            ch1_reg, miso_d, rst_d
         );
         self.run.next = self.enable.val() & !self.rst.val();
         // Period counter and warm-up count (flush period, then discarded frames).
         self.pc_n.next = self.zero16.val();
         self.warm_n.next = self.warm_init.val();
+        // pc_n == lead, from pc (equality tests, not a compare after the increment).
+        self.at_lead.next = self.lead_zero.val();
         if self.run.val() & self.live.q.val() {
             if self.pc.q.val() == self.p_last.val() {
                 self.pc_n.next = self.zero16.val();
@@ -209,13 +227,14 @@ impl Logic for AdcController {
             } else {
                 self.pc_n.next = self.pc.q.val() + self.one16.val();
                 self.warm_n.next = self.warm.q.val();
+                self.at_lead.next = self.pc.q.val() == self.lead_m1.val();
             }
         }
         // SCK phase and cycle counters: restart at the lead clock, stop after the frame.
         self.ph_n.next = self.zero8.val();
         self.cyc_n.next = self.cyc_stop.val();
         if self.run.val() {
-            if self.pc_n.val() == self.lead.val() {
+            if self.at_lead.val() {
                 self.ph_n.next = self.zero8.val();
                 self.cyc_n.next = self.zero8.val();
             } else if self.cyc.q.val() == self.cyc_stop.val() {
@@ -229,42 +248,46 @@ impl Logic for AdcController {
                 self.cyc_n.next = self.cyc.q.val();
             }
         }
-        // Pins for the state being entered.
-        self.sck_act.next = self.run.val()
-            & (self.cyc_n.val() < self.frame.val())
-            & (self.ph_n.val() >= self.sck_on.val());
-        self.conv_act.next = self.run.val()
-            & (self.pc_n.val() < self.conv_end.val())
-            & (self.warm_n.val() < self.warm_init.val());
+        // Pins of the state entered at the previous edge (live = run then), registered:
+        // the pins show the state one clock after it is entered.
+        self.sck_act.next = self.live.q.val()
+            & (self.cyc.q.val() < self.frame.val())
+            & (self.ph.q.val() >= self.sck_on.val());
+        self.conv_act.next = self.live.q.val()
+            & (self.pc.q.val() < self.conv_end.val())
+            & (self.warm.q.val() < self.warm_init.val());
         self.sck_reg.d.next = self.sck_act.val() ^ self.cpol.val();
         self.conv_reg.d.next = self.conv_act.val() ^ self.conv_idle.val();
-        // Capture: entering the clock that launches the next shifting SCK edge.
-        self.cap.next = self.run.val()
-            & (self.ph_n.val() == self.cap_ph.val())
-            & (self.cyc_n.val() >= self.one8.val())
-            & (self.cyc_n.val() <= self.frame.val());
-        self.slot.next = self.cyc_n.val() - self.one8.val();
+        // Capture: the state entered at the previous edge launches the next shifting SCK
+        // edge; the bit is adc_miso of the clock before that edge (miso_d). Slot k is
+        // cycle k + 1 (the constants hold slot + 1).
+        self.miso_d.d.next = self.adc_miso.val();
+        self.rst_d.d.next = self.rst.val();
+        self.cap.next = self.live.q.val()
+            & (self.ph.q.val() == self.cap_ph.val())
+            & (self.cyc.q.val() >= self.one8.val())
+            & (self.cyc.q.val() <= self.frame.val());
         self.shifted0.next = (self.sr0.q.val() << self.one16.val()) & self.wmask.val();
-        if self.adc_miso.val() {
+        if self.miso_d.q.val() {
             self.shifted0.next =
                 ((self.sr0.q.val() << self.one16.val()) | self.one16.val()) & self.wmask.val();
         }
         self.shifted1.next = (self.sr1.q.val() << self.one16.val()) & self.wmask.val();
-        if self.adc_miso.val() {
+        if self.miso_d.q.val() {
             self.shifted1.next =
                 ((self.sr1.q.val() << self.one16.val()) | self.one16.val()) & self.wmask.val();
         }
         self.sr0_n.next = self.sr0.q.val();
         if self.cap.val()
-            & (self.slot.val() >= self.ch0_first.val())
-            & (self.slot.val() < self.ch0_end.val())
+            & (self.cyc.q.val() >= self.ch0_first.val())
+            & (self.cyc.q.val() < self.ch0_end.val())
         {
             self.sr0_n.next = self.shifted0.val();
         }
         self.sr1_n.next = self.sr1.q.val();
         if self.cap.val()
-            & (self.slot.val() >= self.ch1_first.val())
-            & (self.slot.val() < self.ch1_end.val())
+            & (self.cyc.q.val() >= self.ch1_first.val())
+            & (self.cyc.q.val() < self.ch1_end.val())
         {
             self.sr1_n.next = self.shifted1.val();
         }
@@ -272,13 +295,13 @@ impl Logic for AdcController {
         self.sr1.d.next = self.sr1_n.val();
         self.valid_reg.d.next = false;
         if self.cap.val()
-            & (self.slot.val() == self.last_slot.val())
-            & (self.warm_n.val() == self.zero4.val())
+            & (self.cyc.q.val() == self.last_slot.val())
+            & (self.warm.q.val() == self.zero4.val())
         {
             self.valid_reg.d.next = true;
             self.ch0_reg.d.next = (self.sr0_n.val() ^ self.flip.val()) & self.wmask.val();
             self.ch1_reg.d.next = (self.sr1_n.val() ^ self.flip.val()) & self.wmask.val();
-            if self.ch1_end.val() == self.zero8.val() {
+            if self.one_ch.val() {
                 self.ch1_reg.d.next = self.zero16.val();
             }
         }
@@ -287,7 +310,7 @@ impl Logic for AdcController {
         self.ph.d.next = self.ph_n.val();
         self.cyc.d.next = self.cyc_n.val();
         self.warm.d.next = self.warm_n.val();
-        if self.rst.val() {
+        if self.rst_d.q.val() {
             self.sr0.d.next = self.zero16.val();
             self.sr1.d.next = self.zero16.val();
             self.ch0_reg.d.next = self.zero16.val();

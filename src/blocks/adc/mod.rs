@@ -390,8 +390,9 @@ impl AdcParams {
     /// Clocks from reset release (with `enable` high) to the first `out_valid`: one flush
     /// period, `pipeline` discarded frames, then the latency of the first sample.
     pub fn startup_clocks(&self) -> u32 {
-        // Row 0 after release enters pc = 0 of the flush period.
-        self.period_clocks + self.conv_to_valid_clocks()
+        // Row 0 after release enters pc = 0 of the flush period; the pins and the data are
+        // registered one clock after the state (see `hdl::AdcController`), hence the + 1.
+        self.period_clocks + self.conv_to_valid_clocks() + 1
     }
 
     /// Checks every limit; the error names the value, the limit and what to change.

@@ -58,6 +58,9 @@ pub struct AdcModel {
     warm: u32,
     sr: [u16; 2],
     out: AdcOut,
+    /// The registered pins and data: `out` of the previous clock (the hardware decodes
+    /// them from the state one clock after it is entered).
+    pins: AdcOut,
 }
 
 impl AdcModel {
@@ -72,10 +75,16 @@ impl AdcModel {
             warm: 0,
             sr: [0; 2],
             out: AdcOut::default(),
+            pins: AdcOut {
+                sck: p.frame.cpol,
+                conv: !p.frame.conv_active_high,
+                ..AdcOut::default()
+            },
         }
     }
 
-    /// One clock.
+    /// One clock. The state and `out` follow the controller's timing maths (module docs);
+    /// the value returned, like the hardware's registered outputs, is one clock later.
     pub fn step(&mut self, i: AdcIn) -> AdcOut {
         let p = &self.p;
         let f = &p.frame;
@@ -149,6 +158,6 @@ impl AdcModel {
         self.warm = warm_n;
         self.sr = sr_n;
         self.out = out;
-        out
+        std::mem::replace(&mut self.pins, out)
     }
 }
