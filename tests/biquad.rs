@@ -458,7 +458,8 @@ fn cosim_impulse_on_the_capacitive_chain() {
     let p = capacitive(16, 18, 16, 2, 1, 2);
     let per = p.cycles_per_sample() as usize;
     let lat = p.latency() as usize;
-    assert_eq!((per, lat), (7 * 5 + 3, 7 * 5 + 2));
+    // 8 clocks per section: 5 MACs, the RAM read, the operand and the product registers.
+    assert_eq!((per, lat), (8 * 5 + 3, 8 * 5 + 2));
     let mut samples = vec![vec![12000, 20000, -15000]];
     samples.extend(vec![vec![0, 0, 0]; 40]);
     let mut ins = reset(&p);

@@ -90,6 +90,16 @@ pub struct Fallback {
     /// Stage k: its offset core - capture in 0..4PPR-1, and the turns.
     kq: DFF<Bits<32>>,
     kt: DFF<Bits<32>>,
+    /// Stage k2: the good sample and its warning one clock later, with dd = kq - oq.
+    kv2: DFF<Bit>,
+    kw2: DFF<Bit>,
+    ddr: DFF<Bits<32>>,
+    /// The tracker's motion mv = c2q - prevq, registered, and its tests registered after
+    /// it: read at the ADC's out_valid, at least three clocks after c2q and prevq last
+    /// changed (a CONV rise, the previous out_valid).
+    mvr: DFF<Bits<32>>,
+    fast_n: DFF<Bit>,
+    busy_n: DFF<Bit>,
     lq0: Signal<Local, Bits<32>>,
     lq1: Signal<Local, Bits<32>>,
     lq: Signal<Local, Bits<32>>,
@@ -100,9 +110,10 @@ pub struct Fallback {
     dec: Signal<Local, Bit>,
     dq0: Signal<Local, Bits<32>>,
     dq1: Signal<Local, Bits<32>>,
-    /// Difference of the held offset and the sample's (dq - oq), not reduced.
+    /// Difference of the held offset and the sample's (dq - oq), not reduced, in
+    /// quadrant_bits + 1 bits.
     dd: Signal<Local, Bits<32>>,
-    /// Tracker motion between two conversions, not reduced.
+    /// Tracker motion between two conversions, not reduced, in quadrant_bits + 1 bits.
     mv: Signal<Local, Bits<32>>,
     nq: Signal<Local, Bits<32>>,
     nt: Signal<Local, Bits<32>>,
@@ -111,26 +122,27 @@ pub struct Fallback {
     qturn: Constant<Bits<32>>,
     /// 4 PPR - 1 (the last quadrant of a turn).
     qlast: Constant<Bits<32>>,
+    /// The test values of the differences modulo 2^(quadrant_bits + 1): 4PPR - 1,
+    /// 1 - 4PPR, 2 - 4PPR, 4PPR - 2, -1, -2.
+    dqlast: Constant<Bits<32>>,
+    dmqturn_p1: Constant<Bits<32>>,
+    dmqturn_p2: Constant<Bits<32>>,
+    dqturn_m2: Constant<Bits<32>>,
+    dminus_one: Constant<Bits<32>>,
+    dminus_two: Constant<Bits<32>>,
     /// Minus 4 PPR.
     mqturn: Constant<Bits<32>>,
-    /// 4 PPR - 2.
-    qturn_m2: Constant<Bits<32>>,
-    /// 1 - 4 PPR.
-    mqturn_p1: Constant<Bits<32>>,
-    /// 2 - 4 PPR.
-    mqturn_p2: Constant<Bits<32>>,
+    /// Mask of quadrant_bits + 1 bits: the differences of two counts in 0..4PPR-1 are
+    /// unique modulo 2^(quadrant_bits + 1) >= 8PPR, so the equality tests use these bits.
+    dmask: Constant<Bits<32>>,
     /// Turn mask (M bits).
     tmask: Constant<Bits<32>>,
     /// Bit 31.
     sign32: Constant<Bits<32>>,
     /// 1.
     one: Constant<Bits<32>>,
-    /// -1.
-    minus_one: Constant<Bits<32>>,
     /// 2.
     two: Constant<Bits<32>>,
-    /// -2.
-    minus_two: Constant<Bits<32>>,
     /// 0.
     zero: Constant<Bits<32>>,
     /// 3: aligned samples before the checks start (the captures of the two conversions in
@@ -154,6 +166,10 @@ impl Fallback {
     /// Fallback for the derived parameters.
     pub fn new(d: &Derived) -> Self {
         let q = d.quadrants_per_turn;
+        let dm = mask(d.quadrant_bits + 1);
+        // mvr and its tests take two clocks: the ADC's out_valid must come at least three
+        // clocks after a CONV rise (it comes in the frame's last SCK cycles).
+        debug_assert!(d.adc.conv_to_valid_clocks() % d.adc.period_clocks >= 3);
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -211,6 +227,12 @@ impl Fallback {
             kw: Default::default(),
             kq: Default::default(),
             kt: Default::default(),
+            kv2: Default::default(),
+            kw2: Default::default(),
+            ddr: Default::default(),
+            mvr: Default::default(),
+            fast_n: Default::default(),
+            busy_n: Default::default(),
             lq0: Default::default(),
             lq1: Default::default(),
             lq: Default::default(),
@@ -226,17 +248,19 @@ impl Fallback {
             nt: Default::default(),
             bad: Default::default(),
             qturn: c32(q),
+            dmask: c32(dm),
             qlast: c32(q - 1),
+            dqlast: c32((q - 1) & dm),
+            dmqturn_p1: c32(1u64.wrapping_sub(q) & dm),
+            dmqturn_p2: c32(2u64.wrapping_sub(q) & dm),
+            dqturn_m2: c32(q.wrapping_sub(2) & dm),
+            dminus_one: c32(dm),
+            dminus_two: c32(dm - 1),
             mqturn: c32(q.wrapping_neg() & mask(32)),
-            qturn_m2: c32(q.wrapping_sub(2) & mask(32)),
-            mqturn_p1: c32(1u64.wrapping_sub(q) & mask(32)),
-            mqturn_p2: c32(2u64.wrapping_sub(q) & mask(32)),
             tmask: c32(mask(d.multiturn_bits)),
             sign32: c32(1 << 31),
             one: c32(1),
-            minus_one: c32(mask(32)),
             two: c32(2),
-            minus_two: c32(mask(32) - 1),
             zero: c32(0),
             three: c32(3),
             quiet_last: c32(QUIET_SAMPLES as u64 - 1),
@@ -250,7 +274,7 @@ impl Logic for Fallback {
         dff_setup!(
             self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sqm, stp,
             sq2, st2, sq2m, st2p, lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns,
-            mis, oq, ot, oqm, otp, kv, kw, kq, kt
+            mis, oq, ot, oqm, otp, kv, kw, kq, kt, kv2, kw2, ddr, mvr, fast_n, busy_n
         );
         self.cnt_prev.d.next = self.qep_count.val();
         self.conv_prev.d.next = self.conv.val();
@@ -273,7 +297,22 @@ impl Logic for Fallback {
         // The tracker's motion between two conversions, mv = c2q - prevq in -4PPR+1..4PPR-1;
         // modulo 4PPR it is within -2..2 (-1..1) exactly when mv is one of the values
         // tested below (equality tests, no second adder).
-        self.mv.next = self.c2q.q.val() - self.prevq.q.val();
+        self.mvr.d.next = (self.c2q.q.val() - self.prevq.q.val()) & self.dmask.val();
+        self.mv.next = self.mvr.q.val();
+        self.fast_n.d.next = !((self.mv.val() == self.zero.val())
+            | (self.mv.val() == self.one.val())
+            | (self.mv.val() == self.two.val())
+            | (self.mv.val() == self.dminus_one.val())
+            | (self.mv.val() == self.dminus_two.val())
+            | (self.mv.val() == self.dqlast.val())
+            | (self.mv.val() == self.dqturn_m2.val())
+            | (self.mv.val() == self.dmqturn_p1.val())
+            | (self.mv.val() == self.dmqturn_p2.val()));
+        self.busy_n.d.next = !((self.mv.val() == self.zero.val())
+            | (self.mv.val() == self.one.val())
+            | (self.mv.val() == self.dminus_one.val())
+            | (self.mv.val() == self.dqlast.val())
+            | (self.mv.val() == self.dmqturn_p1.val()));
         // Load value: the sample's capture plus the QEP-to-CORDIC offset, wrapped at 4PPR
         // (lq1 = lq0 - 4PPR is not negative exactly when lq0 >= 4PPR).
         self.lq0.next = self.c2q.q.val() + self.oq.q.val();
@@ -295,20 +334,8 @@ impl Logic for Fallback {
             self.sqm.d.next = self.c2q.q.val() - self.qturn.val();
             self.stp.d.next = self.c2t.q.val() + self.one.val();
             self.prevq.d.next = self.c2q.q.val();
-            self.fast.d.next = !((self.mv.val() == self.zero.val())
-                | (self.mv.val() == self.one.val())
-                | (self.mv.val() == self.two.val())
-                | (self.mv.val() == self.minus_one.val())
-                | (self.mv.val() == self.minus_two.val())
-                | (self.mv.val() == self.qlast.val())
-                | (self.mv.val() == self.qturn_m2.val())
-                | (self.mv.val() == self.mqturn_p1.val())
-                | (self.mv.val() == self.mqturn_p2.val()));
-            self.busy.d.next = !((self.mv.val() == self.zero.val())
-                | (self.mv.val() == self.one.val())
-                | (self.mv.val() == self.minus_one.val())
-                | (self.mv.val() == self.qlast.val())
-                | (self.mv.val() == self.mqturn_p1.val()));
+            self.fast.d.next = self.fast_n.q.val();
+            self.busy.d.next = self.busy_n.q.val();
             if self.act.q.val() & self.enable.val() {
                 // Deep mode: the load is issued when the previous sample leaves the core, so
                 // that the counter applies it to this one.
@@ -336,23 +363,28 @@ impl Logic for Fallback {
         }
         self.dq0.next = self.core_qc.val() - self.csq.val();
         self.dq1.next = self.core_qc.val() - self.csqm.val();
-        self.kq.d.next = self.dq0.val();
-        self.kt.d.next = self.core_turns.val() - self.cst.val();
-        if (self.dq0.val() & self.sign32.val()).any() {
-            self.kq.d.next = self.dq1.val();
-            self.kt.d.next = self.core_turns.val() - self.cstp.val();
+        if self.core_valid.val() {
+            self.kq.d.next = self.dq0.val();
+            self.kt.d.next = self.core_turns.val() - self.cst.val();
+            if (self.dq0.val() & self.sign32.val()).any() {
+                self.kq.d.next = self.dq1.val();
+                self.kt.d.next = self.core_turns.val() - self.cstp.val();
+            }
         }
         self.kv.d.next = self.core_valid.val() & !self.core_error.val();
         self.kw.d.next = self.core_warning.val();
         // Disagreement with the held offset: dq - oq in -4PPR+1..4PPR-1 is -1, 0 or 1
         // modulo 4PPR exactly when it is one of the values tested here.
-        self.dd.next = self.kq.q.val() - self.oq.q.val();
+        self.kv2.d.next = self.kv.q.val();
+        self.kw2.d.next = self.kw.q.val();
+        self.ddr.d.next = (self.kq.q.val() - self.oq.q.val()) & self.dmask.val();
+        self.dd.next = self.ddr.q.val();
         self.bad.next = (self.aligned.q.val() == self.three.val())
             & !((self.dd.val() == self.zero.val())
                 | (self.dd.val() == self.one.val())
-                | (self.dd.val() == self.minus_one.val())
-                | (self.dd.val() == self.qlast.val())
-                | (self.dd.val() == self.mqturn_p1.val()));
+                | (self.dd.val() == self.dminus_one.val())
+                | (self.dd.val() == self.dqlast.val())
+                | (self.dd.val() == self.dmqturn_p1.val()));
         // Tracker: the QEP steps only, wrapped into 0..4PPR-1 with the turns.
         self.nq.next = self.qq.q.val();
         self.nt.next = self.qt.q.val();
@@ -372,11 +404,11 @@ impl Logic for Fallback {
                 self.nq.next = self.qq.q.val() - self.one.val();
             }
         }
-        if self.kv.q.val() & self.enable.val() {
+        if self.kv2.q.val() & self.enable.val() {
             self.mis.d.next = self.bad.val() & !self.act.q.val();
             // A disagreement alone only warns: with good signals (no core error) the
             // CORDIC count is kept, so a faulty comparator line cannot move the position.
-            if self.kw.q.val() | (self.fast.q.val() & (self.aligned.q.val() == self.three.val()))
+            if self.kw2.q.val() | (self.fast.q.val() & (self.aligned.q.val() == self.three.val()))
             {
                 self.act.d.next = true;
                 self.quiet.d.next = self.zero.val();
@@ -421,6 +453,7 @@ impl Logic for Fallback {
             self.fast.d.next = false;
             self.busy.d.next = false;
             self.kv.d.next = false;
+            self.kv2.d.next = false;
             self.oq.d.next = self.zero.val();
             self.ot.d.next = self.zero.val();
             self.oqm.d.next = self.mqturn.val();
