@@ -124,23 +124,27 @@ impl Logic for BiquadProgram {
     }
     fn hdl(&self) -> Verilog {
         let w = self._pc_width;
+        // One `if` per word, not a `case`: Yosys would turn a case table into a ROM and,
+        // with the engine's register after it, into an initialized block RAM, which its
+        // Cyclone III mapping rejects; as logic it is a 6-input function per bit.
+        let m = w - 1;
         let cases: String = self
             ._words
             .iter()
             .enumerate()
             .map(|(i, (c, k))| {
-                format!("  {w}'d{i}: begin coef = 32'h{c:08x}; ctrl = 32'h{k:08x}; end\n")
+                format!(
+                    "  if (pc[{m}:0] == {w}'d{i}) begin coef = 32'h{c:08x}; ctrl = 32'h{k:08x}; end\n"
+                )
             })
             .collect();
         Verilog::Custom(format!(
             "\
 always @(*) begin
-  case (pc[{m}:0])
-{cases}  default: begin coef = 32'h00000000; ctrl = 32'h00000000; end
-  endcase
-end
-",
-            m = w - 1
+  coef = 32'h00000000;
+  ctrl = 32'h00000000;
+{cases}end
+"
         ))
     }
 }
