@@ -692,8 +692,10 @@ impl Logic for Correction {
         if self.sg2_c.q.val() {
             self.im_c.next = self.ones.val();
         }
-        self.r_s.next = ((self.p2_s.q.val() ^ self.im_s.val()) + self.ghalf.val()) >> self.gshift.val();
-        self.r_c.next = ((self.p2_c.q.val() ^ self.im_c.val()) + self.ghalf.val()) >> self.gshift.val();
+        self.r_s.next =
+            ((self.p2_s.q.val() ^ self.im_s.val()) + self.ghalf.val()) >> self.gshift.val();
+        self.r_c.next =
+            ((self.p2_c.q.val() ^ self.im_c.val()) + self.ghalf.val()) >> self.gshift.val();
         self.big_s.next = self.p2_s.q.val() >= self.pbig.val();
         self.big_c.next = self.p2_c.q.val() >= self.pbig.val();
         self.o_s.next = self.r_s.val();

@@ -273,8 +273,8 @@ impl Logic for Fallback {
     fn update(&mut self) {
         dff_setup!(
             self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sqm, stp,
-            sq2, st2, sq2m, st2p, lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns,
-            mis, oq, ot, oqm, otp, kv, kw, kq, kt, kv2, kw2, ddr, mvr, fast_n, busy_n
+            sq2, st2, sq2m, st2p, lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns, mis,
+            oq, ot, oqm, otp, kv, kw, kq, kt, kv2, kw2, ddr, mvr, fast_n, busy_n
         );
         self.cnt_prev.d.next = self.qep_count.val();
         self.conv_prev.d.next = self.conv.val();
@@ -408,8 +408,7 @@ impl Logic for Fallback {
             self.mis.d.next = self.bad.val() & !self.act.q.val();
             // A disagreement alone only warns: with good signals (no core error) the
             // CORDIC count is kept, so a faulty comparator line cannot move the position.
-            if self.kw2.q.val() | (self.fast.q.val() & (self.aligned.q.val() == self.three.val()))
-            {
+            if self.kw2.q.val() | (self.fast.q.val() & (self.aligned.q.val() == self.three.val())) {
                 self.act.d.next = true;
                 self.quiet.d.next = self.zero.val();
             } else if self.act.q.val() & self.busy.q.val() {
@@ -429,7 +428,8 @@ impl Logic for Fallback {
                 // first sample, a sample with the overspeed warning or with 2 or more QEP
                 // quadrants since the previous conversion (an aliased count) keeps it, so a
                 // decoder started above the limit resynchronises to its first sample's count.
-                if (self.aligned.q.val() == self.zero.val()) | !(self.kw.q.val() | self.busy.q.val())
+                if (self.aligned.q.val() == self.zero.val())
+                    | !(self.kw.q.val() | self.busy.q.val())
                 {
                     self.oq.d.next = self.kq.q.val();
                     self.ot.d.next = self.kt.q.val() & self.tmask.val();
