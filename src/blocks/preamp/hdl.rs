@@ -54,12 +54,28 @@ pub struct PreampSetup {
     hp_n: Signal<Local, Bits<8>>,
     step_n: Signal<Local, Bits<8>>,
     sh_n: Signal<Local, Bits<8>>,
+    /// The step advances this clock.
+    adv: Signal<Local, Bit>,
+    /// An advance from step.q shifts the gain word (SCK falls, MOSI takes the next bit).
+    shift: Signal<Local, Bit>,
     /// Half period - 1.
     hp_last: Constant<Bits<8>>,
     /// The gain word (B nibble high).
     word: Constant<Bits<8>>,
     /// Bit 7 of the shift register.
     msb: Constant<Bits<8>>,
+    /// Bit 6 of the shift register (bit 7 after a shift).
+    bit6: Constant<Bits<8>>,
+    /// STEP_CS_LOW - 1.
+    s_cs_low_m1: Constant<Bits<8>>,
+    /// STEP_CS_LAST - 1: the last step from which an advance lands with CS low.
+    s_cs_last_m1: Constant<Bits<8>>,
+    /// STEP_FIRST_HIGH - 1.
+    s_first_high_m1: Constant<Bits<8>>,
+    /// STEP_LAST_HIGH - 1.
+    s_last_high_m1: Constant<Bits<8>>,
+    /// STEP_DONE - 1.
+    s_done_m1: Constant<Bits<8>>,
     s_cs_low: Constant<Bits<8>>,
     s_first_high: Constant<Bits<8>>,
     s_last_high: Constant<Bits<8>>,
@@ -97,9 +113,17 @@ impl PreampSetup {
             hp_n: Default::default(),
             step_n: Default::default(),
             sh_n: Default::default(),
+            adv: Default::default(),
+            shift: Default::default(),
             hp_last: c8(p.half_period_clocks.saturating_sub(1) as u64),
             word: c8(p.word() as u64),
             msb: c8(0x80),
+            bit6: c8(0x40),
+            s_cs_low_m1: c8(STEP_CS_LOW as u64 - 1),
+            s_cs_last_m1: c8(STEP_CS_LAST as u64 - 1),
+            s_first_high_m1: c8(STEP_FIRST_HIGH as u64 - 1),
+            s_last_high_m1: c8(STEP_LAST_HIGH as u64 - 1),
+            s_done_m1: c8(STEP_DONE as u64 - 1),
             s_cs_low: c8(STEP_CS_LOW as u64),
             s_first_high: c8(STEP_FIRST_HIGH as u64),
             s_last_high: c8(STEP_LAST_HIGH as u64),
@@ -117,6 +141,18 @@ impl Logic for PreampSetup {
     fn update(&mut self) {
         dff_setup!(self, clk, hp, step, sh, sck_reg, mosi_reg, cs_reg, done_reg);
         // Step timer: each step lasts half_period_clocks; the step counter stops at done.
+        // `adv`: the step advances this clock. The pins of the step being entered are
+        // decoded from step.q for both cases side by side (for the advanced step with the
+        // compare constants shifted by one: s + 1 >= A <=> s >= A - 1, parity flips; step
+        // stays <= STEP_DONE, so s + 1 never wraps) and then muxed, so no adder precedes a
+        // compare; the cycle behaviour is the same as decoding step + 1.
+        self.adv.next = (!self.rst.val())
+            & (self.step.q.val() != self.s_done.val())
+            & (self.hp.q.val() == self.hp_last.val());
+        // Entering an odd step from 3 on: SCK falls, MOSI moves to the next bit.
+        self.shift.next = ((self.step.q.val() & self.one8.val()) == self.zero8.val())
+            & (self.step.q.val() >= self.s_first_high.val())
+            & (self.step.q.val() < self.s_last_high.val());
         self.hp_n.next = self.zero8.val();
         self.step_n.next = self.zero8.val();
         self.sh_n.next = self.word.val();
@@ -128,11 +164,7 @@ impl Logic for PreampSetup {
             } else if self.hp.q.val() == self.hp_last.val() {
                 self.hp_n.next = self.zero8.val();
                 self.step_n.next = self.step.q.val() + self.one8.val();
-                // Entering an odd step from 3 on: SCK falls, MOSI moves to the next bit.
-                if ((self.step.q.val() & self.one8.val()) == self.zero8.val())
-                    & (self.step.q.val() >= self.s_first_high.val())
-                    & (self.step.q.val() < self.s_last_high.val())
-                {
+                if self.shift.val() {
                     self.sh_n.next = self.sh.q.val() << self.one8.val();
                 }
             } else {
@@ -141,16 +173,38 @@ impl Logic for PreampSetup {
         }
         // Pins for the step being entered.
         // The register holds "selected", so its power-up value 0 keeps AMP_CS high (no
-        // spurious select between configuration and reset).
-        self.cs_reg.d.next = (self.step_n.val() >= self.s_cs_low.val())
-            & (self.step_n.val() <= self.s_cs_last.val());
-        self.sck_reg.d.next = (self.step_n.val() >= self.s_first_high.val())
-            & (self.step_n.val() <= self.s_last_high.val())
-            & ((self.step_n.val() & self.one8.val()) == self.zero8.val());
-        self.mosi_reg.d.next = (self.step_n.val() >= self.s_cs_low.val())
-            & (self.step_n.val() <= self.s_cs_last.val())
-            & ((self.sh_n.val() & self.msb.val()) != self.zero8.val());
-        self.done_reg.d.next = self.step_n.val() == self.s_done.val();
+        // spurious select between configuration and reset). In reset the step entered is 0:
+        // every pin register low.
+        self.cs_reg.d.next = false;
+        self.sck_reg.d.next = false;
+        self.mosi_reg.d.next = false;
+        self.done_reg.d.next = false;
+        if self.adv.val() {
+            // Step s + 1 with s = step.q.
+            self.cs_reg.d.next = (self.step.q.val() >= self.s_cs_low_m1.val())
+                & (self.step.q.val() <= self.s_cs_last_m1.val());
+            self.sck_reg.d.next = (self.step.q.val() >= self.s_first_high_m1.val())
+                & (self.step.q.val() <= self.s_last_high_m1.val())
+                & ((self.step.q.val() & self.one8.val()) != self.zero8.val());
+            self.mosi_reg.d.next = (self.step.q.val() >= self.s_cs_low_m1.val())
+                & (self.step.q.val() <= self.s_cs_last_m1.val())
+                & ((((self.sh.q.val() & self.msb.val()) != self.zero8.val())
+                    & !self.shift.val())
+                    | (((self.sh.q.val() & self.bit6.val()) != self.zero8.val())
+                        & self.shift.val()));
+            self.done_reg.d.next = self.step.q.val() == self.s_done_m1.val();
+        } else if !self.rst.val() {
+            // Step s stays.
+            self.cs_reg.d.next = (self.step.q.val() >= self.s_cs_low.val())
+                & (self.step.q.val() <= self.s_cs_last.val());
+            self.sck_reg.d.next = (self.step.q.val() >= self.s_first_high.val())
+                & (self.step.q.val() <= self.s_last_high.val())
+                & ((self.step.q.val() & self.one8.val()) == self.zero8.val());
+            self.mosi_reg.d.next = (self.step.q.val() >= self.s_cs_low.val())
+                & (self.step.q.val() <= self.s_cs_last.val())
+                & ((self.sh.q.val() & self.msb.val()) != self.zero8.val());
+            self.done_reg.d.next = self.step.q.val() == self.s_done.val();
+        }
         self.hp.d.next = self.hp_n.val();
         self.step.d.next = self.step_n.val();
         self.sh.d.next = self.sh_n.val();
