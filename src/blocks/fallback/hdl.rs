@@ -42,6 +42,10 @@ pub struct Fallback {
     conv_prev: DFF<Bit>,
     qq: DFF<Bits<32>>,
     qt: DFF<Bits<32>>,
+    /// qq == 4PPR - 1, registered with qq (power-up 0, as qq = 0).
+    qlf: DFF<Bit>,
+    /// qq != 0, registered with qq (power-up 0, as qq = 0).
+    qnz: DFF<Bit>,
     c1q: DFF<Bits<32>>,
     c1t: DFF<Bits<32>>,
     c2q: DFF<Bits<32>>,
@@ -71,9 +75,9 @@ pub struct Fallback {
     deep: Constant<Bit>,
     fast: DFF<Bit>,
     busy: DFF<Bit>,
-    aligned: DFF<Bits<32>>,
+    aligned: DFF<Bits<2>>,
     act: DFF<Bit>,
-    quiet: DFF<Bits<32>>,
+    quiet: DFF<Bits<8>>,
     load_r: DFF<Bit>,
     lqc: DFF<Bits<32>>,
     lturns: DFF<Bits<32>>,
@@ -122,6 +126,8 @@ pub struct Fallback {
     qturn: Constant<Bits<32>>,
     /// 4 PPR - 1 (the last quadrant of a turn).
     qlast: Constant<Bits<32>>,
+    /// 4 PPR - 2 (the quadrant before the last).
+    qlast_m1: Constant<Bits<32>>,
     /// The test values of the differences modulo 2^(quadrant_bits + 1): 4PPR - 1,
     /// 1 - 4PPR, 2 - 4PPR, 4PPR - 2, -1, -2.
     dqlast: Constant<Bits<32>>,
@@ -147,9 +153,16 @@ pub struct Fallback {
     zero: Constant<Bits<32>>,
     /// 3: aligned samples before the checks start (the captures of the two conversions in
     /// flight predate the first alignment).
-    three: Constant<Bits<32>>,
-    /// Quiet samples before leaving fallback mode, minus one.
-    quiet_last: Constant<Bits<32>>,
+    three: Constant<Bits<2>>,
+    /// 0 and 1 on the 2-bit aligned counter.
+    azero: Constant<Bits<2>>,
+    aone: Constant<Bits<2>>,
+    /// Quiet samples before leaving fallback mode, minus one (the 8-bit quiet counter
+    /// stops at QUIET_SAMPLES <= 255).
+    quiet_last: Constant<Bits<8>>,
+    /// 0 and 1 on the quiet counter.
+    qzero: Constant<Bits<8>>,
+    qone: Constant<Bits<8>>,
 }
 
 /// Quiet samples before the fallback mode ends.
@@ -191,6 +204,8 @@ impl Fallback {
             conv_prev: Default::default(),
             qq: Default::default(),
             qt: Default::default(),
+            qlf: Default::default(),
+            qnz: Default::default(),
             c1q: Default::default(),
             c1t: Default::default(),
             c2q: Default::default(),
@@ -250,6 +265,7 @@ impl Fallback {
             qturn: c32(q),
             dmask: c32(dm),
             qlast: c32(q - 1),
+            qlast_m1: c32(q - 2),
             dqlast: c32((q - 1) & dm),
             dmqturn_p1: c32(1u64.wrapping_sub(q) & dm),
             dmqturn_p2: c32(2u64.wrapping_sub(q) & dm),
@@ -262,8 +278,12 @@ impl Fallback {
             one: c32(1),
             two: c32(2),
             zero: c32(0),
-            three: c32(3),
-            quiet_last: c32(QUIET_SAMPLES as u64 - 1),
+            three: Constant::new(Bits::<2>::from(3u64)),
+            azero: Constant::new(Bits::<2>::from(0u64)),
+            aone: Constant::new(Bits::<2>::from(1u64)),
+            quiet_last: Constant::new(Bits::<8>::from(QUIET_SAMPLES as u64 - 1)),
+            qzero: Constant::new(Bits::<8>::from(0u64)),
+            qone: Constant::new(Bits::<8>::from(1u64)),
         }
     }
 }
@@ -273,8 +293,8 @@ impl Logic for Fallback {
     fn update(&mut self) {
         dff_setup!(
             self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sqm, stp,
-            sq2, st2, sq2m, st2p, lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns, mis,
-            oq, ot, oqm, otp, kv, kw, kq, kt, kv2, kw2, ddr, mvr, fast_n, busy_n
+            sq2, st2, sq2m, st2p, qlf, qnz, lpend, fast, busy, aligned, act, quiet, load_r, lqc,
+            lturns, mis, oq, ot, oqm, otp, kv, kw, kq, kt, kv2, kw2, ddr, mvr, fast_n, busy_n
         );
         self.cnt_prev.d.next = self.qep_count.val();
         self.conv_prev.d.next = self.conv.val();
@@ -385,11 +405,19 @@ impl Logic for Fallback {
                 | (self.dd.val() == self.dminus_one.val())
                 | (self.dd.val() == self.dqlast.val())
                 | (self.dd.val() == self.dmqturn_p1.val()));
-        // Tracker: the QEP steps only, wrapped into 0..4PPR-1 with the turns.
+        // Tracker: the QEP steps only, wrapped into 0..4PPR-1 with the turns. The wrap tests
+        // (qq == 4PPR - 1, qq == 0) are registered flags kept with qq, so no compare precedes
+        // the turn adders: qq stays in 0..4PPR-1 (4PPR >= 4), so a step up lands on the last
+        // quadrant exactly from 4PPR - 2 and on 0 exactly from the last, a step down on the
+        // last exactly from 0 and on 0 exactly from 1.
         self.nq.next = self.qq.q.val();
         self.nt.next = self.qt.q.val();
+        self.qlf.d.next = self.qlf.q.val();
+        self.qnz.d.next = self.qnz.q.val();
         if self.inc.val() {
-            if self.qq.q.val() == self.qlast.val() {
+            self.qlf.d.next = self.qq.q.val() == self.qlast_m1.val();
+            self.qnz.d.next = !self.qlf.q.val();
+            if self.qlf.q.val() {
                 self.nq.next = self.zero.val();
                 self.nt.next = self.qt.q.val() + self.one.val();
             } else {
@@ -397,7 +425,9 @@ impl Logic for Fallback {
             }
         }
         if self.dec.val() {
-            if self.qq.q.val() == self.zero.val() {
+            self.qlf.d.next = !self.qnz.q.val();
+            self.qnz.d.next = (!self.qnz.q.val()) | (self.qq.q.val() != self.one.val());
+            if !self.qnz.q.val() {
                 self.nq.next = self.qlast.val();
                 self.nt.next = self.qt.q.val() - self.one.val();
             } else {
@@ -410,25 +440,25 @@ impl Logic for Fallback {
             // CORDIC count is kept, so a faulty comparator line cannot move the position.
             if self.kw2.q.val() | (self.fast.q.val() & (self.aligned.q.val() == self.three.val())) {
                 self.act.d.next = true;
-                self.quiet.d.next = self.zero.val();
+                self.quiet.d.next = self.qzero.val();
             } else if self.act.q.val() & self.busy.q.val() {
                 // Still 2 or more QEP quadrants per sample: stay in fallback mode.
-                self.quiet.d.next = self.zero.val();
+                self.quiet.d.next = self.qzero.val();
             } else if self.act.q.val() {
-                self.quiet.d.next = self.quiet.q.val() + self.one.val();
+                self.quiet.d.next = self.quiet.q.val() + self.qone.val();
                 if self.quiet.q.val() == self.quiet_last.val() {
                     self.act.d.next = false;
                 }
             }
             if !self.act.q.val() {
                 if self.aligned.q.val() != self.three.val() {
-                    self.aligned.d.next = self.aligned.q.val() + self.one.val();
+                    self.aligned.d.next = self.aligned.q.val() + self.aone.val();
                 }
                 // The CORDIC count sets the offset only below the unwrap limit: after the
                 // first sample, a sample with the overspeed warning or with 2 or more QEP
                 // quadrants since the previous conversion (an aliased count) keeps it, so a
                 // decoder started above the limit resynchronises to its first sample's count.
-                if (self.aligned.q.val() == self.zero.val())
+                if (self.aligned.q.val() == self.azero.val())
                     | !(self.kw.q.val() | self.busy.q.val())
                 {
                     self.oq.d.next = self.kq.q.val();
@@ -444,9 +474,11 @@ impl Logic for Fallback {
             self.cnt_prev.d.next = self.zero.val();
             self.qq.d.next = self.zero.val();
             self.qt.d.next = self.zero.val();
-            self.aligned.d.next = self.zero.val();
+            self.qlf.d.next = false;
+            self.qnz.d.next = false;
+            self.aligned.d.next = self.azero.val();
             self.act.d.next = false;
-            self.quiet.d.next = self.zero.val();
+            self.quiet.d.next = self.qzero.val();
             self.load_r.d.next = false;
             self.lpend.d.next = false;
             self.mis.d.next = false;

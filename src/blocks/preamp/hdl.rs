@@ -188,8 +188,7 @@ impl Logic for PreampSetup {
                 & ((self.step.q.val() & self.one8.val()) != self.zero8.val());
             self.mosi_reg.d.next = (self.step.q.val() >= self.s_cs_low_m1.val())
                 & (self.step.q.val() <= self.s_cs_last_m1.val())
-                & ((((self.sh.q.val() & self.msb.val()) != self.zero8.val())
-                    & !self.shift.val())
+                & ((((self.sh.q.val() & self.msb.val()) != self.zero8.val()) & !self.shift.val())
                     | (((self.sh.q.val() & self.bit6.val()) != self.zero8.val())
                         & self.shift.val()));
             self.done_reg.d.next = self.step.q.val() == self.s_done_m1.val();
