@@ -786,8 +786,9 @@ fn synthesizes_for_both_families() {
         let n = p.data_bits() as u64;
         let tbits = 32 - (p.timeout_clocks - 1).leading_zeros() as u64;
         // sync 4 (3 without the filter), position hold S + M + 3, state 4, SLO, shift N,
-        // CRC 6, bit counter 7, timeout counter, latched flags 2.
-        let want = 3 + filter as u64 + n + 3 + 4 + 1 + n + 6 + 7 + tbits + 2;
+        // CRC 6, bit counter 7, timeout counter, latched flags 2, the registered counter
+        // compares 4 (bit counter = A, N, 6; timeout counter at its end).
+        let want = 3 + filter as u64 + n + 3 + 4 + 1 + n + 6 + 7 + tbits + 2 + 4;
         for fam in [Family::Xc3sa, Family::CycloneIve] {
             let s = synthesize(&v, "biss_slave", fam, &dir).expect("synthesis");
             eprintln!(

@@ -275,6 +275,19 @@ pub struct BissSlave {
     tcnt: DFF<Bits<32>>,
     errl: DFF<Bit>,
     warnl: DFF<Bit>,
+    /// cnt == A, registered with cnt (the compares are taken on the value before the
+    /// step, so none follows the counter's adder on the way to SLO).
+    fack: DFF<Bit>,
+    /// cnt == N, registered with cnt.
+    fnb: DFF<Bit>,
+    /// cnt == 6, registered with cnt.
+    fsix: DFF<Bit>,
+    /// tcnt == timeout_clocks - 1, registered with tcnt.
+    ftl: DFF<Bit>,
+    /// cnt takes 1 this clock.
+    cld1: Signal<Local, Bit>,
+    /// cnt counts up this clock.
+    cinc: Signal<Local, Bit>,
     mae: Signal<Local, Bit>,
     dbit: Signal<Local, Bit>,
     cbit: Signal<Local, Bit>,
@@ -284,12 +297,6 @@ pub struct BissSlave {
     nmask: Constant<Bits<32>>,
     /// Bit N-1: the data MSB in the shift register.
     msb: Constant<Bits<32>>,
-    /// N.
-    nbits: Constant<Bits<32>>,
-    /// Ack periods A.
-    ackn: Constant<Bits<32>>,
-    /// Six CRC bits.
-    six: Constant<Bits<32>>,
     /// Mask of the bit counter (7 bits).
     cmask: Constant<Bits<32>>,
     /// Mask of the six CRC bits.
@@ -298,14 +305,23 @@ pub struct BissSlave {
     crcmsb: Constant<Bits<32>>,
     /// CRC feedback taps (x + 1).
     taps: Constant<Bits<32>>,
-    /// Timeout in clocks minus one: the counter value at which SLO returns high.
-    tlast: Constant<Bits<32>>,
     /// Mask of the timeout counter.
     tmask: Constant<Bits<32>>,
     /// One.
     one: Constant<Bits<32>>,
     /// Zero.
     zero: Constant<Bits<32>>,
+    /// A - 1, N - 1, 5 and timeout_clocks - 2, masked to their counters: the counter value
+    /// before a step up onto A, N, 6 and timeout_clocks - 1 (where SLO returns high).
+    ackn_m1: Constant<Bits<32>>,
+    nbits_m1: Constant<Bits<32>>,
+    five: Constant<Bits<32>>,
+    tlast_m1: Constant<Bits<32>>,
+    /// 1 == A, 1 == N: the flags after cnt takes 1.
+    ack_is1: Constant<Bit>,
+    n_is1: Constant<Bit>,
+    /// 0 == timeout_clocks - 1: the flag after tcnt takes 0.
+    tlast_is0: Constant<Bit>,
 }
 
 impl BissSlave {
@@ -333,6 +349,12 @@ impl BissSlave {
             tcnt: Default::default(),
             errl: Default::default(),
             warnl: Default::default(),
+            fack: Default::default(),
+            fnb: Default::default(),
+            fsix: Default::default(),
+            ftl: Default::default(),
+            cld1: Default::default(),
+            cinc: Default::default(),
             mae: Default::default(),
             dbit: Default::default(),
             cbit: Default::default(),
@@ -340,17 +362,21 @@ impl BissSlave {
             fb: Default::default(),
             nmask: c32(mask(n)),
             msb: c32(1 << (n - 1)),
-            nbits: c32(n as u64),
-            ackn: c32(p.ack_periods as u64),
-            six: c32(6),
             cmask: c32(mask(7)),
             crcmask: c32(mask(6)),
             crcmsb: c32(1 << 5),
             taps: c32(TAPS as u64),
-            tlast: c32(p.timeout_clocks as u64 - 1),
             tmask: c32(mask(32 - (p.timeout_clocks - 1).leading_zeros().min(31))),
             one: c32(1),
             zero: c32(0),
+            ackn_m1: c32((p.ack_periods as u64).wrapping_sub(1) & mask(7)),
+            nbits_m1: c32((n as u64).wrapping_sub(1) & mask(7)),
+            five: c32(5),
+            tlast_m1: c32((p.timeout_clocks as u64 - 1).wrapping_sub(1)
+                & mask(32 - (p.timeout_clocks - 1).leading_zeros().min(31))),
+            ack_is1: Constant::new(p.ack_periods == 1),
+            n_is1: Constant::new(n == 1),
+            tlast_is0: Constant::new(p.timeout_clocks == 1),
         })
     }
 }
@@ -358,7 +384,9 @@ impl BissSlave {
 impl Logic for BissSlave {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, state, slo_reg, sh, crc, cnt, tcnt, errl, warnl);
+        dff_setup!(
+            self, clk, state, slo_reg, sh, crc, cnt, tcnt, errl, warnl, fack, fnb, fsix, ftl
+        );
         self.sync.clk.next = self.clk.val();
         self.sync.rst.next = self.rst.val();
         self.sync.pin.next = self.ma.val();
@@ -375,11 +403,15 @@ impl Logic for BissSlave {
         self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
         self.cbit.next = self.dbit.val();
         self.cupd.next = false;
+        self.cld1.next = false;
+        self.cinc.next = false;
         // Cycles since the last MA edge.
         if self.mae.val() {
             self.tcnt.d.next = self.zero.val();
+            self.ftl.d.next = self.tlast_is0.val();
         } else {
             self.tcnt.d.next = (self.tcnt.q.val() + self.one.val()) & self.tmask.val();
+            self.ftl.d.next = self.tcnt.q.val() == self.tlast_m1.val();
         }
         match self.state.q.val() {
             BissState::Timeout => {}
@@ -401,17 +433,17 @@ impl Logic for BissSlave {
             BissState::Second => {
                 if self.sync.rise.val() {
                     self.slo_reg.d.next = false;
-                    self.cnt.d.next = self.one.val();
+                    self.cld1.next = true;
                     self.state.d.next = BissState::Ack;
                 }
             }
             BissState::Ack => {
                 if self.sync.rise.val() {
-                    if self.cnt.q.val() == self.ackn.val() {
+                    if self.fack.q.val() {
                         self.slo_reg.d.next = true;
                         self.state.d.next = BissState::Start;
                     } else {
-                        self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
+                        self.cinc.next = true;
                     }
                 }
             }
@@ -426,21 +458,21 @@ impl Logic for BissSlave {
                     self.slo_reg.d.next = self.dbit.val();
                     self.cupd.next = true;
                     self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
-                    self.cnt.d.next = self.one.val();
+                    self.cld1.next = true;
                     self.state.d.next = BissState::Data;
                 }
             }
             BissState::Data => {
                 if self.sync.rise.val() {
                     self.cupd.next = true;
-                    if self.cnt.q.val() == self.nbits.val() {
+                    if self.fnb.q.val() {
                         self.cbit.next = !self.errl.q.val();
                         self.slo_reg.d.next = !self.errl.q.val();
                         self.state.d.next = BissState::Err;
                     } else {
                         self.slo_reg.d.next = self.dbit.val();
                         self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
-                        self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
+                        self.cinc.next = true;
                     }
                 }
             }
@@ -456,22 +488,35 @@ impl Logic for BissSlave {
                 if self.sync.rise.val() {
                     self.slo_reg.d.next = !(self.crc.q.val() & self.crcmsb.val()).any();
                     self.crc.d.next = (self.crc.q.val() << self.one.val()) & self.crcmask.val();
-                    self.cnt.d.next = self.one.val();
+                    self.cld1.next = true;
                     self.state.d.next = BissState::Crc;
                 }
             }
             BissState::Crc => {
                 if self.sync.rise.val() {
-                    if self.cnt.q.val() == self.six.val() {
+                    if self.fsix.q.val() {
                         self.slo_reg.d.next = false;
                         self.state.d.next = BissState::Timeout;
                     } else {
                         self.slo_reg.d.next = !(self.crc.q.val() & self.crcmsb.val()).any();
                         self.crc.d.next = (self.crc.q.val() << self.one.val()) & self.crcmask.val();
-                        self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
+                        self.cinc.next = true;
                     }
                 }
             }
+        }
+        // The bit counter and its compare flags.
+        if self.cinc.val() {
+            self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
+            self.fack.d.next = self.cnt.q.val() == self.ackn_m1.val();
+            self.fnb.d.next = self.cnt.q.val() == self.nbits_m1.val();
+            self.fsix.d.next = self.cnt.q.val() == self.five.val();
+        }
+        if self.cld1.val() {
+            self.cnt.d.next = self.one.val();
+            self.fack.d.next = self.ack_is1.val();
+            self.fnb.d.next = self.n_is1.val();
+            self.fsix.d.next = false;
         }
         // Serial CRC6 of the data, nE and nW bits as they are put on SLO.
         self.fb.next = self.cbit.val() ^ (self.crc.q.val() & self.crcmsb.val()).any();
@@ -484,10 +529,7 @@ impl Logic for BissSlave {
             }
         }
         // The timeout ends every state but Idle: MA quiet for timeout_clocks -> idle, SLO high.
-        if (self.state.q.val() != BissState::Idle)
-            & !self.mae.val()
-            & (self.tcnt.q.val() == self.tlast.val())
-        {
+        if (self.state.q.val() != BissState::Idle) & !self.mae.val() & self.ftl.q.val() {
             self.slo_reg.d.next = true;
             self.state.d.next = BissState::Idle;
         }
@@ -495,6 +537,7 @@ impl Logic for BissSlave {
             self.state.d.next = BissState::Timeout;
             self.slo_reg.d.next = false;
             self.tcnt.d.next = self.zero.val();
+            self.ftl.d.next = self.tlast_is0.val();
         }
         self.slo.next = self.slo_reg.q.val();
     }
