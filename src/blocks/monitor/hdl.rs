@@ -46,6 +46,17 @@ pub struct Monitor {
     rs: Signal<Local, Bits<32>>,
     rc: Signal<Local, Bits<32>>,
     fs_hit: Signal<Local, Bit>,
+    /// mag < los_threshold.
+    low: Signal<Local, Bit>,
+    /// mag >= los_release.
+    good: Signal<Local, Bit>,
+    /// mag > clip_threshold.
+    over: Signal<Local, Bit>,
+    /// W <= 31: the three threshold tests are the sign bits of 32-bit differences (one
+    /// carry chain each) instead of magnitude comparisons, which Yosys maps to LUT cascades.
+    narrow: Constant<Bit>,
+    /// Bit 31: the sign of a difference.
+    sign32: Constant<Bits<32>>,
     /// Mask of the W magnitude bits.
     wmask: Constant<Bits<32>>,
     /// Mask of the A sample bits.
@@ -104,6 +115,11 @@ impl Monitor {
             rs: Default::default(),
             rc: Default::default(),
             fs_hit: Default::default(),
+            low: Default::default(),
+            good: Default::default(),
+            over: Default::default(),
+            narrow: Constant::new(p.mag_width() <= 31),
+            sign32: c32(1 << 31),
             wmask: c32(mask(p.mag_width())),
             amask: c32(mask(a)),
             code_min: c32(1 << (a - 1)),
@@ -132,10 +148,20 @@ impl Logic for Monitor {
             | (self.rs.val() == self.code_max.val())
             | (self.rc.val() == self.code_min.val())
             | (self.rc.val() == self.code_max.val());
+        // With W <= 31 both operands are below 2^31, so a - b < 0 exactly when a < b.
+        if self.narrow.val() {
+            self.low.next = ((self.mag.val() - self.los_thr.val()) & self.sign32.val()).any();
+            self.good.next = !((self.mag.val() - self.los_rel.val()) & self.sign32.val()).any();
+            self.over.next = ((self.clip_thr.val() - self.mag.val()) & self.sign32.val()).any();
+        } else {
+            self.low.next = self.mag.val() < self.los_thr.val();
+            self.good.next = self.mag.val() >= self.los_rel.val();
+            self.over.next = self.mag.val() > self.clip_thr.val();
+        }
         if self.mag_valid.val() {
             // Loss of signal: N consecutive low (good) samples set (clear) it.
             if !self.los_reg.q.val() {
-                if self.mag.val() < self.los_thr.val() {
+                if self.low.val() {
                     if self.los_cnt.q.val() == self.nlast.val() {
                         self.los_reg.d.next = true;
                         self.los_cnt.d.next = self.zero.val();
@@ -146,7 +172,7 @@ impl Logic for Monitor {
                 } else {
                     self.los_cnt.d.next = self.zero.val();
                 }
-            } else if self.mag.val() >= self.los_rel.val() {
+            } else if self.good.val() {
                 if self.los_cnt.q.val() == self.nlast.val() {
                     self.los_reg.d.next = false;
                     self.los_cnt.d.next = self.zero.val();
@@ -158,7 +184,7 @@ impl Logic for Monitor {
                 self.los_cnt.d.next = self.zero.val();
             }
             // Clipping: set at once, clear after H clean samples.
-            if self.mag.val() > self.clip_thr.val() {
+            if self.over.val() {
                 self.clip_reg.d.next = true;
                 self.clip_cnt.d.next = self.zero.val();
             } else if self.clip_reg.q.val() {
