@@ -63,6 +63,15 @@ pub struct AdcController {
     // Next-state values.
     run: Signal<Local, Bit>,
     pc_n: Signal<Local, Bits<16>>,
+    /// (pc == P - 1) ^ kl, registered with pc (taken on pc before its step; the XOR with
+    /// a constant makes the power-up 0 right for pc = 0).
+    pcl_x: DFF<Bit>,
+    /// (pc == lead - 1) ^ km, registered with pc.
+    pcm_x: DFF<Bit>,
+    /// pc == P - 1 (the last value of the period counter).
+    fl: Signal<Local, Bit>,
+    /// pc == lead - 1.
+    fm: Signal<Local, Bit>,
     ph_n: Signal<Local, Bits<8>>,
     cyc_n: Signal<Local, Bits<8>>,
     warm_n: Signal<Local, Bits<4>>,
@@ -73,8 +82,6 @@ pub struct AdcController {
     shifted1: Signal<Local, Bits<16>>,
     sr0_n: Signal<Local, Bits<16>>,
     sr1_n: Signal<Local, Bits<16>>,
-    /// P - 1: last value of the period counter.
-    p_last: Constant<Bits<16>>,
     /// Lead clocks: period counter value at which SCK cycle 0 starts.
     lead: Constant<Bits<16>>,
     /// CONV active while the period counter is below this.
@@ -107,10 +114,14 @@ pub struct AdcController {
     cpol: Constant<Bit>,
     /// CONV inactive level.
     conv_idle: Constant<Bit>,
-    /// lead - 1 (all ones when lead = 0: never equal to pc).
-    lead_m1: Constant<Bits<16>>,
     /// lead = 0.
     lead_zero: Constant<Bit>,
+    /// P - 2 and lead - 2: pc before a step onto P - 1 and lead - 1 (lead = 0: never reached).
+    p_last_m1: Constant<Bits<16>>,
+    lead_m2: Constant<Bits<16>>,
+    /// P - 1 == 0 and lead - 1 == 0: the flags' values at pc = 0.
+    kl: Constant<Bit>,
+    km: Constant<Bit>,
     /// One channel only: ch1 reads 0.
     one_ch: Constant<Bit>,
     one16: Constant<Bits<16>>,
@@ -159,6 +170,10 @@ impl AdcController {
             at_lead: Default::default(),
             run: Default::default(),
             pc_n: Default::default(),
+            pcl_x: Default::default(),
+            pcm_x: Default::default(),
+            fl: Default::default(),
+            fm: Default::default(),
             ph_n: Default::default(),
             cyc_n: Default::default(),
             warm_n: Default::default(),
@@ -169,7 +184,6 @@ impl AdcController {
             shifted1: Default::default(),
             sr0_n: Default::default(),
             sr1_n: Default::default(),
-            p_last: c16(p.period_clocks.saturating_sub(1) as u64),
             lead: c16(f.lead_clocks as u64),
             conv_end: c16(p.conv_clocks as u64),
             d_last: c8(p.sck_period_clocks.saturating_sub(1) as u64),
@@ -190,8 +204,11 @@ impl AdcController {
             }),
             cpol: Constant::new(f.cpol),
             conv_idle: Constant::new(!f.conv_active_high),
-            lead_m1: c16((f.lead_clocks as u64).wrapping_sub(1) & 0xffff),
             lead_zero: Constant::new(f.lead_clocks == 0),
+            p_last_m1: c16((p.period_clocks.saturating_sub(1) as u64).wrapping_sub(1) & 0xffff),
+            lead_m2: c16((f.lead_clocks as u64).wrapping_sub(2) & 0xffff),
+            kl: Constant::new(p.period_clocks.saturating_sub(1) == 0),
+            km: Constant::new(f.lead_clocks == 1),
             one_ch: Constant::new(f.channels < 2),
             one16: c16(1),
             zero16: c16(0),
@@ -208,16 +225,22 @@ impl Logic for AdcController {
     fn update(&mut self) {
         dff_setup!(
             self, clk, live, pc, ph, cyc, warm, sr0, sr1, sck_reg, conv_reg, valid_reg, ch0_reg,
-            ch1_reg, miso_d, rst_d
+            ch1_reg, miso_d, rst_d, pcl_x, pcm_x
         );
         self.run.next = self.enable.val() & !self.rst.val();
         // Period counter and warm-up count (flush period, then discarded frames).
         self.pc_n.next = self.zero16.val();
         self.warm_n.next = self.warm_init.val();
-        // pc_n == lead, from pc (equality tests, not a compare after the increment).
+        // pc_n == lead, from pc (equality tests, not a compare after the increment). The
+        // two tests on pc are flags registered with pc: pc_n = 0 gives (0 == X) ^ k = 0,
+        // pc_n = pc + 1 (pc < P - 1, no wrap) gives (pc == X - 1) ^ k.
+        self.fl.next = self.pcl_x.q.val() ^ self.kl.val();
+        self.fm.next = self.pcm_x.q.val() ^ self.km.val();
+        self.pcl_x.d.next = false;
+        self.pcm_x.d.next = false;
         self.at_lead.next = self.lead_zero.val();
         if self.run.val() & self.live.q.val() {
-            if self.pc.q.val() == self.p_last.val() {
+            if self.fl.val() {
                 self.pc_n.next = self.zero16.val();
                 if self.warm.q.val() == self.zero4.val() {
                     self.warm_n.next = self.zero4.val();
@@ -227,7 +250,9 @@ impl Logic for AdcController {
             } else {
                 self.pc_n.next = self.pc.q.val() + self.one16.val();
                 self.warm_n.next = self.warm.q.val();
-                self.at_lead.next = self.pc.q.val() == self.lead_m1.val();
+                self.at_lead.next = self.fm.val();
+                self.pcl_x.d.next = (self.pc.q.val() == self.p_last_m1.val()) ^ self.kl.val();
+                self.pcm_x.d.next = (self.pc.q.val() == self.lead_m2.val()) ^ self.km.val();
             }
         }
         // SCK phase and cycle counters: restart at the lead clock, stop after the frame.
