@@ -124,23 +124,27 @@ impl Logic for BiquadProgram {
     }
     fn hdl(&self) -> Verilog {
         let w = self._pc_width;
+        // One `if` per word, not a `case`: Yosys would turn a case table into a ROM and,
+        // with the engine's register after it, into an initialized block RAM, which its
+        // Cyclone III mapping rejects; as logic it is a 6-input function per bit.
+        let m = w - 1;
         let cases: String = self
             ._words
             .iter()
             .enumerate()
             .map(|(i, (c, k))| {
-                format!("  {w}'d{i}: begin coef = 32'h{c:08x}; ctrl = 32'h{k:08x}; end\n")
+                format!(
+                    "  if (pc[{m}:0] == {w}'d{i}) begin coef = 32'h{c:08x}; ctrl = 32'h{k:08x}; end\n"
+                )
             })
             .collect();
         Verilog::Custom(format!(
             "\
 always @(*) begin
-  case (pc[{m}:0])
-{cases}  default: begin coef = 32'h00000000; ctrl = 32'h00000000; end
-  endcase
-end
-",
-            m = w - 1
+  coef = 32'h00000000;
+  ctrl = 32'h00000000;
+{cases}end
+"
         ))
     }
 }
@@ -257,6 +261,12 @@ pub struct BiquadRtl {
     clr_reg: DFF<Bit>,
     clr_addr: DFF<Bits<32>>,
     pc: DFF<Bits<32>>,
+    /// The program word of this clock (ROM read one clock ahead, at the next pc).
+    ctrl_reg: DFF<Bits<32>>,
+    coefw_reg: DFF<Bits<32>>,
+    /// Registered multiplier operands (data, coefficient).
+    opa: DFF<Bits<32>>,
+    opb: DFF<Bits<32>>,
     parity: DFF<Bits<32>>,
     xcur: DFF<Bits<32>>,
     coef_reg: DFF<Bits<32>>,
@@ -271,6 +281,8 @@ pub struct BiquadRtl {
     out_sh: Vec<DFF<Bits<32>>>,
     out_reg: Vec<DFF<Bits<32>>>,
     ctrl_w: Signal<Local, Bits<32>>,
+    /// The next pc (the ROM address).
+    pc_n: Signal<Local, Bits<32>>,
     c_we: Signal<Local, Bit>,
     c_wsrc: Signal<Local, Bit>,
     c_ldx: Signal<Local, Bit>,
@@ -280,7 +292,8 @@ pub struct BiquadRtl {
     c_first: Signal<Local, Bit>,
     c_push: Signal<Local, Bit>,
     c_last: Signal<Local, Bit>,
-    shifted: Signal<Local, Bits<32>>,
+    /// Bits S-1..A-1 of acc.
+    top: Signal<Local, Bits<32>>,
     hit: Signal<Local, Bit>,
     sat: Signal<Local, Bits<32>>,
     yout: Signal<Local, Bits<32>>,
@@ -292,10 +305,8 @@ pub struct BiquadRtl {
     amask: Constant<Bits<32>>,
     /// Sign bit of the accumulator (2^(A-1)).
     asign: Constant<Bits<32>>,
-    /// 2^(S-1): offset for the range test.
-    shalf: Constant<Bits<32>>,
-    /// 2^S: in range iff (acc + 2^(S-1)) mod 2^A < 2^S.
-    sspan: Constant<Bits<32>>,
+    /// Bits S-1..A-1: acc is in the S-bit range iff they are all 0 or all 1.
+    tmask: Constant<Bits<32>>,
     /// Largest S-bit value (2^(S-1) - 1).
     smax: Constant<Bits<32>>,
     /// Smallest S-bit value as raw S bits (2^(S-1)).
@@ -346,6 +357,10 @@ impl BiquadRtl {
             clr_reg: Default::default(),
             clr_addr: Default::default(),
             pc: Default::default(),
+            ctrl_reg: Default::default(),
+            coefw_reg: Default::default(),
+            opa: Default::default(),
+            opb: Default::default(),
             parity: Default::default(),
             xcur: Default::default(),
             coef_reg: Default::default(),
@@ -360,6 +375,7 @@ impl BiquadRtl {
             out_sh: (0..k).map(|_| DFF::default()).collect(),
             out_reg: (0..k).map(|_| DFF::default()).collect(),
             ctrl_w: Default::default(),
+            pc_n: Default::default(),
             c_we: Default::default(),
             c_wsrc: Default::default(),
             c_ldx: Default::default(),
@@ -369,7 +385,7 @@ impl BiquadRtl {
             c_first: Default::default(),
             c_push: Default::default(),
             c_last: Default::default(),
-            shifted: Default::default(),
+            top: Default::default(),
             hit: Default::default(),
             sat: Default::default(),
             yout: Default::default(),
@@ -377,8 +393,7 @@ impl BiquadRtl {
             smask: c32(mask(s)),
             amask: c32(mask(a)),
             asign: c32(1 << (a - 1)),
-            shalf: c32(1 << (s - 1)),
-            sspan: c32(1 << s),
+            tmask: c32(mask(a) & !mask(s - 1)),
             smax: c32(mask(s - 1)),
             smin: c32(1 << (s - 1)),
             guard: c32(p.guard_frac as u64),
@@ -405,8 +420,8 @@ impl Logic for BiquadRtl {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, busy_reg, clr_reg, clr_addr, pc, parity, xcur, coef_reg, prod_reg, acc,
-            sample_ovf, valid_reg, ovf_reg, drop_reg
+            self, clk, busy_reg, clr_reg, clr_addr, pc, ctrl_reg, coefw_reg, opa, opb, parity,
+            xcur, coef_reg, prod_reg, acc, sample_ovf, valid_reg, ovf_reg, drop_reg
         );
         for i in 0..self.in_lat.len() {
             self.in_lat[i].clock.next = self.clk.val();
@@ -418,9 +433,8 @@ impl Logic for BiquadRtl {
             self.out_reg[i].clock.next = self.clk.val();
             self.out_reg[i].d.next = self.out_reg[i].q.val();
         }
-        // Program word of this clock.
-        self.prog.pc.next = self.pc.q.val();
-        self.ctrl_w.next = self.prog.ctrl.val();
+        // Program word of this clock, read at the previous clock's next pc.
+        self.ctrl_w.next = self.ctrl_reg.q.val();
         self.c_we.next = (self.ctrl_w.val() & self.k_we.val()) != self.zero.val();
         self.c_wsrc.next = (self.ctrl_w.val() & self.k_wsrc.val()) != self.zero.val();
         self.c_ldx.next = (self.ctrl_w.val() & self.k_ldx.val()) != self.zero.val();
@@ -430,16 +444,19 @@ impl Logic for BiquadRtl {
         self.c_first.next = (self.ctrl_w.val() & self.k_first.val()) != self.zero.val();
         self.c_push.next = (self.ctrl_w.val() & self.k_push.val()) != self.zero.val();
         self.c_last.next = (self.ctrl_w.val() & self.k_last.val()) != self.zero.val();
-        // The single multiplier: operand xcur or RAM data, times the coefficient register.
-        self.mul.a.next = self.ram.q.val();
+        // The single multiplier: operand xcur or RAM data, times the coefficient register,
+        // both registered (op), and the product registered.
+        self.opa.d.next = self.ram.q.val();
         if self.c_opx.val() {
-            self.mul.a.next = self.xcur.q.val();
+            self.opa.d.next = self.xcur.q.val();
         }
-        self.mul.b.next = self.coef_reg.q.val();
+        self.opb.d.next = self.coef_reg.q.val();
+        self.mul.a.next = self.opa.q.val();
+        self.mul.b.next = self.opb.q.val();
         self.prod_reg.d.next = self.mul.p.val() & self.amask.val();
-        // Saturation of the accumulator to S bits.
-        self.shifted.next = (self.acc.q.val() + self.shalf.val()) & self.amask.val();
-        self.hit.next = self.shifted.val() >= self.sspan.val();
+        // Saturation of the accumulator to S bits: out of range iff bits S-1..A-1 differ.
+        self.top.next = self.acc.q.val() & self.tmask.val();
+        self.hit.next = (self.top.val() != self.zero.val()) & (self.top.val() != self.tmask.val());
         self.sat.next = self.acc.q.val() & self.smask.val();
         if self.hit.val() {
             if (self.acc.q.val() & self.asign.val()) != self.zero.val() {
@@ -461,11 +478,12 @@ impl Logic for BiquadRtl {
         self.valid_reg.d.next = false;
         self.ovf_reg.d.next = false;
         self.drop_reg.d.next = false;
+        self.pc_n.next = self.pc.q.val();
         if self.rst.val() {
             self.busy_reg.d.next = false;
             self.clr_reg.d.next = true;
             self.clr_addr.d.next = self.zero.val();
-            self.pc.d.next = self.zero.val();
+            self.pc_n.next = self.zero.val();
             self.parity.d.next = self.zero.val();
             for i in 0..self.out_reg.len() {
                 self.out_reg[i].d.next = self.zero.val();
@@ -488,13 +506,13 @@ impl Logic for BiquadRtl {
                 }
                 self.osel[0].d.next = true;
                 self.busy_reg.d.next = true;
-                self.pc.d.next = self.zero.val();
+                self.pc_n.next = self.zero.val();
                 self.sample_ovf.d.next = false;
             }
         } else {
             self.drop_reg.d.next = self.in_valid.val();
-            self.pc.d.next = (self.pc.q.val() + self.one.val()) & self.pcmask.val();
-            self.coef_reg.d.next = self.prog.coef.val();
+            self.pc_n.next = (self.pc.q.val() + self.one.val()) & self.pcmask.val();
+            self.coef_reg.d.next = self.coefw_reg.q.val();
             if self.c_we.val() {
                 self.ram.we.next = true;
             }
@@ -531,7 +549,7 @@ impl Logic for BiquadRtl {
             }
             if self.c_last.val() {
                 self.busy_reg.d.next = false;
-                self.pc.d.next = self.zero.val();
+                self.pc_n.next = self.zero.val();
                 self.parity.d.next = self.parity.q.val() ^ self.one.val();
                 self.valid_reg.d.next = true;
                 self.ovf_reg.d.next = self.sample_ovf.q.val();
@@ -540,6 +558,10 @@ impl Logic for BiquadRtl {
                 }
             }
         }
+        self.pc.d.next = self.pc_n.val();
+        self.prog.pc.next = self.pc_n.val();
+        self.ctrl_reg.d.next = self.prog.ctrl.val();
+        self.coefw_reg.d.next = self.prog.coef.val();
         for i in 0..self.out_data.len() {
             self.out_data[i].next = self.out_reg[i].q.val();
         }

@@ -65,15 +65,15 @@
 //! # Sketch
 //!
 //! ```text
-//!  in_valid ─►┌────────┐ pc ┌──────────────┐ coef ┌──────┐
-//!  in_data[k]►│ latch  │───►│ program ROM  ├─────►│coef  ├───────────┐
-//!             │ in_lat │    │ (coef, ctrl) │ ctrl │ reg  │           ▼
-//!             └───┬────┘    └──────┬───────┘      └──────┘     ┌──────────┐ ┌────┐
+//!  in_valid ─►┌────────┐ pc ┌──────────────┐ coef ┌──────┐ ┌──┐
+//!  in_data[k]►│ latch  │───►│ program ROM  ├─reg─►│coef  ├►│op├──────┐
+//!             │ in_lat │next│ (coef, ctrl) │ ctrl │ reg  │ │b │      ▼
+//!             └───┬────┘    └──────┬───reg─┘      └──────┘ └──┘ ┌──────────┐ ┌────┐
 //!                 │ << G           │ addr ^ parity             │ S x C    │ │prod│
-//!                 ▼                ▼                 ┌──────┐  │ >> F     ├►│reg │
-//!             ┌──────┐ x     ┌───────────┐  q        │ mux  ├─►│ (ONE     │ └─┬──┘
-//!             │ xcur ├──────►│ state RAM ├──────────►│x / q │  │ $mul)    │   ▼
-//!             └──▲───┘  wd   │ 2(N+1)    │           └──▲───┘  └──────────┘ ┌─────┐
+//!                 ▼                ▼                 ┌──────┐┌──┐│ >> F     ├►│reg │
+//!             ┌──────┐ x     ┌───────────┐  q        │ mux  ├┤op├►│ (ONE     │ └─┬──┘
+//!             │ xcur ├──────►│ state RAM ├──────────►│x / q ││a │ │ $mul)    │   ▼
+//!             └──▲───┘  wd   │ 2(N+1)    │           └──▲───┘└──┘ └──────────┘ ┌─────┐
 //!                │     ┌────►│ words per │              │ xcur              │ acc │◄┐
 //!                │     │     │ branch    │                                  │ A b │ │
 //!                │     │     └───────────┘                                  └──┬──┴─┘
@@ -83,34 +83,42 @@
 //!
 //! # Sequencing
 //!
-//! A program counter `pc` runs 0..P-1 (P = [`BiquadParams::latency`] = 7 J + 2) after an
+//! A program counter `pc` runs 0..P-1 (P = [`BiquadParams::latency`] = 8 J + 2) after an
 //! accepted `in_valid`; the ROM entry at `pc` holds the coefficient to load and the control
-//! bits of everything that happens in that clock ([`BiquadParams::program`]). Section j
-//! (counted over all branches in order) starts at c0 = 7 j:
+//! bits of everything that happens in that clock ([`BiquadParams::program`]). The ROM is
+//! read one clock ahead (at the next pc) into a register, so the word of clock t comes from
+//! a register in clock t. The multiplier has registered operands (`op`: the operand select
+//! and the coefficient register, one clock) and a registered product, so each product
+//! reaches the accumulator two clocks after its operands are selected. Section j (counted
+//! over all branches in order) starts at c0 = 8 j:
 //!
 //! ```text
 //! c0+0  xcur <= branch input << G (first section) or sat(acc); coef_reg <= b0
-//! c0+1  RAM read h1[s];   coef_reg <= b1;  prod <= xcur   * b0
-//! c0+2  RAM read h2[s];   coef_reg <= b2;  prod <= h1[s]  * b1;  acc <= prod
-//! c0+3  RAM read h1[s+1]; coef_reg <= -a1; prod <= h2[s]  * b2;  acc += prod
-//! c0+4  RAM read h2[s+1]; coef_reg <= -a2; prod <= h1[s+1]*-a1;  acc += prod
-//! c0+5  RAM write node s <= xcur;          prod <= h2[s+1]*-a2;  acc += prod
-//! c0+6                                                           acc += prod
-//! c0+7  (= next section's c0) acc final; last section of a branch: RAM write node N <=
+//! c0+1  RAM read h1[s];   coef_reg <= b1;  op <= xcur,   b0
+//! c0+2  RAM read h2[s];   coef_reg <= b2;  op <= h1[s],  b1;  prod <= op
+//! c0+3  RAM read h1[s+1]; coef_reg <= -a1; op <= h2[s],  b2;  prod <= op;  acc <= prod
+//! c0+4  RAM read h2[s+1]; coef_reg <= -a2; op <= h1[s+1],-a1; prod <= op;  acc += prod
+//! c0+5  RAM write node s <= xcur;          op <= h2[s+1],-a2; prod <= op;  acc += prod
+//! c0+6                                                        prod <= op;  acc += prod
+//! c0+7                                                                     acc += prod
+//! c0+8  (= next section's c0) acc final; last section of a branch: RAM write node N <=
 //!       sat(acc), out_sh[b] <= sat(acc) >> G
-//! 7J+1  out_data <= out_sh, out_valid, overflow; parity toggles; busy falls
+//! 8J+1  out_data <= out_sh, out_valid, overflow; parity toggles; busy falls
 //! ```
+//!
+//! (`prod <= op` is the product of the operands registered in `op`.) Saturation: acc is in
+//! the S-bit range exactly when its bits S-1..A-1 are all equal, a test without an adder.
 //!
 //! Node n's two history words sit at `base + 0/1`; the sample parity p selects which one is
 //! h2 (`base ^ p`) and h1 (`(base + 1) ^ p`); the new value overwrites the h2 word, so each
 //! node costs one write per sample (no h2 <= h1 copy).
 //!
-//! Timing: the edge that accepts `in_valid` latches the inputs; the next P = 7 J + 2 edges
+//! Timing: the edge that accepts `in_valid` latches the inputs; the next P = 8 J + 2 edges
 //! run the program (`busy` high), the last one raises `out_valid`. Cycles per sample, the
-//! minimum period of accepted strobes, is P + 1 = 7 J + 3, i.e. the sum over branches of
-//! sections * (5 MACs + 2 overhead) plus 3 ([`BiquadParams::cycles_per_sample`]). The
-//! capacitive chain with 2 band-pass and 2 + 2 low-pass sections needs 45 clocks: 0.34 us
-//! at 133 MHz, 0.9 us at 50 MHz, inside the paper's 2.5 us sample period.
+//! minimum period of accepted strobes, is P + 1 = 8 J + 3, i.e. the sum over branches of
+//! sections * (5 MACs + 3 pipeline clocks) plus 3 ([`BiquadParams::cycles_per_sample`]).
+//! The capacitive chain with 2 band-pass and 2 + 2 low-pass sections needs 51 clocks:
+//! 0.38 us at 133 MHz, 1.02 us at 50 MHz, inside the paper's 2.5 us sample period.
 //!
 //! # Ports of [`hdl::BiquadRtl`] (data words are `Bits<32>` with the value in the low bits)
 //!
@@ -142,8 +150,9 @@ use crate::error::{Error, Result};
 pub const MAX_BRANCHES: usize = 8;
 /// Most sections per branch.
 pub const MAX_SECTIONS: usize = 16;
-/// Clocks per section: 5 MACs + 2 pipeline clocks (RAM read, product register).
-pub const CYCLES_PER_SECTION: u32 = 7;
+/// Clocks per section: 5 MACs + 3 pipeline clocks (RAM read, operand register, product
+/// register).
+pub const CYCLES_PER_SECTION: u32 = 8;
 /// Busy clocks per sample beyond the sections: last result and output update.
 pub const CYCLES_FIXED: u32 = 2;
 
@@ -342,14 +351,14 @@ impl BiquadParams {
         self.branches.iter().map(|b| b.len() as u32).sum()
     }
 
-    /// Latency P = 7 J + 2: clocks from the edge that accepts `in_valid` to the edge that
+    /// Latency P = 8 J + 2: clocks from the edge that accepts `in_valid` to the edge that
     /// raises `out_valid`; `busy` is high for these P clocks; the program has P words.
     pub fn latency(&self) -> u32 {
         CYCLES_PER_SECTION * self.total_sections() + CYCLES_FIXED
     }
 
-    /// Clocks per sample = P + 1 = 7 J + 3 (sum over branches of sections times 5 MACs plus
-    /// 2, plus 3): the minimum period of accepted `in_valid` strobes (the accepting clock
+    /// Clocks per sample = P + 1 = 8 J + 3 (sum over branches of sections times 5 MACs plus
+    /// 3, plus 3): the minimum period of accepted `in_valid` strobes (the accepting clock
     /// and the P busy clocks).
     pub fn cycles_per_sample(&self) -> u32 {
         self.latency() + 1
@@ -392,11 +401,11 @@ impl BiquadParams {
                 };
                 prog[c0 + 2] = MicroOp {
                     coef: c[2],
-                    ctrl: node(s) | ctrl::ACC | ctrl::FIRST,
+                    ctrl: node(s),
                 };
                 prog[c0 + 3] = MicroOp {
                     coef: -c[3],
-                    ctrl: (node(s + 1) + 1) | ctrl::ACC,
+                    ctrl: (node(s + 1) + 1) | ctrl::ACC | ctrl::FIRST,
                 };
                 prog[c0 + 4] = MicroOp {
                     coef: -c[4],
@@ -404,10 +413,11 @@ impl BiquadParams {
                 };
                 prog[c0 + 5].ctrl = node(s) | ctrl::WE | ctrl::ACC;
                 prog[c0 + 6].ctrl = ctrl::ACC;
+                prog[c0 + 7].ctrl = ctrl::ACC;
                 if s + 1 == n {
                     // Branch result: one clock after the last accumulate (shared with the
                     // next section's first clock, which does not use the RAM port).
-                    prog[c0 + 7].ctrl |= node(n) | ctrl::WE | ctrl::WSRC_ACC | ctrl::PUSH;
+                    prog[c0 + 8].ctrl |= node(n) | ctrl::WE | ctrl::WSRC_ACC | ctrl::PUSH;
                 }
                 j += 1;
             }

@@ -36,7 +36,7 @@
 //! * The engine (see [`crate::blocks::biquad`]) keeps D + guard_frac bits of state and
 //!   saturates; its overflow flag is this block's.
 //!
-//! Timing per sample: the engine's 7 J + 3 clocks (J sections over all branches), then 2
+//! Timing per sample: the engine's 8 J + 3 clocks (J sections over all branches), then 2
 //! clocks of demodulation; `check` rejects an ADC period shorter than that plus 2.
 //!
 //! Ports of [`hdl::CapFront`]:
