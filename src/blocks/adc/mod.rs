@@ -405,7 +405,8 @@ impl AdcParams {
     /// period, `pipeline` discarded frames, then the latency of the first sample.
     pub fn startup_clocks(&self) -> u32 {
         // Row 0 after release enters pc = 0 of the flush period.
-        self.period_clocks.saturating_add(self.conv_to_valid_clocks())
+        self.period_clocks
+            .saturating_add(self.conv_to_valid_clocks())
     }
 
     /// Checks every limit; the error names the value, the limit and what to change.
