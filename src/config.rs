@@ -1131,7 +1131,18 @@ impl Derived {
         check_target(c, &err)?;
         // The core's input width: the ADC's, or the filters' on the capacitive path.
         let a = match &c.capacitive {
-            Some(k) => k.data_width,
+            Some(k) => {
+                // Checked here, before any width arithmetic uses it (the rest of the
+                // capacitive checks run after the core's derivation).
+                if !(12..=16).contains(&k.data_width) {
+                    return Err(err(
+                        "capacitive",
+                        "data_width",
+                        format!("{}: allowed 12..=16", k.data_width),
+                    ));
+                }
+                k.data_width
+            }
             None => c.adc.width,
         };
         let n = c.cordic.iterations;

@@ -1,5 +1,6 @@
-//! Parallel bus: the rust-hdl block against a reference written from the spec (registered
-//! words, one-cycle strobe, sticky flags, hold, reset), and rust-hdl == Icarus == Verilator.
+//! Parallel bus: the rust-hdl block against a reference written from the behaviour stated in
+//! the module doc of src/blocks/parallel/mod.rs (registered words, one-cycle strobe, sticky
+//! flags, hold, reset), and rust-hdl == Icarus == Verilator.
 use sinedec::blocks::mask;
 use sinedec::blocks::parallel::hdl::ParallelBus;
 use sinedec::blocks::parallel::ParallelParams;

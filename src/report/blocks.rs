@@ -365,10 +365,11 @@ fn biquad_job(l: &Loaded) -> Result<BlockJob> {
     }
     let d = &l.derived;
     let p = crate::blocks::capacitive::CapFrontParams::new(d)?;
-    let mut t = BlockTiming::latency(
-        p.engine.latency(),
-        "band-pass + 2 low-pass branches on one multiplier: 7 clocks per section",
+    let note = format!(
+        "band-pass + 2 low-pass branches on one multiplier: {} clocks per section",
+        crate::blocks::biquad::CYCLES_PER_SECTION
     );
+    let mut t = BlockTiming::latency(p.engine.latency(), &note);
     t.clocks_per_sample = Some(p.engine.cycles_per_sample());
     t.rate_sps = Some(d.clock_hz / p.engine.cycles_per_sample() as f64);
     job(

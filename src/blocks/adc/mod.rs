@@ -306,12 +306,17 @@ impl AdcParams {
     pub fn min_period_clocks(&self) -> u32 {
         let f = &self.frame;
         let d = self.sck_period_clocks;
-        let frame_end = f.lead_clocks + f.frame_sck * d;
-        let mut p = frame_end.max(self.last_capture_clock() + 1);
-        p = p.max(self.conv_clocks + ceil_clocks(self.timing.conv_min_low_ns, self.clock_hz));
+        let frame_end = f.lead_clocks.saturating_add(f.frame_sck.saturating_mul(d));
+        let mut p = frame_end.max(self.last_capture_clock().saturating_add(1));
+        p = p.max(
+            self.conv_clocks
+                .saturating_add(ceil_clocks(self.timing.conv_min_low_ns, self.clock_hz)),
+        );
         if self.timing.conversion_edges > 0 {
             let end = self.conversion_end_clock();
-            p = p.max(end + ceil_clocks(self.timing.acquisition_ns, self.clock_hz).max(1));
+            p = p.max(
+                end.saturating_add(ceil_clocks(self.timing.acquisition_ns, self.clock_hz).max(1)),
+            );
         }
         if self.timing.max_sample_rate_hz > 0.0 {
             p = p.max(Self::period_for_rate(
@@ -344,7 +349,7 @@ impl AdcParams {
         let first = f.offsets[..n].iter().copied().min().unwrap_or(0);
         let last = f.offsets[..n]
             .iter()
-            .map(|o| o + f.width.max(1) - 1)
+            .map(|o| o.saturating_add(f.width.max(1) - 1))
             .max()
             .unwrap_or(0);
         (first, last)
@@ -352,7 +357,10 @@ impl AdcParams {
 
     /// Period counter value (clocks after the CONV edge) at which slot `k` is captured.
     pub fn capture_clock(&self, k: u32) -> u32 {
-        self.frame.lead_clocks + (k + 1) * self.sck_period_clocks + self.capture_phase()
+        self.frame
+            .lead_clocks
+            .saturating_add(k.saturating_add(1).saturating_mul(self.sck_period_clocks))
+            .saturating_add(self.capture_phase())
     }
 
     /// Period counter value at which the last data bit is captured and `out_valid` rises.
@@ -363,7 +371,10 @@ impl AdcParams {
     /// Period counter value of the SCK rising (leading) edge that completes a conversion.
     pub fn conversion_end_clock(&self) -> u32 {
         let e = self.timing.conversion_edges.max(1);
-        self.frame.lead_clocks + (e - 1) * self.sck_period_clocks + self.sck_low_clocks()
+        self.frame
+            .lead_clocks
+            .saturating_add((e - 1).saturating_mul(self.sck_period_clocks))
+            .saturating_add(self.sck_low_clocks())
     }
 
     /// SCK frequency in Hz.
@@ -379,7 +390,10 @@ impl AdcParams {
     /// Clocks from the first clock CONV is active (the sampling edge) to the `out_valid`
     /// strobe that delivers that sample.
     pub fn conv_to_valid_clocks(&self) -> u32 {
-        self.frame.pipeline * self.period_clocks + self.last_capture_clock()
+        self.frame
+            .pipeline
+            .saturating_mul(self.period_clocks)
+            .saturating_add(self.last_capture_clock())
     }
 
     /// [`conv_to_valid_clocks`](Self::conv_to_valid_clocks) in seconds.
@@ -392,7 +406,9 @@ impl AdcParams {
     pub fn startup_clocks(&self) -> u32 {
         // Row 0 after release enters pc = 0 of the flush period; the pins and the data are
         // registered one clock after the state (see `hdl::AdcController`), hence the + 1.
-        self.period_clocks + self.conv_to_valid_clocks() + 1
+        self.period_clocks
+            .saturating_add(self.conv_to_valid_clocks())
+            .saturating_add(1)
     }
 
     /// Checks every limit; the error names the value, the limit and what to change.
@@ -433,18 +449,18 @@ impl AdcParams {
             ));
         }
         for c in 0..f.channels as usize {
-            if f.offsets[c] + f.width > f.frame_sck {
+            if f.offsets[c].saturating_add(f.width) > f.frame_sck {
                 return Err(format!(
                     "channel {c}: bits {}..{} do not fit in the {}-SCK frame",
                     f.offsets[c],
-                    f.offsets[c] + f.width - 1,
+                    f.offsets[c].saturating_add(f.width - 1),
                     f.frame_sck
                 ));
             }
         }
         if f.channels == 2 {
             let (a, b) = (f.offsets[0], f.offsets[1]);
-            if a < b + f.width && b < a + f.width {
+            if a < b.saturating_add(f.width) && b < a.saturating_add(f.width) {
                 return Err(format!(
                     "channel bit ranges overlap: {a}..{} and {b}..{}",
                     a + f.width - 1,
@@ -499,10 +515,10 @@ impl AdcParams {
                 t.conv_min_pulse_ns
             ));
         }
-        if (f.lead_clocks + l) as f64 * ns + 1e-9 < t.conv_to_sck_ns {
+        if f.lead_clocks.saturating_add(l) as f64 * ns + 1e-9 < t.conv_to_sck_ns {
             return Err(format!(
                 "CONV to first SCK edge is {:.2} ns, below the {name} set-up of {} ns; raise the lead clocks",
-                (f.lead_clocks + l) as f64 * ns,
+                f.lead_clocks.saturating_add(l) as f64 * ns,
                 t.conv_to_sck_ns
             ));
         }
@@ -513,7 +529,7 @@ impl AdcParams {
                 self.sample_rate_hz()
             ));
         }
-        let frame_end = f.lead_clocks + f.frame_sck * d;
+        let frame_end = f.lead_clocks.saturating_add(f.frame_sck.saturating_mul(d));
         if p < frame_end {
             return Err(format!(
                 "conversion period of {p} clocks is shorter than the frame ({} + {} SCK x {d} clocks = {frame_end} clocks); the shortest allowed is {}",
