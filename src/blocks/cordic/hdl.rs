@@ -8,6 +8,12 @@ use rust_hdl::prelude::*;
 /// Table 2-3 as one conditional negation per output: x' = +-(cos or sin), y' = +-(sin or
 /// cos), swapped when the signs differ, x' negated when sin < 0, y' when cos < 0; each
 /// negation is (a ^ m) + c with m all ones and c one, a single carry chain.
+///
+/// Both outputs are never negative: every row of Table 2-3 negates only a negative input,
+/// so x', y' lie in 0..=2^(A-1) before the G-bit guard shift. The registers keep the low
+/// A + G bits and the top two of the W-bit word are constant 0. Synthesis sees that stage
+/// 0's direction (the sign of y') is constant and folds its sign logic (stage 0 always
+/// rotates by -atan(1) on y, +atan(1) on z), as the model's arithmetic implies anyway.
 #[derive(LogicBlock)]
 pub struct QuadrantMapper {
     /// System clock.
@@ -60,8 +66,8 @@ pub struct QuadrantMapper {
     asext: Constant<Bits<32>>,
     /// Guard-bit shift G.
     gshift: Constant<Bits<32>>,
-    /// Mask of the W datapath bits.
-    xmask: Constant<Bits<32>>,
+    /// Mask of the low A + G bits: x', y' are in 0..=2^(A-1+G), so bits A+G..W-1 are 0.
+    vmask: Constant<Bits<32>>,
     /// All ones: inversion mask of a negation.
     ones: Constant<Bits<32>>,
     /// One: carry-in of a negation.
@@ -102,7 +108,7 @@ impl QuadrantMapper {
             asign: c32(1 << (a - 1)),
             asext: c32(fill(32, 32 - a)),
             gshift: c32(d.xy_guard as u64),
-            xmask: c32(mask(d.xy_width)),
+            vmask: c32(mask(a + d.xy_guard)),
             ones: c32(mask(32)),
             one: c32(1),
             zero: c32(0),
@@ -156,10 +162,10 @@ impl Logic for QuadrantMapper {
         }
         self.x_reg.d.next = (((self.ax.val() ^ self.mx.val()) + self.cx.val())
             << self.gshift.val())
-            & self.xmask.val();
+            & self.vmask.val();
         self.y_reg.d.next = (((self.ay.val() ^ self.my.val()) + self.cy.val())
             << self.gshift.val())
-            & self.xmask.val();
+            & self.vmask.val();
         self.v_reg.d.next = self.in_valid.val() & !self.rst.val();
         self.x.next = self.x_reg.q.val();
         self.y.next = self.y_reg.q.val();
