@@ -482,7 +482,8 @@ pub struct Correction {
     nd_c: Signal<Local, Bits<32>>,
     md_s: Signal<Local, Bits<32>>,
     md_c: Signal<Local, Bits<32>>,
-    /// Stage 3: all ones when the sample is negative (the product is inverted).
+    /// Stage 3: all ones (on the 33-GF bits of P') when the sample is negative (the
+    /// product is inverted).
     im_s: Signal<Local, Bits<32>>,
     im_c: Signal<Local, Bits<32>>,
     /// Stage 3: the rounded, signed result before saturation, modulo 2^(32-GF).
@@ -501,16 +502,17 @@ pub struct Correction {
     asext: Constant<Bits<32>>,
     /// Largest positive A-bit value 2^(A-1)-1.
     pmax: Constant<Bits<32>>,
-    /// 2^(A-1+GF) - 2^(GF-1): the smallest product whose rounded magnitude is 2^(A-1).
+    /// (2^(A-1+GF) - 2^(GF-1)) >> (GF-1) = 2^A - 1: the smallest P' whose rounded magnitude
+    /// is 2^(A-1).
     pbig: Constant<Bits<32>>,
-    /// All ones.
-    ones: Constant<Bits<32>>,
     /// Bit 31: sign of a 32-bit word.
     sign32: Constant<Bits<32>>,
-    /// GF: product shift.
-    gshift: Constant<Bits<32>>,
-    /// 2^(GF-1): rounding half.
-    ghalf: Constant<Bits<32>>,
+    /// GF-1: the product bits below the rounding half that are dropped.
+    hshift: Constant<Bits<32>>,
+    /// Mask of the 33-GF bits of P'.
+    phmask: Constant<Bits<32>>,
+    /// One: the rounding half in P' units, and the last shift.
+    one1: Constant<Bits<32>>,
     /// Configured sine offset, A-bit raw (static value).
     b0_s: Constant<Bits<32>>,
     /// Configured cosine offset, A-bit raw (static value).
@@ -592,11 +594,11 @@ impl Correction {
             asign: c32(1 << (a - 1)),
             asext: c32(fill(32, 32 - a)),
             pmax: c32(mask(a - 1)),
-            pbig: c32((1u64 << (a - 1 + gf)) - (1u64 << (gf - 1))),
-            ones: c32(mask(32)),
+            pbig: c32(((1u64 << (a - 1 + gf)) - (1u64 << (gf - 1))) >> (gf - 1)),
             sign32: c32(1 << 31),
-            gshift: c32(gf as u64),
-            ghalf: c32(1 << (gf - 1)),
+            hshift: c32((gf - 1) as u64),
+            phmask: c32(mask(33 - gf)),
+            one1: c32(1),
             b0_s: c32(p.offset()[SIN] as u64 & mask(a)),
             b0_c: c32(p.offset()[COS] as u64 & mask(a)),
             g0_s: c16(p.gain()[SIN] as u64),
@@ -677,25 +679,31 @@ impl Logic for Correction {
         self.v2.d.next = self.v1.q.val() & !self.rst.val();
         self.sg2_s.d.next = self.sg1_s.q.val();
         self.sg2_c.d.next = self.sg1_c.q.val();
-        self.p2_s.d.next = self.m1_s.q.val() * self.g1_s.q.val();
-        self.p2_c.d.next = self.m1_c.q.val() * self.g1_c.q.val();
+        // The product is registered without its low GF-1 bits: below the rounding half they
+        // can carry nothing into the rounded result (adding 2^(GF-1) to P leaves them as
+        // they are), and the saturation limit is a multiple of 2^(GF-1). Registering them
+        // would only feed a carry chain whose carry is provably zero.
+        self.p2_s.d.next = (self.m1_s.q.val() * self.g1_s.q.val()) >> self.hshift.val();
+        self.p2_c.d.next = (self.m1_c.q.val() * self.g1_c.q.val()) >> self.hshift.val();
         // Stage 3: round half up (magnitude), apply the sign, saturate. One adder: with
         // the sign, -floor((P + 2^(GF-1)) / 2^GF) = floor((!P + 2^(GF-1)) / 2^GF) (!P = -P - 1),
         // taken from the 32-bit word modulo 2^(32-GF) >= 2^A. The magnitude reaches 2^(A-1)
         // (both saturation limits) exactly when P >= 2^(A-1+GF) - 2^(GF-1), a compare beside
         // the adder.
+        // With P' = P >> (GF-1): floor((X + 2^(GF-1)) / 2^GF) = floor((X >> (GF-1) + 1) / 2)
+        // for X = P or !P, and !P >> (GF-1) = P' ^ (the 33-GF ones).
         self.im_s.next = self.zero.val();
         if self.sg2_s.q.val() {
-            self.im_s.next = self.ones.val();
+            self.im_s.next = self.phmask.val();
         }
         self.im_c.next = self.zero.val();
         if self.sg2_c.q.val() {
-            self.im_c.next = self.ones.val();
+            self.im_c.next = self.phmask.val();
         }
         self.r_s.next =
-            ((self.p2_s.q.val() ^ self.im_s.val()) + self.ghalf.val()) >> self.gshift.val();
+            ((self.p2_s.q.val() ^ self.im_s.val()) + self.one1.val()) >> self.one1.val();
         self.r_c.next =
-            ((self.p2_c.q.val() ^ self.im_c.val()) + self.ghalf.val()) >> self.gshift.val();
+            ((self.p2_c.q.val() ^ self.im_c.val()) + self.one1.val()) >> self.one1.val();
         self.big_s.next = self.p2_s.q.val() >= self.pbig.val();
         self.big_c.next = self.p2_c.q.val() >= self.pbig.val();
         self.o_s.next = self.r_s.val();
