@@ -7,7 +7,9 @@
 //!   combinational loops;
 //! * no Yosys warning outside a short list of known, result-neutral ones.
 //!
-//! Counts come from `stat` on the flattened netlist.
+//! Counts come from `stat` on the flattened netlist; the worst register-to-register path (LUT
+//! levels, carry bits and an estimated delay) from the mapped netlist written with
+//! `write_json` ([`crate::report::levels`]).
 use crate::error::{Error, Result};
 use crate::sim::cosim::{require_tool, CosimError};
 use std::collections::BTreeMap;
@@ -54,6 +56,8 @@ pub struct SynthStats {
     pub multipliers: u64,
     /// Block RAMs.
     pub brams: u64,
+    /// Worst register-to-register path of the mapped netlist (None: no such path).
+    pub path: Option<crate::report::levels::PathLevels>,
 }
 
 /// Yosys warnings that do not change results.
@@ -165,6 +169,7 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
     let vfile = workdir.join(format!("synth_{tag}.v"));
     std::fs::write(&vfile, verilog).map_err(|e| Error::io(&vfile, e))?;
     let stat = workdir.join(format!("synth_{tag}_stat.txt"));
+    let json = workdir.join(format!("synth_{tag}.json"));
     let script = format!(
         "read_verilog {v}\n\
          hierarchy -check -top {top}\n\
@@ -173,10 +178,12 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
          check -assert\n\
          {synth}\n\
          check -assert\n\
-         tee -q -o {stat} stat\n",
+         tee -q -o {stat} stat\n\
+         write_json {json}\n",
         v = vfile.display(),
         synth = family.synth_command(top),
         stat = stat.display(),
+        json = json.display(),
     );
     let ys = workdir.join(format!("synth_{tag}.ys"));
     std::fs::write(&ys, script).map_err(|e| Error::io(&ys, e))?;
@@ -232,7 +239,11 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
             stat.display()
         )));
     }
-    Ok(classify(&cells, family))
+    let mut s = classify(&cells, family);
+    let netlist = std::fs::read_to_string(&json).map_err(|e| Error::io(&json, e))?;
+    s.path = crate::report::levels::analyze(&netlist, top, family)
+        .map_err(|m| Error::Export(format!("path analysis of `{top}` ({tag}): {m}")))?;
+    Ok(s)
 }
 
 #[cfg(test)]

@@ -19,6 +19,8 @@
 //! [`Generation`] and written with [`crate::emit::write_output`] (temp dir, then rename).
 //! The output is deterministic except for one line of the Markdown (`Generated: ...`).
 pub mod blocks;
+pub mod levels;
+pub mod nextpnr;
 pub mod plot;
 pub mod predict;
 pub mod sweep;

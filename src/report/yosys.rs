@@ -33,11 +33,12 @@ tee -q -o {stat} stat
 tee -q -o {ltp} ltp -noff
 ";
 
-/// Source of the FPGA synthesis (script and counting rules), hashed into cache keys.
-const SYNTH_SOURCE: &str = include_str!("../synth.rs");
+/// Source of the FPGA synthesis (script and counting rules) and of the path analysis,
+/// hashed into cache keys.
+const SYNTH_SOURCE: &str = concat!(include_str!("../synth.rs"), include_str!("levels.rs"));
 
 /// Version of the cache entry layout.
-const CACHE_VERSION: &str = "sinedec-report-cache-1";
+const CACHE_VERSION: &str = "sinedec-report-cache-2";
 
 /// Result of the generic synthesis.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -71,6 +72,8 @@ struct CachedSynth {
     carry: u64,
     multipliers: u64,
     brams: u64,
+    #[serde(default)]
+    path: Option<super::levels::PathLevels>,
 }
 
 impl From<&SynthStats> for CachedSynth {
@@ -82,6 +85,7 @@ impl From<&SynthStats> for CachedSynth {
             carry: s.carry,
             multipliers: s.multipliers,
             brams: s.brams,
+            path: s.path.clone(),
         }
     }
 }
@@ -95,8 +99,36 @@ impl From<CachedSynth> for SynthStats {
             carry: c.carry,
             multipliers: c.multipliers,
             brams: c.brams,
+            path: c.path,
         }
     }
+}
+
+/// The cache entry `key` in `dir` (None: no cache, no entry or an unreadable one).
+pub(crate) fn cache_load<T: for<'de> Deserialize<'de>>(dir: Option<&Path>, key: &str) -> Option<T> {
+    let dir = dir?;
+    let text = std::fs::read_to_string(dir.join(format!("{key}.json"))).ok()?;
+    serde_json::from_str(&text).ok()
+}
+
+/// Stores `value` as the cache entry `key` in `dir` (written to a temporary file, then
+/// renamed, so a parallel reader never sees half an entry); nothing without a cache.
+pub(crate) fn cache_store<T: Serialize>(dir: Option<&Path>, key: &str, value: &T) -> Result<()> {
+    let Some(dir) = dir else {
+        return Ok(());
+    };
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Error::Export(format!("cache entry: {e}")))?;
+    let tmp = dir.join(format!(
+        ".{key}.{}.{:?}.tmp",
+        std::process::id(),
+        std::thread::current().id()
+    ));
+    let path = dir.join(format!("{key}.json"));
+    std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e))?;
+    Ok(())
 }
 
 /// Runs Yosys with a cache.
@@ -161,27 +193,11 @@ impl Yosys {
     }
 
     fn load<T: for<'de> Deserialize<'de>>(&self, key: &str) -> Option<T> {
-        let dir = self.cache.as_ref()?;
-        let text = std::fs::read_to_string(dir.join(format!("{key}.json"))).ok()?;
-        serde_json::from_str(&text).ok()
+        cache_load(self.cache.as_deref(), key)
     }
 
     fn store<T: Serialize>(&self, key: &str, value: &T) -> Result<()> {
-        let Some(dir) = &self.cache else {
-            return Ok(());
-        };
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-        let text = serde_json::to_string_pretty(value)
-            .map_err(|e| Error::Export(format!("cache entry: {e}")))?;
-        let tmp = dir.join(format!(
-            ".{key}.{}.{:?}.tmp",
-            std::process::id(),
-            std::thread::current().id()
-        ));
-        let path = dir.join(format!("{key}.json"));
-        std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
-        std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e))?;
-        Ok(())
+        cache_store(self.cache.as_deref(), key, value)
     }
 
     fn scratch(&self, tag: &str) -> Result<PathBuf> {

