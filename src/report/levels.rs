@@ -66,14 +66,14 @@ pub const XC3SA_4: DelayModel = DelayModel {
     mux_ps: 450,
     mult_ps: 4880,
     ram_tco_ps: 2400,
-    route_ps: 900,
+    route_ps: 810,
 };
 
 /// Cyclone III, speed grade C8 (Cyclone III Device Handbook).
 pub const CYCLONE3_C8: DelayModel = DelayModel {
     name: "Cyclone III C8",
     tcko_ps: 250,
-    tsu_ps: 0,
+    tsu_ps: 200,
     lut_ps: 450,
     carry_entry_ps: 0,
     carry_bit_ps: 70,
@@ -81,7 +81,7 @@ pub const CYCLONE3_C8: DelayModel = DelayModel {
     mux_ps: 450,
     mult_ps: 3500,
     ram_tco_ps: 2700,
-    route_ps: 700,
+    route_ps: 510,
 };
 
 /// The delay model of a family.

@@ -369,10 +369,8 @@ pub fn build(loaded: &Loaded, opts: &Options) -> Result<Report> {
             .unwrap_or(0)
     ));
     let ys = Yosys::new(opts.cache_dir.clone(), work.clone())?;
-    let pnr = Ecp5::new(
-        opts.cache_dir.as_ref().map(|c| c.with_file_name("ecp5")),
-        work.join("ecp5"),
-    )?;
+    // The same cache directory: the entries' names are hashes with distinct prefixes.
+    let pnr = Ecp5::new(opts.cache_dir.clone(), work.join("ecp5"))?;
     let result = build_inner(loaded, opts, &designs, angle_design, angle_n, &ys, &pnr);
     let _ = std::fs::remove_dir_all(&work);
     result
