@@ -26,7 +26,8 @@ struct Design {
 
 fn designs() -> Vec<Design> {
     let def = Loaded::default_config().expect("embedded default config");
-    let cap_path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("configs/cyclone3_capacitive.toml");
+    let cap_path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("configs/cyclone3_capacitive.toml");
     let cap = Loaded::from_file(&cap_path).expect("configs/cyclone3_capacitive.toml");
     let mhz = |l: &Loaded| l.derived.clock_hz / 1e6;
     vec![
@@ -79,8 +80,8 @@ fn describe(d: &Design, t: &PnrTiming) -> String {
 fn shipped_designs_reach_1_3_times_their_clock_after_place_and_route() {
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let work = root.join(format!("timing-work-{}", std::process::id()));
-    let ecp5 = Ecp5::new(Some(root.join("timing-cache")), work.clone())
-        .unwrap_or_else(|e| panic!("{e}"));
+    let ecp5 =
+        Ecp5::new(Some(root.join("timing-cache")), work.clone()).unwrap_or_else(|e| panic!("{e}"));
     let ds = designs();
     let started = std::time::Instant::now();
     // Largest first; the WebAssembly tools are single-threaded, so two run at a time.

@@ -157,7 +157,10 @@ pub enum Arc {
 /// What a cell is for the analysis.
 enum Role {
     /// Flip-flop or synchronous RAM: outputs start paths, these inputs end them.
-    Seq { tco_ps: u64, ends: &'static [&'static str] },
+    Seq {
+        tco_ps: u64,
+        ends: &'static [&'static str],
+    },
     /// Combinational cell.
     Comb,
     /// Not timed (I/O buffers, clock buffers, constants).
@@ -184,9 +187,22 @@ fn role(t: &str, m: &DelayModel) -> Role {
         _ if t.starts_with("cycloneive_ram_block") || t == "altsyncram" => Role::Seq {
             tco_ps: m.ram_tco_ps,
             ends: &[
-                "portadatain", "portaaddr", "portawe", "portbdatain", "portbaddr", "portbwe",
-                "portare", "portbre", "data_a", "address_a", "wren_a", "data_b", "address_b",
-                "wren_b", "rden_a", "rden_b",
+                "portadatain",
+                "portaaddr",
+                "portawe",
+                "portbdatain",
+                "portbaddr",
+                "portbwe",
+                "portare",
+                "portbre",
+                "data_a",
+                "address_a",
+                "wren_a",
+                "data_b",
+                "address_b",
+                "wren_b",
+                "rden_a",
+                "rden_b",
             ],
         },
         _ if t.starts_with("LUT")
@@ -363,86 +379,87 @@ pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<Path
     let mut memo: HashMap<u64, Option<Arr>> = HashMap::new();
     // Iterative depth-first evaluation of arrival times (paths can be hundreds of cells).
     let mut visiting: std::collections::HashSet<u64> = std::collections::HashSet::new();
-    let mut arrival = |start: u64, memo: &mut HashMap<u64, Option<Arr>>| -> Result<Option<Arr>, String> {
-        let mut stack: Vec<(u64, bool)> = vec![(start, false)];
-        while let Some((b, expanded)) = stack.pop() {
-            if memo.contains_key(&b) && !expanded {
-                continue;
-            }
-            if !expanded && visiting.contains(&b) {
-                return Err(format!("combinational loop through net bit {b}"));
-            }
-            let Some(&(ci, pi)) = driver.get(&b) else {
-                memo.insert(b, None);
-                continue;
-            };
-            let c = &cells[ci];
-            match role(c.ty, m) {
-                Role::None => {
+    let mut arrival =
+        |start: u64, memo: &mut HashMap<u64, Option<Arr>>| -> Result<Option<Arr>, String> {
+            let mut stack: Vec<(u64, bool)> = vec![(start, false)];
+            while let Some((b, expanded)) = stack.pop() {
+                if memo.contains_key(&b) && !expanded {
+                    continue;
+                }
+                if !expanded && visiting.contains(&b) {
+                    return Err(format!("combinational loop through net bit {b}"));
+                }
+                let Some(&(ci, pi)) = driver.get(&b) else {
                     memo.insert(b, None);
-                }
-                Role::Seq { tco_ps, .. } => {
-                    memo.insert(
-                        b,
-                        Some(Arr {
-                            t: tco_ps,
-                            prev: None,
-                            cell: ci,
-                        }),
-                    );
-                }
-                Role::Comb => {
-                    let o = c.ports[pi].0;
-                    let inputs: Vec<(u64, Arc, bool)> = c
-                        .ports
-                        .iter()
-                        .filter(|(_, out, _)| !*out)
-                        .filter_map(|(p, _, bs)| arc(c.ty, p, o).map(|a| (p, a, bs)))
-                        .flat_map(|(p, a, bs)| {
-                            bs.iter().flatten().map(move |&ib| (ib, a, *p))
-                        })
-                        .map(|(ib, a, p)| {
-                            let r = match driver.get(&ib) {
-                                Some(&(dci, _)) => routed(cells[dci].ty, c.ty, p),
-                                None => true,
-                            };
-                            (ib, a, r)
-                        })
-                        .collect();
-                    if !expanded {
-                        let pending: Vec<u64> = inputs
-                            .iter()
-                            .map(|x| x.0)
-                            .filter(|ib| !memo.contains_key(ib))
-                            .collect();
-                        if !pending.is_empty() {
-                            visiting.insert(b);
-                            stack.push((b, true));
-                            for ib in pending {
-                                stack.push((ib, false));
-                            }
-                            continue;
-                        }
+                    continue;
+                };
+                let c = &cells[ci];
+                match role(c.ty, m) {
+                    Role::None => {
+                        memo.insert(b, None);
                     }
-                    let mut best: Option<Arr> = None;
-                    for (ib, a, r) in inputs {
-                        let Some(Some(ia)) = memo.get(&ib) else { continue };
-                        let t = ia.t + arc_ps(a, m) + if r { m.route_ps } else { 0 };
-                        if best.map(|x| t > x.t).unwrap_or(true) {
-                            best = Some(Arr {
-                                t,
-                                prev: Some((ib, a, r)),
+                    Role::Seq { tco_ps, .. } => {
+                        memo.insert(
+                            b,
+                            Some(Arr {
+                                t: tco_ps,
+                                prev: None,
                                 cell: ci,
-                            });
-                        }
+                            }),
+                        );
                     }
-                    visiting.remove(&b);
-                    memo.insert(b, best);
+                    Role::Comb => {
+                        let o = c.ports[pi].0;
+                        let inputs: Vec<(u64, Arc, bool)> = c
+                            .ports
+                            .iter()
+                            .filter(|(_, out, _)| !*out)
+                            .filter_map(|(p, _, bs)| arc(c.ty, p, o).map(|a| (p, a, bs)))
+                            .flat_map(|(p, a, bs)| bs.iter().flatten().map(move |&ib| (ib, a, *p)))
+                            .map(|(ib, a, p)| {
+                                let r = match driver.get(&ib) {
+                                    Some(&(dci, _)) => routed(cells[dci].ty, c.ty, p),
+                                    None => true,
+                                };
+                                (ib, a, r)
+                            })
+                            .collect();
+                        if !expanded {
+                            let pending: Vec<u64> = inputs
+                                .iter()
+                                .map(|x| x.0)
+                                .filter(|ib| !memo.contains_key(ib))
+                                .collect();
+                            if !pending.is_empty() {
+                                visiting.insert(b);
+                                stack.push((b, true));
+                                for ib in pending {
+                                    stack.push((ib, false));
+                                }
+                                continue;
+                            }
+                        }
+                        let mut best: Option<Arr> = None;
+                        for (ib, a, r) in inputs {
+                            let Some(Some(ia)) = memo.get(&ib) else {
+                                continue;
+                            };
+                            let t = ia.t + arc_ps(a, m) + if r { m.route_ps } else { 0 };
+                            if best.map(|x| t > x.t).unwrap_or(true) {
+                                best = Some(Arr {
+                                    t,
+                                    prev: Some((ib, a, r)),
+                                    cell: ci,
+                                });
+                            }
+                        }
+                        visiting.remove(&b);
+                        memo.insert(b, best);
+                    }
                 }
             }
-        }
-        Ok(memo.get(&start).copied().flatten())
-    };
+            Ok(memo.get(&start).copied().flatten())
+        };
     // Endpoints, in cell-name order (the JSON object is sorted): the latest arrival wins.
     let mut worst: Option<(u64, u64, usize, bool)> = None; // (delay, bit, end cell, routed)
     for (ci, c) in cells.iter().enumerate() {
@@ -591,15 +608,68 @@ mod tests {
     fn two_lut_levels() {
         let j = netlist(
             vec![
-                ("fa", cell("FDRE", &[("C", false, &[1]), ("D", false, &[90]), ("Q", true, &[10])])),
-                ("fb", cell("FDRE", &[("C", false, &[1]), ("D", false, &[91]), ("Q", true, &[11])])),
-                ("l1", cell("LUT2", &[("I0", false, &[10]), ("I1", false, &[11]), ("O", true, &[12])])),
-                ("l2", cell("LUT2", &[("I0", false, &[12]), ("I1", false, &[11]), ("O", true, &[13])])),
-                ("fq", cell("FDRE", &[("C", false, &[1]), ("D", false, &[13]), ("Q", true, &[14])])),
-                ("l3", cell("LUT1", &[("I0", false, &[11]), ("O", true, &[15])])),
-                ("fr", cell("FDRE", &[("C", false, &[1]), ("D", false, &[15]), ("Q", true, &[16])])),
+                (
+                    "fa",
+                    cell(
+                        "FDRE",
+                        &[("C", false, &[1]), ("D", false, &[90]), ("Q", true, &[10])],
+                    ),
+                ),
+                (
+                    "fb",
+                    cell(
+                        "FDRE",
+                        &[("C", false, &[1]), ("D", false, &[91]), ("Q", true, &[11])],
+                    ),
+                ),
+                (
+                    "l1",
+                    cell(
+                        "LUT2",
+                        &[
+                            ("I0", false, &[10]),
+                            ("I1", false, &[11]),
+                            ("O", true, &[12]),
+                        ],
+                    ),
+                ),
+                (
+                    "l2",
+                    cell(
+                        "LUT2",
+                        &[
+                            ("I0", false, &[12]),
+                            ("I1", false, &[11]),
+                            ("O", true, &[13]),
+                        ],
+                    ),
+                ),
+                (
+                    "fq",
+                    cell(
+                        "FDRE",
+                        &[("C", false, &[1]), ("D", false, &[13]), ("Q", true, &[14])],
+                    ),
+                ),
+                (
+                    "l3",
+                    cell("LUT1", &[("I0", false, &[11]), ("O", true, &[15])]),
+                ),
+                (
+                    "fr",
+                    cell(
+                        "FDRE",
+                        &[("C", false, &[1]), ("D", false, &[15]), ("Q", true, &[16])],
+                    ),
+                ),
             ],
-            &[("a", &[10]), ("b", &[11]), ("q", &[14]), ("r", &[16]), ("$auto$x", &[10])],
+            &[
+                ("a", &[10]),
+                ("b", &[11]),
+                ("q", &[14]),
+                ("r", &[16]),
+                ("$auto$x", &[10]),
+            ],
         );
         let p = analyze_with(&j, "t", &M).unwrap().unwrap();
         assert_eq!(p.lut_levels, 2);
@@ -618,13 +688,78 @@ mod tests {
     fn carry_chain_bits() {
         let j = netlist(
             vec![
-                ("fx", cell("FDRE", &[("C", false, &[1]), ("D", false, &[90]), ("Q", true, &[10])])),
-                ("l0", cell("LUT2", &[("I0", false, &[10]), ("I1", false, &[10]), ("O", true, &[20])])),
-                ("m0", cell("MUXCY", &[("CI", false, &[]), ("DI", false, &[10]), ("S", false, &[20]), ("O", true, &[21])])),
-                ("m1", cell("MUXCY", &[("CI", false, &[21]), ("DI", false, &[10]), ("S", false, &[20]), ("O", true, &[22])])),
-                ("m2", cell("MUXCY", &[("CI", false, &[22]), ("DI", false, &[10]), ("S", false, &[20]), ("O", true, &[23])])),
-                ("x3", cell("XORCY", &[("CI", false, &[23]), ("LI", false, &[20]), ("O", true, &[24])])),
-                ("fs", cell("FDRE", &[("C", false, &[1]), ("D", false, &[24]), ("Q", true, &[25])])),
+                (
+                    "fx",
+                    cell(
+                        "FDRE",
+                        &[("C", false, &[1]), ("D", false, &[90]), ("Q", true, &[10])],
+                    ),
+                ),
+                (
+                    "l0",
+                    cell(
+                        "LUT2",
+                        &[
+                            ("I0", false, &[10]),
+                            ("I1", false, &[10]),
+                            ("O", true, &[20]),
+                        ],
+                    ),
+                ),
+                (
+                    "m0",
+                    cell(
+                        "MUXCY",
+                        &[
+                            ("CI", false, &[]),
+                            ("DI", false, &[10]),
+                            ("S", false, &[20]),
+                            ("O", true, &[21]),
+                        ],
+                    ),
+                ),
+                (
+                    "m1",
+                    cell(
+                        "MUXCY",
+                        &[
+                            ("CI", false, &[21]),
+                            ("DI", false, &[10]),
+                            ("S", false, &[20]),
+                            ("O", true, &[22]),
+                        ],
+                    ),
+                ),
+                (
+                    "m2",
+                    cell(
+                        "MUXCY",
+                        &[
+                            ("CI", false, &[22]),
+                            ("DI", false, &[10]),
+                            ("S", false, &[20]),
+                            ("O", true, &[23]),
+                        ],
+                    ),
+                ),
+                (
+                    "x3",
+                    cell(
+                        "XORCY",
+                        &[
+                            ("CI", false, &[23]),
+                            ("LI", false, &[20]),
+                            ("O", true, &[24]),
+                        ],
+                    ),
+                ),
+                (
+                    "fs",
+                    cell(
+                        "FDRE",
+                        &[("C", false, &[1]), ("D", false, &[24]), ("Q", true, &[25])],
+                    ),
+                ),
             ],
             &[("x", &[10]), ("s", &[99, 98, 25])],
         );
@@ -649,12 +784,38 @@ mod tests {
         };
         let j = netlist(
             vec![
-                ("f0", cell("dffeas", &[("clk", false, &[1]), ("d", false, &[90]), ("q", true, &[10])])),
+                (
+                    "f0",
+                    cell(
+                        "dffeas",
+                        &[
+                            ("clk", false, &[1]),
+                            ("d", false, &[90]),
+                            ("q", true, &[10]),
+                        ],
+                    ),
+                ),
                 ("c0", lc(&[("dataa", &[10])], &[("cout", &[20])])),
-                ("c1", lc(&[("dataa", &[10]), ("cin", &[20])], &[("cout", &[21])])),
-                ("c2", lc(&[("dataa", &[10]), ("cin", &[21])], &[("combout", &[22])])),
+                (
+                    "c1",
+                    lc(&[("dataa", &[10]), ("cin", &[20])], &[("cout", &[21])]),
+                ),
+                (
+                    "c2",
+                    lc(&[("dataa", &[10]), ("cin", &[21])], &[("combout", &[22])]),
+                ),
                 ("c3", lc(&[("dataa", &[22])], &[("combout", &[23])])),
-                ("f1", cell("dffeas", &[("clk", false, &[1]), ("d", false, &[23]), ("q", true, &[24])])),
+                (
+                    "f1",
+                    cell(
+                        "dffeas",
+                        &[
+                            ("clk", false, &[1]),
+                            ("d", false, &[23]),
+                            ("q", true, &[24]),
+                        ],
+                    ),
+                ),
             ],
             &[("r0", &[10]), ("r1", &[24])],
         );
@@ -669,14 +830,94 @@ mod tests {
     fn two_chains_in_series() {
         let j = netlist(
             vec![
-                ("fx", cell("FDRE", &[("C", false, &[1]), ("D", false, &[90]), ("Q", true, &[10])])),
-                ("l0", cell("LUT2", &[("I0", false, &[10]), ("I1", false, &[10]), ("O", true, &[20])])),
-                ("m0", cell("MUXCY", &[("CI", false, &[]), ("DI", false, &[10]), ("S", false, &[20]), ("O", true, &[21])])),
-                ("x0", cell("XORCY", &[("CI", false, &[21]), ("LI", false, &[20]), ("O", true, &[22])])),
-                ("l1", cell("LUT2", &[("I0", false, &[22]), ("I1", false, &[10]), ("O", true, &[30])])),
-                ("m1", cell("MUXCY", &[("CI", false, &[]), ("DI", false, &[10]), ("S", false, &[30]), ("O", true, &[31])])),
-                ("m2", cell("MUXCY", &[("CI", false, &[31]), ("DI", false, &[10]), ("S", false, &[30]), ("O", true, &[32])])),
-                ("fy", cell("FDRE", &[("C", false, &[1]), ("CE", false, &[32]), ("D", false, &[10]), ("Q", true, &[33])])),
+                (
+                    "fx",
+                    cell(
+                        "FDRE",
+                        &[("C", false, &[1]), ("D", false, &[90]), ("Q", true, &[10])],
+                    ),
+                ),
+                (
+                    "l0",
+                    cell(
+                        "LUT2",
+                        &[
+                            ("I0", false, &[10]),
+                            ("I1", false, &[10]),
+                            ("O", true, &[20]),
+                        ],
+                    ),
+                ),
+                (
+                    "m0",
+                    cell(
+                        "MUXCY",
+                        &[
+                            ("CI", false, &[]),
+                            ("DI", false, &[10]),
+                            ("S", false, &[20]),
+                            ("O", true, &[21]),
+                        ],
+                    ),
+                ),
+                (
+                    "x0",
+                    cell(
+                        "XORCY",
+                        &[
+                            ("CI", false, &[21]),
+                            ("LI", false, &[20]),
+                            ("O", true, &[22]),
+                        ],
+                    ),
+                ),
+                (
+                    "l1",
+                    cell(
+                        "LUT2",
+                        &[
+                            ("I0", false, &[22]),
+                            ("I1", false, &[10]),
+                            ("O", true, &[30]),
+                        ],
+                    ),
+                ),
+                (
+                    "m1",
+                    cell(
+                        "MUXCY",
+                        &[
+                            ("CI", false, &[]),
+                            ("DI", false, &[10]),
+                            ("S", false, &[30]),
+                            ("O", true, &[31]),
+                        ],
+                    ),
+                ),
+                (
+                    "m2",
+                    cell(
+                        "MUXCY",
+                        &[
+                            ("CI", false, &[31]),
+                            ("DI", false, &[10]),
+                            ("S", false, &[30]),
+                            ("O", true, &[32]),
+                        ],
+                    ),
+                ),
+                (
+                    "fy",
+                    cell(
+                        "FDRE",
+                        &[
+                            ("C", false, &[1]),
+                            ("CE", false, &[32]),
+                            ("D", false, &[10]),
+                            ("Q", true, &[33]),
+                        ],
+                    ),
+                ),
             ],
             &[("x", &[10]), ("y", &[33])],
         );

@@ -78,8 +78,7 @@ pub struct PnrTiming {
 impl PnrTiming {
     /// Slack at the configured clock: period minus the critical path (ns; negative fails).
     pub fn slack_ns(&self) -> Option<f64> {
-        self.fmax_mhz
-            .map(|f| 1000.0 / self.target_mhz - 1000.0 / f)
+        self.fmax_mhz.map(|f| 1000.0 / self.target_mhz - 1000.0 / f)
     }
 
     /// Register where the critical path starts.
@@ -402,7 +401,13 @@ impl Ecp5 {
     /// Synthesizes, places and routes `verilog` (top module `top`) for a clock of
     /// `freq_mhz`; `tag` names the scratch directory. Returns the timing and whether it came
     /// from the cache.
-    pub fn run(&self, verilog: &str, top: &str, freq_mhz: f64, tag: &str) -> Result<(PnrTiming, bool)> {
+    pub fn run(
+        &self,
+        verilog: &str,
+        top: &str,
+        freq_mhz: f64,
+        tag: &str,
+    ) -> Result<(PnrTiming, bool)> {
         let freq = format!("{freq_mhz:.3}");
         let synth = format!("read_verilog -sv {top}.v; synth_ecp5 -top {top} -json {top}.json");
         let seed = SEED.to_string();
@@ -519,7 +524,10 @@ Warning: Max frequency for clock 'clk': 263.16 MHz (FAIL at 300.00 MHz)
 
     #[test]
     fn registers_are_named_by_block() {
-        assert_eq!(register_name("rtl.counter.usum_TRELLIS_FF_Q_3"), "rtl.counter.usum");
+        assert_eq!(
+            register_name("rtl.counter.usum_TRELLIS_FF_Q_3"),
+            "rtl.counter.usum"
+        );
         assert_eq!(register_name("q_TRELLIS_FF_Q_14_DI_MULT18X18D_P15"), "q");
         assert_eq!(register_name("rtl.a.b[7]"), "rtl.a.b");
         assert_eq!(register_name("x$CCU2_COMB0"), "x");
