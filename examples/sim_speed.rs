@@ -1,6 +1,7 @@
 //! Simulation speed of the whole `<name>_top` (default config) in rust-hdl, Icarus and
-//! Verilator on one recorded closed-loop stimulus (SPEC section 6). Each simulator runs N
-//! and 2N cycles; the speed is N / (t(2N) - t(N)), which cancels compilation and start-up.
+//! Verilator on one recorded closed-loop stimulus (figures in docs/benchmarks.md). Each
+//! simulator runs N and 2N cycles; the speed is N / (t(2N) - t(N)), which cancels
+//! compilation and start-up.
 //! `cargo run --release --example sim_speed [N]` (default N = 40,000).
 use sinedec::blocks::top::hdl::TopRtl;
 use sinedec::config::Loaded;

@@ -9,7 +9,9 @@
 //! result is ANDed with the mask, so Yosys sees constant-zero upper bits and removes them:
 //! the synthesized width is W, not 32. Right shifts are arithmetic by OR-ing a constant
 //! fill mask when the sign bit (a constant-mask test, never a literal index) is set.
-//! No unsized literal takes part in any expression (rust-hdl pitfall 4).
+//! No unsized literal takes part in any expression: rust-hdl writes a Rust integer literal
+//! as a 32-bit Verilog literal, which widens the expression around it; every constant is a
+//! sized `Constant`.
 pub mod adc;
 pub mod biquad;
 pub mod biss;
