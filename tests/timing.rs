@@ -1,6 +1,6 @@
 //! Post-route timing of the shipped designs on the open reference flow (Yosys `synth_ecp5` +
-//! nextpnr-ecp5, LFE5U-25F speed 6, seed 1; `sinedec::report::nextpnr`): the default
-//! `<name>_core` and `<name>_top` (configs/spartan3an.toml, the embedded default) and the
+//! nextpnr-ecp5, LFE5U-25F speed 6, placement `--seed 1`; `sinedec::report::nextpnr`): the
+//! default `<name>_core` and `<name>_top` (configs/spartan3an.toml, the embedded default) and the
 //! capacitive core and top (configs/cyclone3_capacitive.toml) must reach 1.3 x their
 //! configured clock (docs/timing.md).
 //!
