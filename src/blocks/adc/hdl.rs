@@ -20,6 +20,44 @@ fn c4(v: u64) -> Constant<Bits<4>> {
     Constant::new(Bits::<4>::from(v & 0xf))
 }
 
+/// A window flag's constants: a predicate `lo <= c < hi` on a counter `c` in `0..=top`
+/// that, each clock, reloads to 0, holds, or steps to `c + 1` (only from `c < top`).
+///
+/// Stepping, `c + 1` is in the range exactly when `c == lo - 1`, or when `c` is in it and
+/// `c != hi - 1`: two equality tests on the old counter and the old flag, no compare after
+/// the increment. `lo - 1` and `hi - 1` outside `0..top` become `top`, a value never
+/// stepped from, so their tests are never true; an empty range never sets the flag.
+struct Win {
+    /// lo - 1 (or `top`).
+    lo_m1: u64,
+    /// hi - 1 (or `top`).
+    hi_m1: u64,
+    /// The predicate at c = 0 (the power-up and reload value).
+    at_zero: bool,
+    /// The predicate at c = top.
+    at_top: bool,
+}
+
+impl Win {
+    fn new(lo: u64, hi: u64, top: u64) -> Self {
+        if lo >= hi {
+            return Self {
+                lo_m1: top,
+                hi_m1: top,
+                at_zero: false,
+                at_top: false,
+            };
+        }
+        let inside = |v: u64| if v < top { v } else { top };
+        Self {
+            lo_m1: if lo == 0 { top } else { inside(lo - 1) },
+            hi_m1: inside(hi - 1),
+            at_zero: lo == 0,
+            at_top: lo <= top && top < hi,
+        }
+    }
+}
+
 /// SPI ADC controller: CONV pulse, SCK divider, frame capture, sample strobe.
 #[derive(LogicBlock)]
 pub struct AdcController {
@@ -78,6 +116,58 @@ pub struct AdcController {
     sck_act: Signal<Local, Bit>,
     conv_act: Signal<Local, Bit>,
     cap: Signal<Local, Bit>,
+    /// Window flags of the state entered at the previous edge, each a predicate on `cyc`
+    /// or `ph` registered with it and XORed with its value at power-up (cyc = ph = 0), so a
+    /// zero register is right then. They are updated from equality tests on the old
+    /// counter (see [`Win`]) instead of compares after it, so the capture enables are a
+    /// register each: cyc < frame (SCK active part), slots of ch0, ch1 and the last slot
+    /// (each intersected with 1..=frame, the capture range).
+    wa: DFF<Bit>,
+    w0: DFF<Bit>,
+    w1: DFF<Bit>,
+    wl: DFF<Bit>,
+    /// ph >= L (SCK at its active level) and ph == capture phase, the same way.
+    wb: DFF<Bit>,
+    wc: DFF<Bit>,
+    /// The decoded predicates (flag XOR power-up value).
+    pa: Signal<Local, Bit>,
+    p0: Signal<Local, Bit>,
+    p1: Signal<Local, Bit>,
+    pl: Signal<Local, Bit>,
+    pb: Signal<Local, Bit>,
+    pcp: Signal<Local, Bit>,
+    /// The cycle and phase counters step (cyc + 1 / ph + 1) at this edge.
+    cinc: Signal<Local, Bit>,
+    pinc: Signal<Local, Bit>,
+    /// Counters reload at this edge: cyc to 0 and ph to 0 (at the lead clock; ph also at
+    /// the end of an SCK cycle).
+    crel: Signal<Local, Bit>,
+    prel: Signal<Local, Bit>,
+    /// Per flag: lo - 1 and hi - 1 of its range [lo, hi) (a counter value never stepped
+    /// from when there is none), its value at power-up (0) and at the stop value
+    /// (cyc = frame + 1, where a stopped controller parks).
+    wa_lo: Constant<Bits<8>>,
+    wa_hi: Constant<Bits<8>>,
+    wa_z: Constant<Bit>,
+    wa_s: Constant<Bit>,
+    w0_lo: Constant<Bits<8>>,
+    w0_hi: Constant<Bits<8>>,
+    w0_z: Constant<Bit>,
+    w0_s: Constant<Bit>,
+    w1_lo: Constant<Bits<8>>,
+    w1_hi: Constant<Bits<8>>,
+    w1_z: Constant<Bit>,
+    w1_s: Constant<Bit>,
+    wl_lo: Constant<Bits<8>>,
+    wl_hi: Constant<Bits<8>>,
+    wl_z: Constant<Bit>,
+    wl_s: Constant<Bit>,
+    wb_lo: Constant<Bits<8>>,
+    wb_hi: Constant<Bits<8>>,
+    wb_z: Constant<Bit>,
+    wc_lo: Constant<Bits<8>>,
+    wc_hi: Constant<Bits<8>>,
+    wc_z: Constant<Bit>,
     shifted0: Signal<Local, Bits<16>>,
     shifted1: Signal<Local, Bits<16>>,
     sr0_n: Signal<Local, Bits<16>>,
@@ -88,22 +178,8 @@ pub struct AdcController {
     conv_end: Constant<Bits<16>>,
     /// D - 1: last SCK phase.
     d_last: Constant<Bits<8>>,
-    /// L: first phase at the active SCK level.
-    sck_on: Constant<Bits<8>>,
-    /// Phase at which a slot is captured (L for CPHA = 1, 0 for CPHA = 0).
-    cap_ph: Constant<Bits<8>>,
-    /// Frame length in SCK cycles.
-    frame: Constant<Bits<8>>,
     /// Frame + 1: the SCK cycle counter stops here.
     cyc_stop: Constant<Bits<8>>,
-    /// First and one-past-last slot of channel 0.
-    ch0_first: Constant<Bits<8>>,
-    ch0_end: Constant<Bits<8>>,
-    /// First and one-past-last slot of channel 1 (empty range with one channel).
-    ch1_first: Constant<Bits<8>>,
-    ch1_end: Constant<Bits<8>>,
-    /// Slot of the last data bit (out_valid at its capture).
-    last_slot: Constant<Bits<8>>,
     /// Periods to run before delivering: 1 flush period + pipeline discarded frames.
     warm_init: Constant<Bits<4>>,
     /// Mask of the W sample bits.
@@ -143,6 +219,21 @@ impl AdcController {
         } else {
             (0, 0)
         };
+        // Window flags (see `Win`): cyc in 0..=frame + 1, ph in 0..=D - 1. The capture
+        // range of slots is 1..=frame (cycle k + 1 holds slot k).
+        let stop = f.frame_sck as u64 + 1;
+        let d_last = p.sck_period_clocks.saturating_sub(1) as u64;
+        let cap_in = |lo: u64, hi: u64| Win::new(lo.max(1), hi.min(stop), stop);
+        let wa = Win::new(0, f.frame_sck as u64, stop);
+        let w0 = cap_in(f.offsets[0] as u64 + 1, (f.offsets[0] + f.width) as u64 + 1);
+        let w1 = cap_in(ch1_first + 1, ch1_end + 1);
+        let wl = cap_in(last as u64 + 1, last as u64 + 2);
+        let wb = Win::new(p.sck_low_clocks() as u64, d_last + 1, d_last);
+        let wc = Win::new(
+            p.capture_phase() as u64,
+            p.capture_phase() as u64 + 1,
+            d_last,
+        );
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -180,6 +271,44 @@ impl AdcController {
             sck_act: Default::default(),
             conv_act: Default::default(),
             cap: Default::default(),
+            wa: Default::default(),
+            w0: Default::default(),
+            w1: Default::default(),
+            wl: Default::default(),
+            wb: Default::default(),
+            wc: Default::default(),
+            pa: Default::default(),
+            p0: Default::default(),
+            p1: Default::default(),
+            pl: Default::default(),
+            pb: Default::default(),
+            pcp: Default::default(),
+            cinc: Default::default(),
+            pinc: Default::default(),
+            crel: Default::default(),
+            prel: Default::default(),
+            wa_lo: c8(wa.lo_m1),
+            wa_hi: c8(wa.hi_m1),
+            wa_z: Constant::new(wa.at_zero),
+            wa_s: Constant::new(wa.at_top),
+            w0_lo: c8(w0.lo_m1),
+            w0_hi: c8(w0.hi_m1),
+            w0_z: Constant::new(w0.at_zero),
+            w0_s: Constant::new(w0.at_top),
+            w1_lo: c8(w1.lo_m1),
+            w1_hi: c8(w1.hi_m1),
+            w1_z: Constant::new(w1.at_zero),
+            w1_s: Constant::new(w1.at_top),
+            wl_lo: c8(wl.lo_m1),
+            wl_hi: c8(wl.hi_m1),
+            wl_z: Constant::new(wl.at_zero),
+            wl_s: Constant::new(wl.at_top),
+            wb_lo: c8(wb.lo_m1),
+            wb_hi: c8(wb.hi_m1),
+            wb_z: Constant::new(wb.at_zero),
+            wc_lo: c8(wc.lo_m1),
+            wc_hi: c8(wc.hi_m1),
+            wc_z: Constant::new(wc.at_zero),
             shifted0: Default::default(),
             shifted1: Default::default(),
             sr0_n: Default::default(),
@@ -187,15 +316,7 @@ impl AdcController {
             lead: c16(f.lead_clocks as u64),
             conv_end: c16(p.conv_clocks as u64),
             d_last: c8(p.sck_period_clocks.saturating_sub(1) as u64),
-            sck_on: c8(p.sck_low_clocks() as u64),
-            cap_ph: c8(p.capture_phase() as u64),
-            frame: c8(f.frame_sck as u64),
             cyc_stop: c8(f.frame_sck as u64 + 1),
-            ch0_first: c8(f.offsets[0] as u64 + 1),
-            ch0_end: c8((f.offsets[0] + f.width) as u64 + 1),
-            ch1_first: c8(ch1_first + 1),
-            ch1_end: c8(ch1_end + 1),
-            last_slot: c8(last as u64 + 1),
             warm_init: c4(1 + f.pipeline as u64),
             wmask: c16(mask(w as u32)),
             flip: c16(match f.sign {
@@ -225,7 +346,7 @@ impl Logic for AdcController {
     fn update(&mut self) {
         dff_setup!(
             self, clk, live, pc, ph, cyc, warm, sr0, sr1, sck_reg, conv_reg, valid_reg, ch0_reg,
-            ch1_reg, miso_d, rst_d, pcl_x, pcm_x
+            ch1_reg, miso_d, rst_d, pcl_x, pcm_x, wa, w0, w1, wl, wb, wc
         );
         self.run.next = self.enable.val() & !self.rst.val();
         // Period counter and warm-up count (flush period, then discarded frames).
@@ -258,26 +379,85 @@ impl Logic for AdcController {
         // SCK phase and cycle counters: restart at the lead clock, stop after the frame.
         self.ph_n.next = self.zero8.val();
         self.cyc_n.next = self.cyc_stop.val();
+        self.cinc.next = false;
+        self.pinc.next = false;
+        self.crel.next = false;
+        self.prel.next = true;
         if self.run.val() {
             if self.at_lead.val() {
                 self.ph_n.next = self.zero8.val();
                 self.cyc_n.next = self.zero8.val();
+                self.crel.next = true;
             } else if self.cyc.q.val() == self.cyc_stop.val() {
                 self.ph_n.next = self.ph.q.val();
                 self.cyc_n.next = self.cyc.q.val();
+                self.prel.next = false;
             } else if self.ph.q.val() == self.d_last.val() {
                 self.ph_n.next = self.zero8.val();
                 self.cyc_n.next = self.cyc.q.val() + self.one8.val();
+                self.cinc.next = true;
             } else {
                 self.ph_n.next = self.ph.q.val() + self.one8.val();
                 self.cyc_n.next = self.cyc.q.val();
+                self.pinc.next = true;
+                self.prel.next = false;
             }
+        }
+        // Window flags follow the counters: hold, park at the stop value (not running),
+        // reload to 0, or step (see `Win`). Stored XOR the power-up value.
+        self.pa.next = self.wa.q.val() ^ self.wa_z.val();
+        self.p0.next = self.w0.q.val() ^ self.w0_z.val();
+        self.p1.next = self.w1.q.val() ^ self.w1_z.val();
+        self.pl.next = self.wl.q.val() ^ self.wl_z.val();
+        self.pb.next = self.wb.q.val() ^ self.wb_z.val();
+        self.pcp.next = self.wc.q.val() ^ self.wc_z.val();
+        self.wa.d.next = self.wa.q.val();
+        self.w0.d.next = self.w0.q.val();
+        self.w1.d.next = self.w1.q.val();
+        self.wl.d.next = self.wl.q.val();
+        if !self.run.val() {
+            self.wa.d.next = self.wa_s.val() ^ self.wa_z.val();
+            self.w0.d.next = self.w0_s.val() ^ self.w0_z.val();
+            self.w1.d.next = self.w1_s.val() ^ self.w1_z.val();
+            self.wl.d.next = self.wl_s.val() ^ self.wl_z.val();
+        }
+        if self.crel.val() {
+            self.wa.d.next = false;
+            self.w0.d.next = false;
+            self.w1.d.next = false;
+            self.wl.d.next = false;
+        }
+        if self.cinc.val() {
+            self.wa.d.next = ((self.cyc.q.val() == self.wa_lo.val())
+                | (self.pa.val() & (self.cyc.q.val() != self.wa_hi.val())))
+                ^ self.wa_z.val();
+            self.w0.d.next = ((self.cyc.q.val() == self.w0_lo.val())
+                | (self.p0.val() & (self.cyc.q.val() != self.w0_hi.val())))
+                ^ self.w0_z.val();
+            self.w1.d.next = ((self.cyc.q.val() == self.w1_lo.val())
+                | (self.p1.val() & (self.cyc.q.val() != self.w1_hi.val())))
+                ^ self.w1_z.val();
+            self.wl.d.next = ((self.cyc.q.val() == self.wl_lo.val())
+                | (self.pl.val() & (self.cyc.q.val() != self.wl_hi.val())))
+                ^ self.wl_z.val();
+        }
+        self.wb.d.next = self.wb.q.val();
+        self.wc.d.next = self.wc.q.val();
+        if self.prel.val() {
+            self.wb.d.next = false;
+            self.wc.d.next = false;
+        }
+        if self.pinc.val() {
+            self.wb.d.next = ((self.ph.q.val() == self.wb_lo.val())
+                | (self.pb.val() & (self.ph.q.val() != self.wb_hi.val())))
+                ^ self.wb_z.val();
+            self.wc.d.next = ((self.ph.q.val() == self.wc_lo.val())
+                | (self.pcp.val() & (self.ph.q.val() != self.wc_hi.val())))
+                ^ self.wc_z.val();
         }
         // Pins of the state entered at the previous edge (live = run then), registered:
         // the pins show the state one clock after it is entered.
-        self.sck_act.next = self.live.q.val()
-            & (self.cyc.q.val() < self.frame.val())
-            & (self.ph.q.val() >= self.sck_on.val());
+        self.sck_act.next = self.live.q.val() & self.pa.val() & self.pb.val();
         self.conv_act.next = self.live.q.val()
             & (self.pc.q.val() < self.conv_end.val())
             & (self.warm.q.val() < self.warm_init.val());
@@ -288,10 +468,7 @@ impl Logic for AdcController {
         // cycle k + 1 (the constants hold slot + 1).
         self.miso_d.d.next = self.adc_miso.val();
         self.rst_d.d.next = self.rst.val();
-        self.cap.next = self.live.q.val()
-            & (self.ph.q.val() == self.cap_ph.val())
-            & (self.cyc.q.val() >= self.one8.val())
-            & (self.cyc.q.val() <= self.frame.val());
+        self.cap.next = self.live.q.val() & self.pcp.val();
         self.shifted0.next = (self.sr0.q.val() << self.one16.val()) & self.wmask.val();
         if self.miso_d.q.val() {
             self.shifted0.next =
@@ -303,26 +480,17 @@ impl Logic for AdcController {
                 ((self.sr1.q.val() << self.one16.val()) | self.one16.val()) & self.wmask.val();
         }
         self.sr0_n.next = self.sr0.q.val();
-        if self.cap.val()
-            & (self.cyc.q.val() >= self.ch0_first.val())
-            & (self.cyc.q.val() < self.ch0_end.val())
-        {
+        if self.cap.val() & self.p0.val() {
             self.sr0_n.next = self.shifted0.val();
         }
         self.sr1_n.next = self.sr1.q.val();
-        if self.cap.val()
-            & (self.cyc.q.val() >= self.ch1_first.val())
-            & (self.cyc.q.val() < self.ch1_end.val())
-        {
+        if self.cap.val() & self.p1.val() {
             self.sr1_n.next = self.shifted1.val();
         }
         self.sr0.d.next = self.sr0_n.val();
         self.sr1.d.next = self.sr1_n.val();
         self.valid_reg.d.next = false;
-        if self.cap.val()
-            & (self.cyc.q.val() == self.last_slot.val())
-            & (self.warm.q.val() == self.zero4.val())
-        {
+        if self.cap.val() & self.pl.val() & (self.warm.q.val() == self.zero4.val()) {
             self.valid_reg.d.next = true;
             self.ch0_reg.d.next = (self.sr0_n.val() ^ self.flip.val()) & self.wmask.val();
             self.ch1_reg.d.next = (self.sr1_n.val() ^ self.flip.val()) & self.wmask.val();

@@ -284,6 +284,12 @@ pub struct BissSlave {
     fsix: DFF<Bit>,
     /// tcnt == timeout_clocks - 1, registered with tcnt.
     ftl: DFF<Bit>,
+    /// state == Idle, registered with state (decoded from its next value), so the shift
+    /// register's load enable is one LUT of registers, not a state decode.
+    sidle: DFF<Bit>,
+    /// state == Cds, or state == Data with fnb low: the shift register's shift states,
+    /// registered with state and fnb the same way.
+    sshift: DFF<Bit>,
     /// cnt takes 1 this clock.
     cld1: Signal<Local, Bit>,
     /// cnt counts up this clock.
@@ -351,6 +357,8 @@ impl BissSlave {
             warnl: Default::default(),
             fack: Default::default(),
             fnb: Default::default(),
+            sidle: Default::default(),
+            sshift: Default::default(),
             fsix: Default::default(),
             ftl: Default::default(),
             cld1: Default::default(),
@@ -385,7 +393,8 @@ impl Logic for BissSlave {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, slo_reg, sh, crc, cnt, tcnt, errl, warnl, fack, fnb, fsix, ftl
+            self, clk, state, slo_reg, sh, crc, cnt, tcnt, errl, warnl, fack, fnb, fsix, ftl,
+            sidle, sshift
         );
         self.sync.clk.next = self.clk.val();
         self.sync.rst.next = self.rst.val();
@@ -418,7 +427,6 @@ impl Logic for BissSlave {
             BissState::Idle => {
                 if self.sync.fall.val() {
                     self.posw.take.next = true;
-                    self.sh.d.next = self.posw.word.val() & self.nmask.val();
                     self.errl.d.next = self.posw.err.val();
                     self.warnl.d.next = self.posw.warn.val();
                     self.crc.d.next = self.zero.val();
@@ -457,7 +465,6 @@ impl Logic for BissSlave {
                 if self.sync.rise.val() {
                     self.slo_reg.d.next = self.dbit.val();
                     self.cupd.next = true;
-                    self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
                     self.cld1.next = true;
                     self.state.d.next = BissState::Data;
                 }
@@ -471,7 +478,6 @@ impl Logic for BissSlave {
                         self.state.d.next = BissState::Err;
                     } else {
                         self.slo_reg.d.next = self.dbit.val();
-                        self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
                         self.cinc.next = true;
                     }
                 }
@@ -504,6 +510,14 @@ impl Logic for BissSlave {
                     }
                 }
             }
+        }
+        // The shift register: loaded at F1 in Idle, shifted at each rising MA edge in Cds
+        // and in Data before the last bit (the state decodes are registered flags).
+        if self.sidle.q.val() & self.sync.fall.val() {
+            self.sh.d.next = self.posw.word.val() & self.nmask.val();
+        }
+        if self.sshift.q.val() & self.sync.rise.val() {
+            self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
         }
         // The bit counter and its compare flags.
         if self.cinc.val() {
@@ -539,6 +553,9 @@ impl Logic for BissSlave {
             self.tcnt.d.next = self.zero.val();
             self.ftl.d.next = self.tlast_is0.val();
         }
+        self.sidle.d.next = self.state.d.val() == BissState::Idle;
+        self.sshift.d.next = (self.state.d.val() == BissState::Cds)
+            | ((self.state.d.val() == BissState::Data) & !self.fnb.d.val());
         self.slo.next = self.slo_reg.q.val();
     }
 }

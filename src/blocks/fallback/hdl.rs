@@ -143,8 +143,11 @@ pub struct Fallback {
     dmask: Constant<Bits<32>>,
     /// Turn mask (M bits).
     tmask: Constant<Bits<32>>,
-    /// Bit 31.
-    sign32: Constant<Bits<32>>,
+    /// Bit quadrant_bits: the sign of a difference of two counts in 0..4PPR-1 taken
+    /// modulo 2^(quadrant_bits + 1) (every such difference lies in -4PPR+1..4PPR-1).
+    dsign: Constant<Bits<32>>,
+    /// Mask of quadrant_bits bits: the tracker's count stays in 0..4PPR-1.
+    qmask: Constant<Bits<32>>,
     /// 1.
     one: Constant<Bits<32>>,
     /// 2.
@@ -274,7 +277,8 @@ impl Fallback {
             dminus_two: c32(dm - 1),
             mqturn: c32(q.wrapping_neg() & mask(32)),
             tmask: c32(mask(d.multiturn_bits)),
-            sign32: c32(1 << 31),
+            dsign: c32(1 << d.quadrant_bits),
+            qmask: c32(mask(d.quadrant_bits)),
             one: c32(1),
             two: c32(2),
             zero: c32(0),
@@ -335,11 +339,13 @@ impl Logic for Fallback {
             | (self.mv.val() == self.dmqturn_p1.val()));
         // Load value: the sample's capture plus the QEP-to-CORDIC offset, wrapped at 4PPR
         // (lq1 = lq0 - 4PPR is not negative exactly when lq0 >= 4PPR).
-        self.lq0.next = self.c2q.q.val() + self.oq.q.val();
-        self.lq1.next = self.c2q.q.val() + self.oqm.q.val();
+        // On quadrant_bits + 1 bits (lq0 < 8PPR, lq1 in -4PPR+1..4PPR-1, the chosen one in
+        // 0..4PPR-1), so the adders are that short and the sign test is bit quadrant_bits.
+        self.lq0.next = (self.c2q.q.val() + self.oq.q.val()) & self.dmask.val();
+        self.lq1.next = (self.c2q.q.val() + self.oqm.q.val()) & self.dmask.val();
         self.lq.next = self.lq1.val();
         self.lt.next = self.c2t.q.val() + self.otp.q.val();
-        if (self.lq1.val() & self.sign32.val()).any() {
+        if (self.lq1.val() & self.dsign.val()).any() {
             self.lq.next = self.lq0.val();
             self.lt.next = self.c2t.q.val() + self.ot.q.val();
         }
@@ -381,14 +387,16 @@ impl Logic for Fallback {
             self.csqm.next = self.sq2m.q.val();
             self.cstp.next = self.st2p.q.val();
         }
-        self.dq0.next = self.core_qc.val() - self.csq.val();
-        self.dq1.next = self.core_qc.val() - self.csqm.val();
+        // On quadrant_bits + 1 bits as lq above (dq0 in -4PPR+1..4PPR-1, the chosen one in
+        // 0..4PPR-1); the turns on M bits (only kt & tmask is ever used).
+        self.dq0.next = (self.core_qc.val() - self.csq.val()) & self.dmask.val();
+        self.dq1.next = (self.core_qc.val() - self.csqm.val()) & self.dmask.val();
         if self.core_valid.val() {
             self.kq.d.next = self.dq0.val();
-            self.kt.d.next = self.core_turns.val() - self.cst.val();
-            if (self.dq0.val() & self.sign32.val()).any() {
+            self.kt.d.next = (self.core_turns.val() - self.cst.val()) & self.tmask.val();
+            if (self.dq0.val() & self.dsign.val()).any() {
                 self.kq.d.next = self.dq1.val();
-                self.kt.d.next = self.core_turns.val() - self.cstp.val();
+                self.kt.d.next = (self.core_turns.val() - self.cstp.val()) & self.tmask.val();
             }
         }
         self.kv.d.next = self.core_valid.val() & !self.core_error.val();
@@ -421,7 +429,7 @@ impl Logic for Fallback {
                 self.nq.next = self.zero.val();
                 self.nt.next = self.qt.q.val() + self.one.val();
             } else {
-                self.nq.next = self.qq.q.val() + self.one.val();
+                self.nq.next = (self.qq.q.val() + self.one.val()) & self.qmask.val();
             }
         }
         if self.dec.val() {
@@ -431,7 +439,7 @@ impl Logic for Fallback {
                 self.nq.next = self.qlast.val();
                 self.nt.next = self.qt.q.val() - self.one.val();
             } else {
-                self.nq.next = self.qq.q.val() - self.one.val();
+                self.nq.next = (self.qq.q.val() - self.one.val()) & self.qmask.val();
             }
         }
         if self.kv2.q.val() & self.enable.val() {
