@@ -1687,7 +1687,7 @@ fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams
     params.validate().map_err(|m| err("adc", key, m))?;
     if let Some(rate) = c.adc.sample_rate_hz {
         let p = AdcParams::period_for_rate(clock_hz, rate);
-        if !(rate > 0.0) || p < params.period_clocks {
+        if rate.is_nan() || rate <= 0.0 || p < params.period_clocks {
             return Err(err(
                 "adc",
                 "sample_rate_hz",

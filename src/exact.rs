@@ -28,7 +28,7 @@ fn atan_inv(k: u64) -> BigInt {
     let mut j: u64 = 0;
     while !power.is_zero() {
         let term = &power / BigInt::from(2 * j + 1);
-        if j % 2 == 0 {
+        if j.is_multiple_of(2) {
             sum += term;
         } else {
             sum -= term;
@@ -58,7 +58,7 @@ fn atan_pow2_fixed(i: u32) -> BigInt {
             break;
         }
         let term = (BigInt::one() << (WORK - exp)) / BigInt::from(2 * j + 1);
-        if j % 2 == 0 {
+        if j.is_multiple_of(2) {
             sum += term;
         } else {
             sum -= term;

@@ -149,7 +149,7 @@ impl SimOptions {
             ),
         ];
         for (opt, v, lim, allowed) in track {
-            if !(v.abs() <= lim) {
+            if v.is_nan() || v.abs() > lim {
                 return bad(opt, v, allowed);
             }
             if capacitive && v != 0.0 {

@@ -239,6 +239,23 @@ fn header_has_version_hash_and_command_line() {
         head[0].starts_with("// ") && head[0].contains(&format!("sinedec {VERSION}")),
         "{head:?}"
     );
+    // The commit the binary was built from, checked against git itself: the hash in
+    // "(commit <hash>)" is a prefix of HEAD's full hash (the tests run in a git checkout).
+    let full = std::process::Command::new("git")
+        .args(["rev-parse", "HEAD"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("git (the tests run in a git checkout)");
+    let full = String::from_utf8_lossy(&full.stdout).trim().to_string();
+    let named = head[0]
+        .split("(commit ")
+        .nth(1)
+        .and_then(|r| r.split(')').next())
+        .unwrap_or("");
+    assert!(
+        named.len() >= 7 && full.starts_with(named),
+        "header commit {named:?} is not HEAD {full:?}: {head:?}"
+    );
     assert!(
         head.iter()
             .any(|l| l.starts_with("//") && l.contains(&default_hash)),

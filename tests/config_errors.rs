@@ -951,6 +951,10 @@ fn documented_range(key: &str) -> (i64, i64) {
     (num(lo), num(hi))
 }
 
+/// One range case: the key, the accepted text to replace, its `{}` template, and the edits
+/// that make the bound reachable.
+type RangeCase<'a> = (&'a str, &'a str, &'a str, Vec<(&'a str, &'a str)>);
+
 /// Every documented bound is accepted and the value just outside it rejected, each in a
 /// configuration where that bound is reachable (`guard_bits` = 20 used to be documented and
 /// always rejected; `correction.periods` 0 and 257 accepted).
@@ -963,7 +967,7 @@ fn documented_ranges_equal_accepted_ones() {
         ("width = 14", "width = 10"),
         ("iterations = 14", "iterations = 10"),
     ];
-    let cases: Vec<(&str, &str, &str, Vec<(&str, &str)>)> = vec![
+    let cases: Vec<RangeCase> = vec![
         (
             "adc.width",
             "width = 14",

@@ -8,6 +8,7 @@ use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 #[test]
+#[allow(clippy::needless_range_loop)] // rows[k] and rows[k + 1] are read together
 fn one_stage_in_three_simulators() {
     let l = common::cfg(14, 14, 14, 2048, 12);
     let d = &l.derived;

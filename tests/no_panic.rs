@@ -147,12 +147,12 @@ fn edge_value(old: &toml::Value, pick: u64) -> toml::Value {
         (_, 7) => match k % 4 {
             // another type
             0 => V::String(STRINGS[k % STRINGS.len()].to_string()),
-            1 => V::Boolean(k % 2 == 0),
+            1 => V::Boolean(k.is_multiple_of(2)),
             2 => V::Array(vec![V::Integer(1)]),
             _ => V::Float(floats[k % floats.len()]),
         },
         (V::Integer(_), 0..=2) => {
-            V::Integer(ints[k % ints.len()] * if k % 3 == 0 { -1 } else { 1 })
+            V::Integer(ints[k % ints.len()] * if k.is_multiple_of(3) { -1 } else { 1 })
         }
         (V::Integer(i), 3..=4) => V::Integer(i.saturating_add((k % 5) as i64 - 2)),
         (V::Integer(i), _) => V::Integer(i.saturating_mul((k % 4) as i64 + 2)),
@@ -351,13 +351,13 @@ proptest! {
 /// not vacuous).
 #[test]
 fn unmutated_configs_generate_and_a_bad_mutation_is_rejected() {
-    for which in 0..CONFIGS.len() {
+    for (which, config) in CONFIGS.iter().enumerate() {
         let text = mutate(which, &[], None);
         assert_eq!(
             run_case(&text, true),
             Ok(Outcome::Generated),
             "{}",
-            CONFIGS[which].0
+            config.0
         );
     }
     let mut v: toml::Value = toml::from_str(CONFIGS[0].1).unwrap();

@@ -496,8 +496,8 @@ pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<Path
         routed_nets: end_routed as u32,
         ..Default::default()
     };
-    let out_name = |ci: usize| -> String {
-        let c = &cells[ci];
+    p.to = {
+        let c = &cells[end_cell];
         c.ports
             .iter()
             .find(|(_, out, _)| *out)
@@ -505,12 +505,8 @@ pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<Path
             .and_then(|b| names.get(&b).cloned())
             .unwrap_or_else(|| c.name.to_string())
     };
-    p.to = out_name(end_cell);
     let mut b = end_bit;
-    loop {
-        let Some(Some(a)) = memo.get(&b).copied() else {
-            break;
-        };
+    while let Some(Some(a)) = memo.get(&b).copied() {
         match a.prev {
             None => {
                 p.from = names

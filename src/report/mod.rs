@@ -1590,7 +1590,7 @@ impl Report {
             })
             .collect();
         let v = json!({
-            "tool": format!("sinedec {}", crate::emit::VERSION),
+            "tool": format!("sinedec {} (commit {})", crate::emit::VERSION, crate::emit::commit()),
             "config": loaded.source_name,
             "config_hash": loaded.hash(),
             "command": opts.command,

@@ -145,7 +145,7 @@ pub fn block_of(register: &str) -> String {
         .iter()
         .copied()
         .enumerate()
-        .filter(|&(i, p)| !(i == 0 && p == "rtl") && !p.ends_with("_reg"))
+        .filter(|&(i, p)| (i != 0 || p != "rtl") && !p.ends_with("_reg"))
         .map(|(_, p)| p)
         .collect();
     if inst.is_empty() {

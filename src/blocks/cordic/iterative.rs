@@ -632,6 +632,12 @@ pub struct IterTiming<S: Clone> {
     pub hold: bool,
 }
 
+impl<S: Clone> Default for IterTiming<S> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<S: Clone> IterTiming<S> {
     /// Power-up state.
     pub fn new() -> Self {

@@ -93,7 +93,7 @@ impl CoreModel {
     pub fn in_ready(&self) -> bool {
         self.iter
             .as_ref()
-            .map_or(true, |t| t.ready(self.d.cycles_per_sample))
+            .is_none_or(|t| t.ready(self.d.cycles_per_sample))
     }
 
     /// One clock cycle: inputs applied before the edge, outputs after it.

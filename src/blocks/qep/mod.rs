@@ -129,7 +129,7 @@ impl CrossCheckParams {
                 "cross-check count width {count_width} bits is out of range: 2..=32"
             ));
         }
-        if !(4..=1 << 30).contains(&quadrants_per_turn) || quadrants_per_turn % 4 != 0 {
+        if !(4..=1 << 30).contains(&quadrants_per_turn) || !quadrants_per_turn.is_multiple_of(4) {
             return Err(format!(
                 "quadrants per turn {quadrants_per_turn} must be 4 * PPR in 4..=2^30"
             ));
