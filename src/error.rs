@@ -58,6 +58,14 @@ pub enum Error {
     /// Internal consistency check of emitted Verilog (identifier clash, bad name).
     #[error("Verilog export: {0}")]
     Export(String),
+    /// A template of `rtl-templates/` failed to render (a bug in sinedec, not in the input).
+    #[error("template {template}: {message}")]
+    Template {
+        /// The template's name, its path under `rtl-templates/`.
+        template: String,
+        /// minijinja's description.
+        message: String,
+    },
     /// An external tool (Yosys, Icarus, Verilator) is missing or failed.
     #[error(transparent)]
     Tool(#[from] crate::sim::cosim::CosimError),
