@@ -4,6 +4,7 @@
 //! the file system, under the output-directory rule of [`output`]: it never overwrites or
 //! removes a file sinedec did not write, and replaces a file only once every new file is
 //! complete.
+pub mod clock;
 pub mod output;
 pub mod templates;
 pub mod testbench;
@@ -628,10 +629,10 @@ fn clock_comment(clock: &crate::board::BoardClock, c: &str) -> String {
 
 /// `<name>_board.v`, `<name>_clock.v` and `<name>_clock_sim.v` when the board clock needs a
 /// synthesizer (see [`crate::board`]); `top` is the text of `<name>_top`'s wrapper.
-fn board_files(loaded: &Loaded, command: &str, top: &str) -> Vec<OutFile> {
+fn board_files(loaded: &Loaded, command: &str, top: &str) -> Result<Vec<OutFile>> {
     let clock = board_clock(loaded);
     if clock.synth.is_none() || loaded.config.board.is_none() {
-        return vec![];
+        return Ok(vec![]);
     }
     let name = &loaded.config.name;
     let ports = crate::board::wrapper_ports(top);
@@ -641,29 +642,29 @@ fn board_files(loaded: &Loaded, command: &str, top: &str) -> Vec<OutFile> {
             header(loaded, command, purpose, "//")
         )
     };
-    vec![
+    Ok(vec![
         OutFile {
             name: format!("{name}_board.v"),
             text: v(
                 "Board-level wrapper: clock synthesizer, reset held until locked, board top (Verilog-2001).",
-                crate::board::board_verilog(name, &top_name(loaded), &clock, &ports),
+                clock::board_verilog(name, &top_name(loaded), &clock, &ports)?,
             ),
         },
         OutFile {
             name: format!("{name}_clock.v"),
             text: v(
                 "Clock synthesizer for synthesis (vendor primitive).",
-                crate::board::clock_verilog(name, &clock),
+                clock::clock_verilog(name, &clock)?,
             ),
         },
         OutFile {
             name: format!("{name}_clock_sim.v"),
             text: v(
                 "Clock synthesizer, simulation model (Icarus; Verilator with --timing).",
-                crate::board::clock_sim_verilog(name, &clock),
+                clock::clock_sim_verilog(name, &clock)?,
             ),
         },
-    ]
+    ])
 }
 
 /// All files for one configuration; `command` is the command line quoted in headers.
@@ -783,7 +784,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         }
     }
     if let Some(top) = top_text {
-        files.extend(board_files(loaded, command, &top));
+        files.extend(board_files(loaded, command, &top)?);
         files.push(OutFile {
             name: format!("{name}_top.v"),
             text: format!(
@@ -798,7 +799,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         });
     }
     if let Some(top) = cap_text {
-        files.extend(board_files(loaded, command, &top));
+        files.extend(board_files(loaded, command, &top)?);
         files.push(OutFile {
             name: format!("{name}_top.v"),
             text: format!(

@@ -39,6 +39,26 @@ const TEMPLATES: &[(&str, &str)] = &[
         "constraints/top.sdc.j2",
         include_str!("../../rtl-templates/constraints/top.sdc.j2"),
     ),
+    (
+        "board/board.v.j2",
+        include_str!("../../rtl-templates/board/board.v.j2"),
+    ),
+    (
+        "board/clock_head.v.j2",
+        include_str!("../../rtl-templates/board/clock_head.v.j2"),
+    ),
+    (
+        "board/clock_dcm_sp.v.j2",
+        include_str!("../../rtl-templates/board/clock_dcm_sp.v.j2"),
+    ),
+    (
+        "board/clock_altpll.v.j2",
+        include_str!("../../rtl-templates/board/clock_altpll.v.j2"),
+    ),
+    (
+        "board/clock_sim.v.j2",
+        include_str!("../../rtl-templates/board/clock_sim.v.j2"),
+    ),
 ];
 
 /// The environment holding [`TEMPLATES`], built once.
