@@ -123,10 +123,10 @@ pub fn core_output_ports(d: &Derived) -> Vec<Port> {
     ]
 }
 
-/// The wrapper that gives `<name>_core` its exact port widths.
-fn core_wrapper(loaded: &Loaded, rtl: &str) -> String {
+/// The wrapper that gives `<name>_core` its exact port widths
+/// (`rtl-templates/core/core_wrapper.v.j2`).
+fn core_wrapper(loaded: &Loaded, rtl: &str) -> Result<String> {
     let d = &loaded.derived;
-    let name = core_name(loaded);
     let a = d.adc_width;
     let pad = |s: &str| {
         if a < 16 {
@@ -136,60 +136,34 @@ fn core_wrapper(loaded: &Loaded, rtl: &str) -> String {
         }
     };
     let f = d.fine_bits;
-    let turns = turns_expr(d);
-    format!(
-        r#"// {name}: QEP-CORDIC decoder core, {n} iterations, {f} fine bits, {ppr} PPR.
-// Latency {lat} cycles from in_valid to out_valid; {thr}.
-module {name} (
-    input  wire                 clk,          // system clock
-    input  wire                 rst,          // synchronous reset, active high
-    input  wire                 in_valid,     // in_sin/in_cos hold a sample
-    input  wire signed [{am}:0]  in_sin,       // sine sample, two's complement
-    input  wire signed [{am}:0]  in_cos,       // cosine sample, two's complement
-    output wire                 out_valid,    // one-cycle strobe per decoded sample
-    output wire        [{pm}:0]  out_position, // single-turn position, 2^-{f} quadrant units
-    output wire signed [{tm}:0]  out_turns,    // multi-turn count ({mt} bits)
-    output wire        [{fm}:0]  out_fine,     // fine part of out_position
-    output wire                 out_error,    // sample rejected: amplitude too low
-    output wire                 out_warning,  // step near the 2-quadrant ambiguity (or a dropped sample)
-    output wire                 in_ready      // a sample offered in this cycle is accepted
-);
-    wire [31:0] qc;    // coarse quadrant count, 0..{qmax}
-    wire [31:0] fine;  // fine part, {f} bits
-    wire [31:0] turns; // turn count, {mt} bits
-    {rtl} rtl (
-        .clk(clk), .rst(rst), .in_valid(in_valid),
-        .in_sin({sin}), .in_cos({cos}),
-        .out_valid(out_valid), .out_qc(qc), .out_fine(fine), .out_turns(turns),
-        .out_error(out_error), .out_warning(out_warning),
-        .load(1'b0), .load_qc(32'd0), .load_turns(32'd0), .out_mag(), .out_mag_valid(),
-        .in_ready(in_ready)
-    );
-    assign out_position = {{qc[{qb}:0], fine[{fm}:0]}};
-    assign out_turns = {turns};
-    assign out_fine = fine[{fm}:0];
-endmodule // {name}
-"#,
-        n = d.iterations,
-        ppr = loaded.config.encoder.ppr,
-        lat = d.latency_cycles,
-        thr = if d.cycles_per_sample == 1 {
-            "one sample per clock".to_string()
-        } else {
-            format!(
-                "one sample per {} clocks (iterative CORDIC; hold samples off while in_ready is low)",
-                d.cycles_per_sample
-            )
+    templates::render(
+        "core/core_wrapper.v.j2",
+        minijinja::context! {
+            name => core_name(loaded),
+            rtl => rtl,
+            f => f,
+            turns => turns_expr(d),
+            n => d.iterations,
+            ppr => loaded.config.encoder.ppr,
+            lat => d.latency_cycles,
+            thr => if d.cycles_per_sample == 1 {
+                "one sample per clock".to_string()
+            } else {
+                format!(
+                    "one sample per {} clocks (iterative CORDIC; hold samples off while in_ready is low)",
+                    d.cycles_per_sample
+                )
+            },
+            am => a - 1,
+            pm => d.position_width - 1,
+            tm => d.turns_width - 1,
+            fm => f - 1,
+            mt => d.multiturn_bits,
+            qmax => d.quadrants_per_turn - 1,
+            qb => d.quadrant_bits - 1,
+            sin => pad("in_sin"),
+            cos => pad("in_cos"),
         },
-        am = a - 1,
-        pm = d.position_width - 1,
-        tm = d.turns_width - 1,
-        fm = f - 1,
-        mt = d.multiturn_bits,
-        qmax = d.quadrants_per_turn - 1,
-        qb = d.quadrant_bits - 1,
-        sin = pad("in_sin"),
-        cos = pad("in_cos"),
     )
 }
 
@@ -199,7 +173,7 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
     let mut uut = CoreRtl::new(&loaded.derived);
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let body = verilog::export(&uut, "core", &rtl_name)?;
-    Ok(format!("{}\n{body}", core_wrapper(loaded, &rtl_name)))
+    Ok(format!("{}\n{body}", core_wrapper(loaded, &rtl_name)?))
 }
 
 /// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).

@@ -20,6 +20,10 @@ use std::sync::OnceLock;
 const TEMPLATES: &[(&str, &str)] = &[
     ("header.j2", include_str!("../../rtl-templates/header.j2")),
     (
+        "core/core_wrapper.v.j2",
+        include_str!("../../rtl-templates/core/core_wrapper.v.j2"),
+    ),
+    (
         "constraints/clock_comment.j2",
         include_str!("../../rtl-templates/constraints/clock_comment.j2"),
     ),
