@@ -345,16 +345,17 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             "{name}: the pinned port {p} has no place in the wrapper"
         )));
     }
-    let mut decl = String::new();
+    let mut decl = Vec::new();
     let mut conns: Vec<String> = vec![];
     let mut left_out: Vec<&str> = vec![];
     for (p, input, comment, tie) in TOP_PORTS {
         if used.contains(p) {
             let dir = if *input { "input " } else { "output" };
-            decl.push_str(&format!(
-                "    {dir} wire         {:<14}// {comment}\n",
-                format!("{p},")
-            ));
+            decl.push(minijinja::context! {
+                dir => dir,
+                name => format!("{:<14}", format!("{p},")),
+                comment => *comment,
+            });
             conns.push(format!(".{p}({p})"));
         } else if *input {
             if tie.is_empty() {
@@ -390,34 +391,23 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             wrap_list(&left_out, "//", ".")
         )
     };
-    let wrapper = format!(
-        r#"// {name}: sinewave encoder decoder for the Spartan-3AN Starter Kit: LTC6912-1 set-up,
-// LTC1407A-1 controller ({rate:.0} samples/s per channel), QEP-CORDIC core, parallel bus.
-{note}module {name} (
-{decl}    output wire         par_valid,    // parallel bus: one-cycle strobe per position
-    output wire [{pm}:0]  par_position, // parallel bus: single-turn position, 2^-{f} quadrant
-    output wire [{tm}:0]  par_turns,    // parallel bus: signed multi-turn count
-    output wire [{fm}:0]  par_fine,     // parallel bus: fine part of the position
-    output wire         par_error,    // parallel bus: error flag
-    output wire         par_warning   // parallel bus: warning flag
-);
-    wire [31:0] qc;    // coarse quadrant count
-    wire [31:0] fine;  // fine part
-    wire [31:0] turns; // turn count
-    {rtl_name} rtl (
-{inst}
-    );
-    assign par_position = {{qc[{qb}:0], fine[{fm}:0]}};
-    assign par_turns = {turns};
-    assign par_fine = fine[{fm}:0];
-endmodule // {name}
-"#,
-        rate = d.sample_rate_hz,
-        pm = d.position_width - 1,
-        tm = d.turns_width - 1,
-        fm = f - 1,
-        qb = d.quadrant_bits - 1,
-    );
+    let wrapper = templates::render(
+        "top/sinewave_top.v.j2",
+        minijinja::context! {
+            name => name,
+            note => note,
+            ports => decl,
+            rtl_name => rtl_name,
+            inst => inst,
+            turns => turns,
+            f => f,
+            rate => format!("{:.0}", d.sample_rate_hz),
+            pm => d.position_width - 1,
+            tm => d.turns_width - 1,
+            fm => f - 1,
+            qb => d.quadrant_bits - 1,
+        },
+    )?;
     Ok(Some(format!(
         "{wrapper}
 {body}"
@@ -437,54 +427,22 @@ pub fn cap_top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     let body = verilog::export(&uut, "top", &rtl_name)?;
     let f = d.fine_bits;
     let turns = turns_expr(d);
-    let wrapper = format!(
-        r#"// {name}: capacitive encoder decoder: excitation NCO ({carrier:.0} Hz), SPI ADC
-// ({rate:.0} samples/s), band-pass, quadrature demodulation, low-pass, QEP-CORDIC core,
-// BiSS-C and parallel bus.
-module {name} (
-    input  wire         clk,          // system clock
-    input  wire         rst,          // synchronous reset, active high
-    input  wire         adc_miso,     // ADC serial data
-    output wire         adc_sck,      // ADC serial clock
-    output wire         adc_conv,     // ADC conversion start / chip select
-    output wire [{wm}:0]  exc_sin,      // excitation DAC word A sin(wt), two's complement
-    output wire [{wm}:0]  exc_cos,      // excitation DAC word A cos(wt), two's complement
-    output wire         exc_strobe,   // one clock when new excitation words are out
-    input  wire         biss_ma,      // BiSS-C MA clock from the master
-    output wire         biss_slo,     // BiSS-C SLO data to the master
-    output wire         par_valid,    // parallel bus: one-cycle strobe per position
-    output wire [{pm}:0]  par_position, // parallel bus: single-turn position, 2^-{f} quadrant
-    output wire [{tm}:0]  par_turns,    // parallel bus: signed multi-turn count
-    output wire [{fm}:0]  par_fine,     // parallel bus: fine part of the position
-    output wire         par_error,    // parallel bus: error flag
-    output wire         par_warning   // parallel bus: warning flag
-);
-    wire [31:0] qc;    // coarse quadrant count
-    wire [31:0] fine;  // fine part
-    wire [31:0] turns; // turn count
-    wire [31:0] es;    // excitation sin word
-    wire [31:0] ec;    // excitation cos word
-    {rtl_name} rtl (
-        .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_sck(adc_sck), .adc_conv(adc_conv),
-        .exc_sin(es), .exc_cos(ec), .exc_strobe(exc_strobe), .biss_ma(biss_ma),
-        .biss_slo(biss_slo), .par_valid(par_valid), .par_qc(qc), .par_fine(fine),
-        .par_turns(turns), .par_error(par_error), .par_warning(par_warning)
-    );
-    assign exc_sin = es[{wm}:0];
-    assign exc_cos = ec[{wm}:0];
-    assign par_position = {{qc[{qb}:0], fine[{fm}:0]}};
-    assign par_turns = {turns};
-    assign par_fine = fine[{fm}:0];
-endmodule // {name}
-"#,
-        carrier = k.config.carrier_hz,
-        rate = k.sample_rate_hz,
-        wm = k.config.dac_width - 1,
-        pm = d.position_width - 1,
-        tm = d.turns_width - 1,
-        fm = f - 1,
-        qb = d.quadrant_bits - 1,
-    );
+    let wrapper = templates::render(
+        "top/capacitive_top.v.j2",
+        minijinja::context! {
+            name => name,
+            rtl_name => rtl_name,
+            turns => turns,
+            f => f,
+            carrier => format!("{:.0}", k.config.carrier_hz),
+            rate => format!("{:.0}", k.sample_rate_hz),
+            wm => k.config.dac_width - 1,
+            pm => d.position_width - 1,
+            tm => d.turns_width - 1,
+            fm => f - 1,
+            qb => d.quadrant_bits - 1,
+        },
+    )?;
     Ok(Some(format!("{wrapper}\n{body}")))
 }
 

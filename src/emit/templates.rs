@@ -24,6 +24,14 @@ const TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../rtl-templates/core/core_wrapper.v.j2"),
     ),
     (
+        "top/sinewave_top.v.j2",
+        include_str!("../../rtl-templates/top/sinewave_top.v.j2"),
+    ),
+    (
+        "top/capacitive_top.v.j2",
+        include_str!("../../rtl-templates/top/capacitive_top.v.j2"),
+    ),
+    (
         "constraints/clock_comment.j2",
         include_str!("../../rtl-templates/constraints/clock_comment.j2"),
     ),
