@@ -612,19 +612,22 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             "//"
         )
     );
-    let report = format!(
-        "{}\n# {name}: derived parameters\n\n```\n{}```\n",
-        header(
-            loaded,
-            command,
-            "Derived parameters of the configuration.",
-            "<!--"
-        )
-        .lines()
-        .map(|l| format!("{l} -->\n"))
-        .collect::<String>(),
-        loaded.derived.describe()
-    );
+    let report = templates::render(
+        "params.md.j2",
+        minijinja::context! {
+            header => header(
+                loaded,
+                command,
+                "Derived parameters of the configuration.",
+                "<!--"
+            )
+            .lines()
+            .map(|l| format!("{l} -->\n"))
+            .collect::<String>(),
+            name => name,
+            parameters => loaded.derived.describe(),
+        },
+    )?;
     let tb = format!(
         "{}`timescale 1ns / 1ps\n\n{}",
         header(
@@ -633,7 +636,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             "Self-checking testbench of the core (expected outputs from the Rust model).",
             "//"
         ),
-        testbench::core_testbench(loaded)
+        testbench::core_testbench(loaded)?
     );
     let mut files = vec![
         OutFile {

@@ -20,8 +20,16 @@ use std::sync::OnceLock;
 const TEMPLATES: &[(&str, &str)] = &[
     ("header.j2", include_str!("../../rtl-templates/header.j2")),
     (
+        "params.md.j2",
+        include_str!("../../rtl-templates/params.md.j2"),
+    ),
+    (
         "core/core_wrapper.v.j2",
         include_str!("../../rtl-templates/core/core_wrapper.v.j2"),
+    ),
+    (
+        "tb/core_tb.v.j2",
+        include_str!("../../rtl-templates/tb/core_tb.v.j2"),
     ),
     (
         "top/sinewave_top.v.j2",

@@ -17,7 +17,10 @@
 use crate::blocks::core::model::{CoreIn, CoreModel};
 use crate::blocks::mask;
 use crate::config::Loaded;
+use crate::emit::templates::render;
 use crate::emit::{core_input_ports, core_name, core_output_ports};
+use crate::error::Result;
+use crate::sim::cosim::Port;
 use crate::sim::stimulus;
 
 /// The stimulus the emitted testbench uses: directed cases, random samples with gaps and a
@@ -34,55 +37,40 @@ pub fn testbench_stimulus(loaded: &Loaded) -> Vec<CoreIn> {
     s
 }
 
-/// Verilog text of `<name>_core_tb`.
-pub fn core_testbench(loaded: &Loaded) -> String {
+/// Verilog text of `<name>_core_tb` (`rtl-templates/tb/core_tb.v.j2`).
+pub fn core_testbench(loaded: &Loaded) -> Result<String> {
     let d = &loaded.derived;
     let stim = testbench_stimulus(loaded);
     let mut model = CoreModel::new(d);
     let ins = core_input_ports(d);
     let outs = core_output_ports(d);
-    let in_bits: u32 = ins.iter().map(|p| p.width).sum();
-    let out_bits: u32 = outs.iter().map(|p| p.width).sum();
-    let name = core_name(loaded);
     let am = mask(d.adc_width);
-    let mut vectors = String::new();
-    for (k, i) in stim.iter().enumerate() {
-        let o = model.step(*i);
-        let iv = [
-            i.rst as u64,
-            i.valid as u64,
-            i.sin as u64 & am,
-            i.cos as u64 & am,
-        ];
-        let ov = o.row();
-        vectors.push_str(&format!(
-            "        stim[{k}] = {in_bits}'b{}; expected[{k}] = {out_bits}'b{};\n",
-            bits(&iv, &ins),
-            bits(&ov, &outs)
-        ));
-    }
-    let n = stim.len();
-    let in_list = ins
+    // One (stimulus bits, expected bits) pair per cycle, fields separated by `_`.
+    let vectors: Vec<(String, String)> = stim
         .iter()
-        .map(|p| p.name.as_str())
-        .collect::<Vec<_>>()
-        .join(", ");
-    let out_list = outs
-        .iter()
-        .map(|p| p.name.as_str())
-        .collect::<Vec<_>>()
-        .join(", ");
-    let decl = |ports: &[crate::sim::cosim::Port], kind: &str| {
+        .map(|i| {
+            let o = model.step(*i);
+            let iv = [
+                i.rst as u64,
+                i.valid as u64,
+                i.sin as u64 & am,
+                i.cos as u64 & am,
+            ];
+            (bits(&iv, &ins), bits(&o.row(), &outs))
+        })
+        .collect();
+    let names = |ports: &[Port]| {
         ports
             .iter()
-            .map(|p| {
-                if p.width == 1 {
-                    format!("    {kind} {};\n", p.name)
-                } else {
-                    format!("    {kind} [{}:0] {};\n", p.width - 1, p.name)
-                }
-            })
-            .collect::<String>()
+            .map(|p| p.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let list = |ports: &[Port]| -> Vec<minijinja::Value> {
+        ports
+            .iter()
+            .map(|p| minijinja::context! { name => p.name.as_str(), width => p.width })
+            .collect()
     };
     let conns = ins
         .iter()
@@ -90,56 +78,24 @@ pub fn core_testbench(loaded: &Loaded) -> String {
         .map(|p| format!(".{0}({0})", p.name))
         .collect::<Vec<_>>()
         .join(", ");
-    format!(
-        r#"// {name}_tb: self-checking testbench, {n} cycles; prints PASS or FAIL and the first
-// mismatches. Stimulus and expected outputs from sinedec's bit-accurate model.
-module {name}_tb;
-    reg clk = 1'b0;
-{in_decl}{out_decl}    reg [{im}:0] stim [0:{nm}];   // {{{in_list}}} per cycle
-    reg [{om}:0] expected [0:{nm}]; // {{{out_list}}} per cycle
-    integer k;
-    // Initialized here, not by the stimulus process: Verilator 5.006 propagates a 0 assigned
-    // there into the final check and reports PASS however many cycles mismatched.
-    integer errors = 0;
-    {name} dut(.clk(clk), {conns}, .in_ready());
-    initial begin
-{vectors}    end
-    // Checker: 1 ns after each rising edge, the outputs of cycle k against expected[k].
-    always @(posedge clk) begin
-        #1 if ({{{out_list}}} !== expected[k]) begin
-            errors = errors + 1;
-            if (errors <= 10)
-                $display("cycle %0d: got %b expected %b", k, {{{out_list}}}, expected[k]);
-        end
-    end
-    // Stimulus: inputs change while clk is low, then clk rises.
-    initial begin
-        {{{in_list}}} = {in_bits}'d0;
-        for (k = 0; k <= {nm}; k = k + 1) begin
-            {{{in_list}}} = stim[k];
-            #5 clk = 1'b1;
-            #5 clk = 1'b0;
-        end
-        if (errors == 0) begin
-            $display("PASS: %0d cycles", {n});
-            $finish;
-        end else begin
-            $display("FAIL: %0d mismatching cycles", errors);
-            // Non-zero exit status: vvp exits 1, a Verilator binary aborts.
-            $fatal(1, "{name}_tb: %0d mismatching cycles", errors);
-        end
-    end
-endmodule // {name}_tb
-"#,
-        in_decl = decl(&ins, "reg"),
-        out_decl = decl(&outs, "wire"),
-        im = in_bits - 1,
-        om = out_bits - 1,
-        nm = n - 1,
+    render(
+        "tb/core_tb.v.j2",
+        minijinja::context! {
+            name => core_name(loaded),
+            n => stim.len(),
+            inputs => list(&ins),
+            outputs => list(&outs),
+            in_bits => ins.iter().map(|p| p.width).sum::<u32>(),
+            out_bits => outs.iter().map(|p| p.width).sum::<u32>(),
+            in_list => names(&ins),
+            out_list => names(&outs),
+            conns => conns,
+            vectors => vectors,
+        },
     )
 }
 
-fn bits(values: &[u64], ports: &[crate::sim::cosim::Port]) -> String {
+fn bits(values: &[u64], ports: &[Port]) -> String {
     values
         .iter()
         .zip(ports)
