@@ -382,20 +382,17 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         .map(String::from),
     );
     let inst = wrap_list(&conns, "       ", "");
-    let note = if left_out.is_empty() {
+    // The ports left out, as comment lines of at most 95 characters (empty: none).
+    let left_out_lines = if left_out.is_empty() {
         String::new()
     } else {
-        format!(
-            "// Not ports in this configuration (the rtl's inputs tied to their idle level, its\n\
-             // outputs left open):\n{}\n",
-            wrap_list(&left_out, "//", ".")
-        )
+        wrap_list(&left_out, "//", ".")
     };
     let wrapper = templates::render(
         "top/sinewave_top.v.j2",
         minijinja::context! {
             name => name,
-            note => note,
+            left_out => left_out_lines,
             ports => decl,
             rtl_name => rtl_name,
             inst => inst,
