@@ -127,7 +127,7 @@ pub fn iostandards(target: Target) -> &'static [&'static str] {
 }
 
 /// Which clock synthesizer `<name>_clock` instantiates.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum SynthKind {
     /// Xilinx DCM_SP, CLKFX output (Spartan-3A/3AN).
     DcmSp,
@@ -147,7 +147,7 @@ impl SynthKind {
 
 /// The board clock: the oscillator and, when it differs from the system clock, the
 /// synthesizer that makes the system clock from it.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct BoardClock {
     /// Oscillator frequency on the board's `clk` pin, Hz.
     pub osc_hz: f64,
@@ -156,7 +156,7 @@ pub struct BoardClock {
 }
 
 /// A clock synthesizer setting: out = osc x multiply / divide.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ClockSynth {
     /// DCM_SP or ALTPLL.
     pub kind: SynthKind,
@@ -223,7 +223,7 @@ pub fn board_clock(target: Target, osc_hz: f64, sys_hz: f64) -> Result<BoardCloc
 }
 
 /// I/O timing budget of the ADC interface, ns (see the module doc).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct IoTiming {
     /// FPGA clock to output pad (SCK, CONV): the budget the UCF/SDC make the tool verify.
     pub clock_to_out_ns: f64,

@@ -193,7 +193,7 @@ pub struct Config {
 /// `[capacitive]`: excitation NCO, filters and widths of the capacitive path. The ADC
 /// (`[adc]`, preset `generic`, one channel) samples the receiver signal A sin(wt + theta);
 /// `encoder.ppr` is the number of signal periods per turn (16 in the paper).
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CapacitiveConfig {
     /// Excitation carrier frequency in Hz (10 kHz..1 MHz, below half the sample rate).
@@ -251,7 +251,7 @@ impl PartialEq for CapDerived {
 }
 
 /// Derived capacitive-path parameters: the designed, quantized filters.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct CapDerived {
     /// The configuration section.
     pub config: CapacitiveConfig,
@@ -645,7 +645,7 @@ pub struct CordicConfig {
 }
 
 /// `cordic.architecture`.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Architecture {
     /// N registered stages: latency N + 2, one sample per clock.
@@ -775,7 +775,7 @@ impl Default for MonitorConfig {
 }
 
 /// Parameters computed once from a validated [`Config`].
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Derived {
     /// ADC controller parameters (validated).
     pub adc: AdcParams,

@@ -5,6 +5,7 @@
 //! removes a file sinedec did not write, and replaces a file only once every new file is
 //! complete.
 pub mod clock;
+pub mod flow;
 pub mod output;
 pub mod templates;
 pub mod testbench;
@@ -715,8 +716,8 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             });
         }
     }
-    if let Some(top) = top_text {
-        files.extend(board_files(loaded, command, &top)?);
+    if let Some(top) = &top_text {
+        files.extend(board_files(loaded, command, top)?);
         files.push(OutFile {
             name: format!("{name}_top.v"),
             text: format!(
@@ -730,8 +731,8 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             ),
         });
     }
-    if let Some(top) = cap_text {
-        files.extend(board_files(loaded, command, &top)?);
+    if let Some(top) = &cap_text {
+        files.extend(board_files(loaded, command, top)?);
         files.push(OutFile {
             name: format!("{name}_top.v"),
             text: format!(
@@ -755,7 +756,109 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             });
         }
     }
+    files.extend(flow_files(
+        loaded,
+        command,
+        &core,
+        top_text.as_ref().or(cap_text.as_ref()),
+        &files,
+    )?);
     Ok(Generation { files })
+}
+
+/// The tool-flow files (see [`flow`]): FuseSoC core, instantiation templates, parameters
+/// as JSON. `written` are the files generated so far (their names decide the targets).
+fn flow_files(
+    loaded: &Loaded,
+    command: &str,
+    core: &str,
+    top: Option<&String>,
+    written: &[OutFile],
+) -> Result<Vec<OutFile>> {
+    let name = &loaded.config.name;
+    let core_module = core_name(loaded);
+    let mut modules = vec![flow::Module {
+        name: core_module.clone(),
+        what: "decoder core (QEP-CORDIC, quadrant counter)",
+        ports: flow::ports_of(core)?,
+    }];
+    if let Some(t) = top {
+        modules.push(flow::Module {
+            name: top_name(loaded),
+            what: "board top (ADC controller, correction, core, outputs)",
+            ports: flow::ports_of(t)?,
+        });
+    }
+    let has = |f: &str| written.iter().any(|o| o.name == f);
+    let top_module = top_name(loaded);
+    let synth_files = |constraints: Vec<(String, &'static str)>| {
+        let mut rtl = vec![format!("{top_module}.v")];
+        let mut top = top_module.clone();
+        if has(&format!("{name}_board.v")) {
+            rtl.push(format!("{name}_board.v"));
+            rtl.push(format!("{name}_clock.v"));
+            top = format!("{name}_board");
+        }
+        (rtl, top, constraints)
+    };
+    let synth = if has(&format!("{top_module}.ucf")) {
+        let (rtl, top, constraints) = synth_files(vec![(format!("{top_module}.ucf"), "UCF")]);
+        Some(flow::Synth {
+            tool: "ise",
+            tool_name: "ISE",
+            part: "XC3S700AN-4FGG484",
+            top,
+            rtl,
+            constraints,
+        })
+    } else if has(&format!("{top_module}.qsf")) {
+        let (rtl, top, constraints) = synth_files(vec![
+            (format!("{top_module}.sdc"), "SDC"),
+            (format!("{top_module}.qsf"), "tclSource"),
+        ]);
+        Some(flow::Synth {
+            tool: "quartus",
+            tool_name: "Quartus",
+            part: "EP3C40F324C8",
+            top,
+            rtl,
+            constraints,
+        })
+    } else {
+        None
+    };
+    Ok(vec![
+        OutFile {
+            name: format!("{name}_sinedec.core"),
+            text: flow::fusesoc_core(
+                loaded,
+                header(
+                    loaded,
+                    command,
+                    "FuseSoC CAPI2 core: simulation and synthesis targets.",
+                    "#",
+                ),
+                &core_module,
+                synth,
+            )?,
+        },
+        OutFile {
+            name: format!("{name}_inst.v"),
+            text: flow::inst_verilog(
+                header(
+                    loaded,
+                    command,
+                    "Instantiation templates (not a module: copy from it).",
+                    "//",
+                ),
+                &modules,
+            )?,
+        },
+        OutFile {
+            name: format!("{name}_params.json"),
+            text: flow::params_json(loaded, command, &modules)?,
+        },
+    ])
 }
 
 /// Writes the files into `dir` as `generate` does (see [`output`] and README.md, "Output

@@ -24,6 +24,14 @@ const TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../rtl-templates/params.md.j2"),
     ),
     (
+        "flow/sinedec.core.j2",
+        include_str!("../../rtl-templates/flow/sinedec.core.j2"),
+    ),
+    (
+        "flow/inst.v.j2",
+        include_str!("../../rtl-templates/flow/inst.v.j2"),
+    ),
+    (
         "core/core_wrapper.v.j2",
         include_str!("../../rtl-templates/core/core_wrapper.v.j2"),
     ),

@@ -130,7 +130,7 @@ pub struct CoefFormat {
 }
 
 /// One ideal (f64) section: `y = b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct IdealSection {
     /// Numerator `[b0, b1, b2]`.
     pub b: [f64; 3],
@@ -139,7 +139,7 @@ pub struct IdealSection {
 }
 
 /// One quantized section: the integers stand for `value / 2^frac` of the [`Sos`] format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Section {
     /// Numerator `[b0, b1, b2]` as integers.
     pub b: [i64; 3],
@@ -148,7 +148,7 @@ pub struct Section {
 }
 
 /// Quantized second-order sections in cascade order.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Sos {
     /// Sections, first to last.
     pub sections: Vec<Section>,
@@ -157,7 +157,7 @@ pub struct Sos {
 }
 
 /// A designed filter: the ideal sections, the quantized ones and their response comparison.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct Designed {
     /// The specification it was designed from.
     pub spec: FilterSpec,

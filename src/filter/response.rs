@@ -7,7 +7,7 @@ use super::{cascade_gain, FilterSpec, IdealSection, Sos};
 pub const PASSBAND_GRID: usize = 4097;
 
 /// Gain of both cascades at one probe frequency.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Probe {
     /// Frequency in Hz.
     pub freq_hz: f64,
@@ -18,7 +18,7 @@ pub struct Probe {
 }
 
 /// Response figures of a designed filter (ideal f64 vs quantized integer cascade).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Response {
     /// Pass band `[lo, hi]` in Hz over which the deviation is measured.
     pub passband_hz: [f64; 2],

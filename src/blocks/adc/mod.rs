@@ -72,7 +72,7 @@ pub mod hdl;
 pub mod model;
 
 /// The chip the parameters were made for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum AdcChip {
     /// Linear Technology LTC1407A-1 (Spartan-3A/3AN Starter Kit).
     Ltc1407a1,
@@ -91,7 +91,7 @@ impl std::fmt::Display for AdcChip {
 }
 
 /// Coding of the samples in the frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum SignFormat {
     /// Two's complement (delivered as is).
     TwosComplement,
@@ -100,7 +100,7 @@ pub enum SignFormat {
 }
 
 /// Timing limits of the ADC chip, in nanoseconds (0 = no limit).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct AdcTiming {
     /// Minimum SCK period.
     pub sck_min_period_ns: f64,
@@ -145,7 +145,7 @@ impl AdcTiming {
 }
 
 /// Frame format of a generic SPI ADC.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct AdcFrame {
     /// SCK cycles per frame (1..=250).
     pub frame_sck: u32,
@@ -193,7 +193,7 @@ impl AdcFrame {
 }
 
 /// Parameters of one ADC controller instance, all in system clocks (derived once).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct AdcParams {
     /// Which preset made these parameters.
     pub chip: AdcChip,

@@ -119,7 +119,7 @@ pub const MIN_TIMEOUT_CLOCKS: u32 = 8;
 pub const MAX_ACK_PERIODS: u32 = 64;
 
 /// Parameters of the BiSS-C slave.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct BissParams {
     /// Single-turn position bits: the low `position_bits` of `pos` (1..=32).
     pub position_bits: u32,

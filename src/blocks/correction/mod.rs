@@ -81,7 +81,7 @@ pub mod hdl;
 pub mod model;
 
 /// Parameters of the automatic calibration.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct AutoCalParams {
     target_amplitude: u32,
     periods: u32,
@@ -104,7 +104,7 @@ impl AutoCalParams {
 }
 
 /// Parameters of [`hdl::Correction`] and [`model::CorrectionModel`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct CorrectionParams {
     adc_width: u32,
     gain_frac_bits: u32,

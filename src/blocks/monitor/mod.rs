@@ -50,7 +50,7 @@ pub mod hdl;
 pub mod model;
 
 /// Parameters of [`hdl::Monitor`] and [`model::MonitorModel`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct MonitorParams {
     adc_width: u32,
     mag_width: u32,

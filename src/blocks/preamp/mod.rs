@@ -97,7 +97,7 @@ pub fn code_gain(code: u8) -> Option<i32> {
 }
 
 /// Parameters of the pre-amplifier set-up.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PreampParams {
     /// System clock in Hz.
     pub clock_hz: f64,

@@ -71,7 +71,7 @@ pub mod hdl;
 pub mod model;
 
 /// Parameters of [`hdl::QepDecoder`] and [`model::QepModel`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct QepParams {
     filter: u32,
     count_width: u32,

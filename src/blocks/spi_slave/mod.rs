@@ -39,7 +39,7 @@ pub mod hdl;
 use crate::blocks::biss::{check_clock, check_word, min_level_clocks, sync_latency};
 
 /// Parameters of the SPI slave.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SpiSlaveParams {
     /// Single-turn position bits: the low `position_bits` of `pos` (1..=32).
     pub position_bits: u32,

@@ -40,7 +40,7 @@ use crate::blocks::biss::{
 pub const DEFAULT_TIMEOUT_US: f64 = 20.0;
 
 /// Parameters of the SSI slave.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SsiParams {
     /// Single-turn position bits: the low `position_bits` of `pos` (1..=32).
     pub position_bits: u32,
