@@ -808,49 +808,10 @@ fn the_adc_round_trip_is_checked_and_constrained() {
     );
 }
 
-/// The capacitive config on Cyclone III with a `[board]`: balls of the EP3C40F324 package
-/// (rows A..V, columns 1..18), the Quartus I/O standard names, and an ALTPLL when the
-/// board's oscillator is not the system clock.
-fn cap_board(osc: Option<&str>, first_ball: &str) -> String {
-    let cfg = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/configs/cyclone3_capacitive.toml"
-    ))
-    .expect("capacitive config");
-    let mut t = cfg + "\n[board]\niostandard = \"3.3-V LVTTL\"\n";
-    if let Some(o) = osc {
-        t.push_str(&format!("clock_hz = {o}\n"));
-    }
-    t.push_str("[board.pins]\n");
-    let mut balls = (0..18 * 18).map(|i| {
-        let rows = [
-            "A", "B", "C", "D", "E", "F", "G", "H", "J", "K", "L", "M", "N", "P", "R", "T", "U",
-            "V",
-        ];
-        format!("{}{}", rows[i / 18], i % 18 + 1)
-    });
-    balls.next();
-    for (i, p) in sinedec::config::CAP_TOP_PINS.iter().enumerate() {
-        let ball = if i == 0 {
-            first_ball.to_string()
-        } else {
-            balls.next().expect("ball")
-        };
-        t.push_str(&format!("{p} = \"{ball}\"\n"));
-    }
-    for bus in sinedec::config::CAP_TOP_BUSES {
-        let v: Vec<String> = (0..16)
-            .map(|_| format!("\"{}\"", balls.next().expect("ball")))
-            .collect();
-        t.push_str(&format!("{bus} = [{}]\n", v.join(", ")));
-    }
-    t
-}
-
 #[test]
 fn the_cyclone_board_uses_its_package_and_a_pll_when_the_clock_differs() {
     // 50 MHz system clock from a 25 MHz oscillator: ALTPLL x 2 / 1.
-    let l = Loaded::parse(&cap_board(Some("25e6"), "A1"), "c.toml").expect("parses");
+    let l = Loaded::parse(&common::cap_board(Some("25e6"), "A1"), "c.toml").expect("parses");
     let g = sinedec::emit::generate(&l, "test").expect("generates");
     let qsf = file(&g, "cap_top.qsf");
     assert!(qsf.contains("TOP_LEVEL_ENTITY cap_board"), "{qsf}");
@@ -874,7 +835,7 @@ fn the_cyclone_board_uses_its_package_and_a_pll_when_the_clock_differs() {
         assert!(pll.contains(want), "{want} missing:\n{pll}");
     }
     // The same oscillator as the system clock: no PLL, the SDC clock is the system clock.
-    let l = Loaded::parse(&cap_board(None, "A1"), "c.toml").expect("parses");
+    let l = Loaded::parse(&common::cap_board(None, "A1"), "c.toml").expect("parses");
     let g = sinedec::emit::generate(&l, "test").expect("generates");
     assert!(file(&g, "cap_top.qsf").contains("TOP_LEVEL_ENTITY cap_top"));
     let sdc = file(&g, "cap_top.sdc");
@@ -885,7 +846,7 @@ fn the_cyclone_board_uses_its_package_and_a_pll_when_the_clock_differs() {
     );
     assert!(!g.files.iter().any(|f| f.name == "cap_clock.v"));
     // W1 is a ball of the FG484 but not of the F324 (its rows end at V).
-    let e = Loaded::parse(&cap_board(None, "W1"), "c.toml")
+    let e = Loaded::parse(&common::cap_board(None, "W1"), "c.toml")
         .expect_err("W1")
         .to_string();
     assert!(e.contains("W1") && e.contains("EP3C40F324"), "{e}");

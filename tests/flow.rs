@@ -130,25 +130,7 @@ fn fusesoc_synth_targets_set_up_the_vendor_projects() {
         assert!(tcl.contains(want), "{want} not in the ISE script:\n{tcl}");
     }
     // Quartus for the capacitive board: family, device, the SDC, the QSF sourced.
-    let cap = include_str!("../configs/cyclone3_capacitive.toml");
-    let mut text = cap.to_string();
-    text.push_str("\n[board]\niostandard = \"3.3-V LVTTL\"\nclock_hz = 25e6\n[board.pins]\n");
-    let mut balls = (0..18 * 18).map(|i| {
-        let rows = [
-            "A", "B", "C", "D", "E", "F", "G", "H", "J", "K", "L", "M", "N", "P", "R", "T", "U",
-            "V",
-        ];
-        format!("{}{}", rows[i / 18], i % 18 + 1)
-    });
-    for p in sinedec::config::CAP_TOP_PINS {
-        text.push_str(&format!("{p} = \"{}\"\n", balls.next().unwrap()));
-    }
-    for bus in sinedec::config::CAP_TOP_BUSES {
-        let v: Vec<String> = (0..16)
-            .map(|_| format!("\"{}\"", balls.next().unwrap()))
-            .collect();
-        text.push_str(&format!("{bus} = [{}]\n", v.join(", ")));
-    }
+    let text = common::cap_board(Some("25e6"), "A1");
     let dir = common::workdir("flow_fusesoc_quartus");
     write(&text, &dir);
     let vlnv = VLNV.replace(":sd:", ":cap:");

@@ -10,6 +10,8 @@
 //!
 //! One line is normalised: the header's `(commit <hash>)`, which names the commit the binary
 //! was built from (`tests/cli.rs` checks it against git), becomes `(commit -)`.
+mod common;
+
 use expect_test::expect_file;
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::emit::generate;
@@ -93,20 +95,6 @@ fn cyclone3_board_files() {
     // The capacitive config with a [board]: a 25 MHz oscillator (so an ALTPLL makes the
     // 50 MHz system clock) and every port on a ball of the EP3C40F324 package, the ADC data
     // buses as lists (one QSF line per bit).
-    let mut text = include_str!("../configs/cyclone3_capacitive.toml").to_string();
-    text.push_str("\n[board]\niostandard = \"3.3-V LVTTL\"\nclock_hz = 25e6\n[board.pins]\n");
-    let rows = [
-        "A", "B", "C", "D", "E", "F", "G", "H", "J", "K", "L", "M", "N", "P", "R", "T", "U", "V",
-    ];
-    let mut balls = (0..18 * 18).map(|i| format!("{}{}", rows[i / 18], i % 18 + 1));
-    for p in sinedec::config::CAP_TOP_PINS {
-        text.push_str(&format!("{p} = \"{}\"\n", balls.next().expect("ball")));
-    }
-    for bus in sinedec::config::CAP_TOP_BUSES {
-        let v: Vec<String> = (0..16)
-            .map(|_| format!("\"{}\"", balls.next().expect("ball")))
-            .collect();
-        text.push_str(&format!("{bus} = [{}]\n", v.join(", ")));
-    }
+    let text = common::cap_board(Some("25e6"), "A1");
     check("cyclone3_board", &text, "cap_board.toml");
 }

@@ -74,3 +74,42 @@ pub fn replay_top_in_simulators(
     }
     r
 }
+
+/// The capacitive config on Cyclone III with a `[board]`: balls of the EP3C40F324 package
+/// (rows A..V, columns 1..18), the Quartus I/O standard names, and an ALTPLL when the
+/// board's oscillator is not the system clock.
+pub fn cap_board(osc: Option<&str>, first_ball: &str) -> String {
+    let cfg = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/cyclone3_capacitive.toml"
+    ))
+    .expect("capacitive config");
+    let mut t = cfg + "\n[board]\niostandard = \"3.3-V LVTTL\"\n";
+    if let Some(o) = osc {
+        t.push_str(&format!("clock_hz = {o}\n"));
+    }
+    t.push_str("[board.pins]\n");
+    let mut balls = (0..18 * 18).map(|i| {
+        let rows = [
+            "A", "B", "C", "D", "E", "F", "G", "H", "J", "K", "L", "M", "N", "P", "R", "T", "U",
+            "V",
+        ];
+        format!("{}{}", rows[i / 18], i % 18 + 1)
+    });
+    balls.next();
+    for (i, p) in sinedec::config::CAP_TOP_PINS.iter().enumerate() {
+        let ball = if i == 0 {
+            first_ball.to_string()
+        } else {
+            balls.next().expect("ball")
+        };
+        t.push_str(&format!("{p} = \"{ball}\"\n"));
+    }
+    for bus in sinedec::config::CAP_TOP_BUSES {
+        let v: Vec<String> = (0..16)
+            .map(|_| format!("\"{}\"", balls.next().expect("ball")))
+            .collect();
+        t.push_str(&format!("{bus} = [{}]\n", v.join(", ")));
+    }
+    t
+}
