@@ -4,7 +4,8 @@
 //!   target sets up an ISE project for the kit (Spartan3A and Spartan3AN, xc3s700an,
 //!   fgg484, -4, the UCF) and a Quartus project for the capacitive board (the SDC, the QSF
 //!   sourced), checked in the project scripts edalize writes (`--setup`: no vendor tool
-//!   runs);
+//!   runs), and sinedec's own ISE script (`<name>_ise.tcl`) and Quartus QSF/QPF say what
+//!   edalize's scripts say (part, files, top, revision);
 //! - `<name>_inst.v`: its instance of `<name>_core` compiles with Icarus against the core;
 //! - `<name>_params.json`: the ports equal the testbench's port list and the derived
 //!   parameters the library's.
@@ -129,6 +130,28 @@ fn fusesoc_synth_targets_set_up_the_vendor_projects() {
     ] {
         assert!(tcl.contains(want), "{want} not in the ISE script:\n{tcl}");
     }
+    // sinedec's own ISE script (<name>_ise.tcl) says what edalize's says: the same part
+    // lines, the same files, the same top.
+    let ours = std::fs::read_to_string(dir.join("sd_ise.tcl")).expect("sd_ise.tcl");
+    let src = "src/sinedec_generated_sd_0.1.0/";
+    let mut files = 0;
+    for line in ours.lines().filter(|l| !l.starts_with('#')) {
+        if let Some(f) = line.strip_prefix("xfile add ") {
+            files += 1;
+            assert!(
+                tcl.contains(&format!("xfile add {src}{f}"))
+                    || tcl.contains(&format!("xfile_add_exist_ok {src}{f}")),
+                "{f} is not in edalize's script:\n{tcl}"
+            );
+        } else if line.starts_with("project set ") {
+            assert!(
+                tcl.contains(line),
+                "{line:?} is not in edalize's script:\n{tcl}"
+            );
+        }
+    }
+    assert_eq!(files, 4, "{ours}");
+    assert!(ours.contains("project set top \"sd_board\""), "{ours}");
     // Quartus for the capacitive board: family, device, the SDC, the QSF sourced.
     let text = common::cap_board(Some("25e6"), "A1");
     let dir = common::workdir("flow_fusesoc_quartus");
@@ -157,6 +180,23 @@ fn fusesoc_synth_targets_set_up_the_vendor_projects() {
             "{want} not in the Quartus scripts:\n{tcl}"
         );
     }
+    // The QSF names the same Verilog files as edalize's project script, and the QPF's
+    // revision is the QSF.
+    let qsf = std::fs::read_to_string(dir.join("cap_top.qsf")).unwrap();
+    let ours: Vec<&str> = qsf
+        .lines()
+        .filter_map(|l| l.strip_prefix("set_global_assignment -name VERILOG_FILE "))
+        .collect();
+    assert_eq!(ours, ["cap_top.v", "cap_board.v", "cap_clock.v"], "{qsf}");
+    for f in &ours {
+        assert!(
+            tcl.contains(&format!("VERILOG_FILE src/sinedec_generated_cap_0.1.0/{f}")),
+            "{f} is not in edalize's script:\n{tcl}"
+        );
+    }
+    let qpf = std::fs::read_to_string(dir.join("cap_top.qpf")).unwrap();
+    assert!(qpf.contains("PROJECT_REVISION = \"cap_top\""), "{qpf}");
+    assert!(qpf.contains("QUARTUS_VERSION = "), "{qpf}");
 }
 
 #[test]

@@ -444,8 +444,9 @@ pub fn cap_top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     Ok(Some(format!("{wrapper}\n{body}")))
 }
 
-/// Quartus QSF (pins, I/O standard, device) and SDC (clock) of the capacitive top.
-fn cap_constraints(loaded: &Loaded, command: &str) -> Result<Option<(String, String)>> {
+/// Quartus QSF (device, sources, pins, I/O standard), SDC (clock) and QPF (the project) of
+/// the capacitive top.
+fn cap_constraints(loaded: &Loaded, command: &str) -> Result<Option<(String, String, String)>> {
     if loaded.derived.capacitive.is_none() {
         return Ok(None);
     }
@@ -485,7 +486,8 @@ fn cap_constraints(loaded: &Loaded, command: &str) -> Result<Option<(String, Str
                 "#",
             ),
             qsf_top => qsf_top,
-            top => top,
+            top => top.as_str(),
+            rtl => synthesis_sources(loaded).0,
             board => b.is_some(),
             pins => located,
             iostandard => iostd,
@@ -518,7 +520,34 @@ fn cap_constraints(loaded: &Loaded, command: &str) -> Result<Option<(String, Str
             imax_ns => format!("{:.3}", t_sys - io.input_setup_ns),
         },
     )?;
-    Ok(Some((q, s)))
+    let p = templates::render(
+        "constraints/top.qpf.j2",
+        minijinja::context! {
+            header => header(
+                loaded,
+                command,
+                "QPF: the Quartus project (its revision is the QSF).",
+                "#",
+            ),
+            top => top,
+        },
+    )?;
+    Ok(Some((q, s, p)))
+}
+
+/// The Verilog files a synthesis project needs and its top module: `<name>_top.v`, plus
+/// `<name>_board.v` and `<name>_clock.v` (then the top) when the board clock goes through
+/// a synthesizer.
+fn synthesis_sources(loaded: &Loaded) -> (Vec<String>, String) {
+    let name = &loaded.config.name;
+    let top = top_name(loaded);
+    let mut rtl = vec![format!("{top}.v")];
+    if board_clock(loaded).synth.is_some() && loaded.config.board.is_some() {
+        rtl.push(format!("{name}_board.v"));
+        rtl.push(format!("{name}_clock.v"));
+        return (rtl, format!("{name}_board"));
+    }
+    (rtl, top)
 }
 
 /// The board clock of the configuration (the system clock itself without `[board]`).
@@ -690,7 +719,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
                     "#",
                 ),
                 ucf_top => ucf_top,
-                top => top,
+                top => top.as_str(),
                 open => open,
                 kit => kit,
                 clock_comment => clock_comment(&clock, "#"),
@@ -705,6 +734,28 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         files.push(OutFile {
             name: format!("{name}_top.ucf"),
             text: u,
+        });
+        // ISE project script: the top (and the clock files under the board wrapper), the UCF.
+        let (rtl, synth_top) = synthesis_sources(loaded);
+        files.push(OutFile {
+            name: format!("{name}_ise.tcl"),
+            text: templates::render(
+                "constraints/top_ise.tcl.j2",
+                minijinja::context! {
+                    header => header(
+                        loaded,
+                        command,
+                        "ISE project script (xtclsh): part, sources, UCF, top.",
+                        "#",
+                    ),
+                    name => name,
+                    top => top.as_str(),
+                    project => top.as_str(),
+                    synth_top => synth_top,
+                    rtl => rtl,
+                    ucf => format!("{top}.ucf"),
+                },
+            )?,
         });
         if kit {
             // Options only: the explanation is in the UCF header (whether BitGen's -f files
@@ -745,7 +796,11 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
                 )
             ),
         });
-        if let Some((qsf, sdc)) = cap_constraints(loaded, command)? {
+        if let Some((qsf, sdc, qpf)) = cap_constraints(loaded, command)? {
+            files.push(OutFile {
+                name: format!("{name}_top.qpf"),
+                text: qpf,
+            });
             files.push(OutFile {
                 name: format!("{name}_top.qsf"),
                 text: qsf,

@@ -60,6 +60,14 @@ const TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../rtl-templates/constraints/top.ut.j2"),
     ),
     (
+        "constraints/top_ise.tcl.j2",
+        include_str!("../../rtl-templates/constraints/top_ise.tcl.j2"),
+    ),
+    (
+        "constraints/top.qpf.j2",
+        include_str!("../../rtl-templates/constraints/top.qpf.j2"),
+    ),
+    (
         "constraints/top.qsf.j2",
         include_str!("../../rtl-templates/constraints/top.qsf.j2"),
     ),
