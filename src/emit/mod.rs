@@ -846,18 +846,9 @@ fn flow_files(
     }
     let has = |f: &str| written.iter().any(|o| o.name == f);
     let top_module = top_name(loaded);
-    let synth_files = |constraints: Vec<(String, &'static str)>| {
-        let mut rtl = vec![format!("{top_module}.v")];
-        let mut top = top_module.clone();
-        if has(&format!("{name}_board.v")) {
-            rtl.push(format!("{name}_board.v"));
-            rtl.push(format!("{name}_clock.v"));
-            top = format!("{name}_board");
-        }
-        (rtl, top, constraints)
-    };
     let synth = if has(&format!("{top_module}.ucf")) {
-        let (rtl, top, constraints) = synth_files(vec![(format!("{top_module}.ucf"), "UCF")]);
+        let (rtl, top) = synthesis_sources(loaded);
+        let constraints = vec![(format!("{top_module}.ucf"), "UCF")];
         Some(flow::Synth {
             tool: "ise",
             tool_name: "ISE",
@@ -867,10 +858,11 @@ fn flow_files(
             constraints,
         })
     } else if has(&format!("{top_module}.qsf")) {
-        let (rtl, top, constraints) = synth_files(vec![
+        let (rtl, top) = synthesis_sources(loaded);
+        let constraints = vec![
             (format!("{top_module}.sdc"), "SDC"),
             (format!("{top_module}.qsf"), "tclSource"),
-        ]);
+        ];
         Some(flow::Synth {
             tool: "quartus",
             tool_name: "Quartus",
