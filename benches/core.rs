@@ -4,7 +4,7 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughpu
 use sinedec::blocks::core::hdl::simulate_rtl;
 use sinedec::blocks::core::model::{sample, CoreModel};
 use sinedec::config::Loaded;
-use sinedec::sim::stimulus;
+use sinedec::cosim::stimulus;
 
 fn bench(c: &mut Criterion) {
     let l = Loaded::default_config().expect("default config");

@@ -5,9 +5,9 @@
 use crate::blocks::captop::hdl::CapTopRtl;
 use crate::blocks::sext;
 use crate::config::Derived;
+use crate::cosim::step::{prepare, tick, NoConvergence};
 use crate::sim::capacitive::{CapEncoder, CapParams};
 use crate::sim::spi_adc::SpiAdc;
-use crate::sim::step::{prepare, tick, NoConvergence};
 use std::cell::RefCell;
 use std::f64::consts::TAU;
 use std::rc::Rc;
@@ -151,7 +151,7 @@ impl CapSystem {
             }
             tick(t)?;
             if let Some(tr) = self.trace.as_mut() {
-                let outs = crate::verify::CosimBlock::sample(&*t);
+                let outs = crate::cosim::CosimBlock::sample(&*t);
                 if let Err(e) = tr.cycle(&row, &outs) {
                     self.trace_error = Some(e);
                     self.trace = None;

@@ -25,8 +25,8 @@
 //!
 //! The rotor angle comes from [`Profile`] (the sinewave encoder's speed profiles, closed
 //! forms, no drift), so the true angle at each sample is exact.
+use crate::cosim::stimulus::SplitMix64;
 use crate::sim::encoder::Profile;
-use crate::sim::stimulus::SplitMix64;
 use std::f64::consts::TAU;
 
 /// Parameters of [`CapEncoder`].

@@ -13,7 +13,7 @@
 //!
 //! The mechanical angle is integrated exactly from the speed profile (closed forms), so the
 //! "true angle" against which the decoder is judged has no numerical drift.
-use crate::sim::stimulus::SplitMix64;
+use crate::cosim::stimulus::SplitMix64;
 use std::f64::consts::TAU;
 
 /// Speed profiles, speeds in rpm, times in seconds.

@@ -26,7 +26,7 @@
 //! Codes: D = GAIN * (VIN - 1.65 V) / 1.25 V * 8192, rounded to nearest and clamped to the
 //! 14-bit two's-complement range -8192..=8191 (UG334 equation 9-1; GAIN is the signed
 //! pre-amplifier gain, -1 .. -100 on the kit since the LTC6912 inverts).
-use crate::sim::stimulus::SplitMix64;
+use crate::cosim::stimulus::SplitMix64;
 
 /// Timing limits of the LTC1407A-1 in ns (VDD = 3 V).
 #[derive(Clone, Copy, Debug, PartialEq)]

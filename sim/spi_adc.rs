@@ -5,7 +5,7 @@
 //! sample an analog model at that instant. Bits outside the channel slots and an idle line
 //! are random, so a controller that reads them is caught.
 use crate::blocks::adc::{AdcFrame, SignFormat};
-use crate::sim::stimulus::SplitMix64;
+use crate::cosim::stimulus::SplitMix64;
 
 /// The code source: called at each conversion start with the clock index; returns the
 /// codes of channel 0 and 1 (channel 1 ignored for a one-channel frame).

@@ -15,10 +15,10 @@
 use crate::blocks::sext;
 use crate::blocks::top::hdl::TopRtl;
 use crate::config::Derived;
+use crate::cosim::step::{prepare, tick, NoConvergence};
 use crate::sim::encoder::EncoderModel;
 use crate::sim::ltc1407a::Ltc1407a;
 use crate::sim::ltc6912::Ltc6912;
-use crate::sim::step::{prepare, tick, NoConvergence};
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 
@@ -315,7 +315,7 @@ impl System {
             });
             tick(self.top.as_mut())?;
             if let (Some(t), Some(r)) = (self.trace.as_mut(), row.as_ref()) {
-                let outs = crate::verify::CosimBlock::sample(self.top.as_ref());
+                let outs = crate::cosim::CosimBlock::sample(self.top.as_ref());
                 if let Err(e) = t.cycle(r, &outs) {
                     self.trace_error = Some(e);
                     self.trace = None;
@@ -335,7 +335,7 @@ impl System {
             if self.record_inputs {
                 self.result
                     .outputs
-                    .push(crate::verify::CosimBlock::sample(self.top.as_ref()));
+                    .push(crate::cosim::CosimBlock::sample(self.top.as_ref()));
             }
             self.cycle += 1;
             if self.top.par_valid.val() {

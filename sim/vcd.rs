@@ -6,7 +6,7 @@
 //! emitted Verilog (see `crate::emit::top_ports`), not the rust-hdl `<name>_rtl`'s 32-bit
 //! words: `par_position` = {qc, fine} on `out_position`'s width, `par_turns` on M bits,
 //! `par_fine` on F bits, `exc_sin`/`exc_cos` on the DAC width.
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use std::io::Write;
 use vcd::{IdCode, TimescaleUnit, Value};
 

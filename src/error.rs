@@ -68,7 +68,7 @@ pub enum Error {
     },
     /// An external tool (Yosys, Icarus, Verilator) is missing or failed.
     #[error(transparent)]
-    Tool(#[from] crate::sim::cosim::CosimError),
+    Tool(#[from] crate::cosim::CosimError),
     /// sinedec refuses to write where it could lose a file it did not write (see
     /// `emit::output`); nothing was written.
     #[error("{}: {message}", path.display())]

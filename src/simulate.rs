@@ -237,7 +237,7 @@ pub fn run(loaded: &Loaded, o: &SimOptions, progress: impl FnMut(u64, u64)) -> R
 fn top_trace(
     loaded: &Loaded,
     out: Box<dyn std::io::Write>,
-    block: &impl crate::verify::CosimBlock,
+    block: &impl crate::cosim::CosimBlock,
 ) -> Result<crate::sim::vcd::TopTrace> {
     let d = &loaded.derived;
     crate::sim::vcd::TopTrace::new(
@@ -273,7 +273,7 @@ pub fn run_traced(
     o.validate(false)?;
     let d = &loaded.derived;
     let mut sys = System::new(d, encoder(loaded, o)).map_err(Error::Export)?;
-    let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
+    let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
         block: "top".into(),
         message: e.to_string(),
     };
@@ -461,7 +461,7 @@ pub fn run_capacitive_traced(
         let t = top_trace(loaded, out, &top)?;
         sys.trace_to(t);
     }
-    let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
+    let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
         block: "top".into(),
         message: e.to_string(),
     };

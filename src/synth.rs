@@ -10,8 +10,8 @@
 //! Counts come from `stat` on the flattened netlist; the worst register-to-register path (LUT
 //! levels, carry bits and an estimated delay) from the mapped netlist written with
 //! `write_json` ([`crate::report::levels`]).
+use crate::cosim::{require_tool, CosimError};
 use crate::error::{Error, Result};
-use crate::sim::cosim::{require_tool, CosimError};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;

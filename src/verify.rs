@@ -4,9 +4,9 @@ use crate::blocks::core::hdl::simulate_rtl;
 use crate::blocks::core::model::{CoreIn, CoreModel};
 use crate::blocks::mask;
 use crate::config::Loaded;
+use crate::cosim::{first_mismatch, run_icarus, run_verilator, CosimSpec, Trace};
 use crate::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
 use crate::error::{Error, Result};
-use crate::sim::cosim::{first_mismatch, run_icarus, run_verilator, CosimSpec, Trace};
 use std::path::Path;
 
 /// Which simulators to run besides rust-hdl and the model.
@@ -120,20 +120,6 @@ pub fn core_traces(
     })
 }
 
-/// A rust-hdl block that can be co-simulated as the top of its own exported Verilog: its
-/// ports (besides the clock) are listed with their Verilog names and widths, and rows of
-/// values are applied to / read from the block in that order.
-pub trait CosimBlock: crate::sim::step::Clocked + Sized {
-    /// Inputs besides the clock, in stimulus-row order (names = the struct's field names).
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port>;
-    /// Outputs in trace-row order.
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port>;
-    /// Drives the inputs from one stimulus row (`.next` of each input).
-    fn apply(&mut self, row: &[u64]);
-    /// Reads the outputs into one trace row.
-    fn sample(&self) -> Vec<u64>;
-}
-
 /// Traces of one block run: rust-hdl, and the Verilog simulators that were asked for.
 #[derive(Clone, Debug)]
 pub struct BlockTraces {
@@ -144,7 +130,7 @@ pub struct BlockTraces {
     /// Verilator, when run.
     pub verilator: Option<Trace>,
     /// The output ports (for messages).
-    pub outputs: Vec<crate::sim::cosim::Port>,
+    pub outputs: Vec<crate::cosim::Port>,
 }
 
 impl BlockTraces {
@@ -160,7 +146,7 @@ impl BlockTraces {
 /// Exports `uut` as Verilog (top module `top_name`, every module prefixed with it), runs
 /// the rust-hdl simulation of it on `rows`, and the chosen Verilog simulators in `workdir`.
 /// The clock input must be named `clk` (or `clock`: give its name in `clock`).
-pub fn block_traces<B: CosimBlock>(
+pub fn block_traces<B: crate::cosim::CosimBlock>(
     mut uut: B,
     top_name: &str,
     clock: &str,
@@ -168,12 +154,12 @@ pub fn block_traces<B: CosimBlock>(
     sims: Simulators,
     workdir: &Path,
 ) -> Result<BlockTraces> {
-    use crate::sim::step::{prepare, tick};
+    use crate::cosim::step::{prepare, tick};
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let verilog = crate::emit::verilog::export(&uut, top_name, top_name)?;
     let ins = uut.input_ports();
     let outs = uut.output_ports();
-    let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
+    let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
         block: top_name.to_string(),
         message: e.to_string(),
     };

@@ -7,10 +7,10 @@ use sinedec::blocks::adc::hdl::AdcController;
 use sinedec::blocks::adc::model::{AdcIn, AdcModel};
 use sinedec::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
 use sinedec::blocks::sext;
+use sinedec::cosim::step::{prepare, tick};
+use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::sim::ltc1407a::{Ltc1407a, ViolationKind};
 use sinedec::sim::spi_adc::SpiAdc;
-use sinedec::sim::step::{prepare, tick};
-use sinedec::sim::stimulus::SplitMix64;
 use sinedec::verify::{block_traces, Simulators};
 mod common;
 

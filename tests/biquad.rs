@@ -8,8 +8,8 @@ use sinedec::blocks::biquad::hdl::BiquadRtl;
 use sinedec::blocks::biquad::model::{BiquadCycleModel, BiquadIn, BiquadModel};
 use sinedec::blocks::biquad::BiquadParams;
 use sinedec::blocks::sext;
+use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::error::Error;
-use sinedec::sim::stimulus::SplitMix64;
 use sinedec::synth::{parse_stat, synthesize, Family};
 use sinedec::verify::{block_traces, Simulators};
 use std::f64::consts::{PI, SQRT_2};
@@ -689,7 +689,7 @@ fn cosim_reset_mid_computation_restarts_clean() {
 
 #[test]
 fn yosys_coarse_has_exactly_one_multiplier() {
-    use sinedec::sim::cosim::require_tool;
+    use sinedec::cosim::require_tool;
     if let Err(e) = require_tool("yosys") {
         panic!("yosys is needed for this test: {e}");
     }

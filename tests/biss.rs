@@ -6,13 +6,14 @@ use sinedec::blocks::biss::crc::{biss_crc, crc6, crc6_bits, POLY};
 use sinedec::blocks::biss::hdl::BissSlave;
 use sinedec::blocks::biss::{data_word, BissParams};
 use sinedec::blocks::mask;
+use sinedec::cosim::step::{prepare, tick};
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::cosim::CosimBlock;
 use sinedec::sim::biss_master::{
     expected_crc, BissFrame, BissMaster, BissMasterConfig, FrameRequest, LineMaster, LineTiming,
     Outcome,
 };
-use sinedec::sim::step::{prepare, tick};
-use sinedec::sim::stimulus::SplitMix64;
-use sinedec::verify::{block_traces, CosimBlock, Simulators};
+use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 // ---------------------------------------------------------------------------------------

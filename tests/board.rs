@@ -417,7 +417,7 @@ fn ports_follow_the_enabled_blocks() {
 /// up to `endmodule // sd_top`) must draw no Verilator warning.
 fn compiles(g: &Generation, tag: &str) {
     for tool in ["iverilog", "verilator"] {
-        if let Err(e) = sinedec::sim::cosim::require_tool(tool) {
+        if let Err(e) = sinedec::cosim::require_tool(tool) {
             panic!("{tool} is needed to check the emitted sd_top.v: {e}");
         }
     }
@@ -613,7 +613,7 @@ fn an_unreachable_board_clock_is_rejected_with_the_numbers() {
 /// gives a 7.5 ns system clock, and the top's reset stays high until the model locks.
 #[test]
 fn the_board_wrapper_runs_in_icarus_with_the_clock_model() {
-    if let Err(e) = sinedec::sim::cosim::require_tool("iverilog") {
+    if let Err(e) = sinedec::cosim::require_tool("iverilog") {
         panic!("iverilog is needed to simulate sd_board.v: {e}");
     }
     let l = Loaded::parse(&with_preset(WIRING), "b.toml").expect("parses");
@@ -686,7 +686,7 @@ endmodule
 /// instances use ports and parameters the Xilinx cell library knows.
 #[test]
 fn the_board_wrapper_synthesizes_with_the_dcm_for_xc3sa() {
-    if let Err(e) = sinedec::sim::cosim::require_tool("yosys") {
+    if let Err(e) = sinedec::cosim::require_tool("yosys") {
         panic!("yosys is needed to synthesize sd_board.v: {e}");
     }
     let l = Loaded::parse(&with_preset(WIRING), "b.toml").expect("parses");

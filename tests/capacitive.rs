@@ -6,8 +6,9 @@ use sinedec::blocks::capacitive::model::CapFrontModel;
 use sinedec::blocks::capacitive::CapFrontParams;
 use sinedec::blocks::sext;
 use sinedec::config::Loaded;
-use sinedec::sim::step::{prepare, tick};
-use sinedec::verify::{block_traces, CosimBlock, Simulators};
+use sinedec::cosim::step::{prepare, tick};
+use sinedec::cosim::CosimBlock;
+use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 const CONFIG: &str = include_str!("../configs/cyclone3_capacitive.toml");

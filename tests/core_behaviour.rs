@@ -2,7 +2,7 @@
 //! tests/cosim_core.rs): latency, throughput, unwrapping over turns, zero input, resets.
 use sinedec::blocks::core::hdl::simulate_rtl;
 use sinedec::blocks::core::model::{CoreIn, CoreModel, CoreOut};
-use sinedec::sim::stimulus::{self, idle, reset};
+use sinedec::cosim::stimulus::{self, idle, reset};
 use std::f64::consts::FRAC_PI_2;
 mod common;
 

@@ -6,9 +6,10 @@ use sinedec::blocks::correction::hdl::Correction;
 use sinedec::blocks::correction::model::{correct, CorrectionIn, CorrectionModel};
 use sinedec::blocks::correction::{gain_code, two_point, CorrectionParams, COS, SIN};
 use sinedec::blocks::{mask, sext};
-use sinedec::sim::stimulus::SplitMix64;
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::cosim::CosimBlock;
 use sinedec::synth::{synthesize, Family, SynthStats};
-use sinedec::verify::{block_traces, CosimBlock, Simulators};
+use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 const RUST_ONLY: Simulators = Simulators {

@@ -1,6 +1,6 @@
 //! The exported `<name>_core` in Icarus and Verilator == rust-hdl == model, bit for bit,
 //! for every iteration count 1..=20 and the directed and random stimulus.
-use sinedec::sim::stimulus;
+use sinedec::cosim::stimulus;
 use sinedec::verify::{core_traces, Simulators};
 mod common;
 

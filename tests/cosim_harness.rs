@@ -1,8 +1,8 @@
-//! Tests of the co-simulation harness (`sinedec::sim::cosim`): a small hand-written design is
+//! Tests of the co-simulation harness (`sinedec::cosim`): a small hand-written design is
 //! simulated in Icarus Verilog and Verilator and compared with an independent Rust reference
 //! model; trace comparison, X detection and missing-tool reporting are checked too.
 
-use sinedec::sim::cosim::{
+use sinedec::cosim::{
     check_tool_named, first_mismatch, require_tool, run_icarus, run_verilator, CosimError,
     CosimSpec, Port, Trace,
 };

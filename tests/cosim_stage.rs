@@ -3,7 +3,7 @@
 //! rust-hdl == Icarus == Verilator, and each output equals the stage's arithmetic.
 use sinedec::blocks::cordic::hdl::CordicStage;
 use sinedec::blocks::{mask, sext};
-use sinedec::sim::stimulus::SplitMix64;
+use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::verify::{block_traces, Simulators};
 mod common;
 

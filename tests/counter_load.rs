@@ -5,7 +5,7 @@ use sinedec::blocks::core::hdl::{simulate_rtl, CoreRtl};
 use sinedec::blocks::core::model::{CoreIn, CoreModel};
 use sinedec::blocks::counter::model::Load;
 use sinedec::blocks::mask;
-use sinedec::sim::stimulus::{self, SplitMix64};
+use sinedec::cosim::stimulus::{self, SplitMix64};
 use sinedec::verify::{block_traces, Simulators};
 mod common;
 

@@ -4,7 +4,7 @@
 use sinedec::blocks::core::hdl::{simulate_rtl, simulate_rtl_ready, CoreRtl};
 use sinedec::blocks::core::model::{CoreIn, CoreModel, CoreOut};
 use sinedec::config::{check_throughput, Architecture, Loaded, DEFAULT_CONFIG};
-use sinedec::sim::stimulus;
+use sinedec::cosim::stimulus;
 use sinedec::verify::{block_traces, core_traces, Simulators};
 mod common;
 

@@ -5,9 +5,10 @@
 use sinedec::blocks::monitor::hdl::Monitor;
 use sinedec::blocks::monitor::model::{MonitorIn, MonitorModel};
 use sinedec::blocks::monitor::MonitorParams;
-use sinedec::sim::stimulus::SplitMix64;
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::cosim::CosimBlock;
 use sinedec::synth::{synthesize, Family, SynthStats};
-use sinedec::verify::{block_traces, CosimBlock, Simulators};
+use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 const RUST_ONLY: Simulators = Simulators {

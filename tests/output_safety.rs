@@ -736,7 +736,7 @@ fn control_characters_in_the_config_path_stay_inside_the_header_comment() {
         assert!(seen >= 3, "{out}: {seen} files with a header");
     }
     // The Verilog still compiles.
-    sinedec::sim::cosim::require_tool("iverilog").expect("iverilog installed");
+    sinedec::cosim::require_tool("iverilog").expect("iverilog installed");
     let c = Command::new("iverilog")
         .args(["-g2005", "-o", "tb.vvp", "o1/sd_core.v", "o1/sd_core_tb.v"])
         .current_dir(dir)

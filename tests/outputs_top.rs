@@ -69,7 +69,8 @@ fn ssi_master_reads_the_position_through_the_top() {
 #[test]
 fn top_with_ssi_and_spi_replays_in_icarus_and_verilator() {
     use sinedec::blocks::top::hdl::TopRtl;
-    use sinedec::verify::{block_traces, CosimBlock, Simulators};
+    use sinedec::cosim::CosimBlock;
+    use sinedec::verify::{block_traces, Simulators};
     let l = config();
     let d = &l.derived;
     let mut s = System::new(d, EncoderModel::ideal(2048, 1.0, 3000.0)).expect("system");

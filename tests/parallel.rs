@@ -4,7 +4,7 @@
 use sinedec::blocks::mask;
 use sinedec::blocks::parallel::hdl::ParallelBus;
 use sinedec::blocks::parallel::ParallelParams;
-use sinedec::sim::stimulus::SplitMix64;
+use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::verify::{block_traces, Simulators};
 mod common;
 

@@ -6,9 +6,10 @@ use sinedec::blocks::mask;
 use sinedec::blocks::qep::hdl::{QepCrossCheck, QepDecoder};
 use sinedec::blocks::qep::model::{CrossCheckIn, CrossCheckModel, QepIn, QepModel};
 use sinedec::blocks::qep::{CrossCheckParams, QepParams};
-use sinedec::sim::stimulus::SplitMix64;
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::cosim::CosimBlock;
 use sinedec::synth::{synthesize, Family, SynthStats};
-use sinedec::verify::{block_traces, CosimBlock, Simulators};
+use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 const RUST_ONLY: Simulators = Simulators {

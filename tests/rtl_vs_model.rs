@@ -2,7 +2,7 @@
 use sinedec::blocks::core::hdl::simulate_rtl;
 use sinedec::blocks::core::model::{CoreIn, CoreModel};
 use sinedec::config::Loaded;
-use sinedec::sim::stimulus;
+use sinedec::cosim::stimulus;
 mod common;
 use common::cfg;
 

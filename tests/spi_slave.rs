@@ -5,10 +5,11 @@ use sinedec::blocks::biss::data_word;
 use sinedec::blocks::mask;
 use sinedec::blocks::spi_slave::hdl::SpiSlave;
 use sinedec::blocks::spi_slave::SpiSlaveParams;
+use sinedec::cosim::step::{prepare, tick};
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::cosim::CosimBlock;
 use sinedec::sim::biss_master::{LineTiming, MaLine, SlaveLine};
-use sinedec::sim::step::{prepare, tick};
-use sinedec::sim::stimulus::SplitMix64;
-use sinedec::verify::{block_traces, CosimBlock, Simulators};
+use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 /// One SPI transaction as the master clocks it.

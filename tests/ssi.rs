@@ -5,11 +5,12 @@ use sinedec::blocks::biss::data_word;
 use sinedec::blocks::mask;
 use sinedec::blocks::ssi::hdl::SsiSlave;
 use sinedec::blocks::ssi::SsiParams;
+use sinedec::cosim::step::{prepare, tick};
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::cosim::CosimBlock;
 use sinedec::sim::biss_master::{FrameRequest, LineMaster, LineTiming};
 use sinedec::sim::ssi_master::{SsiFrame, SsiMaster, SsiMasterConfig, SsiOutcome};
-use sinedec::sim::step::{prepare, tick};
-use sinedec::sim::stimulus::SplitMix64;
-use sinedec::verify::{block_traces, CosimBlock, Simulators};
+use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 fn pos(k: usize) -> u64 {

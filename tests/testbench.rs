@@ -20,7 +20,7 @@ fn tool(cmd: &mut Command, what: &str) -> Output {
 
 /// `iverilog -g<generation> -o tb.vvp core.v tb.v && vvp -n tb.vvp`.
 fn icarus(core: &str, tb: &str, dir: &Path, generation: &str) -> Run {
-    sinedec::sim::cosim::require_tool("iverilog").expect("iverilog installed");
+    sinedec::cosim::require_tool("iverilog").expect("iverilog installed");
     std::fs::write(dir.join("core.v"), core).expect("write");
     std::fs::write(dir.join("tb.v"), tb).expect("write");
     let c = tool(
@@ -48,7 +48,7 @@ fn icarus(core: &str, tb: &str, dir: &Path, generation: &str) -> Run {
 /// `verilator --binary --timing -Wno-fatal --top-module sd_core_tb core.v tb.v &&
 /// obj_dir/Vsd_core_tb`; no warning may concern the testbench itself.
 fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
-    sinedec::sim::cosim::require_tool("verilator").expect("verilator installed");
+    sinedec::cosim::require_tool("verilator").expect("verilator installed");
     let _ = std::fs::remove_dir_all(dir.join("obj_dir"));
     std::fs::write(dir.join("core.v"), core).expect("write");
     std::fs::write(dir.join("tb.v"), tb).expect("write");

@@ -13,8 +13,8 @@ pub mod verilog;
 
 use crate::blocks::core::hdl::CoreRtl;
 use crate::config::{Derived, Loaded};
+use crate::cosim::Port;
 use crate::error::{Error, Result};
-use crate::sim::cosim::Port;
 use std::path::Path;
 
 /// Tool version printed in headers.

@@ -17,11 +17,11 @@
 use crate::blocks::core::model::{CoreIn, CoreModel};
 use crate::blocks::mask;
 use crate::config::Loaded;
+use crate::cosim::stimulus;
+use crate::cosim::Port;
 use crate::emit::templates::render;
 use crate::emit::{core_input_ports, core_name, core_output_ports};
 use crate::error::Result;
-use crate::sim::cosim::Port;
-use crate::sim::stimulus;
 
 /// The stimulus the emitted testbench uses: directed cases, random samples with gaps and a
 /// reset, and a rotation over a turn in each direction.

@@ -24,8 +24,8 @@
 //! of the `rtl` wrapper. [`register_name`] strips the mapping suffix and [`block_of`] names
 //! the instance (the block of `<name>_top`).
 use super::yosys::{cache_load, cache_store};
+use crate::cosim::CosimError;
 use crate::error::{Error, Result};
-use crate::sim::cosim::CosimError;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::ffi::OsString;

@@ -11,8 +11,8 @@
 //! Verilog text, the run kind (family), the script (for FPGA runs: the source text of
 //! `src/synth.rs`, which holds the script and the counting rules) and the Yosys version, so
 //! any change to any of them misses the cache.
+use crate::cosim::{require_tool, CosimError};
 use crate::error::{Error, Result};
-use crate::sim::cosim::{require_tool, CosimError};
 use crate::synth::{parse_stat, synthesize, Family, SynthStats};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};

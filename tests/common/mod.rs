@@ -45,9 +45,10 @@ pub fn replay_top_in_simulators(
     tag: &str,
 ) -> sinedec::sim::system::SimResult {
     use sinedec::blocks::top::hdl::TopRtl;
+    use sinedec::cosim::CosimBlock;
     use sinedec::sim::encoder::EncoderModel;
     use sinedec::sim::system::System;
-    use sinedec::verify::{block_traces, CosimBlock, Simulators};
+    use sinedec::verify::{block_traces, Simulators};
     let d = &l.derived;
     let enc = EncoderModel::ideal(2048, 1.0, rpm).with_seed(3);
     let mut s = System::new(d, enc).expect("system");

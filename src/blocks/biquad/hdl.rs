@@ -4,7 +4,7 @@
 //! program ROM [`BiquadProgram`] and the state RAM [`BiquadStateRam`].
 use super::{ctrl, BiquadParams};
 use crate::blocks::{c32, mask, sext};
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// The engine's only multiplier: p = (a * b) >> shift (arithmetic), a and b signed in the
@@ -572,13 +572,13 @@ impl Logic for BiquadRtl {
     }
 }
 
-impl crate::sim::step::Clocked for BiquadRtl {
+impl crate::cosim::step::Clocked for BiquadRtl {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for BiquadRtl {
+impl crate::cosim::CosimBlock for BiquadRtl {
     fn input_ports(&self) -> Vec<Port> {
         let mut v = vec![Port::new("rst", 1), Port::new("in_valid", 1)];
         v.extend((0..self.in_data.len()).map(|k| Port::new(&format!("in_data_{k}"), 32)));

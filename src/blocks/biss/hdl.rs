@@ -560,15 +560,15 @@ impl Logic for BissSlave {
     }
 }
 
-impl crate::sim::step::Clocked for BissSlave {
+impl crate::cosim::step::Clocked for BissSlave {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for BissSlave {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for BissSlave {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("rst", 1),
             Port::new("ma", 1),
@@ -579,8 +579,8 @@ impl crate::verify::CosimBlock for BissSlave {
             Port::new("warning", 1),
         ]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        vec![crate::sim::cosim::Port::new("slo", 1)]
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        vec![crate::cosim::Port::new("slo", 1)]
     }
     fn apply(&mut self, r: &[u64]) {
         self.rst.next = r[0] != 0;

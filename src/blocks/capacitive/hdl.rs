@@ -3,7 +3,7 @@ use super::CapFrontParams;
 use crate::blocks::biquad::hdl::{BiquadMul, BiquadRtl};
 use crate::blocks::nco::hdl::Nco;
 use crate::blocks::{c32, mask};
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// NCO + biquad engine + demodulator.
@@ -188,13 +188,13 @@ impl Logic for CapFront {
     }
 }
 
-impl crate::sim::step::Clocked for CapFront {
+impl crate::cosim::step::Clocked for CapFront {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for CapFront {
+impl crate::cosim::CosimBlock for CapFront {
     fn input_ports(&self) -> Vec<Port> {
         vec![
             Port::new("rst", 1),

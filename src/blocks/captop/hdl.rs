@@ -5,7 +5,7 @@ use crate::blocks::capacitive::hdl::CapFront;
 use crate::blocks::capacitive::CapFrontParams;
 use crate::blocks::core::hdl::CoreRtl;
 use crate::config::Derived;
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// The capacitive-path top as simulated in rust-hdl and exported (inside `<name>_top`).
@@ -157,13 +157,13 @@ impl Logic for CapTopRtl {
     }
 }
 
-impl crate::sim::step::Clocked for CapTopRtl {
+impl crate::cosim::step::Clocked for CapTopRtl {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for CapTopRtl {
+impl crate::cosim::CosimBlock for CapTopRtl {
     fn input_ports(&self) -> Vec<Port> {
         vec![
             Port::new("rst", 1),

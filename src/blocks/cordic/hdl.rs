@@ -313,15 +313,15 @@ impl Logic for CordicStage {
     }
 }
 
-impl crate::sim::step::Clocked for CordicStage {
+impl crate::cosim::step::Clocked for CordicStage {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for CordicStage {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for CordicStage {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("rst", 1),
             Port::new("x_in", 32),
@@ -331,8 +331,8 @@ impl crate::verify::CosimBlock for CordicStage {
             Port::new("v_in", 1),
         ]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("x_out", 32),
             Port::new("y_out", 32),

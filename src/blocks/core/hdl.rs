@@ -181,7 +181,7 @@ impl Logic for CoreRtl {
     }
 }
 
-impl crate::sim::step::Clocked for CoreRtl {
+impl crate::cosim::step::Clocked for CoreRtl {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
@@ -192,7 +192,7 @@ impl crate::sim::step::Clocked for CoreRtl {
 pub fn simulate_rtl(
     d: &Derived,
     inputs: &[super::model::CoreIn],
-) -> Result<Vec<super::model::CoreOut>, crate::sim::step::NoConvergence> {
+) -> Result<Vec<super::model::CoreOut>, crate::cosim::step::NoConvergence> {
     Ok(simulate_rtl_ready(d, inputs)?
         .into_iter()
         .map(|(o, _)| o)
@@ -203,9 +203,9 @@ pub fn simulate_rtl(
 pub fn simulate_rtl_ready(
     d: &Derived,
     inputs: &[super::model::CoreIn],
-) -> Result<Vec<(super::model::CoreOut, bool)>, crate::sim::step::NoConvergence> {
+) -> Result<Vec<(super::model::CoreOut, bool)>, crate::cosim::step::NoConvergence> {
     use crate::blocks::mask;
-    use crate::sim::step::{prepare, tick};
+    use crate::cosim::step::{prepare, tick};
     let mut uut = Box::new(CoreRtl::new(d));
     prepare(uut.as_mut())?;
     let am = mask(d.adc_width);
@@ -237,9 +237,9 @@ pub fn simulate_rtl_ready(
     Ok(out)
 }
 
-impl crate::verify::CosimBlock for CoreRtl {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for CoreRtl {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("rst", 1),
             Port::new("in_valid", 1),
@@ -250,8 +250,8 @@ impl crate::verify::CosimBlock for CoreRtl {
             Port::new("load_turns", 32),
         ]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("out_valid", 1),
             Port::new("out_qc", 32),

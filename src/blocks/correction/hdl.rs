@@ -2,7 +2,7 @@
 //! timing and rules in [`crate::blocks::correction`]).
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, fill, mask};
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// State of the calibration's serial divider.
@@ -736,13 +736,13 @@ impl Logic for Correction {
     }
 }
 
-impl crate::sim::step::Clocked for Correction {
+impl crate::cosim::step::Clocked for Correction {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for Correction {
+impl crate::cosim::CosimBlock for Correction {
     fn input_ports(&self) -> Vec<Port> {
         vec![
             Port::new("rst", 1),

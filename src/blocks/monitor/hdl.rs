@@ -1,7 +1,7 @@
 //! rust-hdl description of the signal monitor (rules in [`crate::blocks::monitor`]).
 use super::{count_bits, MonitorParams};
 use crate::blocks::{c32, mask};
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// Loss of signal, clipping and full-scale detection; warning combiner.
@@ -229,13 +229,13 @@ impl Logic for Monitor {
     }
 }
 
-impl crate::sim::step::Clocked for Monitor {
+impl crate::cosim::step::Clocked for Monitor {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for Monitor {
+impl crate::cosim::CosimBlock for Monitor {
     fn input_ports(&self) -> Vec<Port> {
         vec![
             Port::new("rst", 1),

@@ -1,7 +1,7 @@
 //! rust-hdl description of the NCO (see the module docs of `nco`).
 use super::NcoParams;
 use crate::blocks::{c32, mask};
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// The first octant of the carrier: one address j (T-1 bits) reads two words at once,
@@ -235,13 +235,13 @@ impl Logic for Nco {
     }
 }
 
-impl crate::sim::step::Clocked for Nco {
+impl crate::cosim::step::Clocked for Nco {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for Nco {
+impl crate::cosim::CosimBlock for Nco {
     fn input_ports(&self) -> Vec<Port> {
         vec![Port::new("rst", 1), Port::new("tick", 1)]
     }

@@ -129,15 +129,15 @@ impl Logic for ParallelBus {
     }
 }
 
-impl crate::sim::step::Clocked for ParallelBus {
+impl crate::cosim::step::Clocked for ParallelBus {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for ParallelBus {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for ParallelBus {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("rst", 1),
             Port::new("pos", 32),
@@ -148,8 +148,8 @@ impl crate::verify::CosimBlock for ParallelBus {
             Port::new("hold", 1),
         ]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("par_pos", 32),
             Port::new("par_turns", 32),

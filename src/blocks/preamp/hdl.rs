@@ -223,19 +223,19 @@ impl Logic for PreampSetup {
     }
 }
 
-impl crate::sim::step::Clocked for PreampSetup {
+impl crate::cosim::step::Clocked for PreampSetup {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for PreampSetup {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for PreampSetup {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![Port::new("rst", 1), Port::new("adc_sck", 1)]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         [
             "spi_sck", "spi_mosi", "amp_cs", "amp_shdn", "dac_cs", "dac_clr", "spi_ss_b", "sf_ce0",
             "done",

@@ -2,7 +2,7 @@
 //! timing in the module docs of [`crate::blocks::qep`]).
 use super::{CrossCheckParams, QepParams};
 use crate::blocks::{c32, mask};
-use crate::sim::cosim::Port;
+use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// Synchronizers, glitch filters, x4 decoder and quadrant counter with index latch.
@@ -246,13 +246,13 @@ impl Logic for QepDecoder {
     }
 }
 
-impl crate::sim::step::Clocked for QepDecoder {
+impl crate::cosim::step::Clocked for QepDecoder {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for QepDecoder {
+impl crate::cosim::CosimBlock for QepDecoder {
     fn input_ports(&self) -> Vec<Port> {
         vec![
             Port::new("rst", 1),
@@ -436,13 +436,13 @@ impl Logic for QepCrossCheck {
     }
 }
 
-impl crate::sim::step::Clocked for QepCrossCheck {
+impl crate::cosim::step::Clocked for QepCrossCheck {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for QepCrossCheck {
+impl crate::cosim::CosimBlock for QepCrossCheck {
     fn input_ports(&self) -> Vec<Port> {
         vec![
             Port::new("rst", 1),

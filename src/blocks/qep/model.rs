@@ -17,7 +17,7 @@ pub struct QepIn {
 }
 
 impl QepIn {
-    /// Stimulus row in [`crate::verify::CosimBlock::input_ports`] order.
+    /// Stimulus row in [`crate::cosim::CosimBlock::input_ports`] order.
     pub fn row(&self) -> Vec<u64> {
         vec![self.rst as u64, self.a as u64, self.b as u64, self.z as u64]
     }

@@ -186,15 +186,15 @@ impl Logic for SpiSlave {
     }
 }
 
-impl crate::sim::step::Clocked for SpiSlave {
+impl crate::cosim::step::Clocked for SpiSlave {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for SpiSlave {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for SpiSlave {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("rst", 1),
             Port::new("sck", 1),
@@ -206,8 +206,8 @@ impl crate::verify::CosimBlock for SpiSlave {
             Port::new("warning", 1),
         ]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![Port::new("miso", 1), Port::new("miso_oe", 1)]
     }
     fn apply(&mut self, r: &[u64]) {

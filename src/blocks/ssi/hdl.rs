@@ -186,15 +186,15 @@ impl Logic for SsiSlave {
     }
 }
 
-impl crate::sim::step::Clocked for SsiSlave {
+impl crate::cosim::step::Clocked for SsiSlave {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for SsiSlave {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for SsiSlave {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("rst", 1),
             Port::new("ma", 1),
@@ -204,8 +204,8 @@ impl crate::verify::CosimBlock for SsiSlave {
             Port::new("error", 1),
         ]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        vec![crate::sim::cosim::Port::new("slo", 1)]
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        vec![crate::cosim::Port::new("slo", 1)]
     }
     fn apply(&mut self, r: &[u64]) {
         self.rst.next = r[0] != 0;

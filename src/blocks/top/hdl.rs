@@ -291,15 +291,15 @@ impl Logic for TopRtl {
     }
 }
 
-impl crate::sim::step::Clocked for TopRtl {
+impl crate::cosim::step::Clocked for TopRtl {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
     }
 }
 
-impl crate::verify::CosimBlock for TopRtl {
-    fn input_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+impl crate::cosim::CosimBlock for TopRtl {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         vec![
             Port::new("rst", 1),
             Port::new("adc_miso", 1),
@@ -312,8 +312,8 @@ impl crate::verify::CosimBlock for TopRtl {
             Port::new("enc_cs_n", 1),
         ]
     }
-    fn output_ports(&self) -> Vec<crate::sim::cosim::Port> {
-        use crate::sim::cosim::Port;
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
         let mut v: Vec<Port> = [
             "adc_sck",
             "adc_conv",
