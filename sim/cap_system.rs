@@ -65,7 +65,7 @@ pub struct CapSystem {
     cycle: u64,
     /// Decoded positions.
     pub records: Vec<CapRecord>,
-    /// Per-cycle input rows (`CapTopRtl`'s CosimBlock order), when recording.
+    /// Per-cycle input rows (`CapTopRtl`'s port-table input order), when recording.
     pub inputs: Option<Vec<Vec<u64>>>,
     trace: Option<crate::sim::vcd::TopTrace>,
     trace_error: Option<std::io::Error>,
@@ -73,12 +73,15 @@ pub struct CapSystem {
 
 impl CapSystem {
     /// A loop for the derived parameters (needs `[capacitive]`) and an encoder model.
-    pub fn new(d: &Derived, p: CapParams) -> Result<CapSystem, String> {
+    pub fn new(d: &Derived, p: CapParams) -> crate::error::Result<CapSystem> {
         let k = d
             .capacitive
             .as_ref()
-            .ok_or("the capacitive system needs [capacitive]")?;
-        let top = CapTopRtl::new(d).map_err(|e| e.to_string())?;
+            .ok_or_else(|| crate::error::Error::ModelParams {
+                model: "capacitive system".into(),
+                message: "needs [capacitive]".into(),
+            })?;
+        let top = CapTopRtl::new(d)?;
         let enc = Rc::new(RefCell::new(CapEncoder::new(p)?));
         let dac = Rc::new(RefCell::new((0i64, 0i64)));
         let clock_hz = d.clock_hz;
@@ -145,16 +148,19 @@ impl CapSystem {
             t.biss_ma.next = true;
             let miso = self.adc.step(t.adc_conv.val(), t.adc_sck.val());
             t.adc_miso.next = miso;
-            let row = [(self.cycle < 4) as u64, miso as u64, 1];
-            if let Some(v) = &mut self.inputs {
-                v.push(row.to_vec());
-            }
             tick(t)?;
-            if let Some(tr) = self.trace.as_mut() {
-                let outs = crate::cosim::CosimBlock::sample(&*t);
-                if let Err(e) = tr.cycle(&row, &outs) {
-                    self.trace_error = Some(e);
-                    self.trace = None;
+            if self.inputs.is_some() || self.trace.is_some() {
+                // The inputs just applied, read back by name in the port table's order.
+                let row = t.input_row();
+                if let Some(tr) = self.trace.as_mut() {
+                    let outs = crate::cosim::CosimBlock::sample(&*t);
+                    if let Err(e) = tr.cycle(&row, &outs) {
+                        self.trace_error = Some(e);
+                        self.trace = None;
+                    }
+                }
+                if let Some(v) = &mut self.inputs {
+                    v.push(row);
                 }
             }
             self.cycle += 1;
@@ -206,11 +212,15 @@ impl CapSystem {
 /// long runs: a whole turn at 800 rpm is 30,000 samples. Sample n is converted at n / fs
 /// with the DAC words the NCO holds then; the result's records use sample indices as
 /// cycles. Proven equal to the RTL by tests/capacitive.rs (front end and top replays).
-pub fn model_run(d: &Derived, p: CapParams, samples: usize) -> Result<Vec<CapRecord>, String> {
+pub fn model_run(
+    d: &Derived,
+    p: CapParams,
+    samples: usize,
+) -> crate::error::Result<Vec<CapRecord>> {
     use crate::blocks::capacitive::model::CapFrontModel;
     use crate::blocks::capacitive::CapFrontParams;
     use crate::blocks::core::model::{CoreIn, CoreModel};
-    let fp = CapFrontParams::new(d).map_err(|e| e.to_string())?;
+    let fp = CapFrontParams::new(d)?;
     let mut front = CapFrontModel::new(&fp);
     let mut core = CoreModel::new(d);
     let mut enc = CapEncoder::new(p)?;

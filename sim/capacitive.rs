@@ -88,55 +88,65 @@ impl CapParams {
     }
 
     /// Checks the values.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> crate::error::Result<()> {
         let fin = |v: f64| v.is_finite();
         if self.periods_per_turn == 0 {
-            return Err("capacitive encoder: periods_per_turn must be at least 1".into());
+            return Err(model_err("periods_per_turn must be at least 1".into()));
         }
         if !(2..=32).contains(&self.dac_bits) {
-            return Err(format!(
-                "capacitive encoder: DAC width {} bits out of range: 2..=32",
+            return Err(model_err(format!(
+                "DAC width {} bits out of range: 2..=32",
                 self.dac_bits
-            ));
+            )));
         }
         for (name, v) in [
             ("dac_full_scale_v", self.dac_full_scale_v),
             ("adc_full_scale_v", self.adc_full_scale_v),
         ] {
             if !(fin(v) && v > 0.0) {
-                return Err(format!(
-                    "capacitive encoder: {name} = {v} must be a positive voltage"
-                ));
+                return Err(model_err(format!(
+                    "{name} = {v} must be a positive voltage"
+                )));
             }
         }
         if !(fin(self.coupling) && self.coupling > 0.0) {
-            return Err(format!(
-                "capacitive encoder: coupling {} must be positive",
+            return Err(model_err(format!(
+                "coupling {} must be positive",
                 self.coupling
-            ));
+            )));
         }
         if !(fin(self.ripple) && (0.0..1.0).contains(&self.ripple)) {
-            return Err(format!(
-                "capacitive encoder: ripple {} out of range: 0..1",
+            return Err(model_err(format!(
+                "ripple {} out of range: 0..1",
                 self.ripple
-            ));
+            )));
         }
         if !(fin(self.feedthrough) && self.feedthrough.abs() < 1.0) {
-            return Err(format!(
-                "capacitive encoder: feed-through {} out of range: |f| < 1",
+            return Err(model_err(format!(
+                "feed-through {} out of range: |f| < 1",
                 self.feedthrough
-            ));
+            )));
         }
         if !(fin(self.noise_rms_v) && self.noise_rms_v >= 0.0) {
-            return Err(format!(
-                "capacitive encoder: noise RMS {} V must be >= 0",
+            return Err(model_err(format!(
+                "noise RMS {} V must be >= 0",
                 self.noise_rms_v
-            ));
+            )));
         }
         if !(fin(self.start_turns) && fin(self.ripple_phase)) {
-            return Err("capacitive encoder: start_turns and ripple_phase must be finite".into());
+            return Err(model_err(
+                "start_turns and ripple_phase must be finite".into(),
+            ));
         }
         Ok(())
+    }
+}
+
+/// [`crate::error::Error::ModelParams`] of the capacitive encoder.
+fn model_err(message: String) -> crate::error::Error {
+    crate::error::Error::ModelParams {
+        model: "capacitive encoder".into(),
+        message,
     }
 }
 
@@ -155,7 +165,7 @@ pub const ADC_MIN: i64 = -32768;
 
 impl CapEncoder {
     /// Encoder for checked parameters.
-    pub fn new(p: CapParams) -> Result<CapEncoder, String> {
+    pub fn new(p: CapParams) -> crate::error::Result<CapEncoder> {
         p.validate()?;
         Ok(CapEncoder {
             rng: SplitMix64(p.seed),

@@ -58,7 +58,7 @@ pub struct SimResult {
     pub amp_violations: Vec<String>,
     /// Gains the LTC6912-1 model decoded, if a word was shifted in.
     pub amp_gains: Option<(i32, i32)>,
-    /// Per-cycle inputs of the design (`TopRtl`'s `CosimBlock` input order), when recording
+    /// Per-cycle inputs of the design (`TopRtl`'s port-table input order), when recording
     /// was asked for: a stimulus that replays the run in a Verilog simulator.
     pub inputs: Vec<Vec<u64>>,
     /// Per-cycle outputs (`CosimBlock` output order), when recording was asked for.
@@ -159,12 +159,15 @@ pub struct System {
 impl System {
     /// A system for the derived parameters and an encoder (the voltages go through the
     /// LTC6912-1 gains configured for the preamp).
-    pub fn new(d: &Derived, encoder: EncoderModel) -> Result<System, String> {
+    pub fn new(d: &Derived, encoder: EncoderModel) -> crate::error::Result<System> {
         let top = Box::new(TopRtl::new(d)?);
         let pre = d
             .preamp
             .as_ref()
-            .ok_or("the sinewave top needs the LTC1407A-1 preset")?;
+            .ok_or_else(|| crate::error::Error::ModelParams {
+                model: "sinewave system".into(),
+                message: "needs the LTC1407A-1 preset".into(),
+            })?;
         let gains = [pre.gain_a as f64, pre.gain_b as f64];
         let truth = encoder.clone();
         let mut enc = encoder;
@@ -300,20 +303,9 @@ impl System {
             self.top.ssi_clk.next = ssi_clk;
             self.top.enc_sck.next = false;
             self.top.enc_cs_n.next = true;
-            let row = (self.record_inputs || self.trace.is_some()).then(|| {
-                vec![
-                    rst as u64,
-                    miso as u64,
-                    ma as u64,
-                    qa as u64,
-                    qb as u64,
-                    qz as u64,
-                    ssi_clk as u64,
-                    0,
-                    1,
-                ]
-            });
             tick(self.top.as_mut())?;
+            // The inputs just applied, read back by name in the port table's order.
+            let row = (self.record_inputs || self.trace.is_some()).then(|| self.top.input_row());
             if let (Some(t), Some(r)) = (self.trace.as_mut(), row.as_ref()) {
                 let outs = crate::cosim::CosimBlock::sample(self.top.as_ref());
                 if let Err(e) = t.cycle(r, &outs) {

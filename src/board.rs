@@ -46,6 +46,7 @@
 //! (`set_output_delay`) bounds the FPGA's clock-to-out of the ADC outputs by t_co, OFFSET IN
 //! (`set_input_delay`) bounds the set-up the FPGA needs at `adc_miso` by t_su.
 use crate::config::Target;
+use crate::error::Error;
 
 /// Largest accepted difference between the synthesized and the configured system clock.
 pub const MAX_CLOCK_PPM: f64 = 100.0;
@@ -172,7 +173,7 @@ pub struct ClockSynth {
 
 /// The board clock for an oscillator of `osc_hz` and a system clock of `sys_hz`; an error
 /// (a sentence with the numbers) when no synthesizer ratio reaches the system clock.
-pub fn board_clock(target: Target, osc_hz: f64, sys_hz: f64) -> Result<BoardClock, String> {
+pub fn board_clock(target: Target, osc_hz: f64, sys_hz: f64) -> crate::error::Result<BoardClock> {
     if ((osc_hz - sys_hz) / sys_hz).abs() * 1e6 <= MAX_CLOCK_PPM {
         return Ok(BoardClock {
             osc_hz,
@@ -204,7 +205,7 @@ pub fn board_clock(target: Target, osc_hz: f64, sys_hz: f64) -> Result<BoardCloc
             osc_hz,
             synth: Some(b),
         }),
-        Some(b) => Err(format!(
+        Some(b) => Err(Error::BoardClock { message: format!(
             "no {} ratio M/D (M {}..={}, D {}..={}) makes clock.frequency_hz = {:.6} MHz from the {:.6} MHz oscillator within {MAX_CLOCK_PPM} ppm (nearest: x {}/{} = {:.6} MHz, {:+.0} ppm); choose a reachable clock.frequency_hz or set board.clock_hz to the oscillator",
             kind.label(),
             m_range.start(),
@@ -217,8 +218,10 @@ pub fn board_clock(target: Target, osc_hz: f64, sys_hz: f64) -> Result<BoardCloc
             b.divide,
             b.out_hz / 1e6,
             b.error_ppm
-        )),
-        None => Err("no clock synthesizer ratio".into()),
+        ) }),
+        None => Err(Error::BoardClock {
+            message: "no clock synthesizer ratio".into(),
+        }),
     }
 }
 
@@ -336,7 +339,9 @@ mod tests {
     fn unreachable_clock_is_an_error_with_numbers() {
         // 50 MHz x M / D with M <= 32, D <= 32 cannot come within 100 ppm of 123.457 MHz
         // (nearest 50 x 42/17 needs M = 42).
-        let e = board_clock(Target::Spartan3an, 50e6, 123.457e6).unwrap_err();
+        let e = board_clock(Target::Spartan3an, 50e6, 123.457e6)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("DCM_SP") && e.contains("123.457"), "{e}");
     }
 

@@ -345,19 +345,7 @@ impl PinValue {
     }
 }
 
-/// Ports of the capacitive board top that need a pin (plus CAP_TOP_BUSES).
-pub const CAP_TOP_PINS: &[&str] = &[
-    "clk",
-    "rst",
-    "adc_miso",
-    "adc_sck",
-    "adc_conv",
-    "exc_strobe",
-    "biss_ma",
-    "biss_slo",
-];
-/// Buses of the capacitive board top (capacitive.dac_width pins each, LSB first).
-pub const CAP_TOP_BUSES: &[&str] = &["exc_sin", "exc_cos"];
+pub use crate::blocks::captop::hdl::{CAP_TOP_BUSES, CAP_TOP_PINS};
 
 /// The board top's pinned ports for this configuration: (name, None) for a pin,
 /// (name, Some(width)) for a bus. These are exactly the ports of `<name>_top` but the
@@ -365,40 +353,34 @@ pub const CAP_TOP_BUSES: &[&str] = &["exc_sin", "exc_cos"];
 /// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled and each of the
 /// [`DESELECT_PINS`] that `[board.pins]` pins. Every one needs a pin.
 pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
-    let mut v: Vec<(&'static str, Option<u32>)> = match &c.capacitive {
+    match &c.capacitive {
         Some(k) => CAP_TOP_PINS
             .iter()
             .map(|p| (*p, None))
             .chain(CAP_TOP_BUSES.iter().map(|b| (*b, Some(k.dac_width))))
             .collect(),
         None => {
+            use crate::blocks::top::ports::Pin;
             let pins = c
                 .board
                 .as_ref()
                 .map(|b| b.effective_pins())
                 .unwrap_or_default();
-            let pinned = |p: &&&str| pins.contains_key(**p);
-            // The optional ports go before the BiSS pins, in the wrapper's port order.
-            let at = TOP_PINS
+            // In the wrapper's port order (the port table's).
+            crate::blocks::top::hdl::SD_TOP_PORTS
                 .iter()
-                .position(|p| *p == "biss_ma")
-                .unwrap_or(TOP_PINS.len());
-            let (head, biss) = TOP_PINS.split_at(at);
-            head.iter()
-                .chain(DESELECT_PINS.iter().filter(pinned))
-                .chain(QEP_PINS.iter().filter(|_| c.qep.enabled))
-                .chain(biss)
-                .map(|p| (*p, None))
+                .filter(|p| match p.pin {
+                    Pin::Always => true,
+                    Pin::Deselect => pins.contains_key(p.name),
+                    Pin::Qep => c.qep.enabled,
+                    Pin::Ssi => c.ssi.enabled,
+                    Pin::Spi => c.spi.enabled,
+                    Pin::DacBus | Pin::Parallel => false,
+                })
+                .map(|p| (p.name, None))
                 .collect()
         }
-    };
-    if c.ssi.enabled {
-        v.extend(SSI_PINS.iter().map(|p| (*p, None)));
     }
-    if c.spi.enabled {
-        v.extend(SPI_PINS.iter().map(|p| (*p, None)));
-    }
-    v
 }
 
 /// The Spartan-3A/3AN Starter Kit's pins that sinedec knows with a source: the SPI bus of
@@ -452,26 +434,7 @@ impl BoardConfig {
     }
 }
 
-/// Pins of the optional SSI slave.
-pub const SSI_PINS: &[&str] = &["ssi_clk", "ssi_data"];
-/// Pins of the optional SPI slave.
-pub const SPI_PINS: &[&str] = &["enc_sck", "enc_cs_n", "enc_miso", "enc_miso_oe"];
-/// Comparator inputs of the sinewave top: ports (and required pins) only with
-/// `[qep] enabled`.
-pub const QEP_PINS: &[&str] = &["qep_a", "qep_b", "qep_z"];
-/// Outputs of the sinewave top that hold the kit's other SPI-bus devices idle (always 1:
-/// DAC deselected, DAC not cleared, SPI flash deselected, parallel flash disabled).
-/// Optional: a deselect line is a port of `<name>_top` (with a LOC in the UCF) only when
-/// `[board.pins]` pins it; otherwise it stays unconnected inside the top.
-pub const DESELECT_PINS: &[&str] = &["dac_cs", "dac_clr", "spi_ss_b", "sf_ce0"];
-
-/// Ports of the sinewave board top that always need a pin (plus [`QEP_PINS`] with
-/// `[qep] enabled`, [`SSI_PINS`] / [`SPI_PINS`] when enabled and the pinned
-/// [`DESELECT_PINS`]; see [`board_ports`]).
-pub const TOP_PINS: &[&str] = &[
-    "clk", "rst", "adc_miso", "adc_sck", "adc_conv", "amp_cs", "amp_mosi", "amp_shdn", "biss_ma",
-    "biss_slo",
-];
+pub use crate::blocks::top::hdl::{DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS};
 
 /// `[qep]`: comparator outputs A (cos > 0), B (sin > 0), Z (index) on `qep_a/b/z`.
 #[derive(Clone, Debug, Deserialize)]
@@ -909,7 +872,7 @@ fn board_timing(
         };
         board_clock = Some(
             crate::board::board_clock(c.target, osc, c.clock.frequency_hz)
-                .map_err(|m| err("board", key, m))?,
+                .map_err(|m| err("board", key, m.to_string()))?,
         );
     }
     let d = adc.sck_period_clocks;
@@ -1214,22 +1177,24 @@ impl Derived {
         let correction = correction_params(c, &err)?;
         let ssi = if c.ssi.enabled {
             let mut p = SsiParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
-                .map_err(|m| err("ssi", "enabled", m))?;
+                .map_err(|m| err("ssi", "enabled", m.to_string()))?;
             p.gray = c.ssi.gray;
             if let Some(t) = c.ssi.timeout_us {
                 p.set_timeout_us(t)
-                    .map_err(|m| err("ssi", "timeout_us", m))?;
+                    .map_err(|m| err("ssi", "timeout_us", m.to_string()))?;
             }
-            p.validate().map_err(|m| err("ssi", "enabled", m))?;
+            p.validate()
+                .map_err(|m| err("ssi", "enabled", m.to_string()))?;
             Some(p)
         } else {
             None
         };
         let spi = if c.spi.enabled {
             let mut p = SpiSlaveParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
-                .map_err(|m| err("spi", "enabled", m))?;
+                .map_err(|m| err("spi", "enabled", m.to_string()))?;
             p.gray = c.spi.gray;
-            p.validate().map_err(|m| err("spi", "enabled", m))?;
+            p.validate()
+                .map_err(|m| err("spi", "enabled", m.to_string()))?;
             Some(p)
         } else {
             None
@@ -1761,14 +1726,15 @@ fn biss_params(c: &Config, position_width: u32, err: &ErrFn) -> Result<BissParam
         ));
     }
     let mut p = BissParams::new(pb, mb, c.clock.frequency_hz)
-        .map_err(|m| err("biss", "position_bits", m))?;
+        .map_err(|m| err("biss", "position_bits", m.to_string()))?;
     p.gray = b.gray.unwrap_or(false);
     p.ack_periods = b.ack_periods.unwrap_or(1);
     if let Some(t) = b.timeout_us {
         p.set_timeout_us(t)
-            .map_err(|m| err("biss", "timeout_us", m))?;
+            .map_err(|m| err("biss", "timeout_us", m.to_string()))?;
     }
-    p.validate().map_err(|m| err("biss", "ack_periods", m))?;
+    p.validate()
+        .map_err(|m| err("biss", "ack_periods", m.to_string()))?;
     Ok(p)
 }
 

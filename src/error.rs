@@ -78,6 +78,32 @@ pub enum Error {
         /// Why, and the way out.
         message: String,
     },
+    // Blocks' parameters, the board clock and the simulation models (one block, kept at
+    // the end of the enum).
+    /// A block's parameters are out of range or do not fit together (`biss`, `ssi`, `spi`,
+    /// `parallel`, `top`).
+    #[error("{block}: {message}")]
+    BlockParams {
+        /// The block, as its config section is named.
+        block: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// The board's oscillator cannot make the system clock with the FPGA's clock
+    /// synthesizer (DCM_SP, ALTPLL).
+    #[error("{message}")]
+    BoardClock {
+        /// The ratio that was needed, the nearest one possible, and what to change.
+        message: String,
+    },
+    /// A simulation model's parameters are out of range (the capacitive encoder).
+    #[error("{model}: {message}")]
+    ModelParams {
+        /// The model, e.g. `capacitive encoder`.
+        model: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
 }
 
 /// `value` as echoed in a message: at most `max` characters; a longer value keeps its start
@@ -106,6 +132,14 @@ impl Error {
     pub fn option(option: &str, message: impl Into<String>) -> Error {
         Error::InvalidOption {
             option: option.to_string(),
+            message: message.into(),
+        }
+    }
+
+    /// [`Error::BlockParams`] for `block`.
+    pub fn block_params(block: &str, message: impl Into<String>) -> Error {
+        Error::BlockParams {
+            block: block.to_string(),
             message: message.into(),
         }
     }

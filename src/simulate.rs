@@ -272,7 +272,7 @@ pub fn run_traced(
 ) -> Result<SimReport> {
     o.validate(false)?;
     let d = &loaded.derived;
-    let mut sys = System::new(d, encoder(loaded, o)).map_err(Error::Export)?;
+    let mut sys = System::new(d, encoder(loaded, o))?;
     let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
         block: "top".into(),
         message: e.to_string(),
@@ -455,7 +455,7 @@ pub fn run_capacitive_traced(
     p.coupling = o.amplitude / k.config.amplitude;
     p.noise_rms_v = o.noise_lsb * p.adc_full_scale_v / (1u64 << (d.adc.frame.width - 1)) as f64;
     p.seed = o.seed;
-    let mut sys = CapSystem::new(d, p).map_err(Error::Export)?;
+    let mut sys = CapSystem::new(d, p)?;
     if let Some(out) = vcd {
         let top = crate::blocks::captop::hdl::CapTopRtl::new(d)?;
         let t = top_trace(loaded, out, &top)?;

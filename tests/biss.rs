@@ -94,18 +94,26 @@ fn crc_register_equals_long_division() {
 #[test]
 fn params_are_validated() {
     assert!(BissParams::new(19, 0, 50e6).is_ok());
-    let e = BissParams::new(0, 0, 50e6).unwrap_err();
+    let e = BissParams::new(0, 0, 50e6).unwrap_err().to_string();
     assert!(e.contains("position_bits"), "{e}");
-    let e = BissParams::new(20, 13, 50e6).unwrap_err();
+    let e = BissParams::new(20, 13, 50e6).unwrap_err().to_string();
     assert!(e.contains("exceeds"), "{e}");
-    let e = BissParams::new(19, 0, 0.0).unwrap_err();
+    let e = BissParams::new(19, 0, 0.0).unwrap_err().to_string();
     assert!(e.contains("clock_hz"), "{e}");
     let mut p = BissParams::new(19, 0, 50e6).unwrap();
     assert_eq!(p.timeout_clocks, 1000);
-    assert!(p.set_timeout_us(0.01).unwrap_err().contains("timeout"));
+    assert!(p
+        .set_timeout_us(0.01)
+        .unwrap_err()
+        .to_string()
+        .contains("timeout"));
     assert!(p.set_timeout_us(-1.0).is_err());
     p.ack_periods = 0;
-    assert!(p.validate().unwrap_err().contains("ack_periods"));
+    assert!(p
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("ack_periods"));
     p.ack_periods = 65;
     assert!(BissSlave::new(&p).is_err());
     let p = BissParams::new(19, 0, 133.33e6).unwrap();

@@ -294,7 +294,7 @@ fn saturation_is_counted_and_bad_parameters_rejected() {
     ] {
         let mut p = CapParams::paper();
         f(&mut p);
-        let m = CapEncoder::new(p).expect_err("invalid");
+        let m = CapEncoder::new(p).expect_err("invalid").to_string();
         assert!(m.starts_with("capacitive encoder:"), "{m}");
     }
 }

@@ -78,16 +78,20 @@ fn top_with_ssi_and_spi_replays_in_icarus_and_verilator() {
     s.start().expect("settles");
     s.run(3000).expect("runs");
     let mut r = s.finish();
-    // Clock the SPI slave and the SSI line in the replay: a 16-clock SCK under CS.
+    // Clock the SPI slave and the SSI line in the replay: a 16-clock SCK under CS. The
+    // columns are found by name.
+    let top = TopRtl::new(d).expect("top");
+    let ins = top.input_ports();
+    let col = |n: &str| ins.iter().position(|p| p.name == n).expect("input");
+    let (ssi_clk, enc_sck, enc_cs_n) = (col("ssi_clk"), col("enc_sck"), col("enc_cs_n"));
     for (k, row) in r.inputs.iter_mut().enumerate().skip(1500) {
-        row[6] = ((k / 20) % 2) as u64; // ssi_clk
-        row[7] = ((k / 8) % 2) as u64; // enc_sck
-        row[8] = (k > 2800) as u64; // enc_cs_n
+        row[ssi_clk] = ((k / 20) % 2) as u64;
+        row[enc_sck] = ((k / 8) % 2) as u64;
+        row[enc_cs_n] = (k > 2800) as u64;
     }
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("outputs_top");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("dir");
-    let top = TopRtl::new(d).expect("top");
     assert!(top.output_ports().iter().any(|p| p.name == "ssi_data"));
     let t = block_traces(top, "sd_top_rtl", "clk", &r.inputs, Simulators::ALL, &dir)
         .expect("simulators ran");

@@ -69,10 +69,12 @@ fn params_are_validated() {
     assert!(ParallelParams::new(32, 32).is_ok());
     assert!(ParallelParams::new(0, 0)
         .unwrap_err()
+        .to_string()
         .contains("position_bits"));
     assert!(ParallelParams::new(33, 0).is_err());
     assert!(ParallelParams::new(19, 33)
         .unwrap_err()
+        .to_string()
         .contains("multiturn_bits"));
 }
 

@@ -151,9 +151,11 @@ fn params_are_validated() {
     assert!(SsiParams::new(25, 0, 50e6).is_ok());
     assert!(SsiParams::new(0, 0, 50e6)
         .unwrap_err()
+        .to_string()
         .contains("position_bits"));
     assert!(SsiParams::new(13, 20, 50e6)
         .unwrap_err()
+        .to_string()
         .contains("exceeds"));
     let mut p = SsiParams::new(13, 12, 50e6).unwrap();
     assert!(p.set_timeout_us(0.05).is_err());

@@ -178,7 +178,7 @@ pub(crate) fn launch(
         Ok(status) => status,
         Err(problem) => {
             // Time-out or wait failure: add whatever the tool printed before it stopped.
-            let mut message = problem;
+            let mut message = problem.to_string();
             for (label, text) in [("stderr", &stderr), ("stdout", &stdout)] {
                 if !text.trim().is_empty() {
                     let _ = write!(message, "\n--- {label} ---\n{}", trim_message(text));
@@ -220,9 +220,9 @@ fn spawn_error(e: std::io::Error, tool: &str, install: &str) -> CosimError {
     }
 }
 
-/// Waits for `child`, killing it if it runs longer than [`TOOL_TIMEOUT`]. The error is a
-/// description of what went wrong (time-out or failure to wait).
-fn wait_with_timeout(mut child: Child, tool: &str) -> Result<ExitStatus, String> {
+/// Waits for `child`, killing it if it runs longer than [`TOOL_TIMEOUT`]. The error says
+/// what went wrong (time-out, kind `TimedOut`, or failure to wait).
+fn wait_with_timeout(mut child: Child, tool: &str) -> std::io::Result<ExitStatus> {
     let start = Instant::now();
     let mut sleep = Duration::from_millis(2);
     loop {
@@ -232,15 +232,21 @@ fn wait_with_timeout(mut child: Child, tool: &str) -> Result<ExitStatus, String>
             Err(e) => {
                 let _ = child.kill();
                 let _ = child.wait();
-                return Err(format!("waiting for {tool} failed: {e}"));
+                return Err(std::io::Error::new(
+                    e.kind(),
+                    format!("waiting for {tool} failed: {e}"),
+                ));
             }
         }
         if start.elapsed() > TOOL_TIMEOUT {
             let _ = child.kill();
             let _ = child.wait();
-            return Err(format!(
-                "timed out after {} s and was killed",
-                TOOL_TIMEOUT.as_secs()
+            return Err(std::io::Error::new(
+                ErrorKind::TimedOut,
+                format!(
+                    "timed out after {} s and was killed",
+                    TOOL_TIMEOUT.as_secs()
+                ),
             ));
         }
         std::thread::sleep(sleep);

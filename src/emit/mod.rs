@@ -12,6 +12,8 @@ pub mod testbench;
 pub mod verilog;
 
 use crate::blocks::core::hdl::CoreRtl;
+use crate::blocks::top::hdl::SD_TOP_PORTS;
+use crate::blocks::top::ports::{Dir, Pin, TopPort};
 use crate::config::{Derived, Loaded};
 use crate::cosim::Port;
 use crate::error::{Error, Result};
@@ -204,23 +206,23 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
     let one = |p: &str| (p.to_string(), 1u32);
     let mut v: Vec<(String, u32)> = if let Some(k) = &d.capacitive {
         let w = k.config.dac_width;
-        let mut v: Vec<(String, u32)> = ["clk", "rst", "adc_miso", "adc_sck", "adc_conv"]
-            .into_iter()
-            .map(one)
-            .collect();
-        v.push(("exc_sin".into(), w));
-        v.push(("exc_cos".into(), w));
-        v.extend(["exc_strobe", "biss_ma", "biss_slo"].into_iter().map(one));
-        v
+        crate::blocks::captop::hdl::CAP_TOP_PORTS
+            .iter()
+            .filter(|p| p.pin != Pin::Parallel)
+            .map(|p| match p.pin {
+                Pin::DacBus => (p.name.to_string(), w),
+                _ => one(p.name),
+            })
+            .collect()
     } else if has_top(loaded) {
         let used: Vec<&str> = crate::config::board_ports(&loaded.config)
             .iter()
             .map(|p| p.0)
             .collect();
-        TOP_PORTS
+        SD_TOP_PORTS
             .iter()
-            .filter(|t| used.contains(&t.0))
-            .map(|t| one(t.0))
+            .filter(|t| used.contains(&t.name))
+            .map(|t| one(t.name))
             .collect()
     } else {
         return Vec::new();
@@ -236,66 +238,26 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
     v
 }
 
-/// One-bit ports of the sinewave `<name>_rtl` besides the parallel bus, in the wrapper's
-/// port order: (name, is an input, port comment, value an input is tied to inside the
-/// wrapper when the port is left out). The wrapper declares a port only when
-/// [`crate::config::board_ports`] lists it, so every non-`par_*` port of `<name>_top` has a
-/// pin; an output left out stays unconnected.
-const TOP_PORTS: &[(&str, bool, &str, &str)] = &[
-    ("clk", true, "system clock", ""),
-    (
-        "rst",
-        true,
-        "synchronous reset, active high (restarts the set-up)",
-        "",
-    ),
-    ("adc_miso", true, "AD_DOUT: LTC1407A-1 serial data", ""),
-    (
-        "adc_sck",
-        false,
-        "SPI_SCK: shared SPI clock (amp set-up, then ADC)",
-        "",
-    ),
-    ("adc_conv", false, "AD_CONV: conversion start", ""),
-    (
-        "amp_cs",
-        false,
-        "AMP_CS: LTC6912-1 chip select, active low",
-        "",
-    ),
-    ("amp_mosi", false, "SPI_MOSI: LTC6912-1 gain word", ""),
-    ("amp_shdn", false, "AMP_SHDN: 0 = amplifier on", ""),
-    ("dac_cs", false, "DAC_CS: 1 = DAC deselected", ""),
-    ("dac_clr", false, "DAC_CLR: 1 = DAC not cleared", ""),
-    ("spi_ss_b", false, "SPI_SS_B: 1 = SPI flash deselected", ""),
-    ("sf_ce0", false, "SF_CE0: 1 = parallel flash disabled", ""),
-    ("qep_a", true, "QEP A: comparator cos > 0", "1'b0"),
-    ("qep_b", true, "QEP B: comparator sin > 0", "1'b0"),
-    ("qep_z", true, "QEP Z: index", "1'b0"),
-    ("biss_ma", true, "BiSS-C MA clock from the master", ""),
-    ("biss_slo", false, "BiSS-C SLO data to the master", ""),
-    (
-        "ssi_clk",
-        true,
-        "SSI clock from the master (idle high)",
-        "1'b1",
-    ),
-    ("ssi_data", false, "SSI data (idle high)", ""),
-    ("enc_sck", true, "SPI-slave clock", "1'b0"),
-    (
-        "enc_cs_n",
-        true,
-        "SPI-slave chip select, active low",
-        "1'b1",
-    ),
-    ("enc_miso", false, "SPI-slave data", ""),
-    (
-        "enc_miso_oe",
-        false,
-        "SPI-slave output enable (drive enc_miso only when high)",
-        "",
-    ),
-];
+/// The template context of one wrapper port declaration: direction, range (8 columns;
+/// `width` for a bus narrowed from the rtl's word), the name with its comma in 14 columns,
+/// and the comment.
+fn wrapper_port(t: &TopPort, width: Option<u32>) -> minijinja::Value {
+    let dir = if t.dir == Dir::Out {
+        "output"
+    } else {
+        "input "
+    };
+    let range = match width {
+        Some(w) => format!("[{}:0]  ", w - 1),
+        None => " ".repeat(8),
+    };
+    minijinja::context! {
+        dir => dir,
+        range => range,
+        name => format!("{:<14}", format!("{},", t.name)),
+        comment => t.comment,
+    }
+}
 
 /// `items` separated by ", " and closed by `end`, on lines that start with `prefix` and
 /// stay within 95 columns (an item longer than a line gets a line of its own).
@@ -332,7 +294,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     }
     let name = top_name(loaded);
     let rtl_name = format!("{name}_rtl");
-    let mut uut = crate::blocks::top::hdl::TopRtl::new(d).map_err(Error::Export)?;
+    let mut uut = crate::blocks::top::hdl::TopRtl::new(d)?;
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let body = verilog::export(&uut, "top", &rtl_name)?;
     let f = d.fine_bits;
@@ -341,47 +303,41 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         .iter()
         .map(|p| p.0)
         .collect();
-    if let Some(p) = used.iter().find(|p| !TOP_PORTS.iter().any(|t| t.0 == **p)) {
+    if let Some(p) = used
+        .iter()
+        .find(|p| !SD_TOP_PORTS.iter().any(|t| t.name == **p))
+    {
         return Err(Error::Export(format!(
             "{name}: the pinned port {p} has no place in the wrapper"
         )));
     }
+    // The wrapper's ports and the rtl's connections, from the top's port table: a port the
+    // configuration uses is a wrapper port; a left-out input is tied to its idle level, a
+    // left-out output left open; the parallel bus goes to the wrapper's wires.
     let mut decl = Vec::new();
     let mut conns: Vec<String> = vec![];
     let mut left_out: Vec<&str> = vec![];
-    for (p, input, comment, tie) in TOP_PORTS {
-        if used.contains(p) {
-            let dir = if *input { "input " } else { "output" };
-            decl.push(minijinja::context! {
-                dir => dir,
-                name => format!("{:<14}", format!("{p},")),
-                comment => *comment,
-            });
-            conns.push(format!(".{p}({p})"));
-        } else if *input {
-            if tie.is_empty() {
+    for t in SD_TOP_PORTS {
+        let p = t.name;
+        let input = t.dir != Dir::Out;
+        if t.pin == Pin::Parallel {
+            conns.push(format!(".{p}({})", t.net));
+        } else if used.contains(&p) {
+            decl.push(wrapper_port(t, None));
+            conns.push(format!(".{p}({})", t.net));
+        } else if input {
+            if t.pin == Pin::Always {
                 return Err(Error::Export(format!(
                     "{name}: the required input {p} is not a port of the wrapper"
                 )));
             }
-            conns.push(format!(".{p}({tie})"));
+            conns.push(format!(".{p}(1'b{})", t.idle));
             left_out.push(p);
         } else {
             conns.push(format!(".{p}()"));
             left_out.push(p);
         }
     }
-    conns.extend(
-        [
-            ".par_valid(par_valid)",
-            ".par_qc(qc)",
-            ".par_fine(fine)",
-            ".par_turns(turns)",
-            ".par_error(par_error)",
-            ".par_warning(par_warning)",
-        ]
-        .map(String::from),
-    );
     let inst = wrap_list(&conns, "       ", "");
     // The ports left out, as comment lines of at most 95 characters (empty: none).
     let left_out_lines = if left_out.is_empty() {
@@ -425,10 +381,23 @@ pub fn cap_top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     let body = verilog::export(&uut, "top", &rtl_name)?;
     let f = d.fine_bits;
     let turns = turns_expr(d);
+    let w = k.config.dac_width;
+    let table = crate::blocks::captop::hdl::CAP_TOP_PORTS;
+    let decl: Vec<minijinja::Value> = table
+        .iter()
+        .filter(|t| t.pin != Pin::Parallel)
+        .map(|t| wrapper_port(t, (t.pin == Pin::DacBus).then_some(w)))
+        .collect();
+    let conns: Vec<String> = table
+        .iter()
+        .map(|t| format!(".{}({})", t.name, t.net))
+        .collect();
     let wrapper = templates::render(
         "top/capacitive_top.v.j2",
         minijinja::context! {
             name => name,
+            ports => decl,
+            inst => wrap_list(&conns, "       ", ""),
             rtl_name => rtl_name,
             turns => turns,
             f => f,

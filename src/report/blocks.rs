@@ -171,7 +171,7 @@ pub fn job<B: Block>(loaded: &Loaded, key: &str, uut: B, timing: BlockTiming) ->
     })
 }
 
-fn param_err(block: &str) -> impl Fn(String) -> Error + '_ {
+fn param_err(block: &str) -> impl Fn(Error) -> Error + '_ {
     move |m| Error::Export(format!("report block `{block}`: {m}"))
 }
 

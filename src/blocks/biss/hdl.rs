@@ -332,7 +332,7 @@ pub struct BissSlave {
 
 impl BissSlave {
     /// Slave for validated parameters.
-    pub fn new(p: &BissParams) -> Result<Self, String> {
+    pub fn new(p: &BissParams) -> crate::error::Result<Self> {
         p.validate()?;
         let n = p.data_bits();
         Ok(Self {

@@ -143,7 +143,11 @@ pub const DEFAULT_TIMEOUT_US: f64 = 20.0;
 
 impl BissParams {
     /// Parameters with the defaults: binary, one Ack period, 20 us timeout, glitch filter on.
-    pub fn new(position_bits: u32, multiturn_bits: u32, clock_hz: f64) -> Result<Self, String> {
+    pub fn new(
+        position_bits: u32,
+        multiturn_bits: u32,
+        clock_hz: f64,
+    ) -> crate::error::Result<Self> {
         check_clock("biss", clock_hz)?;
         let p = Self {
             position_bits,
@@ -159,19 +163,22 @@ impl BissParams {
     }
 
     /// Sets the timeout from microseconds (rounded to whole system clocks).
-    pub fn set_timeout_us(&mut self, us: f64) -> Result<(), String> {
+    pub fn set_timeout_us(&mut self, us: f64) -> crate::error::Result<()> {
         self.timeout_clocks = timeout_clocks("biss", us, self.clock_hz)?;
         Ok(())
     }
 
     /// Checks every field; the message names the field and the allowed range.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> crate::error::Result<()> {
         check_clock("biss", self.clock_hz)?;
         check_word("biss", self.position_bits, self.multiturn_bits)?;
         if !(1..=MAX_ACK_PERIODS).contains(&self.ack_periods) {
-            return Err(format!(
-                "biss: ack_periods must be 1..={MAX_ACK_PERIODS}, got {}",
-                self.ack_periods
+            return Err(crate::error::Error::block_params(
+                "biss",
+                format!(
+                    "ack_periods must be 1..={MAX_ACK_PERIODS}, got {}",
+                    self.ack_periods
+                ),
             ));
         }
         check_timeout_clocks("biss", self.timeout_clocks)
@@ -227,12 +234,13 @@ pub fn min_level_clocks(glitch_filter: bool) -> u32 {
     }
 }
 
-pub(crate) fn check_clock(block: &str, clock_hz: f64) -> Result<(), String> {
+pub(crate) fn check_clock(block: &str, clock_hz: f64) -> crate::error::Result<()> {
     if clock_hz.is_finite() && (1e6..=1e9).contains(&clock_hz) {
         Ok(())
     } else {
-        Err(format!(
-            "{block}: clock_hz must be between 1 MHz and 1 GHz, got {clock_hz}"
+        Err(crate::error::Error::block_params(
+            block,
+            format!("clock_hz must be between 1 MHz and 1 GHz, got {clock_hz}"),
         ))
     }
 }
@@ -241,46 +249,51 @@ pub(crate) fn check_word(
     block: &str,
     position_bits: u32,
     multiturn_bits: u32,
-) -> Result<(), String> {
+) -> crate::error::Result<()> {
     if !(1..=32).contains(&position_bits) {
-        return Err(format!(
-            "{block}: position_bits must be 1..=32, got {position_bits}"
+        return Err(crate::error::Error::block_params(
+            block,
+            format!("position_bits must be 1..=32, got {position_bits}"),
         ));
     }
     if position_bits + multiturn_bits > 32 {
-        return Err(format!(
-            "{block}: position_bits + multiturn_bits = {} + {} = {} exceeds the 32-bit data word",
-            position_bits,
-            multiturn_bits,
-            position_bits + multiturn_bits
+        return Err(crate::error::Error::block_params(
+            block,
+            format!(
+                "position_bits + multiturn_bits = {} + {} = {} exceeds the 32-bit data word",
+                position_bits,
+                multiturn_bits,
+                position_bits + multiturn_bits
+            ),
         ));
     }
     Ok(())
 }
 
-pub(crate) fn check_timeout_clocks(block: &str, clocks: u32) -> Result<(), String> {
+pub(crate) fn check_timeout_clocks(block: &str, clocks: u32) -> crate::error::Result<()> {
     if (MIN_TIMEOUT_CLOCKS..=MAX_TIMEOUT_CLOCKS).contains(&clocks) {
         Ok(())
     } else {
-        Err(format!(
-            "{block}: the timeout must be {MIN_TIMEOUT_CLOCKS}..={MAX_TIMEOUT_CLOCKS} system clocks, got {clocks}"
-        ))
+        Err(crate::error::Error::block_params(block, format!(
+            "the timeout must be {MIN_TIMEOUT_CLOCKS}..={MAX_TIMEOUT_CLOCKS} system clocks, got {clocks}"
+        )))
     }
 }
 
 /// Timeout in clocks from microseconds (rounded), checked.
-pub(crate) fn timeout_clocks(block: &str, us: f64, clock_hz: f64) -> Result<u32, String> {
+pub(crate) fn timeout_clocks(block: &str, us: f64, clock_hz: f64) -> crate::error::Result<u32> {
     if !us.is_finite() || us <= 0.0 {
-        return Err(format!(
-            "{block}: the timeout must be a positive number of microseconds, got {us}"
+        return Err(crate::error::Error::block_params(
+            block,
+            format!("the timeout must be a positive number of microseconds, got {us}"),
         ));
     }
     let c = (us * clock_hz / 1e6).round();
     if c < MIN_TIMEOUT_CLOCKS as f64 || c > MAX_TIMEOUT_CLOCKS as f64 {
-        return Err(format!(
-            "{block}: a timeout of {us} us is {c} clocks at {} MHz; it must be {MIN_TIMEOUT_CLOCKS}..={MAX_TIMEOUT_CLOCKS} clocks",
+        return Err(crate::error::Error::block_params(block, format!(
+            "a timeout of {us} us is {c} clocks at {} MHz; it must be {MIN_TIMEOUT_CLOCKS}..={MAX_TIMEOUT_CLOCKS} clocks",
             clock_hz / 1e6
-        ));
+        )));
     }
     Ok(c as u32)
 }

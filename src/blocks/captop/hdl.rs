@@ -4,88 +4,65 @@ use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::capacitive::hdl::CapFront;
 use crate::blocks::capacitive::CapFrontParams;
 use crate::blocks::core::hdl::CoreRtl;
+use crate::blocks::top::ports::{board_top, pins};
 use crate::config::Derived;
-use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
-/// The capacitive-path top as simulated in rust-hdl and exported (inside `<name>_top`).
-#[derive(LogicBlock)]
-pub struct CapTopRtl {
-    /// System clock.
-    pub clk: Signal<In, Clock>,
-    /// Synchronous reset, active high.
-    pub rst: Signal<In, Bit>,
-    /// ADC serial data.
-    pub adc_miso: Signal<In, Bit>,
-    /// ADC serial clock.
-    pub adc_sck: Signal<Out, Bit>,
-    /// ADC conversion start / chip select.
-    pub adc_conv: Signal<Out, Bit>,
-    /// Excitation DAC word A sin(wt), W-bit two's complement.
-    pub exc_sin: Signal<Out, Bits<32>>,
-    /// Excitation DAC word A cos(wt), W-bit two's complement.
-    pub exc_cos: Signal<Out, Bits<32>>,
-    /// One clock when new excitation words are out (DAC load strobe).
-    pub exc_strobe: Signal<Out, Bit>,
-    /// BiSS-C MA clock from the master.
-    pub biss_ma: Signal<In, Bit>,
-    /// BiSS-C SLO data to the master.
-    pub biss_slo: Signal<Out, Bit>,
-    /// Parallel bus: position strobe.
-    pub par_valid: Signal<Out, Bit>,
-    /// Parallel bus: coarse quadrant count.
-    pub par_qc: Signal<Out, Bits<32>>,
-    /// Parallel bus: fine part of the position.
-    pub par_fine: Signal<Out, Bits<32>>,
-    /// Parallel bus: turn count.
-    pub par_turns: Signal<Out, Bits<32>>,
-    /// Parallel bus: error flag.
-    pub par_error: Signal<Out, Bit>,
-    /// Parallel bus: warning flag.
-    pub par_warning: Signal<Out, Bit>,
-    adc: AdcController,
-    front: CapFront,
-    core: CoreRtl,
-    biss_slave: BissSlave,
-    ovf_hold: DFF<Bit>,
-    drop_hold: DFF<Bit>,
-    error: Signal<Local, Bit>,
-    warning: Signal<Local, Bit>,
-    word: Signal<Local, Bits<32>>,
-    /// BiSS data word = ((qc << qshl) >> qshr) | (fine >> fshr).
-    qshl: Constant<Bits<32>>,
-    /// See `qshl`.
-    qshr: Constant<Bits<32>>,
-    /// See `qshl`.
-    fshr: Constant<Bits<32>>,
+board_top! {
+    /// The capacitive-path top as simulated in rust-hdl and exported (inside `<name>_top`).
+    /// Its ports, in the order of the struct, the rtl and the wrapper: [`CAP_TOP_PORTS`].
+    pub struct CapTopRtl / CAP_TOP_PORTS / CapTopParts {
+        ports {
+            clk: In Clock, Clock, 1, Always, 0, "system clock";
+            rst: In Bit, In, 1, Always, 0, "synchronous reset, active high";
+            adc_miso: In Bit, In, 1, Always, 0, "ADC serial data";
+            adc_sck: Out Bit, Out, 1, Always, 0, "ADC serial clock";
+            adc_conv: Out Bit, Out, 1, Always, 0, "ADC conversion start / chip select";
+            exc_sin: Out Bits<32>, Out, 32, DacBus, 0, "excitation DAC word A sin(wt), two's complement" => es;
+            exc_cos: Out Bits<32>, Out, 32, DacBus, 0, "excitation DAC word A cos(wt), two's complement" => ec;
+            exc_strobe: Out Bit, Out, 1, Always, 0, "one clock when new excitation words are out";
+            biss_ma: In Bit, In, 1, Always, 1, "BiSS-C MA clock from the master";
+            biss_slo: Out Bit, Out, 1, Always, 0, "BiSS-C SLO data to the master";
+            par_valid: Out Bit, Out, 1, Parallel, 0, "parallel bus: position strobe";
+            par_qc: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: coarse quadrant count" => qc;
+            par_fine: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: fine part of the position" => fine;
+            par_turns: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: turn count" => turns;
+            par_error: Out Bit, Out, 1, Parallel, 0, "parallel bus: error flag";
+            par_warning: Out Bit, Out, 1, Parallel, 0, "parallel bus: warning flag";
+        }
+        adc: AdcController,
+        front: CapFront,
+        core: CoreRtl,
+        biss_slave: BissSlave,
+        ovf_hold: DFF<Bit>,
+        drop_hold: DFF<Bit>,
+        error: Signal<Local, Bit>,
+        warning: Signal<Local, Bit>,
+        word: Signal<Local, Bits<32>>,
+        /// BiSS data word = ((qc << qshl) >> qshr) | (fine >> fshr).
+        qshl: Constant<Bits<32>>,
+        /// See `qshl`.
+        qshr: Constant<Bits<32>>,
+        /// See `qshl`.
+        fshr: Constant<Bits<32>>,
+    }
 }
+
+/// Ports of the capacitive board top that need a pin (plus [`CAP_TOP_BUSES`]).
+pub const CAP_TOP_PINS: &[&str] = pins!(CAP_TOP_PORTS, Always);
+/// Buses of the capacitive board top (`capacitive.dac_width` pins each, LSB first).
+pub const CAP_TOP_BUSES: &[&str] = pins!(CAP_TOP_PORTS, DacBus);
 
 impl CapTopRtl {
     /// The top for the derived parameters (needs `[capacitive]`).
     pub fn new(d: &Derived) -> crate::error::Result<Self> {
         let p = CapFrontParams::new(d)?;
         let [qshl, qshr, fshr] = crate::blocks::top::hdl::biss_word_shifts(d);
-        Ok(Self {
-            clk: Default::default(),
-            rst: Default::default(),
-            adc_miso: Default::default(),
-            adc_sck: Default::default(),
-            adc_conv: Default::default(),
-            exc_sin: Default::default(),
-            exc_cos: Default::default(),
-            exc_strobe: Default::default(),
-            biss_ma: Default::default(),
-            biss_slo: Default::default(),
-            par_valid: Default::default(),
-            par_qc: Default::default(),
-            par_fine: Default::default(),
-            par_turns: Default::default(),
-            par_error: Default::default(),
-            par_warning: Default::default(),
+        Ok(Self::from_parts(CapTopParts {
             adc: AdcController::new(&d.adc),
             front: CapFront::new(&p),
             core: CoreRtl::new(d),
-            biss_slave: BissSlave::new(&d.biss).map_err(crate::error::Error::Export)?,
+            biss_slave: BissSlave::new(&d.biss)?,
             ovf_hold: Default::default(),
             drop_hold: Default::default(),
             error: Default::default(),
@@ -94,7 +71,7 @@ impl CapTopRtl {
             qshl,
             qshr,
             fshr,
-        })
+        }))
     }
 }
 
@@ -154,58 +131,5 @@ impl Logic for CapTopRtl {
         self.par_turns.next = self.core.out_turns.val();
         self.par_error.next = self.error.val();
         self.par_warning.next = self.warning.val();
-    }
-}
-
-impl crate::cosim::step::Clocked for CapTopRtl {
-    fn set_clock(&mut self, high: bool) {
-        self.clk.next = Clock::from(high);
-    }
-}
-
-impl crate::cosim::CosimBlock for CapTopRtl {
-    fn input_ports(&self) -> Vec<Port> {
-        vec![
-            Port::new("rst", 1),
-            Port::new("adc_miso", 1),
-            Port::new("biss_ma", 1),
-        ]
-    }
-    fn output_ports(&self) -> Vec<Port> {
-        vec![
-            Port::new("adc_sck", 1),
-            Port::new("adc_conv", 1),
-            Port::new("exc_sin", 32),
-            Port::new("exc_cos", 32),
-            Port::new("exc_strobe", 1),
-            Port::new("biss_slo", 1),
-            Port::new("par_valid", 1),
-            Port::new("par_qc", 32),
-            Port::new("par_fine", 32),
-            Port::new("par_turns", 32),
-            Port::new("par_error", 1),
-            Port::new("par_warning", 1),
-        ]
-    }
-    fn apply(&mut self, r: &[u64]) {
-        self.rst.next = r[0] != 0;
-        self.adc_miso.next = r[1] != 0;
-        self.biss_ma.next = r.get(2).is_none_or(|v| *v != 0);
-    }
-    fn sample(&self) -> Vec<u64> {
-        vec![
-            self.adc_sck.val() as u64,
-            self.adc_conv.val() as u64,
-            self.exc_sin.val().to_u64(),
-            self.exc_cos.val().to_u64(),
-            self.exc_strobe.val() as u64,
-            self.biss_slo.val() as u64,
-            self.par_valid.val() as u64,
-            self.par_qc.val().to_u64(),
-            self.par_fine.val().to_u64(),
-            self.par_turns.val().to_u64(),
-            self.par_error.val() as u64,
-            self.par_warning.val() as u64,
-        ]
     }
 }

@@ -50,7 +50,7 @@ pub struct ParallelBus {
 
 impl ParallelBus {
     /// Bus for validated parameters.
-    pub fn new(p: &ParallelParams) -> Result<Self, String> {
+    pub fn new(p: &ParallelParams) -> crate::error::Result<Self> {
         p.validate()?;
         Ok(Self {
             clk: Default::default(),

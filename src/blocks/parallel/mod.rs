@@ -39,7 +39,7 @@ pub struct ParallelParams {
 
 impl ParallelParams {
     /// Parameters for S position bits and M turn bits.
-    pub fn new(position_bits: u32, multiturn_bits: u32) -> Result<Self, String> {
+    pub fn new(position_bits: u32, multiturn_bits: u32) -> crate::error::Result<Self> {
         let p = Self {
             position_bits,
             multiturn_bits,
@@ -49,12 +49,12 @@ impl ParallelParams {
     }
 
     /// Checks every field.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> crate::error::Result<()> {
         check_word("parallel", self.position_bits, 0)?;
         if self.multiturn_bits > 32 {
-            return Err(format!(
-                "parallel: multiturn_bits must be 0..=32, got {}",
-                self.multiturn_bits
+            return Err(crate::error::Error::block_params(
+                "parallel",
+                format!("multiturn_bits must be 0..=32, got {}", self.multiturn_bits),
             ));
         }
         Ok(())

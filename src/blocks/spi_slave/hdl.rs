@@ -71,7 +71,7 @@ pub struct SpiSlave {
 
 impl SpiSlave {
     /// Slave for validated parameters.
-    pub fn new(p: &SpiSlaveParams) -> Result<Self, String> {
+    pub fn new(p: &SpiSlaveParams) -> crate::error::Result<Self> {
         p.validate()?;
         let n = p.data_bits();
         Ok(Self {

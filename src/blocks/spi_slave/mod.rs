@@ -55,7 +55,11 @@ pub struct SpiSlaveParams {
 
 impl SpiSlaveParams {
     /// Parameters with the defaults: binary, glitch filter on.
-    pub fn new(position_bits: u32, multiturn_bits: u32, clock_hz: f64) -> Result<Self, String> {
+    pub fn new(
+        position_bits: u32,
+        multiturn_bits: u32,
+        clock_hz: f64,
+    ) -> crate::error::Result<Self> {
         let p = Self {
             position_bits,
             multiturn_bits,
@@ -68,7 +72,7 @@ impl SpiSlaveParams {
     }
 
     /// Checks every field.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> crate::error::Result<()> {
         check_clock("spi", self.clock_hz)?;
         check_word("spi", self.position_bits, self.multiturn_bits)
     }

@@ -70,7 +70,7 @@ pub struct SsiSlave {
 
 impl SsiSlave {
     /// Slave for validated parameters.
-    pub fn new(p: &SsiParams) -> Result<Self, String> {
+    pub fn new(p: &SsiParams) -> crate::error::Result<Self> {
         p.validate()?;
         let n = p.data_bits();
         Ok(Self {

@@ -60,7 +60,11 @@ pub struct SsiParams {
 
 impl SsiParams {
     /// Parameters with the defaults: binary, no error bit, 20 us monoflop, glitch filter on.
-    pub fn new(position_bits: u32, multiturn_bits: u32, clock_hz: f64) -> Result<Self, String> {
+    pub fn new(
+        position_bits: u32,
+        multiturn_bits: u32,
+        clock_hz: f64,
+    ) -> crate::error::Result<Self> {
         check_clock("ssi", clock_hz)?;
         let p = Self {
             position_bits,
@@ -76,13 +80,13 @@ impl SsiParams {
     }
 
     /// Sets the monoflop time from microseconds (rounded to whole system clocks).
-    pub fn set_timeout_us(&mut self, us: f64) -> Result<(), String> {
+    pub fn set_timeout_us(&mut self, us: f64) -> crate::error::Result<()> {
         self.timeout_clocks = timeout_clocks("ssi", us, self.clock_hz)?;
         Ok(())
     }
 
     /// Checks every field.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> crate::error::Result<()> {
         check_clock("ssi", self.clock_hz)?;
         check_word("ssi", self.position_bits, self.multiturn_bits)?;
         check_timeout_clocks("ssi", self.timeout_clocks)

@@ -1,4 +1,5 @@
 //! rust-hdl description of the sinewave board top.
+use super::ports::{board_top, pins};
 use crate::blocks::adc::hdl::AdcController;
 use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::c32;
@@ -13,90 +14,82 @@ use crate::blocks::ssi::hdl::SsiSlave;
 use crate::config::Derived;
 use rust_hdl::prelude::*;
 
-/// The sinewave-path top as simulated in rust-hdl and exported (inside `<name>_top`).
-#[derive(LogicBlock)]
-pub struct TopRtl {
-    /// System clock.
-    pub clk: Signal<In, Clock>,
-    /// Synchronous reset, active high (also restarts the preamp set-up).
-    pub rst: Signal<In, Bit>,
-    /// AD_DOUT: serial data from the LTC1407A-1.
-    pub adc_miso: Signal<In, Bit>,
-    /// SPI_SCK: the shared SPI clock (preamp set-up, then the ADC).
-    pub adc_sck: Signal<Out, Bit>,
-    /// AD_CONV: conversion start.
-    pub adc_conv: Signal<Out, Bit>,
-    /// AMP_CS: LTC6912-1 chip select, active low.
-    pub amp_cs: Signal<Out, Bit>,
-    /// SPI_MOSI: gain word to the LTC6912-1.
-    pub amp_mosi: Signal<Out, Bit>,
-    /// AMP_SHDN: 0, amplifier on.
-    pub amp_shdn: Signal<Out, Bit>,
-    /// DAC_CS: 1, DAC deselected.
-    pub dac_cs: Signal<Out, Bit>,
-    /// DAC_CLR: 1, DAC not cleared.
-    pub dac_clr: Signal<Out, Bit>,
-    /// SPI_SS_B: 1, SPI flash deselected.
-    pub spi_ss_b: Signal<Out, Bit>,
-    /// SF_CE0: 1, parallel flash disabled.
-    pub sf_ce0: Signal<Out, Bit>,
-    /// QEP A: comparator (cos > 0).
-    pub qep_a: Signal<In, Bit>,
-    /// QEP B: comparator (sin > 0).
-    pub qep_b: Signal<In, Bit>,
-    /// QEP Z: index.
-    pub qep_z: Signal<In, Bit>,
-    /// BiSS-C MA clock from the master.
-    pub biss_ma: Signal<In, Bit>,
-    /// BiSS-C SLO data to the master.
-    pub biss_slo: Signal<Out, Bit>,
-    /// SSI clock from the master (used when `[ssi] enabled`).
-    pub ssi_clk: Signal<In, Bit>,
-    /// SSI data to the master (idle high when disabled).
-    pub ssi_data: Signal<Out, Bit>,
-    /// SPI-slave clock (used when `[spi] enabled`).
-    pub enc_sck: Signal<In, Bit>,
-    /// SPI-slave chip select, active low.
-    pub enc_cs_n: Signal<In, Bit>,
-    /// SPI-slave data out.
-    pub enc_miso: Signal<Out, Bit>,
-    /// SPI-slave output enable (drive `enc_miso` only when high).
-    pub enc_miso_oe: Signal<Out, Bit>,
-    /// Parallel bus: position strobe.
-    pub par_valid: Signal<Out, Bit>,
-    /// Parallel bus: coarse quadrant count (upper part of the position).
-    pub par_qc: Signal<Out, Bits<32>>,
-    /// Parallel bus: fine part of the position.
-    pub par_fine: Signal<Out, Bits<32>>,
-    /// Parallel bus: turn count (M bits).
-    pub par_turns: Signal<Out, Bits<32>>,
-    /// Parallel bus: error flag.
-    pub par_error: Signal<Out, Bit>,
-    /// Parallel bus: warning flag.
-    pub par_warning: Signal<Out, Bit>,
-    preamp: PreampSetup,
-    adc: AdcController,
-    correction: Correction,
-    core: CoreRtl,
-    monitor: Monitor,
-    qep_decoder: QepDecoder,
-    fallback: Fallback,
-    /// 1 when the QEP fallback is enabled in the config.
-    qep_enable: Constant<Bit>,
-    biss_slave: BissSlave,
-    ssi_slave: Vec<SsiSlave>,
-    spi_slave: Vec<SpiSlave>,
-    error: Signal<Local, Bit>,
-    warning: Signal<Local, Bit>,
-    word: Signal<Local, Bits<32>>,
-    zero: Constant<Bits<32>>,
-    /// BiSS data word = ((qc << qshl) >> qshr) | (fine >> fshr): the top bits of the position.
-    qshl: Constant<Bits<32>>,
-    /// See `qshl`.
-    qshr: Constant<Bits<32>>,
-    /// See `qshl`.
-    fshr: Constant<Bits<32>>,
+board_top! {
+    /// The sinewave-path top as simulated in rust-hdl and exported (inside `<name>_top`).
+    /// Its ports, in the order of the struct, the rtl and the wrapper: [`SD_TOP_PORTS`].
+    pub struct TopRtl / SD_TOP_PORTS / TopParts {
+        ports {
+            clk: In Clock, Clock, 1, Always, 0, "system clock";
+            rst: In Bit, In, 1, Always, 0, "synchronous reset, active high (restarts the set-up)";
+            adc_miso: In Bit, In, 1, Always, 0, "AD_DOUT: LTC1407A-1 serial data";
+            adc_sck: Out Bit, Out, 1, Always, 0, "SPI_SCK: shared SPI clock (amp set-up, then ADC)";
+            adc_conv: Out Bit, Out, 1, Always, 0, "AD_CONV: conversion start";
+            amp_cs: Out Bit, Out, 1, Always, 0, "AMP_CS: LTC6912-1 chip select, active low";
+            amp_mosi: Out Bit, Out, 1, Always, 0, "SPI_MOSI: LTC6912-1 gain word";
+            amp_shdn: Out Bit, Out, 1, Always, 0, "AMP_SHDN: 0 = amplifier on";
+            dac_cs: Out Bit, Out, 1, Deselect, 0, "DAC_CS: 1 = DAC deselected";
+            dac_clr: Out Bit, Out, 1, Deselect, 0, "DAC_CLR: 1 = DAC not cleared";
+            spi_ss_b: Out Bit, Out, 1, Deselect, 0, "SPI_SS_B: 1 = SPI flash deselected";
+            sf_ce0: Out Bit, Out, 1, Deselect, 0, "SF_CE0: 1 = parallel flash disabled";
+            qep_a: In Bit, In, 1, Qep, 0, "QEP A: comparator cos > 0";
+            qep_b: In Bit, In, 1, Qep, 0, "QEP B: comparator sin > 0";
+            qep_z: In Bit, In, 1, Qep, 0, "QEP Z: index";
+            biss_ma: In Bit, In, 1, Always, 1, "BiSS-C MA clock from the master";
+            biss_slo: Out Bit, Out, 1, Always, 0, "BiSS-C SLO data to the master";
+            ssi_clk: In Bit, In, 1, Ssi, 1, "SSI clock from the master (idle high)";
+            ssi_data: Out Bit, Out, 1, Ssi, 0, "SSI data (idle high)";
+            enc_sck: In Bit, In, 1, Spi, 0, "SPI-slave clock";
+            enc_cs_n: In Bit, In, 1, Spi, 1, "SPI-slave chip select, active low";
+            enc_miso: Out Bit, Out, 1, Spi, 0, "SPI-slave data";
+            enc_miso_oe: Out Bit, Out, 1, Spi, 0, "SPI-slave output enable (drive enc_miso only when high)";
+            par_valid: Out Bit, Out, 1, Parallel, 0, "parallel bus: position strobe";
+            par_qc: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: coarse quadrant count (upper part of the position)" => qc;
+            par_fine: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: fine part of the position" => fine;
+            par_turns: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: turn count (M bits)" => turns;
+            par_error: Out Bit, Out, 1, Parallel, 0, "parallel bus: error flag";
+            par_warning: Out Bit, Out, 1, Parallel, 0, "parallel bus: warning flag";
+        }
+        preamp: PreampSetup,
+        adc: AdcController,
+        correction: Correction,
+        core: CoreRtl,
+        monitor: Monitor,
+        qep_decoder: QepDecoder,
+        fallback: Fallback,
+        /// 1 when the QEP fallback is enabled in the config.
+        qep_enable: Constant<Bit>,
+        biss_slave: BissSlave,
+        ssi_slave: Vec<SsiSlave>,
+        spi_slave: Vec<SpiSlave>,
+        error: Signal<Local, Bit>,
+        warning: Signal<Local, Bit>,
+        word: Signal<Local, Bits<32>>,
+        zero: Constant<Bits<32>>,
+        /// BiSS data word = ((qc << qshl) >> qshr) | (fine >> fshr): the top bits of the position.
+        qshl: Constant<Bits<32>>,
+        /// See `qshl`.
+        qshr: Constant<Bits<32>>,
+        /// See `qshl`.
+        fshr: Constant<Bits<32>>,
+    }
 }
+
+/// Ports of the sinewave board top that always need a pin (plus [`QEP_PINS`] with
+/// `[qep] enabled`, [`SSI_PINS`] / [`SPI_PINS`] when enabled and the pinned
+/// [`DESELECT_PINS`]; see `config::board_ports`).
+pub const TOP_PINS: &[&str] = pins!(SD_TOP_PORTS, Always);
+/// Pins of the optional SSI slave.
+pub const SSI_PINS: &[&str] = pins!(SD_TOP_PORTS, Ssi);
+/// Pins of the optional SPI slave.
+pub const SPI_PINS: &[&str] = pins!(SD_TOP_PORTS, Spi);
+/// Comparator inputs of the sinewave top: ports (and required pins) only with
+/// `[qep] enabled`.
+pub const QEP_PINS: &[&str] = pins!(SD_TOP_PORTS, Qep);
+/// Outputs of the sinewave top that hold the kit's other SPI-bus devices idle (always 1:
+/// DAC deselected, DAC not cleared, SPI flash deselected, parallel flash disabled).
+/// Optional: a deselect line is a port of `<name>_top` (with a LOC in the UCF) only when
+/// `[board.pins]` pins it; otherwise it stays unconnected inside the top.
+pub const DESELECT_PINS: &[&str] = pins!(SD_TOP_PORTS, Deselect);
 
 /// Clock cycles from the CONV rise that samples the inputs to `par_valid` for that sample:
 /// ADC controller + correction + core.
@@ -118,42 +111,15 @@ pub fn biss_word_shifts(d: &Derived) -> [Constant<Bits<32>>; 3] {
 
 impl TopRtl {
     /// The top for the derived parameters (preset `ltc1407a-1`).
-    pub fn new(d: &Derived) -> Result<Self, String> {
-        let pre = d
-            .preamp
-            .as_ref()
-            .ok_or_else(|| "the sinewave board top needs the LTC1407A-1 preset".to_string())?;
+    pub fn new(d: &Derived) -> crate::error::Result<Self> {
+        let pre = d.preamp.as_ref().ok_or_else(|| {
+            crate::error::Error::block_params(
+                "top",
+                "the sinewave board top needs the LTC1407A-1 preset",
+            )
+        })?;
         let [qshl, qshr, fshr] = biss_word_shifts(d);
-        Ok(Self {
-            clk: Default::default(),
-            rst: Default::default(),
-            adc_miso: Default::default(),
-            adc_sck: Default::default(),
-            adc_conv: Default::default(),
-            amp_cs: Default::default(),
-            amp_mosi: Default::default(),
-            amp_shdn: Default::default(),
-            dac_cs: Default::default(),
-            dac_clr: Default::default(),
-            spi_ss_b: Default::default(),
-            sf_ce0: Default::default(),
-            qep_a: Default::default(),
-            qep_b: Default::default(),
-            qep_z: Default::default(),
-            biss_ma: Default::default(),
-            biss_slo: Default::default(),
-            ssi_clk: Default::default(),
-            ssi_data: Default::default(),
-            enc_sck: Default::default(),
-            enc_cs_n: Default::default(),
-            enc_miso: Default::default(),
-            enc_miso_oe: Default::default(),
-            par_valid: Default::default(),
-            par_qc: Default::default(),
-            par_fine: Default::default(),
-            par_turns: Default::default(),
-            par_error: Default::default(),
-            par_warning: Default::default(),
+        Ok(Self::from_parts(TopParts {
             preamp: PreampSetup::new(pre),
             adc: AdcController::new(&d.adc),
             correction: Correction::new(&d.correction),
@@ -178,7 +144,7 @@ impl TopRtl {
             qshl,
             qshr,
             fshr,
-        })
+        }))
     }
 }
 
@@ -288,90 +254,5 @@ impl Logic for TopRtl {
         self.par_turns.next = self.core.out_turns.val();
         self.par_error.next = self.error.val();
         self.par_warning.next = self.warning.val();
-    }
-}
-
-impl crate::cosim::step::Clocked for TopRtl {
-    fn set_clock(&mut self, high: bool) {
-        self.clk.next = Clock::from(high);
-    }
-}
-
-impl crate::cosim::CosimBlock for TopRtl {
-    fn input_ports(&self) -> Vec<crate::cosim::Port> {
-        use crate::cosim::Port;
-        vec![
-            Port::new("rst", 1),
-            Port::new("adc_miso", 1),
-            Port::new("biss_ma", 1),
-            Port::new("qep_a", 1),
-            Port::new("qep_b", 1),
-            Port::new("qep_z", 1),
-            Port::new("ssi_clk", 1),
-            Port::new("enc_sck", 1),
-            Port::new("enc_cs_n", 1),
-        ]
-    }
-    fn output_ports(&self) -> Vec<crate::cosim::Port> {
-        use crate::cosim::Port;
-        let mut v: Vec<Port> = [
-            "adc_sck",
-            "adc_conv",
-            "amp_cs",
-            "amp_mosi",
-            "amp_shdn",
-            "dac_cs",
-            "dac_clr",
-            "spi_ss_b",
-            "sf_ce0",
-            "biss_slo",
-            "ssi_data",
-            "enc_miso",
-            "enc_miso_oe",
-            "par_valid",
-        ]
-        .iter()
-        .map(|n| Port::new(n, 1))
-        .collect();
-        v.push(Port::new("par_qc", 32));
-        v.push(Port::new("par_fine", 32));
-        v.push(Port::new("par_turns", 32));
-        v.push(Port::new("par_error", 1));
-        v.push(Port::new("par_warning", 1));
-        v
-    }
-    fn apply(&mut self, r: &[u64]) {
-        self.rst.next = r[0] != 0;
-        self.adc_miso.next = r[1] != 0;
-        self.biss_ma.next = r[2] != 0;
-        self.qep_a.next = r[3] != 0;
-        self.qep_b.next = r[4] != 0;
-        self.qep_z.next = r[5] != 0;
-        self.ssi_clk.next = r.get(6).is_none_or(|v| *v != 0);
-        self.enc_sck.next = r.get(7).is_some_and(|v| *v != 0);
-        self.enc_cs_n.next = r.get(8).is_none_or(|v| *v != 0);
-    }
-    fn sample(&self) -> Vec<u64> {
-        vec![
-            self.adc_sck.val() as u64,
-            self.adc_conv.val() as u64,
-            self.amp_cs.val() as u64,
-            self.amp_mosi.val() as u64,
-            self.amp_shdn.val() as u64,
-            self.dac_cs.val() as u64,
-            self.dac_clr.val() as u64,
-            self.spi_ss_b.val() as u64,
-            self.sf_ce0.val() as u64,
-            self.biss_slo.val() as u64,
-            self.ssi_data.val() as u64,
-            self.enc_miso.val() as u64,
-            self.enc_miso_oe.val() as u64,
-            self.par_valid.val() as u64,
-            self.par_qc.val().to_u64(),
-            self.par_fine.val().to_u64(),
-            self.par_turns.val().to_u64(),
-            self.par_error.val() as u64,
-            self.par_warning.val() as u64,
-        ]
     }
 }

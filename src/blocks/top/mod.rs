@@ -19,3 +19,4 @@
 //! * Latency from the CONV edge that samples the inputs to `par_valid`: the ADC's
 //!   CONV-to-`out_valid` latency plus the core's N + 2 cycles.
 pub mod hdl;
+pub mod ports;
