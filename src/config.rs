@@ -1031,15 +1031,7 @@ pub fn locate(text: &str, table: &str, key: &str) -> String {
 /// toml's message, plus the dotted key it concerns when the message does not name it.
 fn syntax_message(e: &toml::de::Error, text: &str) -> String {
     let message = e.message().trim().to_string();
-    // toml keeps the key path private; without input its Display ends with "in `a.b`".
-    let mut bare = e.clone();
-    bare.set_input(None);
-    let shown = bare.to_string();
-    let keys = shown
-        .lines()
-        .next_back()
-        .and_then(|l| l.strip_prefix("in `"))
-        .and_then(|l| l.strip_suffix('`'));
+    let keys = e.span().and_then(|s| key_path_at(text, s.start));
     match keys {
         Some(k) if !message.contains(&format!("`{k}`")) => format!("{message} (in `{k}`)"),
         Some(_) => message,
@@ -1049,6 +1041,32 @@ fn syntax_message(e: &toml::de::Error, text: &str) -> String {
         },
         None => message,
     }
+}
+
+/// The dotted key path of the value at byte offset `pos`, from the spans of toml's document
+/// tree: a position inside a value (or on a table's header) names its key; a position on a
+/// key (an unknown field) names the table holding it. `None` when the text does not parse
+/// as TOML or `pos` lies outside every key and value.
+fn key_path_at(text: &str, pos: usize) -> Option<String> {
+    fn find(table: &toml::de::DeTable<'_>, pos: usize, path: &mut Vec<String>) -> bool {
+        for (k, v) in table.iter() {
+            if k.span().contains(&pos) {
+                return true;
+            }
+            path.push(k.get_ref().to_string());
+            // A `[table]`'s span is its header; its keys lie outside it, so look inside too.
+            let inside = v.span().contains(&pos)
+                || v.get_ref().as_table().is_some_and(|t| find(t, pos, path));
+            if inside {
+                return true;
+            }
+            path.pop();
+        }
+        false
+    }
+    let doc = toml::de::DeTable::parse(text).ok()?;
+    let mut path = Vec::new();
+    (find(doc.get_ref(), pos, &mut path) && !path.is_empty()).then(|| path.join("."))
 }
 
 /// A parsed configuration together with the text it came from.
