@@ -13,7 +13,7 @@
 //! any change to any of them misses the cache.
 use crate::error::{Error, Result};
 use crate::sim::cosim::{require_tool, CosimError};
-use crate::synth::{parse_stat, synthesize, Family, SynthStats};
+use crate::synth::{parse_stat_json, synthesize, Family, SynthStats};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
@@ -29,7 +29,7 @@ hierarchy -check -top {top}
 synth -flatten -top {top}
 abc -g AND,NAND,OR,NOR,XOR,XNOR,ANDNOT,ORNOT,MUX
 opt_clean
-tee -q -o {stat} stat
+tee -q -o {stat} stat -json
 tee -q -o {ltp} ltp -noff
 ";
 
@@ -239,7 +239,7 @@ impl Yosys {
         }
         let dir = self.scratch(tag)?;
         let v = dir.join("generic.v");
-        let stat = dir.join("generic_stat.txt");
+        let stat = dir.join("generic_stat.json");
         let ltp = dir.join("generic_ltp.txt");
         std::fs::write(&v, verilog).map_err(|e| Error::io(&v, e))?;
         let script = GENERIC_SCRIPT
@@ -276,7 +276,8 @@ impl Yosys {
         }
         let stat_text = std::fs::read_to_string(&stat).map_err(|e| Error::io(&stat, e))?;
         let ltp_text = std::fs::read_to_string(&ltp).map_err(|e| Error::io(&ltp, e))?;
-        let g = gate_stats(&parse_stat(&stat_text, top), &ltp_text).ok_or_else(|| {
+        let cells = parse_stat_json(&stat_text, top).unwrap_or_default();
+        let g = gate_stats(&cells, &ltp_text).ok_or_else(|| {
             Error::Export(format!(
                 "no gate statistics or longest path for `{top}` in {}",
                 dir.display()
