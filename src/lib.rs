@@ -2,6 +2,7 @@
 pub mod blocks;
 pub mod board;
 pub mod config;
+pub mod csv_out;
 pub mod emit;
 pub mod error;
 pub mod exact;

@@ -1,6 +1,7 @@
 //! `sinedec simulate`: the cycle-accurate closed-loop simulation of `<name>_top` against the
 //! encoder and chip models (see `sim::system`), with error statistics, CSV and VCD output.
 use crate::config::Loaded;
+use crate::csv_out::CsvText;
 use crate::error::{Error, Result};
 use crate::sim::encoder::{EncoderModel, Profile};
 use crate::sim::system::{ErrorStats, SimResult, System};
@@ -385,24 +386,22 @@ impl SimReport {
     pub fn csv(&self, loaded: &Loaded, skip: usize) -> String {
         let d = &loaded.derived;
         let offset = self.result.offset_lsb(d);
-        let mut o = format!("{}\n", CSV_COLUMNS.join(","));
+        let mut t = CsvText::new(CSV_COLUMNS);
         for (i, r) in self.result.records.iter().enumerate() {
-            let _ = writeln!(
-                o,
-                "{},{},{},{},{},{:.3},{:.3},{},{},{}",
-                r.cycle,
-                r.conv_cycle,
-                r.position,
-                r.turns,
-                r.unwrapped,
-                r.truth,
-                SimResult::error_lsb(d, r, offset),
-                r.error as u8,
-                r.warning as u8,
-                (i < skip) as u8
-            );
+            t.row(&[
+                &r.cycle,
+                &r.conv_cycle,
+                &r.position,
+                &r.turns,
+                &r.unwrapped,
+                &format_args!("{:.3}", r.truth),
+                &format_args!("{:.3}", SimResult::error_lsb(d, r, offset)),
+                &(r.error as u8),
+                &(r.warning as u8),
+                &((i < skip) as u8),
+            ]);
         }
-        o
+        t.finish()
     }
 }
 
@@ -496,24 +495,23 @@ pub fn run_capacitive_traced(
     let turn = d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64;
     let mean_lsb = s.mean_deg / 360.0 * turn;
     let skip_cycles = (skip * d.clock_hz) as u64;
-    let mut csv = format!("{}\n", CSV_COLUMNS.join(","));
+    let mut t = CsvText::new(CSV_COLUMNS);
     for r in &sys.records {
         let e = r.decoded as f64 - r.truth - mean_lsb;
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{:.3},{:.3},{},{},{}",
-            r.cycle,
-            r.cycle,
-            r.position,
-            r.turns,
-            r.decoded,
-            r.truth,
-            e - turn * (e / turn).round(),
-            r.error as u8,
-            r.warning as u8,
-            (r.cycle < skip_cycles) as u8
-        );
+        t.row(&[
+            &r.cycle,
+            &r.cycle,
+            &r.position,
+            &r.turns,
+            &r.decoded,
+            &format_args!("{:.3}", r.truth),
+            &format_args!("{:.3}", e - turn * (e / turn).round()),
+            &(r.error as u8),
+            &(r.warning as u8),
+            &((r.cycle < skip_cycles) as u8),
+        ]);
     }
+    let csv = t.finish();
     let summary = format!(
         "capacitive path: {} periods per turn, carrier {:.0} Hz, {:.0} samples/s\n\
          positions after {:.1} ms of settling: {} ({} flagged)\n\

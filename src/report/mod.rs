@@ -33,6 +33,7 @@ pub mod sweep;
 pub mod yosys;
 
 use crate::config::{Architecture, Derived, Loaded};
+use crate::csv_out::CsvText;
 use crate::emit::{core_name, core_verilog, Generation, OutFile};
 use crate::error::{Error, Result};
 use crate::synth::{Family, SynthStats};
@@ -1126,16 +1127,14 @@ impl Report {
             .collect()
     }
 
-    /// CSV: a header of column keys, then one line per N (no quoting needed: no cell holds
-    /// a comma or a quote).
+    /// CSV: a header of column keys, then one line per N (no cell holds a comma or a quote,
+    /// so none is quoted).
     pub fn csv(&self, loaded: &Loaded) -> String {
-        let mut s = COLUMNS.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
-        s.push('\n');
+        let mut t = CsvText::new(COLUMNS.iter().map(|c| c.0));
         for row in self.table(loaded) {
-            s.push_str(&row.join(","));
-            s.push('\n');
+            t.record(row);
         }
-        s
+        t.finish()
     }
 
     fn markdown_table(&self, table: &[Vec<String>], keys: &[&str], only: Option<&[u32]>) -> String {
@@ -1191,19 +1190,13 @@ impl Report {
     }
 
     /// The blocks CSV: a header of [`blocks::BLOCK_COLUMNS`] keys, then one line per block
-    /// (no cell holds a comma or a quote).
+    /// (no cell holds a comma or a quote, so none is quoted).
     pub fn blocks_csv(&self) -> String {
-        let mut s = blocks::BLOCK_COLUMNS
-            .iter()
-            .map(|c| c.0)
-            .collect::<Vec<_>>()
-            .join(",");
-        s.push('\n');
+        let mut t = CsvText::new(blocks::BLOCK_COLUMNS.iter().map(|c| c.0));
         for r in &self.blocks {
-            s.push_str(&blocks::block_cells(r).join(","));
-            s.push('\n');
+            t.record(blocks::block_cells(r));
         }
-        s
+        t.finish()
     }
 
     fn blocks_markdown(&self) -> String {
