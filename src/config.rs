@@ -33,7 +33,7 @@ use crate::blocks::preamp::PreampParams;
 use crate::blocks::qep::QepParams;
 use crate::blocks::spi_slave::SpiSlaveParams;
 use crate::blocks::ssi::SsiParams;
-use crate::error::{Error, Result};
+use crate::error::{Error, Quoted, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
 
@@ -114,7 +114,8 @@ fn r_name<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<String, D::Err
         && v.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     if !ok {
         return Err(serde::de::Error::custom(format!(
-            "`name` = {v:?} is not allowed: 1 to 32 characters of [A-Za-z0-9_], starting with a letter"
+            "`name` = {} is not allowed: 1 to 32 characters of [A-Za-z0-9_], starting with a letter",
+            Quoted(&v)
         )));
     }
     Ok(v)
@@ -1114,7 +1115,9 @@ impl Loaded {
         Loaded::parse(&text, &path.display().to_string())
     }
 
-    /// FNV-1a 64-bit hash of the config text, printed in every file header.
+    /// FNV-1a 64-bit hash of the config text, printed in every file header. Written out
+    /// here (five lines) rather than taken from a hashing crate: the value is part of every
+    /// emitted file, so it must never move with a dependency's version.
     pub fn hash(&self) -> String {
         let mut h: u64 = 0xcbf2_9ce4_8422_2325;
         for b in self.text.bytes() {
@@ -1260,7 +1263,8 @@ impl Derived {
                         "board",
                         "preset",
                         format!(
-                            "unknown board preset {p:?}; allowed: {}",
+                            "unknown board preset {}; allowed: {}",
+                            Quoted(p),
                             BOARD_PRESETS.join(", ")
                         ),
                     ));
@@ -1645,7 +1649,10 @@ fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams
                     return Err(err(
                         "adc.frame",
                         "sign",
-                        format!("{other:?}: allowed \"twos-complement\" or \"offset-binary\""),
+                        format!(
+                            "{}: allowed \"twos-complement\" or \"offset-binary\"",
+                            Quoted(other)
+                        ),
                     ))
                 }
             };
@@ -1831,7 +1838,7 @@ fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionParams> {
         other => Err(err(
             "correction",
             "mode",
-            format!("{other:?}: allowed \"static\" or \"auto\""),
+            format!("{}: allowed \"static\" or \"auto\"", Quoted(other)),
         )),
     }
 }

@@ -98,6 +98,26 @@ pub fn clip(value: &str, max: usize) -> String {
     )
 }
 
+/// A user's text shown in a message between double quotes, with `"`, `\` and control
+/// characters escaped as in Rust string literals (`"a\tb"`), so a stray newline or quote in
+/// the input cannot break the message's layout.
+pub struct Quoted<'a>(pub &'a str);
+
+impl std::fmt::Display for Quoted<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use std::fmt::Write as _;
+        f.write_char('"')?;
+        for c in self.0.chars() {
+            match c {
+                '"' | '\\' => write!(f, "\\{c}")?,
+                c if c.is_control() => write!(f, "{}", c.escape_debug())?,
+                c => f.write_char(c)?,
+            }
+        }
+        f.write_char('"')
+    }
+}
+
 /// Shorthand result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
@@ -116,5 +136,21 @@ impl Error {
             path: path.into(),
             source,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Quoted;
+
+    #[test]
+    fn quoted_escapes_quotes_backslashes_and_control_characters() {
+        assert_eq!(Quoted("sd").to_string(), "\"sd\"");
+        assert_eq!(
+            Quoted("a\"b\\c\nd\te").to_string(),
+            r#""a\"b\\c\nd\te""#
+        );
+        // Other characters, a single quote and non-ASCII letters included, stay as they are.
+        assert_eq!(Quoted("l'é").to_string(), "\"l'é\"");
     }
 }

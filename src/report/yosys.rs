@@ -318,7 +318,8 @@ pub fn gate_stats(cells: &BTreeMap<String, u64>, ltp: &str) -> Option<GateStats>
     Some(g)
 }
 
-/// (length, start, end) of `ltp` output.
+/// (length, start, end) of `ltp` output. Parsed from its text by hand: `ltp` has no JSON
+/// form (Yosys 0.23 offers only `-noff`), unlike `stat -json`.
 pub fn parse_ltp(text: &str) -> Option<(u64, String, String)> {
     let mut length = None;
     let mut from = None;
