@@ -39,7 +39,11 @@ impl CsvText {
 
     /// The finished text.
     pub fn finish(self) -> String {
-        let bytes = self.w.into_inner().map_err(|e| e.into_error()).expect(IN_MEMORY);
+        let bytes = self
+            .w
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .expect(IN_MEMORY);
         // Every cell came from a `str`, so the bytes are UTF-8.
         String::from_utf8(bytes).expect("CSV cells are UTF-8 text")
     }

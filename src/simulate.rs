@@ -273,7 +273,7 @@ pub fn run_traced(
 ) -> Result<SimReport> {
     o.validate(false)?;
     let d = &loaded.derived;
-    let mut sys = System::new(d, encoder(loaded, o)).map_err(Error::Export)?;
+    let mut sys = System::new(d, encoder(loaded, o)).map_err(Error::Simulation)?;
     let settle = |e: crate::sim::step::NoConvergence| Error::HdlCheck {
         block: "top".into(),
         message: e.to_string(),
@@ -446,7 +446,7 @@ pub fn run_capacitive_traced(
     o.validate(true)?;
     let d = &loaded.derived;
     let k = d.capacitive.as_ref().ok_or_else(|| {
-        Error::Export("run_capacitive needs a configuration with [capacitive]".into())
+        Error::Simulation("run_capacitive needs a configuration with [capacitive]".into())
     })?;
     let mut p = CapParams::ideal(loaded.config.encoder.ppr, 0.0);
     p.profile = o.profile.clone();
@@ -454,7 +454,7 @@ pub fn run_capacitive_traced(
     p.coupling = o.amplitude / k.config.amplitude;
     p.noise_rms_v = o.noise_lsb * p.adc_full_scale_v / (1u64 << (d.adc.frame.width - 1)) as f64;
     p.seed = o.seed;
-    let mut sys = CapSystem::new(d, p).map_err(Error::Export)?;
+    let mut sys = CapSystem::new(d, p).map_err(Error::Simulation)?;
     if let Some(out) = vcd {
         let top = crate::blocks::captop::hdl::CapTopRtl::new(d)?;
         let t = top_trace(loaded, out, &top)?;

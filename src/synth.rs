@@ -220,15 +220,18 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
     let text = std::fs::read_to_string(&stat).map_err(|e| Error::io(&stat, e))?;
     let cells = parse_stat_json(&text, top).unwrap_or_default();
     if cells.is_empty() {
-        return Err(Error::Export(format!(
-            "no cell statistics for `{top}` in {}",
-            stat.display()
-        )));
+        return Err(Error::ToolOutput {
+            tool: "yosys".into(),
+            message: format!("no cell statistics for `{top}` in {}", stat.display()),
+        });
     }
     let mut s = classify(&cells, family);
     let netlist = std::fs::read_to_string(&json).map_err(|e| Error::io(&json, e))?;
-    s.path = crate::report::levels::analyze(&netlist, top, family)
-        .map_err(|m| Error::Export(format!("path analysis of `{top}` ({tag}): {m}")))?;
+    s.path =
+        crate::report::levels::analyze(&netlist, top, family).map_err(|m| Error::ToolOutput {
+            tool: "yosys".into(),
+            message: format!("path analysis of `{top}` ({tag}): {m}"),
+        })?;
     Ok(s)
 }
 
@@ -264,7 +267,10 @@ mod tests {
             ("$_XOR_", 6),
         ];
         assert_eq!(
-            cells.iter().map(|(k, v)| (k.as_str(), *v)).collect::<Vec<_>>(),
+            cells
+                .iter()
+                .map(|(k, v)| (k.as_str(), *v))
+                .collect::<Vec<_>>(),
             want
         );
         assert_eq!(cells.values().sum::<u64>(), 18);

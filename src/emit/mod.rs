@@ -332,7 +332,10 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     }
     let name = top_name(loaded);
     let rtl_name = format!("{name}_rtl");
-    let mut uut = crate::blocks::top::hdl::TopRtl::new(d).map_err(Error::Export)?;
+    let mut uut = crate::blocks::top::hdl::TopRtl::new(d).map_err(|message| Error::Params {
+        block: "top".into(),
+        message,
+    })?;
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let body = verilog::export(&uut, "top", &rtl_name)?;
     let f = d.fine_bits;

@@ -80,8 +80,8 @@ mod response;
 
 use serde::{Deserialize, Serialize};
 
-pub use num_complex::Complex64;
 pub use design::{bilinear, butterworth_poles, design_ideal, prewarp};
+pub use num_complex::Complex64;
 pub use quant::{quantize_sections, round_half_away};
 pub use response::{Probe, Response, PASSBAND_GRID};
 

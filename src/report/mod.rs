@@ -1613,8 +1613,10 @@ impl Report {
             "blocks": blocks_json,
             "methods": methods,
         });
-        let mut s = serde_json::to_string_pretty(&v)
-            .map_err(|e| Error::Export(format!("report JSON: {e}")))?;
+        let mut s = serde_json::to_string_pretty(&v).map_err(|source| Error::Json {
+            what: "report".into(),
+            source,
+        })?;
         s.push('\n');
         Ok(s)
     }

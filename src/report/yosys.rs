@@ -118,8 +118,10 @@ pub(crate) fn cache_store<T: Serialize>(dir: Option<&Path>, key: &str, value: &T
         return Ok(());
     };
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let text = serde_json::to_string_pretty(value)
-        .map_err(|e| Error::Export(format!("cache entry: {e}")))?;
+    let text = serde_json::to_string_pretty(value).map_err(|source| Error::Json {
+        what: format!("cache entry {key}"),
+        source,
+    })?;
     let tmp = dir.join(format!(
         ".{key}.{}.{:?}.tmp",
         std::process::id(),
@@ -277,11 +279,12 @@ impl Yosys {
         let stat_text = std::fs::read_to_string(&stat).map_err(|e| Error::io(&stat, e))?;
         let ltp_text = std::fs::read_to_string(&ltp).map_err(|e| Error::io(&ltp, e))?;
         let cells = parse_stat_json(&stat_text, top).unwrap_or_default();
-        let g = gate_stats(&cells, &ltp_text).ok_or_else(|| {
-            Error::Export(format!(
+        let g = gate_stats(&cells, &ltp_text).ok_or_else(|| Error::ToolOutput {
+            tool: "yosys".into(),
+            message: format!(
                 "no gate statistics or longest path for `{top}` in {}",
                 dir.display()
-            ))
+            ),
         })?;
         self.store(&key, &g)?;
         let _ = std::fs::remove_dir_all(&dir);

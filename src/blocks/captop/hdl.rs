@@ -85,7 +85,10 @@ impl CapTopRtl {
             adc: AdcController::new(&d.adc),
             front: CapFront::new(&p),
             core: CoreRtl::new(d),
-            biss_slave: BissSlave::new(&d.biss).map_err(crate::error::Error::Export)?,
+            biss_slave: BissSlave::new(&d.biss).map_err(|message| crate::error::Error::Params {
+                block: "biss".into(),
+                message,
+            })?,
             ovf_hold: Default::default(),
             drop_hold: Default::default(),
             error: Default::default(),
