@@ -166,14 +166,15 @@ impl SimOptions {
 
 /// Parses a profile: `constant:RPM`, `ramp:FROM:TO:SECONDS`, `reversal:RPM:AT_S:OVER_S`,
 /// or `creep` (0.3 rpm).
-pub fn parse_profile(s: &str) -> std::result::Result<Profile, String> {
+pub fn parse_profile(s: &str) -> Result<Profile> {
     let parts: Vec<&str> = s.split(':').collect();
-    let num = |i: usize| -> std::result::Result<f64, String> {
+    let bad = |m: String| Error::option("--profile", m);
+    let num = |i: usize| -> Result<f64> {
         parts
             .get(i)
-            .ok_or_else(|| format!("profile `{s}`: missing field {i}"))?
+            .ok_or_else(|| bad(format!("`{s}`: missing field {i}")))?
             .parse::<f64>()
-            .map_err(|e| format!("profile `{s}`: field {i}: {e}"))
+            .map_err(|e| bad(format!("`{s}`: field {i}: {e}")))
     };
     let p = match parts[0] {
         "constant" if parts.len() == 2 => Profile::Constant { rpm: num(1)? },
@@ -189,9 +190,9 @@ pub fn parse_profile(s: &str) -> std::result::Result<Profile, String> {
         },
         "creep" if parts.len() == 1 => Profile::creep(),
         _ => {
-            return Err(format!(
-                "profile `{s}`: allowed constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep"
-            ))
+            return Err(bad(format!(
+                "`{s}`: allowed constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep"
+            )))
         }
     };
     Ok(p)

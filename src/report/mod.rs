@@ -72,7 +72,7 @@ impl Default for Formats {
 
 impl Formats {
     /// Parses a comma-separated list of `md`, `csv`, `json`, `svg` (or `all`).
-    pub fn parse(s: &str) -> std::result::Result<Formats, String> {
+    pub fn parse(s: &str) -> Result<Formats> {
         let mut f = Formats {
             md: false,
             csv: false,
@@ -87,9 +87,10 @@ impl Formats {
                 "svg" => f.svg = true,
                 "all" => f = Formats::default(),
                 other => {
-                    return Err(format!(
-                    "unknown format `{other}`: allowed md, csv, json, svg (comma-separated) or all"
-                ))
+                    return Err(Error::option(
+                        "--format",
+                        format!("unknown format `{other}`: allowed md, csv, json, svg (comma-separated) or all"),
+                    ))
                 }
             }
         }
@@ -99,7 +100,10 @@ impl Formats {
             json: false,
             svg: false,
         }) {
-            return Err("no output format given: allowed md, csv, json, svg".into());
+            return Err(Error::option(
+                "--format",
+                format!("`{s}` names no output format: allowed md, csv, json, svg"),
+            ));
         }
         Ok(f)
     }
@@ -107,11 +111,12 @@ impl Formats {
 
 /// Parses iteration counts: `A..=B`, `A..B` (exclusive), `A-B`, `N`, or a comma-separated
 /// list of those; each in 1..=20. The result is sorted and free of duplicates.
-pub fn parse_iterations(s: &str) -> std::result::Result<Vec<u32>, String> {
-    let num = |t: &str| -> std::result::Result<u32, String> {
+pub fn parse_iterations(s: &str) -> Result<Vec<u32>> {
+    let bad = |m: String| Error::option("--iterations", m);
+    let num = |t: &str| -> Result<u32> {
         t.trim()
             .parse::<u32>()
-            .map_err(|_| format!("`{t}` in --iterations `{s}` is not a number"))
+            .map_err(|_| bad(format!("`{s}`: `{t}` is not a number")))
     };
     let mut v = Vec::new();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
@@ -120,7 +125,7 @@ pub fn parse_iterations(s: &str) -> std::result::Result<Vec<u32>, String> {
         } else if let Some((a, b)) = part.split_once("..") {
             let b = num(b)?;
             if b == 0 {
-                return Err(format!("empty range `{part}`"));
+                return Err(bad(format!("`{s}`: empty range `{part}`")));
             }
             (num(a)?, b - 1)
         } else if let Some((a, b)) = part.split_once('-') {
@@ -130,19 +135,19 @@ pub fn parse_iterations(s: &str) -> std::result::Result<Vec<u32>, String> {
             (n, n)
         };
         if lo > hi {
-            return Err(format!("empty range `{part}` in --iterations"));
+            return Err(bad(format!("`{s}`: empty range `{part}`")));
         }
         if lo < 1 || hi > 20 {
-            return Err(format!(
-                "--iterations `{part}`: cordic.iterations is allowed in 1..=20"
-            ));
+            return Err(bad(format!(
+                "`{part}`: cordic.iterations is allowed in 1..=20"
+            )));
         }
         v.extend(lo..=hi);
     }
     v.sort_unstable();
     v.dedup();
     if v.is_empty() {
-        return Err(format!("--iterations `{s}` names no iteration count"));
+        return Err(bad(format!("`{s}` names no iteration count")));
     }
     Ok(v)
 }
