@@ -435,11 +435,6 @@ impl CoefFormat {
         Ok(())
     }
 
-    /// Integer bits besides the sign: `width - 1 - frac`.
-    pub fn int_bits(&self) -> u32 {
-        self.width - 1 - self.frac
-    }
-
     /// Smallest integer: `-2^(width-1)`.
     pub fn min_int(&self) -> i128 {
         -(1i128 << (self.width - 1))
