@@ -33,7 +33,7 @@ use crate::blocks::preamp::PreampParams;
 use crate::blocks::qep::QepParams;
 use crate::blocks::spi_slave::SpiSlaveParams;
 use crate::blocks::ssi::SsiParams;
-use crate::error::{Error, Result};
+use crate::error::{Error, Quoted, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
 
@@ -114,7 +114,8 @@ fn r_name<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<String, D::Err
         && v.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     if !ok {
         return Err(serde::de::Error::custom(format!(
-            "`name` = {v:?} is not allowed: 1 to 32 characters of [A-Za-z0-9_], starting with a letter"
+            "`name` = {} is not allowed: 1 to 32 characters of [A-Za-z0-9_], starting with a letter",
+            Quoted(&v)
         )));
     }
     Ok(v)
@@ -994,15 +995,7 @@ pub fn locate(text: &str, table: &str, key: &str) -> String {
 /// toml's message, plus the dotted key it concerns when the message does not name it.
 fn syntax_message(e: &toml::de::Error, text: &str) -> String {
     let message = e.message().trim().to_string();
-    // toml keeps the key path private; without input its Display ends with "in `a.b`".
-    let mut bare = e.clone();
-    bare.set_input(None);
-    let shown = bare.to_string();
-    let keys = shown
-        .lines()
-        .next_back()
-        .and_then(|l| l.strip_prefix("in `"))
-        .and_then(|l| l.strip_suffix('`'));
+    let keys = e.span().and_then(|s| key_path_at(text, s.start));
     match keys {
         Some(k) if !message.contains(&format!("`{k}`")) => format!("{message} (in `{k}`)"),
         Some(_) => message,
@@ -1012,6 +1005,32 @@ fn syntax_message(e: &toml::de::Error, text: &str) -> String {
         },
         None => message,
     }
+}
+
+/// The dotted key path of the value at byte offset `pos`, from the spans of toml's document
+/// tree: a position inside a value (or on a table's header) names its key; a position on a
+/// key (an unknown field) names the table holding it. `None` when the text does not parse
+/// as TOML or `pos` lies outside every key and value.
+fn key_path_at(text: &str, pos: usize) -> Option<String> {
+    fn find(table: &toml::de::DeTable<'_>, pos: usize, path: &mut Vec<String>) -> bool {
+        for (k, v) in table.iter() {
+            if k.span().contains(&pos) {
+                return true;
+            }
+            path.push(k.get_ref().to_string());
+            // A `[table]`'s span is its header; its keys lie outside it, so look inside too.
+            let inside = v.span().contains(&pos)
+                || v.get_ref().as_table().is_some_and(|t| find(t, pos, path));
+            if inside {
+                return true;
+            }
+            path.pop();
+        }
+        false
+    }
+    let doc = toml::de::DeTable::parse(text).ok()?;
+    let mut path = Vec::new();
+    (find(doc.get_ref(), pos, &mut path) && !path.is_empty()).then(|| path.join("."))
 }
 
 /// A parsed configuration together with the text it came from.
@@ -1059,7 +1078,9 @@ impl Loaded {
         Loaded::parse(&text, &path.display().to_string())
     }
 
-    /// FNV-1a 64-bit hash of the config text, printed in every file header.
+    /// FNV-1a 64-bit hash of the config text, printed in every file header. Written out
+    /// here (five lines) rather than taken from a hashing crate: the value is part of every
+    /// emitted file, so it must never move with a dependency's version.
     pub fn hash(&self) -> String {
         let mut h: u64 = 0xcbf2_9ce4_8422_2325;
         for b in self.text.bytes() {
@@ -1207,7 +1228,8 @@ impl Derived {
                         "board",
                         "preset",
                         format!(
-                            "unknown board preset {p:?}; allowed: {}",
+                            "unknown board preset {}; allowed: {}",
+                            Quoted(p),
                             BOARD_PRESETS.join(", ")
                         ),
                     ));
@@ -1592,7 +1614,10 @@ fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams
                     return Err(err(
                         "adc.frame",
                         "sign",
-                        format!("{other:?}: allowed \"twos-complement\" or \"offset-binary\""),
+                        format!(
+                            "{}: allowed \"twos-complement\" or \"offset-binary\"",
+                            Quoted(other)
+                        ),
                     ))
                 }
             };
@@ -1779,7 +1804,7 @@ fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionParams> {
         other => Err(err(
             "correction",
             "mode",
-            format!("{other:?}: allowed \"static\" or \"auto\""),
+            format!("{}: allowed \"static\" or \"auto\"", Quoted(other)),
         )),
     }
 }

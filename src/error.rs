@@ -58,6 +58,43 @@ pub enum Error {
     /// Internal consistency check of emitted Verilog (identifier clash, bad name).
     #[error("Verilog export: {0}")]
     Export(String),
+    /// A block's parameters are outside what the block supports (its constructor said why).
+    #[error("block `{block}`: {message}")]
+    Params {
+        /// The block, e.g. `qep`.
+        block: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// Serializing a JSON document failed (report, parameter file, cache entry).
+    #[error("{what} JSON: {source}")]
+    Json {
+        /// Which document.
+        what: String,
+        /// serde_json's description.
+        source: serde_json::Error,
+    },
+    /// Drawing an SVG plot failed.
+    #[error("plot {what}: {message}")]
+    Plot {
+        /// Which plot.
+        what: String,
+        /// plotters' description.
+        message: String,
+    },
+    /// The simulation could not be set up: a model rejected the configuration or the run
+    /// does not apply to it.
+    #[error("simulation: {0}")]
+    Simulation(String),
+    /// An external tool ran but its output lacks what sinedec reads from it (cell
+    /// statistics, the longest path, a netlist it can analyse).
+    #[error("{tool} output: {message}")]
+    ToolOutput {
+        /// The tool, e.g. `yosys`.
+        tool: String,
+        /// What is missing, and where.
+        message: String,
+    },
     /// A template of `rtl-templates/` failed to render (a bug in sinedec, not in the input).
     #[error("template {template}: {message}")]
     Template {
@@ -124,6 +161,26 @@ pub fn clip(value: &str, max: usize) -> String {
     )
 }
 
+/// A user's text shown in a message between double quotes, with `"`, `\` and control
+/// characters escaped as in Rust string literals (`"a\tb"`), so a stray newline or quote in
+/// the input cannot break the message's layout.
+pub struct Quoted<'a>(pub &'a str);
+
+impl std::fmt::Display for Quoted<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use std::fmt::Write as _;
+        f.write_char('"')?;
+        for c in self.0.chars() {
+            match c {
+                '"' | '\\' => write!(f, "\\{c}")?,
+                c if c.is_control() => write!(f, "{}", c.escape_debug())?,
+                c => f.write_char(c)?,
+            }
+        }
+        f.write_char('"')
+    }
+}
+
 /// Shorthand result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
@@ -150,5 +207,18 @@ impl Error {
             path: path.into(),
             source,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Quoted;
+
+    #[test]
+    fn quoted_escapes_quotes_backslashes_and_control_characters() {
+        assert_eq!(Quoted("sd").to_string(), "\"sd\"");
+        assert_eq!(Quoted("a\"b\\c\nd\te").to_string(), r#""a\"b\\c\nd\te""#);
+        // Other characters, a single quote and non-ASCII letters included, stay as they are.
+        assert_eq!(Quoted("l'é").to_string(), "\"l'é\"");
     }
 }

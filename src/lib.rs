@@ -3,6 +3,7 @@ pub mod blocks;
 pub mod board;
 pub mod config;
 pub mod cosim;
+pub mod csv_out;
 pub mod emit;
 pub mod error;
 pub mod exact;

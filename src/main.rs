@@ -207,7 +207,7 @@ fn run(cli: Cli) -> Result<()> {
             let mut csv_out = csv.as_deref().map(PendingFile::new).transpose()?;
             let mut vcd_out = vcd.as_deref().map(PendingFile::new).transpose()?;
             let o = sinedec::simulate::SimOptions {
-                profile: sinedec::simulate::parse_profile(&profile).map_err(anyhow::Error::msg)?,
+                profile: sinedec::simulate::parse_profile(&profile)?,
                 duration_s: duration,
                 amplitude,
                 noise_lsb,
@@ -307,9 +307,8 @@ fn run(cli: Cli) -> Result<()> {
             let loaded = load(&config)?;
             check_output_dir(&output, &opts)?;
             let mut o = sinedec::report::Options::new(&command_line());
-            o.iterations =
-                sinedec::report::parse_iterations(&iterations).map_err(anyhow::Error::msg)?;
-            o.formats = sinedec::report::Formats::parse(&format).map_err(anyhow::Error::msg)?;
+            o.iterations = sinedec::report::parse_iterations(&iterations)?;
+            o.formats = sinedec::report::Formats::parse(&format)?;
             o.angle_n = angle_n;
             o.cache_dir = (!no_cache).then(|| {
                 cache_dir.unwrap_or_else(|| sinedec::report::yosys::default_cache_dir(&output))

@@ -1,6 +1,7 @@
 //! `sinedec simulate`: the cycle-accurate closed-loop simulation of `<name>_top` against the
 //! encoder and chip models (see `sim::system`), with error statistics, CSV and VCD output.
 use crate::config::Loaded;
+use crate::csv_out::CsvText;
 use crate::error::{Error, Result};
 use crate::sim::encoder::{EncoderModel, Profile};
 use crate::sim::system::{ErrorStats, SimResult, System};
@@ -165,14 +166,15 @@ impl SimOptions {
 
 /// Parses a profile: `constant:RPM`, `ramp:FROM:TO:SECONDS`, `reversal:RPM:AT_S:OVER_S`,
 /// or `creep` (0.3 rpm).
-pub fn parse_profile(s: &str) -> std::result::Result<Profile, String> {
+pub fn parse_profile(s: &str) -> Result<Profile> {
     let parts: Vec<&str> = s.split(':').collect();
-    let num = |i: usize| -> std::result::Result<f64, String> {
+    let bad = |m: String| Error::option("--profile", m);
+    let num = |i: usize| -> Result<f64> {
         parts
             .get(i)
-            .ok_or_else(|| format!("profile `{s}`: missing field {i}"))?
+            .ok_or_else(|| bad(format!("`{s}`: missing field {i}")))?
             .parse::<f64>()
-            .map_err(|e| format!("profile `{s}`: field {i}: {e}"))
+            .map_err(|e| bad(format!("`{s}`: field {i}: {e}")))
     };
     let p = match parts[0] {
         "constant" if parts.len() == 2 => Profile::Constant { rpm: num(1)? },
@@ -188,9 +190,9 @@ pub fn parse_profile(s: &str) -> std::result::Result<Profile, String> {
         },
         "creep" if parts.len() == 1 => Profile::creep(),
         _ => {
-            return Err(format!(
-                "profile `{s}`: allowed constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep"
-            ))
+            return Err(bad(format!(
+                "`{s}`: allowed constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep"
+            )))
         }
     };
     Ok(p)
@@ -385,24 +387,22 @@ impl SimReport {
     pub fn csv(&self, loaded: &Loaded, skip: usize) -> String {
         let d = &loaded.derived;
         let offset = self.result.offset_lsb(d);
-        let mut o = format!("{}\n", CSV_COLUMNS.join(","));
+        let mut t = CsvText::new(CSV_COLUMNS);
         for (i, r) in self.result.records.iter().enumerate() {
-            let _ = writeln!(
-                o,
-                "{},{},{},{},{},{:.3},{:.3},{},{},{}",
-                r.cycle,
-                r.conv_cycle,
-                r.position,
-                r.turns,
-                r.unwrapped,
-                r.truth,
-                SimResult::error_lsb(d, r, offset),
-                r.error as u8,
-                r.warning as u8,
-                (i < skip) as u8
-            );
+            t.row(&[
+                &r.cycle,
+                &r.conv_cycle,
+                &r.position,
+                &r.turns,
+                &r.unwrapped,
+                &format_args!("{:.3}", r.truth),
+                &format_args!("{:.3}", SimResult::error_lsb(d, r, offset)),
+                &(r.error as u8),
+                &(r.warning as u8),
+                &((i < skip) as u8),
+            ]);
         }
-        o
+        t.finish()
     }
 }
 
@@ -447,7 +447,7 @@ pub fn run_capacitive_traced(
     o.validate(true)?;
     let d = &loaded.derived;
     let k = d.capacitive.as_ref().ok_or_else(|| {
-        Error::Export("run_capacitive needs a configuration with [capacitive]".into())
+        Error::Simulation("run_capacitive needs a configuration with [capacitive]".into())
     })?;
     let mut p = CapParams::ideal(loaded.config.encoder.ppr, 0.0);
     p.profile = o.profile.clone();
@@ -496,24 +496,23 @@ pub fn run_capacitive_traced(
     let turn = d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64;
     let mean_lsb = s.mean_deg / 360.0 * turn;
     let skip_cycles = (skip * d.clock_hz) as u64;
-    let mut csv = format!("{}\n", CSV_COLUMNS.join(","));
+    let mut t = CsvText::new(CSV_COLUMNS);
     for r in &sys.records {
         let e = r.decoded as f64 - r.truth - mean_lsb;
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{:.3},{:.3},{},{},{}",
-            r.cycle,
-            r.cycle,
-            r.position,
-            r.turns,
-            r.decoded,
-            r.truth,
-            e - turn * (e / turn).round(),
-            r.error as u8,
-            r.warning as u8,
-            (r.cycle < skip_cycles) as u8
-        );
+        t.row(&[
+            &r.cycle,
+            &r.cycle,
+            &r.position,
+            &r.turns,
+            &r.decoded,
+            &format_args!("{:.3}", r.truth),
+            &format_args!("{:.3}", e - turn * (e / turn).round()),
+            &(r.error as u8),
+            &(r.warning as u8),
+            &((r.cycle < skip_cycles) as u8),
+        ]);
     }
+    let csv = t.finish();
     let summary = format!(
         "capacitive path: {} periods per turn, carrier {:.0} Hz, {:.0} samples/s\n\
          positions after {:.1} ms of settling: {} ({} flagged)\n\

@@ -7,7 +7,7 @@
 //!   combinational loops;
 //! * no Yosys warning outside a short list of known, result-neutral ones.
 //!
-//! Counts come from `stat` on the flattened netlist; the worst register-to-register path (LUT
+//! Counts come from `stat -json` on the flattened netlist; the worst register-to-register path (LUT
 //! levels, carry bits and an estimated delay) from the mapped netlist written with
 //! `write_json` ([`crate::report::levels`]).
 use crate::cosim::{require_tool, CosimError};
@@ -127,39 +127,25 @@ fn classify(cells: &BTreeMap<String, u64>, family: Family) -> SynthStats {
     s
 }
 
-/// Parses the cell table of Yosys `stat` output for module `top`.
-pub fn parse_stat(text: &str, top: &str) -> BTreeMap<String, u64> {
-    let mut cells = BTreeMap::new();
-    let mut in_top = false;
-    let mut in_cells = false;
-    for line in text.lines() {
-        let t = line.trim();
-        if t.starts_with("===") {
-            in_top = t.trim_matches('=').trim() == top;
-            in_cells = false;
-            continue;
-        }
-        if !in_top {
-            continue;
-        }
-        if t.starts_with("Number of cells:") {
-            in_cells = true;
-            continue;
-        }
-        if in_cells {
-            let mut it = t.split_whitespace();
-            match (it.next(), it.next(), it.next()) {
-                (Some(name), Some(count), None) => match count.parse::<u64>() {
-                    Ok(c) => {
-                        cells.insert(name.to_string(), c);
-                    }
-                    Err(_) => in_cells = false,
-                },
-                _ => in_cells = false,
-            }
-        }
+/// The cell counts of module `top` in the output of Yosys `stat -json` (written with
+/// `tee -q -o FILE stat -json`): `modules."\\top".num_cells_by_type`. `None` when the text
+/// is not such JSON or has no counts for `top`.
+pub fn parse_stat_json(json: &str, top: &str) -> Option<BTreeMap<String, u64>> {
+    #[derive(serde::Deserialize)]
+    struct Stat {
+        modules: BTreeMap<String, Module>,
     }
-    cells
+    #[derive(serde::Deserialize)]
+    struct Module {
+        #[serde(default)]
+        num_cells_by_type: BTreeMap<String, u64>,
+    }
+    let stat: Stat = serde_json::from_str(json).ok()?;
+    let m = stat
+        .modules
+        .get(&format!("\\{top}"))
+        .or_else(|| stat.modules.get(top))?;
+    Some(m.num_cells_by_type.clone())
 }
 
 /// Synthesizes `verilog` (top module `top`) for `family` in `workdir`.
@@ -168,7 +154,7 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
     let tag = family.name();
     let vfile = workdir.join(format!("synth_{tag}.v"));
     std::fs::write(&vfile, verilog).map_err(|e| Error::io(&vfile, e))?;
-    let stat = workdir.join(format!("synth_{tag}_stat.txt"));
+    let stat = workdir.join(format!("synth_{tag}_stat.json"));
     let json = workdir.join(format!("synth_{tag}.json"));
     let script = format!(
         "read_verilog {v}\n\
@@ -178,7 +164,7 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
          check -assert\n\
          {synth}\n\
          check -assert\n\
-         tee -q -o {stat} stat\n\
+         tee -q -o {stat} stat -json\n\
          write_json {json}\n",
         v = vfile.display(),
         synth = family.synth_command(top),
@@ -232,23 +218,65 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
         .into());
     }
     let text = std::fs::read_to_string(&stat).map_err(|e| Error::io(&stat, e))?;
-    let cells = parse_stat(&text, top);
+    let cells = parse_stat_json(&text, top).unwrap_or_default();
     if cells.is_empty() {
-        return Err(Error::Export(format!(
-            "no cell statistics for `{top}` in {}",
-            stat.display()
-        )));
+        return Err(Error::ToolOutput {
+            tool: "yosys".into(),
+            message: format!("no cell statistics for `{top}` in {}", stat.display()),
+        });
     }
     let mut s = classify(&cells, family);
     let netlist = std::fs::read_to_string(&json).map_err(|e| Error::io(&json, e))?;
-    s.path = crate::report::levels::analyze(&netlist, top, family)
-        .map_err(|m| Error::Export(format!("path analysis of `{top}` ({tag}): {m}")))?;
+    s.path =
+        crate::report::levels::analyze(&netlist, top, family).map_err(|m| Error::ToolOutput {
+            tool: "yosys".into(),
+            message: format!("path analysis of `{top}` ({tag}): {m}"),
+        })?;
     Ok(s)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::harmless_warning;
+    use super::{harmless_warning, parse_stat_json};
+
+    #[test]
+    fn stat_json_cells_of_the_named_module() {
+        // Written by Yosys 0.23 (`tee -q -o s.json stat -json`) for a 4-bit accumulator after
+        // `synth -flatten; abc -g ...` (whitespace shortened; the text `stat` of the same run
+        // lists the same five counts).
+        let json = r#"{
+   "creator": "Yosys 0.23 (git sha1 7ce5011c24b)",
+   "invocation": "stat -json ",
+   "modules": {
+      "\\top": {
+         "num_wires": 15, "num_wire_bits": 27, "num_pub_wires": 3, "num_pub_wire_bits": 9,
+         "num_memories": 0, "num_memory_bits": 0, "num_processes": 0, "num_cells": 18,
+         "num_cells_by_type": {
+            "$_AND_": 2, "$_DFF_P_": 4, "$_NAND_": 5, "$_XNOR_": 1, "$_XOR_": 6
+         }
+      }
+   },
+   "design": { "num_cells": 18 }
+}"#;
+        let cells = parse_stat_json(json, "top").expect("module top");
+        let want: Vec<(&str, u64)> = vec![
+            ("$_AND_", 2),
+            ("$_DFF_P_", 4),
+            ("$_NAND_", 5),
+            ("$_XNOR_", 1),
+            ("$_XOR_", 6),
+        ];
+        assert_eq!(
+            cells
+                .iter()
+                .map(|(k, v)| (k.as_str(), *v))
+                .collect::<Vec<_>>(),
+            want
+        );
+        assert_eq!(cells.values().sum::<u64>(), 18);
+        assert!(parse_stat_json(json, "other").is_none());
+        assert!(parse_stat_json("5. Printing statistics.", "top").is_none());
+    }
 
     #[test]
     fn only_block_ram_data_ports_may_be_resized() {

@@ -10,7 +10,7 @@ use sinedec::blocks::biquad::BiquadParams;
 use sinedec::blocks::sext;
 use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::error::Error;
-use sinedec::synth::{parse_stat, synthesize, Family};
+use sinedec::synth::{parse_stat_json, synthesize, Family};
 use sinedec::verify::{block_traces, Simulators};
 use std::f64::consts::{PI, SQRT_2};
 mod common;
@@ -711,7 +711,7 @@ fn yosys_coarse_has_exactly_one_multiplier() {
                 .arg("-q")
                 .arg("-p")
                 .arg(format!(
-                    "read_verilog {}; hierarchy -check -top {tag}; proc; flatten; {tail}; tee -q -o {} stat",
+                    "read_verilog {}; hierarchy -check -top {tag}; proc; flatten; {tail}; tee -q -o {} stat -json",
                     vf.display(),
                     stat.display()
                 ))
@@ -722,15 +722,16 @@ fn yosys_coarse_has_exactly_one_multiplier() {
                 "yosys failed: {}",
                 String::from_utf8_lossy(&out.stderr)
             );
-            parse_stat(&std::fs::read_to_string(&stat).expect("stat written"), tag)
+            parse_stat_json(&std::fs::read_to_string(&stat).expect("stat written"), tag)
+                .expect("stat -json has the module")
         };
         let n =
             |c: &std::collections::BTreeMap<String, u64>, k: &str| c.get(k).copied().unwrap_or(0);
-        let early = run("opt; wreduce", "stat_early.txt");
+        let early = run("opt; wreduce", "stat_early.json");
         eprintln!("{tag}: proc; opt; wreduce: {early:?}");
         assert_eq!(n(&early, "$mul"), 1, "{tag}: exactly one $mul ({early:?})");
         assert_eq!(n(&early, "$macc"), 0);
-        let coarse = run(&format!("synth -run coarse -top {tag}"), "stat_coarse.txt");
+        let coarse = run(&format!("synth -run coarse -top {tag}"), "stat_coarse.json");
         eprintln!("{tag}: synth -run coarse: {coarse:?}");
         assert_eq!(
             n(&coarse, "$mul") + n(&coarse, "$macc"),

@@ -153,7 +153,10 @@ pub fn params_json(loaded: &Loaded, command: &str, modules: &[Module]) -> Result
             .collect(),
         derived: &loaded.derived,
     };
-    let mut s = serde_json::to_string_pretty(&doc).map_err(|e| Error::Export(e.to_string()))?;
+    let mut s = serde_json::to_string_pretty(&doc).map_err(|source| Error::Json {
+        what: "parameter file".into(),
+        source,
+    })?;
     s.push('\n');
     Ok(s)
 }

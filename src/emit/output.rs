@@ -241,8 +241,8 @@ fn remove_created(created: &[PathBuf]) {
 pub fn write_files(dir: &Path, files: &[(&str, &[u8])], opts: &OutputOptions) -> Result<()> {
     if let Some((n, _)) = files.iter().find(|(n, _)| !plain_name(n)) {
         return Err(Error::Export(format!(
-            "output file name {:?} is not a plain file name",
-            crate::error::clip(n, 80)
+            "output file name {} is not a plain file name",
+            crate::error::Quoted(&crate::error::clip(n, 80))
         )));
     }
     let state = inspect(dir, opts)?;

@@ -8,16 +8,31 @@
 //! vendor tools dislike `$`). The renaming is checked to be one-to-one over the whole file;
 //! a clash is an error, never a silent merge.
 use crate::error::{Error, Result};
-use rust_hdl::core::check_error::check_all;
+use rust_hdl::core::check_error::{check_all, CheckError, PathedName};
 use rust_hdl::prelude::*;
 use std::collections::{BTreeMap, BTreeSet};
+
+/// rust-hdl's check result in words (rust-hdl gives it only a `Debug` form): the kind of
+/// fault and the signals concerned, `path.name`, sorted.
+fn describe_check(e: &CheckError) -> String {
+    let list = |names: &mut dyn Iterator<Item = &PathedName>| {
+        let mut v: Vec<String> = names.map(|n| format!("{}.{}", n.path, n.name)).collect();
+        v.sort();
+        v.join(", ")
+    };
+    match e {
+        CheckError::OpenSignal(m) => format!("open (undriven) signals: {}", list(&mut m.values())),
+        CheckError::LogicLoops(l) => format!("logic loops through: {}", list(&mut l.iter())),
+        CheckError::WritesToInputs(l) => format!("writes to inputs: {}", list(&mut l.iter())),
+    }
+}
 
 /// Runs rust-hdl's connection/loop/input-write checks and exports the block as Verilog
 /// whose top module is `top_name` and every other module `top_name_<path>`.
 pub fn export<B: Block>(uut: &B, block: &str, top_name: &str) -> Result<String> {
     check_all(uut).map_err(|e| Error::HdlCheck {
         block: block.to_string(),
-        message: format!("{e:?}"),
+        message: describe_check(&e),
     })?;
     let raw = generate_verilog_unchecked(uut);
     rename(&raw, top_name)
@@ -134,6 +149,20 @@ pub fn module_names(text: &str) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn check_errors_are_described_in_words() {
+        let n = |path: &str, name: &str| PathedName {
+            path: path.into(),
+            name: name.into(),
+        };
+        let e = CheckError::LogicLoops(vec![n("top:b", "y"), n("top:a", "x")]);
+        assert_eq!(describe_check(&e), "logic loops through: top:a.x, top:b.y");
+        let e = CheckError::OpenSignal([(7, n("top", "clk"))].into_iter().collect());
+        assert_eq!(describe_check(&e), "open (undriven) signals: top.clk");
+        let e = CheckError::WritesToInputs(vec![n("top", "din")]);
+        assert_eq!(describe_check(&e), "writes to inputs: top.din");
+    }
 
     #[test]
     fn renames_modules_and_cleans_identifiers() {

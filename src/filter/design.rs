@@ -1,23 +1,23 @@
 //! f64 design: prototype poles, pre-warping, analog transforms, bilinear transform, pairing
 //! into sections and the per-section gain rule (see the module doc of `filter`).
 
-use super::{Complex, FilterError, FilterKind, FilterSpec, IdealSection};
+use super::{Complex64, FilterError, FilterKind, FilterSpec, IdealSection};
 use std::f64::consts::PI;
 
 /// The `n` poles of the normalised analog Butterworth low-pass:
 /// `p_k = exp(j pi (2k + n - 1) / (2n))`, `k = 1..n` (all with negative real part; the
 /// first `n/2` in the upper half plane, `p_{n+1-k} = conj(p_k)`, `-1` in the middle for odd
 /// `n`).
-pub fn butterworth_poles(order: u32) -> Vec<Complex> {
+pub fn butterworth_poles(order: u32) -> Vec<Complex64> {
     let n = order as f64;
     (1..=order)
         .map(|k| {
             let th = PI * (2.0 * k as f64 + n - 1.0) / (2.0 * n);
             // The middle pole of an odd order is exactly -1 (avoid a 1e-16 imaginary part).
             if 2 * k == order + 1 {
-                Complex::real(-1.0)
+                Complex64::from(-1.0)
             } else {
-                Complex::from_polar(1.0, th)
+                Complex64::from_polar(1.0, th)
             }
         })
         .collect()
@@ -30,14 +30,26 @@ pub fn prewarp(f_hz: f64, fs_hz: f64) -> f64 {
 }
 
 /// Bilinear transform of an analog point: `z = (2 fs + s) / (2 fs - s)`.
-pub fn bilinear(s: Complex, fs_hz: f64) -> Complex {
-    let k = Complex::real(2.0 * fs_hz);
+pub fn bilinear(s: Complex64, fs_hz: f64) -> Complex64 {
+    let k = Complex64::from(2.0 * fs_hz);
     (k + s) / (k - s)
+}
+
+/// Principal square root by the half-angle formulas, `re = sqrt((|z| + x) / 2)`,
+/// `im = ±sqrt((|z| - x) / 2)` with the sign of `z.im`. Kept by hand rather than
+/// `Complex64::sqrt`, which goes through the polar form (`atan2`, `cos`, `sin`): that can
+/// move the band-pass poles by an ulp, and so the designed coefficients, which must stay
+/// bit-identical to the designs this tool has always emitted for the same config.
+fn principal_sqrt(z: Complex64) -> Complex64 {
+    let r = z.norm();
+    let re = ((r + z.re) * 0.5).max(0.0).sqrt();
+    let im = ((r - z.re) * 0.5).max(0.0).sqrt();
+    Complex64::new(re, if z.im < 0.0 { -im } else { im })
 }
 
 /// Poles of one section: a conjugate/real pair, or one real pole (first-order section).
 enum Poles {
-    Two(Complex, Complex),
+    Two(Complex64, Complex64),
     One(f64),
 }
 
@@ -55,9 +67,9 @@ pub fn design_ideal(spec: &FilterSpec) -> Result<Vec<IdealSection>, FilterError>
     match spec.kind {
         FilterKind::Lowpass | FilterKind::Highpass => {
             let wc = prewarp(spec.corner_hz.unwrap_or(0.0), fs);
-            let map = |p: Complex| match spec.kind {
+            let map = |p: Complex64| match spec.kind {
                 FilterKind::Lowpass => p * wc,
-                _ => Complex::real(wc) / p,
+                _ => Complex64::from(wc) / p,
             };
             for &p in upper {
                 let z = bilinear(map(p), fs);
@@ -65,7 +77,7 @@ pub fn design_ideal(spec: &FilterSpec) -> Result<Vec<IdealSection>, FilterError>
             }
             if odd {
                 // s = -wc for both LP (wc * -1) and HP (wc / -1).
-                groups.push(Poles::One(bilinear(Complex::real(-wc), fs).re));
+                groups.push(Poles::One(bilinear(Complex64::from(-wc), fs).re));
             }
         }
         FilterKind::Bandpass => {
@@ -73,9 +85,9 @@ pub fn design_ideal(spec: &FilterSpec) -> Result<Vec<IdealSection>, FilterError>
             let (w1, w2) = (prewarp(f1, fs), prewarp(f2, fs));
             let w0sq = w1 * w2;
             let bw = w2 - w1;
-            let roots = |p: Complex| {
+            let roots = |p: Complex64| {
                 let q = p * bw;
-                let d = (q * q - Complex::real(4.0 * w0sq)).sqrt();
+                let d = principal_sqrt(q * q - Complex64::from(4.0 * w0sq));
                 ((q + d) * 0.5, (q - d) * 0.5)
             };
             for &p in upper {
@@ -88,13 +100,13 @@ pub fn design_ideal(spec: &FilterSpec) -> Result<Vec<IdealSection>, FilterError>
             if odd {
                 let disc = bw * bw - 4.0 * w0sq;
                 if disc < 0.0 {
-                    let s = Complex::new(-bw / 2.0, (-disc).sqrt() / 2.0);
+                    let s = Complex64::new(-bw / 2.0, (-disc).sqrt() / 2.0);
                     let z = bilinear(s, fs);
                     groups.push(Poles::Two(z, z.conj()));
                 } else {
                     let r = disc.sqrt();
-                    let z1 = bilinear(Complex::real((-bw + r) / 2.0), fs);
-                    let z2 = bilinear(Complex::real((-bw - r) / 2.0), fs);
+                    let z1 = bilinear(Complex64::from((-bw + r) / 2.0), fs);
+                    let z2 = bilinear(Complex64::from((-bw - r) / 2.0), fs);
                     groups.push(Poles::Two(z1, z2));
                 }
             }
@@ -124,7 +136,7 @@ pub fn design_ideal(spec: &FilterSpec) -> Result<Vec<IdealSection>, FilterError>
                 }
             };
             let unit = IdealSection { b: pattern, a };
-            let g = 1.0 / unit.eval(w0).abs();
+            let g = 1.0 / unit.eval(w0).norm();
             IdealSection {
                 b: pattern.map(|c| c * g),
                 a,

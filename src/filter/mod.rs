@@ -74,15 +74,14 @@
 //!       --round half away--> integer Sos --triangle check--> Designed { ideal, sos, response }
 //! ```
 
-mod complex;
 mod design;
 mod quant;
 mod response;
 
 use serde::{Deserialize, Serialize};
 
-pub use complex::Complex;
 pub use design::{bilinear, butterworth_poles, design_ideal, prewarp};
+pub use num_complex::Complex64;
 pub use quant::{quantize_sections, round_half_away};
 pub use response::{Probe, Response, PASSBAND_GRID};
 
@@ -436,11 +435,6 @@ impl CoefFormat {
         Ok(())
     }
 
-    /// Integer bits besides the sign: `width - 1 - frac`.
-    pub fn int_bits(&self) -> u32 {
-        self.width - 1 - self.frac
-    }
-
     /// Smallest integer: `-2^(width-1)`.
     pub fn min_int(&self) -> i128 {
         -(1i128 << (self.width - 1))
@@ -481,19 +475,19 @@ impl IdealSection {
     }
 
     /// The two poles (roots of `z^2 + a1 z + a2`).
-    pub fn poles(&self) -> [Complex; 2] {
+    pub fn poles(&self) -> [Complex64; 2] {
         let [a1, a2] = self.a;
-        let d = Complex::real(a1 * a1 - 4.0 * a2).sqrt();
-        let m = Complex::real(-a1);
+        let d = Complex64::from(a1 * a1 - 4.0 * a2).sqrt();
+        let m = Complex64::from(-a1);
         [(m + d) * 0.5, (m - d) * 0.5]
     }
 
     /// `H(z)` at `z = e^(j w)`, `w = 2 pi f / fs`.
-    pub fn eval(&self, w: f64) -> Complex {
-        let zi = Complex::from_polar(1.0, -w);
+    pub fn eval(&self, w: f64) -> Complex64 {
+        let zi = Complex64::from_polar(1.0, -w);
         let zi2 = zi * zi;
-        let num = Complex::real(self.b[0]) + zi * self.b[1] + zi2 * self.b[2];
-        let den = Complex::real(1.0) + zi * self.a[0] + zi2 * self.a[1];
+        let num = Complex64::from(self.b[0]) + zi * self.b[1] + zi2 * self.b[2];
+        let den = Complex64::from(1.0) + zi * self.a[0] + zi2 * self.a[1];
         num / den
     }
 }
@@ -523,7 +517,7 @@ impl Section {
 /// `|H(e^jw)|` of a cascade at `f_hz` (sample rate `fs_hz`).
 pub fn cascade_gain(sections: &[IdealSection], f_hz: f64, fs_hz: f64) -> f64 {
     let w = 2.0 * std::f64::consts::PI * f_hz / fs_hz;
-    sections.iter().map(|s| s.eval(w).abs()).product()
+    sections.iter().map(|s| s.eval(w).norm()).product()
 }
 
 impl Sos {

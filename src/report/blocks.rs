@@ -172,7 +172,10 @@ pub fn job<B: Block>(loaded: &Loaded, key: &str, uut: B, timing: BlockTiming) ->
 }
 
 fn param_err(block: &str) -> impl Fn(Error) -> Error + '_ {
-    move |m| Error::Export(format!("report block `{block}`: {m}"))
+    move |m| Error::Params {
+        block: block.to_string(),
+        message: m.to_string(),
+    }
 }
 
 const NO_PREAMP: &str = "not in this config: needs the LTC1407A-1 preset";

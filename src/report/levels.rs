@@ -130,12 +130,6 @@ impl PathLevels {
             1.0e6 / self.delay_ps as f64
         }
     }
-
-    /// The same path's delay with another routing delay per net (ps).
-    pub fn delay_with_route_ps(&self, route_ps: u64, model: &DelayModel) -> u64 {
-        (self.delay_ps + self.routed_nets as u64 * route_ps)
-            .saturating_sub(self.routed_nets as u64 * model.route_ps)
-    }
 }
 
 /// Kind of a cell arc.

@@ -33,6 +33,7 @@ pub mod sweep;
 pub mod yosys;
 
 use crate::config::{Architecture, Derived, Loaded};
+use crate::csv_out::CsvText;
 use crate::emit::{core_name, core_verilog, Generation, OutFile};
 use crate::error::{Error, Result};
 use crate::synth::{Family, SynthStats};
@@ -71,7 +72,7 @@ impl Default for Formats {
 
 impl Formats {
     /// Parses a comma-separated list of `md`, `csv`, `json`, `svg` (or `all`).
-    pub fn parse(s: &str) -> std::result::Result<Formats, String> {
+    pub fn parse(s: &str) -> Result<Formats> {
         let mut f = Formats {
             md: false,
             csv: false,
@@ -86,9 +87,10 @@ impl Formats {
                 "svg" => f.svg = true,
                 "all" => f = Formats::default(),
                 other => {
-                    return Err(format!(
-                    "unknown format `{other}`: allowed md, csv, json, svg (comma-separated) or all"
-                ))
+                    return Err(Error::option(
+                        "--format",
+                        format!("unknown format `{other}`: allowed md, csv, json, svg (comma-separated) or all"),
+                    ))
                 }
             }
         }
@@ -98,7 +100,10 @@ impl Formats {
             json: false,
             svg: false,
         }) {
-            return Err("no output format given: allowed md, csv, json, svg".into());
+            return Err(Error::option(
+                "--format",
+                format!("`{s}` names no output format: allowed md, csv, json, svg"),
+            ));
         }
         Ok(f)
     }
@@ -106,11 +111,12 @@ impl Formats {
 
 /// Parses iteration counts: `A..=B`, `A..B` (exclusive), `A-B`, `N`, or a comma-separated
 /// list of those; each in 1..=20. The result is sorted and free of duplicates.
-pub fn parse_iterations(s: &str) -> std::result::Result<Vec<u32>, String> {
-    let num = |t: &str| -> std::result::Result<u32, String> {
+pub fn parse_iterations(s: &str) -> Result<Vec<u32>> {
+    let bad = |m: String| Error::option("--iterations", m);
+    let num = |t: &str| -> Result<u32> {
         t.trim()
             .parse::<u32>()
-            .map_err(|_| format!("`{t}` in --iterations `{s}` is not a number"))
+            .map_err(|_| bad(format!("`{s}`: `{t}` is not a number")))
     };
     let mut v = Vec::new();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
@@ -119,7 +125,7 @@ pub fn parse_iterations(s: &str) -> std::result::Result<Vec<u32>, String> {
         } else if let Some((a, b)) = part.split_once("..") {
             let b = num(b)?;
             if b == 0 {
-                return Err(format!("empty range `{part}`"));
+                return Err(bad(format!("`{s}`: empty range `{part}`")));
             }
             (num(a)?, b - 1)
         } else if let Some((a, b)) = part.split_once('-') {
@@ -129,19 +135,19 @@ pub fn parse_iterations(s: &str) -> std::result::Result<Vec<u32>, String> {
             (n, n)
         };
         if lo > hi {
-            return Err(format!("empty range `{part}` in --iterations"));
+            return Err(bad(format!("`{s}`: empty range `{part}`")));
         }
         if lo < 1 || hi > 20 {
-            return Err(format!(
-                "--iterations `{part}`: cordic.iterations is allowed in 1..=20"
-            ));
+            return Err(bad(format!(
+                "`{part}`: cordic.iterations is allowed in 1..=20"
+            )));
         }
         v.extend(lo..=hi);
     }
     v.sort_unstable();
     v.dedup();
     if v.is_empty() {
-        return Err(format!("--iterations `{s}` names no iteration count"));
+        return Err(bad(format!("`{s}` names no iteration count")));
     }
     Ok(v)
 }
@@ -1126,16 +1132,14 @@ impl Report {
             .collect()
     }
 
-    /// CSV: a header of column keys, then one line per N (no quoting needed: no cell holds
-    /// a comma or a quote).
+    /// CSV: a header of column keys, then one line per N (no cell holds a comma or a quote,
+    /// so none is quoted).
     pub fn csv(&self, loaded: &Loaded) -> String {
-        let mut s = COLUMNS.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
-        s.push('\n');
+        let mut t = CsvText::new(COLUMNS.iter().map(|c| c.0));
         for row in self.table(loaded) {
-            s.push_str(&row.join(","));
-            s.push('\n');
+            t.record(row);
         }
-        s
+        t.finish()
     }
 
     fn markdown_table(&self, table: &[Vec<String>], keys: &[&str], only: Option<&[u32]>) -> String {
@@ -1191,19 +1195,13 @@ impl Report {
     }
 
     /// The blocks CSV: a header of [`blocks::BLOCK_COLUMNS`] keys, then one line per block
-    /// (no cell holds a comma or a quote).
+    /// (no cell holds a comma or a quote, so none is quoted).
     pub fn blocks_csv(&self) -> String {
-        let mut s = blocks::BLOCK_COLUMNS
-            .iter()
-            .map(|c| c.0)
-            .collect::<Vec<_>>()
-            .join(",");
-        s.push('\n');
+        let mut t = CsvText::new(blocks::BLOCK_COLUMNS.iter().map(|c| c.0));
         for r in &self.blocks {
-            s.push_str(&blocks::block_cells(r).join(","));
-            s.push('\n');
+            t.record(blocks::block_cells(r));
         }
-        s
+        t.finish()
     }
 
     fn blocks_markdown(&self) -> String {
@@ -1620,8 +1618,10 @@ impl Report {
             "blocks": blocks_json,
             "methods": methods,
         });
-        let mut s = serde_json::to_string_pretty(&v)
-            .map_err(|e| Error::Export(format!("report JSON: {e}")))?;
+        let mut s = serde_json::to_string_pretty(&v).map_err(|source| Error::Json {
+            what: "report".into(),
+            source,
+        })?;
         s.push('\n');
         Ok(s)
     }

@@ -4,7 +4,10 @@ use crate::error::{Error, Result};
 use plotters::prelude::*;
 
 fn err<E: std::fmt::Display>(what: &str) -> impl Fn(E) -> Error + '_ {
-    move |e| Error::Export(format!("plot {what}: {e}"))
+    move |e| Error::Plot {
+        what: what.to_string(),
+        message: e.to_string(),
+    }
 }
 
 /// A named series of (x, y) points.

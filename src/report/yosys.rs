@@ -13,7 +13,7 @@
 //! any change to any of them misses the cache.
 use crate::cosim::{require_tool, CosimError};
 use crate::error::{Error, Result};
-use crate::synth::{parse_stat, synthesize, Family, SynthStats};
+use crate::synth::{parse_stat_json, synthesize, Family, SynthStats};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
@@ -29,7 +29,7 @@ hierarchy -check -top {top}
 synth -flatten -top {top}
 abc -g AND,NAND,OR,NOR,XOR,XNOR,ANDNOT,ORNOT,MUX
 opt_clean
-tee -q -o {stat} stat
+tee -q -o {stat} stat -json
 tee -q -o {ltp} ltp -noff
 ";
 
@@ -118,8 +118,10 @@ pub(crate) fn cache_store<T: Serialize>(dir: Option<&Path>, key: &str, value: &T
         return Ok(());
     };
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let text = serde_json::to_string_pretty(value)
-        .map_err(|e| Error::Export(format!("cache entry: {e}")))?;
+    let text = serde_json::to_string_pretty(value).map_err(|source| Error::Json {
+        what: format!("cache entry {key}"),
+        source,
+    })?;
     let tmp = dir.join(format!(
         ".{key}.{}.{:?}.tmp",
         std::process::id(),
@@ -239,7 +241,7 @@ impl Yosys {
         }
         let dir = self.scratch(tag)?;
         let v = dir.join("generic.v");
-        let stat = dir.join("generic_stat.txt");
+        let stat = dir.join("generic_stat.json");
         let ltp = dir.join("generic_ltp.txt");
         std::fs::write(&v, verilog).map_err(|e| Error::io(&v, e))?;
         let script = GENERIC_SCRIPT
@@ -276,11 +278,13 @@ impl Yosys {
         }
         let stat_text = std::fs::read_to_string(&stat).map_err(|e| Error::io(&stat, e))?;
         let ltp_text = std::fs::read_to_string(&ltp).map_err(|e| Error::io(&ltp, e))?;
-        let g = gate_stats(&parse_stat(&stat_text, top), &ltp_text).ok_or_else(|| {
-            Error::Export(format!(
+        let cells = parse_stat_json(&stat_text, top).unwrap_or_default();
+        let g = gate_stats(&cells, &ltp_text).ok_or_else(|| Error::ToolOutput {
+            tool: "yosys".into(),
+            message: format!(
                 "no gate statistics or longest path for `{top}` in {}",
                 dir.display()
-            ))
+            ),
         })?;
         self.store(&key, &g)?;
         let _ = std::fs::remove_dir_all(&dir);
@@ -317,7 +321,8 @@ pub fn gate_stats(cells: &BTreeMap<String, u64>, ltp: &str) -> Option<GateStats>
     Some(g)
 }
 
-/// (length, start, end) of `ltp` output.
+/// (length, start, end) of `ltp` output. Parsed from its text by hand: `ltp` has no JSON
+/// form (Yosys 0.23 offers only `-noff`), unlike `stat -json`.
 pub fn parse_ltp(text: &str) -> Option<(u64, String, String)> {
     let mut length = None;
     let mut from = None;

@@ -331,11 +331,6 @@ impl BiquadParams {
         self.data_width + self.guard_frac
     }
 
-    /// Full product width S + C of the single multiplier.
-    pub fn product_width(&self) -> u32 {
-        self.state_width() + self.coef_width
-    }
-
     /// Accumulator width A = S + C - F + 2 (five terms, never wraps).
     pub fn acc_width(&self) -> u32 {
         self.state_width() + self.coef_width + 2 - self.coef_frac
