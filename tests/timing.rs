@@ -5,7 +5,7 @@
 //! configured clock (docs/timing.md).
 //!
 //! Exception, stated here so that it is not forgotten: the default `<name>_top` does not
-//! reach 1.3 x yet (167.7 MHz against 173.3 MHz; it was 63.7 MHz before the pipelining of
+//! reach 1.3 x yet (165.1 MHz against 173.3 MHz; it was 63.7 MHz before the pipelining of
 //! issue 12). Until it does, it is held to [`DEFAULT_TOP_FLOOR`] x, a regression floor below
 //! today's figure, not the target; docs/timing.md lists the paths that limit it.
 //!

@@ -217,6 +217,10 @@ pub struct QuadrantCounter {
     pending_reg: DFF<Bit>,
     lqc_reg: DFF<Bits<32>>,
     lturns_reg: DFF<Bits<32>>,
+    /// The latched turn count plus and minus one (M bits), taken at the load, so a load's
+    /// step adds no carry chain after `pending`.
+    ltinc_reg: DFF<Bits<32>>,
+    ltdec_reg: DFF<Bits<32>>,
     /// Quadrant of the sample, p >> F (2 bits).
     qnew: Signal<Local, Bits<32>>,
     /// Quadrant of the latched count (2 bits), where a load's step starts.
@@ -225,8 +229,6 @@ pub struct QuadrantCounter {
     base_u: Signal<Local, Bits<32>>,
     /// Turn count the step starts from (M bits).
     base_turns: Signal<Local, Bits<32>>,
-    /// The load's step to the sample's quadrant is backwards (-1).
-    back: Signal<Local, Bit>,
     /// The step crosses into the next period (carry from quadrant 3 to 0).
     up: Signal<Local, Bit>,
     /// The step crosses into the previous period (carry from quadrant 0 to 3).
@@ -240,6 +242,10 @@ pub struct QuadrantCounter {
     un: Signal<Local, Bits<32>>,
     /// The step leaves the turn (u = PPR-1 up, or u = 0 down).
     wrap: Signal<Local, Bit>,
+    /// The base turn count plus one (a carry chain beside the wrap decision).
+    tinc: Signal<Local, Bits<32>>,
+    /// The base turn count minus one.
+    tdec: Signal<Local, Bits<32>>,
     /// F.
     fshift: Constant<Bits<32>>,
     /// Mask of F bits.
@@ -308,17 +314,20 @@ impl QuadrantCounter {
             pending_reg: Default::default(),
             lqc_reg: Default::default(),
             lturns_reg: Default::default(),
+            ltinc_reg: Default::default(),
+            ltdec_reg: Default::default(),
             qnew: Default::default(),
             base_q: Default::default(),
             base_u: Default::default(),
             base_turns: Default::default(),
-            back: Default::default(),
             up: Default::default(),
             down: Default::default(),
             ustep: Default::default(),
             usum: Default::default(),
             un: Default::default(),
             wrap: Default::default(),
+            tinc: Default::default(),
+            tdec: Default::default(),
             fshift: c32(f as u64),
             fmask: c32(mask(f)),
             wlo: c32(d.warn_step >> (f - 2)),
@@ -354,18 +363,18 @@ impl Logic for QuadrantCounter {
             warning_reg,
             pending_reg,
             lqc_reg,
-            lturns_reg
+            lturns_reg,
+            ltinc_reg,
+            ltdec_reg
         );
         self.qnew.next = (self.p_in.val() >> self.fshift.val()) & self.three.val();
         // Base: the running count, or, when a resynchronisation is pending, the latched
         // count. The running count's step comes from the combiner (up, down: the sign of
         // delta and the quadrants); a load's is the nearest step to the sample's quadrant
-        // (+0, +1, +2 forwards, -1 backwards), from 2-bit quadrant compares.
+        // (+0, +1, +2 forwards, -1 backwards), from the two quadrants.
         self.base_q.next = self.lqc_reg.q.val() & self.three.val();
         self.base_u.next = self.u_reg.q.val();
         self.base_turns.next = self.turns_reg.q.val();
-        self.back.next =
-            ((self.qnew.val() - self.lqc_reg.q.val()) & self.three.val()) == self.three.val();
         // A forward step passes quadrant 3 -> 0 exactly when the quadrant decreases, a
         // backward one passes 0 -> 3 exactly when it increases.
         self.up.next = self.up_in.val();
@@ -373,8 +382,17 @@ impl Logic for QuadrantCounter {
         if self.pending_reg.q.val() {
             self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
             self.base_turns.next = self.lturns_reg.q.val();
-            self.up.next = !self.back.val() & (self.qnew.val() < self.base_q.val());
-            self.down.next = self.back.val() & (self.qnew.val() > self.base_q.val());
+            // Four-input functions of the two quadrants written out, so that no 2-bit
+            // subtractor or comparator (a carry chain on xc3sa) sits in front of usum.
+            // Forward steps +1, +2 pass 3 -> 0 from quadrant 2 to 0 and from 3 to 0 or 1;
+            // the backward step -1 passes 0 -> 3 only from 0 to 3.
+            self.up.next = self.base_q.val().get_bit(1)
+                & !self.qnew.val().get_bit(1)
+                & (self.base_q.val().get_bit(0) | !self.qnew.val().get_bit(0));
+            self.down.next = !self.base_q.val().get_bit(1)
+                & !self.base_q.val().get_bit(0)
+                & self.qnew.val().get_bit(1)
+                & self.qnew.val().get_bit(0);
         }
         self.ustep.next = self.zero.val();
         if self.up.val() {
@@ -387,17 +405,28 @@ impl Logic for QuadrantCounter {
         self.un.next = self.usum.val() & self.umask.val();
         // Wrap at 4PPR: period PPR-1 -> 0 steps the turns up, 0 -> PPR-1 down. u = 0 down
         // is the borrow of usum; with PPR a power of two, u = PPR-1 up is its carry and u
-        // wraps by itself, else a compare and a constant take over.
+        // wraps by itself, else a compare and a constant take over. The turn counter's
+        // +1 and -1 are short adders of their own (on the running count, or taken at the
+        // load), selected after the wrap, so no second carry chain follows usum's.
         self.wrap.next = (self.usum.val() & self.ubit.val()).any();
         if !self.pow2.val() {
             self.wrap.next = (self.up.val() & (self.base_u.val() == self.ulast.val()))
                 | (self.down.val() & (self.usum.val() & self.ubit.val()).any());
+        }
+        self.tinc.next = (self.turns_reg.q.val() + self.one.val()) & self.tmask.val();
+        self.tdec.next = (self.turns_reg.q.val() + self.minus_one.val()) & self.tmask.val();
+        if self.pending_reg.q.val() {
+            self.tinc.next = self.ltinc_reg.q.val();
+            self.tdec.next = self.ltdec_reg.q.val();
         }
         self.valid_reg.d.next = self.v_in.val() & !self.rst.val();
         if self.load.val() {
             self.pending_reg.d.next = true;
             self.lqc_reg.d.next = self.load_qc.val();
             self.lturns_reg.d.next = self.load_turns.val();
+            self.ltinc_reg.d.next = (self.load_turns.val() + self.one.val()) & self.tmask.val();
+            self.ltdec_reg.d.next =
+                (self.load_turns.val() + self.minus_one.val()) & self.tmask.val();
         }
         if self.rst.val() {
             self.init_reg.d.next = false;
@@ -445,8 +474,11 @@ impl Logic for QuadrantCounter {
                 }
                 self.turns_reg.d.next = self.base_turns.val() & self.tmask.val();
                 if self.wrap.val() {
-                    self.turns_reg.d.next =
-                        (self.base_turns.val() + self.ustep.val()) & self.tmask.val();
+                    if self.up.val() {
+                        self.turns_reg.d.next = self.tinc.val();
+                    } else {
+                        self.turns_reg.d.next = self.tdec.val();
+                    }
                 }
                 self.fine_reg.d.next = self.p_in.val() & self.fmask.val();
                 self.pprev_reg.d.next = self.p_in.val();

@@ -46,12 +46,18 @@
 //!   (0 -> 3): two 2-bit compares replace total and carry. u + {+1, 0, -1} is one
 //!   (quadrant_bits - 1)-bit adder whose top bit flags u = 0 down and (PPR a power of two)
 //!   u = PPR-1 up; otherwise u = PPR-1 is a constant compare and the wrapped u a constant.
-//!   Each wrap adds the same +-1 to the turns (one M-bit adder). The warning compares
+//!   Each wrap adds +1 or -1 to the turns: two M-bit adders side by side (turns + 1,
+//!   turns - 1; for a load, load_turns + 1 and - 1 taken when the load is latched), chosen
+//!   after the wrap, so no register-to-register path holds two carry chains (the wrap is
+//!   the end of the u adder's). The warning compares
 //!   delta >> (F-2) (4 bits) with 7 and 9 plus a zero test of the low F-2 bits.
 //!   u and turns are zero whenever the counter is uninitialised, so the first sample only
 //!   sets p_prev and fine.
 //! * Resynchronisation (`load`, from the QEP fallback): the count moves from the latched
-//!   load_qc by -1..=+2 to the sample's quadrant, wrapping at 4PPR as above; load_qc must lie
+//!   load_qc by -1..=+2 to the sample's quadrant, wrapping at 4PPR as above (up and down
+//!   from the two 2-bit quadrants as four-input functions, with no subtractor or comparator
+//!   in front of the u adder: up = b1 & !a1 & (b0 | !a0), down = !b1 & !b0 & a1 & a0 for
+//!   the load's quadrant b and the sample's a); load_qc must lie
 //!   in 0..4PPR-1 (the fallback's does; the capacitive top and `<name>_core` tie load off),
 //!   load_turns is taken modulo 2^M.
 //! * Widths: qc needs quadrant_bits = ceil(log2(4PPR)) bits (18 at PPR = 65535); out_position

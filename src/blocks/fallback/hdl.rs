@@ -108,6 +108,16 @@ pub struct Fallback {
     lq1: Signal<Local, Bits<32>>,
     lq: Signal<Local, Bits<32>>,
     lt: Signal<Local, Bits<32>>,
+    /// All ones when lq1 is negative, else 0 (the select of the load's two turn sums).
+    lsel: Signal<Local, Bits<32>>,
+    /// The load's turn sums: capture plus the offset, and plus the offset + 1.
+    lt0: Signal<Local, Bits<32>>,
+    lt1: Signal<Local, Bits<32>>,
+    /// All ones when dq0 is negative, else 0 (the select of kt's two differences).
+    ksel: Signal<Local, Bits<32>>,
+    /// kt's candidates: core turns minus the capture's, and minus the capture's + 1.
+    kt0: Signal<Local, Bits<32>>,
+    kt1: Signal<Local, Bits<32>>,
     /// QEP count step, low two bits: +1 / -1 (the count moves by at most one per clock).
     sx: Signal<Local, Bits<32>>,
     inc: Signal<Local, Bit>,
@@ -154,6 +164,8 @@ pub struct Fallback {
     two: Constant<Bits<32>>,
     /// 0.
     zero: Constant<Bits<32>>,
+    /// All ones.
+    ones: Constant<Bits<32>>,
     /// 3: aligned samples before the checks start (the captures of the two conversions in
     /// flight predate the first alignment).
     three: Constant<Bits<2>>,
@@ -255,6 +267,12 @@ impl Fallback {
             lq1: Default::default(),
             lq: Default::default(),
             lt: Default::default(),
+            lsel: Default::default(),
+            lt0: Default::default(),
+            lt1: Default::default(),
+            ksel: Default::default(),
+            kt0: Default::default(),
+            kt1: Default::default(),
             sx: Default::default(),
             inc: Default::default(),
             dec: Default::default(),
@@ -282,6 +300,7 @@ impl Fallback {
             one: c32(1),
             two: c32(2),
             zero: c32(0),
+            ones: c32(mask(32)),
             three: Constant::new(Bits::<2>::from(3u64)),
             azero: Constant::new(Bits::<2>::from(0u64)),
             aone: Constant::new(Bits::<2>::from(1u64)),
@@ -343,12 +362,18 @@ impl Logic for Fallback {
         // 0..4PPR-1), so the adders are that short and the sign test is bit quadrant_bits.
         self.lq0.next = (self.c2q.q.val() + self.oq.q.val()) & self.dmask.val();
         self.lq1.next = (self.c2q.q.val() + self.oqm.q.val()) & self.dmask.val();
-        self.lq.next = self.lq1.val();
-        self.lt.next = self.c2t.q.val() + self.otp.q.val();
+        // The turn sums are selected by AND-OR masks, not by a multiplexer: Yosys folds
+        // "s ? a + b : a + c" into a + (s ? b : c), which puts lq1's sign (the end of one
+        // carry chain) in front of a second chain; this way each sum is a chain from
+        // registers and the sign only drives the select (xc3sa: one chain per path).
+        self.lsel.next = self.zero.val();
         if (self.lq1.val() & self.dsign.val()).any() {
-            self.lq.next = self.lq0.val();
-            self.lt.next = self.c2t.q.val() + self.ot.q.val();
+            self.lsel.next = self.ones.val();
         }
+        self.lq.next = (self.lq0.val() & self.lsel.val()) | (self.lq1.val() & !self.lsel.val());
+        self.lt0.next = self.c2t.q.val() + self.ot.q.val();
+        self.lt1.next = self.c2t.q.val() + self.otp.q.val();
+        self.lt.next = (self.lt0.val() & self.lsel.val()) | (self.lt1.val() & !self.lsel.val());
         self.load_r.d.next = false;
         if self.adc_valid.val() {
             self.sq2.d.next = self.sq.q.val();
@@ -391,13 +416,18 @@ impl Logic for Fallback {
         // 0..4PPR-1); the turns on M bits (only kt & tmask is ever used).
         self.dq0.next = (self.core_qc.val() - self.csq.val()) & self.dmask.val();
         self.dq1.next = (self.core_qc.val() - self.csqm.val()) & self.dmask.val();
+        // kq's and kt's two differences selected by AND-OR masks, as lq and lt above.
+        self.ksel.next = self.zero.val();
+        if (self.dq0.val() & self.dsign.val()).any() {
+            self.ksel.next = self.ones.val();
+        }
+        self.kt0.next = (self.core_turns.val() - self.cst.val()) & self.tmask.val();
+        self.kt1.next = (self.core_turns.val() - self.cstp.val()) & self.tmask.val();
         if self.core_valid.val() {
-            self.kq.d.next = self.dq0.val();
-            self.kt.d.next = (self.core_turns.val() - self.cst.val()) & self.tmask.val();
-            if (self.dq0.val() & self.dsign.val()).any() {
-                self.kq.d.next = self.dq1.val();
-                self.kt.d.next = (self.core_turns.val() - self.cstp.val()) & self.tmask.val();
-            }
+            self.kq.d.next =
+                (self.dq1.val() & self.ksel.val()) | (self.dq0.val() & !self.ksel.val());
+            self.kt.d.next =
+                (self.kt1.val() & self.ksel.val()) | (self.kt0.val() & !self.ksel.val());
         }
         self.kv.d.next = self.core_valid.val() & !self.core_error.val();
         self.kw.d.next = self.core_warning.val();
