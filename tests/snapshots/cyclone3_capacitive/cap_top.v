@@ -3355,19 +3355,26 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_i
     reg  [31:0] lturns_reg_d;
     wire  [31:0] lturns_reg_q;
     reg  lturns_reg_clock;
+    reg  [31:0] ltinc_reg_d;
+    wire  [31:0] ltinc_reg_q;
+    reg  ltinc_reg_clock;
+    reg  [31:0] ltdec_reg_d;
+    wire  [31:0] ltdec_reg_q;
+    reg  ltdec_reg_clock;
 
     // Local signals
     reg  [31:0] qnew;
     reg  [31:0] base_q;
     reg  [31:0] base_u;
     reg  [31:0] base_turns;
-    reg  back;
     reg  up;
     reg  down;
     reg  [31:0] ustep;
     reg  [31:0] usum;
     reg  [31:0] un;
     reg  wrap;
+    reg  [31:0] tinc;
+    reg  [31:0] tdec;
 
     // Sub module instances
     cap_top_rtl_core_counter_init_reg init_reg(
@@ -3425,6 +3432,16 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_i
         .q(lturns_reg_q),
         .clock(lturns_reg_clock)
     );
+    cap_top_rtl_core_counter_ltinc_reg ltinc_reg(
+        .d(ltinc_reg_d),
+        .q(ltinc_reg_q),
+        .clock(ltinc_reg_clock)
+    );
+    cap_top_rtl_core_counter_ltdec_reg ltdec_reg(
+        .d(ltdec_reg_d),
+        .q(ltdec_reg_q),
+        .clock(ltdec_reg_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -3439,6 +3456,8 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_i
         pending_reg_clock = clk;
         lqc_reg_clock = clk;
         lturns_reg_clock = clk;
+        ltinc_reg_clock = clk;
+        ltdec_reg_clock = clk;
         init_reg_d = init_reg_q;
         pprev_reg_d = pprev_reg_q;
         u_reg_d = u_reg_q;
@@ -3450,18 +3469,19 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_i
         pending_reg_d = pending_reg_q;
         lqc_reg_d = lqc_reg_q;
         lturns_reg_d = lturns_reg_q;
+        ltinc_reg_d = ltinc_reg_q;
+        ltdec_reg_d = ltdec_reg_q;
         qnew = (p_in >> fshift) & three;
         base_q = lqc_reg_q & three;
         base_u = u_reg_q;
         base_turns = turns_reg_q;
-        back = ((qnew - lqc_reg_q) & three) == three;
         up = up_in;
         down = down_in;
         if (pending_reg_q) begin
             base_u = (lqc_reg_q >> two) & umask;
             base_turns = lturns_reg_q;
-            up = ~back & (qnew < base_q);
-            down = back & (qnew > base_q);
+            up = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+            down = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
         end
         ustep = zero;
         if (up) begin
@@ -3476,11 +3496,19 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_i
         if (~pow2) begin
             wrap = (up & (base_u == ulast)) | (down & |(usum & ubit));
         end
+        tinc = (turns_reg_q + one) & tmask;
+        tdec = (turns_reg_q + minus_one) & tmask;
+        if (pending_reg_q) begin
+            tinc = ltinc_reg_q;
+            tdec = ltdec_reg_q;
+        end
         valid_reg_d = v_in & ~rst;
         if (load) begin
             pending_reg_d = 1'b1;
             lqc_reg_d = load_qc;
             lturns_reg_d = load_turns;
+            ltinc_reg_d = (load_turns + one) & tmask;
+            ltdec_reg_d = (load_turns + minus_one) & tmask;
         end
         if (rst) begin
             init_reg_d = 1'b0;
@@ -3528,7 +3556,12 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_i
                 end
                 turns_reg_d = base_turns & tmask;
                 if (wrap) begin
-                    turns_reg_d = (base_turns + ustep) & tmask;
+                    if (up) begin
+                        turns_reg_d = tinc;
+                    end
+                    else begin
+                        turns_reg_d = tdec;
+                    end
                 end
                 fine_reg_d = p_in & fmask;
                 pprev_reg_d = p_in;
@@ -3615,6 +3648,42 @@ module cap_top_rtl_core_counter_lqc_reg(d,q,clock);
     end
 
 endmodule // cap_top_rtl_core_counter_lqc_reg
+
+module cap_top_rtl_core_counter_ltdec_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_ltdec_reg
+
+module cap_top_rtl_core_counter_ltinc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_ltinc_reg
 
 module cap_top_rtl_core_counter_lturns_reg(d,q,clock);
 

@@ -3415,19 +3415,26 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
     reg  [31:0] lturns_reg_d;
     wire  [31:0] lturns_reg_q;
     reg  lturns_reg_clock;
+    reg  [31:0] ltinc_reg_d;
+    wire  [31:0] ltinc_reg_q;
+    reg  ltinc_reg_clock;
+    reg  [31:0] ltdec_reg_d;
+    wire  [31:0] ltdec_reg_q;
+    reg  ltdec_reg_clock;
 
     // Local signals
     reg  [31:0] qnew;
     reg  [31:0] base_q;
     reg  [31:0] base_u;
     reg  [31:0] base_turns;
-    reg  back;
     reg  up;
     reg  down;
     reg  [31:0] ustep;
     reg  [31:0] usum;
     reg  [31:0] un;
     reg  wrap;
+    reg  [31:0] tinc;
+    reg  [31:0] tdec;
 
     // Sub module instances
     sd_top_rtl_core_counter_init_reg init_reg(
@@ -3485,6 +3492,16 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
         .q(lturns_reg_q),
         .clock(lturns_reg_clock)
     );
+    sd_top_rtl_core_counter_ltinc_reg ltinc_reg(
+        .d(ltinc_reg_d),
+        .q(ltinc_reg_q),
+        .clock(ltinc_reg_clock)
+    );
+    sd_top_rtl_core_counter_ltdec_reg ltdec_reg(
+        .d(ltdec_reg_d),
+        .q(ltdec_reg_q),
+        .clock(ltdec_reg_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -3499,6 +3516,8 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
         pending_reg_clock = clk;
         lqc_reg_clock = clk;
         lturns_reg_clock = clk;
+        ltinc_reg_clock = clk;
+        ltdec_reg_clock = clk;
         init_reg_d = init_reg_q;
         pprev_reg_d = pprev_reg_q;
         u_reg_d = u_reg_q;
@@ -3510,18 +3529,19 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
         pending_reg_d = pending_reg_q;
         lqc_reg_d = lqc_reg_q;
         lturns_reg_d = lturns_reg_q;
+        ltinc_reg_d = ltinc_reg_q;
+        ltdec_reg_d = ltdec_reg_q;
         qnew = (p_in >> fshift) & three;
         base_q = lqc_reg_q & three;
         base_u = u_reg_q;
         base_turns = turns_reg_q;
-        back = ((qnew - lqc_reg_q) & three) == three;
         up = up_in;
         down = down_in;
         if (pending_reg_q) begin
             base_u = (lqc_reg_q >> two) & umask;
             base_turns = lturns_reg_q;
-            up = ~back & (qnew < base_q);
-            down = back & (qnew > base_q);
+            up = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+            down = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
         end
         ustep = zero;
         if (up) begin
@@ -3536,11 +3556,19 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
         if (~pow2) begin
             wrap = (up & (base_u == ulast)) | (down & |(usum & ubit));
         end
+        tinc = (turns_reg_q + one) & tmask;
+        tdec = (turns_reg_q + minus_one) & tmask;
+        if (pending_reg_q) begin
+            tinc = ltinc_reg_q;
+            tdec = ltdec_reg_q;
+        end
         valid_reg_d = v_in & ~rst;
         if (load) begin
             pending_reg_d = 1'b1;
             lqc_reg_d = load_qc;
             lturns_reg_d = load_turns;
+            ltinc_reg_d = (load_turns + one) & tmask;
+            ltdec_reg_d = (load_turns + minus_one) & tmask;
         end
         if (rst) begin
             init_reg_d = 1'b0;
@@ -3588,7 +3616,12 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
                 end
                 turns_reg_d = base_turns & tmask;
                 if (wrap) begin
-                    turns_reg_d = (base_turns + ustep) & tmask;
+                    if (up) begin
+                        turns_reg_d = tinc;
+                    end
+                    else begin
+                        turns_reg_d = tdec;
+                    end
                 end
                 fine_reg_d = p_in & fmask;
                 pprev_reg_d = p_in;
@@ -3675,6 +3708,42 @@ module sd_top_rtl_core_counter_lqc_reg(d,q,clock);
     end
 
 endmodule // sd_top_rtl_core_counter_lqc_reg
+
+module sd_top_rtl_core_counter_ltdec_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_ltdec_reg
+
+module sd_top_rtl_core_counter_ltinc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_ltinc_reg
 
 module sd_top_rtl_core_counter_lturns_reg(d,q,clock);
 
@@ -7631,6 +7700,7 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     localparam  one = 32'h1;
     localparam  two = 32'h2;
     localparam  zero = 32'h0;
+    localparam  ones = 32'hffffffff;
     localparam  three = 2'b11;
     localparam  azero = 2'b0;
     localparam  aone = 2'b1;
@@ -7778,6 +7848,12 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     reg  [31:0] lq1;
     reg  [31:0] lq;
     reg  [31:0] lt;
+    reg  [31:0] lsel;
+    reg  [31:0] lt0;
+    reg  [31:0] lt1;
+    reg  [31:0] ksel;
+    reg  [31:0] kt0;
+    reg  [31:0] kt1;
     reg  [31:0] sx;
     reg  inc;
     reg  dec;
@@ -8111,12 +8187,14 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         busy_n_d = ~((mv == zero) | (mv == one) | (mv == dminus_one) | (mv == dqlast) | (mv == dmqturn_p1));
         lq0 = (c2q_q + oq_q) & dmask;
         lq1 = (c2q_q + oqm_q) & dmask;
-        lq = lq1;
-        lt = c2t_q + otp_q;
+        lsel = zero;
         if (|(lq1 & dsign)) begin
-            lq = lq0;
-            lt = c2t_q + ot_q;
+            lsel = ones;
         end
+        lq = (lq0 & lsel) | (lq1 & ~lsel);
+        lt0 = c2t_q + ot_q;
+        lt1 = c2t_q + otp_q;
+        lt = (lt0 & lsel) | (lt1 & ~lsel);
         load_r_d = 1'b0;
         if (adc_valid) begin
             sq2_d = sq_q;
@@ -8153,13 +8231,15 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         end
         dq0 = (core_qc - csq) & dmask;
         dq1 = (core_qc - csqm) & dmask;
+        ksel = zero;
+        if (|(dq0 & dsign)) begin
+            ksel = ones;
+        end
+        kt0 = (core_turns - cst) & tmask;
+        kt1 = (core_turns - cstp) & tmask;
         if (core_valid) begin
-            kq_d = dq0;
-            kt_d = (core_turns - cst) & tmask;
-            if (|(dq0 & dsign)) begin
-                kq_d = dq1;
-                kt_d = (core_turns - cstp) & tmask;
-            end
+            kq_d = (dq1 & ksel) | (dq0 & ~ksel);
+            kt_d = (kt1 & ksel) | (kt0 & ~ksel);
         end
         kv_d = core_valid & ~core_error;
         kw_d = core_warning;
