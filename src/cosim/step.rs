@@ -1,5 +1,5 @@
 //! Hand-stepping of rust-hdl designs: no simulation threads (about 10x faster than the
-//! `Simulation` API, see RUST_HDL_NOTES.md), identical results.
+//! `Simulation` API, see docs/rust-hdl.md), identical results.
 //!
 //! One call to [`tick`] is one clock cycle with the semantics of the co-simulation harness:
 //! the caller has set the inputs (`.next`) while the clock is low; the clock rises; the
