@@ -953,18 +953,18 @@ pub fn check_throughput(
     cycles: u32,
     clock_hz: f64,
     rate: f64,
-) -> std::result::Result<(), String> {
+) -> Result<()> {
     if architecture == Architecture::Unrolled {
         return Ok(());
     }
     if rate * cycles as f64 > clock_hz * (1.0 + 1e-9) {
         let per_iter = (cycles / n.max(1)).max(1);
-        return Err(format!(
+        return Err(Error::block_params("cordic", format!(
             "the iterative CORDIC accepts one sample per {cycles} clocks (N = {n} iterations of {per_iter} digit clocks): {:.0} samples/s at {:.3} MHz, below the ADC sample rate of {rate:.0} samples/s; use at most {} iterations, a faster clock, a lower sample rate, or architecture = \"unrolled\"",
             clock_hz / cycles as f64,
             clock_hz / 1e6,
             ((clock_hz / rate + 1e-9).floor() as u64) / per_iter as u64
-        ));
+        )));
     }
     Ok(())
 }
@@ -1189,7 +1189,7 @@ impl Derived {
             }
         };
         check_throughput(architecture, n, cycles_per_sample, clock_hz, rate)
-            .map_err(|m| err("cordic", "architecture", m))?;
+            .map_err(|m| err("cordic", "architecture", m.detail()))?;
         let biss = biss_params(c, position_width, &err)?;
         let capacitive = match &c.capacitive {
             Some(k) => Some(cap_params(c, k, rate, &err)?),
@@ -1364,8 +1364,8 @@ impl Derived {
             }
         }
         let (board_clock, io_timing) = board_timing(c, &adc, &err)?;
-        let qep =
-            QepParams::new(c.qep.filter_clocks, 32).map_err(|m| err("qep", "filter_clocks", m))?;
+        let qep = QepParams::new(c.qep.filter_clocks, 32)
+            .map_err(|m| err("qep", "filter_clocks", m.detail()))?;
         let derived = Derived {
             board_clock,
             io_timing,
@@ -1674,7 +1674,7 @@ fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams
     } else {
         "preset"
     };
-    params.validate().map_err(|m| err("adc", key, m))?;
+    params.validate().map_err(|m| err("adc", key, m.detail()))?;
     if let Some(rate) = c.adc.sample_rate_hz {
         let p = AdcParams::period_for_rate(clock_hz, rate);
         if rate.is_nan() || rate <= 0.0 || p < params.period_clocks {
@@ -1692,13 +1692,14 @@ fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams
         params = build(Some(p));
         params
             .validate()
-            .map_err(|m| err("adc", "sample_rate_hz", m))?;
+            .map_err(|m| err("adc", "sample_rate_hz", m.detail()))?;
     }
     let preamp = match c.adc.preset {
         AdcPreset::Ltc1407a1 => {
             let pc = c.preamp.clone().unwrap_or_default();
             Some(
                 PreampParams::new(clock_hz, pc.gain_a, pc.gain_b).map_err(|m| {
+                    let m = m.detail();
                     err(
                         "preamp",
                         if m.contains("gain B") {
@@ -1780,9 +1781,10 @@ fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionParams> {
     let k = &c.correction;
     let a = c.adc.width;
     let gf = k.gain_frac_bits;
-    let gs = gain_code(gf, k.gain_sin).map_err(|m| err("correction", "gain_sin", m))?;
-    let gc = gain_code(gf, k.gain_cos).map_err(|m| err("correction", "gain_cos", m))?;
+    let gs = gain_code(gf, k.gain_sin).map_err(|m| err("correction", "gain_sin", m.detail()))?;
+    let gc = gain_code(gf, k.gain_cos).map_err(|m| err("correction", "gain_cos", m.detail()))?;
     let p = CorrectionParams::new(a, gf, [k.offset_sin, k.offset_cos], [gs, gc]).map_err(|m| {
+        let m = m.detail();
         err(
             "correction",
             if m.contains("offset") {
@@ -1799,7 +1801,7 @@ fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionParams> {
             let t = frac_of_fs(c, "correction", "target_amplitude", k.target_amplitude, err)?;
             let m = frac_of_fs(c, "correction", "min_amplitude", k.min_amplitude, err)?;
             p.with_auto(t, k.periods, m)
-                .map_err(|e| err("correction", "periods", e))
+                .map_err(|e| err("correction", "periods", e.detail()))
         }
         other => Err(err(
             "correction",
@@ -1894,7 +1896,7 @@ fn monitor_params(
         units(clip),
         m.clip_hold.unwrap_or(16),
     )
-    .map_err(|e| err("monitor", "los_amplitude", e))
+    .map_err(|e| err("monitor", "los_amplitude", e.detail()))
 }
 
 /// Validates `[capacitive]` and designs its filters at the ADC's sample rate.

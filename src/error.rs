@@ -58,14 +58,6 @@ pub enum Error {
     /// Internal consistency check of emitted Verilog (identifier clash, bad name).
     #[error("Verilog export: {0}")]
     Export(String),
-    /// A block's parameters are outside what the block supports (its constructor said why).
-    #[error("block `{block}`: {message}")]
-    Params {
-        /// The block, e.g. `qep`.
-        block: String,
-        /// What is wrong and what is allowed.
-        message: String,
-    },
     /// Serializing a JSON document failed (report, parameter file, cache entry).
     #[error("{what} JSON: {source}")]
     Json {
@@ -117,8 +109,9 @@ pub enum Error {
     },
     // Blocks' parameters, the board clock and the simulation models (one block, kept at
     // the end of the enum).
-    /// A block's parameters are out of range or do not fit together (`biss`, `ssi`, `spi`,
-    /// `parallel`, `top`).
+    /// A block's parameters are out of range or do not fit together (`adc`, `preamp`,
+    /// `correction`, `monitor`, `nco`, `qep`, `biss`, `ssi`, `spi`, `parallel`, `top`): the
+    /// block's constructor says why.
     #[error("{block}: {message}")]
     BlockParams {
         /// The block, as its config section is named.
@@ -198,6 +191,15 @@ impl Error {
         Error::BlockParams {
             block: block.to_string(),
             message: message.into(),
+        }
+    }
+
+    /// The message of a [`Error::BlockParams`] without the block's name, for an error that
+    /// names the config key instead; any other error as displayed.
+    pub fn detail(&self) -> String {
+        match self {
+            Error::BlockParams { message, .. } => message.clone(),
+            e => e.to_string(),
         }
     }
 

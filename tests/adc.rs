@@ -157,33 +157,40 @@ fn ltc1407a_rates_and_latencies_at_the_kit_clocks() {
 
 #[test]
 fn infeasible_settings_are_rejected_with_the_reason() {
-    let e = AdcParams::ltc1407a(F133, 2, None).validate().unwrap_err();
+    let e = AdcParams::ltc1407a(F133, 2, None)
+        .validate()
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains("limit") && e.contains("at least 3 clocks"),
         "{e}"
     );
     let e = AdcParams::ltc1407a(F133, 3, Some(100))
         .validate()
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("shorter than the frame"), "{e}");
-    let e = AdcParams::ltc1407a(F133, 1, None).validate().unwrap_err();
+    let e = AdcParams::ltc1407a(F133, 1, None)
+        .validate()
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("2..=255"), "{e}");
     // 300 MHz: one clock of CONV is 3.3 ns < 4 ns; force it.
     let mut p = AdcParams::ltc1407a(300e6, 6, None);
     p.conv_clocks = 1;
-    let e = p.validate().unwrap_err();
+    let e = p.validate().unwrap_err().to_string();
     assert!(e.contains("CONV pulse"), "{e}");
     // A conversion period that leaves too little acquisition time.
     let mut p = AdcParams::ltc1407a(F133, 3, None);
     p.frame.frame_sck = 33; // 32nd rise to CONV only 7 clocks... still a legal frame
     p.period_clocks = 33 * 3;
-    let e = p.validate().unwrap_err();
+    let e = p.validate().unwrap_err().to_string();
     assert!(e.contains("acquisition"), "{e}");
     // Above the chip's per-channel rate.
     let mut t = AdcTiming::LTC1407A_1;
     t.max_sample_rate_hz = 1.0e6;
     let p = AdcParams::generic(F133, AdcFrame::LTC1407A_1, t, 3, Some(102));
-    let e = p.validate().unwrap_err();
+    let e = p.validate().unwrap_err().to_string();
     assert!(e.contains("above the ADC limit"), "{e}");
     // Frame format errors.
     let mut f = AdcFrame::LTC1407A_1;
@@ -191,23 +198,27 @@ fn infeasible_settings_are_rejected_with_the_reason() {
     assert!(AdcParams::generic(F133, f, AdcTiming::LTC1407A_1, 3, None)
         .validate()
         .unwrap_err()
+        .to_string()
         .contains("10..=16"));
     let mut f = AdcFrame::LTC1407A_1;
     f.offsets = [2, 10];
     assert!(AdcParams::generic(F133, f, AdcTiming::LTC1407A_1, 3, None)
         .validate()
         .unwrap_err()
+        .to_string()
         .contains("overlap"));
     let mut f = AdcFrame::LTC1407A_1;
     f.offsets = [2, 25];
     assert!(AdcParams::generic(F133, f, AdcTiming::LTC1407A_1, 3, None)
         .validate()
         .unwrap_err()
+        .to_string()
         .contains("do not fit"));
     // Too low a rate for the 16-bit period counter.
     let e = AdcParams::ltc1407a(F133, 3, Some(70_000))
         .validate()
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("65535"), "{e}");
 }
 

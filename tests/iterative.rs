@@ -317,7 +317,9 @@ fn in_ready_in_icarus_and_verilator() {
 fn throughput_check_rejects_too_slow_iterative_designs() {
     // 20 iterations of 4 digit clocks at 80 MHz: 1 Msample/s; a 1.5 Msample/s ADC cannot be
     // served; 80 MHz / 1.5 MHz = 53 clocks hold 13 iterations of 4.
-    let e = check_throughput(Architecture::Iterative, 20, 80, 80e6, 1.5e6).unwrap_err();
+    let e = check_throughput(Architecture::Iterative, 20, 80, 80e6, 1.5e6)
+        .unwrap_err()
+        .to_string();
     for part in [
         "80 clocks",
         "20 iterations of 4 digit clocks",

@@ -252,21 +252,26 @@ fn bad_parameters_are_rejected_with_a_message() {
     assert!(ok.is_ok());
     assert!(MonitorParams::new(9, 18, 2500, 3000, 8, 12000, 4)
         .unwrap_err()
+        .to_string()
         .contains("ADC width"));
     assert!(MonitorParams::new(14, 33, 2500, 3000, 8, 12000, 4).is_err());
     assert!(MonitorParams::new(14, 18, 0, 3000, 8, 12000, 4).is_err());
     assert!(MonitorParams::new(14, 18, 2500, 2000, 8, 12000, 4)
         .unwrap_err()
+        .to_string()
         .contains("release"));
     assert!(MonitorParams::new(14, 18, 2500, 3000, 8, 2900, 4)
         .unwrap_err()
+        .to_string()
         .contains("clipping"));
     assert!(MonitorParams::new(14, 12, 2500, 3000, 8, 4095, 4).is_err());
     assert!(MonitorParams::new(14, 18, 2500, 3000, 0, 12000, 4)
         .unwrap_err()
+        .to_string()
         .contains("window"));
     assert!(MonitorParams::new(14, 18, 2500, 3000, 8, 12000, 70000)
         .unwrap_err()
+        .to_string()
         .contains("hold"));
 }
 

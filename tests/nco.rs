@@ -361,7 +361,7 @@ fn output_sequence_is_independent_of_tick_spacing() {
 
 #[test]
 fn bad_parameters_are_rejected_with_a_message() {
-    let e = |r: Result<NcoParams, String>| r.expect_err("invalid");
+    let e = |r: Result<NcoParams, sinedec::error::Error>| r.expect_err("invalid").to_string();
     let m = e(NcoParams::new(F50, 400e3, 5e3, 32, 10, 16, 1.0));
     assert!(m.contains("10 kHz..=1 MHz"), "{m}");
     let m = e(NcoParams::new(F50, 400e3, 2e6, 32, 10, 16, 1.0));

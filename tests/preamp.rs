@@ -130,7 +130,9 @@ fn invalid_gains_are_rejected_naming_the_allowed_set() {
         (-1, -200, "B"),
         (-1, 2, "B"),
     ] {
-        let e = PreampParams::new(F133, a, b).expect_err("invalid gain");
+        let e = PreampParams::new(F133, a, b)
+            .expect_err("invalid gain")
+            .to_string();
         assert!(e.contains("-1, -2, -5, -10, -20, -50, -100"), "{e}");
         assert!(e.contains(&format!("gain {which}")), "{e}");
     }

@@ -39,7 +39,7 @@ use crate::blocks::spi_slave::SpiSlaveParams;
 use crate::blocks::ssi::hdl::SsiSlave;
 use crate::blocks::ssi::SsiParams;
 use crate::config::Loaded;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::synth::SynthStats;
 use rust_hdl::prelude::Block;
 
@@ -171,13 +171,6 @@ pub fn job<B: Block>(loaded: &Loaded, key: &str, uut: B, timing: BlockTiming) ->
     })
 }
 
-fn param_err(block: &str) -> impl Fn(Error) -> Error + '_ {
-    move |m| Error::Params {
-        block: block.to_string(),
-        message: m.to_string(),
-    }
-}
-
 const NO_PREAMP: &str = "not in this config: needs the LTC1407A-1 preset";
 const DISABLED: &str = "disabled in this config";
 
@@ -186,14 +179,12 @@ fn ssi_params(l: &Loaded) -> Result<(SsiParams, bool)> {
     if let Some(p) = &d.ssi {
         return Ok((p.clone(), true));
     }
-    let e = param_err("ssi");
-    let mut p =
-        SsiParams::new(d.biss.position_bits, d.biss.multiturn_bits, d.clock_hz).map_err(&e)?;
+    let mut p = SsiParams::new(d.biss.position_bits, d.biss.multiturn_bits, d.clock_hz)?;
     p.gray = l.config.ssi.gray;
     if let Some(t) = l.config.ssi.timeout_us {
-        p.set_timeout_us(t).map_err(&e)?;
+        p.set_timeout_us(t)?;
     }
-    p.validate().map_err(&e)?;
+    p.validate()?;
     Ok((p, false))
 }
 
@@ -202,11 +193,9 @@ fn spi_params(l: &Loaded) -> Result<(SpiSlaveParams, bool)> {
     if let Some(p) = &d.spi {
         return Ok((p.clone(), true));
     }
-    let e = param_err("spi");
-    let mut p =
-        SpiSlaveParams::new(d.biss.position_bits, d.biss.multiturn_bits, d.clock_hz).map_err(&e)?;
+    let mut p = SpiSlaveParams::new(d.biss.position_bits, d.biss.multiturn_bits, d.clock_hz)?;
     p.gray = l.config.spi.gray;
-    p.validate().map_err(&e)?;
+    p.validate()?;
     Ok((p, false))
 }
 
@@ -303,7 +292,7 @@ fn fallback_job(l: &Loaded) -> Result<BlockJob> {
 }
 
 fn biss_job(l: &Loaded) -> Result<BlockJob> {
-    let uut = BissSlave::new(&l.derived.biss).map_err(param_err("biss"))?;
+    let uut = BissSlave::new(&l.derived.biss)?;
     job(
         l,
         "biss",
@@ -314,7 +303,7 @@ fn biss_job(l: &Loaded) -> Result<BlockJob> {
 
 fn ssi_job(l: &Loaded) -> Result<BlockJob> {
     let (p, enabled) = ssi_params(l)?;
-    let uut = SsiSlave::new(&p).map_err(param_err("ssi"))?;
+    let uut = SsiSlave::new(&p)?;
     let j = job(
         l,
         "ssi",
@@ -326,7 +315,7 @@ fn ssi_job(l: &Loaded) -> Result<BlockJob> {
 
 fn spi_job(l: &Loaded) -> Result<BlockJob> {
     let (p, enabled) = spi_params(l)?;
-    let uut = SpiSlave::new(&p).map_err(param_err("spi"))?;
+    let uut = SpiSlave::new(&p)?;
     let j = job(
         l,
         "spi",
@@ -338,9 +327,8 @@ fn spi_job(l: &Loaded) -> Result<BlockJob> {
 
 fn parallel_job(l: &Loaded) -> Result<BlockJob> {
     let d = &l.derived;
-    let p = ParallelParams::new(d.position_width.min(32), d.multiturn_bits)
-        .map_err(param_err("parallel"))?;
-    let uut = ParallelBus::new(&p).map_err(param_err("parallel"))?;
+    let p = ParallelParams::new(d.position_width.min(32), d.multiturn_bits)?;
+    let uut = ParallelBus::new(&p)?;
     job(
         l,
         "parallel",

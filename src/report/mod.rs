@@ -206,8 +206,36 @@ pub struct Row {
     pub acc: ErrAcc,
     /// Predicted error.
     pub predicted: Predicted,
-    /// The same N with the other CORDIC architecture (Err: why it could not be derived).
-    pub other: std::result::Result<ArchFigures, String>,
+    /// The same N with the other CORDIC architecture.
+    pub other: OtherArch,
+}
+
+/// The other CORDIC architecture at one N: its figures, or why it has none.
+#[derive(Clone, Debug)]
+pub enum OtherArch {
+    /// Synthesized and routed.
+    Figures(ArchFigures),
+    /// The config with the other architecture is rejected (e.g. by the throughput check):
+    /// the error's text.
+    Rejected(String),
+}
+
+impl OtherArch {
+    /// The figures, if the other architecture could be derived.
+    pub fn figures(&self) -> Option<&ArchFigures> {
+        match self {
+            OtherArch::Figures(f) => Some(f),
+            OtherArch::Rejected(_) => None,
+        }
+    }
+
+    /// Why the other architecture has no figures, if it has none.
+    pub fn rejected(&self) -> Option<&str> {
+        match self {
+            OtherArch::Figures(_) => None,
+            OtherArch::Rejected(why) => Some(why),
+        }
+    }
 }
 
 /// Figures of one CORDIC architecture at one N.
@@ -245,7 +273,7 @@ impl Row {
         if self.derived.architecture == arch {
             Some(self.own())
         } else {
-            self.other.as_ref().ok().cloned()
+            self.other.figures().cloned()
         }
     }
 }
@@ -446,9 +474,9 @@ fn build_inner(
     let plan = SweepPlan::for_width(designs[0].derived.adc_width);
     let other_arch = other_architecture(loaded.derived.architecture);
     // The other architecture per N (an Err keeps the reason, e.g. the throughput check).
-    let others: Vec<std::result::Result<Loaded, String>> = designs
+    let others: Vec<Result<Loaded>> = designs
         .iter()
-        .map(|l| with_architecture(l, other_arch).map_err(|e| e.to_string()))
+        .map(|l| with_architecture(l, other_arch))
         .collect();
     let bar = progress_bar(opts.progress, 1);
     bar.set_message("generating Verilog");
@@ -628,7 +656,7 @@ fn build_inner(
         .map(|(i, (l, acc))| {
             let u = core_units[i];
             let other = match (&others[i], other_units[i]) {
-                (Ok(o), Some(k)) => Ok(ArchFigures {
+                (Ok(o), Some(k)) => OtherArch::Figures(ArchFigures {
                     architecture: other_arch,
                     latency_cycles: o.derived.latency_cycles,
                     cycles_per_sample: o.derived.cycles_per_sample,
@@ -636,8 +664,8 @@ fn build_inner(
                     cyclone: cy[k].clone(),
                     ecp5: pn[k].clone(),
                 }),
-                (Err(e), _) => Err(e.clone()),
-                (Ok(_), None) => Err("no Verilog".into()),
+                (Err(e), _) => OtherArch::Rejected(e.to_string()),
+                (Ok(_), None) => OtherArch::Rejected("no Verilog".into()),
             };
             Row {
                 n: l.derived.iterations,
@@ -1325,7 +1353,7 @@ impl Report {
                     let failed: Vec<String> = self
                         .rows
                         .iter()
-                        .filter_map(|r| r.other.as_ref().err().map(|e| format!("N = {}: {e}", r.n)))
+                        .filter_map(|r| r.other.rejected().map(|e| format!("N = {}: {e}", r.n)))
                         .collect();
                     format!(
                         "For every N the core is synthesized a second time with cordic.architecture = \"{}\" (the configured one is \"{}\": its columns repeat the main table's), for xc3sa and cycloneive with the same scripts and cache. Latency is N + 2 cycles unrolled and S + 2 iterative (S = N·ceil(W/4): the iterative core is digit-serial, 4 bits per clock); throughput is the configured clock ({:.3} MHz) divided by the clocks per accepted sample (1 unrolled, S iterative). The ratio is iterative / unrolled xc3sa LUT4. The accuracy is identical for both architectures (their outputs are bit-identical for every input, proven by tests/iterative.rs), so the accuracy sweep is not repeated: the accuracy columns hold for both. {}",

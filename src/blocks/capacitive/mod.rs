@@ -93,7 +93,7 @@ impl CapFrontParams {
             c.dac_width,
             c.amplitude,
         )
-        .map_err(|m| bad("carrier_hz", m))?;
+        .map_err(|m| bad("carrier_hz", m.detail()))?;
         let secs = |s: &crate::filter::Sos| -> Vec<[i64; 5]> {
             s.sections
                 .iter()

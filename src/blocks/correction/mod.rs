@@ -88,6 +88,12 @@ pub struct AutoCalParams {
     min_amplitude: u32,
 }
 
+/// [`crate::error::Error::BlockParams`] for this block: `message` says what is wrong and what
+/// is allowed.
+fn invalid(message: String) -> crate::error::Error {
+    crate::error::Error::block_params("correction", message)
+}
+
 impl AutoCalParams {
     /// Target amplitude T (LSB) the corrected signals get.
     pub fn target_amplitude(&self) -> u32 {
@@ -131,33 +137,33 @@ impl CorrectionParams {
         gain_frac_bits: u32,
         offset: [i32; 2],
         gain: [u32; 2],
-    ) -> Result<Self, String> {
+    ) -> crate::error::Result<Self> {
         if !(10..=16).contains(&adc_width) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "correction ADC width {adc_width} bits is out of range: 10..=16"
-            ));
+            )));
         }
         if !(8..=15).contains(&gain_frac_bits) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "gain fraction bits {gain_frac_bits} out of range: 8..=15 (16-bit gain word)"
-            ));
+            )));
         }
         let lim = 1i32 << (adc_width - 1);
         for (name, b) in [("sin", offset[SIN]), ("cos", offset[COS])] {
             if b < -lim || b >= lim {
-                return Err(format!(
+                return Err(invalid(format!(
                     "{name} offset {b} LSB is outside the {adc_width}-bit range {}..={}",
                     -lim,
                     lim - 1
-                ));
+                )));
             }
         }
         for (name, g) in [("sin", gain[SIN]), ("cos", gain[COS])] {
             if g > 0xffff {
-                return Err(format!(
+                return Err(invalid(format!(
                     "{name} gain code {g} does not fit 16 bits (max 65535 = {:.5})",
                     65535.0 / (1u32 << gain_frac_bits) as f64
-                ));
+                )));
             }
         }
         Ok(Self {
@@ -170,7 +176,7 @@ impl CorrectionParams {
     }
 
     /// Unity correction (b = 0, g = 1).
-    pub fn identity(adc_width: u32, gain_frac_bits: u32) -> Result<Self, String> {
+    pub fn identity(adc_width: u32, gain_frac_bits: u32) -> crate::error::Result<Self> {
         let one = 1u32 << gain_frac_bits.min(15);
         Self::new(adc_width, gain_frac_bits, [0, 0], [one, one])
     }
@@ -183,22 +189,22 @@ impl CorrectionParams {
         target_amplitude: u32,
         periods: u32,
         min_amplitude: u32,
-    ) -> Result<Self, String> {
+    ) -> crate::error::Result<Self> {
         let max = (1u32 << (self.adc_width - 1)) - 1;
         if !(1..=max).contains(&target_amplitude) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "calibration target amplitude {target_amplitude} LSB is out of range: 1..={max}"
-            ));
+            )));
         }
         if !(1..=256).contains(&periods) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "calibration window of {periods} periods is out of range: 1..=256"
-            ));
+            )));
         }
         if !(1..=max).contains(&min_amplitude) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "calibration minimum amplitude {min_amplitude} LSB is out of range: 1..={max}"
-            ));
+            )));
         }
         Ok(Self {
             auto: Some(AutoCalParams {
@@ -234,13 +240,13 @@ impl CorrectionParams {
 
 /// Gain code for a correction factor `g` (= 1/m, the inverse of the channel's gain):
 /// round(g 2^GF), which must fit 16 bits.
-pub fn gain_code(gain_frac_bits: u32, g: f64) -> Result<u32, String> {
+pub fn gain_code(gain_frac_bits: u32, g: f64) -> crate::error::Result<u32> {
     let c = (g * (1u64 << gain_frac_bits) as f64).round();
     if !(0.0..=65535.0).contains(&c) {
-        return Err(format!(
+        return Err(invalid(format!(
             "gain correction {g} is outside 0..{} for {gain_frac_bits} fraction bits",
             65536.0 / (1u64 << gain_frac_bits) as f64
-        ));
+        )));
     }
     Ok(c as u32)
 }
@@ -255,9 +261,11 @@ pub fn two_point(
     y_l: f64,
     x_h: f64,
     x_l: f64,
-) -> Result<(i32, u32), String> {
+) -> crate::error::Result<(i32, u32)> {
     if x_h == x_l || y_h == y_l {
-        return Err("two-point calibration needs two distinct reference points".into());
+        return Err(invalid(
+            "two-point calibration needs two distinct reference points".to_string(),
+        ));
     }
     let ma = (y_h - y_l) / (x_h - x_l);
     let b = y_l - x_l * ma;

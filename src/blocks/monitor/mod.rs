@@ -66,6 +66,12 @@ pub(crate) fn count_bits(n: u32) -> u32 {
     (32 - n.saturating_sub(1).leading_zeros()).max(1)
 }
 
+/// [`crate::error::Error::BlockParams`] for this block: `message` says what is wrong and what
+/// is allowed.
+fn invalid(message: String) -> crate::error::Error {
+    crate::error::Error::block_params("monitor", message)
+}
+
 impl MonitorParams {
     /// `adc_width` A = 10..=16; `mag_width` W = 1..=32; `los_threshold` (low below it),
     /// `los_release` (good at or above it, >= los_threshold), `clip_threshold` (clipping
@@ -79,45 +85,45 @@ impl MonitorParams {
         window: u32,
         clip_threshold: u64,
         hold: u32,
-    ) -> Result<Self, String> {
+    ) -> crate::error::Result<Self> {
         if !(10..=16).contains(&adc_width) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "monitor ADC width {adc_width} bits is out of range: 10..=16"
-            ));
+            )));
         }
         if !(1..=32).contains(&mag_width) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "monitor magnitude width {mag_width} bits is out of range: 1..=32"
-            ));
+            )));
         }
         let top = (1u64 << mag_width) - 1;
         if los_threshold == 0 || los_threshold > top {
-            return Err(format!(
+            return Err(invalid(format!(
                 "loss-of-signal threshold {los_threshold} is out of range: 1..={top} \
                  ({mag_width}-bit magnitude)"
-            ));
+            )));
         }
         if los_release < los_threshold || los_release > top {
-            return Err(format!(
+            return Err(invalid(format!(
                 "loss-of-signal release level {los_release} must be in \
                  {los_threshold}..={top} (>= the threshold)"
-            ));
+            )));
         }
         if clip_threshold < los_release || clip_threshold >= top {
-            return Err(format!(
+            return Err(invalid(format!(
                 "clipping threshold {clip_threshold} must be in {los_release}..{top} \
                  (>= the release level, below the magnitude's full scale)"
-            ));
+            )));
         }
         if !(1..=65535).contains(&window) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "loss-of-signal window {window} samples is out of range: 1..=65535"
-            ));
+            )));
         }
         if !(1..=65535).contains(&hold) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "flag hold {hold} samples is out of range: 1..=65535"
-            ));
+            )));
         }
         Ok(Self {
             adc_width,

@@ -102,6 +102,12 @@ pub struct NcoParams {
     amplitude: f64,
 }
 
+/// [`crate::error::Error::BlockParams`] for this block: `message` says what is wrong and what
+/// is allowed.
+fn invalid(message: String) -> crate::error::Error {
+    crate::error::Error::block_params("nco", message)
+}
+
 impl NcoParams {
     /// `clock_hz`: system clock; `update_hz`: tick rate (<= clock_hz, e.g. the ADC sample
     /// rate); `carrier_hz`: 10 kHz..=1 MHz and below update_hz/2; `phase_bits` P:
@@ -116,7 +122,7 @@ impl NcoParams {
         table_bits: u32,
         width: u32,
         amplitude: f64,
-    ) -> Result<Self, String> {
+    ) -> crate::error::Result<Self> {
         let p = NcoParams {
             clock_hz,
             update_hz,
@@ -132,77 +138,77 @@ impl NcoParams {
 
     /// The paper's excitation: 20 kHz carrier updated at the 400 kHz sample rate, 32-bit
     /// phase, 2^10-entry quarter table, 16-bit words at full scale, at `clock_hz`.
-    pub fn paper(clock_hz: f64) -> Result<Self, String> {
+    pub fn paper(clock_hz: f64) -> crate::error::Result<Self> {
         Self::new(clock_hz, 400e3, 20e3, 32, 10, 16, 1.0)
     }
 
-    fn validate(&self) -> Result<(), String> {
+    fn validate(&self) -> crate::error::Result<()> {
         let pos = |v: f64| v.is_finite() && v > 0.0;
         if !pos(self.clock_hz) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO clock {} Hz is not a positive frequency",
                 self.clock_hz
-            ));
+            )));
         }
         if !pos(self.update_hz) || self.update_hz > self.clock_hz {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO update rate {} Hz must be positive and at most the clock {} Hz \
                  (the NCO advances at most once per clock)",
                 self.update_hz, self.clock_hz
-            ));
+            )));
         }
         if !(self.carrier_hz.is_finite()
             && (MIN_CARRIER_HZ..=MAX_CARRIER_HZ).contains(&self.carrier_hz))
         {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO carrier {} Hz is out of range: 10 kHz..=1 MHz",
                 self.carrier_hz
-            ));
+            )));
         }
         if self.carrier_hz >= self.update_hz / 2.0 {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO carrier {} Hz must be below half the update rate ({} Hz / 2 = {} Hz, \
                  Nyquist): raise update_hz or lower carrier_hz",
                 self.carrier_hz,
                 self.update_hz,
                 self.update_hz / 2.0
-            ));
+            )));
         }
         if !(4..=12).contains(&self.table_bits) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO table address bits {} out of range: 4..=12",
                 self.table_bits
-            ));
+            )));
         }
         if !(self.table_bits + 2..=32).contains(&self.phase_bits) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO phase accumulator width {} bits out of range: {}..=32 (table bits + 2)",
                 self.phase_bits,
                 self.table_bits + 2
-            ));
+            )));
         }
         if !(4..=16).contains(&self.width) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO output width {} bits out of range: 4..=16",
                 self.width
-            ));
+            )));
         }
         if !(self.amplitude.is_finite() && self.amplitude > 0.0 && self.amplitude <= 1.0) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO amplitude {} out of range: (0, 1] of full scale",
                 self.amplitude
-            ));
+            )));
         }
         let fw = self.freq_word();
         if fw == 0 || fw >= 1u64 << (self.phase_bits - 1) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "NCO frequency word {fw} for {} Hz at {} Hz updates with a {}-bit phase \
                  is out of range 1..2^{}: use more phase bits",
                 self.carrier_hz,
                 self.update_hz,
                 self.phase_bits,
                 self.phase_bits - 1
-            ));
+            )));
         }
         Ok(())
     }

@@ -109,25 +109,33 @@ pub struct PreampParams {
     pub half_period_clocks: u32,
 }
 
-fn check_gain(name: &str, g: i32) -> Result<u8, String> {
+fn check_gain(name: &str, g: i32) -> crate::error::Result<u8> {
     gain_code(g).ok_or_else(|| {
-        format!(
+        invalid(format!(
             "preamp gain {name} = {g} is not an LTC6912-1 gain; allowed: {}",
             GAINS
                 .iter()
                 .map(|g| g.to_string())
                 .collect::<Vec<_>>()
                 .join(", ")
-        )
+        ))
     })
+}
+
+/// [`crate::error::Error::BlockParams`] for this block: `message` says what is wrong and what
+/// is allowed.
+fn invalid(message: String) -> crate::error::Error {
+    crate::error::Error::block_params("preamp", message)
 }
 
 impl PreampParams {
     /// Gains for amplifiers A and B (each in [`GAINS`]) at `clock_hz`, with the fastest
     /// SCK the amplifier allows (half period >= 50 ns).
-    pub fn new(clock_hz: f64, gain_a: i32, gain_b: i32) -> Result<Self, String> {
+    pub fn new(clock_hz: f64, gain_a: i32, gain_b: i32) -> crate::error::Result<Self> {
         if !(clock_hz.is_finite() && clock_hz > 0.0) {
-            return Err(format!("clock {clock_hz} Hz is not a positive frequency"));
+            return Err(invalid(format!(
+                "clock {clock_hz} Hz is not a positive frequency"
+            )));
         }
         check_gain("A", gain_a)?;
         check_gain("B", gain_b)?;
@@ -145,11 +153,11 @@ impl PreampParams {
     }
 
     /// The same with a slower SCK of at most `sck_hz`.
-    pub fn with_max_sck_hz(mut self, sck_hz: f64) -> Result<Self, String> {
+    pub fn with_max_sck_hz(mut self, sck_hz: f64) -> crate::error::Result<Self> {
         if !(sck_hz.is_finite() && sck_hz > 0.0) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "preamp SCK {sck_hz} Hz is not a positive frequency"
-            ));
+            )));
         }
         let half = (self.clock_hz / (2.0 * sck_hz) - 1e-9).ceil().max(1.0) as u32;
         self.half_period_clocks = self.half_period_clocks.max(half);
@@ -158,21 +166,21 @@ impl PreampParams {
     }
 
     /// Checks gains and timing.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> crate::error::Result<()> {
         check_gain("A", self.gain_a)?;
         check_gain("B", self.gain_b)?;
         let step_ns = self.half_period_clocks as f64 * 1e9 / self.clock_hz;
         if step_ns + 1e-9 < timing::SCK_MIN_PULSE_NS {
-            return Err(format!(
+            return Err(invalid(format!(
                 "preamp SCK half period {step_ns:.1} ns is below the LTC6912 minimum of {} ns (about 10 MHz)",
                 timing::SCK_MIN_PULSE_NS
-            ));
+            )));
         }
         if !(1..=255).contains(&self.half_period_clocks) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "preamp SCK half period of {} clocks: 1..=255 are supported",
                 self.half_period_clocks
-            ));
+            )));
         }
         Ok(())
     }

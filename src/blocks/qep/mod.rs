@@ -77,19 +77,25 @@ pub struct QepParams {
     count_width: u32,
 }
 
+/// [`crate::error::Error::BlockParams`] for this block: `message` says what is wrong and what
+/// is allowed.
+fn invalid(message: String) -> crate::error::Error {
+    crate::error::Error::block_params("qep", message)
+}
+
 impl QepParams {
     /// `filter`: clocks a level must be stable before it is accepted, 1..=65535
     /// (1 = no filtering); `count_width`: quadrant counter width C, 2..=32 bits.
-    pub fn new(filter: u32, count_width: u32) -> Result<Self, String> {
+    pub fn new(filter: u32, count_width: u32) -> crate::error::Result<Self> {
         if !(1..=65535).contains(&filter) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "QEP glitch filter length {filter} clocks is out of range: 1..=65535"
-            ));
+            )));
         }
         if !(2..=32).contains(&count_width) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "QEP count width {count_width} bits is out of range: 2..=32"
-            ));
+            )));
         }
         Ok(Self {
             filter,
@@ -123,23 +129,27 @@ impl CrossCheckParams {
     /// modulus of the CORDIC quadrant count, 4..=2^30 and a multiple of 4; `tolerance`:
     /// the largest |difference| in quadrants that is not a mismatch, 0..2^(C-1)-1
     /// (the thesis's rule is 1).
-    pub fn new(count_width: u32, quadrants_per_turn: u64, tolerance: u32) -> Result<Self, String> {
+    pub fn new(
+        count_width: u32,
+        quadrants_per_turn: u64,
+        tolerance: u32,
+    ) -> crate::error::Result<Self> {
         if !(2..=32).contains(&count_width) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "cross-check count width {count_width} bits is out of range: 2..=32"
-            ));
+            )));
         }
         if !(4..=1 << 30).contains(&quadrants_per_turn) || !quadrants_per_turn.is_multiple_of(4) {
-            return Err(format!(
+            return Err(invalid(format!(
                 "quadrants per turn {quadrants_per_turn} must be 4 * PPR in 4..=2^30"
-            ));
+            )));
         }
         if (tolerance as u64) >= (1u64 << (count_width - 1)) - 1 {
-            return Err(format!(
+            return Err(invalid(format!(
                 "cross-check tolerance {tolerance} quadrants does not fit a {count_width}-bit \
                  signed difference (max {})",
                 (1u64 << (count_width - 1)).saturating_sub(2)
-            ));
+            )));
         }
         Ok(Self {
             count_width,
