@@ -25,6 +25,7 @@ pub mod fallback;
 pub mod monitor;
 pub mod nco;
 pub mod parallel;
+pub mod params;
 pub mod preamp;
 pub mod qep;
 pub mod spi_slave;

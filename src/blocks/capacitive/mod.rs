@@ -56,7 +56,7 @@ pub mod model;
 
 use crate::blocks::biquad::BiquadParams;
 use crate::blocks::nco::NcoParams;
-use crate::config::Derived;
+use crate::blocks::params::Derived;
 use crate::error::{Error, Result};
 
 /// Parameters of the capacitive front end.

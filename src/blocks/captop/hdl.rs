@@ -4,8 +4,8 @@ use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::capacitive::hdl::CapFront;
 use crate::blocks::capacitive::CapFrontParams;
 use crate::blocks::core::hdl::CoreRtl;
+use crate::blocks::params::Derived;
 use crate::blocks::top::ports::{board_top, pins};
-use crate::config::Derived;
 use rust_hdl::prelude::*;
 
 board_top! {

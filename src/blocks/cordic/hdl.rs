@@ -1,6 +1,6 @@
 //! rust-hdl description of the quadrant mapper and one vectoring CORDIC stage.
+use crate::blocks::params::Derived;
 use crate::blocks::{c32, fill, mask};
-use crate::config::Derived;
 use rust_hdl::prelude::*;
 
 /// Registers the mapped first-quadrant vector, the quadrant and the valid bit.

@@ -70,8 +70,8 @@
 //! `in_ready` is high in cycle m exactly when the engine will be free at edge m+1: the
 //! engine is idle with no sample waiting in the mapper, or it performs its last clock at
 //! edge m (or S = 1). Back to back, samples are accepted every S cycles.
+use crate::blocks::params::Derived;
 use crate::blocks::{c32, mask};
-use crate::config::Derived;
 use rust_hdl::prelude::*;
 use std::collections::BTreeMap;
 

@@ -1,6 +1,6 @@
 //! Bit-accurate model of the quadrant mapper and the CORDIC stages.
+use crate::blocks::params::Derived;
 use crate::blocks::{mask, sext};
-use crate::config::Derived;
 
 /// Result of the mapper + N stages for one sample: what reaches the combiner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -3,7 +3,7 @@ use crate::blocks::c32;
 use crate::blocks::cordic::hdl::{CordicStage, QuadrantMapper};
 use crate::blocks::cordic::iterative::IterativeCordic;
 use crate::blocks::counter::hdl::{z_start, Combiner, QuadrantCounter};
-use crate::config::{Architecture, Derived};
+use crate::blocks::params::{Architecture, Derived};
 use rust_hdl::prelude::*;
 
 /// The core as simulated in rust-hdl and exported (inside the `<name>_core` wrapper).

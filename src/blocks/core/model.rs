@@ -3,7 +3,7 @@ use crate::blocks::cordic::iterative::IterTiming;
 use crate::blocks::cordic::model::cordic;
 use crate::blocks::counter::model::{combine, Combined, Counter, Load};
 use crate::blocks::mask;
-use crate::config::{Architecture, Derived};
+use crate::blocks::params::{Architecture, Derived};
 use std::collections::VecDeque;
 
 /// Inputs of one clock cycle.

@@ -1,6 +1,6 @@
 //! rust-hdl description of the combiner and the quadrant counter.
+use crate::blocks::params::Derived;
 use crate::blocks::{c32, mask};
-use crate::config::Derived;
 use rust_hdl::prelude::*;
 
 /// Assembles the electrical angle p, tests the magnitude and takes the step to the last

@@ -1,7 +1,7 @@
 //! Bit-accurate model of the combiner and the quadrant counter.
 use crate::blocks::cordic::model::CordicOut;
+use crate::blocks::params::Derived;
 use crate::blocks::{mask, sext};
-use crate::config::Derived;
 
 /// Combiner output for one sample.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

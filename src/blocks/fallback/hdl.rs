@@ -1,6 +1,6 @@
 //! rust-hdl description of the QEP fallback.
+use crate::blocks::params::Derived;
 use crate::blocks::{c32, mask};
-use crate::config::Derived;
 use rust_hdl::prelude::*;
 
 /// See the module docs.

@@ -7,11 +7,11 @@ use crate::blocks::core::hdl::CoreRtl;
 use crate::blocks::correction::hdl::Correction;
 use crate::blocks::fallback::hdl::Fallback;
 use crate::blocks::monitor::hdl::Monitor;
+use crate::blocks::params::Derived;
 use crate::blocks::preamp::hdl::PreampSetup;
 use crate::blocks::qep::hdl::QepDecoder;
 use crate::blocks::spi_slave::hdl::SpiSlave;
 use crate::blocks::ssi::hdl::SsiSlave;
-use crate::config::Derived;
 use rust_hdl::prelude::*;
 
 board_top! {

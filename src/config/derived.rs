@@ -1,0 +1,457 @@
+//! [`Derived`]: the parameters computed once from a validated [`Config`] (cross-field
+//! checks, widths, tables and figures), and its human-readable description.
+
+use super::*;
+
+impl Derived {
+    /// Cross-field validation and derivation.
+    pub fn compute(c: &Config, text: &str, source_name: &str) -> Result<Derived> {
+        let err = |table: &str, key: &str, message: String| Error::ConfigValue {
+            source_name: source_name.to_string(),
+            location: locate(text, table, key),
+            key: if table.is_empty() {
+                key.to_string()
+            } else {
+                format!("{table}.{key}")
+            },
+            message,
+        };
+        check_target(c, &err)?;
+        // The core's input width: the ADC's, or the filters' on the capacitive path.
+        let a = match &c.capacitive {
+            Some(k) => {
+                // Checked here, before any width arithmetic uses it (the rest of the
+                // capacitive checks run after the core's derivation).
+                if !(12..=16).contains(&k.data_width) {
+                    return Err(err(
+                        "capacitive",
+                        "data_width",
+                        format!("{}: allowed 12..=16", k.data_width),
+                    ));
+                }
+                k.data_width
+            }
+            None => c.adc.width,
+        };
+        let n = c.cordic.iterations;
+        let f = c.cordic.fine_bits;
+        // Guard bits so that truncation in the x/y shifts stays below 1/4 fine LSB for
+        // inputs of at least 1/8 full scale: each stage truncates by < 1 unit of
+        // 2^-G input LSB; the final angle error is about 2N * 2^-G / (K |v|) rad with
+        // |v| >= 2^(A-4), which in fine LSB ((pi/2) 2^-F rad) is 0.78 N 2^(F+4-A-G).
+        // At least enough that the last stage's shift stays inside the word.
+        let auto_guard = (f as i64 + 4 - a as i64 + ceil_log2(n) as i64 + 2)
+            .max(n as i64 - a as i64)
+            .max(1) as u32;
+        let xy_guard = c.cordic.guard_bits.unwrap_or(auto_guard);
+        let xy_width = a + 2 + xy_guard;
+        if xy_width > MAX_WORD_BITS {
+            return Err(err(
+                "cordic",
+                "guard_bits",
+                format!(
+                    "x/y datapath would be {xy_width} bits (adc.width {a} + 2 + guard {xy_guard}); at most {MAX_WORD_BITS} are supported"
+                ),
+            ));
+        }
+        // Angle table rounding: N entries each within 1/2 unit of 2^-(F+Gz) -> N/2^(Gz+1)
+        // fine LSB; ceil(log2 N) + 2 keeps it below 1/8 LSB.
+        let z_guard = ceil_log2(n) + 2;
+        let z_width = f + z_guard + 2;
+        if n > a + xy_guard {
+            return Err(err(
+                "cordic",
+                "iterations",
+                format!(
+                    "{n} iterations shift beyond the {} bits of the x/y datapath (adc.width {a} + guard {xy_guard}); use at most {}",
+                    a + xy_guard,
+                    a + xy_guard
+                ),
+            ));
+        }
+        let atan_table = exact::atan_table_quadrant(n, f + z_guard);
+        let gain = exact::cordic_gain(n);
+        let full_scale = 1u64 << (a - 1);
+        let min_in = (c.monitor.min_amplitude * full_scale as f64).ceil() as u64;
+        let min_magnitude = exact::gain_times_ceil(n, min_in << xy_guard);
+        let quadrants_per_turn = 4 * c.encoder.ppr as u64;
+        let quadrant_bits = 64 - (quadrants_per_turn - 1).leading_zeros();
+        let position_width = quadrant_bits + f;
+        let clock_hz = c.clock.frequency_hz;
+        let (adc, preamp) = adc_params(c, &err)?;
+        let rate = adc.sample_rate_hz();
+        // Warn at 1.75 quadrants per sample: the fine-angle unwrap is exact below 2.
+        let warn_step = 7u64 << (f - 2);
+        let max_speed_rpm_full_res =
+            (warn_step - 1) as f64 / (1u64 << f) as f64 * rate / quadrants_per_turn as f64 * 60.0;
+        let architecture = c.cordic.architecture;
+        let (cycles_per_sample, latency_cycles) = match architecture {
+            Architecture::Unrolled => (1, n + 2),
+            Architecture::Iterative => {
+                let s = crate::blocks::cordic::iterative::steps(n, xy_width);
+                (s, s + 2)
+            }
+        };
+        check_throughput(architecture, n, cycles_per_sample, clock_hz, rate)
+            .map_err(|m| err("cordic", "architecture", m.detail()))?;
+        let biss = biss_params(c, position_width, &err)?;
+        let capacitive = match &c.capacitive {
+            Some(k) => Some(cap_params(c, k, rate, &err)?),
+            None => None,
+        };
+        let correction = correction_params(c, &err)?;
+        let ssi = if c.ssi.enabled {
+            let mut p = SsiParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
+                .map_err(|m| err("ssi", "enabled", m.to_string()))?;
+            p.gray = c.ssi.gray;
+            if let Some(t) = c.ssi.timeout_us {
+                p.set_timeout_us(t)
+                    .map_err(|m| err("ssi", "timeout_us", m.to_string()))?;
+            }
+            p.validate()
+                .map_err(|m| err("ssi", "enabled", m.to_string()))?;
+            Some(p)
+        } else {
+            None
+        };
+        let spi = if c.spi.enabled {
+            let mut p = SpiSlaveParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
+                .map_err(|m| err("spi", "enabled", m.to_string()))?;
+            p.gray = c.spi.gray;
+            p.validate()
+                .map_err(|m| err("spi", "enabled", m.to_string()))?;
+            Some(p)
+        } else {
+            None
+        };
+        let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
+        if let Some(b) = &c.board {
+            if let Some(p) = &b.preset {
+                if !BOARD_PRESETS.contains(&p.as_str()) {
+                    return Err(err(
+                        "board",
+                        "preset",
+                        format!(
+                            "unknown board preset {}; allowed: {}",
+                            Quoted(p),
+                            BOARD_PRESETS.join(", ")
+                        ),
+                    ));
+                }
+            }
+            let stds = crate::board::iostandards(c.target);
+            match b.effective_iostandard() {
+                Some(s) if stds.contains(&s.as_str()) => {}
+                Some(s) => {
+                    return Err(err(
+                        "board",
+                        "iostandard",
+                        format!(
+                            "`iostandard` = \"{}\" is not a single-ended I/O standard of {}; allowed: {}",
+                            clip(&s),
+                            crate::board::package(c.target).0,
+                            stds.join(", ")
+                        ),
+                    ))
+                }
+                None => {
+                    return Err(err(
+                        "board",
+                        "pins",
+                        format!(
+                            "`iostandard` is required without a `preset`; allowed: {}",
+                            stds.join(", ")
+                        ),
+                    ))
+                }
+            }
+            if b.preset.is_some() && (c.target != Target::Spartan3an || c.capacitive.is_some()) {
+                return Err(err(
+                    "board",
+                    "preset",
+                    "the spartan3an-starter-kit preset applies to the sinewave top with target = \"spartan3an\"".into(),
+                ));
+            }
+            let pins = b.effective_pins();
+            let (package_name, package_file, balls) = crate::board::package(c.target);
+            let valid = |v: &str| balls.contains(&v);
+            let ports = board_ports(c);
+            let mut names: Vec<String> = ports
+                .iter()
+                .filter(|(p, _)| !DESELECT_PINS.contains(p))
+                .map(|(p, w)| match w {
+                    Some(w) => format!("{p} ({w} pins)"),
+                    None => p.to_string(),
+                })
+                .collect();
+            if c.capacitive.is_none() {
+                names.extend(DESELECT_PINS.iter().map(|p| format!("{p} (optional)")));
+            }
+            for (k, v) in &b.pins {
+                let ok = match (ports.iter().find(|p| p.0 == k.as_str()), v) {
+                    (Some((_, None)), PinValue::One(p)) => valid(p),
+                    (Some((_, Some(w))), PinValue::Bus(ps)) => {
+                        ps.len() == *w as usize && ps.iter().all(|p| valid(p))
+                    }
+                    _ => false,
+                };
+                if !ok {
+                    return Err(err(
+                        "board.pins",
+                        k,
+                        format!(
+                            "`{}` = {}: the key must be one of the top's ports ({}) and the value a ball of the {package_name} package like \"{}\" (listed in {package_file}; a list of that many balls, LSB first, for a bus)",
+                            clip(k),
+                            pin_text(v),
+                            names.join(", "),
+                            balls.get(balls.len() / 2).copied().unwrap_or("A1"),
+                        ),
+                    ));
+                }
+            }
+            // One ball, one port: a pin given twice, or on a pin the preset already uses.
+            let preset_pins = BoardConfig {
+                pins: Default::default(),
+                ..b.clone()
+            }
+            .effective_pins();
+            let mut owner: std::collections::BTreeMap<&str, &str> = Default::default();
+            let in_use: Vec<&str> = ports.iter().map(|p| p.0).collect();
+            for (port, v) in pins.iter().filter(|(p, _)| in_use.contains(&p.as_str())) {
+                let balls_of: Vec<&str> = match v {
+                    PinValue::One(x) => vec![x.as_str()],
+                    PinValue::Bus(xs) => xs.iter().map(String::as_str).collect(),
+                };
+                for ball in balls_of {
+                    if let Some(first) = owner.insert(ball, port.as_str()) {
+                        // Blame the key the user wrote (the later one when both are theirs).
+                        let (blamed, other) = if b.pins.contains_key(port) {
+                            (port.as_str(), first)
+                        } else {
+                            (first, port.as_str())
+                        };
+                        let whose = if preset_pins
+                            .get(other)
+                            .is_some_and(|p| p.one() == Some(ball))
+                            && !b.pins.contains_key(other)
+                        {
+                            format!("the preset's pin for `{other}`")
+                        } else {
+                            format!("already given to `{other}`")
+                        };
+                        return Err(err(
+                            "board.pins",
+                            blamed,
+                            format!(
+                                "`{blamed}`: pin {ball} is {whose}; every port needs a ball of its own"
+                            ),
+                        ));
+                    }
+                }
+            }
+            let missing: Vec<&str> = ports
+                .iter()
+                .map(|p| p.0)
+                .filter(|p| !pins.contains_key(*p))
+                .collect();
+            if !missing.is_empty() {
+                let preset = if b.preset.is_some() {
+                    "; the preset fills in the kit's fixed pins, these are wiring on the kit's headers: give them in [board.pins]"
+                } else {
+                    ""
+                };
+                return Err(err(
+                    "board",
+                    "pins",
+                    format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one{preset})", missing.join(", ")),
+                ));
+            }
+        }
+        let (board_clock, io_timing) = board_timing(c, &adc, &err)?;
+        let qep = QepParams::new(c.qep.filter_clocks, 32)
+            .map_err(|m| err("qep", "filter_clocks", m.detail()))?;
+        let derived = Derived {
+            board_clock,
+            io_timing,
+            adc,
+            preamp,
+            biss,
+            ssi,
+            spi,
+            correction,
+            monitor,
+            qep,
+            qep_enabled: c.qep.enabled,
+            adc_width: a,
+            capacitive,
+            iterations: n,
+            fine_bits: f,
+            xy_guard,
+            xy_width,
+            z_guard,
+            z_width,
+            atan_table,
+            gain,
+            min_magnitude,
+            quadrants_per_turn,
+            quadrant_bits,
+            position_width,
+            turns_width: c.encoder.multiturn_bits.max(1),
+            multiturn_bits: c.encoder.multiturn_bits,
+            warn_step,
+            latency_cycles,
+            architecture,
+            cycles_per_sample,
+            clock_hz,
+            sample_rate_hz: rate,
+            max_speed_rpm_full_res,
+            resolution_bits: (quadrants_per_turn as f64).log2() + f as f64,
+        };
+        // The capacitive front end's own checks (NCO, biquad engine widths and
+        // coefficients, clocks per sample) run here too, so that `check` accepts exactly
+        // what `generate` builds, and their errors point at the key.
+        if derived.capacitive.is_some() {
+            crate::blocks::capacitive::CapFrontParams::new(&derived).map_err(|e| match e {
+                Error::ConfigValue { key, message, .. } => {
+                    let (table, key) = key.rsplit_once('.').unwrap_or(("", key.as_str()));
+                    err(table, key, message)
+                }
+                e => e,
+            })?;
+        }
+        Ok(derived)
+    }
+
+    /// The board clock and the ADC round trip, for `describe`.
+    fn describe_board(&self) -> String {
+        let mut s = String::new();
+        if let Some(b) = &self.board_clock {
+            match b.synth {
+                None => s.push_str(&format!(
+                    "board clock                 {:.3} MHz oscillator = the system clock (no clock synthesizer)\n",
+                    b.osc_hz / 1e6
+                )),
+                Some(x) => s.push_str(&format!(
+                    "board clock                 {:.3} MHz oscillator -> {} x {} / {} = {:.3} MHz ({:+.0} ppm from clock.frequency_hz), reset held until locked\n",
+                    b.osc_hz / 1e6,
+                    x.kind.label(),
+                    x.multiply,
+                    x.divide,
+                    x.out_hz / 1e6,
+                    x.error_ppm
+                )),
+            }
+        }
+        let io = &self.io_timing;
+        let (available, needed) = crate::board::adc_round_trip(
+            io,
+            self.adc.timing.data_valid_ns,
+            self.adc.sck_period_clocks,
+            self.adc.clock_hz,
+        );
+        s.push_str(&format!(
+            "ADC round trip              {needed:.2} ns of {available:.2} ns (SCK period {} clocks): clock-to-out {:.2} + 2 x trace {:.2} + SCK-to-data {:.2} + input set-up {:.2}; slack {:.2} ns\n",
+            self.adc.sck_period_clocks,
+            io.clock_to_out_ns,
+            io.trace_ns,
+            self.adc.timing.data_valid_ns,
+            io.input_setup_ns,
+            available - needed
+        ));
+        s
+    }
+
+    /// Latency in nanoseconds at the configured clock.
+    pub fn latency_ns(&self) -> f64 {
+        self.latency_cycles as f64 * 1e9 / self.clock_hz
+    }
+
+    /// Human-readable listing printed by `sinedec check`.
+    pub fn describe(&self) -> String {
+        let core = self.describe_core();
+        let Some(k) = &self.capacitive else {
+            let mut s = core;
+            if self.preamp.is_some() {
+                // The same quantity, under the same name, as `simulate` prints.
+                let c = crate::blocks::top::hdl::conv_to_position_cycles(self);
+                s.push_str(&format!(
+                    "latency CONV -> position    {c} cycles = {:.0} ns (ADC {} + correction {} + core {})\n",
+                    c as f64 * 1e9 / self.clock_hz,
+                    self.adc.conv_to_valid_clocks(),
+                    crate::blocks::correction::LATENCY_CYCLES,
+                    self.latency_cycles
+                ));
+            }
+            s.push_str(&self.describe_board());
+            return s;
+        };
+        // One speed limit: theta moves periods_per_turn x rpm / 60 Hz, and the low-pass
+        // corner bounds it far below the CORDIC's unwrap limit.
+        let mut s: String = core
+            .lines()
+            .filter(|l| !l.starts_with("max speed at full res."))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);
+        let ppr = self.quadrants_per_turn as f64 / 4.0;
+        let lp_rpm = corner / ppr * 60.0;
+        let limit = lp_rpm.min(self.max_speed_rpm_full_res);
+        s.push_str(&format!(
+            "core input                  the filters' I/Q outputs ({} bits; ADC {} bits)\n\
+             carrier                     {:.0} Hz, {:.1} samples per carrier period\n\
+             max speed                   {:.0} rpm: the low-pass corner {:.0} Hz with {} periods per turn (the CORDIC's unwrap alone would allow {:.0} rpm)\n",
+            self.adc_width,
+            self.adc.frame.width,
+            k.config.carrier_hz,
+            k.sample_rate_hz / k.config.carrier_hz,
+            limit,
+            corner,
+            ppr,
+            self.max_speed_rpm_full_res
+        ));
+        s.push_str(&self.describe_board());
+        s
+    }
+
+    fn describe_core(&self) -> String {
+        format!(
+            "core input width A          {} bits\n\
+             cordic iterations N         {}\n\
+             fine bits F                 {} (1 LSB = {:.4} arc-seconds of electrical angle)\n\
+             x/y datapath                {} bits ({} guard bits)\n\
+             angle accumulator           {} bits ({} guard bits)\n\
+             cordic gain K_N             {:.12}\n\
+             min magnitude (x units)     {}\n\
+             quadrant count              {} bits (4 x PPR = {} quadrants per turn)\n\
+             out_position width          {} bits ({:.2} bits per turn)\n\
+             out_turns width             {} bits\n\
+             core latency in -> out      {} cycles = {:.1} ns at {:.3} MHz\n\
+             throughput                  1 sample per {} clock(s) ({} CORDIC)\n\
+             sample rate                 {:.0} samples/s per channel\n\
+             max speed at full res.      {:.0} rpm (steps below {:.2} quadrants per sample)\n",
+            self.adc_width,
+            self.iterations,
+            self.fine_bits,
+            90.0 * 3600.0 / (1u64 << self.fine_bits) as f64,
+            self.xy_width,
+            self.xy_guard,
+            self.z_width,
+            self.z_guard,
+            self.gain,
+            self.min_magnitude,
+            self.quadrant_bits,
+            self.quadrants_per_turn,
+            self.position_width,
+            self.resolution_bits,
+            self.turns_width,
+            self.latency_cycles,
+            self.latency_ns(),
+            self.clock_hz / 1e6,
+            self.cycles_per_sample,
+            self.architecture,
+            self.sample_rate_hz,
+            self.max_speed_rpm_full_res,
+            self.warn_step as f64 / (1u64 << self.fine_bits) as f64,
+        )
+    }
+}

@@ -1,0 +1,601 @@
+//! Each block's parameters built from the config and checked against it: ADC and
+//! pre-amplifier, BiSS-C, correction, monitor, capacitive front end, the board clock and
+//! I/O timing, and the CORDIC's throughput. Errors name the config key to change.
+
+use super::*;
+
+/// The board clock and the ADC's I/O timing budget, checked: the synthesizer must reach
+/// `clock.frequency_hz` from `board.clock_hz`, and the SCK period must leave room for the
+/// ADC round trip (see `crate::board`).
+pub(super) fn board_timing(
+    c: &Config,
+    adc: &AdcParams,
+    err: &dyn Fn(&str, &str, String) -> Error,
+) -> Result<(Option<crate::board::BoardClock>, crate::board::IoTiming)> {
+    use crate::board::{IoTiming, STARTER_KIT_CLOCK_HZ};
+    let mut io = IoTiming::DEFAULT;
+    let mut board_clock = None;
+    if let Some(b) = &c.board {
+        for (key, v, slot) in [
+            (
+                "fpga_clock_to_out_ns",
+                b.fpga_clock_to_out_ns,
+                &mut io.clock_to_out_ns,
+            ),
+            (
+                "fpga_input_setup_ns",
+                b.fpga_input_setup_ns,
+                &mut io.input_setup_ns,
+            ),
+            ("trace_delay_ns", b.trace_delay_ns, &mut io.trace_ns),
+        ] {
+            if let Some(v) = v {
+                if !(0.0..=100.0).contains(&v) {
+                    return Err(err(
+                        "board",
+                        key,
+                        format!("`{key}` = {v} is out of range: allowed 0..=100 ns"),
+                    ));
+                }
+                *slot = v;
+            }
+        }
+        let kit = b.preset.as_deref() == Some("spartan3an-starter-kit");
+        let osc = match (b.clock_hz, kit) {
+            (Some(f), _) => {
+                if !(1.0e6..=500.0e6).contains(&f) {
+                    return Err(err(
+                        "board",
+                        "clock_hz",
+                        format!("`clock_hz` = {f} is out of range: allowed 1e6..=500e6 Hz"),
+                    ));
+                }
+                f
+            }
+            (None, true) => STARTER_KIT_CLOCK_HZ,
+            (None, false) => c.clock.frequency_hz,
+        };
+        let key = if b.clock_hz.is_some() {
+            "clock_hz"
+        } else {
+            "preset"
+        };
+        board_clock = Some(
+            crate::board::board_clock(c.target, osc, c.clock.frequency_hz)
+                .map_err(|m| err("board", key, m.to_string()))?,
+        );
+    }
+    let d = adc.sck_period_clocks;
+    let (available, needed) =
+        crate::board::adc_round_trip(&io, adc.timing.data_valid_ns, d, adc.clock_hz);
+    if available + 1e-9 < needed {
+        let t = 1e9 / adc.clock_hz;
+        let min_d = ((needed / t) - 1e-9).ceil() as u32;
+        // Blame the SCK period when the config sets it, else the board budget it sets.
+        let b = c.board.as_ref();
+        let (table, key) = if c.adc.sck_period_clocks.is_some() {
+            ("adc", "sck_period_clocks")
+        } else if b.is_some_and(|b| b.trace_delay_ns.is_some()) {
+            ("board", "trace_delay_ns")
+        } else if b.is_some_and(|b| b.fpga_clock_to_out_ns.is_some()) {
+            ("board", "fpga_clock_to_out_ns")
+        } else if b.is_some_and(|b| b.fpga_input_setup_ns.is_some()) {
+            ("board", "fpga_input_setup_ns")
+        } else {
+            ("adc", "sck_period_clocks")
+        };
+        return Err(err(
+            table,
+            key,
+            format!(
+                "an SCK period of {d} clocks ({available:.2} ns at {:.3} MHz) is shorter than the ADC round trip of {needed:.2} ns: FPGA clock-to-out {:.2} + 2 x board trace {:.2} + the ADC's SCK-to-data delay {:.2} + FPGA input set-up {:.2} ns (board.fpga_clock_to_out_ns, board.trace_delay_ns, board.fpga_input_setup_ns); use an SCK period of at least {min_d} clocks",
+                adc.clock_hz / 1e6,
+                io.clock_to_out_ns,
+                io.trace_ns,
+                adc.timing.data_valid_ns,
+                io.input_setup_ns,
+            ),
+        ));
+    }
+    Ok((board_clock, io))
+}
+
+pub(super) fn ceil_log2(v: u32) -> u32 {
+    if v <= 1 {
+        0
+    } else {
+        32 - (v - 1).leading_zeros()
+    }
+}
+
+/// Checks that the CORDIC keeps up with the ADC: the iterative architecture accepts one
+/// sample per `cycles` = N·D clocks (D digit clocks per iteration), so clock / cycles must
+/// be at least the sample rate.
+pub fn check_throughput(
+    architecture: Architecture,
+    n: u32,
+    cycles: u32,
+    clock_hz: f64,
+    rate: f64,
+) -> Result<()> {
+    if architecture == Architecture::Unrolled {
+        return Ok(());
+    }
+    if rate * cycles as f64 > clock_hz * (1.0 + 1e-9) {
+        let per_iter = (cycles / n.max(1)).max(1);
+        return Err(Error::block_params("cordic", format!(
+            "the iterative CORDIC accepts one sample per {cycles} clocks (N = {n} iterations of {per_iter} digit clocks): {:.0} samples/s at {:.3} MHz, below the ADC sample rate of {rate:.0} samples/s; use at most {} iterations, a faster clock, a lower sample rate, or architecture = \"unrolled\"",
+            clock_hz / cycles as f64,
+            clock_hz / 1e6,
+            ((clock_hz / rate + 1e-9).floor() as u64) / per_iter as u64
+        )));
+    }
+    Ok(())
+}
+
+type ErrFn<'a> = dyn Fn(&str, &str, String) -> Error + 'a;
+
+/// The target must fit the design: the capacitive top is built for the Cyclone III (QSF and
+/// SDC), the LTC1407A-1 / LTC6912-1 board top for the Spartan-3AN Starter Kit (UCF).
+pub(super) fn check_target(c: &Config, err: &ErrFn) -> Result<()> {
+    match (c.target, c.capacitive.is_some(), c.adc.preset) {
+        (Target::Spartan3an, true, _) => Err(err(
+            "",
+            "target",
+            "\"spartan3an\" with [capacitive]: the capacitive path's board top is built for the Cyclone III EP3C40F324C8 (Quartus QSF and SDC); set target = \"cyclone3\"".into(),
+        )),
+        (Target::Cyclone3, false, AdcPreset::Ltc1407a1) => Err(err(
+            "",
+            "target",
+            "\"cyclone3\" with adc.preset = \"ltc1407a-1\": the LTC1407A-1 / LTC6912-1 board top (<name>_top, UCF) is the Spartan-3AN Starter Kit's, so nothing but the core would be written; set target = \"spartan3an\" for the board top, or use adc.preset = \"generic\" for the core alone".into(),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// ADC and preamp parameters from the config, validated against the chips' limits.
+pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams>)> {
+    let a = c.adc.width;
+    let clock_hz = c.clock.frequency_hz;
+    let (frame, timing) = match c.adc.preset {
+        AdcPreset::Ltc1407a1 => {
+            if a != 14 {
+                return Err(err(
+                    "adc",
+                    "width",
+                    format!(
+                        "the LTC1407A-1 delivers 14-bit samples; width {a} needs preset \"generic\""
+                    ),
+                ));
+            }
+            if c.adc.frame.is_some() || c.adc.timing.is_some() || c.adc.max_sample_rate_hz.is_some()
+            {
+                return Err(err(
+                    "adc",
+                    "preset",
+                    "[adc.frame], [adc.timing] and max_sample_rate_hz apply to preset \"generic\" only".into(),
+                ));
+            }
+            (AdcFrame::LTC1407A_1, AdcTiming::LTC1407A_1)
+        }
+        AdcPreset::Generic => {
+            let max = c.adc.max_sample_rate_hz.ok_or_else(|| {
+                err(
+                    "adc",
+                    "preset",
+                    "preset \"generic\" needs `adc.max_sample_rate_hz` (the chip's per-channel limit)"
+                        .into(),
+                )
+            })?;
+            let f = c.adc.frame.clone().unwrap_or_default();
+            let sign = match f.sign.as_deref() {
+                None | Some("twos-complement") => SignFormat::TwosComplement,
+                Some("offset-binary") => SignFormat::OffsetBinary,
+                Some(other) => {
+                    return Err(err(
+                        "adc.frame",
+                        "sign",
+                        format!(
+                            "{}: allowed \"twos-complement\" or \"offset-binary\"",
+                            Quoted(other)
+                        ),
+                    ))
+                }
+            };
+            let frame = AdcFrame {
+                frame_sck: f.frame_sck.unwrap_or(2 * a + 4),
+                channels: f.channels.unwrap_or(2),
+                offsets: f.offsets.unwrap_or([1, a + 2]),
+                width: a,
+                sign,
+                cpol: f.cpol.unwrap_or(false),
+                cpha: f.cpha.unwrap_or(true),
+                conv_active_high: f.conv_active_high.unwrap_or(true),
+                conv_clocks: f.conv_clocks.unwrap_or(0),
+                lead_clocks: f.lead_clocks.unwrap_or(0),
+                pipeline: f.pipeline.unwrap_or(0),
+            };
+            let t = c.adc.timing.clone().unwrap_or_default();
+            let timing = AdcTiming {
+                sck_min_period_ns: t.sck_min_period_ns.unwrap_or(20.0),
+                sck_max_period_ns: 0.0,
+                sck_min_pulse_ns: t.sck_min_pulse_ns.unwrap_or(5.0),
+                data_valid_ns: t.data_valid_ns.unwrap_or(10.0),
+                conv_min_pulse_ns: t.conv_min_pulse_ns.unwrap_or(10.0),
+                conv_min_low_ns: t.conv_min_low_ns.unwrap_or(10.0),
+                conv_to_sck_ns: t.conv_to_sck_ns.unwrap_or(5.0),
+                acquisition_ns: t.acquisition_ns.unwrap_or(0.0),
+                conversion_edges: 0,
+                max_sample_rate_hz: max,
+            };
+            (frame, timing)
+        }
+    };
+    // SCK divider: as configured, or the smallest the chip's SCK limit allows.
+    let d = match c.adc.sck_period_clocks {
+        Some(d) => d,
+        None => ((timing.sck_min_period_ns * clock_hz / 1e9) - 1e-9)
+            .ceil()
+            .max(2.0) as u32,
+    };
+    let build = |period: Option<u32>| match c.adc.preset {
+        AdcPreset::Ltc1407a1 => AdcParams::ltc1407a(clock_hz, d, period),
+        AdcPreset::Generic => AdcParams::generic(clock_hz, frame, timing, d, period),
+    };
+    let fastest = build(None);
+    // The shortest period that respects the chip's rate limit too.
+    let limit_period = AdcParams::period_for_rate(clock_hz, timing.max_sample_rate_hz);
+    let mut params = if fastest.period_clocks < limit_period {
+        build(Some(limit_period))
+    } else {
+        fastest
+    };
+    let key = if c.adc.sck_period_clocks.is_some() {
+        "sck_period_clocks"
+    } else {
+        "preset"
+    };
+    params.validate().map_err(|m| err("adc", key, m.detail()))?;
+    if let Some(rate) = c.adc.sample_rate_hz {
+        let p = AdcParams::period_for_rate(clock_hz, rate);
+        if rate.is_nan() || rate <= 0.0 || p < params.period_clocks {
+            return Err(err(
+                "adc",
+                "sample_rate_hz",
+                format!(
+                    "{rate} Hz is not reachable: at most {:.0} samples/s per channel at the clock of {} MHz with an SCK period of {d} clocks (the ADC's per-channel limit is {} samples/s); omit the key for the fastest",
+                    params.sample_rate_hz(),
+                    clock_hz / 1e6,
+                    timing.max_sample_rate_hz
+                ),
+            ));
+        }
+        params = build(Some(p));
+        params
+            .validate()
+            .map_err(|m| err("adc", "sample_rate_hz", m.detail()))?;
+    }
+    let preamp = match c.adc.preset {
+        AdcPreset::Ltc1407a1 => {
+            let pc = c.preamp.clone().unwrap_or_default();
+            Some(
+                PreampParams::new(clock_hz, pc.gain_a, pc.gain_b).map_err(|m| {
+                    let m = m.detail();
+                    err(
+                        "preamp",
+                        if m.contains("gain B") {
+                            "gain_b"
+                        } else {
+                            "gain_a"
+                        },
+                        m,
+                    )
+                })?,
+            )
+        }
+        AdcPreset::Generic => {
+            if c.preamp.is_some() {
+                return Err(err(
+                    "preamp",
+                    "gain_a",
+                    "the LTC6912-1 pre-amplifier belongs to preset \"ltc1407a-1\"".into(),
+                ));
+            }
+            None
+        }
+    };
+    Ok((params, preamp))
+}
+
+/// BiSS-C parameters: data bits default to the whole single-turn position (at most 32).
+pub(super) fn biss_params(c: &Config, position_width: u32, err: &ErrFn) -> Result<BissParams> {
+    let b = &c.biss;
+    let pb = b.position_bits.unwrap_or(position_width.min(32));
+    if pb == 0 || pb > position_width.min(32) {
+        return Err(err(
+            "biss",
+            "position_bits",
+            format!(
+                "{pb} bits: allowed 1..={} (out_position has {position_width} bits; BiSS words hold 32)",
+                position_width.min(32)
+            ),
+        ));
+    }
+    let mb = b.multiturn_bits.unwrap_or(0);
+    if mb > c.encoder.multiturn_bits || pb + mb > 32 {
+        return Err(err(
+            "biss",
+            "multiturn_bits",
+            format!(
+                "{mb} bits: at most encoder.multiturn_bits ({}) and position_bits + multiturn_bits <= 32 (position_bits = {pb})",
+                c.encoder.multiturn_bits
+            ),
+        ));
+    }
+    let mut p = BissParams::new(pb, mb, c.clock.frequency_hz)
+        .map_err(|m| err("biss", "position_bits", m.to_string()))?;
+    p.gray = b.gray.unwrap_or(false);
+    p.ack_periods = b.ack_periods.unwrap_or(1);
+    if let Some(t) = b.timeout_us {
+        p.set_timeout_us(t)
+            .map_err(|m| err("biss", "timeout_us", m.to_string()))?;
+    }
+    p.validate()
+        .map_err(|m| err("biss", "ack_periods", m.to_string()))?;
+    Ok(p)
+}
+
+fn frac_of_fs(c: &Config, table: &str, key: &str, v: f64, err: &ErrFn) -> Result<u32> {
+    let fs = (1u32 << (c.adc.width - 1)) - 1;
+    if !(v > 0.0 && v <= 1.0) {
+        return Err(err(
+            table,
+            key,
+            format!("{v}: allowed 0 < value <= 1 (fraction of full scale)"),
+        ));
+    }
+    Ok(((v * fs as f64).round() as u32).max(1))
+}
+
+/// Correction parameters from `[correction]`.
+pub(super) fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionParams> {
+    let k = &c.correction;
+    let a = c.adc.width;
+    let gf = k.gain_frac_bits;
+    let gs = gain_code(gf, k.gain_sin).map_err(|m| err("correction", "gain_sin", m.detail()))?;
+    let gc = gain_code(gf, k.gain_cos).map_err(|m| err("correction", "gain_cos", m.detail()))?;
+    let p = CorrectionParams::new(a, gf, [k.offset_sin, k.offset_cos], [gs, gc]).map_err(|m| {
+        let m = m.detail();
+        err(
+            "correction",
+            if m.contains("offset") {
+                "offset_sin"
+            } else {
+                "gain_frac_bits"
+            },
+            m,
+        )
+    })?;
+    match k.mode.as_str() {
+        "static" => Ok(p),
+        "auto" => {
+            let t = frac_of_fs(c, "correction", "target_amplitude", k.target_amplitude, err)?;
+            let m = frac_of_fs(c, "correction", "min_amplitude", k.min_amplitude, err)?;
+            p.with_auto(t, k.periods, m)
+                .map_err(|e| err("correction", "periods", e.detail()))
+        }
+        other => Err(err(
+            "correction",
+            "mode",
+            format!("{}: allowed \"static\" or \"auto\"", Quoted(other)),
+        )),
+    }
+}
+
+/// Monitor parameters: thresholds in CORDIC magnitude units (K_N * amplitude * 2^G).
+pub(super) fn monitor_params(
+    c: &Config,
+    n: u32,
+    xy_guard: u32,
+    xy_width: u32,
+    err: &ErrFn,
+) -> Result<MonitorParams> {
+    let m = &c.monitor;
+    let fs = ((1u64 << (c.adc.width - 1)) - 1) as f64;
+    let units = |v: f64| exact::gain_times_ceil(n, ((v * fs).round() as u64) << xy_guard);
+    let los = m.los_amplitude.unwrap_or(0.25);
+    let rel = m.los_release.unwrap_or(0.3);
+    let clip = m.clip_amplitude.unwrap_or(1.0);
+    for (key, v) in [
+        ("los_amplitude", los),
+        ("los_release", rel),
+        ("clip_amplitude", clip),
+    ] {
+        if !(v > 0.0 && v <= 1.3) {
+            return Err(err(
+                "monitor",
+                key,
+                format!("{v}: allowed 0 < value <= 1.3 (fraction of full scale)"),
+            ));
+        }
+    }
+    // The levels must rise: loss threshold <= release level <= clipping level. The key in
+    // the file is blamed (the later one when both are given); a default is named as such.
+    let shown = |key: &str, v: f64, given: bool| {
+        if given {
+            format!("`monitor.{key}` = {v}")
+        } else {
+            format!("`monitor.{key}` (default {v})")
+        }
+    };
+    for ((lo_key, lo, lo_given), (hi_key, hi, hi_given), what) in [
+        (
+            ("los_amplitude", los, m.los_amplitude.is_some()),
+            ("los_release", rel, m.los_release.is_some()),
+            "the loss-of-signal release level must be at least the loss threshold",
+        ),
+        (
+            ("los_release", rel, m.los_release.is_some()),
+            ("clip_amplitude", clip, m.clip_amplitude.is_some()),
+            "the clipping level must be at least the loss-of-signal release level",
+        ),
+    ] {
+        if hi < lo {
+            let key = if hi_given || !lo_given {
+                hi_key
+            } else {
+                lo_key
+            };
+            return Err(err(
+                "monitor",
+                key,
+                format!(
+                    "{} is below {}: {what} (fractions of full scale)",
+                    shown(hi_key, hi, hi_given),
+                    shown(lo_key, lo, lo_given)
+                ),
+            ));
+        }
+    }
+    for (key, v) in [("los_window", m.los_window), ("clip_hold", m.clip_hold)] {
+        if let Some(v) = v {
+            if !(1..=65535).contains(&v) {
+                return Err(err(
+                    "monitor",
+                    key,
+                    format!("{v} samples: allowed 1..=65535"),
+                ));
+            }
+        }
+    }
+    MonitorParams::new(
+        c.adc.width,
+        xy_width,
+        units(los),
+        units(rel),
+        m.los_window.unwrap_or(8),
+        units(clip),
+        m.clip_hold.unwrap_or(16),
+    )
+    .map_err(|e| err("monitor", "los_amplitude", e.detail()))
+}
+
+/// Validates `[capacitive]` and designs its filters at the ADC's sample rate.
+pub(super) fn cap_params(
+    c: &Config,
+    k: &CapacitiveConfig,
+    rate: f64,
+    err: &ErrFn,
+) -> Result<CapDerived> {
+    let t = "capacitive";
+    if c.adc.preset != AdcPreset::Generic {
+        return Err(err(
+            "adc",
+            "preset",
+            "the capacitive path reads one receiver channel: use preset = \"generic\" with [adc.frame] channels = 1".into(),
+        ));
+    }
+    if c.adc.frame.as_ref().and_then(|f| f.channels) != Some(1) {
+        return Err(err(
+            "adc",
+            "frame",
+            "the capacitive path reads one receiver channel: set [adc.frame] channels = 1".into(),
+        ));
+    }
+    if c.ssi.enabled || c.spi.enabled {
+        return Err(err(
+            if c.ssi.enabled { "ssi" } else { "spi" },
+            "enabled",
+            "the capacitive top serves BiSS-C and the parallel bus; SSI and SPI are not in it"
+                .into(),
+        ));
+    }
+    if !(10e3..=1e6).contains(&k.carrier_hz) || k.carrier_hz >= rate / 2.0 {
+        return Err(err(
+            t,
+            "carrier_hz",
+            format!(
+                "{} Hz: allowed 10 kHz..1 MHz and below half the ADC's sample rate ({:.0} Hz)",
+                k.carrier_hz,
+                rate / 2.0
+            ),
+        ));
+    }
+    if k.amplitude.is_nan() || k.amplitude <= 0.0 || k.amplitude > 1.0 {
+        return Err(err(
+            t,
+            "amplitude",
+            format!("{}: allowed (0, 1]", k.amplitude),
+        ));
+    }
+    let ranged = |key: &str, v: u32, lo: u32, hi: u32| -> Result<()> {
+        if (lo..=hi).contains(&v) {
+            Ok(())
+        } else {
+            Err(err(t, key, format!("{v}: allowed {lo}..={hi}")))
+        }
+    };
+    ranged("dac_width", k.dac_width, 8, 16)?;
+    ranged("phase_bits", k.phase_bits, 8, 32)?;
+    ranged("table_bits", k.table_bits, 4, 12.min(k.phase_bits - 2))?;
+    ranged("data_width", k.data_width, 12, 16)?;
+    ranged("guard_frac", k.guard_frac, 0, 12)?;
+    if k.data_width < c.adc.width {
+        return Err(err(
+            t,
+            "data_width",
+            format!(
+                "{} bits is narrower than the ADC's {} bits",
+                k.data_width, c.adc.width
+            ),
+        ));
+    }
+    // Each filter's kind must fit its role: the band-pass isolates the carrier in front of
+    // the demodulator, the low-pass removes 2w after it.
+    for (key, spec, want) in [
+        ("bandpass", &k.bandpass, crate::filter::FilterKind::Bandpass),
+        ("lowpass", &k.lowpass, crate::filter::FilterKind::Lowpass),
+    ] {
+        if spec.kind != want {
+            let name = |f: crate::filter::FilterKind| match f {
+                crate::filter::FilterKind::Lowpass => "\"lowpass\"",
+                crate::filter::FilterKind::Highpass => "\"highpass\"",
+                crate::filter::FilterKind::Bandpass => "\"bandpass\"",
+            };
+            let role = if key == "bandpass" {
+                "the band-pass in front of the demodulator isolates the carrier"
+            } else {
+                "the low-pass after the demodulator removes twice the carrier"
+            };
+            return Err(err(
+                &format!("{t}.{key}"),
+                "kind",
+                format!("{}: {role}; allowed {}", name(spec.kind), name(want)),
+            ));
+        }
+    }
+    let design = |key: &str, spec: &crate::filter::FilterSpec| -> Result<crate::filter::Designed> {
+        if (spec.sample_rate_hz - rate).abs() > rate * 1e-3 {
+            return Err(err(
+                t,
+                key,
+                format!(
+                    "sample_rate_hz = {} but the ADC samples at {:.3} Hz (clock / adc period): make them equal",
+                    spec.sample_rate_hz, rate
+                ),
+            ));
+        }
+        let mut s = spec.clone();
+        s.sample_rate_hz = rate;
+        crate::filter::design_with_probes(&s, k.coef, &[2.0 * k.carrier_hz])
+            .map_err(|e| err(t, key, e.to_string()))
+    };
+    let bandpass = design("bandpass", &k.bandpass)?;
+    let lowpass = design("lowpass", &k.lowpass)?;
+    Ok(CapDerived {
+        config: k.clone(),
+        sample_rate_hz: rate,
+        bandpass,
+        lowpass,
+    })
+}
