@@ -1,11 +1,10 @@
 //! Icarus Verilog runner: writes a testbench that replays the stimulus file and records the
 //! outputs (cycle protocol in the parent module's documentation), compiles it with
 //! `iverilog -g2005` and runs it with `vvp`.
-use super::tool::{read_file, run_checked, write_file};
+use super::tool::run_checked;
 use super::{
-    check_error_marker, check_workdir, parse_output, remove_if_exists, validate,
-    write_common_files, CosimError, CosimSpec, Trace, DESIGN_FILE, ERROR_MARKER, ICARUS_OUT_FILE,
-    ICARUS_TB_FILE, ICARUS_VVP_FILE, STIMULUS_FILE, TB_MODULE,
+    finish_run, prepare_run, CosimError, CosimSpec, Trace, DESIGN_FILE, ERROR_MARKER,
+    ICARUS_OUT_FILE, ICARUS_TB_FILE, ICARUS_VVP_FILE, STIMULUS_FILE, TB_MODULE,
 };
 use std::fmt::Write as _;
 use std::path::Path;
@@ -119,15 +118,14 @@ pub fn run_icarus(
     stimulus: &[Vec<u64>],
     workdir: &Path,
 ) -> Result<Trace, CosimError> {
-    validate(spec, stimulus)?;
-    check_workdir(workdir)?;
-    write_common_files(spec, stimulus, workdir)?;
-    write_file(
-        &workdir.join(ICARUS_TB_FILE),
-        &icarus_testbench(spec, stimulus.len()),
+    let out_path = prepare_run(
+        spec,
+        stimulus,
+        workdir,
+        ICARUS_TB_FILE,
+        || icarus_testbench(spec, stimulus.len()),
+        ICARUS_OUT_FILE,
     )?;
-    let out_path = workdir.join(ICARUS_OUT_FILE);
-    remove_if_exists(&out_path)?;
 
     let mut compile = Command::new("iverilog");
     compile.current_dir(workdir).args([
@@ -150,8 +148,5 @@ pub fn run_icarus(
     let mut run = Command::new("vvp");
     run.current_dir(workdir).args(["-n", ICARUS_VVP_FILE]);
     let out = run_checked(&mut run, "vvp", "run", workdir, "cosim_icarus_run")?;
-    check_error_marker(&out, "vvp")?;
-
-    let text = read_file(&out_path)?;
-    parse_output("icarus", &text, spec.outputs, stimulus.len())
+    finish_run("icarus", &out, &out_path, spec, stimulus.len())
 }

@@ -56,7 +56,7 @@
 use std::fmt::Write as _;
 use std::fs;
 use std::io::ErrorKind;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 mod block;
 mod icarus;
@@ -68,7 +68,7 @@ mod verilator;
 pub use block::CosimBlock;
 pub use icarus::run_icarus;
 pub use tool::{check_tool_named, require_tool, CosimError, TOOL_TIMEOUT};
-use tool::{io_err, trim_message, write_file, ToolOutput};
+use tool::{io_err, read_file, trim_message, write_file, ToolOutput};
 pub use verilator::run_verilator;
 
 /// One port of the design under test: its Verilog name and width in bits (1..=64).
@@ -226,6 +226,41 @@ fn write_common_files(
         text.push('\n');
     }
     write_file(&workdir.join(STIMULUS_FILE), &text)
+}
+
+/// What both runners do before building their simulator: check `spec` and `stimulus`, write
+/// the design, the stimulus and the simulator's driver (`driver_file`, the text `driver()`
+/// returns: a testbench or a C++ main), and remove an output file `out_file` left by an
+/// earlier run. Returns the output file's path.
+fn prepare_run(
+    spec: &CosimSpec,
+    stimulus: &[Vec<u64>],
+    workdir: &Path,
+    driver_file: &str,
+    driver: impl FnOnce() -> String,
+    out_file: &str,
+) -> Result<PathBuf, CosimError> {
+    validate(spec, stimulus)?;
+    check_workdir(workdir)?;
+    write_common_files(spec, stimulus, workdir)?;
+    write_file(&workdir.join(driver_file), &driver())?;
+    let out_path = workdir.join(out_file);
+    remove_if_exists(&out_path)?;
+    Ok(out_path)
+}
+
+/// What both runners do after their simulator ran (its output `out`): fail if the testbench
+/// reported an error, then read and parse the output trace at `out_path`.
+fn finish_run(
+    tool: &str,
+    out: &ToolOutput,
+    out_path: &Path,
+    spec: &CosimSpec,
+    cycles: usize,
+) -> Result<Trace, CosimError> {
+    check_error_marker(out, tool)?;
+    let text = read_file(out_path)?;
+    parse_output(tool, &text, spec.outputs, cycles)
 }
 
 /// Parses an output file written by a generated testbench: one line per cycle, one hex value

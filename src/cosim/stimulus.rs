@@ -3,6 +3,10 @@
 use crate::blocks::core::model::CoreIn;
 
 /// SplitMix64: a small deterministic generator (same seed, same stream, on any machine).
+/// Written out here (ten lines) rather than taken from the `rand` crate: the stimuli, and so
+/// the tests' expected traces, depend on this exact stream, which must not move with a
+/// dependency's version (`rand` documents its generators' output as not portable across
+/// versions).
 #[derive(Clone, Debug)]
 pub struct SplitMix64(pub u64);
 

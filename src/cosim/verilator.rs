@@ -1,11 +1,11 @@
 //! Verilator runner: writes a C++ main that replays the stimulus file with the same cycle
 //! protocol as the Icarus testbench, builds the model with `verilator --cc --exe --build` and
 //! runs it.
-use super::tool::{io_err, read_file, run_checked, write_file};
+use super::tool::{io_err, run_checked};
 use super::{
-    check_error_marker, check_workdir, parse_output, remove_if_exists, validate,
-    write_common_files, CosimError, CosimSpec, Trace, DESIGN_FILE, ERROR_MARKER, STIMULUS_FILE,
-    VERILATOR_EXE, VERILATOR_MAIN_FILE, VERILATOR_OBJ_DIR, VERILATOR_OUT_FILE,
+    finish_run, prepare_run, remove_if_exists, CosimError, CosimSpec, Trace, DESIGN_FILE,
+    ERROR_MARKER, STIMULUS_FILE, VERILATOR_EXE, VERILATOR_MAIN_FILE, VERILATOR_OBJ_DIR,
+    VERILATOR_OUT_FILE,
 };
 use std::fmt::Write as _;
 use std::fs;
@@ -184,15 +184,14 @@ pub fn run_verilator(
     stimulus: &[Vec<u64>],
     workdir: &Path,
 ) -> Result<Trace, CosimError> {
-    validate(spec, stimulus)?;
-    check_workdir(workdir)?;
-    write_common_files(spec, stimulus, workdir)?;
-    write_file(
-        &workdir.join(VERILATOR_MAIN_FILE),
-        &verilator_main(spec, stimulus.len()),
+    let out_path = prepare_run(
+        spec,
+        stimulus,
+        workdir,
+        VERILATOR_MAIN_FILE,
+        || verilator_main(spec, stimulus.len()),
+        VERILATOR_OUT_FILE,
     )?;
-    let out_path = workdir.join(VERILATOR_OUT_FILE);
-    remove_if_exists(&out_path)?;
     let exe: PathBuf = workdir.join(VERILATOR_OBJ_DIR).join(VERILATOR_EXE);
     remove_if_exists(&exe)?;
 
@@ -226,8 +225,5 @@ pub fn run_verilator(
     let mut run = Command::new(&exe_abs);
     run.current_dir(workdir);
     let out = run_checked(&mut run, "verilator", "run", workdir, "cosim_verilator_run")?;
-    check_error_marker(&out, "verilator")?;
-
-    let text = read_file(&out_path)?;
-    parse_output("verilator", &text, spec.outputs, stimulus.len())
+    finish_run("verilator", &out, &out_path, spec, stimulus.len())
 }
