@@ -58,24 +58,6 @@ pub trait LineMaster {
     fn push_slo(&mut self, slo: bool);
 }
 
-/// Runs a closed loop for `cycles` system clocks: each cycle the master gives MA, and
-/// `slave(k, ma)` steps the slave through clock edge k and returns its output. Returns the
-/// MA value of every cycle (the stimulus to replay).
-pub fn run_loop<M: LineMaster>(
-    master: &mut M,
-    cycles: usize,
-    mut slave: impl FnMut(usize, bool) -> bool,
-) -> Vec<bool> {
-    let mut ma = Vec::with_capacity(cycles);
-    for k in 0..cycles {
-        let m = master.ma_for_cycle(k);
-        ma.push(m);
-        let s = slave(k, m);
-        master.push_slo(s);
-    }
-    ma
-}
-
 /// The slave's output line as seen at the master, from the slave's per-cycle outputs.
 #[derive(Clone, Debug)]
 pub struct SlaveLine {
@@ -108,10 +90,6 @@ impl SlaveLine {
         let j = (u / self.tclk).ceil() as usize - 1;
         assert!(j < self.slo.len(), "SL at {t} ns is not known yet");
         self.slo[j]
-    }
-    /// Latest time up to which SL at the master is known.
-    pub fn known_until(&self) -> f64 {
-        self.slo.len() as f64 * self.tclk + self.delay
     }
     /// Index of the first slave cycle whose output reaches the master at or after `t`.
     pub fn index_at(&self, t: f64) -> usize {
@@ -496,11 +474,6 @@ impl BissMaster {
             Phase::Frame(run) => Some(run.burst.rises),
             _ => None,
         }
-    }
-
-    /// MA transitions so far (time at the master, new level).
-    pub fn ma_edges(&self) -> &[(f64, bool)] {
-        self.ma.edges()
     }
 
     fn data_bits(&self) -> u32 {

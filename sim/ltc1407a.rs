@@ -6,7 +6,7 @@
 //! clock; returns the SDO level at the next system clock edge (where the controller
 //! samples). Behaviour modelled:
 //!
-//! * A rising CONV edge samples both channels (codes from a caller closure or a set value)
+//! * A rising CONV edge samples both channels (codes from a caller closure, 0 and 0 without one)
 //!   and starts a conversion that needs 32 SCK rising edges; CONV rising edges before those
 //!   32 edges are ignored by the chip (and recorded as a violation here).
 //! * SDO after a CONV rise, one slot per SCK rising edge: edges 1-2 Hi-Z, 3-16 channel 0
@@ -131,7 +131,6 @@ pub struct Ltc1407a {
     timing: Ltc1407aTiming,
     rng: SplitMix64,
     source: Option<CodeFn>,
-    value: [i16; 2],
     clock: u64,
     prev_conv: bool,
     prev_sck: bool,
@@ -158,8 +157,8 @@ pub struct Ltc1407a {
 }
 
 impl Ltc1407a {
-    /// The chip clocked by a controller running at `clock_hz`, with codes set by
-    /// [`set_codes`](Self::set_codes) (initially 0, 0) and pseudo-random Hi-Z bits from `seed`.
+    /// The chip clocked by a controller running at `clock_hz`, with codes 0, 0 until a source
+    /// is set (`with_codes`, `with_voltages`) and pseudo-random Hi-Z bits from `seed`.
     pub fn new(clock_hz: f64, seed: u64) -> Self {
         let period_ns = if clock_hz.is_finite() && clock_hz > 0.0 {
             1e9 / clock_hz
@@ -171,7 +170,6 @@ impl Ltc1407a {
             timing: Ltc1407aTiming::DATASHEET,
             rng: SplitMix64(seed),
             source: None,
-            value: [0, 0],
             clock: 0,
             prev_conv: false,
             prev_sck: false,
@@ -221,25 +219,6 @@ impl Ltc1407a {
         self
     }
 
-    /// Other timing limits (e.g. to test the checks).
-    pub fn with_timing(mut self, timing: Ltc1407aTiming) -> Self {
-        self.timing = timing;
-        self
-    }
-
-    /// Codes sampled by the following conversions (when no closure is set).
-    pub fn set_codes(&mut self, codes: [i16; 2]) {
-        self.value = [clamp14(codes[0] as i64), clamp14(codes[1] as i64)];
-    }
-
-    /// As [`set_codes`](Self::set_codes) from voltages and gains.
-    pub fn set_voltages(&mut self, vin: [f64; 2], gain: [f64; 2]) {
-        self.value = [
-            Self::code_from_voltage(vin[0], gain[0]),
-            Self::code_from_voltage(vin[1], gain[1]),
-        ];
-    }
-
     /// D = gain * (vin - 1.65) / 1.25 * 8192, rounded, clamped to -8192..=8191.
     pub fn code_from_voltage(vin: f64, gain: f64) -> i16 {
         let d = gain * (vin - 1.65) / 1.25 * 8192.0;
@@ -257,11 +236,6 @@ impl Ltc1407a {
     /// Violations recorded so far.
     pub fn violations(&self) -> &[Violation] {
         &self.violations
-    }
-
-    /// SDO as it is now (after the last step's edges, before the next one).
-    pub fn sdo(&self) -> Sdo {
-        self.sdo_new
     }
 
     fn violation(&mut self, kind: ViolationKind, message: String) {
@@ -330,7 +304,7 @@ impl Ltc1407a {
                         let c = f(k, t * 1e-9);
                         [clamp14(c[0] as i64), clamp14(c[1] as i64)]
                     }
-                    None => self.value,
+                    None => [0, 0],
                 };
                 self.conversions.push(Conversion {
                     clock: self.clock,

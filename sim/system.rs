@@ -234,11 +234,6 @@ impl System {
         self.ssi = Some(m);
     }
 
-    /// Detaches the master model and returns it (with its frame reports).
-    pub fn detach_master(&mut self) -> Option<Box<dyn crate::sim::biss_master::LineMaster>> {
-        self.ma.take()
-    }
-
     /// The design (to read its outputs after a cycle).
     pub fn top(&self) -> &TopRtl {
         &self.top

@@ -54,7 +54,7 @@
 //!   reads SLO = 0 throughout (no Ack edge, no Start bit) and must wait for SLO high. A master
 //!   that stops clocking mid-frame gets the same: the slave returns to idle t_out after the
 //!   last edge. The slowest usable MA clock is the one whose half period reaches the timeout
-//!   ([`BissParams::min_ma_hz`]).
+//!   (clock_hz / (2 timeout_clocks)).
 //! * Reset (synchronous, active high) enters the timeout: SLO low, then high once MA has been
 //!   quiet for the timeout. A reset in the middle of a frame ends that frame (the master's CRC
 //!   check or Start search fails; the next frame is normal). Power-up (register initial
@@ -208,11 +208,6 @@ impl BissParams {
     /// Highest MA frequency the synchronizer can follow at 50 % duty (see the module docs).
     pub fn max_ma_hz(&self) -> f64 {
         self.clock_hz / (2 * min_level_clocks(self.glitch_filter)) as f64
-    }
-
-    /// Lowest MA frequency: each MA level must be shorter than the timeout.
-    pub fn min_ma_hz(&self) -> f64 {
-        self.clock_hz / (2.0 * self.timeout_clocks as f64)
     }
 }
 

@@ -33,7 +33,7 @@
 pub mod hdl;
 
 use crate::blocks::biss::{
-    check_clock, check_timeout_clocks, check_word, min_level_clocks, sync_latency, timeout_clocks,
+    check_clock, check_timeout_clocks, check_word, sync_latency, timeout_clocks,
 };
 
 /// Default monoflop time in microseconds.
@@ -105,11 +105,6 @@ impl SsiParams {
     /// Cycles from a new clock level at the input to the clock edge that acts on it.
     pub fn latch_latency(&self) -> u32 {
         sync_latency(self.glitch_filter)
-    }
-
-    /// Highest clock frequency the synchronizer can follow at 50 % duty.
-    pub fn max_clock_hz(&self) -> f64 {
-        self.clock_hz / (2 * min_level_clocks(self.glitch_filter)) as f64
     }
 
     /// Monoflop time in microseconds.
