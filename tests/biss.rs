@@ -797,8 +797,9 @@ fn synthesizes_for_both_families() {
         // sync 4 (3 without the filter), position hold S + M + 3, state 4, SLO, shift N,
         // CRC 6, bit counter 7, timeout counter, latched flags 2, the registered counter
         // compares 4 (bit counter = A, N, 6; timeout counter at its end), the registered
-        // state decodes of the shift register 2 (Idle; Cds or Data before the last bit).
-        let want = 3 + filter as u64 + n + 3 + 4 + 1 + n + 6 + 7 + tbits + 2 + 4 + 2;
+        // state decodes of the shift register 2 (Idle; Cds or Data before the last bit),
+        // the synchronizer's registered edge pulses 2 (rise, fall).
+        let want = 3 + filter as u64 + n + 3 + 4 + 1 + n + 6 + 7 + tbits + 2 + 4 + 2 + 2;
         for fam in [Family::Xc3sa, Family::CycloneIve] {
             let s = synthesize(&v, "biss_slave", fam, &dir).expect("synthesis");
             eprintln!(

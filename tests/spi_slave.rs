@@ -398,8 +398,9 @@ fn synthesizes_for_both_families() {
     let v = sinedec::emit::verilog::export(&uut, "spi", "spi_slave").expect("export");
     let dir = common::workdir("spi_synth");
     let n = p.data_bits() as u64;
-    // two syncs 8, hold N + 3, state 3, miso, oe, armed, shift N, counter 7, flags 2.
-    let want = 8 + n + 3 + 3 + 3 + n + 7 + 2;
+    // two syncs 8 with their registered edge pulses 4, hold N + 3, state 3, miso, oe,
+    // armed, shift N, counter 7, flags 2.
+    let want = 8 + 4 + n + 3 + 3 + 3 + n + 7 + 2;
     for fam in [Family::Xc3sa, Family::CycloneIve] {
         let s = synthesize(&v, "spi_slave", fam, &dir).expect("synthesis");
         eprintln!(

@@ -380,8 +380,9 @@ fn synthesizes_for_both_families() {
     let dir = common::workdir("ssi_synth");
     let n = p.data_bits() as u64;
     let tbits = 32 - (p.timeout_clocks - 1).leading_zeros() as u64;
-    // sync 4, hold N + 3, state 3, line, shift N, counter 7, monoflop counter, error 1.
-    let want = 4 + n + 3 + 3 + 1 + n + 7 + tbits + 1;
+    // sync 4 and its registered edge pulses 2, hold N + 3, state 3, line, shift N,
+    // counter 7, monoflop counter, error 1.
+    let want = 4 + 2 + n + 3 + 3 + 1 + n + 7 + tbits + 1;
     for fam in [Family::Xc3sa, Family::CycloneIve] {
         let s = synthesize(&v, "ssi_slave", fam, &dir).expect("synthesis");
         eprintln!(

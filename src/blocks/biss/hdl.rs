@@ -9,9 +9,13 @@ use rust_hdl::prelude::*;
 /// an asynchronous line that idles high (MA, SSI clock, SPI chip select and clock).
 ///
 /// The flops hold the inverted line (n1, n2, n3, nf), so their power-up and reset value 0
-/// means "high". `rise` / `fall` are one-cycle pulses, combinational from this block's
-/// registers; the parent acts on them at the next clock edge, which is also when `level`
-/// (the filtered level) changes.
+/// means "high". `rise` / `fall` are one-cycle pulses; the parent acts on them at the next
+/// clock edge, which is also when `level` (the filtered level) changes. They are registered:
+/// the pipeline of flops shows the next clock's edge one clock early (the flops' next
+/// values n1 -> n2, n2 -> n3 and nf's update are known now), so each pulse is computed from
+/// those next values and comes straight from a flip-flop, with no LUT between the
+/// synchronizer and the parent's decode; cycle for cycle they equal the edge test on the
+/// current flops.
 #[derive(LogicBlock)]
 pub struct LineSync {
     /// System clock.
@@ -30,8 +34,16 @@ pub struct LineSync {
     n2: DFF<Bit>,
     n3: DFF<Bit>,
     nf: DFF<Bit>,
+    /// rise, registered (computed from the flops' next values).
+    rise_r: DFF<Bit>,
+    /// fall, registered.
+    fall_r: DFF<Bit>,
     src: Signal<Local, Bit>,
     change: Signal<Local, Bit>,
+    /// nf at the next clock.
+    nfn: Signal<Local, Bit>,
+    /// The edge test at the next clock (on n2 -> n1, n3 -> n2, nf -> nfn).
+    chn: Signal<Local, Bit>,
     /// Glitch filter on.
     filter: Constant<Bit>,
 }
@@ -50,8 +62,12 @@ impl LineSync {
             n2: Default::default(),
             n3: Default::default(),
             nf: Default::default(),
+            rise_r: Default::default(),
+            fall_r: Default::default(),
             src: Default::default(),
             change: Default::default(),
+            nfn: Default::default(),
+            chn: Default::default(),
             filter: Constant::new(glitch_filter),
         }
     }
@@ -60,7 +76,7 @@ impl LineSync {
 impl Logic for LineSync {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, n1, n2, n3, nf);
+        dff_setup!(self, clk, n1, n2, n3, nf, rise_r, fall_r);
         self.n1.d.next = !self.pin.val();
         self.n2.d.next = self.n1.q.val();
         self.n3.d.next = self.n2.q.val();
@@ -72,17 +88,31 @@ impl Logic for LineSync {
             self.src.next = self.n2.q.val();
             self.change.next = self.n2.q.val() != self.nf.q.val();
         }
+        self.nfn.next = self.nf.q.val();
         if self.change.val() {
-            self.nf.d.next = self.src.val();
+            self.nfn.next = self.src.val();
         }
+        self.nf.d.next = self.nfn.val();
+        // The same edge test one clock ahead: n2, n3 and nf at the next clock are n1, n2
+        // and nfn.
+        if self.filter.val() {
+            self.chn.next =
+                (self.n1.q.val() == self.n2.q.val()) & (self.n2.q.val() != self.nfn.val());
+        } else {
+            self.chn.next = self.n1.q.val() != self.nfn.val();
+        }
+        self.rise_r.d.next = self.chn.val() & self.nfn.val();
+        self.fall_r.d.next = self.chn.val() & !self.nfn.val();
         self.level.next = !self.nf.q.val();
-        self.rise.next = self.change.val() & self.nf.q.val();
-        self.fall.next = self.change.val() & !self.nf.q.val();
+        self.rise.next = self.rise_r.q.val();
+        self.fall.next = self.fall_r.q.val();
         if self.rst.val() {
             self.n1.d.next = false;
             self.n2.d.next = false;
             self.n3.d.next = false;
             self.nf.d.next = false;
+            self.rise_r.d.next = false;
+            self.fall_r.d.next = false;
         }
     }
 }
@@ -294,6 +324,8 @@ pub struct BissSlave {
     cld1: Signal<Local, Bit>,
     /// cnt counts up this clock.
     cinc: Signal<Local, Bit>,
+    /// The timeout returns the slave to Idle this clock (state != Idle, MA quiet, ftl).
+    tout: Signal<Local, Bit>,
     mae: Signal<Local, Bit>,
     dbit: Signal<Local, Bit>,
     cbit: Signal<Local, Bit>,
@@ -363,6 +395,7 @@ impl BissSlave {
             ftl: Default::default(),
             cld1: Default::default(),
             cinc: Default::default(),
+            tout: Default::default(),
             mae: Default::default(),
             dbit: Default::default(),
             cbit: Default::default(),
@@ -426,10 +459,6 @@ impl Logic for BissSlave {
             BissState::Timeout => {}
             BissState::Idle => {
                 if self.sync.fall.val() {
-                    self.posw.take.next = true;
-                    self.errl.d.next = self.posw.err.val();
-                    self.warnl.d.next = self.posw.warn.val();
-                    self.crc.d.next = self.zero.val();
                     self.state.d.next = BissState::First;
                 }
             }
@@ -511,6 +540,14 @@ impl Logic for BissSlave {
                 }
             }
         }
+        // F1 in Idle (sidle is the registered state == Idle): latch the word and the flags,
+        // clear the CRC.
+        if self.sidle.q.val() & self.sync.fall.val() {
+            self.posw.take.next = true;
+            self.errl.d.next = self.posw.err.val();
+            self.warnl.d.next = self.posw.warn.val();
+            self.crc.d.next = self.zero.val();
+        }
         // The shift register: loaded at F1 in Idle, shifted at each rising MA edge in Cds
         // and in Data before the last bit (the state decodes are registered flags).
         if self.sidle.q.val() & self.sync.fall.val() {
@@ -553,9 +590,27 @@ impl Logic for BissSlave {
             self.tcnt.d.next = self.zero.val();
             self.ftl.d.next = self.tlast_is0.val();
         }
-        self.sidle.d.next = self.state.d.val() == BissState::Idle;
-        self.sshift.d.next = (self.state.d.val() == BissState::Cds)
-            | ((self.state.d.val() == BissState::Data) & !self.fnb.d.val());
+        // The flags follow the transitions of the match above, from the current state and
+        // the events (a decode of the next state would put the whole next-state logic in
+        // front of them). Idle is entered only by the timeout and left only at F1. Cds is
+        // entered from Start at a rising edge; Data with more bits to shift is entered from
+        // Cds (cnt loaded to 1) or kept from Data while cnt has not reached N - 1 (fnb is
+        // cnt == N at the next clock); both are left only at a rising edge or by the timeout
+        // (a rising edge and the timeout exclude each other: the timeout needs a quiet MA).
+        self.tout.next =
+            (self.state.q.val() != BissState::Idle) & !self.mae.val() & self.ftl.q.val();
+        self.sidle.d.next = self.tout.val() | (self.sidle.q.val() & !self.sync.fall.val());
+        self.sshift.d.next = (self.sshift.q.val() & !self.sync.rise.val() & !self.tout.val())
+            | (self.sync.rise.val()
+                & ((self.state.q.val() == BissState::Start)
+                    | ((self.state.q.val() == BissState::Cds) & !self.n_is1.val())
+                    | ((self.state.q.val() == BissState::Data)
+                        & !self.fnb.q.val()
+                        & (self.cnt.q.val() != self.nbits_m1.val()))));
+        if self.rst.val() {
+            self.sidle.d.next = false;
+            self.sshift.d.next = false;
+        }
         self.slo.next = self.slo_reg.q.val();
     }
 }

@@ -163,6 +163,7 @@ impl Logic for CoreRtl {
         self.counter.v_in.next = self.combiner.v.val();
         self.counter.up_in.next = self.combiner.up.val();
         self.counter.down_in.next = self.combiner.down.val();
+        self.counter.step_in.next = self.combiner.step.val();
         self.counter.wq_in.next = self.combiner.wq.val();
         self.counter.wz_in.next = self.combiner.wz.val();
         self.counter.load.next = self.load.val();

@@ -33,6 +33,9 @@ pub struct Combiner {
     pub up: Signal<Out, Bit>,
     /// Registered: the step crosses quadrant 0 -> 3 backwards.
     pub down: Signal<Out, Bit>,
+    /// Registered: up or down (the low bit of the counter's period step, so that the
+    /// step's bits come straight from registers into the counter's adder).
+    pub step: Signal<Out, Bit>,
     /// Registered: delta >> (F-2), the step in quarter quadrants (4 bits; the counter's
     /// warning compares it).
     pub wq: Signal<Out, Bits<32>>,
@@ -44,12 +47,18 @@ pub struct Combiner {
     plast_reg: DFF<Bits<32>>,
     up_reg: DFF<Bit>,
     down_reg: DFF<Bit>,
+    step_reg: DFF<Bit>,
     wq_reg: DFF<Bits<32>>,
     wz_reg: DFF<Bit>,
     /// p of this sample.
     pn: Signal<Local, Bits<32>>,
     /// The magnitude test of this sample.
     okn: Signal<Local, Bit>,
+    /// x_in with bit 31 set when the sample is valid (x is at most 31 bits wide).
+    xv: Signal<Local, Bits<32>>,
+    /// The sample is valid and passes the magnitude test: one compare of xv against
+    /// 2^31 + minmag, so the carry chain's output drives plast's enable with no LUT after it.
+    okv: Signal<Local, Bit>,
     /// delta = (p - plast) mod 2^(F+2).
     delta: Signal<Local, Bits<32>>,
     /// The step is backwards (delta negative).
@@ -76,6 +85,10 @@ pub struct Combiner {
     zero: Constant<Bits<32>>,
     /// Magnitude threshold in x units.
     minmag: Constant<Bits<32>>,
+    /// 2^31 + the magnitude threshold (clamped to 31 bits: x never reaches 2^31).
+    minmag_v: Constant<Bits<32>>,
+    /// 2^31: the valid bit of xv.
+    vbit: Constant<Bits<32>>,
 }
 
 impl Combiner {
@@ -93,6 +106,7 @@ impl Combiner {
             v: Default::default(),
             up: Default::default(),
             down: Default::default(),
+            step: Default::default(),
             wq: Default::default(),
             wz: Default::default(),
             p_reg: Default::default(),
@@ -101,10 +115,13 @@ impl Combiner {
             plast_reg: Default::default(),
             up_reg: Default::default(),
             down_reg: Default::default(),
+            step_reg: Default::default(),
             wq_reg: Default::default(),
             wz_reg: Default::default(),
             pn: Default::default(),
             okn: Default::default(),
+            xv: Default::default(),
+            okv: Default::default(),
             delta: Default::default(),
             back: Default::default(),
             qnew: Default::default(),
@@ -118,6 +135,8 @@ impl Combiner {
             wmask: c32(mask(f - 2)),
             zero: c32(0),
             minmag: c32(d.min_magnitude.min(mask(32))),
+            minmag_v: c32((1 << 31) | d.min_magnitude.min(mask(31))),
+            vbit: c32(1 << 31),
         }
     }
 }
@@ -132,13 +151,20 @@ pub fn z_start(d: &Derived) -> (u64, u64) {
 impl Logic for Combiner {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, p_reg, ok_reg, v_reg, plast_reg, up_reg, down_reg, wq_reg, wz_reg);
+        dff_setup!(
+            self, clk, p_reg, ok_reg, v_reg, plast_reg, up_reg, down_reg, step_reg, wq_reg, wz_reg
+        );
         self.pn.next = (self.z_in.val() >> self.zshift.val()) & self.pmask.val();
         self.okn.next = self.x_in.val() >= self.minmag.val();
         self.p_reg.d.next = self.pn.val();
         self.ok_reg.d.next = self.okn.val();
         self.v_reg.d.next = self.v_in.val() & !self.rst.val();
-        if self.v_in.val() & !self.rst.val() & self.okn.val() {
+        self.xv.next = self.x_in.val();
+        if self.v_in.val() & !self.rst.val() {
+            self.xv.next = self.x_in.val() | self.vbit.val();
+        }
+        self.okv.next = self.xv.val() >= self.minmag_v.val();
+        if self.okv.val() {
             self.plast_reg.d.next = self.pn.val();
         }
         // The step to the last accepted sample, as the counter takes it (module docs).
@@ -148,13 +174,18 @@ impl Logic for Combiner {
         self.qlast.next = (self.plast_reg.q.val() >> self.fshift.val()) & self.three.val();
         self.up_reg.d.next = !self.back.val() & (self.qnew.val() < self.qlast.val());
         self.down_reg.d.next = self.back.val() & (self.qnew.val() > self.qlast.val());
+        self.step_reg.d.next = self.up_reg.d.val() | self.down_reg.d.val();
         self.wq_reg.d.next = self.delta.val() >> self.wshift.val();
-        self.wz_reg.d.next = (self.delta.val() & self.wmask.val()) == self.zero.val();
+        // (pn - plast) mod 2^(F-2) is zero exactly when the low F-2 bits agree: an
+        // equality test, off the subtractor's carry chain.
+        self.wz_reg.d.next =
+            ((self.pn.val() ^ self.plast_reg.q.val()) & self.wmask.val()) == self.zero.val();
         self.p.next = self.p_reg.q.val();
         self.mag_ok.next = self.ok_reg.q.val();
         self.v.next = self.v_reg.q.val();
         self.up.next = self.up_reg.q.val();
         self.down.next = self.down_reg.q.val();
+        self.step.next = self.step_reg.q.val();
         self.wq.next = self.wq_reg.q.val();
         self.wz.next = self.wz_reg.q.val();
     }
@@ -182,6 +213,8 @@ pub struct QuadrantCounter {
     pub up_in: Signal<In, Bit>,
     /// The step crosses quadrant 0 -> 3 backwards (combiner).
     pub down_in: Signal<In, Bit>,
+    /// up_in or down_in (combiner).
+    pub step_in: Signal<In, Bit>,
     /// The step delta >> (F-2) in quarter quadrants (combiner, 4 bits).
     pub wq_in: Signal<In, Bits<32>>,
     /// The low F-2 bits of the step are zero (combiner).
@@ -221,11 +254,16 @@ pub struct QuadrantCounter {
     /// step adds no carry chain after `pending`.
     ltinc_reg: DFF<Bits<32>>,
     ltdec_reg: DFF<Bits<32>>,
+    /// The latched count's period is PPR - 1 (a forward step from it wraps), taken at the
+    /// load with the count.
+    llast_reg: DFF<Bit>,
+    /// The latched count's period is 0 (a backward step from it wraps).
+    lzero_reg: DFF<Bit>,
     /// Quadrant of the sample, p >> F (2 bits).
     qnew: Signal<Local, Bits<32>>,
     /// Quadrant of the latched count (2 bits), where a load's step starts.
     base_q: Signal<Local, Bits<32>>,
-    /// Period the step starts from: u, or the latched count's (quadrant_bits - 2 bits).
+    /// The latched count's period (quadrant_bits - 2 bits), where a load's step starts.
     base_u: Signal<Local, Bits<32>>,
     /// Turn count the step starts from (M bits).
     base_turns: Signal<Local, Bits<32>>,
@@ -233,8 +271,18 @@ pub struct QuadrantCounter {
     up: Signal<Local, Bit>,
     /// The step crosses into the previous period (carry from quadrant 0 to 3).
     down: Signal<Local, Bit>,
-    /// +1 (up), -1 (down) or 0: the addend of the period and the turn counters.
+    /// +1 (up), -1 (down) or 0: the addend of the running period counter.
     ustep: Signal<Local, Bits<32>>,
+    /// A load's step crosses into the next period (from the two quadrants).
+    up_l: Signal<Local, Bit>,
+    /// A load's step crosses into the previous period.
+    down_l: Signal<Local, Bit>,
+    /// +1, -1 or 0: the addend of a load's period.
+    ustep_l: Signal<Local, Bits<32>>,
+    /// base_u + ustep_l modulo 2^(quadrant_bits - 1), as usum for a load.
+    usum_l: Signal<Local, Bits<32>>,
+    /// A load's step leaves the turn (from the flags taken at the load: no adder).
+    wrap_l: Signal<Local, Bit>,
     /// u + ustep modulo 2^(quadrant_bits - 1): bit quadrant_bits - 2 is set when u + ustep
     /// leaves 0..2^(quadrant_bits - 2) - 1 (u = 0 down, u all ones up).
     usum: Signal<Local, Bits<32>>,
@@ -274,6 +322,8 @@ pub struct QuadrantCounter {
     three: Constant<Bits<32>>,
     /// Minus one (32-bit two's complement).
     minus_one: Constant<Bits<32>>,
+    /// Minus two (32-bit two's complement): the running step's bits above bit 0 when down.
+    minus_two: Constant<Bits<32>>,
     /// Zero.
     zero: Constant<Bits<32>>,
 }
@@ -292,6 +342,7 @@ impl QuadrantCounter {
             v_in: Default::default(),
             up_in: Default::default(),
             down_in: Default::default(),
+            step_in: Default::default(),
             wq_in: Default::default(),
             wz_in: Default::default(),
             load: Default::default(),
@@ -316,6 +367,8 @@ impl QuadrantCounter {
             lturns_reg: Default::default(),
             ltinc_reg: Default::default(),
             ltdec_reg: Default::default(),
+            llast_reg: Default::default(),
+            lzero_reg: Default::default(),
             qnew: Default::default(),
             base_q: Default::default(),
             base_u: Default::default(),
@@ -323,6 +376,11 @@ impl QuadrantCounter {
             up: Default::default(),
             down: Default::default(),
             ustep: Default::default(),
+            up_l: Default::default(),
+            down_l: Default::default(),
+            ustep_l: Default::default(),
+            usum_l: Default::default(),
+            wrap_l: Default::default(),
             usum: Default::default(),
             un: Default::default(),
             wrap: Default::default(),
@@ -342,6 +400,7 @@ impl QuadrantCounter {
             one: c32(1),
             three: c32(3),
             minus_one: c32(mask(32)),
+            minus_two: c32(mask(32) - 1),
             zero: c32(0),
         }
     }
@@ -365,44 +424,27 @@ impl Logic for QuadrantCounter {
             lqc_reg,
             lturns_reg,
             ltinc_reg,
-            ltdec_reg
+            ltdec_reg,
+            llast_reg,
+            lzero_reg
         );
         self.qnew.next = (self.p_in.val() >> self.fshift.val()) & self.three.val();
-        // Base: the running count, or, when a resynchronisation is pending, the latched
-        // count. The running count's step comes from the combiner (up, down: the sign of
-        // delta and the quadrants); a load's is the nearest step to the sample's quadrant
-        // (+0, +1, +2 forwards, -1 backwards), from the two quadrants.
-        self.base_q.next = self.lqc_reg.q.val() & self.three.val();
-        self.base_u.next = self.u_reg.q.val();
-        self.base_turns.next = self.turns_reg.q.val();
-        // A forward step passes quadrant 3 -> 0 exactly when the quadrant decreases, a
-        // backward one passes 0 -> 3 exactly when it increases.
-        self.up.next = self.up_in.val();
-        self.down.next = self.down_in.val();
-        if self.pending_reg.q.val() {
-            self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
-            self.base_turns.next = self.lturns_reg.q.val();
-            // Four-input functions of the two quadrants written out, so that no 2-bit
-            // subtractor or comparator (a carry chain on xc3sa) sits in front of usum.
-            // Forward steps +1, +2 pass 3 -> 0 from quadrant 2 to 0 and from 3 to 0 or 1;
-            // the backward step -1 passes 0 -> 3 only from 0 to 3.
-            self.up.next = self.base_q.val().get_bit(1)
-                & !self.qnew.val().get_bit(1)
-                & (self.base_q.val().get_bit(0) | !self.qnew.val().get_bit(0));
-            self.down.next = !self.base_q.val().get_bit(1)
-                & !self.base_q.val().get_bit(0)
-                & self.qnew.val().get_bit(1)
-                & self.qnew.val().get_bit(0);
-        }
+        // Two candidate steps side by side, each with its own period adder, chosen by
+        // `pending` after the adders (a mux in front of an adder is a LUT level more):
+        // the running count's, whose direction comes from the combiner (up, down: the sign
+        // of delta and the quadrants), and, when a resynchronisation is pending, the latched
+        // count's, whose direction is the nearest step to the sample's quadrant (+0, +1,
+        // +2 forwards, -1 backwards), from the two quadrants.
+        // ustep = +1, -1 or 0 with its bits taken from registers: bit 0 is step_in, the
+        // bits above it down_in (no LUT in front of the adder).
         self.ustep.next = self.zero.val();
-        if self.up.val() {
-            self.ustep.next = self.one.val();
+        if self.down_in.val() {
+            self.ustep.next = self.minus_two.val();
         }
-        if self.down.val() {
-            self.ustep.next = self.minus_one.val();
+        if self.step_in.val() {
+            self.ustep.next = self.ustep.val() | self.one.val();
         }
-        self.usum.next = (self.base_u.val() + self.ustep.val()) & self.usmask.val();
-        self.un.next = self.usum.val() & self.umask.val();
+        self.usum.next = (self.u_reg.q.val() + self.ustep.val()) & self.usmask.val();
         // Wrap at 4PPR: period PPR-1 -> 0 steps the turns up, 0 -> PPR-1 down. u = 0 down
         // is the borrow of usum; with PPR a power of two, u = PPR-1 up is its carry and u
         // wraps by itself, else a compare and a constant take over. The turn counter's
@@ -410,12 +452,45 @@ impl Logic for QuadrantCounter {
         // load), selected after the wrap, so no second carry chain follows usum's.
         self.wrap.next = (self.usum.val() & self.ubit.val()).any();
         if !self.pow2.val() {
-            self.wrap.next = (self.up.val() & (self.base_u.val() == self.ulast.val()))
-                | (self.down.val() & (self.usum.val() & self.ubit.val()).any());
+            self.wrap.next = (self.up_in.val() & (self.u_reg.q.val() == self.ulast.val()))
+                | (self.down_in.val() & (self.usum.val() & self.ubit.val()).any());
         }
+        self.base_q.next = self.lqc_reg.q.val() & self.three.val();
+        self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
+        // Four-input functions of the two quadrants written out, so that no 2-bit
+        // subtractor or comparator (a carry chain on xc3sa) sits in front of usum_l.
+        // Forward steps +1, +2 pass 3 -> 0 from quadrant 2 to 0 and from 3 to 0 or 1;
+        // the backward step -1 passes 0 -> 3 only from 0 to 3.
+        self.up_l.next = self.base_q.val().get_bit(1)
+            & !self.qnew.val().get_bit(1)
+            & (self.base_q.val().get_bit(0) | !self.qnew.val().get_bit(0));
+        self.down_l.next = !self.base_q.val().get_bit(1)
+            & !self.base_q.val().get_bit(0)
+            & self.qnew.val().get_bit(1)
+            & self.qnew.val().get_bit(0);
+        self.ustep_l.next = self.zero.val();
+        if self.up_l.val() {
+            self.ustep_l.next = self.one.val();
+        }
+        if self.down_l.val() {
+            self.ustep_l.next = self.minus_one.val();
+        }
+        self.usum_l.next = (self.base_u.val() + self.ustep_l.val()) & self.usmask.val();
+        self.wrap_l.next = (self.up_l.val() & self.llast_reg.q.val())
+            | (self.down_l.val() & self.lzero_reg.q.val());
+        // The selection.
+        self.up.next = self.up_in.val();
+        self.down.next = self.down_in.val();
+        self.un.next = self.usum.val() & self.umask.val();
+        self.base_turns.next = self.turns_reg.q.val();
         self.tinc.next = (self.turns_reg.q.val() + self.one.val()) & self.tmask.val();
         self.tdec.next = (self.turns_reg.q.val() + self.minus_one.val()) & self.tmask.val();
         if self.pending_reg.q.val() {
+            self.up.next = self.up_l.val();
+            self.down.next = self.down_l.val();
+            self.un.next = self.usum_l.val() & self.umask.val();
+            self.wrap.next = self.wrap_l.val();
+            self.base_turns.next = self.lturns_reg.q.val();
             self.tinc.next = self.ltinc_reg.q.val();
             self.tdec.next = self.ltdec_reg.q.val();
         }
@@ -427,6 +502,10 @@ impl Logic for QuadrantCounter {
             self.ltinc_reg.d.next = (self.load_turns.val() + self.one.val()) & self.tmask.val();
             self.ltdec_reg.d.next =
                 (self.load_turns.val() + self.minus_one.val()) & self.tmask.val();
+            self.llast_reg.d.next =
+                ((self.load_qc.val() >> self.two.val()) & self.umask.val()) == self.ulast.val();
+            self.lzero_reg.d.next =
+                ((self.load_qc.val() >> self.two.val()) & self.umask.val()) == self.zero.val();
         }
         if self.rst.val() {
             self.init_reg.d.next = false;

@@ -50,14 +50,24 @@
 //!   turns - 1; for a load, load_turns + 1 and - 1 taken when the load is latched), chosen
 //!   after the wrap, so no register-to-register path holds two carry chains (the wrap is
 //!   the end of the u adder's). The warning compares
-//!   delta >> (F-2) (4 bits) with 7 and 9 plus a zero test of the low F-2 bits.
+//!   delta >> (F-2) (4 bits) with 7 and 9 plus a zero test of the low F-2 bits; that test
+//!   is an equality of the low F-2 bits of p and p_last ((p - p_last) mod 2^(F-2) is zero
+//!   exactly when they agree), so it sits beside the delta subtractor, not after it.
+//!   The step's addend {+1, 0, -1} comes from registers: the combiner registers up, down
+//!   and step = up | down, and the addend is step in bit 0 and down in every bit above.
+//!   The combiner's magnitude test for p_last's enable is one compare of x with the valid
+//!   bit on top (bit 31) against 2^31 + threshold, so the carry chain's end drives the
+//!   enable directly.
 //!   u and turns are zero whenever the counter is uninitialised, so the first sample only
 //!   sets p_prev and fine.
 //! * Resynchronisation (`load`, from the QEP fallback): the count moves from the latched
 //!   load_qc by -1..=+2 to the sample's quadrant, wrapping at 4PPR as above (up and down
 //!   from the two 2-bit quadrants as four-input functions, with no subtractor or comparator
 //!   in front of the u adder: up = b1 & !a1 & (b0 | !a0), down = !b1 & !b0 & a1 & a0 for
-//!   the load's quadrant b and the sample's a); load_qc must lie
+//!   the load's quadrant b and the sample's a). The running count's step and a load's step
+//!   have a u adder each, chosen by `pending` after the adders, and a load's wrap comes
+//!   from two flags taken when the load is latched (its period is PPR-1, is 0), so no
+//!   multiplexer sits in front of an adder; load_qc must lie
 //!   in 0..4PPR-1 (the fallback's does; the capacitive top and `<name>_core` tie load off),
 //!   load_turns is taken modulo 2^M.
 //! * Widths: qc needs quadrant_bits = ceil(log2(4PPR)) bits (18 at PPR = 65535); out_position
