@@ -129,6 +129,13 @@ pub struct AdcController {
     /// ph >= L (SCK at its active level) and ph == capture phase, the same way.
     wb: DFF<Bit>,
     wc: DFF<Bit>,
+    /// cyc == frame + 1 (the stop value), registered with cyc from its value before the
+    /// step (0 at cyc = 0, the power-up value).
+    cst: DFF<Bit>,
+    /// (ph == D - 1) ^ (D == 1), registered with ph the same way.
+    plx: DFF<Bit>,
+    /// ph == D - 1 (decoded).
+    pl_end: Signal<Local, Bit>,
     /// The decoded predicates (flag XOR power-up value).
     pa: Signal<Local, Bit>,
     p0: Signal<Local, Bit>,
@@ -176,10 +183,14 @@ pub struct AdcController {
     lead: Constant<Bits<16>>,
     /// CONV active while the period counter is below this.
     conv_end: Constant<Bits<16>>,
-    /// D - 1: last SCK phase.
-    d_last: Constant<Bits<8>>,
+    /// D - 2: the phase before a step onto D - 1 (never stepped from when D = 1).
+    d_last_m1: Constant<Bits<8>>,
+    /// D = 1: ph == D - 1 at ph = 0.
+    d_one: Constant<Bit>,
     /// Frame + 1: the SCK cycle counter stops here.
     cyc_stop: Constant<Bits<8>>,
+    /// Frame: the cycle before the stop value.
+    cyc_stop_m1: Constant<Bits<8>>,
     /// Periods to run before delivering: 1 flush period + pipeline discarded frames.
     warm_init: Constant<Bits<4>>,
     /// Mask of the W sample bits.
@@ -277,6 +288,9 @@ impl AdcController {
             wl: Default::default(),
             wb: Default::default(),
             wc: Default::default(),
+            cst: Default::default(),
+            plx: Default::default(),
+            pl_end: Default::default(),
             pa: Default::default(),
             p0: Default::default(),
             p1: Default::default(),
@@ -315,8 +329,10 @@ impl AdcController {
             sr1_n: Default::default(),
             lead: c16(f.lead_clocks as u64),
             conv_end: c16(p.conv_clocks as u64),
-            d_last: c8(p.sck_period_clocks.saturating_sub(1) as u64),
+            d_last_m1: c8((p.sck_period_clocks.saturating_sub(1) as u64).wrapping_sub(1) & 0xff),
+            d_one: Constant::new(p.sck_period_clocks.saturating_sub(1) == 0),
             cyc_stop: c8(f.frame_sck as u64 + 1),
+            cyc_stop_m1: c8(f.frame_sck as u64),
             warm_init: c4(1 + f.pipeline as u64),
             wmask: c16(mask(w as u32)),
             flip: c16(match f.sign {
@@ -346,7 +362,7 @@ impl Logic for AdcController {
     fn update(&mut self) {
         dff_setup!(
             self, clk, live, pc, ph, cyc, warm, sr0, sr1, sck_reg, conv_reg, valid_reg, ch0_reg,
-            ch1_reg, miso_d, rst_d, pcl_x, pcm_x, wa, w0, w1, wl, wb, wc
+            ch1_reg, miso_d, rst_d, pcl_x, pcm_x, wa, w0, w1, wl, wb, wc, cst, plx
         );
         self.run.next = self.enable.val() & !self.rst.val();
         // Period counter and warm-up count (flush period, then discarded frames).
@@ -359,7 +375,13 @@ impl Logic for AdcController {
         self.fm.next = self.pcm_x.q.val() ^ self.km.val();
         self.pcl_x.d.next = false;
         self.pcm_x.d.next = false;
+        // The lead clock (used only while running, so decoded without `run`: every
+        // register below loads its idle value when `run` is low, and that test is the
+        // outermost, which Yosys maps onto the flip-flops' synchronous reset).
         self.at_lead.next = self.lead_zero.val();
+        if self.live.q.val() & !self.fl.val() {
+            self.at_lead.next = self.fm.val();
+        }
         if self.run.val() & self.live.q.val() {
             if self.fl.val() {
                 self.pc_n.next = self.zero16.val();
@@ -371,40 +393,51 @@ impl Logic for AdcController {
             } else {
                 self.pc_n.next = self.pc.q.val() + self.one16.val();
                 self.warm_n.next = self.warm.q.val();
-                self.at_lead.next = self.fm.val();
                 self.pcl_x.d.next = (self.pc.q.val() == self.p_last_m1.val()) ^ self.kl.val();
                 self.pcm_x.d.next = (self.pc.q.val() == self.lead_m2.val()) ^ self.km.val();
             }
         }
         // SCK phase and cycle counters: restart at the lead clock, stop after the frame.
-        self.ph_n.next = self.zero8.val();
-        self.cyc_n.next = self.cyc_stop.val();
+        // cyc == frame + 1 and ph == D - 1 are flags registered with the counters (set
+        // from the old count on a step), so no compare sits in front of the step enables.
+        self.pl_end.next = self.plx.q.val() ^ self.d_one.val();
         self.cinc.next = false;
         self.pinc.next = false;
         self.crel.next = false;
         self.prel.next = true;
-        if self.run.val() {
-            if self.at_lead.val() {
-                self.ph_n.next = self.zero8.val();
-                self.cyc_n.next = self.zero8.val();
-                self.crel.next = true;
-            } else if self.cyc.q.val() == self.cyc_stop.val() {
-                self.ph_n.next = self.ph.q.val();
-                self.cyc_n.next = self.cyc.q.val();
-                self.prel.next = false;
-            } else if self.ph.q.val() == self.d_last.val() {
-                self.ph_n.next = self.zero8.val();
-                self.cyc_n.next = self.cyc.q.val() + self.one8.val();
-                self.cinc.next = true;
-            } else {
-                self.ph_n.next = self.ph.q.val() + self.one8.val();
-                self.cyc_n.next = self.cyc.q.val();
-                self.pinc.next = true;
-                self.prel.next = false;
-            }
+        self.cst.d.next = self.cst.q.val();
+        self.plx.d.next = false;
+        if self.at_lead.val() {
+            self.ph_n.next = self.zero8.val();
+            self.cyc_n.next = self.zero8.val();
+            self.crel.next = true;
+            self.cst.d.next = false;
+        } else if self.cst.q.val() {
+            self.ph_n.next = self.ph.q.val();
+            self.cyc_n.next = self.cyc.q.val();
+            self.prel.next = false;
+            self.plx.d.next = self.plx.q.val();
+        } else if self.pl_end.val() {
+            self.ph_n.next = self.zero8.val();
+            self.cyc_n.next = self.cyc.q.val() + self.one8.val();
+            self.cinc.next = true;
+            self.cst.d.next = self.cyc.q.val() == self.cyc_stop_m1.val();
+        } else {
+            self.ph_n.next = self.ph.q.val() + self.one8.val();
+            self.cyc_n.next = self.cyc.q.val();
+            self.pinc.next = true;
+            self.prel.next = false;
+            self.plx.d.next = (self.ph.q.val() == self.d_last_m1.val()) ^ self.d_one.val();
         }
-        // Window flags follow the counters: hold, park at the stop value (not running),
-        // reload to 0, or step (see `Win`). Stored XOR the power-up value.
+        if !self.run.val() {
+            self.ph_n.next = self.zero8.val();
+            self.cyc_n.next = self.cyc_stop.val();
+            self.cst.d.next = true;
+            self.plx.d.next = false;
+        }
+        // Window flags follow the counters: hold, reload to 0, step (see `Win`), or park
+        // at the stop value (not running, the outermost test). Stored XOR the power-up
+        // value.
         self.pa.next = self.wa.q.val() ^ self.wa_z.val();
         self.p0.next = self.w0.q.val() ^ self.w0_z.val();
         self.p1.next = self.w1.q.val() ^ self.w1_z.val();
@@ -415,12 +448,6 @@ impl Logic for AdcController {
         self.w0.d.next = self.w0.q.val();
         self.w1.d.next = self.w1.q.val();
         self.wl.d.next = self.wl.q.val();
-        if !self.run.val() {
-            self.wa.d.next = self.wa_s.val() ^ self.wa_z.val();
-            self.w0.d.next = self.w0_s.val() ^ self.w0_z.val();
-            self.w1.d.next = self.w1_s.val() ^ self.w1_z.val();
-            self.wl.d.next = self.wl_s.val() ^ self.wl_z.val();
-        }
         if self.crel.val() {
             self.wa.d.next = false;
             self.w0.d.next = false;
@@ -441,6 +468,12 @@ impl Logic for AdcController {
                 | (self.pl.val() & (self.cyc.q.val() != self.wl_hi.val())))
                 ^ self.wl_z.val();
         }
+        if !self.run.val() {
+            self.wa.d.next = self.wa_s.val() ^ self.wa_z.val();
+            self.w0.d.next = self.w0_s.val() ^ self.w0_z.val();
+            self.w1.d.next = self.w1_s.val() ^ self.w1_z.val();
+            self.wl.d.next = self.wl_s.val() ^ self.wl_z.val();
+        }
         self.wb.d.next = self.wb.q.val();
         self.wc.d.next = self.wc.q.val();
         if self.prel.val() {
@@ -454,6 +487,10 @@ impl Logic for AdcController {
             self.wc.d.next = ((self.ph.q.val() == self.wc_lo.val())
                 | (self.pcp.val() & (self.ph.q.val() != self.wc_hi.val())))
                 ^ self.wc_z.val();
+        }
+        if !self.run.val() {
+            self.wb.d.next = false;
+            self.wc.d.next = false;
         }
         // Pins of the state entered at the previous edge (live = run then), registered:
         // the pins show the state one clock after it is entered.

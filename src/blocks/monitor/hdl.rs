@@ -42,21 +42,50 @@ pub struct Monitor {
     fs_reg: DFF<Bit>,
     fs_cnt: DFF<Bits<32>>,
     warn_reg: DFF<Bit>,
-    mag: Signal<Local, Bits<32>>,
-    rs: Signal<Local, Bits<32>>,
-    rc: Signal<Local, Bits<32>>,
-    fs_hit: Signal<Local, Bit>,
+    /// (los_cnt == N-1) ^ (N == 1), registered with the counter from its value before the
+    /// step (see `update`), so no compare follows the counter's adder; 0 at power-up and
+    /// whenever the counter is 0.
+    los_lx: DFF<Bit>,
+    /// clip = 1 and clip_cnt < H-1 (one more clean sample keeps clip set), registered
+    /// with the counter from its value before the step.
+    clip_k: DFF<Bit>,
+    /// full_scale = 1 and fs_cnt < H-1, the same way.
+    fs_k: DFF<Bit>,
+    /// los_cnt == N-1 (decoded flag).
+    los_last: Signal<Local, Bit>,
+    /// The sample counts towards the los window (low while los = 0, good while los = 1).
+    los_q: Signal<Local, Bit>,
+    /// los_cnt + 1.
+    los_inc: Signal<Local, Bits<32>>,
+    /// The step lands on N-1: (los_cnt == N-2) ^ (N == 1).
+    los_nx: Signal<Local, Bit>,
+    /// los_cnt's next value if the sample is good (los = 1 and not at N-1: the step).
+    los_ga: Signal<Local, Bits<32>>,
+    /// los_cnt's next value if the sample is low (los = 0 and not at N-1: the step).
+    los_la: Signal<Local, Bits<32>>,
+    /// los_lx's next value if the sample is good.
+    los_gx: Signal<Local, Bit>,
+    /// los_lx's next value if the sample is low.
+    los_lx_l: Signal<Local, Bit>,
+    /// good ? los_ga : 0.
+    los_gv: Signal<Local, Bits<32>>,
+    /// low ? los_la : 0.
+    los_lv: Signal<Local, Bits<32>>,
     /// mag < los_threshold.
     low: Signal<Local, Bit>,
     /// mag >= los_release.
     good: Signal<Local, Bit>,
+    mag: Signal<Local, Bits<32>>,
+    rs: Signal<Local, Bits<32>>,
+    rc: Signal<Local, Bits<32>>,
+    fs_hit: Signal<Local, Bit>,
     /// mag > clip_threshold.
     over: Signal<Local, Bit>,
-    /// W <= 31: the three threshold tests are the sign bits of 32-bit differences (one
-    /// carry chain each) instead of magnitude comparisons, which Yosys maps to LUT cascades.
+    /// W <= 31: the three threshold tests are bit W of (W+1)-bit differences (one carry
+    /// chain each) instead of magnitude comparisons, which Yosys maps to LUT cascades.
     narrow: Constant<Bit>,
-    /// Bit 31: the sign of a difference.
-    sign32: Constant<Bits<32>>,
+    /// Bit W (W <= 31): set in 2^W + a - b exactly when a >= b.
+    wbit: Constant<Bits<32>>,
     /// Mask of the W magnitude bits.
     wmask: Constant<Bits<32>>,
     /// Mask of the A sample bits.
@@ -71,12 +100,18 @@ pub struct Monitor {
     los_rel: Constant<Bits<32>>,
     /// Clipping threshold (clip above it).
     clip_thr: Constant<Bits<32>>,
-    /// N-1.
-    nlast: Constant<Bits<32>>,
+    /// 2^W + clipping threshold (W <= 31).
+    clip_thr_w: Constant<Bits<32>>,
     /// Mask of the window counter bits.
     nmask: Constant<Bits<32>>,
-    /// H-1.
-    hlast: Constant<Bits<32>>,
+    /// N-2: the counter value before a step onto N-1 (never stepped from when N = 1).
+    nlast_m1: Constant<Bits<32>>,
+    /// N = 1: the window flag is set at counter 0.
+    n_one: Constant<Bit>,
+    /// H-2: the counter value before a step onto H-1 (never stepped from when H = 1).
+    hlast_m1: Constant<Bits<32>>,
+    /// H = 1: a set clip or full_scale clears on the first clean sample.
+    h_one: Constant<Bit>,
     /// Mask of the hold counter bits.
     hmask: Constant<Bits<32>>,
     /// One.
@@ -89,6 +124,11 @@ impl Monitor {
     /// Monitor for `p`.
     pub fn new(p: &MonitorParams) -> Self {
         let a = p.adc_width();
+        let wbit = if p.mag_width() <= 31 {
+            1u64 << p.mag_width()
+        } else {
+            0
+        };
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -111,15 +151,28 @@ impl Monitor {
             fs_reg: Default::default(),
             fs_cnt: Default::default(),
             warn_reg: Default::default(),
+            los_lx: Default::default(),
+            clip_k: Default::default(),
+            fs_k: Default::default(),
+            los_last: Default::default(),
+            los_q: Default::default(),
+            los_inc: Default::default(),
+            los_nx: Default::default(),
+            los_ga: Default::default(),
+            los_la: Default::default(),
+            los_gx: Default::default(),
+            los_lx_l: Default::default(),
+            los_gv: Default::default(),
+            los_lv: Default::default(),
+            low: Default::default(),
+            good: Default::default(),
             mag: Default::default(),
             rs: Default::default(),
             rc: Default::default(),
             fs_hit: Default::default(),
-            low: Default::default(),
-            good: Default::default(),
             over: Default::default(),
             narrow: Constant::new(p.mag_width() <= 31),
-            sign32: c32(1 << 31),
+            wbit: c32(wbit),
             wmask: c32(mask(p.mag_width())),
             amask: c32(mask(a)),
             code_min: c32(1 << (a - 1)),
@@ -127,9 +180,12 @@ impl Monitor {
             los_thr: c32(p.los_threshold()),
             los_rel: c32(p.los_release()),
             clip_thr: c32(p.clip_threshold()),
-            nlast: c32(p.window() as u64 - 1),
+            clip_thr_w: c32(p.clip_threshold() | wbit),
+            nlast_m1: c32((p.window() as u64).wrapping_sub(2) & 0xffff_ffff),
+            n_one: Constant::new(p.window() == 1),
             nmask: c32(mask(count_bits(p.window()))),
-            hlast: c32(p.hold() as u64 - 1),
+            hlast_m1: c32((p.hold() as u64).wrapping_sub(2) & 0xffff_ffff),
+            h_one: Constant::new(p.hold() == 1),
             hmask: c32(mask(count_bits(p.hold()))),
             one: c32(1),
             zero: c32(0),
@@ -140,7 +196,10 @@ impl Monitor {
 impl Logic for Monitor {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, los_reg, los_cnt, clip_reg, clip_cnt, fs_reg, fs_cnt, warn_reg);
+        dff_setup!(
+            self, clk, los_reg, los_cnt, clip_reg, clip_cnt, fs_reg, fs_cnt, warn_reg, los_lx,
+            clip_k, fs_k
+        );
         self.mag.next = self.magnitude.val() & self.wmask.val();
         self.rs.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
         self.rc.next = bit_cast::<32, 16>(self.in_cos.val()) & self.amask.val();
@@ -148,67 +207,87 @@ impl Logic for Monitor {
             | (self.rs.val() == self.code_max.val())
             | (self.rc.val() == self.code_min.val())
             | (self.rc.val() == self.code_max.val());
-        // With W <= 31 both operands are below 2^31, so a - b < 0 exactly when a < b.
+        // With W <= 31 the magnitude and the thresholds are below 2^W, so bit W of
+        // 2^W + a - b is set exactly when a >= b: one carry chain of W + 1 bits per test
+        // (Yosys drops the unused bits above W).
         if self.narrow.val() {
-            self.low.next = ((self.mag.val() - self.los_thr.val()) & self.sign32.val()).any();
-            self.good.next = !((self.mag.val() - self.los_rel.val()) & self.sign32.val()).any();
-            self.over.next = ((self.clip_thr.val() - self.mag.val()) & self.sign32.val()).any();
+            self.low.next = !(((self.mag.val() | self.wbit.val()) - self.los_thr.val())
+                & self.wbit.val())
+            .any();
+            self.good.next =
+                (((self.mag.val() | self.wbit.val()) - self.los_rel.val()) & self.wbit.val()).any();
+            self.over.next = !((self.clip_thr_w.val() - self.mag.val()) & self.wbit.val()).any();
         } else {
             self.low.next = self.mag.val() < self.los_thr.val();
             self.good.next = self.mag.val() >= self.los_rel.val();
             self.over.next = self.mag.val() > self.clip_thr.val();
         }
-        if self.mag_valid.val() {
-            // Loss of signal: N consecutive low (good) samples set (clear) it.
-            if !self.los_reg.q.val() {
-                if self.low.val() {
-                    if self.los_cnt.q.val() == self.nlast.val() {
-                        self.los_reg.d.next = true;
-                        self.los_cnt.d.next = self.zero.val();
-                    } else {
-                        self.los_cnt.d.next =
-                            (self.los_cnt.q.val() + self.one.val()) & self.nmask.val();
-                    }
-                } else {
-                    self.los_cnt.d.next = self.zero.val();
-                }
-            } else if self.good.val() {
-                if self.los_cnt.q.val() == self.nlast.val() {
-                    self.los_reg.d.next = false;
-                    self.los_cnt.d.next = self.zero.val();
-                } else {
-                    self.los_cnt.d.next =
-                        (self.los_cnt.q.val() + self.one.val()) & self.nmask.val();
-                }
+        // Each counter's "at its last value" flag is a register kept with the counter:
+        // cleared with it, and on a step to cnt + 1 set from cnt == last - 1 (the value
+        // before the step), so the flags and the counters' next values are one level of
+        // logic after the threshold tests. Stored XOR its value at counter 0 (N = 1 or
+        // H = 1), so the power-up 0 is right.
+        self.los_last.next = self.los_lx.q.val() ^ self.n_one.val();
+        self.los_q.next = self.low.val();
+        if self.los_reg.q.val() {
+            self.los_q.next = self.good.val();
+        }
+        // The counter's next value and flag as (good & A) | (low & B), A and B from
+        // registers only, so the threshold tests' carry chains are not followed by the
+        // low/good selection.
+        self.los_inc.next = (self.los_cnt.q.val() + self.one.val()) & self.nmask.val();
+        self.los_nx.next = (self.los_cnt.q.val() == self.nlast_m1.val()) ^ self.n_one.val();
+        self.los_ga.next = self.zero.val();
+        self.los_la.next = self.zero.val();
+        if !self.los_last.val() {
+            if self.los_reg.q.val() {
+                self.los_ga.next = self.los_inc.val();
             } else {
-                self.los_cnt.d.next = self.zero.val();
+                self.los_la.next = self.los_inc.val();
             }
-            // Clipping: set at once, clear after H clean samples.
+        }
+        self.los_gx.next = !self.los_last.val() & self.los_reg.q.val() & self.los_nx.val();
+        self.los_lx_l.next = !self.los_last.val() & !self.los_reg.q.val() & self.los_nx.val();
+        self.los_gv.next = self.zero.val();
+        if self.good.val() {
+            self.los_gv.next = self.los_ga.val();
+        }
+        self.los_lv.next = self.zero.val();
+        if self.low.val() {
+            self.los_lv.next = self.los_la.val();
+        }
+        if self.mag_valid.val() {
+            // Loss of signal: N consecutive low (good) samples set (clear) it; any other
+            // sample clears the counter.
+            self.los_reg.d.next = self.los_reg.q.val() ^ (self.los_q.val() & self.los_last.val());
+            self.los_cnt.d.next = self.los_gv.val() | self.los_lv.val();
+            self.los_lx.d.next =
+                (self.good.val() & self.los_gx.val()) | (self.low.val() & self.los_lx_l.val());
+            // Clipping: set at once, clear after H clean samples. clip_k = clip & the
+            // counter below H - 1, so clip' = over | clip_k. While clip = 0 the counter is
+            // 0, so loading 0 there is the same as holding it.
+            self.clip_reg.d.next = self.over.val() | self.clip_k.q.val();
+            self.clip_cnt.d.next = self.zero.val();
             if self.over.val() {
-                self.clip_reg.d.next = true;
-                self.clip_cnt.d.next = self.zero.val();
-            } else if self.clip_reg.q.val() {
-                if self.clip_cnt.q.val() == self.hlast.val() {
-                    self.clip_reg.d.next = false;
-                    self.clip_cnt.d.next = self.zero.val();
-                } else {
-                    self.clip_cnt.d.next =
-                        (self.clip_cnt.q.val() + self.one.val()) & self.hmask.val();
-                }
+                self.clip_k.d.next = !self.h_one.val();
+            } else if self.clip_k.q.val() {
+                self.clip_cnt.d.next = (self.clip_cnt.q.val() + self.one.val()) & self.hmask.val();
+                self.clip_k.d.next = self.clip_cnt.q.val() != self.hlast_m1.val();
+            } else {
+                self.clip_k.d.next = false;
             }
         }
         if self.in_valid.val() {
-            // Full scale: set at once, clear after H clean raw samples.
+            // Full scale: set at once, clear after H clean raw samples (as clip).
+            self.fs_reg.d.next = self.fs_hit.val() | self.fs_k.q.val();
+            self.fs_cnt.d.next = self.zero.val();
             if self.fs_hit.val() {
-                self.fs_reg.d.next = true;
-                self.fs_cnt.d.next = self.zero.val();
-            } else if self.fs_reg.q.val() {
-                if self.fs_cnt.q.val() == self.hlast.val() {
-                    self.fs_reg.d.next = false;
-                    self.fs_cnt.d.next = self.zero.val();
-                } else {
-                    self.fs_cnt.d.next = (self.fs_cnt.q.val() + self.one.val()) & self.hmask.val();
-                }
+                self.fs_k.d.next = !self.h_one.val();
+            } else if self.fs_k.q.val() {
+                self.fs_cnt.d.next = (self.fs_cnt.q.val() + self.one.val()) & self.hmask.val();
+                self.fs_k.d.next = self.fs_cnt.q.val() != self.hlast_m1.val();
+            } else {
+                self.fs_k.d.next = false;
             }
         }
         self.warn_reg.d.next = self.overspeed.val() | self.qep_mismatch.val();
@@ -220,6 +299,9 @@ impl Logic for Monitor {
             self.fs_reg.d.next = false;
             self.fs_cnt.d.next = self.zero.val();
             self.warn_reg.d.next = false;
+            self.los_lx.d.next = false;
+            self.clip_k.d.next = false;
+            self.fs_k.d.next = false;
         }
         self.error.next = self.los_reg.q.val() | self.clip_reg.q.val() | self.fs_reg.q.val();
         self.warning.next = self.warn_reg.q.val();

@@ -51,6 +51,16 @@ pub struct PreampSetup {
     mosi_reg: DFF<Bit>,
     cs_reg: DFF<Bit>,
     done_reg: DFF<Bit>,
+    /// (hp == half period - 1) ^ (half period = 1), registered with hp from its value
+    /// before the step (0 at hp = 0, the power-up value).
+    hplx: DFF<Bit>,
+    /// step == STEP_DONE, registered with step.
+    sdone: DFF<Bit>,
+    /// The next advance shifts the gain word (step even, STEP_FIRST_HIGH <= step <
+    /// STEP_LAST_HIGH), registered with step.
+    shf: DFF<Bit>,
+    /// hp == half period - 1 (decoded).
+    hp_end: Signal<Local, Bit>,
     hp_n: Signal<Local, Bits<8>>,
     step_n: Signal<Local, Bits<8>>,
     sh_n: Signal<Local, Bits<8>>,
@@ -60,6 +70,11 @@ pub struct PreampSetup {
     shift: Signal<Local, Bit>,
     /// Half period - 1.
     hp_last: Constant<Bits<8>>,
+    /// Half period - 2: hp before a step onto half period - 1 (never stepped from when the
+    /// half period is 1).
+    hp_last_m1: Constant<Bits<8>>,
+    /// Half period = 1: hp == half period - 1 at hp = 0.
+    hp_one: Constant<Bit>,
     /// The gain word (B nibble high).
     word: Constant<Bits<8>>,
     /// Bit 7 of the shift register.
@@ -76,13 +91,6 @@ pub struct PreampSetup {
     s_last_high_m1: Constant<Bits<8>>,
     /// STEP_DONE - 1.
     s_done_m1: Constant<Bits<8>>,
-    s_cs_low: Constant<Bits<8>>,
-    s_first_high: Constant<Bits<8>>,
-    s_last_high: Constant<Bits<8>>,
-    s_cs_last: Constant<Bits<8>>,
-    s_done: Constant<Bits<8>>,
-    /// Step 3: the first step after which MOSI moves to the next bit.
-    s_first_shift: Constant<Bits<8>>,
     one8: Constant<Bits<8>>,
     zero8: Constant<Bits<8>>,
 }
@@ -110,12 +118,18 @@ impl PreampSetup {
             mosi_reg: Default::default(),
             cs_reg: Default::default(),
             done_reg: Default::default(),
+            hplx: Default::default(),
+            sdone: Default::default(),
+            shf: Default::default(),
+            hp_end: Default::default(),
             hp_n: Default::default(),
             step_n: Default::default(),
             sh_n: Default::default(),
             adv: Default::default(),
             shift: Default::default(),
             hp_last: c8(p.half_period_clocks.saturating_sub(1) as u64),
+            hp_last_m1: c8((p.half_period_clocks.saturating_sub(1) as u64).wrapping_sub(1) & 0xff),
+            hp_one: Constant::new(p.half_period_clocks.saturating_sub(1) == 0),
             word: c8(p.word() as u64),
             msb: c8(0x80),
             bit6: c8(0x40),
@@ -124,12 +138,6 @@ impl PreampSetup {
             s_first_high_m1: c8(STEP_FIRST_HIGH as u64 - 1),
             s_last_high_m1: c8(STEP_LAST_HIGH as u64 - 1),
             s_done_m1: c8(STEP_DONE as u64 - 1),
-            s_cs_low: c8(STEP_CS_LOW as u64),
-            s_first_high: c8(STEP_FIRST_HIGH as u64),
-            s_last_high: c8(STEP_LAST_HIGH as u64),
-            s_cs_last: c8(STEP_CS_LAST as u64),
-            s_done: c8(STEP_DONE as u64),
-            s_first_shift: c8(STEP_FIRST_HIGH as u64 + 1),
             one8: c8(1),
             zero8: c8(0),
         }
@@ -139,36 +147,49 @@ impl PreampSetup {
 impl Logic for PreampSetup {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, hp, step, sh, sck_reg, mosi_reg, cs_reg, done_reg);
+        dff_setup!(self, clk, hp, step, sh, sck_reg, mosi_reg, cs_reg, done_reg, hplx, sdone, shf);
         // Step timer: each step lasts half_period_clocks; the step counter stops at done.
         // `adv`: the step advances this clock. The pins of the step being entered are
         // decoded from step.q for both cases side by side (for the advanced step with the
         // compare constants shifted by one: s + 1 >= A <=> s >= A - 1, parity flips; step
         // stays <= STEP_DONE, so s + 1 never wraps) and then muxed, so no adder precedes a
         // compare; the cycle behaviour is the same as decoding step + 1.
-        self.adv.next = (!self.rst.val())
-            & (self.step.q.val() != self.s_done.val())
-            & (self.hp.q.val() == self.hp_last.val());
+        // hp == half period - 1, step == STEP_DONE and the shift condition are flags
+        // registered with their counters (set from the old count on a step), so `adv` and
+        // the shift register's enable are one LUT of registers.
+        self.hp_end.next = self.hplx.q.val() ^ self.hp_one.val();
+        self.adv.next = (!self.rst.val()) & !self.sdone.q.val() & self.hp_end.val();
         // Entering an odd step from 3 on: SCK falls, MOSI moves to the next bit.
-        self.shift.next = ((self.step.q.val() & self.one8.val()) == self.zero8.val())
-            & (self.step.q.val() >= self.s_first_high.val())
-            & (self.step.q.val() < self.s_last_high.val());
+        self.shift.next = self.shf.q.val();
         self.hp_n.next = self.zero8.val();
         self.step_n.next = self.zero8.val();
         self.sh_n.next = self.word.val();
+        self.hplx.d.next = false;
+        self.sdone.d.next = false;
+        self.shf.d.next = false;
         if !self.rst.val() {
             self.step_n.next = self.step.q.val();
             self.sh_n.next = self.sh.q.val();
-            if self.step.q.val() == self.s_done.val() {
+            self.sdone.d.next = self.sdone.q.val();
+            self.shf.d.next = self.shf.q.val();
+            if self.sdone.q.val() {
                 self.hp_n.next = self.hp.q.val();
-            } else if self.hp.q.val() == self.hp_last.val() {
+                self.hplx.d.next = self.hplx.q.val();
+            } else if self.hp_end.val() {
                 self.hp_n.next = self.zero8.val();
                 self.step_n.next = self.step.q.val() + self.one8.val();
+                self.sdone.d.next = self.step.q.val() == self.s_done_m1.val();
+                // step + 1 even and in [FIRST_HIGH, LAST_HIGH) <=> step odd and in
+                // [FIRST_HIGH - 1, LAST_HIGH - 1).
+                self.shf.d.next = ((self.step.q.val() & self.one8.val()) != self.zero8.val())
+                    & (self.step.q.val() >= self.s_first_high_m1.val())
+                    & (self.step.q.val() < self.s_last_high_m1.val());
                 if self.shift.val() {
                     self.sh_n.next = self.sh.q.val() << self.one8.val();
                 }
             } else {
                 self.hp_n.next = self.hp.q.val() + self.one8.val();
+                self.hplx.d.next = (self.hp.q.val() == self.hp_last_m1.val()) ^ self.hp_one.val();
             }
         }
         // Pins for the step being entered.
@@ -193,16 +214,13 @@ impl Logic for PreampSetup {
                         & self.shift.val()));
             self.done_reg.d.next = self.step.q.val() == self.s_done_m1.val();
         } else if !self.rst.val() {
-            // Step s stays.
-            self.cs_reg.d.next = (self.step.q.val() >= self.s_cs_low.val())
-                & (self.step.q.val() <= self.s_cs_last.val());
-            self.sck_reg.d.next = (self.step.q.val() >= self.s_first_high.val())
-                & (self.step.q.val() <= self.s_last_high.val())
-                & ((self.step.q.val() & self.one8.val()) == self.zero8.val());
-            self.mosi_reg.d.next = (self.step.q.val() >= self.s_cs_low.val())
-                & (self.step.q.val() <= self.s_cs_last.val())
-                & ((self.sh.q.val() & self.msb.val()) != self.zero8.val());
-            self.done_reg.d.next = self.step.q.val() == self.s_done.val();
+            // Step s stays: every pin register already holds the decode of s (it was
+            // loaded with it when s was entered, and reset and power-up give step 0 with
+            // every pin low), so it holds.
+            self.cs_reg.d.next = self.cs_reg.q.val();
+            self.sck_reg.d.next = self.sck_reg.q.val();
+            self.mosi_reg.d.next = self.mosi_reg.q.val();
+            self.done_reg.d.next = self.done_reg.q.val();
         }
         self.hp.d.next = self.hp_n.val();
         self.step.d.next = self.step_n.val();

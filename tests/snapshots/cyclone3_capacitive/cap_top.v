@@ -294,8 +294,10 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     localparam  wc_z = 1'b0;
     localparam  lead = 16'h0;
     localparam  conv_end = 16'h1;
-    localparam  d_last = 8'h1;
+    localparam  d_last_m1 = 8'h0;
+    localparam  d_one = 1'b0;
     localparam  cyc_stop = 8'h13;
+    localparam  cyc_stop_m1 = 8'h12;
     localparam  warm_init = 4'h1;
     localparam  wmask = 16'hffff;
     localparam  flip = 16'h0;
@@ -381,6 +383,12 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     reg  wc_d;
     wire  wc_q;
     reg  wc_clock;
+    reg  cst_d;
+    wire  cst_q;
+    reg  cst_clock;
+    reg  plx_d;
+    wire  plx_q;
+    reg  plx_clock;
 
     // Local signals
     reg  at_lead;
@@ -394,6 +402,7 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     reg  sck_act;
     reg  conv_act;
     reg  cap;
+    reg  pl_end;
     reg  pa;
     reg  p0;
     reg  p1;
@@ -520,6 +529,16 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         .q(wc_q),
         .clock(wc_clock)
     );
+    cap_top_rtl_adc_cst cst(
+        .d(cst_d),
+        .q(cst_q),
+        .clock(cst_clock)
+    );
+    cap_top_rtl_adc_plx plx(
+        .d(plx_d),
+        .q(plx_q),
+        .clock(plx_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -545,6 +564,8 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         wl_clock = clk;
         wb_clock = clk;
         wc_clock = clk;
+        cst_clock = clk;
+        plx_clock = clk;
         live_d = live_q;
         pc_d = pc_q;
         ph_d = ph_q;
@@ -567,6 +588,8 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         wl_d = wl_q;
         wb_d = wb_q;
         wc_d = wc_q;
+        cst_d = cst_q;
+        plx_d = plx_q;
         run = enable & ~rst;
         pc_n = zero16;
         warm_n = warm_init;
@@ -575,6 +598,9 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         pcl_x_d = 1'b0;
         pcm_x_d = 1'b0;
         at_lead = lead_zero;
+        if (live_q & ~fl) begin
+            at_lead = fm;
+        end
         if (run & live_q) begin
             if (fl) begin
                 pc_n = zero16;
@@ -588,39 +614,47 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             else begin
                 pc_n = pc_q + one16;
                 warm_n = warm_q;
-                at_lead = fm;
                 pcl_x_d = (pc_q == p_last_m1) ^ kl;
                 pcm_x_d = (pc_q == lead_m2) ^ km;
             end
         end
-        ph_n = zero8;
-        cyc_n = cyc_stop;
+        pl_end = plx_q ^ d_one;
         cinc = 1'b0;
         pinc = 1'b0;
         crel = 1'b0;
         prel = 1'b1;
-        if (run) begin
-            if (at_lead) begin
-                ph_n = zero8;
-                cyc_n = zero8;
-                crel = 1'b1;
-            end
-            else if (cyc_q == cyc_stop) begin
-                ph_n = ph_q;
-                cyc_n = cyc_q;
-                prel = 1'b0;
-            end
-            else if (ph_q == d_last) begin
-                ph_n = zero8;
-                cyc_n = cyc_q + one8;
-                cinc = 1'b1;
-            end
-            else begin
-                ph_n = ph_q + one8;
-                cyc_n = cyc_q;
-                pinc = 1'b1;
-                prel = 1'b0;
-            end
+        cst_d = cst_q;
+        plx_d = 1'b0;
+        if (at_lead) begin
+            ph_n = zero8;
+            cyc_n = zero8;
+            crel = 1'b1;
+            cst_d = 1'b0;
+        end
+        else if (cst_q) begin
+            ph_n = ph_q;
+            cyc_n = cyc_q;
+            prel = 1'b0;
+            plx_d = plx_q;
+        end
+        else if (pl_end) begin
+            ph_n = zero8;
+            cyc_n = cyc_q + one8;
+            cinc = 1'b1;
+            cst_d = cyc_q == cyc_stop_m1;
+        end
+        else begin
+            ph_n = ph_q + one8;
+            cyc_n = cyc_q;
+            pinc = 1'b1;
+            prel = 1'b0;
+            plx_d = (ph_q == d_last_m1) ^ d_one;
+        end
+        if (~run) begin
+            ph_n = zero8;
+            cyc_n = cyc_stop;
+            cst_d = 1'b1;
+            plx_d = 1'b0;
         end
         pa = wa_q ^ wa_z;
         p0 = w0_q ^ w0_z;
@@ -632,12 +666,6 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         w0_d = w0_q;
         w1_d = w1_q;
         wl_d = wl_q;
-        if (~run) begin
-            wa_d = wa_s ^ wa_z;
-            w0_d = w0_s ^ w0_z;
-            w1_d = w1_s ^ w1_z;
-            wl_d = wl_s ^ wl_z;
-        end
         if (crel) begin
             wa_d = 1'b0;
             w0_d = 1'b0;
@@ -650,6 +678,12 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             w1_d = ((cyc_q == w1_lo) | (p1 & (cyc_q != w1_hi))) ^ w1_z;
             wl_d = ((cyc_q == wl_lo) | (pl & (cyc_q != wl_hi))) ^ wl_z;
         end
+        if (~run) begin
+            wa_d = wa_s ^ wa_z;
+            w0_d = w0_s ^ w0_z;
+            w1_d = w1_s ^ w1_z;
+            wl_d = wl_s ^ wl_z;
+        end
         wb_d = wb_q;
         wc_d = wc_q;
         if (prel) begin
@@ -659,6 +693,10 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         if (pinc) begin
             wb_d = ((ph_q == wb_lo) | (pb & (ph_q != wb_hi))) ^ wb_z;
             wc_d = ((ph_q == wc_lo) | (pcp & (ph_q != wc_hi))) ^ wc_z;
+        end
+        if (~run) begin
+            wb_d = 1'b0;
+            wc_d = 1'b0;
         end
         sck_act = live_q & pa & pb;
         conv_act = live_q & (pc_q < conv_end) & (warm_q < warm_init);
@@ -768,6 +806,24 @@ module cap_top_rtl_adc_conv_reg(d,q,clock);
     end
 
 endmodule // cap_top_rtl_adc_conv_reg
+
+module cap_top_rtl_adc_cst(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_cst
 
 module cap_top_rtl_adc_cyc(d,q,clock);
 
@@ -894,6 +950,24 @@ module cap_top_rtl_adc_ph(d,q,clock);
     end
 
 endmodule // cap_top_rtl_adc_ph
+
+module cap_top_rtl_adc_plx(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_plx
 
 module cap_top_rtl_adc_rst_d(d,q,clock);
 

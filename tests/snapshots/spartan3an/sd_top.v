@@ -440,8 +440,10 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     localparam  wc_z = 1'b0;
     localparam  lead = 16'h0;
     localparam  conv_end = 16'h1;
-    localparam  d_last = 8'h2;
+    localparam  d_last_m1 = 8'h1;
+    localparam  d_one = 1'b0;
     localparam  cyc_stop = 8'h23;
+    localparam  cyc_stop_m1 = 8'h22;
     localparam  warm_init = 4'h2;
     localparam  wmask = 16'h3fff;
     localparam  flip = 16'h0;
@@ -527,6 +529,12 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     reg  wc_d;
     wire  wc_q;
     reg  wc_clock;
+    reg  cst_d;
+    wire  cst_q;
+    reg  cst_clock;
+    reg  plx_d;
+    wire  plx_q;
+    reg  plx_clock;
 
     // Local signals
     reg  at_lead;
@@ -540,6 +548,7 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     reg  sck_act;
     reg  conv_act;
     reg  cap;
+    reg  pl_end;
     reg  pa;
     reg  p0;
     reg  p1;
@@ -666,6 +675,16 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         .q(wc_q),
         .clock(wc_clock)
     );
+    sd_top_rtl_adc_cst cst(
+        .d(cst_d),
+        .q(cst_q),
+        .clock(cst_clock)
+    );
+    sd_top_rtl_adc_plx plx(
+        .d(plx_d),
+        .q(plx_q),
+        .clock(plx_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -691,6 +710,8 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         wl_clock = clk;
         wb_clock = clk;
         wc_clock = clk;
+        cst_clock = clk;
+        plx_clock = clk;
         live_d = live_q;
         pc_d = pc_q;
         ph_d = ph_q;
@@ -713,6 +734,8 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         wl_d = wl_q;
         wb_d = wb_q;
         wc_d = wc_q;
+        cst_d = cst_q;
+        plx_d = plx_q;
         run = enable & ~rst;
         pc_n = zero16;
         warm_n = warm_init;
@@ -721,6 +744,9 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         pcl_x_d = 1'b0;
         pcm_x_d = 1'b0;
         at_lead = lead_zero;
+        if (live_q & ~fl) begin
+            at_lead = fm;
+        end
         if (run & live_q) begin
             if (fl) begin
                 pc_n = zero16;
@@ -734,39 +760,47 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             else begin
                 pc_n = pc_q + one16;
                 warm_n = warm_q;
-                at_lead = fm;
                 pcl_x_d = (pc_q == p_last_m1) ^ kl;
                 pcm_x_d = (pc_q == lead_m2) ^ km;
             end
         end
-        ph_n = zero8;
-        cyc_n = cyc_stop;
+        pl_end = plx_q ^ d_one;
         cinc = 1'b0;
         pinc = 1'b0;
         crel = 1'b0;
         prel = 1'b1;
-        if (run) begin
-            if (at_lead) begin
-                ph_n = zero8;
-                cyc_n = zero8;
-                crel = 1'b1;
-            end
-            else if (cyc_q == cyc_stop) begin
-                ph_n = ph_q;
-                cyc_n = cyc_q;
-                prel = 1'b0;
-            end
-            else if (ph_q == d_last) begin
-                ph_n = zero8;
-                cyc_n = cyc_q + one8;
-                cinc = 1'b1;
-            end
-            else begin
-                ph_n = ph_q + one8;
-                cyc_n = cyc_q;
-                pinc = 1'b1;
-                prel = 1'b0;
-            end
+        cst_d = cst_q;
+        plx_d = 1'b0;
+        if (at_lead) begin
+            ph_n = zero8;
+            cyc_n = zero8;
+            crel = 1'b1;
+            cst_d = 1'b0;
+        end
+        else if (cst_q) begin
+            ph_n = ph_q;
+            cyc_n = cyc_q;
+            prel = 1'b0;
+            plx_d = plx_q;
+        end
+        else if (pl_end) begin
+            ph_n = zero8;
+            cyc_n = cyc_q + one8;
+            cinc = 1'b1;
+            cst_d = cyc_q == cyc_stop_m1;
+        end
+        else begin
+            ph_n = ph_q + one8;
+            cyc_n = cyc_q;
+            pinc = 1'b1;
+            prel = 1'b0;
+            plx_d = (ph_q == d_last_m1) ^ d_one;
+        end
+        if (~run) begin
+            ph_n = zero8;
+            cyc_n = cyc_stop;
+            cst_d = 1'b1;
+            plx_d = 1'b0;
         end
         pa = wa_q ^ wa_z;
         p0 = w0_q ^ w0_z;
@@ -778,12 +812,6 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         w0_d = w0_q;
         w1_d = w1_q;
         wl_d = wl_q;
-        if (~run) begin
-            wa_d = wa_s ^ wa_z;
-            w0_d = w0_s ^ w0_z;
-            w1_d = w1_s ^ w1_z;
-            wl_d = wl_s ^ wl_z;
-        end
         if (crel) begin
             wa_d = 1'b0;
             w0_d = 1'b0;
@@ -796,6 +824,12 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             w1_d = ((cyc_q == w1_lo) | (p1 & (cyc_q != w1_hi))) ^ w1_z;
             wl_d = ((cyc_q == wl_lo) | (pl & (cyc_q != wl_hi))) ^ wl_z;
         end
+        if (~run) begin
+            wa_d = wa_s ^ wa_z;
+            w0_d = w0_s ^ w0_z;
+            w1_d = w1_s ^ w1_z;
+            wl_d = wl_s ^ wl_z;
+        end
         wb_d = wb_q;
         wc_d = wc_q;
         if (prel) begin
@@ -805,6 +839,10 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         if (pinc) begin
             wb_d = ((ph_q == wb_lo) | (pb & (ph_q != wb_hi))) ^ wb_z;
             wc_d = ((ph_q == wc_lo) | (pcp & (ph_q != wc_hi))) ^ wc_z;
+        end
+        if (~run) begin
+            wb_d = 1'b0;
+            wc_d = 1'b0;
         end
         sck_act = live_q & pa & pb;
         conv_act = live_q & (pc_q < conv_end) & (warm_q < warm_init);
@@ -914,6 +952,24 @@ module sd_top_rtl_adc_conv_reg(d,q,clock);
     end
 
 endmodule // sd_top_rtl_adc_conv_reg
+
+module sd_top_rtl_adc_cst(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_cst
 
 module sd_top_rtl_adc_cyc(d,q,clock);
 
@@ -1040,6 +1096,24 @@ module sd_top_rtl_adc_ph(d,q,clock);
     end
 
 endmodule // sd_top_rtl_adc_ph
+
+module sd_top_rtl_adc_plx(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_plx
 
 module sd_top_rtl_adc_rst_d(d,q,clock);
 
@@ -9313,7 +9387,7 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
 
     // Constant declarations
     localparam  narrow = 1'b1;
-    localparam  sign32 = 32'h80000000;
+    localparam  wbit = 32'h4000000;
     localparam  wmask = 32'h3ffffff;
     localparam  amask = 32'h3fff;
     localparam  code_min = 32'h2000;
@@ -9321,9 +9395,12 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     localparam  los_thr = 32'h34b243;
     localparam  los_rel = 32'h3f385d;
     localparam  clip_thr = 32'hd2c274;
-    localparam  nlast = 32'h7;
+    localparam  clip_thr_w = 32'h4d2c274;
     localparam  nmask = 32'h7;
-    localparam  hlast = 32'hf;
+    localparam  nlast_m1 = 32'h6;
+    localparam  n_one = 1'b0;
+    localparam  hlast_m1 = 32'he;
+    localparam  h_one = 1'b0;
     localparam  hmask = 32'hf;
     localparam  one = 32'h1;
     localparam  zero = 32'h0;
@@ -9350,14 +9427,33 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     reg  warn_reg_d;
     wire  warn_reg_q;
     reg  warn_reg_clock;
+    reg  los_lx_d;
+    wire  los_lx_q;
+    reg  los_lx_clock;
+    reg  clip_k_d;
+    wire  clip_k_q;
+    reg  clip_k_clock;
+    reg  fs_k_d;
+    wire  fs_k_q;
+    reg  fs_k_clock;
 
     // Local signals
+    reg  los_last;
+    reg  los_q;
+    reg  [31:0] los_inc;
+    reg  los_nx;
+    reg  [31:0] los_ga;
+    reg  [31:0] los_la;
+    reg  los_gx;
+    reg  los_lx_l;
+    reg  [31:0] los_gv;
+    reg  [31:0] los_lv;
+    reg  low;
+    reg  good;
     reg  [31:0] mag;
     reg  [31:0] rs;
     reg  [31:0] rc;
     reg  fs_hit;
-    reg  low;
-    reg  good;
     reg  over;
 
     // Sub module instances
@@ -9396,6 +9492,21 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .q(warn_reg_q),
         .clock(warn_reg_clock)
     );
+    sd_top_rtl_monitor_los_lx los_lx(
+        .d(los_lx_d),
+        .q(los_lx_q),
+        .clock(los_lx_clock)
+    );
+    sd_top_rtl_monitor_clip_k clip_k(
+        .d(clip_k_d),
+        .q(clip_k_q),
+        .clock(clip_k_clock)
+    );
+    sd_top_rtl_monitor_fs_k fs_k(
+        .d(fs_k_d),
+        .q(fs_k_q),
+        .clock(fs_k_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -9406,6 +9517,9 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         fs_reg_clock = clk;
         fs_cnt_clock = clk;
         warn_reg_clock = clk;
+        los_lx_clock = clk;
+        clip_k_clock = clk;
+        fs_k_clock = clk;
         los_reg_d = los_reg_q;
         los_cnt_d = los_cnt_q;
         clip_reg_d = clip_reg_q;
@@ -9413,74 +9527,79 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         fs_reg_d = fs_reg_q;
         fs_cnt_d = fs_cnt_q;
         warn_reg_d = warn_reg_q;
+        los_lx_d = los_lx_q;
+        clip_k_d = clip_k_q;
+        fs_k_d = fs_k_q;
         mag = magnitude & wmask;
         rs = ((in_sin) & 32'hffffffff) & amask;
         rc = ((in_cos) & 32'hffffffff) & amask;
         fs_hit = (rs == code_min) | (rs == code_max) | (rc == code_min) | (rc == code_max);
         if (narrow) begin
-            low = |((mag - los_thr) & sign32);
-            good = ~|((mag - los_rel) & sign32);
-            over = |((clip_thr - mag) & sign32);
+            low = ~|(((mag | wbit) - los_thr) & wbit);
+            good = |(((mag | wbit) - los_rel) & wbit);
+            over = ~|((clip_thr_w - mag) & wbit);
         end
         else begin
             low = mag < los_thr;
             good = mag >= los_rel;
             over = mag > clip_thr;
         end
-        if (mag_valid) begin
-            if (~los_reg_q) begin
-                if (low) begin
-                    if (los_cnt_q == nlast) begin
-                        los_reg_d = 1'b1;
-                        los_cnt_d = zero;
-                    end
-                    else begin
-                        los_cnt_d = (los_cnt_q + one) & nmask;
-                    end
-                end
-                else begin
-                    los_cnt_d = zero;
-                end
-            end
-            else if (good) begin
-                if (los_cnt_q == nlast) begin
-                    los_reg_d = 1'b0;
-                    los_cnt_d = zero;
-                end
-                else begin
-                    los_cnt_d = (los_cnt_q + one) & nmask;
-                end
+        los_last = los_lx_q ^ n_one;
+        los_q = low;
+        if (los_reg_q) begin
+            los_q = good;
+        end
+        los_inc = (los_cnt_q + one) & nmask;
+        los_nx = (los_cnt_q == nlast_m1) ^ n_one;
+        los_ga = zero;
+        los_la = zero;
+        if (~los_last) begin
+            if (los_reg_q) begin
+                los_ga = los_inc;
             end
             else begin
-                los_cnt_d = zero;
+                los_la = los_inc;
             end
+        end
+        los_gx = ~los_last & los_reg_q & los_nx;
+        los_lx_l = ~los_last & ~los_reg_q & los_nx;
+        los_gv = zero;
+        if (good) begin
+            los_gv = los_ga;
+        end
+        los_lv = zero;
+        if (low) begin
+            los_lv = los_la;
+        end
+        if (mag_valid) begin
+            los_reg_d = los_reg_q ^ (los_q & los_last);
+            los_cnt_d = los_gv | los_lv;
+            los_lx_d = (good & los_gx) | (low & los_lx_l);
+            clip_reg_d = over | clip_k_q;
+            clip_cnt_d = zero;
             if (over) begin
-                clip_reg_d = 1'b1;
-                clip_cnt_d = zero;
+                clip_k_d = ~h_one;
             end
-            else if (clip_reg_q) begin
-                if (clip_cnt_q == hlast) begin
-                    clip_reg_d = 1'b0;
-                    clip_cnt_d = zero;
-                end
-                else begin
-                    clip_cnt_d = (clip_cnt_q + one) & hmask;
-                end
+            else if (clip_k_q) begin
+                clip_cnt_d = (clip_cnt_q + one) & hmask;
+                clip_k_d = clip_cnt_q != hlast_m1;
+            end
+            else begin
+                clip_k_d = 1'b0;
             end
         end
         if (in_valid) begin
+            fs_reg_d = fs_hit | fs_k_q;
+            fs_cnt_d = zero;
             if (fs_hit) begin
-                fs_reg_d = 1'b1;
-                fs_cnt_d = zero;
+                fs_k_d = ~h_one;
             end
-            else if (fs_reg_q) begin
-                if (fs_cnt_q == hlast) begin
-                    fs_reg_d = 1'b0;
-                    fs_cnt_d = zero;
-                end
-                else begin
-                    fs_cnt_d = (fs_cnt_q + one) & hmask;
-                end
+            else if (fs_k_q) begin
+                fs_cnt_d = (fs_cnt_q + one) & hmask;
+                fs_k_d = fs_cnt_q != hlast_m1;
+            end
+            else begin
+                fs_k_d = 1'b0;
             end
         end
         warn_reg_d = overspeed | qep_mismatch;
@@ -9492,6 +9611,9 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
             fs_reg_d = 1'b0;
             fs_cnt_d = zero;
             warn_reg_d = 1'b0;
+            los_lx_d = 1'b0;
+            clip_k_d = 1'b0;
+            fs_k_d = 1'b0;
         end
         error = los_reg_q | clip_reg_q | fs_reg_q;
         warning = warn_reg_q;
@@ -9519,6 +9641,24 @@ module sd_top_rtl_monitor_clip_cnt(d,q,clock);
     end
 
 endmodule // sd_top_rtl_monitor_clip_cnt
+
+module sd_top_rtl_monitor_clip_k(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_clip_k
 
 module sd_top_rtl_monitor_clip_reg(d,q,clock);
 
@@ -9556,6 +9696,24 @@ module sd_top_rtl_monitor_fs_cnt(d,q,clock);
 
 endmodule // sd_top_rtl_monitor_fs_cnt
 
+module sd_top_rtl_monitor_fs_k(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_fs_k
+
 module sd_top_rtl_monitor_fs_reg(d,q,clock);
 
     // Module arguments
@@ -9591,6 +9749,24 @@ module sd_top_rtl_monitor_los_cnt(d,q,clock);
     end
 
 endmodule // sd_top_rtl_monitor_los_cnt
+
+module sd_top_rtl_monitor_los_lx(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_los_lx
 
 module sd_top_rtl_monitor_los_reg(d,q,clock);
 
@@ -9646,6 +9822,8 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
 
     // Constant declarations
     localparam  hp_last = 8'h6;
+    localparam  hp_last_m1 = 8'h5;
+    localparam  hp_one = 1'b0;
     localparam  word = 8'h11;
     localparam  msb = 8'h80;
     localparam  bit6 = 8'h40;
@@ -9654,12 +9832,6 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
     localparam  s_first_high_m1 = 8'h1;
     localparam  s_last_high_m1 = 8'hf;
     localparam  s_done_m1 = 8'h12;
-    localparam  s_cs_low = 8'h1;
-    localparam  s_first_high = 8'h2;
-    localparam  s_last_high = 8'h10;
-    localparam  s_cs_last = 8'h11;
-    localparam  s_done = 8'h13;
-    localparam  s_first_shift = 8'h3;
     localparam  one8 = 8'h1;
     localparam  zero8 = 8'h0;
 
@@ -9685,8 +9857,18 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
     reg  done_reg_d;
     wire  done_reg_q;
     reg  done_reg_clock;
+    reg  hplx_d;
+    wire  hplx_q;
+    reg  hplx_clock;
+    reg  sdone_d;
+    wire  sdone_q;
+    reg  sdone_clock;
+    reg  shf_d;
+    wire  shf_q;
+    reg  shf_clock;
 
     // Local signals
+    reg  hp_end;
     reg  [7:0] hp_n;
     reg  [7:0] step_n;
     reg  [7:0] sh_n;
@@ -9729,6 +9911,21 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
         .q(done_reg_q),
         .clock(done_reg_clock)
     );
+    sd_top_rtl_preamp_hplx hplx(
+        .d(hplx_d),
+        .q(hplx_q),
+        .clock(hplx_clock)
+    );
+    sd_top_rtl_preamp_sdone sdone(
+        .d(sdone_d),
+        .q(sdone_q),
+        .clock(sdone_clock)
+    );
+    sd_top_rtl_preamp_shf shf(
+        .d(shf_d),
+        .q(shf_q),
+        .clock(shf_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -9739,6 +9936,9 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
         mosi_reg_clock = clk;
         cs_reg_clock = clk;
         done_reg_clock = clk;
+        hplx_clock = clk;
+        sdone_clock = clk;
+        shf_clock = clk;
         hp_d = hp_q;
         step_d = step_q;
         sh_d = sh_q;
@@ -9746,26 +9946,39 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
         mosi_reg_d = mosi_reg_q;
         cs_reg_d = cs_reg_q;
         done_reg_d = done_reg_q;
-        adv = (~rst) & (step_q != s_done) & (hp_q == hp_last);
-        shift = ((step_q & one8) == zero8) & (step_q >= s_first_high) & (step_q < s_last_high);
+        hplx_d = hplx_q;
+        sdone_d = sdone_q;
+        shf_d = shf_q;
+        hp_end = hplx_q ^ hp_one;
+        adv = (~rst) & ~sdone_q & hp_end;
+        shift = shf_q;
         hp_n = zero8;
         step_n = zero8;
         sh_n = word;
+        hplx_d = 1'b0;
+        sdone_d = 1'b0;
+        shf_d = 1'b0;
         if (~rst) begin
             step_n = step_q;
             sh_n = sh_q;
-            if (step_q == s_done) begin
+            sdone_d = sdone_q;
+            shf_d = shf_q;
+            if (sdone_q) begin
                 hp_n = hp_q;
+                hplx_d = hplx_q;
             end
-            else if (hp_q == hp_last) begin
+            else if (hp_end) begin
                 hp_n = zero8;
                 step_n = step_q + one8;
+                sdone_d = step_q == s_done_m1;
+                shf_d = ((step_q & one8) != zero8) & (step_q >= s_first_high_m1) & (step_q < s_last_high_m1);
                 if (shift) begin
                     sh_n = sh_q << one8;
                 end
             end
             else begin
                 hp_n = hp_q + one8;
+                hplx_d = (hp_q == hp_last_m1) ^ hp_one;
             end
         end
         cs_reg_d = 1'b0;
@@ -9779,10 +9992,10 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
             done_reg_d = step_q == s_done_m1;
         end
         else if (~rst) begin
-            cs_reg_d = (step_q >= s_cs_low) & (step_q <= s_cs_last);
-            sck_reg_d = (step_q >= s_first_high) & (step_q <= s_last_high) & ((step_q & one8) == zero8);
-            mosi_reg_d = (step_q >= s_cs_low) & (step_q <= s_cs_last) & ((sh_q & msb) != zero8);
-            done_reg_d = step_q == s_done;
+            cs_reg_d = cs_reg_q;
+            sck_reg_d = sck_reg_q;
+            mosi_reg_d = mosi_reg_q;
+            done_reg_d = done_reg_q;
         end
         hp_d = hp_n;
         step_d = step_n;
@@ -9857,6 +10070,24 @@ module sd_top_rtl_preamp_hp(d,q,clock);
 
 endmodule // sd_top_rtl_preamp_hp
 
+module sd_top_rtl_preamp_hplx(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_preamp_hplx
+
 module sd_top_rtl_preamp_mosi_reg(d,q,clock);
 
     // Module arguments
@@ -9893,6 +10124,24 @@ module sd_top_rtl_preamp_sck_reg(d,q,clock);
 
 endmodule // sd_top_rtl_preamp_sck_reg
 
+module sd_top_rtl_preamp_sdone(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_preamp_sdone
+
 module sd_top_rtl_preamp_sh(d,q,clock);
 
     // Module arguments
@@ -9910,6 +10159,24 @@ module sd_top_rtl_preamp_sh(d,q,clock);
     end
 
 endmodule // sd_top_rtl_preamp_sh
+
+module sd_top_rtl_preamp_shf(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_preamp_shf
 
 module sd_top_rtl_preamp_step(d,q,clock);
 
