@@ -254,7 +254,8 @@ fn clockless_modules(text: &str) -> Vec<String> {
 /// Applies the rewrites to every module of `text` (see the module doc). A module that
 /// instantiates a clockless module gets `/*verilator isolate_assignments*/` on its
 /// variables: Verilator's documented hint that splits its one combinational block, which
-/// removes the false loop (no warning is waived; the logic is unchanged).
+/// removes the false loop (no warning is waived; the logic is unchanged). The clock wires
+/// are left out.
 pub fn clean_widths(text: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
     let clockless = clockless_modules(text);
@@ -296,8 +297,10 @@ pub fn clean_widths(text: &str) -> String {
             .map(|l| {
                 let l = narrow_constant(&bit_casts(l, &widths, &mut funcs), &widths);
                 let l = zero_compares(&l, &zeros);
+                // Not the clock wires rust-hdl routes through the block (`x_clock = clk`):
+                // isolating those would reorder clock and data in Verilator.
                 match (isolate, l.strip_prefix("    reg  ")) {
-                    (true, Some(rest)) if rest.ends_with(';') => format!(
+                    (true, Some(rest)) if rest.ends_with(';') && !rest.ends_with("_clock;") => format!(
                         "    reg  {} /*verilator isolate_assignments*/;",
                         rest.trim_end_matches(';')
                     ),
