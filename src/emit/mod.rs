@@ -881,7 +881,7 @@ fn flow_files(
                 header(
                     loaded,
                     command,
-                    "Verilator lint configuration: the -Wall waivers, each with its reason.",
+                    "Lint configuration for Verilator: the -Wall waivers, each with its reason.",
                     "//",
                 ),
                 name,
