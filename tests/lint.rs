@@ -17,7 +17,12 @@ fn generated(text: &str, tag: &str) -> (std::path::PathBuf, Vec<String>) {
 }
 
 /// Runs Verilator on `files` with `top`; returns (exit ok, every %Warning/%Error line).
-fn verilator(dir: &std::path::Path, args: &[&str], files: &[&str], top: &str) -> (bool, Vec<String>) {
+fn verilator(
+    dir: &std::path::Path,
+    args: &[&str],
+    files: &[&str],
+    top: &str,
+) -> (bool, Vec<String>) {
     if let Err(e) = sinedec::cosim::require_tool("verilator") {
         panic!("verilator is needed for the lint test: {e}");
     }
@@ -47,9 +52,17 @@ fn lint_clean(text: &str, tag: &str, name: &str) {
         let file = format!("{top}.v");
         assert!(files.contains(&file), "{file} not generated");
         let (ok, f) = verilator(&dir, &[], &[&file], &top);
-        assert!(ok && f.is_empty(), "{tag} {file}, default warnings:\n{}", f.join("\n"));
+        assert!(
+            ok && f.is_empty(),
+            "{tag} {file}, default warnings:\n{}",
+            f.join("\n")
+        );
         let (ok, f) = verilator(&dir, &["-Wall"], &[&vlt, &file], &top);
-        assert!(ok && f.is_empty(), "{tag} {file}, -Wall with {vlt}:\n{}", f.join("\n"));
+        assert!(
+            ok && f.is_empty(),
+            "{tag} {file}, -Wall with {vlt}:\n{}",
+            f.join("\n")
+        );
     }
 }
 
@@ -60,8 +73,14 @@ fn the_default_design_is_lint_clean() {
 
 #[test]
 fn the_iterative_design_is_lint_clean() {
-    let t = DEFAULT_CONFIG.replace("architecture = \"unrolled\"", "architecture = \"iterative\"");
-    assert_ne!(t, DEFAULT_CONFIG, "the default config's architecture line moved");
+    let t = DEFAULT_CONFIG.replace(
+        "architecture = \"unrolled\"",
+        "architecture = \"iterative\"",
+    );
+    assert_ne!(
+        t, DEFAULT_CONFIG,
+        "the default config's architecture line moved"
+    );
     lint_clean(&t, "iterative", "sd");
 }
 
@@ -83,7 +102,11 @@ fn the_board_wrapper_is_lint_clean_with_the_clock_model() {
     let (dir, _) = generated(&t, "board");
     let files = ["sd_board.v", "sd_clock_sim.v", "sd_top.v"];
     let (ok, f) = verilator(&dir, &["--timing"], &files, "sd_board");
-    assert!(ok && f.is_empty(), "sd_board, default warnings:\n{}", f.join("\n"));
+    assert!(
+        ok && f.is_empty(),
+        "sd_board, default warnings:\n{}",
+        f.join("\n")
+    );
     let mut all = vec!["sd_lint.vlt"];
     all.extend(files);
     let (ok, f) = verilator(&dir, &["--timing", "-Wall"], &all, "sd_board");

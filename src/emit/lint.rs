@@ -22,7 +22,7 @@
 //!
 //! Hand-written here: this is a rewrite of rust-hdl's own fixed output patterns, for which
 //! no Verilog crate offers a transform.
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Width of a declaration line's `[h:l]`, or 1 without a range.
 fn range_width(decl: &str) -> Option<u32> {
@@ -135,7 +135,11 @@ fn matching_open(s: &[u8], close: usize) -> Option<usize> {
 }
 
 /// Rewrites the bit casts in one line; `funcs` collects the truncation functions needed.
-fn bit_casts(line: &str, widths: &BTreeMap<String, u32>, funcs: &mut BTreeMap<(u32, u32), ()>) -> String {
+fn bit_casts(
+    line: &str,
+    widths: &BTreeMap<String, u32>,
+    funcs: &mut BTreeMap<(u32, u32), ()>,
+) -> String {
     let mut out = line.to_string();
     // Innermost first: repeat until no pattern is left that can be rewritten.
     let mut from = 0;
@@ -168,7 +172,10 @@ fn bit_casts(line: &str, widths: &BTreeMap<String, u32>, funcs: &mut BTreeMap<(u
             from = close + 1;
             continue;
         };
-        let ident = expr.trim().chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        let ident = expr
+            .trim()
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_');
         let new = if m == w {
             format!("({expr})")
         } else if m < w {
@@ -243,6 +250,10 @@ fn clockless_modules(text: &str) -> Vec<String> {
         .filter_map(|l| {
             let (name, ports) = l.split_once('(')?;
             let ports = ports.split(')').next()?;
+            if ports.trim().is_empty() {
+                // An ANSI header (`module x (` with the ports below): the wrappers, clocked.
+                return None;
+            }
             let clocked = ports
                 .split(',')
                 .any(|p| matches!(p.trim(), "clock" | "clk"));
@@ -251,11 +262,104 @@ fn clockless_modules(text: &str) -> Vec<String> {
         .collect()
 }
 
-/// Applies the rewrites to every module of `text` (see the module doc). A module that
-/// instantiates a clockless module gets `/*verilator isolate_assignments*/` on its
-/// variables: Verilator's documented hint that splits its one combinational block, which
-/// removes the false loop (no warning is waived; the logic is unchanged). The clock wires
-/// are left out.
+/// The identifiers in `text` (Verilog names; the digits of a literal's value are skipped
+/// only when they cannot start a name, which is harmless here: the callers keep declared
+/// names alone).
+fn identifiers(text: &str) -> impl Iterator<Item = &str> {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .filter(|t| t.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_'))
+}
+
+/// The variables of `module` to mark with `/*verilator isolate_assignments*/`: the `reg`s
+/// connected to an instance of a clockless module (a ROM's address) and, transitively, the
+/// `reg`s their assignments read. rust-hdl computes these in the block's one
+/// `always @(*)`, which also reads the ROM's data; Verilator then sees a combinational loop
+/// through the block (UNOPTFLAT, e.g. `iter_0.rom_address` and `kin` in the iterative
+/// CORDIC) although none exists. The hint, documented by Verilator for exactly this case,
+/// moves these assignments into their own block; the logic is unchanged. Only the address
+/// cone is marked, never a clock or a register's next value.
+fn isolated_regs(module: &[&str], clockless: &[String]) -> BTreeSet<String> {
+    let regs: BTreeSet<&str> = module
+        .iter()
+        .filter_map(|l| l.trim().strip_prefix("reg "))
+        .filter_map(|l| l.trim_end_matches(';').split_whitespace().last())
+        .collect();
+    let mut marked = BTreeSet::new();
+    let mut k = 0;
+    while k < module.len() {
+        let t = module[k].trim_start();
+        let instance = clockless.iter().any(|m| {
+            t.strip_prefix(m.as_str())
+                .is_some_and(|r| r.starts_with(' ') && r.trim_end().ends_with('('))
+        });
+        k += 1;
+        if !instance {
+            continue;
+        }
+        // `.port(signal),` lines up to `);`.
+        while k < module.len() && !module[k].trim().starts_with(");") {
+            let c = module[k].trim();
+            if let Some((_, sig)) = c
+                .trim_end_matches(',')
+                .strip_suffix(')')
+                .and_then(|c| c.split_once('('))
+            {
+                if regs.contains(sig.trim()) {
+                    marked.insert(sig.trim().to_string());
+                }
+            }
+            k += 1;
+        }
+    }
+    // The cone of the marked variables: what their assignments read, and the conditions
+    // of the `if`s around those assignments (an `else` branch also depends on the
+    // conditions before it).
+    loop {
+        let before = marked.len();
+        let mut frames: Vec<Vec<&str>> = Vec::new();
+        let mut popped: Vec<&str> = Vec::new();
+        for l in module {
+            let t = l.trim();
+            let cond = || {
+                let open = t.find('(')?;
+                let close = t.rfind(')')?;
+                (open < close).then(|| &t[open + 1..close])
+            };
+            if t.starts_with("if (") && t.ends_with("begin") {
+                frames.push(cond().into_iter().collect());
+            } else if t.starts_with("else") && t.ends_with("begin") {
+                let mut f = std::mem::take(&mut popped);
+                f.extend(cond());
+                frames.push(f);
+            } else if t.starts_with("case (") {
+                frames.push(cond().into_iter().collect());
+            } else if t.ends_with("begin") {
+                frames.push(Vec::new());
+            } else if t == "end" || t == "endcase" {
+                popped = frames.pop().unwrap_or_default();
+            } else if let Some((lhs, rhs)) = t.strip_suffix(';').and_then(|b| b.split_once(" = ")) {
+                if marked.contains(lhs.trim()) {
+                    let read: Vec<&str> = frames
+                        .iter()
+                        .flatten()
+                        .copied()
+                        .chain([rhs])
+                        .flat_map(identifiers)
+                        .filter(|id| regs.contains(id))
+                        .collect();
+                    marked.extend(read.into_iter().map(String::from));
+                }
+            }
+        }
+        if marked.len() == before {
+            return marked;
+        }
+    }
+}
+
+/// Applies the rewrites to every module of `text` (see the module doc), and marks the
+/// variables of [`isolated_regs`] with Verilator's `isolate_assignments` hint (no warning is
+/// waived).
 pub fn clean_widths(text: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
     let clockless = clockless_modules(text);
@@ -284,25 +388,21 @@ pub fn clean_widths(text: &str) -> String {
             })
             .map(|(n, _)| n.trim().to_string())
             .collect();
-        let isolate = module.iter().any(|l| {
-            let t = l.trim_start();
-            clockless.iter().any(|m| {
-                t.strip_prefix(m.as_str())
-                    .is_some_and(|r| r.starts_with(' ') && r.trim_end().ends_with('('))
-            })
-        });
+        let isolate = isolated_regs(module, &clockless);
         let mut funcs = BTreeMap::new();
         let body: Vec<String> = module
             .iter()
             .map(|l| {
                 let l = narrow_constant(&bit_casts(l, &widths, &mut funcs), &widths);
                 let l = zero_compares(&l, &zeros);
-                // Not the clock wires rust-hdl routes through the block (`x_clock = clk`):
-                // isolating those would reorder clock and data in Verilator.
-                match (isolate, l.strip_prefix("    reg  ")) {
-                    (true, Some(rest)) if rest.ends_with(';') && !rest.ends_with("_clock;") => format!(
-                        "    reg  {} /*verilator isolate_assignments*/;",
-                        rest.trim_end_matches(';')
+                let name = l
+                    .strip_prefix("    reg  ")
+                    .and_then(|r| r.strip_suffix(';'))
+                    .and_then(|r| r.split_whitespace().last());
+                match name {
+                    Some(n) if isolate.contains(n) => format!(
+                        "{} /*verilator isolate_assignments*/;",
+                        l.trim_end_matches(';')
                     ),
                     _ => l,
                 }
@@ -352,10 +452,25 @@ mod tests {
 
     #[test]
     fn zero_compares_and_rom_users() {
-        let t = "module m_rom(addr,data);\n    input wire  [3:0] addr;\n    output reg  [3:0] data;\nendmodule\nmodule m(clk,x);\n    input wire  clk;\n    input wire  [7:0] x;\n    localparam  z = 8'h0;\n    reg  [3:0] a;\n    m_rom rom(\n        .addr(a),\n        .data(d)\n    );\n    always @(*) begin\n        if (c & (x >= z) & (x < z)) begin\n        end\n    end\nendmodule\n";
+        let t = "module m_rom(addr,data);\n    input wire  [3:0] addr;\n    output reg  [3:0] data;\nendmodule\nmodule w (\n    input wire clk\n);\nendmodule\nmodule m(clk,x);\n    input wire  clk;\n    input wire  [7:0] x;\n    localparam  z = 8'h0;\n    reg  [3:0] a;\n    reg  [3:0] b;\n    reg  [3:0] other;\n    reg  s;\n    reg  r_clock;\n    wire  [3:0] d;\n    m_rom rom(\n        .addr(a),\n        .data(d)\n    );\n    always @(*) begin\n        r_clock = clk;\n        b = x[3:0] + 4'h1;\n        s = x[0];\n        if (s) begin\n        end\n        else begin\n            b = 4'h0;\n        end\n        a = b;\n        other = d;\n        if (c & (x >= z) & (x < z)) begin\n        end\n    end\nendmodule\n";
         let c = clean_widths(t);
         assert!(c.contains("if (c & 1'b1 & 1'b0) begin"), "{c}");
-        assert!(c.contains("reg  [3:0] a /*verilator isolate_assignments*/;"), "{c}");
+        // The ROM's address and the variables it is computed from, nothing else.
+        assert!(
+            c.contains("reg  [3:0] a /*verilator isolate_assignments*/;"),
+            "{c}"
+        );
+        assert!(
+            c.contains("reg  [3:0] b /*verilator isolate_assignments*/;"),
+            "{c}"
+        );
+        // `s` is the condition of the `else` around an assignment to `b`.
+        assert!(
+            c.contains("reg  s /*verilator isolate_assignments*/;"),
+            "{c}"
+        );
+        assert_eq!(c.matches("isolate_assignments").count(), 3, "{c}");
+        // `w` has an ANSI header (a wrapper): not taken for a clockless module.
         assert_eq!(clockless_modules(t), vec!["m_rom".to_string()]);
     }
 
