@@ -45,7 +45,7 @@ fn icarus(core: &str, tb: &str, dir: &Path, generation: &str) -> Run {
     }
 }
 
-/// `verilator --binary --timing -Wno-fatal --top-module sd_core_tb core.v tb.v &&
+/// `verilator --binary --timing --top-module sd_core_tb core.v tb.v &&
 /// obj_dir/Vsd_core_tb`; no warning may concern the testbench itself.
 fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
     sinedec::cosim::require_tool("verilator").expect("verilator installed");
@@ -54,7 +54,7 @@ fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
     std::fs::write(dir.join("tb.v"), tb).expect("write");
     let c = tool(
         Command::new("verilator")
-            .args(["--binary", "--timing", "-Wno-fatal", "-j", "1"])
+            .args(["--binary", "--timing", "-j", "1"])
             .args(["--top-module", "sd_core_tb"])
             .arg("core.v")
             .arg("tb.v")

@@ -88,6 +88,22 @@ pub struct Module<'a> {
     pub ports: Vec<PortDecl>,
 }
 
+/// `<name>_lint.vlt`: the Verilator configuration that waives `-Wall`'s style findings on
+/// the generated files, each rule with its reason; `top` is the module its usage line
+/// names. The default warnings need no waiver: the emitted Verilog passes
+/// `verilator --lint-only` as it is (see [`super::lint`]).
+pub fn lint_config(header: String, name: &str, top: &str) -> Result<String> {
+    render(
+        "flow/lint.vlt.j2",
+        context! {
+            header => header,
+            name => name,
+            top => top,
+            files => format!("*{name}_*.v"),
+        },
+    )
+}
+
 /// `<name>_inst.v`: an instantiation template of each module.
 pub fn inst_verilog(header: String, modules: &[Module]) -> Result<String> {
     let ms: Vec<Value> = modules

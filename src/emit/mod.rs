@@ -6,6 +6,7 @@
 //! complete.
 pub mod clock;
 pub mod flow;
+pub mod lint;
 pub mod output;
 pub mod templates;
 pub mod testbench;
@@ -873,6 +874,23 @@ fn flow_files(
         OutFile {
             name: format!("{name}_params.json"),
             text: flow::params_json(loaded, command, &modules)?,
+        },
+        OutFile {
+            name: format!("{name}_lint.vlt"),
+            text: flow::lint_config(
+                header(
+                    loaded,
+                    command,
+                    "Lint configuration for Verilator: the -Wall waivers, each with its reason.",
+                    "//",
+                ),
+                name,
+                if top.is_some() {
+                    &top_module
+                } else {
+                    &core_module
+                },
+            )?,
         },
     ])
 }

@@ -32,6 +32,10 @@ const TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../rtl-templates/flow/inst.v.j2"),
     ),
     (
+        "flow/lint.vlt.j2",
+        include_str!("../../rtl-templates/flow/lint.vlt.j2"),
+    ),
+    (
         "core/core_wrapper.v.j2",
         include_str!("../../rtl-templates/core/core_wrapper.v.j2"),
     ),

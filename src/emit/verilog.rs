@@ -35,7 +35,7 @@ pub fn export<B: Block>(uut: &B, block: &str, top_name: &str) -> Result<String> 
         message: describe_check(&e),
     })?;
     let raw = generate_verilog_unchecked(uut);
-    rename(&raw, top_name)
+    rename(&raw, top_name).map(|t| super::lint::clean_widths(&t))
 }
 
 /// Splits Verilog text into identifier tokens and everything else, keeping numbers

@@ -1720,8 +1720,8 @@ module cap_core_tb;
     // Checker: 1 ns after each rising edge, the outputs of cycle k against expected[k].
     always @(posedge clk) begin
         #1 if ({out_valid, out_position, out_turns, out_fine, out_error, out_warning} !== expected[k]) begin
-            errors = errors + 1;
-            if (errors <= 10)
+            errors <= errors + 1;
+            if (errors < 10)
                 $display("cycle %0d: got %b expected %b", k, {out_valid, out_position, out_turns, out_fine, out_error, out_warning}, expected[k]);
         end
     end

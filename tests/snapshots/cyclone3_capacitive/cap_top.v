@@ -209,12 +209,12 @@ module cap_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,exc_sin,exc_cos,exc_strobe,
         front_clk = clk;
         front_rst = rst;
         front_in_valid = adc_out_valid;
-        front_in_sample = ((adc_out_ch0) & 32'hffffffff);
+        front_in_sample = {16'd0, adc_out_ch0};
         core_clk = clk;
         core_rst = rst;
         core_in_valid = front_out_valid;
-        core_in_sin = ((front_out_q) & 16'hffff);
-        core_in_cos = ((front_out_i) & 16'hffff);
+        core_in_sin = front_out_q[15:0];
+        core_in_cos = front_out_i[15:0];
         core_load = 1'b0;
         core_load_qc = core_out_qc;
         core_load_turns = core_out_turns;
@@ -2029,7 +2029,7 @@ module cap_top_rtl_biss_slave_state(d,q,clock);
 
     // Update code (custom)
     initial begin
-       q = 64'h0;
+       q = 4'h0;
     end
 
     always @(posedge clock) begin
@@ -2777,112 +2777,112 @@ module cap_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,o
         stages_0_rst = rst;
         stages_0_x_in = mapper_x;
         stages_0_y_in = mapper_y;
-        stages_0_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_0_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_0_q_in = mapper_q;
         stages_0_v_in = mapper_v;
         stages_1_clk = clk;
         stages_1_rst = rst;
         stages_1_x_in = mapper_x;
         stages_1_y_in = mapper_y;
-        stages_1_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_1_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_1_q_in = mapper_q;
         stages_1_v_in = mapper_v;
         stages_2_clk = clk;
         stages_2_rst = rst;
         stages_2_x_in = mapper_x;
         stages_2_y_in = mapper_y;
-        stages_2_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_2_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_2_q_in = mapper_q;
         stages_2_v_in = mapper_v;
         stages_3_clk = clk;
         stages_3_rst = rst;
         stages_3_x_in = mapper_x;
         stages_3_y_in = mapper_y;
-        stages_3_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_3_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_3_q_in = mapper_q;
         stages_3_v_in = mapper_v;
         stages_4_clk = clk;
         stages_4_rst = rst;
         stages_4_x_in = mapper_x;
         stages_4_y_in = mapper_y;
-        stages_4_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_4_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_4_q_in = mapper_q;
         stages_4_v_in = mapper_v;
         stages_5_clk = clk;
         stages_5_rst = rst;
         stages_5_x_in = mapper_x;
         stages_5_y_in = mapper_y;
-        stages_5_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_5_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_5_q_in = mapper_q;
         stages_5_v_in = mapper_v;
         stages_6_clk = clk;
         stages_6_rst = rst;
         stages_6_x_in = mapper_x;
         stages_6_y_in = mapper_y;
-        stages_6_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_6_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_6_q_in = mapper_q;
         stages_6_v_in = mapper_v;
         stages_7_clk = clk;
         stages_7_rst = rst;
         stages_7_x_in = mapper_x;
         stages_7_y_in = mapper_y;
-        stages_7_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_7_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_7_q_in = mapper_q;
         stages_7_v_in = mapper_v;
         stages_8_clk = clk;
         stages_8_rst = rst;
         stages_8_x_in = mapper_x;
         stages_8_y_in = mapper_y;
-        stages_8_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_8_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_8_q_in = mapper_q;
         stages_8_v_in = mapper_v;
         stages_9_clk = clk;
         stages_9_rst = rst;
         stages_9_x_in = mapper_x;
         stages_9_y_in = mapper_y;
-        stages_9_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_9_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_9_q_in = mapper_q;
         stages_9_v_in = mapper_v;
         stages_10_clk = clk;
         stages_10_rst = rst;
         stages_10_x_in = mapper_x;
         stages_10_y_in = mapper_y;
-        stages_10_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_10_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_10_q_in = mapper_q;
         stages_10_v_in = mapper_v;
         stages_11_clk = clk;
         stages_11_rst = rst;
         stages_11_x_in = mapper_x;
         stages_11_y_in = mapper_y;
-        stages_11_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_11_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_11_q_in = mapper_q;
         stages_11_v_in = mapper_v;
         stages_12_clk = clk;
         stages_12_rst = rst;
         stages_12_x_in = mapper_x;
         stages_12_y_in = mapper_y;
-        stages_12_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_12_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_12_q_in = mapper_q;
         stages_12_v_in = mapper_v;
         stages_13_clk = clk;
         stages_13_rst = rst;
         stages_13_x_in = mapper_x;
         stages_13_y_in = mapper_y;
-        stages_13_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_13_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_13_q_in = mapper_q;
         stages_13_v_in = mapper_v;
         stages_14_clk = clk;
         stages_14_rst = rst;
         stages_14_x_in = mapper_x;
         stages_14_y_in = mapper_y;
-        stages_14_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_14_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_14_q_in = mapper_q;
         stages_14_v_in = mapper_v;
         stages_15_clk = clk;
         stages_15_rst = rst;
         stages_15_x_in = mapper_x;
         stages_15_y_in = mapper_y;
-        stages_15_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_15_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_15_q_in = mapper_q;
         stages_15_v_in = mapper_v;
         stages_1_x_in = stages_0_x_out;
@@ -3966,12 +3966,12 @@ module cap_top_rtl_core_mapper(clk,rst,in_valid,in_sin,in_cos,x,y,q,v);
         y_reg_d = y_reg_q;
         q_reg_d = q_reg_q;
         v_reg_d = v_reg_q;
-        sx = ((in_cos) & 32'hffffffff) & amask;
+        sx = {16'd0, in_cos} & amask;
         cneg = |(sx & asign);
         if (cneg) begin
             sx = sx | asext;
         end
-        sy = ((in_sin) & 32'hffffffff) & amask;
+        sy = {16'd0, in_sin} & amask;
         sneg = |(sy & asign);
         if (sneg) begin
             sy = sy | asext;
@@ -3994,17 +3994,17 @@ module cap_top_rtl_core_mapper(clk,rst,in_valid,in_sin,in_cos,x,y,q,v);
             my = ones;
             cy = one;
         end
-        q_reg_d = 32'h0;
+        q_reg_d = 2'h0;
         if (sneg) begin
             if (cneg) begin
-                q_reg_d = 32'h2;
+                q_reg_d = 2'h2;
             end
             else begin
-                q_reg_d = 32'h3;
+                q_reg_d = 2'h3;
             end
         end
         else if (cneg) begin
-            q_reg_d = 32'h1;
+            q_reg_d = 2'h1;
         end
         x_reg_d = (((ax ^ mx) + cx) << gshift) & vmask;
         y_reg_d = (((ay ^ my) + cy) << gshift) & vmask;
@@ -7531,8 +7531,8 @@ module cap_top_rtl_front(clk,rst,in_valid,in_sample,exc_sin,exc_cos,exc_strobe,o
     wire  engine_overflow;
     wire  engine_busy;
     wire  engine_dropped;
-    reg  [31:0] demod_a;
-    reg  [31:0] demod_b;
+    reg  [31:0] demod_a /*verilator isolate_assignments*/;
+    reg  [31:0] demod_b /*verilator isolate_assignments*/;
     wire  [31:0] demod_p;
     reg  [31:0] ref_s_d;
     wire  [31:0] ref_s_q;
@@ -7824,7 +7824,7 @@ module cap_top_rtl_front_engine(clk,rst,in_valid,in_data_0,in_data_1,in_data_2,o
     localparam  zero = 32'h0;
 
     // Stub signals
-    reg  [31:0] prog_pc;
+    reg  [31:0] prog_pc /*verilator isolate_assignments*/;
     wire  [31:0] prog_coef;
     wire  [31:0] prog_ctrl;
     reg  ram_clk;
@@ -7832,8 +7832,8 @@ module cap_top_rtl_front_engine(clk,rst,in_valid,in_data_0,in_data_1,in_data_2,o
     reg  ram_we;
     reg  [31:0] ram_wd;
     wire  [31:0] ram_q;
-    reg  [31:0] mul_a;
-    reg  [31:0] mul_b;
+    reg  [31:0] mul_a /*verilator isolate_assignments*/;
+    reg  [31:0] mul_b /*verilator isolate_assignments*/;
     wire  [31:0] mul_p;
     reg  busy_reg_d;
     wire  busy_reg_q;
@@ -7924,8 +7924,8 @@ module cap_top_rtl_front_engine(clk,rst,in_valid,in_data_0,in_data_1,in_data_2,o
     reg  out_reg_2_clock;
 
     // Local signals
-    reg  [31:0] ctrl_w;
-    reg  [31:0] pc_n;
+    reg  [31:0] ctrl_w /*verilator isolate_assignments*/;
+    reg  [31:0] pc_n /*verilator isolate_assignments*/;
     reg  c_we;
     reg  c_wsrc;
     reg  c_ldx;
@@ -7934,7 +7934,7 @@ module cap_top_rtl_front_engine(clk,rst,in_valid,in_data_0,in_data_1,in_data_2,o
     reg  c_acc;
     reg  c_first;
     reg  c_push;
-    reg  c_last;
+    reg  c_last /*verilator isolate_assignments*/;
     reg  [31:0] cap_top_rtl;
     reg  hit;
     reg  [31:0] sat;
@@ -8990,7 +8990,7 @@ module cap_top_rtl_front_nco(clk,rst,tick,out_valid,out_sin,out_cos,out_phase);
     localparam  zero = 32'h0;
 
     // Stub signals
-    reg  [15:0] rom_addr;
+    reg  [15:0] rom_addr /*verilator isolate_assignments*/;
     wire  [15:0] rom_data_s;
     wire  [15:0] rom_data_c;
     reg  [31:0] phase_d;
@@ -9010,9 +9010,9 @@ module cap_top_rtl_front_nco(clk,rst,tick,out_valid,out_sin,out_cos,out_phase);
     reg  o_phase_clock;
 
     // Local signals
-    reg  [31:0] idx;
-    reg  [31:0] jdx;
-    reg  oct;
+    reg  [31:0] idx /*verilator isolate_assignments*/;
+    reg  [31:0] jdx /*verilator isolate_assignments*/;
+    reg  oct /*verilator isolate_assignments*/;
     reg  [31:0] ta;
     reg  [31:0] tb;
     reg  [31:0] smag;
@@ -9070,12 +9070,12 @@ module cap_top_rtl_front_nco(clk,rst,tick,out_valid,out_sin,out_cos,out_phase);
         if (oct) begin
             jdx = (idx ^ hmask) & hmask;
         end
-        rom_addr = ((jdx) & 16'hffff);
-        ta = ((rom_data_s) & 32'hffffffff);
-        tb = ((rom_data_c) & 32'hffffffff);
+        rom_addr = jdx[15:0];
+        ta = {16'd0, rom_data_s};
+        tb = {16'd0, rom_data_c};
         if (oct) begin
-            ta = ((rom_data_c) & 32'hffffffff);
-            tb = ((rom_data_s) & 32'hffffffff);
+            ta = {16'd0, rom_data_c};
+            tb = {16'd0, rom_data_s};
         end
         qhi_set = (phase_q & qhi) != zero;
         qlo_set = (phase_q & qlo) != zero;

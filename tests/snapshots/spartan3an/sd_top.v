@@ -2175,7 +2175,7 @@ module sd_top_rtl_biss_slave_state(d,q,clock);
 
     // Update code (custom)
     initial begin
-       q = 64'h0;
+       q = 4'h0;
     end
 
     always @(posedge clock) begin
@@ -2871,98 +2871,98 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
         stages_0_rst = rst;
         stages_0_x_in = mapper_x;
         stages_0_y_in = mapper_y;
-        stages_0_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_0_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_0_q_in = mapper_q;
         stages_0_v_in = mapper_v;
         stages_1_clk = clk;
         stages_1_rst = rst;
         stages_1_x_in = mapper_x;
         stages_1_y_in = mapper_y;
-        stages_1_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_1_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_1_q_in = mapper_q;
         stages_1_v_in = mapper_v;
         stages_2_clk = clk;
         stages_2_rst = rst;
         stages_2_x_in = mapper_x;
         stages_2_y_in = mapper_y;
-        stages_2_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_2_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_2_q_in = mapper_q;
         stages_2_v_in = mapper_v;
         stages_3_clk = clk;
         stages_3_rst = rst;
         stages_3_x_in = mapper_x;
         stages_3_y_in = mapper_y;
-        stages_3_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_3_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_3_q_in = mapper_q;
         stages_3_v_in = mapper_v;
         stages_4_clk = clk;
         stages_4_rst = rst;
         stages_4_x_in = mapper_x;
         stages_4_y_in = mapper_y;
-        stages_4_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_4_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_4_q_in = mapper_q;
         stages_4_v_in = mapper_v;
         stages_5_clk = clk;
         stages_5_rst = rst;
         stages_5_x_in = mapper_x;
         stages_5_y_in = mapper_y;
-        stages_5_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_5_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_5_q_in = mapper_q;
         stages_5_v_in = mapper_v;
         stages_6_clk = clk;
         stages_6_rst = rst;
         stages_6_x_in = mapper_x;
         stages_6_y_in = mapper_y;
-        stages_6_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_6_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_6_q_in = mapper_q;
         stages_6_v_in = mapper_v;
         stages_7_clk = clk;
         stages_7_rst = rst;
         stages_7_x_in = mapper_x;
         stages_7_y_in = mapper_y;
-        stages_7_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_7_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_7_q_in = mapper_q;
         stages_7_v_in = mapper_v;
         stages_8_clk = clk;
         stages_8_rst = rst;
         stages_8_x_in = mapper_x;
         stages_8_y_in = mapper_y;
-        stages_8_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_8_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_8_q_in = mapper_q;
         stages_8_v_in = mapper_v;
         stages_9_clk = clk;
         stages_9_rst = rst;
         stages_9_x_in = mapper_x;
         stages_9_y_in = mapper_y;
-        stages_9_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_9_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_9_q_in = mapper_q;
         stages_9_v_in = mapper_v;
         stages_10_clk = clk;
         stages_10_rst = rst;
         stages_10_x_in = mapper_x;
         stages_10_y_in = mapper_y;
-        stages_10_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_10_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_10_q_in = mapper_q;
         stages_10_v_in = mapper_v;
         stages_11_clk = clk;
         stages_11_rst = rst;
         stages_11_x_in = mapper_x;
         stages_11_y_in = mapper_y;
-        stages_11_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_11_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_11_q_in = mapper_q;
         stages_11_v_in = mapper_v;
         stages_12_clk = clk;
         stages_12_rst = rst;
         stages_12_x_in = mapper_x;
         stages_12_y_in = mapper_y;
-        stages_12_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_12_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_12_q_in = mapper_q;
         stages_12_v_in = mapper_v;
         stages_13_clk = clk;
         stages_13_rst = rst;
         stages_13_x_in = mapper_x;
         stages_13_y_in = mapper_y;
-        stages_13_z_in = zhalf | (((mapper_q) & 32'hffffffff) << zqshift);
+        stages_13_z_in = zhalf | ({30'd0, mapper_q} << zqshift);
         stages_13_q_in = mapper_q;
         stages_13_v_in = mapper_v;
         stages_1_x_in = stages_0_x_out;
@@ -4026,12 +4026,12 @@ module sd_top_rtl_core_mapper(clk,rst,in_valid,in_sin,in_cos,x,y,q,v);
         y_reg_d = y_reg_q;
         q_reg_d = q_reg_q;
         v_reg_d = v_reg_q;
-        sx = ((in_cos) & 32'hffffffff) & amask;
+        sx = {16'd0, in_cos} & amask;
         cneg = |(sx & asign);
         if (cneg) begin
             sx = sx | asext;
         end
-        sy = ((in_sin) & 32'hffffffff) & amask;
+        sy = {16'd0, in_sin} & amask;
         sneg = |(sy & asign);
         if (sneg) begin
             sy = sy | asext;
@@ -4054,17 +4054,17 @@ module sd_top_rtl_core_mapper(clk,rst,in_valid,in_sin,in_cos,x,y,q,v);
             my = ones;
             cy = one;
         end
-        q_reg_d = 32'h0;
+        q_reg_d = 2'h0;
         if (sneg) begin
             if (cneg) begin
-                q_reg_d = 32'h2;
+                q_reg_d = 2'h2;
             end
             else begin
-                q_reg_d = 32'h3;
+                q_reg_d = 2'h3;
             end
         end
         else if (cneg) begin
-            q_reg_d = 32'h1;
+            q_reg_d = 2'h1;
         end
         x_reg_d = (((ax ^ mx) + cx) << gshift) & vmask;
         y_reg_d = (((ay ^ my) + cy) << gshift) & vmask;
@@ -7342,11 +7342,11 @@ module sd_top_rtl_correction(clk,rst,in_valid,in_sin,in_cos,out_valid,out_sin,ou
         g_s = g0_s;
         g_c = g0_c;
         upd = 1'b0;
-        xs_s = ((in_sin) & 32'hffffffff) & amask;
+        xs_s = {16'd0, in_sin} & amask;
         if (|(xs_s & asign)) begin
             xs_s = xs_s | asext;
         end
-        xs_c = ((in_cos) & 32'hffffffff) & amask;
+        xs_c = {16'd0, in_cos} & amask;
         if (|(xs_c & asign)) begin
             xs_c = xs_c | asext;
         end
@@ -7373,12 +7373,12 @@ module sd_top_rtl_correction(clk,rst,in_valid,in_sin,in_cos,out_valid,out_sin,ou
         v1_d = in_valid & ~rst;
         sg1_s_d = |(d_s & sign32);
         sg1_c_d = |(d_c & sign32);
-        m1_s_d = ((md_s & amask) & 16'hffff);
-        m1_c_d = ((md_c & amask) & 16'hffff);
+        m1_s_d = sinedec_trunc_32_16(md_s & amask);
+        m1_c_d = sinedec_trunc_32_16(md_c & amask);
         g1_s_d = g_s;
         g1_c_d = g_c;
-        u1_s_d = (((in_sin) & 32'hffffffff) & amask) ^ asign;
-        u1_c_d = (((in_cos) & 32'hffffffff) & amask) ^ asign;
+        u1_s_d = ({16'd0, in_sin} & amask) ^ asign;
+        u1_c_d = ({16'd0, in_cos} & amask) ^ asign;
         v2_d = v1_q & ~rst;
         sg2_s_d = sg1_s_q;
         sg2_c_d = sg1_c_q;
@@ -7415,18 +7415,23 @@ module sd_top_rtl_correction(clk,rst,in_valid,in_sin,in_cos,out_valid,out_sin,ou
             end
         end
         v3_d = v2_q & ~rst;
-        o3_s_d = ((o_s & amask) & 16'hffff);
-        o3_c_d = ((o_c & amask) & 16'hffff);
+        o3_s_d = sinedec_trunc_32_16(o_s & amask);
+        o3_c_d = sinedec_trunc_32_16(o_c & amask);
         out_valid = v3_q;
         out_sin = o3_s_q;
         out_cos = o3_c_q;
-        offset_sin = ((b_s) & 16'hffff);
-        offset_cos = ((b_c) & 16'hffff);
+        offset_sin = b_s[15:0];
+        offset_cos = b_c[15:0];
         gain_sin = g_s;
         gain_cos = g_c;
         cal_update = upd;
     end
 
+    // Low 16 bits of a 32-bit value (rust-hdl bit_cast).
+    function [15:0] sinedec_trunc_32_16;
+        input [31:0] v;
+        sinedec_trunc_32_16 = v[15:0];
+    endfunction
 endmodule // sd_top_rtl_correction
 
 module sd_top_rtl_correction_g1_c(d,q,clock);
@@ -9531,8 +9536,8 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         clip_k_d = clip_k_q;
         fs_k_d = fs_k_q;
         mag = magnitude & wmask;
-        rs = ((in_sin) & 32'hffffffff) & amask;
-        rc = ((in_cos) & 32'hffffffff) & amask;
+        rs = {16'd0, in_sin} & amask;
+        rc = {16'd0, in_cos} & amask;
         fs_hit = (rs == code_min) | (rs == code_max) | (rc == code_min) | (rc == code_max);
         if (narrow) begin
             low = ~|(((mag | wbit) - los_thr) & wbit);
@@ -9986,9 +9991,9 @@ module sd_top_rtl_preamp(clk,rst,adc_sck,spi_sck,spi_mosi,amp_cs,amp_shdn,dac_cs
         mosi_reg_d = 1'b0;
         done_reg_d = 1'b0;
         if (adv) begin
-            cs_reg_d = (step_q >= s_cs_low_m1) & (step_q <= s_cs_last_m1);
+            cs_reg_d = 1'b1 & (step_q <= s_cs_last_m1);
             sck_reg_d = (step_q >= s_first_high_m1) & (step_q <= s_last_high_m1) & ((step_q & one8) != zero8);
-            mosi_reg_d = (step_q >= s_cs_low_m1) & (step_q <= s_cs_last_m1) & ((((sh_q & msb) != zero8) & ~shift) | (((sh_q & bit6) != zero8) & shift));
+            mosi_reg_d = 1'b1 & (step_q <= s_cs_last_m1) & ((((sh_q & msb) != zero8) & ~shift) | (((sh_q & bit6) != zero8) & shift));
             done_reg_d = step_q == s_done_m1;
         end
         else if (~rst) begin

@@ -26,13 +26,13 @@ module sd_clock (
         half = 0.0;
     end
     always @(posedge clk_in) begin
-        if (seen > 0) half = ($realtime - last) * D / (2.0 * M);
-        last = $realtime;
-        if (seen < LOCK) seen = seen + 1;
-        else locked = 1'b1;
+        if (seen > 0) half <= ($realtime - last) * D / (2.0 * M);
+        last <= $realtime;
+        if (seen < LOCK) seen <= seen + 1;
+        else locked <= 1'b1;
     end
     always begin
-        if (locked) #(half) clk_sys = ~clk_sys;
+        if (locked) #(half) clk_sys <= ~clk_sys;
         else @(posedge locked);
     end
 endmodule // sd_clock
