@@ -324,8 +324,6 @@ pub struct BissSlave {
     cld1: Signal<Local, Bit>,
     /// cnt counts up this clock.
     cinc: Signal<Local, Bit>,
-    /// The timeout returns the slave to Idle this clock (state != Idle, MA quiet, ftl).
-    tout: Signal<Local, Bit>,
     mae: Signal<Local, Bit>,
     dbit: Signal<Local, Bit>,
     cbit: Signal<Local, Bit>,
@@ -395,7 +393,6 @@ impl BissSlave {
             ftl: Default::default(),
             cld1: Default::default(),
             cinc: Default::default(),
-            tout: Default::default(),
             mae: Default::default(),
             dbit: Default::default(),
             cbit: Default::default(),
@@ -590,27 +587,9 @@ impl Logic for BissSlave {
             self.tcnt.d.next = self.zero.val();
             self.ftl.d.next = self.tlast_is0.val();
         }
-        // The flags follow the transitions of the match above, from the current state and
-        // the events (a decode of the next state would put the whole next-state logic in
-        // front of them). Idle is entered only by the timeout and left only at F1. Cds is
-        // entered from Start at a rising edge; Data with more bits to shift is entered from
-        // Cds (cnt loaded to 1) or kept from Data while cnt has not reached N - 1 (fnb is
-        // cnt == N at the next clock); both are left only at a rising edge or by the timeout
-        // (a rising edge and the timeout exclude each other: the timeout needs a quiet MA).
-        self.tout.next =
-            (self.state.q.val() != BissState::Idle) & !self.mae.val() & self.ftl.q.val();
-        self.sidle.d.next = self.tout.val() | (self.sidle.q.val() & !self.sync.fall.val());
-        self.sshift.d.next = (self.sshift.q.val() & !self.sync.rise.val() & !self.tout.val())
-            | (self.sync.rise.val()
-                & ((self.state.q.val() == BissState::Start)
-                    | ((self.state.q.val() == BissState::Cds) & !self.n_is1.val())
-                    | ((self.state.q.val() == BissState::Data)
-                        & !self.fnb.q.val()
-                        & (self.cnt.q.val() != self.nbits_m1.val()))));
-        if self.rst.val() {
-            self.sidle.d.next = false;
-            self.sshift.d.next = false;
-        }
+        self.sidle.d.next = self.state.d.val() == BissState::Idle;
+        self.sshift.d.next = (self.state.d.val() == BissState::Cds)
+            | ((self.state.d.val() == BissState::Data) & !self.fnb.d.val());
         self.slo.next = self.slo_reg.q.val();
     }
 }

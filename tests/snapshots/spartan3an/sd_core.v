@@ -250,6 +250,7 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
     wire  combiner_v;
     wire  combiner_up;
     wire  combiner_down;
+    wire  combiner_step;
     wire  [31:0] combiner_wq;
     wire  combiner_wz;
     reg  counter_clk;
@@ -259,6 +260,7 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
     reg  counter_v_in;
     reg  counter_up_in;
     reg  counter_down_in;
+    reg  counter_step_in;
     reg  [31:0] counter_wq_in;
     reg  counter_wz_in;
     reg  counter_load;
@@ -490,6 +492,7 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
         .v(combiner_v),
         .up(combiner_up),
         .down(combiner_down),
+        .step(combiner_step),
         .wq(combiner_wq),
         .wz(combiner_wz)
     );
@@ -501,6 +504,7 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
         .v_in(counter_v_in),
         .up_in(counter_up_in),
         .down_in(counter_down_in),
+        .step_in(counter_step_in),
         .wq_in(counter_wq_in),
         .wz_in(counter_wz_in),
         .load(counter_load),
@@ -764,6 +768,7 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
         counter_v_in = combiner_v;
         counter_up_in = combiner_up;
         counter_down_in = combiner_down;
+        counter_step_in = combiner_step;
         counter_wq_in = combiner_wq;
         counter_wz_in = combiner_wz;
         counter_load = load;
@@ -779,7 +784,7 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
 
 endmodule // sd_core_rtl
 
-module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
+module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz);
 
     // Module arguments
     input wire  clk;
@@ -792,6 +797,7 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
     output reg  v;
     output reg  up;
     output reg  down;
+    output reg  step;
     output reg  [31:0] wq;
     output reg  wz;
 
@@ -805,6 +811,8 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
     localparam  wmask = 32'hfff;
     localparam  zero = 32'h0;
     localparam  minmag = 32'hd2c91;
+    localparam  minmag_v = 32'h800d2c91;
+    localparam  vbit = 32'h80000000;
 
     // Stub signals
     reg  [31:0] p_reg_d;
@@ -825,6 +833,9 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
     reg  down_reg_d;
     wire  down_reg_q;
     reg  down_reg_clock;
+    reg  step_reg_d;
+    wire  step_reg_q;
+    reg  step_reg_clock;
     reg  [31:0] wq_reg_d;
     wire  [31:0] wq_reg_q;
     reg  wq_reg_clock;
@@ -835,6 +846,8 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
     // Local signals
     reg  [31:0] pn;
     reg  okn;
+    reg  [31:0] xv;
+    reg  okv;
     reg  [31:0] delta;
     reg  back;
     reg  [31:0] qnew;
@@ -871,6 +884,11 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
         .q(down_reg_q),
         .clock(down_reg_clock)
     );
+    sd_core_rtl_combiner_step_reg step_reg(
+        .d(step_reg_d),
+        .q(step_reg_q),
+        .clock(step_reg_clock)
+    );
     sd_core_rtl_combiner_wq_reg wq_reg(
         .d(wq_reg_d),
         .q(wq_reg_q),
@@ -890,6 +908,7 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
         plast_reg_clock = clk;
         up_reg_clock = clk;
         down_reg_clock = clk;
+        step_reg_clock = clk;
         wq_reg_clock = clk;
         wz_reg_clock = clk;
         p_reg_d = p_reg_q;
@@ -898,6 +917,7 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
         plast_reg_d = plast_reg_q;
         up_reg_d = up_reg_q;
         down_reg_d = down_reg_q;
+        step_reg_d = step_reg_q;
         wq_reg_d = wq_reg_q;
         wz_reg_d = wz_reg_q;
         pn = (z_in >> zshift) & pmask;
@@ -905,7 +925,12 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
         p_reg_d = pn;
         ok_reg_d = okn;
         v_reg_d = v_in & ~rst;
-        if (v_in & ~rst & okn) begin
+        xv = x_in;
+        if (v_in & ~rst) begin
+            xv = x_in | vbit;
+        end
+        okv = xv >= minmag_v;
+        if (okv) begin
             plast_reg_d = pn;
         end
         delta = (pn - plast_reg_q) & pmask;
@@ -914,13 +939,15 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
         qlast = (plast_reg_q >> fshift) & three;
         up_reg_d = ~back & (qnew < qlast);
         down_reg_d = back & (qnew > qlast);
+        step_reg_d = up_reg_d | down_reg_d;
         wq_reg_d = delta >> wshift;
-        wz_reg_d = (delta & wmask) == zero;
+        wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;
         p = p_reg_q;
         mag_ok = ok_reg_q;
         v = v_reg_q;
         up = up_reg_q;
         down = down_reg_q;
+        step = step_reg_q;
         wq = wq_reg_q;
         wz = wz_reg_q;
     end
@@ -999,6 +1026,24 @@ module sd_core_rtl_combiner_plast_reg(d,q,clock);
 
 endmodule // sd_core_rtl_combiner_plast_reg
 
+module sd_core_rtl_combiner_step_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_combiner_step_reg
+
 module sd_core_rtl_combiner_up_reg(d,q,clock);
 
     // Module arguments
@@ -1071,7 +1116,7 @@ module sd_core_rtl_combiner_wz_reg(d,q,clock);
 
 endmodule // sd_core_rtl_combiner_wz_reg
 
-module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
+module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
 
     // Module arguments
     input wire  clk;
@@ -1081,6 +1126,7 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
     input wire  v_in;
     input wire  up_in;
     input wire  down_in;
+    input wire  step_in;
     input wire  [31:0] wq_in;
     input wire  wz_in;
     input wire  load;
@@ -1108,6 +1154,7 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
     localparam  one = 32'h1;
     localparam  three = 32'h3;
     localparam  minus_one = 32'hffffffff;
+    localparam  minus_two = 32'hfffffffe;
     localparam  zero = 32'h0;
 
     // Stub signals
@@ -1150,6 +1197,12 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
     reg  [31:0] ltdec_reg_d;
     wire  [31:0] ltdec_reg_q;
     reg  ltdec_reg_clock;
+    reg  llast_reg_d;
+    wire  llast_reg_q;
+    reg  llast_reg_clock;
+    reg  lzero_reg_d;
+    wire  lzero_reg_q;
+    reg  lzero_reg_clock;
 
     // Local signals
     reg  [31:0] qnew;
@@ -1159,6 +1212,11 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
     reg  up;
     reg  down;
     reg  [31:0] ustep;
+    reg  up_l;
+    reg  down_l;
+    reg  [31:0] ustep_l;
+    reg  [31:0] usum_l;
+    reg  wrap_l;
     reg  [31:0] usum;
     reg  [31:0] un;
     reg  wrap;
@@ -1231,6 +1289,16 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
         .q(ltdec_reg_q),
         .clock(ltdec_reg_clock)
     );
+    sd_core_rtl_counter_llast_reg llast_reg(
+        .d(llast_reg_d),
+        .q(llast_reg_q),
+        .clock(llast_reg_clock)
+    );
+    sd_core_rtl_counter_lzero_reg lzero_reg(
+        .d(lzero_reg_d),
+        .q(lzero_reg_q),
+        .clock(lzero_reg_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -1247,6 +1315,8 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
         lturns_reg_clock = clk;
         ltinc_reg_clock = clk;
         ltdec_reg_clock = clk;
+        llast_reg_clock = clk;
+        lzero_reg_clock = clk;
         init_reg_d = init_reg_q;
         pprev_reg_d = pprev_reg_q;
         u_reg_d = u_reg_q;
@@ -1260,34 +1330,46 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
         lturns_reg_d = lturns_reg_q;
         ltinc_reg_d = ltinc_reg_q;
         ltdec_reg_d = ltdec_reg_q;
+        llast_reg_d = llast_reg_q;
+        lzero_reg_d = lzero_reg_q;
         qnew = (p_in >> fshift) & three;
-        base_q = lqc_reg_q & three;
-        base_u = u_reg_q;
-        base_turns = turns_reg_q;
-        up = up_in;
-        down = down_in;
-        if (pending_reg_q) begin
-            base_u = (lqc_reg_q >> two) & umask;
-            base_turns = lturns_reg_q;
-            up = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
-            down = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
-        end
         ustep = zero;
-        if (up) begin
-            ustep = one;
+        if (down_in) begin
+            ustep = minus_two;
         end
-        if (down) begin
-            ustep = minus_one;
+        if (step_in) begin
+            ustep = ustep | one;
         end
-        usum = (base_u + ustep) & usmask;
-        un = usum & umask;
+        usum = (u_reg_q + ustep) & usmask;
         wrap = |(usum & ubit);
         if (~pow2) begin
-            wrap = (up & (base_u == ulast)) | (down & |(usum & ubit));
+            wrap = (up_in & (u_reg_q == ulast)) | (down_in & |(usum & ubit));
         end
+        base_q = lqc_reg_q & three;
+        base_u = (lqc_reg_q >> two) & umask;
+        up_l = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+        down_l = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        ustep_l = zero;
+        if (up_l) begin
+            ustep_l = one;
+        end
+        if (down_l) begin
+            ustep_l = minus_one;
+        end
+        usum_l = (base_u + ustep_l) & usmask;
+        wrap_l = (up_l & llast_reg_q) | (down_l & lzero_reg_q);
+        up = up_in;
+        down = down_in;
+        un = usum & umask;
+        base_turns = turns_reg_q;
         tinc = (turns_reg_q + one) & tmask;
         tdec = (turns_reg_q + minus_one) & tmask;
         if (pending_reg_q) begin
+            up = up_l;
+            down = down_l;
+            un = usum_l & umask;
+            wrap = wrap_l;
+            base_turns = lturns_reg_q;
             tinc = ltinc_reg_q;
             tdec = ltdec_reg_q;
         end
@@ -1298,6 +1380,8 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,loa
             lturns_reg_d = load_turns;
             ltinc_reg_d = (load_turns + one) & tmask;
             ltdec_reg_d = (load_turns + minus_one) & tmask;
+            llast_reg_d = ((load_qc >> two) & umask) == ulast;
+            lzero_reg_d = ((load_qc >> two) & umask) == zero;
         end
         if (rst) begin
             init_reg_d = 1'b0;
@@ -1420,6 +1504,24 @@ module sd_core_rtl_counter_init_reg(d,q,clock);
 
 endmodule // sd_core_rtl_counter_init_reg
 
+module sd_core_rtl_counter_llast_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_llast_reg
+
 module sd_core_rtl_counter_lqc_reg(d,q,clock);
 
     // Module arguments
@@ -1491,6 +1593,24 @@ module sd_core_rtl_counter_lturns_reg(d,q,clock);
     end
 
 endmodule // sd_core_rtl_counter_lturns_reg
+
+module sd_core_rtl_counter_lzero_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_lzero_reg
 
 module sd_core_rtl_counter_pending_reg(d,q,clock);
 

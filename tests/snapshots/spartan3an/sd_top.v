@@ -1600,10 +1600,6 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
             BissState_Idle:
                 begin
                     if (sync_fall) begin
-                        posw_take = 1'b1;
-                        errl_d = posw_err;
-                        warnl_d = posw_warn;
-                        crc_d = zero;
                         state_d = BissState_First;
                     end
                 end
@@ -1697,6 +1693,12 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
                     end
                 end
         endcase
+        if (sidle_q & sync_fall) begin
+            posw_take = 1'b1;
+            errl_d = posw_err;
+            warnl_d = posw_warn;
+            crc_d = zero;
+        end
         if (sidle_q & sync_fall) begin
             sh_d = posw_word & nmask;
         end
@@ -2210,10 +2212,18 @@ module sd_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
     reg  nf_d;
     wire  nf_q;
     reg  nf_clock;
+    reg  rise_r_d;
+    wire  rise_r_q;
+    reg  rise_r_clock;
+    reg  fall_r_d;
+    wire  fall_r_q;
+    reg  fall_r_clock;
 
     // Local signals
     reg  src;
     reg  change;
+    reg  nfn;
+    reg  chn;
 
     // Sub module instances
     sd_top_rtl_biss_slave_sync_n1 n1(
@@ -2236,6 +2246,16 @@ module sd_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
         .q(nf_q),
         .clock(nf_clock)
     );
+    sd_top_rtl_biss_slave_sync_rise_r rise_r(
+        .d(rise_r_d),
+        .q(rise_r_q),
+        .clock(rise_r_clock)
+    );
+    sd_top_rtl_biss_slave_sync_fall_r fall_r(
+        .d(fall_r_d),
+        .q(fall_r_q),
+        .clock(fall_r_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -2243,10 +2263,14 @@ module sd_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
         n2_clock = clk;
         n3_clock = clk;
         nf_clock = clk;
+        rise_r_clock = clk;
+        fall_r_clock = clk;
         n1_d = n1_q;
         n2_d = n2_q;
         n3_d = n3_q;
         nf_d = nf_q;
+        rise_r_d = rise_r_q;
+        fall_r_d = fall_r_q;
         n1_d = ~pin;
         n2_d = n1_q;
         n3_d = n2_q;
@@ -2258,21 +2282,51 @@ module sd_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
             src = n2_q;
             change = n2_q != nf_q;
         end
+        nfn = nf_q;
         if (change) begin
-            nf_d = src;
+            nfn = src;
         end
+        nf_d = nfn;
+        if (filter) begin
+            chn = (n1_q == n2_q) & (n2_q != nfn);
+        end
+        else begin
+            chn = n1_q != nfn;
+        end
+        rise_r_d = chn & nfn;
+        fall_r_d = chn & ~nfn;
         level = ~nf_q;
-        rise = change & nf_q;
-        fall = change & ~nf_q;
+        rise = rise_r_q;
+        fall = fall_r_q;
         if (rst) begin
             n1_d = 1'b0;
             n2_d = 1'b0;
             n3_d = 1'b0;
             nf_d = 1'b0;
+            rise_r_d = 1'b0;
+            fall_r_d = 1'b0;
         end
     end
 
 endmodule // sd_top_rtl_biss_slave_sync
+
+module sd_top_rtl_biss_slave_sync_fall_r(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_sync_fall_r
 
 module sd_top_rtl_biss_slave_sync_n1(d,q,clock);
 
@@ -2345,6 +2399,24 @@ module sd_top_rtl_biss_slave_sync_nf(d,q,clock);
     end
 
 endmodule // sd_top_rtl_biss_slave_sync_nf
+
+module sd_top_rtl_biss_slave_sync_rise_r(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_sync_rise_r
 
 module sd_top_rtl_biss_slave_tcnt(d,q,clock);
 
@@ -2595,6 +2667,7 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
     wire  combiner_v;
     wire  combiner_up;
     wire  combiner_down;
+    wire  combiner_step;
     wire  [31:0] combiner_wq;
     wire  combiner_wz;
     reg  counter_clk;
@@ -2604,6 +2677,7 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
     reg  counter_v_in;
     reg  counter_up_in;
     reg  counter_down_in;
+    reg  counter_step_in;
     reg  [31:0] counter_wq_in;
     reg  counter_wz_in;
     reg  counter_load;
@@ -2835,6 +2909,7 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
         .v(combiner_v),
         .up(combiner_up),
         .down(combiner_down),
+        .step(combiner_step),
         .wq(combiner_wq),
         .wz(combiner_wz)
     );
@@ -2846,6 +2921,7 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
         .v_in(counter_v_in),
         .up_in(counter_up_in),
         .down_in(counter_down_in),
+        .step_in(counter_step_in),
         .wq_in(counter_wq_in),
         .wz_in(counter_wz_in),
         .load(counter_load),
@@ -3109,6 +3185,7 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
         counter_v_in = combiner_v;
         counter_up_in = combiner_up;
         counter_down_in = combiner_down;
+        counter_step_in = combiner_step;
         counter_wq_in = combiner_wq;
         counter_wz_in = combiner_wz;
         counter_load = load;
@@ -3124,7 +3201,7 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
 
 endmodule // sd_top_rtl_core
 
-module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz);
+module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz);
 
     // Module arguments
     input wire  clk;
@@ -3137,6 +3214,7 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
     output reg  v;
     output reg  up;
     output reg  down;
+    output reg  step;
     output reg  [31:0] wq;
     output reg  wz;
 
@@ -3150,6 +3228,8 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
     localparam  wmask = 32'hfff;
     localparam  zero = 32'h0;
     localparam  minmag = 32'hd2c91;
+    localparam  minmag_v = 32'h800d2c91;
+    localparam  vbit = 32'h80000000;
 
     // Stub signals
     reg  [31:0] p_reg_d;
@@ -3170,6 +3250,9 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
     reg  down_reg_d;
     wire  down_reg_q;
     reg  down_reg_clock;
+    reg  step_reg_d;
+    wire  step_reg_q;
+    reg  step_reg_clock;
     reg  [31:0] wq_reg_d;
     wire  [31:0] wq_reg_q;
     reg  wq_reg_clock;
@@ -3180,6 +3263,8 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
     // Local signals
     reg  [31:0] pn;
     reg  okn;
+    reg  [31:0] xv;
+    reg  okv;
     reg  [31:0] delta;
     reg  back;
     reg  [31:0] qnew;
@@ -3216,6 +3301,11 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
         .q(down_reg_q),
         .clock(down_reg_clock)
     );
+    sd_top_rtl_core_combiner_step_reg step_reg(
+        .d(step_reg_d),
+        .q(step_reg_q),
+        .clock(step_reg_clock)
+    );
     sd_top_rtl_core_combiner_wq_reg wq_reg(
         .d(wq_reg_d),
         .q(wq_reg_q),
@@ -3235,6 +3325,7 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
         plast_reg_clock = clk;
         up_reg_clock = clk;
         down_reg_clock = clk;
+        step_reg_clock = clk;
         wq_reg_clock = clk;
         wz_reg_clock = clk;
         p_reg_d = p_reg_q;
@@ -3243,6 +3334,7 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
         plast_reg_d = plast_reg_q;
         up_reg_d = up_reg_q;
         down_reg_d = down_reg_q;
+        step_reg_d = step_reg_q;
         wq_reg_d = wq_reg_q;
         wz_reg_d = wz_reg_q;
         pn = (z_in >> zshift) & pmask;
@@ -3250,7 +3342,12 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
         p_reg_d = pn;
         ok_reg_d = okn;
         v_reg_d = v_in & ~rst;
-        if (v_in & ~rst & okn) begin
+        xv = x_in;
+        if (v_in & ~rst) begin
+            xv = x_in | vbit;
+        end
+        okv = xv >= minmag_v;
+        if (okv) begin
             plast_reg_d = pn;
         end
         delta = (pn - plast_reg_q) & pmask;
@@ -3259,13 +3356,15 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,wq,wz)
         qlast = (plast_reg_q >> fshift) & three;
         up_reg_d = ~back & (qnew < qlast);
         down_reg_d = back & (qnew > qlast);
+        step_reg_d = up_reg_d | down_reg_d;
         wq_reg_d = delta >> wshift;
-        wz_reg_d = (delta & wmask) == zero;
+        wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;
         p = p_reg_q;
         mag_ok = ok_reg_q;
         v = v_reg_q;
         up = up_reg_q;
         down = down_reg_q;
+        step = step_reg_q;
         wq = wq_reg_q;
         wz = wz_reg_q;
     end
@@ -3344,6 +3443,24 @@ module sd_top_rtl_core_combiner_plast_reg(d,q,clock);
 
 endmodule // sd_top_rtl_core_combiner_plast_reg
 
+module sd_top_rtl_core_combiner_step_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_combiner_step_reg
+
 module sd_top_rtl_core_combiner_up_reg(d,q,clock);
 
     // Module arguments
@@ -3416,7 +3533,7 @@ module sd_top_rtl_core_combiner_wz_reg(d,q,clock);
 
 endmodule // sd_top_rtl_core_combiner_wz_reg
 
-module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
+module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
 
     // Module arguments
     input wire  clk;
@@ -3426,6 +3543,7 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
     input wire  v_in;
     input wire  up_in;
     input wire  down_in;
+    input wire  step_in;
     input wire  [31:0] wq_in;
     input wire  wz_in;
     input wire  load;
@@ -3453,6 +3571,7 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
     localparam  one = 32'h1;
     localparam  three = 32'h3;
     localparam  minus_one = 32'hffffffff;
+    localparam  minus_two = 32'hfffffffe;
     localparam  zero = 32'h0;
 
     // Stub signals
@@ -3495,6 +3614,12 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
     reg  [31:0] ltdec_reg_d;
     wire  [31:0] ltdec_reg_q;
     reg  ltdec_reg_clock;
+    reg  llast_reg_d;
+    wire  llast_reg_q;
+    reg  llast_reg_clock;
+    reg  lzero_reg_d;
+    wire  lzero_reg_q;
+    reg  lzero_reg_clock;
 
     // Local signals
     reg  [31:0] qnew;
@@ -3504,6 +3629,11 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
     reg  up;
     reg  down;
     reg  [31:0] ustep;
+    reg  up_l;
+    reg  down_l;
+    reg  [31:0] ustep_l;
+    reg  [31:0] usum_l;
+    reg  wrap_l;
     reg  [31:0] usum;
     reg  [31:0] un;
     reg  wrap;
@@ -3576,6 +3706,16 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
         .q(ltdec_reg_q),
         .clock(ltdec_reg_clock)
     );
+    sd_top_rtl_core_counter_llast_reg llast_reg(
+        .d(llast_reg_d),
+        .q(llast_reg_q),
+        .clock(llast_reg_clock)
+    );
+    sd_top_rtl_core_counter_lzero_reg lzero_reg(
+        .d(lzero_reg_d),
+        .q(lzero_reg_q),
+        .clock(lzero_reg_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -3592,6 +3732,8 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
         lturns_reg_clock = clk;
         ltinc_reg_clock = clk;
         ltdec_reg_clock = clk;
+        llast_reg_clock = clk;
+        lzero_reg_clock = clk;
         init_reg_d = init_reg_q;
         pprev_reg_d = pprev_reg_q;
         u_reg_d = u_reg_q;
@@ -3605,34 +3747,46 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
         lturns_reg_d = lturns_reg_q;
         ltinc_reg_d = ltinc_reg_q;
         ltdec_reg_d = ltdec_reg_q;
+        llast_reg_d = llast_reg_q;
+        lzero_reg_d = lzero_reg_q;
         qnew = (p_in >> fshift) & three;
-        base_q = lqc_reg_q & three;
-        base_u = u_reg_q;
-        base_turns = turns_reg_q;
-        up = up_in;
-        down = down_in;
-        if (pending_reg_q) begin
-            base_u = (lqc_reg_q >> two) & umask;
-            base_turns = lturns_reg_q;
-            up = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
-            down = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
-        end
         ustep = zero;
-        if (up) begin
-            ustep = one;
+        if (down_in) begin
+            ustep = minus_two;
         end
-        if (down) begin
-            ustep = minus_one;
+        if (step_in) begin
+            ustep = ustep | one;
         end
-        usum = (base_u + ustep) & usmask;
-        un = usum & umask;
+        usum = (u_reg_q + ustep) & usmask;
         wrap = |(usum & ubit);
         if (~pow2) begin
-            wrap = (up & (base_u == ulast)) | (down & |(usum & ubit));
+            wrap = (up_in & (u_reg_q == ulast)) | (down_in & |(usum & ubit));
         end
+        base_q = lqc_reg_q & three;
+        base_u = (lqc_reg_q >> two) & umask;
+        up_l = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+        down_l = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        ustep_l = zero;
+        if (up_l) begin
+            ustep_l = one;
+        end
+        if (down_l) begin
+            ustep_l = minus_one;
+        end
+        usum_l = (base_u + ustep_l) & usmask;
+        wrap_l = (up_l & llast_reg_q) | (down_l & lzero_reg_q);
+        up = up_in;
+        down = down_in;
+        un = usum & umask;
+        base_turns = turns_reg_q;
         tinc = (turns_reg_q + one) & tmask;
         tdec = (turns_reg_q + minus_one) & tmask;
         if (pending_reg_q) begin
+            up = up_l;
+            down = down_l;
+            un = usum_l & umask;
+            wrap = wrap_l;
+            base_turns = lturns_reg_q;
             tinc = ltinc_reg_q;
             tdec = ltdec_reg_q;
         end
@@ -3643,6 +3797,8 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,wq_in,wz_in
             lturns_reg_d = load_turns;
             ltinc_reg_d = (load_turns + one) & tmask;
             ltdec_reg_d = (load_turns + minus_one) & tmask;
+            llast_reg_d = ((load_qc >> two) & umask) == ulast;
+            lzero_reg_d = ((load_qc >> two) & umask) == zero;
         end
         if (rst) begin
             init_reg_d = 1'b0;
@@ -3765,6 +3921,24 @@ module sd_top_rtl_core_counter_init_reg(d,q,clock);
 
 endmodule // sd_top_rtl_core_counter_init_reg
 
+module sd_top_rtl_core_counter_llast_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_llast_reg
+
 module sd_top_rtl_core_counter_lqc_reg(d,q,clock);
 
     // Module arguments
@@ -3836,6 +4010,24 @@ module sd_top_rtl_core_counter_lturns_reg(d,q,clock);
     end
 
 endmodule // sd_top_rtl_core_counter_lturns_reg
+
+module sd_top_rtl_core_counter_lzero_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_lzero_reg
 
 module sd_top_rtl_core_counter_pending_reg(d,q,clock);
 
