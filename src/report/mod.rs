@@ -51,6 +51,7 @@ use sweep::{ErrAcc, SweepPlan};
 use yosys::{GateStats, Yosys};
 
 mod columns;
+mod jobs;
 mod json;
 mod markdown;
 mod run;

@@ -35,7 +35,11 @@ tee -q -o {ltp} ltp -noff
 
 /// Source of the FPGA synthesis (script and counting rules) and of the path analysis,
 /// hashed into cache keys.
-const SYNTH_SOURCE: &str = concat!(include_str!("../synth.rs"), include_str!("levels.rs"));
+const SYNTH_SOURCE: &str = concat!(
+    include_str!("../synth.rs"),
+    include_str!("levels/mod.rs"),
+    include_str!("levels/delay.rs")
+);
 
 /// Version of the cache entry layout.
 const CACHE_VERSION: &str = "sinedec-report-cache-2";

@@ -143,6 +143,7 @@
 //! accepted, so strobes every P + 1 clocks are all accepted.
 pub mod hdl;
 pub mod model;
+pub mod parts;
 
 use crate::error::{Error, Result};
 

@@ -1,6 +1,6 @@
 //! Cycle-accurate, bit-accurate model of `<name>_core`.
-use crate::blocks::cordic::iterative::IterTiming;
 use crate::blocks::cordic::model::cordic;
+use crate::blocks::cordic::model::IterTiming;
 use crate::blocks::counter::model::{combine, Combined, Counter, Load};
 use crate::blocks::mask;
 use crate::blocks::params::{Architecture, Derived};

@@ -77,6 +77,7 @@
 //!   to first order; b is rounded to 1 LSB, so the residual offset is <= 0.5 LSB times g.
 //! * Reset (synchronous, active high) restores the configured offsets and gains (they are
 //!   also the power-up values) and restarts the tracker; it aborts a division.
+pub mod autocal;
 pub mod hdl;
 pub mod model;
 

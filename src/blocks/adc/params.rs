@@ -1,0 +1,551 @@
+//! Parameters of the ADC controller: the chip presets, the frame layout, the timing derived
+//! from the clock and their checks (maths in the module docs of [`super`]).
+
+/// The chip the parameters were made for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum AdcChip {
+    /// Linear Technology LTC1407A-1 (Spartan-3A/3AN Starter Kit).
+    Ltc1407a1,
+    /// Any other SPI ADC.
+    Generic,
+}
+
+/// [`crate::error::Error::BlockParams`] for this block: `message` says what is wrong and what
+/// is allowed.
+fn invalid(message: String) -> crate::error::Error {
+    crate::error::Error::block_params("adc", message)
+}
+
+impl std::fmt::Display for AdcChip {
+    /// The chip's name as a datasheet spells it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            AdcChip::Ltc1407a1 => "LTC1407A-1",
+            AdcChip::Generic => "generic SPI ADC",
+        })
+    }
+}
+
+/// Coding of the samples in the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum SignFormat {
+    /// Two's complement (delivered as is).
+    TwosComplement,
+    /// Offset binary (the MSB is inverted to give two's complement).
+    OffsetBinary,
+}
+
+/// Timing limits of the ADC chip, in nanoseconds (0 = no limit).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct AdcTiming {
+    /// Minimum SCK period.
+    pub sck_min_period_ns: f64,
+    /// Maximum SCK period while a conversion runs (0 = none).
+    pub sck_max_period_ns: f64,
+    /// Minimum SCK high and low time.
+    pub sck_min_pulse_ns: f64,
+    /// Delay from the shifting SCK edge to valid data on SDO (maximum).
+    pub data_valid_ns: f64,
+    /// Minimum CONV active pulse width.
+    pub conv_min_pulse_ns: f64,
+    /// Minimum CONV inactive time.
+    pub conv_min_low_ns: f64,
+    /// Minimum set-up from the CONV edge to the first SCK edge.
+    pub conv_to_sck_ns: f64,
+    /// Minimum time from the SCK edge that ends a conversion to the next CONV edge.
+    pub acquisition_ns: f64,
+    /// SCK rising edges a conversion needs (the acquisition is counted from the last one;
+    /// 0 = no such constraint).
+    pub conversion_edges: u32,
+    /// Maximum sample rate per channel.
+    pub max_sample_rate_hz: f64,
+}
+
+impl AdcTiming {
+    /// LTC1407A-1 at VDD = 3 V (datasheet 14071fb, Timing Characteristics and
+    /// Applications Information): tSCK >= 19.6 ns (<= 10 us), t1 >= 2 ns, t8 = 8 ns,
+    /// t4 >= 4 ns (CONV low kept >= 15 ns), t2 >= 3 ns, t7 (32nd SCK rise to CONV rise)
+    /// >= 45 ns, conversion over 32 SCK rising edges, 1.5 Msps per channel.
+    pub const LTC1407A_1: AdcTiming = AdcTiming {
+        sck_min_period_ns: 19.6,
+        sck_max_period_ns: 10_000.0,
+        sck_min_pulse_ns: 2.0,
+        data_valid_ns: 8.0,
+        conv_min_pulse_ns: 4.0,
+        conv_min_low_ns: 15.0,
+        conv_to_sck_ns: 3.0,
+        acquisition_ns: 45.0,
+        conversion_edges: 32,
+        max_sample_rate_hz: 1.5e6,
+    };
+}
+
+/// Frame format of a generic SPI ADC.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct AdcFrame {
+    /// SCK cycles per frame (1..=250).
+    pub frame_sck: u32,
+    /// Channels in the frame: 1 or 2.
+    pub channels: u32,
+    /// Slot index (0-based SCK cycle) of each channel's MSB; MSB first.
+    pub offsets: [u32; 2],
+    /// Sample width W (10..=16).
+    pub width: u32,
+    /// Coding of the samples.
+    pub sign: SignFormat,
+    /// SCK idle level.
+    pub cpol: bool,
+    /// false: the slave shifts on trailing edges (first bit valid at CONV/CS);
+    /// true: the slave shifts on leading edges.
+    pub cpha: bool,
+    /// CONV / chip-select active level.
+    pub conv_active_high: bool,
+    /// CONV active clocks from the period start (0 = the minimum pulse from the timing;
+    /// a chip select that frames the whole transfer needs >= lead + frame*D).
+    pub conv_clocks: u32,
+    /// Clocks from the CONV assertion to the first SCK cycle.
+    pub lead_clocks: u32,
+    /// Frames between a conversion and its data on SDO (0, 1 or 2).
+    pub pipeline: u32,
+}
+
+impl AdcFrame {
+    /// The LTC1407A-1 frame: 34 SCK, 2 idle, 14 bits channel 0, 2 idle, 14 bits channel 1,
+    /// 2 idle; two's complement; SCK idle low, data shifted on rising edges; CONV pulse
+    /// active high; data one conversion late.
+    pub const LTC1407A_1: AdcFrame = AdcFrame {
+        frame_sck: 34,
+        channels: 2,
+        offsets: [2, 18],
+        width: 14,
+        sign: SignFormat::TwosComplement,
+        cpol: false,
+        cpha: true,
+        conv_active_high: true,
+        conv_clocks: 0,
+        lead_clocks: 0,
+        pipeline: 1,
+    };
+}
+
+/// Parameters of one ADC controller instance, all in system clocks (derived once).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct AdcParams {
+    /// Which preset made these parameters.
+    pub chip: AdcChip,
+    /// System clock in Hz.
+    pub clock_hz: f64,
+    /// Frame format.
+    pub frame: AdcFrame,
+    /// Chip limits.
+    pub timing: AdcTiming,
+    /// SCK period D in system clocks (>= 2, odd allowed).
+    pub sck_period_clocks: u32,
+    /// SCK active-level clocks H (1..D-1); the idle-level part is L = D - H.
+    pub sck_high_clocks: u32,
+    /// CONV active clocks per period.
+    pub conv_clocks: u32,
+    /// Conversion period P in system clocks.
+    pub period_clocks: u32,
+}
+
+/// Largest supported period (16-bit period counter).
+pub const MAX_PERIOD_CLOCKS: u32 = 65_535;
+
+fn ceil_clocks(ns: f64, clock_hz: f64) -> u32 {
+    if ns <= 0.0 {
+        return 0;
+    }
+    // Small tolerance so that an exact multiple is not rounded up by float error.
+    (ns * clock_hz / 1e9 - 1e-9).ceil().max(0.0) as u32
+}
+
+impl AdcParams {
+    /// LTC1407A-1 at `clock_hz` with an SCK period of `sck_period_clocks` system clocks and
+    /// a conversion period of `period_clocks` (None: the shortest the chip allows, at least
+    /// the 34-SCK frame). Call [`validate`](Self::validate) before use.
+    pub fn ltc1407a(clock_hz: f64, sck_period_clocks: u32, period_clocks: Option<u32>) -> Self {
+        Self::build(
+            AdcChip::Ltc1407a1,
+            clock_hz,
+            AdcFrame::LTC1407A_1,
+            AdcTiming::LTC1407A_1,
+            sck_period_clocks,
+            period_clocks,
+        )
+    }
+
+    /// LTC1407A-1 with the fastest SCK divider the chip allows at `clock_hz`.
+    pub fn ltc1407a_fastest(clock_hz: f64) -> crate::error::Result<Self> {
+        let d = ceil_clocks(AdcTiming::LTC1407A_1.sck_min_period_ns, clock_hz).max(2);
+        let p = Self::ltc1407a(clock_hz, d, None);
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// Any SPI ADC: frame format, chip limits, SCK divider and conversion period (None: the
+    /// shortest allowed). Call [`validate`](Self::validate) before use.
+    pub fn generic(
+        clock_hz: f64,
+        frame: AdcFrame,
+        timing: AdcTiming,
+        sck_period_clocks: u32,
+        period_clocks: Option<u32>,
+    ) -> Self {
+        Self::build(
+            AdcChip::Generic,
+            clock_hz,
+            frame,
+            timing,
+            sck_period_clocks,
+            period_clocks,
+        )
+    }
+
+    fn build(
+        chip: AdcChip,
+        clock_hz: f64,
+        frame: AdcFrame,
+        timing: AdcTiming,
+        d: u32,
+        period_clocks: Option<u32>,
+    ) -> Self {
+        let conv_clocks = if frame.conv_clocks > 0 {
+            frame.conv_clocks
+        } else {
+            ceil_clocks(timing.conv_min_pulse_ns, clock_hz).max(1)
+        };
+        let mut p = AdcParams {
+            chip,
+            clock_hz,
+            frame,
+            timing,
+            sck_period_clocks: d,
+            sck_high_clocks: d / 2,
+            conv_clocks,
+            period_clocks: 0,
+        };
+        p.period_clocks = period_clocks.unwrap_or_else(|| p.min_period_clocks());
+        p
+    }
+
+    /// Period for a target sample rate per channel (rounded up to whole clocks: the rate
+    /// reached is at most the target).
+    pub fn period_for_rate(clock_hz: f64, rate_hz: f64) -> u32 {
+        if rate_hz.is_nan() || rate_hz <= 0.0 || !clock_hz.is_finite() {
+            return 0;
+        }
+        (clock_hz / rate_hz - 1e-9).ceil().max(0.0) as u32
+    }
+
+    /// Shortest period the frame and the chip's timing allow at this divider.
+    pub fn min_period_clocks(&self) -> u32 {
+        let f = &self.frame;
+        let d = self.sck_period_clocks;
+        let frame_end = f.lead_clocks.saturating_add(f.frame_sck.saturating_mul(d));
+        let mut p = frame_end.max(self.last_capture_clock().saturating_add(1));
+        p = p.max(
+            self.conv_clocks
+                .saturating_add(ceil_clocks(self.timing.conv_min_low_ns, self.clock_hz)),
+        );
+        if self.timing.conversion_edges > 0 {
+            let end = self.conversion_end_clock();
+            p = p.max(
+                end.saturating_add(ceil_clocks(self.timing.acquisition_ns, self.clock_hz).max(1)),
+            );
+        }
+        if self.timing.max_sample_rate_hz > 0.0 {
+            p = p.max(Self::period_for_rate(
+                self.clock_hz,
+                self.timing.max_sample_rate_hz,
+            ));
+        }
+        p
+    }
+
+    /// SCK idle-level clocks L = D - H.
+    pub fn sck_low_clocks(&self) -> u32 {
+        self.sck_period_clocks.saturating_sub(self.sck_high_clocks)
+    }
+
+    /// Clocks after the start of an SCK cycle at which a slot is captured (in the next
+    /// cycle): L for CPHA = 1, 0 for CPHA = 0.
+    pub fn capture_phase(&self) -> u32 {
+        if self.frame.cpha {
+            self.sck_low_clocks()
+        } else {
+            0
+        }
+    }
+
+    /// Slots holding data bits: (first, last) over all channels.
+    pub fn data_slots(&self) -> (u32, u32) {
+        let f = &self.frame;
+        let n = f.channels.clamp(1, 2) as usize;
+        let first = f.offsets[..n].iter().copied().min().unwrap_or(0);
+        let last = f.offsets[..n]
+            .iter()
+            .map(|o| o.saturating_add(f.width.max(1) - 1))
+            .max()
+            .unwrap_or(0);
+        (first, last)
+    }
+
+    /// Period counter value (clocks after the CONV edge) at which slot `k` is captured.
+    pub fn capture_clock(&self, k: u32) -> u32 {
+        self.frame
+            .lead_clocks
+            .saturating_add(k.saturating_add(1).saturating_mul(self.sck_period_clocks))
+            .saturating_add(self.capture_phase())
+    }
+
+    /// Period counter value at which the last data bit is captured and `out_valid` rises.
+    pub fn last_capture_clock(&self) -> u32 {
+        self.capture_clock(self.data_slots().1)
+    }
+
+    /// Period counter value of the SCK rising (leading) edge that completes a conversion.
+    pub fn conversion_end_clock(&self) -> u32 {
+        let e = self.timing.conversion_edges.max(1);
+        self.frame
+            .lead_clocks
+            .saturating_add((e - 1).saturating_mul(self.sck_period_clocks))
+            .saturating_add(self.sck_low_clocks())
+    }
+
+    /// SCK frequency in Hz.
+    pub fn sck_hz(&self) -> f64 {
+        self.clock_hz / self.sck_period_clocks.max(1) as f64
+    }
+
+    /// Sample rate per channel in samples per second.
+    pub fn sample_rate_hz(&self) -> f64 {
+        self.clock_hz / self.period_clocks.max(1) as f64
+    }
+
+    /// Clocks from the first clock CONV is active (the sampling edge) to the `out_valid`
+    /// strobe that delivers that sample.
+    pub fn conv_to_valid_clocks(&self) -> u32 {
+        self.frame
+            .pipeline
+            .saturating_mul(self.period_clocks)
+            .saturating_add(self.last_capture_clock())
+    }
+
+    /// [`conv_to_valid_clocks`](Self::conv_to_valid_clocks) in seconds.
+    pub fn conv_to_valid_s(&self) -> f64 {
+        self.conv_to_valid_clocks() as f64 / self.clock_hz
+    }
+
+    /// Clocks from reset release (with `enable` high) to the first `out_valid`: one flush
+    /// period, `pipeline` discarded frames, then the latency of the first sample.
+    pub fn startup_clocks(&self) -> u32 {
+        // Row 0 after release enters pc = 0 of the flush period; the pins and the data are
+        // registered one clock after the state (see `hdl::AdcController`), hence the + 1.
+        self.period_clocks
+            .saturating_add(self.conv_to_valid_clocks())
+            .saturating_add(1)
+    }
+
+    /// Checks every limit; the error names the value, the limit and what to change.
+    pub fn validate(&self) -> crate::error::Result<()> {
+        let f = &self.frame;
+        let t = &self.timing;
+        let name = match self.chip {
+            AdcChip::Ltc1407a1 => "LTC1407A-1",
+            AdcChip::Generic => "ADC",
+        };
+        if !(self.clock_hz.is_finite() && self.clock_hz > 0.0) {
+            return Err(invalid(format!(
+                "clock {} Hz is not a positive frequency",
+                self.clock_hz
+            )));
+        }
+        let ns = 1e9 / self.clock_hz;
+        let mhz = self.clock_hz / 1e6;
+        if !(1..=2).contains(&f.channels) {
+            return Err(invalid(format!(
+                "{} channels: 1 or 2 are supported",
+                f.channels
+            )));
+        }
+        if !(10..=16).contains(&f.width) {
+            return Err(invalid(format!(
+                "sample width {} bits: 10..=16 are supported",
+                f.width
+            )));
+        }
+        if !(1..=250).contains(&f.frame_sck) {
+            return Err(invalid(format!(
+                "frame of {} SCK cycles: 1..=250 are supported",
+                f.frame_sck
+            )));
+        }
+        if f.pipeline > 2 {
+            return Err(invalid(format!(
+                "pipeline of {} frames: 0..=2 are supported",
+                f.pipeline
+            )));
+        }
+        for c in 0..f.channels as usize {
+            if f.offsets[c].saturating_add(f.width) > f.frame_sck {
+                return Err(invalid(format!(
+                    "channel {c}: bits {}..{} do not fit in the {}-SCK frame",
+                    f.offsets[c],
+                    f.offsets[c].saturating_add(f.width - 1),
+                    f.frame_sck
+                )));
+            }
+        }
+        if f.channels == 2 {
+            let (a, b) = (f.offsets[0], f.offsets[1]);
+            if a < b.saturating_add(f.width) && b < a.saturating_add(f.width) {
+                return Err(invalid(format!(
+                    "channel bit ranges overlap: {a}..{} and {b}..{}",
+                    a + f.width - 1,
+                    b + f.width - 1
+                )));
+            }
+        }
+        let d = self.sck_period_clocks;
+        if !(2..=255).contains(&d) {
+            return Err(invalid(format!(
+                "SCK period of {d} system clocks: 2..=255 are supported (SCK needs a high and a low clock)"
+            )));
+        }
+        let (h, l) = (self.sck_high_clocks, self.sck_low_clocks());
+        if h == 0 || h >= d {
+            return Err(invalid(format!(
+                "SCK high time {h} clocks must be 1..={}",
+                d - 1
+            )));
+        }
+        let tsck = d as f64 * ns;
+        if tsck + 1e-9 < t.sck_min_period_ns {
+            let need = ceil_clocks(t.sck_min_period_ns, self.clock_hz).max(2);
+            return Err(invalid(format!(
+                "SCK of {:.2} MHz ({d} clocks = {tsck:.2} ns at {mhz:.2} MHz) is above the {name} limit of {:.2} MHz (tSCK >= {} ns); use an SCK period of at least {need} clocks",
+                1e3 / tsck,
+                1e3 / t.sck_min_period_ns,
+                t.sck_min_period_ns
+            )));
+        }
+        if t.sck_max_period_ns > 0.0 && tsck > t.sck_max_period_ns {
+            return Err(invalid(format!(
+                "SCK period {tsck:.1} ns is above the {name} maximum of {} ns during a conversion",
+                t.sck_max_period_ns
+            )));
+        }
+        if (h.min(l) as f64 * ns) + 1e-9 < t.sck_min_pulse_ns {
+            return Err(invalid(format!(
+                "SCK pulse of {:.2} ns is shorter than the {name} minimum of {} ns",
+                h.min(l) as f64 * ns,
+                t.sck_min_pulse_ns
+            )));
+        }
+        if tsck + 1e-9 < t.data_valid_ns {
+            return Err(invalid(format!(
+                "SCK period {tsck:.2} ns is shorter than the {name} data-valid delay of {} ns: data would be read before it is valid",
+                t.data_valid_ns
+            )));
+        }
+        if self.conv_clocks == 0 || (self.conv_clocks as f64 * ns) + 1e-9 < t.conv_min_pulse_ns {
+            return Err(invalid(format!(
+                "CONV pulse of {} clocks ({:.2} ns) is shorter than the {name} minimum of {} ns",
+                self.conv_clocks,
+                self.conv_clocks as f64 * ns,
+                t.conv_min_pulse_ns
+            )));
+        }
+        if f.lead_clocks.saturating_add(l) as f64 * ns + 1e-9 < t.conv_to_sck_ns {
+            return Err(invalid(format!(
+                "CONV to first SCK edge is {:.2} ns, below the {name} set-up of {} ns; raise the lead clocks",
+                f.lead_clocks.saturating_add(l) as f64 * ns,
+                t.conv_to_sck_ns
+            )));
+        }
+        let p = self.period_clocks;
+        if p > MAX_PERIOD_CLOCKS {
+            return Err(invalid(format!(
+                "conversion period of {p} clocks exceeds the supported {MAX_PERIOD_CLOCKS} (sample rate {:.0} Hz is too low for {mhz:.2} MHz)",
+                self.sample_rate_hz()
+            )));
+        }
+        let frame_end = f.lead_clocks.saturating_add(f.frame_sck.saturating_mul(d));
+        if p < frame_end {
+            return Err(invalid(format!(
+                "conversion period of {p} clocks is shorter than the frame ({} + {} SCK x {d} clocks = {frame_end} clocks); the shortest allowed is {}",
+                f.lead_clocks,
+                f.frame_sck,
+                self.min_period_clocks()
+            )));
+        }
+        if p <= self.last_capture_clock() {
+            return Err(invalid(format!(
+                "conversion period of {p} clocks ends before the last data bit is read (clock {}); the shortest allowed is {}",
+                self.last_capture_clock(),
+                self.min_period_clocks()
+            )));
+        }
+        if self.conv_clocks >= p || ((p - self.conv_clocks) as f64 * ns) + 1e-9 < t.conv_min_low_ns
+        {
+            return Err(invalid(format!(
+                "CONV is active {} of {p} clocks; it must stay inactive at least {} ns per period",
+                self.conv_clocks, t.conv_min_low_ns
+            )));
+        }
+        if t.conversion_edges > 0 {
+            if t.conversion_edges > f.frame_sck {
+                return Err(invalid(format!(
+                    "the {name} needs {} SCK edges per conversion but the frame has {}",
+                    t.conversion_edges, f.frame_sck
+                )));
+            }
+            let acq = (p - self.conversion_end_clock()) as f64 * ns;
+            if acq + 1e-9 < t.acquisition_ns {
+                return Err(invalid(format!(
+                    "conversion period of {p} clocks leaves {acq:.1} ns from the {}th SCK rising edge to the next CONV, below the {name} acquisition time of {} ns; the shortest allowed is {}",
+                    t.conversion_edges,
+                    t.acquisition_ns,
+                    self.min_period_clocks()
+                )));
+            }
+        }
+        if t.max_sample_rate_hz > 0.0
+            && self.sample_rate_hz() > t.max_sample_rate_hz * (1.0 + 1e-12)
+        {
+            return Err(invalid(format!(
+                "sample rate {:.0} Hz per channel is above the {name} limit of {:.0} Hz; the shortest period is {} clocks",
+                self.sample_rate_hz(),
+                t.max_sample_rate_hz,
+                self.min_period_clocks()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Derived figures, one per line (for `check` and reports).
+    pub fn describe(&self) -> String {
+        format!(
+            "adc chip                    {}\n\
+             system clock                {:.3} MHz\n\
+             SCK                         {:.3} MHz ({} clocks: {} high, {} low)\n\
+             conversion period           {} clocks ({:.1} ns)\n\
+             sample rate per channel     {:.0} samples/s\n\
+             ADC latency CONV -> sample  {} clocks ({:.1} ns)\n\
+             first sample after reset    {} clocks\n",
+            self.chip,
+            self.clock_hz / 1e6,
+            self.sck_hz() / 1e6,
+            self.sck_period_clocks,
+            self.sck_high_clocks,
+            self.sck_low_clocks(),
+            self.period_clocks,
+            self.period_clocks as f64 * 1e9 / self.clock_hz,
+            self.sample_rate_hz(),
+            self.conv_to_valid_clocks(),
+            self.conv_to_valid_s() * 1e9,
+            self.startup_clocks(),
+        )
+    }
+}

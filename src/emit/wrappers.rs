@@ -1,0 +1,286 @@
+//! The hand-written wrappers around the rust-hdl modules: `<name>_core` with its exact port
+//! widths, the sinewave and capacitive `<name>_top`, and the port list of the tops.
+use super::{core_name, has_top, templates, top_name, verilog};
+use crate::blocks::core::hdl::CoreRtl;
+use crate::blocks::top::hdl::SD_TOP_PORTS;
+use crate::blocks::top::ports::{Dir, Pin, TopPort};
+use crate::config::Loaded;
+use crate::error::{Error, Result};
+
+/// The wrapper that gives `<name>_core` its exact port widths
+/// (`rtl-templates/core/core_wrapper.v.j2`).
+fn core_wrapper(loaded: &Loaded, rtl: &str) -> Result<String> {
+    let d = &loaded.derived;
+    let a = d.adc_width;
+    let pad = |s: &str| {
+        if a < 16 {
+            format!("{{{}'d0, {s}}}", 16 - a)
+        } else {
+            s.to_string()
+        }
+    };
+    let f = d.fine_bits;
+    templates::render(
+        "core/core_wrapper.v.j2",
+        minijinja::context! {
+            name => core_name(loaded),
+            rtl => rtl,
+            f => f,
+            turns => turns_expr(d),
+            n => d.iterations,
+            ppr => loaded.config.encoder.ppr,
+            lat => d.latency_cycles,
+            thr => if d.cycles_per_sample == 1 {
+                "one sample per clock".to_string()
+            } else {
+                format!(
+                    "one sample per {} clocks (iterative CORDIC; hold samples off while in_ready is low)",
+                    d.cycles_per_sample
+                )
+            },
+            am => a - 1,
+            pm => d.position_width - 1,
+            tm => d.turns_width - 1,
+            fm => f - 1,
+            mt => d.multiturn_bits,
+            qmax => d.quadrants_per_turn - 1,
+            qb => d.quadrant_bits - 1,
+            sin => pad("in_sin"),
+            cos => pad("in_cos"),
+        },
+    )
+}
+
+/// Verilog of `<name>_core` (wrapper first, then the rust-hdl modules), without header.
+pub fn core_verilog(loaded: &Loaded) -> Result<String> {
+    let rtl_name = format!("{}_rtl", core_name(loaded));
+    let mut uut = CoreRtl::new(&loaded.derived);
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let body = verilog::export(&uut, "core", &rtl_name)?;
+    Ok(format!("{}\n{body}", core_wrapper(loaded, &rtl_name)?))
+}
+
+/// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
+fn turns_expr(d: &crate::config::Derived) -> String {
+    if d.multiturn_bits == 0 {
+        "1'b0".to_string()
+    } else {
+        format!("turns[{}:0]", d.multiturn_bits - 1)
+    }
+}
+
+/// Ports of `<name>_top` in declaration order as (name, width): the sinewave top's pins
+/// ([`crate::config::board_ports`] in the wrapper's order) or the capacitive top's, then the
+/// parallel bus; empty when the configuration has no board top. The VCD of `simulate` uses
+/// these names and widths.
+pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
+    let d = &loaded.derived;
+    let one = |p: &str| (p.to_string(), 1u32);
+    let mut v: Vec<(String, u32)> = if let Some(k) = &d.capacitive {
+        let w = k.config.dac_width;
+        crate::blocks::captop::hdl::CAP_TOP_PORTS
+            .iter()
+            .filter(|p| p.pin != Pin::Parallel)
+            .map(|p| match p.pin {
+                Pin::DacBus => (p.name.to_string(), w),
+                _ => one(p.name),
+            })
+            .collect()
+    } else if has_top(loaded) {
+        let used: Vec<&str> = crate::config::board_ports(&loaded.config)
+            .iter()
+            .map(|p| p.0)
+            .collect();
+        SD_TOP_PORTS
+            .iter()
+            .filter(|t| used.contains(&t.name))
+            .map(|t| one(t.name))
+            .collect()
+    } else {
+        return Vec::new();
+    };
+    v.extend([
+        one("par_valid"),
+        ("par_position".into(), d.position_width),
+        ("par_turns".into(), d.turns_width),
+        ("par_fine".into(), d.fine_bits),
+        one("par_error"),
+        one("par_warning"),
+    ]);
+    v
+}
+
+/// The template context of one wrapper port declaration: direction, range (8 columns;
+/// `width` for a bus narrowed from the rtl's word), the name with its comma in 14 columns,
+/// and the comment.
+fn wrapper_port(t: &TopPort, width: Option<u32>) -> minijinja::Value {
+    let dir = if t.dir == Dir::Out {
+        "output"
+    } else {
+        "input "
+    };
+    let range = match width {
+        Some(w) => format!("[{}:0]  ", w - 1),
+        None => " ".repeat(8),
+    };
+    minijinja::context! {
+        dir => dir,
+        range => range,
+        name => format!("{:<14}", format!("{},", t.name)),
+        comment => t.comment,
+    }
+}
+
+/// `items` separated by ", " and closed by `end`, on lines that start with `prefix` and
+/// stay within 95 columns (an item longer than a line gets a line of its own).
+fn wrap_list(items: &[impl AsRef<str>], prefix: &str, end: &str) -> String {
+    let mut out = String::new();
+    let mut line = String::from(prefix);
+    for (i, item) in items.iter().enumerate() {
+        let sep = if i + 1 < items.len() { "," } else { end };
+        let word = format!(" {}{sep}", item.as_ref());
+        if line.len() > prefix.len() && line.len() + word.len() > 95 {
+            out.push_str(&line);
+            out.push('\n');
+            line = String::from(prefix);
+        }
+        line.push_str(&word);
+    }
+    out.push_str(&line);
+    out
+}
+
+/// Verilog of `<name>_top` (sinewave path, LTC1407A-1 preset), without header; None when
+/// the configuration has no board top yet (other presets and targets).
+///
+/// The wrapper declares only the ports the configuration uses (see
+/// [`crate::config::board_ports`]): `qep_a/b/z` with `[qep] enabled`, `ssi_*` and `enc_*`
+/// with the SSI / SPI slave, and each deselect line (`dac_cs`, `dac_clr`, `spi_ss_b`,
+/// `sf_ce0`) only when `[board.pins]` pins it. The rtl's inputs of the ports left out are
+/// tied to their idle level (`qep_*` 0, `ssi_clk` 1, `enc_cs_n` 1, `enc_sck` 0) and its
+/// outputs left unconnected, so no output without a LOC reaches a package pin.
+pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
+    let d = &loaded.derived;
+    if d.preamp.is_none() || loaded.config.target != crate::config::Target::Spartan3an {
+        return Ok(None);
+    }
+    let name = top_name(loaded);
+    let rtl_name = format!("{name}_rtl");
+    let mut uut = crate::blocks::top::hdl::TopRtl::new(d)?;
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let body = verilog::export(&uut, "top", &rtl_name)?;
+    let f = d.fine_bits;
+    let turns = turns_expr(d);
+    let used: Vec<&str> = crate::config::board_ports(&loaded.config)
+        .iter()
+        .map(|p| p.0)
+        .collect();
+    if let Some(p) = used
+        .iter()
+        .find(|p| !SD_TOP_PORTS.iter().any(|t| t.name == **p))
+    {
+        return Err(Error::Export(format!(
+            "{name}: the pinned port {p} has no place in the wrapper"
+        )));
+    }
+    // The wrapper's ports and the rtl's connections, from the top's port table: a port the
+    // configuration uses is a wrapper port; a left-out input is tied to its idle level, a
+    // left-out output left open; the parallel bus goes to the wrapper's wires.
+    let mut decl = Vec::new();
+    let mut conns: Vec<String> = vec![];
+    let mut left_out: Vec<&str> = vec![];
+    for t in SD_TOP_PORTS {
+        let p = t.name;
+        let input = t.dir != Dir::Out;
+        if t.pin == Pin::Parallel {
+            conns.push(format!(".{p}({})", t.net));
+        } else if used.contains(&p) {
+            decl.push(wrapper_port(t, None));
+            conns.push(format!(".{p}({})", t.net));
+        } else if input {
+            if t.pin == Pin::Always {
+                return Err(Error::Export(format!(
+                    "{name}: the required input {p} is not a port of the wrapper"
+                )));
+            }
+            conns.push(format!(".{p}(1'b{})", t.idle));
+            left_out.push(p);
+        } else {
+            conns.push(format!(".{p}()"));
+            left_out.push(p);
+        }
+    }
+    let inst = wrap_list(&conns, "       ", "");
+    // The ports left out, as comment lines of at most 95 characters (empty: none).
+    let left_out_lines = if left_out.is_empty() {
+        String::new()
+    } else {
+        wrap_list(&left_out, "//", ".")
+    };
+    let wrapper = templates::render(
+        "top/sinewave_top.v.j2",
+        minijinja::context! {
+            name => name,
+            left_out => left_out_lines,
+            ports => decl,
+            rtl_name => rtl_name,
+            inst => inst,
+            turns => turns,
+            f => f,
+            rate => format!("{:.0}", d.sample_rate_hz),
+            pm => d.position_width - 1,
+            tm => d.turns_width - 1,
+            fm => f - 1,
+            qb => d.quadrant_bits - 1,
+        },
+    )?;
+    Ok(Some(format!(
+        "{wrapper}
+{body}"
+    )))
+}
+
+/// Verilog of the capacitive `<name>_top` (with `[capacitive]`), without header.
+pub fn cap_top_verilog(loaded: &Loaded) -> Result<Option<String>> {
+    let d = &loaded.derived;
+    let Some(k) = &d.capacitive else {
+        return Ok(None);
+    };
+    let name = top_name(loaded);
+    let rtl_name = format!("{name}_rtl");
+    let mut uut = crate::blocks::captop::hdl::CapTopRtl::new(d)?;
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let body = verilog::export(&uut, "top", &rtl_name)?;
+    let f = d.fine_bits;
+    let turns = turns_expr(d);
+    let w = k.config.dac_width;
+    let table = crate::blocks::captop::hdl::CAP_TOP_PORTS;
+    let decl: Vec<minijinja::Value> = table
+        .iter()
+        .filter(|t| t.pin != Pin::Parallel)
+        .map(|t| wrapper_port(t, (t.pin == Pin::DacBus).then_some(w)))
+        .collect();
+    let conns: Vec<String> = table
+        .iter()
+        .map(|t| format!(".{}({})", t.name, t.net))
+        .collect();
+    let wrapper = templates::render(
+        "top/capacitive_top.v.j2",
+        minijinja::context! {
+            name => name,
+            ports => decl,
+            inst => wrap_list(&conns, "       ", ""),
+            rtl_name => rtl_name,
+            turns => turns,
+            f => f,
+            carrier => format!("{:.0}", k.config.carrier_hz),
+            rate => format!("{:.0}", k.sample_rate_hz),
+            wm => k.config.dac_width - 1,
+            pm => d.position_width - 1,
+            tm => d.turns_width - 1,
+            fm => f - 1,
+            qb => d.quadrant_bits - 1,
+        },
+    )?;
+    Ok(Some(format!("{wrapper}\n{body}")))
+}
