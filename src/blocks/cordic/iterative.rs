@@ -70,10 +70,9 @@
 //! `in_ready` is high in cycle m exactly when the engine will be free at edge m+1: the
 //! engine is idle with no sample waiting in the mapper, or it performs its last clock at
 //! edge m (or S = 1). Back to back, samples are accepted every S cycles.
-use crate::blocks::params::Derived;
-use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
-use std::collections::BTreeMap;
+
+mod build;
 
 /// An 8-bit constant (digit-level signals).
 fn c8(v: u64) -> Constant<Bits<8>> {
@@ -273,131 +272,6 @@ pub struct IterativeCordic {
     kzero: Constant<Bits<5>>,
     /// Iteration increment 1.
     kone: Constant<Bits<5>>,
-}
-
-impl IterativeCordic {
-    /// Engine for the derived parameters (N = `d.iterations` <= 20 iterations).
-    pub fn new(d: &Derived) -> Self {
-        let w = d.xy_width;
-        let wp = digits(w) * DIGIT;
-        let mut table = BTreeMap::new();
-        for (i, &a) in d.atan_table.iter().enumerate() {
-            table.insert(Bits::<5>::from(i as u64), Bits::<32>::from(a & mask(32)));
-        }
-        let tsign_bit = w - 1 - (wp - DIGIT);
-        let fw = |b: u32| Constant::new(Bits::<64>::from(1u64 << (wp - b)));
-        Self {
-            clk: Default::default(),
-            rst: Default::default(),
-            in_valid: Default::default(),
-            x_in: Default::default(),
-            y_in: Default::default(),
-            q_in: Default::default(),
-            v_in: Default::default(),
-            in_ready: Default::default(),
-            x_out: Default::default(),
-            z_out: Default::default(),
-            q_out: Default::default(),
-            v_out: Default::default(),
-            lost: Default::default(),
-            rom: ROM::new(table),
-            xr: Default::default(),
-            yr: Default::default(),
-            zr: Default::default(),
-            q_reg: Default::default(),
-            k_reg: Default::default(),
-            kge: Default::default(),
-            cx_reg: Default::default(),
-            cy_reg: Default::default(),
-            fill_reg: Default::default(),
-            dir_reg: Default::default(),
-            tpx: Default::default(),
-            tpy: Default::default(),
-            busy_reg: Default::default(),
-            done_reg: Default::default(),
-            drop_reg: Default::default(),
-            lostm_reg: Default::default(),
-            loste_reg: Default::default(),
-            donec_reg: Default::default(),
-            lostc_reg: Default::default(),
-            hold_reg: Default::default(),
-            hot: (0..d.iterations).map(|_| Default::default()).collect(),
-            jhot: (0..digits(w)).map(|_| Default::default()).collect(),
-            xl: Default::default(),
-            yl: Default::default(),
-            start: Default::default(),
-            shx: Default::default(),
-            shy: Default::default(),
-            xm: Default::default(),
-            ym: Default::default(),
-            wx: Default::default(),
-            wy: Default::default(),
-            tx: Default::default(),
-            ty: Default::default(),
-            adv: Default::default(),
-            kin: Default::default(),
-            kn: Default::default(),
-            ge: Default::default(),
-            acc: Default::default(),
-            fnx: Default::default(),
-            active: Default::default(),
-            first: Default::default(),
-            j0: Default::default(),
-            jlast: Default::default(),
-            last: Default::default(),
-            rdy: Default::default(),
-            dir: Default::default(),
-            xa: Default::default(),
-            ya: Default::default(),
-            xb: Default::default(),
-            yb: Default::default(),
-            fillm: Default::default(),
-            mm: Default::default(),
-            nmm: Default::default(),
-            cxi: Default::default(),
-            cyi: Default::default(),
-            sx: Default::default(),
-            sy: Default::default(),
-            dx: Default::default(),
-            dy: Default::default(),
-            zi: Default::default(),
-            m: Default::default(),
-            c: Default::default(),
-            ones: c32(mask(32)),
-            one: c32(1),
-            zero: c32(0),
-            zero8: c8(0),
-            zero64: Constant::new(Bits::<64>::from(0u64)),
-            one8: c8(1),
-            dmask: c8(mask(DIGIT)),
-            hmask: c8(mask(DIGIT + 1)),
-            dcarry: c8(1 << DIGIT),
-            xsign: c32(1 << (w - 1)),
-            xmask: c32(mask(w)),
-            zmask: c32(mask(d.z_width)),
-            zhalf: c32(crate::blocks::counter::hdl::z_start(d).0),
-            zqshift: c32(crate::blocks::counter::hdl::z_start(d).1),
-            topsh: c32((wp - DIGIT) as u64),
-            dsh: c32(DIGIT as u64),
-            bsh: c32(1),
-            tsign: c8(1 << tsign_bit),
-            text: c8(mask(DIGIT) & !mask(tsign_bit + 1)),
-            fw0: fw(0),
-            fw1: fw(1),
-            fw2: fw(2),
-            fw3: fw(3),
-            dsh64: Constant::new(Bits::<64>::from(DIGIT as u64)),
-            bsh64: Constant::new(Bits::<64>::from(1u64)),
-            kge1: c32(2),
-            kmask: c32(mask(d.iterations)),
-            fb0: c8(1),
-            fb1: c8(2),
-            fb2: c8(4),
-            fb3: c8(8),
-            kzero: Constant::new(Bits::<5>::from(0u64)),
-            kone: Constant::new(Bits::<5>::from(1u64)),
-        }
-    }
 }
 
 impl Logic for IterativeCordic {
