@@ -4,15 +4,16 @@
 //! Verilator, and the measured maximum MA rate.
 use sinedec::blocks::biss::crc::{biss_crc, crc6, crc6_bits, POLY};
 use sinedec::blocks::biss::hdl::BissSlave;
-use sinedec::blocks::biss::{data_word, BissParams};
+use sinedec::blocks::biss::BissParams;
+use sinedec::blocks::serial::data_word;
 use sinedec::blocks::mask;
 use sinedec::cosim::step::{prepare, tick};
 use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::cosim::CosimBlock;
 use sinedec::sim::biss_master::{
-    expected_crc, BissFrame, BissMaster, BissMasterConfig, FrameRequest, LineMaster, LineTiming,
-    Outcome,
+    expected_crc, BissFrame, BissMaster, BissMasterConfig, Outcome,
 };
+use sinedec::sim::serial_line::{FrameRequest, LineMaster, LineTiming};
 use sinedec::verify::{block_traces, Simulators};
 mod common;
 

@@ -1,14 +1,14 @@
 //! SSI slave: the SSI master model reads the rust-hdl slave in a closed loop (binary and
 //! Gray, error bit, monoflop time, glitches, reset, early and aborted frames), and the
 //! recorded clock sequences replayed in rust-hdl, Icarus and Verilator give identical traces.
-use sinedec::blocks::biss::data_word;
+use sinedec::blocks::serial::data_word;
 use sinedec::blocks::mask;
 use sinedec::blocks::ssi::hdl::SsiSlave;
 use sinedec::blocks::ssi::SsiParams;
 use sinedec::cosim::step::{prepare, tick};
 use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::cosim::CosimBlock;
-use sinedec::sim::biss_master::{FrameRequest, LineMaster, LineTiming};
+use sinedec::sim::serial_line::{FrameRequest, LineMaster, LineTiming};
 use sinedec::sim::ssi_master::{SsiFrame, SsiMaster, SsiMasterConfig, SsiOutcome};
 use sinedec::verify::{block_traces, Simulators};
 mod common;
