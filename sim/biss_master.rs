@@ -21,42 +21,30 @@
 //! Every frame is reported ([`BissFrame`]): data, decoded position and turns, flags, received
 //! and expected CRC, or what went wrong (no Ack, no Start, aborted on request, slave never
 //! ready).
-use crate::sim::serial_line::{from_gray, Burst, LineTiming, SlaveLine};
-use crate::sim::serial_master::{FrameProtocol, MasterFrame, SerialMaster};
+use crate::sim::serial_line::{word_of, Burst, LineTiming, SlaveLine, WordFormat};
+use crate::sim::serial_master::{FrameProtocol, MasterFrame, MasterLine, SerialMaster};
 
 /// Master settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BissMasterConfig {
-    /// Line timing.
-    pub timing: LineTiming,
-    /// Data bits N in the frame (multi-turn + single-turn).
-    pub data_bits: u32,
-    /// Multi-turn bits at the head of the data.
-    pub multiturn_bits: u32,
-    /// The data word is Gray-coded.
-    pub gray: bool,
+    /// Line timing, recovery and give-up times.
+    pub line: MasterLine,
+    /// The data word: N bits, M of them multi-turn, binary or Gray.
+    pub word: WordFormat,
     /// Line-delay compensation (sample at r_n + D + T/2) instead of sampling at r_(n+1).
     pub compensate: bool,
     /// Ack bits accepted before the Start bit (processing time) before giving up.
     pub max_ack_bits: u32,
-    /// After a failed or aborted frame: wait this long, then for SL high.
-    pub recover_ns: f64,
-    /// Give up when the slave is not ready for this long.
-    pub giveup_ns: f64,
 }
 
 impl BissMasterConfig {
     /// Compensating master for N data bits of which M are multi-turn, binary.
     pub fn new(timing: LineTiming, data_bits: u32, multiturn_bits: u32) -> Self {
         Self {
-            timing,
-            data_bits,
-            multiturn_bits,
-            gray: false,
+            line: MasterLine::new(timing),
+            word: WordFormat::new(data_bits, multiturn_bits),
             compensate: true,
             max_ack_bits: 80,
-            recover_ns: 60_000.0,
-            giveup_ns: 2e6,
         }
     }
 }
@@ -108,7 +96,6 @@ pub enum Outcome {
     NotReady,
 }
 
-
 /// Report of one frame.
 pub type BissFrame = MasterFrame<Outcome>;
 
@@ -133,7 +120,6 @@ pub fn expected_crc(message: u64, bits: u32) -> u8 {
     }
     !(r as u8) & 0x3f
 }
-
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Seek {
@@ -162,23 +148,20 @@ pub type BissMaster = SerialMaster<BissMasterConfig>;
 impl BissMasterConfig {
     /// The frame as read: data, flags and CRC from the bits after Start.
     fn decode(&self, run: &BissRun) -> FrameData {
-        let nb = self.data_bits;
+        let nb = self.word.data_bits;
+        let n = nb as usize;
         let b = &run.bits;
-        let word = |r: std::ops::Range<usize>| r.fold(0u64, |a, i| (a << 1) | b[i] as u64);
-        let data = word(1..1 + nb as usize);
-        let n_e = b[1 + nb as usize];
-        let n_w = b[2 + nb as usize];
-        let crc_received = word(3 + nb as usize..9 + nb as usize) as u8;
+        let data = word_of(&b[1..1 + n]);
+        let (n_e, n_w) = (b[1 + n], b[2 + n]);
+        let crc_received = word_of(&b[3 + n..9 + n]) as u8;
         let message = (data << 2) | ((n_e as u64) << 1) | n_w as u64;
-        let bin = if self.gray { from_gray(data) } else { data };
-        let st = nb - self.multiturn_bits;
-        let st_mask = if st >= 64 { u64::MAX } else { (1u64 << st) - 1 };
+        let (position, turns) = self.word.split(data);
         FrameData {
             ack_bits: run.ack_bits,
             cds: b[0],
             data,
-            position: bin & st_mask,
-            turns: if st >= 64 { 0 } else { bin >> st },
+            position,
+            turns,
             n_e,
             n_w,
             crc_received,
@@ -199,14 +182,8 @@ impl FrameProtocol for BissMasterConfig {
     type Run = BissRun;
     type Outcome = Outcome;
 
-    fn timing(&self) -> &LineTiming {
-        &self.timing
-    }
-    fn recover_ns(&self) -> f64 {
-        self.recover_ns
-    }
-    fn giveup_ns(&self) -> f64 {
-        self.giveup_ns
+    fn line(&self) -> &MasterLine {
+        &self.line
     }
     /// Unknown until the Start bit: the burst is stopped from [`Self::on_sample`].
     fn frame_rises(&self) -> Option<u32> {
@@ -260,7 +237,7 @@ impl FrameProtocol for BissMasterConfig {
         }
     }
     fn on_sample(&self, run: &mut BissRun, burst: &mut Burst, n: u32, v: bool) {
-        let nb = self.data_bits;
+        let nb = self.word.data_bits;
         match run.seek {
             Seek::Ack => {
                 if !v {

@@ -255,3 +255,40 @@ pub fn from_gray(g: u64) -> u64 {
     }
     b
 }
+
+/// The data word a master reads: N bits, MSB first, the top M of them the turn count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WordFormat {
+    /// Data bits N (multi-turn + single-turn), 1..=32.
+    pub data_bits: u32,
+    /// Multi-turn bits M at the head of the data.
+    pub multiturn_bits: u32,
+    /// The data word is Gray-coded.
+    pub gray: bool,
+}
+
+impl WordFormat {
+    /// Binary word of N data bits of which M are multi-turn.
+    pub fn new(data_bits: u32, multiturn_bits: u32) -> Self {
+        Self {
+            data_bits,
+            multiturn_bits,
+            gray: false,
+        }
+    }
+    /// Single-turn position and turn count (binary, after Gray decoding) of a data word.
+    pub fn split(&self, data: u64) -> (u64, u64) {
+        let bin = if self.gray { from_gray(data) } else { data };
+        let st = self.data_bits - self.multiturn_bits;
+        if st >= 64 {
+            (bin, 0)
+        } else {
+            (bin & ((1u64 << st) - 1), bin >> st)
+        }
+    }
+}
+
+/// The word of `bits`, MSB first.
+pub fn word_of(bits: &[bool]) -> u64 {
+    bits.iter().fold(0u64, |a, &v| (a << 1) | v as u64)
+}

@@ -24,18 +24,36 @@
 use crate::sim::serial_line::{Burst, FrameRequest, LineMaster, LineTiming, MaLine, SlaveLine};
 use std::fmt::Debug;
 
+/// Settings every master has: the line, and how long it waits for the slave.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MasterLine {
+    /// Line timing.
+    pub timing: LineTiming,
+    /// After a failed or aborted frame: wait this long, then for the line high.
+    pub recover_ns: f64,
+    /// Give up when the slave is not ready for this long.
+    pub giveup_ns: f64,
+}
+
+impl MasterLine {
+    /// The line with the default patience: 60 us of recovery, give up after 2 ms.
+    pub fn new(timing: LineTiming) -> Self {
+        Self {
+            timing,
+            recover_ns: 60_000.0,
+            giveup_ns: 2e6,
+        }
+    }
+}
+
 /// What one serial protocol decides in the master core.
 pub trait FrameProtocol: Clone + Debug {
     /// The protocol's per-frame state (what it has read so far).
     type Run: Clone + Debug;
     /// How a frame ended.
     type Outcome: Clone + Debug + PartialEq;
-    /// Line timing.
-    fn timing(&self) -> &LineTiming;
-    /// After a failed or aborted frame: wait this long, then for the line high.
-    fn recover_ns(&self) -> f64;
-    /// Give up when the slave is not ready for this long.
-    fn giveup_ns(&self) -> f64;
+    /// The line and the master's patience.
+    fn line(&self) -> &MasterLine;
     /// Rising edges of a complete frame, when known at its start (None: the protocol stops
     /// the burst itself).
     fn frame_rises(&self) -> Option<u32>;
@@ -123,7 +141,7 @@ pub struct SerialMaster<P: FrameProtocol> {
 impl<P: FrameProtocol> SerialMaster<P> {
     /// Master that clocks `requests` in order, the first not before `start_ns`.
     pub fn new(cfg: P, requests: Vec<FrameRequest>, start_ns: f64) -> Self {
-        let sl = SlaveLine::new(cfg.timing(), false);
+        let sl = SlaveLine::new(&cfg.line().timing, false);
         Self {
             cfg,
             requests,
@@ -192,7 +210,7 @@ impl<P: FrameProtocol> SerialMaster<P> {
         } else if let Some(t) = ready_at {
             t + req.gap_ns
         } else if after_failure {
-            last + self.cfg.recover_ns().max(req.gap_ns)
+            last + self.cfg.line().recover_ns.max(req.gap_ns)
         } else {
             last + req.gap_ns
         };
@@ -239,7 +257,7 @@ impl<P: FrameProtocol> SerialMaster<P> {
                         self.next_frame(last, false, Some(tau));
                     }
                     None => {
-                        if t - run.burst.last_edge() > self.cfg.giveup_ns() {
+                        if t - run.burst.last_edge() > self.cfg.line().giveup_ns {
                             self.report(&run, None);
                             self.not_ready(t, run.req.ma_hz);
                         } else {
@@ -273,7 +291,7 @@ impl<P: FrameProtocol> SerialMaster<P> {
                 true
             }
             _ => {
-                if t - not_before > self.cfg.giveup_ns() {
+                if t - not_before > self.cfg.line().giveup_ns {
                     self.not_ready(not_before, req.ma_hz);
                 } else {
                     self.phase = Phase::Ready { not_before, scan };
@@ -349,7 +367,8 @@ impl<P: FrameProtocol> SerialMaster<P> {
 
 impl<P: FrameProtocol> LineMaster for SerialMaster<P> {
     fn ma_for_cycle(&mut self, k: usize) -> bool {
-        let t = self.cfg.timing().edge_ns(k) - self.cfg.timing().line_delay_ns;
+        let timing = self.cfg.line().timing;
+        let t = timing.edge_ns(k) - timing.line_delay_ns;
         self.advance(t);
         self.ma.before(t)
     }

@@ -9,46 +9,34 @@
 //! last pulse with 0, stops with the clock high and measures the time until the line returns
 //! high (the slave's monoflop time, round trip included). The next frame starts when the
 //! line is high again (or, on request, without waiting).
-use crate::sim::serial_line::{from_gray, Burst, LineTiming};
-use crate::sim::serial_master::{FrameProtocol, MasterFrame, SerialMaster};
+use crate::sim::serial_line::{word_of, Burst, LineTiming, WordFormat};
+use crate::sim::serial_master::{FrameProtocol, MasterFrame, MasterLine, SerialMaster};
 
 /// Master settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SsiMasterConfig {
-    /// Line timing.
-    pub timing: LineTiming,
-    /// Data bits N (multi-turn + single-turn).
-    pub data_bits: u32,
-    /// Multi-turn bits at the head of the data.
-    pub multiturn_bits: u32,
-    /// The data word is Gray-coded.
-    pub gray: bool,
+    /// Line timing, recovery and give-up times.
+    pub line: MasterLine,
+    /// The data word: N bits, M of them multi-turn, binary or Gray.
+    pub word: WordFormat,
     /// One error bit follows the data.
     pub error_bit: bool,
     /// Sample the answer to rising edge n this long after it; None = at rising edge n+1.
     pub sample_delay_ns: Option<f64>,
-    /// After an aborted frame: wait this long, then for the line high.
-    pub recover_ns: f64,
-    /// Give up when the slave is not ready for this long.
-    pub giveup_ns: f64,
 }
 
 impl SsiMasterConfig {
     /// Master sampling at the next rising edge, binary, no error bit.
     pub fn new(timing: LineTiming, data_bits: u32, multiturn_bits: u32) -> Self {
         Self {
-            timing,
-            data_bits,
-            multiturn_bits,
-            gray: false,
+            line: MasterLine::new(timing),
+            word: WordFormat::new(data_bits, multiturn_bits),
             error_bit: false,
             sample_delay_ns: None,
-            recover_ns: 60_000.0,
-            giveup_ns: 2e6,
         }
     }
     fn frame_bits(&self) -> u32 {
-        self.data_bits + self.error_bit as u32
+        self.word.data_bits + self.error_bit as u32
     }
 }
 
@@ -94,14 +82,8 @@ impl FrameProtocol for SsiMasterConfig {
     type Run = SsiRun;
     type Outcome = SsiOutcome;
 
-    fn timing(&self) -> &LineTiming {
-        &self.timing
-    }
-    fn recover_ns(&self) -> f64 {
-        self.recover_ns
-    }
-    fn giveup_ns(&self) -> f64 {
-        self.giveup_ns
+    fn line(&self) -> &MasterLine {
+        &self.line
     }
     /// B + 1: the frame's bits and the tail pulse.
     fn frame_rises(&self) -> Option<u32> {
@@ -134,14 +116,13 @@ impl FrameProtocol for SsiMasterConfig {
     fn outcome(&self, run: &SsiRun) -> SsiOutcome {
         match run.tail_low {
             Some(tail_low) if run.bits.len() == self.frame_bits() as usize => {
-                let n = self.data_bits as usize;
-                let data = run.bits[..n].iter().fold(0u64, |a, &v| (a << 1) | v as u64);
-                let bin = if self.gray { from_gray(data) } else { data };
-                let st = self.data_bits - self.multiturn_bits;
+                let n = self.word.data_bits as usize;
+                let data = word_of(&run.bits[..n]);
+                let (position, turns) = self.word.split(data);
                 SsiOutcome::Data(SsiData {
                     data,
-                    position: bin & ((1u64 << st) - 1),
-                    turns: bin >> st,
+                    position,
+                    turns,
                     error: self.error_bit.then(|| run.bits[n]),
                     tail_low,
                 })

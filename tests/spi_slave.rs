@@ -1,8 +1,8 @@
 //! SPI slave: an SPI master (modes 0 and 3, continuous time, line delay both ways) reads
 //! the rust-hdl slave; every word carries the position latched at chip select and the
 //! flags; glitches, early deselect and reset; the same stimulus in Icarus and Verilator.
-use sinedec::blocks::serial::data_word;
 use sinedec::blocks::mask;
+use sinedec::blocks::serial::data_word;
 use sinedec::blocks::spi_slave::hdl::SpiSlave;
 use sinedec::blocks::spi_slave::SpiSlaveParams;
 use sinedec::cosim::step::{prepare, tick};

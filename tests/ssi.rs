@@ -1,8 +1,8 @@
 //! SSI slave: the SSI master model reads the rust-hdl slave in a closed loop (binary and
 //! Gray, error bit, monoflop time, glitches, reset, early and aborted frames), and the
 //! recorded clock sequences replayed in rust-hdl, Icarus and Verilator give identical traces.
-use sinedec::blocks::serial::data_word;
 use sinedec::blocks::mask;
+use sinedec::blocks::serial::data_word;
 use sinedec::blocks::ssi::hdl::SsiSlave;
 use sinedec::blocks::ssi::SsiParams;
 use sinedec::cosim::step::{prepare, tick};
@@ -104,7 +104,7 @@ impl Run {
 
 fn master(p: &SsiParams, t: LineTiming, reqs: Vec<FrameRequest>) -> SsiMaster {
     let mut c = SsiMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
-    c.gray = p.gray;
+    c.word.gray = p.gray;
     c.error_bit = p.error_bit;
     SsiMaster::new(c, reqs, 400.0)
 }
@@ -277,7 +277,7 @@ fn scenario(p: &SsiParams, d: f64, tag: &str) {
     // answer window at 10 MHz, see `compensating_master_at_10mhz`), so that one master reads
     // 100 kHz to 10 MHz.
     let mut c = SsiMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
-    c.gray = p.gray;
+    c.word.gray = p.gray;
     c.error_bit = p.error_bit;
     c.sample_delay_ns = Some(2.0 * d + 3.5e9 / p.clock_hz + 50.0);
     let mut m = SsiMaster::new(c, reqs.clone(), 400.0);

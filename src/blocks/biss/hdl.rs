@@ -170,7 +170,9 @@ impl BissSlave {
             ackn_m1: c32((p.ack_periods as u64).wrapping_sub(1) & mask(7)),
             nbits_m1: c32((n as u64).wrapping_sub(1) & mask(7)),
             five: c32(5),
-            tlast_m1: c32((p.timeout_clocks as u64 - 1).wrapping_sub(1) & timeout_mask(p.timeout_clocks)),
+            tlast_m1: c32(
+                (p.timeout_clocks as u64 - 1).wrapping_sub(1) & timeout_mask(p.timeout_clocks)
+            ),
             ack_is1: Constant::new(p.ack_periods == 1),
             n_is1: Constant::new(n == 1),
             tlast_is0: Constant::new(p.timeout_clocks == 1),
