@@ -10,7 +10,6 @@ use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::cosim::CosimBlock;
 use sinedec::sim::serial_line::LineTiming;
 use sinedec::sim::spi_master::{SpiMaster, SpiTxn as Txn};
-use sinedec::verify::{block_traces, Simulators};
 mod common;
 
 struct Run {
@@ -282,20 +281,7 @@ fn scenario(p: &SpiSlaveParams, tag: &str) {
             _ => prev = check_txn(&r, p, *tcs, i, prev),
         }
     }
-    let dir = common::workdir(tag);
-    let bt = block_traces(
-        SpiSlave::new(p).unwrap(),
-        "spi_slave",
-        "clk",
-        &r.rows,
-        Simulators::ALL,
-        &dir,
-    )
-    .expect("simulators ran");
-    if let Some(m) = bt.mismatch() {
-        panic!("{tag}: {m}");
-    }
-    assert!(bt.rust_hdl == r.out, "{tag}: replay differs");
+    common::replay_in_all_simulators(SpiSlave::new(p).unwrap(), "spi_slave", &r.rows, &r.out, tag);
 }
 
 #[test]
