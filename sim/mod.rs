@@ -1,7 +1,8 @@
 //! The simulation side of sinedec: closed-loop systems stepped cycle by cycle (`system`,
 //! `cap_system`), the chip and encoder models they close the loop with (LTC1407A-1,
-//! LTC6912-1, a generic SPI ADC, the sine/cosine and capacitive encoders, BiSS-C and SSI
-//! masters) and the VCD of the top's pins.
+//! LTC6912-1, a generic SPI ADC, the sine/cosine and capacitive encoders, the BiSS-C and
+//! SSI masters on one master core, `serial_master`, and the SPI master, all three over the
+//! line model `serial_line`) and the VCD of the top's pins.
 //!
 //! Dependencies run one way: `sim` uses the blocks (their rtl and models) and
 //! [`crate::cosim`] (hand-stepping, stimulus generators, port descriptions); nothing in the
@@ -19,7 +20,10 @@ pub mod capacitive;
 pub mod encoder;
 pub mod ltc1407a;
 pub mod ltc6912;
+pub mod serial_line;
+pub mod serial_master;
 pub mod spi_adc;
+pub mod spi_master;
 pub mod ssi_master;
 pub mod system;
 pub mod vcd;

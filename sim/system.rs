@@ -149,8 +149,8 @@ pub struct System {
     result: SimResult,
     rst_cycles: u64,
     record_inputs: bool,
-    ma: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
-    ssi: Option<Box<dyn crate::sim::biss_master::LineMaster>>,
+    ma: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
+    ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     qep_b_stuck: Option<(f64, f64)>,
     trace: Option<crate::sim::vcd::TopTrace>,
     trace_error: Option<std::io::Error>,
@@ -224,13 +224,13 @@ impl System {
 
     /// Connects a BiSS (or SSI) master model to `biss_ma`/`biss_slo` (MA idles high
     /// without one).
-    pub fn attach_master(&mut self, m: Box<dyn crate::sim::biss_master::LineMaster>) {
+    pub fn attach_master(&mut self, m: Box<dyn crate::sim::serial_line::LineMaster>) {
         self.ma = Some(m);
     }
 
     /// Connects an SSI master model to `ssi_clk`/`ssi_data` (the clock idles high without
     /// one).
-    pub fn attach_ssi_master(&mut self, m: Box<dyn crate::sim::biss_master::LineMaster>) {
+    pub fn attach_ssi_master(&mut self, m: Box<dyn crate::sim::serial_line::LineMaster>) {
         self.ssi = Some(m);
     }
 
@@ -378,7 +378,7 @@ impl System {
 
 /// A shared master: the system drives it while the caller keeps a handle to read its
 /// frame reports.
-impl<M: crate::sim::biss_master::LineMaster> crate::sim::biss_master::LineMaster
+impl<M: crate::sim::serial_line::LineMaster> crate::sim::serial_line::LineMaster
     for std::rc::Rc<std::cell::RefCell<M>>
 {
     fn ma_for_cycle(&mut self, k: usize) -> bool {

@@ -2,8 +2,8 @@
 //! through the top end to end, the ports are exported, and the top with both slaves replays
 //! bit-exactly in Icarus and Verilator.
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
-use sinedec::sim::biss_master::{FrameRequest, LineTiming};
 use sinedec::sim::encoder::EncoderModel;
+use sinedec::sim::serial_line::{FrameRequest, LineTiming};
 use sinedec::sim::ssi_master::{SsiMaster, SsiMasterConfig, SsiOutcome};
 use sinedec::sim::system::System;
 use std::cell::RefCell;

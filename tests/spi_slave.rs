@@ -1,83 +1,16 @@
 //! SPI slave: an SPI master (modes 0 and 3, continuous time, line delay both ways) reads
 //! the rust-hdl slave; every word carries the position latched at chip select and the
 //! flags; glitches, early deselect and reset; the same stimulus in Icarus and Verilator.
-use sinedec::blocks::biss::data_word;
 use sinedec::blocks::mask;
+use sinedec::blocks::serial::data_word;
 use sinedec::blocks::spi_slave::hdl::SpiSlave;
 use sinedec::blocks::spi_slave::SpiSlaveParams;
 use sinedec::cosim::step::{prepare, tick};
 use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::cosim::CosimBlock;
-use sinedec::sim::biss_master::{LineTiming, MaLine, SlaveLine};
-use sinedec::verify::{block_traces, Simulators};
+use sinedec::sim::serial_line::LineTiming;
+use sinedec::sim::spi_master::{SpiMaster, SpiTxn as Txn};
 mod common;
-
-/// One SPI transaction as the master clocks it.
-#[derive(Clone, Copy, Debug)]
-struct Txn {
-    /// 0 or 3.
-    mode: u8,
-    sck_hz: f64,
-    /// SCK periods given (the word has N + 2 bits; more read zeros, fewer end it early).
-    clocks: u32,
-    /// Pause before chip select, ns.
-    gap_ns: f64,
-}
-
-/// The master's waveforms and sampling instants, computed ahead (an SPI master does not
-/// react to MISO).
-struct Plan {
-    sck: MaLine,
-    cs: MaLine,
-    /// Per transaction: chip-select time, sampling instants.
-    txns: Vec<(f64, Vec<f64>)>,
-    end_ns: f64,
-}
-
-fn plan(txns: &[Txn], start_ns: f64) -> Plan {
-    let (mut sck, mut cs) = (MaLine::default(), MaLine::default());
-    let mut t = start_ns;
-    let mut out = Vec::new();
-    // SCK idles at the mode's level; the line starts high (mode 3), so mode 0 first drops it.
-    let mut sck_level = true;
-    for x in txns {
-        t += x.gap_ns;
-        let per = 1e9 / x.sck_hz;
-        let idle = x.mode == 3;
-        if sck_level != idle {
-            sck.push(t, idle);
-            sck_level = idle;
-            t += per;
-        }
-        let t_cs = t;
-        cs.push(t_cs, false);
-        let first = t_cs + per;
-        let mut samples = Vec::new();
-        for i in 0..x.clocks {
-            let a = first + i as f64 * per;
-            // Mode 0: rise (sample) then fall; mode 3: fall then rise (sample).
-            if x.mode == 0 {
-                sck.push(a, true);
-                samples.push(a);
-                sck.push(a + per / 2.0, false);
-            } else {
-                sck.push(a, false);
-                sck.push(a + per / 2.0, true);
-                samples.push(a + per / 2.0);
-            }
-        }
-        t = first + x.clocks as f64 * per;
-        cs.push(t, true);
-        out.push((t_cs, samples));
-        t += per;
-    }
-    Plan {
-        sck,
-        cs,
-        txns: out,
-        end_ns: t,
-    }
-}
 
 struct Run {
     rows: Vec<Vec<u64>>,
@@ -107,20 +40,19 @@ fn run(
     warnings: &[usize],
     mut ctl: impl FnMut(usize) -> Ctl,
 ) -> Run {
-    let mut pl = plan(txns, 300.0);
-    let cycles = ((pl.end_ns + 1000.0) / t.tclk_ns()) as usize;
+    let mut m = SpiMaster::new(t, txns, 300.0);
+    let cycles = ((m.end_ns() + 1000.0) / t.tclk_ns()) as usize;
     let mut uut = SpiSlave::new(p).expect("params");
     rust_hdl::prelude::Block::connect_all(&mut uut);
     prepare(&mut uut).expect("settles");
-    let mut miso = SlaveLine::new(&t, false);
     let (mut rows, mut out) = (Vec::new(), Vec::new());
     for k in 0..cycles {
         let c = ctl(k);
-        let at = t.edge_ns(k) - t.line_delay_ns;
+        let (sck, cs_n) = m.lines_for_cycle(k);
         let row = vec![
             (k < 3 || c.rst) as u64,
-            (pl.sck.before(at) ^ c.sck_flip) as u64,
-            pl.cs.before(at) as u64,
+            (sck ^ c.sck_flip) as u64,
+            cs_n as u64,
             pos(k),
             turns(k),
             (k % 3 == 0) as u64,
@@ -130,15 +62,11 @@ fn run(
         uut.apply(&row);
         tick(&mut uut).expect("settles");
         let o = uut.sample();
-        miso.push(o[0] != 0);
+        m.push_miso(o[0] != 0);
         out.push(o);
         rows.push(row);
     }
-    let words = pl
-        .txns
-        .iter()
-        .map(|(_, s)| s.iter().map(|&ts| miso.at(ts)).collect())
-        .collect();
+    let words = m.words();
     Run {
         rows,
         out,
@@ -254,10 +182,10 @@ fn words_in_mode_0_and_3() {
             for x in tx.iter_mut() {
                 x.clocks = p.word_bits() + 2;
             }
-            let pl = plan(&tx, 300.0);
+            let pl = SpiMaster::new(t, &tx, 300.0);
             let r = run(&p, t, &tx, &[20_000, 20_100], &[40_000], |_| Ctl::default());
             let mut prev = 0;
-            for (i, (tcs, _)) in pl.txns.iter().enumerate() {
+            for (i, tcs) in pl.txns().iter().map(|x| &x.t_cs_ns).enumerate() {
                 prev = check_txn(&r, &p, *tcs, i, prev);
             }
             // MISO is driven exactly while selected, as the slave sees chip select (L rows
@@ -332,41 +260,28 @@ fn scenario(p: &SpiSlaveParams, tag: &str) {
             gap_ns: 300.0,
         },
     ];
-    let pl = plan(&tx, 300.0);
+    let pl = SpiMaster::new(t, &tx, 300.0);
     let tc = t.tclk_ns();
     let row_of = |ns: f64| (ns / tc) as usize;
     // Glitches in word 4: at a third and at two thirds of a period after its 3rd and 8th clock.
     let per4 = 1e9 / 3e6;
-    let g1 = row_of(pl.txns[4].0 + per4 * 3.33);
-    let g2 = row_of(pl.txns[4].0 + per4 * 8.66);
-    let g0 = row_of(pl.txns[4].0 - 150.0); // in idle, before chip select
-    let rst_at = row_of(pl.txns[5].0 + per4 * 6.5);
+    let g1 = row_of(pl.txns()[4].t_cs_ns + per4 * 3.33);
+    let g2 = row_of(pl.txns()[4].t_cs_ns + per4 * 8.66);
+    let g0 = row_of(pl.txns()[4].t_cs_ns - 150.0); // in idle, before chip select
+    let rst_at = row_of(pl.txns()[5].t_cs_ns + per4 * 6.5);
     let r = run(p, t, &tx, &[3000, 9000], &[15_000], |k| Ctl {
         rst: (rst_at..rst_at + 2).contains(&k),
         sck_flip: k == g0 || k == g1 || k == g2,
     });
     let mut prev = 0;
-    for (i, (tcs, _)) in pl.txns.iter().enumerate() {
+    for (i, tcs) in pl.txns().iter().map(|x| &x.t_cs_ns).enumerate() {
         match i {
             5 => prev = r.cs_row(p, *tcs), // reset mid-word: anything goes after it
             4 if !p.glitch_filter => prev = r.cs_row(p, *tcs),
             _ => prev = check_txn(&r, p, *tcs, i, prev),
         }
     }
-    let dir = common::workdir(tag);
-    let bt = block_traces(
-        SpiSlave::new(p).unwrap(),
-        "spi_slave",
-        "clk",
-        &r.rows,
-        Simulators::ALL,
-        &dir,
-    )
-    .expect("simulators ran");
-    if let Some(m) = bt.mismatch() {
-        panic!("{tag}: {m}");
-    }
-    assert!(bt.rust_hdl == r.out, "{tag}: replay differs");
+    common::replay_in_all_simulators(SpiSlave::new(p).unwrap(), "spi_slave", &r.rows, &r.out, tag);
 }
 
 #[test]

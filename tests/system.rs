@@ -43,7 +43,8 @@ fn closed_loop_replayed_in_icarus_and_verilator() {
 /// the slave, and a loss of signal shows as nE = 0.
 #[test]
 fn biss_frames_end_to_end() {
-    use sinedec::sim::biss_master::{BissMaster, BissMasterConfig, FrameRequest, LineTiming};
+    use sinedec::sim::biss_master::{BissMaster, BissMasterConfig};
+    use sinedec::sim::serial_line::{FrameRequest, LineTiming};
     use std::cell::RefCell;
     use std::rc::Rc;
     // A 2 us BiSS timeout, so that many frames fit in a short simulation.

@@ -28,6 +28,7 @@ pub mod parallel;
 pub mod params;
 pub mod preamp;
 pub mod qep;
+pub mod serial;
 pub mod spi_slave;
 pub mod ssi;
 pub mod top;

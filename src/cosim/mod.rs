@@ -65,7 +65,8 @@ pub mod stimulus;
 mod tool;
 mod verilator;
 
-pub use block::CosimBlock;
+pub(crate) use block::cosim_block;
+pub use block::{CosimBlock, RowValue};
 pub use icarus::run_icarus;
 pub use tool::{check_tool_named, require_tool, CosimError, TOOL_TIMEOUT};
 use tool::{io_err, read_file, trim_message, write_file, ToolOutput};

@@ -34,6 +34,28 @@ pub fn workdir(tag: &str) -> std::path::PathBuf {
     p
 }
 
+/// Replays the stimulus `rows` of a block's closed-loop test in rust-hdl, Icarus and
+/// Verilator (top module and work directory named `top` and `tag`): the three traces must
+/// agree, and the rust-hdl replay must equal `recorded`, the outputs the test's own loop saw.
+pub fn replay_in_all_simulators<B: sinedec::cosim::CosimBlock>(
+    uut: B,
+    top: &str,
+    rows: &[Vec<u64>],
+    recorded: &[Vec<u64>],
+    tag: &str,
+) {
+    use sinedec::verify::{block_traces, Simulators};
+    let dir = workdir(tag);
+    let bt = block_traces(uut, top, "clk", rows, Simulators::ALL, &dir).expect("simulators ran");
+    if let Some(m) = bt.mismatch() {
+        panic!("{tag}: {m}");
+    }
+    assert!(
+        bt.rust_hdl == recorded,
+        "{tag}: the replay differs from the closed loop"
+    );
+}
+
 /// The closed loop (encoder -> LTC1407A-1 model -> `<name>_top`) at a constant `rpm` for
 /// `cycles` clocks, its recorded inputs replayed through the exported top in Icarus and
 /// Verilator: panics unless all three give the same pin and position trace. Returns the

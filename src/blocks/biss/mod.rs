@@ -2,7 +2,7 @@
 //!
 //! The drive (BiSS master) clocks MA; the slave answers on SLO. MA is asynchronous to the
 //! system clock: it passes a two-flop synchronizer and, by default, a glitch filter
-//! ([`hdl::LineSync`]) before its edges drive the frame state machine ([`hdl::BissSlave`]).
+//! ([`crate::blocks::serial::hdl::LineSync`], shared with the SSI and SPI slaves) before its edges drive the frame state machine ([`hdl::BissSlave`]).
 //!
 //! # Frame
 //!
@@ -86,7 +86,7 @@
 //! frame is good), the minimum high and low time is one clock period (f_MA <= f_clk / 2) and
 //! the answer comes 2 to 3 clock periods after the edge.
 //!
-//! Measured (`tests/biss.rs`, `maximum_ma_rate_measured`): the highest MA frequency, in
+//! Measured (`tests/biss_corners.rs`, `maximum_ma_rate_measured`): the highest MA frequency, in
 //! 0.25 MHz steps, at which every one of 24 frames at varying MA/clock phase was read
 //! correctly, with 25 ns of line delay each way (about 5 m of cable); "compensated" is a
 //! master with BiSS line-delay compensation (samples at r_n + D + T/2), "next edge" one that
@@ -111,10 +111,11 @@
 pub mod crc;
 pub mod hdl;
 
-/// Largest timeout in system clocks (24-bit counter).
-pub const MAX_TIMEOUT_CLOCKS: u32 = 1 << 24;
-/// Smallest timeout in system clocks.
-pub const MIN_TIMEOUT_CLOCKS: u32 = 8;
+use crate::blocks::serial::{
+    check_clock, check_timeout_clocks, check_word, min_level_clocks, sync_latency, timeout_clocks,
+    timeout_us, DEFAULT_TIMEOUT_US,
+};
+
 /// Largest number of Ack periods.
 pub const MAX_ACK_PERIODS: u32 = 64;
 
@@ -137,9 +138,6 @@ pub struct BissParams {
     /// System clock frequency in Hz (used for the timeout and the reported limits).
     pub clock_hz: f64,
 }
-
-/// Default BiSS timeout in microseconds.
-pub const DEFAULT_TIMEOUT_US: f64 = 20.0;
 
 impl BissParams {
     /// Parameters with the defaults: binary, one Ack period, 20 us timeout, glitch filter on.
@@ -202,115 +200,11 @@ impl BissParams {
 
     /// Timeout in microseconds.
     pub fn timeout_us(&self) -> f64 {
-        self.timeout_clocks as f64 * 1e6 / self.clock_hz
+        timeout_us(self.timeout_clocks, self.clock_hz)
     }
 
     /// Highest MA frequency the synchronizer can follow at 50 % duty (see the module docs).
     pub fn max_ma_hz(&self) -> f64 {
         self.clock_hz / (2 * min_level_clocks(self.glitch_filter)) as f64
-    }
-}
-
-/// Cycles from a new line level at the input to the clock edge that acts on it.
-pub fn sync_latency(glitch_filter: bool) -> u32 {
-    if glitch_filter {
-        3
-    } else {
-        2
-    }
-}
-
-/// Clock periods a line level must last to be seen for sure.
-pub fn min_level_clocks(glitch_filter: bool) -> u32 {
-    if glitch_filter {
-        2
-    } else {
-        1
-    }
-}
-
-pub(crate) fn check_clock(block: &str, clock_hz: f64) -> crate::error::Result<()> {
-    if clock_hz.is_finite() && (1e6..=1e9).contains(&clock_hz) {
-        Ok(())
-    } else {
-        Err(crate::error::Error::block_params(
-            block,
-            format!("clock_hz must be between 1 MHz and 1 GHz, got {clock_hz}"),
-        ))
-    }
-}
-
-pub(crate) fn check_word(
-    block: &str,
-    position_bits: u32,
-    multiturn_bits: u32,
-) -> crate::error::Result<()> {
-    if !(1..=32).contains(&position_bits) {
-        return Err(crate::error::Error::block_params(
-            block,
-            format!("position_bits must be 1..=32, got {position_bits}"),
-        ));
-    }
-    if position_bits + multiturn_bits > 32 {
-        return Err(crate::error::Error::block_params(
-            block,
-            format!(
-                "position_bits + multiturn_bits = {} + {} = {} exceeds the 32-bit data word",
-                position_bits,
-                multiturn_bits,
-                position_bits + multiturn_bits
-            ),
-        ));
-    }
-    Ok(())
-}
-
-pub(crate) fn check_timeout_clocks(block: &str, clocks: u32) -> crate::error::Result<()> {
-    if (MIN_TIMEOUT_CLOCKS..=MAX_TIMEOUT_CLOCKS).contains(&clocks) {
-        Ok(())
-    } else {
-        Err(crate::error::Error::block_params(block, format!(
-            "the timeout must be {MIN_TIMEOUT_CLOCKS}..={MAX_TIMEOUT_CLOCKS} system clocks, got {clocks}"
-        )))
-    }
-}
-
-/// Timeout in clocks from microseconds (rounded), checked.
-pub(crate) fn timeout_clocks(block: &str, us: f64, clock_hz: f64) -> crate::error::Result<u32> {
-    if !us.is_finite() || us <= 0.0 {
-        return Err(crate::error::Error::block_params(
-            block,
-            format!("the timeout must be a positive number of microseconds, got {us}"),
-        ));
-    }
-    let c = (us * clock_hz / 1e6).round();
-    if c < MIN_TIMEOUT_CLOCKS as f64 || c > MAX_TIMEOUT_CLOCKS as f64 {
-        return Err(crate::error::Error::block_params(block, format!(
-            "a timeout of {us} us is {c} clocks at {} MHz; it must be {MIN_TIMEOUT_CLOCKS}..={MAX_TIMEOUT_CLOCKS} clocks",
-            clock_hz / 1e6
-        )));
-    }
-    Ok(c as u32)
-}
-
-/// Gray code of a word.
-pub fn gray(w: u64) -> u64 {
-    w ^ (w >> 1)
-}
-
-/// The data word a slave sends for a position and a turn count (binary or Gray).
-pub fn data_word(
-    pos: u64,
-    turns: u64,
-    position_bits: u32,
-    multiturn_bits: u32,
-    gray_code: bool,
-) -> u64 {
-    use crate::blocks::mask;
-    let w = ((turns & mask(multiturn_bits)) << position_bits) | (pos & mask(position_bits));
-    if gray_code {
-        gray(w)
-    } else {
-        w
     }
 }

@@ -129,51 +129,7 @@ impl Logic for ParallelBus {
     }
 }
 
-impl crate::cosim::step::Clocked for ParallelBus {
-    fn set_clock(&mut self, high: bool) {
-        self.clk.next = Clock::from(high);
-    }
-}
-
-impl crate::cosim::CosimBlock for ParallelBus {
-    fn input_ports(&self) -> Vec<crate::cosim::Port> {
-        use crate::cosim::Port;
-        vec![
-            Port::new("rst", 1),
-            Port::new("pos", 32),
-            Port::new("turns", 32),
-            Port::new("pos_valid", 1),
-            Port::new("error", 1),
-            Port::new("warning", 1),
-            Port::new("hold", 1),
-        ]
-    }
-    fn output_ports(&self) -> Vec<crate::cosim::Port> {
-        use crate::cosim::Port;
-        vec![
-            Port::new("par_pos", 32),
-            Port::new("par_turns", 32),
-            Port::new("par_valid", 1),
-            Port::new("par_error", 1),
-            Port::new("par_warning", 1),
-        ]
-    }
-    fn apply(&mut self, r: &[u64]) {
-        self.rst.next = r[0] != 0;
-        self.pos.next = Bits::<32>::from(r[1] & 0xffff_ffff);
-        self.turns.next = Bits::<32>::from(r[2] & 0xffff_ffff);
-        self.pos_valid.next = r[3] != 0;
-        self.error.next = r[4] != 0;
-        self.warning.next = r[5] != 0;
-        self.hold.next = r[6] != 0;
-    }
-    fn sample(&self) -> Vec<u64> {
-        vec![
-            self.par_pos.val().to_u64(),
-            self.par_turns.val().to_u64(),
-            self.par_valid.val() as u64,
-            self.par_error.val() as u64,
-            self.par_warning.val() as u64,
-        ]
-    }
-}
+crate::cosim::cosim_block!(ParallelBus {
+    inputs: [rst: 1, pos: 32, turns: 32, pos_valid: 1, error: 1, warning: 1, hold: 1],
+    outputs: [par_pos: 32, par_turns: 32, par_valid: 1, par_error: 1, par_warning: 1],
+});

@@ -26,7 +26,7 @@
 //! non-zero; a top level exports those.
 pub mod hdl;
 
-use crate::blocks::biss::check_word;
+use crate::blocks::serial::check_word;
 
 /// Parameters of the parallel bus.
 #[derive(Clone, Debug, PartialEq)]

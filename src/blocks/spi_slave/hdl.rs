@@ -1,5 +1,5 @@
 //! rust-hdl description of the SPI slave.
-use crate::blocks::biss::hdl::{LineSync, PosWord};
+use crate::blocks::serial::hdl::{LineSync, PosWord};
 use crate::blocks::spi_slave::SpiSlaveParams;
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
@@ -186,41 +186,7 @@ impl Logic for SpiSlave {
     }
 }
 
-impl crate::cosim::step::Clocked for SpiSlave {
-    fn set_clock(&mut self, high: bool) {
-        self.clk.next = Clock::from(high);
-    }
-}
-
-impl crate::cosim::CosimBlock for SpiSlave {
-    fn input_ports(&self) -> Vec<crate::cosim::Port> {
-        use crate::cosim::Port;
-        vec![
-            Port::new("rst", 1),
-            Port::new("sck", 1),
-            Port::new("cs_n", 1),
-            Port::new("pos", 32),
-            Port::new("turns", 32),
-            Port::new("pos_valid", 1),
-            Port::new("error", 1),
-            Port::new("warning", 1),
-        ]
-    }
-    fn output_ports(&self) -> Vec<crate::cosim::Port> {
-        use crate::cosim::Port;
-        vec![Port::new("miso", 1), Port::new("miso_oe", 1)]
-    }
-    fn apply(&mut self, r: &[u64]) {
-        self.rst.next = r[0] != 0;
-        self.sck.next = r[1] != 0;
-        self.cs_n.next = r[2] != 0;
-        self.pos.next = Bits::<32>::from(r[3] & 0xffff_ffff);
-        self.turns.next = Bits::<32>::from(r[4] & 0xffff_ffff);
-        self.pos_valid.next = r[5] != 0;
-        self.error.next = r[6] != 0;
-        self.warning.next = r[7] != 0;
-    }
-    fn sample(&self) -> Vec<u64> {
-        vec![self.miso.val() as u64, self.miso_oe.val() as u64]
-    }
-}
+crate::cosim::cosim_block!(SpiSlave {
+    inputs: [rst: 1, sck: 1, cs_n: 1, pos: 32, turns: 32, pos_valid: 1, error: 1, warning: 1],
+    outputs: [miso: 1, miso_oe: 1],
+});

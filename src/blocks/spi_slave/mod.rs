@@ -2,7 +2,7 @@
 //! edges, the slave changes it on falling edges), one word per chip-select period.
 //!
 //! Word, MSB first: N data bits (multi-turn bits, then position; binary or Gray, as in
-//! [`crate::blocks::biss`]), then the error flag E and the warning flag W (1 = set, sticky
+//! [`crate::blocks::serial`]), then the error flag E and the warning flag W (1 = set, sticky
 //! since the previous word as in BiSS), then zeros for any further clocks.
 //!
 //! ```text
@@ -23,7 +23,7 @@
 //! (sampling on falling edges) are not supported.
 //!
 //! `cs_n` and `sck` pass the same synchronizer and glitch filter as BiSS MA
-//! ([`crate::blocks::biss::hdl::LineSync`]), so their order is kept. Timing that the master
+//! ([`crate::blocks::serial::hdl::LineSync`]), so their order is kept. Timing that the master
 //! must meet (L = 3 clocks with the filter, 2 without; d = one-way line delay):
 //! * cs_n low to the first SCK rising edge (mode 0) or falling edge (mode 3):
 //!   more than (L + 1) clock periods + 2d;
@@ -36,7 +36,7 @@
 //! `pos` (32), `turns` (32), `pos_valid`, `error`, `warning` -> `miso`, `miso_oe`.
 pub mod hdl;
 
-use crate::blocks::biss::{check_clock, check_word, min_level_clocks, sync_latency};
+use crate::blocks::serial::{check_clock, check_word, min_level_clocks, sync_latency};
 
 /// Parameters of the SPI slave.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

@@ -1,5 +1,6 @@
 //! rust-hdl description of the SSI slave.
-use crate::blocks::biss::hdl::{LineSync, PosWord};
+use crate::blocks::serial::hdl::{LineSync, PosWord};
+use crate::blocks::serial::timeout_mask;
 use crate::blocks::ssi::SsiParams;
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
@@ -98,7 +99,7 @@ impl SsiSlave {
             ebit: Constant::new(p.error_bit),
             cmask: c32(mask(7)),
             tlast: c32(p.timeout_clocks as u64 - 1),
-            tmask: c32(mask(32 - (p.timeout_clocks - 1).leading_zeros().min(31))),
+            tmask: c32(timeout_mask(p.timeout_clocks)),
             one: c32(1),
             zero: c32(0),
         })
@@ -186,36 +187,7 @@ impl Logic for SsiSlave {
     }
 }
 
-impl crate::cosim::step::Clocked for SsiSlave {
-    fn set_clock(&mut self, high: bool) {
-        self.clk.next = Clock::from(high);
-    }
-}
-
-impl crate::cosim::CosimBlock for SsiSlave {
-    fn input_ports(&self) -> Vec<crate::cosim::Port> {
-        use crate::cosim::Port;
-        vec![
-            Port::new("rst", 1),
-            Port::new("ma", 1),
-            Port::new("pos", 32),
-            Port::new("turns", 32),
-            Port::new("pos_valid", 1),
-            Port::new("error", 1),
-        ]
-    }
-    fn output_ports(&self) -> Vec<crate::cosim::Port> {
-        vec![crate::cosim::Port::new("slo", 1)]
-    }
-    fn apply(&mut self, r: &[u64]) {
-        self.rst.next = r[0] != 0;
-        self.ma.next = r[1] != 0;
-        self.pos.next = Bits::<32>::from(r[2] & 0xffff_ffff);
-        self.turns.next = Bits::<32>::from(r[3] & 0xffff_ffff);
-        self.pos_valid.next = r[4] != 0;
-        self.error.next = r[5] != 0;
-    }
-    fn sample(&self) -> Vec<u64> {
-        vec![self.slo.val() as u64]
-    }
-}
+crate::cosim::cosim_block!(SsiSlave {
+    inputs: [rst: 1, ma: 1, pos: 32, turns: 32, pos_valid: 1, error: 1],
+    outputs: [slo: 1],
+});

@@ -25,19 +25,17 @@
 //! next rising edge (the slave's answer, 2-4 clock periods plus the cable round trip, must
 //! arrive within one clock period), or at a compensated delay. The data word, the Gray code,
 //! the position hold, the sticky error and the synchronizer with its glitch filter are those
-//! of the BiSS slave ([`crate::blocks::biss`]); so are the behaviour during the timeout (clock
+//! of the BiSS slave ([`crate::blocks::serial`]); so are the behaviour during the timeout (clock
 //! edges restart it and start nothing) and after reset (line low for t_m, then idle).
 //!
 //! Ports of [`hdl::SsiSlave`]: `clk`, `rst`, `ma`, `pos` (32), `turns` (32), `pos_valid`,
 //! `error` -> `slo`.
 pub mod hdl;
 
-use crate::blocks::biss::{
-    check_clock, check_timeout_clocks, check_word, sync_latency, timeout_clocks,
+use crate::blocks::serial::{
+    check_clock, check_timeout_clocks, check_word, sync_latency, timeout_clocks, timeout_us,
+    DEFAULT_TIMEOUT_US,
 };
-
-/// Default monoflop time in microseconds.
-pub const DEFAULT_TIMEOUT_US: f64 = 20.0;
 
 /// Parameters of the SSI slave.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -109,6 +107,6 @@ impl SsiParams {
 
     /// Monoflop time in microseconds.
     pub fn timeout_us(&self) -> f64 {
-        self.timeout_clocks as f64 * 1e6 / self.clock_hz
+        timeout_us(self.timeout_clocks, self.clock_hz)
     }
 }
