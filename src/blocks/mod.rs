@@ -31,6 +31,7 @@ pub mod qep;
 pub mod spi_slave;
 pub mod ssi;
 pub mod top;
+pub mod velocity;
 
 use rust_hdl::prelude::*;
 
