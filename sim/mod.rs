@@ -23,3 +23,4 @@ pub mod spi_adc;
 pub mod ssi_master;
 pub mod system;
 pub mod vcd;
+pub mod velocity_table;
