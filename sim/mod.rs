@@ -27,3 +27,4 @@ pub mod spi_master;
 pub mod ssi_master;
 pub mod system;
 pub mod vcd;
+pub mod velocity_table;

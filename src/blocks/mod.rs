@@ -32,6 +32,7 @@ pub mod serial;
 pub mod spi_slave;
 pub mod ssi;
 pub mod top;
+pub mod velocity;
 
 use rust_hdl::prelude::*;
 
