@@ -217,7 +217,7 @@ impl Logic for AbzEmulator {
         } else if self.start.val() {
             self.have.d.next = false;
         }
-        // Serial divider: t = floor(p a / b), one position pbit per clock, MSB first.
+        // Serial divider: t = floor(p a / b), one position bit per clock, MSB first.
         self.done.d.next = false;
         self.r2.next = self.r.q.val() << self.one.val();
         if self.pbit.q.val() {
