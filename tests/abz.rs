@@ -24,10 +24,14 @@ fn run(p: &AbzParams, ins: &[AbzIn], tag: &str, sims: Simulators) -> Vec<Vec<u64
     let mut m = AbzModel::new(p);
     let model: Vec<Vec<u64>> = ins.iter().map(|i| m.step(*i).row()).collect();
     let dir = common::workdir(tag);
-    let t = block_traces(AbzEmulator::new(p), tag, "clk", &rows, sims, &dir)
-        .expect("simulators ran");
+    let t =
+        block_traces(AbzEmulator::new(p), tag, "clk", &rows, sims, &dir).expect("simulators ran");
     for (k, (r, m)) in t.rust_hdl.iter().zip(&model).enumerate() {
-        assert_eq!(r, m, "{tag} row {k}: rust-hdl vs model (inputs {:?})", rows[k]);
+        assert_eq!(
+            r, m,
+            "{tag} row {k}: rust-hdl vs model (inputs {:?})",
+            rows[k]
+        );
     }
     if let Some(m) = t.mismatch() {
         panic!("{tag}: {m}");
@@ -217,7 +221,11 @@ fn model_equals_rtl_on_random_positions() {
     for (p, tag, seed) in [
         (default_params(), "abz_rand_def", 1u64),
         (odd_params(), "abz_rand_odd", 2),
-        (AbzParams::new(4 * 2048, 14, 1000, 2).unwrap(), "abz_rand_1000", 3),
+        (
+            AbzParams::new(4 * 2048, 14, 1000, 2).unwrap(),
+            "abz_rand_1000",
+            3,
+        ),
     ] {
         let mut r = SplitMix64(seed);
         let pp = p.positions() as i64;
@@ -305,7 +313,10 @@ fn speed(p: &AbzParams, period: usize, frac: f64) -> f64 {
 #[test]
 fn counter_follows_through_reversals_up_to_the_maximum_speed() {
     let period = 102;
-    for (p, tag) in [(default_params(), "abz_rev_def"), (odd_params(), "abz_rev_odd")] {
+    for (p, tag) in [
+        (default_params(), "abz_rev_def"),
+        (odd_params(), "abz_rev_odd"),
+    ] {
         let n = 1500;
         // Position (in position LSB) swinging with a peak speed of 0.999 x the maximum:
         // x(s) = A sin(w s), peak speed A w per sample; several reversals and zero crossings.
@@ -314,13 +325,17 @@ fn counter_follows_through_reversals_up_to_the_maximum_speed() {
         let amp = vmax / w;
         // Centred just below a turn boundary: the swing crosses position 0 both ways.
         let off = p.positions() as f64 - 0.3 * amp;
-        let ins = samples(&p, n, period, |s| (off + amp * (w * s as f64).sin()).floor() as i64);
+        let ins = samples(&p, n, period, |s| {
+            (off + amp * (w * s as f64).sin()).floor() as i64
+        });
         let out = run(&p, &ins, tag, RUST_ONLY);
         let (qc, warned, worst) = check_against_counter(&p, &ins, &out, period, tag, true);
         assert_eq!(worst, 0);
         assert_eq!(warned, 0, "{tag}: no warning below the maximum speed");
         // Coverage: the swing crossed position 0 (Z) several times, both ways.
-        let zs = (1..out.len()).filter(|&k| out[k][2] == 1 && out[k - 1][2] == 0).count();
+        let zs = (1..out.len())
+            .filter(|&k| out[k][2] == 1 && out[k - 1][2] == 0)
+            .count();
         assert!(zs >= 4, "{tag}: {zs} index pulses");
         assert!(qc.edges > 1000, "{tag}: {} edges", qc.edges);
     }
@@ -333,7 +348,11 @@ fn at_the_maximum_speed_the_count_stays_within_one_count() {
     for dir in [1.0, -1.0] {
         let v = dir * speed(&p, period, 1.0);
         let ins = samples(&p, 1200, period, |s| (v * s as f64).floor() as i64 + 12345);
-        let tag = if dir > 0.0 { "abz_max_fwd" } else { "abz_max_back" };
+        let tag = if dir > 0.0 {
+            "abz_max_fwd"
+        } else {
+            "abz_max_back"
+        };
         let out = run(&p, &ins, tag, RUST_ONLY);
         let (qc, _, worst) = check_against_counter(&p, &ins, &out, period, tag, false);
         assert!(worst <= 1, "{tag}: {worst} counts behind at a sample");
@@ -421,7 +440,11 @@ fn catch_up_after_jumps_loses_no_count() {
         assert!(turns <= 2, "{tag}: {turns} direction changes");
         let up: i64 = moves.iter().filter(|&&m| m > 0).count() as i64;
         let down: i64 = moves.iter().filter(|&&m| m < 0).count() as i64;
-        assert_eq!(up - down, net_to(n - 1), "{tag}: net count of the whole run");
+        assert_eq!(
+            up - down,
+            net_to(n - 1),
+            "{tag}: net count of the whole run"
+        );
         assert!(up > 0 && down > 0);
     }
 }

@@ -65,7 +65,10 @@ fn check_prints_the_edge_rate_and_the_maximum_speed() {
         r.contains(&format!("{:.3} M edges/s", rate / 1e6)) && r.contains(&format!("{s} clocks")),
         "{r}"
     );
-    assert!(line("abz max speed").contains(&format!("{rpm:.0} rpm")), "{out}");
+    assert!(
+        line("abz max speed").contains(&format!("{rpm:.0} rpm")),
+        "{out}"
+    );
     // Without [abz] there is no such line (the default listing is unchanged).
     std::fs::write(dir.path().join("d.toml"), DEFAULT_CONFIG).unwrap();
     let o = Command::new(BIN)
@@ -80,11 +83,27 @@ fn check_prints_the_edge_rate_and_the_maximum_speed() {
 fn bad_values_name_the_key_the_position_and_the_range() {
     let cases: &[(&str, &str, &[&str])] = &[
         // 4 lines > positions per turn (2^27 at PPR 2048, F 14): allowed 1..=2^25.
-        ("enabled = true\nlines = 40000000", "lines = 40000000", &["`abz.lines`", "allowed 1..=33554432"]),
-        ("enabled = true\nlines = 0", "lines = 0", &["`abz.lines`", "allowed 1..="]),
+        (
+            "enabled = true\nlines = 40000000",
+            "lines = 40000000",
+            &["`abz.lines`", "allowed 1..=33554432"],
+        ),
+        (
+            "enabled = true\nlines = 0",
+            "lines = 0",
+            &["`abz.lines`", "allowed 1..="],
+        ),
         // Above clock / 2.
-        ("enabled = true\nmax_edge_hz = 80e6", "max_edge_hz = 80e6", &["`abz.max_edge_hz`", "66665000 Hz"]),
-        ("max_edge_hz = 1.0", "max_edge_hz = 1.0", &["`abz.max_edge_hz`", "allowed"]),
+        (
+            "enabled = true\nmax_edge_hz = 80e6",
+            "max_edge_hz = 80e6",
+            &["`abz.max_edge_hz`", "66665000 Hz"],
+        ),
+        (
+            "max_edge_hz = 1.0",
+            "max_edge_hz = 1.0",
+            &["`abz.max_edge_hz`", "allowed"],
+        ),
     ];
     for (section, needle, mentions) in cases {
         let text = with_abz(section);
@@ -96,6 +115,8 @@ fn bad_values_name_the_key_the_position_and_the_range() {
         }
     }
     // Unknown keys are rejected by the schema.
-    let e = Loaded::parse(&with_abz("enable = true"), "bad.toml").unwrap_err().to_string();
+    let e = Loaded::parse(&with_abz("enable = true"), "bad.toml")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("enable"), "{e}");
 }

@@ -337,7 +337,9 @@ pub(super) fn abz_params(
             ),
         ));
     }
-    let hz = a.max_edge_hz.unwrap_or(ABZ_DEFAULT_EDGE_HZ.min(clock / 2.0));
+    let hz = a
+        .max_edge_hz
+        .unwrap_or(ABZ_DEFAULT_EDGE_HZ.min(clock / 2.0));
     let lo = clock / (1u64 << 24) as f64;
     if !hz.is_finite() || hz < lo || hz > clock / 2.0 {
         return Err(err(

@@ -232,8 +232,8 @@ impl Logic for AbzEmulator {
         if self.start.val() {
             self.pbit.d.next = (self.qcap.q.val() & self.qtop.val()).any();
             if (self.fcap.q.val() & self.ftop.val()).any() {
-                self.qsh.d.next = ((self.qcap.q.val() << self.one.val()) & self.qmask.val())
-                    | self.one.val();
+                self.qsh.d.next =
+                    ((self.qcap.q.val() << self.one.val()) & self.qmask.val()) | self.one.val();
             } else {
                 self.qsh.d.next = (self.qcap.q.val() << self.one.val()) & self.qmask.val();
             }

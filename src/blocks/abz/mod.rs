@@ -110,8 +110,7 @@ impl AbzParams {
         lines: u64,
         spacing: u32,
     ) -> crate::error::Result<Self> {
-        if !(4..=1 << 18).contains(&quadrants_per_turn) || !quadrants_per_turn.is_multiple_of(4)
-        {
+        if !(4..=1 << 18).contains(&quadrants_per_turn) || !quadrants_per_turn.is_multiple_of(4) {
             return Err(invalid(format!(
                 "quadrants per turn {quadrants_per_turn} must be 4 * PPR in 4..=2^18"
             )));
