@@ -153,16 +153,16 @@ fn check_against_counter(
     let mut worst = 0i64;
     let mut next = 1;
     let mut warned = 0;
-    for k in k0..out.len() {
-        qc.observe(k, out[k][0] == 1, out[k][1] == 1);
+    for (k, o) in out.iter().enumerate().skip(k0) {
+        qc.observe(k, o[0] == 1, o[1] == 1);
         // Z exactly in the count-0 state of each turn.
         assert_eq!(
-            out[k][2] == 1,
+            o[2] == 1,
             qc.count.rem_euclid(e) == 0,
             "{tag}: Z at row {k} (count {})",
             qc.count
         );
-        warned += out[k][3] as usize;
+        warned += o[3] as usize;
         // Just before sample `next` can move the output: the count is sample next-1's.
         if next < rows.len() && k == rows[next] + lat - 1 {
             let want = exact_count(p, pos(rows[next - 1]));
