@@ -60,6 +60,10 @@ pub struct Derived {
     pub qep: QepParams,
     /// QEP fallback enabled.
     pub qep_enabled: bool,
+    /// ABZ emulator of the board top, when `[abz] enabled` (left out of the parameter
+    /// file when disabled, so configurations without it keep their bytes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub abz: Option<crate::blocks::abz::AbzParams>,
     /// ADC sample width A.
     pub adc_width: u32,
     /// Capacitive path, when `[capacitive]` is present.

@@ -95,6 +95,7 @@ impl Derived {
         check_throughput(architecture, n, cycles_per_sample, clock_hz, rate)
             .map_err(|m| err("cordic", "architecture", m.detail()))?;
         let biss = biss_params(c, position_width, &err)?;
+        let abz = abz_params(c, quadrants_per_turn, f, &err)?;
         let capacitive = match &c.capacitive {
             Some(k) => Some(cap_params(c, k, rate, &err)?),
             None => None,
@@ -282,6 +283,7 @@ impl Derived {
             monitor,
             qep,
             qep_enabled: c.qep.enabled,
+            abz,
             adc_width: a,
             capacitive,
             iterations: n,
@@ -382,6 +384,9 @@ impl Derived {
                     self.latency_cycles
                 ));
             }
+            if let Some(a) = &self.abz {
+                s.push_str(&describe_abz(a, self.clock_hz));
+            }
             s.push_str(&self.describe_board());
             return s;
         };
@@ -454,4 +459,23 @@ impl Derived {
             self.warn_step as f64 / (1u64 << self.fine_bits) as f64,
         )
     }
+}
+
+/// The `[abz]` lines of `check`: resolution, rounding rule, maximum edge rate and speed.
+fn describe_abz(a: &AbzParams, clock_hz: f64) -> String {
+    let rate = clock_hz / a.spacing() as f64;
+    let (ea, eb) = a.ratio();
+    format!(
+        "abz lines                   {} A/B periods per turn = {} edges; count = floor(position x {ea} / {eb}) (exact, no drift over a turn)\n\
+         abz max edge rate           {:.3} M edges/s (edges at least {} clocks apart; A/B at most {:.3} MHz)\n\
+         abz max speed               {:.0} rpm at that rate (faster: the output lags, catches up and raises the warning)\n\
+         abz latency                 {} cycles from the position to its first edge\n",
+        a.lines(),
+        a.edges(),
+        rate / 1e6,
+        a.spacing(),
+        rate / 4e6,
+        rate / a.edges() as f64 * 60.0,
+        a.latency()
+    )
 }

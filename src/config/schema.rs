@@ -150,6 +150,23 @@ pub struct Config {
     /// capacitive top (excitation NCO, band-pass, demodulation, low-pass, CORDIC).
     #[serde(default)]
     pub capacitive: Option<CapacitiveConfig>,
+    /// ABZ incremental encoder emulation (`crate::blocks::abz`).
+    #[serde(default)]
+    pub abz: AbzConfig,
+}
+
+/// `[abz]`: A/B/Z incremental encoder emulation of the decoded position.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AbzConfig {
+    /// Include the emulator (default false: no logic).
+    #[serde(default)]
+    pub enabled: bool,
+    /// A/B periods per turn (default 16 x PPR, at most a quarter of the positions per turn).
+    pub lines: Option<u64>,
+    /// Highest edge rate on A and B together, edges per second (the minimum edge spacing;
+    /// default 12.5 MHz, at most clock / 2).
+    pub max_edge_hz: Option<f64>,
 }
 
 /// `[ssi]`: SSI slave sending the same data word as BiSS (biss.position_bits and

@@ -1,0 +1,122 @@
+//! `[abz]`: defaults (off: no parameters; on: 16 x PPR lines, 12.5 MHz edges), the derived
+//! edge spacing and maximum speed printed by `check` (expected figures computed here from
+//! the definitions), and bad values rejected with file:line:col, the key and what is allowed.
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_sinedec");
+
+fn with_abz(section: &str) -> String {
+    format!("{DEFAULT_CONFIG}\n[abz]\n{section}\n")
+}
+
+/// 1-based (line, column) of the unique `needle` in `text`.
+fn at(text: &str, needle: &str) -> (usize, usize) {
+    assert_eq!(text.matches(needle).count(), 1, "{needle:?} must be unique");
+    let before = &text[..text.find(needle).unwrap()];
+    (
+        before.split('\n').count(),
+        before.split('\n').next_back().unwrap().chars().count() + 1,
+    )
+}
+
+#[test]
+fn off_by_default_and_defaults_when_enabled() {
+    let l = Loaded::parse(DEFAULT_CONFIG, "d.toml").unwrap();
+    assert!(l.derived.abz.is_none());
+    // Keys are checked even when the emulator is off, but build nothing.
+    let l = Loaded::parse(&with_abz("lines = 1000"), "d.toml").unwrap();
+    assert!(l.derived.abz.is_none());
+    let l = Loaded::parse(&with_abz("enabled = true"), "d.toml").unwrap();
+    let p = l.derived.abz.expect("enabled");
+    let ppr = l.derived.quadrants_per_turn / 4;
+    assert_eq!(p.lines(), 16 * ppr);
+    // 12.5 MHz at 133.33 MHz: the smallest S with clock / S <= 12.5 MHz.
+    let clock = l.derived.clock_hz;
+    let s = (1..).find(|&s| clock / s as f64 <= 12.5e6).unwrap();
+    assert_eq!(p.spacing(), s);
+}
+
+#[test]
+fn check_prints_the_edge_rate_and_the_maximum_speed() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = with_abz("enabled = true\nlines = 2000\nmax_edge_hz = 20e6");
+    std::fs::write(dir.path().join("a.toml"), &text).unwrap();
+    let o = Command::new(BIN)
+        .args(["check", "a.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8(o.stdout).unwrap();
+    let clock = Loaded::parse(&text, "a.toml").unwrap().derived.clock_hz;
+    let s = (1..).find(|&s| clock / s as f64 <= 20e6).unwrap();
+    let rate = clock / s as f64;
+    let rpm = rate / 8000.0 * 60.0;
+    let line = |label: &str| {
+        out.lines()
+            .find(|l| l.starts_with(label))
+            .unwrap_or_else(|| panic!("no `{label}` line in:\n{out}"))
+            .to_string()
+    };
+    assert!(line("abz lines").contains("2000 A/B periods per turn = 8000 edges"));
+    let r = line("abz max edge rate");
+    assert!(
+        r.contains(&format!("{:.3} M edges/s", rate / 1e6)) && r.contains(&format!("{s} clocks")),
+        "{r}"
+    );
+    assert!(
+        line("abz max speed").contains(&format!("{rpm:.0} rpm")),
+        "{out}"
+    );
+    // Without [abz] there is no such line (the default listing is unchanged).
+    std::fs::write(dir.path().join("d.toml"), DEFAULT_CONFIG).unwrap();
+    let o = Command::new(BIN)
+        .args(["check", "d.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(!String::from_utf8(o.stdout).unwrap().contains("abz"));
+}
+
+#[test]
+fn bad_values_name_the_key_the_position_and_the_range() {
+    let cases: &[(&str, &str, &[&str])] = &[
+        // 4 lines > positions per turn (2^27 at PPR 2048, F 14): allowed 1..=2^25.
+        (
+            "enabled = true\nlines = 40000000",
+            "lines = 40000000",
+            &["`abz.lines`", "allowed 1..=33554432"],
+        ),
+        (
+            "enabled = true\nlines = 0",
+            "lines = 0",
+            &["`abz.lines`", "allowed 1..="],
+        ),
+        // Above clock / 2.
+        (
+            "enabled = true\nmax_edge_hz = 80e6",
+            "max_edge_hz = 80e6",
+            &["`abz.max_edge_hz`", "66665000 Hz"],
+        ),
+        (
+            "max_edge_hz = 1.0",
+            "max_edge_hz = 1.0",
+            &["`abz.max_edge_hz`", "allowed"],
+        ),
+    ];
+    for (section, needle, mentions) in cases {
+        let text = with_abz(section);
+        let (line, col) = at(&text, needle);
+        let e = Loaded::parse(&text, "bad.toml").unwrap_err().to_string();
+        assert!(e.starts_with(&format!("bad.toml:{line}:{col}: ")), "{e}");
+        for m in *mentions {
+            assert!(e.contains(m), "{e} should mention {m}");
+        }
+    }
+    // Unknown keys are rejected by the schema.
+    let e = Loaded::parse(&with_abz("enable = true"), "bad.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("enable"), "{e}");
+}
