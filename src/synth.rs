@@ -227,11 +227,13 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
     }
     let mut s = classify(&cells, family);
     let netlist = std::fs::read_to_string(&json).map_err(|e| Error::io(&json, e))?;
-    s.path =
-        crate::report::levels::analyze(&netlist, top, family).map_err(|m| Error::ToolOutput {
-            tool: "yosys".into(),
-            message: format!("path analysis of `{top}` ({tag}): {m}"),
-        })?;
+    s.path = crate::report::levels::analyze(&netlist, top, family).map_err(|e| match e {
+        Error::ToolOutput { tool, message } => Error::ToolOutput {
+            tool,
+            message: format!("path analysis of `{top}` ({tag}): {message}"),
+        },
+        other => other,
+    })?;
     Ok(s)
 }
 

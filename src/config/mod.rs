@@ -43,6 +43,7 @@ use crate::error::{Error, Quoted, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
 
+mod checks;
 mod derived;
 mod params;
 mod pins;
@@ -50,6 +51,7 @@ mod schema;
 mod spans;
 
 pub use crate::blocks::params::{Architecture, CapDerived, CapacitiveConfig, Derived};
+pub use checks::*;
 pub use params::*;
 pub use pins::*;
 pub use schema::*;

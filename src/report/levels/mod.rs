@@ -23,6 +23,7 @@
 //! carry chains, multiplexers, multipliers and routed nets, and its start and end registers.
 mod delay;
 
+use crate::error::{Error, Result};
 use crate::synth::Family;
 pub use delay::{arc, model, routed, Arc, DelayModel, CYCLONE3_C8, XC3SA_4};
 use delay::{arc_ps, role, Role};
@@ -86,19 +87,28 @@ fn bits(v: &Value) -> Vec<Option<u64>> {
         .unwrap_or_default()
 }
 
+/// [`Error::ToolOutput`] for a netlist the analysis cannot use.
+fn bad_netlist(message: String) -> Error {
+    Error::ToolOutput {
+        tool: "yosys".into(),
+        message,
+    }
+}
+
 /// Analyzes module `top` of a Yosys JSON netlist mapped for `family`. Ok(None): no
 /// register-to-register path.
-pub fn analyze(json: &str, top: &str, family: Family) -> Result<Option<PathLevels>, String> {
+pub fn analyze(json: &str, top: &str, family: Family) -> Result<Option<PathLevels>> {
     analyze_with(json, top, model(family))
 }
 
 /// [`analyze`] with an explicit delay model.
-pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<PathLevels>, String> {
-    let v: Value = serde_json::from_str(json).map_err(|e| format!("netlist JSON: {e}"))?;
+pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<PathLevels>> {
+    let v: Value =
+        serde_json::from_str(json).map_err(|e| bad_netlist(format!("netlist JSON: {e}")))?;
     let module = v
         .get("modules")
         .and_then(|ms| ms.get(top))
-        .ok_or_else(|| format!("netlist has no module `{top}`"))?;
+        .ok_or_else(|| bad_netlist(format!("netlist has no module `{top}`")))?;
     // Net bit -> a readable name (prefer names without `$`, then the shortest).
     let mut names: HashMap<u64, String> = HashMap::new();
     if let Some(nn) = module.get("netnames").and_then(Value::as_object) {
@@ -162,87 +172,88 @@ pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<Path
     let mut memo: HashMap<u64, Option<Arr>> = HashMap::new();
     // Iterative depth-first evaluation of arrival times (paths can be hundreds of cells).
     let mut visiting: std::collections::HashSet<u64> = std::collections::HashSet::new();
-    let mut arrival =
-        |start: u64, memo: &mut HashMap<u64, Option<Arr>>| -> Result<Option<Arr>, String> {
-            let mut stack: Vec<(u64, bool)> = vec![(start, false)];
-            while let Some((b, expanded)) = stack.pop() {
-                if memo.contains_key(&b) && !expanded {
-                    continue;
-                }
-                if !expanded && visiting.contains(&b) {
-                    return Err(format!("combinational loop through net bit {b}"));
-                }
-                let Some(&(ci, pi)) = driver.get(&b) else {
+    let mut arrival = |start: u64, memo: &mut HashMap<u64, Option<Arr>>| -> Result<Option<Arr>> {
+        let mut stack: Vec<(u64, bool)> = vec![(start, false)];
+        while let Some((b, expanded)) = stack.pop() {
+            if memo.contains_key(&b) && !expanded {
+                continue;
+            }
+            if !expanded && visiting.contains(&b) {
+                return Err(bad_netlist(format!(
+                    "combinational loop through net bit {b}"
+                )));
+            }
+            let Some(&(ci, pi)) = driver.get(&b) else {
+                memo.insert(b, None);
+                continue;
+            };
+            let c = &cells[ci];
+            match role(c.ty, m) {
+                Role::None => {
                     memo.insert(b, None);
-                    continue;
-                };
-                let c = &cells[ci];
-                match role(c.ty, m) {
-                    Role::None => {
-                        memo.insert(b, None);
-                    }
-                    Role::Seq { tco_ps, .. } => {
-                        memo.insert(
-                            b,
-                            Some(Arr {
-                                t: tco_ps,
-                                prev: None,
-                                cell: ci,
-                            }),
-                        );
-                    }
-                    Role::Comb => {
-                        let o = c.ports[pi].0;
-                        let inputs: Vec<(u64, Arc, bool)> = c
-                            .ports
-                            .iter()
-                            .filter(|(_, out, _)| !*out)
-                            .filter_map(|(p, _, bs)| arc(c.ty, p, o).map(|a| (p, a, bs)))
-                            .flat_map(|(p, a, bs)| bs.iter().flatten().map(move |&ib| (ib, a, *p)))
-                            .map(|(ib, a, p)| {
-                                let r = match driver.get(&ib) {
-                                    Some(&(dci, _)) => routed(cells[dci].ty, c.ty, p),
-                                    None => true,
-                                };
-                                (ib, a, r)
-                            })
-                            .collect();
-                        if !expanded {
-                            let pending: Vec<u64> = inputs
-                                .iter()
-                                .map(|x| x.0)
-                                .filter(|ib| !memo.contains_key(ib))
-                                .collect();
-                            if !pending.is_empty() {
-                                visiting.insert(b);
-                                stack.push((b, true));
-                                for ib in pending {
-                                    stack.push((ib, false));
-                                }
-                                continue;
-                            }
-                        }
-                        let mut best: Option<Arr> = None;
-                        for (ib, a, r) in inputs {
-                            let Some(Some(ia)) = memo.get(&ib) else {
-                                continue;
+                }
+                Role::Seq { tco_ps, .. } => {
+                    memo.insert(
+                        b,
+                        Some(Arr {
+                            t: tco_ps,
+                            prev: None,
+                            cell: ci,
+                        }),
+                    );
+                }
+                Role::Comb => {
+                    let o = c.ports[pi].0;
+                    let inputs: Vec<(u64, Arc, bool)> = c
+                        .ports
+                        .iter()
+                        .filter(|(_, out, _)| !*out)
+                        .filter_map(|(p, _, bs)| arc(c.ty, p, o).map(|a| (p, a, bs)))
+                        .flat_map(|(p, a, bs)| bs.iter().flatten().map(move |&ib| (ib, a, *p)))
+                        .map(|(ib, a, p)| {
+                            let r = match driver.get(&ib) {
+                                Some(&(dci, _)) => routed(cells[dci].ty, c.ty, p),
+                                None => true,
                             };
-                            let t = ia.t + arc_ps(a, m) + if r { m.route_ps } else { 0 };
-                            if best.map(|x| t > x.t).unwrap_or(true) {
-                                best = Some(Arr {
-                                    t,
-                                    prev: Some((ib, a, r)),
-                                    cell: ci,
-                                });
+                            (ib, a, r)
+                        })
+                        .collect();
+                    if !expanded {
+                        let pending: Vec<u64> = inputs
+                            .iter()
+                            .map(|x| x.0)
+                            .filter(|ib| !memo.contains_key(ib))
+                            .collect();
+                        if !pending.is_empty() {
+                            visiting.insert(b);
+                            stack.push((b, true));
+                            for ib in pending {
+                                stack.push((ib, false));
                             }
+                            continue;
                         }
-                        visiting.remove(&b);
-                        memo.insert(b, best);
                     }
+                    let mut best: Option<Arr> = None;
+                    for (ib, a, r) in inputs {
+                        let Some(Some(ia)) = memo.get(&ib) else {
+                            continue;
+                        };
+                        let t = ia.t + arc_ps(a, m) + if r { m.route_ps } else { 0 };
+                        if best.map(|x| t > x.t).unwrap_or(true) {
+                            best = Some(Arr {
+                                t,
+                                prev: Some((ib, a, r)),
+                                cell: ci,
+                            });
+                        }
+                    }
+                    visiting.remove(&b);
+                    memo.insert(b, best);
                 }
             }
-            Ok(memo.get(&start).copied().flatten())
-        };
+        }
+        Ok(memo.get(&start).copied().flatten())
+    };
     // Endpoints, in cell-name order (the JSON object is sorted): the latest arrival wins.
     let mut worst: Option<(u64, u64, usize, bool)> = None; // (delay, bit, end cell, routed)
     for (ci, c) in cells.iter().enumerate() {

@@ -374,3 +374,46 @@ fn no_register_path_is_none() {
     assert_eq!(analyze_with(&j, "t", &M).unwrap(), None);
     assert!(analyze_with(&j, "nope", &M).is_err());
 }
+
+/// A loop of two LUTs between a register and a register is a typed tool-output error that
+/// names the loop, not a hang or a panic.
+#[test]
+fn combinational_loop_is_a_tool_output_error() {
+    let j = netlist(
+        vec![
+            (
+                "fa",
+                cell(
+                    "FDRE",
+                    &[("C", false, &[1]), ("D", false, &[5]), ("Q", true, &[2])],
+                ),
+            ),
+            (
+                "l1",
+                cell(
+                    "LUT2",
+                    &[("I0", false, &[2]), ("I1", false, &[4]), ("O", true, &[3])],
+                ),
+            ),
+            (
+                "l2",
+                cell("LUT1", &[("I0", false, &[3]), ("O", true, &[4])]),
+            ),
+            (
+                "fb",
+                cell(
+                    "FDRE",
+                    &[("C", false, &[1]), ("D", false, &[4]), ("Q", true, &[5])],
+                ),
+            ),
+        ],
+        &[("q", &[2])],
+    );
+    match analyze_with(&j, "t", &M) {
+        Err(Error::ToolOutput { tool, message }) => {
+            assert_eq!(tool, "yosys");
+            assert!(message.contains("combinational loop"), "{message}");
+        }
+        other => panic!("expected a tool-output error, got {other:?}"),
+    }
+}
