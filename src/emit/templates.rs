@@ -101,7 +101,9 @@ const TEMPLATES: &[(&str, &str)] = &[
     ),
 ];
 
-/// The environment holding [`TEMPLATES`], built once.
+/// The environment holding [`TEMPLATES`], built once. A failed build is cached as text, the
+/// one `Result<_, String>` kept on purpose: every later caller gets the same failure, and
+/// [`render`] turns it into [`Error::Template`].
 fn environment() -> &'static std::result::Result<Environment<'static>, String> {
     static ENV: OnceLock<std::result::Result<Environment<'static>, String>> = OnceLock::new();
     ENV.get_or_init(|| {
