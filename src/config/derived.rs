@@ -96,6 +96,7 @@ impl Derived {
             .map_err(|m| err("cordic", "architecture", m.detail()))?;
         let biss = biss_params(c, position_width, &err)?;
         let abz = abz_params(c, quadrants_per_turn, f, &err)?;
+        let velocity = velocity_params(c, f, rate, warn_step, &err)?;
         let capacitive = match &c.capacitive {
             Some(k) => Some(cap_params(c, k, rate, &err)?),
             None => None,
@@ -284,6 +285,7 @@ impl Derived {
             qep,
             qep_enabled: c.qep.enabled,
             abz,
+            velocity,
             adc_width: a,
             capacitive,
             iterations: n,
@@ -384,6 +386,9 @@ impl Derived {
                     self.latency_cycles
                 ));
             }
+            if let Some(v) = &self.velocity {
+                s.push_str(&describe_velocity(v, self.quadrants_per_turn));
+            }
             if let Some(a) = &self.abz {
                 s.push_str(&describe_abz(a, self.clock_hz));
             }
@@ -459,6 +464,27 @@ impl Derived {
             self.warn_step as f64 / (1u64 << self.fine_bits) as f64,
         )
     }
+}
+
+/// The `[velocity]` lines of `check`: method, update period, the LSB of out_velocity in
+/// rpm and the largest speed it represents.
+fn describe_velocity(v: &VelocityParams, quadrants_per_turn: u64) -> String {
+    let lsb = v.lsb_rpm(quadrants_per_turn as f64);
+    let top = ((1u64 << (v.spec.width - 1)) - 1) as f64 * lsb;
+    format!(
+        "velocity                    method {}, one update every {} clocks ({:.1} Hz), latency {} clocks after the update's tick\n\
+         velocity LSB                {:.6e} rpm (2^-{} position LSB per update period)\n\
+         velocity range              +-{:.0} rpm representable in {} bits; the decoder's maximum speed gives at most {} LSB\n",
+        v.spec.method,
+        v.period_clocks,
+        v.spec.clock_hz / v.period_clocks as f64,
+        v.latency(),
+        lsb,
+        v.spec.frac_bits,
+        top,
+        v.spec.width,
+        v.max_output
+    )
 }
 
 /// The `[abz]` lines of `check`: resolution, rounding rule, maximum edge rate and speed.

@@ -39,6 +39,7 @@ use crate::blocks::preamp::PreampParams;
 use crate::blocks::qep::QepParams;
 use crate::blocks::spi_slave::SpiSlaveParams;
 use crate::blocks::ssi::SsiParams;
+use crate::blocks::velocity::VelocityParams;
 use crate::error::{Error, Quoted, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};

@@ -153,6 +153,57 @@ pub struct Config {
     /// ABZ incremental encoder emulation (`crate::blocks::abz`).
     #[serde(default)]
     pub abz: AbzConfig,
+    /// Velocity estimation (`crate::blocks::velocity`, docs/velocity.md).
+    #[serde(default)]
+    pub velocity: VelocityConfig,
+}
+
+/// `[velocity]`: velocity estimation from the decoded position (docs/velocity.md). Every key
+/// has the documented default; the keys are checked even when the block is disabled.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct VelocityConfig {
+    /// Include the estimator (default false: no velocity logic at all).
+    pub enabled: bool,
+    /// "tracking" (default) | "kalman" | "lsq" | "diff_lpf".
+    pub method: crate::blocks::velocity::Method,
+    /// Update rate in Hz (default 7500).
+    pub rate_hz: f64,
+    /// Fractional bits of out_velocity (default 8).
+    pub frac_bits: u32,
+    /// Bits of out_velocity (default 32; checked against the maximum speed).
+    pub width: u32,
+    /// diff_lpf: low-pass cut-off in Hz (default 900).
+    pub cutoff_hz: f64,
+    /// lsq: points M (default 4).
+    pub lsq_points: u32,
+    /// lsq: polynomial order N (default 1).
+    pub lsq_order: u32,
+    /// kalman: process-noise variance (default 0.01).
+    pub kalman_q: f64,
+    /// kalman: measurement-noise variance (default 0.03).
+    pub kalman_r: f64,
+    /// tracking: loop bandwidth (natural frequency) in Hz (default 200).
+    pub bandwidth_hz: f64,
+}
+
+impl Default for VelocityConfig {
+    fn default() -> Self {
+        let d = crate::blocks::velocity::VelocitySpec::defaults(1.0, 14, 1);
+        VelocityConfig {
+            enabled: false,
+            method: d.method,
+            rate_hz: d.rate_hz,
+            frac_bits: d.frac_bits,
+            width: d.width,
+            cutoff_hz: d.cutoff_hz,
+            lsq_points: d.lsq_points,
+            lsq_order: d.lsq_order,
+            kalman_q: d.kalman_q,
+            kalman_r: d.kalman_r,
+            bandwidth_hz: d.bandwidth_hz,
+        }
+    }
 }
 
 /// `[abz]`: A/B/Z incremental encoder emulation of the decoded position.

@@ -225,6 +225,11 @@ pub const BLOCKS: &[BlockDef] = &[
         build: parallel_job,
     },
     BlockDef {
+        key: "abz",
+        label: "ABZ emulation",
+        build: abz_job,
+    },
+    BlockDef {
         key: "nco",
         label: "excitation NCO",
         build: nco_job,

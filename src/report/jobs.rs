@@ -184,6 +184,22 @@ pub(super) fn parallel_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
+pub(super) fn abz_job(l: &Loaded) -> Result<BlockJob> {
+    let Some(p) = &l.derived.abz else {
+        return Ok(BlockJob::absent("abz", "needs [abz] enabled"));
+    };
+    let note = format!(
+        "position to first edge; edges at least {} clocks apart",
+        p.spacing()
+    );
+    job(
+        l,
+        "abz",
+        crate::blocks::abz::hdl::AbzEmulator::new(p),
+        BlockTiming::latency(p.latency(), &note),
+    )
+}
+
 const CAP_ONLY: &str = "capacitive path only: needs [capacitive]";
 
 pub(super) fn nco_job(l: &Loaded) -> Result<BlockJob> {
