@@ -2,7 +2,9 @@
 //! x' = (x - b) * g with g = 1/m (the thesis's two-point calibration, eqs. 3.3-3.6),
 //! static from the config or updated online by an automatic calibration that tracks the
 //! peaks of each channel over whole signal periods (as interpolator ICs do), and an
-//! optional static correction of the cos track's phase error.
+//! optional static correction of the cos track's phase error. [`fit`] is a model-only
+//! least-squares ellipse fit (offset, gain and phase at any speed) that has no RTL yet;
+//! figures in docs/correction.md.
 //!
 //! ```text
 //!            stage 1 (reg)              stage 2 (reg)        stage 3 (reg)
@@ -123,6 +125,7 @@
 //! * Reset (synchronous, active high) restores the configured offsets and gains (they are
 //!   also the power-up values) and restarts the tracker; it aborts a division.
 pub mod autocal;
+pub mod fit;
 pub mod hdl;
 pub mod model;
 pub mod phase;
