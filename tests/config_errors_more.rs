@@ -342,3 +342,45 @@ fn documented_ranges_equal_accepted_ones() {
         }
     }
 }
+
+/// `correction.phase_deg` outside -15..=15 degrees (and NaN) is a range error at the value;
+/// with `mode = "auto"` a non-zero phase is blamed on `phase_deg` itself; both ends of the
+/// range and 0 are accepted, and 0 builds no phase stage.
+#[test]
+fn correction_phase_deg_range_and_mode() {
+    for v in ["15.5", "-16.0", "90.0", "nan"] {
+        let new = format!("gain_frac_bits = 14\nphase_deg = {v}");
+        let t = default_with(&[("gain_frac_bits = 14", &new)]);
+        let needle = format!("phase_deg = {v}");
+        expect_bad(
+            &t,
+            Kind::Syntax,
+            value_at(&t, &needle),
+            &["`correction.phase_deg`", "-15..=15", "degrees"],
+        );
+    }
+    // An integer (3) reads as 3.0 degrees.
+    for (v, phase) in [("15.0", true), ("-15.0", true), ("3", true), ("0.0", false)] {
+        let t = default_with(&[(
+            "gain_frac_bits = 14",
+            &format!("gain_frac_bits = 14\nphase_deg = {v}"),
+        )]);
+        let l = Loaded::parse(&t, SRC).expect("accepted");
+        let c = &l.derived.correction;
+        assert_eq!(c.has_phase(), phase, "phase_deg = {v}");
+        assert_eq!(c.latency_cycles(), if phase { 4 } else { 3 });
+    }
+    let t = default_with(&[
+        ("mode = \"static\"", "mode = \"auto\""),
+        (
+            "gain_frac_bits = 14",
+            "gain_frac_bits = 14\nphase_deg = 2.5",
+        ),
+    ]);
+    expect_bad(
+        &t,
+        Kind::Value("correction.phase_deg"),
+        at(&t, "phase_deg = 2.5"),
+        &["correction.phase_deg", "static"],
+    );
+}

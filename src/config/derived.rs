@@ -382,7 +382,7 @@ impl Derived {
                     "latency CONV -> position    {c} cycles = {:.0} ns (ADC {} + correction {} + core {})\n",
                     c as f64 * 1e9 / self.clock_hz,
                     self.adc.conv_to_valid_clocks(),
-                    crate::blocks::correction::LATENCY_CYCLES,
+                    self.correction.latency_cycles(),
                     self.latency_cycles
                 ));
             }

@@ -19,6 +19,7 @@
 //! | `adc.sample_rate_hz` | up to the ADC's limit and the clock |
 //! | `correction.periods` | 1..=256 |
 //! | `correction.gain_frac_bits` | 8..=15 |
+//! | `correction.phase_deg` | -15..=15 degrees (static mode) |
 //! | `monitor.los_window`, `monitor.clip_hold` | 1..=65535 samples |
 //!
 //! `check`, `generate`, `simulate` and `report` all validate through [`Loaded::parse`]
@@ -33,7 +34,7 @@
 use crate::blocks::abz::AbzParams;
 use crate::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
 use crate::blocks::biss::BissParams;
-use crate::blocks::correction::{gain_code, CorrectionParams};
+use crate::blocks::correction::{gain_code, phase_codes, CorrectionParams};
 use crate::blocks::monitor::MonitorParams;
 use crate::blocks::preamp::PreampParams;
 use crate::blocks::qep::QepParams;

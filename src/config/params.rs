@@ -364,6 +364,23 @@ pub(super) fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionPar
     let gf = k.gain_frac_bits;
     let gs = gain_code(gf, k.gain_sin).map_err(|m| err("correction", "gain_sin", m.detail()))?;
     let gc = gain_code(gf, k.gain_cos).map_err(|m| err("correction", "gain_cos", m.detail()))?;
+    // Phase correction folds 1 / cos(phi) into the cos gain and adds the cross coefficient.
+    let (gc, cross) = if k.phase_deg != 0.0 {
+        if k.mode == "auto" {
+            return Err(err(
+                "correction",
+                "phase_deg",
+                format!(
+                    "{}: phase correction is static only; use mode = \"static\" or phase_deg = 0",
+                    k.phase_deg
+                ),
+            ));
+        }
+        phase_codes(gf, k.gain_sin, k.gain_cos, k.phase_deg)
+            .map_err(|m| err("correction", "phase_deg", m.detail()))?
+    } else {
+        (gc, 0)
+    };
     let p = CorrectionParams::new(a, gf, [k.offset_sin, k.offset_cos], [gs, gc]).map_err(|m| {
         let m = m.detail();
         err(
@@ -376,6 +393,9 @@ pub(super) fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionPar
             m,
         )
     })?;
+    let p = p
+        .with_phase(cross)
+        .map_err(|m| err("correction", "phase_deg", m.detail()))?;
     match k.mode.as_str() {
         "static" => Ok(p),
         "auto" => {

@@ -43,6 +43,14 @@ ranged!(
     15,
     " bits"
 );
+ranged!(
+    r_phase,
+    f64,
+    "correction.phase_deg",
+    -crate::blocks::correction::MAX_PHASE_DEG,
+    crate::blocks::correction::MAX_PHASE_DEG,
+    " degrees"
+);
 ranged!(r_clk, f64, "clock.frequency_hz", 1.0e6, 500.0e6, " Hz");
 ranged!(
     r_amp,
@@ -521,6 +529,10 @@ pub struct CorrectionConfig {
     /// Fraction bits of the gain words (8..=15).
     #[serde(default = "fourteen", deserialize_with = "r_gain_frac")]
     pub gain_frac_bits: u32,
+    /// Static mode: phase error phi of the cos track in degrees (cos = A cos(t + phi)),
+    /// -15..=15; 0 builds no phase hardware.
+    #[serde(default, deserialize_with = "r_phase")]
+    pub phase_deg: f64,
     /// Auto: amplitude both channels are scaled to, fraction of full scale.
     #[serde(default = "target")]
     pub target_amplitude: f64,
@@ -561,6 +573,7 @@ impl Default for CorrectionConfig {
             gain_sin: 1.0,
             gain_cos: 1.0,
             gain_frac_bits: 14,
+            phase_deg: 0.0,
             target_amplitude: target(),
             periods: 1,
             min_amplitude: min_cal(),

@@ -79,7 +79,7 @@ pub(super) fn correction_job(l: &Loaded) -> Result<BlockJob> {
         "correction",
         Correction::new(&l.derived.correction),
         BlockTiming::latency(
-            crate::blocks::correction::LATENCY_CYCLES,
+            l.derived.correction.latency_cycles(),
             "in_valid to out_valid",
         ),
     )

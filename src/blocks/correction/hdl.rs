@@ -1,6 +1,7 @@
 //! rust-hdl description of the front-end correction and its automatic calibration (maths,
 //! timing and rules in [`crate::blocks::correction`]).
 use super::autocal::{c16, AutoCal};
+use super::phase::PhaseCos;
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, fill, mask};
 use crate::cosim::Port;
@@ -19,7 +20,8 @@ pub struct Correction {
     pub in_sin: Signal<In, Bits<16>>,
     /// Raw cosine sample, A-bit two's complement in the low bits (upper bits ignored).
     pub in_cos: Signal<In, Bits<16>>,
-    /// Strobe of the corrected sample (3 clocks after `in_valid`).
+    /// Strobe of the corrected sample (`latency_cycles()` - 1 clocks after `in_valid`: 3
+    /// clocks without, 4 with phase correction).
     pub out_valid: Signal<Out, Bit>,
     /// Corrected sine, A-bit two's complement in the low bits (saturated).
     pub out_sin: Signal<Out, Bits<16>>,
@@ -37,6 +39,8 @@ pub struct Correction {
     pub cal_update: Signal<Out, Bit>,
     /// The automatic calibration: one instance in auto mode, none in static mode.
     cal: Vec<AutoCal>,
+    /// The phase correction of the cos track: one instance when k != 0, none otherwise.
+    ph: Vec<PhaseCos>,
     v1: DFF<Bit>,
     sg1_s: DFF<Bit>,
     sg1_c: DFF<Bit>,
@@ -124,6 +128,11 @@ impl Correction {
         } else {
             vec![]
         };
+        let ph = if p.has_phase() {
+            vec![PhaseCos::new(p)]
+        } else {
+            vec![]
+        };
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -139,6 +148,7 @@ impl Correction {
             gain_cos: Default::default(),
             cal_update: Default::default(),
             cal,
+            ph,
             v1: Default::default(),
             sg1_s: Default::default(),
             sg1_c: Default::default(),
@@ -322,6 +332,22 @@ impl Logic for Correction {
         self.gain_sin.next = self.g_s.val();
         self.gain_cos.next = self.g_c.val();
         self.cal_update.next = self.upd.val();
+        // Phase correction: the cos track from the stage-1 registers through its own
+        // stages 2-4; the sine result and the valid bit are delayed to match.
+        for i in 0..self.ph.len() {
+            self.ph[i].clk.next = self.clk.val();
+            self.ph[i].rst.next = self.rst.val();
+            self.ph[i].m_s.next = self.m1_s.q.val();
+            self.ph[i].neg_s.next = self.sg1_s.q.val();
+            self.ph[i].m_c.next = self.m1_c.q.val();
+            self.ph[i].neg_c.next = self.sg1_c.q.val();
+            self.ph[i].g_c.next = self.g1_c.q.val();
+            self.ph[i].sin3.next = self.o3_s.q.val();
+            self.ph[i].v3.next = self.v3.q.val();
+            self.out_valid.next = self.ph[i].out_valid.val();
+            self.out_sin.next = self.ph[i].out_sin.val();
+            self.out_cos.next = self.ph[i].out_cos.val();
+        }
     }
 }
 

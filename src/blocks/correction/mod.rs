@@ -1,7 +1,10 @@
 //! Front-end correction: per-channel offset and gain correction
 //! x' = (x - b) * g with g = 1/m (the thesis's two-point calibration, eqs. 3.3-3.6),
 //! static from the config or updated online by an automatic calibration that tracks the
-//! peaks of each channel over whole signal periods (as interpolator ICs do).
+//! peaks of each channel over whole signal periods (as interpolator ICs do), and an
+//! optional static correction of the cos track's phase error. [`fit`] is a model-only
+//! least-squares ellipse fit (offset, gain and phase at any speed) that has no RTL yet;
+//! figures in docs/correction.md.
 //!
 //! ```text
 //!            stage 1 (reg)              stage 2 (reg)        stage 3 (reg)
@@ -17,6 +20,14 @@
 //!              │  window of K periods -> snapshot -> serial divider   │
 //!              │  (sin then cos, 32 + 32 clocks) -> b, g registers ───┼──► b, g (stage 1)
 //!              └──────────────────────────────────────────────────────┘
+//!
+//!  Phase correction (only when k != 0; PhaseCos replaces the cos track after stage 1):
+//!            stage 2 (reg)            stage 3 (reg)              stage 4 (reg)
+//!  |d_c|,g_c ─► P_c = |d_c| g_c >> s ─┐
+//!                         sign(d_c) ──┤ S' = (P_c or !P_c)   ─► floor((S' + n + 2^(F-1)) / 2^F),
+//!  |d_s|, k ──► Q = |d_s| |k| >> s ───┤     + (Q or !Q)          saturate to A bits ──► out_cos
+//!               sign(d_s) ^ sign(k) ──┘ n = number of !         (compares of S' beside it)
+//!  stage-3 sine result ─────────────────────────────────────────► one register ──────► out_sin
 //! ```
 //!
 //! # Datapath and bit growth (A = ADC width 10..=16, GF = gain fraction bits 8..=15)
@@ -34,10 +45,46 @@
 //!   `x' = sgn(d) * floor(|d| g / 2^GF + 1/2)`.
 //! * Saturation (never wraps): d >= 0: x' = min(r, 2^(A-1) - 1); d < 0:
 //!   x' = -min(r, 2^(A-1)).
-//! * Latency: 3 clocks. A sample presented with `in_valid` before rising edge k appears on
-//!   `out_*` with `out_valid` after edge k+2; one sample per clock (back-to-back) is fine.
+//! * Latency: 3 clocks (4 with phase correction, below). A sample presented with
+//!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge k+2; one sample per clock (back-to-back) is fine.
 //!   `g` travels with the sample through stage 1, so a calibration update never mixes an
 //!   old offset with a new gain within one sample.
+//!
+//! # Phase correction of the cos track (static mode, `phase_deg`)
+//! * Signal model: sin = A_s sin(t) + b_s, cos = A_c cos(t + phi) + b_c (phi > 0: the cos
+//!   track leads). After offset and gain, sin' = g_s d_s = T sin(t) and
+//!   cos' = g_c d_c = T cos(t + phi) = T (cos t cos phi - sin t sin phi), so
+//!   T cos t = (cos' + sin' sin phi) / cos phi. Written with the raw differences:
+//!   **x_c' = (g_c / cos phi) d_c + (g_s tan phi) d_s**: the factor 1 / cos phi folds into the
+//!   cos gain code and the sine term needs one more coefficient, k = g_s tan phi. So the
+//!   datapath is two products and one signed sum with a single rounding, not a product
+//!   of the sum. The config computes both codes once ([`phase_codes`]):
+//!   g_c = round(2^GF gain_cos / cos phi) (must fit 16 bits) and
+//!   k = round(2^GF gain_sin tan phi), signed, |k| <= 65535 (|phi| <= 15 deg and
+//!   gain_sin < 4 give |k| < 0.27 * 2^16). Code rounding: relative errors <= 2^-(GF+1)
+//!   of each coefficient (GF = 14: 3e-5, 0.2 LSB at 6000 LSB).
+//! * Products (stage 2): P_c = floor(|d_c| g_c / 2^s), Q = floor(|d_s| |k| / 2^s), both
+//!   unsigned 16 x 16 -> 32, with s = max(0, A - 14): each is <= (2^A - 1)(2^16 - 1) / 2^s
+//!   < 2^(A+16-s) <= 2^30, so |S| <= P_c + Q < 2^31 and the signed sum fits the 32-bit word.
+//!   A <= 14: s = 0 and the sum is exact; A = 15, 16: the truncation costs less than
+//!   2 / 2^F LSB. F = GF - s >= 6 fraction bits remain.
+//! * Sum (stage 3): the signs are applied as ones' complements, -X = !X + 1, so
+//!   S' = (P_c or !P_c) + (Q or !Q) = S - n is one adder, n = [d_c < 0] + [d_s k < 0]
+//!   (0..=2) is carried to stage 4. |S| + 2 < 2^31, so S' never wraps.
+//! * Round and saturate (stage 4): **x_c' = clamp(floor((S + 2^(F-1)) / 2^F), -2^(A-1),
+//!   2^(A-1) - 1)**: round half up (ties towards +infinity; the other channel and the path
+//!   without phase round half away from zero; the two differ only on exact ties). One
+//!   adder S' + (2^(F-1) + n), the three constants for n = 0, 1, 2 selected by the two sign
+//!   bits; the result is bits F..F+A-1 of the 32-bit word (A + F <= 31, so a wrapped word
+//!   still gives the right A bits). Saturation is two compares of S' beside the adder, no
+//!   carry chain after another: high when S >= 2^(A-1+F) - 2^(F-1), low when
+//!   S < -2^(A-1+F) - 2^(F-1), each constant moved by -n and compared with the sign bits
+//!   flipped (two's complement order as unsigned order).
+//! * The sine track is not changed; its stage-3 result is delayed one register. Latency:
+//!   4 clocks with phase correction ([`PHASE_EXTRA_CYCLES`]); the one place it is derived
+//!   is [`CorrectionParams::latency_cycles`]. k = 0 (phase_deg = 0) builds no phase stage
+//!   at all: the block is the 3-clock block above, bit for bit.
+//! * Not with the automatic calibration: its peak-derived g_c would drop 1 / cos phi.
 //!
 //! # Automatic calibration (mode `Auto`)
 //! * Offset binary u = x + 2^(A-1) (sign bit flipped): u in [0, 2^A - 1], so max/min are
@@ -78,8 +125,10 @@
 //! * Reset (synchronous, active high) restores the configured offsets and gains (they are
 //!   also the power-up values) and restarts the tracker; it aborts a division.
 pub mod autocal;
+pub mod fit;
 pub mod hdl;
 pub mod model;
+pub mod phase;
 
 /// Parameters of the automatic calibration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -118,16 +167,32 @@ pub struct CorrectionParams {
     offset: [i32; 2],
     gain: [u32; 2],
     auto: Option<AutoCalParams>,
+    /// Cross coefficient k of the phase correction (signed code, see [`phase_codes`]); 0:
+    /// no phase correction and no phase hardware (omitted from the parameter listing).
+    #[serde(skip_serializing_if = "is_zero")]
+    cross: i32,
 }
+
+fn is_zero(v: &i32) -> bool {
+    *v == 0
+}
+
+/// Largest |phase error| (degrees) the static phase correction accepts.
+pub const MAX_PHASE_DEG: f64 = 15.0;
 
 /// Channel index of sine in the `[sin, cos]` arrays.
 pub const SIN: usize = 0;
 /// Channel index of cosine in the `[sin, cos]` arrays.
 pub const COS: usize = 1;
 
-/// Clock cycles from a sample at the input to the corrected sample at the output (the
-/// block's fixed latency, both modes).
+/// Clock cycles from a sample at the input to the corrected sample at the output without
+/// phase correction (both modes). The latency of a given block is
+/// [`CorrectionParams::latency_cycles`], which adds the phase stage: use that.
 pub const LATENCY_CYCLES: u32 = 3;
+
+/// Extra clocks of the phase correction (the signed sum of the two cos-track products gets
+/// its own stage, see the module doc).
+pub const PHASE_EXTRA_CYCLES: u32 = 1;
 
 impl CorrectionParams {
     /// Static correction: `adc_width` A = 10..=16; `gain_frac_bits` GF = 8..=15;
@@ -173,6 +238,7 @@ impl CorrectionParams {
             offset,
             gain,
             auto: None,
+            cross: 0,
         })
     }
 
@@ -191,6 +257,12 @@ impl CorrectionParams {
         periods: u32,
         min_amplitude: u32,
     ) -> crate::error::Result<Self> {
+        if self.cross != 0 {
+            return Err(invalid(
+                "the automatic calibration cannot be combined with the static phase correction"
+                    .to_string(),
+            ));
+        }
         let max = (1u32 << (self.adc_width - 1)) - 1;
         if !(1..=max).contains(&target_amplitude) {
             return Err(invalid(format!(
@@ -215,6 +287,54 @@ impl CorrectionParams {
             }),
             ..self
         })
+    }
+
+    /// Turns on the static phase correction of the cos track with the signed cross
+    /// coefficient code `cross` = round(2^GF g_s tan(phi)), |cross| <= 65535 (0: off). The
+    /// cos gain code should already hold g_c / cos(phi) (both from [`phase_codes`]). Not
+    /// with the automatic calibration (its gains would drop the 1 / cos(phi) factor).
+    pub fn with_phase(self, cross: i32) -> crate::error::Result<Self> {
+        if cross.unsigned_abs() > 0xffff {
+            return Err(invalid(format!(
+                "phase cross coefficient code {cross} does not fit 16 bits and a sign"
+            )));
+        }
+        if cross != 0 && self.auto.is_some() {
+            return Err(invalid(
+                "phase correction is for static mode: the automatic calibration would replace \
+                 the cos gain that carries 1 / cos(phase)"
+                    .to_string(),
+            ));
+        }
+        Ok(Self { cross, ..self })
+    }
+
+    /// Cross coefficient code k (0: no phase correction).
+    pub fn cross(&self) -> i32 {
+        self.cross
+    }
+
+    /// The phase stage is built (k != 0).
+    pub fn has_phase(&self) -> bool {
+        self.cross != 0
+    }
+
+    /// Clock cycles from `in_valid` to `out_valid`: [`LATENCY_CYCLES`], plus
+    /// [`PHASE_EXTRA_CYCLES`] with phase correction. The one place the block's latency is
+    /// derived; the top, the fallback and the reports take it from here.
+    pub fn latency_cycles(&self) -> u32 {
+        LATENCY_CYCLES
+            + if self.has_phase() {
+                PHASE_EXTRA_CYCLES
+            } else {
+                0
+            }
+    }
+
+    /// Right shift of the two cos-track products before their signed sum:
+    /// max(0, A - 14), so that |sum| < 2^31 (see the module doc).
+    pub fn phase_shift(&self) -> u32 {
+        self.adc_width.saturating_sub(14)
     }
 
     /// ADC width A.
@@ -250,6 +370,32 @@ pub fn gain_code(gain_frac_bits: u32, g: f64) -> crate::error::Result<u32> {
         )));
     }
     Ok(c as u32)
+}
+
+/// Codes of the static phase correction of the cos track by `phase_deg` (phi, the cos
+/// track's phase lead: cos = A cos(t + phi)), for the channels' gain corrections `g_sin`,
+/// `g_cos` (1/m): returns the cos gain code round(2^GF g_cos / cos(phi)) and the signed cross
+/// code round(2^GF g_sin tan(phi)). |phi| <= [`MAX_PHASE_DEG`].
+pub fn phase_codes(
+    gain_frac_bits: u32,
+    g_sin: f64,
+    g_cos: f64,
+    phase_deg: f64,
+) -> crate::error::Result<(u32, i32)> {
+    if phase_deg.is_nan() || phase_deg.abs() > MAX_PHASE_DEG {
+        return Err(invalid(format!(
+            "phase {phase_deg} degrees is out of range: -{MAX_PHASE_DEG}..={MAX_PHASE_DEG}"
+        )));
+    }
+    let phi = phase_deg.to_radians();
+    let gc = gain_code(gain_frac_bits, g_cos / phi.cos())?;
+    let k = (g_sin * phi.tan() * (1u64 << gain_frac_bits) as f64).round();
+    if k.abs() > 65535.0 {
+        return Err(invalid(format!(
+            "phase cross coefficient {k} (2^GF gain_sin tan(phase)) does not fit 16 bits"
+        )));
+    }
+    Ok((gc, k as i32))
 }
 
 /// Two-point calibration (thesis eqs. 3.3-3.6 with the ideal gain mi = 1): reference

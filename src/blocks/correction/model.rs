@@ -76,6 +76,36 @@ pub fn correct(x: i64, b: i64, g: u64, a: u32, gf: u32) -> i64 {
     }
 }
 
+/// The phase-corrected cos track's arithmetic (stages 1-4 without the registers): with
+/// P_c = floor(|d_c| g_c / 2^s), Q = floor(|d_s| |k| / 2^s), S = sgn(d_c) P_c +
+/// sgn(d_s) sgn(k) Q, F = GF - s: sat_A(floor((S + 2^(F-1)) / 2^F)) (round half up).
+/// `s` = [`super::CorrectionParams::phase_shift`].
+#[allow(clippy::too_many_arguments)]
+pub fn correct_phase(
+    xs: i64,
+    xc: i64,
+    bs: i64,
+    bc: i64,
+    gc: u64,
+    k: i64,
+    a: u32,
+    gf: u32,
+    s: u32,
+) -> i64 {
+    let (ds, dc) = (xs - bs, xc - bc);
+    let pc = ((dc.unsigned_abs() & 0xffff) * (gc & 0xffff)) >> s;
+    let q = ((ds.unsigned_abs() & 0xffff) * (k.unsigned_abs() & 0xffff)) >> s;
+    let sum = if dc < 0 { -(pc as i64) } else { pc as i64 }
+        + if (ds < 0) != (k < 0) {
+            -(q as i64)
+        } else {
+            q as i64
+        };
+    let f = gf - s;
+    let r = (sum + (1 << (f - 1))).div_euclid(1 << f);
+    r.clamp(-(1 << (a - 1)), (1 << (a - 1)) - 1)
+}
+
 /// Divider states (as [`super::hdl::CalState`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Div {
@@ -121,6 +151,17 @@ struct Pipe {
     p2: [u64; 2],
     v3: bool,
     o3: [u64; 2],
+    /// Phase stage ([`super::phase::PhaseCos`]): shifted products, negation bits, sum, and
+    /// the fourth stage.
+    pc2: u64,
+    q2: u64,
+    na2: bool,
+    nb2: bool,
+    s3: u64,
+    na3: bool,
+    nb3: bool,
+    v4: bool,
+    o4: [u64; 2],
 }
 
 /// Model of [`super::hdl::Correction`].
@@ -186,10 +227,15 @@ impl CorrectionModel {
     fn outputs(&self) -> CorrectionOut {
         let a = self.p.adc_width();
         let (b, g, upd) = self.in_use();
+        let (valid, o) = if self.p.has_phase() {
+            (self.pipe.v4, self.pipe.o4)
+        } else {
+            (self.pipe.v3, self.pipe.o3)
+        };
         CorrectionOut {
-            valid: self.pipe.v3,
-            sin: sext(self.pipe.o3[SIN], a),
-            cos: sext(self.pipe.o3[COS], a),
+            valid,
+            sin: sext(o[SIN], a),
+            cos: sext(o[COS], a),
             offset: [sext(b[SIN], a), sext(b[COS], a)],
             gain: g,
             cal_update: upd,
@@ -239,6 +285,30 @@ impl CorrectionModel {
             };
             n.o3[c] = o & 0xffff;
         }
+        // Phase stage (built only when k != 0; computed always, it is not observed otherwise).
+        let k = self.p.cross();
+        let sh = self.p.phase_shift();
+        n.pc2 = (old.m1[COS] * old.g1[COS]) >> sh;
+        n.q2 = (old.m1[SIN] * k.unsigned_abs() as u64) >> sh;
+        n.na2 = old.sg1[COS];
+        n.nb2 = old.sg1[SIN] ^ (k < 0);
+        let ma = if old.na2 { m32 } else { 0 };
+        let mb = if old.nb2 { m32 } else { 0 };
+        n.s3 = ((old.pc2 ^ ma) + (old.q2 ^ mb)) & m32;
+        n.na3 = old.na2;
+        n.nb3 = old.nb2;
+        let (rnd, hi, lo) = super::phase::constants(&self.p);
+        let nn = old.na3 as usize + old.nb3 as usize;
+        let sf = old.s3 ^ (1 << 31);
+        n.o4[COS] = if sf >= hi[nn] {
+            mask(a - 1)
+        } else if sf < lo[nn] {
+            1 << (a - 1)
+        } else {
+            (((old.s3 + rnd[nn]) & m32) >> (gf - sh)) & am
+        };
+        n.o4[SIN] = old.o3[SIN];
+        n.v4 = old.v3 && !i.rst;
         // Calibration (sees the old stage-1 registers).
         if let Some(cal) = self.cal.as_mut() {
             cal_step(cal, &self.p, &old, i.rst);

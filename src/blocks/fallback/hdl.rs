@@ -187,7 +187,7 @@ pub const QUIET_SAMPLES: u32 = 8;
 /// At most two samples are ever in flight: the iterative core takes at most one ADC period
 /// per sample (`sinedec check`), so its latency is below two periods.
 pub fn deep(d: &Derived) -> bool {
-    crate::blocks::correction::LATENCY_CYCLES + d.latency_cycles > d.adc.period_clocks
+    d.correction.latency_cycles() + d.latency_cycles > d.adc.period_clocks
 }
 
 impl Fallback {

@@ -104,7 +104,7 @@ pub const DESELECT_PINS: &[&str] = pins!(SD_TOP_PORTS, Deselect);
 /// Clock cycles from the CONV rise that samples the inputs to `par_valid` for that sample:
 /// ADC controller + correction + core.
 pub fn conv_to_position_cycles(d: &Derived) -> u32 {
-    d.adc.conv_to_valid_clocks() + crate::blocks::correction::LATENCY_CYCLES + d.latency_cycles
+    d.adc.conv_to_valid_clocks() + d.correction.latency_cycles() + d.latency_cycles
 }
 
 /// Shifts of the BiSS data word ((qc << qshl) >> qshr) | (fine >> fshr): the top

@@ -1,0 +1,229 @@
+//! rust-hdl description of the phase correction of the cos track: the stages that replace
+//! the cos channel's stages 2-3 when a phase error is corrected (maths, rounding and bit
+//! growth in [`crate::blocks::correction`]). Built only when k != 0, so a design without
+//! phase correction has none of it.
+use super::CorrectionParams;
+use crate::blocks::{c32, mask};
+use rust_hdl::prelude::*;
+
+/// The stage-4 constants for n = 0, 1, 2 (the ones of the ones' complements not yet
+/// added): the rounding addend 2^(F-1) + n and the saturation limits C - n, the latter with
+/// the sign bit flipped so that an unsigned compare orders two's complement words.
+fn stage4_constants(a: u32, f: u32) -> ([u64; 3], [u64; 3], [u64; 3]) {
+    let h = 1i64 << (f - 1);
+    let lim = 1i64 << (a - 1 + f);
+    let m32 = mask(32);
+    let flip = |v: i64| (v as u64 & m32) ^ (1 << 31);
+    (
+        [0, 1, 2].map(|n| (h + n) as u64),
+        [0, 1, 2].map(|n| flip(lim - h - n)),
+        [0, 1, 2].map(|n| flip(-lim - h - n)),
+    )
+}
+
+/// The stage-4 constants as used by [`super::model`]: (rounding addends, high limits, low
+/// limits), see [`PhaseCos`].
+pub(super) fn constants(p: &CorrectionParams) -> ([u64; 3], [u64; 3], [u64; 3]) {
+    stage4_constants(p.adc_width(), p.gain_frac_bits() - p.phase_shift())
+}
+
+/// Cos track with phase correction, stages 2-4: x_c' = clamp(floor((+-P_c +- Q) / 2^F + 1/2))
+/// with P_c = |d_c| g_c >> s and Q = |d_s| |k| >> s; the sine result is delayed one stage
+/// to stay aligned.
+#[derive(LogicBlock)]
+pub struct PhaseCos {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high: clears the valid bit.
+    pub rst: Signal<In, Bit>,
+    /// |d_s| = |x_s - b_s| (stage-1 register of the correction).
+    pub m_s: Signal<In, Bits<16>>,
+    /// d_s < 0 (stage-1 register).
+    pub neg_s: Signal<In, Bit>,
+    /// |d_c| = |x_c - b_c| (stage-1 register).
+    pub m_c: Signal<In, Bits<16>>,
+    /// d_c < 0 (stage-1 register).
+    pub neg_c: Signal<In, Bit>,
+    /// Cos gain g_c (carrying 1 / cos(phi)) of the same sample, UQ(16-GF).GF.
+    pub g_c: Signal<In, Bits<16>>,
+    /// Corrected sine of the correction's stage 3, A-bit two's complement.
+    pub sin3: Signal<In, Bits<16>>,
+    /// Valid bit of the correction's stage 3.
+    pub v3: Signal<In, Bit>,
+    /// Strobe of the corrected sample (one clock after `v3`).
+    pub out_valid: Signal<Out, Bit>,
+    /// Corrected sine (stage-3 value, delayed one clock).
+    pub out_sin: Signal<Out, Bits<16>>,
+    /// Phase-corrected cosine, A-bit two's complement (saturated).
+    pub out_cos: Signal<Out, Bits<16>>,
+    pc2: DFF<Bits<32>>,
+    q2: DFF<Bits<32>>,
+    na2: DFF<Bit>,
+    nb2: DFF<Bit>,
+    s3: DFF<Bits<32>>,
+    na3: DFF<Bit>,
+    nb3: DFF<Bit>,
+    v4: DFF<Bit>,
+    o4_s: DFF<Bits<16>>,
+    o4_c: DFF<Bits<16>>,
+    /// Stage 3: ones' complement masks of the two products.
+    ma: Signal<Local, Bits<32>>,
+    mb: Signal<Local, Bits<32>>,
+    /// Stage 4: the per-n constants selected by the two negation bits.
+    rnd: Signal<Local, Bits<32>>,
+    chi: Signal<Local, Bits<32>>,
+    clo: Signal<Local, Bits<32>>,
+    /// Stage 4: s3 with its sign bit flipped (signed order as unsigned order).
+    sf: Signal<Local, Bits<32>>,
+    /// Stage 4: rounded sum (bits F.. of the word are the result modulo 2^A).
+    r: Signal<Local, Bits<32>>,
+    o: Signal<Local, Bits<32>>,
+    /// |k|: magnitude of the cross coefficient, UQ(16-GF).GF.
+    kmag: Constant<Bits<16>>,
+    /// k < 0.
+    kneg: Constant<Bit>,
+    /// s = max(0, A - 14): right shift of both products.
+    pshift: Constant<Bits<32>>,
+    /// F = GF - s: fraction bits of the sum.
+    fshift: Constant<Bits<32>>,
+    /// 2^(F-1) + n for n = 0, 1, 2 (rounding half plus the ones not yet added).
+    rnd0: Constant<Bits<32>>,
+    rnd1: Constant<Bits<32>>,
+    rnd2: Constant<Bits<32>>,
+    /// 2^(A-1+F) - 2^(F-1) - n, sign bit flipped: S' at or above it saturates high.
+    hi0: Constant<Bits<32>>,
+    hi1: Constant<Bits<32>>,
+    hi2: Constant<Bits<32>>,
+    /// -2^(A-1+F) - 2^(F-1) - n, sign bit flipped: S' below it saturates low.
+    lo0: Constant<Bits<32>>,
+    lo1: Constant<Bits<32>>,
+    lo2: Constant<Bits<32>>,
+    /// All ones.
+    ones: Constant<Bits<32>>,
+    /// Zero.
+    zero: Constant<Bits<32>>,
+    /// Bit 31.
+    sign32: Constant<Bits<32>>,
+    /// Mask of the A sample bits.
+    amask: Constant<Bits<32>>,
+    /// 2^(A-1): the most negative A-bit code.
+    asign: Constant<Bits<32>>,
+    /// 2^(A-1) - 1.
+    pmax: Constant<Bits<32>>,
+}
+
+impl PhaseCos {
+    /// Phase stage for `p` (k = `p.cross()`).
+    pub fn new(p: &CorrectionParams) -> Self {
+        let a = p.adc_width();
+        let s = p.phase_shift();
+        let f = p.gain_frac_bits() - s;
+        let (rnd, hi, lo) = constants(p);
+        let k = p.cross();
+        Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            m_s: Default::default(),
+            neg_s: Default::default(),
+            m_c: Default::default(),
+            neg_c: Default::default(),
+            g_c: Default::default(),
+            sin3: Default::default(),
+            v3: Default::default(),
+            out_valid: Default::default(),
+            out_sin: Default::default(),
+            out_cos: Default::default(),
+            pc2: Default::default(),
+            q2: Default::default(),
+            na2: Default::default(),
+            nb2: Default::default(),
+            s3: Default::default(),
+            na3: Default::default(),
+            nb3: Default::default(),
+            v4: Default::default(),
+            o4_s: Default::default(),
+            o4_c: Default::default(),
+            ma: Default::default(),
+            mb: Default::default(),
+            rnd: Default::default(),
+            chi: Default::default(),
+            clo: Default::default(),
+            sf: Default::default(),
+            r: Default::default(),
+            o: Default::default(),
+            kmag: Constant::new(Bits::<16>::from(k.unsigned_abs() as u64 & 0xffff)),
+            kneg: Constant::new(k < 0),
+            pshift: c32(s as u64),
+            fshift: c32(f as u64),
+            rnd0: c32(rnd[0]),
+            rnd1: c32(rnd[1]),
+            rnd2: c32(rnd[2]),
+            hi0: c32(hi[0]),
+            hi1: c32(hi[1]),
+            hi2: c32(hi[2]),
+            lo0: c32(lo[0]),
+            lo1: c32(lo[1]),
+            lo2: c32(lo[2]),
+            ones: c32(mask(32)),
+            zero: c32(0),
+            sign32: c32(1 << 31),
+            amask: c32(mask(a)),
+            asign: c32(1 << (a - 1)),
+            pmax: c32(mask(a - 1)),
+        }
+    }
+}
+
+impl Logic for PhaseCos {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clk, pc2, q2, na2, nb2, s3, na3, nb3, v4, o4_s, o4_c);
+        // Stage 2: the two unsigned 16 x 16 -> 32 products, shifted right by s.
+        self.pc2.d.next = (self.m_c.val() * self.g_c.val()) >> self.pshift.val();
+        self.q2.d.next = (self.m_s.val() * self.kmag.val()) >> self.pshift.val();
+        self.na2.d.next = self.neg_c.val();
+        self.nb2.d.next = self.neg_s.val() ^ self.kneg.val();
+        // Stage 3: S' = (P_c or !P_c) + (Q or !Q) = S - n, one adder (|S| < 2^31).
+        self.ma.next = self.zero.val();
+        if self.na2.q.val() {
+            self.ma.next = self.ones.val();
+        }
+        self.mb.next = self.zero.val();
+        if self.nb2.q.val() {
+            self.mb.next = self.ones.val();
+        }
+        self.s3.d.next = (self.pc2.q.val() ^ self.ma.val()) + (self.q2.q.val() ^ self.mb.val());
+        self.na3.d.next = self.na2.q.val();
+        self.nb3.d.next = self.nb2.q.val();
+        // Stage 4: round half up and saturate; n = na + nb picks the constants, so the
+        // adder and the two compares each see S' and a constant (one carry chain each).
+        self.rnd.next = self.rnd0.val();
+        self.chi.next = self.hi0.val();
+        self.clo.next = self.lo0.val();
+        if self.na3.q.val() ^ self.nb3.q.val() {
+            self.rnd.next = self.rnd1.val();
+            self.chi.next = self.hi1.val();
+            self.clo.next = self.lo1.val();
+        }
+        if self.na3.q.val() & self.nb3.q.val() {
+            self.rnd.next = self.rnd2.val();
+            self.chi.next = self.hi2.val();
+            self.clo.next = self.lo2.val();
+        }
+        self.sf.next = self.s3.q.val() ^ self.sign32.val();
+        self.r.next = (self.s3.q.val() + self.rnd.val()) >> self.fshift.val();
+        self.o.next = self.r.val() & self.amask.val();
+        if self.sf.val() >= self.chi.val() {
+            self.o.next = self.pmax.val();
+        }
+        if self.sf.val() < self.clo.val() {
+            self.o.next = self.asign.val();
+        }
+        self.v4.d.next = self.v3.val() & !self.rst.val();
+        self.o4_s.d.next = self.sin3.val();
+        self.o4_c.d.next = bit_cast::<16, 32>(self.o.val());
+        self.out_valid.next = self.v4.q.val();
+        self.out_sin.next = self.o4_s.q.val();
+        self.out_cos.next = self.o4_c.q.val();
+    }
+}
