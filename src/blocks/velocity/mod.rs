@@ -96,7 +96,9 @@
 //! 2^-(k+1) on average; with the internal error below 1/4 LSB the bias stays below
 //! 2^-frac_bits LSB per period (one output LSB).
 mod design;
+pub mod hdl;
 pub mod model;
+mod parts;
 
 use design::*;
 pub use design::{kalman_gains, lsq_coefficients, tracking_gains};
