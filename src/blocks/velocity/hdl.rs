@@ -79,7 +79,9 @@ impl Layout {
             MethodConsts::DiffLpf { a } => (ws, ws, 1, c, c, vec![*a]),
             MethodConsts::Kalman { gains } => (ws, ws, 1, c, c, gains.clone()),
             MethodConsts::Tracking { alpha, beta } => (tw, ws, 2, c, c, vec![*beta, *alpha]),
-            MethodConsts::Lsq { n, recip, shift, .. } => {
+            MethodConsts::Lsq {
+                n, recip, shift, ..
+            } => {
                 let pw = shift + 1;
                 let mut k: Vec<i64> = n[..n.len() - 1].to_vec();
                 k.push(*recip);
@@ -347,7 +349,8 @@ impl Logic for Velocity {
         self.mul.sel.next = self.is_lsq.val() & self.jl.val();
         // One assignment (no default-then-override): a momentary value on a port between
         // two modules' combinational blocks makes Icarus loop forever at one time step.
-        self.rom.addr.next = (self.j.q.val() & self.jsel.val()) | (self.k.q.val() & self.ksel.val());
+        self.rom.addr.next =
+            (self.j.q.val() & self.jsel.val()) | (self.k.q.val() & self.ksel.val());
         self.prod.d.next = self.mul.p.val();
         self.valid_reg.d.next = false;
         // Front end: pos += sext((in_p - pos) mod 2^(F+2)), modulo 2^Wp; the first sample
@@ -462,8 +465,7 @@ impl Logic for Velocity {
                     self.theta.d.next = (self.theta.q.val() + self.acc.q.val() + self.prod.q.val())
                         & self.twmask.val();
                 }
-                if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val())
-                {
+                if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
                     self.k.d.next = self.k.q.val() + self.one.val();
                 }
                 if self.jl.val() {
