@@ -5,7 +5,9 @@
 //! Words: every datapath word is a `Bits<64>` holding a w-bit two's-complement value in its
 //! low w bits (upper bits zero), w from [`VelocityParams`] through per-instance masks, as
 //! in the other blocks (`crate::blocks`); the product (up to 127 bits) lives in the leaf
-//! [`VelMul`], whose Verilog is hand-written.
+//! [`VelMul`], whose Verilog is hand-written. The widths hold every word as long as the
+//! position changes by at most `max_step` per update period (the contract the widths are
+//! derived from); beyond it the RTL's words wrap where the model's i64/i128 do not.
 //!
 //! Schedule of one update (E0 = the divider's tick edge, one multiply = three clocks:
 //! operand register, product register, accumulate; latency 3 m + 2 =
