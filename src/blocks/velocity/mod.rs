@@ -1,7 +1,8 @@
 //! Velocity estimation from the decoded position (the thesis's chapter 4, "4.1 低速估測",
 //! plus a type-II tracking loop): four estimators behind one front end, run once every
 //! D = round(clock_hz / rate_hz) clocks. Design notes and the Table 4-1 discussion:
-//! `docs/velocity.md`.
+//! `docs/velocity.md`. The RTL is [`hdl::Velocity`] (its schedule in the docs of [`hdl`]),
+//! bit- and cycle-exact with [`model::VelocityModel`].
 //!
 //! ```text
 //!              every decoded sample                 every D clocks (one update)
@@ -96,7 +97,9 @@
 //! 2^-(k+1) on average; with the internal error below 1/4 LSB the bias stays below
 //! 2^-frac_bits LSB per period (one output LSB).
 mod design;
+pub mod hdl;
 pub mod model;
+mod parts;
 
 use design::*;
 pub use design::{kalman_gains, lsq_coefficients, tracking_gains};

@@ -1,0 +1,516 @@
+//! rust-hdl description of the velocity block (maths, fixed point and sketch in the module
+//! docs of [`crate::blocks::velocity`]; the schedule below and in `docs/velocity.md`).
+//! [`VelocityModel`](super::model::VelocityModel) is its cycle reference.
+//!
+//! Words: every datapath word is a `Bits<64>` holding a w-bit two's-complement value in its
+//! low w bits (upper bits zero), w from [`VelocityParams`] through per-instance masks, as
+//! in the other blocks (`crate::blocks`); the product (up to 127 bits) lives in the leaf
+//! [`VelMul`], whose Verilog is hand-written. The widths hold every word as long as the
+//! position changes by at most `max_step` per update period (the contract the widths are
+//! derived from); beyond it the RTL's words wrap where the model's i64/i128 do not.
+//!
+//! Schedule of one update (E0 = the divider's tick edge, one multiply = three clocks:
+//! operand register, product register, accumulate; latency 3 m + 2 =
+//! [`VelocityParams::latency`]):
+//! ```text
+//! edge   E0     E1     E2   E3    E4    E5   E6    E7   ...  E(3m+1)  E(3m+2)
+//! state  Idle > Prep > Op > Prod > Acc > Op > Prod > Acc  ...  Acc  >   Out > Idle
+//! does   snap   diffs  opa  prod  acc   opa  prod  acc        acc      out_velocity,
+//!        (prime)       opb  =mul        opb  =mul                      strobe
+//! diff_lpf, kalman (m = 1): Prep d = U - X; Acc X += p.           E5: y = q(X / 2^G)
+//! tracking (m = 2): Prep e; Acc 1: W += q(beta e); Acc 2: Theta += W + q(alpha e).
+//! lsq (m = M): Acc i < M: P += n_i r_i (r_i from the rotating history);
+//!              Acc M: P := q(P R / 2^B).
+//! ```
+use super::parts::{VelCoefRom, VelMul};
+use super::{MethodConsts, VelocityParams, COEF_FRAC};
+use crate::blocks::mask;
+use crate::error::{Error, Result};
+use rust_hdl::prelude::*;
+
+/// Where the update is in its schedule.
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum VelState {
+    /// Waiting for a tick.
+    Idle,
+    /// Differences of this update into `d` (lsq: shift the history, clear P).
+    Prep,
+    /// Multiplier operands registered.
+    Op,
+    /// Product registered.
+    Prod,
+    /// Product accumulated.
+    Acc,
+    /// Output register loaded, strobe raised.
+    Out,
+}
+
+/// Derived widths and constants of the datapath (all from [`VelocityParams`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layout {
+    /// Width of the multiplier's operand a (signed).
+    pub a_width: u32,
+    /// Width of the coefficients (signed).
+    pub b_width: u32,
+    /// Width of the accumulator X / W / P and of the multiplier's result (signed).
+    pub acc_width: u32,
+    /// Width of tracking's predicted position Theta (Wp + S + G).
+    pub theta_width: u32,
+    /// Multiplies per update m.
+    pub mults: u32,
+    /// Rounding shift of the multiplies but lsq's last (C, or 0 for lsq).
+    pub shift0: u32,
+    /// Rounding shift of lsq's last multiply (B; C for the other methods).
+    pub shift1: u32,
+    /// The coefficient ROM (kalman: the gain table; else one word per multiply).
+    pub coefs: Vec<i64>,
+}
+
+fn unsigned_bits(v: u128) -> u32 {
+    128 - v.leading_zeros()
+}
+
+impl Layout {
+    /// The datapath of `p`; an error if a word would not fit the 64-bit containers.
+    pub fn new(p: &VelocityParams) -> Result<Layout> {
+        let wp = p.pos_width;
+        let ws = p.state_width;
+        let tw = wp + p.state_frac();
+        let c = COEF_FRAC;
+        let (a_width, acc_width, mults, shift0, shift1, coefs) = match &p.consts {
+            MethodConsts::DiffLpf { a } => (ws, ws, 1, c, c, vec![*a]),
+            MethodConsts::Kalman { gains } => (ws, ws, 1, c, c, gains.clone()),
+            MethodConsts::Tracking { alpha, beta } => (tw, ws, 2, c, c, vec![*beta, *alpha]),
+            MethodConsts::Lsq {
+                n, recip, shift, ..
+            } => {
+                let pw = shift + 1;
+                let mut k: Vec<i64> = n[..n.len() - 1].to_vec();
+                k.push(*recip);
+                (wp.max(pw), ws.max(pw), n.len() as u32, 0, *shift, k)
+            }
+        };
+        let b_width = coefs
+            .iter()
+            .map(|&k| unsigned_bits(k.unsigned_abs() as u128) + 1)
+            .max()
+            .unwrap_or(2)
+            .max(2);
+        let l = Layout {
+            a_width,
+            b_width,
+            acc_width,
+            theta_width: tw,
+            mults,
+            shift0,
+            shift1,
+            coefs,
+        };
+        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
+            return Err(Error::block_params(
+                "velocity",
+                format!(
+                    "datapath words of {} / {} / {} / {} bits exceed 64: lower frac_bits or \
+                     the maximum speed",
+                    l.a_width, l.acc_width, l.theta_width, l.b_width
+                ),
+            ));
+        }
+        if p.latency() >= p.period_clocks {
+            return Err(Error::block_params(
+                "velocity",
+                format!(
+                    "an update takes {} clocks, the update period only {}",
+                    p.latency(),
+                    p.period_clocks
+                ),
+            ));
+        }
+        Ok(l)
+    }
+}
+
+fn c64(v: u64) -> Constant<Bits<64>> {
+    Constant::new(Bits::<64>::from(v))
+}
+
+fn c32(v: u64) -> Constant<Bits<32>> {
+    crate::blocks::c32(v)
+}
+
+/// Bits of a 64-bit word above the low `w`: OR-ed into a negative w-bit value to sign-extend.
+fn ext(w: u32) -> u64 {
+    !mask(w)
+}
+
+/// The velocity estimator (ports below; maths in the module docs of `velocity`).
+#[derive(LogicBlock)]
+pub struct Velocity {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high: everything to 0, a pending result is dropped.
+    pub rst: Signal<In, Bit>,
+    /// Decoded position modulo 2^(F+2) (the low F+2 bits; higher bits ignored).
+    pub in_p: Signal<In, Bits<32>>,
+    /// A decoded sample is on `in_p` this clock.
+    pub in_valid: Signal<In, Bit>,
+    /// Velocity, `width`-bit two's complement in the low bits (upper bits zero), held
+    /// between strobes: 2^-(F + frac_bits) quadrant per update period.
+    pub out_velocity: Signal<Out, Bits<64>>,
+    /// One-clock strobe: `out_velocity` is new (once per update period).
+    pub out_velocity_valid: Signal<Out, Bit>,
+    mul: VelMul,
+    rom: VelCoefRom,
+    init: DFF<Bit>,
+    pos: DFF<Bits<64>>,
+    cnt: DFF<Bits<32>>,
+    state: DFF<VelState>,
+    j: DFF<Bits<32>>,
+    primed: DFF<Bit>,
+    first: DFF<Bit>,
+    snap: DFF<Bits<64>>,
+    /// diff_lpf/kalman: positions theta(k-1) (one); lsq: the M newest, oldest first.
+    hist: Vec<DFF<Bits<64>>>,
+    d: DFF<Bits<64>>,
+    theta: DFF<Bits<64>>,
+    acc: DFF<Bits<64>>,
+    k: DFF<Bits<32>>,
+    opa: DFF<Bits<64>>,
+    opb: DFF<Bits<64>>,
+    prod: DFF<Bits<64>>,
+    out_reg: DFF<Bits<64>>,
+    valid_reg: DFF<Bit>,
+    inp: Signal<Local, Bits<64>>,
+    dp: Signal<Local, Bits<64>>,
+    sdp: Signal<Local, Bits<64>>,
+    tick: Signal<Local, Bit>,
+    jl: Signal<Local, Bit>,
+    delta: Signal<Local, Bits<64>>,
+    sdelta: Signal<Local, Bits<64>>,
+    u: Signal<Local, Bits<64>>,
+    meas: Signal<Local, Bits<64>>,
+    r: Signal<Local, Bits<64>>,
+    rext: Signal<Local, Bits<64>>,
+    pa: Signal<Local, Bits<64>>,
+    yr: Signal<Local, Bits<64>>,
+    ys: Signal<Local, Bits<64>>,
+    /// Index of the last history entry (a loop bound: rust-hdl indexes only by loop index).
+    _hlast: usize,
+    /// Masks of F+2 bits, its sign bit, the bits above it.
+    f2mask: Constant<Bits<64>>,
+    f2sign: Constant<Bits<64>>,
+    f2ext: Constant<Bits<64>>,
+    /// Masks of Wp bits, its sign bit, the bits above it.
+    wpmask: Constant<Bits<64>>,
+    wpsign: Constant<Bits<64>>,
+    wpext: Constant<Bits<64>>,
+    /// Mask of the state words (diff_lpf/kalman d, U).
+    smask: Constant<Bits<64>>,
+    /// Mask of Theta (Wp + S + G bits).
+    twmask: Constant<Bits<64>>,
+    /// Mask of the multiplier's operand a.
+    amask: Constant<Bits<64>>,
+    /// Mask of the accumulator, its sign bit, the bits above it.
+    accmask: Constant<Bits<64>>,
+    accsign: Constant<Bits<64>>,
+    accext: Constant<Bits<64>>,
+    /// S + G: position to state alignment.
+    sg: Constant<Bits<32>>,
+    /// G: the output's rounding shift, and 2^(G-1) (0 when G = 0).
+    g: Constant<Bits<32>>,
+    ghalf: Constant<Bits<64>>,
+    /// Bits above acc_width - G: sign extension after the output's shift.
+    yext: Constant<Bits<64>>,
+    /// Mask of `width` bits.
+    ymask: Constant<Bits<64>>,
+    /// D - 1: the divider's last count.
+    dlast: Constant<Bits<32>>,
+    /// m - 1: the last multiply.
+    jlast: Constant<Bits<32>>,
+    /// Last entry of the Kalman gain table.
+    klast: Constant<Bits<32>>,
+    /// ROM address select: all ones for j (not kalman) / for k (kalman), else zero.
+    jsel: Constant<Bits<32>>,
+    ksel: Constant<Bits<32>>,
+    /// Method flags.
+    is_lsq: Constant<Bit>,
+    is_track: Constant<Bit>,
+    is_kal: Constant<Bit>,
+    one: Constant<Bits<32>>,
+    zero: Constant<Bits<32>>,
+    zero64: Constant<Bits<64>>,
+}
+
+impl Velocity {
+    /// The block for validated parameters (an error if its words exceed 64 bits).
+    pub fn new(p: &VelocityParams) -> Result<Self> {
+        let l = Layout::new(p)?;
+        let f2 = p.spec.fine_bits + 2;
+        let wp = p.pos_width;
+        let ws = p.state_width;
+        let aw = l.acc_width;
+        let g = p.guard;
+        let nhist = match &p.consts {
+            MethodConsts::Lsq { n, .. } => n.len(),
+            _ => 1,
+        };
+        let is_kal = matches!(p.consts, MethodConsts::Kalman { .. });
+        let klast = match &p.consts {
+            MethodConsts::Kalman { gains } => gains.len() as u64 - 1,
+            _ => 0,
+        };
+        Ok(Velocity {
+            clk: Default::default(),
+            rst: Default::default(),
+            in_p: Default::default(),
+            in_valid: Default::default(),
+            out_velocity: Default::default(),
+            out_velocity_valid: Default::default(),
+            mul: VelMul::new(l.a_width, l.b_width, aw, l.shift0, l.shift1),
+            rom: VelCoefRom::new(&l.coefs, l.b_width),
+            init: Default::default(),
+            pos: Default::default(),
+            cnt: Default::default(),
+            state: Default::default(),
+            j: Default::default(),
+            primed: Default::default(),
+            first: Default::default(),
+            snap: Default::default(),
+            hist: (0..nhist).map(|_| DFF::default()).collect(),
+            d: Default::default(),
+            theta: Default::default(),
+            acc: Default::default(),
+            k: Default::default(),
+            opa: Default::default(),
+            opb: Default::default(),
+            prod: Default::default(),
+            out_reg: Default::default(),
+            valid_reg: Default::default(),
+            inp: Default::default(),
+            dp: Default::default(),
+            sdp: Default::default(),
+            tick: Default::default(),
+            jl: Default::default(),
+            delta: Default::default(),
+            sdelta: Default::default(),
+            u: Default::default(),
+            meas: Default::default(),
+            r: Default::default(),
+            rext: Default::default(),
+            pa: Default::default(),
+            yr: Default::default(),
+            ys: Default::default(),
+            _hlast: nhist - 1,
+            f2mask: c64(mask(f2)),
+            f2sign: c64(1 << (f2 - 1)),
+            f2ext: c64(ext(f2)),
+            wpmask: c64(mask(wp)),
+            wpsign: c64(1 << (wp - 1)),
+            wpext: c64(ext(wp)),
+            smask: c64(mask(ws)),
+            twmask: c64(mask(l.theta_width)),
+            amask: c64(mask(l.a_width)),
+            accmask: c64(mask(aw)),
+            accsign: c64(1 << (aw - 1)),
+            accext: c64(ext(aw)),
+            sg: c32(p.state_frac() as u64),
+            g: c32(g as u64),
+            ghalf: c64(if g == 0 { 0 } else { 1 << (g - 1) }),
+            yext: c64(ext(aw - g)),
+            ymask: c64(mask(p.spec.width)),
+            dlast: c32(p.period_clocks - 1),
+            jlast: c32(l.mults as u64 - 1),
+            klast: c32(klast),
+            jsel: c32(if is_kal { 0 } else { mask(32) }),
+            ksel: c32(if is_kal { mask(32) } else { 0 }),
+            is_lsq: Constant::new(matches!(p.consts, MethodConsts::Lsq { .. })),
+            is_track: Constant::new(matches!(p.consts, MethodConsts::Tracking { .. })),
+            is_kal: Constant::new(is_kal),
+            one: c32(1),
+            zero: c32(0),
+            zero64: c64(0),
+        })
+    }
+}
+
+impl Logic for Velocity {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clk, init, pos, cnt, state, j, primed, first, snap, d, theta, acc, k, opa, opb,
+            prod, out_reg, valid_reg
+        );
+        for i in 0..self.hist.len() {
+            self.hist[i].clock.next = self.clk.val();
+            self.hist[i].d.next = self.hist[i].q.val();
+        }
+        // The multiplier and its coefficient: the product register loads every clock.
+        self.jl.next = self.j.q.val() == self.jlast.val();
+        self.mul.a.next = self.opa.q.val();
+        self.mul.b.next = self.opb.q.val();
+        self.mul.sel.next = self.is_lsq.val() & self.jl.val();
+        // One assignment (no default-then-override): a momentary value on a port between
+        // two modules' combinational blocks makes Icarus loop forever at one time step.
+        self.rom.addr.next =
+            (self.j.q.val() & self.jsel.val()) | (self.k.q.val() & self.ksel.val());
+        self.prod.d.next = self.mul.p.val();
+        self.valid_reg.d.next = false;
+        // Front end: pos += sext((in_p - pos) mod 2^(F+2)), modulo 2^Wp; the first sample
+        // loads it.
+        self.inp.next = bit_cast::<64, 32>(self.in_p.val()) & self.f2mask.val();
+        self.dp.next = (self.inp.val() - self.pos.q.val()) & self.f2mask.val();
+        self.sdp.next = self.dp.val();
+        if (self.dp.val() & self.f2sign.val()).any() {
+            self.sdp.next = self.dp.val() | self.f2ext.val();
+        }
+        if self.in_valid.val() {
+            if self.init.q.val() {
+                self.pos.d.next = (self.pos.q.val() + self.sdp.val()) & self.wpmask.val();
+            } else {
+                self.pos.d.next = self.inp.val();
+                self.init.d.next = true;
+            }
+        }
+        // Divider: tick every D clocks.
+        self.tick.next = self.cnt.q.val() == self.dlast.val();
+        self.cnt.d.next = self.cnt.q.val() + self.one.val();
+        if self.tick.val() {
+            self.cnt.d.next = self.zero.val();
+        }
+        // diff_lpf / kalman: U = sext(theta - theta(k-1)) 2^(S+G) (state width).
+        self.delta.next = (self.snap.q.val() - self.hist[0].q.val()) & self.wpmask.val();
+        self.sdelta.next = self.delta.val();
+        if (self.delta.val() & self.wpsign.val()).any() {
+            self.sdelta.next = (self.delta.val() | self.wpext.val()) & self.smask.val();
+        }
+        self.u.next = (self.sdelta.val() << self.sg.val()) & self.smask.val();
+        // tracking: theta 2^(S+G) modulo 2^(Wp+S+G).
+        self.meas.next = (self.snap.q.val() << self.sg.val()) & self.twmask.val();
+        // lsq: r = x_i - theta (Wp bits) and P, each sign-extended/cut to operand a's width.
+        self.r.next = (self.hist[0].q.val() - self.snap.q.val()) & self.wpmask.val();
+        self.rext.next = self.r.val();
+        if (self.r.val() & self.wpsign.val()).any() {
+            self.rext.next = (self.r.val() | self.wpext.val()) & self.amask.val();
+        }
+        self.pa.next = self.acc.q.val() & self.amask.val();
+        if (self.acc.q.val() & self.accsign.val()).any() {
+            self.pa.next = (self.acc.q.val() | self.accext.val()) & self.amask.val();
+        }
+        // Output: q(acc / 2^G), sign-extended or cut to `width`.
+        self.yr.next = (self.acc.q.val() + self.ghalf.val()) & self.accmask.val();
+        self.ys.next = (self.yr.val() >> self.g.val()) & self.ymask.val();
+        if (self.yr.val() & self.accsign.val()).any() {
+            self.ys.next = ((self.yr.val() >> self.g.val()) | self.yext.val()) & self.ymask.val();
+        }
+        match self.state.q.val() {
+            VelState::Idle => {
+                if self.tick.val() & self.init.q.val() {
+                    self.snap.d.next = self.pos.q.val();
+                    self.state.d.next = VelState::Prep;
+                    self.first.d.next = !self.primed.q.val();
+                    if !self.primed.q.val() {
+                        // First update: the history as if at rest at theta (output 0).
+                        self.primed.d.next = true;
+                        for i in 0..self.hist.len() {
+                            self.hist[i].d.next = self.pos.q.val();
+                        }
+                        self.theta.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
+                    }
+                }
+            }
+            VelState::Prep => {
+                self.j.d.next = self.zero.val();
+                self.state.d.next = VelState::Op;
+                if self.is_lsq.val() {
+                    for i in 1..self.hist.len() {
+                        self.hist[i - 1].d.next = self.hist[i].q.val();
+                    }
+                    for i in self._hlast..self.hist.len() {
+                        self.hist[i].d.next = self.snap.q.val();
+                    }
+                    self.acc.d.next = self.zero64.val();
+                } else if self.is_track.val() {
+                    self.d.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
+                } else {
+                    self.d.d.next = (self.u.val() - self.acc.q.val()) & self.smask.val();
+                    self.hist[0].d.next = self.snap.q.val();
+                }
+            }
+            VelState::Op => {
+                self.opb.d.next = self.rom.coef.val();
+                self.opa.d.next = self.d.q.val();
+                if self.is_lsq.val() {
+                    // Rotate the history: x_1 comes back to the front after M multiplies.
+                    self.opa.d.next = self.rext.val();
+                    if self.jl.val() {
+                        self.opa.d.next = self.pa.val();
+                    }
+                    for i in 1..self.hist.len() {
+                        self.hist[i - 1].d.next = self.hist[i].q.val();
+                    }
+                    for i in self._hlast..self.hist.len() {
+                        self.hist[i].d.next = self.hist[0].q.val();
+                    }
+                }
+                self.state.d.next = VelState::Prod;
+            }
+            VelState::Prod => {
+                self.state.d.next = VelState::Acc;
+            }
+            VelState::Acc => {
+                self.acc.d.next = (self.acc.q.val() + self.prod.q.val()) & self.accmask.val();
+                if self.is_lsq.val() & self.jl.val() {
+                    self.acc.d.next = self.prod.q.val();
+                }
+                if self.is_track.val() & self.jl.val() {
+                    self.acc.d.next = self.acc.q.val();
+                    self.theta.d.next = (self.theta.q.val() + self.acc.q.val() + self.prod.q.val())
+                        & self.twmask.val();
+                }
+                if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
+                    self.k.d.next = self.k.q.val() + self.one.val();
+                }
+                if self.jl.val() {
+                    self.state.d.next = VelState::Out;
+                } else {
+                    self.j.d.next = self.j.q.val() + self.one.val();
+                    self.state.d.next = VelState::Op;
+                }
+            }
+            VelState::Out => {
+                self.out_reg.d.next = self.ys.val();
+                self.valid_reg.d.next = true;
+                self.state.d.next = VelState::Idle;
+            }
+        }
+        if self.rst.val() {
+            self.init.d.next = false;
+            self.pos.d.next = self.zero64.val();
+            self.cnt.d.next = self.zero.val();
+            self.state.d.next = VelState::Idle;
+            self.j.d.next = self.zero.val();
+            self.primed.d.next = false;
+            self.first.d.next = false;
+            self.snap.d.next = self.zero64.val();
+            for i in 0..self.hist.len() {
+                self.hist[i].d.next = self.zero64.val();
+            }
+            self.d.d.next = self.zero64.val();
+            self.theta.d.next = self.zero64.val();
+            self.acc.d.next = self.zero64.val();
+            self.k.d.next = self.zero.val();
+            self.opa.d.next = self.zero64.val();
+            self.opb.d.next = self.zero64.val();
+            self.prod.d.next = self.zero64.val();
+            self.out_reg.d.next = self.zero64.val();
+            self.valid_reg.d.next = false;
+        }
+        self.out_velocity.next = self.out_reg.q.val();
+        self.out_velocity_valid.next = self.valid_reg.q.val();
+    }
+}
+
+crate::cosim::cosim_block!(Velocity {
+    inputs: [rst: 1, in_p: 32, in_valid: 1],
+    outputs: [out_velocity: 64, out_velocity_valid: 1],
+});
