@@ -73,6 +73,37 @@ fn unsigned_bits(v: u128) -> u32 {
 impl Layout {
     /// The datapath of `p`; an error if a word would not fit the 64-bit containers.
     pub fn new(p: &VelocityParams) -> Result<Layout> {
+        let l = Layout::build(p);
+        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
+            return Err(Error::block_params(
+                "velocity",
+                format!(
+                    "datapath words of {} / {} / {} / {} bits exceed 64: lower frac_bits or \
+                     the maximum speed",
+                    l.a_width, l.acc_width, l.theta_width, l.b_width
+                ),
+            ));
+        }
+        if p.latency() >= p.period_clocks {
+            return Err(Error::block_params(
+                "velocity",
+                format!(
+                    "an update takes {} clocks, the update period only {}",
+                    p.latency(),
+                    p.period_clocks
+                ),
+            ));
+        }
+        Ok(l)
+    }
+
+    /// Clocks the multiplier's pipeline adds to a multiply ([`VelMul::stages`]).
+    pub fn mul_stages(&self) -> u32 {
+        VelMul::stages(self.a_width, self.b_width, self.shift0, self.shift1)
+    }
+
+    /// The datapath of `p`, unchecked (widths may exceed 64 bits).
+    pub(super) fn build(p: &VelocityParams) -> Layout {
         let wp = p.pos_width;
         let ws = p.state_width;
         let tw = wp + p.state_frac();
@@ -96,7 +127,7 @@ impl Layout {
             .max()
             .unwrap_or(2)
             .max(2);
-        let l = Layout {
+        Layout {
             a_width,
             b_width,
             acc_width,
@@ -105,28 +136,7 @@ impl Layout {
             shift0,
             shift1,
             coefs,
-        };
-        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "datapath words of {} / {} / {} / {} bits exceed 64: lower frac_bits or \
-                     the maximum speed",
-                    l.a_width, l.acc_width, l.theta_width, l.b_width
-                ),
-            ));
         }
-        if p.latency() >= p.period_clocks {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "an update takes {} clocks, the update period only {}",
-                    p.latency(),
-                    p.period_clocks
-                ),
-            ));
-        }
-        Ok(l)
     }
 }
 
@@ -175,6 +185,8 @@ pub struct Velocity {
     theta: DFF<Bits<64>>,
     acc: DFF<Bits<64>>,
     k: DFF<Bits<32>>,
+    /// Clocks waited in `Prod` for the multiplier's pipeline.
+    mwait: DFF<Bits<32>>,
     opa: DFF<Bits<64>>,
     opb: DFF<Bits<64>>,
     prod: DFF<Bits<64>>,
@@ -225,6 +237,8 @@ pub struct Velocity {
     ymask: Constant<Bits<64>>,
     /// D - 1: the divider's last count.
     dlast: Constant<Bits<32>>,
+    /// The multiplier's pipeline stages L: the last count of `mwait`.
+    wlast: Constant<Bits<32>>,
     /// m - 1: the last multiply.
     jlast: Constant<Bits<32>>,
     /// Last entry of the Kalman gain table.
@@ -281,6 +295,7 @@ impl Velocity {
             theta: Default::default(),
             acc: Default::default(),
             k: Default::default(),
+            mwait: Default::default(),
             opa: Default::default(),
             opb: Default::default(),
             prod: Default::default(),
@@ -319,6 +334,7 @@ impl Velocity {
             yext: c64(ext(aw - g)),
             ymask: c64(mask(p.spec.width)),
             dlast: c32(p.period_clocks - 1),
+            wlast: c32(l.mul_stages() as u64),
             jlast: c32(l.mults as u64 - 1),
             klast: c32(klast),
             jsel: c32(if is_kal { 0 } else { mask(32) }),
@@ -337,8 +353,8 @@ impl Logic for Velocity {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, init, pos, cnt, state, j, primed, first, snap, d, theta, acc, k, opa, opb,
-            prod, out_reg, valid_reg
+            self, clk, init, pos, cnt, state, j, primed, first, snap, d, theta, acc, k, mwait, opa,
+            opb, prod, out_reg, valid_reg
         );
         for i in 0..self.hist.len() {
             self.hist[i].clock.next = self.clk.val();
@@ -346,6 +362,7 @@ impl Logic for Velocity {
         }
         // The multiplier and its coefficient: the product register loads every clock.
         self.jl.next = self.j.q.val() == self.jlast.val();
+        self.mul.clk.next = self.clk.val();
         self.mul.a.next = self.opa.q.val();
         self.mul.b.next = self.opb.q.val();
         self.mul.sel.next = self.is_lsq.val() & self.jl.val();
@@ -452,10 +469,15 @@ impl Logic for Velocity {
                         self.hist[i].d.next = self.hist[0].q.val();
                     }
                 }
+                self.mwait.d.next = self.zero.val();
                 self.state.d.next = VelState::Prod;
             }
             VelState::Prod => {
-                self.state.d.next = VelState::Acc;
+                // L clocks for the multiplier's pipeline, one to load `prod`.
+                self.mwait.d.next = self.mwait.q.val() + self.one.val();
+                if self.mwait.q.val() == self.wlast.val() {
+                    self.state.d.next = VelState::Acc;
+                }
             }
             VelState::Acc => {
                 self.acc.d.next = (self.acc.q.val() + self.prod.q.val()) & self.accmask.val();
@@ -499,6 +521,7 @@ impl Logic for Velocity {
             self.theta.d.next = self.zero64.val();
             self.acc.d.next = self.zero64.val();
             self.k.d.next = self.zero.val();
+            self.mwait.d.next = self.zero.val();
             self.opa.d.next = self.zero64.val();
             self.opb.d.next = self.zero64.val();
             self.prod.d.next = self.zero64.val();
