@@ -9,15 +9,16 @@
 //! position changes by at most `max_step` per update period (the contract the widths are
 //! derived from); beyond it the RTL's words wrap where the model's i64/i128 do not.
 //!
-//! Schedule of one update (E0 = the divider's tick edge, one multiply = three clocks:
-//! operand register, product register, accumulate; latency 3 m + 2 =
+//! Schedule of one update (E0 = the divider's tick edge; one multiply = 3 + L clocks:
+//! operand register, L multiplier pipeline stages ([`VelMul::stages`], 3 or 4 at the
+//! defaults) and the product register in `Prod`, accumulate; latency (3 + L) m + 2 =
 //! [`VelocityParams::latency`]):
 //! ```text
-//! edge   E0     E1     E2   E3    E4    E5   E6    E7   ...  E(3m+1)  E(3m+2)
-//! state  Idle > Prep > Op > Prod > Acc > Op > Prod > Acc  ...  Acc  >   Out > Idle
-//! does   snap   diffs  opa  prod  acc   opa  prod  acc        acc      out_velocity,
-//!        (prime)       opb  =mul        opb  =mul                      strobe
-//! diff_lpf, kalman (m = 1): Prep d = U - X; Acc X += p.           E5: y = q(X / 2^G)
+//! edge   E0     E1     E2   E3 .. E(L+3)  E(L+4)  ...  E((3+L)m+1)  E((3+L)m+2)
+//! state  Idle > Prep > Op > Prod x (L+1) > Acc  > Op  ...  Acc   >    Out > Idle
+//! does   snap   diffs  opa  pipeline,     acc             acc        out_velocity,
+//!        (prime)       opb  prod = mul                               strobe
+//! diff_lpf, kalman (m = 1): Prep d = U - X; Acc X += p.          Out: y = q(X / 2^G)
 //! tracking (m = 2): Prep e; Acc 1: W += q(beta e); Acc 2: Theta += W + q(alpha e).
 //! lsq (m = M): Acc i < M: P += n_i r_i (r_i from the rotating history);
 //!              Acc M: P := q(P R / 2^B).
@@ -37,7 +38,7 @@ pub enum VelState {
     Prep,
     /// Multiplier operands registered.
     Op,
-    /// Product registered.
+    /// Multiplier pipeline running (L + 1 clocks), then the product registered.
     Prod,
     /// Product accumulated.
     Acc,
