@@ -9,15 +9,16 @@
 //! position changes by at most `max_step` per update period (the contract the widths are
 //! derived from); beyond it the RTL's words wrap where the model's i64/i128 do not.
 //!
-//! Schedule of one update (E0 = the divider's tick edge, one multiply = three clocks:
-//! operand register, product register, accumulate; latency 3 m + 2 =
+//! Schedule of one update (E0 = the divider's tick edge; one multiply = 3 + L clocks:
+//! operand register, L multiplier pipeline stages ([`VelMul::stages`], 3 or 4 at the
+//! defaults) and the product register in `Prod`, accumulate; latency (3 + L) m + 2 =
 //! [`VelocityParams::latency`]):
 //! ```text
-//! edge   E0     E1     E2   E3    E4    E5   E6    E7   ...  E(3m+1)  E(3m+2)
-//! state  Idle > Prep > Op > Prod > Acc > Op > Prod > Acc  ...  Acc  >   Out > Idle
-//! does   snap   diffs  opa  prod  acc   opa  prod  acc        acc      out_velocity,
-//!        (prime)       opb  =mul        opb  =mul                      strobe
-//! diff_lpf, kalman (m = 1): Prep d = U - X; Acc X += p.           E5: y = q(X / 2^G)
+//! edge   E0     E1     E2   E3 .. E(L+3)  E(L+4)  ...  E((3+L)m+1)  E((3+L)m+2)
+//! state  Idle > Prep > Op > Prod x (L+1) > Acc  > Op  ...  Acc   >    Out > Idle
+//! does   snap   diffs  opa  pipeline,     acc             acc        out_velocity,
+//!        (prime)       opb  prod = mul                               strobe
+//! diff_lpf, kalman (m = 1): Prep d = U - X; Acc X += p.          Out: y = q(X / 2^G)
 //! tracking (m = 2): Prep e; Acc 1: W += q(beta e); Acc 2: Theta += W + q(alpha e).
 //! lsq (m = M): Acc i < M: P += n_i r_i (r_i from the rotating history);
 //!              Acc M: P := q(P R / 2^B).
@@ -37,7 +38,7 @@ pub enum VelState {
     Prep,
     /// Multiplier operands registered.
     Op,
-    /// Product registered.
+    /// Multiplier pipeline running (L + 1 clocks), then the product registered.
     Prod,
     /// Product accumulated.
     Acc,
@@ -73,6 +74,37 @@ fn unsigned_bits(v: u128) -> u32 {
 impl Layout {
     /// The datapath of `p`; an error if a word would not fit the 64-bit containers.
     pub fn new(p: &VelocityParams) -> Result<Layout> {
+        let l = Layout::build(p);
+        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
+            return Err(Error::block_params(
+                "velocity",
+                format!(
+                    "datapath words of {} / {} / {} / {} bits exceed 64: lower frac_bits or \
+                     the maximum speed",
+                    l.a_width, l.acc_width, l.theta_width, l.b_width
+                ),
+            ));
+        }
+        if p.latency() >= p.period_clocks {
+            return Err(Error::block_params(
+                "velocity",
+                format!(
+                    "an update takes {} clocks, the update period only {}",
+                    p.latency(),
+                    p.period_clocks
+                ),
+            ));
+        }
+        Ok(l)
+    }
+
+    /// Clocks the multiplier's pipeline adds to a multiply ([`VelMul::stages`]).
+    pub fn mul_stages(&self) -> u32 {
+        VelMul::stages(self.a_width, self.b_width, self.shift0, self.shift1)
+    }
+
+    /// The datapath of `p`, unchecked (widths may exceed 64 bits).
+    pub(super) fn build(p: &VelocityParams) -> Layout {
         let wp = p.pos_width;
         let ws = p.state_width;
         let tw = wp + p.state_frac();
@@ -96,7 +128,7 @@ impl Layout {
             .max()
             .unwrap_or(2)
             .max(2);
-        let l = Layout {
+        Layout {
             a_width,
             b_width,
             acc_width,
@@ -105,28 +137,7 @@ impl Layout {
             shift0,
             shift1,
             coefs,
-        };
-        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "datapath words of {} / {} / {} / {} bits exceed 64: lower frac_bits or \
-                     the maximum speed",
-                    l.a_width, l.acc_width, l.theta_width, l.b_width
-                ),
-            ));
         }
-        if p.latency() >= p.period_clocks {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "an update takes {} clocks, the update period only {}",
-                    p.latency(),
-                    p.period_clocks
-                ),
-            ));
-        }
-        Ok(l)
     }
 }
 
@@ -175,6 +186,8 @@ pub struct Velocity {
     theta: DFF<Bits<64>>,
     acc: DFF<Bits<64>>,
     k: DFF<Bits<32>>,
+    /// Clocks waited in `Prod` for the multiplier's pipeline.
+    mwait: DFF<Bits<32>>,
     opa: DFF<Bits<64>>,
     opb: DFF<Bits<64>>,
     prod: DFF<Bits<64>>,
@@ -225,6 +238,8 @@ pub struct Velocity {
     ymask: Constant<Bits<64>>,
     /// D - 1: the divider's last count.
     dlast: Constant<Bits<32>>,
+    /// The multiplier's pipeline stages L: the last count of `mwait`.
+    wlast: Constant<Bits<32>>,
     /// m - 1: the last multiply.
     jlast: Constant<Bits<32>>,
     /// Last entry of the Kalman gain table.
@@ -281,6 +296,7 @@ impl Velocity {
             theta: Default::default(),
             acc: Default::default(),
             k: Default::default(),
+            mwait: Default::default(),
             opa: Default::default(),
             opb: Default::default(),
             prod: Default::default(),
@@ -319,6 +335,7 @@ impl Velocity {
             yext: c64(ext(aw - g)),
             ymask: c64(mask(p.spec.width)),
             dlast: c32(p.period_clocks - 1),
+            wlast: c32(l.mul_stages() as u64),
             jlast: c32(l.mults as u64 - 1),
             klast: c32(klast),
             jsel: c32(if is_kal { 0 } else { mask(32) }),
@@ -337,8 +354,8 @@ impl Logic for Velocity {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, init, pos, cnt, state, j, primed, first, snap, d, theta, acc, k, opa, opb,
-            prod, out_reg, valid_reg
+            self, clk, init, pos, cnt, state, j, primed, first, snap, d, theta, acc, k, mwait, opa,
+            opb, prod, out_reg, valid_reg
         );
         for i in 0..self.hist.len() {
             self.hist[i].clock.next = self.clk.val();
@@ -346,6 +363,7 @@ impl Logic for Velocity {
         }
         // The multiplier and its coefficient: the product register loads every clock.
         self.jl.next = self.j.q.val() == self.jlast.val();
+        self.mul.clk.next = self.clk.val();
         self.mul.a.next = self.opa.q.val();
         self.mul.b.next = self.opb.q.val();
         self.mul.sel.next = self.is_lsq.val() & self.jl.val();
@@ -452,10 +470,15 @@ impl Logic for Velocity {
                         self.hist[i].d.next = self.hist[0].q.val();
                     }
                 }
+                self.mwait.d.next = self.zero.val();
                 self.state.d.next = VelState::Prod;
             }
             VelState::Prod => {
-                self.state.d.next = VelState::Acc;
+                // L clocks for the multiplier's pipeline, one to load `prod`.
+                self.mwait.d.next = self.mwait.q.val() + self.one.val();
+                if self.mwait.q.val() == self.wlast.val() {
+                    self.state.d.next = VelState::Acc;
+                }
             }
             VelState::Acc => {
                 self.acc.d.next = (self.acc.q.val() + self.prod.q.val()) & self.accmask.val();
@@ -499,6 +522,7 @@ impl Logic for Velocity {
             self.theta.d.next = self.zero64.val();
             self.acc.d.next = self.zero64.val();
             self.k.d.next = self.zero.val();
+            self.mwait.d.next = self.zero.val();
             self.opa.d.next = self.zero64.val();
             self.opb.d.next = self.zero64.val();
             self.prod.d.next = self.zero64.val();

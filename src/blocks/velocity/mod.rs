@@ -444,15 +444,17 @@ impl VelocityParams {
         self.spec.frac_bits + self.guard
     }
 
-    /// Clocks from a tick to its `out_velocity_valid`: three per multiply (operand
-    /// register, product register, accumulate) plus two (snapshot, output register).
+    /// Clocks from a tick to its `out_velocity_valid`: 3 + L per multiply (operand
+    /// register, L multiplier pipeline stages, product register, accumulate) plus two
+    /// (snapshot, output register); L (3 or 4 at the defaults) from the operand widths.
     pub fn latency(&self) -> u64 {
+        let l = hdl::Layout::build(self).mul_stages() as u64;
         let mults = match &self.consts {
             MethodConsts::DiffLpf { .. } | MethodConsts::Kalman { .. } => 1,
             MethodConsts::Lsq { n, .. } => n.len() as u64,
             MethodConsts::Tracking { .. } => 2,
         };
-        3 * mults + 2
+        (3 + l) * mults + 2
     }
 
     /// Velocity LSB in rpm for a decoder with `quadrants_per_turn` quadrants per turn.
