@@ -8,8 +8,7 @@ pub use crate::blocks::captop::hdl::{CAP_TOP_BUSES, CAP_TOP_PINS};
 /// The board top's pinned ports for this configuration: (name, None) for a pin,
 /// (name, Some(width)) for a bus. These are exactly the ports of `<name>_top` but the
 /// parallel bus: on the sinewave top [`TOP_PINS`], the [`QEP_PINS`] with `[qep] enabled`,
-/// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled, [`ABZ_PINS`] with `[abz]
-/// enabled` and each of the
+/// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled and each of the
 /// [`DESELECT_PINS`] that `[board.pins]` pins. Every one needs a pin.
 pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
     match &c.capacitive {
@@ -34,7 +33,6 @@ pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
                     Pin::Qep => c.qep.enabled,
                     Pin::Ssi => c.ssi.enabled,
                     Pin::Spi => c.spi.enabled,
-                    Pin::Abz => c.abz.enabled,
                     Pin::DacBus | Pin::Parallel => false,
                 })
                 .map(|p| (p.name, None))
@@ -94,6 +92,4 @@ impl BoardConfig {
     }
 }
 
-pub use crate::blocks::top::hdl::{
-    ABZ_PINS, DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS,
-};
+pub use crate::blocks::top::hdl::{DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS};

@@ -7,9 +7,34 @@ use crate::blocks::top::ports::{Dir, Pin, TopPort};
 use crate::config::Loaded;
 use crate::error::{Error, Result};
 
+/// The velocity estimator (`[velocity] enabled`) as the module `module`, exported from its
+/// rust-hdl block, and the template values of its ports: `vel` (present), `vel_rtl` (the
+/// module), `vm` (width - 1), `vmethod`, `vunit` (F + frac_bits) and `vrate` (updates per
+/// second). Without it: None and `vel` false.
+fn velocity_module(
+    d: &crate::config::Derived,
+    module: &str,
+) -> Result<(Option<String>, minijinja::Value)> {
+    let Some(p) = &d.velocity else {
+        return Ok((None, minijinja::context! { vel => false }));
+    };
+    let mut uut = crate::blocks::velocity::hdl::Velocity::new(p)?;
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let body = verilog::export(&uut, "velocity", module)?;
+    let ctx = minijinja::context! {
+        vel => true,
+        vel_rtl => module,
+        vm => p.spec.width - 1,
+        vmethod => p.spec.method.to_string(),
+        vunit => p.spec.fine_bits + p.spec.frac_bits,
+        vrate => format!("{:.1}", p.spec.clock_hz / p.period_clocks as f64),
+    };
+    Ok((Some(body), ctx))
+}
+
 /// The wrapper that gives `<name>_core` its exact port widths
 /// (`rtl-templates/core/core_wrapper.v.j2`).
-fn core_wrapper(loaded: &Loaded, rtl: &str) -> Result<String> {
+fn core_wrapper(loaded: &Loaded, rtl: &str, vel: minijinja::Value) -> Result<String> {
     let d = &loaded.derived;
     let a = d.adc_width;
     let pad = |s: &str| {
@@ -47,6 +72,7 @@ fn core_wrapper(loaded: &Loaded, rtl: &str) -> Result<String> {
             qb => d.quadrant_bits - 1,
             sin => pad("in_sin"),
             cos => pad("in_cos"),
+            ..vel
         },
     )
 }
@@ -57,7 +83,12 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
     let mut uut = CoreRtl::new(&loaded.derived);
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let body = verilog::export(&uut, "core", &rtl_name)?;
-    Ok(format!("{}\n{body}", core_wrapper(loaded, &rtl_name)?))
+    let (vel, ctx) = velocity_module(&loaded.derived, &format!("{}_vel", core_name(loaded)))?;
+    let wrapper = core_wrapper(loaded, &rtl_name, ctx)?;
+    Ok(match vel {
+        Some(v) => format!("{wrapper}\n{body}\n{v}"),
+        None => format!("{wrapper}\n{body}"),
+    })
 }
 
 /// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
@@ -211,6 +242,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         }
     }
     let inst = wrap_list(&conns, "       ", "");
+    let (vel, vel_ctx) = velocity_module(d, &format!("{name}_vel"))?;
     // The ports left out, as comment lines of at most 95 characters (empty: none).
     let left_out_lines = if left_out.is_empty() {
         String::new()
@@ -232,12 +264,13 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             tm => d.turns_width - 1,
             fm => f - 1,
             qb => d.quadrant_bits - 1,
+            ..vel_ctx
         },
     )?;
-    Ok(Some(format!(
-        "{wrapper}
-{body}"
-    )))
+    Ok(Some(match vel {
+        Some(v) => format!("{wrapper}\n{body}\n{v}"),
+        None => format!("{wrapper}\n{body}"),
+    }))
 }
 
 /// Verilog of the capacitive `<name>_top` (with `[capacitive]`), without header.

@@ -230,6 +230,11 @@ pub const BLOCKS: &[BlockDef] = &[
         build: abz_job,
     },
     BlockDef {
+        key: "velocity",
+        label: "velocity estimator",
+        build: velocity_job,
+    },
+    BlockDef {
         key: "nco",
         label: "excitation NCO",
         build: nco_job,

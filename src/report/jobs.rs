@@ -200,6 +200,25 @@ pub(super) fn abz_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
+pub(super) fn velocity_job(l: &Loaded) -> Result<BlockJob> {
+    let Some(p) = &l.derived.velocity else {
+        return Ok(BlockJob::absent("velocity", "needs [velocity] enabled"));
+    };
+    let note = format!(
+        "{}: tick to out_velocity_valid; one update every {} clocks",
+        p.spec.method, p.period_clocks
+    );
+    let mut t = BlockTiming::latency(p.latency() as u32, &note);
+    t.clocks_per_sample = Some(p.period_clocks as u32);
+    t.rate_sps = Some(p.spec.clock_hz / p.period_clocks as f64);
+    job(
+        l,
+        "velocity",
+        crate::blocks::velocity::hdl::Velocity::new(p)?,
+        t,
+    )
+}
+
 const CAP_ONLY: &str = "capacitive path only: needs [capacitive]";
 
 pub(super) fn nco_job(l: &Loaded) -> Result<BlockJob> {

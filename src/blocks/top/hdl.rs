@@ -1,6 +1,5 @@
 //! rust-hdl description of the sinewave board top.
 use super::ports::{board_top, pins};
-use crate::blocks::abz::hdl::AbzEmulator;
 use crate::blocks::adc::hdl::AdcController;
 use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::c32;
@@ -43,9 +42,6 @@ board_top! {
             enc_cs_n: In Bit, In, 1, Spi, 1, "SPI-slave chip select, active low";
             enc_miso: Out Bit, Out, 1, Spi, 0, "SPI-slave data";
             enc_miso_oe: Out Bit, Out, 1, Spi, 0, "SPI-slave output enable (drive enc_miso only when high)";
-            abz_a: Out Bit, Out, 1, Abz, 0, "ABZ emulation: channel A (leads B when the position increases)";
-            abz_b: Out Bit, Out, 1, Abz, 0, "ABZ emulation: channel B";
-            abz_z: Out Bit, Out, 1, Abz, 0, "ABZ emulation: index, a quarter A/B period at position 0 of each turn";
             par_valid: Out Bit, Out, 1, Parallel, 0, "parallel bus: position strobe";
             par_qc: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: coarse quadrant count (upper part of the position)" => qc;
             par_fine: Out Bits<32>, Out, 32, Parallel, 0, "parallel bus: fine part of the position" => fine;
@@ -65,10 +61,6 @@ board_top! {
         biss_slave: BissSlave,
         ssi_slave: Vec<SsiSlave>,
         spi_slave: Vec<SpiSlave>,
-        /// The optional ABZ emulator (`[abz] enabled`): length 0 or 1.
-        abz: Vec<AbzEmulator>,
-        /// The ABZ emulator is catching up (0 without it).
-        abz_warning: Signal<Local, Bit>,
         error: Signal<Local, Bit>,
         warning: Signal<Local, Bit>,
         word: Signal<Local, Bits<32>>,
@@ -90,8 +82,6 @@ pub const TOP_PINS: &[&str] = pins!(SD_TOP_PORTS, Always);
 pub const SSI_PINS: &[&str] = pins!(SD_TOP_PORTS, Ssi);
 /// Pins of the optional SPI slave.
 pub const SPI_PINS: &[&str] = pins!(SD_TOP_PORTS, Spi);
-/// Pins of the optional ABZ emulator.
-pub const ABZ_PINS: &[&str] = pins!(SD_TOP_PORTS, Abz);
 /// Comparator inputs of the sinewave top: ports (and required pins) only with
 /// `[qep] enabled`.
 pub const QEP_PINS: &[&str] = pins!(SD_TOP_PORTS, Qep);
@@ -149,8 +139,6 @@ impl TopRtl {
                 Some(p) => vec![SpiSlave::new(p)?],
                 None => vec![],
             },
-            abz: d.abz.iter().map(AbzEmulator::new).collect(),
-            abz_warning: Default::default(),
             word: Default::default(),
             zero: c32(0),
             qshl,
@@ -190,27 +178,9 @@ impl Logic for TopRtl {
         self.monitor.magnitude.next = self.core.out_mag.val();
         self.monitor.overspeed.next = false;
         self.monitor.qep_mismatch.next = self.fallback.mismatch.val();
-        // Optional ABZ emulator (a Vec of length 0 or 1) on the decoded position.
-        self.abz_a.next = false;
-        self.abz_b.next = false;
-        self.abz_z.next = false;
-        self.abz_warning.next = false;
-        for i in 0..self.abz.len() {
-            self.abz[i].clk.next = self.clk.val();
-            self.abz[i].rst.next = self.rst.val();
-            self.abz[i].in_valid.next = self.core.out_valid.val();
-            self.abz[i].in_qc.next = self.core.out_qc.val();
-            self.abz[i].in_fine.next = self.core.out_fine.val();
-            self.abz_a.next = self.abz[i].abz_a.val();
-            self.abz_b.next = self.abz[i].abz_b.val();
-            self.abz_z.next = self.abz[i].abz_z.val();
-            self.abz_warning.next = self.abz[i].warning.val();
-        }
         self.error.next = self.core.out_error.val() | self.monitor.error.val();
-        self.warning.next = self.core.out_warning.val()
-            | self.monitor.warning.val()
-            | self.fallback.active.val()
-            | self.abz_warning.val();
+        self.warning.next =
+            self.core.out_warning.val() | self.monitor.warning.val() | self.fallback.active.val();
         self.qep_decoder.clk.next = self.clk.val();
         self.qep_decoder.rst.next = self.rst.val();
         self.qep_decoder.qep_a.next = self.qep_a.val();

@@ -36,8 +36,6 @@ pub enum Pin {
     Ssi,
     /// The SPI slave's lines: only with `[spi] enabled`.
     Spi,
-    /// The ABZ emulator's outputs: only with `[abz] enabled`.
-    Abz,
     /// A deselect line of the kit's other SPI devices: a port only when `[board.pins]` pins
     /// it.
     Deselect,

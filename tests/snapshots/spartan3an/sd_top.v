@@ -9,7 +9,7 @@
 // Not ports in this configuration (the rtl's inputs tied to their idle level, its
 // outputs left open):
 // dac_cs, dac_clr, spi_ss_b, sf_ce0, ssi_clk, ssi_data, enc_sck, enc_cs_n, enc_miso,
-// enc_miso_oe, abz_a, abz_b, abz_z.
+// enc_miso_oe.
 module sd_top (
     input  wire         clk,          // system clock
     input  wire         rst,          // synchronous reset, active high (restarts the set-up)
@@ -39,9 +39,8 @@ module sd_top (
         .amp_cs(amp_cs), .amp_mosi(amp_mosi), .amp_shdn(amp_shdn), .dac_cs(), .dac_clr(),
         .spi_ss_b(), .sf_ce0(), .qep_a(qep_a), .qep_b(qep_b), .qep_z(qep_z), .biss_ma(biss_ma),
         .biss_slo(biss_slo), .ssi_clk(1'b1), .ssi_data(), .enc_sck(1'b0), .enc_cs_n(1'b1),
-        .enc_miso(), .enc_miso_oe(), .abz_a(), .abz_b(), .abz_z(), .par_valid(par_valid),
-        .par_qc(qc), .par_fine(fine), .par_turns(turns), .par_error(par_error),
-        .par_warning(par_warning)
+        .enc_miso(), .enc_miso_oe(), .par_valid(par_valid), .par_qc(qc), .par_fine(fine),
+        .par_turns(turns), .par_error(par_error), .par_warning(par_warning)
     );
     assign par_position = {qc[12:0], fine[13:0]};
     assign par_turns = turns[11:0];
@@ -49,7 +48,7 @@ module sd_top (
 endmodule // sd_top
 
 
-module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac_cs,dac_clr,spi_ss_b,sf_ce0,qep_a,qep_b,qep_z,biss_ma,biss_slo,ssi_clk,ssi_data,enc_sck,enc_cs_n,enc_miso,enc_miso_oe,abz_a,abz_b,abz_z,par_valid,par_qc,par_fine,par_turns,par_error,par_warning);
+module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac_cs,dac_clr,spi_ss_b,sf_ce0,qep_a,qep_b,qep_z,biss_ma,biss_slo,ssi_clk,ssi_data,enc_sck,enc_cs_n,enc_miso,enc_miso_oe,par_valid,par_qc,par_fine,par_turns,par_error,par_warning);
 
     // Module arguments
     input wire  clk;
@@ -75,9 +74,6 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
     input wire  enc_cs_n;
     output reg  enc_miso;
     output reg  enc_miso_oe;
-    output reg  abz_a;
-    output reg  abz_b;
-    output reg  abz_z;
     output reg  par_valid;
     output reg  [31:0] par_qc;
     output reg  [31:0] par_fine;
@@ -199,7 +195,6 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
     wire  biss_slave_slo;
 
     // Local signals
-    reg  abz_warning;
     reg  error;
     reg  warning;
     reg  [31:0] word;
@@ -354,12 +349,8 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
         monitor_magnitude = core_out_mag;
         monitor_overspeed = 1'b0;
         monitor_qep_mismatch = fallback_mismatch;
-        abz_a = 1'b0;
-        abz_b = 1'b0;
-        abz_z = 1'b0;
-        abz_warning = 1'b0;
         error = core_out_error | monitor_error;
-        warning = core_out_warning | monitor_warning | fallback_active | abz_warning;
+        warning = core_out_warning | monitor_warning | fallback_active;
         qep_decoder_clk = clk;
         qep_decoder_rst = rst;
         qep_decoder_qep_a = qep_a;
