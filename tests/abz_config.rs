@@ -6,19 +6,13 @@ use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_sinedec");
 
+mod common;
+
 fn with_abz(section: &str) -> String {
-    format!("{DEFAULT_CONFIG}\n[abz]\n{section}\n")
+    common::with_section("abz", section)
 }
 
-/// 1-based (line, column) of the unique `needle` in `text`.
-fn at(text: &str, needle: &str) -> (usize, usize) {
-    assert_eq!(text.matches(needle).count(), 1, "{needle:?} must be unique");
-    let before = &text[..text.find(needle).unwrap()];
-    (
-        before.split('\n').count(),
-        before.split('\n').next_back().unwrap().chars().count() + 1,
-    )
-}
+use common::line_col as at;
 
 #[test]
 fn off_by_default_and_defaults_when_enabled() {

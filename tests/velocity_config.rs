@@ -8,19 +8,13 @@ use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_sinedec");
 
+mod common;
+
 fn with_velocity(section: &str) -> String {
-    format!("{DEFAULT_CONFIG}\n[velocity]\n{section}\n")
+    common::with_section("velocity", section)
 }
 
-/// 1-based (line, column) of the unique `needle` in `text`.
-fn at(text: &str, needle: &str) -> (usize, usize) {
-    assert_eq!(text.matches(needle).count(), 1, "{needle:?} must be unique");
-    let before = &text[..text.find(needle).unwrap()];
-    (
-        before.split('\n').count(),
-        before.split('\n').next_back().unwrap().chars().count() + 1,
-    )
-}
+use common::line_col as at;
 
 #[test]
 fn off_by_default_and_the_contract_defaults_when_enabled() {

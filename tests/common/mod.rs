@@ -2,6 +2,22 @@
 #![allow(dead_code)]
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 
+/// The default config with `[table]` and `body` appended.
+pub fn with_section(table: &str, body: &str) -> String {
+    format!("{DEFAULT_CONFIG}\n[{table}]\n{body}\n")
+}
+
+/// 1-based (line, column) of the unique `needle` in `text` (where a config error about it
+/// must point).
+pub fn line_col(text: &str, needle: &str) -> (usize, usize) {
+    assert_eq!(text.matches(needle).count(), 1, "{needle:?} must be unique");
+    let before = &text[..text.find(needle).unwrap()];
+    (
+        before.split('\n').count(),
+        before.split('\n').next_back().unwrap().chars().count() + 1,
+    )
+}
+
 /// The default config with the given core parameters (A != 14 switches to the generic ADC).
 pub fn cfg(n: u32, f: u32, a: u32, ppr: u32, mt: u32) -> Loaded {
     cfg_named("sd", n, f, a, ppr, mt)
