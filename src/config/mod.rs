@@ -51,6 +51,7 @@ mod params;
 mod pins;
 mod schema;
 mod spans;
+mod velocity;
 
 pub use crate::blocks::params::{Architecture, CapDerived, CapacitiveConfig, Derived};
 pub use checks::*;
@@ -58,6 +59,7 @@ pub use params::*;
 pub use pins::*;
 pub use schema::*;
 pub use spans::*;
+use velocity::velocity_params;
 
 /// The default configuration (the thesis's Spartan-3AN Starter Kit design), embedded.
 pub const DEFAULT_CONFIG: &str = include_str!("../../configs/spartan3an.toml");
