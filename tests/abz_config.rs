@@ -12,8 +12,6 @@ fn with_abz(section: &str) -> String {
     common::with_section("abz", section)
 }
 
-use common::line_col as at;
-
 #[test]
 fn off_by_default_and_defaults_when_enabled() {
     let l = Loaded::parse(DEFAULT_CONFIG, "d.toml").unwrap();
@@ -100,13 +98,7 @@ fn bad_values_name_the_key_the_position_and_the_range() {
         ),
     ];
     for (section, needle, mentions) in cases {
-        let text = with_abz(section);
-        let (line, col) = at(&text, needle);
-        let e = Loaded::parse(&text, "bad.toml").unwrap_err().to_string();
-        assert!(e.starts_with(&format!("bad.toml:{line}:{col}: ")), "{e}");
-        for m in *mentions {
-            assert!(e.contains(m), "{e} should mention {m}");
-        }
+        common::assert_config_error(&with_abz(section), needle, mentions);
     }
     // Unknown keys are rejected by the schema.
     let e = Loaded::parse(&with_abz("enable = true"), "bad.toml")

@@ -6,9 +6,9 @@ use sinedec::blocks::monitor::hdl::Monitor;
 use sinedec::blocks::monitor::model::{MonitorIn, MonitorModel};
 use sinedec::blocks::monitor::MonitorParams;
 use sinedec::cosim::stimulus::SplitMix64;
-use sinedec::cosim::CosimBlock;
+
 use sinedec::synth::{synthesize, Family, SynthStats};
-use sinedec::verify::{block_traces, Simulators};
+use sinedec::verify::Simulators;
 mod common;
 
 const RUST_ONLY: Simulators = Simulators {
@@ -16,30 +16,7 @@ const RUST_ONLY: Simulators = Simulators {
     verilator: false,
 };
 
-/// Runs `uut` on `rows`; asserts rust-hdl == `model` row by row and the Verilog simulators
-/// == rust-hdl; returns the rust-hdl trace.
-fn check<B: CosimBlock>(
-    uut: B,
-    tag: &str,
-    rows: &[Vec<u64>],
-    model: &[Vec<u64>],
-    sims: Simulators,
-) -> Vec<Vec<u64>> {
-    let dir = common::workdir(tag);
-    let t = block_traces(uut, tag, "clk", rows, sims, &dir).expect("simulators ran");
-    for (k, (r, m)) in t.rust_hdl.iter().zip(model).enumerate() {
-        assert_eq!(
-            r, m,
-            "{tag} row {k}: rust-hdl vs model (inputs {:?})",
-            rows[k]
-        );
-    }
-    assert_eq!(t.rust_hdl.len(), model.len());
-    if let Some(m) = t.mismatch() {
-        panic!("{tag}: {m}");
-    }
-    t.rust_hdl
-}
+use common::check_against_model as check;
 
 fn run(p: &MonitorParams, tag: &str, ins: &[MonitorIn], sims: Simulators) -> Vec<Vec<u64>> {
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row()).collect();

@@ -2,6 +2,44 @@
 #![allow(dead_code)]
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 
+/// Runs `uut` on `rows`; asserts rust-hdl == `model` row by row and the Verilog simulators
+/// (those `sims` selects) == rust-hdl; returns the rust-hdl trace.
+pub fn check_against_model<B: sinedec::cosim::CosimBlock>(
+    uut: B,
+    tag: &str,
+    rows: &[Vec<u64>],
+    model: &[Vec<u64>],
+    sims: sinedec::verify::Simulators,
+) -> Vec<Vec<u64>> {
+    let dir = workdir(tag);
+    let t =
+        sinedec::verify::block_traces(uut, tag, "clk", rows, sims, &dir).expect("simulators ran");
+    for (k, (r, m)) in t.rust_hdl.iter().zip(model).enumerate() {
+        assert_eq!(
+            r, m,
+            "{tag} row {k}: rust-hdl vs model (inputs {:?})",
+            rows[k]
+        );
+    }
+    assert_eq!(t.rust_hdl.len(), model.len());
+    if let Some(m) = t.mismatch() {
+        panic!("{tag}: {m}");
+    }
+    t.rust_hdl
+}
+
+/// Parses `text` as a config named `bad.toml` and asserts that it is rejected with an
+/// error starting `bad.toml:line:col: ` at the unique `needle` and mentioning each of
+/// `mentions`.
+pub fn assert_config_error(text: &str, needle: &str, mentions: &[&str]) {
+    let (line, col) = line_col(text, needle);
+    let e = Loaded::parse(text, "bad.toml").unwrap_err().to_string();
+    assert!(e.starts_with(&format!("bad.toml:{line}:{col}: ")), "{e}");
+    for m in mentions {
+        assert!(e.contains(m), "{e} should mention {m}");
+    }
+}
+
 /// The default config with `[table]` and `body` appended.
 pub fn with_section(table: &str, body: &str) -> String {
     format!("{DEFAULT_CONFIG}\n[{table}]\n{body}\n")

@@ -38,13 +38,13 @@ pub fn kernel_p(k: &Kernel, f: u32, s: i32, c: i32) -> (u64, bool) {
     )
 }
 
-/// Cells of the Markdown tables whose first column is N: (title, N, cell).
-pub fn markdown_cells(md: &str) -> Vec<(String, u32, String)> {
-    let mut out = Vec::new();
-    let mut header: Option<Vec<String>> = None;
+/// The Markdown tables of `md`: (header cells, body rows), separator rows left out.
+fn markdown_tables(md: &str) -> Vec<(Vec<String>, Vec<Vec<String>>)> {
+    let mut out: Vec<(Vec<String>, Vec<Vec<String>>)> = Vec::new();
+    let mut inside = false;
     for line in md.lines() {
         if !line.starts_with('|') {
-            header = None;
+            inside = false;
             continue;
         }
         let cells: Vec<String> = line
@@ -52,19 +52,26 @@ pub fn markdown_cells(md: &str) -> Vec<(String, u32, String)> {
             .split('|')
             .map(|c| c.trim().to_string())
             .collect();
-        match &header {
-            None => header = Some(cells),
-            Some(h) => {
-                if cells.iter().all(|c| c.chars().all(|ch| ch == '-')) {
-                    continue;
-                }
-                if h[0] != "N" {
-                    continue;
-                }
-                let n: u32 = cells[0].parse().expect("N column");
-                for (t, c) in h.iter().zip(&cells) {
-                    out.push((t.clone(), n, c.clone()));
-                }
+        if !inside {
+            out.push((cells, Vec::new()));
+            inside = true;
+        } else if !cells.iter().all(|c| c.chars().all(|ch| ch == '-')) {
+            if let Some(t) = out.last_mut() {
+                t.1.push(cells);
+            }
+        }
+    }
+    out
+}
+
+/// Cells of the Markdown tables whose first column is N: (title, N, cell).
+pub fn markdown_cells(md: &str) -> Vec<(String, u32, String)> {
+    let mut out = Vec::new();
+    for (h, rows) in markdown_tables(md).into_iter().filter(|t| t.0[0] == "N") {
+        for cells in rows {
+            let n: u32 = cells[0].parse().expect("N column");
+            for (t, c) in h.iter().zip(&cells) {
+                out.push((t.clone(), n, c.clone()));
             }
         }
     }
@@ -156,29 +163,11 @@ pub fn shared_report() -> &'static (std::path::PathBuf, BTreeMap<String, String>
 
 /// Rows of the Markdown table whose first column title is `block`: (titles, cells).
 pub fn markdown_block_rows(md: &str) -> Vec<(Vec<String>, Vec<String>)> {
-    let mut out = Vec::new();
-    let mut header: Option<Vec<String>> = None;
-    for line in md.lines() {
-        if !line.starts_with('|') {
-            header = None;
-            continue;
-        }
-        let cells: Vec<String> = line
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect();
-        match &header {
-            None => header = Some(cells),
-            Some(h) => {
-                if h[0] != "block" || cells.iter().all(|c| c.chars().all(|ch| ch == '-')) {
-                    continue;
-                }
-                out.push((h.clone(), cells));
-            }
-        }
-    }
-    out
+    markdown_tables(md)
+        .into_iter()
+        .filter(|t| t.0[0] == "block")
+        .flat_map(|(h, rows)| rows.into_iter().map(move |r| (h.clone(), r)))
+        .collect()
 }
 
 /// JSON value equals a table cell: null for an empty cell ("-" in Markdown), the number
