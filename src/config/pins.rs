@@ -8,7 +8,8 @@ pub use crate::blocks::captop::hdl::{CAP_TOP_BUSES, CAP_TOP_PINS};
 /// The board top's pinned ports for this configuration: (name, None) for a pin,
 /// (name, Some(width)) for a bus. These are exactly the ports of `<name>_top` but the
 /// parallel bus: on the sinewave top [`TOP_PINS`], the [`QEP_PINS`] with `[qep] enabled`,
-/// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled and each of the
+/// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled, the [`ABZ_PINS`] with `[abz]
+/// enabled` (after the rtl's ports: the wrapper declares them) and each of the
 /// [`DESELECT_PINS`] that `[board.pins]` pins. Every one needs a pin.
 pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
     match &c.capacitive {
@@ -36,6 +37,12 @@ pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
                     Pin::DacBus | Pin::Parallel => false,
                 })
                 .map(|p| (p.name, None))
+                .chain(
+                    ABZ_PINS
+                        .iter()
+                        .filter(|_| c.abz.enabled)
+                        .map(|p| (*p, None)),
+                )
                 .collect()
         }
     }
@@ -91,5 +98,9 @@ impl BoardConfig {
             .or_else(|| self.preset.as_ref().map(|_| "LVCMOS33".to_string()))
     }
 }
+
+/// The ABZ emulator's outputs (`[abz] enabled`): ports of the `<name>_top` wrapper, which
+/// instantiates the emulator next to the rtl (`rtl-templates/top/sinewave_top.v.j2`).
+pub const ABZ_PINS: &[&str] = &["abz_a", "abz_b", "abz_z"];
 
 pub use crate::blocks::top::hdl::{DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS};

@@ -32,6 +32,26 @@ fn velocity_module(
     Ok((Some(body), ctx))
 }
 
+/// The ABZ emulator of `<name>_top` as the Verilog module `module`, when `[abz] enabled`
+/// (`crate::blocks::abz`), and the template values: `abz` (present), `abz_rtl` (the
+/// module). It sits in the wrapper, on the rtl's parallel bus, so that configurations
+/// without it keep the rtl's bytes (and its place-and-route) unchanged.
+fn abz_module(
+    d: &crate::config::Derived,
+    module: &str,
+) -> Result<(Option<String>, minijinja::Value)> {
+    let Some(p) = &d.abz else {
+        return Ok((None, minijinja::context! { abz => false }));
+    };
+    let mut uut = crate::blocks::abz::hdl::AbzEmulator::new(p);
+    rust_hdl::prelude::Block::connect_all(&mut uut);
+    let body = verilog::export(&uut, "abz", module)?;
+    Ok((
+        Some(body),
+        minijinja::context! { abz => true, abz_rtl => module },
+    ))
+}
+
 /// The wrapper that gives `<name>_core` its exact port widths
 /// (`rtl-templates/core/core_wrapper.v.j2`).
 fn core_wrapper(loaded: &Loaded, rtl: &str, vel: minijinja::Value) -> Result<String> {
@@ -206,10 +226,9 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         .iter()
         .map(|p| p.0)
         .collect();
-    if let Some(p) = used
-        .iter()
-        .find(|p| !SD_TOP_PORTS.iter().any(|t| t.name == **p))
-    {
+    if let Some(p) = used.iter().find(|p| {
+        !SD_TOP_PORTS.iter().any(|t| t.name == **p) && !crate::config::ABZ_PINS.contains(p)
+    }) {
         return Err(Error::Export(format!(
             "{name}: the pinned port {p} has no place in the wrapper"
         )));
@@ -224,7 +243,13 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         let p = t.name;
         let input = t.dir != Dir::Out;
         if t.pin == Pin::Parallel {
-            conns.push(format!(".{p}({})", t.net));
+            // With the ABZ emulator the wrapper ORs its catch-up flag into the warning.
+            let net = if p == "par_warning" && d.abz.is_some() {
+                "rtl_warning"
+            } else {
+                t.net
+            };
+            conns.push(format!(".{p}({net})"));
         } else if used.contains(&p) {
             decl.push(wrapper_port(t, None));
             conns.push(format!(".{p}({})", t.net));
@@ -243,6 +268,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     }
     let inst = wrap_list(&conns, "       ", "");
     let (vel, vel_ctx) = velocity_module(d, &format!("{name}_vel"))?;
+    let (abz, abz_ctx) = abz_module(d, &format!("{name}_abz"))?;
     // The ports left out, as comment lines of at most 95 characters (empty: none).
     let left_out_lines = if left_out.is_empty() {
         String::new()
@@ -264,13 +290,15 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             tm => d.turns_width - 1,
             fm => f - 1,
             qb => d.quadrant_bits - 1,
-            ..vel_ctx
+            ..minijinja::value::merge_maps([vel_ctx, abz_ctx])
         },
     )?;
-    Ok(Some(match vel {
-        Some(v) => format!("{wrapper}\n{body}\n{v}"),
-        None => format!("{wrapper}\n{body}"),
-    }))
+    let mut text = format!("{wrapper}\n{body}");
+    for m in [vel, abz].into_iter().flatten() {
+        text.push('\n');
+        text.push_str(&m);
+    }
+    Ok(Some(text))
 }
 
 /// Verilog of the capacitive `<name>_top` (with `[capacitive]`), without header.
