@@ -282,3 +282,46 @@ fn phase_stage_synthesizes_with_two_hard_multipliers_and_one_carry_chain_per_pat
         x.ffs - x0.ffs
     );
 }
+
+#[test]
+fn check_explains_the_correction_mode_and_the_peak_trackers_limit() {
+    use sinedec::config::{Loaded, DEFAULT_CONFIG};
+    let check = |extra: &str| {
+        assert!(
+            DEFAULT_CONFIG.contains("\nmode = \"static\"\n"),
+            "the default's mode line"
+        );
+        let text = DEFAULT_CONFIG.replace("\nmode = \"static\"\n", &format!("\n{extra}\n"));
+        Loaded::parse(&text, "check.toml")
+            .expect("config")
+            .derived
+            .describe()
+    };
+    let s = check("mode = \"static\"");
+    assert!(s.contains("correction                  static:"), "{s}");
+    assert!(s.contains("no phase correction"), "{s}");
+    let s = check("mode = \"static\"\nphase_deg = 3.0");
+    assert!(s.contains("static phase correction"), "{s}");
+    let s = check("mode = \"auto\"");
+    assert!(s.contains("peak tracker"), "{s}");
+    // Independently: the default samples 1,307,157 times per second per channel; at
+    // 3000 rpm a 2048-line track has 1307157 / (2048 x 50) = 12.77 samples per period, and
+    // the sample nearest the crest is at most pi / 12.77 away: 1 - cos = 3.01 %.
+    let n = 1_307_157.0 / (2048.0 * 50.0);
+    let at3000 = format!("{:.2} % at 3000 rpm", 100.0 * (1.0 - (PI / n).cos()));
+    assert_eq!(at3000, "3.01 % at 3000 rpm");
+    assert!(s.contains(&at3000), "{s}");
+    // The speed where the deficit is one LSB of 2^13, found by bisection on the speed.
+    let deficit = |rpm: f64| 1.0 - (PI * 2048.0 * rpm / 60.0 / 1_307_157.0).cos();
+    let (mut lo, mut hi) = (1.0, 3000.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if deficit(mid) < 1.0 / 8192.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let want = format!("within 1 LSB of 2^13 up to {lo:.0} rpm");
+    assert!(s.contains(&want), "{want} in {s}");
+}

@@ -386,6 +386,12 @@ impl Derived {
                     self.latency_cycles
                 ));
             }
+            s.push_str(&describe_correction(
+                &self.correction,
+                self.sample_rate_hz,
+                self.quadrants_per_turn / 4,
+                self.max_speed_rpm_full_res,
+            ));
             if let Some(v) = &self.velocity {
                 s.push_str(&describe_velocity(v, self.quadrants_per_turn));
             }
@@ -484,6 +490,46 @@ fn describe_velocity(v: &VelocityParams, quadrants_per_turn: u64) -> String {
         top,
         v.spec.width,
         v.max_output
+    )
+}
+
+/// The `[correction]` lines of `check`: the mode, the phase correction and, for `auto`,
+/// the limit of the peak tracker. A track sampled n times per signal period shows its
+/// peak low by up to 1 - cos(pi / n) of the amplitude (the nearest sample is at most half a
+/// sample period, pi / n, from the crest), so the tracked gain is too high by that much.
+/// The printed speed is where that deficit reaches one LSB of the A-bit half range,
+/// 2^-(A-1); the deficit is also given at 3000 rpm and at the decoder's speed limit.
+fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) -> String {
+    let phase = if c.has_phase() {
+        format!(
+            "static phase correction, cross code {} (2^-{}) and one more clock",
+            c.cross(),
+            c.phase_shift()
+        )
+    } else {
+        "no phase correction (correction.phase_deg = 0)".to_string()
+    };
+    let Some(_) = c.auto() else {
+        return format!(
+            "correction                  static: offsets {:?} LSB, gain codes {:?} (2^-{}); {phase}\n",
+            c.offset(),
+            c.gain(),
+            c.gain_frac_bits()
+        );
+    };
+    // Deficit 1 - cos(pi / n) at n = fs / (ppr rpm / 60) samples per period.
+    let deficit = |rpm: f64| 1.0 - (std::f64::consts::PI * ppr as f64 * rpm / 60.0 / fs).cos();
+    let lsb = 2f64.powi(1 - c.adc_width() as i32);
+    let n_lsb = std::f64::consts::PI / (1.0 - lsb).acos();
+    let rpm_lsb = 60.0 * fs / (n_lsb * ppr as f64);
+    format!(
+        "correction                  auto: offset and gain from per-track peaks over whole periods (peak tracker); no phase correction\n\
+         auto peak-tracker limit     the sampled peaks are low by up to 1 - cos(pi / samples per period): within 1 LSB of 2^{} up to {:.0} rpm; {:.2} % at 3000 rpm, {:.2} % at the {:.0} rpm limit. Above that calibrate at low speed and copy the values into mode = \"static\" (which also takes phase_deg)\n",
+        c.adc_width() - 1,
+        rpm_lsb,
+        100.0 * deficit(3000.0),
+        100.0 * deficit(max_rpm),
+        max_rpm
     )
 }
 
