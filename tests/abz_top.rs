@@ -45,6 +45,14 @@ fn fold(x: i64, e: i64) -> i64 {
     }
 }
 
+/// An ideal 2048-line encoder starting `periods` signal periods into the turn.
+fn encoder(periods: f64, profile: Profile) -> EncoderModel {
+    let mut enc = EncoderModel::ideal(2048, 1.0, 0.0);
+    enc.start_turns = periods / 2048.0;
+    enc.profile = profile;
+    enc
+}
+
 /// One row of the replay: (par_valid, single-turn position, A, B, Z, warning).
 type Row = (bool, u64, bool, bool, bool, bool);
 
@@ -130,14 +138,12 @@ fn quadrature_counter_follows_the_parallel_position_through_zero_and_a_reversal(
     // with 16 x 2048 lines, below the 12.1 M edges/s the default spacing allows) it passes
     // position 0 after about 9 us, reverses between 60 and 160 us and passes 0 forward
     // again at about 215 us.
-    let mut enc = EncoderModel::ideal(2048, 1.0, 0.0);
-    enc.start_turns = 0.9 / 2048.0;
-    enc.profile = Profile::Reversal {
+    let profile = Profile::Reversal {
         rpm: -3000.0,
         at: 60e-6,
         over: 100e-6,
     };
-    let rows = replay(&l, enc, 260e-6, "reversal");
+    let rows = replay(&l, encoder(0.9, profile), 260e-6, "reversal");
     let n = rows.len();
     // A sample on the bus at clock v enters the emulator at edge v + 1; its count is on A/B
     // from clock v + latency on (the emitter idle: one sample's counts take at most 5 edges
@@ -210,14 +216,12 @@ fn catching_up_raises_the_warning_and_loses_no_count() {
     let d = &l.derived;
     let a = d.abz.expect("enabled");
     let e = a.edges() as i64;
-    let mut enc = EncoderModel::ideal(2048, 1.0, 0.0);
-    enc.start_turns = 0.5 / 2048.0;
-    enc.profile = Profile::Ramp {
+    let profile = Profile::Ramp {
         from: -6000.0,
         to: 0.0,
         over: 100e-6,
     };
-    let rows = replay(&l, enc, 300e-6, "catch_up");
+    let rows = replay(&l, encoder(0.5, profile), 300e-6, "catch_up");
     let samples: Vec<usize> = (0..rows.len()).filter(|&v| rows[v].0).collect();
     assert!(samples.len() > 100, "{} samples", samples.len());
     let k0 = samples[0] + a.latency() as usize;
