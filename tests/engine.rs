@@ -55,7 +55,11 @@ fn core_engine_equals_rust_hdl_and_verilator() {
         panic!("core: {m}");
     }
     // out_valid (column 0) pulses often and the positions move: a trace worth comparing.
-    assert!(active(&t.rust_hdl, 0) > 2000, "{} valid rows", active(&t.rust_hdl, 0));
+    assert!(
+        active(&t.rust_hdl, 0) > 2000,
+        "{} valid rows",
+        active(&t.rust_hdl, 0)
+    );
     assert!(active(&t.rust_hdl, 1) > 1000);
     let verilog = core_verilog(&l).expect("core Verilog");
     let (ins, outs) = (core_input_ports(d), core_output_ports(d));
@@ -63,7 +67,9 @@ fn core_engine_equals_rust_hdl_and_verilator() {
     check_engines(&verilog, &core_name(&l), &ins, &outs, &rows, &t.rust_hdl);
     // The comparison can fail: with one sample's sine changed the engine's trace differs.
     let mut bad = rows.clone();
-    let k = (200..bad.len()).find(|&i| bad[i][1] == 1).expect("a valid sample");
+    let k = (200..bad.len())
+        .find(|&i| bad[i][1] == 1)
+        .expect("a valid sample");
     bad[k][2] ^= 1 << (a - 2);
     let mut e = Engine::new(&verilog, &core_name(&l), "clk", Kind::Compiled).expect("engine");
     let t2 = e.trace(&ins, &outs, &bad).expect("engine runs");
@@ -83,8 +89,15 @@ fn top_case<B: sinedec::cosim::CosimBlock>(uut: B, name: &str, rows: &[Vec<u64>]
     if let Some(m) = bt.mismatch() {
         panic!("{name}: {m}");
     }
-    let v = outs.iter().position(|p| p.name == valid).expect("valid port");
-    assert!(active(&bt.rust_hdl, v) > 20, "{name}: {} positions", active(&bt.rust_hdl, v));
+    let v = outs
+        .iter()
+        .position(|p| p.name == valid)
+        .expect("valid port");
+    assert!(
+        active(&bt.rust_hdl, v) > 20,
+        "{name}: {} positions",
+        active(&bt.rust_hdl, v)
+    );
     check_engines(&verilog, name, &ins, &outs, rows, &bt.rust_hdl);
 }
 

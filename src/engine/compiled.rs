@@ -55,7 +55,10 @@ pub fn cache_root() -> PathBuf {
         return PathBuf::from(p).join("sinedec").join("engine");
     }
     if let Some(p) = std::env::var_os("HOME") {
-        return PathBuf::from(p).join(".cache").join("sinedec").join("engine");
+        return PathBuf::from(p)
+            .join(".cache")
+            .join("sinedec")
+            .join("engine");
     }
     std::env::temp_dir().join("sinedec-engine")
 }

@@ -44,7 +44,9 @@ impl Interp {
         match c.op {
             Op::Unary(op) => ops::unary(op, a, aw, asg, yw),
             Op::Arith(op) => ops::arith(op, a, aw, asg, self.operand(&c.b), bw, bsg, yw),
-            Op::Compare(op) => ops::compare(op, a, aw, asg, self.operand(&c.b), bw, bsg) & ops::mask(yw),
+            Op::Compare(op) => {
+                ops::compare(op, a, aw, asg, self.operand(&c.b), bw, bsg) & ops::mask(yw)
+            }
             Op::Logic(op) => ops::logic(op, a, aw, self.operand(&c.b)),
             Op::Shift(op) => ops::shift(op, a, aw, asg, self.operand(&c.b), bw, bsg, yw),
             Op::Mux => {
@@ -115,7 +117,9 @@ impl Sim for Interp {
         self.run_cone(true);
         for (k, r) in self.nl.regs.iter().enumerate() {
             let q = self.vals[r.q];
-            let en = r.en.as_ref().is_none_or(|(o, pol)| (self.operand(o) != 0) == *pol);
+            let en =
+                r.en.as_ref()
+                    .is_none_or(|(o, pol)| (self.operand(o) != 0) == *pol);
             let rst = r.srst.as_ref().and_then(|(o, pol, v)| {
                 ((self.operand(o) != 0) == *pol && (en || !r.ce_over_srst)).then_some(*v)
             });
@@ -129,7 +133,10 @@ impl Sim for Interp {
             let m = &self.nl.mems[w.mem];
             let idx = self.operand(&w.addr) as i64 - m.offset;
             let (data, en) = (self.operand(&w.data), self.operand(&w.en));
-            if let Some(slot) = usize::try_from(idx).ok().and_then(|i| self.mems[w.mem].get_mut(i)) {
+            if let Some(slot) = usize::try_from(idx)
+                .ok()
+                .and_then(|i| self.mems[w.mem].get_mut(i))
+            {
                 *slot = (*slot & !en) | (data & en);
             }
         }

@@ -103,7 +103,11 @@ fn shape_of(nl: &netlist::Netlist) -> Shape {
     let w = |s: usize| nl.signals[s].width;
     Shape {
         inputs: nl.inputs.iter().map(|(n, s)| (n.clone(), w(*s))).collect(),
-        outputs: nl.outputs.iter().map(|(n, o)| (n.clone(), o.width)).collect(),
+        outputs: nl
+            .outputs
+            .iter()
+            .map(|(n, o)| (n.clone(), o.width))
+            .collect(),
         cells: nl.cells.len(),
         regs: nl.regs.len(),
     }
@@ -149,7 +153,12 @@ impl Engine {
             h.update((part.len() as u64).to_le_bytes());
             h.update(part.as_bytes());
         }
-        let key: String = h.finalize().iter().take(12).map(|b| format!("{b:02x}")).collect();
+        let key: String = h
+            .finalize()
+            .iter()
+            .take(12)
+            .map(|b| format!("{b:02x}"))
+            .collect();
         let dir = compiled::cache_root().join(format!("{top}-{key}"));
         let lib = dir.join("libsdengine.so");
         let shape_file = dir.join("shape.json");

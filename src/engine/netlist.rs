@@ -201,7 +201,10 @@ fn param(name: &str, c: &JCell, p: &str) -> Result<u64> {
 }
 
 fn param_or(c: &JCell, p: &str, default: u64) -> u64 {
-    c.parameters.get(p).and_then(|v| v.value()).unwrap_or(default)
+    c.parameters
+        .get(p)
+        .and_then(|v| v.value())
+        .unwrap_or(default)
 }
 
 fn comb_op(ty: &str) -> Option<Op> {
@@ -341,8 +344,12 @@ pub fn build(m: &JModule, clock: &str) -> Result<Netlist> {
         return Err(bad(format!("the top has no 1-bit clock input `{clock}`")));
     }
     let clk = drv.clock[0];
-    let mem_index: BTreeMap<&str, usize> =
-        m.memories.keys().enumerate().map(|(i, k)| (k.as_str(), i)).collect();
+    let mem_index: BTreeMap<&str, usize> = m
+        .memories
+        .keys()
+        .enumerate()
+        .map(|(i, k)| (k.as_str(), i))
+        .collect();
     let memid = |name: &str, c: &JCell| -> Result<usize> {
         let id = match c.parameters.get("MEMID") {
             Some(super::yosys::Param::Text(t)) => t.trim_end().to_string(),
@@ -408,7 +415,9 @@ pub fn build(m: &JModule, clock: &str) -> Result<Netlist> {
         if is_reg {
             check_clock(name, c, true)?;
         } else if ty.starts_with("$memrd") && param_or(c, "CLK_ENABLE", 0) != 0 {
-            return Err(bad(format!("memory read {name} is clocked; only asynchronous reads are supported")));
+            return Err(bad(format!(
+                "memory read {name} is clocked; only asynchronous reads are supported"
+            )));
         }
         signals.push(Signal {
             width: bits.len() as u32,
@@ -433,7 +442,10 @@ pub fn build(m: &JModule, clock: &str) -> Result<Netlist> {
         let (name, c) = (p.name, p.c);
         let d = drv.operand(conn(name, c, "D")?, name)?;
         let en = if matches!(c.ty.as_str(), "$dffe" | "$sdffe" | "$sdffce") {
-            Some((drv.operand(conn(name, c, "EN")?, name)?, param(name, c, "EN_POLARITY")? == 1))
+            Some((
+                drv.operand(conn(name, c, "EN")?, name)?,
+                param(name, c, "EN_POLARITY")? == 1,
+            ))
         } else {
             None
         };
@@ -465,7 +477,10 @@ pub fn build(m: &JModule, clock: &str) -> Result<Netlist> {
         })
         .collect();
     if let Some(w) = mems.iter().find(|x| x.width == 0 || x.width > 64) {
-        return Err(bad(format!("a memory has {}-bit words; the engine handles 1..=64", w.width)));
+        return Err(bad(format!(
+            "a memory has {}-bit words; the engine handles 1..=64",
+            w.width
+        )));
     }
     let mut cells = Vec::with_capacity(ncomb);
     for p in &combs {
@@ -586,6 +601,8 @@ impl Operand {
 impl Cell {
     /// Every operand.
     pub fn operands(&self) -> impl Iterator<Item = &Operand> {
-        [&self.a, &self.b, &self.s].into_iter().chain(self.words.iter())
+        [&self.a, &self.b, &self.s]
+            .into_iter()
+            .chain(self.words.iter())
     }
 }

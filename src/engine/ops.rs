@@ -153,7 +153,11 @@ pub const fn shift(op: u8, a: u64, aw: u32, asg: bool, b: u64, bw: u32, bsg: boo
             }
         }
         _ => {
-            let a = if op == 3 { ext(a, aw, asg) & mask(w) } else { a };
+            let a = if op == 3 {
+                ext(a, aw, asg) & mask(w)
+            } else {
+                a
+            };
             let sb = ext(b, bw, bsg) as i64;
             if bsg && sb < 0 {
                 let l = sb.unsigned_abs();

@@ -90,7 +90,12 @@ pub fn levelize(nl: &mut Netlist) -> Result<()> {
         }
     }
     for w in &nl.writes {
-        next_roots.extend(w.addr.sources().chain(w.data.sources()).chain(w.en.sources()));
+        next_roots.extend(
+            w.addr
+                .sources()
+                .chain(w.data.sources())
+                .chain(w.en.sources()),
+        );
     }
     let out_roots = nl.outputs.iter().flat_map(|(_, o)| o.sources()).collect();
     nl.next_cone = cone(nl, next_roots);
