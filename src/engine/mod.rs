@@ -19,6 +19,7 @@
 //! values, inputs at 0, `x` bits read as 0. Words are `u64`: a signal, operand or memory
 //! word wider than 64 bits, a second clock, an asynchronous reset or a latch is reported as
 //! an error naming the cell. Measurements: docs/benchmarks.md.
+mod cells;
 mod codegen;
 mod compiled;
 mod interp;
@@ -144,6 +145,8 @@ impl Engine {
             clock,
             yosys::SCRIPT,
             include_str!("ops.rs"),
+            include_str!("yosys.rs"),
+            include_str!("cells.rs"),
             include_str!("netlist.rs"),
             include_str!("order.rs"),
             include_str!("codegen.rs"),
