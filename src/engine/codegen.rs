@@ -99,6 +99,56 @@ fn cell_expr(nl: &Netlist, c: &Cell) -> String {
     }
 }
 
+/// For each cell, the register whose data operand alone needs it, when that register has
+/// an enable or a reset: such cells are computed only in the branch that loads the data
+/// (most registers hold most cycles), the others before every register.
+fn owners(nl: &Netlist) -> Vec<Option<usize>> {
+    const SHARED: usize = usize::MAX;
+    let mut own: Vec<Option<usize>> = vec![None; nl.cells.len()];
+    let note = |own: &mut Vec<Option<usize>>, sig: usize, who: usize| {
+        if let SigKind::Comb(i) = nl.signals[sig].kind {
+            own[i] = match own[i] {
+                None => Some(who),
+                Some(x) if x == who => Some(x),
+                _ => Some(SHARED),
+            };
+        }
+    };
+    for (k, r) in nl.regs.iter().enumerate() {
+        let gated = r.en.is_some() || r.srst.is_some();
+        for sig in r.d.sources() {
+            note(&mut own, sig, if gated { k } else { SHARED });
+        }
+        let ctl =
+            r.en.iter()
+                .map(|(o, _)| o)
+                .chain(r.srst.iter().map(|(o, _, _)| o));
+        for sig in ctl.flat_map(|o| o.sources()) {
+            note(&mut own, sig, SHARED);
+        }
+    }
+    for w in &nl.writes {
+        for sig in w
+            .addr
+            .sources()
+            .chain(w.data.sources())
+            .chain(w.en.sources())
+        {
+            note(&mut own, sig, SHARED);
+        }
+    }
+    // Cells are in topological order: every user of cell i comes after it.
+    for &i in nl.next_cone.iter().rev() {
+        let who = own[i].unwrap_or(SHARED);
+        for sig in nl.cells[i].operands().flat_map(|o| o.sources()) {
+            note(&mut own, sig, who);
+        }
+    }
+    own.into_iter()
+        .map(|o| o.filter(|&x| x != SHARED))
+        .collect()
+}
+
 fn cone(nl: &Netlist, out: &mut String, cells: &[usize]) {
     for &i in cells {
         let c = &nl.cells[i];
@@ -146,10 +196,21 @@ pub fn generate(nl: &Netlist) -> String {
     let _ = writeln!(o, "}}");
     // Next state.
     let _ = writeln!(o, "#[inline(always)]\nfn edge(s: &mut St) {{");
-    cone(nl, &mut o, &nl.next_cone);
+    let own = owners(nl);
+    let mut owned: Vec<Vec<usize>> = vec![vec![]; nl.regs.len()];
+    let mut shared = vec![];
+    for &i in &nl.next_cone {
+        match own[i] {
+            Some(k) => owned[k].push(i),
+            None => shared.push(i),
+        }
+    }
+    cone(nl, &mut o, &shared);
     for (k, r) in nl.regs.iter().enumerate() {
         let q = format!("s.r[{k}]");
-        let d = operand(nl, &r.d);
+        let mut d = String::from("{\n");
+        cone(nl, &mut d, &owned[k]);
+        let _ = write!(d, "    {} }}", operand(nl, &r.d));
         let en =
             r.en.as_ref()
                 .map(|(e, pol)| format!("(({}) != 0) == {pol}", operand(nl, e)));
