@@ -5,6 +5,7 @@ pub mod config;
 pub mod cosim;
 pub mod csv_out;
 pub mod emit;
+pub mod engine;
 pub mod error;
 pub mod exact;
 pub mod filter;

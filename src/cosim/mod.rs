@@ -68,6 +68,7 @@ mod verilator;
 pub(crate) use block::cosim_block;
 pub use block::{CosimBlock, RowValue};
 pub use icarus::run_icarus;
+pub(crate) use tool::run_checked;
 pub use tool::{check_tool_named, require_tool, CosimError, TOOL_TIMEOUT};
 use tool::{io_err, read_file, trim_message, write_file, ToolOutput};
 pub use verilator::run_verilator;

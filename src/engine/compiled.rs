@@ -1,0 +1,186 @@
+//! Building and loading the generated code: `rustc` compiles it into a `cdylib` in a cache
+//! directory keyed by a hash of everything the library depends on (the Verilog, the top and
+//! clock names, the Yosys script, the engine's own sources, the `rustc` version), as
+//! Verilator builds its C++ once per model; `libloading` opens it.
+use super::codegen::ABI_VERSION;
+use super::Sim;
+use crate::cosim::CosimError;
+use crate::error::{Error, Result};
+use std::ffi::c_void;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// `rustc` options of the generated library.
+pub const RUSTC_FLAGS: &[&str] = &[
+    "--edition",
+    "2021",
+    "--crate-type",
+    "cdylib",
+    "-C",
+    "opt-level=3",
+    "-C",
+    "codegen-units=1",
+    "-C",
+    "panic=abort",
+    "-C",
+    "debuginfo=0",
+];
+
+/// The `rustc` to use: `$RUSTC` (as cargo sets it) or `rustc` on PATH.
+pub fn rustc() -> String {
+    std::env::var("RUSTC").unwrap_or_else(|_| "rustc".to_string())
+}
+
+/// `rustc --version`, for the cache key.
+pub fn rustc_version() -> Result<String> {
+    let out = Command::new(rustc())
+        .arg("--version")
+        .output()
+        .map_err(|e| {
+            Error::Tool(CosimError::ToolMissing {
+                tool: format!("rustc ({e})"),
+                install: "curl https://sh.rustup.rs -sSf | sh".into(),
+            })
+        })?;
+    Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
+}
+
+/// The cache directory: `$SINEDEC_ENGINE_CACHE`, else `$XDG_CACHE_HOME/sinedec/engine`,
+/// else `~/.cache/sinedec/engine`, else the temporary directory's `sinedec-engine`.
+pub fn cache_root() -> PathBuf {
+    if let Some(p) = std::env::var_os("SINEDEC_ENGINE_CACHE") {
+        return PathBuf::from(p);
+    }
+    if let Some(p) = std::env::var_os("XDG_CACHE_HOME") {
+        return PathBuf::from(p).join("sinedec").join("engine");
+    }
+    if let Some(p) = std::env::var_os("HOME") {
+        return PathBuf::from(p)
+            .join(".cache")
+            .join("sinedec")
+            .join("engine");
+    }
+    std::env::temp_dir().join("sinedec-engine")
+}
+
+/// Compiles `source` into `lib` (through a temporary file in the same directory, renamed
+/// into place, so concurrent builds of one key do not see half a library).
+pub fn build(source: &str, dir: &Path, lib: &Path) -> Result<()> {
+    let src = dir.join("engine.rs");
+    std::fs::write(&src, source).map_err(|e| Error::io(&src, e))?;
+    let tmp = tempfile::Builder::new()
+        .prefix("build")
+        .tempdir_in(dir)
+        .map_err(|e| Error::io(dir, e))?;
+    let out = tmp.path().join("libsdengine.so");
+    let mut cmd = Command::new(rustc());
+    cmd.current_dir(dir)
+        .args(RUSTC_FLAGS)
+        .arg("--crate-name")
+        .arg("sdengine")
+        .arg("-o")
+        .arg(&out)
+        .arg(&src);
+    crate::cosim::run_checked(&mut cmd, "rustc", "engine build", dir, "engine_rustc")?;
+    std::fs::rename(&out, lib).map_err(|e| Error::io(lib, e))
+}
+
+type NewFn = unsafe extern "C" fn() -> *mut c_void;
+type FreeFn = unsafe extern "C" fn(*mut c_void);
+type SetFn = unsafe extern "C" fn(*mut c_void, u32, u64);
+type GetFn = unsafe extern "C" fn(*const c_void, u32) -> u64;
+type StepFn = unsafe extern "C" fn(*mut c_void);
+type RunFn = unsafe extern "C" fn(*mut c_void, *const u64, u64, *mut u64);
+type InfoFn = unsafe extern "C" fn() -> u64;
+
+/// A loaded library and one state of its model.
+pub struct Compiled {
+    st: *mut c_void,
+    free: FreeFn,
+    set: SetFn,
+    get: GetFn,
+    tick: StepFn,
+    eval: StepFn,
+    run: RunFn,
+    n_in: usize,
+    n_out: usize,
+    // Kept last: dropped after the state is freed.
+    _lib: libloading::Library,
+}
+
+// SAFETY: the state is owned by this value alone and the library keeps no global state.
+unsafe impl Send for Compiled {}
+
+fn sym<T: Copy>(lib: &libloading::Library, name: &str, path: &Path) -> Result<T> {
+    // SAFETY: the symbol types are those codegen.rs generates (checked by sdeng_abi).
+    unsafe { lib.get::<T>(name.as_bytes()) }
+        .map(|s| *s)
+        .map_err(|e| Error::Simulation(format!("engine library {}: {name}: {e}", path.display())))
+}
+
+impl Compiled {
+    /// Opens the library at `path` for a model of `n_in` inputs and `n_out` outputs.
+    pub fn load(path: &Path, n_in: usize, n_out: usize) -> Result<Compiled> {
+        // SAFETY: the library is one sinedec generated; its initialisers do nothing.
+        let lib = unsafe { libloading::Library::new(path) }
+            .map_err(|e| Error::Simulation(format!("engine library {}: {e}", path.display())))?;
+        let abi: InfoFn = sym(&lib, "sdeng_abi", path)?;
+        let shape: InfoFn = sym(&lib, "sdeng_shape", path)?;
+        // SAFETY: plain functions without arguments.
+        let (a, s) = unsafe { (abi(), shape()) };
+        if a != ABI_VERSION || s != ((n_in as u64) << 32 | n_out as u64) {
+            return Err(Error::Simulation(format!(
+                "engine library {} does not match the netlist (abi {a}, shape {s:#x})",
+                path.display()
+            )));
+        }
+        let new: NewFn = sym(&lib, "sdeng_new", path)?;
+        // SAFETY: sdeng_new returns a fresh boxed state.
+        let st = unsafe { new() };
+        Ok(Compiled {
+            st,
+            free: sym(&lib, "sdeng_free", path)?,
+            set: sym(&lib, "sdeng_set", path)?,
+            get: sym(&lib, "sdeng_get", path)?,
+            tick: sym(&lib, "sdeng_tick", path)?,
+            eval: sym(&lib, "sdeng_eval", path)?,
+            run: sym(&lib, "sdeng_run", path)?,
+            n_in,
+            n_out,
+            _lib: lib,
+        })
+    }
+}
+
+impl Drop for Compiled {
+    fn drop(&mut self) {
+        // SAFETY: st came from sdeng_new of this library, which is still loaded.
+        unsafe { (self.free)(self.st) }
+    }
+}
+
+impl Sim for Compiled {
+    fn set(&mut self, input: usize, v: u64) {
+        // SAFETY: the callee ignores an index out of range.
+        unsafe { (self.set)(self.st, input as u32, v) }
+    }
+    fn get(&self, output: usize) -> u64 {
+        // SAFETY: as above.
+        unsafe { (self.get)(self.st, output as u32) }
+    }
+    fn eval(&mut self) {
+        // SAFETY: a valid state.
+        unsafe { (self.eval)(self.st) }
+    }
+    fn tick(&mut self) {
+        // SAFETY: a valid state.
+        unsafe { (self.tick)(self.st) }
+    }
+    fn run(&mut self, rows: &[u64], outs: &mut Vec<u64>) {
+        let n = rows.len() / self.n_in.max(1);
+        let n = if self.n_in == 0 { 0 } else { n };
+        outs.resize(n * self.n_out, 0);
+        // SAFETY: rows holds n * n_in values and outs n * n_out.
+        unsafe { (self.run)(self.st, rows.as_ptr(), n as u64, outs.as_mut_ptr()) }
+    }
+}

@@ -1,0 +1,300 @@
+//! A compiled cycle-accurate simulation engine for the Verilog sinedec emits: the Rust
+//! counterpart of Verilator, so that long closed-loop simulations of `<name>_top` need not
+//! step rust-hdl's many small modules (about 12 settle passes per cycle).
+//!
+//! ```text
+//!  emitted Verilog ──► Yosys: proc; flatten; opt; wreduce ──► JSON (word-level cells)
+//!        (yosys.rs)                                                 │
+//!  netlist.rs: bits regrouped into words, registers, memories ◄─────┘
+//!  order.rs:   combinational cells in topological order, next-state and output cones
+//!        ├──► codegen.rs: straight-line Rust ──► rustc -O ──► cdylib ──► compiled.rs
+//!        │    (cached by a hash of its inputs)                      (libloading, C ABI)
+//!        └──► interp.rs: the same cells interpreted (fallback, no rustc needed)
+//! ```
+//!
+//! Both paths use one definition of every cell's arithmetic, ops.rs (pasted into the
+//! generated code), and the co-simulation cycle of src/cosim/mod.rs: inputs applied with the
+//! clock low, the rising edge (every register and memory write loads what the inputs and
+//! the old state give), outputs read after it. Registers start at their Verilog `initial`
+//! values, inputs at 0, `x` bits read as 0. Words are `u64`: a signal, operand or memory
+//! word wider than 64 bits, a second clock, an asynchronous reset or a latch is reported as
+//! an error naming the cell. Measurements: docs/benchmarks.md.
+mod cells;
+mod codegen;
+mod compiled;
+mod interp;
+mod netlist;
+pub mod ops;
+mod order;
+mod yosys;
+
+use crate::cosim::{Port, Trace};
+use crate::error::{Error, Result};
+use sha2::{Digest, Sha256};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// What a model can do; the compiled library and the interpreter implement it.
+trait Sim: Send {
+    fn set(&mut self, input: usize, v: u64);
+    fn get(&self, output: usize) -> u64;
+    fn eval(&mut self);
+    fn tick(&mut self);
+    /// `rows.len() / n_in` cycles of set-all-inputs, tick, read-all-outputs.
+    fn run(&mut self, rows: &[u64], outs: &mut Vec<u64>);
+}
+
+/// Which engine runs the model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// Generated Rust compiled by rustc (cached).
+    Compiled,
+    /// The levelized netlist interpreted.
+    Interpreted,
+}
+
+/// How a model was built, for benchmarks.
+#[derive(Clone, Debug, Default)]
+pub struct BuildInfo {
+    /// Seconds Yosys took (0 when the library came from the cache).
+    pub yosys_s: f64,
+    /// Seconds rustc took (0 from the cache or for the interpreter).
+    pub rustc_s: f64,
+    /// The library came from the cache.
+    pub cached: bool,
+    /// Combinational cells, registers, memories.
+    pub cells: usize,
+    /// Registers.
+    pub regs: usize,
+    /// The cache directory of the compiled library.
+    pub dir: Option<PathBuf>,
+}
+
+/// A model of one Verilog top module, stepped cycle by cycle.
+pub struct Engine {
+    sim: Box<dyn Sim>,
+    inputs: Vec<Port>,
+    outputs: Vec<Port>,
+    info: BuildInfo,
+}
+
+/// The ports' names and widths, kept next to a cached library.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Shape {
+    inputs: Vec<(String, u32)>,
+    outputs: Vec<(String, u32)>,
+    cells: usize,
+    regs: usize,
+}
+
+fn ports(v: &[(String, u32)]) -> Vec<Port> {
+    v.iter().map(|(n, w)| Port::new(n, *w)).collect()
+}
+
+fn netlist_of(verilog: &str, top: &str, clock: &str) -> Result<(netlist::Netlist, f64)> {
+    let t0 = Instant::now();
+    let dir = tempfile::tempdir().map_err(|e| Error::io(std::env::temp_dir(), e))?;
+    let json = yosys::run(verilog, top, dir.path())?;
+    let m = yosys::parse(&json, top)?;
+    let nl = netlist::build(&m, clock)?;
+    Ok((nl, t0.elapsed().as_secs_f64()))
+}
+
+fn shape_of(nl: &netlist::Netlist) -> Shape {
+    let w = |s: usize| nl.signals[s].width;
+    Shape {
+        inputs: nl.inputs.iter().map(|(n, s)| (n.clone(), w(*s))).collect(),
+        outputs: nl
+            .outputs
+            .iter()
+            .map(|(n, o)| (n.clone(), o.width))
+            .collect(),
+        cells: nl.cells.len(),
+        regs: nl.regs.len(),
+    }
+}
+
+impl Engine {
+    /// Builds the model of module `top` of `verilog` (clock input `clock`) with `kind`.
+    pub fn new(verilog: &str, top: &str, clock: &str, kind: Kind) -> Result<Engine> {
+        match kind {
+            Kind::Compiled => Engine::compiled(verilog, top, clock),
+            Kind::Interpreted => {
+                let (nl, yosys_s) = netlist_of(verilog, top, clock)?;
+                let sh = shape_of(&nl);
+                Ok(Engine {
+                    sim: Box::new(interp::Interp::new(nl)),
+                    inputs: ports(&sh.inputs),
+                    outputs: ports(&sh.outputs),
+                    info: BuildInfo {
+                        yosys_s,
+                        cells: sh.cells,
+                        regs: sh.regs,
+                        ..Default::default()
+                    },
+                })
+            }
+        }
+    }
+
+    fn compiled(verilog: &str, top: &str, clock: &str) -> Result<Engine> {
+        let mut h = Sha256::new();
+        for part in [
+            verilog,
+            top,
+            clock,
+            yosys::SCRIPT,
+            include_str!("ops.rs"),
+            include_str!("yosys.rs"),
+            include_str!("cells.rs"),
+            include_str!("netlist.rs"),
+            include_str!("order.rs"),
+            include_str!("codegen.rs"),
+            &compiled::rustc_version()?,
+            &compiled::RUSTC_FLAGS.join(" "),
+        ] {
+            h.update((part.len() as u64).to_le_bytes());
+            h.update(part.as_bytes());
+        }
+        let key: String = h
+            .finalize()
+            .iter()
+            .take(12)
+            .map(|b| format!("{b:02x}"))
+            .collect();
+        let dir = compiled::cache_root().join(format!("{top}-{key}"));
+        let lib = dir.join("libsdengine.so");
+        let shape_file = dir.join("shape.json");
+        let mut info = BuildInfo {
+            dir: Some(dir.clone()),
+            ..Default::default()
+        };
+        let cached = std::fs::read_to_string(&shape_file)
+            .ok()
+            .and_then(|t| serde_json::from_str::<Shape>(&t).ok())
+            .filter(|_| lib.is_file());
+        let shape = match cached {
+            Some(s) => {
+                info.cached = true;
+                s
+            }
+            None => {
+                let (nl, yosys_s) = netlist_of(verilog, top, clock)?;
+                info.yosys_s = yosys_s;
+                std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+                let t0 = Instant::now();
+                compiled::build(&codegen::generate(&nl), &dir, &lib)?;
+                info.rustc_s = t0.elapsed().as_secs_f64();
+                let s = shape_of(&nl);
+                let text = serde_json::to_string(&s).map_err(|e| Error::Json {
+                    what: "engine shape".into(),
+                    source: e,
+                })?;
+                std::fs::write(&shape_file, text).map_err(|e| Error::io(&shape_file, e))?;
+                s
+            }
+        };
+        info.cells = shape.cells;
+        info.regs = shape.regs;
+        let sim = compiled::Compiled::load(&lib, shape.inputs.len(), shape.outputs.len())?;
+        Ok(Engine {
+            sim: Box::new(sim),
+            inputs: ports(&shape.inputs),
+            outputs: ports(&shape.outputs),
+            info,
+        })
+    }
+
+    /// The input ports (clock left out), in index order.
+    pub fn inputs(&self) -> &[Port] {
+        &self.inputs
+    }
+
+    /// The output ports, in index order.
+    pub fn outputs(&self) -> &[Port] {
+        &self.outputs
+    }
+
+    /// How the model was built.
+    pub fn info(&self) -> &BuildInfo {
+        &self.info
+    }
+
+    /// Index of input `name`.
+    pub fn input_index(&self, name: &str) -> Option<usize> {
+        self.inputs.iter().position(|p| p.name == name)
+    }
+
+    /// Index of output `name`.
+    pub fn output_index(&self, name: &str) -> Option<usize> {
+        self.outputs.iter().position(|p| p.name == name)
+    }
+
+    /// Drives input `k` (masked to its width) for the next edge.
+    pub fn set(&mut self, k: usize, v: u64) {
+        self.sim.set(k, v)
+    }
+
+    /// Output `k` as of the last [`tick`](Self::tick) or [`eval`](Self::eval).
+    pub fn get(&self, k: usize) -> u64 {
+        self.sim.get(k)
+    }
+
+    /// Re-evaluates the outputs after inputs changed, without a clock edge.
+    pub fn eval(&mut self) {
+        self.sim.eval()
+    }
+
+    /// One rising edge of the clock, then the outputs settle.
+    pub fn tick(&mut self) {
+        self.sim.tick()
+    }
+
+    /// Runs `rows` (values in the order of `inputs`, which name ports of the model) one row
+    /// a cycle, returning the `outputs` after each edge: the co-simulation harness's trace.
+    pub fn trace(&mut self, inputs: &[Port], outputs: &[Port], rows: &[Vec<u64>]) -> Result<Trace> {
+        let find = |list: &[Port], p: &Port, what: &str| {
+            list.iter().position(|q| q.name == p.name).ok_or_else(|| {
+                Error::Simulation(format!("the engine's model has no {what} `{}`", p.name))
+            })
+        };
+        let in_map = inputs
+            .iter()
+            .map(|p| find(&self.inputs, p, "input"))
+            .collect::<Result<Vec<_>>>()?;
+        let out_map = outputs
+            .iter()
+            .map(|p| find(&self.outputs, p, "output"))
+            .collect::<Result<Vec<_>>>()?;
+        let ni = self.inputs.len();
+        let mut flat = vec![0u64; rows.len() * ni];
+        for (r, row) in rows.iter().enumerate() {
+            if row.len() != inputs.len() {
+                return Err(Error::Simulation(format!(
+                    "stimulus row {r} has {} values for {} inputs",
+                    row.len(),
+                    inputs.len()
+                )));
+            }
+            for (v, &k) in row.iter().zip(&in_map) {
+                flat[r * ni + k] = *v;
+            }
+        }
+        let no = self.outputs.len();
+        if ni == 0 {
+            let mut t = Vec::with_capacity(rows.len());
+            for _ in rows {
+                self.tick();
+                t.push(out_map.iter().map(|&k| self.get(k)).collect());
+            }
+            return Ok(t);
+        }
+        let mut outs = Vec::new();
+        self.sim.run(&flat, &mut outs);
+        Ok(outs
+            .chunks(no.max(1))
+            .take(rows.len())
+            .map(|row| out_map.iter().map(|&k| row[k]).collect())
+            .collect())
+    }
+}
