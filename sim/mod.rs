@@ -17,6 +17,7 @@
 pub mod biss_master;
 pub mod cap_system;
 pub mod capacitive;
+pub mod dut;
 pub mod encoder;
 pub mod ltc1407a;
 pub mod ltc6912;

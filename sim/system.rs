@@ -15,12 +15,37 @@
 use crate::blocks::sext;
 use crate::blocks::top::hdl::TopRtl;
 use crate::config::Derived;
-use crate::cosim::step::{prepare, tick, NoConvergence};
+use crate::cosim::step::NoConvergence;
+use crate::sim::dut::{Dut, EngineKind};
 use crate::sim::encoder::EncoderModel;
 use crate::sim::ltc1407a::Ltc1407a;
 use crate::sim::ltc6912::Ltc6912;
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
+
+// Pin indices of [`crate::sim::dut::IN_PINS`] / [`crate::sim::dut::OUT_PINS`].
+const I_RST: usize = 0;
+const I_MISO: usize = 1;
+const I_MA: usize = 2;
+const I_QEP_A: usize = 3;
+const I_QEP_B: usize = 4;
+const I_QEP_Z: usize = 5;
+const I_SSI_CLK: usize = 6;
+const I_ENC_SCK: usize = 7;
+const I_ENC_CS_N: usize = 8;
+const O_CONV: usize = 0;
+const O_SCK: usize = 1;
+const O_AMP_CS: usize = 2;
+const O_AMP_MOSI: usize = 3;
+const O_AMP_SHDN: usize = 4;
+const O_SLO: usize = 5;
+const O_SSI_DATA: usize = 6;
+const O_VALID: usize = 7;
+const O_QC: usize = 8;
+const O_FINE: usize = 9;
+const O_TURNS: usize = 10;
+const O_ERROR: usize = 11;
+const O_WARNING: usize = 12;
 
 /// One decoded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -138,7 +163,7 @@ impl SimResult {
 /// The closed loop.
 pub struct System {
     d: Derived,
-    top: Box<TopRtl>,
+    top: Dut,
     adc: Ltc1407a,
     amp: Ltc6912,
     truth: EncoderModel,
@@ -160,7 +185,17 @@ impl System {
     /// A system for the derived parameters and an encoder (the voltages go through the
     /// LTC6912-1 gains configured for the preamp).
     pub fn new(d: &Derived, encoder: EncoderModel) -> crate::error::Result<System> {
-        let top = Box::new(TopRtl::new(d)?);
+        Self::on(d, encoder, EngineKind::RustHdl)
+    }
+
+    /// [`new`](Self::new) with the top simulated by `engine` (the compiled engine builds
+    /// it with Yosys and rustc, or loads it from its cache).
+    pub fn on(
+        d: &Derived,
+        encoder: EncoderModel,
+        engine: EngineKind,
+    ) -> crate::error::Result<System> {
+        let top = Dut::new(d, engine)?;
         let pre = d
             .preamp
             .as_ref()
@@ -234,14 +269,19 @@ impl System {
         self.ssi = Some(m);
     }
 
-    /// The design (to read its outputs after a cycle).
-    pub fn top(&self) -> &TopRtl {
-        &self.top
+    /// The rust-hdl design (to read its outputs after a cycle); None on the compiled engine.
+    pub fn top(&self) -> Option<&TopRtl> {
+        self.top.rtl()
+    }
+
+    /// The design's outputs in co-simulation order (either engine).
+    pub fn sample(&self) -> Vec<u64> {
+        self.top.sample()
     }
 
     /// Connects the design; call once.
     pub fn start(&mut self) -> Result<(), NoConvergence> {
-        prepare(self.top.as_mut())
+        self.top.start()
     }
 
     /// Simulates `cycles` clock cycles.
@@ -252,8 +292,8 @@ impl System {
         for _ in 0..cycles {
             // Pins are read before the edge: the chip models see the levels the design
             // drove during the previous cycle, as real chips do.
-            let conv = self.top.adc_conv.val();
-            let sck = self.top.adc_sck.val();
+            let conv = self.top.get(O_CONV) != 0;
+            let sck = self.top.get(O_SCK) != 0;
             let n_conv = self.adc.conversions().len();
             let miso = self.adc.step(conv, sck);
             if self.adc.conversions().len() > n_conv {
@@ -261,19 +301,19 @@ impl System {
                     .insert(self.cycle, self.cycle as f64 / self.clock_hz);
             }
             self.amp.step(
-                self.top.amp_cs.val(),
+                self.top.get(O_AMP_CS) != 0,
                 sck,
-                self.top.amp_mosi.val(),
-                self.top.amp_shdn.val(),
+                self.top.get(O_AMP_MOSI) != 0,
+                self.top.get(O_AMP_SHDN) != 0,
             );
             let rst = self.cycle < self.rst_cycles;
-            self.top.rst.next = rst;
-            self.top.adc_miso.next = miso;
+            self.top.set(I_RST, rst);
+            self.top.set(I_MISO, miso);
             let ma = match self.ma.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
             };
-            self.top.biss_ma.next = ma;
+            self.top.set(I_MA, ma);
             // Comparators on the noise-free tracks: A = cos > 0, B = sin > 0 (forward = the
             // angle increasing), Z = index in the first quadrant of every turn.
             let th = self
@@ -288,21 +328,21 @@ impl System {
             }
             let turn = std::f64::consts::TAU * self.d.quadrants_per_turn as f64 / 4.0;
             let qz = th.rem_euclid(turn) < std::f64::consts::FRAC_PI_2;
-            self.top.qep_a.next = qa;
-            self.top.qep_b.next = qb;
-            self.top.qep_z.next = qz;
+            self.top.set(I_QEP_A, qa);
+            self.top.set(I_QEP_B, qb);
+            self.top.set(I_QEP_Z, qz);
             let ssi_clk = match self.ssi.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
             };
-            self.top.ssi_clk.next = ssi_clk;
-            self.top.enc_sck.next = false;
-            self.top.enc_cs_n.next = true;
-            tick(self.top.as_mut())?;
+            self.top.set(I_SSI_CLK, ssi_clk);
+            self.top.set(I_ENC_SCK, false);
+            self.top.set(I_ENC_CS_N, true);
+            self.top.tick()?;
             // The inputs just applied, read back by name in the port table's order.
             let row = (self.record_inputs || self.trace.is_some()).then(|| self.top.input_row());
             if let (Some(t), Some(r)) = (self.trace.as_mut(), row.as_ref()) {
-                let outs = crate::cosim::CosimBlock::sample(self.top.as_ref());
+                let outs = self.top.sample();
                 if let Err(e) = t.cycle(r, &outs) {
                     self.trace_error = Some(e);
                     self.trace = None;
@@ -314,24 +354,22 @@ impl System {
                 }
             }
             if let Some(m) = self.ma.as_mut() {
-                m.push_slo(self.top.biss_slo.val());
+                m.push_slo(self.top.get(O_SLO) != 0);
             }
             if let Some(m) = self.ssi.as_mut() {
-                m.push_slo(self.top.ssi_data.val());
+                m.push_slo(self.top.get(O_SSI_DATA) != 0);
             }
             if self.record_inputs {
-                self.result
-                    .outputs
-                    .push(crate::cosim::CosimBlock::sample(self.top.as_ref()));
+                self.result.outputs.push(self.top.sample());
             }
             self.cycle += 1;
-            if self.top.par_valid.val() {
-                let qc = self.top.par_qc.val().to_u64();
-                let pos = (qc << fine) | self.top.par_fine.val().to_u64();
+            if self.top.get(O_VALID) != 0 {
+                let qc = self.top.get(O_QC);
+                let pos = (qc << fine) | self.top.get(O_FINE);
                 let turns = if self.d.multiturn_bits == 0 {
                     0
                 } else {
-                    sext(self.top.par_turns.val().to_u64(), self.d.multiturn_bits)
+                    sext(self.top.get(O_TURNS), self.d.multiturn_bits)
                 };
                 let conv_cycle = self.cycle.saturating_sub(self.latency + 1);
                 let t = match self.conv_times.remove(&conv_cycle) {
@@ -346,8 +384,8 @@ impl System {
                     conv_cycle,
                     position: pos,
                     turns,
-                    error: self.top.par_error.val(),
-                    warning: self.top.par_warning.val(),
+                    error: self.top.get(O_ERROR) != 0,
+                    warning: self.top.get(O_WARNING) != 0,
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     truth: self.truth.electrical_angle(t) * lsb_per_rad,
                 });

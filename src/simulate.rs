@@ -30,6 +30,9 @@ pub struct SimOptions {
     pub seed: u64,
     /// Record every cycle's pins (for a VCD).
     pub record: bool,
+    /// Engine of the sinewave top: rust-hdl (the reference) or the compiled engine
+    /// (`crate::engine`; the capacitive top always runs on rust-hdl).
+    pub engine: crate::sim::dut::EngineKind,
     /// Decoded samples skipped before the statistics (settling: the monitor reports a
     /// loss of signal until its window of good samples has passed after reset).
     pub skip: usize,
@@ -48,6 +51,7 @@ impl Default for SimOptions {
             third_harmonic: 0.0,
             seed: 1,
             record: false,
+            engine: Default::default(),
             skip: 12,
         }
     }
@@ -274,7 +278,7 @@ pub fn run_traced(
 ) -> Result<SimReport> {
     o.validate(false)?;
     let d = &loaded.derived;
-    let mut sys = System::new(d, encoder(loaded, o))?;
+    let mut sys = System::on(d, encoder(loaded, o), o.engine)?;
     let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
         block: "top".into(),
         message: e.to_string(),
@@ -283,7 +287,7 @@ pub fn run_traced(
         sys.record_inputs();
     }
     if let Some(out) = vcd {
-        let t = top_trace(loaded, out, sys.top())?;
+        let t = top_trace(loaded, out, &crate::blocks::top::hdl::TopRtl::new(d)?)?;
         sys.trace_to(t);
     }
     sys.start().map_err(settle)?;

@@ -46,7 +46,7 @@ fn ssi_master_reads_the_position_through_the_top() {
     let mut words = vec![];
     for _ in 0..(100e-6 * clock) as u64 {
         s.run(1).expect("runs");
-        let t = s.top();
+        let t = s.top().expect("rust-hdl top");
         words.push(((t.par_qc.val().to_u64() << d.fine_bits) | t.par_fine.val().to_u64()) >> drop);
     }
     let frames = master.borrow().frames().to_vec();

@@ -73,7 +73,7 @@ fn biss_frames_end_to_end() {
     let cycles = (150e-6 * clock) as u64;
     for _ in 0..cycles {
         s.run(1).expect("runs");
-        let t = s.top();
+        let t = s.top().expect("rust-hdl top");
         let pos = (t.par_qc.val().to_u64() << d.fine_bits) | t.par_fine.val().to_u64();
         words.push((pos >> drop, t.par_error.val()));
     }

@@ -133,7 +133,7 @@ pub fn replay_top_in_simulators(
     let mut rust = vec![];
     for _ in 0..cycles {
         s.run(1).expect("runs");
-        rust.push(s.top().sample());
+        rust.push(s.sample());
     }
     let r = s.finish();
     assert!(r.records.len() > 50, "{} records", r.records.len());
