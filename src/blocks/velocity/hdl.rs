@@ -59,10 +59,9 @@ pub struct Layout {
     pub theta_width: u32,
     /// Multiplies per update m.
     pub mults: u32,
-    /// Rounding shift of the multiplies but lsq's last (C, or 0 for lsq).
-    pub shift0: u32,
-    /// Rounding shift of lsq's last multiply (B; C for the other methods).
-    pub shift1: u32,
+    /// Rounding shift of every multiply: C, or B for lsq (whose integer taps are stored
+    /// as n_i 2^B, so that n_i r_i comes out exact with the reciprocal's shift).
+    pub shift: u32,
     /// The coefficient ROM (kalman: the gain table; else one word per multiply).
     pub coefs: Vec<i64>,
 }
@@ -72,19 +71,11 @@ fn unsigned_bits(v: u128) -> u32 {
 }
 
 impl Layout {
-    /// The datapath of `p`; an error if a word would not fit the 64-bit containers.
+    /// The datapath of `p`; an error if a word would not fit the 64-bit containers (checked
+    /// by [`VelocityParams::new`] too, so only hand-made parameters fail here).
     pub fn new(p: &VelocityParams) -> Result<Layout> {
         let l = Layout::build(p);
-        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "datapath words of {} / {} / {} / {} bits exceed 64: lower frac_bits or \
-                     the maximum speed",
-                    l.a_width, l.acc_width, l.theta_width, l.b_width
-                ),
-            ));
-        }
+        l.check()?;
         if p.latency() >= p.period_clocks {
             return Err(Error::block_params(
                 "velocity",
@@ -96,6 +87,22 @@ impl Layout {
             ));
         }
         Ok(l)
+    }
+
+    /// An error if a word would not fit the 64-bit containers.
+    pub(super) fn check(&self) -> Result<()> {
+        let l = self;
+        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
+            return Err(Error::block_params(
+                "velocity",
+                format!(
+                    "internal words of {} / {} / {} / {} bits (operand, accumulator, Theta, \
+                     coefficient) exceed 64: lower frac_bits or the maximum speed",
+                    l.a_width, l.acc_width, l.theta_width, l.b_width
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Booth digits n of one multiply ([`VelMul::steps`]): the multiplier runs n + 1
@@ -110,33 +117,41 @@ impl Layout {
         let ws = p.state_width;
         let tw = wp + p.state_frac();
         let c = COEF_FRAC;
-        let (a_width, acc_width, mults, shift0, shift1, coefs) = match &p.consts {
-            MethodConsts::DiffLpf { a } => (ws, ws, 1, c, c, vec![*a]),
-            MethodConsts::Kalman { gains } => (ws, ws, 1, c, c, gains.clone()),
-            MethodConsts::Tracking { alpha, beta } => (tw, ws, 2, c, c, vec![*beta, *alpha]),
+        let wide = |v: &[i64]| v.iter().map(|&k| k as i128).collect::<Vec<i128>>();
+        let (a_width, acc_width, mults, shift, coefs) = match &p.consts {
+            MethodConsts::DiffLpf { a } => (ws, ws, 1, c, vec![*a as i128]),
+            MethodConsts::Kalman { gains } => (ws, ws, 1, c, wide(gains)),
+            MethodConsts::Tracking { alpha, beta } => {
+                (tw, ws, 2, c, vec![*beta as i128, *alpha as i128])
+            }
             MethodConsts::Lsq {
                 n, recip, shift, ..
             } => {
                 let pw = shift + 1;
-                let mut k: Vec<i64> = n[..n.len() - 1].to_vec();
-                k.push(*recip);
-                (wp.max(pw), ws.max(pw), n.len() as u32, 0, *shift, k)
+                let b = (*shift).min(64);
+                let mut k: Vec<i128> = n[..n.len() - 1]
+                    .iter()
+                    .map(|&v| (v as i128).saturating_mul(1i128 << b))
+                    .collect();
+                k.push(*recip as i128);
+                (wp.max(pw), ws.max(pw), n.len() as u32, *shift, k)
             }
         };
         let b_width = coefs
             .iter()
-            .map(|&k| unsigned_bits(k.unsigned_abs() as u128) + 1)
+            .map(|&k| unsigned_bits(k.unsigned_abs()) + 1)
             .max()
             .unwrap_or(2)
             .max(2);
+        // Stored as i64: exact whenever b_width <= 64 (`check`).
+        let coefs = coefs.iter().map(|&k| k as i64).collect();
         Layout {
             a_width,
             b_width,
             acc_width,
             theta_width: tw,
             mults,
-            shift0,
-            shift1,
+            shift,
             coefs,
         }
     }
@@ -191,6 +206,10 @@ pub struct Velocity {
     theta: DFF<Bits<64>>,
     acc: DFF<Bits<64>>,
     k: DFF<Bits<32>>,
+    /// Tracking: Theta's addend in `Prep` (theta 2^(S+G) at the first update, else W).
+    tx: DFF<Bits<64>>,
+    /// The state is `Prep` (registered with it).
+    inprep: DFF<Bit>,
     /// Clocks waited in `Prod` for the multiplier.
     mwait: DFF<Bits<32>>,
     opa: DFF<Bits<64>>,
@@ -204,9 +223,8 @@ pub struct Velocity {
     jl: Signal<Local, Bit>,
     delta: Signal<Local, Bits<64>>,
     sdelta: Signal<Local, Bits<64>>,
-    /// Tracking: what `Theta` adds this clock (theta 2^(S+G) at the first update, W, or
-    /// q(alpha e)).
-    tx: Signal<Local, Bits<64>>,
+    /// Tracking: what `Theta` adds this clock: `tx` in `Prep`, else the product.
+    tadd: Signal<Local, Bits<64>>,
     meas: Signal<Local, Bits<64>>,
     r: Signal<Local, Bits<64>>,
     rext: Signal<Local, Bits<64>>,
@@ -292,7 +310,7 @@ impl Velocity {
             in_valid: Default::default(),
             out_velocity: Default::default(),
             out_velocity_valid: Default::default(),
-            mul: VelMul::new(l.a_width, l.b_width, aw, l.shift0, l.shift1),
+            mul: VelMul::new(l.a_width, l.b_width, aw, l.shift),
             rom: VelCoefRom::new(&l.coefs, l.b_width),
             init: Default::default(),
             pos: Default::default(),
@@ -309,6 +327,8 @@ impl Velocity {
             theta: Default::default(),
             acc: Default::default(),
             k: Default::default(),
+            tx: Default::default(),
+            inprep: Default::default(),
             mwait: Default::default(),
             opa: Default::default(),
             out_reg: Default::default(),
@@ -321,7 +341,7 @@ impl Velocity {
             jl: Default::default(),
             delta: Default::default(),
             sdelta: Default::default(),
-            tx: Default::default(),
+            tadd: Default::default(),
             meas: Default::default(),
             r: Default::default(),
             rext: Default::default(),
@@ -371,7 +391,7 @@ impl Logic for Velocity {
     fn update(&mut self) {
         dff_setup!(
             self, clk, init, pos, cnt, tickr, state, j, jlr, primed, first, snap, d, theta, acc, k,
-            mwait, opa, out_reg, valid_reg
+            tx, inprep, mwait, opa, out_reg, valid_reg
         );
         for i in 0..self.hist.len() {
             self.hist[i].clock.next = self.clk.val();
@@ -383,7 +403,6 @@ impl Logic for Velocity {
         self.mul.clk.next = self.clk.val();
         self.mul.a.next = self.opa.q.val();
         self.mul.b.next = self.rom.coef.val();
-        self.mul.sel.next = self.is_lsq.val() & self.jl.val();
         self.mul.start.next = self.state.q.val() == VelState::Op;
         // One assignment (no default-then-override): a momentary value on a port between
         // two modules' combinational blocks makes Icarus loop forever at one time step.
@@ -430,16 +449,14 @@ impl Logic for Velocity {
         if (self.delta.val() & self.wpsign.val()).any() {
             self.sdelta.next = (self.delta.val() | self.wpext.val()) & self.smask.val();
         }
-        // tracking: theta 2^(S+G) modulo 2^(Wp+S+G); Theta's addend (one adder, Theta = 0
-        // before the first update: reset clears it).
+        // tracking: theta 2^(S+G) modulo 2^(Wp+S+G); Theta's one adder adds registers
+        // only: `tx` in `Prep`, the product in `Acc`.
         self.meas.next = (self.snap.q.val() << self.sg.val()) & self.twmask.val();
-        self.tx.next = self.mul.p.val();
-        if self.state.q.val() == VelState::Idle {
-            self.tx.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
+        self.tadd.next = self.mul.p.val();
+        if self.inprep.q.val() {
+            self.tadd.next = self.tx.q.val();
         }
-        if self.state.q.val() == VelState::Op {
-            self.tx.next = self.acc.q.val();
-        }
+        self.inprep.d.next = false;
         // lsq: r = x_i - theta (Wp bits) and P, each sign-extended/cut to operand a's width.
         self.r.next = (self.hist[0].q.val() - self.snap.q.val()) & self.wpmask.val();
         self.rext.next = self.r.val();
@@ -461,6 +478,13 @@ impl Logic for Velocity {
                 if self.tick.val() & self.init.q.val() {
                     self.snap.d.next = self.pos.q.val();
                     self.state.d.next = VelState::Prep;
+                    self.inprep.d.next = true;
+                    // Theta = 0 before the first update (reset clears it): adding
+                    // theta 2^(S+G) loads it.
+                    self.tx.d.next = self.acc.q.val();
+                    if !self.primed.q.val() {
+                        self.tx.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
+                    }
                     self.first.d.next = !self.primed.q.val();
                     if !self.is_lsq.val() & !self.is_track.val() {
                         self.d.d.next = self.sdelta.val();
@@ -474,7 +498,6 @@ impl Logic for Velocity {
                         for i in 0..self.hist.len() {
                             self.hist[i].d.next = self.pos.q.val();
                         }
-                        self.theta.d.next = (self.theta.q.val() + self.tx.val()) & self.twmask.val();
                     }
                 }
             }
@@ -491,7 +514,13 @@ impl Logic for Velocity {
                     }
                     self.acc.d.next = self.zero64.val();
                 } else if self.is_track.val() {
+                    // e (0 at the first update); Theta += W (or the load), + q(beta e) and
+                    // q(alpha e) in the two `Acc`.
                     self.d.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
+                    if self.first.q.val() {
+                        self.d.d.next = self.zero64.val();
+                    }
+                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
                 } else {
                     self.d.d.next =
                         ((self.d.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
@@ -500,10 +529,6 @@ impl Logic for Velocity {
             }
             VelState::Op => {
                 self.opa.d.next = self.d.q.val();
-                if self.is_track.val() & self.jl.val() {
-                    // Theta += W (the new W of the first multiply); + q(alpha e) in `Acc`.
-                    self.theta.d.next = (self.theta.q.val() + self.tx.val()) & self.twmask.val();
-                }
                 if self.is_lsq.val() {
                     // Rotate the history: x_1 comes back to the front after M multiplies.
                     self.opa.d.next = self.rext.val();
@@ -532,9 +557,11 @@ impl Logic for Velocity {
             }
             VelState::Acc => {
                 self.acc.d.next = (self.acc.q.val() + self.mul.p.val()) & self.accmask.val();
-                if self.is_track.val() & self.jl.val() {
-                    self.acc.d.next = self.acc.q.val();
-                    self.theta.d.next = (self.theta.q.val() + self.tx.val()) & self.twmask.val();
+                if self.is_track.val() {
+                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
+                    if self.jl.val() {
+                        self.acc.d.next = self.acc.q.val();
+                    }
                 }
                 if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
                     self.k.d.next = self.k.q.val() + self.one.val();
@@ -571,6 +598,8 @@ impl Logic for Velocity {
             self.theta.d.next = self.zero64.val();
             self.acc.d.next = self.zero64.val();
             self.k.d.next = self.zero.val();
+            self.tx.d.next = self.zero64.val();
+            self.inprep.d.next = false;
             self.mwait.d.next = self.zero.val();
             self.opa.d.next = self.zero64.val();
             self.out_reg.d.next = self.zero64.val();

@@ -437,6 +437,7 @@ impl VelocityParams {
             max_output: max_out,
             consts,
         };
+        hdl::Layout::build(&p).check()?;
         if p.latency() >= p.period_clocks {
             return Err(invalid(format!(
                 "update period round({} / {}) = {d} clocks is not longer than an update \

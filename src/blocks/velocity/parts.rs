@@ -6,19 +6,19 @@ use crate::blocks::{mask, sext};
 use rust_hdl::prelude::*;
 
 /// The block's only multiplier: p = q(a b / 2^k), round half up (q of the module docs of
-/// `velocity`), with k = `shift0` or `shift1` as `sel` says; a and b are two's complement
+/// `velocity`), with a fixed rounding shift k = `shift`; a and b are two's complement
 /// in their low `a_width` / `b_width` bits, p the result's low `out_width` bits (upper bits
 /// zero). Sequential, radix-4 Booth, built from adds only (no `*`, so no hard multiplier is
 /// inferred, and every register-to-register path holds one carry chain):
 ///
 /// ```text
-///  start: win := {sext(b, 2n), 0}   x := 0, c := 0   R := 2^(k+1) 2^(2n)   (k = sel ? k1 : k0)
+///  start: win := {sext(b, 2n), 0}   x := 0, c := 0   R := 2^(k+1) 2^(2n)
 ///  every other clock (n = ceil(Wb / 2) digits, digit t = -2 w2 + w1 + w0 of win[2:0]):
 ///   win[2:0] ─► one, two, neg ─┐
 ///   a ── sext to H bits ───────┴► [x := (two ? 2a : one ? a : 0) ^ neg..neg]  [c := neg]
 ///   R = {hi (H bits), lo (2n bits)}:  hi + x + c  (one carry chain, c its carry-in)
 ///   [R := {hi + x + c, lo} >>> 2]     [win := win >>> 2]
-///  p = (R >>> k) low Wo bits (combinational; sel chooses k)
+///  p = (R >>> k) low Wo bits (wiring: R's bits from k up)
 /// ```
 /// The product of digit t enters R at edge start + 2 + t and is shifted n - t more times,
 /// so it lands at 4^t; the start value, shifted n + 1 times, lands at 2^(k-1) (the rounding
@@ -36,9 +36,6 @@ pub struct VelMul {
     /// Operand b (the coefficient), `b_width`-bit two's complement in the low bits; read
     /// on the `start` clock only.
     pub b: Signal<In, Bits<64>>,
-    /// Shift select: `shift1` when high, `shift0` when low; read on the `start` clock and
-    /// when p is taken.
-    pub sel: Signal<In, Bit>,
     /// Start a multiply this clock.
     pub start: Signal<In, Bit>,
     /// q(a b / 2^k), `out_width`-bit two's complement in the low bits, in the clock after
@@ -47,8 +44,7 @@ pub struct VelMul {
     _a_width: u32,
     _b_width: u32,
     _out_width: u32,
-    _shift0: u32,
-    _shift1: u32,
+    _shift: u32,
     /// The registers as in the Verilog body: R's high part (H bits) and low part (2n bits),
     /// the Booth window (2n + 1 bits), x (H bits) and c.
     _hi: u128,
@@ -74,21 +70,19 @@ fn sext128(v: u128, w: u32) -> i128 {
 }
 
 impl VelMul {
-    /// An `a_width` x `b_width` signed multiplier (each 2..=64 bits) with rounding shifts
-    /// `shift0` / `shift1` (below `a_width + b_width`) and an `out_width`-bit result.
-    pub fn new(a_width: u32, b_width: u32, out_width: u32, shift0: u32, shift1: u32) -> Self {
+    /// An `a_width` x `b_width` signed multiplier (each 2..=64 bits) with the rounding
+    /// shift `shift` (below `a_width + b_width`) and an `out_width`-bit result.
+    pub fn new(a_width: u32, b_width: u32, out_width: u32, shift: u32) -> Self {
         VelMul {
             clk: Default::default(),
             a: Default::default(),
             b: Default::default(),
-            sel: Default::default(),
             start: Default::default(),
             p: Default::default(),
             _a_width: a_width.max(2),
             _b_width: b_width.max(2),
             _out_width: out_width,
-            _shift0: shift0,
-            _shift1: shift1,
+            _shift: shift,
             _hi: 0,
             _lo: 0,
             _win: 0,
@@ -109,36 +103,35 @@ impl VelMul {
 
     /// Width H of R's high part, the adder and x.
     fn hi_width(&self) -> u32 {
-        self._a_width.max(self._shift0.max(self._shift1) + 1) + 3
+        self._a_width.max(self._shift + 1) + 3
     }
 
-    /// R's start value's high part for a rounding shift k: 2^(k+1) (0 for k = 0).
-    fn start_hi(k: u32) -> u128 {
-        if k == 0 {
+    /// R's start value's high part: 2^(k+1) (0 for k = 0).
+    fn start_hi(&self) -> u128 {
+        if self._shift == 0 {
             0
         } else {
-            1u128 << (k + 1)
+            1u128 << (self._shift + 1)
         }
     }
 
     /// The exact result for raw operand bits (low `out_width` bits): what p shows once a
     /// multiply has run (the reference of the tests).
     #[cfg(test)]
-    fn compute(&self, a: u64, b: u64, sel: bool) -> u64 {
+    fn compute(&self, a: u64, b: u64) -> u64 {
         let x = sext(a, self._a_width) as i128 * sext(b, self._b_width) as i128;
-        let k = if sel { self._shift1 } else { self._shift0 };
-        (super::qround(x, k) as u64) & mask(self._out_width)
+        (super::qround(x, self._shift) as u64) & mask(self._out_width)
     }
 
-    /// One clock edge of the registers (`start`, `a`, `b`, `sel`: the inputs before it).
-    fn edge(&mut self, start: bool, a: u64, b: u64, sel: bool) {
+    /// One clock edge of the registers (`start`, `a`, `b`: the inputs before it).
+    fn edge(&mut self, start: bool, a: u64, b: u64) {
         let (h, n2) = (self.hi_width(), 2 * self.n());
         if start {
             let bs = sext(b, self._b_width) as i128 as u128;
             self._win = (bs << 1) & mask128(n2 + 1);
             self._x = 0;
             self._c = false;
-            self._hi = Self::start_hi(if sel { self._shift1 } else { self._shift0 });
+            self._hi = self.start_hi();
             self._lo = 0;
             return;
         }
@@ -162,8 +155,8 @@ impl VelMul {
     }
 
     /// p from the registers: bits k .. k + out_width of R (sign-extended).
-    fn result(&self, sel: bool) -> u64 {
-        let k = if sel { self._shift1 } else { self._shift0 };
+    fn result(&self) -> u64 {
+        let k = self._shift;
         let n2 = 2 * self.n();
         let hi = sext128(self._hi, self.hi_width());
         let v = if k >= n2 {
@@ -179,16 +172,16 @@ impl Logic for VelMul {
     fn update(&mut self) {
         if self.clk.pos_edge() {
             let (a, b) = (self.a.val().to_u64(), self.b.val().to_u64());
-            self.edge(self.start.val(), a, b, self.sel.val());
+            self.edge(self.start.val(), a, b);
         }
-        self.p.next = Bits::<64>::from(self.result(self.sel.val()));
+        self.p.next = Bits::<64>::from(self.result());
     }
     fn connect(&mut self) {
         self.p.connect();
     }
     fn hdl(&self) -> Verilog {
         let (aw, bw, ow) = (self._a_width, self._b_width, self._out_width);
-        let (k0, k1) = (self._shift0, self._shift1);
+        let k = self._shift;
         let h = self.hi_width();
         let n2 = 2 * self.n();
         let w = h + n2;
@@ -199,16 +192,7 @@ impl Logic for VelMul {
         } else {
             format!("b[{}:0]", bw - 1)
         };
-        let start = |k: u32| {
-            format!(
-                "{w}'h{:x}",
-                if k == 0 {
-                    0u128
-                } else {
-                    Self::start_hi(k)
-                }
-            ) + &format!(" << {n2}")
-        };
+        let start = format!("{w}'h{:x} << {n2}", self.start_hi());
         let pad = if ow >= 64 {
             format!("m_y[{}:0]", ow - 1)
         } else {
@@ -231,7 +215,7 @@ always @(posedge clk) begin
     m_win <= {{{bext}, 1'b0}};
     m_x <= {h}'d0;
     m_c <= 1'b0;
-    m_r <= sel ? ({s1}) : ({s0});
+    m_r <= {start};
   end else begin
     m_win <= {{m_win[{n2}], m_win[{n2}], m_win[{n2}:2]}};
     m_x <= m_mag ^ {{{h}{{m_win[2]}}}};
@@ -248,9 +232,7 @@ initial begin
 end
 `endif
 wire signed [{wm}:0] m_rs = m_r;
-wire signed [{xm}:0] m_r0 = m_rs >>> {k0};
-wire signed [{xm}:0] m_r1 = m_rs >>> {k1};
-wire signed [{xm}:0] m_y = sel ? m_r1 : m_r0;
+wire signed [{xm}:0] m_y = m_rs >>> {k};
 always @(*) p = {pad};
 ",
             wm = w - 1,
@@ -260,8 +242,6 @@ always @(*) p = {pad};
             n21 = n2 + 1,
             ah = h - aw,
             am = aw - 1,
-            s0 = start(k0),
-            s1 = start(k1),
             xm = xw - 1,
         ))
     }
@@ -329,28 +309,28 @@ mod tests {
     use crate::blocks::mask;
 
     /// Runs one multiply on the register model: start, then n + 1 edges with `a` held.
-    fn run(m: &mut VelMul, a: u64, b: u64, sel: bool) -> u64 {
-        m.edge(true, a, b, sel);
+    fn run(m: &mut VelMul, a: u64, b: u64) -> u64 {
+        m.edge(true, a, b);
         for _ in 0..=VelMul::steps(m._b_width) {
             // b is read on the start clock only: anything else here must not matter.
-            m.edge(false, a, !b, sel);
+            m.edge(false, a, !b);
         }
-        m.result(sel)
+        m.result()
     }
 
     #[test]
     fn booth_multiplier_is_the_rounded_product() {
-        // (Wa, Wb, Wout, k0, k1): the four methods' shapes at the defaults (lsq: k0 = 0 for
-        // the integer taps, k1 = B), odd and even Wb, the widest operands, a result wider
-        // than R's bits above k.
+        // (Wa, Wb, Wout, k): the four methods' shapes at the defaults (lsq: k = B), odd and
+        // even Wb, the widest operands, no shift, a result wider than R's bits above k.
         let shapes = [
-            (36, 18, 36, 18, 18),
-            (36, 19, 36, 18, 18),
-            (28, 33, 33, 0, 27),
-            (41, 17, 41, 18, 18),
-            (64, 64, 64, 0, 63),
-            (2, 2, 8, 1, 0),
-            (20, 5, 62, 3, 3),
+            (36, 18, 36, 18),
+            (36, 19, 36, 18),
+            (28, 33, 33, 27),
+            (41, 17, 41, 18),
+            (64, 64, 64, 63),
+            (64, 64, 64, 0),
+            (2, 2, 8, 1),
+            (20, 5, 62, 3),
         ];
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut rnd = || {
@@ -359,8 +339,8 @@ mod tests {
             seed ^= seed << 17;
             seed
         };
-        for (aw, bw, ow, k0, k1) in shapes {
-            let mut m = VelMul::new(aw, bw, ow, k0, k1);
+        for (aw, bw, ow, k) in shapes {
+            let mut m = VelMul::new(aw, bw, ow, k);
             let edges = |w: u32| [0, 1, mask(w), mask(w) >> 1, 1 << (w - 1), (1 << (w - 1)) + 1];
             let mut cases = vec![];
             for a in edges(aw) {
@@ -371,11 +351,10 @@ mod tests {
             for _ in 0..2000 {
                 cases.push((rnd() & mask(aw), rnd() & mask(bw)));
             }
-            for (i, &(a, b)) in cases.iter().enumerate() {
-                let sel = i % 3 == 1;
-                let got = run(&mut m, a, b, sel);
-                let want = m.compute(a, b, sel);
-                assert_eq!(got, want, "{aw}x{bw} k {k0}/{k1}: a {a:#x} b {b:#x} sel {sel}");
+            for &(a, b) in &cases {
+                let got = run(&mut m, a, b);
+                let want = m.compute(a, b);
+                assert_eq!(got, want, "{aw}x{bw} k {k}: a {a:#x} b {b:#x}");
             }
         }
     }
