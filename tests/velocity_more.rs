@@ -142,11 +142,7 @@ fn most_carry_chains(json: &str, top: &str) -> PathLevels {
         .expect("a register-to-register path")
 }
 
-/// Every method at the default constants for both families, except lsq on cycloneive:
-/// Yosys 0.23 `synth_intel` builds the multiplier from logic cells there, and on the lsq
-/// datapath its ABC step ran for over 9 minutes without finishing (at the default 28 x
-/// 33-bit product and at a 21 x 26-bit one), while diff_lpf and kalman finish in seconds;
-/// lsq is synthesized for xc3sa only (docs/velocity.md).
+/// Every method at the default constants for both families.
 #[test]
 fn synthesizes_for_both_families() {
     let mut lines = vec![];
@@ -172,12 +168,9 @@ fn synthesizes_for_both_families() {
             worst.from,
             worst.to
         );
-        let mut fams = vec![("xc3sa", x)];
-        if m != Method::Lsq {
-            let c = synthesize(&export(&p, &name), &name, Family::CycloneIve, &dir)
-                .expect("cycloneive synthesis");
-            fams.push(("cycloneive", c));
-        }
+        let c = synthesize(&export(&p, &name), &name, Family::CycloneIve, &dir)
+            .expect("cycloneive synthesis");
+        let fams = [("xc3sa", x), ("cycloneive", c)];
         lines.push(format!(
             "{m}: {}",
             fams.iter()

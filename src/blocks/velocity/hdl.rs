@@ -9,24 +9,31 @@
 //! position changes by at most `max_step` per update period (the contract the widths are
 //! derived from); beyond it the RTL's words wrap where the model's i64/i128 do not.
 //!
-//! Schedule of one update (E0 = the divider's tick edge; one multiply = 3 + L clocks:
-//! operand register, L multiplier pipeline stages ([`VelMul::stages`], 3 or 4 at the
-//! defaults) and the product register in `Prod`, accumulate; latency (3 + L) m + 2 =
-//! [`VelocityParams::latency`]):
+//! Schedule of one update (E0 = the divider's tick edge; one multiply = n + 3 clocks:
+//! operand register and multiplier start in `Op`, n + 1 multiplier clocks in `Prod` (x
+//! cleared, then n radix-4 Booth digits: [`VelMul`]), accumulate; latency (n + 3) m + 2 =
+//! [`VelocityParams::latency`], n = [`Layout::mul_steps`]):
 //! ```text
-//! edge   E0     E1     E2   E3 .. E(L+3)  E(L+4)  ...  E((3+L)m+1)  E((3+L)m+2)
-//! state  Idle > Prep > Op > Prod x (L+1) > Acc  > Op  ...  Acc   >    Out > Idle
-//! does   snap   diffs  opa  pipeline,     acc             acc        out_velocity,
-//!        (prime)       opb  prod = mul                               strobe
-//! diff_lpf, kalman (m = 1): Prep d = U - X; Acc X += p.          Out: y = q(X / 2^G)
-//! tracking (m = 2): Prep e; Acc 1: W += q(beta e); Acc 2: Theta += W + q(alpha e).
-//! lsq (m = M): Acc i < M: P += n_i r_i (r_i from the rotating history);
-//!              Acc M: P := q(P R / 2^B).
+//! edge   E0     E1     E2    E3 .. E(n+3)   E(n+4)  ...  E((n+3)m+1)  E((n+3)m+2)
+//! state  Idle > Prep > Op  > Prod x (n+1) > Acc   > Op ...  Acc    >  Out > Idle
+//! does   snap   diffs  opa,  Booth digits   acc += p         acc      out_velocity,
+//!        (prime)       start                                          strobe
+//! diff_lpf, kalman (m = 1): E0 d = Delta; Prep d = U - X; Acc X += p.  Out: y = q(X / 2^G)
+//! tracking (m = 2): E0 tx = W (theta 2^(S+G) at the first update); Prep e, Theta += tx;
+//!   Acc 1: W += p = q(beta e), Theta += p (Theta + W_new); Acc 2: Theta += p = q(alpha e).
+//! lsq (m = M): Acc i < M: P += n_i r_i (r_i from the rotating history; tap n_i 2^B);
+//!   Op M: a = P, P := 0; Acc M: P += q(P R / 2^B).
 //! ```
+//! Timing: every register-to-register path holds one carry chain at most (no adder feeds
+//! another within a clock): the front end steps the bits above F+2 by a select of pos,
+//! pos + 2^(F+2) and pos - 2^(F+2); Delta is taken at the tick, U - X a clock later;
+//! Theta's one adder adds a register (`tx` or the multiplier's R); the tick and "last
+//! multiply" are registered; the multiplier's adder adds registers only.
+pub use super::layout::Layout;
 use super::parts::{VelCoefRom, VelMul};
-use super::{MethodConsts, VelocityParams, COEF_FRAC};
+use super::{MethodConsts, VelocityParams};
 use crate::blocks::mask;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use rust_hdl::prelude::*;
 
 /// Where the update is in its schedule.
@@ -44,117 +51,6 @@ pub enum VelState {
     Acc,
     /// Output register loaded, strobe raised.
     Out,
-}
-
-/// Derived widths and constants of the datapath (all from [`VelocityParams`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Layout {
-    /// Width of the multiplier's operand a (signed).
-    pub a_width: u32,
-    /// Width of the coefficients (signed).
-    pub b_width: u32,
-    /// Width of the accumulator X / W / P and of the multiplier's result (signed).
-    pub acc_width: u32,
-    /// Width of tracking's predicted position Theta (Wp + S + G).
-    pub theta_width: u32,
-    /// Multiplies per update m.
-    pub mults: u32,
-    /// Rounding shift of every multiply: C, or B for lsq (whose integer taps are stored
-    /// as n_i 2^B, so that n_i r_i comes out exact with the reciprocal's shift).
-    pub shift: u32,
-    /// The coefficient ROM (kalman: the gain table; else one word per multiply).
-    pub coefs: Vec<i64>,
-}
-
-fn unsigned_bits(v: u128) -> u32 {
-    128 - v.leading_zeros()
-}
-
-impl Layout {
-    /// The datapath of `p`; an error if a word would not fit the 64-bit containers (checked
-    /// by [`VelocityParams::new`] too, so only hand-made parameters fail here).
-    pub fn new(p: &VelocityParams) -> Result<Layout> {
-        let l = Layout::build(p);
-        l.check()?;
-        if p.latency() >= p.period_clocks {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "an update takes {} clocks, the update period only {}",
-                    p.latency(),
-                    p.period_clocks
-                ),
-            ));
-        }
-        Ok(l)
-    }
-
-    /// An error if a word would not fit the 64-bit containers.
-    pub(super) fn check(&self) -> Result<()> {
-        let l = self;
-        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "internal words of {} / {} / {} / {} bits (operand, accumulator, Theta, \
-                     coefficient) exceed 64: lower frac_bits or the maximum speed",
-                    l.a_width, l.acc_width, l.theta_width, l.b_width
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// Booth digits n of one multiply ([`VelMul::steps`]): the multiplier runs n + 1
-    /// clocks after its start.
-    pub fn mul_steps(&self) -> u32 {
-        VelMul::steps(self.b_width)
-    }
-
-    /// The datapath of `p`, unchecked (widths may exceed 64 bits).
-    pub(super) fn build(p: &VelocityParams) -> Layout {
-        let wp = p.pos_width;
-        let ws = p.state_width;
-        let tw = wp + p.state_frac();
-        let c = COEF_FRAC;
-        let wide = |v: &[i64]| v.iter().map(|&k| k as i128).collect::<Vec<i128>>();
-        let (a_width, acc_width, mults, shift, coefs) = match &p.consts {
-            MethodConsts::DiffLpf { a } => (ws, ws, 1, c, vec![*a as i128]),
-            MethodConsts::Kalman { gains } => (ws, ws, 1, c, wide(gains)),
-            MethodConsts::Tracking { alpha, beta } => {
-                (tw, ws, 2, c, vec![*beta as i128, *alpha as i128])
-            }
-            MethodConsts::Lsq {
-                n, recip, shift, ..
-            } => {
-                let pw = shift + 1;
-                let b = (*shift).min(64);
-                let mut k: Vec<i128> = n[..n.len() - 1]
-                    .iter()
-                    .map(|&v| (v as i128).saturating_mul(1i128 << b))
-                    .collect();
-                k.push(*recip as i128);
-                (wp.max(pw), ws.max(pw), n.len() as u32, *shift, k)
-            }
-        };
-        let b_width = coefs
-            .iter()
-            .map(|&k| unsigned_bits(k.unsigned_abs()) + 1)
-            .max()
-            .unwrap_or(2)
-            .max(2);
-        // Stored as i64: exact whenever b_width <= 64 (`check`).
-        let coefs = coefs.iter().map(|&k| k as i64).collect();
-        Layout {
-            a_width,
-            b_width,
-            acc_width,
-            theta_width: tw,
-            mults,
-            shift,
-            coefs,
-        }
-    }
 }
 
 fn c64(v: u64) -> Constant<Bits<64>> {

@@ -98,6 +98,7 @@
 //! 2^-frac_bits LSB per period (one output LSB).
 mod design;
 pub mod hdl;
+mod layout;
 pub mod model;
 mod parts;
 
@@ -437,7 +438,7 @@ impl VelocityParams {
             max_output: max_out,
             consts,
         };
-        hdl::Layout::build(&p).check()?;
+        layout::Layout::build(&p).check()?;
         if p.latency() >= p.period_clocks {
             return Err(invalid(format!(
                 "update period round({} / {}) = {d} clocks is not longer than an update \
@@ -445,7 +446,7 @@ impl VelocityParams {
                 s.clock_hz,
                 s.rate_hz,
                 p.latency(),
-                hdl::Layout::build(&p).mults,
+                layout::Layout::build(&p).mults,
                 s.method
             )));
         }
@@ -463,7 +464,7 @@ impl VelocityParams {
     /// (9 or 10 at the defaults, 17 for lsq's reciprocal). The one place the latency is
     /// derived: the model, the RTL's schedule and the config's check follow it.
     pub fn latency(&self) -> u64 {
-        let l = hdl::Layout::build(self).mul_steps() as u64;
+        let l = layout::Layout::build(self).mul_steps() as u64;
         let mults = match &self.consts {
             MethodConsts::DiffLpf { .. } | MethodConsts::Kalman { .. } => 1,
             MethodConsts::Lsq { n, .. } => n.len() as u64,
