@@ -310,7 +310,8 @@ impl Logic for Velocity {
         // borrow of in_p - pos (F+3 bits) and the step's sign say. pos +- 2^(F+2) come
         // straight from the register, so each path holds one carry chain.
         self.inp.next = bit_cast::<64, 32>(self.in_p.val()) & self.f2mask.val();
-        self.dp.next = (self.inp.val() - (self.pos.q.val() & self.f2mask.val())) & self.f3mask.val();
+        self.dp.next =
+            (self.inp.val() - (self.pos.q.val() & self.f2mask.val())) & self.f3mask.val();
         self.pinc.next = (self.pos.q.val() + self.f2one.val()) & self.wpmask.val();
         self.pdec.next = (self.pos.q.val() - self.f2one.val()) & self.wpmask.val();
         if self.in_valid.val() {

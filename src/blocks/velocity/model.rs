@@ -443,7 +443,10 @@ mod tests {
         // D = latency + 1 accepted, and its schedule then fits the period.
         s.clock_hz = lat as f64 * s.rate_hz;
         let e = VelocityParams::new(&s).unwrap_err().to_string();
-        assert!(e.contains("update period") && e.contains("lower the update rate"), "{e}");
+        assert!(
+            e.contains("update period") && e.contains("lower the update rate"),
+            "{e}"
+        );
         s.clock_hz = (lat + 1) as f64 * s.rate_hz;
         let p = VelocityParams::new(&s).unwrap();
         assert_eq!((p.period_clocks, p.latency()), (lat + 1, lat));

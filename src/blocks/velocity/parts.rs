@@ -341,7 +341,16 @@ mod tests {
         };
         for (aw, bw, ow, k) in shapes {
             let mut m = VelMul::new(aw, bw, ow, k);
-            let edges = |w: u32| [0, 1, mask(w), mask(w) >> 1, 1 << (w - 1), (1 << (w - 1)) + 1];
+            let edges = |w: u32| {
+                [
+                    0,
+                    1,
+                    mask(w),
+                    mask(w) >> 1,
+                    1 << (w - 1),
+                    (1 << (w - 1)) + 1,
+                ]
+            };
             let mut cases = vec![];
             for a in edges(aw) {
                 for b in edges(bw) {
