@@ -129,12 +129,11 @@ pub struct Velocity {
     ys: Signal<Local, Bits<64>>,
     /// Index of the last history entry (a loop bound: rust-hdl indexes only by loop index).
     _hlast: usize,
-    /// Masks of F+2 bits, its sign bit, the bits above it, the borrow bit above it.
+    /// Masks of F+2 bits and its sign bit.
     f2mask: Constant<Bits<64>>,
     f2sign: Constant<Bits<64>>,
-    f2ext: Constant<Bits<64>>,
-    f2borrow: Constant<Bits<64>>,
-    /// 2^(F+2), one step of the position's bits above F+2; mask of F+3 bits.
+    /// 2^(F+2): one step of the position's bits above F+2, and the borrow bit of
+    /// in_p - pos; mask of F+3 bits.
     f2one: Constant<Bits<64>>,
     f3mask: Constant<Bits<64>>,
     /// Masks of Wp bits, its sign bit, the bits above it.
@@ -247,8 +246,6 @@ impl Velocity {
             _hlast: nhist - 1,
             f2mask: c64(mask(f2)),
             f2sign: c64(1 << (f2 - 1)),
-            f2ext: c64(ext(f2)),
-            f2borrow: c64(1 << f2),
             f2one: c64(1 << f2),
             f3mask: c64(mask(f2 + 1)),
             wpmask: c64(mask(wp)),
@@ -317,12 +314,12 @@ impl Logic for Velocity {
         if self.in_valid.val() {
             if self.init.q.val() {
                 self.pos.d.next = (self.pos.q.val() & !self.f2mask.val()) | self.inp.val();
-                if (self.dp.val() & self.f2borrow.val()).any()
+                if (self.dp.val() & self.f2one.val()).any()
                     & !(self.dp.val() & self.f2sign.val()).any()
                 {
                     self.pos.d.next = (self.pinc.val() & !self.f2mask.val()) | self.inp.val();
                 }
-                if !(self.dp.val() & self.f2borrow.val()).any()
+                if !(self.dp.val() & self.f2one.val()).any()
                     & (self.dp.val() & self.f2sign.val()).any()
                 {
                     self.pos.d.next = (self.pdec.val() & !self.f2mask.val()) | self.inp.val();
