@@ -45,7 +45,7 @@ pub enum VelState {
     Prep,
     /// Multiplier operands registered.
     Op,
-    /// Multiplier pipeline running (L + 1 clocks), then the product registered.
+    /// Multiplier running: n + 1 clocks (x cleared, then n Booth digits).
     Prod,
     /// Product accumulated.
     Acc,
