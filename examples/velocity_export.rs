@@ -30,10 +30,10 @@ fn main() -> anyhow::Result<()> {
         let v = sinedec::emit::verilog::export(&uut, &name, &name)?;
         std::fs::write(format!("{dir}/{name}.v"), v)?;
         println!(
-            "{name}: {} x {} bits, {} pipeline stages, latency {} clocks",
+            "{name}: {} x {} bits, {} Booth digits, latency {} clocks",
             l.a_width,
             l.b_width,
-            l.mul_stages(),
+            l.mul_steps(),
             p.latency()
         );
     }

@@ -106,6 +106,12 @@ fn bad_values_name_the_key_the_position_and_the_range() {
             "rate_hz = -5.0",
             &["`velocity.rate_hz`", "above 0"],
         ),
+        // 16 lsq multiplies do not fit the 133 clocks of a 1 MHz update period.
+        (
+            "enabled = true\nmethod = \"lsq\"\nlsq_points = 16\nrate_hz = 1e6",
+            "rate_hz = 1e6",
+            &["`velocity.rate_hz`", "not longer than an update"],
+        ),
         // An unstable loop: 2 alpha + beta >= 4 at 5 kHz bandwidth and 7.5 kHz updates.
         (
             "enabled = true\nbandwidth_hz = 5000.0",

@@ -1,11 +1,13 @@
 //! Velocity block, continued from `tests/velocity.rs`: the tracking loop's step response in
 //! the RTL against an independent f64 alpha-beta loop (unquantized gains, ideal positions)
 //! and its documented settling time; Yosys synthesis of every method for xc3sa and
-//! cycloneive (LUT/FF printed, for docs/velocity.md).
+//! cycloneive (LUT/FF printed, for docs/velocity.md), with no hard multiplier and at most
+//! one carry chain on every register-to-register path of the xc3sa netlist.
 use sinedec::blocks::velocity::hdl::Velocity;
 use sinedec::blocks::velocity::model::{VelIn, VelocityModel};
 use sinedec::blocks::velocity::{Method, VelocityParams, VelocitySpec};
 use sinedec::blocks::{mask, sext};
+use sinedec::report::levels::{analyze_with, DelayModel, PathLevels};
 use sinedec::synth::{synthesize, Family};
 use sinedec::verify::{block_traces, Simulators};
 mod common;
@@ -117,11 +119,30 @@ fn export(p: &VelocityParams, name: &str) -> String {
     sinedec::emit::verilog::export(&uut, name, name).expect("export")
 }
 
-/// Every method at the default constants for both families, except lsq on cycloneive:
-/// Yosys 0.23 `synth_intel` builds the multiplier from logic cells there, and on the lsq
-/// datapath its ABC step ran for over 9 minutes without finishing (at the default 28 x
-/// 33-bit product and at a 21 x 26-bit one), while diff_lpf and kalman finish in seconds;
-/// lsq is synthesized for xc3sa only (docs/velocity.md).
+/// The register-to-register path of a Yosys xc3sa netlist with the most carry chains: the
+/// path analysis with a delay model in which entering a carry chain costs far more than
+/// everything else together (LUTs and carry bits break ties), so the slowest path is the
+/// one that enters the most chains, over every path, not only the slowest in time.
+fn most_carry_chains(json: &str, top: &str) -> PathLevels {
+    let chains = DelayModel {
+        name: "carry chains",
+        tcko_ps: 0,
+        tsu_ps: 0,
+        lut_ps: 1,
+        carry_entry_ps: 1_000_000,
+        carry_bit_ps: 1,
+        carry_sum_ps: 0,
+        mux_ps: 1,
+        mult_ps: 1,
+        ram_tco_ps: 0,
+        route_ps: 0,
+    };
+    analyze_with(json, top, &chains)
+        .expect("netlist analysed")
+        .expect("a register-to-register path")
+}
+
+/// Every method at the default constants for both families.
 #[test]
 fn synthesizes_for_both_families() {
     let mut lines = vec![];
@@ -135,12 +156,21 @@ fn synthesizes_for_both_families() {
         let name = format!("vel_synth_{m}");
         let dir = common::workdir(&name);
         let x = synthesize(&export(&p, &name), &name, Family::Xc3sa, &dir).expect("xc3sa");
-        let mut fams = vec![("xc3sa", x)];
-        if m != Method::Lsq {
-            let c = synthesize(&export(&p, &name), &name, Family::CycloneIve, &dir)
-                .expect("cycloneive synthesis");
-            fams.push(("cycloneive", c));
-        }
+        // The multiplier is built from adds (docs/velocity.md): no MULT18X18, and no path
+        // through two carry chains (the timing rule of docs/timing.md, on every path).
+        assert_eq!(x.multipliers, 0, "{m}: hard multipliers");
+        let json = std::fs::read_to_string(dir.join("synth_xc3sa.json")).expect("netlist");
+        let worst = most_carry_chains(&json, &name);
+        assert!(
+            worst.carry_chains == 1,
+            "{m}: {} carry chains on {} -> {}",
+            worst.carry_chains,
+            worst.from,
+            worst.to
+        );
+        let c = synthesize(&export(&p, &name), &name, Family::CycloneIve, &dir)
+            .expect("cycloneive synthesis");
+        let fams = [("xc3sa", x), ("cycloneive", c)];
         lines.push(format!(
             "{m}: {}",
             fams.iter()

@@ -9,24 +9,31 @@
 //! position changes by at most `max_step` per update period (the contract the widths are
 //! derived from); beyond it the RTL's words wrap where the model's i64/i128 do not.
 //!
-//! Schedule of one update (E0 = the divider's tick edge; one multiply = 3 + L clocks:
-//! operand register, L multiplier pipeline stages ([`VelMul::stages`], 3 or 4 at the
-//! defaults) and the product register in `Prod`, accumulate; latency (3 + L) m + 2 =
-//! [`VelocityParams::latency`]):
+//! Schedule of one update (E0 = the divider's tick edge; one multiply = n + 3 clocks:
+//! operand register and multiplier start in `Op`, n + 1 multiplier clocks in `Prod` (x
+//! cleared, then n radix-4 Booth digits: [`VelMul`]), accumulate; latency (n + 3) m + 2 =
+//! [`VelocityParams::latency`], n = [`Layout::mul_steps`]):
 //! ```text
-//! edge   E0     E1     E2   E3 .. E(L+3)  E(L+4)  ...  E((3+L)m+1)  E((3+L)m+2)
-//! state  Idle > Prep > Op > Prod x (L+1) > Acc  > Op  ...  Acc   >    Out > Idle
-//! does   snap   diffs  opa  pipeline,     acc             acc        out_velocity,
-//!        (prime)       opb  prod = mul                               strobe
-//! diff_lpf, kalman (m = 1): Prep d = U - X; Acc X += p.          Out: y = q(X / 2^G)
-//! tracking (m = 2): Prep e; Acc 1: W += q(beta e); Acc 2: Theta += W + q(alpha e).
-//! lsq (m = M): Acc i < M: P += n_i r_i (r_i from the rotating history);
-//!              Acc M: P := q(P R / 2^B).
+//! edge   E0     E1     E2    E3 .. E(n+3)   E(n+4)  ...  E((n+3)m+1)  E((n+3)m+2)
+//! state  Idle > Prep > Op  > Prod x (n+1) > Acc   > Op ...  Acc    >  Out > Idle
+//! does   snap   diffs  opa,  Booth digits   acc += p         acc      out_velocity,
+//!        (prime)       start                                          strobe
+//! diff_lpf, kalman (m = 1): E0 d = Delta; Prep d = U - X; Acc X += p.  Out: y = q(X / 2^G)
+//! tracking (m = 2): E0 tx = W (theta 2^(S+G) at the first update); Prep e, Theta += tx;
+//!   Acc 1: W += p = q(beta e), Theta += p (Theta + W_new); Acc 2: Theta += p = q(alpha e).
+//! lsq (m = M): Acc i < M: P += n_i r_i (r_i from the rotating history; tap n_i 2^B);
+//!   Op M: a = P, P := 0; Acc M: P += q(P R / 2^B).
 //! ```
+//! Timing: every register-to-register path holds one carry chain at most (no adder feeds
+//! another within a clock): the front end steps the bits above F+2 by a select of pos,
+//! pos + 2^(F+2) and pos - 2^(F+2); Delta is taken at the tick, U - X a clock later;
+//! Theta's one adder adds a register (`tx` or the multiplier's R); the tick and "last
+//! multiply" are registered; the multiplier's adder adds registers only.
+pub use super::layout::Layout;
 use super::parts::{VelCoefRom, VelMul};
-use super::{MethodConsts, VelocityParams, COEF_FRAC};
+use super::{MethodConsts, VelocityParams};
 use crate::blocks::mask;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use rust_hdl::prelude::*;
 
 /// Where the update is in its schedule.
@@ -38,107 +45,12 @@ pub enum VelState {
     Prep,
     /// Multiplier operands registered.
     Op,
-    /// Multiplier pipeline running (L + 1 clocks), then the product registered.
+    /// Multiplier running: n + 1 clocks (x cleared, then n Booth digits).
     Prod,
     /// Product accumulated.
     Acc,
     /// Output register loaded, strobe raised.
     Out,
-}
-
-/// Derived widths and constants of the datapath (all from [`VelocityParams`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Layout {
-    /// Width of the multiplier's operand a (signed).
-    pub a_width: u32,
-    /// Width of the coefficients (signed).
-    pub b_width: u32,
-    /// Width of the accumulator X / W / P and of the multiplier's result (signed).
-    pub acc_width: u32,
-    /// Width of tracking's predicted position Theta (Wp + S + G).
-    pub theta_width: u32,
-    /// Multiplies per update m.
-    pub mults: u32,
-    /// Rounding shift of the multiplies but lsq's last (C, or 0 for lsq).
-    pub shift0: u32,
-    /// Rounding shift of lsq's last multiply (B; C for the other methods).
-    pub shift1: u32,
-    /// The coefficient ROM (kalman: the gain table; else one word per multiply).
-    pub coefs: Vec<i64>,
-}
-
-fn unsigned_bits(v: u128) -> u32 {
-    128 - v.leading_zeros()
-}
-
-impl Layout {
-    /// The datapath of `p`; an error if a word would not fit the 64-bit containers.
-    pub fn new(p: &VelocityParams) -> Result<Layout> {
-        let l = Layout::build(p);
-        if l.a_width > 64 || l.acc_width > 64 || l.theta_width > 64 || l.b_width > 64 {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "datapath words of {} / {} / {} / {} bits exceed 64: lower frac_bits or \
-                     the maximum speed",
-                    l.a_width, l.acc_width, l.theta_width, l.b_width
-                ),
-            ));
-        }
-        if p.latency() >= p.period_clocks {
-            return Err(Error::block_params(
-                "velocity",
-                format!(
-                    "an update takes {} clocks, the update period only {}",
-                    p.latency(),
-                    p.period_clocks
-                ),
-            ));
-        }
-        Ok(l)
-    }
-
-    /// Clocks the multiplier's pipeline adds to a multiply ([`VelMul::stages`]).
-    pub fn mul_stages(&self) -> u32 {
-        VelMul::stages(self.a_width, self.b_width, self.shift0, self.shift1)
-    }
-
-    /// The datapath of `p`, unchecked (widths may exceed 64 bits).
-    pub(super) fn build(p: &VelocityParams) -> Layout {
-        let wp = p.pos_width;
-        let ws = p.state_width;
-        let tw = wp + p.state_frac();
-        let c = COEF_FRAC;
-        let (a_width, acc_width, mults, shift0, shift1, coefs) = match &p.consts {
-            MethodConsts::DiffLpf { a } => (ws, ws, 1, c, c, vec![*a]),
-            MethodConsts::Kalman { gains } => (ws, ws, 1, c, c, gains.clone()),
-            MethodConsts::Tracking { alpha, beta } => (tw, ws, 2, c, c, vec![*beta, *alpha]),
-            MethodConsts::Lsq {
-                n, recip, shift, ..
-            } => {
-                let pw = shift + 1;
-                let mut k: Vec<i64> = n[..n.len() - 1].to_vec();
-                k.push(*recip);
-                (wp.max(pw), ws.max(pw), n.len() as u32, 0, *shift, k)
-            }
-        };
-        let b_width = coefs
-            .iter()
-            .map(|&k| unsigned_bits(k.unsigned_abs() as u128) + 1)
-            .max()
-            .unwrap_or(2)
-            .max(2);
-        Layout {
-            a_width,
-            b_width,
-            acc_width,
-            theta_width: tw,
-            mults,
-            shift0,
-            shift1,
-            coefs,
-        }
-    }
 }
 
 fn c64(v: u64) -> Constant<Bits<64>> {
@@ -175,8 +87,12 @@ pub struct Velocity {
     init: DFF<Bit>,
     pos: DFF<Bits<64>>,
     cnt: DFF<Bits<32>>,
+    /// The divider's tick, registered: high while `cnt` = D - 1.
+    tickr: DFF<Bit>,
     state: DFF<VelState>,
     j: DFF<Bits<32>>,
+    /// j = m - 1 (this is the last multiply), registered with j.
+    jlr: DFF<Bit>,
     primed: DFF<Bit>,
     first: DFF<Bit>,
     snap: DFF<Bits<64>>,
@@ -186,21 +102,25 @@ pub struct Velocity {
     theta: DFF<Bits<64>>,
     acc: DFF<Bits<64>>,
     k: DFF<Bits<32>>,
-    /// Clocks waited in `Prod` for the multiplier's pipeline.
+    /// Tracking: Theta's addend in `Prep` (theta 2^(S+G) at the first update, else W).
+    tx: DFF<Bits<64>>,
+    /// The state is `Prep` (registered with it).
+    inprep: DFF<Bit>,
+    /// Clocks waited in `Prod` for the multiplier.
     mwait: DFF<Bits<32>>,
     opa: DFF<Bits<64>>,
-    opb: DFF<Bits<64>>,
-    prod: DFF<Bits<64>>,
     out_reg: DFF<Bits<64>>,
     valid_reg: DFF<Bit>,
     inp: Signal<Local, Bits<64>>,
     dp: Signal<Local, Bits<64>>,
-    sdp: Signal<Local, Bits<64>>,
+    pinc: Signal<Local, Bits<64>>,
+    pdec: Signal<Local, Bits<64>>,
     tick: Signal<Local, Bit>,
     jl: Signal<Local, Bit>,
     delta: Signal<Local, Bits<64>>,
     sdelta: Signal<Local, Bits<64>>,
-    u: Signal<Local, Bits<64>>,
+    /// Tracking: what `Theta` adds this clock: `tx` in `Prep`, else the product.
+    tadd: Signal<Local, Bits<64>>,
     meas: Signal<Local, Bits<64>>,
     r: Signal<Local, Bits<64>>,
     rext: Signal<Local, Bits<64>>,
@@ -209,10 +129,13 @@ pub struct Velocity {
     ys: Signal<Local, Bits<64>>,
     /// Index of the last history entry (a loop bound: rust-hdl indexes only by loop index).
     _hlast: usize,
-    /// Masks of F+2 bits, its sign bit, the bits above it.
+    /// Masks of F+2 bits and its sign bit.
     f2mask: Constant<Bits<64>>,
     f2sign: Constant<Bits<64>>,
-    f2ext: Constant<Bits<64>>,
+    /// 2^(F+2): one step of the position's bits above F+2, and the borrow bit of
+    /// in_p - pos; mask of F+3 bits.
+    f2one: Constant<Bits<64>>,
+    f3mask: Constant<Bits<64>>,
     /// Masks of Wp bits, its sign bit, the bits above it.
     wpmask: Constant<Bits<64>>,
     wpsign: Constant<Bits<64>>,
@@ -236,12 +159,13 @@ pub struct Velocity {
     yext: Constant<Bits<64>>,
     /// Mask of `width` bits.
     ymask: Constant<Bits<64>>,
-    /// D - 1: the divider's last count.
-    dlast: Constant<Bits<32>>,
-    /// The multiplier's pipeline stages L: the last count of `mwait`.
+    /// D - 2: the count before the divider's last.
+    dprev: Constant<Bits<32>>,
+    /// The multiplier's Booth digits n: the last count of `mwait`.
     wlast: Constant<Bits<32>>,
-    /// m - 1: the last multiply.
-    jlast: Constant<Bits<32>>,
+    /// m - 2: the multiply before the last (unused when m = 1), and m = 1.
+    jprev: Constant<Bits<32>>,
+    jl0: Constant<Bit>,
     /// Last entry of the Kalman gain table.
     klast: Constant<Bits<32>>,
     /// ROM address select: all ones for j (not kalman) / for k (kalman), else zero.
@@ -281,13 +205,15 @@ impl Velocity {
             in_valid: Default::default(),
             out_velocity: Default::default(),
             out_velocity_valid: Default::default(),
-            mul: VelMul::new(l.a_width, l.b_width, aw, l.shift0, l.shift1),
+            mul: VelMul::new(l.a_width, l.b_width, aw, l.shift),
             rom: VelCoefRom::new(&l.coefs, l.b_width),
             init: Default::default(),
             pos: Default::default(),
             cnt: Default::default(),
+            tickr: Default::default(),
             state: Default::default(),
             j: Default::default(),
+            jlr: Default::default(),
             primed: Default::default(),
             first: Default::default(),
             snap: Default::default(),
@@ -296,20 +222,21 @@ impl Velocity {
             theta: Default::default(),
             acc: Default::default(),
             k: Default::default(),
+            tx: Default::default(),
+            inprep: Default::default(),
             mwait: Default::default(),
             opa: Default::default(),
-            opb: Default::default(),
-            prod: Default::default(),
             out_reg: Default::default(),
             valid_reg: Default::default(),
             inp: Default::default(),
             dp: Default::default(),
-            sdp: Default::default(),
+            pinc: Default::default(),
+            pdec: Default::default(),
             tick: Default::default(),
             jl: Default::default(),
             delta: Default::default(),
             sdelta: Default::default(),
-            u: Default::default(),
+            tadd: Default::default(),
             meas: Default::default(),
             r: Default::default(),
             rext: Default::default(),
@@ -319,7 +246,8 @@ impl Velocity {
             _hlast: nhist - 1,
             f2mask: c64(mask(f2)),
             f2sign: c64(1 << (f2 - 1)),
-            f2ext: c64(ext(f2)),
+            f2one: c64(1 << f2),
+            f3mask: c64(mask(f2 + 1)),
             wpmask: c64(mask(wp)),
             wpsign: c64(1 << (wp - 1)),
             wpext: c64(ext(wp)),
@@ -334,9 +262,10 @@ impl Velocity {
             ghalf: c64(if g == 0 { 0 } else { 1 << (g - 1) }),
             yext: c64(ext(aw - g)),
             ymask: c64(mask(p.spec.width)),
-            dlast: c32(p.period_clocks - 1),
-            wlast: c32(l.mul_stages() as u64),
-            jlast: c32(l.mults as u64 - 1),
+            dprev: c32(p.period_clocks - 2),
+            wlast: c32(l.mul_steps() as u64),
+            jprev: c32((l.mults as u64).wrapping_sub(2) & mask(32)),
+            jl0: Constant::new(l.mults == 1),
             klast: c32(klast),
             jsel: c32(if is_kal { 0 } else { mask(32) }),
             ksel: c32(if is_kal { mask(32) } else { 0 }),
@@ -354,56 +283,74 @@ impl Logic for Velocity {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, init, pos, cnt, state, j, primed, first, snap, d, theta, acc, k, mwait, opa,
-            opb, prod, out_reg, valid_reg
+            self, clk, init, pos, cnt, tickr, state, j, jlr, primed, first, snap, d, theta, acc, k,
+            tx, inprep, mwait, opa, out_reg, valid_reg
         );
         for i in 0..self.hist.len() {
             self.hist[i].clock.next = self.clk.val();
             self.hist[i].d.next = self.hist[i].q.val();
         }
-        // The multiplier and its coefficient: the product register loads every clock.
-        self.jl.next = self.j.q.val() == self.jlast.val();
+        // The multiplier: operand a from `opa`, the coefficient straight from the ROM,
+        // started in `Op`; its result is taken in `Acc`.
+        self.jl.next = self.jlr.q.val();
         self.mul.clk.next = self.clk.val();
         self.mul.a.next = self.opa.q.val();
-        self.mul.b.next = self.opb.q.val();
-        self.mul.sel.next = self.is_lsq.val() & self.jl.val();
+        self.mul.b.next = self.rom.coef.val();
+        self.mul.start.next = self.state.q.val() == VelState::Op;
         // One assignment (no default-then-override): a momentary value on a port between
         // two modules' combinational blocks makes Icarus loop forever at one time step.
         self.rom.addr.next =
             (self.j.q.val() & self.jsel.val()) | (self.k.q.val() & self.ksel.val());
-        self.prod.d.next = self.mul.p.val();
         self.valid_reg.d.next = false;
         // Front end: pos += sext((in_p - pos) mod 2^(F+2)), modulo 2^Wp; the first sample
-        // loads it.
+        // loads it. The low F+2 bits become in_p; the bits above step by -1, 0 or +1 as the
+        // borrow of in_p - pos (F+3 bits) and the step's sign say. pos +- 2^(F+2) come
+        // straight from the register, so each path holds one carry chain.
         self.inp.next = bit_cast::<64, 32>(self.in_p.val()) & self.f2mask.val();
-        self.dp.next = (self.inp.val() - self.pos.q.val()) & self.f2mask.val();
-        self.sdp.next = self.dp.val();
-        if (self.dp.val() & self.f2sign.val()).any() {
-            self.sdp.next = self.dp.val() | self.f2ext.val();
-        }
+        self.dp.next =
+            (self.inp.val() - (self.pos.q.val() & self.f2mask.val())) & self.f3mask.val();
+        self.pinc.next = (self.pos.q.val() + self.f2one.val()) & self.wpmask.val();
+        self.pdec.next = (self.pos.q.val() - self.f2one.val()) & self.wpmask.val();
         if self.in_valid.val() {
             if self.init.q.val() {
-                self.pos.d.next = (self.pos.q.val() + self.sdp.val()) & self.wpmask.val();
+                self.pos.d.next = (self.pos.q.val() & !self.f2mask.val()) | self.inp.val();
+                if (self.dp.val() & self.f2one.val()).any()
+                    & !(self.dp.val() & self.f2sign.val()).any()
+                {
+                    self.pos.d.next = (self.pinc.val() & !self.f2mask.val()) | self.inp.val();
+                }
+                if !(self.dp.val() & self.f2one.val()).any()
+                    & (self.dp.val() & self.f2sign.val()).any()
+                {
+                    self.pos.d.next = (self.pdec.val() & !self.f2mask.val()) | self.inp.val();
+                }
             } else {
                 self.pos.d.next = self.inp.val();
                 self.init.d.next = true;
             }
         }
-        // Divider: tick every D clocks.
-        self.tick.next = self.cnt.q.val() == self.dlast.val();
+        // Divider: tick every D clocks (D >= 64), decoded one clock ahead.
+        self.tick.next = self.tickr.q.val();
+        self.tickr.d.next = self.cnt.q.val() == self.dprev.val();
         self.cnt.d.next = self.cnt.q.val() + self.one.val();
         if self.tick.val() {
             self.cnt.d.next = self.zero.val();
         }
-        // diff_lpf / kalman: U = sext(theta - theta(k-1)) 2^(S+G) (state width).
-        self.delta.next = (self.snap.q.val() - self.hist[0].q.val()) & self.wpmask.val();
+        // diff_lpf / kalman: Delta = sext(theta - theta(k-1)) (state width), into `d` at the
+        // tick; U = Delta 2^(S+G) in `Prep`.
+        self.delta.next = (self.pos.q.val() - self.hist[0].q.val()) & self.wpmask.val();
         self.sdelta.next = self.delta.val();
         if (self.delta.val() & self.wpsign.val()).any() {
             self.sdelta.next = (self.delta.val() | self.wpext.val()) & self.smask.val();
         }
-        self.u.next = (self.sdelta.val() << self.sg.val()) & self.smask.val();
-        // tracking: theta 2^(S+G) modulo 2^(Wp+S+G).
+        // tracking: theta 2^(S+G) modulo 2^(Wp+S+G); Theta's one adder adds registers
+        // only: `tx` in `Prep`, the product in `Acc`.
         self.meas.next = (self.snap.q.val() << self.sg.val()) & self.twmask.val();
+        self.tadd.next = self.mul.p.val();
+        if self.inprep.q.val() {
+            self.tadd.next = self.tx.q.val();
+        }
+        self.inprep.d.next = false;
         // lsq: r = x_i - theta (Wp bits) and P, each sign-extended/cut to operand a's width.
         self.r.next = (self.hist[0].q.val() - self.snap.q.val()) & self.wpmask.val();
         self.rext.next = self.r.val();
@@ -425,19 +372,32 @@ impl Logic for Velocity {
                 if self.tick.val() & self.init.q.val() {
                     self.snap.d.next = self.pos.q.val();
                     self.state.d.next = VelState::Prep;
+                    self.inprep.d.next = true;
+                    // Theta = 0 before the first update (reset clears it): adding
+                    // theta 2^(S+G) loads it.
+                    self.tx.d.next = self.acc.q.val();
+                    if !self.primed.q.val() {
+                        self.tx.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
+                    }
                     self.first.d.next = !self.primed.q.val();
+                    if !self.is_lsq.val() & !self.is_track.val() {
+                        self.d.d.next = self.sdelta.val();
+                        if !self.primed.q.val() {
+                            self.d.d.next = self.zero64.val();
+                        }
+                    }
                     if !self.primed.q.val() {
                         // First update: the history as if at rest at theta (output 0).
                         self.primed.d.next = true;
                         for i in 0..self.hist.len() {
                             self.hist[i].d.next = self.pos.q.val();
                         }
-                        self.theta.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
                     }
                 }
             }
             VelState::Prep => {
                 self.j.d.next = self.zero.val();
+                self.jlr.d.next = self.jl0.val();
                 self.state.d.next = VelState::Op;
                 if self.is_lsq.val() {
                     for i in 1..self.hist.len() {
@@ -448,20 +408,29 @@ impl Logic for Velocity {
                     }
                     self.acc.d.next = self.zero64.val();
                 } else if self.is_track.val() {
+                    // e (0 at the first update); Theta += W (or the load), + q(beta e) and
+                    // q(alpha e) in the two `Acc`.
                     self.d.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
+                    if self.first.q.val() {
+                        self.d.d.next = self.zero64.val();
+                    }
+                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
                 } else {
-                    self.d.d.next = (self.u.val() - self.acc.q.val()) & self.smask.val();
+                    self.d.d.next =
+                        ((self.d.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
                     self.hist[0].d.next = self.snap.q.val();
                 }
             }
             VelState::Op => {
-                self.opb.d.next = self.rom.coef.val();
                 self.opa.d.next = self.d.q.val();
                 if self.is_lsq.val() {
                     // Rotate the history: x_1 comes back to the front after M multiplies.
                     self.opa.d.next = self.rext.val();
                     if self.jl.val() {
+                        // P goes to the multiplier; the accumulator restarts from 0 for
+                        // q(P R / 2^B).
                         self.opa.d.next = self.pa.val();
+                        self.acc.d.next = self.zero64.val();
                     }
                     for i in 1..self.hist.len() {
                         self.hist[i - 1].d.next = self.hist[i].q.val();
@@ -474,21 +443,19 @@ impl Logic for Velocity {
                 self.state.d.next = VelState::Prod;
             }
             VelState::Prod => {
-                // L clocks for the multiplier's pipeline, one to load `prod`.
+                // n + 1 clocks for the multiplier (its start clock zeroes x, then n digits).
                 self.mwait.d.next = self.mwait.q.val() + self.one.val();
                 if self.mwait.q.val() == self.wlast.val() {
                     self.state.d.next = VelState::Acc;
                 }
             }
             VelState::Acc => {
-                self.acc.d.next = (self.acc.q.val() + self.prod.q.val()) & self.accmask.val();
-                if self.is_lsq.val() & self.jl.val() {
-                    self.acc.d.next = self.prod.q.val();
-                }
-                if self.is_track.val() & self.jl.val() {
-                    self.acc.d.next = self.acc.q.val();
-                    self.theta.d.next = (self.theta.q.val() + self.acc.q.val() + self.prod.q.val())
-                        & self.twmask.val();
+                self.acc.d.next = (self.acc.q.val() + self.mul.p.val()) & self.accmask.val();
+                if self.is_track.val() {
+                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
+                    if self.jl.val() {
+                        self.acc.d.next = self.acc.q.val();
+                    }
                 }
                 if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
                     self.k.d.next = self.k.q.val() + self.one.val();
@@ -497,6 +464,7 @@ impl Logic for Velocity {
                     self.state.d.next = VelState::Out;
                 } else {
                     self.j.d.next = self.j.q.val() + self.one.val();
+                    self.jlr.d.next = self.j.q.val() == self.jprev.val();
                     self.state.d.next = VelState::Op;
                 }
             }
@@ -510,8 +478,10 @@ impl Logic for Velocity {
             self.init.d.next = false;
             self.pos.d.next = self.zero64.val();
             self.cnt.d.next = self.zero.val();
+            self.tickr.d.next = false;
             self.state.d.next = VelState::Idle;
             self.j.d.next = self.zero.val();
+            self.jlr.d.next = self.jl0.val();
             self.primed.d.next = false;
             self.first.d.next = false;
             self.snap.d.next = self.zero64.val();
@@ -522,10 +492,10 @@ impl Logic for Velocity {
             self.theta.d.next = self.zero64.val();
             self.acc.d.next = self.zero64.val();
             self.k.d.next = self.zero.val();
+            self.tx.d.next = self.zero64.val();
+            self.inprep.d.next = false;
             self.mwait.d.next = self.zero.val();
             self.opa.d.next = self.zero64.val();
-            self.opb.d.next = self.zero64.val();
-            self.prod.d.next = self.zero64.val();
             self.out_reg.d.next = self.zero64.val();
             self.valid_reg.d.next = false;
         }

@@ -98,6 +98,7 @@
 //! 2^-frac_bits LSB per period (one output LSB).
 mod design;
 pub mod hdl;
+mod layout;
 pub mod model;
 mod parts;
 
@@ -427,7 +428,7 @@ impl VelocityParams {
                  or the maximum speed"
             )));
         }
-        Ok(VelocityParams {
+        let p = VelocityParams {
             spec: s.clone(),
             period_clocks: d as u64,
             guard,
@@ -436,7 +437,20 @@ impl VelocityParams {
             gain_l1,
             max_output: max_out,
             consts,
-        })
+        };
+        layout::Layout::build(&p).check()?;
+        if p.latency() >= p.period_clocks {
+            return Err(invalid(format!(
+                "update period round({} / {}) = {d} clocks is not longer than an update \
+                 ({} clocks for the {} multiplies of {}): lower the update rate",
+                s.clock_hz,
+                s.rate_hz,
+                p.latency(),
+                layout::Layout::build(&p).mults,
+                s.method
+            )));
+        }
+        Ok(p)
     }
 
     /// S + G: fractional bits of the internal states.
@@ -444,11 +458,13 @@ impl VelocityParams {
         self.spec.frac_bits + self.guard
     }
 
-    /// Clocks from a tick to its `out_velocity_valid`: 3 + L per multiply (operand
-    /// register, L multiplier pipeline stages, product register, accumulate) plus two
-    /// (snapshot, output register); L (3 or 4 at the defaults) from the operand widths.
+    /// Clocks from a tick to its `out_velocity_valid`: n + 3 per multiply (operand
+    /// register and multiplier start, n + 1 multiplier clocks, accumulate) plus two
+    /// (snapshot, differences); n = ceil(Wb / 2) Booth digits of the widest coefficient
+    /// (9 or 10 at the defaults, 17 for lsq's reciprocal). The one place the latency is
+    /// derived: the model, the RTL's schedule and the config's check follow it.
     pub fn latency(&self) -> u64 {
-        let l = hdl::Layout::build(self).mul_stages() as u64;
+        let l = layout::Layout::build(self).mul_steps() as u64;
         let mults = match &self.consts {
             MethodConsts::DiffLpf { .. } | MethodConsts::Kalman { .. } => 1,
             MethodConsts::Lsq { n, .. } => n.len() as u64,

@@ -430,4 +430,25 @@ mod tests {
         s.lsq_order = 4;
         assert!(VelocityParams::new(&s).is_err());
     }
+
+    #[test]
+    fn an_update_must_end_within_its_period() {
+        // lsq M = 4 at the defaults: 4 multiplies of n + 3 clocks (n = ceil(33 / 2) Booth
+        // digits of the 33-bit reciprocal) and 2 more: 82 clocks, above the 64-clock floor.
+        let mut s = VelocitySpec::defaults(133.33e6, 14, 5_000_000);
+        s.method = Method::Lsq;
+        let lat = VelocityParams::new(&s).unwrap().latency();
+        assert_eq!(lat, 4 * (17 + 3) + 2);
+        // The clock sets D only (the constants depend on the rate): D = latency is refused,
+        // D = latency + 1 accepted, and its schedule then fits the period.
+        s.clock_hz = lat as f64 * s.rate_hz;
+        let e = VelocityParams::new(&s).unwrap_err().to_string();
+        assert!(
+            e.contains("update period") && e.contains("lower the update rate"),
+            "{e}"
+        );
+        s.clock_hz = (lat + 1) as f64 * s.rate_hz;
+        let p = VelocityParams::new(&s).unwrap();
+        assert_eq!((p.period_clocks, p.latency()), (lat + 1, lat));
+    }
 }
