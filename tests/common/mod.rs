@@ -121,7 +121,6 @@ pub fn replay_top_in_simulators(
     tag: &str,
 ) -> sinedec::sim::system::SimResult {
     use sinedec::blocks::top::hdl::TopRtl;
-    use sinedec::cosim::CosimBlock;
     use sinedec::sim::encoder::EncoderModel;
     use sinedec::sim::system::System;
     use sinedec::verify::{block_traces, Simulators};
