@@ -1,9 +1,19 @@
 //! End to end in the Rust simulation (encoder model -> LTC1407A-1 model -> `<name>_top`),
 //! default configuration: position error against the true angle under noise, and creep.
 use sinedec::config::Loaded;
+use sinedec::sim::dut::EngineKind;
 use sinedec::sim::encoder::Profile;
 use sinedec::simulate::{run, SimOptions};
 use std::f64::consts::FRAC_PI_2;
+
+/// Default options on the compiled engine: these tests check the decoder's figures in its
+/// closed loop, not rust-hdl's simulation, and tests/engine_loop.rs proves the two equal.
+fn compiled() -> SimOptions {
+    SimOptions {
+        engine: EngineKind::Compiled,
+        ..Default::default()
+    }
+}
 
 /// Error bounds in fine LSB for ADC noise of `noise_lsb` RMS per channel at amplitude
 /// `amp` (fraction of full scale), derived from the noise and the quantization:
@@ -38,7 +48,7 @@ fn error_within_the_noise_bound_at_10_300_3000_rpm() {
             amplitude: 0.8,
             noise_lsb: 1.0,
             seed: rpm as u64,
-            ..Default::default()
+            ..compiled()
         };
         let r = run(&l, &o, |_, _| {}).expect("simulation runs");
         let s = r.stats;
@@ -64,7 +74,7 @@ fn creep_at_0_3_rpm_is_monotonic_in_the_mean_without_quadrant_jumps() {
         amplitude: 0.8,
         noise_lsb: 1.0,
         seed: 5,
-        ..Default::default()
+        ..compiled()
     };
     let r = run(&l, &o, |_, _| {}).expect("simulation runs");
     let u: Vec<i64> = r.result.records.iter().map(|x| x.unwrapped).collect();
@@ -103,7 +113,7 @@ fn auto_calibration_removes_offset_and_gain_mismatch() {
             amplitude: 0.8,
             noise_lsb: 1.0,
             seed: 11,
-            ..Default::default()
+            ..compiled()
         };
         run(&l, &o, |_, _| {}).expect("runs").stats
     };
@@ -118,7 +128,7 @@ fn auto_calibration_removes_offset_and_gain_mismatch() {
         // 300 rpm = 10.24 periods/ms, 127 samples per period: skip the first 2 periods
         // (the first update comes after one whole period).
         skip: 260,
-        ..Default::default()
+        ..compiled()
     };
     let uncorrected = run(&Loaded::default_config().expect("default"), &bad, |_, _| {})
         .expect("runs")
@@ -150,12 +160,12 @@ fn loss_of_signal_raises_and_clears_the_error_flag() {
         profile: Profile::Constant { rpm: 300.0 },
         amplitude: 0.8,
         noise_lsb: 1.0,
-        ..Default::default()
+        ..compiled()
     };
     let mut enc = sinedec::simulate::encoder(&l, &o);
     let (t0, t1) = (0.5e-3, 1.0e-3);
     enc.fault = Some((t0, t1, 0.1));
-    let mut s = System::new(d, enc).expect("system");
+    let mut s = System::on(d, enc, EngineKind::Compiled).expect("system");
     s.start().expect("settles");
     s.run((1.5e-3 * d.clock_hz) as u64).expect("runs");
     let r = s.finish();
@@ -208,7 +218,7 @@ fn overspeed_raises_the_warning_and_the_qep_fallback_keeps_the_count() {
         amplitude: 0.8,
         noise_lsb: 1.0,
         skip: 12,
-        ..Default::default()
+        ..compiled()
     };
     let l = Loaded::default_config().expect("default");
     let r = run(&l, &o, |_, _| {}).expect("runs");
