@@ -4,8 +4,8 @@
 //! mid-command), its CDS stream equal to the model's, replayed in Icarus and Verilator; the
 //! single-cycle data unchanged with the channel on.
 use sinedec::blocks::biss::control_model::{ControlModel, Phase};
-use sinedec::blocks::biss::regs::{crc4, writable, BissIdent};
 use sinedec::blocks::biss::hdl::BissSlave;
+use sinedec::blocks::biss::regs::{crc4, writable, BissIdent};
 use sinedec::blocks::biss::BissParams;
 use sinedec::sim::biss_control::{sent_crc4, Command, Outcome, Session};
 use sinedec::sim::biss_master::FrameData;
@@ -287,11 +287,7 @@ fn bad_config_keys_are_rejected_with_their_position() {
         "eds_bank",
         &["eds_bank", "0..=255"],
     );
-    assert_config_error(
-        &with_biss("eds_bank = 1"),
-        "eds_bank",
-        &["control = true"],
-    );
+    assert_config_error(&with_biss("eds_bank = 1"), "eds_bank", &["control = true"]);
     assert_config_error(
         &with_biss("control = true\nregisters = 3"),
         "registers",

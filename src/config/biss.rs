@@ -91,7 +91,9 @@ fn control_ident(b: &BissConfig, err: &ErrFn) -> Result<Option<BissIdent>> {
             return Err(err(
                 "biss",
                 k,
-                format!("{k} is a register of the control channel: set control = true or remove {k}"),
+                format!(
+                    "{k} is a register of the control channel: set control = true or remove {k}"
+                ),
             ));
         }
         return Ok(None);
@@ -99,21 +101,38 @@ fn control_ident(b: &BissConfig, err: &ErrFn) -> Result<Option<BissIdent>> {
     let mut id = BissIdent::default();
     if let Some(s) = &b.device_id {
         id.device_id = BissIdent::ascii_id::<6>(s).ok_or_else(|| {
-            err("biss", "device_id", format!("{s:?}: allowed up to 6 printable ASCII characters"))
+            err(
+                "biss",
+                "device_id",
+                format!("{s:?}: allowed up to 6 printable ASCII characters"),
+            )
         })?;
     }
     if let Some(s) = &b.manufacturer_id {
         id.manufacturer_id = BissIdent::ascii_id::<2>(s).ok_or_else(|| {
-            err("biss", "manufacturer_id", format!("{s:?}: allowed up to 2 printable ASCII characters"))
+            err(
+                "biss",
+                "manufacturer_id",
+                format!("{s:?}: allowed up to 2 printable ASCII characters"),
+            )
         })?;
     }
     if let Some(v) = b.profile_id {
-        id.profile_id = u16::try_from(v)
-            .map_err(|_| err("biss", "profile_id", format!("{v}: allowed 0..=65535 (0xFFFF)")))?;
+        id.profile_id = u16::try_from(v).map_err(|_| {
+            err(
+                "biss",
+                "profile_id",
+                format!("{v}: allowed 0..=65535 (0xFFFF)"),
+            )
+        })?;
     }
     if let Some(v) = b.serial_number {
         id.serial_number = u32::try_from(v).map_err(|_| {
-            err("biss", "serial_number", format!("{v}: allowed 0..=4294967295 (0xFFFFFFFF)"))
+            err(
+                "biss",
+                "serial_number",
+                format!("{v}: allowed 0..=4294967295 (0xFFFFFFFF)"),
+            )
         })?;
     }
     if let Some(v) = b.eds_bank {

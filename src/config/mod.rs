@@ -55,8 +55,8 @@ mod spans;
 mod velocity;
 
 pub use crate::blocks::params::{Architecture, CapDerived, CapacitiveConfig, Derived};
-pub use biss::BissConfig;
 use biss::biss_params;
+pub use biss::BissConfig;
 pub use checks::*;
 pub use params::*;
 pub use pins::*;

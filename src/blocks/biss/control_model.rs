@@ -192,7 +192,11 @@ impl ControlModel {
         self.crc = 0;
         self.bad = false;
         self.byte = self.regs[self.addr as usize];
-        self.phase = if self.write { Phase::Write } else { Phase::Read };
+        self.phase = if self.write {
+            Phase::Write
+        } else {
+            Phase::Read
+        };
     }
 
     /// One of the 12 bits of a data byte: the answer (a read sends D7..D0 then the inverted
