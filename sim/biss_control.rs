@@ -257,7 +257,9 @@ impl Session {
             return Outcome::NoAck;
         }
         let write = matches!(c.access, Access::Write { .. });
-        if a(16) != !write || a(17) != write || !a(18) {
+        // R and W echoed as sent (R = !write), then the data start bit.
+        let (r_echo, w_echo) = (a(16), a(17));
+        if r_echo == write || w_echo != write || !a(18) {
             return Outcome::Refused;
         }
         let bits = c.bits();

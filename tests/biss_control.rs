@@ -294,3 +294,39 @@ fn bad_config_keys_are_rejected_with_their_position() {
         &["registers", "device_id"],
     );
 }
+
+/// Yosys for xc3sa and cycloneive with the channel on: no latch, clean checks (as
+/// `synthesize` requires), and the flip-flops the control channel adds: armed, stp, bq 3,
+/// state 4, zero run 4, bit count 4, CRC4 4, bad, R, W 3, address 7, shift 8, CDS 1, and
+/// the registered decodes: address + 1 7, 10 flags: 55 (a few fewer if Yosys merges
+/// equal flags), and no block RAM. On cycloneive (no LUT RAM in Cyclone III) the 128 x 8
+/// register file becomes 1024 more flip-flops.
+#[test]
+fn synthesizes_for_both_families_with_control() {
+    use sinedec::synth::{synthesize, Family};
+    let export = |p: &BissParams| {
+        let mut uut = BissSlave::new(p).unwrap();
+        rust_hdl::prelude::Block::connect_all(&mut uut);
+        sinedec::emit::verilog::export(&uut, "biss", "biss_slave").expect("export")
+    };
+    let off = export(&params(50e6, false));
+    let on = export(&params(50e6, true));
+    for fam in [Family::Xc3sa, Family::CycloneIve] {
+        let dir = common::workdir(&format!("biss_ctl_synth_{}", fam.name()));
+        let a = synthesize(&off, "biss_slave", fam, &dir).expect("synthesis");
+        let b = synthesize(&on, "biss_slave", fam, &dir).expect("synthesis");
+        eprintln!(
+            "biss {}: off {} LUT {} FF, on {} LUT {} FF {} BRAM",
+            fam.name(),
+            a.luts,
+            a.ffs,
+            b.luts,
+            b.ffs,
+            b.brams
+        );
+        let added = b.ffs - a.ffs;
+        let file = if fam == Family::CycloneIve { 1024 } else { 0 };
+        assert!((45 + file..=55 + file).contains(&added), "{added} FF added");
+        assert_eq!(b.brams, 0);
+    }
+}

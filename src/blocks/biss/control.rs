@@ -11,7 +11,8 @@
 //!                                                                         v
 //!     zcnt (zero run, 0..14)   state (Idle, Cts, Id, Adr, Crc, R, W, Start, Read, Write,
 //!     n (bit count, 0..11)            Stop, Next)     crc (CRC4)  addr (7)  sh (8)
-//!     regs: RAM 128 x 8, read at addr, output registered (rdq); written at P of a write
+//!     regs: RegFile 128 x 8, read at addr (asynchronous, unregistered: no block RAM
+//!           is inferred); written at P of a write
 //!                                                                         │
 //!  Start bit of the next frame: SLO <- cds <──────────────────────────────┘ (registered)
 //! ```
@@ -72,7 +73,7 @@ pub struct BissControl {
     pub expire: Signal<In, Bit>,
     /// The CDS bit for the next frame (registered).
     pub cds: Signal<Out, Bit>,
-    regs: RAM<Bits<8>, 7>,
+    regs: RegFile,
     armed: DFF<Bit>,
     stp: DFF<Bit>,
     bq: DFF<Bit>,
@@ -85,8 +86,22 @@ pub struct BissControl {
     rb: DFF<Bit>,
     wr: DFF<Bit>,
     sh: DFF<Bits<8>>,
-    rdq: DFF<Bits<8>>,
     cds_r: DFF<Bit>,
+    /// Registered decodes of the registers above (they change only in a step, and steps
+    /// are a frame apart, so each decode is valid from the clock after a step on; this
+    /// keeps carry chains and compares out of the step's logic): addr + 1, addr writable,
+    /// addr + 1 writable, zero run at 13 or 14, at 14, n = 0, 2, 3, 6, 11, n >= 8.
+    nadr_r: DFF<Bits<7>>,
+    awr: DFF<Bit>,
+    nwr: DFF<Bit>,
+    zend: DFF<Bit>,
+    zfull: DFF<Bit>,
+    nz: DFF<Bit>,
+    n2: DFF<Bit>,
+    n3: DFF<Bit>,
+    n6: DFF<Bit>,
+    n11: DFF<Bit>,
+    nhi: DFF<Bit>,
     /// The CDM bit being taken.
     b: Signal<Local, Bit>,
     /// The CRC register takes `cin` / shifts out its MSB this clock.
@@ -139,7 +154,7 @@ impl BissControl {
             done: Default::default(),
             expire: Default::default(),
             cds: Default::default(),
-            regs: RAM::new(init),
+            regs: RegFile::new(init),
             armed: Default::default(),
             stp: Default::default(),
             bq: Default::default(),
@@ -152,8 +167,18 @@ impl BissControl {
             rb: Default::default(),
             wr: Default::default(),
             sh: Default::default(),
-            rdq: Default::default(),
             cds_r: Default::default(),
+            nadr_r: Default::default(),
+            awr: Default::default(),
+            nwr: Default::default(),
+            zend: Default::default(),
+            zfull: Default::default(),
+            nz: Default::default(),
+            n2: Default::default(),
+            n3: Default::default(),
+            n6: Default::default(),
+            n11: Default::default(),
+            nhi: Default::default(),
             b: Default::default(),
             cupd: Default::default(),
             cshf: Default::default(),
@@ -186,14 +211,12 @@ impl Logic for BissControl {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, armed, stp, bq, state, zcnt, n, crc, bad, addr, rb, wr, sh, rdq, cds_r
+            self, clk, armed, stp, bq, state, zcnt, n, crc, bad, addr, rb, wr, sh, cds_r, nadr_r,
+            awr, nwr, zend, zfull, nz, n2, n3, n6, n11, nhi
         );
-        self.regs.read_clock.next = self.clk.val();
-        self.regs.write_clock.next = self.clk.val();
-        self.regs.read_address.next = self.addr.q.val();
-        self.regs.write_address.next = self.addr.q.val();
+        self.regs.clock.next = self.clk.val();
+        self.regs.address.next = self.addr.q.val();
         self.regs.write_data.next = self.sh.q.val();
-        self.rdq.d.next = self.regs.read_data.val();
         // A complete frame arms the sampler; the end of its timeout takes one CDM bit.
         if self.done.val() {
             self.armed.d.next = true;
@@ -206,13 +229,25 @@ impl Logic for BissControl {
         self.b.next = self.bq.q.val();
         self.c3.next = (self.crc.q.val() & self.msb4.val()).any();
         self.nadr.next = self.addr.q.val() + self.one7.val();
+        self.nadr_r.d.next = self.nadr.val();
+        self.awr.d.next = self.addr.q.val() < self.ro7.val();
+        self.nwr.d.next = self.nadr.val() < self.ro7.val();
+        self.zend.d.next = (self.zcnt.q.val() == self.thirteen4.val())
+            | (self.zcnt.q.val() == self.fourteen4.val());
+        self.zfull.d.next = self.zcnt.q.val() == self.fourteen4.val();
+        self.nz.d.next = self.n.q.val() == self.zero4.val();
+        self.n2.d.next = self.n.q.val() == self.two4.val();
+        self.n3.d.next = self.n.q.val() == self.three4.val();
+        self.n6.d.next = self.n.q.val() == self.six4.val();
+        self.n11.d.next = self.n.q.val() == self.eleven4.val();
+        self.nhi.d.next = (self.n.q.val() & self.msb4.val()).any();
         self.cupd.next = false;
         self.cshf.next = false;
         self.cin.next = self.b.val();
         self.ans.next = false;
         self.we.next = false;
-        if self.n.q.val() == self.zero4.val() {
-            self.dbyte.next = self.rdq.q.val();
+        if self.nz.q.val() {
+            self.dbyte.next = self.regs.read_data.val();
         } else {
             self.dbyte.next = self.sh.q.val();
         }
@@ -220,7 +255,7 @@ impl Logic for BissControl {
         if self.stp.q.val() {
             match self.state.q.val() {
                 CtlState::Idle => {
-                    if self.b.val() & (self.zcnt.q.val() == self.fourteen4.val()) {
+                    if self.b.val() & self.zfull.q.val() {
                         self.ans.next = true;
                         self.crc.d.next = self.zero4.val();
                         self.bad.d.next = false;
@@ -241,7 +276,7 @@ impl Logic for BissControl {
                         self.bad.d.next = true;
                     }
                     self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n.q.val() == self.two4.val() {
+                    if self.n2.q.val() {
                         self.n.d.next = self.zero4.val();
                         self.state.d.next = CtlState::Adr;
                     }
@@ -254,7 +289,7 @@ impl Logic for BissControl {
                         self.addr.d.next = self.addr.q.val() << self.one7.val();
                     }
                     self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n.q.val() == self.six4.val() {
+                    if self.n6.q.val() {
                         self.n.d.next = self.zero4.val();
                         self.state.d.next = CtlState::Crc;
                     }
@@ -265,7 +300,7 @@ impl Logic for BissControl {
                         self.bad.d.next = true;
                     }
                     self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n.q.val() == self.three4.val() {
+                    if self.n3.q.val() {
                         self.state.d.next = CtlState::Rb;
                     }
                 }
@@ -279,7 +314,7 @@ impl Logic for BissControl {
                     self.state.d.next = CtlState::Idle;
                     if !self.bad.q.val()
                         & (self.rb.q.val() != self.b.val())
-                        & (!self.b.val() | (self.addr.q.val() < self.ro7.val()))
+                        & (!self.b.val() | self.awr.q.val())
                     {
                         self.ans.next = self.b.val();
                         self.state.d.next = CtlState::Start;
@@ -304,10 +339,10 @@ impl Logic for BissControl {
                         self.state.d.next = CtlState::Idle;
                     } else {
                         self.n.d.next = self.n.q.val() + self.one4.val();
-                        if self.n.q.val() == self.eleven4.val() {
+                        if self.n11.q.val() {
                             self.state.d.next = CtlState::Stop;
                         }
-                        if (self.n.q.val() & self.msb4.val()).any() {
+                        if self.nhi.q.val() {
                             // CRC bits: the inverted CRC4, MSB first.
                             self.cshf.next = true;
                             self.ans.next = !self.c3.val();
@@ -321,10 +356,10 @@ impl Logic for BissControl {
                 }
                 CtlState::Write => {
                     self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n.q.val() == self.eleven4.val() {
+                    if self.n11.q.val() {
                         self.state.d.next = CtlState::Stop;
                     }
-                    if (self.n.q.val() & self.msb4.val()).any() {
+                    if self.nhi.q.val() {
                         // CRC bits: answer the own CRC4 of the received byte.
                         self.cshf.next = true;
                         self.ans.next = !self.c3.val();
@@ -352,8 +387,8 @@ impl Logic for BissControl {
                 CtlState::Next => {
                     self.state.d.next = CtlState::Idle;
                     if self.b.val() {
-                        self.addr.d.next = self.nadr.val();
-                        if !self.wr.q.val() | (self.nadr.val() < self.ro7.val()) {
+                        self.addr.d.next = self.nadr_r.q.val();
+                        if !self.wr.q.val() | self.nwr.q.val() {
                             self.ans.next = true;
                             self.n.d.next = self.zero4.val();
                             self.crc.d.next = self.zero4.val();
@@ -370,13 +405,10 @@ impl Logic for BissControl {
             // The zero run: 14 zeros end any control frame.
             if self.b.val() {
                 self.zcnt.d.next = self.zero4.val();
-            } else if self.zcnt.q.val() != self.fourteen4.val() {
+            } else if !self.zfull.q.val() {
                 self.zcnt.d.next = self.zcnt.q.val() + self.one4.val();
             }
-            if !self.b.val()
-                & ((self.zcnt.q.val() == self.thirteen4.val())
-                    | (self.zcnt.q.val() == self.fourteen4.val()))
-            {
+            if !self.b.val() & self.zend.q.val() {
                 self.ans.next = false;
                 self.state.d.next = CtlState::Idle;
             }
@@ -403,5 +435,63 @@ impl Logic for BissControl {
             self.regs.write_enable.next = false;
         }
         self.cds.next = self.cds_r.q.val();
+    }
+}
+
+/// The 128 x 8 register file: asynchronous read at `address`, write at the clock edge with
+/// `write_enable`, initial contents. The read is asynchronous so that no synthesis flow
+/// infers a block RAM from it (Yosys 0.23's `synth_intel` cannot initialise an M9K): it maps
+/// to LUT RAM (distributed RAM on xc3sa, DPR16X4 on ECP5) or logic; the parent does not
+/// register its output (a register there would let Yosys build a synchronous read port).
+#[derive(LogicBlock, Default)]
+pub struct RegFile {
+    /// Write clock.
+    pub clock: Signal<In, Clock>,
+    /// Read and write address.
+    pub address: Signal<In, Bits<7>>,
+    /// The register at `address`.
+    pub read_data: Signal<Out, Bits<8>>,
+    /// Byte to write.
+    pub write_data: Signal<In, Bits<8>>,
+    /// Write `write_data` to `address` at this clock edge.
+    pub write_enable: Signal<In, Bit>,
+    _sim: Box<BTreeMap<Bits<7>, Bits<8>>>,
+}
+
+impl RegFile {
+    /// Register file with initial contents.
+    pub fn new(values: BTreeMap<Bits<7>, Bits<8>>) -> Self {
+        Self {
+            _sim: Box::new(values),
+            ..Default::default()
+        }
+    }
+}
+
+impl Logic for RegFile {
+    fn update(&mut self) {
+        if self.clock.pos_edge() && self.write_enable.val() {
+            self._sim.insert(self.address.val(), self.write_data.val());
+        }
+        self.read_data.next = self
+            ._sim
+            .get(&self.address.val())
+            .copied()
+            .unwrap_or_default();
+    }
+
+    fn connect(&mut self) {
+        self.read_data.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        let init = self
+            ._sim
+            .iter()
+            .map(|(a, v)| format!("   mem[{}] = {};\n", a.verilog(), v.verilog()))
+            .collect::<String>();
+        Verilog::Custom(format!(
+            "reg [7:0] mem [127:0];\n\ninitial begin\n{init}end\n\nalways @(posedge clock) begin\n   if (write_enable) begin\n      mem[address] <= write_data;\n   end\nend\n\nalways @(*) begin\n   read_data = mem[address];\nend\n"
+        ))
     }
 }
