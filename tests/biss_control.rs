@@ -176,7 +176,7 @@ fn closed_loop_register_access_four_way() {
     let cds: Vec<bool> = data.iter().map(|d| d.cds).collect();
     let first = s.commands[1].0;
     println!(
-        "read of 0x78..0x7F (first 22 bits):\n{}",
+        "read of 0x78..0x7F (its first 32 frames):\n{}",
         s.transcript(&cds, first, first + 32)
     );
     assert_eq!(s.outcomes(&cds), expected_outcomes());

@@ -455,14 +455,14 @@ pub struct RegFile {
     pub write_data: Signal<In, Bits<8>>,
     /// Write `write_data` to `address` at this clock edge.
     pub write_enable: Signal<In, Bit>,
-    _sim: Box<BTreeMap<Bits<7>, Bits<8>>>,
+    _sim: BTreeMap<Bits<7>, Bits<8>>,
 }
 
 impl RegFile {
     /// Register file with initial contents.
     pub fn new(values: BTreeMap<Bits<7>, Bits<8>>) -> Self {
         Self {
-            _sim: Box::new(values),
+            _sim: values,
             ..Default::default()
         }
     }
