@@ -174,6 +174,7 @@ impl BissMasterConfig {
     fn fail(run: &mut BissRun, burst: &mut Burst, outcome: Outcome) {
         run.failure = Some(outcome);
         run.seek = Seek::Done;
+        burst.end_low = false;
         burst.stop_now();
     }
 }

@@ -148,8 +148,11 @@ pub struct Burst {
     pub falls: u32,
     /// Rising edges given.
     pub rises: u32,
-    /// Stop (MA high) after this rising edge.
+    /// Stop after this rising edge.
     pub stop_after: Option<u32>,
+    /// After the last rising edge, one more falling edge: MA stays low (a BiSS master's
+    /// CDM = 1 during the timeout) until the master raises it.
+    pub end_low: bool,
 }
 
 impl Burst {
@@ -163,6 +166,7 @@ impl Burst {
             falls: 0,
             rises: 0,
             stop_after: None,
+            end_low: false,
         }
     }
     /// Time of rising edge n (1-based).
@@ -173,10 +177,14 @@ impl Burst {
     pub fn fall(&self, n: u32) -> f64 {
         self.t0 + (n as f64 - 1.0) * self.period
     }
-    /// Whether the burst has stopped (MA high for good).
+    /// Whether the burst has stopped (MA high for good, or low with `end_low`).
     pub fn stopped(&self) -> bool {
         self.stop_after
-            .is_some_and(|k| self.rises >= k && self.falls == self.rises)
+            .is_some_and(|k| self.rises >= k && self.falls == self.rises + self.end_low as u32)
+    }
+    /// Whether the burst has stopped with MA low (`end_low`).
+    pub fn ended_low(&self) -> bool {
+        self.stopped() && self.falls > self.rises
     }
     /// The next edge (time, new level), if any.
     pub fn next_edge(&self) -> Option<(f64, bool)> {
@@ -225,6 +233,9 @@ pub struct FrameRequest {
     pub wait_ready: bool,
     /// Stop clocking after this many rising edges (a master that gives up mid-frame).
     pub abort_after_rises: Option<u32>,
+    /// BiSS C control bit CDM sent in this frame's timeout: true holds MA low after the
+    /// frame's last rising edge until the slave is ready again (complete frames only).
+    pub cdm: bool,
 }
 
 impl FrameRequest {
@@ -236,6 +247,7 @@ impl FrameRequest {
             gap_ns: 0.0,
             wait_ready: true,
             abort_after_rises: None,
+            cdm: false,
         }
     }
     /// With a pause before the frame.

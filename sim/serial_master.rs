@@ -222,6 +222,7 @@ impl<P: FrameProtocol> SerialMaster<P> {
     fn start_frame(&mut self, req: FrameRequest, s: f64) {
         self.next_req += 1;
         let mut burst = Burst::new(s, req.ma_hz, req.duty);
+        burst.end_low = req.cdm && req.abort_after_rises.is_none();
         burst.stop_after = self.cfg.frame_rises();
         if let Some(k) = req.abort_after_rises {
             burst.stop_after_rise(k);
@@ -254,7 +255,15 @@ impl<P: FrameProtocol> SerialMaster<P> {
                     Some(tau) => {
                         let last = run.burst.last_edge();
                         self.report(&run, Some(tau - last));
-                        self.next_frame(last, false, Some(tau));
+                        // A CDM = 1 frame: MA returns high as the slave is seen ready, and
+                        // stays high for one period before the next frame.
+                        let ready = if run.burst.ended_low() {
+                            self.ma.push(tau, true);
+                            tau + run.burst.period
+                        } else {
+                            tau
+                        };
+                        self.next_frame(last, false, Some(ready));
                     }
                     None => {
                         if t - run.burst.last_edge() > self.cfg.line().giveup_ns {
@@ -320,7 +329,7 @@ impl<P: FrameProtocol> SerialMaster<P> {
             // Nothing more before t. The frame is over once the clock has stopped and no
             // sample is pending (none wanted, or one whose time is never known).
             if edge.is_none() && sample.is_none() {
-                self.finish_frame(run);
+                self.finish_frame(run, t);
                 return true;
             }
             self.phase = Phase::Frame(run);
@@ -344,8 +353,9 @@ impl<P: FrameProtocol> SerialMaster<P> {
         true
     }
 
-    /// Clocking has stopped and no sample is pending: report, or wait for the timeout.
-    fn finish_frame(&mut self, run: Box<Run<P::Run>>) {
+    /// Clocking has stopped and no sample is pending (at `t`): report, or wait for the
+    /// timeout.
+    fn finish_frame(&mut self, run: Box<Run<P::Run>>, t: f64) {
         let last = run.burst.last_edge();
         let complete = self.cfg.complete(&run.proto);
         let next_waits = self
@@ -359,6 +369,12 @@ impl<P: FrameProtocol> SerialMaster<P> {
             let scan = self.sl.index_at(run.t_last_sample);
             self.phase = Phase::Timeout { run, scan };
         } else {
+            let mut last = last;
+            if run.burst.ended_low() {
+                // MA held low for CDM, but the frame is not followed by a timeout wait.
+                self.ma.push(t, true);
+                last = t;
+            }
             self.report(&run, None);
             self.next_frame(last, !complete, None);
         }

@@ -45,6 +45,7 @@ use crate::error::{Error, Quoted, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
 
+mod biss;
 mod checks;
 mod derived;
 mod params;
@@ -54,6 +55,8 @@ mod spans;
 mod velocity;
 
 pub use crate::blocks::params::{Architecture, CapDerived, CapacitiveConfig, Derived};
+use biss::biss_params;
+pub use biss::BissConfig;
 pub use checks::*;
 pub use params::*;
 pub use pins::*;

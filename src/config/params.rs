@@ -1,6 +1,6 @@
 //! Each block's parameters built from the config and checked against it: ADC and
-//! pre-amplifier, ABZ, BiSS-C, correction, monitor, capacitive front end (the checks across
-//! blocks are in `checks.rs`). Errors name the config key to change.
+//! pre-amplifier, ABZ, correction, monitor, capacitive front end (the checks across
+//! blocks are in `checks.rs`, BiSS-C in `biss.rs`). Errors name the config key to change.
 
 use super::*;
 
@@ -229,44 +229,6 @@ pub(super) fn abz_params(
     AbzParams::new(quadrants_per_turn, fine_bits, lines, spacing)
         .map(Some)
         .map_err(|m| err("abz", "lines", m.detail()))
-}
-
-/// BiSS-C parameters: data bits default to the whole single-turn position (at most 32).
-pub(super) fn biss_params(c: &Config, position_width: u32, err: &ErrFn) -> Result<BissParams> {
-    let b = &c.biss;
-    let pb = b.position_bits.unwrap_or(position_width.min(32));
-    if pb == 0 || pb > position_width.min(32) {
-        return Err(err(
-            "biss",
-            "position_bits",
-            format!(
-                "{pb} bits: allowed 1..={} (out_position has {position_width} bits; BiSS words hold 32)",
-                position_width.min(32)
-            ),
-        ));
-    }
-    let mb = b.multiturn_bits.unwrap_or(0);
-    if mb > c.encoder.multiturn_bits || pb + mb > 32 {
-        return Err(err(
-            "biss",
-            "multiturn_bits",
-            format!(
-                "{mb} bits: at most encoder.multiturn_bits ({}) and position_bits + multiturn_bits <= 32 (position_bits = {pb})",
-                c.encoder.multiturn_bits
-            ),
-        ));
-    }
-    let mut p = BissParams::new(pb, mb, c.clock.frequency_hz)
-        .map_err(|m| err("biss", "position_bits", m.to_string()))?;
-    p.gray = b.gray.unwrap_or(false);
-    p.ack_periods = b.ack_periods.unwrap_or(1);
-    if let Some(t) = b.timeout_us {
-        p.set_timeout_us(t)
-            .map_err(|m| err("biss", "timeout_us", m.to_string()))?;
-    }
-    p.validate()
-        .map_err(|m| err("biss", "ack_periods", m.to_string()))?;
-    Ok(p)
 }
 
 fn frac_of_fs(c: &Config, table: &str, key: &str, v: f64, err: &ErrFn) -> Result<u32> {

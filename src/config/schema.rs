@@ -329,24 +329,6 @@ impl Default for QepConfig {
     }
 }
 
-/// `[biss]`: the BiSS-C slave of `<name>_top` (pins `biss_ma`, `biss_slo`).
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BissConfig {
-    /// Single-turn data bits: the most significant bits of `out_position` (default: all of
-    /// them, at most 32).
-    pub position_bits: Option<u32>,
-    /// Multi-turn bits sent ahead of the position (default 0; at most encoder.multiturn_bits
-    /// and position_bits + multiturn_bits <= 32).
-    pub multiturn_bits: Option<u32>,
-    /// Gray-code the data word (default false).
-    pub gray: Option<bool>,
-    /// MA periods of Ack before Start (1..=64, default 1).
-    pub ack_periods: Option<u32>,
-    /// Timeout in microseconds (default 20).
-    pub timeout_us: Option<f64>,
-}
-
 /// `[clock]`
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

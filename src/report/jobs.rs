@@ -140,12 +140,18 @@ pub(super) fn fallback_job(l: &Loaded) -> Result<BlockJob> {
 
 pub(super) fn biss_job(l: &Loaded) -> Result<BlockJob> {
     let uut = BissSlave::new(&l.derived.biss)?;
-    job(
+    let j = job(
         l,
         "biss",
         uut,
         BlockTiming::none("serial: clocked by the master's MA"),
-    )
+    )?;
+    // The row includes the control channel and its 128-byte register file when it is on.
+    Ok(if l.derived.biss.control.is_some() {
+        j.with_note("with the control channel (register file, docs/biss_control.md)")
+    } else {
+        j
+    })
 }
 
 pub(super) fn ssi_job(l: &Loaded) -> Result<BlockJob> {

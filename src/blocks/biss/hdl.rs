@@ -1,5 +1,6 @@
 //! rust-hdl description of the BiSS-C slave. The line synchronizer and the position word
 //! latch it shares with the SSI and SPI slaves are in [`crate::blocks::serial::hdl`].
+use crate::blocks::biss::control::BissControl;
 use crate::blocks::biss::crc::TAPS;
 use crate::blocks::biss::BissParams;
 use crate::blocks::serial::hdl::{LineSync, PosWord};
@@ -57,6 +58,8 @@ pub struct BissSlave {
     pub slo: Signal<Out, Bit>,
     sync: LineSync,
     posw: PosWord,
+    /// The control channel: one instance with `control`, none without (no Verilog).
+    ctl: Vec<BissControl>,
     state: DFF<BissState>,
     slo_reg: DFF<Bit>,
     sh: DFF<Bits<32>>,
@@ -137,6 +140,7 @@ impl BissSlave {
             slo: Default::default(),
             sync: LineSync::new(p.glitch_filter),
             posw: PosWord::new(p.position_bits, p.multiturn_bits, p.gray),
+            ctl: p.control.iter().map(BissControl::new).collect(),
             state: Default::default(),
             slo_reg: Default::default(),
             sh: Default::default(),
@@ -198,6 +202,13 @@ impl Logic for BissSlave {
         self.posw.error.next = self.error.val();
         self.posw.warning.next = self.warning.val();
         self.posw.take.next = false;
+        for i in 0..self.ctl.len() {
+            self.ctl[i].clk.next = self.clk.val();
+            self.ctl[i].rst.next = self.rst.val();
+            self.ctl[i].ma.next = self.sync.level.val();
+            self.ctl[i].done.next = false;
+            self.ctl[i].expire.next = false;
+        }
         self.mae.next = self.sync.rise.val() | self.sync.fall.val();
         // Data MSB of the shift register, and the bit that enters the CRC this cycle.
         self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
@@ -245,6 +256,10 @@ impl Logic for BissSlave {
             BissState::Start => {
                 if self.sync.rise.val() {
                     self.slo_reg.d.next = false;
+                    // With the control channel, the CDS bit it prepared.
+                    for i in 0..self.ctl.len() {
+                        self.slo_reg.d.next = self.ctl[i].cds.val();
+                    }
                     self.state.d.next = BissState::Cds;
                 }
             }
@@ -290,6 +305,10 @@ impl Logic for BissSlave {
                     if self.fsix.q.val() {
                         self.slo_reg.d.next = false;
                         self.state.d.next = BissState::Timeout;
+                        // The final pulse: the frame is complete, its CDM will count.
+                        for i in 0..self.ctl.len() {
+                            self.ctl[i].done.next = true;
+                        }
                     } else {
                         self.slo_reg.d.next = !(self.crc.q.val() & self.crcmsb.val()).any();
                         self.crc.d.next = (self.crc.q.val() << self.one.val()) & self.crcmask.val();
@@ -341,6 +360,10 @@ impl Logic for BissSlave {
         if (self.state.q.val() != BissState::Idle) & !self.mae.val() & self.ftl.q.val() {
             self.slo_reg.d.next = true;
             self.state.d.next = BissState::Idle;
+            // The control channel takes the CDM bit (the MA level held during the timeout).
+            for i in 0..self.ctl.len() {
+                self.ctl[i].expire.next = true;
+            }
         }
         if self.rst.val() {
             self.state.d.next = BissState::Timeout;

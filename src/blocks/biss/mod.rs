@@ -1,4 +1,5 @@
-//! BiSS-C slave: point-to-point, single-cycle data (SCD), no register channel.
+//! BiSS-C slave: point-to-point, single-cycle data (SCD), optionally with the control channel
+//! (register access over CDM/CDS, [`control`], docs/biss_control.md).
 //!
 //! The drive (BiSS master) clocks MA; the slave answers on SLO. MA is asynchronous to the
 //! system clock: it passes a two-flop synchronizer and, by default, a glitch filter
@@ -25,7 +26,7 @@
 //! | R1                        | 1                                                     |
 //! | R2 .. R(1+A)              | 0: Ack, A MA periods of "processing time"             |
 //! | R(2+A)                    | 1: Start                                              |
-//! | R(3+A)                    | 0: CDS (no register channel: always 0)                |
+//! | R(3+A)                    | CDS: 0, or the control channel's answer (see below)   |
 //! | R(4+A) .. R(3+A+N)        | data word, MSB first: multi-turn bits, then position  |
 //! | R(4+A+N), R(5+A+N)        | nE, nW (active low)                                   |
 //! | R(6+A+N) .. R(11+A+N)     | CRC6 over data, nE, nW, inverted, MSB first           |
@@ -106,10 +107,23 @@
 //! BiSS-C's 10 MHz therefore needs a compensating master (standard for BiSS) at 50 MHz and
 //! works with either master at 133.33 MHz.
 //!
+//! # Control channel (`control`)
+//!
+//! With [`BissParams::control`] set, the slave takes one CDM bit per complete frame: the
+//! inverted MA level at the moment its timeout ends (a master holds MA low during the
+//! timeout for CDM = 1, high for 0). Its answer goes out as the CDS bit of the next frame,
+//! in the slot after Start; data, nE, nW and the CRC6 are unchanged. The control frames
+//! (start, CTS, ID, address, CRC4, R/W, data byte, CRC4, stop) and the register file are
+//! described in docs/biss_control.md ([`control`], [`control_model`], [`regs`]). Without
+//! the channel the slave exports the same Verilog as before (CDS always 0).
+//!
 //! Ports of [`hdl::BissSlave`]: `clk`, `rst`, `ma`, `pos` (32), `turns` (32), `pos_valid`,
 //! `error`, `warning` -> `slo`.
+pub mod control;
+pub mod control_model;
 pub mod crc;
 pub mod hdl;
+pub mod regs;
 
 use crate::blocks::serial::{
     check_clock, check_timeout_clocks, check_word, min_level_clocks, sync_latency, timeout_clocks,
@@ -137,6 +151,10 @@ pub struct BissParams {
     pub glitch_filter: bool,
     /// System clock frequency in Hz (used for the timeout and the reported limits).
     pub clock_hz: f64,
+    /// The control channel (CDM/CDS register access) with these identification registers;
+    /// None: CDS is always 0 (see docs/biss_control.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub control: Option<regs::BissIdent>,
 }
 
 impl BissParams {
@@ -155,6 +173,7 @@ impl BissParams {
             timeout_clocks: timeout_clocks("biss", DEFAULT_TIMEOUT_US, clock_hz)?,
             glitch_filter: true,
             clock_hz,
+            control: None,
         };
         p.validate()?;
         Ok(p)

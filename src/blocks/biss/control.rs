@@ -1,0 +1,497 @@
+//! rust-hdl description of the BiSS C control channel (`[biss] control = true`): the CDM
+//! sampler, the control-frame state machine and the 128-byte register file. It is a
+//! sub-block of [`super::hdl::BissSlave`], present only when the control channel is on
+//! (a `Vec` of zero or one), so the slave without it exports the same Verilog as before.
+//!
+//! ```text
+//!  BissSlave                                   BissControl
+//!  frame's final pulse answered ── done ──> armed ─┐
+//!  timeout over (SLO -> 1)  ────── expire ─────────┴─&─> stp (registered) ─┐
+//!  filtered MA level ───────────── ma ──> !ma ──────────> b  (registered) ─┤ one CDM bit
+//!                                                                         v
+//!     zcnt (zero run, 0..14)   state (Idle, Cts, Id, Adr, Crc, R, W, Start, Read, Write,
+//!     n (bit count, 0..11)            Stop, Next)     crc (CRC4)  addr (7)  sh (8)
+//!     regs: RegFile 128 x 8, read at addr (asynchronous, unregistered: no block RAM
+//!           is inferred); written at P of a write
+//!                                                                         │
+//!  Start bit of the next frame: SLO <- cds <──────────────────────────────┘ (registered)
+//! ```
+//!
+//! One CDM bit is taken per complete frame, in the clock after the timeout ends, and its
+//! answer is ready long before the next frame's CDS slot (at least four MA edges later).
+//! The answers are the table of docs/biss_control.md; [`super::control_model`] is the same
+//! table in plain Rust.
+//!
+//! Widths: zcnt, n and crc are 4 bits (at most 14, 11 and 0xf), addr 7 bits (the address
+//! increment wraps 0x7f -> 0x00 as the protocol's 7-bit address does), sh and the register
+//! data 8 bits. Every constant is sized to the word it meets.
+use super::regs::{BissIdent, FIRST_READ_ONLY, POLY4};
+use rust_hdl::prelude::*;
+use std::collections::BTreeMap;
+
+/// Where the control channel is in a control frame (one step per CDM bit).
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum CtlState {
+    /// Waiting for a start bit after at least 14 zeros.
+    Idle,
+    /// Next bit: CTS.
+    Cts,
+    /// Next bits: ID2..ID0.
+    Id,
+    /// Next bits: A6..A0.
+    Adr,
+    /// Next bits: the inverted CRC4.
+    Crc,
+    /// Next bit: R.
+    Rb,
+    /// Next bit: W.
+    Wb,
+    /// Next bit: the start bit of the data part.
+    Start,
+    /// The 12 bits of a read.
+    Read,
+    /// The 12 bits of a write.
+    Write,
+    /// Next bit: the stop bit.
+    Stop,
+    /// After the stop bit: start = next address, 0 = end.
+    Next,
+}
+
+/// The BiSS C control channel with its register file.
+#[derive(LogicBlock)]
+pub struct BissControl {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high (the registers keep their contents).
+    pub rst: Signal<In, Bit>,
+    /// Filtered, synchronized MA level.
+    pub ma: Signal<In, Bit>,
+    /// The frame's final clock pulse has been answered (the frame is complete).
+    pub done: Signal<In, Bit>,
+    /// The timeout ends this clock (SLO returns high).
+    pub expire: Signal<In, Bit>,
+    /// The CDS bit for the next frame (registered).
+    pub cds: Signal<Out, Bit>,
+    regs: RegFile,
+    armed: DFF<Bit>,
+    stp: DFF<Bit>,
+    bq: DFF<Bit>,
+    state: DFF<CtlState>,
+    zcnt: DFF<Bits<4>>,
+    n: DFF<Bits<4>>,
+    crc: DFF<Bits<4>>,
+    bad: DFF<Bit>,
+    addr: DFF<Bits<7>>,
+    rb: DFF<Bit>,
+    wr: DFF<Bit>,
+    sh: DFF<Bits<8>>,
+    cds_r: DFF<Bit>,
+    /// Registered decodes of the registers above (they change only in a step, and steps
+    /// are a frame apart, so each decode is valid from the clock after a step on; this
+    /// keeps carry chains and compares out of the step's logic): addr + 1, addr writable,
+    /// addr + 1 writable, zero run at 13 or 14, at 14, n = 0, 2, 3, 6, 11, n >= 8.
+    nadr_r: DFF<Bits<7>>,
+    awr: DFF<Bit>,
+    nwr: DFF<Bit>,
+    zend: DFF<Bit>,
+    zfull: DFF<Bit>,
+    nz: DFF<Bit>,
+    n2: DFF<Bit>,
+    n3: DFF<Bit>,
+    n6: DFF<Bit>,
+    n11: DFF<Bit>,
+    nhi: DFF<Bit>,
+    /// The CDM bit being taken.
+    b: Signal<Local, Bit>,
+    /// The CRC register takes `cin` / shifts out its MSB this clock.
+    cupd: Signal<Local, Bit>,
+    cshf: Signal<Local, Bit>,
+    cin: Signal<Local, Bit>,
+    /// The CRC MSB.
+    c3: Signal<Local, Bit>,
+    /// The byte a data bit comes from (the register at the first bit of a read).
+    dbyte: Signal<Local, Bits<8>>,
+    /// Its MSB.
+    dbit: Signal<Local, Bit>,
+    /// addr + 1 (7 bits, wraps).
+    nadr: Signal<Local, Bits<7>>,
+    /// The CDS answer of this step.
+    ans: Signal<Local, Bit>,
+    /// A write is performed this clock.
+    we: Signal<Local, Bit>,
+    /// 1, 2, 3, 6, 11, 13, 14 at 4 bits; 3 (the CRC taps) and 8 (its MSB) at 4 bits.
+    one4: Constant<Bits<4>>,
+    two4: Constant<Bits<4>>,
+    six4: Constant<Bits<4>>,
+    three4: Constant<Bits<4>>,
+    eleven4: Constant<Bits<4>>,
+    thirteen4: Constant<Bits<4>>,
+    fourteen4: Constant<Bits<4>>,
+    zero4: Constant<Bits<4>>,
+    taps4: Constant<Bits<4>>,
+    msb4: Constant<Bits<4>>,
+    /// 1 at 7 bits and the first read-only address.
+    one7: Constant<Bits<7>>,
+    ro7: Constant<Bits<7>>,
+    /// 1 and 0x80 at 8 bits.
+    one8: Constant<Bits<8>>,
+    msb8: Constant<Bits<8>>,
+}
+
+impl BissControl {
+    /// Control channel with the register file's power-up contents from `ident`.
+    pub fn new(ident: &BissIdent) -> Self {
+        let image = ident.image();
+        let init: BTreeMap<Bits<7>, Bits<8>> = (0..128usize)
+            .map(|a| (Bits::<7>::from(a as u64), Bits::<8>::from(image[a] as u64)))
+            .collect();
+        let c4 = |v: u64| Constant::new(Bits::<4>::from(v));
+        Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            ma: Default::default(),
+            done: Default::default(),
+            expire: Default::default(),
+            cds: Default::default(),
+            regs: RegFile::new(init),
+            armed: Default::default(),
+            stp: Default::default(),
+            bq: Default::default(),
+            state: Default::default(),
+            zcnt: Default::default(),
+            n: Default::default(),
+            crc: Default::default(),
+            bad: Default::default(),
+            addr: Default::default(),
+            rb: Default::default(),
+            wr: Default::default(),
+            sh: Default::default(),
+            cds_r: Default::default(),
+            nadr_r: Default::default(),
+            awr: Default::default(),
+            nwr: Default::default(),
+            zend: Default::default(),
+            zfull: Default::default(),
+            nz: Default::default(),
+            n2: Default::default(),
+            n3: Default::default(),
+            n6: Default::default(),
+            n11: Default::default(),
+            nhi: Default::default(),
+            b: Default::default(),
+            cupd: Default::default(),
+            cshf: Default::default(),
+            cin: Default::default(),
+            c3: Default::default(),
+            dbyte: Default::default(),
+            dbit: Default::default(),
+            nadr: Default::default(),
+            ans: Default::default(),
+            we: Default::default(),
+            one4: c4(1),
+            two4: c4(2),
+            six4: c4(6),
+            three4: c4(3),
+            eleven4: c4(11),
+            thirteen4: c4(13),
+            fourteen4: c4(14),
+            zero4: c4(0),
+            taps4: c4((POLY4 & 0xf) as u64),
+            msb4: c4(8),
+            one7: Constant::new(Bits::<7>::from(1u64)),
+            ro7: Constant::new(Bits::<7>::from(FIRST_READ_ONLY as u64)),
+            one8: Constant::new(Bits::<8>::from(1u64)),
+            msb8: Constant::new(Bits::<8>::from(0x80u64)),
+        }
+    }
+}
+
+impl Logic for BissControl {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clk, armed, stp, bq, state, zcnt, n, crc, bad, addr, rb, wr, sh, cds_r, nadr_r,
+            awr, nwr, zend, zfull, nz, n2, n3, n6, n11, nhi
+        );
+        self.regs.clock.next = self.clk.val();
+        self.regs.address.next = self.addr.q.val();
+        self.regs.write_data.next = self.sh.q.val();
+        // A complete frame arms the sampler; the end of its timeout takes one CDM bit.
+        if self.done.val() {
+            self.armed.d.next = true;
+        }
+        self.stp.d.next = self.expire.val() & self.armed.q.val();
+        if self.expire.val() {
+            self.armed.d.next = false;
+        }
+        self.bq.d.next = !self.ma.val();
+        self.b.next = self.bq.q.val();
+        self.c3.next = (self.crc.q.val() & self.msb4.val()).any();
+        self.nadr.next = self.addr.q.val() + self.one7.val();
+        self.nadr_r.d.next = self.nadr.val();
+        self.awr.d.next = self.addr.q.val() < self.ro7.val();
+        self.nwr.d.next = self.nadr.val() < self.ro7.val();
+        self.zend.d.next = (self.zcnt.q.val() == self.thirteen4.val())
+            | (self.zcnt.q.val() == self.fourteen4.val());
+        self.zfull.d.next = self.zcnt.q.val() == self.fourteen4.val();
+        self.nz.d.next = self.n.q.val() == self.zero4.val();
+        self.n2.d.next = self.n.q.val() == self.two4.val();
+        self.n3.d.next = self.n.q.val() == self.three4.val();
+        self.n6.d.next = self.n.q.val() == self.six4.val();
+        self.n11.d.next = self.n.q.val() == self.eleven4.val();
+        self.nhi.d.next = (self.n.q.val() & self.msb4.val()).any();
+        self.cupd.next = false;
+        self.cshf.next = false;
+        self.cin.next = self.b.val();
+        self.ans.next = false;
+        self.we.next = false;
+        if self.nz.q.val() {
+            self.dbyte.next = self.regs.read_data.val();
+        } else {
+            self.dbyte.next = self.sh.q.val();
+        }
+        self.dbit.next = (self.dbyte.val() & self.msb8.val()).any();
+        if self.stp.q.val() {
+            match self.state.q.val() {
+                CtlState::Idle => {
+                    if self.b.val() & self.zfull.q.val() {
+                        self.ans.next = true;
+                        self.crc.d.next = self.zero4.val();
+                        self.bad.d.next = false;
+                        self.state.d.next = CtlState::Cts;
+                    }
+                }
+                CtlState::Cts => {
+                    self.cupd.next = true;
+                    if !self.b.val() {
+                        self.bad.d.next = true;
+                    }
+                    self.n.d.next = self.zero4.val();
+                    self.state.d.next = CtlState::Id;
+                }
+                CtlState::Id => {
+                    self.cupd.next = true;
+                    if self.b.val() {
+                        self.bad.d.next = true;
+                    }
+                    self.n.d.next = self.n.q.val() + self.one4.val();
+                    if self.n2.q.val() {
+                        self.n.d.next = self.zero4.val();
+                        self.state.d.next = CtlState::Adr;
+                    }
+                }
+                CtlState::Adr => {
+                    self.cupd.next = true;
+                    if self.b.val() {
+                        self.addr.d.next = (self.addr.q.val() << self.one7.val()) | self.one7.val();
+                    } else {
+                        self.addr.d.next = self.addr.q.val() << self.one7.val();
+                    }
+                    self.n.d.next = self.n.q.val() + self.one4.val();
+                    if self.n6.q.val() {
+                        self.n.d.next = self.zero4.val();
+                        self.state.d.next = CtlState::Crc;
+                    }
+                }
+                CtlState::Crc => {
+                    self.cshf.next = true;
+                    if self.b.val() == self.c3.val() {
+                        self.bad.d.next = true;
+                    }
+                    self.n.d.next = self.n.q.val() + self.one4.val();
+                    if self.n3.q.val() {
+                        self.state.d.next = CtlState::Rb;
+                    }
+                }
+                CtlState::Rb => {
+                    self.rb.d.next = self.b.val();
+                    self.ans.next = self.b.val() & !self.bad.q.val();
+                    self.state.d.next = CtlState::Wb;
+                }
+                CtlState::Wb => {
+                    self.wr.d.next = self.b.val();
+                    self.state.d.next = CtlState::Idle;
+                    if !self.bad.q.val()
+                        & (self.rb.q.val() != self.b.val())
+                        & (!self.b.val() | self.awr.q.val())
+                    {
+                        self.ans.next = self.b.val();
+                        self.state.d.next = CtlState::Start;
+                    }
+                }
+                CtlState::Start => {
+                    self.state.d.next = CtlState::Idle;
+                    if self.b.val() {
+                        self.ans.next = true;
+                        self.n.d.next = self.zero4.val();
+                        self.crc.d.next = self.zero4.val();
+                        self.bad.d.next = false;
+                        if self.wr.q.val() {
+                            self.state.d.next = CtlState::Write;
+                        } else {
+                            self.state.d.next = CtlState::Read;
+                        }
+                    }
+                }
+                CtlState::Read => {
+                    if self.b.val() {
+                        self.state.d.next = CtlState::Idle;
+                    } else {
+                        self.n.d.next = self.n.q.val() + self.one4.val();
+                        if self.n11.q.val() {
+                            self.state.d.next = CtlState::Stop;
+                        }
+                        if self.nhi.q.val() {
+                            // CRC bits: the inverted CRC4, MSB first.
+                            self.cshf.next = true;
+                            self.ans.next = !self.c3.val();
+                        } else {
+                            self.cupd.next = true;
+                            self.cin.next = self.dbit.val();
+                            self.ans.next = self.dbit.val();
+                            self.sh.d.next = self.dbyte.val() << self.one8.val();
+                        }
+                    }
+                }
+                CtlState::Write => {
+                    self.n.d.next = self.n.q.val() + self.one4.val();
+                    if self.n11.q.val() {
+                        self.state.d.next = CtlState::Stop;
+                    }
+                    if self.nhi.q.val() {
+                        // CRC bits: answer the own CRC4 of the received byte.
+                        self.cshf.next = true;
+                        self.ans.next = !self.c3.val();
+                        if self.b.val() == self.c3.val() {
+                            self.bad.d.next = true;
+                        }
+                    } else {
+                        self.cupd.next = true;
+                        self.ans.next = self.b.val();
+                        if self.b.val() {
+                            self.sh.d.next = (self.sh.q.val() << self.one8.val()) | self.one8.val();
+                        } else {
+                            self.sh.d.next = self.sh.q.val() << self.one8.val();
+                        }
+                    }
+                }
+                CtlState::Stop => {
+                    if self.b.val() {
+                        self.state.d.next = CtlState::Idle;
+                    } else {
+                        self.we.next = self.wr.q.val() & !self.bad.q.val();
+                        self.state.d.next = CtlState::Next;
+                    }
+                }
+                CtlState::Next => {
+                    self.state.d.next = CtlState::Idle;
+                    if self.b.val() {
+                        self.addr.d.next = self.nadr_r.q.val();
+                        if !self.wr.q.val() | self.nwr.q.val() {
+                            self.ans.next = true;
+                            self.n.d.next = self.zero4.val();
+                            self.crc.d.next = self.zero4.val();
+                            self.bad.d.next = false;
+                            if self.wr.q.val() {
+                                self.state.d.next = CtlState::Write;
+                            } else {
+                                self.state.d.next = CtlState::Read;
+                            }
+                        }
+                    }
+                }
+            }
+            // The zero run: 14 zeros end any control frame.
+            if self.b.val() {
+                self.zcnt.d.next = self.zero4.val();
+            } else if !self.zfull.q.val() {
+                self.zcnt.d.next = self.zcnt.q.val() + self.one4.val();
+            }
+            if !self.b.val() & self.zend.q.val() {
+                self.ans.next = false;
+                self.state.d.next = CtlState::Idle;
+            }
+            self.cds_r.d.next = self.ans.val();
+        }
+        // Serial CRC4 (taps x + 1).
+        if self.cupd.val() {
+            if self.cin.val() ^ self.c3.val() {
+                self.crc.d.next = (self.crc.q.val() << self.one4.val()) ^ self.taps4.val();
+            } else {
+                self.crc.d.next = self.crc.q.val() << self.one4.val();
+            }
+        }
+        if self.cshf.val() {
+            self.crc.d.next = self.crc.q.val() << self.one4.val();
+        }
+        self.regs.write_enable.next = self.we.val();
+        if self.rst.val() {
+            self.armed.d.next = false;
+            self.stp.d.next = false;
+            self.state.d.next = CtlState::Idle;
+            self.zcnt.d.next = self.zero4.val();
+            self.cds_r.d.next = false;
+            self.regs.write_enable.next = false;
+        }
+        self.cds.next = self.cds_r.q.val();
+    }
+}
+
+/// The 128 x 8 register file: asynchronous read at `address`, write at the clock edge with
+/// `write_enable`, initial contents. The read is asynchronous so that no synthesis flow
+/// infers a block RAM from it (Yosys 0.23's `synth_intel` cannot initialise an M9K): it maps
+/// to LUT RAM (distributed RAM on xc3sa, DPR16X4 on ECP5) or logic; the parent does not
+/// register its output (a register there would let Yosys build a synchronous read port).
+#[derive(LogicBlock, Default)]
+pub struct RegFile {
+    /// Write clock.
+    pub clock: Signal<In, Clock>,
+    /// Read and write address.
+    pub address: Signal<In, Bits<7>>,
+    /// The register at `address`.
+    pub read_data: Signal<Out, Bits<8>>,
+    /// Byte to write.
+    pub write_data: Signal<In, Bits<8>>,
+    /// Write `write_data` to `address` at this clock edge.
+    pub write_enable: Signal<In, Bit>,
+    _sim: BTreeMap<Bits<7>, Bits<8>>,
+}
+
+impl RegFile {
+    /// Register file with initial contents.
+    pub fn new(values: BTreeMap<Bits<7>, Bits<8>>) -> Self {
+        Self {
+            _sim: values,
+            ..Default::default()
+        }
+    }
+}
+
+impl Logic for RegFile {
+    fn update(&mut self) {
+        if self.clock.pos_edge() && self.write_enable.val() {
+            self._sim.insert(self.address.val(), self.write_data.val());
+        }
+        self.read_data.next = self
+            ._sim
+            .get(&self.address.val())
+            .copied()
+            .unwrap_or_default();
+    }
+
+    fn connect(&mut self) {
+        self.read_data.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        let init = self
+            ._sim
+            .iter()
+            .map(|(a, v)| format!("   mem[{}] = {};\n", a.verilog(), v.verilog()))
+            .collect::<String>();
+        Verilog::Custom(format!(
+            "reg [7:0] mem [127:0];\n\ninitial begin\n{init}end\n\nalways @(posedge clock) begin\n   if (write_enable) begin\n      mem[address] <= write_data;\n   end\nend\n\nalways @(*) begin\n   read_data = mem[address];\nend\n"
+        ))
+    }
+}
