@@ -67,14 +67,14 @@ pub enum Dut {
 impl Dut {
     /// The top for `d` on `kind`.
     pub fn new(d: &crate::config::Derived, kind: EngineKind) -> Result<Dut> {
-        let rtl = Box::new(TopRtl::new(d)?);
+        let mut rtl = Box::new(TopRtl::new(d)?);
         if kind == EngineKind::RustHdl {
             return Ok(Dut::Rtl(rtl));
         }
-        let mut uut = TopRtl::new(d)?;
-        rust_hdl::prelude::Block::connect_all(&mut uut);
+        // The same instance gives the Verilog and the co-simulation port lists.
+        rust_hdl::prelude::Block::connect_all(rtl.as_mut());
         let name = "sinedec_top_rtl";
-        let verilog = crate::emit::verilog::export(&uut, "top", name)?;
+        let verilog = crate::emit::verilog::export(rtl.as_ref(), "top", name)?;
         let e = Engine::new(&verilog, name, "clk", Kind::Compiled)?;
         let missing = |what: &str, p: &str| {
             Error::Simulation(format!("the compiled top has no {what} `{p}`"))
