@@ -106,3 +106,84 @@ fn bad_values_name_the_key_the_position_and_the_range() {
         .to_string();
     assert!(e.contains("enable"), "{e}");
 }
+
+/// The default config shows the optional `[abz]` table and the BiSS control keys as
+/// comments: uncommented, they must parse to what their comments say.
+#[test]
+fn commented_examples_in_the_default_config_are_valid() {
+    let keys = [
+        "[abz]",
+        "enabled = true",
+        "lines =",
+        "max_edge_hz =",
+        "control = true",
+        "device_id =",
+        "manufacturer_id =",
+        "profile_id =",
+        "serial_number =",
+        "eds_bank =",
+    ];
+    let text: String = DEFAULT_CONFIG
+        .lines()
+        .map(|l| match l.strip_prefix("# ") {
+            Some(rest) if keys.iter().any(|k| rest.starts_with(k)) => {
+                // Drop the trailing explanation comment of the example line.
+                let value = rest.split("  #").next().unwrap_or(rest).trim_end();
+                format!("{value}\n")
+            }
+            _ => format!("{l}\n"),
+        })
+        .collect();
+    assert_ne!(
+        text,
+        format!("{DEFAULT_CONFIG}\n"),
+        "no example uncommented"
+    );
+    let l = Loaded::parse(&text, "d.toml").unwrap();
+    let abz = l.derived.abz.expect("[abz] enabled");
+    // The comment: 16 x PPR lines (PPR 2048), 12.5 MHz edges.
+    assert_eq!(abz.lines(), 16 * 2048);
+    let clock = l.derived.clock_hz;
+    assert_eq!(
+        abz.spacing(),
+        (1..).find(|&s| clock / s as f64 <= 12.5e6).unwrap()
+    );
+    let id = l.derived.biss.control.expect("[biss] control = true");
+    assert_eq!(&id.device_id, b"SINDEC");
+    assert_eq!(&id.manufacturer_id, b"SD");
+    assert_eq!((id.profile_id, id.serial_number, id.eds_bank), (0, 0, 0));
+    // `check` lists the control channel's ID registers.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("c.toml"), &text).unwrap();
+    let o = Command::new(BIN)
+        .args(["check", "c.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out}");
+    assert!(
+        out.contains("biss control channel        on:")
+            && out.contains("device 0x78..7D = \"SINDEC\""),
+        "{out}"
+    );
+}
+
+/// `check` without `[biss] control` says the channel is off, and the data word's bits.
+#[test]
+fn check_prints_the_biss_word_and_the_control_channel_off() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("d.toml"), DEFAULT_CONFIG).unwrap();
+    let o = Command::new(BIN)
+        .args(["check", "d.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    // Default: 2048 PPR x 4 quadrants x 2^14 fine steps = 2^27 positions per turn, no turns.
+    assert!(
+        out.contains("biss data word              27 bits (0 multi-turn + 27 single-turn, binary)"),
+        "{out}"
+    );
+    assert!(out.contains("biss control channel        off"), "{out}");
+}

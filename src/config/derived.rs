@@ -398,6 +398,7 @@ impl Derived {
             if let Some(a) = &self.abz {
                 s.push_str(&describe_abz(a, self.clock_hz));
             }
+            s.push_str(&describe_biss(&self.biss));
             s.push_str(&self.describe_board());
             return s;
         };
@@ -534,6 +535,41 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
 }
 
 /// The `[abz]` lines of `check`: resolution, rounding rule, maximum edge rate and speed.
+/// The `[biss]` lines of `check`: the data word and, with `control = true`, the control
+/// channel's register map as the master will read it.
+fn describe_biss(b: &crate::blocks::biss::BissParams) -> String {
+    let mut s = format!(
+        "biss data word              {} bits ({} multi-turn + {} single-turn, {}), CRC6, timeout {} clocks\n",
+        b.multiturn_bits + b.position_bits,
+        b.multiturn_bits,
+        b.position_bits,
+        if b.gray { "Gray" } else { "binary" },
+        b.timeout_clocks
+    );
+    match &b.control {
+        None => s.push_str("biss control channel        off (CDS always 0)\n"),
+        Some(id) => s.push_str(&format!(
+            "biss control channel        on: 128-byte register file, 0x00..0x40 read/write; read-only IDs: \
+             EDS bank 0x41 = 0x{:02X}, profile 0x42..43 = 0x{:04X}, serial 0x44..47 = {}, \
+             device 0x78..7D = \"{}\", manufacturer 0x7E..7F = \"{}\"\n",
+            id.eds_bank,
+            id.profile_id,
+            id.serial_number,
+            ascii(&id.device_id),
+            ascii(&id.manufacturer_id)
+        )),
+    }
+    s
+}
+
+/// An ID register's bytes as text, the 0 padding dropped.
+fn ascii(b: &[u8]) -> String {
+    b.iter()
+        .take_while(|&&c| c != 0)
+        .map(|&c| c as char)
+        .collect()
+}
+
 fn describe_abz(a: &AbzParams, clock_hz: f64) -> String {
     let rate = clock_hz / a.spacing() as f64;
     let (ea, eb) = a.ratio();
