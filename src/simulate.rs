@@ -354,8 +354,7 @@ impl SimReport {
         let _ = writeln!(
             o,
             "decoded samples             {} ({} in the statistics)",
-            r.decoded,
-            s.samples
+            r.decoded, s.samples
         );
         let _ = writeln!(
             o,
@@ -485,7 +484,8 @@ pub fn run_capacitive_report(
     o: &SimOptions,
     mut progress: impl FnMut(u64, u64),
     vcd: Option<Box<dyn std::io::Write>>,
-) -> Result<CapReport> {    use crate::sim::cap_system::CapSystem;
+) -> Result<CapReport> {
+    use crate::sim::cap_system::CapSystem;
     use crate::sim::capacitive::CapParams;
     o.validate(true)?;
     let d = &loaded.derived;

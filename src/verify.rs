@@ -156,9 +156,9 @@ impl BlockTraces {
             ("verilator", &self.verilator),
             ("engine", &self.engine),
         ]
-            .into_iter()
-            .filter_map(|(n, t)| t.as_ref().map(|t| (n, t)))
-            .find_map(|(n, t)| first_mismatch("rust-hdl", &self.rust_hdl, n, t, &self.outputs))
+        .into_iter()
+        .filter_map(|(n, t)| t.as_ref().map(|t| (n, t)))
+        .find_map(|(n, t)| first_mismatch("rust-hdl", &self.rust_hdl, n, t, &self.outputs))
     }
 }
 

@@ -429,7 +429,12 @@ fn capacitive_top_replays_bit_exactly_in_icarus_and_verilator() {
             .expect("port")
     };
     let (v, f) = (col("par_valid"), col("par_fine"));
-    let fines: Vec<u64> = t.rust_hdl.iter().filter(|r| r[v] == 1).map(|r| r[f]).collect();
+    let fines: Vec<u64> = t
+        .rust_hdl
+        .iter()
+        .filter(|r| r[v] == 1)
+        .map(|r| r[f])
+        .collect();
     let f_bits = d.fine_bits;
     let want: Vec<u64> = s
         .records

@@ -63,13 +63,22 @@ fn default_equals_rust_hdl(tag: &str, args: &[&str], rows: usize) {
         std::fs::read_to_string(&a_csv).expect("csv"),
         std::fs::read_to_string(&b_csv).expect("csv"),
     );
-    assert!(ta.lines().count() > rows, "{tag}: {} rows", ta.lines().count());
+    assert!(
+        ta.lines().count() > rows,
+        "{tag}: {} rows",
+        ta.lines().count()
+    );
     assert_eq!(ta, tb, "{tag}: the CSVs differ");
 }
 
 #[test]
 fn sinewave_default_is_the_compiled_engine_and_equals_rust_hdl() {
-    let args = ["--duration", "0.0005", "--profile", "reversal:3000:0.0002:0.0001"];
+    let args = [
+        "--duration",
+        "0.0005",
+        "--profile",
+        "reversal:3000:0.0002:0.0001",
+    ];
     default_equals_rust_hdl("simeng_sine", &args, 500);
 }
 

@@ -225,7 +225,12 @@ pub fn core_on_engine(
         .iter()
         .map(|x| {
             assert!(x.load.is_none(), "no load port on <name>_core");
-            let row = [x.rst as u64, x.valid as u64, x.sin as u64 & am, x.cos as u64 & am];
+            let row = [
+                x.rst as u64,
+                x.valid as u64,
+                x.sin as u64 & am,
+                x.cos as u64 & am,
+            ];
             for (k, v) in ins.iter().zip(row) {
                 e.set(*k, v);
             }
