@@ -1,12 +1,13 @@
 //! Closed loop of the capacitive path in the Rust simulation: the capacitive `<name>_top`
-//! (rust-hdl) drives the excitation DACs; the capacitive-encoder model couples them through
+//! (rust-hdl, or the engine of its Verilog: `crate::sim::dut`) drives the excitation DACs; the capacitive-encoder model couples them through
 //! the rotor into the receiver signal; the generic SPI ADC model converts it at each CONV;
 //! the decoded position is compared with the model's true angle.
 use crate::blocks::captop::hdl::CapTopRtl;
 use crate::blocks::sext;
 use crate::config::Derived;
-use crate::cosim::step::{prepare, tick, NoConvergence};
+use crate::cosim::step::NoConvergence;
 use crate::sim::capacitive::{CapEncoder, CapParams};
+use crate::sim::dut::{Dut, EngineKind, CAP_IN_PINS, CAP_OUT_PINS};
 use crate::sim::spi_adc::SpiAdc;
 use std::cell::RefCell;
 use std::f64::consts::TAU;
@@ -51,9 +52,25 @@ pub struct CapStats {
     pub flagged: usize,
 }
 
+// Pin indices of [`CAP_IN_PINS`] / [`CAP_OUT_PINS`].
+const I_RST: usize = 0;
+const I_MISO: usize = 1;
+const I_MA: usize = 2;
+const O_CONV: usize = 0;
+const O_SCK: usize = 1;
+const O_STROBE: usize = 2;
+const O_SIN: usize = 3;
+const O_COS: usize = 4;
+const O_VALID: usize = 5;
+const O_QC: usize = 6;
+const O_FINE: usize = 7;
+const O_TURNS: usize = 8;
+const O_ERROR: usize = 9;
+const O_WARNING: usize = 10;
+
 /// The closed loop.
 pub struct CapSystem {
-    top: CapTopRtl,
+    top: Dut<CapTopRtl>,
     adc: SpiAdc,
     dac: Rc<RefCell<(i64, i64)>>,
     enc: Rc<RefCell<CapEncoder>>,
@@ -63,17 +80,28 @@ pub struct CapSystem {
     f: u32,
     turns_width: u32,
     cycle: u64,
-    /// Decoded positions.
+    /// Decoded positions (kept unless [`CapSystem::keep_records`] turned them off).
     pub records: Vec<CapRecord>,
     /// Per-cycle input rows (`CapTopRtl`'s port-table input order), when recording.
     pub inputs: Option<Vec<Vec<u64>>>,
+    keep: bool,
+    /// Every decoded position reduced to (cycle, decoded - truth, flagged): what the
+    /// statistics need, 24 bytes a position, when the records are not kept.
+    errors: Vec<(u64, f64, bool)>,
+    decoded: usize,
     trace: Option<crate::sim::vcd::TopTrace>,
     trace_error: Option<std::io::Error>,
 }
 
 impl CapSystem {
-    /// A loop for the derived parameters (needs `[capacitive]`) and an encoder model.
+    /// A loop for the derived parameters (needs `[capacitive]`) and an encoder model, with
+    /// the top on rust-hdl.
     pub fn new(d: &Derived, p: CapParams) -> crate::error::Result<CapSystem> {
+        Self::on(d, p, EngineKind::RustHdl)
+    }
+
+    /// [`new`](Self::new) with the top simulated by `engine` (see [`crate::sim::dut`]).
+    pub fn on(d: &Derived, p: CapParams, engine: EngineKind) -> crate::error::Result<CapSystem> {
         let k = d
             .capacitive
             .as_ref()
@@ -81,7 +109,7 @@ impl CapSystem {
                 model: "capacitive system".into(),
                 message: "needs [capacitive]".into(),
             })?;
-        let top = CapTopRtl::new(d)?;
+        let top = Dut::new(d, engine, &CAP_IN_PINS, &CAP_OUT_PINS)?;
         let enc = Rc::new(RefCell::new(CapEncoder::new(p)?));
         let dac = Rc::new(RefCell::new((0i64, 0i64)));
         let clock_hz = d.clock_hz;
@@ -107,9 +135,32 @@ impl CapSystem {
             cycle: 0,
             records: Vec::new(),
             inputs: None,
+            keep: true,
+            errors: Vec::new(),
+            decoded: 0,
             trace: None,
             trace_error: None,
         })
+    }
+
+    /// The engine that runs the top (after any fallback).
+    pub fn engine(&self) -> EngineKind {
+        self.top.engine()
+    }
+
+    /// Why the engine that runs is not the one asked for, if it is not.
+    pub fn engine_note(&self) -> Option<&str> {
+        self.top.note()
+    }
+
+    /// Keep every decoded record (the default) or only what the statistics need.
+    pub fn keep_records(&mut self, keep: bool) {
+        self.keep = keep;
+    }
+
+    /// Decoded positions so far (kept or not).
+    pub fn decoded(&self) -> usize {
+        self.decoded
     }
 
     /// Streams every cycle's pins into `t` from now on (see [`crate::sim::vcd`]).
@@ -136,24 +187,23 @@ impl CapSystem {
 
     /// Resets the design (4 cycles) and settles it.
     pub fn start(&mut self) -> Result<(), NoConvergence> {
-        prepare(&mut self.top)?;
-        Ok(())
+        self.top.start()
     }
 
     /// Runs `cycles` clocks.
     pub fn run(&mut self, cycles: u64) -> Result<(), NoConvergence> {
         for _ in 0..cycles {
             let t = &mut self.top;
-            t.rst.next = self.cycle < 4;
-            t.biss_ma.next = true;
-            let miso = self.adc.step(t.adc_conv.val(), t.adc_sck.val());
-            t.adc_miso.next = miso;
-            tick(t)?;
+            t.set(I_RST, (self.cycle < 4) as u64);
+            t.set(I_MA, 1);
+            let miso = self.adc.step(t.get(O_CONV) != 0, t.get(O_SCK) != 0);
+            t.set(I_MISO, miso as u64);
+            t.tick()?;
             if self.inputs.is_some() || self.trace.is_some() {
                 // The inputs just applied, read back by name in the port table's order.
                 let row = t.input_row();
                 if let Some(tr) = self.trace.as_mut() {
-                    let outs = crate::cosim::CosimBlock::sample(&*t);
+                    let outs = t.sample();
                     if let Err(e) = tr.cycle(&row, &outs) {
                         self.trace_error = Some(e);
                         self.trace = None;
@@ -165,27 +215,36 @@ impl CapSystem {
             }
             self.cycle += 1;
             let t = &self.top;
-            if t.exc_strobe.val() {
+            if t.get(O_STROBE) != 0 {
                 *self.dac.borrow_mut() = (
-                    sext(t.exc_sin.val().to_u64(), self.dac_width),
-                    sext(t.exc_cos.val().to_u64(), self.dac_width),
+                    sext(t.get(O_SIN), self.dac_width),
+                    sext(t.get(O_COS), self.dac_width),
                 );
             }
-            if t.par_valid.val() {
-                let pos = (t.par_qc.val().to_u64() << self.f) | t.par_fine.val().to_u64();
-                let turns = sext(t.par_turns.val().to_u64(), self.turns_width);
+            if t.get(O_VALID) != 0 {
+                let pos = (t.get(O_QC) << self.f) | t.get(O_FINE);
+                let turns = sext(t.get(O_TURNS), self.turns_width);
                 let decoded = turns * self.lsb_per_turn as i64 + pos as i64;
                 let ts = self.cycle as f64 / self.clock_hz;
                 let truth = self.enc.borrow().mech_angle(ts) / TAU * self.lsb_per_turn;
-                self.records.push(CapRecord {
+                let r = CapRecord {
                     cycle: self.cycle,
                     position: pos,
                     turns,
                     decoded,
                     truth,
-                    error: t.par_error.val(),
-                    warning: t.par_warning.val(),
-                });
+                    error: t.get(O_ERROR) != 0,
+                    warning: t.get(O_WARNING) != 0,
+                };
+                self.decoded += 1;
+                if self.keep {
+                    self.records.push(r);
+                } else {
+                    self.errors
+                        .push((r.cycle, r.decoded as f64 - r.truth, r.error || r.warning));
+                }
+                // The ADC model needs only its latest conversion.
+                self.adc.forget_old();
             }
         }
         Ok(())
@@ -200,11 +259,12 @@ impl CapSystem {
     /// decoded position has an arbitrary zero (an incremental position), so the error is
     /// taken modulo one turn around its first value before the mean is removed.
     pub fn stats(&self, skip_s: f64) -> CapStats {
-        stats_of(
-            &self.records,
-            self.lsb_per_turn,
-            (skip_s * self.clock_hz) as u64,
-        )
+        let skip = (skip_s * self.clock_hz) as u64;
+        if self.keep {
+            stats_of(&self.records, self.lsb_per_turn, skip)
+        } else {
+            stats_of_errors(&self.errors, self.lsb_per_turn, skip)
+        }
     }
 }
 
@@ -270,12 +330,21 @@ pub fn model_run(
 
 /// [`CapSystem::stats`] for records of any source.
 pub fn stats_of(records: &[CapRecord], lsb_per_turn: f64, skip_cycles: u64) -> CapStats {
-    let recs: Vec<&CapRecord> = records.iter().filter(|r| r.cycle >= skip_cycles).collect();
+    let errs: Vec<(u64, f64, bool)> = records
+        .iter()
+        .map(|r| (r.cycle, r.decoded as f64 - r.truth, r.error || r.warning))
+        .collect();
+    stats_of_errors(&errs, lsb_per_turn, skip_cycles)
+}
+
+/// [`stats_of`] on (cycle, decoded - truth, flagged) per position.
+fn stats_of_errors(errors: &[(u64, f64, bool)], lsb_per_turn: f64, skip_cycles: u64) -> CapStats {
+    let recs: Vec<&(u64, f64, bool)> = errors.iter().filter(|r| r.0 >= skip_cycles).collect();
     if recs.is_empty() {
         return CapStats::default();
     }
     let turn = lsb_per_turn;
-    let raw: Vec<f64> = recs.iter().map(|r| r.decoded as f64 - r.truth).collect();
+    let raw: Vec<f64> = recs.iter().map(|r| r.1).collect();
     let e0 = raw[0];
     let errs: Vec<f64> = raw
         .iter()
@@ -295,6 +364,6 @@ pub fn stats_of(records: &[CapRecord], lsb_per_turn: f64, skip_cycles: u64) -> C
         mean_abs_deg: dev.iter().map(|e| e.abs()).sum::<f64>() / n * to_deg,
         rms_deg: (dev.iter().map(|e| e * e).sum::<f64>() / n).sqrt() * to_deg,
         pp_deg: (hi - lo) * to_deg,
-        flagged: recs.iter().filter(|r| r.error || r.warning).count(),
+        flagged: recs.iter().filter(|r| r.2).count(),
     }
 }

@@ -1,18 +1,26 @@
-//! The design a closed loop drives: the rust-hdl `<name>_top` rtl stepped by hand (the
+//! The design a closed loop drives: a board top's rust-hdl rtl stepped by hand (the
 //! reference) or the compiled engine built from the Verilog that same rtl exports
-//! (`crate::engine`, tests/engine.rs proves them equal cycle for cycle). The loop reads and
-//! writes pins by the fixed indices below, so both look the same to it.
+//! (`crate::engine`; tests/engine.rs and tests/engine_loop.rs prove them equal cycle for
+//! cycle). The loop reads and writes pins by fixed indices into its own pin lists
+//! ([`IN_PINS`]/[`OUT_PINS`] for the sinewave top, [`CAP_IN_PINS`]/[`CAP_OUT_PINS`] for the
+//! capacitive one), so every engine looks the same to it.
+//!
+//! The compiled engine needs Yosys (netlist) and rustc (build); a cached library needs
+//! neither Yosys nor a build. When rustc is missing the same netlist is interpreted; when
+//! Yosys is missing the loop runs on rust-hdl. Either way [`Dut::note`] says what ran and
+//! why, for the command line to print.
+use crate::blocks::captop::hdl::CapTopRtl;
 use crate::blocks::top::hdl::TopRtl;
 use crate::cosim::step::{prepare, tick, NoConvergence};
-use crate::cosim::CosimBlock;
+use crate::cosim::{CosimBlock, CosimError};
 use crate::engine::{Engine, Kind};
 use crate::error::{Error, Result};
 
-/// Inputs the closed loop drives, in index order ([`Dut::set`]).
+/// Inputs the sinewave loop drives, in index order ([`Dut::set`]).
 pub const IN_PINS: [&str; 9] = [
     "rst", "adc_miso", "biss_ma", "qep_a", "qep_b", "qep_z", "ssi_clk", "enc_sck", "enc_cs_n",
 ];
-/// Outputs the closed loop reads, in index order ([`Dut::get`]).
+/// Outputs the sinewave loop reads, in index order ([`Dut::get`]).
 pub const OUT_PINS: [&str; 13] = [
     "adc_conv",
     "adc_sck",
@@ -28,24 +36,89 @@ pub const OUT_PINS: [&str; 13] = [
     "par_error",
     "par_warning",
 ];
+/// Inputs the capacitive loop drives, in index order.
+pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
+/// Outputs the capacitive loop reads, in index order.
+pub const CAP_OUT_PINS: [&str; 11] = [
+    "adc_conv",
+    "adc_sck",
+    "exc_strobe",
+    "exc_sin",
+    "exc_cos",
+    "par_valid",
+    "par_qc",
+    "par_fine",
+    "par_turns",
+    "par_error",
+    "par_warning",
+];
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum EngineKind {
     /// rust-hdl's own simulation (the reference).
-    #[default]
     RustHdl,
-    /// The compiled engine (Yosys + rustc, cached).
+    /// The compiled engine (Yosys + rustc, cached); the default.
+    #[default]
     Compiled,
+    /// The engine's interpreter of the same netlist (Yosys only; the fallback without rustc).
+    Interpreted,
 }
 
-/// The compiled top and the index maps of its ports.
-pub struct CompiledTop {
+impl EngineKind {
+    /// The name `simulate` prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            EngineKind::RustHdl => "rust-hdl",
+            EngineKind::Compiled => "compiled",
+            EngineKind::Interpreted => "interpreter",
+        }
+    }
+}
+
+/// A board top rtl a closed loop can drive by pin name.
+pub trait BoardTop: CosimBlock {
+    /// The rtl for the derived parameters.
+    fn build(d: &crate::config::Derived) -> Result<Self>;
+    /// Top module name of its Verilog for the engine (also the engine cache's prefix).
+    const MODULE: &'static str;
+    /// Drives input `name` (`.next`).
+    fn set_pin(&mut self, name: &str, v: u64);
+    /// Port `name`'s value.
+    fn pin(&self, name: &str) -> u64;
+    /// The inputs' present values in co-simulation order.
+    fn inputs_now(&self) -> Vec<u64>;
+}
+
+macro_rules! board_top_impl {
+    ($ty:ty, $module:literal) => {
+        impl BoardTop for $ty {
+            fn build(d: &crate::config::Derived) -> Result<Self> {
+                <$ty>::new(d)
+            }
+            const MODULE: &'static str = $module;
+            fn set_pin(&mut self, name: &str, v: u64) {
+                self.set_input(name, v);
+            }
+            fn pin(&self, name: &str) -> u64 {
+                self.output(name).unwrap_or(0)
+            }
+            fn inputs_now(&self) -> Vec<u64> {
+                self.input_row()
+            }
+        }
+    };
+}
+board_top_impl!(TopRtl, "sinedec_top_rtl");
+board_top_impl!(CapTopRtl, "sinedec_cap_top_rtl");
+
+/// The engine's model of the top and the index maps of its ports.
+pub struct EngineTop {
     e: Box<Engine>,
-    /// Engine input index of each [`IN_PINS`] entry.
-    ins: [usize; 9],
-    /// Engine output index of each [`OUT_PINS`] entry.
-    outs: [usize; 13],
+    /// Engine input index of each loop input pin.
+    ins: Vec<usize>,
+    /// Engine output index of each loop output pin.
+    outs: Vec<usize>,
     /// Present value of every engine input (the engine has no read-back).
     shadow: Vec<u64>,
     /// Engine input index of each of the rtl's co-simulation inputs (port-table order).
@@ -56,37 +129,92 @@ pub struct CompiledTop {
     idle: Vec<u64>,
 }
 
-/// The design under the closed loop.
-pub enum Dut {
-    /// rust-hdl's simulation of the top.
-    Rtl(Box<TopRtl>),
-    /// The compiled engine.
-    Compiled(Box<CompiledTop>),
+enum Imp<B> {
+    Rtl(Box<B>),
+    Engine(Box<EngineTop>),
 }
 
-impl Dut {
-    /// The top for `d` on `kind`.
-    pub fn new(d: &crate::config::Derived, kind: EngineKind) -> Result<Dut> {
-        let mut rtl = Box::new(TopRtl::new(d)?);
+/// The design under a closed loop: the rtl `B` on rust-hdl or on the engine.
+pub struct Dut<B> {
+    imp: Imp<B>,
+    in_pins: &'static [&'static str],
+    out_pins: &'static [&'static str],
+    used: EngineKind,
+    note: Option<String>,
+}
+
+/// `Some(tool)` when `e` says that program could not be launched.
+fn missing_tool(e: &Error) -> Option<&str> {
+    match e {
+        Error::Tool(CosimError::ToolMissing { tool, .. }) => Some(tool.as_str()),
+        _ => None,
+    }
+}
+
+impl<B: BoardTop> Dut<B> {
+    /// The top for `d` on `kind` (falling back as the module doc says), driven through
+    /// `in_pins` and read through `out_pins`.
+    pub fn new(
+        d: &crate::config::Derived,
+        kind: EngineKind,
+        in_pins: &'static [&'static str],
+        out_pins: &'static [&'static str],
+    ) -> Result<Dut<B>> {
+        let mut rtl = Box::new(B::build(d)?);
+        let rust_hdl = |rtl, note| Dut {
+            imp: Imp::Rtl(rtl),
+            in_pins,
+            out_pins,
+            used: EngineKind::RustHdl,
+            note,
+        };
         if kind == EngineKind::RustHdl {
-            return Ok(Dut::Rtl(rtl));
+            return Ok(rust_hdl(rtl, None));
         }
         // The same instance gives the Verilog and the co-simulation port lists.
         rust_hdl::prelude::Block::connect_all(rtl.as_mut());
-        let name = "sinedec_top_rtl";
-        let verilog = crate::emit::verilog::export(rtl.as_ref(), "top", name)?;
-        let e = Engine::new(&verilog, name, "clk", Kind::Compiled)?;
-        let missing = |what: &str, p: &str| {
-            Error::Simulation(format!("the compiled top has no {what} `{p}`"))
+        let verilog = crate::emit::verilog::export(rtl.as_ref(), "top", B::MODULE)?;
+        let mut used = kind;
+        let mut note = None;
+        let first = match kind {
+            EngineKind::Interpreted => Kind::Interpreted,
+            _ => Kind::Compiled,
         };
-        let mut ins = [0; 9];
-        for (k, p) in IN_PINS.iter().enumerate() {
-            ins[k] = e.input_index(p).ok_or_else(|| missing("input", p))?;
+        let mut built = Engine::new(&verilog, B::MODULE, "clk", first);
+        if let Err(e) = &built {
+            if let Some(tool) = missing_tool(e).filter(|t| t.starts_with("rustc")) {
+                note = Some(format!(
+                    "engine: interpreter instead of the compiled engine, because {tool} could not be run (install Rust to compile the model; the interpreter gives the same results, slower)"
+                ));
+                used = EngineKind::Interpreted;
+                built = Engine::new(&verilog, B::MODULE, "clk", Kind::Interpreted);
+            }
         }
-        let mut outs = [0; 13];
-        for (k, p) in OUT_PINS.iter().enumerate() {
-            outs[k] = e.output_index(p).ok_or_else(|| missing("output", p))?;
-        }
+        let e = match built {
+            Ok(e) => e,
+            Err(e) => match missing_tool(&e).filter(|t| t.starts_with("yosys")) {
+                Some(_) => {
+                    let why = note.map_or(String::new(), |_| " (and rustc)".to_string());
+                    let n = format!(
+                        "engine: rust-hdl instead of the {} engine, because yosys could not be run{why} (apt-get install yosys for the fast engines; rust-hdl gives the same results, about 100x slower)",
+                        kind.name()
+                    );
+                    return Ok(rust_hdl(rtl, Some(n)));
+                }
+                None => return Err(e),
+            },
+        };
+        let missing = |what: &str, p: &str| {
+            Error::Simulation(format!("the engine's top has no {what} `{p}`"))
+        };
+        let ins = in_pins
+            .iter()
+            .map(|p| e.input_index(p).ok_or_else(|| missing("input", p)))
+            .collect::<Result<Vec<_>>>()?;
+        let outs = out_pins
+            .iter()
+            .map(|p| e.output_index(p).ok_or_else(|| missing("output", p)))
+            .collect::<Result<Vec<_>>>()?;
         let row_ins = rtl
             .input_ports()
             .iter()
@@ -97,57 +225,71 @@ impl Dut {
             .iter()
             .map(|p| e.output_index(&p.name))
             .collect();
-        let idle = rtl.input_row();
+        let idle = rtl.inputs_now();
         let shadow = vec![0; e.inputs().len()];
-        Ok(Dut::Compiled(Box::new(CompiledTop {
-            e: Box::new(e),
-            ins,
-            outs,
-            shadow,
-            row_ins,
-            row_outs,
-            idle,
-        })))
+        Ok(Dut {
+            imp: Imp::Engine(Box::new(EngineTop {
+                e: Box::new(e),
+                ins,
+                outs,
+                shadow,
+                row_ins,
+                row_outs,
+                idle,
+            })),
+            in_pins,
+            out_pins,
+            used,
+            note,
+        })
+    }
+
+    /// The engine that runs (after any fallback).
+    pub fn engine(&self) -> EngineKind {
+        self.used
+    }
+
+    /// Why the engine that runs is not the one asked for (one line), if it is not.
+    pub fn note(&self) -> Option<&str> {
+        self.note.as_deref()
     }
 
     /// Connects the design and settles its outputs; call once.
     pub fn start(&mut self) -> std::result::Result<(), NoConvergence> {
-        match self {
-            Dut::Rtl(t) => prepare(t.as_mut()),
-            Dut::Compiled(c) => {
+        match &mut self.imp {
+            Imp::Rtl(t) => prepare(t.as_mut()),
+            Imp::Engine(c) => {
                 c.e.eval();
                 Ok(())
             }
         }
     }
 
-    /// Drives input [`IN_PINS`]`[k]` for the next edge.
-    pub fn set(&mut self, k: usize, v: bool) {
-        match self {
-            Dut::Rtl(t) => {
-                t.set_input(IN_PINS[k], v as u64);
-            }
-            Dut::Compiled(c) => {
+    /// Drives input pin `k` for the next edge.
+    pub fn set(&mut self, k: usize, v: u64) {
+        match &mut self.imp {
+            Imp::Rtl(t) => t.set_pin(self.in_pins[k], v),
+            Imp::Engine(c) => {
                 let i = c.ins[k];
-                c.shadow[i] = v as u64;
-                c.e.set(i, v as u64);
+                c.shadow[i] = v;
+                c.e.set(i, v);
             }
         }
     }
 
-    /// Output [`OUT_PINS`]`[k]` (as of the last edge).
+    /// Output pin `k` (as of the last edge).
     pub fn get(&self, k: usize) -> u64 {
-        match self {
-            Dut::Rtl(t) => t.output(OUT_PINS[k]).unwrap_or(0),
-            Dut::Compiled(c) => c.e.get(c.outs[k]),
+        match &self.imp {
+            Imp::Rtl(t) => t.pin(self.out_pins[k]),
+            Imp::Engine(c) => c.e.get(c.outs[k]),
         }
     }
 
     /// One clock edge.
     pub fn tick(&mut self) -> std::result::Result<(), NoConvergence> {
-        match self {
-            Dut::Rtl(t) => tick(t.as_mut()),
-            Dut::Compiled(c) => {
+        match &mut self.imp {
+            Imp::Rtl(t) => tick(t.as_mut()),
+            Imp::Engine(c) => {
                 c.e.tick();
                 Ok(())
             }
@@ -156,9 +298,9 @@ impl Dut {
 
     /// The inputs applied at the last edge, in the rtl's co-simulation order.
     pub fn input_row(&self) -> Vec<u64> {
-        match self {
-            Dut::Rtl(t) => t.input_row(),
-            Dut::Compiled(c) => c
+        match &self.imp {
+            Imp::Rtl(t) => t.inputs_now(),
+            Imp::Engine(c) => c
                 .row_ins
                 .iter()
                 .zip(&c.idle)
@@ -169,9 +311,9 @@ impl Dut {
 
     /// The outputs in the rtl's co-simulation order.
     pub fn sample(&self) -> Vec<u64> {
-        match self {
-            Dut::Rtl(t) => t.sample(),
-            Dut::Compiled(c) => c
+        match &self.imp {
+            Imp::Rtl(t) => t.sample(),
+            Imp::Engine(c) => c
                 .row_outs
                 .iter()
                 .map(|i| i.map_or(0, |i| c.e.get(i)))
@@ -180,10 +322,10 @@ impl Dut {
     }
 
     /// The rust-hdl top, when that is the engine.
-    pub fn rtl(&self) -> Option<&TopRtl> {
-        match self {
-            Dut::Rtl(t) => Some(t),
-            Dut::Compiled(_) => None,
+    pub fn rtl(&self) -> Option<&B> {
+        match &self.imp {
+            Imp::Rtl(t) => Some(t),
+            Imp::Engine(_) => None,
         }
     }
 }

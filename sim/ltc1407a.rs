@@ -153,6 +153,8 @@ pub struct Ltc1407a {
     sdo_new: Sdo,
     sdo_change: f64,
     conversions: Vec<Conversion>,
+    /// Conversions ever made (the source's index; survives [`Ltc1407a::clear_conversions`]).
+    count: u64,
     violations: Vec<Violation>,
 }
 
@@ -192,6 +194,7 @@ impl Ltc1407a {
             sdo_new: Sdo::HiZ,
             sdo_change: f64::NEG_INFINITY,
             conversions: Vec::new(),
+            count: 0,
             violations: Vec::new(),
         }
     }
@@ -231,6 +234,12 @@ impl Ltc1407a {
     /// Conversions accepted so far, in order.
     pub fn conversions(&self) -> &[Conversion] {
         &self.conversions
+    }
+
+    /// Forgets the conversions so far (a long run keeps no history: the closed loop counts
+    /// them as they come).
+    pub fn clear_conversions(&mut self) {
+        self.conversions.clear();
     }
 
     /// Violations recorded so far.
@@ -298,7 +307,8 @@ impl Ltc1407a {
                         );
                     }
                 }
-                let k = self.conversions.len() as u64;
+                let k = self.count;
+                self.count += 1;
                 let codes = match self.source.as_mut() {
                     Some(f) => {
                         let c = f(k, t * 1e-9);

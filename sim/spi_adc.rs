@@ -60,6 +60,15 @@ impl SpiAdc {
         &self.taken
     }
 
+    /// Drops every conversion but the latest (the one being shifted out), so a long run
+    /// keeps no history; [`taken`](Self::taken) then starts there.
+    pub fn forget_old(&mut self) {
+        let n = self.taken.len();
+        if n > 1 {
+            self.taken.drain(..n - 1);
+        }
+    }
+
     fn bit(&mut self, slot: i64) -> bool {
         let w = self.f.width as i64;
         let cur = self.taken.last().map(|t| t.1).unwrap_or([0, 0]);

@@ -16,7 +16,7 @@ use crate::blocks::sext;
 use crate::blocks::top::hdl::TopRtl;
 use crate::config::Derived;
 use crate::cosim::step::NoConvergence;
-use crate::sim::dut::{Dut, EngineKind};
+use crate::sim::dut::{Dut, EngineKind, IN_PINS, OUT_PINS};
 use crate::sim::encoder::EncoderModel;
 use crate::sim::ltc1407a::Ltc1407a;
 use crate::sim::ltc6912::Ltc6912;
@@ -88,6 +88,60 @@ pub struct SimResult {
     pub inputs: Vec<Vec<u64>>,
     /// Per-cycle outputs (`CosimBlock` output order), when recording was asked for.
     pub outputs: Vec<Vec<u64>>,
+    /// Decoded samples (equal to `records.len()` when the records are kept).
+    pub decoded: usize,
+    /// The statistics gathered as the samples came, when the records are not kept
+    /// ([`System::stream_stats`]).
+    pub streamed: Option<StreamStats>,
+}
+
+/// Error statistics gathered sample by sample (bounded memory on long runs): the same
+/// figures as [`SimResult::stats`] over the same samples.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StreamStats {
+    /// Decoded samples left out at the start.
+    pub skip: usize,
+    /// The first decoded sample (it fixes the offset).
+    pub first: Option<Record>,
+    /// The offset it fixed, fine LSB.
+    pub offset: f64,
+    /// Samples seen.
+    pub seen: usize,
+    /// The figures so far (mean and RMS as sums until [`StreamStats::stats`]).
+    acc: ErrorStats,
+    sum: f64,
+    sum2: f64,
+}
+
+impl StreamStats {
+    fn add(&mut self, d: &Derived, r: &Record) {
+        if self.first.is_none() {
+            self.first = Some(*r);
+            self.offset = SimResult::offset_of(d, r);
+        }
+        self.seen += 1;
+        if self.seen <= self.skip {
+            return;
+        }
+        let e = SimResult::error_lsb(d, r, self.offset);
+        let s = &mut self.acc;
+        s.samples += 1;
+        s.max_lsb = s.max_lsb.max(e.abs());
+        self.sum += e;
+        self.sum2 += e * e;
+        s.errors += r.error as usize;
+        s.warnings += r.warning as usize;
+    }
+
+    /// The statistics of the samples after the first `skip`.
+    pub fn stats(&self) -> ErrorStats {
+        let mut s = self.acc;
+        if s.samples > 0 {
+            s.mean_lsb = self.sum / s.samples as f64;
+            s.rms_lsb = (self.sum2 / s.samples as f64).sqrt();
+        }
+        s
+    }
 }
 
 /// Error statistics of a run, after a settling time.
@@ -113,9 +167,15 @@ impl SimResult {
     /// two quadrants) plus the whole signal periods that make the first sample's error
     /// smallest (the first sample fixes which signal period counts as period 0).
     pub fn offset_lsb(&self, d: &Derived) -> f64 {
-        let Some(first) = self.records.first() else {
-            return 0.0;
-        };
+        match (self.records.first(), &self.streamed) {
+            (Some(first), _) => Self::offset_of(d, first),
+            (None, Some(s)) => s.offset,
+            (None, None) => 0.0,
+        }
+    }
+
+    /// [`offset_lsb`](Self::offset_lsb) fixed by the record `first`.
+    fn offset_of(d: &Derived, first: &Record) -> f64 {
         let q = (1u64 << d.fine_bits) as f64;
         let period = 4.0 * q;
         let raw = first.unwrapped as f64 - first.truth - 2.0 * q;
@@ -135,8 +195,12 @@ impl SimResult {
     }
 
     /// Error statistics over the records from index `skip` on (see
-    /// [`error_lsb`](Self::error_lsb)).
+    /// [`error_lsb`](Self::error_lsb)); when the records were not kept, the streamed
+    /// statistics (their `skip` was fixed before the run).
     pub fn stats(&self, d: &Derived, skip: usize) -> ErrorStats {
+        if let (true, Some(s)) = (self.records.is_empty(), &self.streamed) {
+            return s.stats();
+        }
         if self.records.is_empty() {
             return ErrorStats::default();
         }
@@ -163,7 +227,7 @@ impl SimResult {
 /// The closed loop.
 pub struct System {
     d: Derived,
-    top: Dut,
+    top: Dut<TopRtl>,
     adc: Ltc1407a,
     amp: Ltc6912,
     truth: EncoderModel,
@@ -195,7 +259,7 @@ impl System {
         encoder: EncoderModel,
         engine: EngineKind,
     ) -> crate::error::Result<System> {
-        let top = Dut::new(d, engine)?;
+        let top = Dut::new(d, engine, &IN_PINS, &OUT_PINS)?;
         let pre = d
             .preamp
             .as_ref()
@@ -252,6 +316,16 @@ impl System {
         self.qep_b_stuck = Some((from, to));
     }
 
+    /// Keeps no records: the statistics are gathered as the samples come, leaving out the
+    /// first `skip` (memory stays bounded however long the run; [`SimResult::records`]
+    /// stays empty).
+    pub fn stream_stats(&mut self, skip: usize) {
+        self.result.streamed = Some(StreamStats {
+            skip,
+            ..Default::default()
+        });
+    }
+
     /// Records the design's inputs of every cycle (see [`SimResult::inputs`]).
     pub fn record_inputs(&mut self) {
         self.record_inputs = true;
@@ -274,6 +348,16 @@ impl System {
         self.top.rtl()
     }
 
+    /// The engine that runs the top (after any fallback, see [`Dut::note`]).
+    pub fn engine(&self) -> EngineKind {
+        self.top.engine()
+    }
+
+    /// Why the engine that runs is not the one asked for, if it is not.
+    pub fn engine_note(&self) -> Option<&str> {
+        self.top.note()
+    }
+
     /// The design's outputs in co-simulation order (either engine).
     pub fn sample(&self) -> Vec<u64> {
         self.top.sample()
@@ -294,9 +378,10 @@ impl System {
             // drove during the previous cycle, as real chips do.
             let conv = self.top.get(O_CONV) != 0;
             let sck = self.top.get(O_SCK) != 0;
-            let n_conv = self.adc.conversions().len();
             let miso = self.adc.step(conv, sck);
-            if self.adc.conversions().len() > n_conv {
+            if !self.adc.conversions().is_empty() {
+                // Counted here and forgotten: a long run keeps no per-sample history.
+                self.adc.clear_conversions();
                 self.conv_times
                     .insert(self.cycle, self.cycle as f64 / self.clock_hz);
             }
@@ -307,13 +392,13 @@ impl System {
                 self.top.get(O_AMP_SHDN) != 0,
             );
             let rst = self.cycle < self.rst_cycles;
-            self.top.set(I_RST, rst);
-            self.top.set(I_MISO, miso);
+            self.top.set(I_RST, rst as u64);
+            self.top.set(I_MISO, miso as u64);
             let ma = match self.ma.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
             };
-            self.top.set(I_MA, ma);
+            self.top.set(I_MA, ma as u64);
             // Comparators on the noise-free tracks: A = cos > 0, B = sin > 0 (forward = the
             // angle increasing), Z = index in the first quadrant of every turn.
             let th = self
@@ -328,16 +413,16 @@ impl System {
             }
             let turn = std::f64::consts::TAU * self.d.quadrants_per_turn as f64 / 4.0;
             let qz = th.rem_euclid(turn) < std::f64::consts::FRAC_PI_2;
-            self.top.set(I_QEP_A, qa);
-            self.top.set(I_QEP_B, qb);
-            self.top.set(I_QEP_Z, qz);
+            self.top.set(I_QEP_A, qa as u64);
+            self.top.set(I_QEP_B, qb as u64);
+            self.top.set(I_QEP_Z, qz as u64);
             let ssi_clk = match self.ssi.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
             };
-            self.top.set(I_SSI_CLK, ssi_clk);
-            self.top.set(I_ENC_SCK, false);
-            self.top.set(I_ENC_CS_N, true);
+            self.top.set(I_SSI_CLK, ssi_clk as u64);
+            self.top.set(I_ENC_SCK, 0);
+            self.top.set(I_ENC_CS_N, 1);
             self.top.tick()?;
             // The inputs just applied, read back by name in the port table's order.
             let row = (self.record_inputs || self.trace.is_some()).then(|| self.top.input_row());
@@ -379,7 +464,7 @@ impl System {
                         conv_cycle as f64 / self.clock_hz
                     }
                 };
-                self.result.records.push(Record {
+                let rec = Record {
                     cycle: self.cycle,
                     conv_cycle,
                     position: pos,
@@ -388,7 +473,12 @@ impl System {
                     warning: self.top.get(O_WARNING) != 0,
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     truth: self.truth.electrical_angle(t) * lsb_per_rad,
-                });
+                };
+                self.result.decoded += 1;
+                match self.result.streamed.as_mut() {
+                    Some(s) => s.add(&self.d, &rec),
+                    None => self.result.records.push(rec),
+                }
             }
         }
         self.result.cycles = self.cycle;

@@ -79,10 +79,13 @@ enum Command {
         /// Write the top's pins, cycle by cycle, as VCD (checked like --csv).
         #[arg(long)]
         vcd: Option<PathBuf>,
-        /// Simulation engine of the sinewave top: rust-hdl (the reference) or compiled
-        /// (Yosys + rustc, cached; about 100x faster, proven equal by tests/engine.rs and
-        /// tests/engine_loop.rs).
-        #[arg(long, value_enum, default_value = "rust-hdl")]
+        /// Simulation engine of the top. compiled (the default): Yosys turns the emitted
+        /// Verilog into a netlist, rustc compiles it (cached under ~/.cache/sinedec/engine;
+        /// 100-250x rust-hdl); without rustc it is interpreted, without Yosys rust-hdl runs,
+        /// each fallback said on stderr. rust-hdl: the reference simulation. interpreter: the
+        /// engine's netlist interpreted (no rustc needed). All give the same report, proven
+        /// by tests/engine.rs, tests/engine_loop.rs and the co-simulation tests.
+        #[arg(long, value_enum, default_value = "compiled")]
         engine: EngineArg,
     },
     /// Validates a configuration and prints its derived parameters.
@@ -131,10 +134,12 @@ enum Command {
 /// `simulate --engine`.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 enum EngineArg {
-    /// rust-hdl's own simulation (the reference).
-    RustHdl,
     /// The compiled engine (Yosys + rustc, cached under ~/.cache/sinedec/engine).
     Compiled,
+    /// rust-hdl's own simulation (the reference).
+    RustHdl,
+    /// The engine's netlist interpreted (Yosys only).
+    Interpreter,
 }
 
 fn load(config: &Option<PathBuf>) -> Result<Loaded> {
@@ -234,7 +239,10 @@ fn run(cli: Cli) -> Result<()> {
                 engine: match engine {
                     EngineArg::RustHdl => sinedec::sim::dut::EngineKind::RustHdl,
                     EngineArg::Compiled => sinedec::sim::dut::EngineKind::Compiled,
+                    EngineArg::Interpreter => sinedec::sim::dut::EngineKind::Interpreted,
                 },
+                // Without --csv no sample is kept: memory stays bounded on long runs.
+                keep_records: csv.is_some(),
                 ..Default::default()
             };
             // The VCD streams during the run into its temporary file (checked above, renamed
@@ -256,18 +264,21 @@ fn run(cli: Cli) -> Result<()> {
             // Files first, then standard output: a closed stdout cannot lose them.
             let mut wrote = vec![];
             let summary = if loaded.derived.capacitive.is_some() {
-                let (s, table) = sinedec::simulate::run_capacitive_traced(
+                let r = sinedec::simulate::run_capacitive_report(
                     &loaded,
                     &o,
                     |done, _| bar.set_position(done),
                     trace,
                 )?;
                 bar.finish_and_clear();
+                if let Some(n) = &r.engine_note {
+                    let _ = writeln!(std::io::stderr(), "{n}");
+                }
                 if let Some(mut f) = csv_out.take() {
-                    f.write_all(table.as_bytes())?;
+                    f.write_all(r.csv.as_bytes())?;
                     wrote.push(f.commit()?);
                 }
-                s
+                r.summary
             } else {
                 let report = sinedec::simulate::run_traced(
                     &loaded,
@@ -276,6 +287,9 @@ fn run(cli: Cli) -> Result<()> {
                     trace,
                 )?;
                 bar.finish_and_clear();
+                if let Some(n) = &report.engine_note {
+                    let _ = writeln!(std::io::stderr(), "{n}");
+                }
                 if let Some(mut f) = csv_out.take() {
                     f.write_all(report.csv(&loaded, o.skip).as_bytes())?;
                     wrote.push(f.commit()?);

@@ -30,9 +30,12 @@ pub struct SimOptions {
     pub seed: u64,
     /// Record every cycle's pins (for a VCD).
     pub record: bool,
-    /// Engine of the sinewave top: rust-hdl (the reference) or the compiled engine
-    /// (`crate::engine`; the capacitive top always runs on rust-hdl).
+    /// Engine of the top: the compiled engine (the default; `crate::engine`, with the
+    /// fallbacks of `crate::sim::dut`), its interpreter, or rust-hdl (the reference).
     pub engine: crate::sim::dut::EngineKind,
+    /// Keep every decoded sample (for [`SimReport::csv`]); without them the statistics are
+    /// gathered as the samples come and memory stays bounded however long the run.
+    pub keep_records: bool,
     /// Decoded samples skipped before the statistics (settling: the monitor reports a
     /// loss of signal until its window of good samples has passed after reset).
     pub skip: usize,
@@ -52,6 +55,7 @@ impl Default for SimOptions {
             seed: 1,
             record: false,
             engine: Default::default(),
+            keep_records: true,
             skip: 12,
         }
     }
@@ -232,6 +236,10 @@ pub struct SimReport {
     pub stats: ErrorStats,
     /// Wall-clock seconds the simulation took.
     pub wall_s: f64,
+    /// The engine that ran the top (after any fallback).
+    pub engine: crate::sim::dut::EngineKind,
+    /// Why that is not the engine asked for, if it is not (one line).
+    pub engine_note: Option<String>,
 }
 
 /// Runs the simulation; `progress(done, total)` is called every 2^14 cycles.
@@ -286,6 +294,11 @@ pub fn run_traced(
     if o.record {
         sys.record_inputs();
     }
+    if !o.keep_records {
+        sys.stream_stats(o.skip);
+    }
+    let engine = sys.engine();
+    let engine_note = sys.engine_note().map(str::to_string);
     if let Some(out) = vcd {
         let t = top_trace(loaded, out, &crate::blocks::top::hdl::TopRtl::new(d)?)?;
         sys.trace_to(t);
@@ -314,7 +327,7 @@ pub fn run_traced(
             / d.clock_hz;
         return Err(no_sample(
             o.duration_s,
-            result.records.len(),
+            result.decoded,
             format!("the first {} are settling", o.skip),
             need,
         ));
@@ -323,6 +336,8 @@ pub fn run_traced(
         result,
         stats,
         wall_s,
+        engine,
+        engine_note,
     })
 }
 
@@ -339,8 +354,7 @@ impl SimReport {
         let _ = writeln!(
             o,
             "decoded samples             {} ({} in the statistics)",
-            r.records.len(),
-            s.samples
+            r.decoded, s.samples
         );
         let _ = writeln!(
             o,
@@ -377,9 +391,10 @@ impl SimReport {
         let _ = writeln!(o, "preamp gains read back      {gains}");
         let _ = writeln!(
             o,
-            "simulation speed            {:.0} cycles/s ({:.2} s)",
+            "simulation speed            {:.0} cycles/s ({:.2} s, {} engine)",
             r.cycles as f64 / self.wall_s.max(1e-9),
-            self.wall_s
+            self.wall_s,
+            self.engine.name()
         );
         o
     }
@@ -443,9 +458,33 @@ pub fn run_capacitive(
 pub fn run_capacitive_traced(
     loaded: &Loaded,
     o: &SimOptions,
-    mut progress: impl FnMut(u64, u64),
+    progress: impl FnMut(u64, u64),
     vcd: Option<Box<dyn std::io::Write>>,
 ) -> Result<(String, String)> {
+    let r = run_capacitive_report(loaded, o, progress, vcd)?;
+    Ok((r.summary, r.csv))
+}
+
+/// A finished capacitive simulation.
+pub struct CapReport {
+    /// Human-readable summary.
+    pub summary: String,
+    /// CSV of every decoded position ([`CSV_COLUMNS`]; only the header when
+    /// [`SimOptions::keep_records`] is off).
+    pub csv: String,
+    /// The engine that ran the top (after any fallback).
+    pub engine: crate::sim::dut::EngineKind,
+    /// Why that is not the engine asked for, if it is not (one line).
+    pub engine_note: Option<String>,
+}
+
+/// [`run_capacitive_traced`] with the engine that ran.
+pub fn run_capacitive_report(
+    loaded: &Loaded,
+    o: &SimOptions,
+    mut progress: impl FnMut(u64, u64),
+    vcd: Option<Box<dyn std::io::Write>>,
+) -> Result<CapReport> {
     use crate::sim::cap_system::CapSystem;
     use crate::sim::capacitive::CapParams;
     o.validate(true)?;
@@ -459,7 +498,10 @@ pub fn run_capacitive_traced(
     p.coupling = o.amplitude / k.config.amplitude;
     p.noise_rms_v = o.noise_lsb * p.adc_full_scale_v / (1u64 << (d.adc.frame.width - 1)) as f64;
     p.seed = o.seed;
-    let mut sys = CapSystem::new(d, p)?;
+    let mut sys = CapSystem::on(d, p, o.engine)?;
+    sys.keep_records(o.keep_records);
+    let engine = sys.engine();
+    let engine_note = sys.engine_note().map(str::to_string);
     if let Some(out) = vcd {
         let top = crate::blocks::captop::hdl::CapTopRtl::new(d)?;
         let t = top_trace(loaded, out, &top)?;
@@ -488,7 +530,7 @@ pub fn run_capacitive_traced(
             2.0 * (d.adc.startup_clocks() as f64 + 2.0 * d.adc.period_clocks as f64) / d.clock_hz;
         return Err(no_sample(
             o.duration_s,
-            sys.records.len(),
+            sys.decoded(),
             format!("those of the first {:.3} ms are settling", skip * 1e3),
             need.max(3.0e-3),
         ));
@@ -522,7 +564,7 @@ pub fn run_capacitive_traced(
          positions after {:.1} ms of settling: {} ({} flagged)\n\
          error after removing the constant lag/offset ({:.4} deg): max {:.5} deg, mean |e| {:.5} deg, RMS {:.5} deg, p-p {:.5} deg (mechanical)\n\
          per sample: ADC conv->sample {} clocks ({:.2} us), filters+demod {} clocks ({:.2} us), CORDIC core {} clocks ({:.2} us), period {} clocks ({:.2} us)\n\
-         simulated {} cycles in {:.2} s ({:.0} cycles/s)\n",
+         simulated {} cycles in {:.2} s ({:.0} cycles/s, {} engine)\n",
         loaded.config.encoder.ppr,
         k.config.carrier_hz,
         k.sample_rate_hz,
@@ -545,6 +587,12 @@ pub fn run_capacitive_traced(
         sys.cycles(),
         wall,
         sys.cycles() as f64 / wall.max(1e-9),
+        engine.name(),
     );
-    Ok((summary, csv))
+    Ok(CapReport {
+        summary,
+        csv,
+        engine,
+        engine_note,
+    })
 }

@@ -1,10 +1,15 @@
 //! Four-way check of the core: the rust-hdl simulation, the bit-accurate model, Icarus
-//! Verilog and Verilator on the exported Verilog, all driven by one stimulus.
+//! Verilog and Verilator on the exported Verilog, all driven by one stimulus; and the same
+//! check of any block without the model. Whenever a Verilog simulator runs, sinedec's own
+//! engine of the same Verilog runs too (`crate::cosim::run_engine`: the compiled engine, or
+//! its interpreter with `SINEDEC_COSIM_ENGINE=interpreter`) and must give the same trace.
 use crate::blocks::core::hdl::simulate_rtl;
 use crate::blocks::core::model::{CoreIn, CoreModel};
 use crate::blocks::mask;
 use crate::config::Loaded;
-use crate::cosim::{first_mismatch, run_icarus, run_verilator, CosimSpec, Trace};
+use crate::cosim::{
+    cosim_engine_kind, first_mismatch, run_engine, run_icarus, run_verilator, CosimSpec, Trace,
+};
 use crate::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
 use crate::error::{Error, Result};
 use std::path::Path;
@@ -37,6 +42,8 @@ pub struct CoreTraces {
     pub icarus: Option<Trace>,
     /// Verilator, when run.
     pub verilator: Option<Trace>,
+    /// sinedec's engine of the exported Verilog, run with either Verilog simulator.
+    pub engine: Option<Trace>,
 }
 
 impl CoreTraces {
@@ -49,6 +56,9 @@ impl CoreTraces {
         }
         if let Some(t) = &self.verilator {
             others.push(("verilator", t));
+        }
+        if let Some(t) = &self.engine {
+            others.push(("engine", t));
         }
         others
             .into_iter()
@@ -112,11 +122,13 @@ pub fn core_traces(
     } else {
         None
     };
+    let engine = engine_trace(&spec, &rows, sims)?;
     Ok(CoreTraces {
         rust_hdl,
         model,
         icarus,
         verilator,
+        engine,
     })
 }
 
@@ -129,17 +141,24 @@ pub struct BlockTraces {
     pub icarus: Option<Trace>,
     /// Verilator, when run.
     pub verilator: Option<Trace>,
+    /// sinedec's engine of the exported Verilog, run with either Verilog simulator.
+    pub engine: Option<Trace>,
     /// The output ports (for messages).
     pub outputs: Vec<crate::cosim::Port>,
 }
 
 impl BlockTraces {
-    /// None when Icarus and Verilator equal rust-hdl; otherwise the first difference.
+    /// None when Icarus, Verilator and the engine equal rust-hdl; otherwise the first
+    /// difference.
     pub fn mismatch(&self) -> Option<String> {
-        [("icarus", &self.icarus), ("verilator", &self.verilator)]
-            .into_iter()
-            .filter_map(|(n, t)| t.as_ref().map(|t| (n, t)))
-            .find_map(|(n, t)| first_mismatch("rust-hdl", &self.rust_hdl, n, t, &self.outputs))
+        [
+            ("icarus", &self.icarus),
+            ("verilator", &self.verilator),
+            ("engine", &self.engine),
+        ]
+        .into_iter()
+        .filter_map(|(n, t)| t.as_ref().map(|t| (n, t)))
+        .find_map(|(n, t)| first_mismatch("rust-hdl", &self.rust_hdl, n, t, &self.outputs))
     }
 }
 
@@ -187,10 +206,20 @@ pub fn block_traces<B: crate::cosim::CosimBlock>(
     } else {
         None
     };
+    let engine = engine_trace(&spec, rows, sims)?;
     Ok(BlockTraces {
         rust_hdl,
         icarus,
         verilator,
+        engine,
         outputs: outs,
     })
+}
+
+/// The engine's trace of `spec` on `rows` when a Verilog simulator is asked for.
+fn engine_trace(spec: &CosimSpec, rows: &[Vec<u64>], sims: Simulators) -> Result<Option<Trace>> {
+    if !(sims.icarus || sims.verilator) {
+        return Ok(None);
+    }
+    run_engine(spec, rows, cosim_engine_kind()?).map(Some)
 }

@@ -1,15 +1,19 @@
 //! ABZ emulation in `<name>_top` (`[abz] enabled`). The emulator sits in the emitted wrapper
 //! next to the rtl, on its parallel bus (`rtl-templates/top/sinewave_top.v.j2`), so the
-//! closed loop runs in two steps: the rust-hdl top with the encoder and ADC models records
-//! its pins, and the emitted `<name>_top` replays them in Icarus and Verilator. Both
-//! simulators agree, the wrapper's parallel bus equals the rust-hdl top's, and an
+//! closed loop runs in two steps: the top rtl (its Verilog on the compiled engine) with the
+//! encoder and ADC models records its pins, and the emitted `<name>_top` replays them in
+//! Icarus, Verilator and the engine. All agree, the wrapper's parallel bus equals the loop
+//! top's, and an
 //! independent quadrature counter on `abz_a`/`abz_b` follows the position through 0 both
 //! ways and a reversal, with Z in each zero crossing. The wrapper and the UCF get the three
 //! outputs only when enabled.
 use sinedec::blocks::abz::AbzParams;
 use sinedec::blocks::top::hdl::TopRtl;
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
-use sinedec::cosim::{first_mismatch, run_icarus, run_verilator, CosimBlock, CosimSpec, Port};
+use sinedec::cosim::{
+    cosim_engine_kind, first_mismatch, run_engine, run_icarus, run_verilator, CosimBlock,
+    CosimSpec, Port,
+};
 use sinedec::emit::{top_name, top_verilog};
 use sinedec::sim::encoder::{EncoderModel, Profile};
 use sinedec::sim::system::System;
@@ -56,12 +60,14 @@ fn encoder(periods: f64, profile: Profile) -> EncoderModel {
 /// One row of the replay: (par_valid, single-turn position, A, B, Z, warning).
 type Row = (bool, u64, bool, bool, bool, bool);
 
-/// Runs the closed loop in rust-hdl for `seconds`, then the emitted `<name>_top` on its
-/// recorded inputs in Icarus and Verilator; checks the simulators against each other and the
-/// wrapper's parallel bus against the rust-hdl top's, and returns the rows.
+/// Runs the closed loop for `seconds` (the top rtl's Verilog on the compiled engine: the
+/// ABZ output is under test, not rust-hdl; tests/engine_loop.rs proves the loop equal to
+/// rust-hdl's), then the emitted `<name>_top` on its recorded inputs in Icarus, Verilator and
+/// the engine; checks the simulators against each other and the wrapper's parallel bus
+/// against the loop's top, and returns the rows.
 fn replay(l: &Loaded, enc: EncoderModel, seconds: f64, tag: &str) -> Vec<Row> {
     let d = &l.derived;
-    let mut s = System::new(d, enc).expect("system");
+    let mut s = System::on(d, enc, sinedec::sim::dut::EngineKind::Compiled).expect("system");
     s.record_inputs();
     s.start().expect("settles");
     s.run((seconds * d.clock_hz) as u64).expect("runs");
@@ -109,8 +115,12 @@ fn replay(l: &Loaded, enc: EncoderModel, seconds: f64, tag: &str) -> Vec<Row> {
     std::fs::create_dir_all(&dir).expect("dir");
     let icarus = run_icarus(&spec, &rows, &dir).expect("icarus ran");
     let verilator = run_verilator(&spec, &rows, &dir).expect("verilator ran");
-    if let Some(m) = first_mismatch("icarus", &icarus, "verilator", &verilator, &outs) {
-        panic!("{m}");
+    let kind = cosim_engine_kind().expect("engine choice");
+    let engine = run_engine(&spec, &rows, kind).expect("engine ran");
+    for (name, t) in [("verilator", &verilator), ("engine", &engine)] {
+        if let Some(m) = first_mismatch("icarus", &icarus, name, t, &outs) {
+            panic!("{m}");
+        }
     }
     // The wrapper's parallel bus is the rust-hdl top's (par_valid, par_qc . par_fine).
     let col = |n: &str| rtl_out.iter().position(|p| p.name == n).expect("output");

@@ -1,5 +1,5 @@
 //! BiSS-C slave: CRC6 against hand-worked frames, the parameter checks, and the master model
-//! reading the rust-hdl slave in the closed loop of `tests/biss_loop` (positions at 100 kHz
+//! reading the slave (compiled engine) in the closed loop of `tests/biss_loop` (positions at 100 kHz
 //! to 10 MHz, flags, every single-bit error detected). Protocol corners, glitches, the
 //! maximum MA rate and synthesis: `tests/biss_corners.rs`.
 use sinedec::blocks::biss::crc::{biss_crc, crc6, crc6_bits, POLY};
@@ -120,7 +120,7 @@ fn params_are_validated() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Closed loop: master model <-> rust-hdl slave
+// Closed loop: master model <-> slave (compiled engine; replays check rust-hdl)
 // ---------------------------------------------------------------------------------------
 /// The 19-bit thesis frame and a 12+13-bit Gray multi-turn frame with a 3-period Ack, at
 /// 50 MHz and 133.33 MHz, read back to back at 100 kHz .. 10 MHz over a 5 m cable (25 ns).

@@ -1,8 +1,8 @@
 //! BiSS C control channel (docs/biss_control.md): the CRC4 worked by hand, the protocol
-//! model against the control master, and the rust-hdl slave in the closed loop with the
-//! master model (register reads and writes, a refused write, a corrupted CRC, a restart
-//! mid-command), its CDS stream equal to the model's, replayed in Icarus and Verilator; the
-//! single-cycle data unchanged with the channel on.
+//! model against the control master, and the slave (compiled engine) in the closed loop
+//! with the master model (register reads and writes, a refused write, a corrupted CRC, a
+//! restart mid-command), its CDS stream equal to the model's, replayed in rust-hdl, Icarus
+//! and Verilator; the single-cycle data unchanged with the channel on.
 use sinedec::blocks::biss::control_model::{ControlModel, Phase};
 use sinedec::blocks::biss::hdl::BissSlave;
 use sinedec::blocks::biss::regs::{crc4, writable, BissIdent};
@@ -128,7 +128,7 @@ fn params(clock: f64, control: bool) -> BissParams {
     p
 }
 
-/// Runs a session through the rust-hdl slave: every frame must be good; returns the run and
+/// Runs a session through the slave (compiled engine): every frame must be good; returns the run and
 /// the frames' data.
 fn run_session(p: &BissParams, s: &mut Session, ma_hz: f64) -> (Run, Vec<FrameData>) {
     let frames = s.frames();
@@ -166,8 +166,8 @@ fn run_session(p: &BissParams, s: &mut Session, ma_hz: f64) -> (Run, Vec<FrameDa
     (run, data)
 }
 
-/// The rust-hdl slave in the closed loop: the control master's commands give the register
-/// contents, the CDS stream equals the model's, and Icarus and Verilator replay the same SLO.
+/// The slave in the closed loop (compiled engine): the control master's commands give the register
+/// contents, the CDS stream equals the model's, and rust-hdl, Icarus, Verilator replay the same SLO.
 #[test]
 fn closed_loop_register_access_four_way() {
     let p = params(50e6, true);
@@ -180,7 +180,7 @@ fn closed_loop_register_access_four_way() {
         s.transcript(&cds, first, first + 32)
     );
     assert_eq!(s.outcomes(&cds), expected_outcomes());
-    assert_eq!(cds, model_cds(&mut s), "rust-hdl CDS vs model");
+    assert_eq!(cds, model_cds(&mut s), "slave CDS vs model");
     let slo: Vec<Vec<u64>> = run.slo.iter().map(|&v| vec![v]).collect();
     common::replay_in_all_simulators(
         BissSlave::new(&p).unwrap(),

@@ -8,6 +8,7 @@ use sinedec::blocks::sext;
 use sinedec::config::Loaded;
 use sinedec::cosim::step::{prepare, tick};
 use sinedec::cosim::CosimBlock;
+use sinedec::sim::dut::EngineKind;
 use sinedec::verify::{block_traces, Simulators};
 mod common;
 
@@ -281,8 +282,10 @@ fn end_to_end_at_800_rpm_and_static_jitter() {
     use sinedec::sim::encoder::Profile;
     let l = loaded();
     let d = &l.derived;
+    // The accuracy of the hardware is under test, not rust-hdl: the loop runs the exported
+    // top on the compiled engine (tests/engine_loop.rs proves the loops equal).
     let run = |p: CapParams, secs: f64| {
-        let mut s = CapSystem::new(d, p).expect("system");
+        let mut s = CapSystem::on(d, p, EngineKind::Compiled).expect("system");
         s.start().expect("settles");
         s.run((secs * d.clock_hz) as u64).expect("runs");
         s
@@ -394,7 +397,8 @@ fn capacitive_top_replays_bit_exactly_in_icarus_and_verilator() {
     use sinedec::sim::capacitive::CapParams;
     let l = loaded();
     let d = &l.derived;
-    let mut s = CapSystem::new(d, CapParams::paper()).expect("system");
+    // The loop on the compiled engine; the replay runs rust-hdl (and the rest) on its inputs.
+    let mut s = CapSystem::on(d, CapParams::paper(), EngineKind::Compiled).expect("system");
     s.record_inputs();
     s.start().expect("settles");
     s.run(60_000).expect("runs");
@@ -416,6 +420,28 @@ fn capacitive_top_replays_bit_exactly_in_icarus_and_verilator() {
     // The replayed rust-hdl trace decodes the same positions as the closed loop.
     let valid = t.rust_hdl.iter().filter(|r| r[6] == 1).count();
     assert_eq!(valid, s.records.len());
+    let col = |n: &str| {
+        CapTopRtl::new(d)
+            .expect("top")
+            .output_ports()
+            .iter()
+            .position(|p| p.name == n)
+            .expect("port")
+    };
+    let (v, f) = (col("par_valid"), col("par_fine"));
+    let fines: Vec<u64> = t
+        .rust_hdl
+        .iter()
+        .filter(|r| r[v] == 1)
+        .map(|r| r[f])
+        .collect();
+    let f_bits = d.fine_bits;
+    let want: Vec<u64> = s
+        .records
+        .iter()
+        .map(|r| r.position & ((1 << f_bits) - 1))
+        .collect();
+    assert_eq!(fines, want, "fine positions of the loop and the replay");
 }
 
 /// A whole turn at 800 rpm (75 ms, 30,000 samples) on the bit-accurate models, which the

@@ -1,7 +1,9 @@
 //! `cordic.architecture = "iterative"`: bit-identical to the unrolled core and the model,
-//! rust-hdl == model == Icarus == Verilator, in_ready/drop behaviour, the throughput check,
-//! and the LUT saving.
-use sinedec::blocks::core::hdl::{simulate_rtl, simulate_rtl_ready, CoreRtl};
+//! rust-hdl == model == Icarus == Verilator == engine, in_ready/drop behaviour, the
+//! throughput check, and the LUT saving. The behaviour tests run the exported RTL on the
+//! compiled engine (the hardware's behaviour is under test there; the co-simulation tests
+//! below prove rust-hdl, the engine and the Verilog simulators equal at every N).
+use sinedec::blocks::core::hdl::CoreRtl;
 use sinedec::blocks::core::model::{CoreIn, CoreModel, CoreOut};
 use sinedec::config::{check_throughput, Architecture, Loaded, DEFAULT_CONFIG};
 use sinedec::cosim::stimulus;
@@ -62,10 +64,11 @@ fn valid_outputs(o: &[CoreOut]) -> Vec<CoreOut> {
     o.iter().copied().filter(|o| o.valid).collect()
 }
 
-/// rust-hdl == model cycle for cycle, in_ready included; returns the rust-hdl outputs.
+/// The RTL (exported Verilog on the compiled engine) == model cycle for cycle, in_ready
+/// included; returns the RTL's outputs.
 fn rtl_eq_model(l: &Loaded, s: &[CoreIn]) -> Vec<(CoreOut, bool)> {
     let d = &l.derived;
-    let rtl = simulate_rtl_ready(d, s).expect("rust-hdl settles");
+    let rtl = common::core_on_engine(l, s);
     let mut m = CoreModel::new(d);
     assert!(m.in_ready(), "ready after power-up");
     for (k, (i, (r, rdy))) in s.iter().zip(&rtl).enumerate() {
@@ -101,7 +104,10 @@ fn iterative_equals_unrolled_equals_model_every_n() {
             }
         }
         let it: Vec<CoreOut> = it.into_iter().map(|(o, _)| o).collect();
-        let un = simulate_rtl(&lu.derived, &s).expect("settles");
+        let un: Vec<CoreOut> = common::core_on_engine(&lu, &s)
+            .into_iter()
+            .map(|o| o.0)
+            .collect();
         let mut mu = CoreModel::new(&lu.derived);
         let mo: Vec<CoreOut> = s.iter().map(|i| mu.step(*i)).collect();
         assert_eq!(un, mo, "unrolled rust-hdl == model, N={n}");

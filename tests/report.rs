@@ -1,10 +1,9 @@
 //! `sinedec report`: the sweep's kernel against the model, the model's accuracy figures
-//! against the rust-hdl simulation, deterministic and consistent Markdown/CSV/JSON output,
+//! against the RTL (on the compiled engine), deterministic and consistent Markdown/CSV/JSON output,
 //! and a clear error (with nothing written) without Yosys.
 //!
 //! (More tests in `tests/report_more.rs`; the helpers are in `tests/report_util/`.)
 use sinedec::blocks::cordic::model::{map, quadrant};
-use sinedec::blocks::core::hdl::simulate_rtl;
 use sinedec::blocks::core::model::{sample, CoreIn};
 use sinedec::blocks::mask;
 use sinedec::report::sweep::{self, ErrAcc, Kernel, SweepPlan};
@@ -68,9 +67,10 @@ fn kernel_equals_the_model() {
 }
 
 #[test]
-fn model_accuracy_equals_rust_hdl_simulation() {
-    // A = 10, N = 6, F = 10: every input pair of at least 1/8 full scale through the
-    // rust-hdl simulation of the core; the error figures from its outputs must be identical
+fn model_accuracy_equals_rtl_simulation() {
+    // A = 10, N = 6, F = 10: every input pair of at least 1/8 full scale through the RTL
+    // of the core (the emitted `<name>_core` on the compiled engine, which the co-simulation
+    // tests prove equal to rust-hdl); the error figures from its outputs must be identical
     // to the report's sweep of the bit-accurate model (which runs over mapped vectors with
     // multiplicities) and to a literal sweep of the model.
     let l = common::cfg(6, 10, 10, 2048, 0);
@@ -86,8 +86,8 @@ fn model_accuracy_equals_rust_hdl_simulation() {
         })
         .collect();
     stim.extend((0..d.latency_cycles + 2).map(|_| CoreIn::default()));
-    let out = simulate_rtl(d, &stim).expect("rust-hdl simulation converges");
-    let outs: Vec<_> = out.iter().filter(|o| o.valid).collect();
+    let out = common::core_on_engine(&l, &stim);
+    let outs: Vec<_> = out.iter().map(|o| &o.0).filter(|o| o.valid).collect();
     assert_eq!(outs.len(), inputs.len(), "one output per sample");
     let span = mask(d.fine_bits + 2);
     let mut rtl = ErrAcc::new(false);

@@ -9,7 +9,9 @@ use sinedec::blocks::mask;
 use sinedec::blocks::velocity::model::{VelIn, VelocityModel};
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::cosim::stimulus;
-use sinedec::cosim::{first_mismatch, run_icarus, run_verilator, CosimSpec, Port};
+use sinedec::cosim::{
+    cosim_engine_kind, first_mismatch, run_engine, run_icarus, run_verilator, CosimSpec, Port,
+};
 use sinedec::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
 use sinedec::verify::stimulus_rows;
 
@@ -116,7 +118,13 @@ fn emitted_core_velocity_equals_the_models_in_icarus_and_verilator() {
         std::fs::create_dir_all(&dir).expect("dir");
         let icarus = run_icarus(&spec, &rows, &dir).expect("icarus ran");
         let verilator = run_verilator(&spec, &rows, &dir).expect("verilator ran");
-        for (name, t) in [("icarus", &icarus), ("verilator", &verilator)] {
+        let kind = cosim_engine_kind().expect("engine choice");
+        let engine = run_engine(&spec, &rows, kind).expect("engine ran");
+        for (name, t) in [
+            ("icarus", &icarus),
+            ("verilator", &verilator),
+            ("engine", &engine),
+        ] {
             if let Some(m) = first_mismatch("model", &want, name, t, &outs) {
                 panic!("{method}: {m}");
             }

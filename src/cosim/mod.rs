@@ -1,5 +1,6 @@
 //! Co-simulation harness: drives the exported Verilog of a synchronous design in
-//! Icarus Verilog and in Verilator with one stimulus and returns the output traces,
+//! Icarus Verilog, in Verilator and in sinedec's compiled engine (`engine.rs`) with one
+//! stimulus and returns the output traces,
 //! so that they can be compared bit-for-bit with a rust-hdl simulation of the same design.
 //!
 //! # Cycle semantics
@@ -59,6 +60,7 @@ use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
 mod block;
+mod engine;
 mod icarus;
 pub mod step;
 pub mod stimulus;
@@ -67,6 +69,7 @@ mod verilator;
 
 pub(crate) use block::cosim_block;
 pub use block::{CosimBlock, RowValue};
+pub use engine::{cosim_engine_kind, run_engine, BlockEngine, ENGINE_ENV};
 pub use icarus::run_icarus;
 pub(crate) use tool::run_checked;
 pub use tool::{check_tool_named, require_tool, CosimError, TOOL_TIMEOUT};

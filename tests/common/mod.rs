@@ -126,7 +126,9 @@ pub fn replay_top_in_simulators(
     use sinedec::verify::{block_traces, Simulators};
     let d = &l.derived;
     let enc = EncoderModel::ideal(2048, 1.0, rpm).with_seed(3);
-    let mut s = System::new(d, enc).expect("system");
+    // The loop on the compiled engine; the replay below runs rust-hdl (and Icarus,
+    // Verilator, the engine again) on its recorded inputs and must give its outputs.
+    let mut s = System::on(d, enc, sinedec::sim::dut::EngineKind::Compiled).expect("system");
     s.record_inputs();
     s.start().expect("settles");
     let mut rust = vec![];
@@ -143,7 +145,7 @@ pub fn replay_top_in_simulators(
         block_traces(top, &name, "clk", &r.inputs, Simulators::ALL, &dir).expect("simulators ran");
     assert_eq!(
         t.rust_hdl, rust,
-        "block_traces' own rust-hdl run equals the closed loop"
+        "block_traces' own rust-hdl run equals the closed loop (compiled engine)"
     );
     if let Some(m) = t.mismatch() {
         panic!("{m}");
@@ -188,4 +190,61 @@ pub fn cap_board(osc: Option<&str>, first_ball: &str) -> String {
         t.push_str(&format!("{bus} = [{}]\n", v.join(", ")));
     }
     t
+}
+
+/// The emitted `<name>_core` of `l` on the compiled engine (the library co-simulation
+/// builds for the same Verilog, so it is built once), one input a cycle: the outputs and
+/// in_ready after each edge, as `simulate_rtl_ready` gives them from rust-hdl (the
+/// co-simulation checks prove rust-hdl, the engine and the Verilog simulators equal).
+/// Counter loads are not ports of `<name>_core`: every input must have `load: None`.
+pub fn core_on_engine(
+    l: &Loaded,
+    inputs: &[sinedec::blocks::core::model::CoreIn],
+) -> Vec<(sinedec::blocks::core::model::CoreOut, bool)> {
+    use sinedec::blocks::core::model::CoreOut;
+    use sinedec::blocks::mask;
+    use sinedec::engine::{Engine, Kind};
+    let d = &l.derived;
+    let v = sinedec::emit::core_verilog(l).expect("core Verilog");
+    let mut e = Engine::new(&v, &sinedec::emit::core_name(l), "clk", Kind::Compiled)
+        .expect("engine builds");
+    let i = |n: &str| e.input_index(n).expect("core input");
+    let ins = [i("rst"), i("in_valid"), i("in_sin"), i("in_cos")];
+    let o = |n: &str| e.output_index(n).expect("core output");
+    let outs = [
+        o("out_valid"),
+        o("out_position"),
+        o("out_turns"),
+        o("out_fine"),
+        o("out_error"),
+        o("out_warning"),
+        o("in_ready"),
+    ];
+    let am = mask(d.adc_width);
+    inputs
+        .iter()
+        .map(|x| {
+            assert!(x.load.is_none(), "no load port on <name>_core");
+            let row = [
+                x.rst as u64,
+                x.valid as u64,
+                x.sin as u64 & am,
+                x.cos as u64 & am,
+            ];
+            for (k, v) in ins.iter().zip(row) {
+                e.set(*k, v);
+            }
+            e.tick();
+            let g = |k: usize| e.get(outs[k]);
+            let out = CoreOut {
+                valid: g(0) != 0,
+                position: g(1),
+                turns: g(2),
+                fine: g(3),
+                error: g(4) != 0,
+                warning: g(5) != 0,
+            };
+            (out, g(6) != 0)
+        })
+        .collect()
 }
