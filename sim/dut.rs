@@ -12,8 +12,10 @@ use crate::error::{Error, Result};
 pub const IN_PINS: [&str; 9] = [
     "rst", "adc_miso", "biss_ma", "qep_a", "qep_b", "qep_z", "ssi_clk", "enc_sck", "enc_cs_n",
 ];
-/// Outputs the closed loop reads, in index order ([`Dut::get`]).
-pub const OUT_PINS: [&str; 13] = [
+/// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
+/// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
+/// `[velocity] enabled`) and read 0 without them.
+pub const OUT_PINS: [&str; 15] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -27,7 +29,11 @@ pub const OUT_PINS: [&str; 13] = [
     "par_turns",
     "par_error",
     "par_warning",
+    "par_velocity_0",
+    "par_velocity_valid_0",
 ];
+/// How many of the last [`OUT_PINS`] are optional.
+pub const OPTIONAL_OUT_PINS: usize = 2;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -44,8 +50,9 @@ pub struct CompiledTop {
     e: Box<Engine>,
     /// Engine input index of each [`IN_PINS`] entry.
     ins: [usize; 9],
-    /// Engine output index of each [`OUT_PINS`] entry.
-    outs: [usize; 13],
+    /// Engine output index of each [`OUT_PINS`] entry (None: an optional pin the
+    /// configuration lacks).
+    outs: [Option<usize>; 15],
     /// Present value of every engine input (the engine has no read-back).
     shadow: Vec<u64>,
     /// Engine input index of each of the rtl's co-simulation inputs (port-table order).
@@ -83,9 +90,12 @@ impl Dut {
         for (k, p) in IN_PINS.iter().enumerate() {
             ins[k] = e.input_index(p).ok_or_else(|| missing("input", p))?;
         }
-        let mut outs = [0; 13];
+        let mut outs = [None; 15];
         for (k, p) in OUT_PINS.iter().enumerate() {
-            outs[k] = e.output_index(p).ok_or_else(|| missing("output", p))?;
+            outs[k] = e.output_index(p);
+            if outs[k].is_none() && k < OUT_PINS.len() - OPTIONAL_OUT_PINS {
+                return Err(missing("output", p));
+            }
         }
         let row_ins = rtl
             .input_ports()
@@ -139,7 +149,7 @@ impl Dut {
     pub fn get(&self, k: usize) -> u64 {
         match self {
             Dut::Rtl(t) => t.output(OUT_PINS[k]).unwrap_or(0),
-            Dut::Compiled(c) => c.e.get(c.outs[k]),
+            Dut::Compiled(c) => c.outs[k].map_or(0, |i| c.e.get(i)),
         }
     }
 

@@ -46,6 +46,8 @@ const O_FINE: usize = 9;
 const O_TURNS: usize = 10;
 const O_ERROR: usize = 11;
 const O_WARNING: usize = 12;
+const O_VELOCITY: usize = 13;
+const O_VELOCITY_VALID: usize = 14;
 
 /// One decoded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,11 +70,27 @@ pub struct Record {
     pub truth: f64,
 }
 
+/// One velocity update (`par_velocity_valid`, `[velocity] enabled`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VelRecord {
+    /// Clock cycle of `par_velocity_valid` (the value is read after that edge).
+    pub cycle: u64,
+    /// `par_velocity` as a signed number: 2^-(F + frac_bits) quadrant per update period.
+    pub raw: i64,
+    /// The encoder's true mean speed over the update period the estimate ends with, in
+    /// position LSB (2^-F quadrant) per update period: the model's angle change from
+    /// (tick - D) to the tick, both taken back by the CONV-to-position latency (the tick is
+    /// `latency()` clocks before the strobe).
+    pub truth: f64,
+}
+
 /// Result of a closed-loop run.
 #[derive(Clone, Debug, Default)]
 pub struct SimResult {
     /// Decoded samples in order.
     pub records: Vec<Record>,
+    /// Velocity updates in order (empty without `[velocity] enabled`).
+    pub velocity: Vec<VelRecord>,
     /// Clock cycles simulated.
     pub cycles: u64,
     /// Decoded samples whose conversion could not be found at the expected latency.
@@ -157,6 +175,72 @@ impl SimResult {
             s.rms_lsb = (sum2 / s.samples as f64).sqrt();
         }
         s
+    }
+}
+
+/// Velocity figures of a run (`[velocity] enabled`): the estimate `par_velocity` / 2^frac_bits
+/// against [`VelRecord::truth`], in position LSB per update period and in rpm.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VelStats {
+    /// Updates counted (after the estimator's warm-up).
+    pub updates: usize,
+    /// Updates left out at the start: those before the first decoded sample, then
+    /// [`crate::blocks::velocity::VelocityParams::warmup_updates`].
+    pub warmup: usize,
+    /// rpm of one position LSB per update period.
+    pub rpm_per_lsb: f64,
+    /// Mean of estimate - truth, LSB per period.
+    pub mean_err: f64,
+    /// Standard deviation of estimate - truth, LSB per period.
+    pub std_err: f64,
+    /// Largest |estimate - truth|, LSB per period.
+    pub max_err: f64,
+    /// The last update's estimate, LSB per period.
+    pub last: f64,
+    /// The last update's true speed, LSB per period.
+    pub last_truth: f64,
+}
+
+impl SimResult {
+    /// Velocity figures over the updates after the warm-up; None without `[velocity]`
+    /// enabled or when no update passed the warm-up. The warm-up counts from the first
+    /// update after the first decoded sample: before it the estimator sees position 0, and
+    /// the first sample is a step to the encoder's position.
+    pub fn velocity_stats(&self, d: &Derived) -> Option<VelStats> {
+        let v = d.velocity.as_ref()?;
+        let first = self.records.first()?.cycle;
+        let before = self
+            .velocity
+            .iter()
+            .take_while(|r| r.cycle <= first)
+            .count();
+        let warmup = before + v.warmup_updates() as usize;
+        let scale = (1u64 << v.spec.frac_bits) as f64;
+        let errs: Vec<f64> = self
+            .velocity
+            .iter()
+            .skip(warmup)
+            .map(|r| r.raw as f64 / scale - r.truth)
+            .collect();
+        let last = self.velocity.last()?;
+        if errs.is_empty() {
+            return None;
+        }
+        let n = errs.len() as f64;
+        let mean = errs.iter().sum::<f64>() / n;
+        let var = errs.iter().map(|e| (e - mean) * (e - mean)).sum::<f64>() / n;
+        let rate = d.clock_hz / v.period_clocks as f64;
+        let lsb_per_turn = d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64;
+        Some(VelStats {
+            updates: errs.len(),
+            warmup,
+            rpm_per_lsb: rate * 60.0 / lsb_per_turn,
+            mean_err: mean,
+            std_err: var.sqrt(),
+            max_err: errs.iter().fold(0.0, |m, e| m.max(e.abs())),
+            last: last.raw as f64 / scale,
+            last_truth: last.truth,
+        })
     }
 }
 
@@ -389,6 +473,21 @@ impl System {
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     truth: self.truth.electrical_angle(t) * lsb_per_rad,
                 });
+            }
+            if let Some(v) = &self.d.velocity {
+                if self.top.get(O_VELOCITY_VALID) != 0 {
+                    let raw = sext(self.top.get(O_VELOCITY), v.spec.width);
+                    let tick = self.cycle as f64 - 1.0 - v.latency() as f64 - self.latency as f64;
+                    let t1 = tick / self.clock_hz;
+                    let t0 = (tick - v.period_clocks as f64) / self.clock_hz;
+                    let truth = (self.truth.electrical_angle(t1) - self.truth.electrical_angle(t0))
+                        * lsb_per_rad;
+                    self.result.velocity.push(VelRecord {
+                        cycle: self.cycle,
+                        raw,
+                        truth,
+                    });
+                }
             }
         }
         self.result.cycles = self.cycle;

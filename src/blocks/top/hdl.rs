@@ -12,6 +12,7 @@ use crate::blocks::preamp::hdl::PreampSetup;
 use crate::blocks::qep::hdl::QepDecoder;
 use crate::blocks::spi_slave::hdl::SpiSlave;
 use crate::blocks::ssi::hdl::SsiSlave;
+use crate::blocks::velocity::hdl::Velocity;
 use rust_hdl::prelude::*;
 
 board_top! {
@@ -49,6 +50,10 @@ board_top! {
             par_error: Out Bit, Out, 1, Parallel, 0, "parallel bus: error flag";
             par_warning: Out Bit, Out, 1, Parallel, 0, "parallel bus: warning flag";
         }
+        @optional_outputs {
+            par_velocity: Bits<64>, 64, "velocity (`[velocity] enabled`): `width`-bit two's complement in the low bits, held between strobes";
+            par_velocity_valid: Bit, 1, "velocity strobe (`[velocity] enabled`): one clock per update";
+        }
         preamp: PreampSetup,
         adc: AdcController,
         correction: Correction,
@@ -71,6 +76,16 @@ board_top! {
         qshr: Constant<Bits<32>>,
         /// See `qshl`.
         fshr: Constant<Bits<32>>,
+        /// The velocity estimator: one instance with `[velocity] enabled`, none without (no
+        /// Verilog, no ports).
+        vel: Vec<Velocity>,
+        /// F, the shift of the quadrant count above the fine part in the estimator's
+        /// position (it uses the low F + 2 bits): one per estimator.
+        vel_fshl: Vec<Constant<Bits<32>>>,
+        /// 1 when the serial slaves send the velocity (`[velocity] in_frames`), else 0: the
+        /// length of their `vel` inputs (a loop bound: rust-hdl's loops cannot take it from
+        /// an indexed slave).
+        _in_frames: usize,
     }
 }
 
@@ -119,7 +134,17 @@ impl TopRtl {
             )
         })?;
         let [qshl, qshr, fshr] = biss_word_shifts(d);
+        let vel = match &d.velocity {
+            Some(p) => vec![Velocity::new(p)?],
+            None => vec![],
+        };
+        let nvel = vel.len();
         Ok(Self::from_parts(TopParts {
+            par_velocity: nvel,
+            par_velocity_valid: nvel,
+            vel,
+            vel_fshl: (0..nvel).map(|_| c32(d.fine_bits as u64)).collect(),
+            _in_frames: (d.biss.velocity_bits > 0) as usize,
             preamp: PreampSetup::new(pre),
             adc: AdcController::new(&d.adc),
             correction: Correction::new(&d.correction),
@@ -254,5 +279,29 @@ impl Logic for TopRtl {
         self.par_turns.next = self.core.out_turns.val();
         self.par_error.next = self.error.val();
         self.par_warning.next = self.warning.val();
+        // The velocity estimator on the position modulo 2^(F+2) (`[velocity] enabled`).
+        for i in 0..self.vel.len() {
+            self.vel[i].clk.next = self.clk.val();
+            self.vel[i].rst.next = self.rst.val();
+            self.vel[i].in_valid.next = self.core.out_valid.val();
+            self.vel[i].in_p.next =
+                (self.core.out_qc.val() << self.vel_fshl[i].val()) | self.core.out_fine.val();
+            self.par_velocity[i].next = self.vel[i].out_velocity.val();
+            self.par_velocity_valid[i].next = self.vel[i].out_velocity_valid.val();
+            // `[velocity] in_frames`: the serial slaves send it after the data word.
+            for j in 0..self.biss_slave.vel.len() {
+                self.biss_slave.vel[j].next = self.vel[i].out_velocity.val();
+            }
+            for j in 0..self.ssi_slave.len() {
+                for k in 0..self._in_frames {
+                    self.ssi_slave[j].vel[k].next = self.vel[i].out_velocity.val();
+                }
+            }
+            for j in 0..self.spi_slave.len() {
+                for k in 0..self._in_frames {
+                    self.spi_slave[j].vel[k].next = self.vel[i].out_velocity.val();
+                }
+            }
+        }
     }
 }

@@ -479,6 +479,30 @@ impl VelocityParams {
             / (quadrants_per_turn * 2f64.powi((self.spec.fine_bits + self.spec.frac_bits) as i32))
     }
 
+    /// Updates after which a constant speed is estimated to within 2 % from the estimator's
+    /// start (every state 0, the first update's output 0), used to leave the start out of
+    /// `simulate`'s statistics: tracking [`settle_updates`](Self::settle_updates) + 1;
+    /// diff_lpf and kalman the first-order decay (1 - a)^n <= 0.02 with a the (steady-state)
+    /// gain, + 1; lsq M + 1 (its history is full after M updates). The + 1 is the first
+    /// update, which only primes the history.
+    pub fn warmup_updates(&self) -> u64 {
+        let c = (1u64 << COEF_FRAC) as f64;
+        let first_order = |a: i64| {
+            let a = (a as f64 / c).clamp(1e-9, 1.0);
+            if a >= 1.0 {
+                1
+            } else {
+                (0.02f64.ln() / (1.0 - a).ln()).ceil() as u64
+            }
+        };
+        1 + match &self.consts {
+            MethodConsts::DiffLpf { a } => first_order(*a),
+            MethodConsts::Kalman { gains } => first_order(gains.last().copied().unwrap_or(0)),
+            MethodConsts::Lsq { n, .. } => n.len() as u64,
+            MethodConsts::Tracking { .. } => self.settle_updates(),
+        }
+    }
+
     /// Updates after a speed step until the tracking loop's velocity stays within 2 % of
     /// the step (from 4 / (zeta w_n)); 0 for the other methods.
     pub fn settle_updates(&self) -> u64 {
