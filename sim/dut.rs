@@ -15,7 +15,7 @@ pub const IN_PINS: [&str; 9] = [
 /// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
 /// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
 /// `[velocity] enabled`) and read 0 without them.
-pub const OUT_PINS: [&str; 15] = [
+pub const OUT_PINS: [&str; 16] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -29,6 +29,7 @@ pub const OUT_PINS: [&str; 15] = [
     "par_turns",
     "par_error",
     "par_warning",
+    "enc_miso",
     "par_velocity_0",
     "par_velocity_valid_0",
 ];
@@ -52,7 +53,7 @@ pub struct CompiledTop {
     ins: [usize; 9],
     /// Engine output index of each [`OUT_PINS`] entry (None: an optional pin the
     /// configuration lacks).
-    outs: [Option<usize>; 15],
+    outs: [Option<usize>; 16],
     /// Present value of every engine input (the engine has no read-back).
     shadow: Vec<u64>,
     /// Engine input index of each of the rtl's co-simulation inputs (port-table order).
@@ -90,7 +91,7 @@ impl Dut {
         for (k, p) in IN_PINS.iter().enumerate() {
             ins[k] = e.input_index(p).ok_or_else(|| missing("input", p))?;
         }
-        let mut outs = [None; 15];
+        let mut outs = [None; 16];
         for (k, p) in OUT_PINS.iter().enumerate() {
             outs[k] = e.output_index(p);
             if outs[k].is_none() && k < OUT_PINS.len() - OPTIONAL_OUT_PINS {

@@ -46,8 +46,9 @@ const O_FINE: usize = 9;
 const O_TURNS: usize = 10;
 const O_ERROR: usize = 11;
 const O_WARNING: usize = 12;
-const O_VELOCITY: usize = 13;
-const O_VELOCITY_VALID: usize = 14;
+const O_ENC_MISO: usize = 13;
+const O_VELOCITY: usize = 14;
+const O_VELOCITY_VALID: usize = 15;
 
 /// One decoded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -260,6 +261,7 @@ pub struct System {
     record_inputs: bool,
     ma: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
+    spi: Option<std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>>,
     qep_b_stuck: Option<(f64, f64)>,
     trace: Option<crate::sim::vcd::TopTrace>,
     trace_error: Option<std::io::Error>,
@@ -309,6 +311,7 @@ impl System {
             record_inputs: false,
             ma: None,
             ssi: None,
+            spi: None,
             qep_b_stuck: None,
             trace: None,
             trace_error: None,
@@ -351,6 +354,15 @@ impl System {
     /// one).
     pub fn attach_ssi_master(&mut self, m: Box<dyn crate::sim::serial_line::LineMaster>) {
         self.ssi = Some(m);
+    }
+
+    /// Connects an SPI master model to `enc_sck`/`enc_cs_n`/`enc_miso` (chip select high
+    /// without one); the caller keeps the handle to read its words.
+    pub fn attach_spi_master(
+        &mut self,
+        m: std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>,
+    ) {
+        self.spi = Some(m);
     }
 
     /// The rust-hdl design (to read its outputs after a cycle); None on the compiled engine.
@@ -420,8 +432,12 @@ impl System {
                 None => true,
             };
             self.top.set(I_SSI_CLK, ssi_clk);
-            self.top.set(I_ENC_SCK, false);
-            self.top.set(I_ENC_CS_N, true);
+            let (sck, cs_n) = match &self.spi {
+                Some(m) => m.borrow_mut().lines_for_cycle(self.cycle as usize),
+                None => (false, true),
+            };
+            self.top.set(I_ENC_SCK, sck);
+            self.top.set(I_ENC_CS_N, cs_n);
             self.top.tick()?;
             // The inputs just applied, read back by name in the port table's order.
             let row = (self.record_inputs || self.trace.is_some()).then(|| self.top.input_row());
@@ -442,6 +458,9 @@ impl System {
             }
             if let Some(m) = self.ssi.as_mut() {
                 m.push_slo(self.top.get(O_SSI_DATA) != 0);
+            }
+            if let Some(m) = &self.spi {
+                m.borrow_mut().push_miso(self.top.get(O_ENC_MISO) != 0);
             }
             if self.record_inputs {
                 self.result.outputs.push(self.top.sample());
@@ -477,6 +496,8 @@ impl System {
             if let Some(v) = &self.d.velocity {
                 if self.top.get(O_VELOCITY_VALID) != 0 {
                     let raw = sext(self.top.get(O_VELOCITY), v.spec.width);
+                    // The strobe's edge, back by the estimator's latency and the
+                    // CONV-to-position latency.
                     let tick = self.cycle as f64 - 1.0 - v.latency() as f64 - self.latency as f64;
                     let t1 = tick / self.clock_hz;
                     let t0 = (tick - v.period_clocks as f64) / self.clock_hz;

@@ -202,30 +202,37 @@ fn simulate_reports_the_velocity_only_when_enabled() {
     assert!(!rep.csv(&off, o.skip).contains("velocity"));
 }
 
-/// The configuration of [`config`] with the velocity word in the frames, the SSI slave on,
-/// and 2 us timeouts (many frames in a short run).
+/// The configuration of [`config`] with the velocity word in the frames, the SSI and SPI
+/// slaves on, and 2 us timeouts (many frames in a short run).
 fn frames_config() -> Loaded {
     let text = DEFAULT_CONFIG
         .replacen("timeout_us = 20.0", "timeout_us = 2.0", 1)
         .replace(
             "[ssi]\n# SSI slave on ssi_clk/ssi_data, sending the BiSS data word (binary or Gray).\nenabled = false\ngray = false\ntimeout_us = 20.0",
             "[ssi]\nenabled = true\ngray = false\ntimeout_us = 2.0",
+        )
+        .replace(
+            "enc_miso: the BiSS data word, then E and W.\nenabled = false",
+            "enc_miso: the BiSS data word, then E and W.\nenabled = true",
         );
     let text = format!(
         "{text}\n[velocity]\nenabled = true\nrate_hz = 200e3\nbandwidth_hz = 20000.0\nin_frames = true\n"
     );
     let l = Loaded::parse(&text, "velocity_frames.toml").expect("config");
-    assert!(l.derived.ssi.is_some() && l.derived.biss.velocity_bits == 32);
+    assert!(l.derived.ssi.is_some() && l.derived.spi.is_some());
+    assert_eq!(l.derived.biss.velocity_bits, 32);
     l
 }
 
 #[test]
-fn biss_and_ssi_frames_carry_par_velocity_with_a_good_crc() {
+fn biss_ssi_and_spi_frames_carry_par_velocity_and_replay_in_icarus_and_verilator() {
     use sinedec::sim::biss_master::{BissMaster, BissMasterConfig};
     use sinedec::sim::encoder::EncoderModel;
     use sinedec::sim::serial_line::{FrameRequest, LineTiming};
+    use sinedec::sim::spi_master::{decode_word, SpiMaster, SpiTxn};
     use sinedec::sim::ssi_master::{SsiMaster, SsiMasterConfig, SsiOutcome};
     use sinedec::sim::system::System;
+    use sinedec::verify::{block_traces, Simulators};
     use std::cell::RefCell;
     use std::rc::Rc;
     let l = frames_config();
@@ -256,6 +263,18 @@ fn biss_and_ssi_frames_carry_par_velocity_with_a_good_crc() {
     scfg.word = scfg.word.with_velocity(v);
     let ssi = Rc::new(RefCell::new(SsiMaster::new(scfg, reqs, 17_000.0)));
     s.attach_ssi_master(Box::new(ssi.clone()));
+    // SPI mode 0 at 5 MHz: N + W + 2 clocks per word (data, velocity, E, W).
+    let txns: Vec<SpiTxn> = (0..12)
+        .map(|_| SpiTxn {
+            mode: 0,
+            sck_hz: 5e6,
+            clocks: pb + v + 2,
+            gap_ns: 4000.0,
+        })
+        .collect();
+    let spi = Rc::new(RefCell::new(SpiMaster::new(timing, &txns, 16_000.0)));
+    s.attach_spi_master(spi.clone());
+    s.record_inputs();
     s.start().expect("settles");
     let mut vels = vec![];
     let cycles = (250e-6 * clock) as u64;
@@ -294,6 +313,32 @@ fn biss_and_ssi_frames_carry_par_velocity_with_a_good_crc() {
         let w = window(f.t_start_ns);
         assert!(w.contains(&got), "SSI velocity {got} not among {w:?}");
     }
+    // SPI: chip select latches the word (cs_n reaches the slave one line delay later).
+    let spi = spi.borrow();
+    let fmt = sinedec::sim::serial_line::WordFormat::new(pb, 0).with_velocity(v);
+    let words = spi.words();
+    assert_eq!(words.len(), 12);
+    for (x, bits) in spi.txns().iter().zip(&words) {
+        let w = decode_word(bits, &fmt).expect("whole word");
+        let got = w.velocity.expect("velocity word");
+        let win = window(x.t_cs_ns);
+        assert!(win.contains(&got), "SPI velocity {got} not among {win:?}");
+    }
+    // The same run's inputs through the exported top in Icarus and Verilator.
+    let dir = common::workdir("velocity_frames");
+    let t = block_traces(
+        TopRtl::new(d).expect("top"),
+        "sd_top_rtl",
+        "clk",
+        &r.inputs,
+        Simulators::ALL,
+        &dir,
+    )
+    .expect("simulators ran");
+    if let Some(m) = t.mismatch() {
+        panic!("{m}");
+    }
+    assert!(t.rust_hdl == r.outputs, "the replay equals the closed loop");
     // The settled estimate is the true speed within the bound of the constant-speed test.
     let st = r.velocity_stats(d).expect("updates");
     let truth = rpm / 60.0 * d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64
