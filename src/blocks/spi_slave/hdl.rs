@@ -48,10 +48,11 @@ pub struct SpiSlave {
     pub miso: Signal<Out, Bit>,
     /// MISO output enable (registered; high while selected).
     pub miso_oe: Signal<Out, Bit>,
-    /// The velocity word sent after the data (`velocity_bits` > 0: one input, latched with
-    /// the position at chip select; none without): two's complement in the low
-    /// `velocity_bits`.
-    pub vel: Vec<Signal<In, Bits<64>>>,
+    /// The velocity word sent after the data when `velocity_bits` > 0 (latched with the
+    /// position), two's complement in the low `velocity_bits`; unused otherwise. A plain
+    /// port, not a `Vec` like BiSS's: the top reaches it through its own `Vec` of slaves, and
+    /// rust-hdl's Verilog resolves only one index per name.
+    pub vel: Signal<In, Bits<64>>,
     /// The velocity shift register: its MSB enters `sh` at every data shift.
     vsh: Vec<DFF<Bits<64>>>,
     /// Mask of the velocity bits.
@@ -91,7 +92,7 @@ impl SpiSlave {
         let v = p.velocity_bits;
         let nv = (v > 0) as usize;
         Ok(Self {
-            vel: (0..nv).map(|_| Default::default()).collect(),
+            vel: Default::default(),
             vsh: (0..nv).map(|_| Default::default()).collect(),
             vmask: (0..nv).map(|_| c64(mask(v))).collect(),
             vmsb: (0..nv).map(|_| c64(1 << (v.max(1) - 1))).collect(),
@@ -203,9 +204,9 @@ impl Logic for SpiSlave {
             self.sh.d.next = (self.posw.word.val() << self.one.val()) & self.nmask.val();
             // The velocity word behind the data word: its MSB enters sh with this shift.
             for i in 0..self.vsh.len() {
-                self.vsh[i].d.next = ((self.vel[i].val() & self.vmask[i].val()) << self.one.val())
+                self.vsh[i].d.next = ((self.vel.val() & self.vmask[i].val()) << self.one.val())
                     & self.vmask[i].val();
-                if (self.vel[i].val() & self.vmsb[i].val()).any() {
+                if (self.vel.val() & self.vmsb[i].val()).any() {
                     self.sh.d.next = ((self.posw.word.val() << self.one.val()) & self.nmask.val())
                         | self.one.val();
                 }

@@ -43,9 +43,11 @@ pub struct SsiSlave {
     pub error: Signal<In, Bit>,
     /// SSI data output (registered).
     pub slo: Signal<Out, Bit>,
-    /// The velocity word sent after the data (`velocity_bits` > 0: one input, latched with
-    /// the position at F1; none without): two's complement in the low `velocity_bits`.
-    pub vel: Vec<Signal<In, Bits<64>>>,
+    /// The velocity word sent after the data when `velocity_bits` > 0 (latched with the
+    /// position), two's complement in the low `velocity_bits`; unused otherwise. A plain
+    /// port, not a `Vec` like BiSS's: the top reaches it through its own `Vec` of slaves, and
+    /// rust-hdl's Verilog resolves only one index per name.
+    pub vel: Signal<In, Bits<64>>,
     /// The velocity shift register: its MSB enters `sh` at every data shift.
     vsh: Vec<DFF<Bits<64>>>,
     /// Mask of the velocity bits.
@@ -90,7 +92,7 @@ impl SsiSlave {
         let v = p.velocity_bits;
         let nv = (v > 0) as usize;
         Ok(Self {
-            vel: (0..nv).map(|_| Default::default()).collect(),
+            vel: Default::default(),
             vsh: (0..nv).map(|_| Default::default()).collect(),
             vmask: (0..nv).map(|_| c64(mask(v))).collect(),
             vmsb: (0..nv).map(|_| c64(1 << (v.max(1) - 1))).collect(),
@@ -158,7 +160,7 @@ impl Logic for SsiSlave {
                     self.posw.take.next = true;
                     self.sh.d.next = self.posw.word.val() & self.nmask.val();
                     for i in 0..self.vsh.len() {
-                        self.vsh[i].d.next = self.vel[i].val() & self.vmask[i].val();
+                        self.vsh[i].d.next = self.vel.val() & self.vmask[i].val();
                     }
                     self.errl.d.next = self.posw.err.val();
                     self.state.d.next = SsiState::First;

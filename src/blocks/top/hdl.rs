@@ -82,10 +82,6 @@ board_top! {
         /// F, the shift of the quadrant count above the fine part in the estimator's
         /// position (it uses the low F + 2 bits): one per estimator.
         vel_fshl: Vec<Constant<Bits<32>>>,
-        /// 1 when the serial slaves send the velocity (`[velocity] in_frames`), else 0: the
-        /// length of their `vel` inputs (a loop bound: rust-hdl's loops cannot take it from
-        /// an indexed slave).
-        _in_frames: usize,
     }
 }
 
@@ -144,7 +140,6 @@ impl TopRtl {
             par_velocity_valid: nvel,
             vel,
             vel_fshl: (0..nvel).map(|_| c32(d.fine_bits as u64)).collect(),
-            _in_frames: (d.biss.velocity_bits > 0) as usize,
             preamp: PreampSetup::new(pre),
             adc: AdcController::new(&d.adc),
             correction: Correction::new(&d.correction),
@@ -247,6 +242,11 @@ impl Logic for TopRtl {
             self.ssi_slave[i].turns.next = self.core.out_turns.val();
             self.ssi_slave[i].pos_valid.next = self.core.out_valid.val();
             self.ssi_slave[i].error.next = self.error.val();
+            // The velocity word (sent only with `[velocity] in_frames`).
+            self.ssi_slave[i].vel.next = bit_cast::<64, 32>(self.zero.val());
+            for k in 0..self.vel.len() {
+                self.ssi_slave[i].vel.next = self.vel[k].out_velocity.val();
+            }
             self.ssi_data.next = self.ssi_slave[i].slo.val();
         }
         self.enc_miso.next = false;
@@ -261,6 +261,10 @@ impl Logic for TopRtl {
             self.spi_slave[i].pos_valid.next = self.core.out_valid.val();
             self.spi_slave[i].error.next = self.error.val();
             self.spi_slave[i].warning.next = self.warning.val();
+            self.spi_slave[i].vel.next = bit_cast::<64, 32>(self.zero.val());
+            for k in 0..self.vel.len() {
+                self.spi_slave[i].vel.next = self.vel[k].out_velocity.val();
+            }
             self.enc_miso.next = self.spi_slave[i].miso.val();
             self.enc_miso_oe.next = self.spi_slave[i].miso_oe.val();
         }
@@ -291,16 +295,6 @@ impl Logic for TopRtl {
             // `[velocity] in_frames`: the serial slaves send it after the data word.
             for j in 0..self.biss_slave.vel.len() {
                 self.biss_slave.vel[j].next = self.vel[i].out_velocity.val();
-            }
-            for j in 0..self.ssi_slave.len() {
-                for k in 0..self._in_frames {
-                    self.ssi_slave[j].vel[k].next = self.vel[i].out_velocity.val();
-                }
-            }
-            for j in 0..self.spi_slave.len() {
-                for k in 0..self._in_frames {
-                    self.spi_slave[j].vel[k].next = self.vel[i].out_velocity.val();
-                }
             }
         }
     }
