@@ -64,6 +64,9 @@ pub struct FrameData {
     pub turns: u64,
     /// nE as received (false = error).
     pub n_e: bool,
+    /// The velocity word after the data, sign-extended (`[velocity] in_frames`; None without
+    /// one in the word format).
+    pub velocity: Option<i64>,
     /// nW as received (false = warning).
     pub n_w: bool,
     /// The six CRC bits as received.
@@ -112,7 +115,12 @@ impl BissFrame {
 /// CRC6 0x43 as the master computes it: the remainder of message(x) * x^6 divided by
 /// x^6 + x + 1, by long division, then inverted as BiSS sends it.
 pub fn expected_crc(message: u64, bits: u32) -> u8 {
-    let mut r = (message as u128) << 6;
+    expected_crc_wide(message as u128, bits)
+}
+
+/// [`expected_crc`] of a message of up to 122 bits (data, velocity word, nE, nW).
+pub fn expected_crc_wide(message: u128, bits: u32) -> u8 {
+    let mut r = message << 6;
     for i in (6..bits + 6).rev() {
         if r >> i & 1 == 1 {
             r ^= 0x43u128 << (i - 6);
@@ -149,12 +157,17 @@ impl BissMasterConfig {
     /// The frame as read: data, flags and CRC from the bits after Start.
     fn decode(&self, run: &BissRun) -> FrameData {
         let nb = self.word.data_bits;
+        let nv = self.word.velocity_bits;
         let n = nb as usize;
+        // After CDS: N data bits, V velocity bits, nE, nW, six CRC bits.
+        let e = n + nv as usize;
         let b = &run.bits;
         let data = word_of(&b[1..1 + n]);
-        let (n_e, n_w) = (b[1 + n], b[2 + n]);
-        let crc_received = word_of(&b[3 + n..9 + n]) as u8;
-        let message = (data << 2) | ((n_e as u64) << 1) | n_w as u64;
+        let velocity = self.word.velocity(&b[1 + n..1 + e]);
+        let (n_e, n_w) = (b[1 + e], b[2 + e]);
+        let crc_received = word_of(&b[3 + e..9 + e]) as u8;
+        // The CRC covers every bit from the data's MSB to nW.
+        let message = b[1..3 + e].iter().fold(0u128, |a, &v| (a << 1) | v as u128);
         let (position, turns) = self.word.split(data);
         FrameData {
             ack_bits: run.ack_bits,
@@ -162,10 +175,11 @@ impl BissMasterConfig {
             data,
             position,
             turns,
+            velocity,
             n_e,
             n_w,
             crc_received,
-            crc_expected: expected_crc(message, nb + 2),
+            crc_expected: expected_crc_wide(message, nb + nv + 2),
             stop_low: run.stop_low,
         }
     }
@@ -238,7 +252,7 @@ impl FrameProtocol for BissMasterConfig {
         }
     }
     fn on_sample(&self, run: &mut BissRun, burst: &mut Burst, n: u32, v: bool) {
-        let nb = self.word.data_bits;
+        let nb = self.word.data_bits + self.word.velocity_bits;
         match run.seek {
             Seek::Ack => {
                 if !v {
@@ -251,7 +265,7 @@ impl FrameProtocol for BissMasterConfig {
             Seek::Start => {
                 if v {
                     run.seek = Seek::Read;
-                    // CDS, N data, nE, nW, 6 CRC, then one pulse for the timeout.
+                    // CDS, N data (+ V velocity), nE, nW, 6 CRC, then one pulse for the timeout.
                     burst.stop_after_rise(n + nb + 10);
                 } else {
                     run.ack_bits += 1;

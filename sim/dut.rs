@@ -20,8 +20,10 @@ use crate::error::{Error, Result};
 pub const IN_PINS: [&str; 9] = [
     "rst", "adc_miso", "biss_ma", "qep_a", "qep_b", "qep_z", "ssi_clk", "enc_sck", "enc_cs_n",
 ];
-/// Outputs the sinewave loop reads, in index order ([`Dut::get`]).
-pub const OUT_PINS: [&str; 13] = [
+/// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
+/// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
+/// `[velocity] enabled`) and read 0 without them.
+pub const OUT_PINS: [&str; 16] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -35,6 +37,9 @@ pub const OUT_PINS: [&str; 13] = [
     "par_turns",
     "par_error",
     "par_warning",
+    "enc_miso",
+    "par_velocity_0",
+    "par_velocity_valid_0",
 ];
 /// Inputs the capacitive loop drives, in index order.
 pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
@@ -52,6 +57,8 @@ pub const CAP_OUT_PINS: [&str; 11] = [
     "par_error",
     "par_warning",
 ];
+/// How many of the last [`OUT_PINS`] are optional (read 0 when the top lacks them).
+pub const OPTIONAL_OUT_PINS: usize = 2;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -117,8 +124,9 @@ pub struct EngineTop {
     e: Box<Engine>,
     /// Engine input index of each loop input pin.
     ins: Vec<usize>,
-    /// Engine output index of each loop output pin.
-    outs: Vec<usize>,
+    /// Engine output index of each loop output pin (None: an optional pin the
+    /// configuration lacks).
+    outs: Vec<Option<usize>>,
     /// Present value of every engine input (the engine has no read-back).
     shadow: Vec<u64>,
     /// Engine input index of each of the rtl's co-simulation inputs (port-table order).
@@ -211,9 +219,13 @@ impl<B: BoardTop> Dut<B> {
             .iter()
             .map(|p| e.input_index(p).ok_or_else(|| missing("input", p)))
             .collect::<Result<Vec<_>>>()?;
+        let optional = &OUT_PINS[OUT_PINS.len() - OPTIONAL_OUT_PINS..];
         let outs = out_pins
             .iter()
-            .map(|p| e.output_index(p).ok_or_else(|| missing("output", p)))
+            .map(|p| match e.output_index(p) {
+                None if !optional.contains(p) => Err(missing("output", p)),
+                i => Ok(i),
+            })
             .collect::<Result<Vec<_>>>()?;
         let row_ins = rtl
             .input_ports()
@@ -281,7 +293,7 @@ impl<B: BoardTop> Dut<B> {
     pub fn get(&self, k: usize) -> u64 {
         match &self.imp {
             Imp::Rtl(t) => t.pin(self.out_pins[k]),
-            Imp::Engine(c) => c.e.get(c.outs[k]),
+            Imp::Engine(c) => c.outs[k].map_or(0, |i| c.e.get(i)),
         }
     }
 

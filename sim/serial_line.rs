@@ -277,6 +277,9 @@ pub struct WordFormat {
     pub multiturn_bits: u32,
     /// The data word is Gray-coded.
     pub gray: bool,
+    /// Bits of the velocity word after the data word (0: none): two's complement, MSB first,
+    /// never Gray-coded (`[velocity] in_frames`).
+    pub velocity_bits: u32,
 }
 
 impl WordFormat {
@@ -286,7 +289,24 @@ impl WordFormat {
             data_bits,
             multiturn_bits,
             gray: false,
+            velocity_bits: 0,
         }
+    }
+
+    /// The same word followed by a `bits`-bit velocity word.
+    pub fn with_velocity(mut self, bits: u32) -> Self {
+        self.velocity_bits = bits;
+        self
+    }
+
+    /// The velocity of the velocity word's bits (MSB first), sign-extended; None without
+    /// one.
+    pub fn velocity(&self, bits: &[bool]) -> Option<i64> {
+        let v = self.velocity_bits;
+        (v > 0).then(|| {
+            let w = word_of(bits);
+            ((w << (64 - v)) as i64) >> (64 - v)
+        })
     }
     /// Single-turn position and turn count (binary, after Gray decoding) of a data word.
     pub fn split(&self, data: u64) -> (u64, u64) {

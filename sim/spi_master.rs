@@ -132,3 +132,37 @@ impl SpiMaster {
             .collect()
     }
 }
+
+/// An SPI slave's word as the master decodes it, from the frame definition: N data bits
+/// (binary or Gray per `format`), the velocity word (`format.velocity_bits`, two's
+/// complement; `[velocity] in_frames`), E (1 = error), W (1 = warning), MSB first.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SpiWord {
+    /// Single-turn position.
+    pub position: u64,
+    /// Turn count.
+    pub turns: u64,
+    /// The velocity word, sign-extended.
+    pub velocity: Option<i64>,
+    /// E.
+    pub error: bool,
+    /// W.
+    pub warning: bool,
+}
+
+/// Decodes the first N + V + 2 bits of a transaction; None when it has fewer.
+pub fn decode_word(bits: &[bool], format: &crate::sim::serial_line::WordFormat) -> Option<SpiWord> {
+    let n = format.data_bits as usize;
+    let e = n + format.velocity_bits as usize;
+    if bits.len() < e + 2 {
+        return None;
+    }
+    let (position, turns) = format.split(crate::sim::serial_line::word_of(&bits[..n]));
+    Some(SpiWord {
+        position,
+        turns,
+        velocity: format.velocity(&bits[n..e]),
+        error: bits[e],
+        warning: bits[e + 1],
+    })
+}

@@ -36,7 +36,7 @@ impl SsiMasterConfig {
         }
     }
     fn frame_bits(&self) -> u32 {
-        self.word.data_bits + self.error_bit as u32
+        self.word.data_bits + self.word.velocity_bits + self.error_bit as u32
     }
 }
 
@@ -49,6 +49,8 @@ pub struct SsiData {
     pub position: u64,
     /// Turn count (binary).
     pub turns: u64,
+    /// The velocity word after the data, sign-extended (`[velocity] in_frames`).
+    pub velocity: Option<i64>,
     /// The error bit, when configured.
     pub error: Option<bool>,
     /// The line answered the last clock pulse with 0.
@@ -116,14 +118,17 @@ impl FrameProtocol for SsiMasterConfig {
     fn outcome(&self, run: &SsiRun) -> SsiOutcome {
         match run.tail_low {
             Some(tail_low) if run.bits.len() == self.frame_bits() as usize => {
+                // N data bits, V velocity bits, the error bit.
                 let n = self.word.data_bits as usize;
+                let e = n + self.word.velocity_bits as usize;
                 let data = word_of(&run.bits[..n]);
                 let (position, turns) = self.word.split(data);
                 SsiOutcome::Data(SsiData {
                     data,
                     position,
                     turns,
-                    error: self.error_bit.then(|| run.bits[n]),
+                    velocity: self.word.velocity(&run.bits[n..e]),
+                    error: self.error_bit.then(|| run.bits[e]),
                     tail_low,
                 })
             }

@@ -46,6 +46,9 @@ const O_FINE: usize = 9;
 const O_TURNS: usize = 10;
 const O_ERROR: usize = 11;
 const O_WARNING: usize = 12;
+const O_ENC_MISO: usize = 13;
+const O_VELOCITY: usize = 14;
+const O_VELOCITY_VALID: usize = 15;
 
 /// One decoded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -68,11 +71,27 @@ pub struct Record {
     pub truth: f64,
 }
 
+/// One velocity update (`par_velocity_valid`, `[velocity] enabled`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VelRecord {
+    /// Clock cycle of `par_velocity_valid` (the value is read after that edge).
+    pub cycle: u64,
+    /// `par_velocity` as a signed number: 2^-(F + frac_bits) quadrant per update period.
+    pub raw: i64,
+    /// The encoder's true mean speed over the update period the estimate ends with, in
+    /// position LSB (2^-F quadrant) per update period: the model's angle change from
+    /// (tick - D) to the tick, both taken back by the CONV-to-position latency (the tick is
+    /// `latency()` clocks before the strobe).
+    pub truth: f64,
+}
+
 /// Result of a closed-loop run.
 #[derive(Clone, Debug, Default)]
 pub struct SimResult {
     /// Decoded samples in order.
     pub records: Vec<Record>,
+    /// Velocity updates in order (empty without `[velocity] enabled`).
+    pub velocity: Vec<VelRecord>,
     /// Clock cycles simulated.
     pub cycles: u64,
     /// Decoded samples whose conversion could not be found at the expected latency.
@@ -224,6 +243,72 @@ impl SimResult {
     }
 }
 
+/// Velocity figures of a run (`[velocity] enabled`): the estimate `par_velocity` / 2^frac_bits
+/// against [`VelRecord::truth`], in position LSB per update period and in rpm.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VelStats {
+    /// Updates counted (after the estimator's warm-up).
+    pub updates: usize,
+    /// Updates left out at the start: those before the first decoded sample, then
+    /// [`crate::blocks::velocity::VelocityParams::warmup_updates`].
+    pub warmup: usize,
+    /// rpm of one position LSB per update period.
+    pub rpm_per_lsb: f64,
+    /// Mean of estimate - truth, LSB per period.
+    pub mean_err: f64,
+    /// Standard deviation of estimate - truth, LSB per period.
+    pub std_err: f64,
+    /// Largest |estimate - truth|, LSB per period.
+    pub max_err: f64,
+    /// The last update's estimate, LSB per period.
+    pub last: f64,
+    /// The last update's true speed, LSB per period.
+    pub last_truth: f64,
+}
+
+impl SimResult {
+    /// Velocity figures over the updates after the warm-up; None without `[velocity]`
+    /// enabled or when no update passed the warm-up. The warm-up counts from the first
+    /// update after the first decoded sample: before it the estimator sees position 0, and
+    /// the first sample is a step to the encoder's position.
+    pub fn velocity_stats(&self, d: &Derived) -> Option<VelStats> {
+        let v = d.velocity.as_ref()?;
+        let first = self.records.first()?.cycle;
+        let before = self
+            .velocity
+            .iter()
+            .take_while(|r| r.cycle <= first)
+            .count();
+        let warmup = before + v.warmup_updates() as usize;
+        let scale = (1u64 << v.spec.frac_bits) as f64;
+        let errs: Vec<f64> = self
+            .velocity
+            .iter()
+            .skip(warmup)
+            .map(|r| r.raw as f64 / scale - r.truth)
+            .collect();
+        let last = self.velocity.last()?;
+        if errs.is_empty() {
+            return None;
+        }
+        let n = errs.len() as f64;
+        let mean = errs.iter().sum::<f64>() / n;
+        let var = errs.iter().map(|e| (e - mean) * (e - mean)).sum::<f64>() / n;
+        let rate = d.clock_hz / v.period_clocks as f64;
+        let lsb_per_turn = d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64;
+        Some(VelStats {
+            updates: errs.len(),
+            warmup,
+            rpm_per_lsb: rate * 60.0 / lsb_per_turn,
+            mean_err: mean,
+            std_err: var.sqrt(),
+            max_err: errs.iter().fold(0.0, |m, e| m.max(e.abs())),
+            last: last.raw as f64 / scale,
+            last_truth: last.truth,
+        })
+    }
+}
+
 /// The closed loop.
 pub struct System {
     d: Derived,
@@ -240,6 +325,7 @@ pub struct System {
     record_inputs: bool,
     ma: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
+    spi: Option<std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>>,
     qep_b_stuck: Option<(f64, f64)>,
     trace: Option<crate::sim::vcd::TopTrace>,
     trace_error: Option<std::io::Error>,
@@ -289,6 +375,7 @@ impl System {
             record_inputs: false,
             ma: None,
             ssi: None,
+            spi: None,
             qep_b_stuck: None,
             trace: None,
             trace_error: None,
@@ -341,6 +428,15 @@ impl System {
     /// one).
     pub fn attach_ssi_master(&mut self, m: Box<dyn crate::sim::serial_line::LineMaster>) {
         self.ssi = Some(m);
+    }
+
+    /// Connects an SPI master model to `enc_sck`/`enc_cs_n`/`enc_miso` (chip select high
+    /// without one); the caller keeps the handle to read its words.
+    pub fn attach_spi_master(
+        &mut self,
+        m: std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>,
+    ) {
+        self.spi = Some(m);
     }
 
     /// The rust-hdl design (to read its outputs after a cycle); None on the compiled engine.
@@ -421,8 +517,12 @@ impl System {
                 None => true,
             };
             self.top.set(I_SSI_CLK, ssi_clk as u64);
-            self.top.set(I_ENC_SCK, 0);
-            self.top.set(I_ENC_CS_N, 1);
+            let (sck, cs_n) = match &self.spi {
+                Some(m) => m.borrow_mut().lines_for_cycle(self.cycle as usize),
+                None => (false, true),
+            };
+            self.top.set(I_ENC_SCK, sck as u64);
+            self.top.set(I_ENC_CS_N, cs_n as u64);
             self.top.tick()?;
             // The inputs just applied, read back by name in the port table's order.
             let row = (self.record_inputs || self.trace.is_some()).then(|| self.top.input_row());
@@ -443,6 +543,9 @@ impl System {
             }
             if let Some(m) = self.ssi.as_mut() {
                 m.push_slo(self.top.get(O_SSI_DATA) != 0);
+            }
+            if let Some(m) = &self.spi {
+                m.borrow_mut().push_miso(self.top.get(O_ENC_MISO) != 0);
             }
             if self.record_inputs {
                 self.result.outputs.push(self.top.sample());
@@ -478,6 +581,23 @@ impl System {
                 match self.result.streamed.as_mut() {
                     Some(s) => s.add(&self.d, &rec),
                     None => self.result.records.push(rec),
+                }
+            }
+            if let Some(v) = &self.d.velocity {
+                if self.top.get(O_VELOCITY_VALID) != 0 {
+                    let raw = sext(self.top.get(O_VELOCITY), v.spec.width);
+                    // The strobe's edge, back by the estimator's latency and the
+                    // CONV-to-position latency.
+                    let tick = self.cycle as f64 - 1.0 - v.latency() as f64 - self.latency as f64;
+                    let t1 = tick / self.clock_hz;
+                    let t0 = (tick - v.period_clocks as f64) / self.clock_hz;
+                    let truth = (self.truth.electrical_angle(t1) - self.truth.electrical_angle(t0))
+                        * lsb_per_rad;
+                    self.result.velocity.push(VelRecord {
+                        cycle: self.cycle,
+                        raw,
+                        truth,
+                    });
                 }
             }
         }

@@ -78,6 +78,10 @@ impl TopTrace {
                 Source::Input(i)
             } else if let Some(i) = find(rtl_outputs, name) {
                 Source::Output(i)
+            } else if let Some(i) = find(rtl_outputs, &format!("{name}_0")) {
+                // An optional output of the rtl (`par_velocity` is the rtl's
+                // `par_velocity_0`).
+                Source::Output(i)
             } else if name == "par_position" {
                 match (find(rtl_outputs, "par_qc"), find(rtl_outputs, "par_fine")) {
                     (Some(q), Some(f)) => Source::Position(q, f),

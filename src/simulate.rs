@@ -389,6 +389,7 @@ impl SimReport {
             None => "none (no complete gain word reached the amplifier)".to_string(),
         };
         let _ = writeln!(o, "preamp gains read back      {gains}");
+        o.push_str(&self.velocity_summary(loaded));
         let _ = writeln!(
             o,
             "simulation speed            {:.0} cycles/s ({:.2} s, {} engine)",
@@ -399,16 +400,94 @@ impl SimReport {
         o
     }
 
-    /// CSV of every decoded sample; columns [`CSV_COLUMNS`] (documented in the README).
+    /// The velocity lines of the summary (`[velocity] enabled`; empty otherwise): the
+    /// estimate against the encoder model's true speed after the estimator's warm-up, in
+    /// position LSB per update period and in rpm.
+    fn velocity_summary(&self, loaded: &Loaded) -> String {
+        let d = &loaded.derived;
+        let Some(v) = &d.velocity else {
+            return String::new();
+        };
+        let mut o = String::new();
+        let rate = d.clock_hz / v.period_clocks as f64;
+        let _ = writeln!(
+            o,
+            "velocity updates            {} ({}, {rate:.1} Hz; warm-up: those before the first position, then {})",
+            self.result.velocity.len(),
+            v.spec.method,
+            v.warmup_updates()
+        );
+        let Some(s) = self.result.velocity_stats(d) else {
+            let _ = writeln!(
+                o,
+                "velocity error              no update after the warm-up; run at least {:.6} s",
+                (v.warmup_updates() + 2) as f64 / rate
+                    + crate::blocks::top::hdl::conv_to_position_cycles(d) as f64 / d.clock_hz
+                    + d.adc.startup_clocks() as f64 / d.clock_hz
+            );
+            return o;
+        };
+        let rpm = |x: f64| x * s.rpm_per_lsb;
+        let _ = writeln!(
+            o,
+            "velocity error mean         {:.4} LSB/period = {:.6} rpm ({} updates)",
+            s.mean_err,
+            rpm(s.mean_err),
+            s.updates
+        );
+        let _ = writeln!(
+            o,
+            "velocity error std          {:.4} LSB/period = {:.6} rpm (max |error| {:.4} LSB/period)",
+            s.std_err,
+            rpm(s.std_err),
+            s.max_err
+        );
+        let _ = writeln!(
+            o,
+            "velocity at the end         {:.4} LSB/period = {:.4} rpm (true {:.4} LSB/period = {:.4} rpm)",
+            s.last,
+            rpm(s.last),
+            s.last_truth,
+            rpm(s.last_truth)
+        );
+        o
+    }
+
+    /// CSV of every decoded sample; columns [`CSV_COLUMNS`] (documented in the README), plus
+    /// [`VELOCITY_CSV_COLUMNS`] with `[velocity] enabled`.
     /// `error_lsb` = unwrapped - truth_lsb - the constant offset of
     /// [`SimResult::offset_lsb`], modulo the position's range; `warmup` marks the settling
-    /// records left out of the statistics.
+    /// records left out of the statistics. `velocity_lsb` and `velocity_truth_lsb` are the
+    /// latest velocity update at or before the record's cycle (par_velocity / 2^frac_bits and
+    /// the true speed, position LSB per update period; empty before the first update).
     pub fn csv(&self, loaded: &Loaded, skip: usize) -> String {
         let d = &loaded.derived;
         let offset = self.result.offset_lsb(d);
-        let mut t = CsvText::new(CSV_COLUMNS);
+        let vel = d.velocity.as_ref();
+        let mut header: Vec<&str> = CSV_COLUMNS.to_vec();
+        if vel.is_some() {
+            header.extend(VELOCITY_CSV_COLUMNS);
+        }
+        let mut t = CsvText::new(header);
+        let vs = &self.result.velocity;
+        let mut k = 0;
         for (i, r) in self.result.records.iter().enumerate() {
-            t.row(&[
+            let (est, truth) = match vel {
+                Some(v) => {
+                    while k < vs.len() && vs[k].cycle <= r.cycle {
+                        k += 1;
+                    }
+                    match k.checked_sub(1).map(|j| vs[j]) {
+                        Some(u) => (
+                            format!("{:.4}", u.raw as f64 / (1u64 << v.spec.frac_bits) as f64),
+                            format!("{:.4}", u.truth),
+                        ),
+                        None => (String::new(), String::new()),
+                    }
+                }
+                None => (String::new(), String::new()),
+            };
+            let base: [&dyn std::fmt::Display; 10] = [
                 &r.cycle,
                 &r.conv_cycle,
                 &r.position,
@@ -419,11 +498,22 @@ impl SimReport {
                 &(r.error as u8),
                 &(r.warning as u8),
                 &((i < skip) as u8),
-            ]);
+            ];
+            if vel.is_some() {
+                let mut row = base.to_vec();
+                row.push(&est);
+                row.push(&truth);
+                t.row(&row);
+            } else {
+                t.row(&base);
+            }
         }
         t.finish()
     }
 }
+
+/// Extra columns of `simulate --csv` with `[velocity] enabled` (see [`SimReport::csv`]).
+pub const VELOCITY_CSV_COLUMNS: [&str; 2] = ["velocity_lsb", "velocity_truth_lsb"];
 
 /// Columns of `simulate --csv`, the same on both paths (documented in the README):
 /// `truth_cycle` is the cycle at which the true angle `truth_lsb` is taken (the CONV rise

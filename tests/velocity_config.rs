@@ -158,3 +158,44 @@ fn bad_values_name_the_key_the_position_and_the_range() {
         .to_string();
     assert!(e.contains("rate"), "{e}");
 }
+
+#[test]
+fn in_frames_sets_the_velocity_word_of_every_serial_frame_or_is_rejected() {
+    // Off by default: no velocity word anywhere.
+    let l = Loaded::parse(&with_velocity("enabled = true"), "d.toml").unwrap();
+    assert_eq!(l.derived.biss.velocity_bits, 0);
+    // On: the word has the estimator's width in BiSS, SSI and SPI.
+    let text = DEFAULT_CONFIG
+        .replace(
+            "[ssi]\n# SSI slave on ssi_clk/ssi_data, sending the BiSS data word (binary or Gray).\nenabled = false",
+            "[ssi]\nenabled = true",
+        )
+        .replace(
+            "enc_miso: the BiSS data word, then E and W.\nenabled = false",
+            "enc_miso: the BiSS data word, then E and W.\nenabled = true",
+        );
+    let on = format!("{text}\n[velocity]\nenabled = true\nwidth = 34\nin_frames = true\n");
+    let l = Loaded::parse(&on, "d.toml").unwrap();
+    let d = &l.derived;
+    assert_eq!(d.biss.velocity_bits, 34);
+    assert_eq!(d.ssi.as_ref().expect("ssi").velocity_bits, 34);
+    assert_eq!(d.spi.as_ref().expect("spi").velocity_bits, 34);
+    // The BiSS frame: Start, CDS, N + V, nE, nW, 6 CRC, Ack and the timeout pulse.
+    assert_eq!(d.biss.frame_rising_edges(), 12 + 1 + 27 + 34);
+    // in_frames without the estimator.
+    common::assert_config_error(
+        &with_velocity("in_frames = true"),
+        "in_frames",
+        &["velocity.in_frames", "enabled = true"],
+    );
+    // The frame's data part beyond 64 bits: 27 position bits + 40 velocity bits.
+    common::assert_config_error(
+        &with_velocity("enabled = true\nwidth = 40\nin_frames = true"),
+        "in_frames",
+        &[
+            "velocity.in_frames",
+            "27 position bits + 40 velocity bits = 67",
+            "64",
+        ],
+    );
+}

@@ -161,9 +161,14 @@ fn the_ports_come_only_with_velocity_enabled() {
         "top ports"
     );
     assert!(top.contains("par_velocity_valid"), "top strobe");
+    // The estimator is inside the rust-hdl top (its rtl's optional outputs).
     assert!(
-        top.contains("module sd_top_vel"),
-        "estimator module in the top"
+        top.contains("module sd_top_rtl_vel_0") && !top.contains("module sd_top_vel"),
+        "estimator module in the top's rtl"
+    );
+    assert!(
+        top.contains(".par_velocity_0(velocity)"),
+        "rtl output wired"
     );
     // The instantiation template and the parameter file list them too.
     assert!(text("sd_inst.v").contains(".out_velocity      (out_velocity)"));

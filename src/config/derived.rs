@@ -94,9 +94,14 @@ impl Derived {
         };
         check_throughput(architecture, n, cycles_per_sample, clock_hz, rate)
             .map_err(|m| err("cordic", "architecture", m.detail()))?;
-        let biss = biss_params(c, position_width, &err)?;
+        let mut biss = biss_params(c, position_width, &err)?;
         let abz = abz_params(c, quadrants_per_turn, f, &err)?;
         let velocity = velocity_params(c, f, rate, warn_step, &err)?;
+        // `[velocity] in_frames`: the velocity word in every serial frame (BiSS, SSI, SPI).
+        let vel_bits = velocity_frame_bits(c, velocity.as_ref(), &err)?;
+        let in_frames = |m: crate::error::Error| err("velocity", "in_frames", m.detail());
+        biss.velocity_bits = vel_bits;
+        biss.validate().map_err(in_frames)?;
         let capacitive = match &c.capacitive {
             Some(k) => Some(cap_params(c, k, rate, &err)?),
             None => None,
@@ -112,6 +117,8 @@ impl Derived {
             }
             p.validate()
                 .map_err(|m| err("ssi", "enabled", m.to_string()))?;
+            p.velocity_bits = vel_bits;
+            p.validate().map_err(in_frames)?;
             Some(p)
         } else {
             None
@@ -122,6 +129,8 @@ impl Derived {
             p.gray = c.spi.gray;
             p.validate()
                 .map_err(|m| err("spi", "enabled", m.to_string()))?;
+            p.velocity_bits = vel_bits;
+            p.validate().map_err(in_frames)?;
             Some(p)
         } else {
             None

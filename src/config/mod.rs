@@ -62,7 +62,7 @@ pub use params::*;
 pub use pins::*;
 pub use schema::*;
 pub use spans::*;
-use velocity::velocity_params;
+use velocity::{velocity_frame_bits, velocity_params};
 
 /// The default configuration (the thesis's Spartan-3AN Starter Kit design), embedded.
 pub const DEFAULT_CONFIG: &str = include_str!("../../configs/spartan3an.toml");

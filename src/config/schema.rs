@@ -193,6 +193,10 @@ pub struct VelocityConfig {
     pub kalman_r: f64,
     /// tracking: loop bandwidth (natural frequency) in Hz (default 200).
     pub bandwidth_hz: f64,
+    /// Append the velocity word (`width` bits, two's complement, MSB first) to the data of
+    /// every serial frame: BiSS (before nE, nW and the CRC, which covers it), SSI (before
+    /// the error bit) and SPI (before E and W). Default false; needs `enabled = true`.
+    pub in_frames: bool,
 }
 
 impl Default for VelocityConfig {
@@ -210,6 +214,7 @@ impl Default for VelocityConfig {
             kalman_q: d.kalman_q,
             kalman_r: d.kalman_r,
             bandwidth_hz: d.bandwidth_hz,
+            in_frames: false,
         }
     }
 }

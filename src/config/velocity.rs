@@ -79,3 +79,23 @@ pub(super) fn velocity_params(
         err("velocity", key, m)
     })
 }
+
+/// `[velocity] in_frames`: bits of the velocity word appended to the serial frames (its
+/// `width`), 0 without. `in_frames = true` needs the estimator (`enabled = true`).
+pub(super) fn velocity_frame_bits(
+    c: &Config,
+    velocity: Option<&VelocityParams>,
+    err: &ErrFn,
+) -> Result<u32> {
+    if !c.velocity.in_frames {
+        return Ok(0);
+    }
+    match velocity {
+        Some(v) => Ok(v.spec.width),
+        None => Err(err(
+            "velocity",
+            "in_frames",
+            "in_frames = true sends the estimator's output in the BiSS, SSI and SPI frames; it needs enabled = true".into(),
+        )),
+    }
+}

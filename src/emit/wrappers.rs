@@ -16,20 +16,28 @@ fn velocity_module(
     module: &str,
 ) -> Result<(Option<String>, minijinja::Value)> {
     let Some(p) = &d.velocity else {
-        return Ok((None, minijinja::context! { vel => false }));
+        return Ok((None, velocity_ctx(d, module)));
     };
     let mut uut = crate::blocks::velocity::hdl::Velocity::new(p)?;
     rust_hdl::prelude::Block::connect_all(&mut uut);
     let body = verilog::export(&uut, "velocity", module)?;
-    let ctx = minijinja::context! {
+    Ok((Some(body), velocity_ctx(d, module)))
+}
+
+/// The template values of the velocity ports (see [`velocity_module`]); `vel` false without
+/// `[velocity] enabled`.
+fn velocity_ctx(d: &crate::config::Derived, module: &str) -> minijinja::Value {
+    let Some(p) = &d.velocity else {
+        return minijinja::context! { vel => false };
+    };
+    minijinja::context! {
         vel => true,
         vel_rtl => module,
         vm => p.spec.width - 1,
         vmethod => p.spec.method.to_string(),
         vunit => p.spec.fine_bits + p.spec.frac_bits,
         vrate => format!("{:.1}", p.spec.clock_hz / p.period_clocks as f64),
-    };
-    Ok((Some(body), ctx))
+    }
 }
 
 /// The ABZ emulator of `<name>_top` as the Verilog module `module`, when `[abz] enabled`
@@ -158,6 +166,12 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
         one("par_error"),
         one("par_warning"),
     ]);
+    if let (Some(p), false) = (&d.velocity, d.capacitive.is_some()) {
+        v.extend([
+            ("par_velocity".into(), p.spec.width),
+            one("par_velocity_valid"),
+        ]);
+    }
     v
 }
 
@@ -266,8 +280,13 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             left_out.push(p);
         }
     }
+    // The rtl's optional velocity outputs (its estimator, `[velocity] enabled`).
+    if d.velocity.is_some() {
+        conns.push(".par_velocity_0(velocity)".into());
+        conns.push(".par_velocity_valid_0(par_velocity_valid)".into());
+    }
     let inst = wrap_list(&conns, "       ", "");
-    let (vel, vel_ctx) = velocity_module(d, &format!("{name}_vel"))?;
+    let vel_ctx = velocity_ctx(d, &format!("{name}_vel"));
     let (abz, abz_ctx) = abz_module(d, &format!("{name}_abz"))?;
     // The ports left out, as comment lines of at most 95 characters (empty: none).
     let left_out_lines = if left_out.is_empty() {
@@ -294,7 +313,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         },
     )?;
     let mut text = format!("{wrapper}\n{body}");
-    for m in [vel, abz].into_iter().flatten() {
+    if let Some(m) = abz {
         text.push('\n');
         text.push_str(&m);
     }

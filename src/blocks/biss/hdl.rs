@@ -8,6 +8,10 @@ use crate::blocks::serial::timeout_mask;
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
+fn c64(v: u64) -> Constant<Bits<64>> {
+    Constant::new(Bits::<64>::from(v))
+}
+
 /// Where the BiSS slave is in its frame (see the module docs for the edge table).
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
 pub enum BissState {
@@ -56,6 +60,16 @@ pub struct BissSlave {
     pub warning: Signal<In, Bit>,
     /// BiSS slave output SLO (registered).
     pub slo: Signal<Out, Bit>,
+    /// The velocity word sent after the data (`velocity_bits` > 0: one input, latched with
+    /// the position at F1; none without, so no port and no logic): two's complement in the
+    /// low `velocity_bits`.
+    pub vel: Vec<Signal<In, Bits<64>>>,
+    /// The velocity shift register: its MSB enters `sh` at every data shift.
+    vsh: Vec<DFF<Bits<64>>>,
+    /// Mask of the velocity bits.
+    vmask: Vec<Constant<Bits<64>>>,
+    /// Bit `velocity_bits` - 1 of `vsh`.
+    vmsb: Vec<Constant<Bits<64>>>,
     sync: LineSync,
     posw: PosWord,
     /// The control channel: one instance with `control`, none without (no Verilog).
@@ -128,6 +142,10 @@ impl BissSlave {
     pub fn new(p: &BissParams) -> crate::error::Result<Self> {
         p.validate()?;
         let n = p.data_bits();
+        // The data state runs over the position word and the velocity word: N + V bits.
+        let nf = p.frame_data_bits();
+        let v = p.velocity_bits;
+        let nv = (v > 0) as usize;
         Ok(Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -138,6 +156,10 @@ impl BissSlave {
             error: Default::default(),
             warning: Default::default(),
             slo: Default::default(),
+            vel: (0..nv).map(|_| Default::default()).collect(),
+            vsh: (0..nv).map(|_| Default::default()).collect(),
+            vmask: (0..nv).map(|_| c64(mask(v))).collect(),
+            vmsb: (0..nv).map(|_| c64(1 << (v.max(1) - 1))).collect(),
             sync: LineSync::new(p.glitch_filter),
             posw: PosWord::new(p.position_bits, p.multiturn_bits, p.gray),
             ctl: p.control.iter().map(BissControl::new).collect(),
@@ -172,13 +194,13 @@ impl BissSlave {
             one: c32(1),
             zero: c32(0),
             ackn_m1: c32((p.ack_periods as u64).wrapping_sub(1) & mask(7)),
-            nbits_m1: c32((n as u64).wrapping_sub(1) & mask(7)),
+            nbits_m1: c32((nf as u64).wrapping_sub(1) & mask(7)),
             five: c32(5),
             tlast_m1: c32(
                 (p.timeout_clocks as u64 - 1).wrapping_sub(1) & timeout_mask(p.timeout_clocks)
             ),
             ack_is1: Constant::new(p.ack_periods == 1),
-            n_is1: Constant::new(n == 1),
+            n_is1: Constant::new(nf == 1),
             tlast_is0: Constant::new(p.timeout_clocks == 1),
         })
     }
@@ -332,6 +354,21 @@ impl Logic for BissSlave {
         }
         if self.sshift.q.val() & self.sync.rise.val() {
             self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
+        }
+        // The velocity word: latched with the data word, shifted into sh's LSB behind it.
+        for i in 0..self.vsh.len() {
+            self.vsh[i].clock.next = self.clk.val();
+            self.vsh[i].d.next = self.vsh[i].q.val();
+            if self.sidle.q.val() & self.sync.fall.val() {
+                self.vsh[i].d.next = self.vel[i].val() & self.vmask[i].val();
+            }
+            if self.sshift.q.val() & self.sync.rise.val() {
+                self.vsh[i].d.next = (self.vsh[i].q.val() << self.one.val()) & self.vmask[i].val();
+                if (self.vsh[i].q.val() & self.vmsb[i].val()).any() {
+                    self.sh.d.next =
+                        ((self.sh.q.val() << self.one.val()) & self.nmask.val()) | self.one.val();
+                }
+            }
         }
         // The bit counter and its compare flags.
         if self.cinc.val() {

@@ -126,8 +126,8 @@ pub mod hdl;
 pub mod regs;
 
 use crate::blocks::serial::{
-    check_clock, check_timeout_clocks, check_word, min_level_clocks, sync_latency, timeout_clocks,
-    timeout_us, DEFAULT_TIMEOUT_US,
+    check_clock, check_frame, check_timeout_clocks, check_word, min_level_clocks, sync_latency,
+    timeout_clocks, timeout_us, DEFAULT_TIMEOUT_US,
 };
 
 /// Largest number of Ack periods.
@@ -155,6 +155,10 @@ pub struct BissParams {
     /// None: CDS is always 0 (see docs/biss_control.md).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub control: Option<regs::BissIdent>,
+    /// Bits of the velocity word sent after the data word, before nE (0: none; `[velocity]
+    /// in_frames`): two's complement, MSB first, covered by the CRC.
+    #[serde(skip_serializing_if = "crate::blocks::serial::is_zero")]
+    pub velocity_bits: u32,
 }
 
 impl BissParams {
@@ -174,6 +178,7 @@ impl BissParams {
             glitch_filter: true,
             clock_hz,
             control: None,
+            velocity_bits: 0,
         };
         p.validate()?;
         Ok(p)
@@ -189,6 +194,7 @@ impl BissParams {
     pub fn validate(&self) -> crate::error::Result<()> {
         check_clock("biss", self.clock_hz)?;
         check_word("biss", self.position_bits, self.multiturn_bits)?;
+        check_frame("biss", self.data_bits(), self.velocity_bits)?;
         if !(1..=MAX_ACK_PERIODS).contains(&self.ack_periods) {
             return Err(crate::error::Error::block_params(
                 "biss",
@@ -206,9 +212,14 @@ impl BissParams {
         self.position_bits + self.multiturn_bits
     }
 
+    /// Bits of the frame's data part: N, plus the velocity word.
+    pub fn frame_data_bits(&self) -> u32 {
+        self.data_bits() + self.velocity_bits
+    }
+
     /// MA rising edges a master gives per frame, the final (timeout) pulse included.
     pub fn frame_rising_edges(&self) -> u32 {
-        12 + self.ack_periods + self.data_bits()
+        12 + self.ack_periods + self.frame_data_bits()
     }
 
     /// Cycles from the first stimulus cycle that presents a new MA level to the cycle whose

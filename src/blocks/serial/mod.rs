@@ -118,6 +118,38 @@ pub(crate) fn check_word(block: &str, position_bits: u32, multiturn_bits: u32) -
     Ok(())
 }
 
+/// Largest data part of a frame: the data word and the velocity word together, as one
+/// 64-bit word of the master (the master models read it so; the slaves' bit counters
+/// reach 127).
+pub const MAX_FRAME_DATA_BITS: u32 = 64;
+
+/// Checks the velocity word appended to the data word: 0 (none) or 8..=62 bits, and data +
+/// velocity <= [`MAX_FRAME_DATA_BITS`].
+pub(crate) fn check_frame(block: &str, data_bits: u32, velocity_bits: u32) -> Result<()> {
+    if velocity_bits != 0 && !(8..=62).contains(&velocity_bits) {
+        return Err(Error::block_params(
+            block,
+            format!("the velocity word must be 8..=62 bits, got {velocity_bits}"),
+        ));
+    }
+    if data_bits + velocity_bits > MAX_FRAME_DATA_BITS {
+        return Err(Error::block_params(
+            block,
+            format!(
+                "the frame's data part of {data_bits} position bits + {velocity_bits} velocity bits = {} exceeds {MAX_FRAME_DATA_BITS} bits",
+                data_bits + velocity_bits
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// serde: leave a zero field out (the parameter files of configurations without it stay
+/// as they were).
+pub(crate) fn is_zero(v: &u32) -> bool {
+    *v == 0
+}
+
 /// Checks a timeout in clocks against [`MIN_TIMEOUT_CLOCKS`]..=[`MAX_TIMEOUT_CLOCKS`].
 pub(crate) fn check_timeout_clocks(block: &str, clocks: u32) -> Result<()> {
     if (MIN_TIMEOUT_CLOCKS..=MAX_TIMEOUT_CLOCKS).contains(&clocks) {

@@ -4,6 +4,10 @@ use crate::blocks::spi_slave::SpiSlaveParams;
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
+fn c64(v: u64) -> Constant<Bits<64>> {
+    Constant::new(Bits::<64>::from(v))
+}
+
 /// Where the SPI slave is in its word.
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
 pub enum SpiState {
@@ -44,6 +48,17 @@ pub struct SpiSlave {
     pub miso: Signal<Out, Bit>,
     /// MISO output enable (registered; high while selected).
     pub miso_oe: Signal<Out, Bit>,
+    /// The velocity word sent after the data when `velocity_bits` > 0 (latched with the
+    /// position), two's complement in the low `velocity_bits`; unused otherwise. A plain
+    /// port, not a `Vec` like BiSS's: the top reaches it through its own `Vec` of slaves, and
+    /// rust-hdl's Verilog resolves only one index per name.
+    pub vel: Signal<In, Bits<64>>,
+    /// The velocity shift register: its MSB enters `sh` at every data shift.
+    vsh: Vec<DFF<Bits<64>>>,
+    /// Mask of the velocity bits.
+    vmask: Vec<Constant<Bits<64>>>,
+    /// Bit `velocity_bits` - 1 of `vsh`.
+    vmsb: Vec<Constant<Bits<64>>>,
     sck_sync: LineSync,
     cs_sync: LineSync,
     posw: PosWord,
@@ -74,7 +89,13 @@ impl SpiSlave {
     pub fn new(p: &SpiSlaveParams) -> crate::error::Result<Self> {
         p.validate()?;
         let n = p.data_bits();
+        let v = p.velocity_bits;
+        let nv = (v > 0) as usize;
         Ok(Self {
+            vel: Default::default(),
+            vsh: (0..nv).map(|_| Default::default()).collect(),
+            vmask: (0..nv).map(|_| c64(mask(v))).collect(),
+            vmsb: (0..nv).map(|_| c64(1 << (v.max(1) - 1))).collect(),
             clk: Default::default(),
             rst: Default::default(),
             sck: Default::default(),
@@ -101,7 +122,7 @@ impl SpiSlave {
             step: Default::default(),
             nmask: c32(mask(n)),
             msb: c32(1 << (n - 1)),
-            nbits: c32(n as u64),
+            nbits: c32((n + v) as u64),
             cmask: c32(mask(7)),
             one: c32(1),
         })
@@ -127,6 +148,10 @@ impl Logic for SpiSlave {
         self.posw.warning.next = self.warning.val();
         self.posw.take.next = false;
         self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
+        for i in 0..self.vsh.len() {
+            self.vsh[i].clock.next = self.clk.val();
+            self.vsh[i].d.next = self.vsh[i].q.val();
+        }
         // A falling SCK edge after a rising one moves to the next bit.
         self.step.next = self.sck_sync.fall.val() & self.armed.q.val();
         if self.sck_sync.rise.val() {
@@ -145,6 +170,15 @@ impl Logic for SpiSlave {
                     } else {
                         self.miso_reg.d.next = self.dbit.val();
                         self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
+                        for i in 0..self.vsh.len() {
+                            self.vsh[i].d.next =
+                                (self.vsh[i].q.val() << self.one.val()) & self.vmask[i].val();
+                            if (self.vsh[i].q.val() & self.vmsb[i].val()).any() {
+                                self.sh.d.next = ((self.sh.q.val() << self.one.val())
+                                    & self.nmask.val())
+                                    | self.one.val();
+                            }
+                        }
                         self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
                     }
                 }
@@ -168,6 +202,15 @@ impl Logic for SpiSlave {
             self.posw.take.next = true;
             self.miso_reg.d.next = (self.posw.word.val() & self.msb.val()).any();
             self.sh.d.next = (self.posw.word.val() << self.one.val()) & self.nmask.val();
+            // The velocity word behind the data word: its MSB enters sh with this shift.
+            for i in 0..self.vsh.len() {
+                self.vsh[i].d.next = ((self.vel.val() & self.vmask[i].val()) << self.one.val())
+                    & self.vmask[i].val();
+                if (self.vel.val() & self.vmsb[i].val()).any() {
+                    self.sh.d.next = ((self.posw.word.val() << self.one.val()) & self.nmask.val())
+                        | self.one.val();
+                }
+            }
             self.errl.d.next = self.posw.err.val();
             self.warnl.d.next = self.posw.warn.val();
             self.cnt.d.next = self.one.val();

@@ -51,6 +51,10 @@ pub struct SpiSlaveParams {
     pub glitch_filter: bool,
     /// System clock frequency in Hz.
     pub clock_hz: f64,
+    /// Bits of the velocity word sent after the data word, before E (0: none; `[velocity]
+    /// in_frames`): two's complement, MSB first, never Gray-coded.
+    #[serde(skip_serializing_if = "crate::blocks::serial::is_zero")]
+    pub velocity_bits: u32,
 }
 
 impl SpiSlaveParams {
@@ -66,6 +70,7 @@ impl SpiSlaveParams {
             gray: false,
             glitch_filter: true,
             clock_hz,
+            velocity_bits: 0,
         };
         p.validate()?;
         Ok(p)
@@ -74,7 +79,8 @@ impl SpiSlaveParams {
     /// Checks every field.
     pub fn validate(&self) -> crate::error::Result<()> {
         check_clock("spi", self.clock_hz)?;
-        check_word("spi", self.position_bits, self.multiturn_bits)
+        check_word("spi", self.position_bits, self.multiturn_bits)?;
+        crate::blocks::serial::check_frame("spi", self.data_bits(), self.velocity_bits)
     }
 
     /// Data bits N.
@@ -82,9 +88,9 @@ impl SpiSlaveParams {
         self.position_bits + self.multiturn_bits
     }
 
-    /// Word bits: N data bits, E, W.
+    /// Word bits: N data bits, the velocity word, E, W.
     pub fn word_bits(&self) -> u32 {
-        self.data_bits() + 2
+        self.data_bits() + self.velocity_bits + 2
     }
 
     /// Cycles from a new SCK / chip-select level at the input to the clock edge that acts on it.

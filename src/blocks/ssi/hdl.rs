@@ -5,6 +5,10 @@ use crate::blocks::ssi::SsiParams;
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
+fn c64(v: u64) -> Constant<Bits<64>> {
+    Constant::new(Bits::<64>::from(v))
+}
+
 /// Where the SSI slave is in its frame.
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
 pub enum SsiState {
@@ -39,6 +43,17 @@ pub struct SsiSlave {
     pub error: Signal<In, Bit>,
     /// SSI data output (registered).
     pub slo: Signal<Out, Bit>,
+    /// The velocity word sent after the data when `velocity_bits` > 0 (latched with the
+    /// position), two's complement in the low `velocity_bits`; unused otherwise. A plain
+    /// port, not a `Vec` like BiSS's: the top reaches it through its own `Vec` of slaves, and
+    /// rust-hdl's Verilog resolves only one index per name.
+    pub vel: Signal<In, Bits<64>>,
+    /// The velocity shift register: its MSB enters `sh` at every data shift.
+    vsh: Vec<DFF<Bits<64>>>,
+    /// Mask of the velocity bits.
+    vmask: Vec<Constant<Bits<64>>>,
+    /// Bit `velocity_bits` - 1 of `vsh`.
+    vmsb: Vec<Constant<Bits<64>>>,
     sync: LineSync,
     posw: PosWord,
     state: DFF<SsiState>,
@@ -74,7 +89,13 @@ impl SsiSlave {
     pub fn new(p: &SsiParams) -> crate::error::Result<Self> {
         p.validate()?;
         let n = p.data_bits();
+        let v = p.velocity_bits;
+        let nv = (v > 0) as usize;
         Ok(Self {
+            vel: Default::default(),
+            vsh: (0..nv).map(|_| Default::default()).collect(),
+            vmask: (0..nv).map(|_| c64(mask(v))).collect(),
+            vmsb: (0..nv).map(|_| c64(1 << (v.max(1) - 1))).collect(),
             clk: Default::default(),
             rst: Default::default(),
             ma: Default::default(),
@@ -95,7 +116,7 @@ impl SsiSlave {
             dbit: Default::default(),
             nmask: c32(mask(n)),
             msb: c32(1 << (n - 1)),
-            nbits: c32(n as u64),
+            nbits: c32((n + v) as u64),
             ebit: Constant::new(p.error_bit),
             cmask: c32(mask(7)),
             tlast: c32(p.timeout_clocks as u64 - 1),
@@ -122,6 +143,10 @@ impl Logic for SsiSlave {
         self.posw.warning.next = false;
         self.posw.take.next = false;
         self.mae.next = self.sync.rise.val() | self.sync.fall.val();
+        for i in 0..self.vsh.len() {
+            self.vsh[i].clock.next = self.clk.val();
+            self.vsh[i].d.next = self.vsh[i].q.val();
+        }
         self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
         if self.mae.val() {
             self.tcnt.d.next = self.zero.val();
@@ -134,6 +159,9 @@ impl Logic for SsiSlave {
                 if self.sync.fall.val() {
                     self.posw.take.next = true;
                     self.sh.d.next = self.posw.word.val() & self.nmask.val();
+                    for i in 0..self.vsh.len() {
+                        self.vsh[i].d.next = self.vel.val() & self.vmask[i].val();
+                    }
                     self.errl.d.next = self.posw.err.val();
                     self.state.d.next = SsiState::First;
                 }
@@ -142,6 +170,15 @@ impl Logic for SsiSlave {
                 if self.sync.rise.val() {
                     self.slo_reg.d.next = self.dbit.val();
                     self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
+                    for i in 0..self.vsh.len() {
+                        self.vsh[i].d.next =
+                            (self.vsh[i].q.val() << self.one.val()) & self.vmask[i].val();
+                        if (self.vsh[i].q.val() & self.vmsb[i].val()).any() {
+                            self.sh.d.next = ((self.sh.q.val() << self.one.val())
+                                & self.nmask.val())
+                                | self.one.val();
+                        }
+                    }
                     self.cnt.d.next = self.one.val();
                     self.state.d.next = SsiState::Data;
                 }
@@ -159,6 +196,15 @@ impl Logic for SsiSlave {
                     } else {
                         self.slo_reg.d.next = self.dbit.val();
                         self.sh.d.next = (self.sh.q.val() << self.one.val()) & self.nmask.val();
+                        for i in 0..self.vsh.len() {
+                            self.vsh[i].d.next =
+                                (self.vsh[i].q.val() << self.one.val()) & self.vmask[i].val();
+                            if (self.vsh[i].q.val() & self.vmsb[i].val()).any() {
+                                self.sh.d.next = ((self.sh.q.val() << self.one.val())
+                                    & self.nmask.val())
+                                    | self.one.val();
+                            }
+                        }
                         self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
                     }
                 }

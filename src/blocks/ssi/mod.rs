@@ -54,6 +54,10 @@ pub struct SsiParams {
     pub glitch_filter: bool,
     /// System clock frequency in Hz.
     pub clock_hz: f64,
+    /// Bits of the velocity word sent after the data word, before the error bit (0: none;
+    /// `[velocity] in_frames`): two's complement, MSB first, never Gray-coded.
+    #[serde(skip_serializing_if = "crate::blocks::serial::is_zero")]
+    pub velocity_bits: u32,
 }
 
 impl SsiParams {
@@ -72,6 +76,7 @@ impl SsiParams {
             timeout_clocks: timeout_clocks("ssi", DEFAULT_TIMEOUT_US, clock_hz)?,
             glitch_filter: true,
             clock_hz,
+            velocity_bits: 0,
         };
         p.validate()?;
         Ok(p)
@@ -87,6 +92,7 @@ impl SsiParams {
     pub fn validate(&self) -> crate::error::Result<()> {
         check_clock("ssi", self.clock_hz)?;
         check_word("ssi", self.position_bits, self.multiturn_bits)?;
+        crate::blocks::serial::check_frame("ssi", self.data_bits(), self.velocity_bits)?;
         check_timeout_clocks("ssi", self.timeout_clocks)
     }
 
@@ -95,9 +101,9 @@ impl SsiParams {
         self.position_bits + self.multiturn_bits
     }
 
-    /// Bits a master reads: N, plus the error bit.
+    /// Bits a master reads: N, the velocity word, plus the error bit.
     pub fn frame_bits(&self) -> u32 {
-        self.data_bits() + self.error_bit as u32
+        self.data_bits() + self.velocity_bits + self.error_bit as u32
     }
 
     /// Cycles from a new clock level at the input to the clock edge that acts on it.

@@ -12,6 +12,7 @@ use crate::blocks::preamp::hdl::PreampSetup;
 use crate::blocks::qep::hdl::QepDecoder;
 use crate::blocks::spi_slave::hdl::SpiSlave;
 use crate::blocks::ssi::hdl::SsiSlave;
+use crate::blocks::velocity::hdl::Velocity;
 use rust_hdl::prelude::*;
 
 board_top! {
@@ -49,6 +50,10 @@ board_top! {
             par_error: Out Bit, Out, 1, Parallel, 0, "parallel bus: error flag";
             par_warning: Out Bit, Out, 1, Parallel, 0, "parallel bus: warning flag";
         }
+        @optional_outputs {
+            par_velocity: Bits<64>, 64, "velocity (`[velocity] enabled`): `width`-bit two's complement in the low bits, held between strobes";
+            par_velocity_valid: Bit, 1, "velocity strobe (`[velocity] enabled`): one clock per update";
+        }
         preamp: PreampSetup,
         adc: AdcController,
         correction: Correction,
@@ -71,6 +76,12 @@ board_top! {
         qshr: Constant<Bits<32>>,
         /// See `qshl`.
         fshr: Constant<Bits<32>>,
+        /// The velocity estimator: one instance with `[velocity] enabled`, none without (no
+        /// Verilog, no ports).
+        vel: Vec<Velocity>,
+        /// F, the shift of the quadrant count above the fine part in the estimator's
+        /// position (it uses the low F + 2 bits): one per estimator.
+        vel_fshl: Vec<Constant<Bits<32>>>,
     }
 }
 
@@ -119,7 +130,16 @@ impl TopRtl {
             )
         })?;
         let [qshl, qshr, fshr] = biss_word_shifts(d);
+        let vel = match &d.velocity {
+            Some(p) => vec![Velocity::new(p)?],
+            None => vec![],
+        };
+        let nvel = vel.len();
         Ok(Self::from_parts(TopParts {
+            par_velocity: nvel,
+            par_velocity_valid: nvel,
+            vel,
+            vel_fshl: (0..nvel).map(|_| c32(d.fine_bits as u64)).collect(),
             preamp: PreampSetup::new(pre),
             adc: AdcController::new(&d.adc),
             correction: Correction::new(&d.correction),
@@ -222,6 +242,11 @@ impl Logic for TopRtl {
             self.ssi_slave[i].turns.next = self.core.out_turns.val();
             self.ssi_slave[i].pos_valid.next = self.core.out_valid.val();
             self.ssi_slave[i].error.next = self.error.val();
+            // The velocity word (sent only with `[velocity] in_frames`).
+            self.ssi_slave[i].vel.next = bit_cast::<64, 32>(self.zero.val());
+            for k in 0..self.vel.len() {
+                self.ssi_slave[i].vel.next = self.vel[k].out_velocity.val();
+            }
             self.ssi_data.next = self.ssi_slave[i].slo.val();
         }
         self.enc_miso.next = false;
@@ -236,6 +261,10 @@ impl Logic for TopRtl {
             self.spi_slave[i].pos_valid.next = self.core.out_valid.val();
             self.spi_slave[i].error.next = self.error.val();
             self.spi_slave[i].warning.next = self.warning.val();
+            self.spi_slave[i].vel.next = bit_cast::<64, 32>(self.zero.val());
+            for k in 0..self.vel.len() {
+                self.spi_slave[i].vel.next = self.vel[k].out_velocity.val();
+            }
             self.enc_miso.next = self.spi_slave[i].miso.val();
             self.enc_miso_oe.next = self.spi_slave[i].miso_oe.val();
         }
@@ -254,5 +283,19 @@ impl Logic for TopRtl {
         self.par_turns.next = self.core.out_turns.val();
         self.par_error.next = self.error.val();
         self.par_warning.next = self.warning.val();
+        // The velocity estimator on the position modulo 2^(F+2) (`[velocity] enabled`).
+        for i in 0..self.vel.len() {
+            self.vel[i].clk.next = self.clk.val();
+            self.vel[i].rst.next = self.rst.val();
+            self.vel[i].in_valid.next = self.core.out_valid.val();
+            self.vel[i].in_p.next =
+                (self.core.out_qc.val() << self.vel_fshl[i].val()) | self.core.out_fine.val();
+            self.par_velocity[i].next = self.vel[i].out_velocity.val();
+            self.par_velocity_valid[i].next = self.vel[i].out_velocity_valid.val();
+            // `[velocity] in_frames`: the serial slaves send it after the data word.
+            for j in 0..self.biss_slave.vel.len() {
+                self.biss_slave.vel[j].next = self.vel[i].out_velocity.val();
+            }
+        }
     }
 }

@@ -149,6 +149,10 @@ impl<const N: usize> PortWord for rust_hdl::prelude::Bits<N> {
 /// `from_parts` (the ports start at their defaults), `set_input` / `output` by name, and
 /// the top's `Clocked` and `CosimBlock` impls. Each port line:
 /// `name: In|Out Type, Clock|In|Out, width, PinGroup, idle, "comment" [=> wrapper_net];`.
+/// An optional `@optional_outputs { name: Type, width, "comment"; }` section declares outputs
+/// that exist only in some configurations: `Vec<Signal<Out, Type>>` fields of length 0 or 1
+/// (set in `Parts`), so a configuration without them exports no port and no logic for
+/// them; element 0 is the rtl port `name_0`, the co-simulation port of the same name.
 macro_rules! board_top {
     (
         $(#[$meta:meta])*
@@ -157,6 +161,9 @@ macro_rules! board_top {
                 $( $port:ident : $io:ident $ty:ty, $dir:ident, $w:literal, $pin:ident,
                    $idle:literal, $doc:literal $(=> $net:ident)?; )*
             }
+            $( @optional_outputs {
+                $( $oport:ident : $oty:ty, $ow:literal, $odoc:literal; )*
+            } )?
             $( $(#[$fmeta:meta])* $f:ident : $fty:ty, )*
         }
     ) => {
@@ -164,11 +171,14 @@ macro_rules! board_top {
         #[derive(LogicBlock)]
         pub struct $name {
             $( #[doc = $doc] pub $port: Signal<$io, $ty>, )*
+            $( $( #[doc = $odoc] pub $oport: Vec<Signal<Out, $oty>>, )* )?
             $( $(#[$fmeta])* $f: $fty, )*
         }
 
-        /// The fields of the top besides its ports.
+        /// The fields of the top besides its ports, and the length (0 or 1) of its optional
+        /// outputs.
         struct $parts {
+            $( $( $oport: usize, )* )?
             $( $(#[$fmeta])* $f: $fty, )*
         }
 
@@ -190,8 +200,24 @@ macro_rules! board_top {
             fn from_parts(p: $parts) -> Self {
                 Self {
                     $( $port: Default::default(), )*
+                    $( $( $oport: (0..p.$oport).map(|_| Default::default()).collect(), )* )?
                     $( $f: p.$f, )*
                 }
+            }
+
+            /// The optional outputs present in this instance as co-simulation ports and
+            /// their values: element `i` of the `Vec` field `name` is the rtl port
+            /// `name_i` (rust-hdl names it `name$i`; the export turns `$` into `_`).
+            fn optional_outputs(&self) -> Vec<($crate::cosim::Port, u64)> {
+                #[allow(unused_mut)]
+                let mut v = Vec::new();
+                $( $( for (i, s) in self.$oport.iter().enumerate() {
+                    v.push((
+                        $crate::cosim::Port::new(&format!("{}_{i}", stringify!($oport)), $ow),
+                        $crate::blocks::top::ports::PortWord::to_word(&s.val()),
+                    ));
+                } )* )?
+                v
             }
 
             /// Drives the input `name` (its `.next`) with the low bits of `v`; false when
@@ -208,7 +234,10 @@ macro_rules! board_top {
                 $( if name == stringify!($port) {
                     return $crate::blocks::top::ports::board_top!(@get $dir, self.$port);
                 } )*
-                None
+                self.optional_outputs()
+                    .into_iter()
+                    .find(|(p, _)| p.name == name)
+                    .map(|(_, v)| v)
             }
 
             /// The inputs' present values in co-simulation order (after a clock edge: the
@@ -236,10 +265,12 @@ macro_rules! board_top {
                 )
             }
             fn output_ports(&self) -> Vec<$crate::cosim::Port> {
-                $crate::blocks::top::ports::cosim_ports(
+                let mut v = $crate::blocks::top::ports::cosim_ports(
                     $table,
                     $crate::blocks::top::ports::Dir::Out,
-                )
+                );
+                v.extend(self.optional_outputs().into_iter().map(|(p, _)| p));
+                v
             }
             fn apply(&mut self, row: &[u64]) {
                 let inputs = $table
@@ -254,6 +285,7 @@ macro_rules! board_top {
                     .iter()
                     .filter(|p| p.dir == $crate::blocks::top::ports::Dir::Out)
                     .map(|p| self.output(p.name).unwrap_or(0))
+                    .chain(self.optional_outputs().into_iter().map(|(_, v)| v))
                     .collect()
             }
         }
