@@ -476,6 +476,15 @@ fn synthesizes_for_both_families() {
         "{name}: xc3sa {} LUT, {} FF; cycloneive {} LE, {} FF",
         x.luts, x.ffs, c.luts, c.ffs
     );
-    assert_eq!(c.ffs, x.ffs);
+    // The same registers, except that the fold's d, d2 and dd (32 bits, from the difference
+    // of two E_w-bit counts) repeat their sign above bit E_w: the cycloneive flow merges
+    // those equal flip-flops (18, 18 and 19 kept at E_w = 17), the xc3sa flow keeps all 32.
+    let e_w = p.count_bits();
+    assert!(
+        c.ffs <= x.ffs && x.ffs - c.ffs <= 3 * (31 - e_w as u64),
+        "{} FF cycloneive vs {} FF xc3sa",
+        c.ffs,
+        x.ffs
+    );
     assert!(x.ffs > 100 && x.ffs < 400, "{} FF", x.ffs);
 }

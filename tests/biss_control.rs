@@ -8,7 +8,7 @@ use sinedec::blocks::biss::hdl::BissSlave;
 use sinedec::blocks::biss::regs::{crc4, writable, BissIdent};
 use sinedec::blocks::biss::BissParams;
 use sinedec::sim::biss_control::{sent_crc4, Command, Outcome, Session};
-use sinedec::sim::biss_master::FrameData;
+use sinedec::sim::biss_master::{BissMaster, FrameData};
 use sinedec::sim::serial_line::FrameRequest;
 mod biss_loop;
 mod common;
@@ -131,27 +131,62 @@ fn params(clock: f64, control: bool) -> BissParams {
 /// Runs a session through the slave (compiled engine): every frame must be good; returns the run and
 /// the frames' data.
 fn run_session(p: &BissParams, s: &mut Session, ma_hz: f64) -> (Run, Vec<FrameData>) {
+    run_session_with_resets(p, s, ma_hz, &[])
+}
+
+/// Clocks of the reset pulse, and how long after the master has seen the slave ready again
+/// (its CDM bit taken) it starts.
+const RESET_AFTER: usize = 20;
+const RESET_CLOCKS: usize = 10;
+
+/// As [`run_session`], with `rst` pulsed after each frame `r` of `resets` (in order): the
+/// frame after r waits 4 us after the slave is ready, and rst is high for [`RESET_CLOCKS`]
+/// clocks from [`RESET_AFTER`] clocks after the master has reported frame r (seen SL high
+/// at the end of its timeout, so the slave has taken its CDM bit), well inside that pause.
+fn run_session_with_resets(
+    p: &BissParams,
+    s: &mut Session,
+    ma_hz: f64,
+    resets: &[usize],
+) -> (Run, Vec<FrameData>) {
     let frames = s.frames();
     let t = timing(p.clock_hz, 25.0);
     let reqs: Vec<FrameRequest> = (0..frames)
-        .map(|j| FrameRequest {
-            cdm: s.cdm.get(j).copied().unwrap_or(false),
-            ..FrameRequest::new(ma_hz)
+        .map(|j| {
+            let r = FrameRequest {
+                cdm: s.cdm.get(j).copied().unwrap_or(false),
+                ..FrameRequest::new(ma_hz)
+            };
+            if j > 0 && resets.contains(&(j - 1)) {
+                r.gap(4000.0)
+            } else {
+                r
+            }
         })
         .collect();
+    // (frame, clock at which the master had reported it) of the next reset.
+    let mut pending = resets.iter().copied().peekable();
+    let mut seen: Option<usize> = None;
+    let ctl = move |k: usize, m: &BissMaster| {
+        let mut c = Ctl::default();
+        if let Some(&r) = pending.peek() {
+            if m.frames().len() > r {
+                let k0 = *seen.get_or_insert(k);
+                c.rst = (k0 + RESET_AFTER..k0 + RESET_AFTER + RESET_CLOCKS).contains(&k);
+                if k >= k0 + RESET_AFTER + RESET_CLOCKS {
+                    pending.next();
+                    seen = None;
+                }
+            }
+        }
+        c
+    };
     let stream = Stream {
         every: 3,
         ..Default::default()
     };
     let mut m = master_for(p, t, reqs.clone());
-    let run = closed_loop(
-        p,
-        &mut m,
-        &stream,
-        cycles_for(p, &reqs, 0.0),
-        |_, _| Ctl::default(),
-        t,
-    );
+    let run = closed_loop(p, &mut m, &stream, cycles_for(p, &reqs, 0.0), ctl, t);
     assert_eq!(run.frames.len(), frames);
     let data = run
         .frames
@@ -188,6 +223,91 @@ fn closed_loop_register_access_four_way() {
         &run.rows,
         &slo,
         "biss_control",
+    );
+}
+
+/// The model's CDS per frame with the slave reset after the CDM bit of each frame in
+/// `resets` was taken: the reset clears the answer already registered for the next frame
+/// (CDS 0) and returns the channel to idle (registers kept).
+fn model_cds_with_resets(s: &mut Session, resets: &[usize]) -> Vec<bool> {
+    let frames = s.frames();
+    let mut m = ControlModel::new(&ident());
+    let mut cds = vec![false];
+    for (j, &b) in s.cdm[..frames - 1].iter().enumerate() {
+        let mut c = m.step(b);
+        if resets.contains(&j) {
+            m.reset();
+            c = false;
+        }
+        cds.push(c);
+    }
+    assert_eq!(m.phase(), Phase::Idle);
+    cds
+}
+
+/// Reset in the middle of control commands, and a master that restarts during a read's
+/// answer: nothing partial is performed and the next command works.
+/// * rst during the data bits of a write to 0x20 (after D3's frame): the write is not
+///   confirmed and not performed (0x20 still reads the 0x5A written before);
+/// * rst during the answer of a read of 0x78 (after D5's frame): the master sees D7..D5 of
+///   'E' (0x45: 010), then zeros: byte 0x40 with CRC 0000, a CRC error; the next read of
+///   0x7E..0x7F is answered in full;
+/// * the master abandons a read after 24 bits (in the slave's data answer) and, after the
+///   14 zeros, reads 0x41.
+///
+/// The CDS stream equals the model's with the same resets, and Icarus and Verilator replay
+/// the run (rst included) with the same SLO.
+#[test]
+fn reset_and_restart_mid_command() {
+    let p = params(50e6, true);
+    let mut s = Session::new();
+    s.command(Command::write(0x20, &[0x5A]))
+        .command(Command::write(0x20, &[0x11]))
+        .command(Command::read(0x20, 1))
+        .command(Command::read(0x78, 2))
+        .command(Command::read(0x7e, 2))
+        .command(Command {
+            truncate: Some(24),
+            ..Command::read(0x78, 1)
+        })
+        .command(Command::read(0x41, 1));
+    // S 0, CTS 1, ID 2..4, A 5..11, C 12..15, R 16, W 17, data start 18, D7..D0 19..26:
+    // frame j0 + 22 carries D3 of a write and is answered with D4 of a read (its answer
+    // arrives in the next frame, which the reset clears).
+    let resets = [s.commands[1].0 + 22, s.commands[3].0 + 22];
+    let (run, data) = run_session_with_resets(&p, &mut s, 10e6, &resets);
+    assert!(
+        run.rows.iter().filter(|r| r[0] != 0).count() >= 3 + 2 * RESET_CLOCKS,
+        "the resets were applied"
+    );
+    let cds: Vec<bool> = data.iter().map(|d| d.cds).collect();
+    assert_eq!(
+        s.outcomes(&cds),
+        vec![
+            Outcome::Written(1),
+            Outcome::WriteUnconfirmed { index: 0 },
+            Outcome::Read(vec![0x5A]),
+            Outcome::ReadCrc {
+                index: 0,
+                got: (0x40, 0, sent_crc4(0x40, 8)),
+            },
+            Outcome::Read(vec![b'X', b'Y']),
+            Outcome::Truncated,
+            Outcome::Read(vec![0x05]),
+        ]
+    );
+    assert_eq!(
+        cds,
+        model_cds_with_resets(&mut s, &resets),
+        "rust-hdl CDS vs model"
+    );
+    let slo: Vec<Vec<u64>> = run.slo.iter().map(|&v| vec![v]).collect();
+    common::replay_in_all_simulators(
+        BissSlave::new(&p).unwrap(),
+        "biss_slave",
+        &run.rows,
+        &slo,
+        "biss_control_reset",
     );
 }
 
@@ -298,8 +418,9 @@ fn bad_config_keys_are_rejected_with_their_position() {
 /// Yosys for xc3sa and cycloneive with the channel on: no latch, clean checks (as
 /// `synthesize` requires), and the flip-flops the control channel adds: armed, stp, bq 3,
 /// state 4, zero run 4, bit count 4, CRC4 4, bad, R, W 3, address 7, shift 8, CDS 1, and
-/// the registered decodes: address + 1 7, 10 flags: 55 (a few fewer if Yosys merges
-/// equal flags), and no block RAM. On cycloneive (no LUT RAM in Cyclone III) the 128 x 8
+/// the registered decodes: address + 1 7, 9 flags: 54 (a few fewer if Yosys merges
+/// equal flags), plus the register file's eight 8-bit bank output registers (64), and no
+/// block RAM. On cycloneive (no LUT RAM in Cyclone III) the 128 x 8
 /// register file becomes 1024 more flip-flops.
 #[test]
 fn synthesizes_for_both_families_with_control() {
@@ -326,7 +447,10 @@ fn synthesizes_for_both_families_with_control() {
         );
         let added = b.ffs - a.ffs;
         let file = if fam == Family::CycloneIve { 1024 } else { 0 };
-        assert!((45 + file..=55 + file).contains(&added), "{added} FF added");
+        assert!(
+            (45 + 64 + file..=55 + 64 + file).contains(&added),
+            "{added} FF added"
+        );
         assert_eq!(b.brams, 0);
     }
 }

@@ -104,6 +104,14 @@ pub struct AbzEmulator {
     tmask: Constant<Bits<32>>,
     /// Sign bit of a 32-bit word.
     sign: Constant<Bits<32>>,
+    /// Mask of the count bits (t and c lie in 0..E-1): E_w = bits of E - 1.
+    emask: Constant<Bits<32>>,
+    /// Mask of the divider's remainder words (R_w bits, two's complement).
+    rmask: Constant<Bits<32>>,
+    /// Sign bit of a remainder word, bit R_w - 1.
+    rsign: Constant<Bits<32>>,
+    /// Mask of the divider's bit counter (values 0..Wp-1).
+    cntmask: Constant<Bits<32>>,
     /// All ones: -1.
     ones: Constant<Bits<32>>,
     /// One.
@@ -121,6 +129,7 @@ impl AbzEmulator {
         let qb = p.quadrant_bits();
         let e = p.edges();
         let m32 = mask(32);
+        let rm = mask(p.remainder_bits());
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -181,10 +190,10 @@ impl AbzEmulator {
             ftop: c32(1 << (p.fine_bits() - 1)),
             wlast: c32(p.position_bits() as u64 - 1),
             ka: c32(a),
-            kb1: c32(b.wrapping_neg() & m32),
-            kb2: c32((2 * b).wrapping_neg() & m32),
-            kab1: c32(a.wrapping_sub(b) & m32),
-            kab2: c32(a.wrapping_sub(2 * b) & m32),
+            kb1: c32(b.wrapping_neg() & rm),
+            kb2: c32((2 * b).wrapping_neg() & rm),
+            kab1: c32(a.wrapping_sub(b) & rm),
+            kab2: c32(a.wrapping_sub(2 * b) & rm),
             edges: c32(e),
             emax: c32(e - 1),
             half: c32(e / 2),
@@ -192,6 +201,10 @@ impl AbzEmulator {
             slast: c32(p.spacing() as u64 - 1),
             tmask: c32(mask(p.timer_bits())),
             sign: c32(1 << 31),
+            emask: c32(mask(p.count_bits())),
+            rmask: c32(mask(p.remainder_bits())),
+            rsign: c32(1 << (p.remainder_bits() - 1)),
+            cntmask: c32(mask(32 - (p.position_bits() - 1).leading_zeros())),
             ones: c32(m32),
             one: c32(1),
             two: c32(2),
@@ -221,13 +234,13 @@ impl Logic for AbzEmulator {
         self.done.d.next = false;
         self.r2.next = self.r.q.val() << self.one.val();
         if self.pbit.q.val() {
-            self.c0.next = self.r2.val() + self.ka.val();
-            self.c1.next = self.r2.val() + self.kab1.val();
-            self.c2.next = self.r2.val() + self.kab2.val();
+            self.c0.next = (self.r2.val() + self.ka.val()) & self.rmask.val();
+            self.c1.next = (self.r2.val() + self.kab1.val()) & self.rmask.val();
+            self.c2.next = (self.r2.val() + self.kab2.val()) & self.rmask.val();
         } else {
             self.c0.next = self.r2.val();
-            self.c1.next = self.r2.val() + self.kb1.val();
-            self.c2.next = self.r2.val() + self.kb2.val();
+            self.c1.next = (self.r2.val() + self.kb1.val()) & self.rmask.val();
+            self.c2.next = (self.r2.val() + self.kb2.val()) & self.rmask.val();
         }
         if self.start.val() {
             self.pbit.d.next = (self.qcap.q.val() & self.qtop.val()).any();
@@ -243,15 +256,17 @@ impl Logic for AbzEmulator {
             self.t.d.next = self.zero.val();
             self.busy.d.next = true;
         } else if self.busy.q.val() {
-            if !(self.c2.val() & self.sign.val()).any() {
+            if !(self.c2.val() & self.rsign.val()).any() {
                 self.r.d.next = self.c2.val();
-                self.t.d.next = (self.t.q.val() + self.one.val()) << self.one.val();
-            } else if !(self.c1.val() & self.sign.val()).any() {
+                self.t.d.next =
+                    ((self.t.q.val() + self.one.val()) << self.one.val()) & self.emask.val();
+            } else if !(self.c1.val() & self.rsign.val()).any() {
                 self.r.d.next = self.c1.val();
-                self.t.d.next = (self.t.q.val() << self.one.val()) | self.one.val();
+                self.t.d.next =
+                    ((self.t.q.val() << self.one.val()) | self.one.val()) & self.emask.val();
             } else {
                 self.r.d.next = self.c0.val();
-                self.t.d.next = self.t.q.val() << self.one.val();
+                self.t.d.next = (self.t.q.val() << self.one.val()) & self.emask.val();
             }
             self.pbit.d.next = (self.qsh.q.val() & self.qtop.val()).any();
             if (self.fsh.q.val() & self.ftop.val()).any() {
@@ -265,7 +280,7 @@ impl Logic for AbzEmulator {
                 self.busy.d.next = false;
                 self.done.d.next = true;
             } else {
-                self.cnt.d.next = self.cnt.q.val() - self.one.val();
+                self.cnt.d.next = (self.cnt.q.val() - self.one.val()) & self.cntmask.val();
             }
         }
         // Fold: S1 difference, S2 compares, S3 add of +-E.
@@ -312,14 +327,14 @@ impl Logic for AbzEmulator {
                 if self.ctop.q.val() {
                     self.c.d.next = self.zero.val();
                 } else {
-                    self.c.d.next = self.c.q.val() + self.one.val();
+                    self.c.d.next = (self.c.q.val() + self.one.val()) & self.emask.val();
                 }
             } else {
                 self.pend.d.next = self.pend.q.val() + self.one.val();
                 if self.czero.q.val() {
                     self.c.d.next = self.emax.val();
                 } else {
-                    self.c.d.next = self.c.q.val() - self.one.val();
+                    self.c.d.next = (self.c.q.val() - self.one.val()) & self.emask.val();
                 }
             }
         } else if self.apply.val() {

@@ -34,8 +34,11 @@
 //! side by side form c_j = 2 r_k + β a - j b (j = 0, 1, 2; the addend a constant chosen by β)
 //! and the largest j with c_j >= 0 wins: r_(k+1) = c_j, t_(k+1) = 2 t_k + j (2t, 2t | 1, or
 //! (t + 1) << 1, with t + 1 formed beside them). Widths: r < b <= 2^30, so c_1 lies in
-//! (-b, 2b) and c_2 in [-2b, b): both fit a signed 32-bit word and bit 31 is their sign.
-//! t < E <= 2^30. After Wp clocks t = floor(p a / b).
+//! (-b, 2b) and c_2 in [-2b, b): both fit a signed R_w-bit word, R_w = bits(2b) + 1 <= 32
+//! (the adders are R_w bits wide, their sign is bit R_w - 1; 13 bits at the default
+//! b = 2^10). t < E <= 2^30 holds at every step (t_k <= t), so t, and the emitted count c,
+//! are E_w = bits(E - 1) bits wide (17 at the default E = 2^17): short carry chains.
+//! After Wp clocks t = floor(p a / b).
 //! The qc and fine bits shift through two registers: qsh (ceil(log2 Q) bits) takes the fine
 //! register's MSB in at its LSB, so the current bit is always qsh's MSB.
 //!
@@ -197,6 +200,15 @@ impl AbzParams {
     /// output edge of that sample when the emitter is idle: the edge after which A/B show it.
     pub fn latency(&self) -> u32 {
         self.position_bits() + 8
+    }
+    /// Bits of a count, E_w: t and c lie in 0..E-1 (at least 1 bit).
+    pub fn count_bits(&self) -> u32 {
+        (64 - (self.edges() - 1).leading_zeros()).max(1)
+    }
+    /// Bits of the divider's remainder words, R_w = bits(2b) + 1 (at most 32): the
+    /// candidates c_1, c_2 lie in (-2b, 2b), a signed R_w-bit range (module docs).
+    pub fn remainder_bits(&self) -> u32 {
+        (64 - (2 * self.ratio().1).leading_zeros() + 1).min(32)
     }
     /// Bits of the edge-spacing counter (values 0..S-1).
     pub fn timer_bits(&self) -> u32 {

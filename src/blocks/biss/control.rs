@@ -11,8 +11,8 @@
 //!                                                                         v
 //!     zcnt (zero run, 0..14)   state (Idle, Cts, Id, Adr, Crc, R, W, Start, Read, Write,
 //!     n (bit count, 0..11)            Stop, Next)     crc (CRC4)  addr (7)  sh (8)
-//!     regs: RegFile 128 x 8, read at addr (asynchronous, unregistered: no block RAM
-//!           is inferred); written at P of a write
+//!     regs: RegFile 128 x 8 in eight 16 x 8 banks, registered read at addr, loaded
+//!           into sh while a read waits for its first bit; written at P of a write
 //!                                                                         │
 //!  Start bit of the next frame: SLO <- cds <──────────────────────────────┘ (registered)
 //! ```
@@ -90,13 +90,12 @@ pub struct BissControl {
     /// Registered decodes of the registers above (they change only in a step, and steps
     /// are a frame apart, so each decode is valid from the clock after a step on; this
     /// keeps carry chains and compares out of the step's logic): addr + 1, addr writable,
-    /// addr + 1 writable, zero run at 13 or 14, at 14, n = 0, 2, 3, 6, 11, n >= 8.
+    /// addr + 1 writable, zero run at 13 or 14, at 14, n = 2, 3, 6, 11, n >= 8.
     nadr_r: DFF<Bits<7>>,
     awr: DFF<Bit>,
     nwr: DFF<Bit>,
     zend: DFF<Bit>,
     zfull: DFF<Bit>,
-    nz: DFF<Bit>,
     n2: DFF<Bit>,
     n3: DFF<Bit>,
     n6: DFF<Bit>,
@@ -110,9 +109,10 @@ pub struct BissControl {
     cin: Signal<Local, Bit>,
     /// The CRC MSB.
     c3: Signal<Local, Bit>,
-    /// The byte a data bit comes from (the register at the first bit of a read).
-    dbyte: Signal<Local, Bits<8>>,
-    /// Its MSB.
+    /// A read waits for its first bit (state Read, n = 0, no step this clock): the shift
+    /// register takes the register at `addr` (the registered read of the register file).
+    ld: Signal<Local, Bit>,
+    /// The shift register's MSB: the data bit a read sends.
     dbit: Signal<Local, Bit>,
     /// addr + 1 (7 bits, wraps).
     nadr: Signal<Local, Bits<7>>,
@@ -173,7 +173,6 @@ impl BissControl {
             nwr: Default::default(),
             zend: Default::default(),
             zfull: Default::default(),
-            nz: Default::default(),
             n2: Default::default(),
             n3: Default::default(),
             n6: Default::default(),
@@ -184,7 +183,7 @@ impl BissControl {
             cshf: Default::default(),
             cin: Default::default(),
             c3: Default::default(),
-            dbyte: Default::default(),
+            ld: Default::default(),
             dbit: Default::default(),
             nadr: Default::default(),
             ans: Default::default(),
@@ -212,7 +211,7 @@ impl Logic for BissControl {
     fn update(&mut self) {
         dff_setup!(
             self, clk, armed, stp, bq, state, zcnt, n, crc, bad, addr, rb, wr, sh, cds_r, nadr_r,
-            awr, nwr, zend, zfull, nz, n2, n3, n6, n11, nhi
+            awr, nwr, zend, zfull, n2, n3, n6, n11, nhi
         );
         self.regs.clock.next = self.clk.val();
         self.regs.address.next = self.addr.q.val();
@@ -235,7 +234,6 @@ impl Logic for BissControl {
         self.zend.d.next = (self.zcnt.q.val() == self.thirteen4.val())
             | (self.zcnt.q.val() == self.fourteen4.val());
         self.zfull.d.next = self.zcnt.q.val() == self.fourteen4.val();
-        self.nz.d.next = self.n.q.val() == self.zero4.val();
         self.n2.d.next = self.n.q.val() == self.two4.val();
         self.n3.d.next = self.n.q.val() == self.three4.val();
         self.n6.d.next = self.n.q.val() == self.six4.val();
@@ -246,12 +244,16 @@ impl Logic for BissControl {
         self.cin.next = self.b.val();
         self.ans.next = false;
         self.we.next = false;
-        if self.nz.q.val() {
-            self.dbyte.next = self.regs.read_data.val();
-        } else {
-            self.dbyte.next = self.sh.q.val();
+        // The registered read: until a read's first bit, the shift register holds the
+        // register at addr (addr is stable from the clock after the step that set it, and
+        // steps are a frame apart, so sh holds mem[addr] long before that bit's step).
+        self.ld.next = !self.stp.q.val()
+            & (self.state.q.val() == CtlState::Read)
+            & (self.n.q.val() == self.zero4.val());
+        if self.ld.val() {
+            self.sh.d.next = self.regs.read_data.val();
         }
-        self.dbit.next = (self.dbyte.val() & self.msb8.val()).any();
+        self.dbit.next = (self.sh.q.val() & self.msb8.val()).any();
         if self.stp.q.val() {
             match self.state.q.val() {
                 CtlState::Idle => {
@@ -350,7 +352,7 @@ impl Logic for BissControl {
                             self.cupd.next = true;
                             self.cin.next = self.dbit.val();
                             self.ans.next = self.dbit.val();
-                            self.sh.d.next = self.dbyte.val() << self.one8.val();
+                            self.sh.d.next = self.sh.q.val() << self.one8.val();
                         }
                     }
                 }
@@ -438,24 +440,40 @@ impl Logic for BissControl {
     }
 }
 
-/// The 128 x 8 register file: asynchronous read at `address`, write at the clock edge with
-/// `write_enable`, initial contents. The read is asynchronous so that no synthesis flow
-/// infers a block RAM from it (Yosys 0.23's `synth_intel` cannot initialise an M9K): it maps
-/// to LUT RAM (distributed RAM on xc3sa, DPR16X4 on ECP5) or logic; the parent does not
-/// register its output (a register there would let Yosys build a synchronous read port).
+/// The 128 x 8 register file: eight banks of 16 x 8 (address bits 6..4 select the bank),
+/// written at the clock edge with `write_enable`, with initial contents, and a registered
+/// read: at every clock edge each bank's byte at address bits 3..0 goes into that bank's
+/// output register (the value before a write at the same edge), and `read_data` is the
+/// output register of the bank that `address` selects now. With the address stable for
+/// two clocks, `read_data` is the register at that address.
+///
+/// ```text
+///  address[3:0] ──► bank 0..7 (16 x 8, LUT RAM) ──► bq 0..7 (8 x 8 FF) ──┐
+///  address[6:4] ─────────────────────────────────────────────────► 8:1 mux ──► read_data
+/// ```
+///
+/// Why banks: one 128-deep LUT RAM read is an 8:1 multiplexer tree behind the RAM cells,
+/// and with the address fan-out it made the slowest path of the control-enabled top on the
+/// ECP5 proxy (docs/biss_control.md). Here the RAM read ends in a flip-flop and the
+/// multiplexer starts from flip-flops. The banks are small on purpose: a 16 x 8 memory with
+/// a registered read maps to distributed RAM plus flip-flops on xc3sa (no block RAM), LUT
+/// RAM on ECP5 and flip-flops in Yosys 0.23's `synth_intel` (which cannot initialise an M9K,
+/// and does not choose one for 16 words).
 #[derive(LogicBlock, Default)]
 pub struct RegFile {
-    /// Write clock.
+    /// Write and read clock.
     pub clock: Signal<In, Clock>,
     /// Read and write address.
     pub address: Signal<In, Bits<7>>,
-    /// The register at `address`.
+    /// The selected bank's output register (the register at `address` one clock ago).
     pub read_data: Signal<Out, Bits<8>>,
     /// Byte to write.
     pub write_data: Signal<In, Bits<8>>,
     /// Write `write_data` to `address` at this clock edge.
     pub write_enable: Signal<In, Bit>,
     _sim: BTreeMap<Bits<7>, Bits<8>>,
+    /// The banks' output registers (simulation).
+    _bq: [Bits<8>; 8],
 }
 
 impl RegFile {
@@ -470,14 +488,18 @@ impl RegFile {
 
 impl Logic for RegFile {
     fn update(&mut self) {
-        if self.clock.pos_edge() && self.write_enable.val() {
-            self._sim.insert(self.address.val(), self.write_data.val());
+        let a = self.address.val().index();
+        if self.clock.pos_edge() {
+            // Every bank reads at address bits 3..0 before the write of this edge.
+            for (b, q) in self._bq.iter_mut().enumerate() {
+                let k = Bits::<7>::from(((b << 4) | (a & 0xf)) as u64);
+                *q = self._sim.get(&k).copied().unwrap_or_default();
+            }
+            if self.write_enable.val() {
+                self._sim.insert(self.address.val(), self.write_data.val());
+            }
         }
-        self.read_data.next = self
-            ._sim
-            .get(&self.address.val())
-            .copied()
-            .unwrap_or_default();
+        self.read_data.next = self._bq[a >> 4];
     }
 
     fn connect(&mut self) {
@@ -485,13 +507,29 @@ impl Logic for RegFile {
     }
 
     fn hdl(&self) -> Verilog {
-        let init = self
-            ._sim
-            .iter()
-            .map(|(a, v)| format!("   mem[{}] = {};\n", a.verilog(), v.verilog()))
-            .collect::<String>();
-        Verilog::Custom(format!(
-            "reg [7:0] mem [127:0];\n\ninitial begin\n{init}end\n\nalways @(posedge clock) begin\n   if (write_enable) begin\n      mem[address] <= write_data;\n   end\nend\n\nalways @(*) begin\n   read_data = mem[address];\nend\n"
-        ))
+        let mut v = String::new();
+        for b in 0..8usize {
+            v += &format!("reg [7:0] mem{b} [15:0];\nreg [7:0] bq{b};\n");
+        }
+        v += "\ninitial begin\n";
+        for b in 0..8usize {
+            v += &format!("   bq{b} = 8'h0;\n");
+        }
+        for (a, d) in &self._sim {
+            let a = a.index();
+            v += &format!("   mem{}[{}] = {};\n", a >> 4, a & 0xf, d.verilog());
+        }
+        v += "end\n\nalways @(posedge clock) begin\n";
+        for b in 0..8usize {
+            v += &format!(
+                "   if (write_enable && address[6:4] == 3'd{b}) begin\n      mem{b}[address[3:0]] <= write_data;\n   end\n   bq{b} <= mem{b}[address[3:0]];\n"
+            );
+        }
+        v += "end\n\nalways @(*) begin\n   case (address[6:4])\n";
+        for b in 0..8usize {
+            v += &format!("      3'd{b}: read_data = bq{b};\n");
+        }
+        v += "      default: read_data = bq0;\n   endcase\nend\n";
+        Verilog::Custom(v)
     }
 }
