@@ -37,6 +37,10 @@
 //!   4 samples). Amplitude and phase errors are of the same relative order, 1 / N.
 use super::{COS, SIN};
 
+/// Most samples in one window (hardware counter and sum widths, see the module doc of
+/// [`super::fit_hdl`]): an open window that reaches it without closing is abandoned.
+pub const N_MAX: u32 = 1 << 24;
+
 /// Parameters of the ellipse fit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FitParams {
@@ -258,18 +262,27 @@ impl EllipseFit {
             && self.net % 4 == 0
             && self.sums.n >= self.p.min_samples as i128;
         if !done {
+            if self.sums.n >= N_MAX as i128 {
+                // A window that has not closed after N_MAX samples (a standing or crawling
+                // shaft) is abandoned: the next boundary opens a new one.
+                self.open = false;
+                return None;
+            }
             self.add(d);
             return None;
         }
         // This sample is the first past the closing boundary: it ends this window and
-        // opens the next.
+        // opens the next. The next window's reference is the offsets in use *before* this
+        // window's update: in hardware the solve takes about a thousand clocks, so the new
+        // window has started long before the new offsets exist (the offsets found are
+        // b_ref + mean either way, so only the reference lags one window).
         self.windows += 1;
         let r = solve(&self.p, self.b_ref, &self.sums);
+        self.b_ref = self.coefs.offset;
         if let Some(c) = r {
             self.coefs = c;
             self.updates += 1;
         }
-        self.b_ref = self.coefs.offset;
         let d = [xs - self.b_ref[SIN], xc - self.b_ref[COS]];
         self.start_window(d);
         r
