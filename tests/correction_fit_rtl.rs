@@ -14,6 +14,7 @@ use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::verify::Simulators;
 use std::f64::consts::TAU;
 mod common;
+mod correction_util;
 
 /// One stimulus row: rst, valid, x_sin, x_cos (raw A-bit words).
 type Row = [i64; 4];
@@ -202,4 +203,24 @@ fn fit_rtl_equals_the_model_at_other_widths() {
         let n = check(p, &format!("fit_rtl_w{a}"), &rows, Simulators::ALL);
         assert!(n >= 2, "{n}");
     }
+}
+
+/// The whole correction block in auto mode (datapath, phase stage with the fit's k, the
+/// fit): Yosys for xc3sa and cycloneive, every register-to-register path on xc3sa with at
+/// most one carry chain (the timing rule), and the hard multipliers: sin and cos gain
+/// products, the cross product with the fit's k, and the fit's three sample products.
+#[test]
+fn fit_mode_synthesizes_with_six_multipliers_and_one_carry_chain_per_path() {
+    use sinedec::blocks::correction::hdl::Correction;
+    let p = CorrectionParams::identity(14, 14)
+        .and_then(|p| p.with_fit(6143, 1, 819, 4096))
+        .expect("params");
+    let (x, c) = correction_util::synth(Correction::new(&p), "corr_synth_fit");
+    let path = x.path.expect("a register-to-register path");
+    eprintln!(
+        "corr_synth_fit: xc3sa {} LUT, {} FF, {} MULT18X18; cycloneive {} LE, {} FF; worst path {} -> {}: {} carry chains, {} LUT levels",
+        x.luts, x.ffs, x.multipliers, c.luts, c.ffs, path.from, path.to, path.carry_chains, path.lut_levels
+    );
+    assert_eq!(x.multipliers, 6);
+    assert!(path.carry_chains <= 1, "{path:?}");
 }

@@ -518,10 +518,9 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
             k * per / fs
         };
         return format!(
-            "correction                  auto: least-squares ellipse fit over whole periods (offset, gain and phase; cross code and one more clock)
-             auto fit window             at least {} periods and {} samples ({:.2} ms at the sample rate), then a {}-clock solve; 1st update after about {:.1} ms at 300 rpm, {:.1} ms at 3000 rpm
-             auto fit limits             works up to the decoder's {:.0} rpm unwrap limit (a two-quadrant step counts in the last direction); no update below {} LSB amplitude or with an offset outside the ADC range; a window longer than 2^24 samples is abandoned
-",
+            "correction                  auto: least-squares ellipse fit over whole periods (offset, gain and phase; cross code and one more clock)\n\
+             auto fit window             at least {} periods and {} samples ({:.2} ms at the sample rate), then a {}-clock solve; 1st update after about {:.1} ms at 300 rpm, {:.1} ms at 3000 rpm\n\
+             auto fit limits             works up to the decoder's {:.0} rpm unwrap limit (a two-quadrant step counts in the last direction); no update below {} LSB amplitude or with an offset outside the ADC range; a window longer than 2^24 samples is abandoned\n",
             f.periods(),
             f.min_samples(),
             1e3 * f.min_samples() as f64 / fs,

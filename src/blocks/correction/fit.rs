@@ -1,7 +1,8 @@
-//! MODEL ONLY (no RTL yet): automatic offset, gain and phase calibration by a least-squares
-//! ellipse fit over whole signal periods. This is the integer specification a serial RTL
-//! would follow (one multiplier, one serial divider and one serial square root, time-shared);
-//! the shipped `auto` mode is still the peak tracker of [`super::autocal`].
+//! Automatic offset, gain and phase calibration by a least-squares ellipse fit over whole
+//! signal periods (`correction.mode = "auto"`): the bit-accurate integer specification of
+//! the RTL in [`super::fit_hdl`] (tracker, sums) and [`super::fit_solve`] (one serial
+//! multiplier, one serial divider / square root), which `tests/correction_fit_rtl.rs`
+//! checks update by update.
 //!
 //! ```text
 //!  x_s, x_c ─► d = x - b_ref ─► quadrant tracker (signs of d; +-1 steps, a 2-step counts

@@ -2,9 +2,10 @@
 //! x' = (x - b) * g with g = 1/m (the thesis's two-point calibration, eqs. 3.3-3.6),
 //! static from the config or updated online by an automatic calibration that tracks the
 //! peaks of each channel over whole signal periods (as interpolator ICs do), and an
-//! optional static correction of the cos track's phase error. [`fit`] is a model-only
-//! least-squares ellipse fit (offset, gain and phase at any speed) that has no RTL yet;
-//! figures in docs/correction.md.
+//! optional static correction of the cos track's phase error. Mode `auto` is the
+//! least-squares ellipse fit (offset, gain and phase at any speed): model [`fit`], RTL
+//! [`fit_hdl`] and [`fit_solve`]; mode `peak` is the peak tracker below ([`autocal`]).
+//! Figures in docs/correction.md.
 //!
 //! ```text
 //!            stage 1 (reg)              stage 2 (reg)        stage 3 (reg)
@@ -86,7 +87,8 @@
 //!   at all: the block is the 3-clock block above, bit for bit.
 //! * Not with the automatic calibration: its peak-derived g_c would drop 1 / cos phi.
 //!
-//! # Automatic calibration (mode `Auto`)
+//! # Peak-tracking calibration (mode `peak`; the ellipse fit of mode `auto` is documented in
+//! [`fit`], [`fit_hdl`] and [`fit_solve`])
 //! * Offset binary u = x + 2^(A-1) (sign bit flipped): u in [0, 2^A - 1], so max/min are
 //!   unsigned compares.
 //! * Period detection: the quadrant of each sample from the signs of d = x - b of both
