@@ -459,7 +459,7 @@ impl Logic for FitCal {
                     self.dneg.d.next = self.stp.val() == self.q3.val();
                 }
                 if !self.open.q.val() {
-                    if !(self.stp.val() == self.q0.val()) {
+                    if self.stp.val().any() {
                         // Open a window at this boundary, from the offsets in use.
                         self.open.d.next = true;
                         self.bref_s.d.next = self.slv.off_s.val();

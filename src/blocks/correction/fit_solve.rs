@@ -59,6 +59,9 @@ pub const SOLVE_CYCLES: u32 = 1027;
 /// `tests/correction_fit_rtl.rs` checks every update against it.
 pub const UPDATE_LATENCY: u32 = SOLVE_CYCLES + 3;
 
+// The widths of the module doc assume windows of at most 2^24 samples.
+const _: () = assert!(N_MAX <= 1 << 24);
+
 /// A 64-bit constant.
 pub(super) fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
@@ -297,7 +300,6 @@ impl FitSolve {
         let lim = 1i64 << (a - 1);
         let flip = |v: i64| (v as u64 & mask(32)) ^ (1 << 31);
         let sext = |v: i32| v as i64 as u64 & mask(32);
-        debug_assert!(N_MAX <= 1 << 24);
         Self {
             clk: Default::default(),
             rst: Default::default(),
