@@ -302,7 +302,7 @@ fn check_explains_the_correction_mode_and_the_peak_trackers_limit() {
     assert!(s.contains("no phase correction"), "{s}");
     let s = check("mode = \"static\"\nphase_deg = 3.0");
     assert!(s.contains("static phase correction"), "{s}");
-    let s = check("mode = \"auto\"");
+    let s = check("mode = \"peak\"");
     assert!(s.contains("peak tracker"), "{s}");
     // Independently: the default samples 1,307,157 times per second per channel; at
     // 3000 rpm a 2048-line track has 1307157 / (2048 x 50) = 12.77 samples per period, and

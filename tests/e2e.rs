@@ -101,7 +101,7 @@ fn creep_at_0_3_rpm_is_monotonic_in_the_mean_without_quadrant_jumps() {
 }
 
 /// Automatic calibration: with 5 % offsets and a 5 % gain mismatch, the error of the
-/// uncorrected decoder is large; with `correction.mode = "auto"` it comes back within twice
+/// uncorrected decoder is large; with `correction.mode = "peak"` it comes back within twice
 /// the clean figure after the first calibrated periods.
 #[test]
 fn auto_calibration_removes_offset_and_gain_mismatch() {
@@ -133,7 +133,7 @@ fn auto_calibration_removes_offset_and_gain_mismatch() {
     let uncorrected = run(&Loaded::default_config().expect("default"), &bad, |_, _| {})
         .expect("runs")
         .stats;
-    let text = sinedec::config::DEFAULT_CONFIG.replace("mode = \"static\"", "mode = \"auto\"");
+    let text = sinedec::config::DEFAULT_CONFIG.replace("mode = \"static\"", "mode = \"peak\"");
     let auto = Loaded::parse(&text, "auto").expect("auto config");
     let corrected = run(&auto, &bad, |_, _| {}).expect("runs").stats;
     eprintln!("clean {clean:?}\nuncorrected {uncorrected:?}\nauto {corrected:?}");

@@ -106,7 +106,7 @@ impl Derived {
             Some(k) => Some(cap_params(c, k, rate, &err)?),
             None => None,
         };
-        let correction = correction_params(c, &err)?;
+        let correction = correction_params(c, rate, &err)?;
         let ssi = if c.ssi.enabled {
             let mut p = SsiParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
                 .map_err(|m| err("ssi", "enabled", m.to_string()))?;
@@ -519,6 +519,28 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
     } else {
         "no phase correction (correction.phase_deg = 0)".to_string()
     };
+    if let Some(f) = c.fit() {
+        let spp = |rpm: f64| fs / (ppr as f64 * rpm / 60.0);
+        let win = |rpm: f64| {
+            let per = spp(rpm);
+            // Whole periods: at least K, and enough of them for min_samples.
+            let k = (f.periods() as f64).max((f.min_samples() as f64 / per).ceil());
+            k * per / fs
+        };
+        return format!(
+            "correction                  auto: least-squares ellipse fit over whole periods (offset, gain and phase; cross code and one more clock)\n\
+             auto fit window             at least {} periods and {} samples ({:.2} ms at the sample rate), then a {}-clock solve; 1st update after about {:.1} ms at 300 rpm, {:.1} ms at 3000 rpm\n\
+             auto fit limits             works up to the decoder's {:.0} rpm unwrap limit (a two-quadrant step counts in the last direction); no update below {} LSB amplitude or with an offset outside the ADC range; a window longer than 2^24 samples is abandoned\n",
+            f.periods(),
+            f.min_samples(),
+            1e3 * f.min_samples() as f64 / fs,
+            crate::blocks::correction::fit_solve::SOLVE_CYCLES,
+            1e3 * win(300.0),
+            1e3 * win(3000.0),
+            max_rpm,
+            f.min_amplitude()
+        );
+    }
     let Some(_) = c.auto() else {
         return format!(
             "correction                  static: offsets {:?} LSB, gain codes {:?} (2^-{}); {phase}\n",
@@ -533,8 +555,8 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
     let n_lsb = std::f64::consts::PI / (1.0 - lsb).acos();
     let rpm_lsb = 60.0 * fs / (n_lsb * ppr as f64);
     format!(
-        "correction                  auto: offset and gain from per-track peaks over whole periods (peak tracker); no phase correction\n\
-         auto peak-tracker limit     the sampled peaks are low by up to 1 - cos(pi / samples per period): within 1 LSB of 2^{} up to {:.0} rpm; {:.2} % at 3000 rpm, {:.2} % at the {:.0} rpm limit. Above that calibrate at low speed and copy the values into mode = \"static\" (which also takes phase_deg)\n",
+        "correction                  peak: offset and gain from per-track peaks over whole periods (peak tracker); no phase correction\n\
+         peak-tracker limit          the sampled peaks are low by up to 1 - cos(pi / samples per period): within 1 LSB of 2^{} up to {:.0} rpm; {:.2} % at 3000 rpm, {:.2} % at the {:.0} rpm limit. Above that calibrate at low speed and copy the values into mode = \"static\" (which also takes phase_deg)\n",
         c.adc_width() - 1,
         rpm_lsb,
         100.0 * deficit(3000.0),

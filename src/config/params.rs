@@ -244,7 +244,7 @@ fn frac_of_fs(c: &Config, table: &str, key: &str, v: f64, err: &ErrFn) -> Result
 }
 
 /// Correction parameters from `[correction]`.
-pub(super) fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionParams> {
+pub(super) fn correction_params(c: &Config, rate: f64, err: &ErrFn) -> Result<CorrectionParams> {
     let k = &c.correction;
     let a = c.adc.width;
     let gf = k.gain_frac_bits;
@@ -252,7 +252,7 @@ pub(super) fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionPar
     let gc = gain_code(gf, k.gain_cos).map_err(|m| err("correction", "gain_cos", m.detail()))?;
     // Phase correction folds 1 / cos(phi) into the cos gain and adds the cross coefficient.
     let (gc, cross) = if k.phase_deg != 0.0 {
-        if k.mode == "auto" {
+        if k.mode != "static" {
             return Err(err(
                 "correction",
                 "phase_deg",
@@ -284,16 +284,42 @@ pub(super) fn correction_params(c: &Config, err: &ErrFn) -> Result<CorrectionPar
         .map_err(|m| err("correction", "phase_deg", m.detail()))?;
     match k.mode.as_str() {
         "static" => Ok(p),
-        "auto" => {
+        "peak" => {
             let t = frac_of_fs(c, "correction", "target_amplitude", k.target_amplitude, err)?;
             let m = frac_of_fs(c, "correction", "min_amplitude", k.min_amplitude, err)?;
             p.with_auto(t, k.periods, m)
                 .map_err(|e| err("correction", "periods", e.detail()))
         }
+        "auto" => {
+            let t = frac_of_fs(c, "correction", "target_amplitude", k.target_amplitude, err)?;
+            let m = frac_of_fs(c, "correction", "min_amplitude", k.min_amplitude, err)?;
+            // The solve must end before the next window does (the fit drops a window that
+            // ends while it is busy): min_samples samples take min_samples x clocks per
+            // sample.
+            let clocks = c.clock.frequency_hz / rate;
+            let need = crate::blocks::correction::fit_solve::UPDATE_LATENCY as f64;
+            if k.min_samples as f64 * clocks <= need {
+                return Err(err(
+                    "correction",
+                    "min_samples",
+                    format!(
+                        "{}: a fit window must outlast the {need:.0}-clock solve; at {clocks:.1} \
+                         clocks per sample use at least {} samples",
+                        k.min_samples,
+                        (need / clocks).floor() as u64 + 1
+                    ),
+                ));
+            }
+            p.with_fit(t, k.periods, m, k.min_samples)
+                .map_err(|e| err("correction", "min_samples", e.detail()))
+        }
         other => Err(err(
             "correction",
             "mode",
-            format!("{}: allowed \"static\" or \"auto\"", Quoted(other)),
+            format!(
+                "{}: allowed \"static\", \"auto\" or \"peak\"",
+                Quoted(other)
+            ),
         )),
     }
 }

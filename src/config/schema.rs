@@ -36,6 +36,14 @@ ranged!(
     " signal periods"
 );
 ranged!(
+    r_min_samples,
+    u32,
+    "correction.min_samples",
+    1,
+    crate::blocks::correction::fit::N_MAX,
+    " samples"
+);
+ranged!(
     r_gain_frac,
     u32,
     "correction.gain_frac_bits",
@@ -498,8 +506,9 @@ pub struct MonitorConfig {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CorrectionConfig {
-    /// "static" (the values below) or "auto" (peak tracking; the values below are the
-    /// start values after reset).
+    /// "static" (the values below), "auto" (least-squares ellipse fit of offset, gain and
+    /// phase over whole periods) or "peak" (the older per-track peak tracker, offset and
+    /// gain only); in "auto" and "peak" the values below are the start values after reset.
     pub mode: String,
     /// Offset of the sin channel in LSB (b of x' = (x - b) / m).
     #[serde(default)]
@@ -529,6 +538,13 @@ pub struct CorrectionConfig {
     /// Auto: no update below this amplitude, fraction of full scale.
     #[serde(default = "min_cal")]
     pub min_amplitude: f64,
+    /// Auto: least samples per fit window (1..=2^24; with the periods, the window length).
+    #[serde(default = "min_samples", deserialize_with = "r_min_samples")]
+    pub min_samples: u32,
+}
+
+fn min_samples() -> u32 {
+    4096
 }
 
 fn one() -> f64 {
@@ -564,6 +580,7 @@ impl Default for CorrectionConfig {
             target_amplitude: target(),
             periods: 1,
             min_amplitude: min_cal(),
+            min_samples: min_samples(),
         }
     }
 }

@@ -1,7 +1,8 @@
-//! MODEL ONLY (no RTL yet): automatic offset, gain and phase calibration by a least-squares
-//! ellipse fit over whole signal periods. This is the integer specification a serial RTL
-//! would follow (one multiplier, one serial divider and one serial square root, time-shared);
-//! the shipped `auto` mode is still the peak tracker of [`super::autocal`].
+//! Automatic offset, gain and phase calibration by a least-squares ellipse fit over whole
+//! signal periods (`correction.mode = "auto"`): the bit-accurate integer specification of
+//! the RTL in [`super::fit_hdl`] (tracker, sums) and [`super::fit_solve`] (one serial
+//! multiplier, one serial divider / square root), which `tests/correction_fit_rtl.rs`
+//! checks update by update.
 //!
 //! ```text
 //!  x_s, x_c ─► d = x - b_ref ─► quadrant tracker (signs of d; +-1 steps, a 2-step counts
@@ -36,6 +37,10 @@
 //!   is why N >= `min_samples` and not only K periods (at 3.8 samples per period, K = 1 gives
 //!   4 samples). Amplitude and phase errors are of the same relative order, 1 / N.
 use super::{COS, SIN};
+
+/// Most samples in one window (hardware counter and sum widths, see the module doc of
+/// [`super::fit_hdl`]): an open window that reaches it without closing is abandoned.
+pub const N_MAX: u32 = 1 << 24;
 
 /// Parameters of the ellipse fit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -258,18 +263,27 @@ impl EllipseFit {
             && self.net % 4 == 0
             && self.sums.n >= self.p.min_samples as i128;
         if !done {
+            if self.sums.n >= N_MAX as i128 {
+                // A window that has not closed after N_MAX samples (a standing or crawling
+                // shaft) is abandoned: the next boundary opens a new one.
+                self.open = false;
+                return None;
+            }
             self.add(d);
             return None;
         }
         // This sample is the first past the closing boundary: it ends this window and
-        // opens the next.
+        // opens the next. The next window's reference is the offsets in use *before* this
+        // window's update: in hardware the solve takes about a thousand clocks, so the new
+        // window has started long before the new offsets exist (the offsets found are
+        // b_ref + mean either way, so only the reference lags one window).
         self.windows += 1;
         let r = solve(&self.p, self.b_ref, &self.sums);
+        self.b_ref = self.coefs.offset;
         if let Some(c) = r {
             self.coefs = c;
             self.updates += 1;
         }
-        self.b_ref = self.coefs.offset;
         let d = [xs - self.b_ref[SIN], xc - self.b_ref[COS]];
         self.start_window(d);
         r

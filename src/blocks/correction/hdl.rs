@@ -1,6 +1,7 @@
 //! rust-hdl description of the front-end correction and its automatic calibration (maths,
 //! timing and rules in [`crate::blocks::correction`]).
 use super::autocal::{c16, AutoCal};
+use super::fit_hdl::{FitCal, FitConsts};
 use super::phase::PhaseCos;
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, fill, mask};
@@ -39,6 +40,8 @@ pub struct Correction {
     pub cal_update: Signal<Out, Bit>,
     /// The automatic calibration: one instance in auto mode, none in static mode.
     cal: Vec<AutoCal>,
+    /// The ellipse-fit calibration: one instance in auto (fit) mode, none otherwise.
+    fit: Vec<FitCal>,
     /// The phase correction of the cos track: one instance when k != 0, none otherwise.
     ph: Vec<PhaseCos>,
     v1: DFF<Bit>,
@@ -128,6 +131,7 @@ impl Correction {
         } else {
             vec![]
         };
+        let fit = FitConsts::of(p).map_or(vec![], |k| vec![FitCal::new(p, k)]);
         let ph = if p.has_phase() {
             vec![PhaseCos::new(p)]
         } else {
@@ -148,6 +152,7 @@ impl Correction {
             gain_cos: Default::default(),
             cal_update: Default::default(),
             cal,
+            fit,
             ph,
             v1: Default::default(),
             sg1_s: Default::default(),
@@ -233,6 +238,18 @@ impl Logic for Correction {
             self.g_s.next = self.cal[i].g_sin.val();
             self.g_c.next = self.cal[i].g_cos.val();
             self.upd.next = self.cal[i].update.val();
+        }
+        for i in 0..self.fit.len() {
+            self.fit[i].clk.next = self.clk.val();
+            self.fit[i].rst.next = self.rst.val();
+            self.fit[i].valid.next = self.in_valid.val();
+            self.fit[i].x_sin.next = self.in_sin.val();
+            self.fit[i].x_cos.next = self.in_cos.val();
+            self.b_s.next = self.fit[i].b_sin.val() & self.amask.val();
+            self.b_c.next = self.fit[i].b_cos.val() & self.amask.val();
+            self.g_s.next = self.fit[i].g_sin.val();
+            self.g_c.next = self.fit[i].g_cos.val();
+            self.upd.next = self.fit[i].update.val();
         }
         // Stage 1: sign-extend, subtract the offset, split into sign and magnitude.
         self.xs_s.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
@@ -344,6 +361,13 @@ impl Logic for Correction {
             self.ph[i].g_c.next = self.g1_c.q.val();
             self.ph[i].sin3.next = self.o3_s.q.val();
             self.ph[i].v3.next = self.v3.q.val();
+            // Static mode: unused (k is the phase stage's constant).
+            self.ph[i].k_mag.next = self.g0_s.val();
+            self.ph[i].k_neg.next = false;
+            for j in 0..self.fit.len() {
+                self.ph[i].k_mag.next = self.fit[j].k_mag_d.val();
+                self.ph[i].k_neg.next = self.fit[j].k_neg_d.val();
+            }
             self.out_valid.next = self.ph[i].out_valid.val();
             self.out_sin.next = self.ph[i].out_sin.val();
             self.out_cos.next = self.ph[i].out_cos.val();

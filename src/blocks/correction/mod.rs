@@ -2,9 +2,10 @@
 //! x' = (x - b) * g with g = 1/m (the thesis's two-point calibration, eqs. 3.3-3.6),
 //! static from the config or updated online by an automatic calibration that tracks the
 //! peaks of each channel over whole signal periods (as interpolator ICs do), and an
-//! optional static correction of the cos track's phase error. [`fit`] is a model-only
-//! least-squares ellipse fit (offset, gain and phase at any speed) that has no RTL yet;
-//! figures in docs/correction.md.
+//! optional static correction of the cos track's phase error. Mode `auto` is the
+//! least-squares ellipse fit (offset, gain and phase at any speed): model [`fit`], RTL
+//! [`fit_hdl`] and [`fit_solve`]; mode `peak` is the peak tracker below ([`autocal`]).
+//! Figures in docs/correction.md.
 //!
 //! ```text
 //!            stage 1 (reg)              stage 2 (reg)        stage 3 (reg)
@@ -86,7 +87,8 @@
 //!   at all: the block is the 3-clock block above, bit for bit.
 //! * Not with the automatic calibration: its peak-derived g_c would drop 1 / cos phi.
 //!
-//! # Automatic calibration (mode `Auto`)
+//! # Peak-tracking calibration (mode `peak`; the ellipse fit of mode `auto` is documented in
+//! [`fit`], [`fit_hdl`] and [`fit_solve`])
 //! * Offset binary u = x + 2^(A-1) (sign bit flipped): u in [0, 2^A - 1], so max/min are
 //!   unsigned compares.
 //! * Period detection: the quadrant of each sample from the signs of d = x - b of both
@@ -126,6 +128,8 @@
 //!   also the power-up values) and restarts the tracker; it aborts a division.
 pub mod autocal;
 pub mod fit;
+pub mod fit_hdl;
+pub mod fit_solve;
 pub mod hdl;
 pub mod model;
 pub mod phase;
@@ -159,6 +163,34 @@ impl AutoCalParams {
     }
 }
 
+/// Parameters of the automatic calibration by ellipse fit ([`fit_hdl::FitCal`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct FitCalParams {
+    target_amplitude: u32,
+    periods: u32,
+    min_amplitude: u32,
+    min_samples: u32,
+}
+
+impl FitCalParams {
+    /// Target amplitude T (LSB).
+    pub fn target_amplitude(&self) -> u32 {
+        self.target_amplitude
+    }
+    /// Least whole periods K per window.
+    pub fn periods(&self) -> u32 {
+        self.periods
+    }
+    /// No update below this amplitude (LSB) on either track.
+    pub fn min_amplitude(&self) -> u32 {
+        self.min_amplitude
+    }
+    /// Least samples per window.
+    pub fn min_samples(&self) -> u32 {
+        self.min_samples
+    }
+}
+
 /// Parameters of [`hdl::Correction`] and [`model::CorrectionModel`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct CorrectionParams {
@@ -167,6 +199,9 @@ pub struct CorrectionParams {
     offset: [i32; 2],
     gain: [u32; 2],
     auto: Option<AutoCalParams>,
+    /// The ellipse fit (mode `auto`), omitted from the listing when off.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fit: Option<FitCalParams>,
     /// Cross coefficient k of the phase correction (signed code, see [`phase_codes`]); 0:
     /// no phase correction and no phase hardware (omitted from the parameter listing).
     #[serde(skip_serializing_if = "is_zero")]
@@ -238,6 +273,7 @@ impl CorrectionParams {
             offset,
             gain,
             auto: None,
+            fit: None,
             cross: 0,
         })
     }
@@ -289,6 +325,41 @@ impl CorrectionParams {
         })
     }
 
+    /// Turns on the automatic calibration by least-squares ellipse fit (offset, gain and
+    /// phase; the static offsets/gains become the values after reset): `target_amplitude`,
+    /// `periods` and `min_amplitude` as in [`Self::with_auto`], `min_samples` =
+    /// 1..=[`fit::N_MAX`] samples per window at least.
+    pub fn with_fit(
+        self,
+        target_amplitude: u32,
+        periods: u32,
+        min_amplitude: u32,
+        min_samples: u32,
+    ) -> crate::error::Result<Self> {
+        let a = self.with_auto(target_amplitude, periods, min_amplitude)?;
+        if !(1..=fit::N_MAX).contains(&min_samples) {
+            return Err(invalid(format!(
+                "fit window of at least {min_samples} samples is out of range: 1..={}",
+                fit::N_MAX
+            )));
+        }
+        Ok(Self {
+            fit: Some(FitCalParams {
+                target_amplitude,
+                periods,
+                min_amplitude,
+                min_samples,
+            }),
+            auto: None,
+            ..a
+        })
+    }
+
+    /// The ellipse fit, if on.
+    pub fn fit(&self) -> Option<FitCalParams> {
+        self.fit
+    }
+
     /// Turns on the static phase correction of the cos track with the signed cross
     /// coefficient code `cross` = round(2^GF g_s tan(phi)), |cross| <= 65535 (0: off). The
     /// cos gain code should already hold g_c / cos(phi) (both from [`phase_codes`]). Not
@@ -299,7 +370,7 @@ impl CorrectionParams {
                 "phase cross coefficient code {cross} does not fit 16 bits and a sign"
             )));
         }
-        if cross != 0 && self.auto.is_some() {
+        if cross != 0 && (self.auto.is_some() || self.fit.is_some()) {
             return Err(invalid(
                 "phase correction is for static mode: the automatic calibration would replace \
                  the cos gain that carries 1 / cos(phase)"
@@ -314,9 +385,9 @@ impl CorrectionParams {
         self.cross
     }
 
-    /// The phase stage is built (k != 0).
+    /// The phase stage is built (k != 0, or the ellipse fit, whose k changes).
     pub fn has_phase(&self) -> bool {
-        self.cross != 0
+        self.cross != 0 || self.fit.is_some()
     }
 
     /// Clock cycles from `in_valid` to `out_valid`: [`LATENCY_CYCLES`], plus

@@ -50,6 +50,11 @@ pub struct PhaseCos {
     pub sin3: Signal<In, Bits<16>>,
     /// Valid bit of the correction's stage 3.
     pub v3: Signal<In, Bit>,
+    /// Auto mode: |k| in use when the sample was in stage 1 (the fit's code delayed one
+    /// clock), UQ(16-GF).GF; ignored in static mode (k is a constant).
+    pub k_mag: Signal<In, Bits<16>>,
+    /// k < 0, with `k_mag`.
+    pub k_neg: Signal<In, Bit>,
     /// Strobe of the corrected sample (one clock after `v3`).
     pub out_valid: Signal<Out, Bit>,
     /// Corrected sine (stage-3 value, delayed one clock).
@@ -78,10 +83,13 @@ pub struct PhaseCos {
     /// Stage 4: rounded sum (bits F.. of the word are the result modulo 2^A).
     r: Signal<Local, Bits<32>>,
     o: Signal<Local, Bits<32>>,
-    /// |k|: magnitude of the cross coefficient, UQ(16-GF).GF.
-    kmag: Constant<Bits<16>>,
-    /// k < 0.
-    kneg: Constant<Bit>,
+    /// Static mode: |k| and k < 0 of `p.cross()`; auto mode (`kdyn`): the ports instead.
+    kmag0: Constant<Bits<16>>,
+    kneg0: Constant<Bit>,
+    kdyn: Constant<Bit>,
+    /// k in use (the constants or the ports).
+    km: Signal<Local, Bits<16>>,
+    kn: Signal<Local, Bit>,
     /// s = max(0, A - 14): right shift of both products.
     pshift: Constant<Bits<32>>,
     /// F = GF - s: fraction bits of the sum.
@@ -113,13 +121,12 @@ pub struct PhaseCos {
 }
 
 impl PhaseCos {
-    /// Phase stage for `p` (k = `p.cross()`).
+    /// Phase stage for `p` (k comes in on `k_mag`, `k_neg`).
     pub fn new(p: &CorrectionParams) -> Self {
         let a = p.adc_width();
         let s = p.phase_shift();
         let f = p.gain_frac_bits() - s;
         let (rnd, hi, lo) = constants(p);
-        let k = p.cross();
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -130,6 +137,8 @@ impl PhaseCos {
             g_c: Default::default(),
             sin3: Default::default(),
             v3: Default::default(),
+            k_mag: Default::default(),
+            k_neg: Default::default(),
             out_valid: Default::default(),
             out_sin: Default::default(),
             out_cos: Default::default(),
@@ -151,8 +160,11 @@ impl PhaseCos {
             sf: Default::default(),
             r: Default::default(),
             o: Default::default(),
-            kmag: Constant::new(Bits::<16>::from(k.unsigned_abs() as u64 & 0xffff)),
-            kneg: Constant::new(k < 0),
+            kmag0: Constant::new(Bits::<16>::from(p.cross().unsigned_abs() as u64 & 0xffff)),
+            kneg0: Constant::new(p.cross() < 0),
+            kdyn: Constant::new(p.fit().is_some()),
+            km: Default::default(),
+            kn: Default::default(),
             pshift: c32(s as u64),
             fshift: c32(f as u64),
             rnd0: c32(rnd[0]),
@@ -178,11 +190,17 @@ impl Logic for PhaseCos {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clk, pc2, q2, na2, nb2, s3, na3, nb3, v4, o4_s, o4_c);
+        self.km.next = self.kmag0.val();
+        self.kn.next = self.kneg0.val();
+        if self.kdyn.val() {
+            self.km.next = self.k_mag.val();
+            self.kn.next = self.k_neg.val();
+        }
         // Stage 2: the two unsigned 16 x 16 -> 32 products, shifted right by s.
         self.pc2.d.next = (self.m_c.val() * self.g_c.val()) >> self.pshift.val();
-        self.q2.d.next = (self.m_s.val() * self.kmag.val()) >> self.pshift.val();
+        self.q2.d.next = (self.m_s.val() * self.km.val()) >> self.pshift.val();
         self.na2.d.next = self.neg_c.val();
-        self.nb2.d.next = self.neg_s.val() ^ self.kneg.val();
+        self.nb2.d.next = self.neg_s.val() ^ self.kn.val();
         // Stage 3: S' = (P_c or !P_c) + (Q or !Q) = S - n, one adder (|S| < 2^31).
         self.ma.next = self.zero.val();
         if self.na2.q.val() {

@@ -1,0 +1,799 @@
+//! rust-hdl description of the end-of-window solve of the ellipse fit: the integer
+//! specification of [`super::fit::solve`] on one serial shift-add multiplier and one serial
+//! restoring divider / square root (they share one compare-and-subtract), sequenced by a
+//! state machine.
+//!
+//! ```text
+//!  start ─► snapshot N, |Σd| (+sign), Σd², |Σd_s d_c| (+sign), b_ref
+//!   │
+//!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, u_q, it):
+//!  m_s,m_c = rdiv(|Σd| 2^8, N)      DIV 64 steps   V = floor(Σd² 2^16 / N)  DIV 80 steps
+//!  Cq = floor(Σsc 2^16 / N)         DIV 80 steps   V -= m², C = Cq - m_s m_c  MUL 32 steps
+//!  Amp = isqrt(2V)                  SQRT 32 steps  Amp < min 2^8 ─────────────► Idle
+//!  S = rdiv(-C 2^16, Amp_s Amp_c)   MUL, DIV       |S| <= smax; Cc = isqrt(2^30 - S²)
+//!  b = b_ref + rdiv(m, 2^8)         add, out of range ───────────────────────► Idle
+//!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
+//!
+//!  DIV (restoring, dividend and quotient share u_x):   SQRT (restoring, two bits a step):
+//!    t = 2 u_r + msb(u_x); t >= u_d ?                   t = 4 u_r + top2(u_x); trial = 4 u_q + 1
+//!    u_r = t - u_d : t; u_x = 2 u_x + (t >= u_d)        t >= trial ? u_r = t - trial, u_q = 2u_q+1
+//!  then: adj = round ? 2 u_r >= u_d : neg & u_r != 0; u_mag = u_x + adj; u_x = +-u_mag
+//!  MUL (shift-add): u_d odd ? u_r += u_x; u_x <<= 1; u_d >>= 1 (32 steps, b < 2^32)
+//! ```
+//!
+//! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
+//! * |Σd| < 2^(A+24) = 2^40, so |Σd| 2^8 < 2^48; Σd² and |Σd_s d_c| < 2^(2A+24) = 2^56.
+//! * Division by N of Σd² 2^16 (72 bits) needs no 72-bit word: the dividend is Σd² and the
+//!   divider runs 80 steps instead of 64; after 64 steps the bits entering from the top of
+//!   u_x are the quotient's bits 79..64, which are zero because the quotient
+//!   floor(Σd² 2^16 / N) < 2^(2A+16) <= 2^48 — exactly the 16 zero bits the dividend needs.
+//! * Remainders are below the divisor; the largest divisor is Amp_s Amp_c < 2^49
+//!   (Amp = isqrt(2V), V <= 2^(2A-2+16) because a variable in a range of width 2^A has a
+//!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word.
+//! * |C| <= sqrt(V_s V_c) < 2^(2A+14) <= 2^46, so |C| 2^16 < 2^62; T 2^(GF+23) < 2^53;
+//!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits.
+//! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
+//!   all below 2^32 (the 32 steps), products below 2^50.
+//! * Each state writes its registers through at most one adder or compare (the timing rule
+//!   of docs/correction.md): abs, add, round and negate are separate states.
+//!
+//! # Timing
+//! [`SOLVE_CYCLES`] clocks from `start` to `done` when the update is accepted (fewer when
+//! refused). The window that follows must last longer (`min_samples` x clocks per sample),
+//! which the config checks; a window that ends while the solver is busy is dropped.
+use super::autocal::c16;
+use super::fit::N_MAX;
+use super::{CorrectionParams, COS, SIN};
+use crate::blocks::{c32, mask};
+use rust_hdl::prelude::*;
+
+/// Clocks from the rising edge that takes `start` to the one that loads the coefficients
+/// of an accepted solve: 6 divisions of 64 steps (68 clocks with their set-up, rounding and
+/// sign states), 3 of 80 steps (84), 8 multiplications and 3 square roots (33 each) and 4
+/// single states: 408 + 252 + 264 + 99 + 4.
+pub const SOLVE_CYCLES: u32 = 1027;
+
+/// Clocks from a window's first sample after its closing boundary (the sample presented
+/// before rising edge j) to the new coefficients (on the outputs after edge j +
+/// UPDATE_LATENCY): three pipeline stages of the fit, then [`SOLVE_CYCLES`];
+/// `tests/correction_fit_rtl.rs` checks every update against it.
+pub const UPDATE_LATENCY: u32 = SOLVE_CYCLES + 3;
+
+// The widths of the module doc assume windows of at most 2^24 samples.
+const _: () = assert!(N_MAX <= 1 << 24);
+
+/// A 64-bit constant.
+pub(super) fn c64(v: u64) -> Constant<Bits<64>> {
+    Constant::new(Bits::<64>::from(v))
+}
+
+/// Steps of the solve (the operation in each state's comment is the one it starts).
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum FitState {
+    /// Waiting for `start`.
+    Idle,
+    /// m_s = rdiv(Σd_s 2^8, N).
+    Ms,
+    /// m_c = rdiv(Σd_c 2^8, N).
+    Mc,
+    /// floor(Σd_s² 2^16 / N).
+    Vs,
+    /// floor(Σd_c² 2^16 / N).
+    Vc,
+    /// floor(Σd_s d_c 2^16 / N).
+    Cq,
+    /// m_s².
+    M1,
+    /// V_s -= m_s²; m_c².
+    M2,
+    /// V_c -= m_c²; |m_s m_c|.
+    M3,
+    /// C = Cq - m_s m_c.
+    Cv,
+    /// |C|; Amp_s = isqrt(2 V_s).
+    SqS,
+    /// Amp_c = isqrt(2 V_c).
+    SqC,
+    /// Amplitude check; Amp_s Amp_c.
+    Chk,
+    /// S = rdiv(-C 2^16, Amp_s Amp_c).
+    Sn,
+    /// Clamp S; S².
+    Sn2,
+    /// Cc = isqrt(2^30 - S²).
+    Cs,
+    /// round(|m| / 2^8).
+    OffA,
+    /// b = b_ref +- round(|m| / 2^8).
+    OffB,
+    /// Offset range check; g_s = rdiv(T 2^(GF+8), Amp_s).
+    OffC,
+    /// Clamp g_s; Amp_c Cc.
+    Q1,
+    /// g_c = rdiv(T 2^(GF+23), Amp_c Cc).
+    Gc,
+    /// Clamp g_c; Amp_s Cc.
+    Q2,
+    /// T |S|.
+    Ts,
+    /// k = rdiv(T S 2^(GF+8), Amp_s Cc).
+    Kd,
+    /// Clamp k; load every coefficient.
+    Load,
+    /// Divider steps.
+    DivRun,
+    /// Divider rounding decision.
+    DivAdj,
+    /// Divider rounding add.
+    DivInc,
+    /// Divider sign.
+    DivNeg,
+    /// Square-root steps.
+    SqRun,
+    /// Multiplier steps.
+    MulRun,
+}
+
+/// The serial solver and the coefficient registers it loads.
+#[derive(LogicBlock)]
+pub struct FitSolve {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset, active high: aborts a solve, restores the configured coefficients.
+    pub rst: Signal<In, Bit>,
+    /// One clock: take the window's sums below and solve.
+    pub start: Signal<In, Bit>,
+    /// Samples N of the window.
+    pub n: Signal<In, Bits<32>>,
+    /// Σd_s, two's complement.
+    pub s1_s: Signal<In, Bits<64>>,
+    /// Σd_c, two's complement.
+    pub s1_c: Signal<In, Bits<64>>,
+    /// Σd_s².
+    pub s2_s: Signal<In, Bits<64>>,
+    /// Σd_c².
+    pub s2_c: Signal<In, Bits<64>>,
+    /// Σd_s d_c, two's complement.
+    pub ssc: Signal<In, Bits<64>>,
+    /// Sine reference offset b_ref of the window, 32-bit two's complement.
+    pub bref_s: Signal<In, Bits<32>>,
+    /// Cosine reference offset b_ref of the window, 32-bit two's complement.
+    pub bref_c: Signal<In, Bits<32>>,
+    /// A solve is under way.
+    pub busy: Signal<Out, Bit>,
+    /// One clock when new coefficients have been loaded.
+    pub done: Signal<Out, Bit>,
+    /// Sine offset in use, 32-bit two's complement.
+    pub off_s: Signal<Out, Bits<32>>,
+    /// Cosine offset in use, 32-bit two's complement.
+    pub off_c: Signal<Out, Bits<32>>,
+    /// Sine gain code in use, UQ(16-GF).GF.
+    pub g_s: Signal<Out, Bits<16>>,
+    /// Cosine gain code in use (carries 1 / cos phi).
+    pub g_c: Signal<Out, Bits<16>>,
+    /// |k| of the cross code in use.
+    pub k_mag: Signal<Out, Bits<16>>,
+    /// k < 0 (never with |k| = 0).
+    pub k_neg: Signal<Out, Bit>,
+    state: DFF<FitState>,
+    ret: DFF<FitState>,
+    u_x: DFF<Bits<64>>,
+    u_d: DFF<Bits<64>>,
+    u_r: DFF<Bits<64>>,
+    u_q: DFF<Bits<64>>,
+    u_mag: DFF<Bits<64>>,
+    u_neg: DFF<Bit>,
+    u_rnd: DFF<Bit>,
+    u_adj: DFF<Bit>,
+    it: DFF<Bits<32>>,
+    sn: DFF<Bits<64>>,
+    a1_s: DFF<Bits<64>>,
+    a1_c: DFF<Bits<64>>,
+    n1_s: DFF<Bit>,
+    n1_c: DFF<Bit>,
+    a2_s: DFF<Bits<64>>,
+    a2_c: DFF<Bits<64>>,
+    asc: DFF<Bits<64>>,
+    nsc: DFF<Bit>,
+    br_s: DFF<Bits<32>>,
+    br_c: DFF<Bits<32>>,
+    m_s: DFF<Bits<64>>,
+    m_c: DFF<Bits<64>>,
+    v_s: DFF<Bits<64>>,
+    v_c: DFF<Bits<64>>,
+    cc: DFF<Bits<64>>,
+    cmag: DFF<Bits<64>>,
+    cpos: DFF<Bit>,
+    amp_s: DFF<Bits<64>>,
+    amp_c: DFF<Bits<64>>,
+    smag: DFF<Bits<64>>,
+    sneg: DFF<Bit>,
+    cs: DFF<Bits<64>>,
+    t_s: DFF<Bits<32>>,
+    t_c: DFF<Bits<32>>,
+    o_s: DFF<Bits<32>>,
+    o_c: DFF<Bits<32>>,
+    ng_s: DFF<Bits<16>>,
+    ng_c: DFF<Bits<16>>,
+    q2: DFF<Bits<64>>,
+    r_os: DFFWithInit<Bits<32>>,
+    r_oc: DFFWithInit<Bits<32>>,
+    r_gs: DFFWithInit<Bits<16>>,
+    r_gc: DFFWithInit<Bits<16>>,
+    r_km: DFF<Bits<16>>,
+    r_kn: DFF<Bit>,
+    r_done: DFF<Bit>,
+    /// Shared compare-and-subtract of the divider and the square root.
+    tt: Signal<Local, Bits<64>>,
+    sb: Signal<Local, Bits<64>>,
+    ge: Signal<Local, Bit>,
+    /// Clamped |S| (the multiplier operand of S²).
+    sclamp: Signal<Local, Bits<64>>,
+    /// Upper bound of |S|: round(2^15 sin 15 deg).
+    smax: Constant<Bits<64>>,
+    /// min_amplitude 2^8.
+    minamp: Constant<Bits<64>>,
+    /// T 2^(GF+8): dividend of g_s.
+    tgs: Constant<Bits<64>>,
+    /// T 2^(GF+23): dividend of g_c.
+    tgc: Constant<Bits<64>>,
+    /// T.
+    tamp: Constant<Bits<64>>,
+    /// GF + 8: shift of T |S|.
+    kshift: Constant<Bits<32>>,
+    /// 2^30.
+    two30: Constant<Bits<64>>,
+    /// Largest gain / cross code.
+    cmax: Constant<Bits<64>>,
+    /// 2^(A-1) - 2^31 ... the offset range limits with the sign bit flipped: b < lo_f or
+    /// b >= hi_f (unsigned, flipped) is out of range.
+    lo_f: Constant<Bits<32>>,
+    hi_f: Constant<Bits<32>>,
+    /// Bit 31.
+    sign32: Constant<Bits<32>>,
+    /// Bit 63.
+    sign63: Constant<Bits<64>>,
+    /// 128: the rounding half of a division by 2^8.
+    half8: Constant<Bits<32>>,
+    /// Mask of 16 bits.
+    m16: Constant<Bits<64>>,
+    /// Step counts and shifts.
+    i32c: Constant<Bits<32>>,
+    i64c: Constant<Bits<32>>,
+    i80c: Constant<Bits<32>>,
+    one32: Constant<Bits<32>>,
+    two32: Constant<Bits<32>>,
+    s8: Constant<Bits<32>>,
+    s16: Constant<Bits<32>>,
+    s62: Constant<Bits<32>>,
+    s63: Constant<Bits<32>>,
+    one64: Constant<Bits<64>>,
+    zero64: Constant<Bits<64>>,
+    zero32: Constant<Bits<32>>,
+    zero16: Constant<Bits<16>>,
+    /// Configured (reset) offsets and gains.
+    b0_s: Constant<Bits<32>>,
+    b0_c: Constant<Bits<32>>,
+    g0_s: Constant<Bits<16>>,
+    g0_c: Constant<Bits<16>>,
+}
+
+/// The fit's settings as the solver needs them.
+#[derive(Clone, Copy, Debug)]
+pub struct SolveConsts {
+    /// ADC width A.
+    pub adc_width: u32,
+    /// Gain fraction bits GF.
+    pub gain_frac_bits: u32,
+    /// Target amplitude T (LSB).
+    pub target_amplitude: u32,
+    /// No update below this amplitude (LSB).
+    pub min_amplitude: u32,
+}
+
+impl FitSolve {
+    /// Solver for `k` starting from (and reset to) the offsets and gains of `p`.
+    pub fn new(p: &CorrectionParams, k: SolveConsts) -> Self {
+        let a = k.adc_width;
+        let gf = k.gain_frac_bits;
+        let t = k.target_amplitude as u64;
+        let lim = 1i64 << (a - 1);
+        let flip = |v: i64| (v as u64 & mask(32)) ^ (1 << 31);
+        let sext = |v: i32| v as i64 as u64 & mask(32);
+        Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            start: Default::default(),
+            n: Default::default(),
+            s1_s: Default::default(),
+            s1_c: Default::default(),
+            s2_s: Default::default(),
+            s2_c: Default::default(),
+            ssc: Default::default(),
+            bref_s: Default::default(),
+            bref_c: Default::default(),
+            busy: Default::default(),
+            done: Default::default(),
+            off_s: Default::default(),
+            off_c: Default::default(),
+            g_s: Default::default(),
+            g_c: Default::default(),
+            k_mag: Default::default(),
+            k_neg: Default::default(),
+            state: Default::default(),
+            ret: Default::default(),
+            u_x: Default::default(),
+            u_d: Default::default(),
+            u_r: Default::default(),
+            u_q: Default::default(),
+            u_mag: Default::default(),
+            u_neg: Default::default(),
+            u_rnd: Default::default(),
+            u_adj: Default::default(),
+            it: Default::default(),
+            sn: Default::default(),
+            a1_s: Default::default(),
+            a1_c: Default::default(),
+            n1_s: Default::default(),
+            n1_c: Default::default(),
+            a2_s: Default::default(),
+            a2_c: Default::default(),
+            asc: Default::default(),
+            nsc: Default::default(),
+            br_s: Default::default(),
+            br_c: Default::default(),
+            m_s: Default::default(),
+            m_c: Default::default(),
+            v_s: Default::default(),
+            v_c: Default::default(),
+            cc: Default::default(),
+            cmag: Default::default(),
+            cpos: Default::default(),
+            amp_s: Default::default(),
+            amp_c: Default::default(),
+            smag: Default::default(),
+            sneg: Default::default(),
+            cs: Default::default(),
+            t_s: Default::default(),
+            t_c: Default::default(),
+            o_s: Default::default(),
+            o_c: Default::default(),
+            ng_s: Default::default(),
+            ng_c: Default::default(),
+            q2: Default::default(),
+            r_os: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[SIN]))),
+            r_oc: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[COS]))),
+            r_gs: DFFWithInit::new(Bits::<16>::from(p.gain()[SIN] as u64)),
+            r_gc: DFFWithInit::new(Bits::<16>::from(p.gain()[COS] as u64)),
+            r_km: Default::default(),
+            r_kn: Default::default(),
+            r_done: Default::default(),
+            tt: Default::default(),
+            sb: Default::default(),
+            ge: Default::default(),
+            sclamp: Default::default(),
+            smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
+            minamp: c64((k.min_amplitude as u64) << 8),
+            tgs: c64(t << (gf + 8)),
+            tgc: c64(t << (gf + 23)),
+            tamp: c64(t),
+            kshift: c32((gf + 8) as u64),
+            two30: c64(1 << 30),
+            cmax: c64(0xffff),
+            lo_f: c32(flip(-lim)),
+            hi_f: c32(flip(lim)),
+            sign32: c32(1 << 31),
+            sign63: c64(1 << 63),
+            half8: c32(128),
+            m16: c64(0xffff),
+            i32c: c32(32),
+            i64c: c32(64),
+            i80c: c32(80),
+            one32: c32(1),
+            two32: c32(2),
+            s8: c32(8),
+            s16: c32(16),
+            s62: c32(62),
+            s63: c32(63),
+            one64: c64(1),
+            zero64: c64(0),
+            zero32: c32(0),
+            zero16: c16(0),
+            b0_s: c32(sext(p.offset()[SIN])),
+            b0_c: c32(sext(p.offset()[COS])),
+            g0_s: c16(p.gain()[SIN] as u64),
+            g0_c: c16(p.gain()[COS] as u64),
+        }
+    }
+}
+
+impl Logic for FitSolve {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clk, state, ret, u_x, u_d, u_r, u_q, u_mag, u_neg, u_rnd, u_adj, it, sn, a1_s,
+            a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos,
+            amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs,
+            r_gc, r_km, r_kn, r_done
+        );
+        // The shared compare-and-subtract: divider step or square-root step.
+        self.tt.next =
+            (self.u_r.q.val() << self.one32.val()) | (self.u_x.q.val() >> self.s63.val());
+        self.sb.next = self.u_d.q.val();
+        if self.state.q.val() == FitState::SqRun {
+            self.tt.next =
+                (self.u_r.q.val() << self.two32.val()) | (self.u_x.q.val() >> self.s62.val());
+            self.sb.next = (self.u_q.q.val() << self.two32.val()) | self.one64.val();
+        }
+        self.ge.next = self.tt.val() >= self.sb.val();
+        self.sclamp.next = self.u_mag.q.val();
+        if self.u_mag.q.val() > self.smax.val() {
+            self.sclamp.next = self.smax.val();
+        }
+        self.r_done.d.next = false;
+        match self.state.q.val() {
+            FitState::Idle => {
+                if self.start.val() {
+                    self.sn.d.next = bit_cast::<64, 32>(self.n.val());
+                    self.a1_s.d.next = self.s1_s.val();
+                    self.n1_s.d.next = (self.s1_s.val() & self.sign63.val()).any();
+                    if (self.s1_s.val() & self.sign63.val()).any() {
+                        self.a1_s.d.next = self.zero64.val() - self.s1_s.val();
+                    }
+                    self.a1_c.d.next = self.s1_c.val();
+                    self.n1_c.d.next = (self.s1_c.val() & self.sign63.val()).any();
+                    if (self.s1_c.val() & self.sign63.val()).any() {
+                        self.a1_c.d.next = self.zero64.val() - self.s1_c.val();
+                    }
+                    self.a2_s.d.next = self.s2_s.val();
+                    self.a2_c.d.next = self.s2_c.val();
+                    self.asc.d.next = self.ssc.val();
+                    self.nsc.d.next = (self.ssc.val() & self.sign63.val()).any();
+                    if (self.ssc.val() & self.sign63.val()).any() {
+                        self.asc.d.next = self.zero64.val() - self.ssc.val();
+                    }
+                    self.br_s.d.next = self.bref_s.val();
+                    self.br_c.d.next = self.bref_c.val();
+                    self.state.d.next = FitState::Ms;
+                }
+            }
+            FitState::Ms => {
+                self.u_x.d.next = self.a1_s.q.val() << self.s8.val();
+                self.u_d.d.next = self.sn.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i64c.val();
+                self.u_rnd.d.next = true;
+                self.u_neg.d.next = self.n1_s.q.val();
+                self.ret.d.next = FitState::Mc;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::Mc => {
+                self.m_s.d.next = self.u_mag.q.val();
+                self.u_x.d.next = self.a1_c.q.val() << self.s8.val();
+                self.u_d.d.next = self.sn.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i64c.val();
+                self.u_rnd.d.next = true;
+                self.u_neg.d.next = self.n1_c.q.val();
+                self.ret.d.next = FitState::Vs;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::Vs => {
+                self.m_c.d.next = self.u_mag.q.val();
+                self.u_x.d.next = self.a2_s.q.val();
+                self.u_d.d.next = self.sn.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i80c.val();
+                self.u_rnd.d.next = false;
+                self.u_neg.d.next = false;
+                self.ret.d.next = FitState::Vc;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::Vc => {
+                self.v_s.d.next = self.u_x.q.val();
+                self.u_x.d.next = self.a2_c.q.val();
+                self.u_d.d.next = self.sn.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i80c.val();
+                self.u_rnd.d.next = false;
+                self.u_neg.d.next = false;
+                self.ret.d.next = FitState::Cq;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::Cq => {
+                self.v_c.d.next = self.u_x.q.val();
+                self.u_x.d.next = self.asc.q.val();
+                self.u_d.d.next = self.sn.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i80c.val();
+                self.u_rnd.d.next = false;
+                self.u_neg.d.next = self.nsc.q.val();
+                self.ret.d.next = FitState::M1;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::M1 => {
+                self.cc.d.next = self.u_x.q.val();
+                self.u_x.d.next = self.m_s.q.val();
+                self.u_d.d.next = self.m_s.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::M2;
+                self.state.d.next = FitState::MulRun;
+            }
+            FitState::M2 => {
+                self.v_s.d.next = self.v_s.q.val() - self.u_r.q.val();
+                self.u_x.d.next = self.m_c.q.val();
+                self.u_d.d.next = self.m_c.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::M3;
+                self.state.d.next = FitState::MulRun;
+            }
+            FitState::M3 => {
+                self.v_c.d.next = self.v_c.q.val() - self.u_r.q.val();
+                self.u_x.d.next = self.m_s.q.val();
+                self.u_d.d.next = self.m_c.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Cv;
+                self.state.d.next = FitState::MulRun;
+            }
+            FitState::Cv => {
+                // C = Cq - m_s m_c, the product's sign from the means' signs.
+                self.cc.d.next = self.cc.q.val() - self.u_r.q.val();
+                if self.n1_s.q.val() ^ self.n1_c.q.val() {
+                    self.cc.d.next = self.cc.q.val() + self.u_r.q.val();
+                }
+                self.state.d.next = FitState::SqS;
+            }
+            FitState::SqS => {
+                // |C| and the sign of -C (rdiv's sign below; C = 0 gives 0 either way).
+                self.cmag.d.next = self.cc.q.val();
+                self.cpos.d.next = true;
+                if (self.cc.q.val() & self.sign63.val()).any() {
+                    self.cmag.d.next = self.zero64.val() - self.cc.q.val();
+                    self.cpos.d.next = false;
+                }
+                self.u_x.d.next = self.v_s.q.val() << self.one32.val();
+                if (self.v_s.q.val() & self.sign63.val()).any() {
+                    self.u_x.d.next = self.zero64.val();
+                }
+                self.u_r.d.next = self.zero64.val();
+                self.u_q.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::SqC;
+                self.state.d.next = FitState::SqRun;
+            }
+            FitState::SqC => {
+                self.amp_s.d.next = self.u_q.q.val();
+                self.u_x.d.next = self.v_c.q.val() << self.one32.val();
+                if (self.v_c.q.val() & self.sign63.val()).any() {
+                    self.u_x.d.next = self.zero64.val();
+                }
+                self.u_r.d.next = self.zero64.val();
+                self.u_q.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Chk;
+                self.state.d.next = FitState::SqRun;
+            }
+            FitState::Chk => {
+                self.amp_c.d.next = self.u_q.q.val();
+                self.u_x.d.next = self.amp_s.q.val();
+                self.u_d.d.next = self.u_q.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Sn;
+                self.state.d.next = FitState::MulRun;
+                if (self.amp_s.q.val() < self.minamp.val()) | (self.u_q.q.val() < self.minamp.val())
+                {
+                    self.state.d.next = FitState::Idle;
+                }
+            }
+            FitState::Sn => {
+                self.u_x.d.next = self.cmag.q.val() << self.s16.val();
+                self.u_d.d.next = self.u_r.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i64c.val();
+                self.u_rnd.d.next = true;
+                self.u_neg.d.next = self.cpos.q.val();
+                self.ret.d.next = FitState::Sn2;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::Sn2 => {
+                self.smag.d.next = self.sclamp.val();
+                self.sneg.d.next = self.u_neg.q.val();
+                self.u_x.d.next = self.sclamp.val();
+                self.u_d.d.next = self.sclamp.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Cs;
+                self.state.d.next = FitState::MulRun;
+            }
+            FitState::Cs => {
+                self.u_x.d.next = self.two30.val() - self.u_r.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.u_q.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::OffA;
+                self.state.d.next = FitState::SqRun;
+            }
+            FitState::OffA => {
+                self.cs.d.next = self.u_q.q.val();
+                self.t_s.d.next =
+                    (bit_cast::<32, 64>(self.m_s.q.val()) + self.half8.val()) >> self.s8.val();
+                self.t_c.d.next =
+                    (bit_cast::<32, 64>(self.m_c.q.val()) + self.half8.val()) >> self.s8.val();
+                self.state.d.next = FitState::OffB;
+            }
+            FitState::OffB => {
+                self.o_s.d.next = self.br_s.q.val() + self.t_s.q.val();
+                if self.n1_s.q.val() {
+                    self.o_s.d.next = self.br_s.q.val() - self.t_s.q.val();
+                }
+                self.o_c.d.next = self.br_c.q.val() + self.t_c.q.val();
+                if self.n1_c.q.val() {
+                    self.o_c.d.next = self.br_c.q.val() - self.t_c.q.val();
+                }
+                self.state.d.next = FitState::OffC;
+            }
+            FitState::OffC => {
+                self.u_x.d.next = self.tgs.val();
+                self.u_d.d.next = self.amp_s.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i64c.val();
+                self.u_rnd.d.next = true;
+                self.u_neg.d.next = false;
+                self.ret.d.next = FitState::Q1;
+                self.state.d.next = FitState::DivRun;
+                if ((self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val())
+                    | ((self.o_s.q.val() ^ self.sign32.val()) >= self.hi_f.val())
+                    | ((self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val())
+                    | ((self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val())
+                {
+                    self.state.d.next = FitState::Idle;
+                }
+            }
+            FitState::Q1 => {
+                self.ng_s.d.next = bit_cast::<16, 64>(self.u_x.q.val() & self.m16.val());
+                if self.u_x.q.val() > self.cmax.val() {
+                    self.ng_s.d.next = bit_cast::<16, 64>(self.cmax.val());
+                }
+                self.u_x.d.next = self.amp_c.q.val();
+                self.u_d.d.next = self.cs.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Gc;
+                self.state.d.next = FitState::MulRun;
+            }
+            FitState::Gc => {
+                self.u_x.d.next = self.tgc.val();
+                self.u_d.d.next = self.u_r.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i64c.val();
+                self.u_rnd.d.next = true;
+                self.u_neg.d.next = false;
+                self.ret.d.next = FitState::Q2;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::Q2 => {
+                self.ng_c.d.next = bit_cast::<16, 64>(self.u_x.q.val() & self.m16.val());
+                if self.u_x.q.val() > self.cmax.val() {
+                    self.ng_c.d.next = bit_cast::<16, 64>(self.cmax.val());
+                }
+                self.u_x.d.next = self.amp_s.q.val();
+                self.u_d.d.next = self.cs.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Ts;
+                self.state.d.next = FitState::MulRun;
+            }
+            FitState::Ts => {
+                self.q2.d.next = self.u_r.q.val();
+                self.u_x.d.next = self.tamp.val();
+                self.u_d.d.next = self.smag.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Kd;
+                self.state.d.next = FitState::MulRun;
+            }
+            FitState::Kd => {
+                self.u_x.d.next = self.u_r.q.val() << self.kshift.val();
+                self.u_d.d.next = self.q2.q.val();
+                self.u_r.d.next = self.zero64.val();
+                self.it.d.next = self.i64c.val();
+                self.u_rnd.d.next = true;
+                self.u_neg.d.next = self.sneg.q.val();
+                self.ret.d.next = FitState::Load;
+                self.state.d.next = FitState::DivRun;
+            }
+            FitState::Load => {
+                self.r_km.d.next = bit_cast::<16, 64>(self.u_mag.q.val() & self.m16.val());
+                if self.u_mag.q.val() > self.cmax.val() {
+                    self.r_km.d.next = bit_cast::<16, 64>(self.cmax.val());
+                }
+                self.r_kn.d.next = self.sneg.q.val() & self.u_mag.q.val().any();
+                self.r_os.d.next = self.o_s.q.val();
+                self.r_oc.d.next = self.o_c.q.val();
+                self.r_gs.d.next = self.ng_s.q.val();
+                self.r_gc.d.next = self.ng_c.q.val();
+                self.r_done.d.next = true;
+                self.state.d.next = FitState::Idle;
+            }
+            FitState::DivRun => {
+                self.u_r.d.next = self.tt.val();
+                self.u_x.d.next = self.u_x.q.val() << self.one32.val();
+                if self.ge.val() {
+                    self.u_r.d.next = self.tt.val() - self.sb.val();
+                    self.u_x.d.next = (self.u_x.q.val() << self.one32.val()) | self.one64.val();
+                }
+                self.it.d.next = self.it.q.val() - self.one32.val();
+                if self.it.q.val() == self.one32.val() {
+                    self.state.d.next = FitState::DivAdj;
+                }
+            }
+            FitState::DivAdj => {
+                self.u_adj.d.next = self.u_neg.q.val() & self.u_r.q.val().any();
+                if self.u_rnd.q.val() {
+                    self.u_adj.d.next = (self.u_r.q.val() << self.one32.val()) >= self.u_d.q.val();
+                }
+                self.state.d.next = FitState::DivInc;
+            }
+            FitState::DivInc => {
+                self.u_mag.d.next = self.u_x.q.val();
+                if self.u_adj.q.val() {
+                    self.u_mag.d.next = self.u_x.q.val() + self.one64.val();
+                }
+                self.state.d.next = FitState::DivNeg;
+            }
+            FitState::DivNeg => {
+                self.u_x.d.next = self.u_mag.q.val();
+                if self.u_neg.q.val() {
+                    self.u_x.d.next = self.zero64.val() - self.u_mag.q.val();
+                }
+                self.state.d.next = self.ret.q.val();
+            }
+            FitState::SqRun => {
+                self.u_r.d.next = self.tt.val();
+                self.u_q.d.next = self.u_q.q.val() << self.one32.val();
+                if self.ge.val() {
+                    self.u_r.d.next = self.tt.val() - self.sb.val();
+                    self.u_q.d.next = (self.u_q.q.val() << self.one32.val()) | self.one64.val();
+                }
+                self.u_x.d.next = self.u_x.q.val() << self.two32.val();
+                self.it.d.next = self.it.q.val() - self.one32.val();
+                if self.it.q.val() == self.one32.val() {
+                    self.state.d.next = self.ret.q.val();
+                }
+            }
+            FitState::MulRun => {
+                if (self.u_d.q.val() & self.one64.val()).any() {
+                    self.u_r.d.next = self.u_r.q.val() + self.u_x.q.val();
+                }
+                self.u_x.d.next = self.u_x.q.val() << self.one32.val();
+                self.u_d.d.next = self.u_d.q.val() >> self.one32.val();
+                self.it.d.next = self.it.q.val() - self.one32.val();
+                if self.it.q.val() == self.one32.val() {
+                    self.state.d.next = self.ret.q.val();
+                }
+            }
+        }
+        if self.rst.val() {
+            self.state.d.next = FitState::Idle;
+            self.r_os.d.next = self.b0_s.val();
+            self.r_oc.d.next = self.b0_c.val();
+            self.r_gs.d.next = self.g0_s.val();
+            self.r_gc.d.next = self.g0_c.val();
+            self.r_km.d.next = self.zero16.val();
+            self.r_kn.d.next = false;
+            self.r_done.d.next = false;
+        }
+        self.busy.next = !(self.state.q.val() == FitState::Idle);
+        self.done.next = self.r_done.q.val();
+        self.off_s.next = self.r_os.q.val();
+        self.off_c.next = self.r_oc.q.val();
+        self.g_s.next = self.r_gs.q.val();
+        self.g_c.next = self.r_gc.q.val();
+        self.k_mag.next = self.r_km.q.val();
+        self.k_neg.next = self.r_kn.q.val();
+    }
+}
