@@ -107,15 +107,11 @@ fn bad_values_name_the_key_the_position_and_the_range() {
     assert!(e.contains("enable"), "{e}");
 }
 
-/// The default config shows the optional `[abz]` table and the BiSS control keys as
-/// comments: uncommented, they must parse to what their comments say.
+/// The default config shows the optional `[abz]` and `[velocity]` tables and the BiSS
+/// control keys as comments: uncommented, they must parse to what their comments say.
 #[test]
 fn commented_examples_in_the_default_config_are_valid() {
-    let keys = [
-        "[abz]",
-        "enabled = true",
-        "lines =",
-        "max_edge_hz =",
+    let control_keys = [
         "control = true",
         "device_id =",
         "manufacturer_id =",
@@ -123,17 +119,26 @@ fn commented_examples_in_the_default_config_are_valid() {
         "serial_number =",
         "eds_bank =",
     ];
-    let text: String = DEFAULT_CONFIG
-        .lines()
-        .map(|l| match l.strip_prefix("# ") {
-            Some(rest) if keys.iter().any(|k| rest.starts_with(k)) => {
-                // Drop the trailing explanation comment of the example line.
-                let value = rest.split("  #").next().unwrap_or(rest).trim_end();
-                format!("{value}\n")
+    // Inside a commented table (from `# [abz]` or `# [velocity]` to the next blank line)
+    // every line is uncommented; elsewhere only the control keys.
+    let mut in_table = false;
+    let mut text = String::new();
+    for l in DEFAULT_CONFIG.lines() {
+        if l == "# [abz]" || l == "# [velocity]" {
+            in_table = true;
+        } else if l.trim().is_empty() {
+            in_table = false;
+        }
+        let line = match l.strip_prefix("# ") {
+            Some(rest) if in_table || control_keys.iter().any(|k| rest.starts_with(k)) => {
+                // Drop the example line's trailing explanation.
+                rest.split("  #").next().unwrap_or(rest).trim_end()
             }
-            _ => format!("{l}\n"),
-        })
-        .collect();
+            _ => l,
+        };
+        text.push_str(line);
+        text.push('\n');
+    }
     assert_ne!(
         text,
         format!("{DEFAULT_CONFIG}\n"),
@@ -148,6 +153,9 @@ fn commented_examples_in_the_default_config_are_valid() {
         abz.spacing(),
         (1..).find(|&s| clock / s as f64 <= 12.5e6).unwrap()
     );
+    // The velocity comments: tracking at 7.5 kHz, 32 bits with 8 fraction bits, no frames.
+    let v = l.derived.velocity.as_ref().expect("[velocity] enabled");
+    assert_eq!((v.spec.width, v.spec.frac_bits), (32, 8));
     let id = l.derived.biss.control.expect("[biss] control = true");
     assert_eq!(&id.device_id, b"SINDEC");
     assert_eq!(&id.manufacturer_id, b"SD");
