@@ -64,7 +64,8 @@ pub fn closed_loop(
     // not rust-hdl's simulation (the replays in rust-hdl, Icarus, Verilator and the engine
     // check that they agree, on these very rows).
     let uut = BissSlave::new(p).expect("params");
-    let mut uut = BlockEngine::new(uut, "biss_loop", Kind::Compiled).expect("engine builds");
+    // Named as the replays name it: the same Verilog, so one cached library serves both.
+    let mut uut = BlockEngine::new(uut, "biss_slave", Kind::Compiled).expect("engine builds");
     let mut rows = Vec::with_capacity(cycles);
     let mut slo = Vec::with_capacity(cycles);
     for k in 0..cycles {
