@@ -161,15 +161,7 @@ fn commented_examples_in_the_default_config_are_valid() {
     assert_eq!(&id.manufacturer_id, b"SD");
     assert_eq!((id.profile_id, id.serial_number, id.eds_bank), (0, 0, 0));
     // `check` lists the control channel's ID registers.
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("c.toml"), &text).unwrap();
-    let o = Command::new(BIN)
-        .args(["check", "c.toml"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{out}");
+    let out = check_ok(&text);
     assert!(
         out.contains("biss control channel        on:")
             && out.contains("device 0x78..7D = \"SINDEC\""),
@@ -180,18 +172,30 @@ fn commented_examples_in_the_default_config_are_valid() {
 /// `check` without `[biss] control` says the channel is off, and the data word's bits.
 #[test]
 fn check_prints_the_biss_word_and_the_control_channel_off() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("d.toml"), DEFAULT_CONFIG).unwrap();
-    let o = Command::new(BIN)
-        .args(["check", "d.toml"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
+    let out = check_ok(DEFAULT_CONFIG);
     // Default: 2048 PPR x 4 quadrants x 2^14 fine steps = 2^27 positions per turn, no turns.
     assert!(
         out.contains("biss data word              27 bits (0 multi-turn + 27 single-turn, binary)"),
         "{out}"
     );
     assert!(out.contains("biss control channel        off"), "{out}");
+}
+
+/// `sinedec check` on `text` (written to a temporary file): its standard output, after
+/// asserting that it succeeded.
+fn check_ok(text: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("c.toml"), text).unwrap();
+    let o = Command::new(BIN)
+        .args(["check", "c.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        o.status.success(),
+        "{out}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
 }

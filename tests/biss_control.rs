@@ -384,30 +384,34 @@ fn bad_config_keys_are_rejected_with_their_position() {
     use common::assert_config_error;
     assert_config_error(
         &with_biss("control = true\ndevice_id = \"SEVEN77\""),
-        "device_id",
+        "device_id = \"SEVEN77\"",
         &["device_id", "up to 6 printable ASCII"],
     );
     assert_config_error(
         &with_biss("control = true\nmanufacturer_id = \"é\""),
-        "manufacturer_id",
+        "manufacturer_id = \"é\"",
         &["manufacturer_id", "up to 2"],
     );
     assert_config_error(
         &with_biss("control = true\nprofile_id = 65536"),
-        "profile_id",
+        "profile_id = 65536",
         &["profile_id", "0..=65535"],
     );
     assert_config_error(
         &with_biss("control = true\nserial_number = 0x100000000"),
-        "serial_number",
+        "serial_number = 0x100000000",
         &["serial_number", "0..=4294967295"],
     );
     assert_config_error(
         &with_biss("control = true\neds_bank = 256"),
-        "eds_bank",
+        "eds_bank = 256",
         &["eds_bank", "0..=255"],
     );
-    assert_config_error(&with_biss("eds_bank = 1"), "eds_bank", &["control = true"]);
+    assert_config_error(
+        &with_biss("eds_bank = 1"),
+        "eds_bank = 1",
+        &["control = true"],
+    );
     assert_config_error(
         &with_biss("control = true\nregisters = 3"),
         "registers",

@@ -185,13 +185,13 @@ fn in_frames_sets_the_velocity_word_of_every_serial_frame_or_is_rejected() {
     // in_frames without the estimator.
     common::assert_config_error(
         &with_velocity("in_frames = true"),
-        "in_frames",
+        "in_frames = true",
         &["velocity.in_frames", "enabled = true"],
     );
     // The frame's data part beyond 64 bits: 27 position bits + 40 velocity bits.
     common::assert_config_error(
         &with_velocity("enabled = true\nwidth = 40\nin_frames = true"),
-        "in_frames",
+        "in_frames = true",
         &[
             "velocity.in_frames",
             "27 position bits + 40 velocity bits = 67",
