@@ -1,7 +1,7 @@
 //! rust-hdl description of the end-of-window solve of the ellipse fit: the integer
 //! specification of [`super::fit::solve`] on one serial shift-add multiplier and one serial
-//! restoring divider / square root (they share one compare-and-subtract), sequenced by a
-//! state machine.
+//! non-restoring divider / square root, all three on one shared adder, sequenced by a state
+//! machine.
 //!
 //! ```text
 //!  start ─► snapshot N, |Σd| (+sign), Σd², |Σd_s d_c| (+sign), b_ref
@@ -14,11 +14,17 @@
 //!  b = b_ref + rdiv(m, 2^8)         add, out of range ───────────────────────► Idle
 //!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
 //!
-//!  DIV (restoring, dividend and quotient share u_x):   SQRT (restoring, two bits a step):
-//!    t = 2 u_r + msb(u_x); t >= u_d ?                   t = 4 u_r + top2(u_x); trial = 4 u_q + 1
-//!    u_r = t - u_d : t; u_x = 2 u_x + (t >= u_d)        t >= trial ? u_r = t - trial, u_q = 2u_q+1
-//!  then: adj = round ? 2 u_r >= u_d : neg & u_r != 0; u_mag = u_x + adj; u_x = +-u_mag
-//!  MUL (shift-add): u_d odd ? u_r += u_x; u_x <<= 1; u_d >>= 1 (32 steps, b < 2^32)
+//!  shared adder: sum = tt + sb + cin (one carry chain; tt, sb picked by the registered one-hot
+//!  flags f_div / f_sq / f_mul and by the sign of u_r, so no mux follows the chain)
+//!  DIV (non-restoring, dividend and quotient share u_x):  SQRT (non-restoring, 2 bits a step):
+//!    t = 2 u_r + msb(u_x)                                   t = 4 u_r + top2(u_x)
+//!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4u_q+3) : t - (4u_q+1)
+//!    u_x = 2 u_x + (u_r >= 0)                               u_q = 2 u_q + (u_r >= 0)
+//!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
+//!  when u_r < 0)
+//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0 (u_r or u_r + u_d);
+//!  u_mag = u_x + adj; u_x = +-u_mag
+//!  MUL (shift-add): u_r += u_d odd ? u_x : 0; u_x <<= 1; u_d >>= 1 (32 steps, b < 2^32)
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -29,7 +35,10 @@
 //!   floor(Σd² 2^16 / N) < 2^(2A+16) <= 2^48 — exactly the 16 zero bits the dividend needs.
 //! * Remainders are below the divisor; the largest divisor is Amp_s Amp_c < 2^49
 //!   (Amp = isqrt(2V), V <= 2^(2A-2+16) because a variable in a range of width 2^A has a
-//!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word.
+//!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word; the
+//!   non-restoring remainder lies in [-u_d, u_d), so every sum of the shared adder is below
+//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50) and its
+//!   63-bit sum (bit 0 of the chain carries cin) sign-extends to 64 bits exactly.
 //! * |C| <= sqrt(V_s V_c) < 2^(2A+14) <= 2^46, so |C| 2^16 < 2^62; T 2^(GF+23) < 2^53;
 //!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits.
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
