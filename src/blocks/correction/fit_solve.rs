@@ -1,7 +1,7 @@
 //! rust-hdl description of the end-of-window solve of the ellipse fit: the integer
 //! specification of [`super::fit::solve`] on one serial shift-add multiplier and one serial
-//! restoring divider / square root (they share one compare-and-subtract), sequenced by a
-//! state machine.
+//! non-restoring divider / square root, all three on one shared adder, sequenced by a state
+//! machine.
 //!
 //! ```text
 //!  start ─► snapshot N, |Σd| (+sign), Σd², |Σd_s d_c| (+sign), b_ref
@@ -14,11 +14,17 @@
 //!  b = b_ref + rdiv(m, 2^8)         add, out of range ───────────────────────► Idle
 //!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
 //!
-//!  DIV (restoring, dividend and quotient share u_x):   SQRT (restoring, two bits a step):
-//!    t = 2 u_r + msb(u_x); t >= u_d ?                   t = 4 u_r + top2(u_x); trial = 4 u_q + 1
-//!    u_r = t - u_d : t; u_x = 2 u_x + (t >= u_d)        t >= trial ? u_r = t - trial, u_q = 2u_q+1
-//!  then: adj = round ? 2 u_r >= u_d : neg & u_r != 0; u_mag = u_x + adj; u_x = +-u_mag
-//!  MUL (shift-add): u_d odd ? u_r += u_x; u_x <<= 1; u_d >>= 1 (32 steps, b < 2^32)
+//!  shared adder: sum = tt + sb + cin (one carry chain; tt, sb picked by the registered one-hot
+//!  flags f_div / f_sq / f_mul and by the sign of u_r, so no mux follows the chain)
+//!  DIV (non-restoring, dividend and quotient share u_x):  SQRT (non-restoring, 2 bits a step):
+//!    t = 2 u_r + msb(u_x)                                   t = 4 u_r + top2(u_x)
+//!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4u_q+3) : t - (4u_q+1)
+//!    u_x = 2 u_x + (u_r >= 0)                               u_q = 2 u_q + (u_r >= 0)
+//!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
+//!  when u_r < 0)
+//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0 (u_r or u_r + u_d);
+//!  u_mag = u_x + adj; u_x = +-u_mag
+//!  MUL (shift-add): u_r += u_d odd ? u_x : 0; u_x <<= 1; u_d >>= 1 (32 steps, b < 2^32)
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -29,7 +35,10 @@
 //!   floor(Σd² 2^16 / N) < 2^(2A+16) <= 2^48 — exactly the 16 zero bits the dividend needs.
 //! * Remainders are below the divisor; the largest divisor is Amp_s Amp_c < 2^49
 //!   (Amp = isqrt(2V), V <= 2^(2A-2+16) because a variable in a range of width 2^A has a
-//!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word.
+//!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word; the
+//!   non-restoring remainder lies in [-u_d, u_d), so every sum of the shared adder is below
+//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50) and its
+//!   63-bit sum (bit 0 of the chain carries cin) sign-extends to 64 bits exactly.
 //! * |C| <= sqrt(V_s V_c) < 2^(2A+14) <= 2^46, so |C| 2^16 < 2^62; T 2^(GF+23) < 2^53;
 //!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits.
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
@@ -223,10 +232,28 @@ pub struct FitSolve {
     r_km: DFF<Bits<16>>,
     r_kn: DFF<Bit>,
     r_done: DFF<Bit>,
-    /// Shared compare-and-subtract of the divider and the square root.
+    /// Next state (registered in `state`, and decoded a clock ahead into the flags below).
+    nstate: Signal<Local, FitState>,
+    /// The state is DivRun (one-hot operand selects, registered from `nstate`).
+    f_div: DFF<Bit>,
+    /// The state is SqRun.
+    f_sq: DFF<Bit>,
+    /// The state is MulRun.
+    f_mul: DFF<Bit>,
+    /// u_r < 0 (the non-restoring remainder's sign: add the divisor / trial back).
+    rneg: Signal<Local, Bit>,
+    /// The shared adder: tt + sb + cin, one carry chain (tt and sb chosen by the flags).
     tt: Signal<Local, Bits<64>>,
     sb: Signal<Local, Bits<64>>,
-    ge: Signal<Local, Bit>,
+    cin: Signal<Local, Bit>,
+    /// {sb, cin} (sb's bit 63 dropped).
+    sbc: Signal<Local, Bits<64>>,
+    /// {tt, 1} + {sb, cin}: bit 0 carries cin into the chain.
+    s65: Signal<Local, Bits<64>>,
+    /// The shared adder's sum, bits 63..1 of `s65` sign-extended.
+    sum: Signal<Local, Bits<64>>,
+    /// u_r + u_d: the true remainder when u_r < 0 (zero test of the unrounded division).
+    zr: Signal<Local, Bits<64>>,
     /// Clamped |S| (the multiplier operand of S²).
     sclamp: Signal<Local, Bits<64>>,
     /// Upper bound of |S|: round(2^15 sin 15 deg).
@@ -268,6 +295,7 @@ pub struct FitSolve {
     s62: Constant<Bits<32>>,
     s63: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
+    three64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
     zero32: Constant<Bits<32>>,
     zero16: Constant<Bits<16>>,
@@ -368,9 +396,18 @@ impl FitSolve {
             r_km: Default::default(),
             r_kn: Default::default(),
             r_done: Default::default(),
+            nstate: Default::default(),
+            f_div: Default::default(),
+            f_sq: Default::default(),
+            f_mul: Default::default(),
+            rneg: Default::default(),
             tt: Default::default(),
             sb: Default::default(),
-            ge: Default::default(),
+            cin: Default::default(),
+            sbc: Default::default(),
+            s65: Default::default(),
+            sum: Default::default(),
+            zr: Default::default(),
             sclamp: Default::default(),
             smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
             minamp: c64((k.min_amplitude as u64) << 8),
@@ -396,6 +433,7 @@ impl FitSolve {
             s62: c32(62),
             s63: c32(63),
             one64: c64(1),
+            three64: c64(3),
             zero64: c64(0),
             zero32: c32(0),
             zero16: c16(0),
@@ -407,393 +445,4 @@ impl FitSolve {
     }
 }
 
-impl Logic for FitSolve {
-    #[hdl_gen]
-    fn update(&mut self) {
-        dff_setup!(
-            self, clk, state, ret, u_x, u_d, u_r, u_q, u_mag, u_neg, u_rnd, u_adj, it, sn, a1_s,
-            a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos,
-            amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs,
-            r_gc, r_km, r_kn, r_done
-        );
-        // The shared compare-and-subtract: divider step or square-root step.
-        self.tt.next =
-            (self.u_r.q.val() << self.one32.val()) | (self.u_x.q.val() >> self.s63.val());
-        self.sb.next = self.u_d.q.val();
-        if self.state.q.val() == FitState::SqRun {
-            self.tt.next =
-                (self.u_r.q.val() << self.two32.val()) | (self.u_x.q.val() >> self.s62.val());
-            self.sb.next = (self.u_q.q.val() << self.two32.val()) | self.one64.val();
-        }
-        self.ge.next = self.tt.val() >= self.sb.val();
-        self.sclamp.next = self.u_mag.q.val();
-        if self.u_mag.q.val() > self.smax.val() {
-            self.sclamp.next = self.smax.val();
-        }
-        self.r_done.d.next = false;
-        match self.state.q.val() {
-            FitState::Idle => {
-                if self.start.val() {
-                    self.sn.d.next = bit_cast::<64, 32>(self.n.val());
-                    self.a1_s.d.next = self.s1_s.val();
-                    self.n1_s.d.next = (self.s1_s.val() & self.sign63.val()).any();
-                    if (self.s1_s.val() & self.sign63.val()).any() {
-                        self.a1_s.d.next = self.zero64.val() - self.s1_s.val();
-                    }
-                    self.a1_c.d.next = self.s1_c.val();
-                    self.n1_c.d.next = (self.s1_c.val() & self.sign63.val()).any();
-                    if (self.s1_c.val() & self.sign63.val()).any() {
-                        self.a1_c.d.next = self.zero64.val() - self.s1_c.val();
-                    }
-                    self.a2_s.d.next = self.s2_s.val();
-                    self.a2_c.d.next = self.s2_c.val();
-                    self.asc.d.next = self.ssc.val();
-                    self.nsc.d.next = (self.ssc.val() & self.sign63.val()).any();
-                    if (self.ssc.val() & self.sign63.val()).any() {
-                        self.asc.d.next = self.zero64.val() - self.ssc.val();
-                    }
-                    self.br_s.d.next = self.bref_s.val();
-                    self.br_c.d.next = self.bref_c.val();
-                    self.state.d.next = FitState::Ms;
-                }
-            }
-            FitState::Ms => {
-                self.u_x.d.next = self.a1_s.q.val() << self.s8.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i64c.val();
-                self.u_rnd.d.next = true;
-                self.u_neg.d.next = self.n1_s.q.val();
-                self.ret.d.next = FitState::Mc;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::Mc => {
-                self.m_s.d.next = self.u_mag.q.val();
-                self.u_x.d.next = self.a1_c.q.val() << self.s8.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i64c.val();
-                self.u_rnd.d.next = true;
-                self.u_neg.d.next = self.n1_c.q.val();
-                self.ret.d.next = FitState::Vs;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::Vs => {
-                self.m_c.d.next = self.u_mag.q.val();
-                self.u_x.d.next = self.a2_s.q.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i80c.val();
-                self.u_rnd.d.next = false;
-                self.u_neg.d.next = false;
-                self.ret.d.next = FitState::Vc;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::Vc => {
-                self.v_s.d.next = self.u_x.q.val();
-                self.u_x.d.next = self.a2_c.q.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i80c.val();
-                self.u_rnd.d.next = false;
-                self.u_neg.d.next = false;
-                self.ret.d.next = FitState::Cq;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::Cq => {
-                self.v_c.d.next = self.u_x.q.val();
-                self.u_x.d.next = self.asc.q.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i80c.val();
-                self.u_rnd.d.next = false;
-                self.u_neg.d.next = self.nsc.q.val();
-                self.ret.d.next = FitState::M1;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::M1 => {
-                self.cc.d.next = self.u_x.q.val();
-                self.u_x.d.next = self.m_s.q.val();
-                self.u_d.d.next = self.m_s.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::M2;
-                self.state.d.next = FitState::MulRun;
-            }
-            FitState::M2 => {
-                self.v_s.d.next = self.v_s.q.val() - self.u_r.q.val();
-                self.u_x.d.next = self.m_c.q.val();
-                self.u_d.d.next = self.m_c.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::M3;
-                self.state.d.next = FitState::MulRun;
-            }
-            FitState::M3 => {
-                self.v_c.d.next = self.v_c.q.val() - self.u_r.q.val();
-                self.u_x.d.next = self.m_s.q.val();
-                self.u_d.d.next = self.m_c.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Cv;
-                self.state.d.next = FitState::MulRun;
-            }
-            FitState::Cv => {
-                // C = Cq - m_s m_c, the product's sign from the means' signs.
-                self.cc.d.next = self.cc.q.val() - self.u_r.q.val();
-                if self.n1_s.q.val() ^ self.n1_c.q.val() {
-                    self.cc.d.next = self.cc.q.val() + self.u_r.q.val();
-                }
-                self.state.d.next = FitState::SqS;
-            }
-            FitState::SqS => {
-                // |C| and the sign of -C (rdiv's sign below; C = 0 gives 0 either way).
-                self.cmag.d.next = self.cc.q.val();
-                self.cpos.d.next = true;
-                if (self.cc.q.val() & self.sign63.val()).any() {
-                    self.cmag.d.next = self.zero64.val() - self.cc.q.val();
-                    self.cpos.d.next = false;
-                }
-                self.u_x.d.next = self.v_s.q.val() << self.one32.val();
-                if (self.v_s.q.val() & self.sign63.val()).any() {
-                    self.u_x.d.next = self.zero64.val();
-                }
-                self.u_r.d.next = self.zero64.val();
-                self.u_q.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::SqC;
-                self.state.d.next = FitState::SqRun;
-            }
-            FitState::SqC => {
-                self.amp_s.d.next = self.u_q.q.val();
-                self.u_x.d.next = self.v_c.q.val() << self.one32.val();
-                if (self.v_c.q.val() & self.sign63.val()).any() {
-                    self.u_x.d.next = self.zero64.val();
-                }
-                self.u_r.d.next = self.zero64.val();
-                self.u_q.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Chk;
-                self.state.d.next = FitState::SqRun;
-            }
-            FitState::Chk => {
-                self.amp_c.d.next = self.u_q.q.val();
-                self.u_x.d.next = self.amp_s.q.val();
-                self.u_d.d.next = self.u_q.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Sn;
-                self.state.d.next = FitState::MulRun;
-                if (self.amp_s.q.val() < self.minamp.val()) | (self.u_q.q.val() < self.minamp.val())
-                {
-                    self.state.d.next = FitState::Idle;
-                }
-            }
-            FitState::Sn => {
-                self.u_x.d.next = self.cmag.q.val() << self.s16.val();
-                self.u_d.d.next = self.u_r.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i64c.val();
-                self.u_rnd.d.next = true;
-                self.u_neg.d.next = self.cpos.q.val();
-                self.ret.d.next = FitState::Sn2;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::Sn2 => {
-                self.smag.d.next = self.sclamp.val();
-                self.sneg.d.next = self.u_neg.q.val();
-                self.u_x.d.next = self.sclamp.val();
-                self.u_d.d.next = self.sclamp.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Cs;
-                self.state.d.next = FitState::MulRun;
-            }
-            FitState::Cs => {
-                self.u_x.d.next = self.two30.val() - self.u_r.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.u_q.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::OffA;
-                self.state.d.next = FitState::SqRun;
-            }
-            FitState::OffA => {
-                self.cs.d.next = self.u_q.q.val();
-                self.t_s.d.next =
-                    (bit_cast::<32, 64>(self.m_s.q.val()) + self.half8.val()) >> self.s8.val();
-                self.t_c.d.next =
-                    (bit_cast::<32, 64>(self.m_c.q.val()) + self.half8.val()) >> self.s8.val();
-                self.state.d.next = FitState::OffB;
-            }
-            FitState::OffB => {
-                self.o_s.d.next = self.br_s.q.val() + self.t_s.q.val();
-                if self.n1_s.q.val() {
-                    self.o_s.d.next = self.br_s.q.val() - self.t_s.q.val();
-                }
-                self.o_c.d.next = self.br_c.q.val() + self.t_c.q.val();
-                if self.n1_c.q.val() {
-                    self.o_c.d.next = self.br_c.q.val() - self.t_c.q.val();
-                }
-                self.state.d.next = FitState::OffC;
-            }
-            FitState::OffC => {
-                self.u_x.d.next = self.tgs.val();
-                self.u_d.d.next = self.amp_s.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i64c.val();
-                self.u_rnd.d.next = true;
-                self.u_neg.d.next = false;
-                self.ret.d.next = FitState::Q1;
-                self.state.d.next = FitState::DivRun;
-                if ((self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val())
-                    | ((self.o_s.q.val() ^ self.sign32.val()) >= self.hi_f.val())
-                    | ((self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val())
-                    | ((self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val())
-                {
-                    self.state.d.next = FitState::Idle;
-                }
-            }
-            FitState::Q1 => {
-                self.ng_s.d.next = bit_cast::<16, 64>(self.u_x.q.val() & self.m16.val());
-                if self.u_x.q.val() > self.cmax.val() {
-                    self.ng_s.d.next = bit_cast::<16, 64>(self.cmax.val());
-                }
-                self.u_x.d.next = self.amp_c.q.val();
-                self.u_d.d.next = self.cs.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Gc;
-                self.state.d.next = FitState::MulRun;
-            }
-            FitState::Gc => {
-                self.u_x.d.next = self.tgc.val();
-                self.u_d.d.next = self.u_r.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i64c.val();
-                self.u_rnd.d.next = true;
-                self.u_neg.d.next = false;
-                self.ret.d.next = FitState::Q2;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::Q2 => {
-                self.ng_c.d.next = bit_cast::<16, 64>(self.u_x.q.val() & self.m16.val());
-                if self.u_x.q.val() > self.cmax.val() {
-                    self.ng_c.d.next = bit_cast::<16, 64>(self.cmax.val());
-                }
-                self.u_x.d.next = self.amp_s.q.val();
-                self.u_d.d.next = self.cs.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Ts;
-                self.state.d.next = FitState::MulRun;
-            }
-            FitState::Ts => {
-                self.q2.d.next = self.u_r.q.val();
-                self.u_x.d.next = self.tamp.val();
-                self.u_d.d.next = self.smag.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Kd;
-                self.state.d.next = FitState::MulRun;
-            }
-            FitState::Kd => {
-                self.u_x.d.next = self.u_r.q.val() << self.kshift.val();
-                self.u_d.d.next = self.q2.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i64c.val();
-                self.u_rnd.d.next = true;
-                self.u_neg.d.next = self.sneg.q.val();
-                self.ret.d.next = FitState::Load;
-                self.state.d.next = FitState::DivRun;
-            }
-            FitState::Load => {
-                self.r_km.d.next = bit_cast::<16, 64>(self.u_mag.q.val() & self.m16.val());
-                if self.u_mag.q.val() > self.cmax.val() {
-                    self.r_km.d.next = bit_cast::<16, 64>(self.cmax.val());
-                }
-                self.r_kn.d.next = self.sneg.q.val() & self.u_mag.q.val().any();
-                self.r_os.d.next = self.o_s.q.val();
-                self.r_oc.d.next = self.o_c.q.val();
-                self.r_gs.d.next = self.ng_s.q.val();
-                self.r_gc.d.next = self.ng_c.q.val();
-                self.r_done.d.next = true;
-                self.state.d.next = FitState::Idle;
-            }
-            FitState::DivRun => {
-                self.u_r.d.next = self.tt.val();
-                self.u_x.d.next = self.u_x.q.val() << self.one32.val();
-                if self.ge.val() {
-                    self.u_r.d.next = self.tt.val() - self.sb.val();
-                    self.u_x.d.next = (self.u_x.q.val() << self.one32.val()) | self.one64.val();
-                }
-                self.it.d.next = self.it.q.val() - self.one32.val();
-                if self.it.q.val() == self.one32.val() {
-                    self.state.d.next = FitState::DivAdj;
-                }
-            }
-            FitState::DivAdj => {
-                self.u_adj.d.next = self.u_neg.q.val() & self.u_r.q.val().any();
-                if self.u_rnd.q.val() {
-                    self.u_adj.d.next = (self.u_r.q.val() << self.one32.val()) >= self.u_d.q.val();
-                }
-                self.state.d.next = FitState::DivInc;
-            }
-            FitState::DivInc => {
-                self.u_mag.d.next = self.u_x.q.val();
-                if self.u_adj.q.val() {
-                    self.u_mag.d.next = self.u_x.q.val() + self.one64.val();
-                }
-                self.state.d.next = FitState::DivNeg;
-            }
-            FitState::DivNeg => {
-                self.u_x.d.next = self.u_mag.q.val();
-                if self.u_neg.q.val() {
-                    self.u_x.d.next = self.zero64.val() - self.u_mag.q.val();
-                }
-                self.state.d.next = self.ret.q.val();
-            }
-            FitState::SqRun => {
-                self.u_r.d.next = self.tt.val();
-                self.u_q.d.next = self.u_q.q.val() << self.one32.val();
-                if self.ge.val() {
-                    self.u_r.d.next = self.tt.val() - self.sb.val();
-                    self.u_q.d.next = (self.u_q.q.val() << self.one32.val()) | self.one64.val();
-                }
-                self.u_x.d.next = self.u_x.q.val() << self.two32.val();
-                self.it.d.next = self.it.q.val() - self.one32.val();
-                if self.it.q.val() == self.one32.val() {
-                    self.state.d.next = self.ret.q.val();
-                }
-            }
-            FitState::MulRun => {
-                if (self.u_d.q.val() & self.one64.val()).any() {
-                    self.u_r.d.next = self.u_r.q.val() + self.u_x.q.val();
-                }
-                self.u_x.d.next = self.u_x.q.val() << self.one32.val();
-                self.u_d.d.next = self.u_d.q.val() >> self.one32.val();
-                self.it.d.next = self.it.q.val() - self.one32.val();
-                if self.it.q.val() == self.one32.val() {
-                    self.state.d.next = self.ret.q.val();
-                }
-            }
-        }
-        if self.rst.val() {
-            self.state.d.next = FitState::Idle;
-            self.r_os.d.next = self.b0_s.val();
-            self.r_oc.d.next = self.b0_c.val();
-            self.r_gs.d.next = self.g0_s.val();
-            self.r_gc.d.next = self.g0_c.val();
-            self.r_km.d.next = self.zero16.val();
-            self.r_kn.d.next = false;
-            self.r_done.d.next = false;
-        }
-        self.busy.next = !(self.state.q.val() == FitState::Idle);
-        self.done.next = self.r_done.q.val();
-        self.off_s.next = self.r_os.q.val();
-        self.off_c.next = self.r_oc.q.val();
-        self.g_s.next = self.r_gs.q.val();
-        self.g_c.next = self.r_gc.q.val();
-        self.k_mag.next = self.r_km.q.val();
-        self.k_neg.next = self.r_kn.q.val();
-    }
-}
+mod update;
