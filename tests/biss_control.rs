@@ -414,7 +414,7 @@ fn bad_config_keys_are_rejected_with_their_position() {
     );
     assert_config_error(
         &with_biss("control = true\nregisters = 3"),
-        "registers",
+        "registers = 3",
         &["registers", "device_id"],
     );
 }
