@@ -76,6 +76,85 @@ pub(super) fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
 }
 
+/// An 8-bit constant.
+fn c8(v: u64) -> Constant<Bits<8>> {
+    Constant::new(Bits::<8>::from(v))
+}
+
+/// What u_x loads in a state (one registered select, decoded from the next state).
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum XSel {
+    /// Keep (or the run state's shift).
+    Hold,
+    /// |Σd_s| 2^8.
+    A1s8,
+    /// |Σd_c| 2^8.
+    A1c8,
+    /// Σd_s².
+    A2s,
+    /// Σd_c².
+    A2c,
+    /// |Σd_s d_c|.
+    Asc,
+    /// m_s 2^32 (a multiplier operand sits in the top half).
+    Ms32,
+    /// m_c 2^32.
+    Mc32,
+    /// 2 V_s (0 if V_s < 0).
+    Vs2,
+    /// 2 V_c (0 if V_c < 0).
+    Vc2,
+    /// Amp_s 2^32.
+    Amps32,
+    /// Amp_c 2^32.
+    Ampc32,
+    /// |C| 2^16.
+    Cmag16,
+    /// Clamped |S| 2^32.
+    Scl32,
+    /// 2^30 - S².
+    T30,
+    /// T 2^(GF+8).
+    Tgs,
+    /// T 2^(GF+23).
+    Tgc,
+    /// T 2^32.
+    Tamp32,
+    /// T |S| 2^(GF+8).
+    Urk,
+    /// The rounded quotient's magnitude.
+    Mag,
+    /// Its negation.
+    NMag,
+}
+
+/// What u_d loads in a state.
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum DSel {
+    /// Keep.
+    Hold,
+    /// N.
+    Sn,
+    /// m_s.
+    Ms,
+    /// m_c.
+    Mc,
+    /// The square root just finished (Amp_c).
+    Uq,
+    /// The product just finished.
+    Ur,
+    /// Clamped |S|.
+    Scl,
+    /// Amp_s.
+    Amps,
+    /// Cc.
+    Cs,
+    /// |S|.
+    Smag,
+    /// Amp_s Cc.
+    Q2,
+}
+
 /// Steps of the solve (the operation in each state's comment is the one it starts).
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
 pub enum FitState {
@@ -189,12 +268,14 @@ pub struct FitSolve {
     u_x: DFF<Bits<64>>,
     u_d: DFF<Bits<64>>,
     u_r: DFF<Bits<64>>,
-    u_q: DFF<Bits<64>>,
+    u_q: DFF<Bits<32>>,
     u_mag: DFF<Bits<64>>,
+    /// -(u_x + adj), written beside u_mag: the negated quotient without an adder after a mux.
+    u_nmag: DFF<Bits<64>>,
     u_neg: DFF<Bit>,
     u_rnd: DFF<Bit>,
     u_adj: DFF<Bit>,
-    it: DFF<Bits<32>>,
+    it: DFF<Bits<8>>,
     sn: DFF<Bits<64>>,
     a1_s: DFF<Bits<64>>,
     a1_c: DFF<Bits<64>>,
@@ -232,30 +313,57 @@ pub struct FitSolve {
     r_km: DFF<Bits<16>>,
     r_kn: DFF<Bit>,
     r_done: DFF<Bit>,
-    /// Next state (registered in `state`, and decoded a clock ahead into the flags below).
+    /// Next state (registered in `state`, and decoded a clock ahead into the flags and
+    /// selects below).
     nstate: Signal<Local, FitState>,
-    /// The state is DivRun (one-hot operand selects, registered from `nstate`).
+    /// The state is DivRun (registered from `nstate`).
     f_div: DFF<Bit>,
     /// The state is SqRun.
     f_sq: DFF<Bit>,
     /// The state is MulRun.
     f_mul: DFF<Bit>,
+    /// The state is one of the three run states (u_r takes the shared adder's result).
+    f_run: DFF<Bit>,
+    /// What u_x loads in this state (registered from `nstate`).
+    xs: DFF<XSel>,
+    /// What u_d loads in this state.
+    ds: DFF<DSel>,
+    /// u_r is cleared in this state.
+    clr_r: DFF<Bit>,
+    /// u_q is cleared in this state.
+    clr_q: DFF<Bit>,
+    /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
+    nd: DFF<Bits<64>>,
+    /// 2^30 - u_r (free-running): the radicand of Cc one state after S².
+    t30: DFF<Bits<64>>,
+    /// min(u_mag, smax) (free-running): the clamped |S| one state after its division.
+    scl: DFF<Bits<64>>,
+    /// min(u_mag, 65535) (free-running): a clamped gain or cross code.
+    ngf: DFF<Bits<16>>,
+    /// amp_s < min_amplitude 2^8 (free-running).
+    lo_s: DFF<Bit>,
+    /// amp_c < min_amplitude 2^8 (free-running).
+    lo_c: DFF<Bit>,
+    /// An offset o_s / o_c outside the A-bit range (free-running).
+    oor: DFF<Bit>,
     /// u_r < 0 (the non-restoring remainder's sign: add the divisor / trial back).
     rneg: Signal<Local, Bit>,
-    /// The shared adder: tt + sb + cin, one carry chain (tt and sb chosen by the flags).
+    /// The shared adder's first operand: 2 u_r (+ msb(u_x) in a division) or
+    /// 4 u_r + top2(u_x) in a square root.
     tt: Signal<Local, Bits<64>>,
-    sb: Signal<Local, Bits<64>>,
-    cin: Signal<Local, Bit>,
-    /// {sb, cin} (sb's bit 63 dropped).
-    sbc: Signal<Local, Bits<64>>,
-    /// {tt, 1} + {sb, cin}: bit 0 carries cin into the chain.
-    s65: Signal<Local, Bits<64>>,
-    /// The shared adder's sum, bits 63..1 of `s65` sign-extended.
-    sum: Signal<Local, Bits<64>>,
-    /// u_r + u_d: the true remainder when u_r < 0 (zero test of the unrounded division).
-    zr: Signal<Local, Bits<64>>,
-    /// Clamped |S| (the multiplier operand of S²).
-    sclamp: Signal<Local, Bits<64>>,
+    /// The operand added (u_r < 0, or a multiplier bit of one): u_d, or 4 u_q + 3.
+    pa: Signal<Local, Bits<64>>,
+    /// The operand subtracted (u_r >= 0): u_d, 4 u_q + 1, or 0 in a multiplication.
+    ma: Signal<Local, Bits<64>>,
+    /// tt + pa and tt - ma: two carry chains side by side.
+    sp: Signal<Local, Bits<64>>,
+    sm: Signal<Local, Bits<64>>,
+    /// Take sp (u_r < 0, or the multiplier's bit is one), else sm.
+    up: Signal<Local, Bit>,
+    /// The selected sum: the next u_r.
+    sel: Signal<Local, Bits<64>>,
+    /// Its sign (the complement of the quotient / root bit).
+    sgn: Signal<Local, Bit>,
     /// Upper bound of |S|: round(2^15 sin 15 deg).
     smax: Constant<Bits<64>>,
     /// min_amplitude 2^8.
@@ -264,8 +372,6 @@ pub struct FitSolve {
     tgs: Constant<Bits<64>>,
     /// T 2^(GF+23): dividend of g_c.
     tgc: Constant<Bits<64>>,
-    /// T.
-    tamp: Constant<Bits<64>>,
     /// GF + 8: shift of T |S|.
     kshift: Constant<Bits<32>>,
     /// 2^30.
@@ -285,15 +391,20 @@ pub struct FitSolve {
     /// Mask of 16 bits.
     m16: Constant<Bits<64>>,
     /// Step counts and shifts.
-    i32c: Constant<Bits<32>>,
-    i64c: Constant<Bits<32>>,
-    i80c: Constant<Bits<32>>,
+    i32c: Constant<Bits<8>>,
+    i64c: Constant<Bits<8>>,
+    i80c: Constant<Bits<8>>,
+    one8: Constant<Bits<8>>,
     one32: Constant<Bits<32>>,
+    s32: Constant<Bits<32>>,
+    /// T 2^32: the multiplier operand of T |S|.
+    tamp32: Constant<Bits<64>>,
+    /// 65535 as a gain code.
+    cmax16: Constant<Bits<16>>,
     two32: Constant<Bits<32>>,
     s8: Constant<Bits<32>>,
     s16: Constant<Bits<32>>,
     s62: Constant<Bits<32>>,
-    s63: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
     three64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
@@ -355,6 +466,7 @@ impl FitSolve {
             u_r: Default::default(),
             u_q: Default::default(),
             u_mag: Default::default(),
+            u_nmag: Default::default(),
             u_neg: Default::default(),
             u_rnd: Default::default(),
             u_adj: Default::default(),
@@ -400,20 +512,33 @@ impl FitSolve {
             f_div: Default::default(),
             f_sq: Default::default(),
             f_mul: Default::default(),
+            f_run: Default::default(),
+            xs: Default::default(),
+            ds: Default::default(),
+            clr_r: Default::default(),
+            clr_q: Default::default(),
+            nd: Default::default(),
+            t30: Default::default(),
+            scl: Default::default(),
+            ngf: Default::default(),
+            lo_s: Default::default(),
+            lo_c: Default::default(),
+            oor: Default::default(),
             rneg: Default::default(),
             tt: Default::default(),
-            sb: Default::default(),
-            cin: Default::default(),
-            sbc: Default::default(),
-            s65: Default::default(),
-            sum: Default::default(),
-            zr: Default::default(),
-            sclamp: Default::default(),
+            pa: Default::default(),
+            ma: Default::default(),
+            sp: Default::default(),
+            sm: Default::default(),
+            up: Default::default(),
+            sel: Default::default(),
+            sgn: Default::default(),
             smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
             minamp: c64((k.min_amplitude as u64) << 8),
             tgs: c64(t << (gf + 8)),
             tgc: c64(t << (gf + 23)),
-            tamp: c64(t),
+            tamp32: c64(t << 32),
+            cmax16: c16(0xffff),
             kshift: c32((gf + 8) as u64),
             two30: c64(1 << 30),
             cmax: c64(0xffff),
@@ -423,15 +548,16 @@ impl FitSolve {
             sign63: c64(1 << 63),
             half8: c32(128),
             m16: c64(0xffff),
-            i32c: c32(32),
-            i64c: c32(64),
-            i80c: c32(80),
+            i32c: c8(32),
+            i64c: c8(64),
+            i80c: c8(80),
+            one8: c8(1),
             one32: c32(1),
+            s32: c32(32),
             two32: c32(2),
             s8: c32(8),
             s16: c32(16),
             s62: c32(62),
-            s63: c32(63),
             one64: c64(1),
             three64: c64(3),
             zero64: c64(0),
