@@ -1,6 +1,6 @@
 //! rust-hdl description of the automatic calibration by least-squares ellipse fit (mode
 //! `auto`): the quadrant tracker and the window sums of [`super::fit::EllipseFit`], one
-//! sample per clock, feeding the serial solver [`super::fit_solve::FitSolve`], which loads
+//! sample every second clock at most (the ADC delivers one per frame), feeding the serial solver [`super::fit_solve::FitSolve`], which loads
 //! offsets, gains and the phase cross code together.
 //!
 //! ```text
@@ -24,13 +24,15 @@
 //!   subtractor beside it for a negative product, selected by the sign).
 //! * net (the quadrants since the window opened) changes by at most 2 per sample and is
 //!   bounded by 2 N_MAX: 32 bits. The window-closing test |net + s| >= 4K is done as compares
-//!   of the registered net against constants (one per step s = +-1, +-2), beside the adder
+//!   of the registered net against constants (one per step s = +-1, +-2, registered), beside the adder
 //!   net + s, so each path has one carry chain; (net + s) mod 4 = 0 is a 2-bit match.
 //!
 //! # Timing and semantics
 //! * The tracker and the sums follow the model sample for sample; the sums are three
-//!   clocks behind the tracker, so the snapshot (stage E) holds exactly the window's samples
-//!   even with one sample per clock.
+//!   clocks behind the tracker, so the snapshot (stage E) holds exactly the window's samples.
+//! * The window-closing compares of `net` and N are registered (free-running), so they
+//!   describe the last sample's state only when samples are at least two clocks apart; the
+//!   ADC controller delivers one per frame (tens of clocks), the tests every 2 to 6 clocks.
 //! * b_ref of a new window is b_cur at its first sample, i.e. the offsets before the update
 //!   its predecessor triggers (the model does the same, [`super::fit`]). The sample right
 //!   after a b_ref change was subtracted from the old b_ref in stage A; stage B then uses its
@@ -122,6 +124,13 @@ pub struct FitCal {
     p_sc: DFF<Bits<32>>,
     d_nsc: DFF<Bit>,
     cnt: DFF<Bits<32>>,
+    /// The window-closing compares |net + s| >= 4K for s = +1, -1, +2, -2 and N >= min_samples,
+    /// registered from `net` and `nb` (free-running; samples are at least two clocks apart).
+    h_p1: DFF<Bit>,
+    h_m1: DFF<Bit>,
+    h_p2: DFF<Bit>,
+    h_m2: DFF<Bit>,
+    nbge: DFF<Bit>,
     s1_s: DFF<Bits<64>>,
     s1_c: DFF<Bits<64>>,
     s2_s: DFF<Bits<64>>,
@@ -286,6 +295,11 @@ impl FitCal {
             p_sc: Default::default(),
             d_nsc: Default::default(),
             cnt: Default::default(),
+            h_p1: Default::default(),
+            h_m1: Default::default(),
+            h_p2: Default::default(),
+            h_m2: Default::default(),
+            nbge: Default::default(),
             s1_s: Default::default(),
             s1_c: Default::default(),
             s2_s: Default::default(),
@@ -351,7 +365,7 @@ impl Logic for FitCal {
             self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_snap, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt,
-            s1_s, s1_c, s2_s, s2_c, ssc, kd_m, kd_n
+            s1_s, s1_c, s2_s, s2_c, ssc, kd_m, kd_n, h_p1, h_m1, h_p2, h_m2, nbge
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -391,36 +405,43 @@ impl Logic for FitCal {
             self.q.next = self.q1.val();
         }
         self.stp.next = self.q.val() - self.tq.q.val();
-        // The step as a word and the window-closing test |net + s| >= 4K, 4 | net + s.
+        // The step as a word and the window-closing test |net + s| >= 4K, 4 | net + s: the
+        // compares of net against constants are registered (net changed at least two clocks
+        // ago), so only their selection by the step is in this path.
         self.netf.next = self.net.q.val() ^ self.sign32.val();
+        self.h_p1.d.next =
+            (self.netf.val() >= self.ge_p1.val()) | (self.netf.val() < self.lt_p1.val());
+        self.h_m1.d.next =
+            (self.netf.val() >= self.ge_m1.val()) | (self.netf.val() < self.lt_m1.val());
+        self.h_p2.d.next =
+            (self.netf.val() >= self.ge_p2.val()) | (self.netf.val() < self.lt_p2.val());
+        self.h_m2.d.next =
+            (self.netf.val() >= self.ge_m2.val()) | (self.netf.val() < self.lt_m2.val());
+        self.nbge.d.next = self.nb.q.val() >= self.nmin.val();
         self.sval.next = self.zero32.val();
         self.big.next = false;
         self.whole.next = false;
         if self.stp.val() == self.q1.val() {
             self.sval.next = self.sp1.val();
-            self.big.next =
-                (self.netf.val() >= self.ge_p1.val()) | (self.netf.val() < self.lt_p1.val());
+            self.big.next = self.h_p1.q.val();
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r3.val();
         }
         if self.stp.val() == self.q3.val() {
             self.sval.next = self.sm1.val();
-            self.big.next =
-                (self.netf.val() >= self.ge_m1.val()) | (self.netf.val() < self.lt_m1.val());
+            self.big.next = self.h_m1.q.val();
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r1.val();
         }
         if self.stp.val() == self.q2.val() {
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r2.val();
             if self.dneg.q.val() {
                 self.sval.next = self.sm2.val();
-                self.big.next =
-                    (self.netf.val() >= self.ge_m2.val()) | (self.netf.val() < self.lt_m2.val());
+                self.big.next = self.h_m2.q.val();
             } else {
                 self.sval.next = self.sp2.val();
-                self.big.next =
-                    (self.netf.val() >= self.ge_p2.val()) | (self.netf.val() < self.lt_p2.val());
+                self.big.next = self.h_p2.q.val();
             }
         }
-        self.done.next = self.big.val() & self.whole.val() & (self.nb.q.val() >= self.nmin.val());
+        self.done.next = self.big.val() & self.whole.val() & self.nbge.q.val();
         // Defaults of the command to the sums: nothing; the entry of the sample as it would
         // be added (d, or e after a b_ref change).
         self.fresh.d.next = false;
