@@ -332,6 +332,9 @@ pub struct FitSolve {
     clr_r: DFF<Bit>,
     /// u_q is cleared in this state.
     clr_q: DFF<Bit>,
+    /// The selects of the state `ret` names, stored with it.
+    rxs: DFF<XSel>,
+    rds: DFF<DSel>,
     /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
     nd: DFF<Bits<64>>,
     /// 2^30 - u_r (free-running): the radicand of Cc one state after S².
@@ -517,6 +520,8 @@ impl FitSolve {
             ds: Default::default(),
             clr_r: Default::default(),
             clr_q: Default::default(),
+            rxs: Default::default(),
+            rds: Default::default(),
             nd: Default::default(),
             t30: Default::default(),
             scl: Default::default(),

@@ -10,7 +10,7 @@ impl Logic for FitSolve {
             a1_s, a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag,
             cpos, amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc,
             r_gs, r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_run, xs, ds, clr_r, clr_q, nd,
-            t30, scl, ngf, lo_s, lo_c, oor
+            t30, scl, ngf, lo_s, lo_c, oor, rxs, rds
         );
         self.nstate.next = self.state.q.val();
         // The shared adder, non-restoring: a remainder below zero adds the divisor (or the
@@ -64,6 +64,17 @@ impl Logic for FitSolve {
             | ((self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val())
             | ((self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val());
         self.r_done.d.next = false;
+        // The flags and selects of the next state (registered: the wide registers below see
+        // no state decode); a return to `ret` takes the selects stored with it and clears u_r
+        // and u_q (every state `ret` names reads them, if at all, before the clear).
+        self.f_div.d.next = false;
+        self.f_sq.d.next = false;
+        self.f_mul.d.next = false;
+        self.f_run.d.next = false;
+        self.xs.d.next = XSel::Hold;
+        self.ds.d.next = DSel::Hold;
+        self.clr_r.d.next = false;
+        self.clr_q.d.next = false;
         match self.state.q.val() {
             FitState::Idle => {
                 if self.start.val() {
@@ -88,6 +99,9 @@ impl Logic for FitSolve {
                     self.br_s.d.next = self.bref_s.val();
                     self.br_c.d.next = self.bref_c.val();
                     self.nstate.next = FitState::Ms;
+                    self.xs.d.next = XSel::A1s8;
+                    self.ds.d.next = DSel::Sn;
+                    self.clr_r.d.next = true;
                 }
             }
             FitState::Ms => {
@@ -95,7 +109,11 @@ impl Logic for FitSolve {
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.n1_s.q.val();
                 self.ret.d.next = FitState::Mc;
+                self.rxs.d.next = XSel::A1c8;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Mc => {
                 self.m_s.d.next = self.u_mag.q.val();
@@ -103,7 +121,11 @@ impl Logic for FitSolve {
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.n1_c.q.val();
                 self.ret.d.next = FitState::Vs;
+                self.rxs.d.next = XSel::A2s;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Vs => {
                 self.m_c.d.next = self.u_mag.q.val();
@@ -111,7 +133,11 @@ impl Logic for FitSolve {
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Vc;
+                self.rxs.d.next = XSel::A2c;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Vc => {
                 self.v_s.d.next = self.u_x.q.val();
@@ -119,7 +145,11 @@ impl Logic for FitSolve {
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Cq;
+                self.rxs.d.next = XSel::Asc;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Cq => {
                 self.v_c.d.next = self.u_x.q.val();
@@ -127,25 +157,41 @@ impl Logic for FitSolve {
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = self.nsc.q.val();
                 self.ret.d.next = FitState::M1;
+                self.rxs.d.next = XSel::Ms32;
+                self.rds.d.next = DSel::Ms;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::M1 => {
                 self.cc.d.next = self.u_x.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::M2;
+                self.rxs.d.next = XSel::Mc32;
+                self.rds.d.next = DSel::Mc;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::M2 => {
                 self.v_s.d.next = self.v_s.q.val() - self.u_r.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::M3;
+                self.rxs.d.next = XSel::Ms32;
+                self.rds.d.next = DSel::Mc;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::M3 => {
                 self.v_c.d.next = self.v_c.q.val() - self.u_r.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Cv;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Cv => {
                 // C = Cq - m_s m_c, the product's sign from the means' signs.
@@ -154,6 +200,9 @@ impl Logic for FitSolve {
                     self.cc.d.next = self.cc.q.val() + self.u_r.q.val();
                 }
                 self.nstate.next = FitState::SqS;
+                self.xs.d.next = XSel::Vs2;
+                self.clr_r.d.next = true;
+                self.clr_q.d.next = true;
             }
             FitState::SqS => {
                 // |C| and the sign of -C (rdiv's sign below; C = 0 gives 0 either way).
@@ -165,29 +214,48 @@ impl Logic for FitSolve {
                 }
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::SqC;
+                self.rxs.d.next = XSel::Vc2;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::SqRun;
+                self.f_sq.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::SqC => {
                 self.amp_s.d.next = bit_cast::<64, 32>(self.u_q.q.val());
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Chk;
+                self.rxs.d.next = XSel::Amps32;
+                self.rds.d.next = DSel::Uq;
                 self.nstate.next = FitState::SqRun;
+                self.f_sq.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Chk => {
                 self.amp_c.d.next = bit_cast::<64, 32>(self.u_q.q.val());
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Sn;
+                self.rxs.d.next = XSel::Cmag16;
+                self.rds.d.next = DSel::Ur;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Sn => {
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.cpos.q.val();
                 self.ret.d.next = FitState::Sn2;
+                self.rxs.d.next = XSel::Scl32;
+                self.rds.d.next = DSel::Scl;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
                 // The amplitude check (its compares registered since Chk).
                 if self.lo_s.q.val() | self.lo_c.q.val() {
                     self.nstate.next = FitState::Idle;
+                    self.f_div.d.next = false;
+                    self.f_mul.d.next = false;
+                    self.f_run.d.next = false;
                 }
             }
             FitState::Sn2 => {
@@ -195,7 +263,11 @@ impl Logic for FitSolve {
                 self.sneg.d.next = self.u_neg.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::OffA;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::OffA => {
                 self.t_s.d.next =
@@ -203,11 +275,18 @@ impl Logic for FitSolve {
                 self.t_c.d.next =
                     (bit_cast::<32, 64>(self.m_c.q.val()) + self.half8.val()) >> self.s8.val();
                 self.nstate.next = FitState::Cs;
+                self.xs.d.next = XSel::T30;
+                self.clr_r.d.next = true;
+                self.clr_q.d.next = true;
             }
             FitState::Cs => {
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::OffB;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::SqRun;
+                self.f_sq.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::OffB => {
                 self.cs.d.next = bit_cast::<64, 32>(self.u_q.q.val());
@@ -220,22 +299,36 @@ impl Logic for FitSolve {
                     self.o_c.d.next = self.br_c.q.val() - self.t_c.q.val();
                 }
                 self.nstate.next = FitState::OffC;
+                self.xs.d.next = XSel::Tgs;
+                self.ds.d.next = DSel::Amps;
+                self.clr_r.d.next = true;
             }
             FitState::OffC => {
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Q1;
+                self.rxs.d.next = XSel::Ampc32;
+                self.rds.d.next = DSel::Cs;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Q1 => {
                 self.ng_s.d.next = self.ngf.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Gc;
+                self.rxs.d.next = XSel::Tgc;
+                self.rds.d.next = DSel::Ur;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
                 // The offset range check (its compares registered since OffC).
                 if self.oor.q.val() {
                     self.nstate.next = FitState::Idle;
+                    self.f_div.d.next = false;
+                    self.f_mul.d.next = false;
+                    self.f_run.d.next = false;
                 }
             }
             FitState::Gc => {
@@ -243,26 +336,42 @@ impl Logic for FitSolve {
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Q2;
+                self.rxs.d.next = XSel::Amps32;
+                self.rds.d.next = DSel::Cs;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Q2 => {
                 self.ng_c.d.next = self.ngf.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Ts;
+                self.rxs.d.next = XSel::Tamp32;
+                self.rds.d.next = DSel::Smag;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Ts => {
                 self.q2.d.next = self.u_r.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Kd;
+                self.rxs.d.next = XSel::Urk;
+                self.rds.d.next = DSel::Q2;
                 self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Kd => {
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.sneg.q.val();
                 self.ret.d.next = FitState::Load;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::DivRun;
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Load => {
                 self.r_km.d.next = self.ngf.q.val();
@@ -275,8 +384,12 @@ impl Logic for FitSolve {
                 self.nstate.next = FitState::Idle;
             }
             FitState::DivRun => {
+                self.f_div.d.next = true;
+                self.f_run.d.next = true;
                 self.it.d.next = self.it.q.val() - self.one8.val();
                 if self.it.q.val() == self.one8.val() {
+                    self.f_div.d.next = false;
+                    self.f_run.d.next = false;
                     self.nstate.next = FitState::DivAdj;
                 }
             }
@@ -302,25 +415,57 @@ impl Logic for FitSolve {
                     self.u_nmag.d.next = !self.u_x.q.val();
                 }
                 self.nstate.next = FitState::DivNeg;
+                self.xs.d.next = XSel::Mag;
+                if self.u_neg.q.val() {
+                    self.xs.d.next = XSel::NMag;
+                }
             }
             FitState::DivNeg => {
                 self.nstate.next = self.ret.q.val();
+                self.xs.d.next = self.rxs.q.val();
+                self.ds.d.next = self.rds.q.val();
+                self.clr_r.d.next = true;
+                self.clr_q.d.next = true;
             }
             FitState::SqRun => {
+                self.f_sq.d.next = true;
+                self.f_run.d.next = true;
                 self.it.d.next = self.it.q.val() - self.one8.val();
                 if self.it.q.val() == self.one8.val() {
+                    self.f_sq.d.next = false;
+                    self.f_run.d.next = false;
                     self.nstate.next = self.ret.q.val();
+                    self.xs.d.next = self.rxs.q.val();
+                    self.ds.d.next = self.rds.q.val();
+                    self.clr_r.d.next = true;
+                    self.clr_q.d.next = true;
                 }
             }
             FitState::MulRun => {
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
                 self.it.d.next = self.it.q.val() - self.one8.val();
                 if self.it.q.val() == self.one8.val() {
+                    self.f_mul.d.next = false;
+                    self.f_run.d.next = false;
                     self.nstate.next = self.ret.q.val();
+                    self.xs.d.next = self.rxs.q.val();
+                    self.ds.d.next = self.rds.q.val();
+                    self.clr_r.d.next = true;
+                    self.clr_q.d.next = true;
                 }
             }
         }
         if self.rst.val() {
             self.nstate.next = FitState::Idle;
+            self.f_div.d.next = false;
+            self.f_sq.d.next = false;
+            self.f_mul.d.next = false;
+            self.f_run.d.next = false;
+            self.xs.d.next = XSel::Hold;
+            self.ds.d.next = DSel::Hold;
+            self.clr_r.d.next = false;
+            self.clr_q.d.next = false;
             self.r_os.d.next = self.b0_s.val();
             self.r_oc.d.next = self.b0_c.val();
             self.r_gs.d.next = self.g0_s.val();
@@ -330,127 +475,6 @@ impl Logic for FitSolve {
             self.r_done.d.next = false;
         }
         self.state.d.next = self.nstate.val();
-        // The next state decoded into registered one-hot flags and operand selects, so the
-        // wide registers below see no state decode.
-        self.f_div.d.next = self.nstate.val() == FitState::DivRun;
-        self.f_sq.d.next = self.nstate.val() == FitState::SqRun;
-        self.f_mul.d.next = self.nstate.val() == FitState::MulRun;
-        self.f_run.d.next = (self.nstate.val() == FitState::DivRun)
-            | (self.nstate.val() == FitState::SqRun)
-            | (self.nstate.val() == FitState::MulRun);
-        self.xs.d.next = XSel::Hold;
-        self.ds.d.next = DSel::Hold;
-        self.clr_r.d.next = false;
-        self.clr_q.d.next = false;
-        match self.nstate.val() {
-            FitState::Ms => {
-                self.xs.d.next = XSel::A1s8;
-                self.ds.d.next = DSel::Sn;
-                self.clr_r.d.next = true;
-            }
-            FitState::Mc => {
-                self.xs.d.next = XSel::A1c8;
-                self.ds.d.next = DSel::Sn;
-                self.clr_r.d.next = true;
-            }
-            FitState::Vs => {
-                self.xs.d.next = XSel::A2s;
-                self.ds.d.next = DSel::Sn;
-                self.clr_r.d.next = true;
-            }
-            FitState::Vc => {
-                self.xs.d.next = XSel::A2c;
-                self.ds.d.next = DSel::Sn;
-                self.clr_r.d.next = true;
-            }
-            FitState::Cq => {
-                self.xs.d.next = XSel::Asc;
-                self.ds.d.next = DSel::Sn;
-                self.clr_r.d.next = true;
-            }
-            FitState::M1 => {
-                self.xs.d.next = XSel::Ms32;
-                self.ds.d.next = DSel::Ms;
-                self.clr_r.d.next = true;
-            }
-            FitState::M2 => {
-                self.xs.d.next = XSel::Mc32;
-                self.ds.d.next = DSel::Mc;
-                self.clr_r.d.next = true;
-            }
-            FitState::M3 => {
-                self.xs.d.next = XSel::Ms32;
-                self.ds.d.next = DSel::Mc;
-                self.clr_r.d.next = true;
-            }
-            FitState::SqS => {
-                self.xs.d.next = XSel::Vs2;
-                self.clr_r.d.next = true;
-                self.clr_q.d.next = true;
-            }
-            FitState::SqC => {
-                self.xs.d.next = XSel::Vc2;
-                self.clr_r.d.next = true;
-                self.clr_q.d.next = true;
-            }
-            FitState::Chk => {
-                self.xs.d.next = XSel::Amps32;
-                self.ds.d.next = DSel::Uq;
-                self.clr_r.d.next = true;
-            }
-            FitState::Sn => {
-                self.xs.d.next = XSel::Cmag16;
-                self.ds.d.next = DSel::Ur;
-                self.clr_r.d.next = true;
-            }
-            FitState::Sn2 => {
-                self.xs.d.next = XSel::Scl32;
-                self.ds.d.next = DSel::Scl;
-                self.clr_r.d.next = true;
-            }
-            FitState::Cs => {
-                self.xs.d.next = XSel::T30;
-                self.clr_r.d.next = true;
-                self.clr_q.d.next = true;
-            }
-            FitState::OffC => {
-                self.xs.d.next = XSel::Tgs;
-                self.ds.d.next = DSel::Amps;
-                self.clr_r.d.next = true;
-            }
-            FitState::Q1 => {
-                self.xs.d.next = XSel::Ampc32;
-                self.ds.d.next = DSel::Cs;
-                self.clr_r.d.next = true;
-            }
-            FitState::Gc => {
-                self.xs.d.next = XSel::Tgc;
-                self.ds.d.next = DSel::Ur;
-                self.clr_r.d.next = true;
-            }
-            FitState::Q2 => {
-                self.xs.d.next = XSel::Amps32;
-                self.ds.d.next = DSel::Cs;
-                self.clr_r.d.next = true;
-            }
-            FitState::Ts => {
-                self.xs.d.next = XSel::Tamp32;
-                self.ds.d.next = DSel::Smag;
-                self.clr_r.d.next = true;
-            }
-            FitState::Kd => {
-                self.xs.d.next = XSel::Urk;
-                self.ds.d.next = DSel::Q2;
-                self.clr_r.d.next = true;
-            }
-            FitState::DivNeg => {
-                self.xs.d.next = XSel::Mag;
-                if self.u_neg.q.val() {
-                    self.xs.d.next = XSel::NMag;
-                }
-            }
-            _ => {}
-        }
         // u_x: a registered select of its sources, then the run states' shifts (the division's
         // quotient bit from the adder goes through the last mux only).
         match self.xs.q.val() {
