@@ -1,14 +1,16 @@
 //! rust-hdl description of the automatic calibration by least-squares ellipse fit (mode
 //! `auto`): the quadrant tracker and the window sums of [`super::fit::EllipseFit`], one
-//! sample every second clock at most (the ADC delivers one per frame), feeding the serial solver [`super::fit_solve::FitSolve`], which loads
-//! offsets, gains and the phase cross code together.
+//! sample every second clock at most (the ADC delivers one per frame), feeding the serial
+//! solver [`super::fit_solve::FitSolve`], which loads offsets, gains and the phase cross
+//! code together.
 //!
 //! ```text
 //!           stage A (reg)           stage B (reg)                stage C (reg)   stage D (reg)
 //!  x ─►sext─► d  = x - b_ref ─┐
-//!            -d  = b_ref - x  ├─► signs ─► q, step ─► net, N,   ─► e, |e|, cmd ─► |e_s|²,|e_c|²,
+//!            -d  = b_ref - x  ├─► q, step ──────────► net, N,   ─► e, |e|, cmd ─► |e_s|²,|e_c|²,
 //!  (both      e  = x - b_cur  │   (d, or e right after b_ref    (add / restart  |e_s e_c|
 //!  tracks)   -e  = b_cur - x ─┘    changed) window open/close     / snapshot)    (3 hard 16x16)
+//!            (q, step from the signs of d and tq; the closing compares of net, N registered)
 //!                                  b_ref := b_cur at a start ─────────────┐         │
 //!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit) ◄───────────────┴─────────┘
 //!           at a window's end the sums before the sample and the window's b_ref go to
@@ -141,8 +143,14 @@ pub struct FitCal {
     /// Stage B: the differences the quadrant is taken from (d, or e after a b_ref change).
     ds: Signal<Local, Bits<32>>,
     dc: Signal<Local, Bits<32>>,
+    /// Stage A: x - b_ref (the quadrant's signs), the quadrant and the step from tq.
+    das: Signal<Local, Bits<32>>,
+    dac: Signal<Local, Bits<32>>,
     q: Signal<Local, Bits<2>>,
     stp: Signal<Local, Bits<2>>,
+    /// Stage B: the sample's quadrant and step (registered in stage A).
+    qb: DFF<Bits<2>>,
+    sb: DFF<Bits<2>>,
     /// Stage B: the step s as a 32-bit word, and the closing tests for it.
     sval: Signal<Local, Bits<32>>,
     netf: Signal<Local, Bits<32>>,
@@ -309,8 +317,12 @@ impl FitCal {
             xc: Default::default(),
             ds: Default::default(),
             dc: Default::default(),
+            das: Default::default(),
+            dac: Default::default(),
             q: Default::default(),
             stp: Default::default(),
+            qb: Default::default(),
+            sb: Default::default(),
             sval: Default::default(),
             netf: Default::default(),
             big: Default::default(),
@@ -365,7 +377,7 @@ impl Logic for FitCal {
             self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_snap, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt,
-            s1_s, s1_c, s2_s, s2_c, ssc, kd_m, kd_n, h_p1, h_m1, h_p2, h_m2, nbge
+            s1_s, s1_c, s2_s, s2_c, ssc, kd_m, kd_n, h_p1, h_m1, h_p2, h_m2, nbge, qb, sb
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -379,32 +391,40 @@ impl Logic for FitCal {
             self.xc.next = self.xc.val() | self.asext.val();
         }
         self.va.d.next = self.valid.val() & !self.rst.val();
-        self.da_s.d.next = self.xs.val() - self.bref_s.q.val();
+        self.das.next = self.xs.val() - self.bref_s.q.val();
+        self.dac.next = self.xc.val() - self.bref_c.q.val();
+        self.da_s.d.next = self.das.val();
         self.nda_s.d.next = self.bref_s.q.val() - self.xs.val();
         self.ea_s.d.next = self.xs.val() - self.slv.off_s.val();
         self.nea_s.d.next = self.slv.off_s.val() - self.xs.val();
-        self.da_c.d.next = self.xc.val() - self.bref_c.q.val();
+        self.da_c.d.next = self.dac.val();
         self.nda_c.d.next = self.bref_c.q.val() - self.xc.val();
         self.ea_c.d.next = self.xc.val() - self.slv.off_c.val();
         self.nea_c.d.next = self.slv.off_c.val() - self.xc.val();
-        // Stage B: quadrant (CORDIC mapper convention) and step.
+        // Quadrant (CORDIC mapper convention) and step, registered for stage B: the tracker's
+        // b_ref and tq are the previous sample's (at least two clocks ago), so d is final.
+        self.q.next = self.q0.val();
+        if (self.das.val() & self.sign32.val()).any() {
+            if (self.dac.val() & self.sign32.val()).any() {
+                self.q.next = self.q2.val();
+            } else {
+                self.q.next = self.q3.val();
+            }
+        } else if (self.dac.val() & self.sign32.val()).any() {
+            self.q.next = self.q1.val();
+        }
+        // q - tq mod 4 as logic (a borrow into bit 1), not a second carry chain after d's.
+        self.stp.next = (self.q.val() ^ self.tq.q.val())
+            ^ (((!self.q.val()) & self.tq.q.val() & self.q1.val()) << self.one32.val());
+        self.qb.d.next = self.q.val();
+        self.sb.d.next = self.stp.val();
+        // Stage B: the differences of the sums' entry (d, or e after a b_ref change).
         self.ds.next = self.da_s.q.val();
         self.dc.next = self.da_c.q.val();
         if self.fresh.q.val() {
             self.ds.next = self.ea_s.q.val();
             self.dc.next = self.ea_c.q.val();
         }
-        self.q.next = self.q0.val();
-        if (self.ds.val() & self.sign32.val()).any() {
-            if (self.dc.val() & self.sign32.val()).any() {
-                self.q.next = self.q2.val();
-            } else {
-                self.q.next = self.q3.val();
-            }
-        } else if (self.dc.val() & self.sign32.val()).any() {
-            self.q.next = self.q1.val();
-        }
-        self.stp.next = self.q.val() - self.tq.q.val();
         // The step as a word and the window-closing test |net + s| >= 4K, 4 | net + s: the
         // compares of net against constants are registered (net changed at least two clocks
         // ago), so only their selection by the step is in this path.
@@ -421,17 +441,17 @@ impl Logic for FitCal {
         self.sval.next = self.zero32.val();
         self.big.next = false;
         self.whole.next = false;
-        if self.stp.val() == self.q1.val() {
+        if self.sb.q.val() == self.q1.val() {
             self.sval.next = self.sp1.val();
             self.big.next = self.h_p1.q.val();
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r3.val();
         }
-        if self.stp.val() == self.q3.val() {
+        if self.sb.q.val() == self.q3.val() {
             self.sval.next = self.sm1.val();
             self.big.next = self.h_m1.q.val();
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r1.val();
         }
-        if self.stp.val() == self.q2.val() {
+        if self.sb.q.val() == self.q2.val() {
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r2.val();
             if self.dneg.q.val() {
                 self.sval.next = self.sm2.val();
@@ -467,20 +487,20 @@ impl Logic for FitCal {
         self.c_nsc.d.next =
             (self.ds.val() & self.sign32.val()).any() ^ (self.dc.val() & self.sign32.val()).any();
         if self.va.q.val() {
-            self.tq.d.next = self.q.val();
+            self.tq.d.next = self.qb.q.val();
             if !self.tinit.q.val() {
                 self.tinit.d.next = true;
                 self.open.d.next = false;
-            } else if (self.stp.val() == self.q2.val()) & !self.dknown.q.val() {
+            } else if (self.sb.q.val() == self.q2.val()) & !self.dknown.q.val() {
                 // A two-quadrant step with no known direction: restart.
                 self.open.d.next = false;
             } else {
-                if (self.stp.val() == self.q1.val()) | (self.stp.val() == self.q3.val()) {
+                if (self.sb.q.val() == self.q1.val()) | (self.sb.q.val() == self.q3.val()) {
                     self.dknown.d.next = true;
-                    self.dneg.d.next = self.stp.val() == self.q3.val();
+                    self.dneg.d.next = self.sb.q.val() == self.q3.val();
                 }
                 if !self.open.q.val() {
-                    if self.stp.val().any() {
+                    if self.sb.q.val().any() {
                         // Open a window at this boundary, from the offsets in use.
                         self.open.d.next = true;
                         self.bref_s.d.next = self.slv.off_s.val();

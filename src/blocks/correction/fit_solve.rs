@@ -9,22 +9,29 @@
 //!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, u_q, it):
 //!  m_s,m_c = rdiv(|Σd| 2^8, N)      DIV 64 steps   V = floor(Σd² 2^16 / N)  DIV 80 steps
 //!  Cq = floor(Σsc 2^16 / N)         DIV 80 steps   V -= m², C = Cq - m_s m_c  MUL 32 steps
-//!  Amp = isqrt(2V)                  SQRT 32 steps  Amp < min 2^8 ─────────────► Idle
+//!  Amp = isqrt(2V)                  SQRT 32 steps  Amp < min 2^8 (checked after Amp_s Amp_c) ► Idle
 //!  S = rdiv(-C 2^16, Amp_s Amp_c)   MUL, DIV       |S| <= smax; Cc = isqrt(2^30 - S²)
-//!  b = b_ref + rdiv(m, 2^8)         add, out of range ───────────────────────► Idle
+//!  b = b_ref + rdiv(m, 2^8)         add, out of range (checked after g_s's DIV) ► Idle
 //!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
 //!
-//!  shared adder: sum = tt + sb + cin (one carry chain; tt, sb picked by the registered one-hot
-//!  flags f_div / f_sq / f_mul and by the sign of u_r, so no mux follows the chain)
+//!  shared adder, one carry chain: sum = tt + pa when u_r < 0 (or the multiplier bit is one),
+//!  else tt - ma = tt + !ma + 1; tt, pa, ma from registers (flags f_div / f_sq / f_mul); no
+//!  mux follows the chain
 //!  DIV (non-restoring, dividend and quotient share u_x):  SQRT (non-restoring, 2 bits a step):
 //!    t = 2 u_r + msb(u_x)                                   t = 4 u_r + top2(u_x)
 //!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4u_q+3) : t - (4u_q+1)
 //!    u_x = 2 u_x + (u_r >= 0)                               u_q = 2 u_q + (u_r >= 0)
 //!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
-//!  when u_r < 0)
-//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0 (u_r or u_r + u_d);
-//!  u_mag = u_x + adj; u_x = +-u_mag
-//!  MUL (shift-add): u_r += u_d odd ? u_x : 0; u_x <<= 1; u_d >>= 1 (32 steps, b < 2^32)
+//!  when u_r < 0, zero when u_r = nd = -u_d, a register)
+//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0;
+//!  u_mag = u_x + adj and u_nmag = !u_x + !adj = -(u_x + adj) side by side; u_x = u_mag / u_nmag
+//!  MUL (MSB first, multiplier a < 2^32 in the top half of u_x, 32 steps):
+//!    u_r = 2 u_r + (msb(u_x) ? u_d : 0); u_x <<= 1
+//!
+//!  wide loads: u_x and u_d take one of their sources by a registered select (xs, ds) that
+//!  the state before sets (a return to `ret` takes the select stored with it); compares and
+//!  negations the states need (clamps, amplitude and offset checks, 2^30 - S², -u_d) are
+//!  free-running registers, read a state after their inputs settle
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -37,14 +44,16 @@
 //!   (Amp = isqrt(2V), V <= 2^(2A-2+16) because a variable in a range of width 2^A has a
 //!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word; the
 //!   non-restoring remainder lies in [-u_d, u_d), so every sum of the shared adder is below
-//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50) and its
-//!   63-bit sum (bit 0 of the chain carries cin) sign-extends to 64 bits exactly.
+//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50): the 64-bit
+//!   sums never wrap.
 //! * |C| <= sqrt(V_s V_c) < 2^(2A+14) <= 2^46, so |C| 2^16 < 2^62; T 2^(GF+23) < 2^53;
 //!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits.
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
 //!   all below 2^32 (the 32 steps), products below 2^50.
 //! * Each state writes its registers through at most one adder or compare (the timing rule
-//!   of docs/correction.md): abs, add, round and negate are separate states.
+//!   of docs/correction.md): abs, add, round and negate are separate states or free-running
+//!   registers.
+//! * u_q (the root) has 32 bits: 32 steps, one bit each; `it` counts at most 80 steps: 8 bits.
 //!
 //! # Timing
 //! [`SOLVE_CYCLES`] clocks from `start` to `done` when the update is accepted (fewer when
@@ -182,21 +191,21 @@ pub enum FitState {
     SqS,
     /// Amp_c = isqrt(2 V_c).
     SqC,
-    /// Amplitude check; Amp_s Amp_c.
+    /// Amp_s Amp_c.
     Chk,
-    /// S = rdiv(-C 2^16, Amp_s Amp_c).
+    /// Amplitude check; S = rdiv(-C 2^16, Amp_s Amp_c).
     Sn,
     /// Clamp S; S².
     Sn2,
-    /// Cc = isqrt(2^30 - S²).
-    Cs,
     /// round(|m| / 2^8).
     OffA,
+    /// Cc = isqrt(2^30 - S²).
+    Cs,
     /// b = b_ref +- round(|m| / 2^8).
     OffB,
-    /// Offset range check; g_s = rdiv(T 2^(GF+8), Amp_s).
+    /// g_s = rdiv(T 2^(GF+8), Amp_s).
     OffC,
-    /// Clamp g_s; Amp_c Cc.
+    /// Offset range check; clamp g_s; Amp_c Cc.
     Q1,
     /// g_c = rdiv(T 2^(GF+23), Amp_c Cc).
     Gc,
@@ -358,12 +367,15 @@ pub struct FitSolve {
     pa: Signal<Local, Bits<64>>,
     /// The operand subtracted (u_r >= 0): u_d, 4 u_q + 1, or 0 in a multiplication.
     ma: Signal<Local, Bits<64>>,
-    /// tt + pa and tt - ma: two carry chains side by side.
-    sp: Signal<Local, Bits<64>>,
-    sm: Signal<Local, Bits<64>>,
-    /// Take sp (u_r < 0, or the multiplier's bit is one), else sm.
+    /// Add pa (u_r < 0, or the multiplier's bit is one), else subtract ma.
     up: Signal<Local, Bit>,
-    /// The selected sum: the next u_r.
+    /// The chain's second operand: pa or !ma.
+    sb: Signal<Local, Bits<64>>,
+    /// {sb, cin} (sb's bit 63 dropped; cin = !up).
+    sbc: Signal<Local, Bits<64>>,
+    /// {tt, 1} + {sb, cin}: bit 0 carries cin into the chain.
+    s65: Signal<Local, Bits<64>>,
+    /// The shared adder's sum (the next u_r), bits 63..1 of `s65` sign-extended.
     sel: Signal<Local, Bits<64>>,
     /// Its sign (the complement of the quotient / root bit).
     sgn: Signal<Local, Bit>,
@@ -533,8 +545,9 @@ impl FitSolve {
             tt: Default::default(),
             pa: Default::default(),
             ma: Default::default(),
-            sp: Default::default(),
-            sm: Default::default(),
+            sb: Default::default(),
+            sbc: Default::default(),
+            s65: Default::default(),
             up: Default::default(),
             sel: Default::default(),
             sgn: Default::default(),

@@ -17,8 +17,7 @@ impl Logic for FitSolve {
         // square root's trial 4q + 3) back instead of subtracting it (4q + 1), so the sign of
         // the selected sum is the complement of the quotient bit and the sum is the next
         // remainder. A multiplication (MSB first) doubles u_r and adds u_d when the top bit of
-        // u_x is one (the "minus" sum with 0 otherwise). Both sums are formed side by side
-        // and one is picked after the chains by registered signals only.
+        // u_x is one (the "minus" sum with 0 otherwise).
         self.rneg.next = (self.u_r.q.val() & self.sign63.val()).any();
         self.tt.next = self.u_r.q.val() << self.one32.val();
         if self.f_div.q.val() & (self.u_x.q.val() & self.sign63.val()).any() {
@@ -39,12 +38,17 @@ impl Logic for FitSolve {
             self.ma.next = self.zero64.val();
             self.up.next = (self.u_x.q.val() & self.sign63.val()).any();
         }
-        self.sp.next = self.tt.val() + self.pa.val();
-        self.sm.next = self.tt.val() - self.ma.val();
-        self.sel.next = self.sm.val();
+        // One carry chain: tt + (up ? pa : !ma) + !up, bit 0 of {tt, 1} + {sb, cin} carrying
+        // cin in; bits 63..1 are the 63-bit sum, sign-extended (every sum is below 2^51 in
+        // magnitude, module doc).
+        self.sb.next = !self.ma.val();
+        self.sbc.next = (self.sb.val() << self.one32.val()) | self.one64.val();
         if self.up.val() {
-            self.sel.next = self.sp.val();
+            self.sb.next = self.pa.val();
+            self.sbc.next = self.sb.val() << self.one32.val();
         }
+        self.s65.next = ((self.tt.val() << self.one32.val()) | self.one64.val()) + self.sbc.val();
+        self.sel.next = (self.s65.val() >> self.one32.val()) | (self.s65.val() & self.sign63.val());
         self.sgn.next = (self.sel.val() & self.sign63.val()).any();
         // Free-running registers: compares and negations one clock ahead of their use.
         self.nd.d.next = self.zero64.val() - self.u_d.q.val();
