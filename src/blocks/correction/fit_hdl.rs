@@ -1,14 +1,16 @@
 //! rust-hdl description of the automatic calibration by least-squares ellipse fit (mode
 //! `auto`): the quadrant tracker and the window sums of [`super::fit::EllipseFit`], one
-//! sample per clock, feeding the serial solver [`super::fit_solve::FitSolve`], which loads
-//! offsets, gains and the phase cross code together.
+//! sample every second clock at most (the ADC delivers one per frame), feeding the serial
+//! solver [`super::fit_solve::FitSolve`], which loads offsets, gains and the phase cross
+//! code together.
 //!
 //! ```text
 //!           stage A (reg)           stage B (reg)                stage C (reg)   stage D (reg)
 //!  x ─►sext─► d  = x - b_ref ─┐
-//!            -d  = b_ref - x  ├─► signs ─► q, step ─► net, N,   ─► e, |e|, cmd ─► |e_s|²,|e_c|²,
+//!            -d  = b_ref - x  ├─► q, step ──────────► net, N,   ─► e, |e|, cmd ─► |e_s|²,|e_c|²,
 //!  (both      e  = x - b_cur  │   (d, or e right after b_ref    (add / restart  |e_s e_c|
 //!  tracks)   -e  = b_cur - x ─┘    changed) window open/close     / snapshot)    (3 hard 16x16)
+//!            (q, step from the signs of d and tq; the closing compares of net, N registered)
 //!                                  b_ref := b_cur at a start ─────────────┐         │
 //!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit) ◄───────────────┴─────────┘
 //!           at a window's end the sums before the sample and the window's b_ref go to
@@ -24,13 +26,15 @@
 //!   subtractor beside it for a negative product, selected by the sign).
 //! * net (the quadrants since the window opened) changes by at most 2 per sample and is
 //!   bounded by 2 N_MAX: 32 bits. The window-closing test |net + s| >= 4K is done as compares
-//!   of the registered net against constants (one per step s = +-1, +-2), beside the adder
+//!   of the registered net against constants (one per step s = +-1, +-2, registered), beside the adder
 //!   net + s, so each path has one carry chain; (net + s) mod 4 = 0 is a 2-bit match.
 //!
 //! # Timing and semantics
 //! * The tracker and the sums follow the model sample for sample; the sums are three
-//!   clocks behind the tracker, so the snapshot (stage E) holds exactly the window's samples
-//!   even with one sample per clock.
+//!   clocks behind the tracker, so the snapshot (stage E) holds exactly the window's samples.
+//! * The window-closing compares of `net` and N are registered (free-running), so they
+//!   describe the last sample's state only when samples are at least two clocks apart; the
+//!   ADC controller delivers one per frame (tens of clocks), the tests every 2 to 6 clocks.
 //! * b_ref of a new window is b_cur at its first sample, i.e. the offsets before the update
 //!   its predecessor triggers (the model does the same, [`super::fit`]). The sample right
 //!   after a b_ref change was subtracted from the old b_ref in stage A; stage B then uses its
@@ -122,6 +126,13 @@ pub struct FitCal {
     p_sc: DFF<Bits<32>>,
     d_nsc: DFF<Bit>,
     cnt: DFF<Bits<32>>,
+    /// The window-closing compares |net + s| >= 4K for s = +1, -1, +2, -2 and N >= min_samples,
+    /// registered from `net` and `nb` (free-running; samples are at least two clocks apart).
+    h_p1: DFF<Bit>,
+    h_m1: DFF<Bit>,
+    h_p2: DFF<Bit>,
+    h_m2: DFF<Bit>,
+    nbge: DFF<Bit>,
     s1_s: DFF<Bits<64>>,
     s1_c: DFF<Bits<64>>,
     s2_s: DFF<Bits<64>>,
@@ -132,8 +143,14 @@ pub struct FitCal {
     /// Stage B: the differences the quadrant is taken from (d, or e after a b_ref change).
     ds: Signal<Local, Bits<32>>,
     dc: Signal<Local, Bits<32>>,
+    /// Stage A: x - b_ref (the quadrant's signs), the quadrant and the step from tq.
+    das: Signal<Local, Bits<32>>,
+    dac: Signal<Local, Bits<32>>,
     q: Signal<Local, Bits<2>>,
     stp: Signal<Local, Bits<2>>,
+    /// Stage B: the sample's quadrant and step (registered in stage A).
+    qb: DFF<Bits<2>>,
+    sb: DFF<Bits<2>>,
     /// Stage B: the step s as a 32-bit word, and the closing tests for it.
     sval: Signal<Local, Bits<32>>,
     netf: Signal<Local, Bits<32>>,
@@ -286,6 +303,11 @@ impl FitCal {
             p_sc: Default::default(),
             d_nsc: Default::default(),
             cnt: Default::default(),
+            h_p1: Default::default(),
+            h_m1: Default::default(),
+            h_p2: Default::default(),
+            h_m2: Default::default(),
+            nbge: Default::default(),
             s1_s: Default::default(),
             s1_c: Default::default(),
             s2_s: Default::default(),
@@ -295,8 +317,12 @@ impl FitCal {
             xc: Default::default(),
             ds: Default::default(),
             dc: Default::default(),
+            das: Default::default(),
+            dac: Default::default(),
             q: Default::default(),
             stp: Default::default(),
+            qb: Default::default(),
+            sb: Default::default(),
             sval: Default::default(),
             netf: Default::default(),
             big: Default::default(),
@@ -351,7 +377,7 @@ impl Logic for FitCal {
             self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_snap, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt,
-            s1_s, s1_c, s2_s, s2_c, ssc, kd_m, kd_n
+            s1_s, s1_c, s2_s, s2_c, ssc, kd_m, kd_n, h_p1, h_m1, h_p2, h_m2, nbge, qb, sb
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -365,62 +391,77 @@ impl Logic for FitCal {
             self.xc.next = self.xc.val() | self.asext.val();
         }
         self.va.d.next = self.valid.val() & !self.rst.val();
-        self.da_s.d.next = self.xs.val() - self.bref_s.q.val();
+        self.das.next = self.xs.val() - self.bref_s.q.val();
+        self.dac.next = self.xc.val() - self.bref_c.q.val();
+        self.da_s.d.next = self.das.val();
         self.nda_s.d.next = self.bref_s.q.val() - self.xs.val();
         self.ea_s.d.next = self.xs.val() - self.slv.off_s.val();
         self.nea_s.d.next = self.slv.off_s.val() - self.xs.val();
-        self.da_c.d.next = self.xc.val() - self.bref_c.q.val();
+        self.da_c.d.next = self.dac.val();
         self.nda_c.d.next = self.bref_c.q.val() - self.xc.val();
         self.ea_c.d.next = self.xc.val() - self.slv.off_c.val();
         self.nea_c.d.next = self.slv.off_c.val() - self.xc.val();
-        // Stage B: quadrant (CORDIC mapper convention) and step.
+        // Quadrant (CORDIC mapper convention) and step, registered for stage B: the tracker's
+        // b_ref and tq are the previous sample's (at least two clocks ago), so d is final.
+        self.q.next = self.q0.val();
+        if (self.das.val() & self.sign32.val()).any() {
+            if (self.dac.val() & self.sign32.val()).any() {
+                self.q.next = self.q2.val();
+            } else {
+                self.q.next = self.q3.val();
+            }
+        } else if (self.dac.val() & self.sign32.val()).any() {
+            self.q.next = self.q1.val();
+        }
+        // q - tq mod 4 as logic (a borrow into bit 1), not a second carry chain after d's.
+        self.stp.next = (self.q.val() ^ self.tq.q.val())
+            ^ (((!self.q.val()) & self.tq.q.val() & self.q1.val()) << self.one32.val());
+        self.qb.d.next = self.q.val();
+        self.sb.d.next = self.stp.val();
+        // Stage B: the differences of the sums' entry (d, or e after a b_ref change).
         self.ds.next = self.da_s.q.val();
         self.dc.next = self.da_c.q.val();
         if self.fresh.q.val() {
             self.ds.next = self.ea_s.q.val();
             self.dc.next = self.ea_c.q.val();
         }
-        self.q.next = self.q0.val();
-        if (self.ds.val() & self.sign32.val()).any() {
-            if (self.dc.val() & self.sign32.val()).any() {
-                self.q.next = self.q2.val();
-            } else {
-                self.q.next = self.q3.val();
-            }
-        } else if (self.dc.val() & self.sign32.val()).any() {
-            self.q.next = self.q1.val();
-        }
-        self.stp.next = self.q.val() - self.tq.q.val();
-        // The step as a word and the window-closing test |net + s| >= 4K, 4 | net + s.
+        // The step as a word and the window-closing test |net + s| >= 4K, 4 | net + s: the
+        // compares of net against constants are registered (net changed at least two clocks
+        // ago), so only their selection by the step is in this path.
         self.netf.next = self.net.q.val() ^ self.sign32.val();
+        self.h_p1.d.next =
+            (self.netf.val() >= self.ge_p1.val()) | (self.netf.val() < self.lt_p1.val());
+        self.h_m1.d.next =
+            (self.netf.val() >= self.ge_m1.val()) | (self.netf.val() < self.lt_m1.val());
+        self.h_p2.d.next =
+            (self.netf.val() >= self.ge_p2.val()) | (self.netf.val() < self.lt_p2.val());
+        self.h_m2.d.next =
+            (self.netf.val() >= self.ge_m2.val()) | (self.netf.val() < self.lt_m2.val());
+        self.nbge.d.next = self.nb.q.val() >= self.nmin.val();
         self.sval.next = self.zero32.val();
         self.big.next = false;
         self.whole.next = false;
-        if self.stp.val() == self.q1.val() {
+        if self.sb.q.val() == self.q1.val() {
             self.sval.next = self.sp1.val();
-            self.big.next =
-                (self.netf.val() >= self.ge_p1.val()) | (self.netf.val() < self.lt_p1.val());
+            self.big.next = self.h_p1.q.val();
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r3.val();
         }
-        if self.stp.val() == self.q3.val() {
+        if self.sb.q.val() == self.q3.val() {
             self.sval.next = self.sm1.val();
-            self.big.next =
-                (self.netf.val() >= self.ge_m1.val()) | (self.netf.val() < self.lt_m1.val());
+            self.big.next = self.h_m1.q.val();
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r1.val();
         }
-        if self.stp.val() == self.q2.val() {
+        if self.sb.q.val() == self.q2.val() {
             self.whole.next = (self.net.q.val() & self.m2.val()) == self.r2.val();
             if self.dneg.q.val() {
                 self.sval.next = self.sm2.val();
-                self.big.next =
-                    (self.netf.val() >= self.ge_m2.val()) | (self.netf.val() < self.lt_m2.val());
+                self.big.next = self.h_m2.q.val();
             } else {
                 self.sval.next = self.sp2.val();
-                self.big.next =
-                    (self.netf.val() >= self.ge_p2.val()) | (self.netf.val() < self.lt_p2.val());
+                self.big.next = self.h_p2.q.val();
             }
         }
-        self.done.next = self.big.val() & self.whole.val() & (self.nb.q.val() >= self.nmin.val());
+        self.done.next = self.big.val() & self.whole.val() & self.nbge.q.val();
         // Defaults of the command to the sums: nothing; the entry of the sample as it would
         // be added (d, or e after a b_ref change).
         self.fresh.d.next = false;
@@ -446,20 +487,20 @@ impl Logic for FitCal {
         self.c_nsc.d.next =
             (self.ds.val() & self.sign32.val()).any() ^ (self.dc.val() & self.sign32.val()).any();
         if self.va.q.val() {
-            self.tq.d.next = self.q.val();
+            self.tq.d.next = self.qb.q.val();
             if !self.tinit.q.val() {
                 self.tinit.d.next = true;
                 self.open.d.next = false;
-            } else if (self.stp.val() == self.q2.val()) & !self.dknown.q.val() {
+            } else if (self.sb.q.val() == self.q2.val()) & !self.dknown.q.val() {
                 // A two-quadrant step with no known direction: restart.
                 self.open.d.next = false;
             } else {
-                if (self.stp.val() == self.q1.val()) | (self.stp.val() == self.q3.val()) {
+                if (self.sb.q.val() == self.q1.val()) | (self.sb.q.val() == self.q3.val()) {
                     self.dknown.d.next = true;
-                    self.dneg.d.next = self.stp.val() == self.q3.val();
+                    self.dneg.d.next = self.sb.q.val() == self.q3.val();
                 }
                 if !self.open.q.val() {
-                    if self.stp.val().any() {
+                    if self.sb.q.val().any() {
                         // Open a window at this boundary, from the offsets in use.
                         self.open.d.next = true;
                         self.bref_s.d.next = self.slv.off_s.val();

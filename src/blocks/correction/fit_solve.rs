@@ -9,22 +9,29 @@
 //!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, u_q, it):
 //!  m_s,m_c = rdiv(|Σd| 2^8, N)      DIV 64 steps   V = floor(Σd² 2^16 / N)  DIV 80 steps
 //!  Cq = floor(Σsc 2^16 / N)         DIV 80 steps   V -= m², C = Cq - m_s m_c  MUL 32 steps
-//!  Amp = isqrt(2V)                  SQRT 32 steps  Amp < min 2^8 ─────────────► Idle
+//!  Amp = isqrt(2V)                  SQRT 32 steps  Amp < min 2^8 (checked after Amp_s Amp_c) ► Idle
 //!  S = rdiv(-C 2^16, Amp_s Amp_c)   MUL, DIV       |S| <= smax; Cc = isqrt(2^30 - S²)
-//!  b = b_ref + rdiv(m, 2^8)         add, out of range ───────────────────────► Idle
+//!  b = b_ref + rdiv(m, 2^8)         add, out of range (checked after g_s's DIV) ► Idle
 //!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
 //!
-//!  shared adder: sum = tt + sb + cin (one carry chain; tt, sb picked by the registered one-hot
-//!  flags f_div / f_sq / f_mul and by the sign of u_r, so no mux follows the chain)
+//!  shared adder, one carry chain: sum = tt + pa when u_r < 0 (or the multiplier bit is one),
+//!  else tt - ma = tt + !ma + 1; tt, pa, ma from registers (flags f_div / f_sq / f_mul); no
+//!  mux follows the chain
 //!  DIV (non-restoring, dividend and quotient share u_x):  SQRT (non-restoring, 2 bits a step):
 //!    t = 2 u_r + msb(u_x)                                   t = 4 u_r + top2(u_x)
 //!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4u_q+3) : t - (4u_q+1)
 //!    u_x = 2 u_x + (u_r >= 0)                               u_q = 2 u_q + (u_r >= 0)
 //!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
-//!  when u_r < 0)
-//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0 (u_r or u_r + u_d);
-//!  u_mag = u_x + adj; u_x = +-u_mag
-//!  MUL (shift-add): u_r += u_d odd ? u_x : 0; u_x <<= 1; u_d >>= 1 (32 steps, b < 2^32)
+//!  when u_r < 0, zero when u_r = nd = -u_d, a register)
+//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0;
+//!  u_mag = u_x + adj and u_nmag = !u_x + !adj = -(u_x + adj) side by side; u_x = u_mag / u_nmag
+//!  MUL (MSB first, multiplier a < 2^32 in the top half of u_x, 32 steps):
+//!    u_r = 2 u_r + (msb(u_x) ? u_d : 0); u_x <<= 1
+//!
+//!  wide loads: u_x and u_d take one of their sources by a registered select (xs, ds) that
+//!  the state before sets (a return to `ret` takes the select stored with it); compares and
+//!  negations the states need (clamps, amplitude and offset checks, 2^30 - S², -u_d) are
+//!  free-running registers, read a state after their inputs settle
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -37,14 +44,16 @@
 //!   (Amp = isqrt(2V), V <= 2^(2A-2+16) because a variable in a range of width 2^A has a
 //!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word; the
 //!   non-restoring remainder lies in [-u_d, u_d), so every sum of the shared adder is below
-//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50) and its
-//!   63-bit sum (bit 0 of the chain carries cin) sign-extends to 64 bits exactly.
+//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50): the 64-bit
+//!   sums never wrap.
 //! * |C| <= sqrt(V_s V_c) < 2^(2A+14) <= 2^46, so |C| 2^16 < 2^62; T 2^(GF+23) < 2^53;
 //!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits.
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
 //!   all below 2^32 (the 32 steps), products below 2^50.
 //! * Each state writes its registers through at most one adder or compare (the timing rule
-//!   of docs/correction.md): abs, add, round and negate are separate states.
+//!   of docs/correction.md): abs, add, round and negate are separate states or free-running
+//!   registers.
+//! * u_q (the root) has 32 bits: 32 steps, one bit each; `it` counts at most 80 steps: 8 bits.
 //!
 //! # Timing
 //! [`SOLVE_CYCLES`] clocks from `start` to `done` when the update is accepted (fewer when
@@ -76,6 +85,85 @@ pub(super) fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
 }
 
+/// An 8-bit constant.
+fn c8(v: u64) -> Constant<Bits<8>> {
+    Constant::new(Bits::<8>::from(v))
+}
+
+/// What u_x loads in a state (one registered select, decoded from the next state).
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum XSel {
+    /// Keep (or the run state's shift).
+    Hold,
+    /// |Σd_s| 2^8.
+    A1s8,
+    /// |Σd_c| 2^8.
+    A1c8,
+    /// Σd_s².
+    A2s,
+    /// Σd_c².
+    A2c,
+    /// |Σd_s d_c|.
+    Asc,
+    /// m_s 2^32 (a multiplier operand sits in the top half).
+    Ms32,
+    /// m_c 2^32.
+    Mc32,
+    /// 2 V_s (0 if V_s < 0).
+    Vs2,
+    /// 2 V_c (0 if V_c < 0).
+    Vc2,
+    /// Amp_s 2^32.
+    Amps32,
+    /// Amp_c 2^32.
+    Ampc32,
+    /// |C| 2^16.
+    Cmag16,
+    /// Clamped |S| 2^32.
+    Scl32,
+    /// 2^30 - S².
+    T30,
+    /// T 2^(GF+8).
+    Tgs,
+    /// T 2^(GF+23).
+    Tgc,
+    /// T 2^32.
+    Tamp32,
+    /// T |S| 2^(GF+8).
+    Urk,
+    /// The rounded quotient's magnitude.
+    Mag,
+    /// Its negation.
+    NMag,
+}
+
+/// What u_d loads in a state.
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum DSel {
+    /// Keep.
+    Hold,
+    /// N.
+    Sn,
+    /// m_s.
+    Ms,
+    /// m_c.
+    Mc,
+    /// The square root just finished (Amp_c).
+    Uq,
+    /// The product just finished.
+    Ur,
+    /// Clamped |S|.
+    Scl,
+    /// Amp_s.
+    Amps,
+    /// Cc.
+    Cs,
+    /// |S|.
+    Smag,
+    /// Amp_s Cc.
+    Q2,
+}
+
 /// Steps of the solve (the operation in each state's comment is the one it starts).
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
 pub enum FitState {
@@ -103,21 +191,21 @@ pub enum FitState {
     SqS,
     /// Amp_c = isqrt(2 V_c).
     SqC,
-    /// Amplitude check; Amp_s Amp_c.
+    /// Amp_s Amp_c.
     Chk,
-    /// S = rdiv(-C 2^16, Amp_s Amp_c).
+    /// Amplitude check; S = rdiv(-C 2^16, Amp_s Amp_c).
     Sn,
     /// Clamp S; S².
     Sn2,
-    /// Cc = isqrt(2^30 - S²).
-    Cs,
     /// round(|m| / 2^8).
     OffA,
+    /// Cc = isqrt(2^30 - S²).
+    Cs,
     /// b = b_ref +- round(|m| / 2^8).
     OffB,
-    /// Offset range check; g_s = rdiv(T 2^(GF+8), Amp_s).
+    /// g_s = rdiv(T 2^(GF+8), Amp_s).
     OffC,
-    /// Clamp g_s; Amp_c Cc.
+    /// Offset range check; clamp g_s; Amp_c Cc.
     Q1,
     /// g_c = rdiv(T 2^(GF+23), Amp_c Cc).
     Gc,
@@ -189,12 +277,14 @@ pub struct FitSolve {
     u_x: DFF<Bits<64>>,
     u_d: DFF<Bits<64>>,
     u_r: DFF<Bits<64>>,
-    u_q: DFF<Bits<64>>,
+    u_q: DFF<Bits<32>>,
     u_mag: DFF<Bits<64>>,
+    /// -(u_x + adj), written beside u_mag: the negated quotient without an adder after a mux.
+    u_nmag: DFF<Bits<64>>,
     u_neg: DFF<Bit>,
     u_rnd: DFF<Bit>,
     u_adj: DFF<Bit>,
-    it: DFF<Bits<32>>,
+    it: DFF<Bits<8>>,
     sn: DFF<Bits<64>>,
     a1_s: DFF<Bits<64>>,
     a1_c: DFF<Bits<64>>,
@@ -232,30 +322,63 @@ pub struct FitSolve {
     r_km: DFF<Bits<16>>,
     r_kn: DFF<Bit>,
     r_done: DFF<Bit>,
-    /// Next state (registered in `state`, and decoded a clock ahead into the flags below).
+    /// Next state (registered in `state`, and decoded a clock ahead into the flags and
+    /// selects below).
     nstate: Signal<Local, FitState>,
-    /// The state is DivRun (one-hot operand selects, registered from `nstate`).
+    /// The state is DivRun (registered from `nstate`).
     f_div: DFF<Bit>,
     /// The state is SqRun.
     f_sq: DFF<Bit>,
     /// The state is MulRun.
     f_mul: DFF<Bit>,
+    /// The state is one of the three run states (u_r takes the shared adder's result).
+    f_run: DFF<Bit>,
+    /// What u_x loads in this state (registered from `nstate`).
+    xs: DFF<XSel>,
+    /// What u_d loads in this state.
+    ds: DFF<DSel>,
+    /// u_r is cleared in this state.
+    clr_r: DFF<Bit>,
+    /// u_q is cleared in this state.
+    clr_q: DFF<Bit>,
+    /// The selects of the state `ret` names, stored with it.
+    rxs: DFF<XSel>,
+    rds: DFF<DSel>,
+    /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
+    nd: DFF<Bits<64>>,
+    /// 2^30 - u_r (free-running): the radicand of Cc one state after S².
+    t30: DFF<Bits<64>>,
+    /// min(u_mag, smax) (free-running): the clamped |S| one state after its division.
+    scl: DFF<Bits<64>>,
+    /// min(u_mag, 65535) (free-running): a clamped gain or cross code.
+    ngf: DFF<Bits<16>>,
+    /// amp_s < min_amplitude 2^8 (free-running).
+    lo_s: DFF<Bit>,
+    /// amp_c < min_amplitude 2^8 (free-running).
+    lo_c: DFF<Bit>,
+    /// An offset o_s / o_c outside the A-bit range (free-running).
+    oor: DFF<Bit>,
     /// u_r < 0 (the non-restoring remainder's sign: add the divisor / trial back).
     rneg: Signal<Local, Bit>,
-    /// The shared adder: tt + sb + cin, one carry chain (tt and sb chosen by the flags).
+    /// The shared adder's first operand: 2 u_r (+ msb(u_x) in a division) or
+    /// 4 u_r + top2(u_x) in a square root.
     tt: Signal<Local, Bits<64>>,
+    /// The operand added (u_r < 0, or a multiplier bit of one): u_d, or 4 u_q + 3.
+    pa: Signal<Local, Bits<64>>,
+    /// The operand subtracted (u_r >= 0): u_d, 4 u_q + 1, or 0 in a multiplication.
+    ma: Signal<Local, Bits<64>>,
+    /// Add pa (u_r < 0, or the multiplier's bit is one), else subtract ma.
+    up: Signal<Local, Bit>,
+    /// The chain's second operand: pa or !ma.
     sb: Signal<Local, Bits<64>>,
-    cin: Signal<Local, Bit>,
-    /// {sb, cin} (sb's bit 63 dropped).
+    /// {sb, cin} (sb's bit 63 dropped; cin = !up).
     sbc: Signal<Local, Bits<64>>,
     /// {tt, 1} + {sb, cin}: bit 0 carries cin into the chain.
     s65: Signal<Local, Bits<64>>,
-    /// The shared adder's sum, bits 63..1 of `s65` sign-extended.
-    sum: Signal<Local, Bits<64>>,
-    /// u_r + u_d: the true remainder when u_r < 0 (zero test of the unrounded division).
-    zr: Signal<Local, Bits<64>>,
-    /// Clamped |S| (the multiplier operand of S²).
-    sclamp: Signal<Local, Bits<64>>,
+    /// The shared adder's sum (the next u_r), bits 63..1 of `s65` sign-extended.
+    sel: Signal<Local, Bits<64>>,
+    /// Its sign (the complement of the quotient / root bit).
+    sgn: Signal<Local, Bit>,
     /// Upper bound of |S|: round(2^15 sin 15 deg).
     smax: Constant<Bits<64>>,
     /// min_amplitude 2^8.
@@ -264,8 +387,6 @@ pub struct FitSolve {
     tgs: Constant<Bits<64>>,
     /// T 2^(GF+23): dividend of g_c.
     tgc: Constant<Bits<64>>,
-    /// T.
-    tamp: Constant<Bits<64>>,
     /// GF + 8: shift of T |S|.
     kshift: Constant<Bits<32>>,
     /// 2^30.
@@ -285,15 +406,20 @@ pub struct FitSolve {
     /// Mask of 16 bits.
     m16: Constant<Bits<64>>,
     /// Step counts and shifts.
-    i32c: Constant<Bits<32>>,
-    i64c: Constant<Bits<32>>,
-    i80c: Constant<Bits<32>>,
+    i32c: Constant<Bits<8>>,
+    i64c: Constant<Bits<8>>,
+    i80c: Constant<Bits<8>>,
+    one8: Constant<Bits<8>>,
     one32: Constant<Bits<32>>,
+    s32: Constant<Bits<32>>,
+    /// T 2^32: the multiplier operand of T |S|.
+    tamp32: Constant<Bits<64>>,
+    /// 65535 as a gain code.
+    cmax16: Constant<Bits<16>>,
     two32: Constant<Bits<32>>,
     s8: Constant<Bits<32>>,
     s16: Constant<Bits<32>>,
     s62: Constant<Bits<32>>,
-    s63: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
     three64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
@@ -355,6 +481,7 @@ impl FitSolve {
             u_r: Default::default(),
             u_q: Default::default(),
             u_mag: Default::default(),
+            u_nmag: Default::default(),
             u_neg: Default::default(),
             u_rnd: Default::default(),
             u_adj: Default::default(),
@@ -400,20 +527,36 @@ impl FitSolve {
             f_div: Default::default(),
             f_sq: Default::default(),
             f_mul: Default::default(),
+            f_run: Default::default(),
+            xs: Default::default(),
+            ds: Default::default(),
+            clr_r: Default::default(),
+            clr_q: Default::default(),
+            rxs: Default::default(),
+            rds: Default::default(),
+            nd: Default::default(),
+            t30: Default::default(),
+            scl: Default::default(),
+            ngf: Default::default(),
+            lo_s: Default::default(),
+            lo_c: Default::default(),
+            oor: Default::default(),
             rneg: Default::default(),
             tt: Default::default(),
+            pa: Default::default(),
+            ma: Default::default(),
             sb: Default::default(),
-            cin: Default::default(),
             sbc: Default::default(),
             s65: Default::default(),
-            sum: Default::default(),
-            zr: Default::default(),
-            sclamp: Default::default(),
+            up: Default::default(),
+            sel: Default::default(),
+            sgn: Default::default(),
             smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
             minamp: c64((k.min_amplitude as u64) << 8),
             tgs: c64(t << (gf + 8)),
             tgc: c64(t << (gf + 23)),
-            tamp: c64(t),
+            tamp32: c64(t << 32),
+            cmax16: c16(0xffff),
             kshift: c32((gf + 8) as u64),
             two30: c64(1 << 30),
             cmax: c64(0xffff),
@@ -423,15 +566,16 @@ impl FitSolve {
             sign63: c64(1 << 63),
             half8: c32(128),
             m16: c64(0xffff),
-            i32c: c32(32),
-            i64c: c32(64),
-            i80c: c32(80),
+            i32c: c8(32),
+            i64c: c8(64),
+            i80c: c8(80),
+            one8: c8(1),
             one32: c32(1),
+            s32: c32(32),
             two32: c32(2),
             s8: c32(8),
             s16: c32(16),
             s62: c32(62),
-            s63: c32(63),
             one64: c64(1),
             three64: c64(3),
             zero64: c64(0),

@@ -47,7 +47,8 @@
 //! * Saturation (never wraps): d >= 0: x' = min(r, 2^(A-1) - 1); d < 0:
 //!   x' = -min(r, 2^(A-1)).
 //! * Latency: 3 clocks (4 with phase correction, below). A sample presented with
-//!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge k+2; one sample per clock (back-to-back) is fine.
+//!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge k+2; one sample per clock (back-to-back) is fine
+//!   (in `auto` mode the fit's tracker needs them two clocks apart: `fit_hdl.rs`).
 //!   `g` travels with the sample through stage 1, so a calibration update never mixes an
 //!   old offset with a new gain within one sample.
 //!

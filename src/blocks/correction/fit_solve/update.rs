@@ -6,59 +6,79 @@ impl Logic for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, ret, u_x, u_d, u_r, u_q, u_mag, u_neg, u_rnd, u_adj, it, sn, a1_s,
-            a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos,
-            amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs,
-            r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul
+            self, clk, state, ret, u_x, u_d, u_r, u_q, u_mag, u_nmag, u_neg, u_rnd, u_adj, it, sn,
+            a1_s, a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag,
+            cpos, amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc,
+            r_gs, r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_run, xs, ds, clr_r, clr_q, nd,
+            t30, scl, ngf, lo_s, lo_c, oor, rxs, rds
         );
         self.nstate.next = self.state.q.val();
-        // The flags are set with every transition into their state (one-hot, no decode).
-        self.f_div.d.next = false;
-        self.f_sq.d.next = false;
-        self.f_mul.d.next = false;
-        // The shared adder (one carry chain), non-restoring: a remainder below zero adds the
-        // divisor (or the square root's trial 4q + 3) back instead of subtracting it, so the
-        // chain's sign bit is the quotient bit and the sum is the next remainder directly.
+        // The shared adder, non-restoring: a remainder below zero adds the divisor (or the
+        // square root's trial 4q + 3) back instead of subtracting it (4q + 1), so the sign of
+        // the selected sum is the complement of the quotient bit and the sum is the next
+        // remainder. A multiplication (MSB first) doubles u_r and adds u_d when the top bit of
+        // u_x is one (the "minus" sum with 0 otherwise).
         self.rneg.next = (self.u_r.q.val() & self.sign63.val()).any();
         self.tt.next = self.u_r.q.val() << self.one32.val();
         if self.f_div.q.val() & (self.u_x.q.val() & self.sign63.val()).any() {
             self.tt.next = (self.u_r.q.val() << self.one32.val()) | self.one64.val();
         }
-        self.sb.next = !self.u_d.q.val();
-        if self.rneg.val() {
-            self.sb.next = self.u_d.q.val();
-        }
-        self.cin.next = !self.rneg.val();
+        self.pa.next = self.u_d.q.val();
+        self.ma.next = self.u_d.q.val();
         if self.f_sq.q.val() {
             self.tt.next =
                 (self.u_r.q.val() << self.two32.val()) | (self.u_x.q.val() >> self.s62.val());
-            self.sb.next = !((self.u_q.q.val() << self.two32.val()) | self.one64.val());
-            if self.rneg.val() {
-                self.sb.next = (self.u_q.q.val() << self.two32.val()) | self.three64.val();
-            }
+            self.pa.next =
+                (bit_cast::<64, 32>(self.u_q.q.val()) << self.two32.val()) | self.three64.val();
+            self.ma.next =
+                (bit_cast::<64, 32>(self.u_q.q.val()) << self.two32.val()) | self.one64.val();
         }
+        self.up.next = self.rneg.val();
         if self.f_mul.q.val() {
-            self.tt.next = self.u_r.q.val();
-            self.sb.next = self.zero64.val();
-            if (self.u_d.q.val() & self.one64.val()).any() {
-                self.sb.next = self.u_x.q.val();
-            }
-            self.cin.next = false;
+            self.ma.next = self.zero64.val();
+            self.up.next = (self.u_x.q.val() & self.sign63.val()).any();
         }
-        // Bit 0 of the 64-bit chain carries cin in: {tt, 1} + {sb, cin}, whose bits 63..1 are
-        // the 63-bit sum, sign-extended (every sum is below 2^51 in magnitude, module doc).
-        self.sbc.next = self.sb.val() << self.one32.val();
-        if self.cin.val() {
-            self.sbc.next = (self.sb.val() << self.one32.val()) | self.one64.val();
+        // One carry chain: tt + (up ? pa : !ma) + !up, bit 0 of {tt, 1} + {sb, cin} carrying
+        // cin in; bits 63..1 are the 63-bit sum, sign-extended (every sum is below 2^51 in
+        // magnitude, module doc).
+        self.sb.next = !self.ma.val();
+        self.sbc.next = (self.sb.val() << self.one32.val()) | self.one64.val();
+        if self.up.val() {
+            self.sb.next = self.pa.val();
+            self.sbc.next = self.sb.val() << self.one32.val();
         }
         self.s65.next = ((self.tt.val() << self.one32.val()) | self.one64.val()) + self.sbc.val();
-        self.sum.next = (self.s65.val() >> self.one32.val()) | (self.s65.val() & self.sign63.val());
-        self.zr.next = self.u_r.q.val() + self.u_d.q.val();
-        self.sclamp.next = self.u_mag.q.val();
+        self.sel.next = (self.s65.val() >> self.one32.val()) | (self.s65.val() & self.sign63.val());
+        self.sgn.next = (self.sel.val() & self.sign63.val()).any();
+        // Free-running registers: compares and negations one clock ahead of their use.
+        self.nd.d.next = self.zero64.val() - self.u_d.q.val();
+        self.t30.d.next = self.two30.val() - self.u_r.q.val();
+        self.scl.d.next = self.u_mag.q.val();
         if self.u_mag.q.val() > self.smax.val() {
-            self.sclamp.next = self.smax.val();
+            self.scl.d.next = self.smax.val();
         }
+        self.ngf.d.next = bit_cast::<16, 64>(self.u_mag.q.val() & self.m16.val());
+        if self.u_mag.q.val() > self.cmax.val() {
+            self.ngf.d.next = self.cmax16.val();
+        }
+        self.lo_s.d.next = self.amp_s.q.val() < self.minamp.val();
+        self.lo_c.d.next = self.amp_c.q.val() < self.minamp.val();
+        self.oor.d.next = ((self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val())
+            | ((self.o_s.q.val() ^ self.sign32.val()) >= self.hi_f.val())
+            | ((self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val())
+            | ((self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val());
         self.r_done.d.next = false;
+        // The flags and selects of the next state (registered: the wide registers below see
+        // no state decode); a return to `ret` takes the selects stored with it and clears u_r
+        // and u_q (every state `ret` names reads them, if at all, before the clear).
+        self.f_div.d.next = false;
+        self.f_sq.d.next = false;
+        self.f_mul.d.next = false;
+        self.f_run.d.next = false;
+        self.xs.d.next = XSel::Hold;
+        self.ds.d.next = DSel::Hold;
+        self.clr_r.d.next = false;
+        self.clr_q.d.next = false;
         match self.state.q.val() {
             FitState::Idle => {
                 if self.start.val() {
@@ -83,96 +103,99 @@ impl Logic for FitSolve {
                     self.br_s.d.next = self.bref_s.val();
                     self.br_c.d.next = self.bref_c.val();
                     self.nstate.next = FitState::Ms;
+                    self.xs.d.next = XSel::A1s8;
+                    self.ds.d.next = DSel::Sn;
+                    self.clr_r.d.next = true;
                 }
             }
             FitState::Ms => {
-                self.u_x.d.next = self.a1_s.q.val() << self.s8.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.n1_s.q.val();
                 self.ret.d.next = FitState::Mc;
+                self.rxs.d.next = XSel::A1c8;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Mc => {
                 self.m_s.d.next = self.u_mag.q.val();
-                self.u_x.d.next = self.a1_c.q.val() << self.s8.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.n1_c.q.val();
                 self.ret.d.next = FitState::Vs;
+                self.rxs.d.next = XSel::A2s;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Vs => {
                 self.m_c.d.next = self.u_mag.q.val();
-                self.u_x.d.next = self.a2_s.q.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i80c.val();
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Vc;
+                self.rxs.d.next = XSel::A2c;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Vc => {
                 self.v_s.d.next = self.u_x.q.val();
-                self.u_x.d.next = self.a2_c.q.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i80c.val();
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Cq;
+                self.rxs.d.next = XSel::Asc;
+                self.rds.d.next = DSel::Sn;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Cq => {
                 self.v_c.d.next = self.u_x.q.val();
-                self.u_x.d.next = self.asc.q.val();
-                self.u_d.d.next = self.sn.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i80c.val();
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = self.nsc.q.val();
                 self.ret.d.next = FitState::M1;
+                self.rxs.d.next = XSel::Ms32;
+                self.rds.d.next = DSel::Ms;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::M1 => {
                 self.cc.d.next = self.u_x.q.val();
-                self.u_x.d.next = self.m_s.q.val();
-                self.u_d.d.next = self.m_s.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::M2;
+                self.rxs.d.next = XSel::Mc32;
+                self.rds.d.next = DSel::Mc;
                 self.nstate.next = FitState::MulRun;
                 self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::M2 => {
                 self.v_s.d.next = self.v_s.q.val() - self.u_r.q.val();
-                self.u_x.d.next = self.m_c.q.val();
-                self.u_d.d.next = self.m_c.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::M3;
+                self.rxs.d.next = XSel::Ms32;
+                self.rds.d.next = DSel::Mc;
                 self.nstate.next = FitState::MulRun;
                 self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::M3 => {
                 self.v_c.d.next = self.v_c.q.val() - self.u_r.q.val();
-                self.u_x.d.next = self.m_s.q.val();
-                self.u_d.d.next = self.m_c.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Cv;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::MulRun;
                 self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Cv => {
                 // C = Cq - m_s m_c, the product's sign from the means' signs.
@@ -181,6 +204,9 @@ impl Logic for FitSolve {
                     self.cc.d.next = self.cc.q.val() + self.u_r.q.val();
                 }
                 self.nstate.next = FitState::SqS;
+                self.xs.d.next = XSel::Vs2;
+                self.clr_r.d.next = true;
+                self.clr_q.d.next = true;
             }
             FitState::SqS => {
                 // |C| and the sign of -C (rdiv's sign below; C = 0 gives 0 either way).
@@ -190,86 +216,84 @@ impl Logic for FitSolve {
                     self.cmag.d.next = self.zero64.val() - self.cc.q.val();
                     self.cpos.d.next = false;
                 }
-                self.u_x.d.next = self.v_s.q.val() << self.one32.val();
-                if (self.v_s.q.val() & self.sign63.val()).any() {
-                    self.u_x.d.next = self.zero64.val();
-                }
-                self.u_r.d.next = self.zero64.val();
-                self.u_q.d.next = self.zero64.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::SqC;
+                self.rxs.d.next = XSel::Vc2;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::SqRun;
                 self.f_sq.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::SqC => {
-                self.amp_s.d.next = self.u_q.q.val();
-                self.u_x.d.next = self.v_c.q.val() << self.one32.val();
-                if (self.v_c.q.val() & self.sign63.val()).any() {
-                    self.u_x.d.next = self.zero64.val();
-                }
-                self.u_r.d.next = self.zero64.val();
-                self.u_q.d.next = self.zero64.val();
+                self.amp_s.d.next = bit_cast::<64, 32>(self.u_q.q.val());
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Chk;
+                self.rxs.d.next = XSel::Amps32;
+                self.rds.d.next = DSel::Uq;
                 self.nstate.next = FitState::SqRun;
                 self.f_sq.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Chk => {
-                self.amp_c.d.next = self.u_q.q.val();
-                self.u_x.d.next = self.amp_s.q.val();
-                self.u_d.d.next = self.u_q.q.val();
-                self.u_r.d.next = self.zero64.val();
+                self.amp_c.d.next = bit_cast::<64, 32>(self.u_q.q.val());
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Sn;
+                self.rxs.d.next = XSel::Cmag16;
+                self.rds.d.next = DSel::Ur;
                 self.nstate.next = FitState::MulRun;
                 self.f_mul.d.next = true;
-                if (self.amp_s.q.val() < self.minamp.val()) | (self.u_q.q.val() < self.minamp.val())
-                {
-                    self.nstate.next = FitState::Idle;
-                    self.f_div.d.next = false;
-                    self.f_mul.d.next = false;
-                }
+                self.f_run.d.next = true;
             }
             FitState::Sn => {
-                self.u_x.d.next = self.cmag.q.val() << self.s16.val();
-                self.u_d.d.next = self.u_r.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.cpos.q.val();
                 self.ret.d.next = FitState::Sn2;
+                self.rxs.d.next = XSel::Scl32;
+                self.rds.d.next = DSel::Scl;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
+                // The amplitude check (its compares registered since Chk).
+                if self.lo_s.q.val() | self.lo_c.q.val() {
+                    self.nstate.next = FitState::Idle;
+                    self.f_div.d.next = false;
+                    self.f_mul.d.next = false;
+                    self.f_run.d.next = false;
+                }
             }
             FitState::Sn2 => {
-                self.smag.d.next = self.sclamp.val();
+                self.smag.d.next = self.scl.q.val();
                 self.sneg.d.next = self.u_neg.q.val();
-                self.u_x.d.next = self.sclamp.val();
-                self.u_d.d.next = self.sclamp.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Cs;
-                self.nstate.next = FitState::MulRun;
-                self.f_mul.d.next = true;
-            }
-            FitState::Cs => {
-                self.u_x.d.next = self.two30.val() - self.u_r.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.u_q.d.next = self.zero64.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::OffA;
-                self.nstate.next = FitState::SqRun;
-                self.f_sq.d.next = true;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
+                self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::OffA => {
-                self.cs.d.next = self.u_q.q.val();
                 self.t_s.d.next =
                     (bit_cast::<32, 64>(self.m_s.q.val()) + self.half8.val()) >> self.s8.val();
                 self.t_c.d.next =
                     (bit_cast::<32, 64>(self.m_c.q.val()) + self.half8.val()) >> self.s8.val();
-                self.nstate.next = FitState::OffB;
+                self.nstate.next = FitState::Cs;
+                self.xs.d.next = XSel::T30;
+                self.clr_r.d.next = true;
+                self.clr_q.d.next = true;
+            }
+            FitState::Cs => {
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::OffB;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
+                self.nstate.next = FitState::SqRun;
+                self.f_sq.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::OffB => {
+                self.cs.d.next = bit_cast::<64, 32>(self.u_q.q.val());
                 self.o_s.d.next = self.br_s.q.val() + self.t_s.q.val();
                 if self.n1_s.q.val() {
                     self.o_s.d.next = self.br_s.q.val() - self.t_s.q.val();
@@ -279,90 +303,82 @@ impl Logic for FitSolve {
                     self.o_c.d.next = self.br_c.q.val() - self.t_c.q.val();
                 }
                 self.nstate.next = FitState::OffC;
+                self.xs.d.next = XSel::Tgs;
+                self.ds.d.next = DSel::Amps;
+                self.clr_r.d.next = true;
             }
             FitState::OffC => {
-                self.u_x.d.next = self.tgs.val();
-                self.u_d.d.next = self.amp_s.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Q1;
+                self.rxs.d.next = XSel::Ampc32;
+                self.rds.d.next = DSel::Cs;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
-                if ((self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val())
-                    | ((self.o_s.q.val() ^ self.sign32.val()) >= self.hi_f.val())
-                    | ((self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val())
-                    | ((self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val())
-                {
+                self.f_run.d.next = true;
+            }
+            FitState::Q1 => {
+                self.ng_s.d.next = self.ngf.q.val();
+                self.it.d.next = self.i32c.val();
+                self.ret.d.next = FitState::Gc;
+                self.rxs.d.next = XSel::Tgc;
+                self.rds.d.next = DSel::Ur;
+                self.nstate.next = FitState::MulRun;
+                self.f_mul.d.next = true;
+                self.f_run.d.next = true;
+                // The offset range check (its compares registered since OffC).
+                if self.oor.q.val() {
                     self.nstate.next = FitState::Idle;
                     self.f_div.d.next = false;
                     self.f_mul.d.next = false;
+                    self.f_run.d.next = false;
                 }
-            }
-            FitState::Q1 => {
-                self.ng_s.d.next = bit_cast::<16, 64>(self.u_x.q.val() & self.m16.val());
-                if self.u_x.q.val() > self.cmax.val() {
-                    self.ng_s.d.next = bit_cast::<16, 64>(self.cmax.val());
-                }
-                self.u_x.d.next = self.amp_c.q.val();
-                self.u_d.d.next = self.cs.q.val();
-                self.u_r.d.next = self.zero64.val();
-                self.it.d.next = self.i32c.val();
-                self.ret.d.next = FitState::Gc;
-                self.nstate.next = FitState::MulRun;
-                self.f_mul.d.next = true;
             }
             FitState::Gc => {
-                self.u_x.d.next = self.tgc.val();
-                self.u_d.d.next = self.u_r.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Q2;
+                self.rxs.d.next = XSel::Amps32;
+                self.rds.d.next = DSel::Cs;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Q2 => {
-                self.ng_c.d.next = bit_cast::<16, 64>(self.u_x.q.val() & self.m16.val());
-                if self.u_x.q.val() > self.cmax.val() {
-                    self.ng_c.d.next = bit_cast::<16, 64>(self.cmax.val());
-                }
-                self.u_x.d.next = self.amp_s.q.val();
-                self.u_d.d.next = self.cs.q.val();
-                self.u_r.d.next = self.zero64.val();
+                self.ng_c.d.next = self.ngf.q.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Ts;
+                self.rxs.d.next = XSel::Tamp32;
+                self.rds.d.next = DSel::Smag;
                 self.nstate.next = FitState::MulRun;
                 self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Ts => {
                 self.q2.d.next = self.u_r.q.val();
-                self.u_x.d.next = self.tamp.val();
-                self.u_d.d.next = self.smag.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i32c.val();
                 self.ret.d.next = FitState::Kd;
+                self.rxs.d.next = XSel::Urk;
+                self.rds.d.next = DSel::Q2;
                 self.nstate.next = FitState::MulRun;
                 self.f_mul.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Kd => {
-                self.u_x.d.next = self.u_r.q.val() << self.kshift.val();
-                self.u_d.d.next = self.q2.q.val();
-                self.u_r.d.next = self.zero64.val();
                 self.it.d.next = self.i64c.val();
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.sneg.q.val();
                 self.ret.d.next = FitState::Load;
+                self.rxs.d.next = XSel::Hold;
+                self.rds.d.next = DSel::Hold;
                 self.nstate.next = FitState::DivRun;
                 self.f_div.d.next = true;
+                self.f_run.d.next = true;
             }
             FitState::Load => {
-                self.r_km.d.next = bit_cast::<16, 64>(self.u_mag.q.val() & self.m16.val());
-                if self.u_mag.q.val() > self.cmax.val() {
-                    self.r_km.d.next = bit_cast::<16, 64>(self.cmax.val());
-                }
+                self.r_km.d.next = self.ngf.q.val();
                 self.r_kn.d.next = self.sneg.q.val() & self.u_mag.q.val().any();
                 self.r_os.d.next = self.o_s.q.val();
                 self.r_oc.d.next = self.o_c.q.val();
@@ -373,66 +389,74 @@ impl Logic for FitSolve {
             }
             FitState::DivRun => {
                 self.f_div.d.next = true;
-                self.u_r.d.next = self.sum.val();
-                self.u_x.d.next = self.u_x.q.val() << self.one32.val();
-                if !(self.sum.val() & self.sign63.val()).any() {
-                    self.u_x.d.next = (self.u_x.q.val() << self.one32.val()) | self.one64.val();
-                }
-                self.it.d.next = self.it.q.val() - self.one32.val();
-                if self.it.q.val() == self.one32.val() {
+                self.f_run.d.next = true;
+                self.it.d.next = self.it.q.val() - self.one8.val();
+                if self.it.q.val() == self.one8.val() {
                     self.f_div.d.next = false;
+                    self.f_run.d.next = false;
                     self.nstate.next = FitState::DivAdj;
                 }
             }
             FitState::DivAdj => {
-                // The true remainder is u_r, or u_r + u_d when u_r < 0. Rounding: 2 r >= d is
-                // the sign of the shared sum 2 u_r -+ u_d; truncation toward zero: r != 0.
+                // The true remainder is u_r, or u_r + u_d when u_r < 0 (zero when u_r = -u_d).
+                // Rounding: 2 r >= d is the sign of the shared sum 2 u_r -+ u_d; truncation
+                // toward zero: r != 0.
                 self.u_adj.d.next = self.u_neg.q.val() & self.u_r.q.val().any();
                 if self.rneg.val() {
-                    self.u_adj.d.next = self.u_neg.q.val() & self.zr.val().any();
+                    self.u_adj.d.next = self.u_neg.q.val() & (self.u_r.q.val() != self.nd.q.val());
                 }
                 if self.u_rnd.q.val() {
-                    self.u_adj.d.next = !(self.sum.val() & self.sign63.val()).any();
+                    self.u_adj.d.next = !self.sgn.val();
                 }
                 self.nstate.next = FitState::DivInc;
             }
             FitState::DivInc => {
+                // u_mag = u_x + adj and u_nmag = -(u_x + adj) = !u_x + !adj.
                 self.u_mag.d.next = self.u_x.q.val();
+                self.u_nmag.d.next = !self.u_x.q.val() + self.one64.val();
                 if self.u_adj.q.val() {
                     self.u_mag.d.next = self.u_x.q.val() + self.one64.val();
+                    self.u_nmag.d.next = !self.u_x.q.val();
                 }
                 self.nstate.next = FitState::DivNeg;
+                self.xs.d.next = XSel::Mag;
+                if self.u_neg.q.val() {
+                    self.xs.d.next = XSel::NMag;
+                }
             }
             FitState::DivNeg => {
-                self.u_x.d.next = self.u_mag.q.val();
-                if self.u_neg.q.val() {
-                    self.u_x.d.next = self.zero64.val() - self.u_mag.q.val();
-                }
                 self.nstate.next = self.ret.q.val();
+                self.xs.d.next = self.rxs.q.val();
+                self.ds.d.next = self.rds.q.val();
+                self.clr_r.d.next = true;
+                self.clr_q.d.next = true;
             }
             FitState::SqRun => {
                 self.f_sq.d.next = true;
-                self.u_r.d.next = self.sum.val();
-                self.u_q.d.next = self.u_q.q.val() << self.one32.val();
-                if !(self.sum.val() & self.sign63.val()).any() {
-                    self.u_q.d.next = (self.u_q.q.val() << self.one32.val()) | self.one64.val();
-                }
-                self.u_x.d.next = self.u_x.q.val() << self.two32.val();
-                self.it.d.next = self.it.q.val() - self.one32.val();
-                if self.it.q.val() == self.one32.val() {
+                self.f_run.d.next = true;
+                self.it.d.next = self.it.q.val() - self.one8.val();
+                if self.it.q.val() == self.one8.val() {
                     self.f_sq.d.next = false;
+                    self.f_run.d.next = false;
                     self.nstate.next = self.ret.q.val();
+                    self.xs.d.next = self.rxs.q.val();
+                    self.ds.d.next = self.rds.q.val();
+                    self.clr_r.d.next = true;
+                    self.clr_q.d.next = true;
                 }
             }
             FitState::MulRun => {
                 self.f_mul.d.next = true;
-                self.u_r.d.next = self.sum.val();
-                self.u_x.d.next = self.u_x.q.val() << self.one32.val();
-                self.u_d.d.next = self.u_d.q.val() >> self.one32.val();
-                self.it.d.next = self.it.q.val() - self.one32.val();
-                if self.it.q.val() == self.one32.val() {
+                self.f_run.d.next = true;
+                self.it.d.next = self.it.q.val() - self.one8.val();
+                if self.it.q.val() == self.one8.val() {
                     self.f_mul.d.next = false;
+                    self.f_run.d.next = false;
                     self.nstate.next = self.ret.q.val();
+                    self.xs.d.next = self.rxs.q.val();
+                    self.ds.d.next = self.rds.q.val();
+                    self.clr_r.d.next = true;
+                    self.clr_q.d.next = true;
                 }
             }
         }
@@ -441,6 +465,11 @@ impl Logic for FitSolve {
             self.f_div.d.next = false;
             self.f_sq.d.next = false;
             self.f_mul.d.next = false;
+            self.f_run.d.next = false;
+            self.xs.d.next = XSel::Hold;
+            self.ds.d.next = DSel::Hold;
+            self.clr_r.d.next = false;
+            self.clr_q.d.next = false;
             self.r_os.d.next = self.b0_s.val();
             self.r_oc.d.next = self.b0_c.val();
             self.r_gs.d.next = self.g0_s.val();
@@ -450,6 +479,138 @@ impl Logic for FitSolve {
             self.r_done.d.next = false;
         }
         self.state.d.next = self.nstate.val();
+        // u_x: a registered select of its sources, then the run states' shifts (the division's
+        // quotient bit from the adder goes through the last mux only).
+        match self.xs.q.val() {
+            XSel::Hold => {}
+            XSel::A1s8 => {
+                self.u_x.d.next = self.a1_s.q.val() << self.s8.val();
+            }
+            XSel::A1c8 => {
+                self.u_x.d.next = self.a1_c.q.val() << self.s8.val();
+            }
+            XSel::A2s => {
+                self.u_x.d.next = self.a2_s.q.val();
+            }
+            XSel::A2c => {
+                self.u_x.d.next = self.a2_c.q.val();
+            }
+            XSel::Asc => {
+                self.u_x.d.next = self.asc.q.val();
+            }
+            XSel::Ms32 => {
+                self.u_x.d.next = self.m_s.q.val() << self.s32.val();
+            }
+            XSel::Mc32 => {
+                self.u_x.d.next = self.m_c.q.val() << self.s32.val();
+            }
+            XSel::Vs2 => {
+                self.u_x.d.next = self.v_s.q.val() << self.one32.val();
+                if (self.v_s.q.val() & self.sign63.val()).any() {
+                    self.u_x.d.next = self.zero64.val();
+                }
+            }
+            XSel::Vc2 => {
+                self.u_x.d.next = self.v_c.q.val() << self.one32.val();
+                if (self.v_c.q.val() & self.sign63.val()).any() {
+                    self.u_x.d.next = self.zero64.val();
+                }
+            }
+            XSel::Amps32 => {
+                self.u_x.d.next = self.amp_s.q.val() << self.s32.val();
+            }
+            XSel::Ampc32 => {
+                self.u_x.d.next = self.amp_c.q.val() << self.s32.val();
+            }
+            XSel::Cmag16 => {
+                self.u_x.d.next = self.cmag.q.val() << self.s16.val();
+            }
+            XSel::Scl32 => {
+                self.u_x.d.next = self.scl.q.val() << self.s32.val();
+            }
+            XSel::T30 => {
+                self.u_x.d.next = self.t30.q.val();
+            }
+            XSel::Tgs => {
+                self.u_x.d.next = self.tgs.val();
+            }
+            XSel::Tgc => {
+                self.u_x.d.next = self.tgc.val();
+            }
+            XSel::Tamp32 => {
+                self.u_x.d.next = self.tamp32.val();
+            }
+            XSel::Urk => {
+                self.u_x.d.next = self.u_r.q.val() << self.kshift.val();
+            }
+            XSel::Mag => {
+                self.u_x.d.next = self.u_mag.q.val();
+            }
+            XSel::NMag => {
+                self.u_x.d.next = self.u_nmag.q.val();
+            }
+        }
+        if self.f_mul.q.val() {
+            self.u_x.d.next = self.u_x.q.val() << self.one32.val();
+        }
+        if self.f_sq.q.val() {
+            self.u_x.d.next = self.u_x.q.val() << self.two32.val();
+        }
+        if self.f_div.q.val() {
+            self.u_x.d.next = self.u_x.q.val() << self.one32.val();
+            if !self.sgn.val() {
+                self.u_x.d.next = (self.u_x.q.val() << self.one32.val()) | self.one64.val();
+            }
+        }
+        match self.ds.q.val() {
+            DSel::Hold => {}
+            DSel::Sn => {
+                self.u_d.d.next = self.sn.q.val();
+            }
+            DSel::Ms => {
+                self.u_d.d.next = self.m_s.q.val();
+            }
+            DSel::Mc => {
+                self.u_d.d.next = self.m_c.q.val();
+            }
+            DSel::Uq => {
+                self.u_d.d.next = bit_cast::<64, 32>(self.u_q.q.val());
+            }
+            DSel::Ur => {
+                self.u_d.d.next = self.u_r.q.val();
+            }
+            DSel::Scl => {
+                self.u_d.d.next = self.scl.q.val();
+            }
+            DSel::Amps => {
+                self.u_d.d.next = self.amp_s.q.val();
+            }
+            DSel::Cs => {
+                self.u_d.d.next = self.cs.q.val();
+            }
+            DSel::Smag => {
+                self.u_d.d.next = self.smag.q.val();
+            }
+            DSel::Q2 => {
+                self.u_d.d.next = self.q2.q.val();
+            }
+        }
+        // u_r: cleared by a setup state, the selected sum in a run state.
+        if self.clr_r.q.val() {
+            self.u_r.d.next = self.zero64.val();
+        }
+        if self.f_run.q.val() {
+            self.u_r.d.next = self.sel.val();
+        }
+        if self.clr_q.q.val() {
+            self.u_q.d.next = self.zero32.val();
+        }
+        if self.f_sq.q.val() {
+            self.u_q.d.next = self.u_q.q.val() << self.one32.val();
+            if !self.sgn.val() {
+                self.u_q.d.next = (self.u_q.q.val() << self.one32.val()) | self.one32.val();
+            }
+        }
         self.busy.next = !(self.state.q.val() == FitState::Idle);
         self.done.next = self.r_done.q.val();
         self.off_s.next = self.r_os.q.val();
