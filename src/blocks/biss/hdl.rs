@@ -91,11 +91,11 @@ pub struct BissSlave {
     fsix: DFF<Bit>,
     /// tcnt == timeout_clocks - 1, registered with tcnt.
     ftl: DFF<Bit>,
-    /// state == Idle, registered with state (decoded from its next value), so the shift
-    /// register's load enable is one LUT of registers, not a state decode.
+    /// state == Idle, registered with state (followed through its transitions), so the
+    /// shift register's load enable is one LUT of registers, not a state decode.
     sidle: DFF<Bit>,
-    /// state == Cds, or state == Data with fnb low: the shift register's shift states,
-    /// registered with state and fnb the same way.
+    /// state == Cds, or state == Data with fnb low, one clock late (see `update`): the
+    /// shift register's shift states, read only at a rise.
     sshift: DFF<Bit>,
     /// cnt takes 1 this clock.
     cld1: Signal<Local, Bit>,
@@ -408,9 +408,21 @@ impl Logic for BissSlave {
             self.tcnt.d.next = self.zero.val();
             self.ftl.d.next = self.tlast_is0.val();
         }
-        self.sidle.d.next = self.state.d.val() == BissState::Idle;
-        self.sshift.d.next = (self.state.d.val() == BissState::Cds)
-            | ((self.state.d.val() == BissState::Data) & !self.fnb.d.val());
+        // state == Idle next: it stays Idle unless F1 takes it to First, and only the
+        // timeout (from any other state: sidle low) enters it; the reset leaves it. From
+        // registers (sidle is state == Idle), not from the next-state logic.
+        self.sidle.d.next = !self.rst.val()
+            & ((self.sidle.q.val() & !self.sync.fall.val())
+                | (!self.sidle.q.val() & !self.mae.val() & self.ftl.q.val()));
+        // sshift is read only with `rise`, and rises are at least two clocks apart (the
+        // synchronizer's level must fall in between), so it may lag the state by a clock: it
+        // is decoded from the registered state and fnb, which change only at a rise, a fall
+        // (Idle -> First, where it is low either way), the timeout (-> Idle) or the reset;
+        // the last two clear it. Registers in, one or two LUTs deep.
+        self.sshift.d.next = ((self.state.q.val() == BissState::Cds)
+            | ((self.state.q.val() == BissState::Data) & !self.fnb.q.val()))
+            & !(!self.mae.val() & self.ftl.q.val())
+            & !self.rst.val();
         self.slo.next = self.slo_reg.q.val();
     }
 }

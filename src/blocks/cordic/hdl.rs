@@ -5,9 +5,12 @@ use rust_hdl::prelude::*;
 
 /// Registers the mapped first-quadrant vector, the quadrant and the valid bit.
 ///
-/// Table 2-3 as one conditional negation per output: x' = +-(cos or sin), y' = +-(sin or
-/// cos), swapped when the signs differ, x' negated when sin < 0, y' when cos < 0; each
-/// negation is (a ^ m) + c with m all ones and c one, a single carry chain.
+/// Table 2-3 as two absolute values and a swap: every row negates only a negative input,
+/// so x' = |cos|, y' = |sin|, swapped when the signs differ (q1: x' = sin, y' = -cos; q3:
+/// x' = -sin, y' = cos). Each absolute value is (a ^ m) + c with m all ones and c one when
+/// a < 0, a single carry chain whose inversion and carry-in come from the input's own sign
+/// bit; the swap is one LUT per bit after the adders (before them it put the swap, the
+/// inversion and the carry-in of the other input's sign in front of the chain).
 ///
 /// Both outputs are never negative: every row of Table 2-3 negates only a negative input,
 /// so x', y' lie in 0..=2^(A-1) before the G-bit guard shift. The registers keep the low
@@ -46,17 +49,17 @@ pub struct QuadrantMapper {
     cneg: Signal<Local, Bit>,
     /// sin < 0.
     sneg: Signal<Local, Bit>,
-    /// Source of x' before the negation: cos, or sin when the signs differ.
+    /// |cos| (32-bit).
     ax: Signal<Local, Bits<32>>,
-    /// Source of y' before the negation: sin, or cos when the signs differ.
+    /// |sin| (32-bit).
     ay: Signal<Local, Bits<32>>,
-    /// Inversion mask of x' (all ones when sin < 0).
+    /// Inversion mask of |cos| (all ones when cos < 0).
     mx: Signal<Local, Bits<32>>,
-    /// Carry-in of x' (one when sin < 0).
+    /// Carry-in of |cos| (one when cos < 0).
     cx: Signal<Local, Bits<32>>,
-    /// Inversion mask of y' (all ones when cos < 0).
+    /// Inversion mask of |sin| (all ones when sin < 0).
     my: Signal<Local, Bits<32>>,
-    /// Carry-in of y' (one when cos < 0).
+    /// Carry-in of |sin| (one when sin < 0).
     cy: Signal<Local, Bits<32>>,
     /// Mask of the A input bits.
     amask: Constant<Bits<32>>,
@@ -131,25 +134,22 @@ impl Logic for QuadrantMapper {
         if self.sneg.val() {
             self.sy.next = self.sy.val() | self.asext.val();
         }
-        // Table 2-3: q0 (x, y), q1 (y, -x), q2 (-x, -y), q3 (-y, x).
-        self.ax.next = self.sx.val();
-        self.ay.next = self.sy.val();
-        if self.cneg.val() ^ self.sneg.val() {
-            self.ax.next = self.sy.val();
-            self.ay.next = self.sx.val();
-        }
+        // Table 2-3: q0 (x, y), q1 (y, -x), q2 (-x, -y), q3 (-y, x): the absolute values,
+        // swapped when the signs differ.
         self.mx.next = self.zero.val();
         self.cx.next = self.zero.val();
-        if self.sneg.val() {
+        if self.cneg.val() {
             self.mx.next = self.ones.val();
             self.cx.next = self.one.val();
         }
         self.my.next = self.zero.val();
         self.cy.next = self.zero.val();
-        if self.cneg.val() {
+        if self.sneg.val() {
             self.my.next = self.ones.val();
             self.cy.next = self.one.val();
         }
+        self.ax.next = (self.sx.val() ^ self.mx.val()) + self.cx.val();
+        self.ay.next = (self.sy.val() ^ self.my.val()) + self.cy.val();
         self.q_reg.d.next = 0.into();
         if self.sneg.val() {
             if self.cneg.val() {
@@ -160,12 +160,12 @@ impl Logic for QuadrantMapper {
         } else if self.cneg.val() {
             self.q_reg.d.next = 1.into();
         }
-        self.x_reg.d.next = (((self.ax.val() ^ self.mx.val()) + self.cx.val())
-            << self.gshift.val())
-            & self.vmask.val();
-        self.y_reg.d.next = (((self.ay.val() ^ self.my.val()) + self.cy.val())
-            << self.gshift.val())
-            & self.vmask.val();
+        self.x_reg.d.next = (self.ax.val() << self.gshift.val()) & self.vmask.val();
+        self.y_reg.d.next = (self.ay.val() << self.gshift.val()) & self.vmask.val();
+        if self.cneg.val() ^ self.sneg.val() {
+            self.x_reg.d.next = (self.ay.val() << self.gshift.val()) & self.vmask.val();
+            self.y_reg.d.next = (self.ax.val() << self.gshift.val()) & self.vmask.val();
+        }
         self.v_reg.d.next = self.in_valid.val() & !self.rst.val();
         self.x.next = self.x_reg.q.val();
         self.y.next = self.y_reg.q.val();

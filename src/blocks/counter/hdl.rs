@@ -259,6 +259,25 @@ pub struct QuadrantCounter {
     llast_reg: DFF<Bit>,
     /// The latched count's period is 0 (a backward step from it wraps).
     lzero_reg: DFF<Bit>,
+    /// The latched count's period is PPR - 2 (a forward step from it ends on PPR - 1).
+    lpen_reg: DFF<Bit>,
+    /// The latched count's period is 1 (a backward step from it ends on 0).
+    lone_reg: DFF<Bit>,
+    /// u = PPR - 1, registered with u (a forward step from it wraps), so the wrap comes
+    /// from flags instead of the end of the u adder's carry chain.
+    ulast_reg: DFF<Bit>,
+    /// u != 0, registered with u (a backward step from u = 0 wraps); stored inverted so
+    /// that the power-up value 0 agrees with u = 0.
+    unz_reg: DFF<Bit>,
+    /// u = PPR - 2, u = PPR - 1, u = 0, u = 1: the compares the flags' next values are
+    /// chosen from, on the register u (beside the adder, not after it).
+    upen: Signal<Local, Bit>,
+    ulst: Signal<Local, Bit>,
+    uzer: Signal<Local, Bit>,
+    uone: Signal<Local, Bit>,
+    /// The next u is PPR - 1 / is 0 (from the compares and the step's direction).
+    nlast: Signal<Local, Bit>,
+    nzero: Signal<Local, Bit>,
     /// Quadrant of the sample, p >> F (2 bits).
     qnew: Signal<Local, Bits<32>>,
     /// Quadrant of the latched count (2 bits), where a load's step starts.
@@ -308,12 +327,16 @@ pub struct QuadrantCounter {
     umask: Constant<Bits<32>>,
     /// Mask of quadrant_bits - 1 bits: the width of usum.
     usmask: Constant<Bits<32>>,
-    /// Bit quadrant_bits - 2: the wrap bit of usum.
-    ubit: Constant<Bits<32>>,
     /// PPR is a power of two: u wraps by itself (PPR - 1 is all ones).
     pow2: Constant<Bit>,
     /// PPR - 1: the last period of the turn.
     ulast: Constant<Bits<32>>,
+    /// PPR - 2 modulo 2^(quadrant_bits - 2) (u's width): the period before the last.
+    upenult: Constant<Bits<32>>,
+    /// One modulo 2^(quadrant_bits - 2).
+    uone_c: Constant<Bits<32>>,
+    /// PPR = 1: every step wraps (u has no bits; the flags are not used).
+    ppr1: Constant<Bit>,
     /// Mask of M turn bits.
     tmask: Constant<Bits<32>>,
     /// One.
@@ -369,6 +392,16 @@ impl QuadrantCounter {
             ltdec_reg: Default::default(),
             llast_reg: Default::default(),
             lzero_reg: Default::default(),
+            lpen_reg: Default::default(),
+            lone_reg: Default::default(),
+            ulast_reg: Default::default(),
+            unz_reg: Default::default(),
+            upen: Default::default(),
+            ulst: Default::default(),
+            uzer: Default::default(),
+            uone: Default::default(),
+            nlast: Default::default(),
+            nzero: Default::default(),
             qnew: Default::default(),
             base_q: Default::default(),
             base_u: Default::default(),
@@ -393,9 +426,11 @@ impl QuadrantCounter {
             two: c32(2),
             umask: c32(mask(d.quadrant_bits - 2)),
             usmask: c32(mask(d.quadrant_bits - 1)),
-            ubit: c32(1 << (d.quadrant_bits - 2)),
             pow2: Constant::new((d.quadrants_per_turn / 4).is_power_of_two()),
             ulast: c32(d.quadrants_per_turn / 4 - 1),
+            upenult: c32((d.quadrants_per_turn / 4).wrapping_sub(2) & mask(d.quadrant_bits - 2)),
+            uone_c: c32(1 & mask(d.quadrant_bits - 2)),
+            ppr1: Constant::new(d.quadrants_per_turn == 4),
             tmask: c32(mask(d.multiturn_bits)),
             one: c32(1),
             three: c32(3),
@@ -426,7 +461,11 @@ impl Logic for QuadrantCounter {
             ltinc_reg,
             ltdec_reg,
             llast_reg,
-            lzero_reg
+            lzero_reg,
+            lpen_reg,
+            lone_reg,
+            ulast_reg,
+            unz_reg
         );
         self.qnew.next = (self.p_in.val() >> self.fshift.val()) & self.three.val();
         // Two candidate steps side by side, each with its own period adder, chosen by
@@ -450,10 +489,26 @@ impl Logic for QuadrantCounter {
         // wraps by itself, else a compare and a constant take over. The turn counter's
         // +1 and -1 are short adders of their own (on the running count, or taken at the
         // load), selected after the wrap, so no second carry chain follows usum's.
-        self.wrap.next = (self.usum.val() & self.ubit.val()).any();
-        if !self.pow2.val() {
-            self.wrap.next = (self.up_in.val() & (self.u_reg.q.val() == self.ulast.val()))
-                | (self.down_in.val() & (self.usum.val() & self.ubit.val()).any());
+        // The wrap from the flags kept with u (u = PPR - 1, u = 0), not from usum's carry
+        // out, so the turn counter's selection does not wait for the u adder.
+        self.wrap.next = (self.up_in.val() & (self.ulast_reg.q.val() | self.ppr1.val()))
+            | (self.down_in.val() & (!self.unz_reg.q.val() | self.ppr1.val()));
+        // The flags' next values: compares of the register u with constants, chosen by the
+        // step (up: u = PPR - 2 ends on the last period, u = PPR - 1 on 0; down: u = 0 ends
+        // on the last, u = 1 on 0; no step: u itself).
+        self.upen.next = (self.u_reg.q.val() & self.umask.val()) == self.upenult.val();
+        self.ulst.next = (self.u_reg.q.val() & self.umask.val()) == self.ulast.val();
+        self.uzer.next = (self.u_reg.q.val() & self.umask.val()) == self.zero.val();
+        self.uone.next = (self.u_reg.q.val() & self.umask.val()) == self.uone_c.val();
+        self.nlast.next = self.ulst.val();
+        self.nzero.next = self.uzer.val();
+        if self.up_in.val() {
+            self.nlast.next = self.upen.val();
+            self.nzero.next = self.ulst.val();
+        }
+        if self.down_in.val() {
+            self.nlast.next = self.uzer.val();
+            self.nzero.next = self.uone.val();
         }
         self.base_q.next = self.lqc_reg.q.val() & self.three.val();
         self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
@@ -493,6 +548,16 @@ impl Logic for QuadrantCounter {
             self.base_turns.next = self.lturns_reg.q.val();
             self.tinc.next = self.ltinc_reg.q.val();
             self.tdec.next = self.ltdec_reg.q.val();
+            self.nlast.next = self.llast_reg.q.val();
+            self.nzero.next = self.lzero_reg.q.val();
+            if self.up_l.val() {
+                self.nlast.next = self.lpen_reg.q.val();
+                self.nzero.next = self.llast_reg.q.val();
+            }
+            if self.down_l.val() {
+                self.nlast.next = self.lzero_reg.q.val();
+                self.nzero.next = self.lone_reg.q.val();
+            }
         }
         self.valid_reg.d.next = self.v_in.val() & !self.rst.val();
         if self.load.val() {
@@ -506,11 +571,17 @@ impl Logic for QuadrantCounter {
                 ((self.load_qc.val() >> self.two.val()) & self.umask.val()) == self.ulast.val();
             self.lzero_reg.d.next =
                 ((self.load_qc.val() >> self.two.val()) & self.umask.val()) == self.zero.val();
+            self.lpen_reg.d.next =
+                ((self.load_qc.val() >> self.two.val()) & self.umask.val()) == self.upenult.val();
+            self.lone_reg.d.next =
+                ((self.load_qc.val() >> self.two.val()) & self.umask.val()) == self.uone_c.val();
         }
         if self.rst.val() {
             self.init_reg.d.next = false;
             self.pprev_reg.d.next = self.zero.val();
             self.u_reg.d.next = self.zero.val();
+            self.ulast_reg.d.next = false;
+            self.unz_reg.d.next = false;
             self.fine_reg.d.next = self.zero.val();
             self.turns_reg.d.next = self.zero.val();
             self.error_reg.d.next = false;
@@ -544,6 +615,8 @@ impl Logic for QuadrantCounter {
                             | ((self.wq_in.val() == self.whi.val()) & self.wz_in.val()));
                 }
                 self.u_reg.d.next = self.un.val();
+                self.ulast_reg.d.next = self.nlast.val();
+                self.unz_reg.d.next = !self.nzero.val();
                 if !self.pow2.val() & self.wrap.val() {
                     if self.up.val() {
                         self.u_reg.d.next = self.zero.val();

@@ -1147,9 +1147,11 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     localparam  two = 32'h2;
     localparam  umask = 32'h7ff;
     localparam  usmask = 32'hfff;
-    localparam  ubit = 32'h800;
     localparam  pow2 = 1'b1;
     localparam  ulast = 32'h7ff;
+    localparam  upenult = 32'h7fe;
+    localparam  uone_c = 32'h1;
+    localparam  ppr1 = 1'b0;
     localparam  tmask = 32'hfff;
     localparam  one = 32'h1;
     localparam  three = 32'h3;
@@ -1203,8 +1205,26 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     reg  lzero_reg_d;
     wire  lzero_reg_q;
     reg  lzero_reg_clock;
+    reg  lpen_reg_d;
+    wire  lpen_reg_q;
+    reg  lpen_reg_clock;
+    reg  lone_reg_d;
+    wire  lone_reg_q;
+    reg  lone_reg_clock;
+    reg  ulast_reg_d;
+    wire  ulast_reg_q;
+    reg  ulast_reg_clock;
+    reg  unz_reg_d;
+    wire  unz_reg_q;
+    reg  unz_reg_clock;
 
     // Local signals
+    reg  upen;
+    reg  ulst;
+    reg  uzer;
+    reg  uone;
+    reg  nlast;
+    reg  nzero;
     reg  [31:0] qnew;
     reg  [31:0] base_q;
     reg  [31:0] base_u;
@@ -1299,6 +1319,26 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         .q(lzero_reg_q),
         .clock(lzero_reg_clock)
     );
+    sd_core_rtl_counter_lpen_reg lpen_reg(
+        .d(lpen_reg_d),
+        .q(lpen_reg_q),
+        .clock(lpen_reg_clock)
+    );
+    sd_core_rtl_counter_lone_reg lone_reg(
+        .d(lone_reg_d),
+        .q(lone_reg_q),
+        .clock(lone_reg_clock)
+    );
+    sd_core_rtl_counter_ulast_reg ulast_reg(
+        .d(ulast_reg_d),
+        .q(ulast_reg_q),
+        .clock(ulast_reg_clock)
+    );
+    sd_core_rtl_counter_unz_reg unz_reg(
+        .d(unz_reg_d),
+        .q(unz_reg_q),
+        .clock(unz_reg_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -1317,6 +1357,10 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         ltdec_reg_clock = clk;
         llast_reg_clock = clk;
         lzero_reg_clock = clk;
+        lpen_reg_clock = clk;
+        lone_reg_clock = clk;
+        ulast_reg_clock = clk;
+        unz_reg_clock = clk;
         init_reg_d = init_reg_q;
         pprev_reg_d = pprev_reg_q;
         u_reg_d = u_reg_q;
@@ -1332,6 +1376,10 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         ltdec_reg_d = ltdec_reg_q;
         llast_reg_d = llast_reg_q;
         lzero_reg_d = lzero_reg_q;
+        lpen_reg_d = lpen_reg_q;
+        lone_reg_d = lone_reg_q;
+        ulast_reg_d = ulast_reg_q;
+        unz_reg_d = unz_reg_q;
         qnew = (p_in >> fshift) & three;
         ustep = zero;
         if (down_in) begin
@@ -1341,9 +1389,20 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
             ustep = ustep | one;
         end
         usum = (u_reg_q + ustep) & usmask;
-        wrap = |(usum & ubit);
-        if (~pow2) begin
-            wrap = (up_in & (u_reg_q == ulast)) | (down_in & |(usum & ubit));
+        wrap = (up_in & (ulast_reg_q | ppr1)) | (down_in & (~unz_reg_q | ppr1));
+        upen = (u_reg_q & umask) == upenult;
+        ulst = (u_reg_q & umask) == ulast;
+        uzer = (u_reg_q & umask) == zero;
+        uone = (u_reg_q & umask) == uone_c;
+        nlast = ulst;
+        nzero = uzer;
+        if (up_in) begin
+            nlast = upen;
+            nzero = ulst;
+        end
+        if (down_in) begin
+            nlast = uzer;
+            nzero = uone;
         end
         base_q = lqc_reg_q & three;
         base_u = (lqc_reg_q >> two) & umask;
@@ -1372,6 +1431,16 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
             base_turns = lturns_reg_q;
             tinc = ltinc_reg_q;
             tdec = ltdec_reg_q;
+            nlast = llast_reg_q;
+            nzero = lzero_reg_q;
+            if (up_l) begin
+                nlast = lpen_reg_q;
+                nzero = llast_reg_q;
+            end
+            if (down_l) begin
+                nlast = lzero_reg_q;
+                nzero = lone_reg_q;
+            end
         end
         valid_reg_d = v_in & ~rst;
         if (load) begin
@@ -1382,11 +1451,15 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
             ltdec_reg_d = (load_turns + minus_one) & tmask;
             llast_reg_d = ((load_qc >> two) & umask) == ulast;
             lzero_reg_d = ((load_qc >> two) & umask) == zero;
+            lpen_reg_d = ((load_qc >> two) & umask) == upenult;
+            lone_reg_d = ((load_qc >> two) & umask) == uone_c;
         end
         if (rst) begin
             init_reg_d = 1'b0;
             pprev_reg_d = zero;
             u_reg_d = zero;
+            ulast_reg_d = 1'b0;
+            unz_reg_d = 1'b0;
             fine_reg_d = zero;
             turns_reg_d = zero;
             error_reg_d = 1'b0;
@@ -1419,6 +1492,8 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
                     warning_reg_d = (wq_in >= wlo) & ((wq_in < whi) | ((wq_in == whi) & wz_in));
                 end
                 u_reg_d = un;
+                ulast_reg_d = nlast;
+                unz_reg_d = ~nzero;
                 if (~pow2 & wrap) begin
                     if (up) begin
                         u_reg_d = zero;
@@ -1521,6 +1596,42 @@ module sd_core_rtl_counter_llast_reg(d,q,clock);
     end
 
 endmodule // sd_core_rtl_counter_llast_reg
+
+module sd_core_rtl_counter_lone_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_lone_reg
+
+module sd_core_rtl_counter_lpen_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_lpen_reg
 
 module sd_core_rtl_counter_lqc_reg(d,q,clock);
 
@@ -1684,6 +1795,42 @@ module sd_core_rtl_counter_u_reg(d,q,clock);
 
 endmodule // sd_core_rtl_counter_u_reg
 
+module sd_core_rtl_counter_ulast_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_ulast_reg
+
+module sd_core_rtl_counter_unz_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_unz_reg
+
 module sd_core_rtl_counter_valid_reg(d,q,clock);
 
     // Module arguments
@@ -1811,24 +1958,20 @@ module sd_core_rtl_mapper(clk,rst,in_valid,in_sin,in_cos,x,y,q,v);
         if (sneg) begin
             sy = sy | asext;
         end
-        ax = sx;
-        ay = sy;
-        if (cneg ^ sneg) begin
-            ax = sy;
-            ay = sx;
-        end
         mx = zero;
         cx = zero;
-        if (sneg) begin
+        if (cneg) begin
             mx = ones;
             cx = one;
         end
         my = zero;
         cy = zero;
-        if (cneg) begin
+        if (sneg) begin
             my = ones;
             cy = one;
         end
+        ax = (sx ^ mx) + cx;
+        ay = (sy ^ my) + cy;
         q_reg_d = 2'h0;
         if (sneg) begin
             if (cneg) begin
@@ -1841,8 +1984,12 @@ module sd_core_rtl_mapper(clk,rst,in_valid,in_sin,in_cos,x,y,q,v);
         else if (cneg) begin
             q_reg_d = 2'h1;
         end
-        x_reg_d = (((ax ^ mx) + cx) << gshift) & vmask;
-        y_reg_d = (((ay ^ my) + cy) << gshift) & vmask;
+        x_reg_d = (ax << gshift) & vmask;
+        y_reg_d = (ay << gshift) & vmask;
+        if (cneg ^ sneg) begin
+            x_reg_d = (ay << gshift) & vmask;
+            y_reg_d = (ax << gshift) & vmask;
+        end
         v_reg_d = in_valid & ~rst;
         x = x_reg_q;
         y = y_reg_q;
