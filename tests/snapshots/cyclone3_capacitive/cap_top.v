@@ -1590,7 +1590,7 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
             tcnt_d = zero;
             ftl_d = tlast_is0;
         end
-        sidle_d = ~rst & ((sidle_q & ~sync_fall) | (~sidle_q & ~mae & ftl_q));
+        sidle_d = state_d == BissState_Idle;
         sshift_d = ((state_q == BissState_Cds) | ((state_q == BissState_Data) & ~fnb_q)) & ~(~mae & ftl_q) & ~rst;
         slo = slo_reg_q;
     end
