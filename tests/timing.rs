@@ -25,6 +25,9 @@ use sinedec::emit::{cap_top_verilog, core_name, core_verilog, top_name, top_veri
 use sinedec::report::nextpnr::{block_of, Ecp5, PnrTiming};
 use std::path::PathBuf;
 
+mod common;
+mod report_util;
+
 /// Required post-route Fmax over the configured clock.
 const MARGIN: f64 = 1.3;
 
@@ -135,19 +138,6 @@ fn designs() -> Vec<Design> {
     v
 }
 
-/// Copies the recorded results (`tests/data/ecp5-cache`) into the cache directory.
-fn seed_cache(cache: &std::path::Path) {
-    let seed = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/ecp5-cache");
-    std::fs::create_dir_all(cache).expect("create the timing cache");
-    for e in std::fs::read_dir(&seed).expect("tests/data/ecp5-cache") {
-        let p = e.expect("read tests/data/ecp5-cache").path();
-        if p.extension().is_some_and(|x| x == "json") {
-            std::fs::copy(&p, cache.join(p.file_name().expect("a file name")))
-                .expect("seed the timing cache");
-        }
-    }
-}
-
 fn describe(d: &Design, t: &PnrTiming) -> String {
     format!(
         "{} `{}`: {} MHz post-route, needs >= {:.1} MHz ({} x {:.2} MHz); slack {} ns; critical path {} (`{}`) -> {} (`{}`), {:.2} ns logic + {:.2} ns routing over {} nets",
@@ -172,7 +162,8 @@ fn describe(d: &Design, t: &PnrTiming) -> String {
 fn shipped_designs_reach_their_clock_margin_after_place_and_route() {
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let work = root.join(format!("timing-work-{}", std::process::id()));
-    seed_cache(&root.join("timing-cache"));
+    // The recorded results, shared with the report tests (report_util::ECP5_SEED).
+    report_util::seed_ecp5_cache(&root.join("timing-cache"));
     let ecp5 =
         Ecp5::new(Some(root.join("timing-cache")), work.clone()).unwrap_or_else(|e| panic!("{e}"));
     let ds = designs();
