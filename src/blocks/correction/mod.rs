@@ -133,6 +133,7 @@ pub mod fit_hdl;
 pub mod fit_solve;
 pub mod hdl;
 pub mod model;
+pub mod multree;
 pub mod phase;
 
 /// Parameters of the automatic calibration.
@@ -229,6 +230,10 @@ pub const LATENCY_CYCLES: u32 = 3;
 /// Extra clocks of the phase correction (the signed sum of the two cos-track products gets
 /// its own stage, see the module doc).
 pub const PHASE_EXTRA_CYCLES: u32 = 1;
+
+/// Extra clocks of the shift-add products (static mode with a code that is not a power of
+/// two, [`CorrectionParams::shift_add`]): the tree's levels ahead of the product register.
+pub const SHIFT_ADD_EXTRA_CYCLES: u32 = multree::TREE_LEVELS;
 
 impl CorrectionParams {
     /// Static correction: `adc_width` A = 10..=16; `gain_frac_bits` GF = 8..=15;
@@ -391,13 +396,34 @@ impl CorrectionParams {
         self.cross != 0 || self.fit.is_some()
     }
 
+    /// The products are shift-add trees ([`multree::MulTree`]) instead of multipliers:
+    /// static mode (no calibration, so every code is a constant) with a gain code, or the
+    /// phase stage's |k|, that is neither 0 nor a power of two. Such a constant would map to
+    /// a hard multiplier, a combinational path that does not meet the timing rule on the
+    /// ECP5 proxy flow (docs/correction.md); 0 and powers of two are wiring, so unity-gain
+    /// designs keep the one-stage product.
+    pub fn shift_add(&self) -> bool {
+        let not_shift = |c: u32| c != 0 && !c.is_power_of_two();
+        self.auto.is_none()
+            && self.fit.is_none()
+            && (not_shift(self.gain[SIN])
+                || not_shift(self.gain[COS])
+                || not_shift(self.cross.unsigned_abs()))
+    }
+
     /// Clock cycles from `in_valid` to `out_valid`: [`LATENCY_CYCLES`], plus
-    /// [`PHASE_EXTRA_CYCLES`] with phase correction. The one place the block's latency is
-    /// derived; the top, the fallback and the reports take it from here.
+    /// [`PHASE_EXTRA_CYCLES`] with phase correction, plus [`SHIFT_ADD_EXTRA_CYCLES`] with
+    /// shift-add products. The one place the block's latency is derived; the top, the
+    /// fallback, `check` and the reports take it from here.
     pub fn latency_cycles(&self) -> u32 {
         LATENCY_CYCLES
             + if self.has_phase() {
                 PHASE_EXTRA_CYCLES
+            } else {
+                0
+            }
+            + if self.shift_add() {
+                SHIFT_ADD_EXTRA_CYCLES
             } else {
                 0
             }
