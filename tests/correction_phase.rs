@@ -221,7 +221,10 @@ fn phase_zero_builds_no_phase_stage() {
     assert_eq!(p0k, p0);
     // No phase stage; 17000 and 16000 are not powers of two: shift-add products (3 + 3).
     assert_eq!(p0.latency_cycles(), 6);
-    assert_eq!(CorrectionParams::identity(14, 14).unwrap().latency_cycles(), 3);
+    assert_eq!(
+        CorrectionParams::identity(14, 14).unwrap().latency_cycles(),
+        3
+    );
     let export = |p: &CorrectionParams, name: &str| {
         use rust_hdl::prelude::Block;
         let mut uut = Correction::new(p);
@@ -270,7 +273,10 @@ fn phase_stage_synthesizes_without_hard_multipliers_and_one_carry_chain_per_path
     assert_eq!(x.multipliers, 0, "shift-add products");
     // Pipeline about 120 FF plus the trees' levels (only the non-zero partial sums), the
     // phase stage's sum and 4th stage.
-    eprintln!("corr_synth_phase: xc3sa {} LUT, {} FF; cycloneive {} FF", x.luts, x.ffs, c.ffs);
+    eprintln!(
+        "corr_synth_phase: xc3sa {} LUT, {} FF; cycloneive {} FF",
+        x.luts, x.ffs, c.ffs
+    );
     assert!(x.ffs > 150 && x.ffs < 900, "{} FF", x.ffs);
     assert!(c.ffs > 150 && c.ffs < 900, "{} FF", c.ffs);
     let path = x.path.expect("a register-to-register path");
@@ -305,8 +311,19 @@ fn check_explains_the_correction_mode_and_the_peak_trackers_limit() {
     let s = check("mode = \"static\"");
     assert!(s.contains("correction                  static:"), "{s}");
     assert!(s.contains("no phase correction"), "{s}");
+    // Unity gains: the product is a shift, latency 3 in the CONV -> position sum.
+    assert!(
+        !s.contains("shift-add") && s.contains(" + correction 3 + "),
+        "{s}"
+    );
     let s = check("mode = \"static\"\nphase_deg = 3.0");
     assert!(s.contains("static phase correction"), "{s}");
+    // 1 / cos(3 deg) and tan(3 deg) codes are not powers of two: shift-add products, and the
+    // latency shown is 3 + 1 (phase) + 3 (the trees' levels).
+    assert!(
+        s.contains("shift-add trees") && s.contains(" + correction 7 + "),
+        "{s}"
+    );
     let s = check("mode = \"peak\"");
     assert!(s.contains("peak tracker"), "{s}");
     // Independently: the default samples 1,307,157 times per second per channel; at

@@ -237,8 +237,7 @@ impl Logic for PhaseCos {
             self.tq[i].a.next = self.m_s.val();
             self.tq[i].neg.next = self.neg_s.val() ^ self.kn.val();
             self.tq[i].v.next = false;
-            self.q2.d.next =
-                (self.tq[i].out_x.val() + self.tq[i].out_y.val()) >> self.pshift.val();
+            self.q2.d.next = (self.tq[i].out_x.val() + self.tq[i].out_y.val()) >> self.pshift.val();
             self.nb2.d.next = self.tq[i].out_neg.val();
         }
         // Stage 3: S' = (P_c or !P_c) + (Q or !Q) = S - n, one adder (|S| < 2^31).
