@@ -13,32 +13,41 @@ mod correction_util;
 use correction_util::*;
 
 #[test]
-fn static_correction_is_the_formula_with_three_cycle_latency() {
+fn static_correction_is_the_formula_with_three_or_six_cycle_latency() {
+    // Latency 3 when every gain code is 0 or a power of two (the product is a shift);
+    // otherwise the constant products are shift-add trees with three more register levels
+    // (module doc of `multree.rs`): 6.
     let cases = [
-        // (A, GF, offsets, gains): thesis default width, unity, strong gains, extremes.
+        // (A, GF, offsets, gains, latency): thesis default width, unity, strong gains,
+        // extremes.
         (
             14,
             14,
             [37, -1200],
             [gain_code(14, 1.25).unwrap(), gain_code(14, 0.8).unwrap()],
+            6,
         ),
-        (14, 14, [0, 0], [1 << 14, 1 << 14]),
-        (16, 14, [-32768, 32767], [0xffff, 1]),
-        (10, 8, [-3, 5], [gain_code(8, 1.0 / 1.07).unwrap(), 0]),
-        (12, 15, [100, -100], [gain_code(15, 1.9).unwrap(), 32767]),
+        (14, 14, [0, 0], [1 << 14, 1 << 14], 3),
+        (16, 14, [-32768, 32767], [0xffff, 1], 6),
+        (10, 8, [-3, 5], [gain_code(8, 1.0 / 1.07).unwrap(), 0], 6),
+        (12, 15, [100, -100], [gain_code(15, 1.9).unwrap(), 32767], 6),
+        (12, 12, [100, -100], [1 << 13, 0], 3),
     ];
-    for (i, (a, gf, offs, gains)) in cases.into_iter().enumerate() {
+    for (i, (a, gf, offs, gains, lat)) in cases.into_iter().enumerate() {
         let p = CorrectionParams::new(a, gf, offs, gains).unwrap();
+        assert_eq!(p.latency_cycles(), lat, "case {i}");
+        // A sample presented before edge k comes out after edge k + lat - 1: lat - 1 rows on.
+        let l = lat as usize - 1;
         let ins = stimulus(a, offs, 3000, i as u64);
         let out = run(&p, &format!("corr_static{i}"), &ins, RUST_ONLY);
         let mut checked = 0;
-        for k in 2..ins.len() {
-            let want_valid = ins[k - 2].valid && !ins[k - 2].rst && !ins[k - 1].rst && !ins[k].rst;
+        for k in l..ins.len() {
+            let want_valid = ins[k - l].valid && (k - l..=k).all(|j| !ins[j].rst);
             assert_eq!(out[k][0] == 1, want_valid, "case {i}: out_valid at row {k}");
-            if ins[k - 2].rst {
+            if ins[k - l].rst {
                 continue;
             }
-            let x = &ins[k - 2];
+            let x = &ins[k - l];
             for (c, raw) in [(SIN, x.sin), (COS, x.cos)] {
                 let xv = sext(raw as u64 & mask(a), a);
                 let want = reference(xv, offs[c] as i64, gains[c], a, gf);
@@ -79,9 +88,14 @@ fn full_scale_inputs_saturate_never_wrap() {
         idle(),
         idle(),
         idle(),
+        idle(),
+        idle(),
+        idle(),
     ];
+    // g = 24576 is not a power of two: shift-add products, latency 6 (rows 1..5 -> 6..10).
+    assert_eq!(p.latency_cycles(), 6);
     let out = run(&p, "corr_sat", &ins, Simulators::ALL);
-    let got: Vec<(i64, i64)> = (3..8)
+    let got: Vec<(i64, i64)> = (6..11)
         .map(|k| (sext(out[k][1], a), sext(out[k][2], a)))
         .collect();
     assert_eq!(
@@ -94,6 +108,7 @@ fn full_scale_inputs_saturate_never_wrap() {
             (8190, -8190)
         ]
     );
+    assert_eq!(q.latency_cycles(), 3);
     let out = run(&q, "corr_sat2", &ins, RUST_ONLY);
     // sin: x + 8192 (x = max -> 16383 -> max; x = min -> 0); cos: x - 8191.
     assert_eq!(sext(out[3][1], a), max);
@@ -115,8 +130,9 @@ fn static_correction_in_three_simulators() {
     let p = CorrectionParams::new(16, 15, offs, [0xffff, 0xffff]).unwrap();
     let ins = stimulus(16, offs, 500, 78);
     let out = run(&p, "corr_static_cosim2", &ins, Simulators::ALL);
-    let k = (2..ins.len())
-        .find(|&k| ins[k - 2].sin == 32767 && ins[k - 2].cos == -32768)
+    let l = p.latency_cycles() as usize - 1;
+    let k = (l..ins.len())
+        .find(|&k| ins[k - l].sin == 32767 && ins[k - l].cos == -32768)
         .unwrap();
     assert_eq!(
         (out[k][1], out[k][2]),

@@ -37,7 +37,7 @@ fn params(a: u32, gf: u32, offs: [i32; 2], gs: f64, gc: f64, deg: f64) -> Correc
 }
 
 #[test]
-fn phase_correction_is_the_formula_with_four_cycle_latency() {
+fn phase_correction_is_the_formula_with_seven_cycle_latency() {
     let cases = [
         (14, 14, [37, -1200], 1.25, 0.8, 3.0),
         (14, 14, [0, 0], 1.0, 1.0, -7.5),
@@ -49,7 +49,9 @@ fn phase_correction_is_the_formula_with_four_cycle_latency() {
     ];
     for (i, (a, gf, offs, gs, gcf, deg)) in cases.into_iter().enumerate() {
         let p = params(a, gf, offs, gs, gcf, deg);
-        assert!(p.has_phase() && p.latency_cycles() == 4, "case {i}");
+        // 3 + the phase stage's 1 + the shift-add trees' 3 (every case has a non-zero cross
+        // code k and a folded cos gain that are not powers of two).
+        assert!(p.has_phase() && p.latency_cycles() == 7, "case {i}");
         let (gc, k) = (p.gain()[COS], p.cross());
         // The codes are the folded gain and g_s tan(phi), independently rounded here.
         let scale = (1u64 << gf) as f64;
@@ -59,9 +61,9 @@ fn phase_correction_is_the_formula_with_four_cycle_latency() {
         let ins = stimulus(a, offs, 3000, 40 + i as u64);
         let out = run(&p, &format!("corr_phase{i}"), &ins, RUST_ONLY);
         let mut checked = 0;
-        for k_row in 3..ins.len() {
-            let x = &ins[k_row - 3];
-            let clean = (k_row - 3..=k_row).all(|j| !ins[j].rst);
+        for k_row in 6..ins.len() {
+            let x = &ins[k_row - 6];
+            let clean = (k_row - 6..=k_row).all(|j| !ins[j].rst);
             assert_eq!(
                 out[k_row][0] == 1,
                 x.valid && clean,
@@ -164,9 +166,9 @@ fn worst_angle_error(
         let c = amp[1] * (t + phi).cos() + off[1];
         ins.push(sample(s.round() as i64, c.round() as i64));
     }
-    ins.extend(vec![idle(); 4]);
-    let out = run(p, tag, &ins, RUST_ONLY);
     let lat = p.latency_cycles() as usize - 1;
+    ins.extend(vec![idle(); lat + 1]);
+    let out = run(p, tag, &ins, RUST_ONLY);
     let mut worst = 0f64;
     for (j, t) in th.iter().enumerate() {
         let o = &out[1 + j + lat];
@@ -217,7 +219,12 @@ fn phase_zero_builds_no_phase_stage() {
     assert_eq!((gc, k), (17000, 0));
     let p0k = p0.with_phase(0).unwrap();
     assert_eq!(p0k, p0);
-    assert_eq!(p0.latency_cycles(), 3);
+    // No phase stage; 17000 and 16000 are not powers of two: shift-add products (3 + 3).
+    assert_eq!(p0.latency_cycles(), 6);
+    assert_eq!(
+        CorrectionParams::identity(14, 14).unwrap().latency_cycles(),
+        3
+    );
     let export = |p: &CorrectionParams, name: &str| {
         use rust_hdl::prelude::Block;
         let mut uut = Correction::new(p);
@@ -258,16 +265,20 @@ fn phase_zero_builds_no_phase_stage() {
 }
 
 #[test]
-fn phase_stage_synthesizes_with_two_hard_multipliers_and_one_carry_chain_per_path() {
+fn phase_stage_synthesizes_without_hard_multipliers_and_one_carry_chain_per_path() {
     let p = params(14, 14, [37, -100], 1.0, 1.03, 3.0);
     let (x, c) = synth(Correction::new(&p), "corr_synth_phase");
-    // The cross product |d_s| |k| has a constant factor in static mode: Yosys builds it
-    // from logic, so the hard multipliers stay the two of the sin and cos products.
-    assert_eq!(x.multipliers, 2, "sin and cos products");
-    // Pipeline about 120 FF plus the phase stage's two 32-bit products, sum and 4th stage
-    // (the flows trim constant product bits differently, as in static mode without phase).
-    assert!(x.ffs > 150 && x.ffs < 260, "{} FF", x.ffs);
-    assert!(c.ffs > 150 && c.ffs < 260, "{} FF", c.ffs);
+    // Static mode: every code is a constant that is not a power of two, so the sin, cos and
+    // cross products are shift-add trees (multree.rs), no hard multiplier.
+    assert_eq!(x.multipliers, 0, "shift-add products");
+    // Pipeline about 120 FF plus the trees' levels (only the non-zero partial sums), the
+    // phase stage's sum and 4th stage.
+    eprintln!(
+        "corr_synth_phase: xc3sa {} LUT, {} FF; cycloneive {} FF",
+        x.luts, x.ffs, c.ffs
+    );
+    assert!(x.ffs > 150 && x.ffs < 900, "{} FF", x.ffs);
+    assert!(c.ffs > 150 && c.ffs < 900, "{} FF", c.ffs);
     let path = x.path.expect("a register-to-register path");
     eprintln!(
         "corr_synth_phase: worst path {} -> {}: {} carry chains, {} LUT levels, {} multipliers",
@@ -300,8 +311,19 @@ fn check_explains_the_correction_mode_and_the_peak_trackers_limit() {
     let s = check("mode = \"static\"");
     assert!(s.contains("correction                  static:"), "{s}");
     assert!(s.contains("no phase correction"), "{s}");
+    // Unity gains: the product is a shift, latency 3 in the CONV -> position sum.
+    assert!(
+        !s.contains("shift-add") && s.contains(" + correction 3 + "),
+        "{s}"
+    );
     let s = check("mode = \"static\"\nphase_deg = 3.0");
     assert!(s.contains("static phase correction"), "{s}");
+    // 1 / cos(3 deg) and tan(3 deg) codes are not powers of two: shift-add products, and the
+    // latency shown is 3 + 1 (phase) + 3 (the trees' levels).
+    assert!(
+        s.contains("shift-add trees") && s.contains(" + correction 7 + "),
+        "{s}"
+    );
     let s = check("mode = \"peak\"");
     assert!(s.contains("peak tracker"), "{s}");
     // Independently: the default samples 1,307,157 times per second per channel; at

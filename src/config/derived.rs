@@ -542,8 +542,17 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
         );
     }
     let Some(_) = c.auto() else {
+        // Codes that are not powers of two: constant products as shift-add trees.
+        let products = if c.shift_add() {
+            format!(
+                "; gain and cross products as shift-add trees, no hard multiplier ({} more clocks)",
+                crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES
+            )
+        } else {
+            String::new()
+        };
         return format!(
-            "correction                  static: offsets {:?} LSB, gain codes {:?} (2^-{}); {phase}\n",
+            "correction                  static: offsets {:?} LSB, gain codes {:?} (2^-{}); {phase}{products}\n",
             c.offset(),
             c.gain(),
             c.gain_frac_bits()

@@ -2,6 +2,7 @@
 //! timing and rules in [`crate::blocks::correction`]).
 use super::autocal::{c16, AutoCal};
 use super::fit_hdl::{FitCal, FitConsts};
+use super::multree::MulTree;
 use super::phase::PhaseCos;
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, fill, mask};
@@ -21,8 +22,8 @@ pub struct Correction {
     pub in_sin: Signal<In, Bits<16>>,
     /// Raw cosine sample, A-bit two's complement in the low bits (upper bits ignored).
     pub in_cos: Signal<In, Bits<16>>,
-    /// Strobe of the corrected sample (`latency_cycles()` - 1 clocks after `in_valid`: 3
-    /// clocks without, 4 with phase correction).
+    /// Strobe of the corrected sample (`latency_cycles()` clocks after `in_valid`: 3
+    /// without, 4 with phase correction, 3 more with shift-add products).
     pub out_valid: Signal<Out, Bit>,
     /// Corrected sine, A-bit two's complement in the low bits (saturated).
     pub out_sin: Signal<Out, Bits<16>>,
@@ -44,6 +45,10 @@ pub struct Correction {
     fit: Vec<FitCal>,
     /// The phase correction of the cos track: one instance when k != 0, none otherwise.
     ph: Vec<PhaseCos>,
+    /// The sine product as a shift-add tree: one instance when `p.shift_add()`, else none.
+    trs: Vec<MulTree>,
+    /// The cosine product as a shift-add tree: one instance when `p.shift_add()`.
+    trc: Vec<MulTree>,
     v1: DFF<Bit>,
     sg1_s: DFF<Bit>,
     sg1_c: DFF<Bit>,
@@ -137,6 +142,13 @@ impl Correction {
         } else {
             vec![]
         };
+        let tree = |c: usize| {
+            if p.shift_add() {
+                vec![MulTree::new(p.gain()[c] as u64)]
+            } else {
+                vec![]
+            }
+        };
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -154,6 +166,8 @@ impl Correction {
             cal,
             fit,
             ph,
+            trs: tree(SIN),
+            trc: tree(COS),
             v1: Default::default(),
             sg1_s: Default::default(),
             sg1_c: Default::default(),
@@ -301,6 +315,30 @@ impl Logic for Correction {
         // would only feed a carry chain whose carry is provably zero.
         self.p2_s.d.next = (self.m1_s.q.val() * self.g1_s.q.val()) >> self.hshift.val();
         self.p2_c.d.next = (self.m1_c.q.val() * self.g1_c.q.val()) >> self.hshift.val();
+        // Static mode with a code that is not a power of two: the product from a shift-add
+        // tree (three more register levels; its last sum is the product register's input),
+        // the sign and the valid bit delayed with it.
+        for i in 0..self.trs.len() {
+            self.trs[i].clk.next = self.clk.val();
+            self.trs[i].rst.next = self.rst.val();
+            self.trs[i].a.next = self.m1_s.q.val();
+            self.trs[i].neg.next = self.sg1_s.q.val();
+            self.trs[i].v.next = self.v1.q.val();
+            self.v2.d.next = self.trs[i].out_v.val() & !self.rst.val();
+            self.sg2_s.d.next = self.trs[i].out_neg.val();
+            self.p2_s.d.next =
+                (self.trs[i].out_x.val() + self.trs[i].out_y.val()) >> self.hshift.val();
+        }
+        for i in 0..self.trc.len() {
+            self.trc[i].clk.next = self.clk.val();
+            self.trc[i].rst.next = self.rst.val();
+            self.trc[i].a.next = self.m1_c.q.val();
+            self.trc[i].neg.next = self.sg1_c.q.val();
+            self.trc[i].v.next = self.v1.q.val();
+            self.sg2_c.d.next = self.trc[i].out_neg.val();
+            self.p2_c.d.next =
+                (self.trc[i].out_x.val() + self.trc[i].out_y.val()) >> self.hshift.val();
+        }
         // Stage 3: round half up (magnitude), apply the sign, saturate. One adder: with
         // the sign, -floor((P + 2^(GF-1)) / 2^GF) = floor((!P + 2^(GF-1)) / 2^GF) (!P = -P - 1),
         // taken from the 32-bit word modulo 2^(32-GF) >= 2^A. The magnitude reaches 2^(A-1)

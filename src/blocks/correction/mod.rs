@@ -29,6 +29,10 @@
 //!  |d_s|, k ──► Q = |d_s| |k| >> s ───┤     + (Q or !Q)          saturate to A bits ──► out_cos
 //!               sign(d_s) ^ sign(k) ──┘ n = number of !         (compares of S' beside it)
 //!  stage-3 sine result ─────────────────────────────────────────► one register ──────► out_sin
+//!
+//!  Shift-add products (static mode, a code not 0 or a power of two): every `*` above becomes
+//!  |d| ─► MulTree(code): 3 register levels of pairwise sums ─► (x + y) into the product
+//!  register; sign and valid delayed 3 clocks beside it (multree.rs).
 //! ```
 //!
 //! # Datapath and bit growth (A = ADC width 10..=16, GF = gain fraction bits 8..=15)
@@ -46,8 +50,20 @@
 //!   `x' = sgn(d) * floor(|d| g / 2^GF + 1/2)`.
 //! * Saturation (never wraps): d >= 0: x' = min(r, 2^(A-1) - 1); d < 0:
 //!   x' = -min(r, 2^(A-1)).
-//! * Latency: 3 clocks (4 with phase correction, below). A sample presented with
-//!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge k+2; one sample per clock (back-to-back) is fine
+//! * Products: the hard multiplier `|d| * g` (a Verilog `*`), except in static mode when a
+//!   code (g_s, g_c, or |k| of the phase stage) is neither 0 nor a power of two
+//!   ([`CorrectionParams::shift_add`]): then each product is a pipelined shift-add tree of
+//!   the constant ([`multree`]: partial products (|d| << i) for the code's one bits, three
+//!   register levels of pairwise sums, the last sum into the product register), exact, one
+//!   carry chain per register stage, 3 more clocks. An inferred multiplier is a
+//!   combinational hard block: on the ECP5 proxy flow Yosys leaves MULT18X18D's own
+//!   registers unused, so a register -> multiplier -> register path alone stays near
+//!   141-147 MHz (docs/correction.md), below 1.3 x 133.33 MHz. 0 and powers of two are
+//!   wiring, so unity-gain designs keep the one-stage product, bit for bit.
+//! * Latency: 3 clocks (4 with phase correction, below; 3 more with shift-add products).
+//!   A sample presented with
+//!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge
+//!   k + latency - 1 (k+2 at 3 clocks); one sample per clock (back-to-back) is fine
 //!   (in `auto` mode the fit's tracker needs them two clocks apart: `fit_hdl.rs`).
 //!   `g` travels with the sample through stage 1, so a calibration update never mixes an
 //!   old offset with a new gain within one sample.
@@ -82,10 +98,13 @@
 //!   carry chain after another: high when S >= 2^(A-1+F) - 2^(F-1), low when
 //!   S < -2^(A-1+F) - 2^(F-1), each constant moved by -n and compared with the sign bits
 //!   flipped (two's complement order as unsigned order).
+//! * The stage-4 constants for n are selected in stage 3 from the registered negation bits
+//!   and registered, so the adder and the two compares of stage 4 see only registers.
 //! * The sine track is not changed; its stage-3 result is delayed one register. Latency:
-//!   4 clocks with phase correction ([`PHASE_EXTRA_CYCLES`]); the one place it is derived
-//!   is [`CorrectionParams::latency_cycles`]. k = 0 (phase_deg = 0) builds no phase stage
-//!   at all: the block is the 3-clock block above, bit for bit.
+//!   4 clocks with phase correction ([`PHASE_EXTRA_CYCLES`]), 7 with shift-add products
+//!   (the static codes g_c / cos phi and k are rarely powers of two); the one place it is
+//!   derived is [`CorrectionParams::latency_cycles`]. k = 0 (phase_deg = 0) builds no phase
+//!   stage at all: the block is the 3-clock block above, bit for bit.
 //! * Not with the automatic calibration: its peak-derived g_c would drop 1 / cos phi.
 //!
 //! # Peak-tracking calibration (mode `peak`; the ellipse fit of mode `auto` is documented in
@@ -133,6 +152,7 @@ pub mod fit_hdl;
 pub mod fit_solve;
 pub mod hdl;
 pub mod model;
+pub mod multree;
 pub mod phase;
 
 /// Parameters of the automatic calibration.
@@ -229,6 +249,10 @@ pub const LATENCY_CYCLES: u32 = 3;
 /// Extra clocks of the phase correction (the signed sum of the two cos-track products gets
 /// its own stage, see the module doc).
 pub const PHASE_EXTRA_CYCLES: u32 = 1;
+
+/// Extra clocks of the shift-add products (static mode with a code that is not a power of
+/// two, [`CorrectionParams::shift_add`]): the tree's levels ahead of the product register.
+pub const SHIFT_ADD_EXTRA_CYCLES: u32 = multree::TREE_LEVELS;
 
 impl CorrectionParams {
     /// Static correction: `adc_width` A = 10..=16; `gain_frac_bits` GF = 8..=15;
@@ -391,13 +415,34 @@ impl CorrectionParams {
         self.cross != 0 || self.fit.is_some()
     }
 
+    /// The products are shift-add trees ([`multree::MulTree`]) instead of multipliers:
+    /// static mode (no calibration, so every code is a constant) with a gain code, or the
+    /// phase stage's |k|, that is neither 0 nor a power of two. Such a constant would map to
+    /// a hard multiplier, a combinational path that does not meet the timing rule on the
+    /// ECP5 proxy flow (docs/correction.md); 0 and powers of two are wiring, so unity-gain
+    /// designs keep the one-stage product.
+    pub fn shift_add(&self) -> bool {
+        let not_shift = |c: u32| c != 0 && !c.is_power_of_two();
+        self.auto.is_none()
+            && self.fit.is_none()
+            && (not_shift(self.gain[SIN])
+                || not_shift(self.gain[COS])
+                || not_shift(self.cross.unsigned_abs()))
+    }
+
     /// Clock cycles from `in_valid` to `out_valid`: [`LATENCY_CYCLES`], plus
-    /// [`PHASE_EXTRA_CYCLES`] with phase correction. The one place the block's latency is
-    /// derived; the top, the fallback and the reports take it from here.
+    /// [`PHASE_EXTRA_CYCLES`] with phase correction, plus [`SHIFT_ADD_EXTRA_CYCLES`] with
+    /// shift-add products. The one place the block's latency is derived; the top, the
+    /// fallback, `check` and the reports take it from here.
     pub fn latency_cycles(&self) -> u32 {
         LATENCY_CYCLES
             + if self.has_phase() {
                 PHASE_EXTRA_CYCLES
+            } else {
+                0
+            }
+            + if self.shift_add() {
+                SHIFT_ADD_EXTRA_CYCLES
             } else {
                 0
             }

@@ -158,10 +158,26 @@ struct Pipe {
     na2: bool,
     nb2: bool,
     s3: u64,
-    na3: bool,
-    nb3: bool,
+    /// The stage-4 constants (rounding addend, high and low limits) selected by n = na2 +
+    /// nb2 a clock ahead; 0 at power-up.
+    k3: [u64; 3],
     v4: bool,
     o4: [u64; 2],
+    /// Shift-add products ([`super::multree::MulTree`]): the stage-1 values (valid, signs,
+    /// magnitudes, gains) through the tree's levels; the last one feeds stage 2.
+    tree: [S1; TREE],
+}
+
+/// Levels of the shift-add tree ahead of the product registers.
+const TREE: usize = super::multree::TREE_LEVELS as usize;
+
+/// The stage-1 values a product stage reads.
+#[derive(Clone, Copy, Debug, Default)]
+struct S1 {
+    v: bool,
+    sg: [bool; 2],
+    m: [u64; 2],
+    g: [u64; 2],
 }
 
 /// Model of [`super::hdl::Correction`].
@@ -263,11 +279,34 @@ impl CorrectionModel {
             n.u1[c] = raw[c] ^ (1 << (a - 1));
         }
         n.v1 = i.valid && !i.rst;
+        // The products' inputs: stage 1, or with shift-add products stage 1 three clocks
+        // earlier (the tree's levels; their sums are exact, so only the delay shows).
+        let s1 = S1 {
+            v: old.v1,
+            sg: old.sg1,
+            m: old.m1,
+            g: old.g1,
+        };
+        let s1 = if self.p.shift_add() {
+            n.tree[0] = S1 {
+                v: s1.v && !i.rst,
+                ..s1
+            };
+            for l in 1..TREE {
+                n.tree[l] = S1 {
+                    v: old.tree[l - 1].v && !i.rst,
+                    ..old.tree[l - 1]
+                };
+            }
+            old.tree[TREE - 1]
+        } else {
+            s1
+        };
         // Stage 2.
-        n.v2 = old.v1 && !i.rst;
+        n.v2 = s1.v && !i.rst;
         for c in [SIN, COS] {
-            n.sg2[c] = old.sg1[c];
-            n.p2[c] = old.m1[c] * old.g1[c];
+            n.sg2[c] = s1.sg[c];
+            n.p2[c] = s1.m[c] * s1.g[c];
         }
         // Stage 3.
         n.v3 = old.v2 && !i.rst;
@@ -288,24 +327,25 @@ impl CorrectionModel {
         // Phase stage (built only when k != 0; computed always, it is not observed otherwise).
         let k = self.p.cross();
         let sh = self.p.phase_shift();
-        n.pc2 = (old.m1[COS] * old.g1[COS]) >> sh;
-        n.q2 = (old.m1[SIN] * k.unsigned_abs() as u64) >> sh;
-        n.na2 = old.sg1[COS];
-        n.nb2 = old.sg1[SIN] ^ (k < 0);
+        n.pc2 = (s1.m[COS] * s1.g[COS]) >> sh;
+        n.q2 = (s1.m[SIN] * k.unsigned_abs() as u64) >> sh;
+        n.na2 = s1.sg[COS];
+        n.nb2 = s1.sg[SIN] ^ (k < 0);
         let ma = if old.na2 { m32 } else { 0 };
         let mb = if old.nb2 { m32 } else { 0 };
         n.s3 = ((old.pc2 ^ ma) + (old.q2 ^ mb)) & m32;
-        n.na3 = old.na2;
-        n.nb3 = old.nb2;
         let (rnd, hi, lo) = super::phase::constants(&self.p);
-        let nn = old.na3 as usize + old.nb3 as usize;
+        let nn = old.na2 as usize + old.nb2 as usize;
+        n.k3 = [rnd[nn], hi[nn], lo[nn]];
+        let [rnd3, hi3, lo3] = old.k3;
         let sf = old.s3 ^ (1 << 31);
-        n.o4[COS] = if sf >= hi[nn] {
-            mask(a - 1)
-        } else if sf < lo[nn] {
+        // The RTL's order: the low limit's test is the later assignment.
+        n.o4[COS] = if sf < lo3 {
             1 << (a - 1)
+        } else if sf >= hi3 {
+            mask(a - 1)
         } else {
-            (((old.s3 + rnd[nn]) & m32) >> (gf - sh)) & am
+            (((old.s3 + rnd3) & m32) >> (gf - sh)) & am
         };
         n.o4[SIN] = old.o3[SIN];
         n.v4 = old.v3 && !i.rst;

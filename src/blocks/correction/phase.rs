@@ -2,7 +2,8 @@
 //! the cos channel's stages 2-3 when a phase error is corrected (maths, rounding and bit
 //! growth in [`crate::blocks::correction`]). Built only when k != 0, so a design without
 //! phase correction has none of it.
-use super::CorrectionParams;
+use super::multree::MulTree;
+use super::{CorrectionParams, COS};
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
@@ -61,20 +62,27 @@ pub struct PhaseCos {
     pub out_sin: Signal<Out, Bits<16>>,
     /// Phase-corrected cosine, A-bit two's complement (saturated).
     pub out_cos: Signal<Out, Bits<16>>,
+    /// P_c as a shift-add tree (static mode with `p.shift_add()`), else none.
+    tpc: Vec<MulTree>,
+    /// Q as a shift-add tree (static mode with `p.shift_add()`), else none.
+    tq: Vec<MulTree>,
     pc2: DFF<Bits<32>>,
     q2: DFF<Bits<32>>,
     na2: DFF<Bit>,
     nb2: DFF<Bit>,
     s3: DFF<Bits<32>>,
-    na3: DFF<Bit>,
-    nb3: DFF<Bit>,
+    /// Stage 3: the stage-4 constants for n = na + nb, selected a clock ahead (registered,
+    /// so stage 4's adder and compares see only registers).
+    rnd3: DFF<Bits<32>>,
+    chi3: DFF<Bits<32>>,
+    clo3: DFF<Bits<32>>,
     v4: DFF<Bit>,
     o4_s: DFF<Bits<16>>,
     o4_c: DFF<Bits<16>>,
     /// Stage 3: ones' complement masks of the two products.
     ma: Signal<Local, Bits<32>>,
     mb: Signal<Local, Bits<32>>,
-    /// Stage 4: the per-n constants selected by the two negation bits.
+    /// Stage 3: the per-n constants selected by the two negation bits.
     rnd: Signal<Local, Bits<32>>,
     chi: Signal<Local, Bits<32>>,
     clo: Signal<Local, Bits<32>>,
@@ -127,6 +135,13 @@ impl PhaseCos {
         let s = p.phase_shift();
         let f = p.gain_frac_bits() - s;
         let (rnd, hi, lo) = constants(p);
+        let tree = |code: u64| {
+            if p.shift_add() {
+                vec![MulTree::new(code)]
+            } else {
+                vec![]
+            }
+        };
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -142,13 +157,16 @@ impl PhaseCos {
             out_valid: Default::default(),
             out_sin: Default::default(),
             out_cos: Default::default(),
+            tpc: tree(p.gain()[COS] as u64),
+            tq: tree(p.cross().unsigned_abs() as u64),
             pc2: Default::default(),
             q2: Default::default(),
             na2: Default::default(),
             nb2: Default::default(),
             s3: Default::default(),
-            na3: Default::default(),
-            nb3: Default::default(),
+            rnd3: Default::default(),
+            chi3: Default::default(),
+            clo3: Default::default(),
             v4: Default::default(),
             o4_s: Default::default(),
             o4_c: Default::default(),
@@ -189,7 +207,7 @@ impl PhaseCos {
 impl Logic for PhaseCos {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, pc2, q2, na2, nb2, s3, na3, nb3, v4, o4_s, o4_c);
+        dff_setup!(self, clk, pc2, q2, na2, nb2, s3, rnd3, chi3, clo3, v4, o4_s, o4_c);
         self.km.next = self.kmag0.val();
         self.kn.next = self.kneg0.val();
         if self.kdyn.val() {
@@ -201,6 +219,27 @@ impl Logic for PhaseCos {
         self.q2.d.next = (self.m_s.val() * self.km.val()) >> self.pshift.val();
         self.na2.d.next = self.neg_c.val();
         self.nb2.d.next = self.neg_s.val() ^ self.kn.val();
+        // Static mode with shift-add products: both from trees (three more register levels,
+        // their last sums the stage-2 registers' inputs), the negation bits delayed with them.
+        for i in 0..self.tpc.len() {
+            self.tpc[i].clk.next = self.clk.val();
+            self.tpc[i].rst.next = self.rst.val();
+            self.tpc[i].a.next = self.m_c.val();
+            self.tpc[i].neg.next = self.neg_c.val();
+            self.tpc[i].v.next = false;
+            self.pc2.d.next =
+                (self.tpc[i].out_x.val() + self.tpc[i].out_y.val()) >> self.pshift.val();
+            self.na2.d.next = self.tpc[i].out_neg.val();
+        }
+        for i in 0..self.tq.len() {
+            self.tq[i].clk.next = self.clk.val();
+            self.tq[i].rst.next = self.rst.val();
+            self.tq[i].a.next = self.m_s.val();
+            self.tq[i].neg.next = self.neg_s.val() ^ self.kn.val();
+            self.tq[i].v.next = false;
+            self.q2.d.next = (self.tq[i].out_x.val() + self.tq[i].out_y.val()) >> self.pshift.val();
+            self.nb2.d.next = self.tq[i].out_neg.val();
+        }
         // Stage 3: S' = (P_c or !P_c) + (Q or !Q) = S - n, one adder (|S| < 2^31).
         self.ma.next = self.zero.val();
         if self.na2.q.val() {
@@ -211,30 +250,32 @@ impl Logic for PhaseCos {
             self.mb.next = self.ones.val();
         }
         self.s3.d.next = (self.pc2.q.val() ^ self.ma.val()) + (self.q2.q.val() ^ self.mb.val());
-        self.na3.d.next = self.na2.q.val();
-        self.nb3.d.next = self.nb2.q.val();
-        // Stage 4: round half up and saturate; n = na + nb picks the constants, so the
-        // adder and the two compares each see S' and a constant (one carry chain each).
+        // n = na + nb picks the stage-4 constants here, a clock ahead, into registers.
         self.rnd.next = self.rnd0.val();
         self.chi.next = self.hi0.val();
         self.clo.next = self.lo0.val();
-        if self.na3.q.val() ^ self.nb3.q.val() {
+        if self.na2.q.val() ^ self.nb2.q.val() {
             self.rnd.next = self.rnd1.val();
             self.chi.next = self.hi1.val();
             self.clo.next = self.lo1.val();
         }
-        if self.na3.q.val() & self.nb3.q.val() {
+        if self.na2.q.val() & self.nb2.q.val() {
             self.rnd.next = self.rnd2.val();
             self.chi.next = self.hi2.val();
             self.clo.next = self.lo2.val();
         }
+        self.rnd3.d.next = self.rnd.val();
+        self.chi3.d.next = self.chi.val();
+        self.clo3.d.next = self.clo.val();
+        // Stage 4: round half up and saturate; the adder and the two compares each see S'
+        // and a register (one carry chain each).
         self.sf.next = self.s3.q.val() ^ self.sign32.val();
-        self.r.next = (self.s3.q.val() + self.rnd.val()) >> self.fshift.val();
+        self.r.next = (self.s3.q.val() + self.rnd3.q.val()) >> self.fshift.val();
         self.o.next = self.r.val() & self.amask.val();
-        if self.sf.val() >= self.chi.val() {
+        if self.sf.val() >= self.chi3.q.val() {
             self.o.next = self.pmax.val();
         }
-        if self.sf.val() < self.clo.val() {
+        if self.sf.val() < self.clo3.q.val() {
             self.o.next = self.asign.val();
         }
         self.v4.d.next = self.v3.val() & !self.rst.val();
