@@ -4,8 +4,9 @@
 //! default top with each optional block switched on (`[velocity]`, `[abz]`, the BiSS control
 //! channel, `correction.mode = "auto"`), and the capacitive core and top
 //! (configs/cyclone3_capacitive.toml) must reach 1.3 x their configured clock (docs/timing.md).
-//! The option tops do not meet the rule yet: they are held to the floors [`OPTION_FLOOR`]
-//! and [`AUTO_FLOOR`] below it, and the test prints whether each meets the rule.
+//! The velocity, ABZ and auto-correction tops do not meet the rule yet: they are held to
+//! the floors [`OPTION_FLOOR`] and [`AUTO_FLOOR`] below it, and the test prints whether each
+//! meets the rule; the control-enabled top is held to the rule.
 //!
 //! Placement noise: the figures move with the placement seed (the default top measured
 //! 176.1 MHz at seed 1 and 163.4 MHz at seed 3 on the same netlist, docs/timing.md); the
@@ -40,10 +41,11 @@ struct Design {
     clock_mhz: f64,
 }
 
-/// Floor for the velocity-, ABZ- and control-enabled tops: 1.25 x, NOT the 1.3 x rule. They
-/// do not meet the rule yet (seed 1: 170.77, 170.39 and 168.29 MHz against 173.3 MHz;
-/// docs/timing.md, third round); the floor keeps them from sliding further while the shared
-/// paths are worked on, and the test prints each one's figure against the rule.
+/// Floor for the velocity- and ABZ-enabled tops: 1.25 x, NOT the 1.3 x rule. They do not
+/// meet the rule yet (seed 1: 170.77 and 170.39 MHz against 173.3 MHz; docs/timing.md, third
+/// and fourth rounds); the floor keeps them from sliding further while the shared paths are
+/// worked on, and the test prints each one's figure against the rule. The control-enabled
+/// top is held to the rule (178.67 MHz at seed 1 since the fourth round).
 const OPTION_FLOOR: f64 = 1.25;
 
 /// Floor for the auto-correction top: 0.7 x. The ellipse fit does not meet even the
@@ -72,7 +74,7 @@ fn option_tops() -> Vec<(&'static str, f64, String)> {
         ),
         (
             "BiSS control top",
-            OPTION_FLOOR,
+            MARGIN,
             replace_once("[biss]\n", "[biss]\ncontrol = true\n"),
         ),
         (

@@ -19,6 +19,10 @@
 //!
 //! One CDM bit is taken per complete frame, in the clock after the timeout ends, and its
 //! answer is ready long before the next frame's CDS slot (at least four MA edges later).
+//! The CRC4 register takes the step's action one clock after the step (update with or
+//! without feedback, shift, clear: four flip-flops set from the step's inputs and the
+//! registered state decodes), so the state decode ends in those flip-flops and the CRC's
+//! next value is one LUT of registers; the CRC is read only at a step, a frame later.
 //! The answers are the table of docs/biss_control.md; [`super::control_model`] is the same
 //! table in plain Rust.
 //!
@@ -101,12 +105,28 @@ pub struct BissControl {
     n6: DFF<Bit>,
     n11: DFF<Bit>,
     nhi: DFF<Bit>,
+    /// Registered decodes of the state for the CRC register (valid from the second clock
+    /// after a step, as they read n, zcnt and the flags above): a step updates the CRC with
+    /// the CDM bit or the data bit (Cts, Id, Adr, a write's data bits; `rdl`: a read's data
+    /// bits, when b = 0), shifts it (Crc, a write's CRC bits; `rdh`: a read's CRC bits, when
+    /// b = 0), clears it when b = 1 (`kclr`: Idle at 14 zeros, Start, Next with the next
+    /// address allowed); `sread`: the data bit, not b, enters it (state Read).
+    kupd: DFF<Bit>,
+    kshf: DFF<Bit>,
+    rdl: DFF<Bit>,
+    rdh: DFF<Bit>,
+    kclr: DFF<Bit>,
+    sread: DFF<Bit>,
+    /// The CRC register's action of the last step, applied one clock after it (nothing reads
+    /// the CRC between steps, which are a frame apart): update with feedback `ufb`, update
+    /// without it, shift, clear. Registered from the step's inputs, so the CRC register's
+    /// next value is one LUT of flip-flops and the step's state decode ends in these four.
+    uupd: DFF<Bit>,
+    ufb: DFF<Bit>,
+    ushf: DFF<Bit>,
+    uclr: DFF<Bit>,
     /// The CDM bit being taken.
     b: Signal<Local, Bit>,
-    /// The CRC register takes `cin` / shifts out its MSB this clock.
-    cupd: Signal<Local, Bit>,
-    cshf: Signal<Local, Bit>,
-    cin: Signal<Local, Bit>,
     /// The CRC MSB.
     c3: Signal<Local, Bit>,
     /// A read waits for its first bit (state Read, n = 0, no step this clock): the shift
@@ -178,10 +198,17 @@ impl BissControl {
             n6: Default::default(),
             n11: Default::default(),
             nhi: Default::default(),
+            kupd: Default::default(),
+            kshf: Default::default(),
+            rdl: Default::default(),
+            rdh: Default::default(),
+            kclr: Default::default(),
+            sread: Default::default(),
+            uupd: Default::default(),
+            ufb: Default::default(),
+            ushf: Default::default(),
+            uclr: Default::default(),
             b: Default::default(),
-            cupd: Default::default(),
-            cshf: Default::default(),
-            cin: Default::default(),
             c3: Default::default(),
             ld: Default::default(),
             dbit: Default::default(),
@@ -211,7 +238,8 @@ impl Logic for BissControl {
     fn update(&mut self) {
         dff_setup!(
             self, clk, armed, stp, bq, state, zcnt, n, crc, bad, addr, rb, wr, sh, cds_r, nadr_r,
-            awr, nwr, zend, zfull, n2, n3, n6, n11, nhi
+            awr, nwr, zend, zfull, n2, n3, n6, n11, nhi, kupd, kshf, rdl, rdh, kclr, sread, uupd,
+            ufb, ushf, uclr
         );
         self.regs.clock.next = self.clk.val();
         self.regs.address.next = self.addr.q.val();
@@ -239,9 +267,28 @@ impl Logic for BissControl {
         self.n6.d.next = self.n.q.val() == self.six4.val();
         self.n11.d.next = self.n.q.val() == self.eleven4.val();
         self.nhi.d.next = (self.n.q.val() & self.msb4.val()).any();
-        self.cupd.next = false;
-        self.cshf.next = false;
-        self.cin.next = self.b.val();
+        // The CRC register's action at a step, from the state decodes above (the step's
+        // case analysis below leaves the CRC alone): the same action the step took before,
+        // now one clock later.
+        self.kupd.d.next = (self.state.q.val() == CtlState::Cts)
+            | (self.state.q.val() == CtlState::Id)
+            | (self.state.q.val() == CtlState::Adr)
+            | ((self.state.q.val() == CtlState::Write) & !(self.n.q.val() & self.msb4.val()).any());
+        self.kshf.d.next = (self.state.q.val() == CtlState::Crc)
+            | ((self.state.q.val() == CtlState::Write) & (self.n.q.val() & self.msb4.val()).any());
+        self.rdl.d.next =
+            (self.state.q.val() == CtlState::Read) & !(self.n.q.val() & self.msb4.val()).any();
+        self.rdh.d.next =
+            (self.state.q.val() == CtlState::Read) & (self.n.q.val() & self.msb4.val()).any();
+        self.sread.d.next = self.state.q.val() == CtlState::Read;
+        self.kclr.d.next = ((self.state.q.val() == CtlState::Idle) & self.zfull.q.val())
+            | (self.state.q.val() == CtlState::Start)
+            | ((self.state.q.val() == CtlState::Next) & (!self.wr.q.val() | self.nwr.q.val()));
+        self.uupd.d.next =
+            self.stp.q.val() & (self.kupd.q.val() | (self.rdl.q.val() & !self.b.val()));
+        self.ushf.d.next =
+            self.stp.q.val() & (self.kshf.q.val() | (self.rdh.q.val() & !self.b.val()));
+        self.uclr.d.next = self.stp.q.val() & self.kclr.q.val() & self.b.val();
         self.ans.next = false;
         self.we.next = false;
         // The registered read: until a read's first bit, the shift register holds the
@@ -254,18 +301,20 @@ impl Logic for BissControl {
             self.sh.d.next = self.regs.read_data.val();
         }
         self.dbit.next = (self.sh.q.val() & self.msb8.val()).any();
+        self.ufb.d.next = self.b.val() ^ self.c3.val();
+        if self.sread.q.val() {
+            self.ufb.d.next = self.dbit.val() ^ self.c3.val();
+        }
         if self.stp.q.val() {
             match self.state.q.val() {
                 CtlState::Idle => {
                     if self.b.val() & self.zfull.q.val() {
                         self.ans.next = true;
-                        self.crc.d.next = self.zero4.val();
                         self.bad.d.next = false;
                         self.state.d.next = CtlState::Cts;
                     }
                 }
                 CtlState::Cts => {
-                    self.cupd.next = true;
                     if !self.b.val() {
                         self.bad.d.next = true;
                     }
@@ -273,7 +322,6 @@ impl Logic for BissControl {
                     self.state.d.next = CtlState::Id;
                 }
                 CtlState::Id => {
-                    self.cupd.next = true;
                     if self.b.val() {
                         self.bad.d.next = true;
                     }
@@ -284,7 +332,6 @@ impl Logic for BissControl {
                     }
                 }
                 CtlState::Adr => {
-                    self.cupd.next = true;
                     if self.b.val() {
                         self.addr.d.next = (self.addr.q.val() << self.one7.val()) | self.one7.val();
                     } else {
@@ -297,7 +344,6 @@ impl Logic for BissControl {
                     }
                 }
                 CtlState::Crc => {
-                    self.cshf.next = true;
                     if self.b.val() == self.c3.val() {
                         self.bad.d.next = true;
                     }
@@ -327,7 +373,6 @@ impl Logic for BissControl {
                     if self.b.val() {
                         self.ans.next = true;
                         self.n.d.next = self.zero4.val();
-                        self.crc.d.next = self.zero4.val();
                         self.bad.d.next = false;
                         if self.wr.q.val() {
                             self.state.d.next = CtlState::Write;
@@ -346,11 +391,8 @@ impl Logic for BissControl {
                         }
                         if self.nhi.q.val() {
                             // CRC bits: the inverted CRC4, MSB first.
-                            self.cshf.next = true;
                             self.ans.next = !self.c3.val();
                         } else {
-                            self.cupd.next = true;
-                            self.cin.next = self.dbit.val();
                             self.ans.next = self.dbit.val();
                             self.sh.d.next = self.sh.q.val() << self.one8.val();
                         }
@@ -363,13 +405,11 @@ impl Logic for BissControl {
                     }
                     if self.nhi.q.val() {
                         // CRC bits: answer the own CRC4 of the received byte.
-                        self.cshf.next = true;
                         self.ans.next = !self.c3.val();
                         if self.b.val() == self.c3.val() {
                             self.bad.d.next = true;
                         }
                     } else {
-                        self.cupd.next = true;
                         self.ans.next = self.b.val();
                         if self.b.val() {
                             self.sh.d.next = (self.sh.q.val() << self.one8.val()) | self.one8.val();
@@ -393,7 +433,6 @@ impl Logic for BissControl {
                         if !self.wr.q.val() | self.nwr.q.val() {
                             self.ans.next = true;
                             self.n.d.next = self.zero4.val();
-                            self.crc.d.next = self.zero4.val();
                             self.bad.d.next = false;
                             if self.wr.q.val() {
                                 self.state.d.next = CtlState::Write;
@@ -416,16 +455,19 @@ impl Logic for BissControl {
             }
             self.cds_r.d.next = self.ans.val();
         }
-        // Serial CRC4 (taps x + 1).
-        if self.cupd.val() {
-            if self.cin.val() ^ self.c3.val() {
+        // Serial CRC4 (taps x + 1), one clock after the step that decided it.
+        if self.uupd.q.val() {
+            if self.ufb.q.val() {
                 self.crc.d.next = (self.crc.q.val() << self.one4.val()) ^ self.taps4.val();
             } else {
                 self.crc.d.next = self.crc.q.val() << self.one4.val();
             }
         }
-        if self.cshf.val() {
+        if self.ushf.q.val() {
             self.crc.d.next = self.crc.q.val() << self.one4.val();
+        }
+        if self.uclr.q.val() {
+            self.crc.d.next = self.zero4.val();
         }
         self.regs.write_enable.next = self.we.val();
         if self.rst.val() {
