@@ -5,16 +5,19 @@
 //! code together.
 //!
 //! ```text
-//!           stage A (reg)           stage B (reg)                stage C (reg)   stage D (reg)
-//!  x ─►sext─► d  = x - b_ref ─┐
-//!            -d  = b_ref - x  ├─► q, step ──────────► net, N,   ─► e, |e|, cmd ─► |e_s|²,|e_c|²,
-//!  (both      e  = x - b_cur  │   (d, or e right after b_ref    (add / restart  |e_s e_c|
-//!  tracks)   -e  = b_cur - x ─┘    changed) window open/close     / snapshot)    (3 hard 16x16)
-//!            (q, step from the signs of d and tq; the closing compares of net, N registered)
-//!                                  b_ref := b_cur at a start ─────────────┐         │
-//!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit) ◄───────────────┴─────────┘
-//!           at a window's end the sums before the sample and the window's b_ref go to
-//!           FitSolve (if it is idle), then restart from the sample ─► b_cur, g, k (all at once)
+//!           stage A (reg,        stage B1 (reg)            stage B2 (reg)        stage C (reg)
+//!            held per sample)
+//!  x ─►sext─► d  = x - b_ref ─┐                    ┌────────► entry d or e, |.|, ─► |e_s|²,
+//!            -d  = b_ref - x  ├─► q, step ─► net += s, N += 1, cmd (add/restart/    |e_c|²,
+//!  (both      e  = x - b_cur  │   (signs of  decision flags    snapshot); at a      |e_s e_c|
+//!  tracks)   -e  = b_cur - x ─┘   d, or e    (add / restart /  restart b_ref :=     (3 hard
+//!                                 while b_ref snapshot / use e) b_cur, net := 0,     16x16)
+//!                                 is loaded)   from registered   N := 1                │
+//!                                              compares of net, N                      │
+//!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit) ◄───────────────────────────┘
+//!           the closing sample's stage C starts FitSolve (if idle) on the sums (they hold
+//!           the window's samples by then) and the window's b_ref; the sums then restart
+//!           from the sample ─► b_cur, g, k (all at once)
 //! ```
 //!
 //! # Widths and bit growth (A = 10..=16)
@@ -30,15 +33,23 @@
 //!   net + s, so each path has one carry chain; (net + s) mod 4 = 0 is a 2-bit match.
 //!
 //! # Timing and semantics
-//! * The tracker and the sums follow the model sample for sample; the sums are three
-//!   clocks behind the tracker, so the snapshot (stage E) holds exactly the window's samples.
-//! * The window-closing compares of `net` and N are registered (free-running), so they
-//!   describe the last sample's state only when samples are at least two clocks apart; the
-//!   ADC controller delivers one per frame (tens of clocks), the tests every 2 to 6 clocks.
+//! * The tracker and the sums follow the model sample for sample. Samples must be at least
+//!   two clocks apart (the ADC controller delivers one per frame, tens of clocks; the tests
+//!   every 2 to 6): stage A of the next sample runs with stage B2 of this one.
+//! * Stage B1 decides (the window-closing compares of `net` and N are free-running
+//!   registers, so they describe the last sample's state two clocks after it), and only a
+//!   handful of flags wait for the decision: net and N count every sample in B1, and
+//!   stage B2 acts a clock later on the registered flags: it clears net and N and loads
+//!   b_ref at a restart, and writes the sums' command (about 230 register bits, driven by
+//!   four flags instead of by the compares through the decision). While a restart clears
+//!   net and N the compares are forced to describe net = 0, N = 1.
 //! * b_ref of a new window is b_cur at its first sample, i.e. the offsets before the update
-//!   its predecessor triggers (the model does the same, [`super::fit`]). The sample right
-//!   after a b_ref change was subtracted from the old b_ref in stage A; stage B then uses its
-//!   e = x - b_cur instead.
+//!   its predecessor triggers (the model does the same, [`super::fit`]). b_ref is loaded in
+//!   stage B2, while stage A already takes the next sample: that sample's quadrant comes
+//!   from the signs of e = x - b_cur (the new b_ref) and its entry is e (`fresh`).
+//! * The solve starts in the closing sample's stage C, three clocks after the sample (the
+//!   sums are complete: the window's last sample reached stage E two clocks before), so
+//!   [`super::fit_solve::UPDATE_LATENCY`] is unchanged by stage B2.
 //! * A window that ends while the solver is still busy is dropped (the model has no such
 //!   case: the config requires `min_samples` x clocks per sample > [`super::fit_solve::SOLVE_CYCLES`]).
 //! * Reset (synchronous, active high): configured offsets and gains, k = 0, tracker waiting
@@ -48,6 +59,8 @@ use super::fit_solve::{c64, FitSolve, SolveConsts};
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, fill, mask};
 use rust_hdl::prelude::*;
+
+mod update;
 
 fn c2(v: u64) -> Constant<Bits<2>> {
     Constant::new(Bits::<2>::from(v & 3))
@@ -118,7 +131,6 @@ pub struct FitCal {
     c_nsc: DFF<Bit>,
     d_v: DFF<Bit>,
     d_rs: DFF<Bit>,
-    d_snap: DFF<Bit>,
     d_es: DFF<Bits<64>>,
     d_ec: DFF<Bits<64>>,
     p_ss: DFF<Bits<32>>,
@@ -133,6 +145,16 @@ pub struct FitCal {
     h_p2: DFF<Bit>,
     h_m2: DFF<Bit>,
     nbge: DFF<Bit>,
+    /// N = N_MAX, registered like the compares above.
+    nbmx: DFF<Bit>,
+    /// Stage B1's decision for stage B2: add the sample, restart the sums (and b_ref, net,
+    /// N), snapshot the window, take the entry from e = x - b_cur.
+    a_v: DFF<Bit>,
+    a_rs: DFF<Bit>,
+    /// The restart again, inverted: b_ref's 64 loads have their own driver.
+    a_rb: DFF<Bit>,
+    a_snap: DFF<Bit>,
+    a_ue: DFF<Bit>,
     s1_s: DFF<Bits<64>>,
     s1_c: DFF<Bits<64>>,
     s2_s: DFF<Bits<64>>,
@@ -140,12 +162,18 @@ pub struct FitCal {
     ssc: DFF<Bits<64>>,
     xs: Signal<Local, Bits<32>>,
     xc: Signal<Local, Bits<32>>,
-    /// Stage B: the differences the quadrant is taken from (d, or e after a b_ref change).
+    /// Stage B2: the sample's entry to the sums (d, or e at or right after a restart).
     ds: Signal<Local, Bits<32>>,
     dc: Signal<Local, Bits<32>>,
     /// Stage A: x - b_ref (the quadrant's signs), the quadrant and the step from tq.
     das: Signal<Local, Bits<32>>,
     dac: Signal<Local, Bits<32>>,
+    /// Stage A: x - b_cur.
+    eas: Signal<Local, Bits<32>>,
+    eac: Signal<Local, Bits<32>>,
+    /// Stage A: the signs the quadrant is taken from.
+    ngs: Signal<Local, Bit>,
+    ngc: Signal<Local, Bit>,
     q: Signal<Local, Bits<2>>,
     stp: Signal<Local, Bits<2>>,
     /// Stage B: the sample's quadrant and step (registered in stage A).
@@ -295,7 +323,6 @@ impl FitCal {
             c_nsc: Default::default(),
             d_v: Default::default(),
             d_rs: Default::default(),
-            d_snap: Default::default(),
             d_es: Default::default(),
             d_ec: Default::default(),
             p_ss: Default::default(),
@@ -308,6 +335,12 @@ impl FitCal {
             h_p2: Default::default(),
             h_m2: Default::default(),
             nbge: Default::default(),
+            nbmx: Default::default(),
+            a_v: Default::default(),
+            a_rs: Default::default(),
+            a_rb: Default::default(),
+            a_snap: Default::default(),
+            a_ue: Default::default(),
             s1_s: Default::default(),
             s1_c: Default::default(),
             s2_s: Default::default(),
@@ -319,6 +352,10 @@ impl FitCal {
             dc: Default::default(),
             das: Default::default(),
             dac: Default::default(),
+            eas: Default::default(),
+            eac: Default::default(),
+            ngs: Default::default(),
+            ngc: Default::default(),
             q: Default::default(),
             stp: Default::default(),
             qb: Default::default(),
@@ -367,271 +404,6 @@ impl FitCal {
             b0_s: c32(sext(p.offset()[SIN])),
             b0_c: c32(sext(p.offset()[COS])),
         }
-    }
-}
-
-impl Logic for FitCal {
-    #[hdl_gen]
-    fn update(&mut self) {
-        dff_setup!(
-            self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
-            tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
-            c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_snap, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt,
-            s1_s, s1_c, s2_s, s2_c, ssc, kd_m, kd_n, h_p1, h_m1, h_p2, h_m2, nbge, qb, sb
-        );
-        self.slv.clk.next = self.clk.val();
-        self.slv.rst.next = self.rst.val();
-        // Stage A: sign-extend; differences from b_ref and from the offsets in use.
-        self.xs.next = bit_cast::<32, 16>(self.x_sin.val()) & self.amask.val();
-        if (self.xs.val() & self.asign.val()).any() {
-            self.xs.next = self.xs.val() | self.asext.val();
-        }
-        self.xc.next = bit_cast::<32, 16>(self.x_cos.val()) & self.amask.val();
-        if (self.xc.val() & self.asign.val()).any() {
-            self.xc.next = self.xc.val() | self.asext.val();
-        }
-        self.va.d.next = self.valid.val() & !self.rst.val();
-        self.das.next = self.xs.val() - self.bref_s.q.val();
-        self.dac.next = self.xc.val() - self.bref_c.q.val();
-        self.da_s.d.next = self.das.val();
-        self.nda_s.d.next = self.bref_s.q.val() - self.xs.val();
-        self.ea_s.d.next = self.xs.val() - self.slv.off_s.val();
-        self.nea_s.d.next = self.slv.off_s.val() - self.xs.val();
-        self.da_c.d.next = self.dac.val();
-        self.nda_c.d.next = self.bref_c.q.val() - self.xc.val();
-        self.ea_c.d.next = self.xc.val() - self.slv.off_c.val();
-        self.nea_c.d.next = self.slv.off_c.val() - self.xc.val();
-        // Quadrant (CORDIC mapper convention) and step, registered for stage B: the tracker's
-        // b_ref and tq are the previous sample's (at least two clocks ago), so d is final.
-        self.q.next = self.q0.val();
-        if (self.das.val() & self.sign32.val()).any() {
-            if (self.dac.val() & self.sign32.val()).any() {
-                self.q.next = self.q2.val();
-            } else {
-                self.q.next = self.q3.val();
-            }
-        } else if (self.dac.val() & self.sign32.val()).any() {
-            self.q.next = self.q1.val();
-        }
-        // q - tq mod 4 as logic (a borrow into bit 1), not a second carry chain after d's.
-        self.stp.next = (self.q.val() ^ self.tq.q.val())
-            ^ (((!self.q.val()) & self.tq.q.val() & self.q1.val()) << self.one32.val());
-        self.qb.d.next = self.q.val();
-        self.sb.d.next = self.stp.val();
-        // Stage B: the differences of the sums' entry (d, or e after a b_ref change).
-        self.ds.next = self.da_s.q.val();
-        self.dc.next = self.da_c.q.val();
-        if self.fresh.q.val() {
-            self.ds.next = self.ea_s.q.val();
-            self.dc.next = self.ea_c.q.val();
-        }
-        // The step as a word and the window-closing test |net + s| >= 4K, 4 | net + s: the
-        // compares of net against constants are registered (net changed at least two clocks
-        // ago), so only their selection by the step is in this path.
-        self.netf.next = self.net.q.val() ^ self.sign32.val();
-        self.h_p1.d.next =
-            (self.netf.val() >= self.ge_p1.val()) | (self.netf.val() < self.lt_p1.val());
-        self.h_m1.d.next =
-            (self.netf.val() >= self.ge_m1.val()) | (self.netf.val() < self.lt_m1.val());
-        self.h_p2.d.next =
-            (self.netf.val() >= self.ge_p2.val()) | (self.netf.val() < self.lt_p2.val());
-        self.h_m2.d.next =
-            (self.netf.val() >= self.ge_m2.val()) | (self.netf.val() < self.lt_m2.val());
-        self.nbge.d.next = self.nb.q.val() >= self.nmin.val();
-        self.sval.next = self.zero32.val();
-        self.big.next = false;
-        self.whole.next = false;
-        if self.sb.q.val() == self.q1.val() {
-            self.sval.next = self.sp1.val();
-            self.big.next = self.h_p1.q.val();
-            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r3.val();
-        }
-        if self.sb.q.val() == self.q3.val() {
-            self.sval.next = self.sm1.val();
-            self.big.next = self.h_m1.q.val();
-            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r1.val();
-        }
-        if self.sb.q.val() == self.q2.val() {
-            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r2.val();
-            if self.dneg.q.val() {
-                self.sval.next = self.sm2.val();
-                self.big.next = self.h_m2.q.val();
-            } else {
-                self.sval.next = self.sp2.val();
-                self.big.next = self.h_p2.q.val();
-            }
-        }
-        self.done.next = self.big.val() & self.whole.val() & self.nbge.q.val();
-        // Defaults of the command to the sums: nothing; the entry of the sample as it would
-        // be added (d, or e after a b_ref change).
-        self.fresh.d.next = false;
-        self.c_v.d.next = false;
-        self.c_rs.d.next = false;
-        self.c_snap.d.next = false;
-        self.c_es.d.next = self.ds.val();
-        self.c_ec.d.next = self.dc.val();
-        self.c_ms.d.next = bit_cast::<16, 32>(self.ds.val());
-        if (self.da_s.q.val() & self.sign32.val()).any() & !self.fresh.q.val() {
-            self.c_ms.d.next = bit_cast::<16, 32>(self.nda_s.q.val());
-        }
-        if (self.ea_s.q.val() & self.sign32.val()).any() & self.fresh.q.val() {
-            self.c_ms.d.next = bit_cast::<16, 32>(self.nea_s.q.val());
-        }
-        self.c_mc.d.next = bit_cast::<16, 32>(self.dc.val());
-        if (self.da_c.q.val() & self.sign32.val()).any() & !self.fresh.q.val() {
-            self.c_mc.d.next = bit_cast::<16, 32>(self.nda_c.q.val());
-        }
-        if (self.ea_c.q.val() & self.sign32.val()).any() & self.fresh.q.val() {
-            self.c_mc.d.next = bit_cast::<16, 32>(self.nea_c.q.val());
-        }
-        self.c_nsc.d.next =
-            (self.ds.val() & self.sign32.val()).any() ^ (self.dc.val() & self.sign32.val()).any();
-        if self.va.q.val() {
-            self.tq.d.next = self.qb.q.val();
-            if !self.tinit.q.val() {
-                self.tinit.d.next = true;
-                self.open.d.next = false;
-            } else if (self.sb.q.val() == self.q2.val()) & !self.dknown.q.val() {
-                // A two-quadrant step with no known direction: restart.
-                self.open.d.next = false;
-            } else {
-                if (self.sb.q.val() == self.q1.val()) | (self.sb.q.val() == self.q3.val()) {
-                    self.dknown.d.next = true;
-                    self.dneg.d.next = self.sb.q.val() == self.q3.val();
-                }
-                if !self.open.q.val() {
-                    if self.sb.q.val().any() {
-                        // Open a window at this boundary, from the offsets in use.
-                        self.open.d.next = true;
-                        self.bref_s.d.next = self.slv.off_s.val();
-                        self.bref_c.d.next = self.slv.off_c.val();
-                        self.fresh.d.next = true;
-                        self.net.d.next = self.zero32.val();
-                        self.nb.d.next = self.one32.val();
-                        self.c_v.d.next = true;
-                        self.c_rs.d.next = true;
-                        self.c_es.d.next = self.ea_s.q.val();
-                        self.c_ec.d.next = self.ea_c.q.val();
-                        self.c_ms.d.next = bit_cast::<16, 32>(self.ea_s.q.val());
-                        if (self.ea_s.q.val() & self.sign32.val()).any() {
-                            self.c_ms.d.next = bit_cast::<16, 32>(self.nea_s.q.val());
-                        }
-                        self.c_mc.d.next = bit_cast::<16, 32>(self.ea_c.q.val());
-                        if (self.ea_c.q.val() & self.sign32.val()).any() {
-                            self.c_mc.d.next = bit_cast::<16, 32>(self.nea_c.q.val());
-                        }
-                        self.c_nsc.d.next = (self.ea_s.q.val() & self.sign32.val()).any()
-                            ^ (self.ea_c.q.val() & self.sign32.val()).any();
-                    }
-                } else if self.done.val() {
-                    // The window ends before this sample, which opens the next one.
-                    self.bs_s.d.next = self.bref_s.q.val();
-                    self.bs_c.d.next = self.bref_c.q.val();
-                    self.bref_s.d.next = self.slv.off_s.val();
-                    self.bref_c.d.next = self.slv.off_c.val();
-                    self.fresh.d.next = true;
-                    self.net.d.next = self.zero32.val();
-                    self.nb.d.next = self.one32.val();
-                    self.c_v.d.next = true;
-                    self.c_rs.d.next = true;
-                    self.c_snap.d.next = true;
-                    self.c_es.d.next = self.ea_s.q.val();
-                    self.c_ec.d.next = self.ea_c.q.val();
-                    self.c_ms.d.next = bit_cast::<16, 32>(self.ea_s.q.val());
-                    if (self.ea_s.q.val() & self.sign32.val()).any() {
-                        self.c_ms.d.next = bit_cast::<16, 32>(self.nea_s.q.val());
-                    }
-                    self.c_mc.d.next = bit_cast::<16, 32>(self.ea_c.q.val());
-                    if (self.ea_c.q.val() & self.sign32.val()).any() {
-                        self.c_mc.d.next = bit_cast::<16, 32>(self.nea_c.q.val());
-                    }
-                    self.c_nsc.d.next = (self.ea_s.q.val() & self.sign32.val()).any()
-                        ^ (self.ea_c.q.val() & self.sign32.val()).any();
-                } else if self.nb.q.val() == self.nmax.val() {
-                    // Too long without closing: abandon, reopen at the next boundary.
-                    self.open.d.next = false;
-                } else {
-                    self.net.d.next = self.net.q.val() + self.sval.val();
-                    self.nb.d.next = self.nb.q.val() + self.one32.val();
-                    self.c_v.d.next = true;
-                }
-            }
-        }
-        // Stage C: the three products of the entry.
-        self.d_v.d.next = self.c_v.q.val();
-        self.d_rs.d.next = self.c_rs.q.val();
-        self.d_snap.d.next = self.c_snap.q.val();
-        self.d_es.d.next = bit_cast::<64, 32>(self.c_es.q.val());
-        if (self.c_es.q.val() & self.sign32.val()).any() {
-            self.d_es.d.next = bit_cast::<64, 32>(self.c_es.q.val()) | self.sext64.val();
-        }
-        self.d_ec.d.next = bit_cast::<64, 32>(self.c_ec.q.val());
-        if (self.c_ec.q.val() & self.sign32.val()).any() {
-            self.d_ec.d.next = bit_cast::<64, 32>(self.c_ec.q.val()) | self.sext64.val();
-        }
-        self.p_ss.d.next = self.c_ms.q.val() * self.c_ms.q.val();
-        self.p_cc.d.next = self.c_mc.q.val() * self.c_mc.q.val();
-        self.p_sc.d.next = self.c_ms.q.val() * self.c_mc.q.val();
-        self.d_nsc.d.next = self.c_nsc.q.val();
-        // Stage E: the sums (restart: from zero); the snapshot goes to an idle solver.
-        self.z1_s.next = self.s1_s.q.val();
-        self.z1_c.next = self.s1_c.q.val();
-        self.z2_s.next = self.s2_s.q.val();
-        self.z2_c.next = self.s2_c.q.val();
-        self.zsc.next = self.ssc.q.val();
-        self.zn.next = self.cnt.q.val();
-        if self.d_rs.q.val() {
-            self.z1_s.next = self.zero64.val();
-            self.z1_c.next = self.zero64.val();
-            self.z2_s.next = self.zero64.val();
-            self.z2_c.next = self.zero64.val();
-            self.zsc.next = self.zero64.val();
-            self.zn.next = self.zero32.val();
-        }
-        if self.d_v.q.val() {
-            self.s1_s.d.next = self.z1_s.val() + self.d_es.q.val();
-            self.s1_c.d.next = self.z1_c.val() + self.d_ec.q.val();
-            self.s2_s.d.next = self.z2_s.val() + bit_cast::<64, 32>(self.p_ss.q.val());
-            self.s2_c.d.next = self.z2_c.val() + bit_cast::<64, 32>(self.p_cc.q.val());
-            self.ssc.d.next = self.zsc.val() + bit_cast::<64, 32>(self.p_sc.q.val());
-            if self.d_nsc.q.val() {
-                self.ssc.d.next = self.zsc.val() - bit_cast::<64, 32>(self.p_sc.q.val());
-            }
-            self.cnt.d.next = self.zn.val() + self.one32.val();
-        }
-        self.slv.start.next = self.d_v.q.val() & self.d_snap.q.val() & !self.slv.busy.val();
-        self.slv.n.next = self.cnt.q.val();
-        self.slv.s1_s.next = self.s1_s.q.val();
-        self.slv.s1_c.next = self.s1_c.q.val();
-        self.slv.s2_s.next = self.s2_s.q.val();
-        self.slv.s2_c.next = self.s2_c.q.val();
-        self.slv.ssc.next = self.ssc.q.val();
-        self.slv.bref_s.next = self.bs_s.q.val();
-        self.slv.bref_c.next = self.bs_c.q.val();
-        if self.rst.val() {
-            self.tinit.d.next = false;
-            self.open.d.next = false;
-            self.dknown.d.next = false;
-            self.dneg.d.next = false;
-            self.fresh.d.next = false;
-            self.net.d.next = self.zero32.val();
-            self.nb.d.next = self.zero32.val();
-            self.bref_s.d.next = self.b0_s.val();
-            self.bref_c.d.next = self.b0_c.val();
-            self.c_v.d.next = false;
-            self.d_v.d.next = false;
-        }
-        self.b_sin.next = self.slv.off_s.val();
-        self.b_cos.next = self.slv.off_c.val();
-        self.g_sin.next = self.slv.g_s.val();
-        self.g_cos.next = self.slv.g_c.val();
-        self.k_mag.next = self.slv.k_mag.val();
-        self.k_neg.next = self.slv.k_neg.val();
-        self.update.next = self.slv.done.val();
-        self.kd_m.d.next = self.slv.k_mag.val();
-        self.kd_n.d.next = self.slv.k_neg.val();
-        self.k_mag_d.next = self.kd_m.q.val();
-        self.k_neg_d.next = self.kd_n.q.val();
     }
 }
 

@@ -343,6 +343,9 @@ pub struct FitSolve {
     clr_q: DFF<Bit>,
     /// The selects of the state `ret` names, stored with it.
     rxs: DFF<XSel>,
+    /// u_x's source for the select `rxs` a return will take, a clock ahead (free-running;
+    /// every such source is final before the return).
+    uxr: DFF<Bits<64>>,
     rds: DFF<DSel>,
     /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
     nd: DFF<Bits<64>>,
@@ -533,6 +536,7 @@ impl FitSolve {
             clr_r: Default::default(),
             clr_q: Default::default(),
             rxs: Default::default(),
+            uxr: Default::default(),
             rds: Default::default(),
             nd: Default::default(),
             t30: Default::default(),

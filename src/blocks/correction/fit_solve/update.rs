@@ -10,7 +10,7 @@ impl Logic for FitSolve {
             a1_s, a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag,
             cpos, amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc,
             r_gs, r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_run, xs, ds, clr_r, clr_q, nd,
-            t30, scl, ngf, lo_s, lo_c, oor, rxs, rds
+            t30, scl, ngf, lo_s, lo_c, oor, rxs, rds, uxr
         );
         self.nstate.next = self.state.q.val();
         // The shared adder, non-restoring: a remainder below zero adds the divisor (or the
@@ -479,6 +479,60 @@ impl Logic for FitSolve {
             self.r_done.d.next = false;
         }
         self.state.d.next = self.nstate.val();
+        // The sources a return loads (final before it) through a free-running register a
+        // clock ahead, selected by `rxs`; u_x's own select keeps the sources written just
+        // before their load.
+        self.uxr.d.next = self.zero64.val();
+        match self.rxs.q.val() {
+            XSel::A1c8 => {
+                self.uxr.d.next = self.a1_c.q.val() << self.s8.val();
+            }
+            XSel::A2s => {
+                self.uxr.d.next = self.a2_s.q.val();
+            }
+            XSel::A2c => {
+                self.uxr.d.next = self.a2_c.q.val();
+            }
+            XSel::Asc => {
+                self.uxr.d.next = self.asc.q.val();
+            }
+            XSel::Ms32 => {
+                self.uxr.d.next = self.m_s.q.val() << self.s32.val();
+            }
+            XSel::Mc32 => {
+                self.uxr.d.next = self.m_c.q.val() << self.s32.val();
+            }
+            XSel::Vc2 => {
+                self.uxr.d.next = self.v_c.q.val() << self.one32.val();
+                if (self.v_c.q.val() & self.sign63.val()).any() {
+                    self.uxr.d.next = self.zero64.val();
+                }
+            }
+            XSel::Amps32 => {
+                self.uxr.d.next = self.amp_s.q.val() << self.s32.val();
+            }
+            XSel::Ampc32 => {
+                self.uxr.d.next = self.amp_c.q.val() << self.s32.val();
+            }
+            XSel::Cmag16 => {
+                self.uxr.d.next = self.cmag.q.val() << self.s16.val();
+            }
+            XSel::Tgc => {
+                self.uxr.d.next = self.tgc.val();
+            }
+            XSel::Tamp32 => {
+                self.uxr.d.next = self.tamp32.val();
+            }
+            XSel::Hold => {}
+            XSel::A1s8 => {}
+            XSel::Vs2 => {}
+            XSel::T30 => {}
+            XSel::Tgs => {}
+            XSel::Scl32 => {}
+            XSel::Urk => {}
+            XSel::Mag => {}
+            XSel::NMag => {}
+        }
         // u_x: a registered select of its sources, then the run states' shifts (the division's
         // quotient bit from the adder goes through the last mux only).
         match self.xs.q.val() {
@@ -487,22 +541,22 @@ impl Logic for FitSolve {
                 self.u_x.d.next = self.a1_s.q.val() << self.s8.val();
             }
             XSel::A1c8 => {
-                self.u_x.d.next = self.a1_c.q.val() << self.s8.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::A2s => {
-                self.u_x.d.next = self.a2_s.q.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::A2c => {
-                self.u_x.d.next = self.a2_c.q.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Asc => {
-                self.u_x.d.next = self.asc.q.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Ms32 => {
-                self.u_x.d.next = self.m_s.q.val() << self.s32.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Mc32 => {
-                self.u_x.d.next = self.m_c.q.val() << self.s32.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Vs2 => {
                 self.u_x.d.next = self.v_s.q.val() << self.one32.val();
@@ -511,19 +565,16 @@ impl Logic for FitSolve {
                 }
             }
             XSel::Vc2 => {
-                self.u_x.d.next = self.v_c.q.val() << self.one32.val();
-                if (self.v_c.q.val() & self.sign63.val()).any() {
-                    self.u_x.d.next = self.zero64.val();
-                }
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Amps32 => {
-                self.u_x.d.next = self.amp_s.q.val() << self.s32.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Ampc32 => {
-                self.u_x.d.next = self.amp_c.q.val() << self.s32.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Cmag16 => {
-                self.u_x.d.next = self.cmag.q.val() << self.s16.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Scl32 => {
                 self.u_x.d.next = self.scl.q.val() << self.s32.val();
@@ -535,10 +586,10 @@ impl Logic for FitSolve {
                 self.u_x.d.next = self.tgs.val();
             }
             XSel::Tgc => {
-                self.u_x.d.next = self.tgc.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Tamp32 => {
-                self.u_x.d.next = self.tamp32.val();
+                self.u_x.d.next = self.uxr.q.val();
             }
             XSel::Urk => {
                 self.u_x.d.next = self.u_r.q.val() << self.kshift.val();

@@ -1,0 +1,286 @@
+//! The tracker's and sums' clocked logic: [`Logic`] for [`FitCal`] (its module doc has the
+//! sketch, the bit growth and the timing).
+use super::*;
+
+impl Logic for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
+            tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
+            c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, s1_s,
+            s1_c, s2_s, s2_c, ssc, kd_m, kd_n, h_p1, h_m1, h_p2, h_m2, nbge, nbmx, qb, sb, a_v,
+            a_rs, a_rb, a_snap, a_ue
+        );
+        self.slv.clk.next = self.clk.val();
+        self.slv.rst.next = self.rst.val();
+        // Stage A: sign-extend; differences from b_ref and from the offsets in use, held
+        // from one sample to the next (stage B2 reads them a clock after stage B1).
+        self.xs.next = bit_cast::<32, 16>(self.x_sin.val()) & self.amask.val();
+        if (self.xs.val() & self.asign.val()).any() {
+            self.xs.next = self.xs.val() | self.asext.val();
+        }
+        self.xc.next = bit_cast::<32, 16>(self.x_cos.val()) & self.amask.val();
+        if (self.xc.val() & self.asign.val()).any() {
+            self.xc.next = self.xc.val() | self.asext.val();
+        }
+        self.va.d.next = self.valid.val() & !self.rst.val();
+        self.das.next = self.xs.val() - self.bref_s.q.val();
+        self.dac.next = self.xc.val() - self.bref_c.q.val();
+        self.eas.next = self.xs.val() - self.slv.off_s.val();
+        self.eac.next = self.xc.val() - self.slv.off_c.val();
+        if self.valid.val() {
+            self.da_s.d.next = self.das.val();
+            self.nda_s.d.next = self.bref_s.q.val() - self.xs.val();
+            self.ea_s.d.next = self.eas.val();
+            self.nea_s.d.next = self.slv.off_s.val() - self.xs.val();
+            self.da_c.d.next = self.dac.val();
+            self.nda_c.d.next = self.bref_c.q.val() - self.xc.val();
+            self.ea_c.d.next = self.eac.val();
+            self.nea_c.d.next = self.slv.off_c.val() - self.xc.val();
+            // b_ref changes at this clock's edge (the previous sample restarted the window):
+            // this sample's entry is e = x - b_cur, the new b_ref.
+            self.fresh.d.next = self.a_rs.q.val();
+        }
+        // Quadrant (CORDIC mapper convention) and step, registered for stage B1: the signs
+        // of d, or of e while b_ref is being loaded with b_cur; tq is the previous sample's.
+        self.ngs.next = (self.das.val() & self.sign32.val()).any();
+        self.ngc.next = (self.dac.val() & self.sign32.val()).any();
+        if self.a_rs.q.val() {
+            self.ngs.next = (self.eas.val() & self.sign32.val()).any();
+            self.ngc.next = (self.eac.val() & self.sign32.val()).any();
+        }
+        self.q.next = self.q0.val();
+        if self.ngs.val() {
+            if self.ngc.val() {
+                self.q.next = self.q2.val();
+            } else {
+                self.q.next = self.q3.val();
+            }
+        } else if self.ngc.val() {
+            self.q.next = self.q1.val();
+        }
+        // q - tq mod 4 as logic (a borrow into bit 1), not a second carry chain after d's.
+        self.stp.next = (self.q.val() ^ self.tq.q.val())
+            ^ (((!self.q.val()) & self.tq.q.val() & self.q1.val()) << self.one32.val());
+        self.qb.d.next = self.q.val();
+        self.sb.d.next = self.stp.val();
+        // Free-running compares of net and N for stage B1: |net + s| >= 4K for each step s,
+        // N >= min_samples, N = N_MAX (net and N changed at least two clocks before the
+        // next sample's stage B1). While a restart clears net and N (a_rs), they describe
+        // net = 0 and N = 1.
+        self.netf.next = self.net.q.val() ^ self.sign32.val();
+        self.h_p1.d.next = ((self.netf.val() >= self.ge_p1.val())
+            | (self.netf.val() < self.lt_p1.val()))
+            & !self.a_rs.q.val();
+        self.h_m1.d.next = ((self.netf.val() >= self.ge_m1.val())
+            | (self.netf.val() < self.lt_m1.val()))
+            & !self.a_rs.q.val();
+        self.h_p2.d.next = ((self.netf.val() >= self.ge_p2.val())
+            | (self.netf.val() < self.lt_p2.val()))
+            & !self.a_rs.q.val();
+        self.h_m2.d.next = ((self.netf.val() >= self.ge_m2.val())
+            | (self.netf.val() < self.lt_m2.val()))
+            & !self.a_rs.q.val();
+        self.nbge.d.next = self.nb.q.val() >= self.nmin.val();
+        self.nbmx.d.next = (self.nb.q.val() == self.nmax.val()) & !self.a_rs.q.val();
+        if self.a_rs.q.val() {
+            self.nbge.d.next = self.one32.val() >= self.nmin.val();
+        }
+        // Stage B1: the step as a word and the window decision. net and N count every
+        // sample here (B2 clears them at a restart), so only a few flags wait for `done`.
+        self.sval.next = self.zero32.val();
+        self.big.next = false;
+        self.whole.next = false;
+        if self.sb.q.val() == self.q1.val() {
+            self.sval.next = self.sp1.val();
+            self.big.next = self.h_p1.q.val();
+            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r3.val();
+        }
+        if self.sb.q.val() == self.q3.val() {
+            self.sval.next = self.sm1.val();
+            self.big.next = self.h_m1.q.val();
+            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r1.val();
+        }
+        if self.sb.q.val() == self.q2.val() {
+            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r2.val();
+            if self.dneg.q.val() {
+                self.sval.next = self.sm2.val();
+                self.big.next = self.h_m2.q.val();
+            } else {
+                self.sval.next = self.sp2.val();
+                self.big.next = self.h_p2.q.val();
+            }
+        }
+        self.done.next = self.big.val() & self.whole.val() & self.nbge.q.val();
+        self.a_v.d.next = false;
+        self.a_rs.d.next = false;
+        self.a_rb.d.next = true;
+        self.a_snap.d.next = false;
+        self.a_ue.d.next = self.fresh.q.val();
+        if self.va.q.val() {
+            self.tq.d.next = self.qb.q.val();
+            self.net.d.next = self.net.q.val() + self.sval.val();
+            self.nb.d.next = self.nb.q.val() + self.one32.val();
+            if !self.tinit.q.val() {
+                self.tinit.d.next = true;
+                self.open.d.next = false;
+            } else if (self.sb.q.val() == self.q2.val()) & !self.dknown.q.val() {
+                // A two-quadrant step with no known direction: restart.
+                self.open.d.next = false;
+            } else {
+                if (self.sb.q.val() == self.q1.val()) | (self.sb.q.val() == self.q3.val()) {
+                    self.dknown.d.next = true;
+                    self.dneg.d.next = self.sb.q.val() == self.q3.val();
+                }
+                if !self.open.q.val() {
+                    if self.sb.q.val().any() {
+                        // Open a window at this boundary, from the offsets in use.
+                        self.open.d.next = true;
+                        self.a_v.d.next = true;
+                        self.a_rs.d.next = true;
+                        self.a_rb.d.next = false;
+                        self.a_ue.d.next = true;
+                    }
+                } else if self.done.val() {
+                    // The window ends before this sample, which opens the next one.
+                    self.a_v.d.next = true;
+                    self.a_rs.d.next = true;
+                    self.a_rb.d.next = false;
+                    self.a_snap.d.next = true;
+                    self.a_ue.d.next = true;
+                } else if self.nbmx.q.val() {
+                    // Too long without closing: abandon, reopen at the next boundary.
+                    self.open.d.next = false;
+                } else {
+                    self.a_v.d.next = true;
+                }
+            }
+        }
+        // Stage B2, a clock after B1: the decision's actions. A restart loads b_ref with the
+        // offsets in use (the window's snapshot keeps the old one) and clears net and N; the
+        // command to the sums carries the entry of the sample (d, or e = x - b_cur at a
+        // restart or right after one).
+        if self.a_rs.q.val() {
+            self.net.d.next = self.zero32.val();
+            self.nb.d.next = self.one32.val();
+        }
+        if !self.a_rb.q.val() {
+            self.bref_s.d.next = self.slv.off_s.val();
+            self.bref_c.d.next = self.slv.off_c.val();
+        }
+        if self.a_snap.q.val() {
+            self.bs_s.d.next = self.bref_s.q.val();
+            self.bs_c.d.next = self.bref_c.q.val();
+        }
+        self.c_v.d.next = self.a_v.q.val();
+        self.c_rs.d.next = self.a_rs.q.val();
+        self.c_snap.d.next = self.a_snap.q.val();
+        self.ds.next = self.da_s.q.val();
+        self.dc.next = self.da_c.q.val();
+        self.c_ms.d.next = bit_cast::<16, 32>(self.da_s.q.val());
+        if (self.da_s.q.val() & self.sign32.val()).any() {
+            self.c_ms.d.next = bit_cast::<16, 32>(self.nda_s.q.val());
+        }
+        self.c_mc.d.next = bit_cast::<16, 32>(self.da_c.q.val());
+        if (self.da_c.q.val() & self.sign32.val()).any() {
+            self.c_mc.d.next = bit_cast::<16, 32>(self.nda_c.q.val());
+        }
+        if self.a_ue.q.val() {
+            self.ds.next = self.ea_s.q.val();
+            self.dc.next = self.ea_c.q.val();
+            self.c_ms.d.next = bit_cast::<16, 32>(self.ea_s.q.val());
+            if (self.ea_s.q.val() & self.sign32.val()).any() {
+                self.c_ms.d.next = bit_cast::<16, 32>(self.nea_s.q.val());
+            }
+            self.c_mc.d.next = bit_cast::<16, 32>(self.ea_c.q.val());
+            if (self.ea_c.q.val() & self.sign32.val()).any() {
+                self.c_mc.d.next = bit_cast::<16, 32>(self.nea_c.q.val());
+            }
+        }
+        self.c_es.d.next = self.ds.val();
+        self.c_ec.d.next = self.dc.val();
+        self.c_nsc.d.next =
+            (self.ds.val() & self.sign32.val()).any() ^ (self.dc.val() & self.sign32.val()).any();
+        // Stage C: the three products of the entry.
+        self.d_v.d.next = self.c_v.q.val();
+        self.d_es.d.next = bit_cast::<64, 32>(self.c_es.q.val());
+        if (self.c_es.q.val() & self.sign32.val()).any() {
+            self.d_es.d.next = bit_cast::<64, 32>(self.c_es.q.val()) | self.sext64.val();
+        }
+        self.d_ec.d.next = bit_cast::<64, 32>(self.c_ec.q.val());
+        if (self.c_ec.q.val() & self.sign32.val()).any() {
+            self.d_ec.d.next = bit_cast::<64, 32>(self.c_ec.q.val()) | self.sext64.val();
+        }
+        self.p_ss.d.next = self.c_ms.q.val() * self.c_ms.q.val();
+        self.p_cc.d.next = self.c_mc.q.val() * self.c_mc.q.val();
+        self.p_sc.d.next = self.c_ms.q.val() * self.c_mc.q.val();
+        self.d_nsc.d.next = self.c_nsc.q.val();
+        // The snapshot goes to an idle solver in the closing sample's stage C: the sums hold
+        // the window's last sample by then (its stage E was at least two clocks earlier).
+        self.slv.start.next = self.c_v.q.val() & self.c_snap.q.val() & !self.slv.busy.val();
+        // Stage E: the sums (restart: from zero, one clock after the command's c_rs).
+        self.d_rs.d.next = self.c_rs.q.val();
+        self.z1_s.next = self.s1_s.q.val();
+        self.z1_c.next = self.s1_c.q.val();
+        self.z2_s.next = self.s2_s.q.val();
+        self.z2_c.next = self.s2_c.q.val();
+        self.zsc.next = self.ssc.q.val();
+        self.zn.next = self.cnt.q.val();
+        if self.d_rs.q.val() {
+            self.z1_s.next = self.zero64.val();
+            self.z1_c.next = self.zero64.val();
+            self.z2_s.next = self.zero64.val();
+            self.z2_c.next = self.zero64.val();
+            self.zsc.next = self.zero64.val();
+            self.zn.next = self.zero32.val();
+        }
+        if self.d_v.q.val() {
+            self.s1_s.d.next = self.z1_s.val() + self.d_es.q.val();
+            self.s1_c.d.next = self.z1_c.val() + self.d_ec.q.val();
+            self.s2_s.d.next = self.z2_s.val() + bit_cast::<64, 32>(self.p_ss.q.val());
+            self.s2_c.d.next = self.z2_c.val() + bit_cast::<64, 32>(self.p_cc.q.val());
+            self.ssc.d.next = self.zsc.val() + bit_cast::<64, 32>(self.p_sc.q.val());
+            if self.d_nsc.q.val() {
+                self.ssc.d.next = self.zsc.val() - bit_cast::<64, 32>(self.p_sc.q.val());
+            }
+            self.cnt.d.next = self.zn.val() + self.one32.val();
+        }
+        self.slv.n.next = self.cnt.q.val();
+        self.slv.s1_s.next = self.s1_s.q.val();
+        self.slv.s1_c.next = self.s1_c.q.val();
+        self.slv.s2_s.next = self.s2_s.q.val();
+        self.slv.s2_c.next = self.s2_c.q.val();
+        self.slv.ssc.next = self.ssc.q.val();
+        self.slv.bref_s.next = self.bs_s.q.val();
+        self.slv.bref_c.next = self.bs_c.q.val();
+        if self.rst.val() {
+            self.tinit.d.next = false;
+            self.open.d.next = false;
+            self.dknown.d.next = false;
+            self.dneg.d.next = false;
+            self.fresh.d.next = false;
+            self.net.d.next = self.zero32.val();
+            self.nb.d.next = self.zero32.val();
+            self.bref_s.d.next = self.b0_s.val();
+            self.bref_c.d.next = self.b0_c.val();
+            self.a_v.d.next = false;
+            self.a_rs.d.next = false;
+            self.a_rb.d.next = true;
+            self.a_snap.d.next = false;
+            self.c_v.d.next = false;
+            self.d_v.d.next = false;
+        }
+        self.b_sin.next = self.slv.off_s.val();
+        self.b_cos.next = self.slv.off_c.val();
+        self.g_sin.next = self.slv.g_s.val();
+        self.g_cos.next = self.slv.g_c.val();
+        self.k_mag.next = self.slv.k_mag.val();
+        self.k_neg.next = self.slv.k_neg.val();
+        self.update.next = self.slv.done.val();
+        self.kd_m.d.next = self.slv.k_mag.val();
+        self.kd_n.d.next = self.slv.k_neg.val();
+        self.k_mag_d.next = self.kd_m.q.val();
+        self.k_neg_d.next = self.kd_n.q.val();
+    }
+}
