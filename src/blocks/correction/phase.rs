@@ -222,8 +222,8 @@ impl Logic for PhaseCos {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, pc2, q2, na2, nb2, s3, rnd3, chi3, clo3, v4, o4_s, o4_c, hi4, lo4, v5,
-            o5_s, o5_c
+            self, clk, pc2, q2, na2, nb2, s3, rnd3, chi3, clo3, v4, o4_s, o4_c, hi4, lo4, v5, o5_s,
+            o5_c
         );
         self.km.next = self.kmag0.val();
         self.kn.next = self.kneg0.val();
