@@ -368,9 +368,9 @@ fn correction_phase_deg_range_and_mode() {
         let l = Loaded::parse(&t, SRC).expect("accepted");
         let c = &l.derived.correction;
         assert_eq!(c.has_phase(), phase, "phase_deg = {v}");
-        // Unity gains: 3 clocks. A phase adds its stage (1) and makes the folded cos gain
+        // Unity gains: 3 clocks. A phase adds its stages (2) and makes the folded cos gain
         // and k constants that are not powers of two: shift-add products (3 more).
-        assert_eq!(c.latency_cycles(), if phase { 7 } else { 3 });
+        assert_eq!(c.latency_cycles(), if phase { 8 } else { 3 });
     }
     let t = default_with(&[
         ("mode = \"static\"", "mode = \"auto\""),

@@ -15,7 +15,8 @@ fn auto_is_the_fit_and_peak_the_tracker() {
     let f = c.fit().expect("fit");
     assert_eq!(f.min_samples(), 4096);
     assert!(c.auto().is_none() && c.has_phase());
-    assert_eq!(c.latency_cycles(), 4);
+    // 3 + the phase stage's 2.
+    assert_eq!(c.latency_cycles(), 5);
     let p = Loaded::parse(&with("mode = \"peak\""), "p.toml").expect("peak");
     assert!(p.derived.correction.auto().is_some() && p.derived.correction.fit().is_none());
     assert_eq!(p.derived.correction.latency_cycles(), 3);

@@ -1,5 +1,5 @@
 //! Static phase correction of the cos track: the fixed-point formula against an independent
-//! integer computation (4-clock latency), rust-hdl == model == Icarus == Verilator, a 3 degree
+//! integer computation (5-clock latency, 8 with shift-add products), rust-hdl == model == Icarus == Verilator, a 3 degree
 //! phase error removed from a sampled sinusoid, no phase hardware at phase 0, and the
 //! synthesized stage (two hard multipliers, one carry chain per register-to-register path).
 //!
@@ -37,7 +37,7 @@ fn params(a: u32, gf: u32, offs: [i32; 2], gs: f64, gc: f64, deg: f64) -> Correc
 }
 
 #[test]
-fn phase_correction_is_the_formula_with_seven_cycle_latency() {
+fn phase_correction_is_the_formula_with_eight_cycle_latency() {
     let cases = [
         (14, 14, [37, -1200], 1.25, 0.8, 3.0),
         (14, 14, [0, 0], 1.0, 1.0, -7.5),
@@ -49,9 +49,10 @@ fn phase_correction_is_the_formula_with_seven_cycle_latency() {
     ];
     for (i, (a, gf, offs, gs, gcf, deg)) in cases.into_iter().enumerate() {
         let p = params(a, gf, offs, gs, gcf, deg);
-        // 3 + the phase stage's 1 + the shift-add trees' 3 (every case has a non-zero cross
-        // code k and a folded cos gain that are not powers of two).
-        assert!(p.has_phase() && p.latency_cycles() == 7, "case {i}");
+        // 3 + the phase stage's 2 (sum; round and compare, then select) + the shift-add
+        // trees' 3 (every case has a non-zero cross code k and a folded cos gain that are not
+        // powers of two).
+        assert!(p.has_phase() && p.latency_cycles() == 8, "case {i}");
         let (gc, k) = (p.gain()[COS], p.cross());
         // The codes are the folded gain and g_s tan(phi), independently rounded here.
         let scale = (1u64 << gf) as f64;
@@ -61,9 +62,9 @@ fn phase_correction_is_the_formula_with_seven_cycle_latency() {
         let ins = stimulus(a, offs, 3000, 40 + i as u64);
         let out = run(&p, &format!("corr_phase{i}"), &ins, RUST_ONLY);
         let mut checked = 0;
-        for k_row in 6..ins.len() {
-            let x = &ins[k_row - 6];
-            let clean = (k_row - 6..=k_row).all(|j| !ins[j].rst);
+        for k_row in 7..ins.len() {
+            let x = &ins[k_row - 7];
+            let clean = (k_row - 7..=k_row).all(|j| !ins[j].rst);
             assert_eq!(
                 out[k_row][0] == 1,
                 x.valid && clean,
@@ -319,9 +320,9 @@ fn check_explains_the_correction_mode_and_the_peak_trackers_limit() {
     let s = check("mode = \"static\"\nphase_deg = 3.0");
     assert!(s.contains("static phase correction"), "{s}");
     // 1 / cos(3 deg) and tan(3 deg) codes are not powers of two: shift-add products, and the
-    // latency shown is 3 + 1 (phase) + 3 (the trees' levels).
+    // latency shown is 3 + 2 (phase) + 3 (the trees' levels).
     assert!(
-        s.contains("shift-add trees") && s.contains(" + correction 7 + "),
+        s.contains("shift-add trees") && s.contains(" + correction 8 + "),
         "{s}"
     );
     let s = check("mode = \"peak\"");

@@ -23,7 +23,7 @@ pub struct Correction {
     /// Raw cosine sample, A-bit two's complement in the low bits (upper bits ignored).
     pub in_cos: Signal<In, Bits<16>>,
     /// Strobe of the corrected sample (`latency_cycles()` clocks after `in_valid`: 3
-    /// without, 4 with phase correction, 3 more with shift-add products).
+    /// without, 5 with phase correction, 3 more with shift-add products).
     pub out_valid: Signal<Out, Bit>,
     /// Corrected sine, A-bit two's complement in the low bits (saturated).
     pub out_sin: Signal<Out, Bits<16>>,
@@ -388,7 +388,7 @@ impl Logic for Correction {
         self.gain_cos.next = self.g_c.val();
         self.cal_update.next = self.upd.val();
         // Phase correction: the cos track from the stage-1 registers through its own
-        // stages 2-4; the sine result and the valid bit are delayed to match.
+        // stages 2-5; the sine result and the valid bit are delayed to match.
         for i in 0..self.ph.len() {
             self.ph[i].clk.next = self.clk.val();
             self.ph[i].rst.next = self.rst.val();

@@ -23,12 +23,13 @@
 //!              └──────────────────────────────────────────────────────┘
 //!
 //!  Phase correction (only when k != 0; PhaseCos replaces the cos track after stage 1):
-//!            stage 2 (reg)            stage 3 (reg)              stage 4 (reg)
+//!            stage 2 (reg)            stage 3 (reg)            stage 4 (reg)          stage 5 (reg)
 //!  |d_c|,g_c ─► P_c = |d_c| g_c >> s ─┐
-//!                         sign(d_c) ──┤ S' = (P_c or !P_c)   ─► floor((S' + n + 2^(F-1)) / 2^F),
-//!  |d_s|, k ──► Q = |d_s| |k| >> s ───┤     + (Q or !Q)          saturate to A bits ──► out_cos
-//!               sign(d_s) ^ sign(k) ──┘ n = number of !         (compares of S' beside it)
-//!  stage-3 sine result ─────────────────────────────────────────► one register ──────► out_sin
+//!                         sign(d_c) ──┤ S' = (P_c or !P_c) ─► r = floor((S' + n + ─► hi ? max :
+//!  |d_s|, k ──► Q = |d_s| |k| >> s ───┤     + (Q or !Q)          2^(F-1)) / 2^F)    lo ? min :
+//!               sign(d_s) ^ sign(k) ──┘ n = number of !     hi = S' >= H_n,        r ──► out_cos
+//!                                                           lo = S' < L_n
+//!  stage-3 sine result ──────────────────────────────────────► register ─────► register ► out_sin
 //!
 //!  Shift-add products (static mode, a code not 0 or a power of two): every `*` above becomes
 //!  |d| ─► MulTree(code): 3 register levels of pairwise sums ─► (x + y) into the product
@@ -60,7 +61,7 @@
 //!   registers unused, so a register -> multiplier -> register path alone stays near
 //!   141-147 MHz (docs/correction.md), below 1.3 x 133.33 MHz. 0 and powers of two are
 //!   wiring, so unity-gain designs keep the one-stage product, bit for bit.
-//! * Latency: 3 clocks (4 with phase correction, below; 3 more with shift-add products).
+//! * Latency: 3 clocks (5 with phase correction, below; 3 more with shift-add products).
 //!   A sample presented with
 //!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge
 //!   k + latency - 1 (k+2 at 3 clocks); one sample per clock (back-to-back) is fine
@@ -89,19 +90,29 @@
 //! * Sum (stage 3): the signs are applied as ones' complements, -X = !X + 1, so
 //!   S' = (P_c or !P_c) + (Q or !Q) = S - n is one adder, n = [d_c < 0] + [d_s k < 0]
 //!   (0..=2) is carried to stage 4. |S| + 2 < 2^31, so S' never wraps.
-//! * Round and saturate (stage 4): **x_c' = clamp(floor((S + 2^(F-1)) / 2^F), -2^(A-1),
+//! * Round and saturate (stages 4 and 5): **x_c' = clamp(floor((S + 2^(F-1)) / 2^F), -2^(A-1),
 //!   2^(A-1) - 1)**: round half up (ties towards +infinity; the other channel and the path
 //!   without phase round half away from zero; the two differ only on exact ties). One
 //!   adder S' + (2^(F-1) + n), the three constants for n = 0, 1, 2 selected by the two sign
 //!   bits; the result is bits F..F+A-1 of the 32-bit word (A + F <= 31, so a wrapped word
 //!   still gives the right A bits). Saturation is two compares of S' beside the adder, no
 //!   carry chain after another: high when S >= 2^(A-1+F) - 2^(F-1), low when
-//!   S < -2^(A-1+F) - 2^(F-1), each constant moved by -n and compared with the sign bits
-//!   flipped (two's complement order as unsigned order).
+//!   S < -2^(A-1+F) - 2^(F-1), each constant moved by -n (H_n, L_n) and compared with the
+//!   sign bits flipped (two's complement order as unsigned order).
 //! * The stage-4 constants for n are selected in stage 3 from the registered negation bits
 //!   and registered, so the adder and the two compares of stage 4 see only registers.
-//! * The sine track is not changed; its stage-3 result is delayed one register. Latency:
-//!   4 clocks with phase correction ([`PHASE_EXTRA_CYCLES`]), 7 with shift-add products
+//! * Why the compares stay 32 bits wide and are registered instead: S' uses the whole word
+//!   (P_c and Q each reach 2^30 - 2^17 + 1 with A = 14 and the largest codes, so
+//!   |S'| < 2^31 needs all 32 bits; only a static design with known codes has spare top
+//!   bits, 2 at gains near 1). The limits' low F bits (2^(F-1) + n below a multiple of 2^F)
+//!   differ with n, so the carry out of the low F bits decides a sample exactly at a limit
+//!   and a shorter compare still needs an F-bit chain plus wide AND/OR terms of the upper
+//!   32 - F bits and one more LUT level to combine them. So stage 4 registers the rounded
+//!   code r (A bits) and the two compare results straight from their carry chains, and
+//!   stage 5 only selects (low wins; the two exclude each other since L_n < H_n). Each
+//!   path is one carry chain between registers, or one LUT.
+//! * The sine track is not changed; its stage-3 result is delayed two registers. Latency:
+//!   5 clocks with phase correction ([`PHASE_EXTRA_CYCLES`]), 8 with shift-add products
 //!   (the static codes g_c / cos phi and k are rarely powers of two); the one place it is
 //!   derived is [`CorrectionParams::latency_cycles`]. k = 0 (phase_deg = 0) builds no phase
 //!   stage at all: the block is the 3-clock block above, bit for bit.
@@ -247,8 +258,8 @@ pub const COS: usize = 1;
 pub const LATENCY_CYCLES: u32 = 3;
 
 /// Extra clocks of the phase correction (the signed sum of the two cos-track products gets
-/// its own stage, see the module doc).
-pub const PHASE_EXTRA_CYCLES: u32 = 1;
+/// its own stage, and the saturation is decided a stage ahead of its select; module doc).
+pub const PHASE_EXTRA_CYCLES: u32 = 2;
 
 /// Extra clocks of the shift-add products (static mode with a code that is not a power of
 /// two, [`CorrectionParams::shift_add`]): the tree's levels ahead of the product register.

@@ -162,7 +162,13 @@ struct Pipe {
     /// nb2 a clock ahead; 0 at power-up.
     k3: [u64; 3],
     v4: bool,
+    /// Stage 4: the sine, the rounded cos code and the two compares (S' >= high limit,
+    /// S' < low limit); stage 5 the selected codes.
     o4: [u64; 2],
+    hi4: bool,
+    lo4: bool,
+    v5: bool,
+    o5: [u64; 2],
     /// Shift-add products ([`super::multree::MulTree`]): the stage-1 values (valid, signs,
     /// magnitudes, gains) through the tree's levels; the last one feeds stage 2.
     tree: [S1; TREE],
@@ -244,7 +250,7 @@ impl CorrectionModel {
         let a = self.p.adc_width();
         let (b, g, upd) = self.in_use();
         let (valid, o) = if self.p.has_phase() {
-            (self.pipe.v4, self.pipe.o4)
+            (self.pipe.v5, self.pipe.o5)
         } else {
             (self.pipe.v3, self.pipe.o3)
         };
@@ -339,15 +345,20 @@ impl CorrectionModel {
         n.k3 = [rnd[nn], hi[nn], lo[nn]];
         let [rnd3, hi3, lo3] = old.k3;
         let sf = old.s3 ^ (1 << 31);
-        // The RTL's order: the low limit's test is the later assignment.
-        n.o4[COS] = if sf < lo3 {
+        n.lo4 = sf < lo3;
+        n.hi4 = sf >= hi3;
+        n.o4[COS] = (((old.s3 + rnd3) & m32) >> (gf - sh)) & am;
+        n.o4[SIN] = old.o3[SIN];
+        // Stage 5, the RTL's order: the low limit's test is the later assignment.
+        n.o5[COS] = if old.lo4 {
             1 << (a - 1)
-        } else if sf >= hi3 {
+        } else if old.hi4 {
             mask(a - 1)
         } else {
-            (((old.s3 + rnd3) & m32) >> (gf - sh)) & am
+            old.o4[COS]
         };
-        n.o4[SIN] = old.o3[SIN];
+        n.o5[SIN] = old.o4[SIN];
+        n.v5 = old.v4 && !i.rst;
         n.v4 = old.v3 && !i.rst;
         // Calibration (sees the old stage-1 registers).
         if let Some(cal) = self.cal.as_mut() {

@@ -28,8 +28,8 @@ pub(super) fn constants(p: &CorrectionParams) -> ([u64; 3], [u64; 3], [u64; 3]) 
     stage4_constants(p.adc_width(), p.gain_frac_bits() - p.phase_shift())
 }
 
-/// Cos track with phase correction, stages 2-4: x_c' = clamp(floor((+-P_c +- Q) / 2^F + 1/2))
-/// with P_c = |d_c| g_c >> s and Q = |d_s| |k| >> s; the sine result is delayed one stage
+/// Cos track with phase correction, stages 2-5: x_c' = clamp(floor((+-P_c +- Q) / 2^F + 1/2))
+/// with P_c = |d_c| g_c >> s and Q = |d_s| |k| >> s; the sine result is delayed two stages
 /// to stay aligned.
 #[derive(LogicBlock)]
 pub struct PhaseCos {
@@ -56,9 +56,9 @@ pub struct PhaseCos {
     pub k_mag: Signal<In, Bits<16>>,
     /// k < 0, with `k_mag`.
     pub k_neg: Signal<In, Bit>,
-    /// Strobe of the corrected sample (one clock after `v3`).
+    /// Strobe of the corrected sample (two clocks after `v3`).
     pub out_valid: Signal<Out, Bit>,
-    /// Corrected sine (stage-3 value, delayed one clock).
+    /// Corrected sine (stage-3 value, delayed two clocks).
     pub out_sin: Signal<Out, Bits<16>>,
     /// Phase-corrected cosine, A-bit two's complement (saturated).
     pub out_cos: Signal<Out, Bits<16>>,
@@ -78,7 +78,15 @@ pub struct PhaseCos {
     clo3: DFF<Bits<32>>,
     v4: DFF<Bit>,
     o4_s: DFF<Bits<16>>,
+    /// Stage 4: the rounded code (A bits), and the two compares S' >= high limit and
+    /// S' < low limit, registered straight from their carry chains.
     o4_c: DFF<Bits<16>>,
+    hi4: DFF<Bit>,
+    lo4: DFF<Bit>,
+    /// Stage 5: the saturated code selected by the registered compares.
+    v5: DFF<Bit>,
+    o5_s: DFF<Bits<16>>,
+    o5_c: DFF<Bits<16>>,
     /// Stage 3: ones' complement masks of the two products.
     ma: Signal<Local, Bits<32>>,
     mb: Signal<Local, Bits<32>>,
@@ -90,7 +98,8 @@ pub struct PhaseCos {
     sf: Signal<Local, Bits<32>>,
     /// Stage 4: rounded sum (bits F.. of the word are the result modulo 2^A).
     r: Signal<Local, Bits<32>>,
-    o: Signal<Local, Bits<32>>,
+    /// Stage 5: the output code.
+    o: Signal<Local, Bits<16>>,
     /// Static mode: |k| and k < 0 of `p.cross()`; auto mode (`kdyn`): the ports instead.
     kmag0: Constant<Bits<16>>,
     kneg0: Constant<Bit>,
@@ -123,9 +132,9 @@ pub struct PhaseCos {
     /// Mask of the A sample bits.
     amask: Constant<Bits<32>>,
     /// 2^(A-1): the most negative A-bit code.
-    asign: Constant<Bits<32>>,
+    asign: Constant<Bits<16>>,
     /// 2^(A-1) - 1.
-    pmax: Constant<Bits<32>>,
+    pmax: Constant<Bits<16>>,
 }
 
 impl PhaseCos {
@@ -170,6 +179,11 @@ impl PhaseCos {
             v4: Default::default(),
             o4_s: Default::default(),
             o4_c: Default::default(),
+            hi4: Default::default(),
+            lo4: Default::default(),
+            v5: Default::default(),
+            o5_s: Default::default(),
+            o5_c: Default::default(),
             ma: Default::default(),
             mb: Default::default(),
             rnd: Default::default(),
@@ -198,8 +212,8 @@ impl PhaseCos {
             zero: c32(0),
             sign32: c32(1 << 31),
             amask: c32(mask(a)),
-            asign: c32(1 << (a - 1)),
-            pmax: c32(mask(a - 1)),
+            asign: Constant::new(Bits::<16>::from(1u64 << (a - 1))),
+            pmax: Constant::new(Bits::<16>::from(mask(a - 1))),
         }
     }
 }
@@ -207,7 +221,10 @@ impl PhaseCos {
 impl Logic for PhaseCos {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clk, pc2, q2, na2, nb2, s3, rnd3, chi3, clo3, v4, o4_s, o4_c);
+        dff_setup!(
+            self, clk, pc2, q2, na2, nb2, s3, rnd3, chi3, clo3, v4, o4_s, o4_c, hi4, lo4, v5, o5_s,
+            o5_c
+        );
         self.km.next = self.kmag0.val();
         self.kn.next = self.kneg0.val();
         if self.kdyn.val() {
@@ -267,22 +284,30 @@ impl Logic for PhaseCos {
         self.rnd3.d.next = self.rnd.val();
         self.chi3.d.next = self.chi.val();
         self.clo3.d.next = self.clo.val();
-        // Stage 4: round half up and saturate; the adder and the two compares each see S'
-        // and a register (one carry chain each).
+        // Stage 4: round half up, and the two saturation compares of S' beside the adder,
+        // each a carry chain between registers straight into a register.
         self.sf.next = self.s3.q.val() ^ self.sign32.val();
-        self.r.next = (self.s3.q.val() + self.rnd3.q.val()) >> self.fshift.val();
-        self.o.next = self.r.val() & self.amask.val();
-        if self.sf.val() >= self.chi3.q.val() {
-            self.o.next = self.pmax.val();
-        }
-        if self.sf.val() < self.clo3.q.val() {
-            self.o.next = self.asign.val();
-        }
+        self.r.next =
+            ((self.s3.q.val() + self.rnd3.q.val()) >> self.fshift.val()) & self.amask.val();
+        self.o4_c.d.next = bit_cast::<16, 32>(self.r.val());
+        self.hi4.d.next = self.sf.val() >= self.chi3.q.val();
+        self.lo4.d.next = self.sf.val() < self.clo3.q.val();
         self.v4.d.next = self.v3.val() & !self.rst.val();
         self.o4_s.d.next = self.sin3.val();
-        self.o4_c.d.next = bit_cast::<16, 32>(self.o.val());
-        self.out_valid.next = self.v4.q.val();
-        self.out_sin.next = self.o4_s.q.val();
-        self.out_cos.next = self.o4_c.q.val();
+        // Stage 5: select the saturated code (low wins, as in the model; the two exclude
+        // each other).
+        self.o.next = self.o4_c.q.val();
+        if self.hi4.q.val() {
+            self.o.next = self.pmax.val();
+        }
+        if self.lo4.q.val() {
+            self.o.next = self.asign.val();
+        }
+        self.v5.d.next = self.v4.q.val() & !self.rst.val();
+        self.o5_s.d.next = self.o4_s.q.val();
+        self.o5_c.d.next = self.o.val();
+        self.out_valid.next = self.v5.q.val();
+        self.out_sin.next = self.o5_s.q.val();
+        self.out_cos.next = self.o5_c.q.val();
     }
 }
