@@ -133,7 +133,7 @@ fn bad_parameters_are_rejected_with_a_message() {
 }
 
 #[test]
-fn synthesizes_for_both_families_with_two_multipliers() {
+fn synthesizes_for_both_families_two_multipliers_with_calibration_none_static() {
     // Auto mode: two 16x16 products (MULT18X18 on Spartan-3A); Yosys's cycloneive flow
     // has no multiplier mapping and builds them from logic cells.
     let p = CorrectionParams::identity(14, 14)

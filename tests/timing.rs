@@ -49,9 +49,9 @@ struct Design {
 const OPTION_FLOOR: f64 = 1.25;
 
 /// Floor for the auto-correction top: 0.7 x. The ellipse fit does not meet even the
-/// configured clock yet (117.90 MHz at seed 1 against 133.33 MHz, was 96.09 MHz;
-/// docs/correction.md); the floor only catches a further regression of its routing-bound
-/// solver selects.
+/// configured clock yet (119.29 MHz at seed 1 against 133.33 MHz, was 96.09 MHz two
+/// rounds ago; docs/correction.md); the floor only catches a further regression of its
+/// routing-bound solver recurrence.
 const AUTO_FLOOR: f64 = 0.7;
 
 /// The default config with one optional block switched on: (label, required margin, config
