@@ -133,9 +133,10 @@ fn bad_parameters_are_rejected_with_a_message() {
 }
 
 #[test]
-fn synthesizes_for_both_families_two_multipliers_with_calibration_none_static() {
-    // Auto mode: two 16x16 products (MULT18X18 on Spartan-3A); Yosys's cycloneive flow
-    // has no multiplier mapping and builds them from logic cells.
+fn synthesizes_for_both_families_peak_mode_two_multipliers_static_none() {
+    // Peak mode (`with_auto`, the peak tracker): two 16x16 products (MULT18X18 on
+    // Spartan-3A); Yosys's cycloneive flow has no multiplier mapping and builds them from
+    // logic cells.
     let p = CorrectionParams::identity(14, 14)
         .unwrap()
         .with_auto(6000, 1, 1000)

@@ -1,7 +1,8 @@
 //! Static phase correction of the cos track: the fixed-point formula against an independent
-//! integer computation (5-clock latency, 8 with shift-add products), rust-hdl == model == Icarus == Verilator, a 3 degree
-//! phase error removed from a sampled sinusoid, no phase hardware at phase 0, and the
-//! synthesized stage (two hard multipliers, one carry chain per register-to-register path).
+//! integer computation (5-clock latency, 8 with shift-add products), rust-hdl == model ==
+//! Icarus == Verilator, a 3 degree phase error removed from a sampled sinusoid, no phase
+//! hardware at phase 0, and the synthesized stage (shift-add products, no hard multiplier,
+//! one carry chain per register-to-register path).
 //!
 //! (Helpers in `tests/correction_util/`.)
 use sinedec::blocks::correction::hdl::Correction;
