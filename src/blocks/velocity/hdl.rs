@@ -61,6 +61,11 @@ fn c32(v: u64) -> Constant<Bits<32>> {
     crate::blocks::c32(v)
 }
 
+/// Bits needed for the values 0..=v (0 for v = 0).
+fn bits(v: u64) -> u32 {
+    64 - v.leading_zeros()
+}
+
 /// Bits of a 64-bit word above the low `w`: OR-ed into a negative w-bit value to sign-extend.
 fn ext(w: u32) -> u64 {
     !mask(w)
@@ -86,10 +91,20 @@ pub struct Velocity {
     rom: VelCoefRom,
     init: DFF<Bit>,
     pos: DFF<Bits<64>>,
+    /// pos + 2^(F+1) modulo 2^Wp, kept beside pos: the front end's one adder reads it.
+    padj: DFF<Bits<64>>,
     cnt: DFF<Bits<32>>,
     /// The divider's tick, registered: high while `cnt` = D - 1.
     tickr: DFF<Bit>,
-    state: DFF<VelState>,
+    /// The schedule, one-hot (reset and power-up: all low, `Idle`): not `Idle`, and
+    /// `Op`, `Prod`, `Acc`, `Out` (`Prep` is `inprep`).
+    busy: DFF<Bit>,
+    sop: DFF<Bit>,
+    sprod: DFF<Bit>,
+    sacc: DFF<Bit>,
+    sout: DFF<Bit>,
+    /// `mwait` = n in `Prod` (the multiplier's last clock), registered a clock ahead.
+    mlast: DFF<Bit>,
     j: DFF<Bits<32>>,
     /// j = m - 1 (this is the last multiply), registered with j.
     jlr: DFF<Bit>,
@@ -104,7 +119,7 @@ pub struct Velocity {
     k: DFF<Bits<32>>,
     /// Tracking: Theta's addend in `Prep` (theta 2^(S+G) at the first update, else W).
     tx: DFF<Bits<64>>,
-    /// The state is `Prep` (registered with it).
+    /// The state is `Prep`.
     inprep: DFF<Bit>,
     /// Clocks waited in `Prod` for the multiplier.
     mwait: DFF<Bits<32>>,
@@ -112,9 +127,12 @@ pub struct Velocity {
     out_reg: DFF<Bits<64>>,
     valid_reg: DFF<Bit>,
     inp: Signal<Local, Bits<64>>,
-    dp: Signal<Local, Bits<64>>,
-    pinc: Signal<Local, Bits<64>>,
-    pdec: Signal<Local, Bits<64>>,
+    /// in_p's F+2 bits sign-extended to Wp bits.
+    sinp: Signal<Local, Bits<64>>,
+    /// padj - in_p - 1 and padj - sext(in_p) - 1 (Wp bits): their bits above F+2 are
+    /// pos's and padj's next high bits.
+    vpos: Signal<Local, Bits<64>>,
+    vadj: Signal<Local, Bits<64>>,
     tick: Signal<Local, Bit>,
     jl: Signal<Local, Bit>,
     delta: Signal<Local, Bits<64>>,
@@ -132,10 +150,10 @@ pub struct Velocity {
     /// Masks of F+2 bits and its sign bit.
     f2mask: Constant<Bits<64>>,
     f2sign: Constant<Bits<64>>,
-    /// 2^(F+2): one step of the position's bits above F+2, and the borrow bit of
-    /// in_p - pos; mask of F+3 bits.
+    /// 2^(F+2): padj's bit F+2 when the first sample loads it with a negative in_p.
     f2one: Constant<Bits<64>>,
-    f3mask: Constant<Bits<64>>,
+    /// Bits F+2 .. Wp-1: in_p's sign extension.
+    f2ext: Constant<Bits<64>>,
     /// Masks of Wp bits, its sign bit, the bits above it.
     wpmask: Constant<Bits<64>>,
     wpsign: Constant<Bits<64>>,
@@ -161,10 +179,14 @@ pub struct Velocity {
     ymask: Constant<Bits<64>>,
     /// D - 2: the count before the divider's last.
     dprev: Constant<Bits<32>>,
-    /// The multiplier's Booth digits n: the last count of `mwait`.
-    wlast: Constant<Bits<32>>,
-    /// m - 2: the multiply before the last (unused when m = 1), and m = 1.
+    /// n - 1 (n: the multiplier's Booth digits, the last count of `mwait`); mask of
+    /// `mwait` (bits(n)).
+    wprev: Constant<Bits<32>>,
+    wmask: Constant<Bits<32>>,
+    /// m - 2: the multiply before the last (unused when m = 1), and m = 1; mask of `j`
+    /// (bits(m - 1)).
     jprev: Constant<Bits<32>>,
+    jmask: Constant<Bits<32>>,
     jl0: Constant<Bit>,
     /// Last entry of the Kalman gain table.
     klast: Constant<Bits<32>>,
@@ -178,6 +200,7 @@ pub struct Velocity {
     one: Constant<Bits<32>>,
     zero: Constant<Bits<32>>,
     zero64: Constant<Bits<64>>,
+    one64: Constant<Bits<64>>,
 }
 
 impl Velocity {
@@ -209,9 +232,15 @@ impl Velocity {
             rom: VelCoefRom::new(&l.coefs, l.b_width),
             init: Default::default(),
             pos: Default::default(),
+            padj: Default::default(),
             cnt: Default::default(),
             tickr: Default::default(),
-            state: Default::default(),
+            busy: Default::default(),
+            sop: Default::default(),
+            sprod: Default::default(),
+            sacc: Default::default(),
+            sout: Default::default(),
+            mlast: Default::default(),
             j: Default::default(),
             jlr: Default::default(),
             primed: Default::default(),
@@ -229,9 +258,9 @@ impl Velocity {
             out_reg: Default::default(),
             valid_reg: Default::default(),
             inp: Default::default(),
-            dp: Default::default(),
-            pinc: Default::default(),
-            pdec: Default::default(),
+            sinp: Default::default(),
+            vpos: Default::default(),
+            vadj: Default::default(),
             tick: Default::default(),
             jl: Default::default(),
             delta: Default::default(),
@@ -247,7 +276,7 @@ impl Velocity {
             f2mask: c64(mask(f2)),
             f2sign: c64(1 << (f2 - 1)),
             f2one: c64(1 << f2),
-            f3mask: c64(mask(f2 + 1)),
+            f2ext: c64(mask(wp) & !mask(f2)),
             wpmask: c64(mask(wp)),
             wpsign: c64(1 << (wp - 1)),
             wpext: c64(ext(wp)),
@@ -263,8 +292,10 @@ impl Velocity {
             yext: c64(ext(aw - g)),
             ymask: c64(mask(p.spec.width)),
             dprev: c32(p.period_clocks - 2),
-            wlast: c32(l.mul_steps() as u64),
+            wprev: c32(l.mul_steps() as u64 - 1),
+            wmask: c32(mask(bits(l.mul_steps() as u64))),
             jprev: c32((l.mults as u64).wrapping_sub(2) & mask(32)),
+            jmask: c32(mask(bits(l.mults as u64 - 1))),
             jl0: Constant::new(l.mults == 1),
             klast: c32(klast),
             jsel: c32(if is_kal { 0 } else { mask(32) }),
@@ -275,6 +306,7 @@ impl Velocity {
             one: c32(1),
             zero: c32(0),
             zero64: c64(0),
+            one64: c64(1),
         })
     }
 }
@@ -283,49 +315,60 @@ impl Logic for Velocity {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, init, pos, cnt, tickr, state, j, jlr, primed, first, snap, d, theta, acc, k,
-            tx, inprep, mwait, opa, out_reg, valid_reg
+            self, clk, init, pos, padj, cnt, tickr, busy, sop, sprod, sacc, sout, mlast, j, jlr,
+            primed, first, snap, d, theta, acc, k, tx, inprep, mwait, opa, out_reg, valid_reg
         );
         for i in 0..self.hist.len() {
             self.hist[i].clock.next = self.clk.val();
             self.hist[i].d.next = self.hist[i].q.val();
         }
+        // j and mwait hold their low bits only: every bit above is 0 in every assignment,
+        // so synthesis drops those flip-flops and the compares on them are narrow.
+        self.j.d.next = self.j.q.val() & self.jmask.val();
+        self.mwait.d.next = self.mwait.q.val() & self.wmask.val();
         // The multiplier: operand a from `opa`, the coefficient straight from the ROM,
         // started in `Op`; its result is taken in `Acc`.
         self.jl.next = self.jlr.q.val();
         self.mul.clk.next = self.clk.val();
         self.mul.a.next = self.opa.q.val();
         self.mul.b.next = self.rom.coef.val();
-        self.mul.start.next = self.state.q.val() == VelState::Op;
+        self.mul.start.next = self.sop.q.val();
         // One assignment (no default-then-override): a momentary value on a port between
         // two modules' combinational blocks makes Icarus loop forever at one time step.
         self.rom.addr.next =
             (self.j.q.val() & self.jsel.val()) | (self.k.q.val() & self.ksel.val());
         self.valid_reg.d.next = false;
         // Front end: pos += sext((in_p - pos) mod 2^(F+2)), modulo 2^Wp; the first sample
-        // loads it. The low F+2 bits become in_p; the bits above step by -1, 0 or +1 as the
-        // borrow of in_p - pos (F+3 bits) and the step's sign say. pos +- 2^(F+2) come
-        // straight from the register, so each path holds one carry chain.
+        // loads it. The low F+2 bits become in_p; the bits above are those of
+        // pos - in_p + 2^(F+1) - 1 = padj - in_p - 1 (in_p zero-extended): the one value
+        // congruent to in_p modulo 2^(F+2) within [-2^(F+1), 2^(F+1)) of pos. padj (pos +
+        // 2^(F+1)) follows with padj - sext(in_p) - 1 above F+2, and in_p with its bit F+1
+        // inverted below. Each is one carry chain from registers and the port, no LUT in
+        // front: a - b - 1 as {a, 0} - {b, 1} shifted right.
         self.inp.next = bit_cast::<64, 32>(self.in_p.val()) & self.f2mask.val();
-        self.dp.next =
-            (self.inp.val() - (self.pos.q.val() & self.f2mask.val())) & self.f3mask.val();
-        self.pinc.next = (self.pos.q.val() + self.f2one.val()) & self.wpmask.val();
-        self.pdec.next = (self.pos.q.val() - self.f2one.val()) & self.wpmask.val();
+        self.sinp.next = self.inp.val();
+        if (self.inp.val() & self.f2sign.val()).any() {
+            self.sinp.next = self.inp.val() | self.f2ext.val();
+        }
+        self.vpos.next = (((self.padj.q.val() << self.one.val())
+            - ((self.inp.val() << self.one.val()) | self.one64.val()))
+            >> self.one.val())
+            & self.wpmask.val();
+        self.vadj.next = (((self.padj.q.val() << self.one.val())
+            - ((self.sinp.val() << self.one.val()) | self.one64.val()))
+            >> self.one.val())
+            & self.wpmask.val();
         if self.in_valid.val() {
             if self.init.q.val() {
-                self.pos.d.next = (self.pos.q.val() & !self.f2mask.val()) | self.inp.val();
-                if (self.dp.val() & self.f2one.val()).any()
-                    & !(self.dp.val() & self.f2sign.val()).any()
-                {
-                    self.pos.d.next = (self.pinc.val() & !self.f2mask.val()) | self.inp.val();
-                }
-                if !(self.dp.val() & self.f2one.val()).any()
-                    & (self.dp.val() & self.f2sign.val()).any()
-                {
-                    self.pos.d.next = (self.pdec.val() & !self.f2mask.val()) | self.inp.val();
-                }
+                self.pos.d.next = (self.vpos.val() & !self.f2mask.val()) | self.inp.val();
+                self.padj.d.next =
+                    (self.vadj.val() & !self.f2mask.val()) | (self.inp.val() ^ self.f2sign.val());
             } else {
                 self.pos.d.next = self.inp.val();
+                self.padj.d.next = self.inp.val() ^ self.f2sign.val();
+                if (self.inp.val() & self.f2sign.val()).any() {
+                    self.padj.d.next = (self.inp.val() ^ self.f2sign.val()) | self.f2one.val();
+                }
                 self.init.d.next = true;
             }
         }
@@ -367,119 +410,137 @@ impl Logic for Velocity {
         if (self.yr.val() & self.accsign.val()).any() {
             self.ys.next = ((self.yr.val() >> self.g.val()) | self.yext.val()) & self.ymask.val();
         }
-        match self.state.q.val() {
-            VelState::Idle => {
-                if self.tick.val() & self.init.q.val() {
-                    self.snap.d.next = self.pos.q.val();
-                    self.state.d.next = VelState::Prep;
-                    self.inprep.d.next = true;
-                    // Theta = 0 before the first update (reset clears it): adding
-                    // theta 2^(S+G) loads it.
-                    self.tx.d.next = self.acc.q.val();
-                    if !self.primed.q.val() {
-                        self.tx.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
-                    }
-                    self.first.d.next = !self.primed.q.val();
-                    if !self.is_lsq.val() & !self.is_track.val() {
-                        self.d.d.next = self.sdelta.val();
-                        if !self.primed.q.val() {
-                            self.d.d.next = self.zero64.val();
-                        }
-                    }
-                    if !self.primed.q.val() {
-                        // First update: the history as if at rest at theta (output 0).
-                        self.primed.d.next = true;
-                        for i in 0..self.hist.len() {
-                            self.hist[i].d.next = self.pos.q.val();
-                        }
-                    }
+        // The schedule (one `if` per state of `VelState`, the flags one-hot): each flag's
+        // next value is one LUT of flags, the tick, `jl` and `mlast`.
+        self.sop.d.next = false;
+        self.sacc.d.next = false;
+        self.sout.d.next = false;
+        self.mlast.d.next = false;
+        if !self.busy.q.val() {
+            // Idle
+            if self.tick.val() & self.init.q.val() {
+                self.snap.d.next = self.pos.q.val();
+                self.busy.d.next = true;
+                self.inprep.d.next = true;
+                // Theta = 0 before the first update (reset clears it): adding
+                // theta 2^(S+G) loads it.
+                self.tx.d.next = self.acc.q.val();
+                if !self.primed.q.val() {
+                    self.tx.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
                 }
-            }
-            VelState::Prep => {
-                self.j.d.next = self.zero.val();
-                self.jlr.d.next = self.jl0.val();
-                self.state.d.next = VelState::Op;
-                if self.is_lsq.val() {
-                    for i in 1..self.hist.len() {
-                        self.hist[i - 1].d.next = self.hist[i].q.val();
-                    }
-                    for i in self._hlast..self.hist.len() {
-                        self.hist[i].d.next = self.snap.q.val();
-                    }
-                    self.acc.d.next = self.zero64.val();
-                } else if self.is_track.val() {
-                    // e (0 at the first update); Theta += W (or the load), + q(beta e) and
-                    // q(alpha e) in the two `Acc`.
-                    self.d.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
-                    if self.first.q.val() {
+                self.first.d.next = !self.primed.q.val();
+                if !self.is_lsq.val() & !self.is_track.val() {
+                    self.d.d.next = self.sdelta.val();
+                    if !self.primed.q.val() {
                         self.d.d.next = self.zero64.val();
                     }
-                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
-                } else {
-                    self.d.d.next =
-                        ((self.d.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
-                    self.hist[0].d.next = self.snap.q.val();
+                }
+                if !self.primed.q.val() {
+                    // First update: the history as if at rest at theta (output 0).
+                    self.primed.d.next = true;
+                    for i in 0..self.hist.len() {
+                        self.hist[i].d.next = self.pos.q.val();
+                    }
                 }
             }
-            VelState::Op => {
-                self.opa.d.next = self.d.q.val();
-                if self.is_lsq.val() {
-                    // Rotate the history: x_1 comes back to the front after M multiplies.
-                    self.opa.d.next = self.rext.val();
-                    if self.jl.val() {
-                        // P goes to the multiplier; the accumulator restarts from 0 for
-                        // q(P R / 2^B).
-                        self.opa.d.next = self.pa.val();
-                        self.acc.d.next = self.zero64.val();
-                    }
-                    for i in 1..self.hist.len() {
-                        self.hist[i - 1].d.next = self.hist[i].q.val();
-                    }
-                    for i in self._hlast..self.hist.len() {
-                        self.hist[i].d.next = self.hist[0].q.val();
-                    }
+        }
+        if self.inprep.q.val() {
+            // Prep
+            self.j.d.next = self.zero.val();
+            self.jlr.d.next = self.jl0.val();
+            self.sop.d.next = true;
+            if self.is_lsq.val() {
+                for i in 1..self.hist.len() {
+                    self.hist[i - 1].d.next = self.hist[i].q.val();
                 }
-                self.mwait.d.next = self.zero.val();
-                self.state.d.next = VelState::Prod;
+                for i in self._hlast..self.hist.len() {
+                    self.hist[i].d.next = self.snap.q.val();
+                }
+                self.acc.d.next = self.zero64.val();
+            } else if self.is_track.val() {
+                // e (0 at the first update); Theta += W (or the load), + q(beta e) and
+                // q(alpha e) in the two `Acc`.
+                self.d.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
+                if self.first.q.val() {
+                    self.d.d.next = self.zero64.val();
+                }
+                self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
+            } else {
+                self.d.d.next =
+                    ((self.d.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
+                self.hist[0].d.next = self.snap.q.val();
             }
-            VelState::Prod => {
-                // n + 1 clocks for the multiplier (its start clock zeroes x, then n digits).
-                self.mwait.d.next = self.mwait.q.val() + self.one.val();
-                if self.mwait.q.val() == self.wlast.val() {
-                    self.state.d.next = VelState::Acc;
-                }
-            }
-            VelState::Acc => {
-                self.acc.d.next = (self.acc.q.val() + self.mul.p.val()) & self.accmask.val();
-                if self.is_track.val() {
-                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
-                    if self.jl.val() {
-                        self.acc.d.next = self.acc.q.val();
-                    }
-                }
-                if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
-                    self.k.d.next = self.k.q.val() + self.one.val();
-                }
+        }
+        if self.sop.q.val() {
+            // Op
+            self.opa.d.next = self.d.q.val();
+            if self.is_lsq.val() {
+                // Rotate the history: x_1 comes back to the front after M multiplies.
+                self.opa.d.next = self.rext.val();
                 if self.jl.val() {
-                    self.state.d.next = VelState::Out;
-                } else {
-                    self.j.d.next = self.j.q.val() + self.one.val();
-                    self.jlr.d.next = self.j.q.val() == self.jprev.val();
-                    self.state.d.next = VelState::Op;
+                    // P goes to the multiplier; the accumulator restarts from 0 for
+                    // q(P R / 2^B).
+                    self.opa.d.next = self.pa.val();
+                    self.acc.d.next = self.zero64.val();
+                }
+                for i in 1..self.hist.len() {
+                    self.hist[i - 1].d.next = self.hist[i].q.val();
+                }
+                for i in self._hlast..self.hist.len() {
+                    self.hist[i].d.next = self.hist[0].q.val();
                 }
             }
-            VelState::Out => {
-                self.out_reg.d.next = self.ys.val();
-                self.valid_reg.d.next = true;
-                self.state.d.next = VelState::Idle;
+            self.mwait.d.next = self.zero.val();
+            self.sprod.d.next = true;
+        }
+        if self.sprod.q.val() {
+            // Prod: n + 1 clocks for the multiplier (its start clock zeroes x, then n
+            // digits); `mlast` marks the last (mwait = n).
+            self.mwait.d.next = (self.mwait.q.val() + self.one.val()) & self.wmask.val();
+            self.mlast.d.next = self.mwait.q.val() == self.wprev.val();
+            if self.mlast.q.val() {
+                self.sprod.d.next = false;
+                self.sacc.d.next = true;
             }
+        }
+        if self.sacc.q.val() {
+            // Acc
+            self.acc.d.next = (self.acc.q.val() + self.mul.p.val()) & self.accmask.val();
+            if self.is_track.val() {
+                self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
+                if self.jl.val() {
+                    self.acc.d.next = self.acc.q.val();
+                }
+            }
+            if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
+                self.k.d.next = self.k.q.val() + self.one.val();
+            }
+            if self.jl.val() {
+                self.sout.d.next = true;
+            } else {
+                self.j.d.next = (self.j.q.val() + self.one.val()) & self.jmask.val();
+                self.jlr.d.next = self.j.q.val() == self.jprev.val();
+                self.sop.d.next = true;
+            }
+        }
+        if self.sout.q.val() {
+            // Out
+            self.out_reg.d.next = self.ys.val();
+            self.valid_reg.d.next = true;
+            self.busy.d.next = false;
         }
         if self.rst.val() {
             self.init.d.next = false;
             self.pos.d.next = self.zero64.val();
+            self.padj.d.next = self.f2sign.val();
             self.cnt.d.next = self.zero.val();
             self.tickr.d.next = false;
-            self.state.d.next = VelState::Idle;
+            self.busy.d.next = false;
+            self.sop.d.next = false;
+            self.sprod.d.next = false;
+            self.sacc.d.next = false;
+            self.sout.d.next = false;
+            self.mlast.d.next = false;
             self.j.d.next = self.zero.val();
             self.jlr.d.next = self.jl0.val();
             self.primed.d.next = false;
