@@ -56,8 +56,9 @@ pub struct AbzEmulator {
     hold: DFF<Bit>,
     tm: DFF<Bits<32>>,
     c: DFF<Bits<32>>,
-    ctop: DFF<Bit>,
-    czero: DFF<Bit>,
+    /// c's addend on a step (E_w bits), registered from pend's sign and c's flags (c = E-1,
+    /// c = 0) as they are next clock: 1 or -1, or on a wrap -(E-1) or E-1.
+    cadd: DFF<Bits<32>>,
     ao: DFF<Bit>,
     bo: DFF<Bit>,
     zo: DFF<Bit>,
@@ -70,6 +71,18 @@ pub struct AbzEmulator {
     nonzero: Signal<Local, Bit>,
     step: Signal<Local, Bit>,
     apply: Signal<Local, Bit>,
+    /// c + cadd (E_w bits): c's next value on a step.
+    cstep: Signal<Local, Bits<32>>,
+    /// c = 0 and c = E-1 (as c >= E-1): the sign bits of 0 - c and c - (E-1) (E_w + 1
+    /// bits) clear, one carry chain each.
+    cisz: Signal<Local, Bit>,
+    cist: Signal<Local, Bit>,
+    /// pend < 0: pn's next value.
+    pneg: Signal<Local, Bit>,
+    /// pend's bits 31..1 are not all zero / are all one: the sign bits of 0 - (pend >> 1)
+    /// and (pend >> 1) + 1, one carry chain each.
+    phnz: Signal<Local, Bit>,
+    phones: Signal<Local, Bit>,
     /// Mask of the quadrant-count bits.
     qmask: Constant<Bits<32>>,
     /// Mask of the fine bits.
@@ -94,6 +107,8 @@ pub struct AbzEmulator {
     edges: Constant<Bits<32>>,
     /// E - 1.
     emax: Constant<Bits<32>>,
+    /// 2^E_w - (E - 1): the addend that wraps c from E - 1 to 0.
+    ewrap: Constant<Bits<32>>,
     /// E / 2.
     half: Constant<Bits<32>>,
     /// 2^32 - E/2: -E/2 as a 32-bit word.
@@ -106,14 +121,14 @@ pub struct AbzEmulator {
     sign: Constant<Bits<32>>,
     /// Mask of the count bits (t and c lie in 0..E-1): E_w = bits of E - 1.
     emask: Constant<Bits<32>>,
+    /// 2^E_w: the sign bit of a difference of two counts.
+    ebit: Constant<Bits<32>>,
     /// Mask of the divider's remainder words (R_w bits, two's complement).
     rmask: Constant<Bits<32>>,
     /// Sign bit of a remainder word, bit R_w - 1.
     rsign: Constant<Bits<32>>,
     /// Mask of the divider's bit counter (values 0..Wp-1).
     cntmask: Constant<Bits<32>>,
-    /// All ones: -1.
-    ones: Constant<Bits<32>>,
     /// One.
     one: Constant<Bits<32>>,
     /// Two.
@@ -128,7 +143,6 @@ impl AbzEmulator {
         let (a, b) = p.ratio();
         let qb = p.quadrant_bits();
         let e = p.edges();
-        let m32 = mask(32);
         let rm = mask(p.remainder_bits());
         Self {
             clk: Default::default(),
@@ -170,8 +184,7 @@ impl AbzEmulator {
             hold: Default::default(),
             tm: Default::default(),
             c: Default::default(),
-            ctop: Default::default(),
-            czero: Default::default(),
+            cadd: Default::default(),
             ao: Default::default(),
             bo: Default::default(),
             zo: Default::default(),
@@ -184,6 +197,12 @@ impl AbzEmulator {
             nonzero: Default::default(),
             step: Default::default(),
             apply: Default::default(),
+            cstep: Default::default(),
+            cisz: Default::default(),
+            cist: Default::default(),
+            pneg: Default::default(),
+            phnz: Default::default(),
+            phones: Default::default(),
             qmask: c32(mask(qb)),
             fmask: c32(mask(p.fine_bits())),
             qtop: c32(1 << (qb - 1)),
@@ -196,16 +215,17 @@ impl AbzEmulator {
             kab2: c32(a.wrapping_sub(2 * b) & rm),
             edges: c32(e),
             emax: c32(e - 1),
+            ewrap: c32(((1u64 << p.count_bits()) - (e - 1)) & mask(p.count_bits())),
             half: c32(e / 2),
             nhalf: c32((1u64 << 32) - e / 2),
             slast: c32(p.spacing() as u64 - 1),
             tmask: c32(mask(p.timer_bits())),
             sign: c32(1 << 31),
             emask: c32(mask(p.count_bits())),
+            ebit: c32(1 << p.count_bits()),
             rmask: c32(mask(p.remainder_bits())),
             rsign: c32(1 << (p.remainder_bits() - 1)),
             cntmask: c32(mask(32 - (p.position_bits() - 1).leading_zeros())),
-            ones: c32(m32),
             one: c32(1),
             two: c32(2),
             zero: c32(0),
@@ -218,8 +238,8 @@ impl Logic for AbzEmulator {
     fn update(&mut self) {
         dff_setup!(
             self, clk, have, qcap, fcap, busy, pbit, qsh, fsh, cnt, r, t, done, init, told, d, s1,
-            d2, fh, fl, s2, dd, incp, incd, pend, pnz, pn, p1, stepped, hold, tm, c, ctop, czero,
-            ao, bo, zo, warn
+            d2, fh, fl, s2, dd, incp, incd, pend, pnz, pn, p1, stepped, hold, tm, c, cadd, ao, bo,
+            zo, warn
         );
         // Capture: the newest sample waits for the divider.
         self.start.next = !self.busy.q.val() & self.have.q.val();
@@ -292,7 +312,6 @@ impl Logic for AbzEmulator {
                 self.s1.d.next = true;
             } else {
                 self.init.d.next = true;
-                self.c.d.next = self.t.q.val();
             }
         }
         self.s2.d.next = self.s1.q.val();
@@ -315,35 +334,42 @@ impl Logic for AbzEmulator {
             } else {
                 self.dd.d.next = self.d2.q.val();
             }
-            self.incp.d.next = true;
-        } else if self.apply.val() {
-            self.incp.d.next = false;
         }
+        // incp: set by S2, cleared when applied (one LUT of step's flags).
+        self.incp.d.next = self.s2.q.val() | (self.incp.q.val() & self.step.val());
         self.incd.d.next = self.apply.val();
         self.stepped.d.next = self.step.val();
+        // c's step: one adder, c + cadd, the addend a register (the wrap included), so the
+        // adder's sum meets only the load select.
+        self.cstep.next = (self.c.q.val() + self.cadd.q.val()) & self.emask.val();
         if self.step.val() {
             if !self.pn.q.val() {
                 self.pend.d.next = self.pend.q.val() - self.one.val();
-                if self.ctop.q.val() {
-                    self.c.d.next = self.zero.val();
-                } else {
-                    self.c.d.next = (self.c.q.val() + self.one.val()) & self.emask.val();
-                }
             } else {
                 self.pend.d.next = self.pend.q.val() + self.one.val();
-                if self.czero.q.val() {
-                    self.c.d.next = self.emax.val();
-                } else {
-                    self.c.d.next = (self.c.q.val() - self.one.val()) & self.emask.val();
-                }
             }
         } else if self.apply.val() {
             self.pend.d.next = self.pend.q.val() + self.dd.q.val();
         }
-        self.pnz.d.next = self.pend.q.val() != self.zero.val();
-        self.pn.d.next = (self.pend.q.val() & self.sign.val()).any();
+        // The first converted sample sets c = t. No step comes before it (pend stays 0 until
+        // a sample is folded, which needs init), so the two never meet: c's enable is
+        // load | step, and its value load ? t : c + cadd.
+        if self.done.q.val() & !self.init.q.val() {
+            self.c.d.next = self.t.q.val();
+        } else if self.step.val() {
+            self.c.d.next = self.cstep.val();
+        }
+        // pend's flags from two carry chains on bits 31..1 and bit 0: pend != 0, and
+        // pend = 1 or -1 (bits 31..1 all zero or all one, bit 0 set).
+        self.phnz.next =
+            ((self.zero.val() - (self.pend.q.val() >> self.one.val())) & self.sign.val()).any();
+        self.phones.next =
+            (((self.pend.q.val() >> self.one.val()) + self.one.val()) & self.sign.val()).any();
+        self.pnz.d.next = (self.pend.q.val() & self.one.val()).any() | self.phnz.val();
+        self.pneg.next = (self.pend.q.val() & self.sign.val()).any();
+        self.pn.d.next = self.pneg.val();
         self.p1.d.next =
-            (self.pend.q.val() == self.one.val()) | (self.pend.q.val() == self.ones.val());
+            (self.pend.q.val() & self.one.val()).any() & (!self.phnz.val() | self.phones.val());
         if self.step.val() {
             self.tm.d.next = self.slast.val();
             self.hold.d.next = true;
@@ -353,12 +379,25 @@ impl Logic for AbzEmulator {
                 self.hold.d.next = false;
             }
         }
-        self.ctop.d.next = self.c.q.val() == self.emax.val();
-        self.czero.d.next = self.c.q.val() == self.zero.val();
+        // c's next addend: +1 (pend >= 0) or -1, and on a wrap (c = E-1 going up, c = 0
+        // going down) the addend that lands on 0 or E-1. c = E-1 as c >= E-1 (c < E).
+        self.cisz.next = !((self.zero.val() - self.c.q.val()) & self.ebit.val()).any();
+        self.cist.next = !((self.c.q.val() - self.emax.val()) & self.ebit.val()).any();
+        if self.pneg.val() {
+            self.cadd.d.next = self.emask.val();
+            if self.cisz.val() {
+                self.cadd.d.next = self.emax.val();
+            }
+        } else {
+            self.cadd.d.next = self.one.val();
+            if self.cist.val() {
+                self.cadd.d.next = self.ewrap.val();
+            }
+        }
         self.ao.d.next =
             (self.c.q.val() & self.one.val()).any() ^ (self.c.q.val() & self.two.val()).any();
         self.bo.d.next = (self.c.q.val() & self.two.val()).any();
-        self.zo.d.next = self.init.q.val() & (self.c.q.val() == self.zero.val());
+        self.zo.d.next = self.init.q.val() & self.cisz.val();
         if self.apply.val() {
             if self.nonzero.val() {
                 self.warn.d.next = true;
@@ -397,8 +436,7 @@ impl Logic for AbzEmulator {
             self.hold.d.next = false;
             self.tm.d.next = self.zero.val();
             self.c.d.next = self.zero.val();
-            self.ctop.d.next = false;
-            self.czero.d.next = false;
+            self.cadd.d.next = self.one.val();
             self.ao.d.next = false;
             self.bo.d.next = false;
             self.zo.d.next = false;
