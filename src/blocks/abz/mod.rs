@@ -57,8 +57,11 @@
 //!   was added the flags still describe pend before it: a step then goes toward the previous
 //!   sample's count, which the position did reach, so the output follows the sampled path.
 //!   A sample's dd is added in a clock without a step (a step first delays it one clock).
-//! * c steps by +-1 modulo E (E need not be a power of two: registered flags c = E-1 and
-//!   c = 0 select the wrapped value). A and B come from c mod 4 (forward 00 -> 10 -> 11 -> 01:
+//! * c steps by +-1 modulo E (E need not be a power of two): c + cadd, one adder whose
+//!   addend is a register, 1 or -1 as pend's sign says, or on a wrap (c = E-1 going up,
+//!   c = 0 going down) the addend that lands on 0 or E-1; it is registered from the values
+//!   pend's sign and c's flags have next clock, so it describes the registers it is added
+//!   to. A and B come from c mod 4 (forward 00 -> 10 -> 11 -> 01:
 //!   A leads B), Z = (c = 0): one quarter A/B period, at position 0 of each turn (the
 //!   positions 0 ..= ceil(P/E) - 1). A, B and Z are registered from c in the same clock.
 //! * `warning` rises when a sample's counts are added while counts of the previous one are
@@ -78,6 +81,11 @@
 //!   take a constant chosen by a registered bit and end in a sign-bit select; the fold's
 //!   compares and its add are in separate stages; the emitter's step decision is one LUT of
 //!   registered flags in front of pend's adders (pend ± 1, pend + dd side by side).
+//! * c's adder feeds only the select of the first sample's load (a step never meets a load:
+//!   pend is 0 until a sample is folded, which needs the first one). The compares on c
+//!   (c = 0, c = E-1) and on pend (bits 31..1 all zero, all one) are the sign bits of one
+//!   subtraction each, carry chains from registers with at most one LUT after them, not
+//!   17- and 32-input LUT trees.
 pub mod hdl;
 pub mod model;
 

@@ -25,33 +25,20 @@
 //!   Op M: a = P, P := 0; Acc M: P += q(P R / 2^B).
 //! ```
 //! Timing: every register-to-register path holds one carry chain at most (no adder feeds
-//! another within a clock): the front end steps the bits above F+2 by a select of pos,
-//! pos + 2^(F+2) and pos - 2^(F+2); Delta is taken at the tick, U - X a clock later;
-//! Theta's one adder adds a register (`tx` or the multiplier's R); the tick and "last
-//! multiply" are registered; the multiplier's adder adds registers only.
+//! another within a clock), and at most one LUT after it: the front end takes the bits
+//! above F+2 from one adder, padj - in_p - 1, where padj = pos + 2^(F+1) is kept beside pos
+//! (no select of candidates after the chain); Delta is taken at the tick, U - X a clock
+//! later; Theta's one adder adds a register (`tx` or the multiplier's R); the tick, "last
+//! multiply" and "last multiplier clock" are registered; the multiplier's adder adds
+//! registers only. The schedule is one-hot flags, each next value one LUT of flags, and
+//! `j` and `mwait` have their own widths (bits(m - 1), bits(n)), so their compares are
+//! narrow.
 pub use super::layout::Layout;
 use super::parts::{VelCoefRom, VelMul};
 use super::{MethodConsts, VelocityParams};
 use crate::blocks::mask;
 use crate::error::Result;
 use rust_hdl::prelude::*;
-
-/// Where the update is in its schedule.
-#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
-pub enum VelState {
-    /// Waiting for a tick.
-    Idle,
-    /// Differences of this update into `d` (lsq: shift the history, clear P).
-    Prep,
-    /// Multiplier operands registered.
-    Op,
-    /// Multiplier running: n + 1 clocks (x cleared, then n Booth digits).
-    Prod,
-    /// Product accumulated.
-    Acc,
-    /// Output register loaded, strobe raised.
-    Out,
-}
 
 fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
@@ -87,45 +74,67 @@ pub struct Velocity {
     pub out_velocity: Signal<Out, Bits<64>>,
     /// One-clock strobe: `out_velocity` is new (once per update period).
     pub out_velocity_valid: Signal<Out, Bit>,
+    /// The single multiplier.
     mul: VelMul,
+    /// The coefficient ROM (address j, or k for kalman).
     rom: VelCoefRom,
+    /// A sample has loaded `pos`.
     init: DFF<Bit>,
+    /// Unwrapped position theta, Wp bits.
     pos: DFF<Bits<64>>,
     /// pos + 2^(F+1) modulo 2^Wp, kept beside pos: the front end's one adder reads it.
     padj: DFF<Bits<64>>,
+    /// The update divider's count, 0..D-1.
     cnt: DFF<Bits<32>>,
     /// The divider's tick, registered: high while `cnt` = D - 1.
     tickr: DFF<Bit>,
-    /// The schedule, one-hot (reset and power-up: all low, `Idle`): not `Idle`, and
-    /// `Op`, `Prod`, `Acc`, `Out` (`Prep` is `inprep`).
+    /// The schedule's states as flags, one-hot (reset and power-up: all low, Idle): not
+    /// Idle (waiting for a tick); `inprep` below is Prep (differences into `d`; lsq: shift
+    /// the history, clear P).
     busy: DFF<Bit>,
+    /// Op: multiplier operands registered, multiplier started.
     sop: DFF<Bit>,
+    /// Prod: multiplier running, n + 1 clocks (x cleared, then n Booth digits).
     sprod: DFF<Bit>,
+    /// Acc: product accumulated.
     sacc: DFF<Bit>,
+    /// Out: output register loaded, strobe raised.
     sout: DFF<Bit>,
     /// `mwait` = n in `Prod` (the multiplier's last clock), registered a clock ahead.
     mlast: DFF<Bit>,
+    /// The multiply of this update, 0..m-1 (bits(m - 1) bits).
     j: DFF<Bits<32>>,
     /// j = m - 1 (this is the last multiply), registered with j.
     jlr: DFF<Bit>,
+    /// The first update has run (the history holds positions).
     primed: DFF<Bit>,
+    /// This update is the first.
     first: DFF<Bit>,
+    /// theta at this update's tick.
     snap: DFF<Bits<64>>,
     /// diff_lpf/kalman: positions theta(k-1) (one); lsq: the M newest, oldest first.
     hist: Vec<DFF<Bits<64>>>,
+    /// The multiplier's next operand: Delta then U - X (diff_lpf/kalman), e (tracking).
     d: DFF<Bits<64>>,
+    /// Tracking: the loop's position Theta (Wp + S + G bits).
     theta: DFF<Bits<64>>,
+    /// The accumulator: X, W or P.
     acc: DFF<Bits<64>>,
+    /// Kalman: index of the gain in use (stops at the table's last).
     k: DFF<Bits<32>>,
     /// Tracking: Theta's addend in `Prep` (theta 2^(S+G) at the first update, else W).
     tx: DFF<Bits<64>>,
-    /// The state is `Prep`.
+    /// Prep (one-hot with the flags above).
     inprep: DFF<Bit>,
-    /// Clocks waited in `Prod` for the multiplier.
+    /// Clocks waited in `Prod` for the multiplier, 0..n (bits(n) bits).
     mwait: DFF<Bits<32>>,
+    /// The multiplier's operand a.
     opa: DFF<Bits<64>>,
+    /// `out_velocity`.
     out_reg: DFF<Bits<64>>,
+    /// `out_velocity_valid`.
     valid_reg: DFF<Bit>,
+    /// in_p's low F+2 bits.
     inp: Signal<Local, Bits<64>>,
     /// in_p's F+2 bits sign-extended to Wp bits.
     sinp: Signal<Local, Bits<64>>,
@@ -410,8 +419,8 @@ impl Logic for Velocity {
         if (self.yr.val() & self.accsign.val()).any() {
             self.ys.next = ((self.yr.val() >> self.g.val()) | self.yext.val()) & self.ymask.val();
         }
-        // The schedule (one `if` per state of `VelState`, the flags one-hot): each flag's
-        // next value is one LUT of flags, the tick, `jl` and `mlast`.
+        // The schedule (one `if` per state, the flags one-hot): each flag's next value is
+        // one LUT of flags, the tick, `jl` and `mlast`.
         self.sop.d.next = false;
         self.sacc.d.next = false;
         self.sout.d.next = false;
