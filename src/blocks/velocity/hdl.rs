@@ -126,6 +126,10 @@ pub struct Velocity {
     tx: DFF<Bits<64>>,
     /// Prep (one-hot with the flags above).
     inprep: DFF<Bit>,
+    /// Theta's addend select: `inprep`'s copy without the reset, so that the select of
+    /// Theta's 41-bit chain has no other load (it differs from `inprep` only in the clock
+    /// after a reset, when neither `Prep` nor `Acc` adds to Theta).
+    tsel: DFF<Bit>,
     /// Clocks waited in `Prod` for the multiplier, 0..n (bits(n) bits).
     mwait: DFF<Bits<32>>,
     /// The multiplier's operand a.
@@ -262,6 +266,7 @@ impl Velocity {
             k: Default::default(),
             tx: Default::default(),
             inprep: Default::default(),
+            tsel: Default::default(),
             mwait: Default::default(),
             opa: Default::default(),
             out_reg: Default::default(),
@@ -325,7 +330,8 @@ impl Logic for Velocity {
     fn update(&mut self) {
         dff_setup!(
             self, clk, init, pos, padj, cnt, tickr, busy, sop, sprod, sacc, sout, mlast, j, jlr,
-            primed, first, snap, d, theta, acc, k, tx, inprep, mwait, opa, out_reg, valid_reg
+            primed, first, snap, d, theta, acc, k, tx, inprep, tsel, mwait, opa, out_reg,
+            valid_reg
         );
         for i in 0..self.hist.len() {
             self.hist[i].clock.next = self.clk.val();
@@ -399,7 +405,7 @@ impl Logic for Velocity {
         // only: `tx` in `Prep`, the product in `Acc`.
         self.meas.next = (self.snap.q.val() << self.sg.val()) & self.twmask.val();
         self.tadd.next = self.mul.p.val();
-        if self.inprep.q.val() {
+        if self.tsel.q.val() {
             self.tadd.next = self.tx.q.val();
         }
         self.inprep.d.next = false;
@@ -453,6 +459,8 @@ impl Logic for Velocity {
                 }
             }
         }
+        // Before the reset below: tsel follows inprep's next value without it.
+        self.tsel.d.next = self.inprep.d.val();
         if self.inprep.q.val() {
             // Prep
             self.j.d.next = self.zero.val();
