@@ -56,8 +56,9 @@ pub struct AbzEmulator {
     hold: DFF<Bit>,
     tm: DFF<Bits<32>>,
     c: DFF<Bits<32>>,
-    /// c's addend on a step (E_w bits), registered from pend's sign and c's flags (c = E-1,
-    /// c = 0) as they are next clock: 1 or -1, or on a wrap -(E-1) or E-1.
+    /// c's addend on a step (E_w bits): 1 or -1, or on a wrap -(E-1) or E-1, registered
+    /// beside `pn` from the same pend sign and from c's flags (c = E-1, c = 0) of this
+    /// clock; steps are at least two clocks apart (spacing >= 2), so c has settled.
     cadd: DFF<Bits<32>>,
     ao: DFF<Bit>,
     bo: DFF<Bit>,
