@@ -155,8 +155,7 @@
 //! * Timing: a window that completes with the input sample presented before edge k gives
 //!   new b and g (both channels at once, `cal_update` high for one clock) after edge
 //!   k + 66: 1 (stage 1) + 1 (tracker/snapshot) + 1 (divider set-up) + 32 (sin) + 32 (cos)
-//!   - 1. Samples presented from edge k + 67 on use them (g enters stage 1 and travels
-//!   with the sample through the product trees).
+//!   - 1. Samples presented from edge k + 67 on use them.
 //! * Convergence: b and g come straight from the raw peaks (open loop), so the first
 //!   complete window after reset (at most one quadrant to the first boundary, then K
 //!   periods, then 66 clocks) already gives the final estimate; later windows track
