@@ -115,11 +115,12 @@ pub struct FitCal {
     /// `k_neg` one clock late.
     pub k_neg_d: Signal<Out, Bit>,
     slv: FitSolve,
-    /// Stage C's products as run-time shift-add trees (stages C1-C3): |e_s|² (carries the
-    /// valid bit and the restart flag), |e_c|² (carries the solver's start: valid and
-    /// snapshot), |e_s e_c| (carries the product's sign).
+    /// Stage C's products as run-time shift-add trees (stages C1-C3). |e_s|², carrying the
+    /// sample's valid bit (`v`) and restart flag (`neg`).
     tss: MulTree,
+    /// |e_c|², carrying the solver's start (valid and snapshot, `v`).
     tcc: MulTree,
+    /// |e_s e_c|, carrying the product's sign (`neg`).
     tsc: MulTree,
     /// The entries e_s, e_c through stages C1, C2, C3 (beside the trees).
     e1_s: DFF<Bits<32>>,
