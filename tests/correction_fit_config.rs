@@ -15,11 +15,13 @@ fn auto_is_the_fit_and_peak_the_tracker() {
     let f = c.fit().expect("fit");
     assert_eq!(f.min_samples(), 4096);
     assert!(c.auto().is_none() && c.has_phase());
-    // 3 + the phase stage's 2.
-    assert_eq!(c.latency_cycles(), 5);
+    // 3 + the phase stage's 2 + the run-time shift-add trees' 3.
+    assert!(c.shift_add() && c.run_time_codes());
+    assert_eq!(c.latency_cycles(), 8);
     let p = Loaded::parse(&with("mode = \"peak\""), "p.toml").expect("peak");
     assert!(p.derived.correction.auto().is_some() && p.derived.correction.fit().is_none());
-    assert_eq!(p.derived.correction.latency_cycles(), 3);
+    // 3 + the run-time shift-add trees' 3.
+    assert_eq!(p.derived.correction.latency_cycles(), 6);
 }
 
 /// The error names bad.toml and the line of `needle` (the column is the key's or the
@@ -45,11 +47,11 @@ fn min_samples_out_of_range_or_too_short_is_refused_at_the_key() {
         "min_samples = 16777217",
         &["correction.min_samples"],
     );
-    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 10 samples = 1020 clocks < 1030.
+    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 10 samples = 1020 clocks < 1033.
     refused(
         &with("mode = \"auto\"\nmin_samples = 10"),
         "min_samples = 10",
-        &["1030-clock solve", "at least 11 samples"],
+        &["1033-clock solve", "at least 11 samples"],
     );
     assert!(Loaded::parse(&with("mode = \"auto\"\nmin_samples = 11"), "ok.toml").is_ok());
     refused(

@@ -528,9 +528,10 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
             k * per / fs
         };
         return format!(
-            "correction                  auto: least-squares ellipse fit over whole periods (offset, gain and phase; cross code and one more clock)\n\
+            "correction                  auto: least-squares ellipse fit over whole periods (offset, gain and phase; cross code and two more clocks); products as run-time shift-add trees, no hard multiplier ({} more clocks)\n\
              auto fit window             at least {} periods and {} samples ({:.2} ms at the sample rate), then a {}-clock solve; 1st update after about {:.1} ms at 300 rpm, {:.1} ms at 3000 rpm\n\
              auto fit limits             works up to the decoder's {:.0} rpm unwrap limit (a two-quadrant step counts in the last direction); no update below {} LSB amplitude or with an offset outside the ADC range; a window longer than 2^24 samples is abandoned\n",
+            crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES,
             f.periods(),
             f.min_samples(),
             1e3 * f.min_samples() as f64 / fs,
@@ -564,8 +565,9 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
     let n_lsb = std::f64::consts::PI / (1.0 - lsb).acos();
     let rpm_lsb = 60.0 * fs / (n_lsb * ppr as f64);
     format!(
-        "correction                  peak: offset and gain from per-track peaks over whole periods (peak tracker); no phase correction\n\
+        "correction                  peak: offset and gain from per-track peaks over whole periods (peak tracker); no phase correction; products as run-time shift-add trees, no hard multiplier ({} more clocks)\n\
          peak-tracker limit          the sampled peaks are low by up to 1 - cos(pi / samples per period): within 1 LSB of 2^{} up to {:.0} rpm; {:.2} % at 3000 rpm, {:.2} % at the {:.0} rpm limit. Above that calibrate at low speed and copy the values into mode = \"static\" (which also takes phase_deg)\n",
+        crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES,
         c.adc_width() - 1,
         rpm_lsb,
         100.0 * deficit(3000.0),

@@ -7,23 +7,28 @@
 //! ```text
 //!           stage A (reg,        stage B1 (reg)            stage B2 (reg)        stage C (reg)
 //!            held per sample)
-//!  x ─►sext─► d  = x - b_ref ─┐                    ┌────────► entry d or e, |.|, ─► |e_s|²,
-//!            -d  = b_ref - x  ├─► q, step ─► net += s, N += 1, cmd (add/restart/    |e_c|²,
-//!  (both      e  = x - b_cur  │   (signs of  decision flags    snapshot); at a      |e_s e_c|
-//!  tracks)   -e  = b_cur - x ─┘   d, or e    (add / restart /  restart b_ref :=     (3 hard
-//!                                 while b_ref snapshot / use e) b_cur, net := 0,     16x16)
-//!                                 is loaded)   from registered   N := 1                │
-//!                                              compares of net, N                      │
-//!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit) ◄───────────────────────────┘
-//!           the closing sample's stage C starts FitSolve (if idle) on the sums (they hold
-//!           the window's samples by then) and the window's b_ref; the sums then restart
-//!           from the sample ─► b_cur, g, k (all at once)
+//!  x ─►sext─► d  = x - b_ref ─┐                    ┌────────► entry d or e, |.|, ─► |e_s|, |e_c|,
+//!            -d  = b_ref - x  ├─► q, step ─► net += s, N += 1, cmd (add/restart/    e_s, e_c,
+//!  (both      e  = x - b_cur  │   (signs of  decision flags    snapshot); at a      flags
+//!  tracks)   -e  = b_cur - x ─┘   d, or e    (add / restart /  restart b_ref :=        │
+//!                                 while b_ref snapshot / use e) b_cur, net := 0,        │
+//!                                 is loaded)   from registered   N := 1                 │
+//!                                              compares of net, N                       ▼
+//!  stages C1-C3 (reg): three run-time shift-add trees (multree.rs) for |e_s|², |e_c|²,
+//!           |e_s e_c|; e_s, e_c, valid, restart, start and the product's sign beside them
+//!  stage D (reg): the products (the trees' last sums), e sign-extended to 64 bits; the
+//!           closing sample's start (leaving C3) starts FitSolve (if idle) on the sums
+//!           (they hold the window's samples by then) and the window's b_ref
+//!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit); the sums then restart from
+//!           the sample; FitSolve ─► b_cur, g, k (all at once)
 //! ```
 //!
 //! # Widths and bit growth (A = 10..=16)
 //! * x, b in [-2^(A-1), 2^(A-1)): d = x - b in (-2^A, 2^A), 32-bit two's complement; |d| is
 //!   the select of d or -d (two subtractors side by side), at most 2^A - 1 <= 65535, the
-//!   unsigned 16-bit multiplier operand; products < 2^32 in 32-bit words.
+//!   unsigned 16-bit operand of a shift-add tree; products <= (2^16 - 1)^2 < 2^32 in 32-bit
+//!   words, exact (each tree level is a 32-bit sum of partial products of the same
+//!   product, [`super::multree`]).
 //! * N <= N_MAX = 2^24 (a longer window is abandoned, [`super::fit::N_MAX`]): |Σd| < 2^40,
 //!   Σd² and |Σd_s d_c| < 2^56, so the 64-bit sums never wrap; each is one adder (or a
 //!   subtractor beside it for a negative product, selected by the sign).
@@ -47,20 +52,32 @@
 //!   its predecessor triggers (the model does the same, [`super::fit`]). b_ref is loaded in
 //!   stage B2, while stage A already takes the next sample: that sample's quadrant comes
 //!   from the signs of e = x - b_cur (the new b_ref) and its entry is e (`fresh`).
-//! * The solve starts in the closing sample's stage C, three clocks after the sample (the
-//!   sums are complete: the window's last sample reached stage E two clocks before), so
-//!   [`super::fit_solve::UPDATE_LATENCY`] is unchanged by stage B2.
+//! * The products are run-time shift-add trees (three register levels, C1-C3, then the
+//!   product register of stage D: one LUT level and one carry chain per path, no hard
+//!   multiplier); the entries and flags of stage C travel beside them. The solve starts as
+//!   the closing sample leaves C3, [`FIT_STAGES`] = 6 clocks after the sample (the sums are
+//!   complete: the window's last sample, at least two clocks earlier, has reached stage E),
+//!   so [`super::fit_solve::UPDATE_LATENCY`] = [`super::fit_solve::SOLVE_CYCLES`] +
+//!   [`FIT_STAGES`]. The window's b_ref snapshot (`bs_*`, loaded in stage B2) cannot change
+//!   before the start: the next window needs at least two more samples.
 //! * A window that ends while the solver is still busy is dropped (the model has no such
 //!   case: the config requires `min_samples` x clocks per sample > [`super::fit_solve::SOLVE_CYCLES`]).
 //! * Reset (synchronous, active high): configured offsets and gains, k = 0, tracker waiting
 //!   for its first sample, solver idle.
 use super::fit::N_MAX;
 use super::fit_solve::{c64, FitSolve, SolveConsts};
+use super::multree::{MulTree, TREE_LEVELS};
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, fill, mask};
 use rust_hdl::prelude::*;
 
 mod update;
+
+/// Clocks from a sample at the fit's input to the solver's start when the sample closes a
+/// window: stages A, B1, B2 and the [`TREE_LEVELS`] levels of stage C's product trees
+/// (the solve starts as the closing sample leaves them, C3). [`super::fit_solve::UPDATE_LATENCY`]
+/// is [`super::fit_solve::SOLVE_CYCLES`] plus this.
+pub const FIT_STAGES: u32 = 3 + TREE_LEVELS;
 
 fn c2(v: u64) -> Constant<Bits<2>> {
     Constant::new(Bits::<2>::from(v & 3))
@@ -98,6 +115,20 @@ pub struct FitCal {
     /// `k_neg` one clock late.
     pub k_neg_d: Signal<Out, Bit>,
     slv: FitSolve,
+    /// Stage C's products as run-time shift-add trees (stages C1-C3). |e_s|², carrying the
+    /// sample's valid bit (`v`) and restart flag (`neg`).
+    tss: MulTree,
+    /// |e_c|², carrying the solver's start (valid and snapshot, `v`).
+    tcc: MulTree,
+    /// |e_s e_c|, carrying the product's sign (`neg`).
+    tsc: MulTree,
+    /// The entries e_s, e_c through stages C1, C2, C3 (beside the trees).
+    e1_s: DFF<Bits<32>>,
+    e2_s: DFF<Bits<32>>,
+    e3_s: DFF<Bits<32>>,
+    e1_c: DFF<Bits<32>>,
+    e2_c: DFF<Bits<32>>,
+    e3_c: DFF<Bits<32>>,
     kd_m: DFF<Bits<16>>,
     kd_n: DFF<Bit>,
     va: DFF<Bit>,
@@ -290,6 +321,15 @@ impl FitCal {
             k_mag_d: Default::default(),
             k_neg_d: Default::default(),
             slv: FitSolve::new(p, k.solve),
+            tss: MulTree::run_time(),
+            tcc: MulTree::run_time(),
+            tsc: MulTree::run_time(),
+            e1_s: Default::default(),
+            e2_s: Default::default(),
+            e3_s: Default::default(),
+            e1_c: Default::default(),
+            e2_c: Default::default(),
+            e3_c: Default::default(),
             kd_m: Default::default(),
             kd_n: Default::default(),
             va: Default::default(),

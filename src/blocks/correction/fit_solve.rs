@@ -75,7 +75,7 @@ pub const SOLVE_CYCLES: u32 = 1027;
 /// before rising edge j) to the new coefficients (on the outputs after edge j +
 /// UPDATE_LATENCY): three pipeline stages of the fit, then [`SOLVE_CYCLES`];
 /// `tests/correction_fit_rtl.rs` checks every update against it.
-pub const UPDATE_LATENCY: u32 = SOLVE_CYCLES + 3;
+pub const UPDATE_LATENCY: u32 = SOLVE_CYCLES + super::fit_hdl::FIT_STAGES;
 
 // The widths of the module doc assume windows of at most 2^24 samples.
 const _: () = assert!(N_MAX <= 1 << 24);

@@ -23,7 +23,8 @@ pub struct Correction {
     /// Raw cosine sample, A-bit two's complement in the low bits (upper bits ignored).
     pub in_cos: Signal<In, Bits<16>>,
     /// Strobe of the corrected sample (`latency_cycles()` clocks after `in_valid`: 3
-    /// without, 5 with phase correction, 3 more with shift-add products).
+    /// without, 5 with phase correction, 3 more with shift-add products, which auto and
+    /// peak modes always have).
     pub out_valid: Signal<Out, Bit>,
     /// Corrected sine, A-bit two's complement in the low bits (saturated).
     pub out_sin: Signal<Out, Bits<16>>,
@@ -45,7 +46,8 @@ pub struct Correction {
     fit: Vec<FitCal>,
     /// The phase correction of the cos track: one instance when k != 0, none otherwise.
     ph: Vec<PhaseCos>,
-    /// The sine product as a shift-add tree: one instance when `p.shift_add()`, else none.
+    /// The sine product as a shift-add tree: one instance when `p.shift_add()`, else none
+    /// (the constant gain code in static mode, the gain register g1 in auto and peak modes).
     trs: Vec<MulTree>,
     /// The cosine product as a shift-add tree: one instance when `p.shift_add()`.
     trc: Vec<MulTree>,
@@ -142,13 +144,6 @@ impl Correction {
         } else {
             vec![]
         };
-        let tree = |c: usize| {
-            if p.shift_add() {
-                vec![MulTree::new(p.gain()[c] as u64)]
-            } else {
-                vec![]
-            }
-        };
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -166,8 +161,8 @@ impl Correction {
             cal,
             fit,
             ph,
-            trs: tree(SIN),
-            trc: tree(COS),
+            trs: MulTree::of(p, p.gain()[SIN] as u64),
+            trc: MulTree::of(p, p.gain()[COS] as u64),
             v1: Default::default(),
             sg1_s: Default::default(),
             sg1_c: Default::default(),
@@ -315,13 +310,15 @@ impl Logic for Correction {
         // would only feed a carry chain whose carry is provably zero.
         self.p2_s.d.next = (self.m1_s.q.val() * self.g1_s.q.val()) >> self.hshift.val();
         self.p2_c.d.next = (self.m1_c.q.val() * self.g1_c.q.val()) >> self.hshift.val();
-        // Static mode with a code that is not a power of two: the product from a shift-add
-        // tree (three more register levels; its last sum is the product register's input),
-        // the sign and the valid bit delayed with it.
+        // Shift-add products (auto and peak modes, or static mode with a code that is not a
+        // power of two): the product from a tree of the gain (three more register levels; its
+        // last sum is the product register's input), the sign and the valid bit delayed
+        // with it.
         for i in 0..self.trs.len() {
             self.trs[i].clk.next = self.clk.val();
             self.trs[i].rst.next = self.rst.val();
             self.trs[i].a.next = self.m1_s.q.val();
+            self.trs[i].code.next = self.g1_s.q.val();
             self.trs[i].neg.next = self.sg1_s.q.val();
             self.trs[i].v.next = self.v1.q.val();
             self.v2.d.next = self.trs[i].out_v.val() & !self.rst.val();
@@ -333,6 +330,7 @@ impl Logic for Correction {
             self.trc[i].clk.next = self.clk.val();
             self.trc[i].rst.next = self.rst.val();
             self.trc[i].a.next = self.m1_c.q.val();
+            self.trc[i].code.next = self.g1_c.q.val();
             self.trc[i].neg.next = self.sg1_c.q.val();
             self.trc[i].v.next = self.v1.q.val();
             self.sg2_c.d.next = self.trc[i].out_neg.val();

@@ -31,9 +31,11 @@
 //!                                                           lo = S' < L_n
 //!  stage-3 sine result ──────────────────────────────────────► register ─────► register ► out_sin
 //!
-//!  Shift-add products (static mode, a code not 0 or a power of two): every `*` above becomes
-//!  |d| ─► MulTree(code): 3 register levels of pairwise sums ─► (x + y) into the product
-//!  register; sign and valid delayed 3 clocks beside it (multree.rs).
+//!  Shift-add products (modes auto and peak, and static mode with a code not 0 or a power of
+//!  two): every `*` above becomes
+//!  |d|, code ─► MulTree: 3 register levels of pairwise sums ─► (x + y) into the product
+//!  register; sign and valid delayed 3 clocks beside it (multree.rs; the code is the
+//!  constant, or in auto/peak mode the register g (|k| from the fit) beside |d|).
 //! ```
 //!
 //! # Datapath and bit growth (A = ADC width 10..=16, GF = gain fraction bits 8..=15)
@@ -51,17 +53,21 @@
 //!   `x' = sgn(d) * floor(|d| g / 2^GF + 1/2)`.
 //! * Saturation (never wraps): d >= 0: x' = min(r, 2^(A-1) - 1); d < 0:
 //!   x' = -min(r, 2^(A-1)).
-//! * Products: the hard multiplier `|d| * g` (a Verilog `*`), except in static mode when a
-//!   code (g_s, g_c, or |k| of the phase stage) is neither 0 nor a power of two
-//!   ([`CorrectionParams::shift_add`]): then each product is a pipelined shift-add tree of
-//!   the constant ([`multree`]: partial products (|d| << i) for the code's one bits, three
-//!   register levels of pairwise sums, the last sum into the product register), exact, one
-//!   carry chain per register stage, 3 more clocks. An inferred multiplier is a
-//!   combinational hard block: on the ECP5 proxy flow Yosys leaves MULT18X18D's own
-//!   registers unused, so a register -> multiplier -> register path alone stays near
-//!   141-147 MHz (docs/correction.md), below 1.3 x 133.33 MHz. 0 and powers of two are
-//!   wiring, so unity-gain designs keep the one-stage product, bit for bit.
-//! * Latency: 3 clocks (5 with phase correction, below; 3 more with shift-add products).
+//! * Products ([`CorrectionParams::shift_add`]): pipelined shift-add trees ([`multree`]:
+//!   partial products (|d| << i) AND bit i of the code, three register levels of pairwise
+//!   sums, the last sum into the product register), exact (the same 32-bit word as
+//!   `|d| * g`), one carry chain per register stage (with a run-time code one LUT level
+//!   ahead of the first), 3 more clocks. In modes `auto` and `peak` the codes are run-time
+//!   registers (g, and the fit's |k|), so every product is a run-time tree; in static mode
+//!   a constant code (g_s, g_c, or |k| of the phase stage) that is neither 0 nor a power
+//!   of two gets a constant tree (only its one bits cost adders). An inferred multiplier
+//!   would be a combinational hard block: on the ECP5 proxy flow Yosys leaves MULT18X18D's
+//!   own registers unused, so a register -> multiplier -> register path alone stays near
+//!   141-147 MHz (docs/correction.md), below 1.3 x 133.33 MHz. Static codes 0 and powers
+//!   of two are wiring, so static unity-gain designs keep the one-stage product
+//!   `|d| * g` (a Verilog `*` of a constant, a shift), bit for bit.
+//! * Latency: 3 clocks (5 with phase correction, below; 3 more with shift-add products,
+//!   so 6 in mode `peak` and 8 in mode `auto`).
 //!   A sample presented with
 //!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge
 //!   k + latency - 1 (k+2 at 3 clocks); one sample per clock (back-to-back) is fine
@@ -113,7 +119,8 @@
 //!   path is one carry chain between registers, or one LUT.
 //! * The sine track is not changed; its stage-3 result is delayed two registers. Latency:
 //!   5 clocks with phase correction ([`PHASE_EXTRA_CYCLES`]), 8 with shift-add products
-//!   (the static codes g_c / cos phi and k are rarely powers of two); the one place it is
+//!   (the static codes g_c / cos phi and k are rarely powers of two; mode `auto` always,
+//!   its codes being run-time); the one place it is
 //!   derived is [`CorrectionParams::latency_cycles`]. k = 0 (phase_deg = 0) builds no phase
 //!   stage at all: the block is the 3-clock block above, bit for bit.
 //! * Not with the automatic calibration: its peak-derived g_c would drop 1 / cos phi.
@@ -253,16 +260,18 @@ pub const SIN: usize = 0;
 pub const COS: usize = 1;
 
 /// Clock cycles from a sample at the input to the corrected sample at the output without
-/// phase correction (both modes). The latency of a given block is
-/// [`CorrectionParams::latency_cycles`], which adds the phase stage: use that.
+/// phase correction and with one-stage products (static mode, codes 0 or powers of two).
+/// The latency of a given block is [`CorrectionParams::latency_cycles`], which adds the
+/// phase stage and the shift-add trees: use that.
 pub const LATENCY_CYCLES: u32 = 3;
 
 /// Extra clocks of the phase correction (the signed sum of the two cos-track products gets
 /// its own stage, and the saturation is decided a stage ahead of its select; module doc).
 pub const PHASE_EXTRA_CYCLES: u32 = 2;
 
-/// Extra clocks of the shift-add products (static mode with a code that is not a power of
-/// two, [`CorrectionParams::shift_add`]): the tree's levels ahead of the product register.
+/// Extra clocks of the shift-add products (modes `auto` and `peak`, and static mode with a
+/// code that is not a power of two, [`CorrectionParams::shift_add`]): the tree's levels
+/// ahead of the product register.
 pub const SHIFT_ADD_EXTRA_CYCLES: u32 = multree::TREE_LEVELS;
 
 impl CorrectionParams {
@@ -426,19 +435,26 @@ impl CorrectionParams {
         self.cross != 0 || self.fit.is_some()
     }
 
-    /// The products are shift-add trees ([`multree::MulTree`]) instead of multipliers:
-    /// static mode (no calibration, so every code is a constant) with a gain code, or the
-    /// phase stage's |k|, that is neither 0 nor a power of two. Such a constant would map to
-    /// a hard multiplier, a combinational path that does not meet the timing rule on the
-    /// ECP5 proxy flow (docs/correction.md); 0 and powers of two are wiring, so unity-gain
-    /// designs keep the one-stage product.
+    /// The codes are run-time values: the calibration (modes `auto` and `peak`) loads the
+    /// gains and the fit also the cross code, so every product is a run-time tree
+    /// ([`multree::MulTree::run_time`]).
+    pub fn run_time_codes(&self) -> bool {
+        self.auto.is_some() || self.fit.is_some()
+    }
+
+    /// The products are shift-add trees ([`multree::MulTree`]) instead of multipliers: in
+    /// modes `auto` and `peak` (run-time codes, [`Self::run_time_codes`]), and in static
+    /// mode (every code a constant) with a gain code, or the phase stage's |k|, that is
+    /// neither 0 nor a power of two. A product with a run-time or such a constant code
+    /// would map to a hard multiplier, a combinational path that does not meet the timing
+    /// rule on the ECP5 proxy flow (docs/correction.md); 0 and powers of two are wiring, so
+    /// static unity-gain designs keep the one-stage product.
     pub fn shift_add(&self) -> bool {
         let not_shift = |c: u32| c != 0 && !c.is_power_of_two();
-        self.auto.is_none()
-            && self.fit.is_none()
-            && (not_shift(self.gain[SIN])
-                || not_shift(self.gain[COS])
-                || not_shift(self.cross.unsigned_abs()))
+        self.run_time_codes()
+            || not_shift(self.gain[SIN])
+            || not_shift(self.gain[COS])
+            || not_shift(self.cross.unsigned_abs())
     }
 
     /// Clock cycles from `in_valid` to `out_valid`: [`LATENCY_CYCLES`], plus

@@ -62,9 +62,11 @@ pub struct PhaseCos {
     pub out_sin: Signal<Out, Bits<16>>,
     /// Phase-corrected cosine, A-bit two's complement (saturated).
     pub out_cos: Signal<Out, Bits<16>>,
-    /// P_c as a shift-add tree (static mode with `p.shift_add()`), else none.
+    /// P_c as a shift-add tree when `p.shift_add()` (of the constant g_c in static mode, of
+    /// the `g_c` port in auto mode), else none.
     tpc: Vec<MulTree>,
-    /// Q as a shift-add tree (static mode with `p.shift_add()`), else none.
+    /// Q as a shift-add tree when `p.shift_add()` (of the constant |k|, or of `k_mag`),
+    /// else none.
     tq: Vec<MulTree>,
     pc2: DFF<Bits<32>>,
     q2: DFF<Bits<32>>,
@@ -144,13 +146,6 @@ impl PhaseCos {
         let s = p.phase_shift();
         let f = p.gain_frac_bits() - s;
         let (rnd, hi, lo) = constants(p);
-        let tree = |code: u64| {
-            if p.shift_add() {
-                vec![MulTree::new(code)]
-            } else {
-                vec![]
-            }
-        };
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -166,8 +161,8 @@ impl PhaseCos {
             out_valid: Default::default(),
             out_sin: Default::default(),
             out_cos: Default::default(),
-            tpc: tree(p.gain()[COS] as u64),
-            tq: tree(p.cross().unsigned_abs() as u64),
+            tpc: MulTree::of(p, p.gain()[COS] as u64),
+            tq: MulTree::of(p, p.cross().unsigned_abs() as u64),
             pc2: Default::default(),
             q2: Default::default(),
             na2: Default::default(),
@@ -236,12 +231,14 @@ impl Logic for PhaseCos {
         self.q2.d.next = (self.m_s.val() * self.km.val()) >> self.pshift.val();
         self.na2.d.next = self.neg_c.val();
         self.nb2.d.next = self.neg_s.val() ^ self.kn.val();
-        // Static mode with shift-add products: both from trees (three more register levels,
-        // their last sums the stage-2 registers' inputs), the negation bits delayed with them.
+        // Shift-add products (auto mode, or static mode with a code that is not a power of
+        // two): both from trees (three more register levels, their last sums the stage-2
+        // registers' inputs), the negation bits delayed with them.
         for i in 0..self.tpc.len() {
             self.tpc[i].clk.next = self.clk.val();
             self.tpc[i].rst.next = self.rst.val();
             self.tpc[i].a.next = self.m_c.val();
+            self.tpc[i].code.next = self.g_c.val();
             self.tpc[i].neg.next = self.neg_c.val();
             self.tpc[i].v.next = false;
             self.pc2.d.next =
@@ -252,6 +249,7 @@ impl Logic for PhaseCos {
             self.tq[i].clk.next = self.clk.val();
             self.tq[i].rst.next = self.rst.val();
             self.tq[i].a.next = self.m_s.val();
+            self.tq[i].code.next = self.km.val();
             self.tq[i].neg.next = self.neg_s.val() ^ self.kn.val();
             self.tq[i].v.next = false;
             self.q2.d.next = (self.tq[i].out_x.val() + self.tq[i].out_y.val()) >> self.pshift.val();

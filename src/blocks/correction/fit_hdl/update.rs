@@ -9,8 +9,8 @@ impl Logic for FitCal {
             self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, s1_s,
-            s1_c, s2_s, s2_c, ssc, kd_m, kd_n, h_p1, h_m1, h_p2, h_m2, nbge, nbmx, qb, sb, a_v,
-            a_rs, a_rb, a_snap, a_ue
+            s1_c, s2_s, s2_c, ssc, kd_m, kd_n, e1_s, e2_s, e3_s, e1_c, e2_c, e3_c, h_p1, h_m1,
+            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -202,25 +202,54 @@ impl Logic for FitCal {
         self.c_ec.d.next = self.dc.val();
         self.c_nsc.d.next =
             (self.ds.val() & self.sign32.val()).any() ^ (self.dc.val() & self.sign32.val()).any();
-        // Stage C: the three products of the entry.
-        self.d_v.d.next = self.c_v.q.val();
-        self.d_es.d.next = bit_cast::<64, 32>(self.c_es.q.val());
-        if (self.c_es.q.val() & self.sign32.val()).any() {
-            self.d_es.d.next = bit_cast::<64, 32>(self.c_es.q.val()) | self.sext64.val();
+        // Stage C: the three products of the entry, as shift-add trees of run-time codes
+        // (stages C1-C3, then the product registers of stage D take their last sums); the
+        // entry and the flags travel beside them.
+        self.tss.clk.next = self.clk.val();
+        self.tss.rst.next = self.rst.val();
+        self.tss.a.next = self.c_ms.q.val();
+        self.tss.code.next = self.c_ms.q.val();
+        self.tss.v.next = self.c_v.q.val();
+        self.tss.neg.next = self.c_rs.q.val();
+        self.tcc.clk.next = self.clk.val();
+        self.tcc.rst.next = self.rst.val();
+        self.tcc.a.next = self.c_mc.q.val();
+        self.tcc.code.next = self.c_mc.q.val();
+        self.tcc.v.next = self.c_v.q.val() & self.c_snap.q.val();
+        self.tcc.neg.next = false;
+        self.tsc.clk.next = self.clk.val();
+        self.tsc.rst.next = self.rst.val();
+        self.tsc.a.next = self.c_ms.q.val();
+        self.tsc.code.next = self.c_mc.q.val();
+        self.tsc.v.next = false;
+        self.tsc.neg.next = self.c_nsc.q.val();
+        self.e1_s.d.next = self.c_es.q.val();
+        self.e2_s.d.next = self.e1_s.q.val();
+        self.e3_s.d.next = self.e2_s.q.val();
+        self.e1_c.d.next = self.c_ec.q.val();
+        self.e2_c.d.next = self.e1_c.q.val();
+        self.e3_c.d.next = self.e2_c.q.val();
+        // Stage D: the products and the sign-extended entries registered.
+        self.d_v.d.next = self.tss.out_v.val();
+        self.d_es.d.next = bit_cast::<64, 32>(self.e3_s.q.val());
+        if (self.e3_s.q.val() & self.sign32.val()).any() {
+            self.d_es.d.next = bit_cast::<64, 32>(self.e3_s.q.val()) | self.sext64.val();
         }
-        self.d_ec.d.next = bit_cast::<64, 32>(self.c_ec.q.val());
-        if (self.c_ec.q.val() & self.sign32.val()).any() {
-            self.d_ec.d.next = bit_cast::<64, 32>(self.c_ec.q.val()) | self.sext64.val();
+        self.d_ec.d.next = bit_cast::<64, 32>(self.e3_c.q.val());
+        if (self.e3_c.q.val() & self.sign32.val()).any() {
+            self.d_ec.d.next = bit_cast::<64, 32>(self.e3_c.q.val()) | self.sext64.val();
         }
-        self.p_ss.d.next = self.c_ms.q.val() * self.c_ms.q.val();
-        self.p_cc.d.next = self.c_mc.q.val() * self.c_mc.q.val();
-        self.p_sc.d.next = self.c_ms.q.val() * self.c_mc.q.val();
-        self.d_nsc.d.next = self.c_nsc.q.val();
-        // The snapshot goes to an idle solver in the closing sample's stage C: the sums hold
-        // the window's last sample by then (its stage E was at least two clocks earlier).
-        self.slv.start.next = self.c_v.q.val() & self.c_snap.q.val() & !self.slv.busy.val();
-        // Stage E: the sums (restart: from zero, one clock after the command's c_rs).
-        self.d_rs.d.next = self.c_rs.q.val();
+        self.p_ss.d.next = self.tss.out_x.val() + self.tss.out_y.val();
+        self.p_cc.d.next = self.tcc.out_x.val() + self.tcc.out_y.val();
+        self.p_sc.d.next = self.tsc.out_x.val() + self.tsc.out_y.val();
+        self.d_nsc.d.next = self.tsc.out_neg.val();
+        // The snapshot goes to an idle solver as the closing sample leaves the trees (C3):
+        // the sums hold the window's last sample by then (its stage E was at least two
+        // clocks earlier).
+        self.slv.start.next = self.tcc.out_v.val() & !self.slv.busy.val();
+        // Stage E: the sums (restart: from zero, one clock after the restart flag c_rs
+        // leaves the trees).
+        self.d_rs.d.next = self.tss.out_neg.val();
         self.z1_s.next = self.s1_s.q.val();
         self.z1_c.next = self.s1_c.q.val();
         self.z2_s.next = self.s2_s.q.val();
