@@ -356,6 +356,10 @@ pub struct FitSolve {
     f_qd: DFF<Bit>,
     /// The run's last B clock (the last step's bit; a division's rounding operands).
     f_last: DFF<Bit>,
+    /// Set-up state: `it` loads `itn` in the next clock (B_0).
+    f_ld: DFF<Bit>,
+    /// The step count of the operation being set up (32, 64 or 80).
+    itn: DFF<Bits<8>>,
     /// {opa, 1}: the chain's first operand, written in a B clock.
     oa: DFF<Bits<53>>,
     /// {opb, cin}: its second operand and carry in.
@@ -575,6 +579,8 @@ impl FitSolve {
             f_qx: Default::default(),
             f_qd: Default::default(),
             f_last: Default::default(),
+            f_ld: Default::default(),
+            itn: Default::default(),
             oa: Default::default(),
             ob: Default::default(),
             xs: Default::default(),

@@ -10,7 +10,7 @@ impl Logic for FitSolve {
             a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos,
             amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs, r_gc,
             r_km, r_kn, r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last, xs,
-            ds, clr_r, oa, ob, pm, nd, xr, rz, req, t30, scl, ngf, lo_s, lo_c, oor, rxs, rds, uxr
+            ds, clr_r, itn, f_ld, oa, ob, pm, nd, xr, rz, req, t30, scl, ngf, lo_s, lo_c, oor, rxs, rds, uxr
         );
         self.nstate.next = self.state.q.val();
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
@@ -99,6 +99,7 @@ impl Logic for FitSolve {
         self.f_qx.d.next = false;
         self.f_qd.d.next = false;
         self.f_last.d.next = false;
+        self.f_ld.d.next = false;
         self.xs.d.next = XSel::Hold;
         self.ds.d.next = DSel::Hold;
         self.clr_r.d.next = false;
@@ -132,7 +133,8 @@ impl Logic for FitSolve {
                 }
             }
             FitState::Ms => {
-                self.it.d.next = self.i64c.val();
+                self.itn.d.next = self.i64c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.n1_s.q.val();
                 self.ret.d.next = FitState::Mc;
@@ -143,7 +145,8 @@ impl Logic for FitSolve {
             }
             FitState::Mc => {
                 self.m_s.d.next = self.u_mag.q.val();
-                self.it.d.next = self.i64c.val();
+                self.itn.d.next = self.i64c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.n1_c.q.val();
                 self.ret.d.next = FitState::Vs;
@@ -154,7 +157,8 @@ impl Logic for FitSolve {
             }
             FitState::Vs => {
                 self.m_c.d.next = self.u_mag.q.val();
-                self.it.d.next = self.i80c.val();
+                self.itn.d.next = self.i80c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Vc;
@@ -165,7 +169,8 @@ impl Logic for FitSolve {
             }
             FitState::Vc => {
                 self.v_s.d.next = self.u_x.q.val();
-                self.it.d.next = self.i80c.val();
+                self.itn.d.next = self.i80c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Cq;
@@ -176,7 +181,8 @@ impl Logic for FitSolve {
             }
             FitState::Cq => {
                 self.v_c.d.next = self.u_x.q.val();
-                self.it.d.next = self.i80c.val();
+                self.itn.d.next = self.i80c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = false;
                 self.u_neg.d.next = self.nsc.q.val();
                 self.ret.d.next = FitState::M1;
@@ -187,7 +193,8 @@ impl Logic for FitSolve {
             }
             FitState::M1 => {
                 self.cc.d.next = self.u_x.q.val();
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::M2;
                 self.rxs.d.next = XSel::Mc32;
                 self.rds.d.next = DSel::Mc;
@@ -196,7 +203,8 @@ impl Logic for FitSolve {
             }
             FitState::M2 => {
                 self.v_s.d.next = self.v_s.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::M3;
                 self.rxs.d.next = XSel::Ms32;
                 self.rds.d.next = DSel::Mc;
@@ -205,7 +213,8 @@ impl Logic for FitSolve {
             }
             FitState::M3 => {
                 self.v_c.d.next = self.v_c.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::Cv;
                 self.rxs.d.next = XSel::Hold;
                 self.rds.d.next = DSel::Hold;
@@ -228,7 +237,8 @@ impl Logic for FitSolve {
                     self.cmag.d.next = self.zero64.val() - self.cc.q.val();
                     self.cpos.d.next = false;
                 }
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::SqC;
                 self.rxs.d.next = XSel::Vc2;
                 self.rds.d.next = DSel::One;
@@ -237,7 +247,8 @@ impl Logic for FitSolve {
             }
             FitState::SqC => {
                 self.amp_s.d.next = bit_cast::<64, 52>(self.u_d.q.val() >> self.s3.val());
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::Chk;
                 self.rxs.d.next = XSel::Amps32;
                 self.rds.d.next = DSel::Uq;
@@ -246,7 +257,8 @@ impl Logic for FitSolve {
             }
             FitState::Chk => {
                 self.amp_c.d.next = bit_cast::<64, 52>(self.u_d.q.val() >> self.s3.val());
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::Sn;
                 self.rxs.d.next = XSel::Cmag16;
                 self.rds.d.next = DSel::Ur;
@@ -254,7 +266,8 @@ impl Logic for FitSolve {
                 self.f_mul.d.next = true;
             }
             FitState::Sn => {
-                self.it.d.next = self.i64c.val();
+                self.itn.d.next = self.i64c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.cpos.q.val();
                 self.ret.d.next = FitState::Sn2;
@@ -272,7 +285,8 @@ impl Logic for FitSolve {
             FitState::Sn2 => {
                 self.smag.d.next = self.scl.q.val();
                 self.sneg.d.next = self.u_neg.q.val();
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::OffA;
                 self.rxs.d.next = XSel::Hold;
                 self.rds.d.next = DSel::Hold;
@@ -290,7 +304,8 @@ impl Logic for FitSolve {
                 self.clr_r.d.next = true;
             }
             FitState::Cs => {
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::OffB;
                 self.rxs.d.next = XSel::Hold;
                 self.rds.d.next = DSel::Hold;
@@ -313,7 +328,8 @@ impl Logic for FitSolve {
                 self.clr_r.d.next = true;
             }
             FitState::OffC => {
-                self.it.d.next = self.i64c.val();
+                self.itn.d.next = self.i64c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Q1;
@@ -324,7 +340,8 @@ impl Logic for FitSolve {
             }
             FitState::Q1 => {
                 self.ng_s.d.next = self.ngf.q.val();
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::Gc;
                 self.rxs.d.next = XSel::Tgc;
                 self.rds.d.next = DSel::Ur;
@@ -338,7 +355,8 @@ impl Logic for FitSolve {
                 }
             }
             FitState::Gc => {
-                self.it.d.next = self.i64c.val();
+                self.itn.d.next = self.i64c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = false;
                 self.ret.d.next = FitState::Q2;
@@ -349,7 +367,8 @@ impl Logic for FitSolve {
             }
             FitState::Q2 => {
                 self.ng_c.d.next = self.ngf.q.val();
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::Ts;
                 self.rxs.d.next = XSel::Tamp32;
                 self.rds.d.next = DSel::Smag;
@@ -358,7 +377,8 @@ impl Logic for FitSolve {
             }
             FitState::Ts => {
                 self.q2.d.next = bit_cast::<64, 52>(self.u_r.q.val());
-                self.it.d.next = self.i32c.val();
+                self.itn.d.next = self.i32c.val();
+                self.f_ld.d.next = true;
                 self.ret.d.next = FitState::Kd;
                 self.rxs.d.next = XSel::Urk;
                 self.rds.d.next = DSel::Q2;
@@ -366,7 +386,8 @@ impl Logic for FitSolve {
                 self.f_mul.d.next = true;
             }
             FitState::Kd => {
-                self.it.d.next = self.i64c.val();
+                self.itn.d.next = self.i64c.val();
+                self.f_ld.d.next = true;
                 self.u_rnd.d.next = true;
                 self.u_neg.d.next = self.sneg.q.val();
                 self.ret.d.next = FitState::Load;
@@ -386,35 +407,7 @@ impl Logic for FitSolve {
                 self.nstate.next = FitState::Idle;
             }
             FitState::Run => {
-                // B and A clocks alternate from a B clock (B_0, the operands of the first
-                // step) to a B clock (the last step's result bit); `it` counts the A clocks.
-                self.f_div.d.next = self.f_div.q.val();
-                self.f_sq.d.next = self.f_sq.q.val();
-                self.f_mul.d.next = self.f_mul.q.val();
-                if self.f_add.q.val() {
-                    self.it.d.next = self.it.q.val() - self.one8.val();
-                    self.f_qx.d.next = self.f_div.q.val();
-                    self.f_qd.d.next = self.f_sq.q.val();
-                    self.f_last.d.next = self.it.q.val() == self.one8.val();
-                } else if self.f_last.q.val() {
-                    self.f_div.d.next = false;
-                    self.f_sq.d.next = false;
-                    self.f_mul.d.next = false;
-                    if self.f_div.q.val() {
-                        // The operands just written are those of the rounding sum.
-                        self.nstate.next = FitState::DivAdj;
-                        self.f_add.d.next = self.u_rnd.q.val();
-                    } else {
-                        self.nstate.next = self.ret.q.val();
-                        self.xs.d.next = self.rxs.q.val();
-                        self.ds.d.next = self.rds.q.val();
-                        self.clr_r.d.next = true;
-                    }
-                } else {
-                    self.f_add.d.next = true;
-                    self.f_sh1.d.next = !self.f_sq.q.val();
-                    self.f_sh2.d.next = self.f_sq.q.val();
-                }
+                // The steps' flags and counter below (no state decode).
             }
             FitState::DivAdj => {
                 // A rounding division adds 2 u_r -+ u_d in this clock (2 r >= d is its sign);
@@ -448,6 +441,41 @@ impl Logic for FitSolve {
                 self.xs.d.next = self.rxs.q.val();
                 self.ds.d.next = self.rds.q.val();
                 self.clr_r.d.next = true;
+            }
+        }
+        // Run: B and A clocks alternate from a B clock (B_0, the operands of the first step;
+        // `it` loads the step count) to a B clock (the last step's result bit); `it` counts
+        // the A clocks. Decoded from the mode flags, which are set only in Run.
+        if self.f_ld.q.val() {
+            self.it.d.next = self.itn.q.val();
+        }
+        if self.f_div.q.val() | self.f_sq.q.val() | self.f_mul.q.val() {
+            self.f_div.d.next = self.f_div.q.val();
+            self.f_sq.d.next = self.f_sq.q.val();
+            self.f_mul.d.next = self.f_mul.q.val();
+            if self.f_add.q.val() {
+                self.it.d.next = self.it.q.val() - self.one8.val();
+                self.f_qx.d.next = self.f_div.q.val();
+                self.f_qd.d.next = self.f_sq.q.val();
+                self.f_last.d.next = self.it.q.val() == self.one8.val();
+            } else if self.f_last.q.val() {
+                self.f_div.d.next = false;
+                self.f_sq.d.next = false;
+                self.f_mul.d.next = false;
+                if self.f_div.q.val() {
+                    // The operands just written are those of the rounding sum.
+                    self.nstate.next = FitState::DivAdj;
+                    self.f_add.d.next = self.u_rnd.q.val();
+                } else {
+                    self.nstate.next = self.ret.q.val();
+                    self.xs.d.next = self.rxs.q.val();
+                    self.ds.d.next = self.rds.q.val();
+                    self.clr_r.d.next = true;
+                }
+            } else {
+                self.f_add.d.next = true;
+                self.f_sh1.d.next = !self.f_sq.q.val();
+                self.f_sh2.d.next = self.f_sq.q.val();
             }
         }
         if self.rst.val() {
