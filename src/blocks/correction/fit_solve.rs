@@ -6,7 +6,7 @@
 //! ```text
 //!  start ─► snapshot N, |Σd| (+sign), Σd², |Σd_s d_c| (+sign), b_ref
 //!   │
-//!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, u_q, it):
+//!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, it):
 //!  m_s,m_c = rdiv(|Σd| 2^8, N)      DIV 64 steps   V = floor(Σd² 2^16 / N)  DIV 80 steps
 //!  Cq = floor(Σsc 2^16 / N)         DIV 80 steps   V -= m², C = Cq - m_s m_c  MUL 32 steps
 //!  Amp = isqrt(2V)                  SQRT 32 steps  Amp < min 2^8 (checked after Amp_s Amp_c) ► Idle
@@ -14,24 +14,33 @@
 //!  b = b_ref + rdiv(m, 2^8)         add, out of range (checked after g_s's DIV) ► Idle
 //!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
 //!
-//!  shared adder, one carry chain: sum = tt + pa when u_r < 0 (or the multiplier bit is one),
-//!  else tt - ma = tt + !ma + 1; tt, pa, ma from registers (flags f_div / f_sq / f_mul); no
-//!  mux follows the chain
+//!  shared adder, one 53-bit carry chain, each step over two clocks:
+//!    B clock: oa = {opa, 1}, ob = {opb, cin}: opa = 2 u_r (+ msb(u_x)) or 4 u_r + top2(u_x);
+//!             opb = up ? u_d : !u_d (!0 in a MUL), cin = !up, up = u_r < 0 (MUL: msb(u_x));
+//!             one LUT a bit from registers (u_r, u_x, u_d, flags); the previous step's
+//!             bit (!sign of u_r) into u_x bit 0 (DIV) or into u_d (SQRT)
+//!    A clock: u_r = (oa + ob) >> 1 (the chain and nothing else); u_x <<= 1 (2 in a SQRT)
+//!    ┌──────────┐  B   ┌─────────┐  A   ┌────────────┐
+//!    │u_r u_x u_d├─LUT─►│ oa  ob  ├─+───►│ u_r (52 b) │── sign ──► next B
+//!    └──────────┘      └─────────┘      └────────────┘
 //!  DIV (non-restoring, dividend and quotient share u_x):  SQRT (non-restoring, 2 bits a step):
 //!    t = 2 u_r + msb(u_x)                                   t = 4 u_r + top2(u_x)
-//!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4u_q+3) : t - (4u_q+1)
-//!    u_x = 2 u_x + (u_r >= 0)                               u_q = 2 u_q + (u_r >= 0)
+//!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4q+3) : t - (4q+1)
+//!    u_x = 2 u_x + (u_r >= 0)                               q = 2 q + (u_r >= 0); u_d = 8 q + 1
 //!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
 //!  when u_r < 0, zero when u_r = nd = -u_d, a register)
-//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0;
-//!  u_mag = u_x + adj and u_nmag = !u_x + !adj = -(u_x + adj) side by side; u_x = u_mag / u_nmag
+//!  then: adj = round ? 2 r >= u_d (sign of the rounding sum 2 u_r -+ u_d, one more A clock)
+//!  : neg & r != 0 (registered zero tests rz, req); u_mag = u_x + adj and
+//!  u_nmag = !u_x + !adj = -(u_x + adj) side by side (adj the carry in); u_x = u_mag / u_nmag
 //!  MUL (MSB first, multiplier a < 2^32 in the top half of u_x, 32 steps):
 //!    u_r = 2 u_r + (msb(u_x) ? u_d : 0); u_x <<= 1
 //!
 //!  wide loads: u_x and u_d take one of their sources by a registered select (xs, ds) that
 //!  the state before sets (a return to `ret` takes the select stored with it); compares and
-//!  negations the states need (clamps, amplitude and offset checks, 2^30 - S², -u_d) are
-//!  free-running registers, read a state after their inputs settle
+//!  negations the states need (clamps, amplitude and offset checks, 2^30 - S², -u_d,
+//!  ±m_s m_c, the remainder's zero tests) are free-running registers, read a state after
+//!  their inputs settle; the run's flags and `it` follow the registered mode flags, not
+//!  the state
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -42,18 +51,22 @@
 //!   floor(Σd² 2^16 / N) < 2^(2A+16) <= 2^48 — exactly the 16 zero bits the dividend needs.
 //! * Remainders are below the divisor; the largest divisor is Amp_s Amp_c < 2^49
 //!   (Amp = isqrt(2V), V <= 2^(2A-2+16) because a variable in a range of width 2^A has a
-//!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word; the
-//!   non-restoring remainder lies in [-u_d, u_d), so every sum of the shared adder is below
-//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50): the 64-bit
-//!   sums never wrap.
+//!   variance of at most 2^(2A-2)), so |2 u_r + 1| < 2^50; the non-restoring remainder
+//!   lies in [-u_d, u_d), so every sum of the shared adder is below 2^51 in magnitude (the
+//!   square root's below 2^36, the products below 2^50): u_r, u_d and the chain's operands
+//!   are 52-bit two's complement words (the chain is 53 bits: bit 0 carries cin in) and
+//!   never wrap. Every value u_d loads (N, m, Amp, |S|, Cc, Amp_s Cc, a product, 8 q + 1
+//!   < 2^36) is below 2^50, and every u_r another register reads (a product) is
+//!   non-negative, so the 52-bit words are zero-extended to 64 bits.
 //! * |C| <= sqrt(V_s V_c) < 2^(2A+14) <= 2^46, so |C| 2^16 < 2^62; T 2^(GF+23) < 2^53;
-//!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits.
+//!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits (u_x stays 64 bits).
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
 //!   all below 2^32 (the 32 steps), products below 2^50.
 //! * Each state writes its registers through at most one adder or compare (the timing rule
 //!   of docs/correction.md): abs, add, round and negate are separate states or free-running
 //!   registers.
-//! * u_q (the root) has 32 bits: 32 steps, one bit each; `it` counts at most 80 steps: 8 bits.
+//! * The root has 32 bits (32 steps, one bit each; in u_d as 8 q + 1 while it grows);
+//!   `it` counts at most 80 steps: 8 bits.
 //!
 //! # Timing
 //! [`SOLVE_CYCLES`] clocks from `start` to `done` when the update is accepted (fewer when
@@ -71,10 +84,8 @@ use rust_hdl::prelude::*;
 /// sign states: 6 divisions of 64 steps (1 + 129 + 4 = 134 clocks), 3 of 80 steps (166),
 /// 8 multiplications and 3 square roots of 32 steps (1 + 65 = 66) and 4 single states:
 /// 804 + 498 + 726 + 4.
-pub const SOLVE_CYCLES: u32 = 6 * (1 + (2 * 64 + 1) + 4)
-    + 3 * (1 + (2 * 80 + 1) + 4)
-    + 11 * (1 + (2 * 32 + 1))
-    + 4;
+pub const SOLVE_CYCLES: u32 =
+    6 * (1 + (2 * 64 + 1) + 4) + 3 * (1 + (2 * 80 + 1) + 4) + 11 * (1 + (2 * 32 + 1)) + 4;
 
 /// Clocks from a window's first sample after its closing boundary (the sample presented
 /// before rising edge j) to the new coefficients (on the outputs after edge j +
@@ -468,9 +479,7 @@ pub struct FitSolve {
     s16: Constant<Bits<32>>,
     s62: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
-    three64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
-    zero32: Constant<Bits<32>>,
     zero16: Constant<Bits<16>>,
     /// Configured (reset) offsets and gains.
     b0_s: Constant<Bits<32>>,
@@ -643,9 +652,7 @@ impl FitSolve {
             s16: c32(16),
             s62: c32(62),
             one64: c64(1),
-            three64: c64(3),
             zero64: c64(0),
-            zero32: c32(0),
             zero16: c16(0),
             b0_s: c32(sext(p.offset()[SIN])),
             b0_c: c32(sext(p.offset()[COS])),

@@ -8,9 +8,10 @@ impl Logic for FitSolve {
         dff_setup!(
             self, clk, state, ret, u_x, u_d, u_r, u_mag, u_nmag, u_neg, u_rnd, u_adj, it, sn, a1_s,
             a1_c, n1_s, n1_c, a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos,
-            amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs, r_gc,
-            r_km, r_kn, r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last, xs,
-            ds, clr_r, itn, f_ld, oa, ob, pm, nd, xr, rz, req, t30, scl, ngf, lo_s, lo_c, oor, rxs, rds, uxr
+            amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs,
+            r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last,
+            xs, ds, clr_r, itn, f_ld, oa, ob, pm, nd, xr, rz, req, t30, scl, ngf, lo_s, lo_c, oor,
+            rxs, rds, uxr
         );
         self.nstate.next = self.state.q.val();
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
@@ -51,10 +52,12 @@ impl Logic for FitSolve {
                 self.opb.next = self.opb.val() | self.b2.val();
             }
         }
-        self.oa.d.next = (bit_cast::<53, 52>(self.opa.val()) << self.one32.val()) | self.one53.val();
+        self.oa.d.next =
+            (bit_cast::<53, 52>(self.opa.val()) << self.one32.val()) | self.one53.val();
         self.ob.d.next = bit_cast::<53, 52>(self.opb.val()) << self.one32.val();
         if !self.up.val() {
-            self.ob.d.next = (bit_cast::<53, 52>(self.opb.val()) << self.one32.val()) | self.one53.val();
+            self.ob.d.next =
+                (bit_cast::<53, 52>(self.opb.val()) << self.one32.val()) | self.one53.val();
         }
         self.adjw.next = self.zero64.val();
         self.nadjw.next = self.one64.val();
@@ -673,7 +676,8 @@ impl Logic for FitSolve {
         // In a square root u_d is the trial 8 q + 1: the B clock after an A clock shifts the
         // new root bit in at bit 3 (the old bits 0..2 are 001, one bit up 010).
         if self.f_qd.q.val() {
-            self.u_d.d.next = ((self.u_d.q.val() << self.one32.val()) & self.nb1.val()) | self.one52.val();
+            self.u_d.d.next =
+                ((self.u_d.q.val() << self.one32.val()) & self.nb1.val()) | self.one52.val();
             if !self.rneg.val() {
                 self.u_d.d.next =
                     ((self.u_d.q.val() << self.one32.val()) & self.nb1.val()) | self.nine52.val();
@@ -685,7 +689,8 @@ impl Logic for FitSolve {
             self.u_r.d.next = self.zero52.val();
         }
         if self.f_add.q.val() {
-            self.u_r.d.next = bit_cast::<52, 53>((self.oa.q.val() + self.ob.q.val()) >> self.one32.val());
+            self.u_r.d.next =
+                bit_cast::<52, 53>((self.oa.q.val() + self.ob.q.val()) >> self.one32.val());
         }
         self.busy.next = !(self.state.q.val() == FitState::Idle);
         self.done.next = self.r_done.q.val();
