@@ -42,9 +42,9 @@ struct Design {
 }
 
 /// Floor for the auto-correction top: 0.7 x. The ellipse fit does not meet even the
-/// configured clock yet (119.29 MHz at seed 1 against 133.33 MHz, was 96.09 MHz two
+/// configured clock yet (116.63 MHz at seed 1 against 133.33 MHz, was 96.09 MHz three
 /// rounds ago; docs/correction.md); the floor only catches a further regression of its
-/// routing-bound solver recurrence.
+/// fit tracker and solver selects.
 const AUTO_FLOOR: f64 = 0.7;
 
 /// The default config with one optional block switched on: (label, required margin, config
