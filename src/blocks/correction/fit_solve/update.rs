@@ -481,20 +481,14 @@ impl Logic for FitSolve {
                 self.f_sh2.d.next = self.f_sq.q.val();
             }
         }
+        // Reset: Idle, and the mode flags cleared (the run's flags follow them). The other
+        // flags and selects act for one more clock on working registers that every solve
+        // loads or clears before it reads them.
         if self.rst.val() {
             self.nstate.next = FitState::Idle;
             self.f_div.d.next = false;
             self.f_sq.d.next = false;
             self.f_mul.d.next = false;
-            self.f_add.d.next = false;
-            self.f_sh1.d.next = false;
-            self.f_sh2.d.next = false;
-            self.f_qx.d.next = false;
-            self.f_qd.d.next = false;
-            self.f_last.d.next = false;
-            self.xs.d.next = XSel::Hold;
-            self.ds.d.next = DSel::Hold;
-            self.clr_r.d.next = false;
             self.r_os.d.next = self.b0_s.val();
             self.r_oc.d.next = self.b0_c.val();
             self.r_gs.d.next = self.g0_s.val();
