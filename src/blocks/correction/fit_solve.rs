@@ -383,9 +383,15 @@ pub struct FitSolve {
     clr_r: DFF<Bit>,
     /// The selects of the state `ret` names, stored with it.
     rxs: DFF<XSel>,
-    /// u_x's source for the select `rxs` a return will take, a clock ahead (free-running;
-    /// every such source is final before the return).
+    /// u_x's source for the select `rxs` a return will take: uxa | uxb | uxc (free-running,
+    /// two clocks behind the sources, every one of which is final long before the return).
     uxr: DFF<Bits<64>>,
+    /// The selected source among Σd_c 2^8, Σd_s², Σd_c², |Σd_s d_c| (0 otherwise).
+    uxa: DFF<Bits<64>>,
+    /// The selected source among m_s 2^32, m_c 2^32, 2 V_c, Amp_s 2^32 (0 otherwise).
+    uxb: DFF<Bits<64>>,
+    /// The selected source among Amp_c 2^32, |C| 2^16, T 2^(GF+23), T 2^32 (0 otherwise).
+    uxc: DFF<Bits<64>>,
     rds: DFF<DSel>,
     /// -m_s m_c from the product |m_s m_c| in u_r and the means' signs (free-running): the
     /// addend of C = Cq - m_s m_c.
@@ -597,6 +603,9 @@ impl FitSolve {
             clr_r: Default::default(),
             rxs: Default::default(),
             uxr: Default::default(),
+            uxa: Default::default(),
+            uxb: Default::default(),
+            uxc: Default::default(),
             rds: Default::default(),
             pm: Default::default(),
             nd: Default::default(),

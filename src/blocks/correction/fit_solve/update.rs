@@ -11,7 +11,7 @@ impl Logic for FitSolve {
             amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs,
             r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last,
             xs, ds, clr_r, itn, f_ld, oa, ob, pm, nd, xr, rz, req, t30, scl, ngf, lo_s, lo_c, oor,
-            rxs, rds, uxr
+            rxs, rds, uxa, uxb, uxc, uxr
         );
         self.nstate.next = self.state.q.val();
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
@@ -498,49 +498,52 @@ impl Logic for FitSolve {
             self.r_done.d.next = false;
         }
         self.state.d.next = self.nstate.val();
-        // The sources a return loads (final before it) through a free-running register a
-        // clock ahead, selected by `rxs`; u_x's own select keeps the sources written just
+        // The sources a return loads (final long before it) through free-running registers,
+        // selected by `rxs` (set at least 65 clocks before the return) in three groups of
+        // four (uxa, uxb, uxc; zero when not selected), then ORed into uxr; u_x's own select keeps the sources written just
         // before their load.
-        self.uxr.d.next = self.zero64.val();
+        self.uxa.d.next = self.zero64.val();
+        self.uxb.d.next = self.zero64.val();
+        self.uxc.d.next = self.zero64.val();
         match self.rxs.q.val() {
             XSel::A1c8 => {
-                self.uxr.d.next = self.a1_c.q.val() << self.s8.val();
+                self.uxa.d.next = self.a1_c.q.val() << self.s8.val();
             }
             XSel::A2s => {
-                self.uxr.d.next = self.a2_s.q.val();
+                self.uxa.d.next = self.a2_s.q.val();
             }
             XSel::A2c => {
-                self.uxr.d.next = self.a2_c.q.val();
+                self.uxa.d.next = self.a2_c.q.val();
             }
             XSel::Asc => {
-                self.uxr.d.next = self.asc.q.val();
+                self.uxa.d.next = self.asc.q.val();
             }
             XSel::Ms32 => {
-                self.uxr.d.next = self.m_s.q.val() << self.s32.val();
+                self.uxb.d.next = self.m_s.q.val() << self.s32.val();
             }
             XSel::Mc32 => {
-                self.uxr.d.next = self.m_c.q.val() << self.s32.val();
+                self.uxb.d.next = self.m_c.q.val() << self.s32.val();
             }
             XSel::Vc2 => {
-                self.uxr.d.next = self.v_c.q.val() << self.one32.val();
+                self.uxb.d.next = self.v_c.q.val() << self.one32.val();
                 if (self.v_c.q.val() & self.sign63.val()).any() {
-                    self.uxr.d.next = self.zero64.val();
+                    self.uxb.d.next = self.zero64.val();
                 }
             }
             XSel::Amps32 => {
-                self.uxr.d.next = self.amp_s.q.val() << self.s32.val();
+                self.uxb.d.next = self.amp_s.q.val() << self.s32.val();
             }
             XSel::Ampc32 => {
-                self.uxr.d.next = self.amp_c.q.val() << self.s32.val();
+                self.uxc.d.next = self.amp_c.q.val() << self.s32.val();
             }
             XSel::Cmag16 => {
-                self.uxr.d.next = self.cmag.q.val() << self.s16.val();
+                self.uxc.d.next = self.cmag.q.val() << self.s16.val();
             }
             XSel::Tgc => {
-                self.uxr.d.next = self.tgc.val();
+                self.uxc.d.next = self.tgc.val();
             }
             XSel::Tamp32 => {
-                self.uxr.d.next = self.tamp32.val();
+                self.uxc.d.next = self.tamp32.val();
             }
             XSel::Hold => {}
             XSel::A1s8 => {}
@@ -552,6 +555,7 @@ impl Logic for FitSolve {
             XSel::Mag => {}
             XSel::NMag => {}
         }
+        self.uxr.d.next = self.uxa.q.val() | self.uxb.q.val() | self.uxc.q.val();
         // u_x: a registered select of its sources, then the run states' shifts (the division's
         // quotient bit from the adder goes through the last mux only).
         match self.xs.q.val() {
