@@ -47,13 +47,13 @@ fn min_samples_out_of_range_or_too_short_is_refused_at_the_key() {
         "min_samples = 16777217",
         &["correction.min_samples"],
     );
-    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 10 samples = 1020 clocks < 1033.
+    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 19 samples = 1938 clocks < 2038.
     refused(
-        &with("mode = \"auto\"\nmin_samples = 10"),
-        "min_samples = 10",
-        &["1033-clock solve", "at least 11 samples"],
+        &with("mode = \"auto\"\nmin_samples = 19"),
+        "min_samples = 19",
+        &["2038-clock solve", "at least 20 samples"],
     );
-    assert!(Loaded::parse(&with("mode = \"auto\"\nmin_samples = 11"), "ok.toml").is_ok());
+    assert!(Loaded::parse(&with("mode = \"auto\"\nmin_samples = 20"), "ok.toml").is_ok());
     refused(
         &with("mode = \"auto\"\nphase_deg = 2.0"),
         "phase_deg = 2.0",
@@ -71,7 +71,7 @@ fn check_explains_the_fits_window_speed_limit_and_minimum() {
     let ms = format!("{:.2} ms", 4096.0 / 1_307_157.0 * 1e3);
     assert_eq!(ms, "3.13 ms");
     assert!(s.contains(&format!("4096 samples ({ms}")), "{s}");
-    assert!(s.contains("1027-clock solve"), "{s}");
+    assert!(s.contains("2032-clock solve"), "{s}");
     assert!(
         s.contains(&format!(
             "{:.0} rpm unwrap limit",

@@ -156,21 +156,21 @@ fn check(p: FitParams, tag: &str, rows: &[Row], sims: Simulators) -> usize {
 
 #[test]
 fn fit_rtl_equals_the_model_at_1000_samples_per_period_in_four_simulators() {
-    // One sample every 2 clocks: a window of one period lasts 2000 clocks > UPDATE_LATENCY.
+    // One sample every 3 clocks: a window of one period lasts 3000 clocks > UPDATE_LATENCY.
     let p = params(14, 14, 1, 600);
     let mut rows = vec![[1, 0, 0, 0]; 2];
-    rows.extend(sinusoid(14, 0.75, 1000.0, 2, 3500, 1));
+    rows.extend(sinusoid(14, 0.75, 1000.0, 3, 3500, 1));
     rows.extend(idle(UPDATE_LATENCY as usize + 4));
     assert!(check(p, "fit_rtl_1000", &rows, Simulators::ALL) >= 2);
 }
 
 #[test]
 fn fit_rtl_equals_the_model_at_3_8_samples_per_period_in_four_simulators() {
-    // K = 2 periods, 300 samples, one sample every 4 clocks: windows of ~1200 clocks.
+    // K = 2 periods, 300 samples, one sample every 8 clocks: windows of ~2400 clocks.
     let p = params(14, 14, 2, 300);
     let mut rows = vec![[1, 0, 0, 0]; 2];
-    rows.extend(sinusoid(14, 0.75, 3.8, 4, 1000, 2));
-    rows.extend(sinusoid(14, 0.75, -3.8, 4, 700, 3));
+    rows.extend(sinusoid(14, 0.75, 3.8, 8, 1000, 2));
+    rows.extend(sinusoid(14, 0.75, -3.8, 8, 700, 3));
     rows.extend(idle(UPDATE_LATENCY as usize + 4));
     assert!(check(p, "fit_rtl_3p8", &rows, Simulators::ALL) >= 3);
 }
@@ -179,13 +179,14 @@ fn fit_rtl_equals_the_model_at_3_8_samples_per_period_in_four_simulators() {
 fn fit_rtl_resets_mid_solve_and_refuses_small_amplitudes() {
     let p = params(14, 14, 1, 200);
     let mut rows = vec![[1, 0, 0, 0]; 2];
-    // Windows close; a reset 400 clocks after one closes aborts its solve.
-    rows.extend(sinusoid(14, 0.75, 50.0, 6, 260, 4));
+    // Windows (200 samples x 12 clocks) close; a reset 400 clocks after one closes aborts
+    // its solve.
+    rows.extend(sinusoid(14, 0.75, 50.0, 12, 260, 4));
     rows.extend(idle(400));
     rows.push([1, 0, 0, 0]);
-    rows.extend(sinusoid(14, 0.75, 37.0, 6, 600, 5));
+    rows.extend(sinusoid(14, 0.75, 37.0, 12, 600, 5));
     // Below the minimum amplitude: windows close, no update.
-    rows.extend(sinusoid(14, 0.05, 40.0, 6, 500, 6));
+    rows.extend(sinusoid(14, 0.05, 40.0, 12, 500, 6));
     rows.extend(idle(UPDATE_LATENCY as usize + 4));
     let n = check(p, "fit_rtl_reset", &rows, Simulators::ALL);
     assert!(n >= 1, "{n}");
@@ -194,11 +195,11 @@ fn fit_rtl_resets_mid_solve_and_refuses_small_amplitudes() {
 #[test]
 fn fit_rtl_equals_the_model_at_other_widths() {
     for (i, (a, gf)) in [(16u32, 15u32), (10, 8)].into_iter().enumerate() {
-        // 600 samples at >= 2 clocks each: every window outlasts the solve.
+        // 600 samples at >= 4 clocks each: every window outlasts the solve.
         let p = params(a, gf, 1, 600);
         let mut rows = vec![[1, 0, 0, 0]; 2];
         rows.extend(sinusoid(a, 0.9, 25.0, 5, 1300, 7 + i as u64));
-        rows.extend(sinusoid(a, 0.6, -90.0, 2, 2500, 9 + i as u64));
+        rows.extend(sinusoid(a, 0.6, -90.0, 4, 2500, 9 + i as u64));
         rows.extend(idle(UPDATE_LATENCY as usize + 4));
         let n = check(p, &format!("fit_rtl_w{a}"), &rows, Simulators::ALL);
         assert!(n >= 2, "{n}");

@@ -6,7 +6,7 @@
 //! ```text
 //!  start ─► snapshot N, |Σd| (+sign), Σd², |Σd_s d_c| (+sign), b_ref
 //!   │
-//!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, u_q, it):
+//!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, it):
 //!  m_s,m_c = rdiv(|Σd| 2^8, N)      DIV 64 steps   V = floor(Σd² 2^16 / N)  DIV 80 steps
 //!  Cq = floor(Σsc 2^16 / N)         DIV 80 steps   V -= m², C = Cq - m_s m_c  MUL 32 steps
 //!  Amp = isqrt(2V)                  SQRT 32 steps  Amp < min 2^8 (checked after Amp_s Amp_c) ► Idle
@@ -14,24 +14,33 @@
 //!  b = b_ref + rdiv(m, 2^8)         add, out of range (checked after g_s's DIV) ► Idle
 //!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
 //!
-//!  shared adder, one carry chain: sum = tt + pa when u_r < 0 (or the multiplier bit is one),
-//!  else tt - ma = tt + !ma + 1; tt, pa, ma from registers (flags f_div / f_sq / f_mul); no
-//!  mux follows the chain
+//!  shared adder, one 53-bit carry chain, each step over two clocks:
+//!    B clock: oa = {opa, 1}, ob = {opb, cin}: opa = 2 u_r (+ msb(u_x)) or 4 u_r + top2(u_x);
+//!             opb = up ? u_d : !u_d (!0 in a MUL), cin = !up, up = u_r < 0 (MUL: msb(u_x));
+//!             one LUT a bit from registers (u_r, u_x, u_d, flags); the previous step's
+//!             bit (!sign of u_r) into u_x bit 0 (DIV) or into u_d (SQRT)
+//!    A clock: u_r = (oa + ob) >> 1 (the chain and nothing else); u_x <<= 1 (2 in a SQRT)
+//!    ┌──────────┐  B   ┌─────────┐  A   ┌────────────┐
+//!    │u_r u_x u_d├─LUT─►│ oa  ob  ├─+───►│ u_r (52 b) │── sign ──► next B
+//!    └──────────┘      └─────────┘      └────────────┘
 //!  DIV (non-restoring, dividend and quotient share u_x):  SQRT (non-restoring, 2 bits a step):
 //!    t = 2 u_r + msb(u_x)                                   t = 4 u_r + top2(u_x)
-//!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4u_q+3) : t - (4u_q+1)
-//!    u_x = 2 u_x + (u_r >= 0)                               u_q = 2 u_q + (u_r >= 0)
+//!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4q+3) : t - (4q+1)
+//!    u_x = 2 u_x + (u_r >= 0)                               q = 2 q + (u_r >= 0); u_d = 8 q + 1
 //!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
 //!  when u_r < 0, zero when u_r = nd = -u_d, a register)
-//!  then: adj = round ? 2 r >= u_d (sign of 2 u_r -+ u_d) : neg & r != 0;
-//!  u_mag = u_x + adj and u_nmag = !u_x + !adj = -(u_x + adj) side by side; u_x = u_mag / u_nmag
+//!  then: adj = round ? 2 r >= u_d (sign of the rounding sum 2 u_r -+ u_d, one more A clock)
+//!  : neg & r != 0 (registered zero tests rz, req); u_mag = u_x + adj and
+//!  u_nmag = !u_x + !adj = -(u_x + adj) side by side (adj the carry in); u_x = u_mag / u_nmag
 //!  MUL (MSB first, multiplier a < 2^32 in the top half of u_x, 32 steps):
 //!    u_r = 2 u_r + (msb(u_x) ? u_d : 0); u_x <<= 1
 //!
 //!  wide loads: u_x and u_d take one of their sources by a registered select (xs, ds) that
 //!  the state before sets (a return to `ret` takes the select stored with it); compares and
-//!  negations the states need (clamps, amplitude and offset checks, 2^30 - S², -u_d) are
-//!  free-running registers, read a state after their inputs settle
+//!  negations the states need (clamps, amplitude and offset checks, 2^30 - S², -u_d,
+//!  ±m_s m_c, the remainder's zero tests) are free-running registers, read a state after
+//!  their inputs settle; the run's flags and `it` follow the registered mode flags, not
+//!  the state
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -42,18 +51,22 @@
 //!   floor(Σd² 2^16 / N) < 2^(2A+16) <= 2^48 — exactly the 16 zero bits the dividend needs.
 //! * Remainders are below the divisor; the largest divisor is Amp_s Amp_c < 2^49
 //!   (Amp = isqrt(2V), V <= 2^(2A-2+16) because a variable in a range of width 2^A has a
-//!   variance of at most 2^(2A-2)), so 2 u_r + 1 < 2^50 fits the 64-bit word; the
-//!   non-restoring remainder lies in [-u_d, u_d), so every sum of the shared adder is below
-//!   2^51 in magnitude (the square root's below 2^36, the products below 2^50): the 64-bit
-//!   sums never wrap.
+//!   variance of at most 2^(2A-2)), so |2 u_r + 1| < 2^50; the non-restoring remainder
+//!   lies in [-u_d, u_d), so every sum of the shared adder is below 2^51 in magnitude (the
+//!   square root's below 2^36, the products below 2^50): u_r, u_d and the chain's operands
+//!   are 52-bit two's complement words (the chain is 53 bits: bit 0 carries cin in) and
+//!   never wrap. Every value u_d loads (N, m, Amp, |S|, Cc, Amp_s Cc, a product, 8 q + 1
+//!   < 2^36) is below 2^50, and every u_r another register reads (a product) is
+//!   non-negative, so the 52-bit words are zero-extended to 64 bits.
 //! * |C| <= sqrt(V_s V_c) < 2^(2A+14) <= 2^46, so |C| 2^16 < 2^62; T 2^(GF+23) < 2^53;
-//!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits.
+//!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits (u_x stays 64 bits).
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
 //!   all below 2^32 (the 32 steps), products below 2^50.
 //! * Each state writes its registers through at most one adder or compare (the timing rule
 //!   of docs/correction.md): abs, add, round and negate are separate states or free-running
 //!   registers.
-//! * u_q (the root) has 32 bits: 32 steps, one bit each; `it` counts at most 80 steps: 8 bits.
+//! * The root has 32 bits (32 steps, one bit each; in u_d as 8 q + 1 while it grows);
+//!   `it` counts at most 80 steps: 8 bits.
 //!
 //! # Timing
 //! [`SOLVE_CYCLES`] clocks from `start` to `done` when the update is accepted (fewer when
@@ -66,23 +79,32 @@ use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
 /// Clocks from the rising edge that takes `start` to the one that loads the coefficients
-/// of an accepted solve: 6 divisions of 64 steps (68 clocks with their set-up, rounding and
-/// sign states), 3 of 80 steps (84), 8 multiplications and 3 square roots (33 each) and 4
-/// single states: 408 + 252 + 264 + 99 + 4.
-pub const SOLVE_CYCLES: u32 = 1027;
+/// of an accepted solve. An operation of n steps runs 2 n + 1 clocks (B, then A and B per
+/// step) after its set-up state; a division adds its rounding sum, decision, increment and
+/// sign states: 6 divisions of 64 steps (1 + 129 + 4 = 134 clocks), 3 of 80 steps (166),
+/// 8 multiplications and 3 square roots of 32 steps (1 + 65 = 66) and 4 single states:
+/// 804 + 498 + 726 + 4.
+pub const SOLVE_CYCLES: u32 =
+    6 * (1 + (2 * 64 + 1) + 4) + 3 * (1 + (2 * 80 + 1) + 4) + 11 * (1 + (2 * 32 + 1)) + 4;
 
 /// Clocks from a window's first sample after its closing boundary (the sample presented
 /// before rising edge j) to the new coefficients (on the outputs after edge j +
-/// UPDATE_LATENCY): three pipeline stages of the fit, then [`SOLVE_CYCLES`];
+/// UPDATE_LATENCY): the fit's pipeline stages ([`super::fit_hdl::FIT_STAGES`]), then [`SOLVE_CYCLES`];
 /// `tests/correction_fit_rtl.rs` checks every update against it.
 pub const UPDATE_LATENCY: u32 = SOLVE_CYCLES + super::fit_hdl::FIT_STAGES;
 
 // The widths of the module doc assume windows of at most 2^24 samples.
 const _: () = assert!(N_MAX <= 1 << 24);
+const _: () = assert!(SOLVE_CYCLES == 2032);
 
 /// A 64-bit constant.
 pub(super) fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
+}
+
+/// An N-bit constant.
+fn cw<const N: usize>(v: u64) -> Constant<Bits<N>> {
+    Constant::new(Bits::<N>::from(v))
 }
 
 /// An 8-bit constant.
@@ -162,6 +184,8 @@ pub enum DSel {
     Smag,
     /// Amp_s Cc.
     Q2,
+    /// 1: a square root's first trial 8 q + 1 (q = 0).
+    One,
 }
 
 /// Steps of the solve (the operation in each state's comment is the one it starts).
@@ -217,18 +241,16 @@ pub enum FitState {
     Kd,
     /// Clamp k; load every coefficient.
     Load,
-    /// Divider steps.
-    DivRun,
-    /// Divider rounding decision.
+    /// Steps of a division, square root or product (f_div / f_sq / f_mul), B and A clocks.
+    Run,
+    /// Divider rounding sum (2 u_r -+ u_d).
     DivAdj,
+    /// Divider rounding decision.
+    DivTst,
     /// Divider rounding add.
     DivInc,
     /// Divider sign.
     DivNeg,
-    /// Square-root steps.
-    SqRun,
-    /// Multiplier steps.
-    MulRun,
 }
 
 /// The serial solver and the coefficient registers it loads.
@@ -274,10 +296,12 @@ pub struct FitSolve {
     pub k_neg: Signal<Out, Bit>,
     state: DFF<FitState>,
     ret: DFF<FitState>,
+    /// Dividend / quotient, multiplier operand or radicand: shifted out at the top.
     u_x: DFF<Bits<64>>,
-    u_d: DFF<Bits<64>>,
-    u_r: DFF<Bits<64>>,
-    u_q: DFF<Bits<32>>,
+    /// Divisor or multiplicand; in a square root the trial 8 q + 1 (q: the root so far).
+    u_d: DFF<Bits<52>>,
+    /// Remainder, product or root remainder, two's complement (|u_r| < 2^50).
+    u_r: DFF<Bits<52>>,
     u_mag: DFF<Bits<64>>,
     /// -(u_x + adj), written beside u_mag: the negated quotient without an adder after a mux.
     u_nmag: DFF<Bits<64>>,
@@ -325,30 +349,61 @@ pub struct FitSolve {
     /// Next state (registered in `state`, and decoded a clock ahead into the flags and
     /// selects below).
     nstate: Signal<Local, FitState>,
-    /// The state is DivRun (registered from `nstate`).
+    /// Run is a division (registered from `nstate`, like every flag below).
     f_div: DFF<Bit>,
-    /// The state is SqRun.
+    /// Run is a square root.
     f_sq: DFF<Bit>,
-    /// The state is MulRun.
+    /// Run is a multiplication.
     f_mul: DFF<Bit>,
-    /// The state is one of the three run states (u_r takes the shared adder's result).
-    f_run: DFF<Bit>,
+    /// An A clock: u_r takes the chain's sum oa + ob (also the divider's rounding sum).
+    f_add: DFF<Bit>,
+    /// An A clock of a division or product: u_x shifts by one.
+    f_sh1: DFF<Bit>,
+    /// An A clock of a square root: u_x shifts by two.
+    f_sh2: DFF<Bit>,
+    /// A division's B clock after an A clock: the quotient bit !rneg into u_x bit 0.
+    f_qx: DFF<Bit>,
+    /// A square root's B clock after an A clock: the root bit !rneg into u_d (8 q + 1).
+    f_qd: DFF<Bit>,
+    /// The run's last B clock (the last step's bit; a division's rounding operands).
+    f_last: DFF<Bit>,
+    /// Set-up state: `it` loads `itn` in the next clock (B_0).
+    f_ld: DFF<Bit>,
+    /// The step count of the operation being set up (32, 64 or 80).
+    itn: DFF<Bits<8>>,
+    /// {opa, 1}: the chain's first operand, written in a B clock.
+    oa: DFF<Bits<53>>,
+    /// {opb, cin}: its second operand and carry in.
+    ob: DFF<Bits<53>>,
     /// What u_x loads in this state (registered from `nstate`).
     xs: DFF<XSel>,
     /// What u_d loads in this state.
     ds: DFF<DSel>,
     /// u_r is cleared in this state.
     clr_r: DFF<Bit>,
-    /// u_q is cleared in this state.
-    clr_q: DFF<Bit>,
     /// The selects of the state `ret` names, stored with it.
     rxs: DFF<XSel>,
-    /// u_x's source for the select `rxs` a return will take, a clock ahead (free-running;
-    /// every such source is final before the return).
+    /// u_x's source for the select `rxs` a return will take: uxa | uxb | uxc (free-running,
+    /// two clocks behind the sources, every one of which is final long before the return).
     uxr: DFF<Bits<64>>,
+    /// The selected source among Σd_c 2^8, Σd_s², Σd_c², |Σd_s d_c| (0 otherwise).
+    uxa: DFF<Bits<64>>,
+    /// The selected source among m_s 2^32, m_c 2^32, 2 V_c, Amp_s 2^32 (0 otherwise).
+    uxb: DFF<Bits<64>>,
+    /// The selected source among Amp_c 2^32, |C| 2^16, T 2^(GF+23), T 2^32 (0 otherwise).
+    uxc: DFF<Bits<64>>,
     rds: DFF<DSel>,
+    /// -m_s m_c from the product |m_s m_c| in u_r and the means' signs (free-running): the
+    /// addend of C = Cq - m_s m_c.
+    pm: DFF<Bits<64>>,
     /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
-    nd: DFF<Bits<64>>,
+    nd: DFF<Bits<52>>,
+    /// u_r ^ nd (free-running).
+    xr: DFF<Bits<52>>,
+    /// u_r == 0 (free-running).
+    rz: DFF<Bit>,
+    /// xr == 0, i.e. u_r == -u_d (free-running, a clock behind xr).
+    req: DFF<Bit>,
     /// 2^30 - u_r (free-running): the radicand of Cc one state after S².
     t30: DFF<Bits<64>>,
     /// min(u_mag, smax) (free-running): the clamped |S| one state after its division.
@@ -363,25 +418,17 @@ pub struct FitSolve {
     oor: DFF<Bit>,
     /// u_r < 0 (the non-restoring remainder's sign: add the divisor / trial back).
     rneg: Signal<Local, Bit>,
-    /// The shared adder's first operand: 2 u_r (+ msb(u_x) in a division) or
+    /// The chain's first operand: 2 u_r (+ msb(u_x) in a division step) or
     /// 4 u_r + top2(u_x) in a square root.
-    tt: Signal<Local, Bits<64>>,
-    /// The operand added (u_r < 0, or a multiplier bit of one): u_d, or 4 u_q + 3.
-    pa: Signal<Local, Bits<64>>,
-    /// The operand subtracted (u_r >= 0): u_d, 4 u_q + 1, or 0 in a multiplication.
-    ma: Signal<Local, Bits<64>>,
-    /// Add pa (u_r < 0, or the multiplier's bit is one), else subtract ma.
+    opa: Signal<Local, Bits<52>>,
+    /// Add (u_r < 0, or the multiplier's bit is one), else subtract.
     up: Signal<Local, Bit>,
-    /// The chain's second operand: pa or !ma.
-    sb: Signal<Local, Bits<64>>,
-    /// {sb, cin} (sb's bit 63 dropped; cin = !up).
-    sbc: Signal<Local, Bits<64>>,
-    /// {tt, 1} + {sb, cin}: bit 0 carries cin into the chain.
-    s65: Signal<Local, Bits<64>>,
-    /// The shared adder's sum (the next u_r), bits 63..1 of `s65` sign-extended.
-    sel: Signal<Local, Bits<64>>,
-    /// Its sign (the complement of the quotient / root bit).
-    sgn: Signal<Local, Bit>,
+    /// The chain's second operand: u_d / the trial when adding, its complement otherwise.
+    opb: Signal<Local, Bits<52>>,
+    /// u_adj as a 64-bit addend.
+    adjw: Signal<Local, Bits<64>>,
+    /// !u_adj as a 64-bit addend.
+    nadjw: Signal<Local, Bits<64>>,
     /// Upper bound of |S|: round(2^15 sin 15 deg).
     smax: Constant<Bits<64>>,
     /// min_amplitude 2^8.
@@ -404,6 +451,20 @@ pub struct FitSolve {
     sign32: Constant<Bits<32>>,
     /// Bit 63.
     sign63: Constant<Bits<64>>,
+    /// Shifts by 63 and 3.
+    s63: Constant<Bits<32>>,
+    s3: Constant<Bits<32>>,
+    /// 52-bit constants: all ones, 0, 1, 9, bits 1 and 2, and masks without bit 1 / bit 2.
+    ones52: Constant<Bits<52>>,
+    zero52: Constant<Bits<52>>,
+    one52: Constant<Bits<52>>,
+    nine52: Constant<Bits<52>>,
+    b1: Constant<Bits<52>>,
+    b2: Constant<Bits<52>>,
+    nb1: Constant<Bits<52>>,
+    nb2: Constant<Bits<52>>,
+    /// 1 in 53 bits.
+    one53: Constant<Bits<53>>,
     /// 128: the rounding half of a division by 2^8.
     half8: Constant<Bits<32>>,
     /// Mask of 16 bits.
@@ -424,9 +485,7 @@ pub struct FitSolve {
     s16: Constant<Bits<32>>,
     s62: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
-    three64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
-    zero32: Constant<Bits<32>>,
     zero16: Constant<Bits<16>>,
     /// Configured (reset) offsets and gains.
     b0_s: Constant<Bits<32>>,
@@ -482,7 +541,6 @@ impl FitSolve {
             u_x: Default::default(),
             u_d: Default::default(),
             u_r: Default::default(),
-            u_q: Default::default(),
             u_mag: Default::default(),
             u_nmag: Default::default(),
             u_neg: Default::default(),
@@ -530,15 +588,30 @@ impl FitSolve {
             f_div: Default::default(),
             f_sq: Default::default(),
             f_mul: Default::default(),
-            f_run: Default::default(),
+            f_add: Default::default(),
+            f_sh1: Default::default(),
+            f_sh2: Default::default(),
+            f_qx: Default::default(),
+            f_qd: Default::default(),
+            f_last: Default::default(),
+            f_ld: Default::default(),
+            itn: Default::default(),
+            oa: Default::default(),
+            ob: Default::default(),
             xs: Default::default(),
             ds: Default::default(),
             clr_r: Default::default(),
-            clr_q: Default::default(),
             rxs: Default::default(),
             uxr: Default::default(),
+            uxa: Default::default(),
+            uxb: Default::default(),
+            uxc: Default::default(),
             rds: Default::default(),
+            pm: Default::default(),
             nd: Default::default(),
+            xr: Default::default(),
+            rz: Default::default(),
+            req: Default::default(),
             t30: Default::default(),
             scl: Default::default(),
             ngf: Default::default(),
@@ -546,15 +619,11 @@ impl FitSolve {
             lo_c: Default::default(),
             oor: Default::default(),
             rneg: Default::default(),
-            tt: Default::default(),
-            pa: Default::default(),
-            ma: Default::default(),
-            sb: Default::default(),
-            sbc: Default::default(),
-            s65: Default::default(),
+            opa: Default::default(),
             up: Default::default(),
-            sel: Default::default(),
-            sgn: Default::default(),
+            opb: Default::default(),
+            adjw: Default::default(),
+            nadjw: Default::default(),
             smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
             minamp: c64((k.min_amplitude as u64) << 8),
             tgs: c64(t << (gf + 8)),
@@ -568,6 +637,17 @@ impl FitSolve {
             hi_f: c32(flip(lim)),
             sign32: c32(1 << 31),
             sign63: c64(1 << 63),
+            s63: c32(63),
+            s3: c32(3),
+            ones52: cw(mask(52)),
+            zero52: cw(0),
+            one52: cw(1),
+            nine52: cw(9),
+            b1: cw(2),
+            b2: cw(4),
+            nb1: cw(mask(52) ^ 2),
+            nb2: cw(mask(52) ^ 4),
+            one53: cw(1),
             half8: c32(128),
             m16: c64(0xffff),
             i32c: c8(32),
@@ -581,9 +661,7 @@ impl FitSolve {
             s16: c32(16),
             s62: c32(62),
             one64: c64(1),
-            three64: c64(3),
             zero64: c64(0),
-            zero32: c32(0),
             zero16: c16(0),
             b0_s: c32(sext(p.offset()[SIN])),
             b0_c: c32(sext(p.offset()[COS])),
