@@ -16,7 +16,9 @@
 //!                                              compares of net, N                       ▼
 //!  stages C1-C3 (reg): three run-time shift-add trees (multree.rs) for |e_s|², |e_c|²,
 //!           |e_s e_c|; e_s, e_c, valid, restart, start and the product's sign beside them
-//!  stage D (reg): the products (the trees' last sums), e sign-extended to 64 bits; the
+//!  stage D (reg): the products (the trees' last sums; |e_s e_c| as a 64-bit ones'
+//!           complement when negative, its +1 kept as stage E's carry-in), e
+//!           sign-extended to 64 bits; the
 //!           closing sample's start (leaving C3) starts FitSolve (if idle) on the sums
 //!           (they hold the window's samples by then) and the window's b_ref
 //!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit); the sums then restart from
@@ -30,8 +32,9 @@
 //!   words, exact (each tree level is a 32-bit sum of partial products of the same
 //!   product, [`super::multree`]).
 //! * N <= N_MAX = 2^24 (a longer window is abandoned, [`super::fit::N_MAX`]): |Σd| < 2^40,
-//!   Σd² and |Σd_s d_c| < 2^56, so the 64-bit sums never wrap; each is one adder (or a
-//!   subtractor beside it for a negative product, selected by the sign).
+//!   Σd² and |Σd_s d_c| < 2^56, so the 64-bit sums never wrap; each is one adder. A
+//!   negative cross product is added as !|p| + 1 (64-bit ones' complement registered in
+//!   stage D, the +1 the sum's carry-in), which equals -|p| in a 64-bit word.
 //! * net (the quadrants since the window opened) changes by at most 2 per sample and is
 //!   bounded by 2 N_MAX: 32 bits. The window-closing test |net + s| >= 4K is done as compares
 //!   of the registered net against constants (one per step s = +-1, +-2, registered), beside the adder
@@ -166,7 +169,9 @@ pub struct FitCal {
     d_ec: DFF<Bits<64>>,
     p_ss: DFF<Bits<32>>,
     p_cc: DFF<Bits<32>>,
-    p_sc: DFF<Bits<32>>,
+    /// |e_s e_c| zero-extended to 64 bits, inverted when e_s e_c < 0 (ones' complement;
+    /// the sum adds `d_nsc` as its carry-in), so stage E is one chain from registers.
+    p_sc: DFF<Bits<64>>,
     d_nsc: DFF<Bit>,
     cnt: DFF<Bits<32>>,
     /// The window-closing compares |net + s| >= 4K for s = +1, -1, +2, -2 and N >= min_samples,
@@ -262,6 +267,14 @@ pub struct FitCal {
     one32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
     zero64: Constant<Bits<64>>,
+    /// All ones, 64 bits.
+    ones64: Constant<Bits<64>>,
+    /// One, 64 bits.
+    one64: Constant<Bits<64>>,
+    /// -|e_s e_c|'s ones' complement mask in stage D.
+    nscm: Signal<Local, Bits<64>>,
+    /// The carry-in of the cross sum in stage E (one when e_s e_c < 0).
+    nsci: Signal<Local, Bits<64>>,
     /// Configured (reset) offsets, 32-bit two's complement.
     b0_s: Constant<Bits<32>>,
     b0_c: Constant<Bits<32>>,
@@ -441,6 +454,10 @@ impl FitCal {
             one32: c32(1),
             zero32: c32(0),
             zero64: c64(0),
+            ones64: c64(u64::MAX),
+            one64: c64(1),
+            nscm: Default::default(),
+            nsci: Default::default(),
             b0_s: c32(sext(p.offset()[SIN])),
             b0_c: c32(sext(p.offset()[COS])),
         }

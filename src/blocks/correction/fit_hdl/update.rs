@@ -241,7 +241,15 @@ impl Logic for FitCal {
         }
         self.p_ss.d.next = self.tss.out_x.val() + self.tss.out_y.val();
         self.p_cc.d.next = self.tcc.out_x.val() + self.tcc.out_y.val();
-        self.p_sc.d.next = self.tsc.out_x.val() + self.tsc.out_y.val();
+        // The cross product's sign is applied here, after its adder (one LUT a bit), as a
+        // ones' complement whose +1 is stage E's carry-in: an adder then a subtractor in
+        // one stage put a negation chain in front of the sum's chain.
+        self.nscm.next = self.zero64.val();
+        if self.tsc.out_neg.val() {
+            self.nscm.next = self.ones64.val();
+        }
+        self.p_sc.d.next =
+            bit_cast::<64, 32>(self.tsc.out_x.val() + self.tsc.out_y.val()) ^ self.nscm.val();
         self.d_nsc.d.next = self.tsc.out_neg.val();
         // The snapshot goes to an idle solver as the closing sample leaves the trees (C3):
         // the sums hold the window's last sample by then (its stage E was at least two
@@ -264,15 +272,17 @@ impl Logic for FitCal {
             self.zsc.next = self.zero64.val();
             self.zn.next = self.zero32.val();
         }
+        self.nsci.next = self.zero64.val();
+        if self.d_nsc.q.val() {
+            self.nsci.next = self.one64.val();
+        }
         if self.d_v.q.val() {
             self.s1_s.d.next = self.z1_s.val() + self.d_es.q.val();
             self.s1_c.d.next = self.z1_c.val() + self.d_ec.q.val();
             self.s2_s.d.next = self.z2_s.val() + bit_cast::<64, 32>(self.p_ss.q.val());
             self.s2_c.d.next = self.z2_c.val() + bit_cast::<64, 32>(self.p_cc.q.val());
-            self.ssc.d.next = self.zsc.val() + bit_cast::<64, 32>(self.p_sc.q.val());
-            if self.d_nsc.q.val() {
-                self.ssc.d.next = self.zsc.val() - bit_cast::<64, 32>(self.p_sc.q.val());
-            }
+            // zsc -+ |e_s e_c| = zsc + (p_sc, inverted when negative) + carry-in.
+            self.ssc.d.next = self.zsc.val() + self.p_sc.q.val() + self.nsci.val();
             self.cnt.d.next = self.zn.val() + self.one32.val();
         }
         self.slv.n.next = self.cnt.q.val();
