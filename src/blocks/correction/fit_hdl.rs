@@ -48,6 +48,9 @@
 //!   b_ref at a restart, and writes the sums' command (about 230 register bits, driven by
 //!   four flags instead of by the compares through the decision). While a restart clears
 //!   net and N the compares are forced to describe net = 0, N = 1.
+//! * Stage B1's other operands are registered beside the compares (`p_*`, from the
+//!   tracker's state, final a clock before B1, and net mod 4), so the decision reads only
+//!   registers: the step, the compares, N's flags and these.
 //! * b_ref of a new window is b_cur at its first sample, i.e. the offsets before the update
 //!   its predecessor triggers (the model does the same, [`super::fit`]). b_ref is loaded in
 //!   stage B2, while stage A already takes the next sample: that sample's quadrant comes

@@ -10,8 +10,8 @@ impl Logic for FitCal {
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, s1_s,
             s1_c, s2_s, s2_c, ssc, kd_m, kd_n, e1_s, e2_s, e3_s, e1_c, e2_c, e3_c, h_p1, h_m1,
-            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, p_r1, p_r2, p_o1, p_o2, p_w1,
-            p_w3, p_w2p, p_w2m
+            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, p_r1, p_r2, p_o1, p_o2,
+            p_w1, p_w3, p_w2p, p_w2m
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
