@@ -51,6 +51,9 @@
 //!   b_ref at a restart, and writes the sums' command (about 230 register bits, driven by
 //!   four flags instead of by the compares through the decision). While a restart clears
 //!   net and N the compares are forced to describe net = 0, N = 1.
+//! * Stage B1's other operands are registered beside the compares (`p_*`, from the
+//!   tracker's state, final a clock before B1, and net mod 4), so the decision reads only
+//!   registers: the step, the compares, N's flags and these.
 //! * b_ref of a new window is b_cur at its first sample, i.e. the offsets before the update
 //!   its predecessor triggers (the model does the same, [`super::fit`]). b_ref is loaded in
 //!   stage B2, while stage A already takes the next sample: that sample's quadrant comes
@@ -183,6 +186,19 @@ pub struct FitCal {
     nbge: DFF<Bit>,
     /// N = N_MAX, registered like the compares above.
     nbmx: DFF<Bit>,
+    /// Stage B1's operands that do not wait for the compares, registered like them from the
+    /// tracker's state (final a clock before stage B1): open at a +-1 step (`p_r1`) or a
+    /// known 2-step (`p_r2`); the window is open (`p_o1`; with a known direction `p_o2`).
+    p_r1: DFF<Bit>,
+    p_r2: DFF<Bit>,
+    p_o1: DFF<Bit>,
+    p_o2: DFF<Bit>,
+    /// The window is open and net + s is a multiple of 4, for s = +1 (`p_w1`), -1 (`p_w3`),
+    /// +2 (`p_w2p`) and -2 (`p_w2m`, the known direction chooses s = +-2).
+    p_w1: DFF<Bit>,
+    p_w3: DFF<Bit>,
+    p_w2p: DFF<Bit>,
+    p_w2m: DFF<Bit>,
     /// Stage B1's decision for stage B2: add the sample, restart the sums (and b_ref, net,
     /// N), snapshot the window, take the entry from e = x - b_cur.
     a_v: DFF<Bit>,
@@ -218,9 +234,19 @@ pub struct FitCal {
     /// Stage B: the step s as a 32-bit word, and the closing tests for it.
     sval: Signal<Local, Bits<32>>,
     netf: Signal<Local, Bits<32>>,
-    big: Signal<Local, Bit>,
-    whole: Signal<Local, Bit>,
-    done: Signal<Local, Bit>,
+    /// Stage B1, per step class (+1, -1, +-2): the window closes (`cl*`), restarts (`rs*`),
+    /// takes the sample (`av*`; `av0` for no step); and the restart itself (`rsd`).
+    cl1: Signal<Local, Bit>,
+    cl3: Signal<Local, Bit>,
+    cl2: Signal<Local, Bit>,
+    rs1: Signal<Local, Bit>,
+    rs3: Signal<Local, Bit>,
+    rs2: Signal<Local, Bit>,
+    av0: Signal<Local, Bit>,
+    av1: Signal<Local, Bit>,
+    av3: Signal<Local, Bit>,
+    av2: Signal<Local, Bit>,
+    rsd: Signal<Local, Bit>,
     /// Stage E: the sums' bases (0 at a restart).
     z1_s: Signal<Local, Bits<64>>,
     z1_c: Signal<Local, Bits<64>>,
@@ -389,6 +415,14 @@ impl FitCal {
             h_m2: Default::default(),
             nbge: Default::default(),
             nbmx: Default::default(),
+            p_r1: Default::default(),
+            p_r2: Default::default(),
+            p_o1: Default::default(),
+            p_o2: Default::default(),
+            p_w1: Default::default(),
+            p_w3: Default::default(),
+            p_w2p: Default::default(),
+            p_w2m: Default::default(),
             a_v: Default::default(),
             a_rs: Default::default(),
             a_rb: Default::default(),
@@ -415,9 +449,17 @@ impl FitCal {
             sb: Default::default(),
             sval: Default::default(),
             netf: Default::default(),
-            big: Default::default(),
-            whole: Default::default(),
-            done: Default::default(),
+            cl1: Default::default(),
+            cl3: Default::default(),
+            cl2: Default::default(),
+            rs1: Default::default(),
+            rs3: Default::default(),
+            rs2: Default::default(),
+            av0: Default::default(),
+            av1: Default::default(),
+            av3: Default::default(),
+            av2: Default::default(),
+            rsd: Default::default(),
             z1_s: Default::default(),
             z1_c: Default::default(),
             z2_s: Default::default(),

@@ -10,7 +10,8 @@ impl Logic for FitCal {
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, s1_s,
             s1_c, s2_s, s2_c, ssc, kd_m, kd_n, e1_s, e2_s, e3_s, e1_c, e2_c, e3_c, h_p1, h_m1,
-            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue
+            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, p_r1, p_r2, p_o1, p_o2,
+            p_w1, p_w3, p_w2p, p_w2m
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -87,74 +88,99 @@ impl Logic for FitCal {
         if self.a_rs.q.val() {
             self.nbge.d.next = self.one32.val() >= self.nmin.val();
         }
-        // Stage B1: the step as a word and the window decision. net and N count every
-        // sample here (B2 clears them at a restart), so only a few flags wait for `done`.
+        // The decision's other operands, registered beside the compares from the tracker's
+        // state (written in stage B1, at least a clock earlier) and net mod 4 (0 while a
+        // restart clears net), so stage B1 is a few flags wide per step.
+        self.p_r1.d.next = self.tinit.q.val() & !self.open.q.val();
+        self.p_r2.d.next = self.tinit.q.val() & self.dknown.q.val() & !self.open.q.val();
+        self.p_o1.d.next = self.tinit.q.val() & self.open.q.val();
+        self.p_o2.d.next = self.tinit.q.val() & self.dknown.q.val() & self.open.q.val();
+        self.p_w1.d.next = self.tinit.q.val()
+            & self.open.q.val()
+            & !self.a_rs.q.val()
+            & ((self.net.q.val() & self.m2.val()) == self.r3.val());
+        self.p_w3.d.next = self.tinit.q.val()
+            & self.open.q.val()
+            & !self.a_rs.q.val()
+            & ((self.net.q.val() & self.m2.val()) == self.r1.val());
+        self.p_w2p.d.next = self.tinit.q.val()
+            & self.dknown.q.val()
+            & !self.dneg.q.val()
+            & self.open.q.val()
+            & !self.a_rs.q.val()
+            & ((self.net.q.val() & self.m2.val()) == self.r2.val());
+        self.p_w2m.d.next = self.tinit.q.val()
+            & self.dknown.q.val()
+            & self.dneg.q.val()
+            & self.open.q.val()
+            & !self.a_rs.q.val()
+            & ((self.net.q.val() & self.m2.val()) == self.r2.val());
+        // Stage B1: the step as a word and the window decision, per step class from the
+        // registered flags, then chosen by the step. A 2-step with no known direction, or
+        // the first sample, restarts the tracker (nothing taken, the window closed).
         self.sval.next = self.zero32.val();
-        self.big.next = false;
-        self.whole.next = false;
         if self.sb.q.val() == self.q1.val() {
             self.sval.next = self.sp1.val();
-            self.big.next = self.h_p1.q.val();
-            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r3.val();
         }
         if self.sb.q.val() == self.q3.val() {
             self.sval.next = self.sm1.val();
-            self.big.next = self.h_m1.q.val();
-            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r1.val();
         }
         if self.sb.q.val() == self.q2.val() {
-            self.whole.next = (self.net.q.val() & self.m2.val()) == self.r2.val();
+            self.sval.next = self.sp2.val();
             if self.dneg.q.val() {
                 self.sval.next = self.sm2.val();
-                self.big.next = self.h_m2.q.val();
-            } else {
-                self.sval.next = self.sp2.val();
-                self.big.next = self.h_p2.q.val();
             }
         }
-        self.done.next = self.big.val() & self.whole.val() & self.nbge.q.val();
+        self.cl1.next = self.p_w1.q.val() & self.h_p1.q.val() & self.nbge.q.val();
+        self.cl3.next = self.p_w3.q.val() & self.h_m1.q.val() & self.nbge.q.val();
+        self.cl2.next = ((self.p_w2p.q.val() & self.h_p2.q.val())
+            | (self.p_w2m.q.val() & self.h_m2.q.val()))
+            & self.nbge.q.val();
+        self.rs1.next = self.p_r1.q.val() | self.cl1.val();
+        self.rs3.next = self.p_r1.q.val() | self.cl3.val();
+        self.rs2.next = self.p_r2.q.val() | self.cl2.val();
+        self.av0.next = self.p_o1.q.val() & !self.nbmx.q.val();
+        self.av1.next = self.rs1.val() | self.av0.val();
+        self.av3.next = self.rs3.val() | self.av0.val();
+        self.av2.next = self.rs2.val() | (self.p_o2.q.val() & !self.nbmx.q.val());
+        self.rsd.next = false;
         self.a_v.d.next = false;
-        self.a_rs.d.next = false;
-        self.a_rb.d.next = true;
         self.a_snap.d.next = false;
-        self.a_ue.d.next = self.fresh.q.val();
+        if self.va.q.val() {
+            self.a_v.d.next = self.av0.val();
+            if self.sb.q.val() == self.q1.val() {
+                self.rsd.next = self.rs1.val();
+                self.a_v.d.next = self.av1.val();
+                self.a_snap.d.next = self.cl1.val();
+            }
+            if self.sb.q.val() == self.q3.val() {
+                self.rsd.next = self.rs3.val();
+                self.a_v.d.next = self.av3.val();
+                self.a_snap.d.next = self.cl3.val();
+            }
+            if self.sb.q.val() == self.q2.val() {
+                self.rsd.next = self.rs2.val();
+                self.a_v.d.next = self.av2.val();
+                self.a_snap.d.next = self.cl2.val();
+            }
+        }
+        // The restart (a window opens, or closes and the next one opens at this sample)
+        // and its copies: b_ref's loads and the entry from e.
+        self.a_rs.d.next = self.rsd.val();
+        self.a_rb.d.next = !self.rsd.val();
+        self.a_ue.d.next = self.rsd.val() | self.fresh.q.val();
         if self.va.q.val() {
             self.tq.d.next = self.qb.q.val();
             self.net.d.next = self.net.q.val() + self.sval.val();
             self.nb.d.next = self.nb.q.val() + self.one32.val();
-            if !self.tinit.q.val() {
-                self.tinit.d.next = true;
-                self.open.d.next = false;
-            } else if (self.sb.q.val() == self.q2.val()) & !self.dknown.q.val() {
-                // A two-quadrant step with no known direction: restart.
-                self.open.d.next = false;
-            } else {
-                if (self.sb.q.val() == self.q1.val()) | (self.sb.q.val() == self.q3.val()) {
-                    self.dknown.d.next = true;
-                    self.dneg.d.next = self.sb.q.val() == self.q3.val();
-                }
-                if !self.open.q.val() {
-                    if self.sb.q.val().any() {
-                        // Open a window at this boundary, from the offsets in use.
-                        self.open.d.next = true;
-                        self.a_v.d.next = true;
-                        self.a_rs.d.next = true;
-                        self.a_rb.d.next = false;
-                        self.a_ue.d.next = true;
-                    }
-                } else if self.done.val() {
-                    // The window ends before this sample, which opens the next one.
-                    self.a_v.d.next = true;
-                    self.a_rs.d.next = true;
-                    self.a_rb.d.next = false;
-                    self.a_snap.d.next = true;
-                    self.a_ue.d.next = true;
-                } else if self.nbmx.q.val() {
-                    // Too long without closing: abandon, reopen at the next boundary.
-                    self.open.d.next = false;
-                } else {
-                    self.a_v.d.next = true;
-                }
+            self.tinit.d.next = true;
+            // The window stays open exactly when it takes the sample.
+            self.open.d.next = self.a_v.d.val();
+            if self.tinit.q.val()
+                & ((self.sb.q.val() == self.q1.val()) | (self.sb.q.val() == self.q3.val()))
+            {
+                self.dknown.d.next = true;
+                self.dneg.d.next = self.sb.q.val() == self.q3.val();
             }
         }
         // Stage B2, a clock after B1: the decision's actions. A restart loads b_ref with the
