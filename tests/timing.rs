@@ -43,7 +43,7 @@ struct Design {
 }
 
 /// Floor for the auto-correction top: 0.7 x. The ellipse fit does not meet even the
-/// configured clock yet (117.08 MHz at seed 1 against 133.33 MHz with the run-time
+/// configured clock yet (123.18 MHz at seed 1 against 133.33 MHz with the run-time
 /// products as shift-add trees and the solver's steps over two clocks; 119.29 MHz before,
 /// 96.09 MHz four rounds ago; docs/correction.md); the floor only catches a further
 /// regression of its fit tracker and solver selects.
