@@ -51,7 +51,11 @@ fn min_samples_out_of_range_or_too_short_is_refused_at_the_key() {
     refused(
         &with("mode = \"auto\"\nmin_samples = 19"),
         "min_samples = 19",
-        &["2038-clock solve", "at least 20 samples"],
+        &[
+            "outlast the 2038 clocks",
+            "2032-clock solve",
+            "at least 20 samples",
+        ],
     );
     assert!(Loaded::parse(&with("mode = \"auto\"\nmin_samples = 20"), "ok.toml").is_ok());
     refused(

@@ -303,9 +303,12 @@ pub(super) fn correction_params(c: &Config, rate: f64, err: &ErrFn) -> Result<Co
                     "correction",
                     "min_samples",
                     format!(
-                        "{}: a fit window must outlast the {need:.0}-clock solve; at {clocks:.1} \
-                         clocks per sample use at least {} samples",
+                        "{}: a fit window must outlast the {need:.0} clocks from its closing \
+                         sample to the update (the fit's {} pipeline stages and the {}-clock \
+                         solve); at {clocks:.1} clocks per sample use at least {} samples",
                         k.min_samples,
+                        crate::blocks::correction::fit_hdl::FIT_STAGES,
+                        crate::blocks::correction::fit_solve::SOLVE_CYCLES,
                         (need / clocks).floor() as u64 + 1
                     ),
                 ));
