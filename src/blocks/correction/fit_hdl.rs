@@ -42,8 +42,9 @@
 //!
 //! # Timing and semantics
 //! * The tracker and the sums follow the model sample for sample. Samples must be at least
-//!   two clocks apart (the ADC controller delivers one per frame, tens of clocks; the tests
-//!   every 2 to 6): stage A of the next sample runs with stage B2 of this one.
+//!   three clocks apart (the ADC controller delivers one per frame, tens of clocks; the
+//!   tests every 3 to 12): stage A of the next sample runs with stage B2 of this one or
+//!   later, and its stage B1 reads the step-class flags formed after this one's (above).
 //! * Stage B1 decides (the window-closing compares of `net` and N are free-running
 //!   registers, so they describe the last sample's state two clocks after it), and only a
 //!   handful of flags wait for the decision: net and N count every sample in B1, and
@@ -51,9 +52,11 @@
 //!   b_ref at a restart, and writes the sums' command (about 230 register bits, driven by
 //!   four flags instead of by the compares through the decision). While a restart clears
 //!   net and N the compares are forced to describe net = 0, N = 1.
-//! * Stage B1's other operands are registered beside the compares (`p_*`, from the
-//!   tracker's state, final a clock before B1, and net mod 4), so the decision reads only
-//!   registers: the step, the compares, N's flags and these.
+//! * The registered compares, N's flags and the decision's other operands (`p_*`, from
+//!   the tracker's state and net mod 4) are combined a clock later into one register per
+//!   step class and outcome (`cl*` closes, `rs*` restarts, `av*` takes the sample), final
+//!   three clocks after the previous sample's stage B1; stage B1 reads only registers: the
+//!   step and these ten flags (about six inputs per decision).
 //! * b_ref of a new window is b_cur at its first sample, i.e. the offsets before the update
 //!   its predecessor triggers (the model does the same, [`super::fit`]). b_ref is loaded in
 //!   stage B2, while stage A already takes the next sample: that sample's quadrant comes
@@ -178,7 +181,8 @@ pub struct FitCal {
     d_nsc: DFF<Bit>,
     cnt: DFF<Bits<32>>,
     /// The window-closing compares |net + s| >= 4K for s = +1, -1, +2, -2 and N >= min_samples,
-    /// registered from `net` and `nb` (free-running; samples are at least two clocks apart).
+    /// registered from `net` and `nb` (free-running; final two clocks after a sample's
+    /// stage B1).
     h_p1: DFF<Bit>,
     h_m1: DFF<Bit>,
     h_p2: DFF<Bit>,
@@ -186,19 +190,19 @@ pub struct FitCal {
     nbge: DFF<Bit>,
     /// N = N_MAX, registered like the compares above.
     nbmx: DFF<Bit>,
-    /// Stage B1's operands that do not wait for the compares, registered like them from the
-    /// tracker's state (final a clock before stage B1): open at a +-1 step (`p_r1`) or a
-    /// known 2-step (`p_r2`); the window is open (`p_o1`; with a known direction `p_o2`).
-    p_r1: DFF<Bit>,
-    p_r2: DFF<Bit>,
-    p_o1: DFF<Bit>,
-    p_o2: DFF<Bit>,
+    /// Stage B1's operands that do not wait for the compares, from the tracker's state
+    /// (final a clock before stage B1): open at a +-1 step (`p_r1`) or a known 2-step
+    /// (`p_r2`); the window is open (`p_o1`; with a known direction `p_o2`).
+    p_r1: Signal<Local, Bit>,
+    p_r2: Signal<Local, Bit>,
+    p_o1: Signal<Local, Bit>,
+    p_o2: Signal<Local, Bit>,
     /// The window is open and net + s is a multiple of 4, for s = +1 (`p_w1`), -1 (`p_w3`),
     /// +2 (`p_w2p`) and -2 (`p_w2m`, the known direction chooses s = +-2).
-    p_w1: DFF<Bit>,
-    p_w3: DFF<Bit>,
-    p_w2p: DFF<Bit>,
-    p_w2m: DFF<Bit>,
+    p_w1: Signal<Local, Bit>,
+    p_w3: Signal<Local, Bit>,
+    p_w2p: Signal<Local, Bit>,
+    p_w2m: Signal<Local, Bit>,
     /// Stage B1's decision for stage B2: add the sample, restart the sums (and b_ref, net,
     /// N), snapshot the window, take the entry from e = x - b_cur.
     a_v: DFF<Bit>,
@@ -234,18 +238,22 @@ pub struct FitCal {
     /// Stage B: the step s as a 32-bit word, and the closing tests for it.
     sval: Signal<Local, Bits<32>>,
     netf: Signal<Local, Bits<32>>,
-    /// Stage B1, per step class (+1, -1, +-2): the window closes (`cl*`), restarts (`rs*`),
-    /// takes the sample (`av*`; `av0` for no step); and the restart itself (`rsd`).
-    cl1: Signal<Local, Bit>,
-    cl3: Signal<Local, Bit>,
-    cl2: Signal<Local, Bit>,
-    rs1: Signal<Local, Bit>,
-    rs3: Signal<Local, Bit>,
-    rs2: Signal<Local, Bit>,
-    av0: Signal<Local, Bit>,
-    av1: Signal<Local, Bit>,
-    av3: Signal<Local, Bit>,
-    av2: Signal<Local, Bit>,
+    /// Stage B1's operands per step class (+1, -1, +-2), each one register formed from the
+    /// registered compares and the tracker's flags above (final three clocks after a
+    /// sample's stage B1, so samples must be at least three clocks apart):
+    /// the window closes (`cl*`), restarts (`rs*`), takes the sample (`av*`; `av0` for no
+    /// step). Stage B1 then chooses among them by the step: a few inputs per decision.
+    cl1: DFF<Bit>,
+    cl3: DFF<Bit>,
+    cl2: DFF<Bit>,
+    rs1: DFF<Bit>,
+    rs3: DFF<Bit>,
+    rs2: DFF<Bit>,
+    av0: DFF<Bit>,
+    av1: DFF<Bit>,
+    av3: DFF<Bit>,
+    av2: DFF<Bit>,
+    /// Stage B1: the restart (`rs*` chosen by the step).
     rsd: Signal<Local, Bit>,
     /// Stage E: the sums' bases (0 at a restart).
     z1_s: Signal<Local, Bits<64>>,

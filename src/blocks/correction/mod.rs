@@ -71,7 +71,7 @@
 //!   A sample presented with
 //!   `in_valid` before rising edge k appears on `out_*` with `out_valid` after edge
 //!   k + latency - 1 (k+2 at 3 clocks); one sample per clock (back-to-back) is fine
-//!   (in `auto` mode the fit's tracker needs them two clocks apart: `fit_hdl.rs`).
+//!   (in `auto` mode the fit's tracker needs them three clocks apart: `fit_hdl.rs`).
 //!   `g` travels with the sample through stage 1, so a calibration update never mixes an
 //!   old offset with a new gain within one sample.
 //!

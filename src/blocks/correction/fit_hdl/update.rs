@@ -10,8 +10,8 @@ impl Logic for FitCal {
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, s1_s,
             s1_c, s2_s, s2_c, ssc, kd_m, kd_n, e1_s, e2_s, e3_s, e1_c, e2_c, e3_c, h_p1, h_m1,
-            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, p_r1, p_r2, p_o1, p_o2,
-            p_w1, p_w3, p_w2p, p_w2m
+            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, cl1, cl3, cl2, rs1, rs3,
+            rs2, av0, av1, av3, av2
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -66,10 +66,12 @@ impl Logic for FitCal {
             ^ (((!self.q.val()) & self.tq.q.val() & self.q1.val()) << self.one32.val());
         self.qb.d.next = self.q.val();
         self.sb.d.next = self.stp.val();
-        // Free-running compares of net and N for stage B1: |net + s| >= 4K for each step s,
-        // N >= min_samples, N = N_MAX (net and N changed at least two clocks before the
-        // next sample's stage B1). While a restart clears net and N (a_rs), they describe
-        // net = 0 and N = 1.
+        // Free-running compares of net and N: |net + s| >= 4K for each step s,
+        // N >= min_samples, N = N_MAX (final two clocks after a sample's stage B1; while a
+        // restart clears net and N (a_rs), they describe net = 0 and N = 1). A clock later
+        // they and the tracker's flags below form one free-running register per step class
+        // and outcome (cl*, rs*, av*), final three clocks after the sample's stage B1, in
+        // time for the next sample's (samples at least three clocks apart).
         self.netf.next = self.net.q.val() ^ self.sign32.val();
         self.h_p1.d.next = ((self.netf.val() >= self.ge_p1.val())
             | (self.netf.val() < self.lt_p1.val()))
@@ -88,35 +90,35 @@ impl Logic for FitCal {
         if self.a_rs.q.val() {
             self.nbge.d.next = self.one32.val() >= self.nmin.val();
         }
-        // The decision's other operands, registered beside the compares from the tracker's
-        // state (written in stage B1, at least a clock earlier) and net mod 4 (0 while a
-        // restart clears net), so stage B1 is a few flags wide per step.
-        self.p_r1.d.next = self.tinit.q.val() & !self.open.q.val();
-        self.p_r2.d.next = self.tinit.q.val() & self.dknown.q.val() & !self.open.q.val();
-        self.p_o1.d.next = self.tinit.q.val() & self.open.q.val();
-        self.p_o2.d.next = self.tinit.q.val() & self.dknown.q.val() & self.open.q.val();
-        self.p_w1.d.next = self.tinit.q.val()
+        // The decision's other operands, from the tracker's state (written in stage B1, at
+        // least a clock earlier) and net mod 4 (0 while a restart clears net).
+        self.p_r1.next = self.tinit.q.val() & !self.open.q.val();
+        self.p_r2.next = self.tinit.q.val() & self.dknown.q.val() & !self.open.q.val();
+        self.p_o1.next = self.tinit.q.val() & self.open.q.val();
+        self.p_o2.next = self.tinit.q.val() & self.dknown.q.val() & self.open.q.val();
+        self.p_w1.next = self.tinit.q.val()
             & self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r3.val());
-        self.p_w3.d.next = self.tinit.q.val()
+        self.p_w3.next = self.tinit.q.val()
             & self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r1.val());
-        self.p_w2p.d.next = self.tinit.q.val()
+        self.p_w2p.next = self.tinit.q.val()
             & self.dknown.q.val()
             & !self.dneg.q.val()
             & self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r2.val());
-        self.p_w2m.d.next = self.tinit.q.val()
+        self.p_w2m.next = self.tinit.q.val()
             & self.dknown.q.val()
             & self.dneg.q.val()
             & self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r2.val());
-        // Stage B1: the step as a word and the window decision, per step class from the
-        // registered flags, then chosen by the step. A 2-step with no known direction, or
+        // The per-step-class flags (registered: formed from the compares and the tracker's
+        // flags in the clock before stage B1). Stage B1: the step as a word and the window
+        // decision, the registered flags chosen by the step. A 2-step with no known direction, or
         // the first sample, restarts the tracker (nothing taken, the window closed).
         self.sval.next = self.zero32.val();
         if self.sb.q.val() == self.q1.val() {
@@ -131,37 +133,37 @@ impl Logic for FitCal {
                 self.sval.next = self.sm2.val();
             }
         }
-        self.cl1.next = self.p_w1.q.val() & self.h_p1.q.val() & self.nbge.q.val();
-        self.cl3.next = self.p_w3.q.val() & self.h_m1.q.val() & self.nbge.q.val();
-        self.cl2.next = ((self.p_w2p.q.val() & self.h_p2.q.val())
-            | (self.p_w2m.q.val() & self.h_m2.q.val()))
+        self.cl1.d.next = self.p_w1.val() & self.h_p1.q.val() & self.nbge.q.val();
+        self.cl3.d.next = self.p_w3.val() & self.h_m1.q.val() & self.nbge.q.val();
+        self.cl2.d.next = ((self.p_w2p.val() & self.h_p2.q.val())
+            | (self.p_w2m.val() & self.h_m2.q.val()))
             & self.nbge.q.val();
-        self.rs1.next = self.p_r1.q.val() | self.cl1.val();
-        self.rs3.next = self.p_r1.q.val() | self.cl3.val();
-        self.rs2.next = self.p_r2.q.val() | self.cl2.val();
-        self.av0.next = self.p_o1.q.val() & !self.nbmx.q.val();
-        self.av1.next = self.rs1.val() | self.av0.val();
-        self.av3.next = self.rs3.val() | self.av0.val();
-        self.av2.next = self.rs2.val() | (self.p_o2.q.val() & !self.nbmx.q.val());
+        self.rs1.d.next = self.p_r1.val() | self.cl1.d.val();
+        self.rs3.d.next = self.p_r1.val() | self.cl3.d.val();
+        self.rs2.d.next = self.p_r2.val() | self.cl2.d.val();
+        self.av0.d.next = self.p_o1.val() & !self.nbmx.q.val();
+        self.av1.d.next = self.rs1.d.val() | self.av0.d.val();
+        self.av3.d.next = self.rs3.d.val() | self.av0.d.val();
+        self.av2.d.next = self.rs2.d.val() | (self.p_o2.val() & !self.nbmx.q.val());
         self.rsd.next = false;
         self.a_v.d.next = false;
         self.a_snap.d.next = false;
         if self.va.q.val() {
-            self.a_v.d.next = self.av0.val();
+            self.a_v.d.next = self.av0.q.val();
             if self.sb.q.val() == self.q1.val() {
-                self.rsd.next = self.rs1.val();
-                self.a_v.d.next = self.av1.val();
-                self.a_snap.d.next = self.cl1.val();
+                self.rsd.next = self.rs1.q.val();
+                self.a_v.d.next = self.av1.q.val();
+                self.a_snap.d.next = self.cl1.q.val();
             }
             if self.sb.q.val() == self.q3.val() {
-                self.rsd.next = self.rs3.val();
-                self.a_v.d.next = self.av3.val();
-                self.a_snap.d.next = self.cl3.val();
+                self.rsd.next = self.rs3.q.val();
+                self.a_v.d.next = self.av3.q.val();
+                self.a_snap.d.next = self.cl3.q.val();
             }
             if self.sb.q.val() == self.q2.val() {
-                self.rsd.next = self.rs2.val();
-                self.a_v.d.next = self.av2.val();
-                self.a_snap.d.next = self.cl2.val();
+                self.rsd.next = self.rs2.q.val();
+                self.a_v.d.next = self.av2.q.val();
+                self.a_snap.d.next = self.cl2.q.val();
             }
         }
         // The restart (a window opens, or closes and the next one opens at this sample)
