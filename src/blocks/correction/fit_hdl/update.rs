@@ -8,10 +8,11 @@ impl Logic for FitCal {
         dff_setup!(
             self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
-            c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, s1_s,
-            s1_c, s2_s, s2_c, ssc, kd_m, kd_n, e1_s, e2_s, e3_s, e1_c, e2_c, e3_c, h_p1, h_m1,
-            h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, cl1, cl3, cl2, rs1, rs3,
-            rs2, av0, av1, av3, av2
+            c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, l1_s,
+            l1_c, l2_s, l2_c, lsc, y1_s, y1_c, y2_s, y2_c, ysc, h1_s, h1_c, h2_s, h2_c, hsc, x1_s,
+            x1_c, xsc, f_v, f_rs, kd_m, kd_n, e1_s, e2_s, e3_s, e1_c, e2_c, e3_c, h_p1, h_m1, h_p2,
+            h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, cl1, cl3, cl2, rs1, rs3, rs2,
+            av0, av1, av3, av2
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -283,42 +284,94 @@ impl Logic for FitCal {
         // the sums hold the window's last sample by then (its stage E was at least two
         // clocks earlier).
         self.slv.start.next = self.tcc.out_v.val() & !self.slv.busy.val();
-        // Stage E: the sums (restart: from zero, one clock after the restart flag c_rs
-        // leaves the trees).
+        // Stage E: the sums' low halves as 33-bit sums on registers (restart: from zero,
+        // one clock after the restart flag c_rs leaves the trees), the carries registered;
+        // stage E2, a clock later: the high halves, high addend plus carry. Each is one
+        // 33- or 32-bit chain instead of one 64-bit chain; the high half lags a clock, and
+        // samples are at least three clocks apart, so a sample's E2 ends before the next
+        // sample's E and before any snapshot.
         self.d_rs.d.next = self.tss.out_neg.val();
-        self.z1_s.next = self.s1_s.q.val();
-        self.z1_c.next = self.s1_c.q.val();
-        self.z2_s.next = self.s2_s.q.val();
-        self.z2_c.next = self.s2_c.q.val();
-        self.zsc.next = self.ssc.q.val();
+        self.zl1_s.next = self.l1_s.q.val();
+        self.zl1_c.next = self.l1_c.q.val();
+        self.zl2_s.next = self.l2_s.q.val();
+        self.zl2_c.next = self.l2_c.q.val();
+        self.zlsc.next = self.lsc.q.val();
         self.zn.next = self.cnt.q.val();
         if self.d_rs.q.val() {
-            self.z1_s.next = self.zero64.val();
-            self.z1_c.next = self.zero64.val();
-            self.z2_s.next = self.zero64.val();
-            self.z2_c.next = self.zero64.val();
-            self.zsc.next = self.zero64.val();
+            self.zl1_s.next = self.zero32.val();
+            self.zl1_c.next = self.zero32.val();
+            self.zl2_s.next = self.zero32.val();
+            self.zl2_c.next = self.zero32.val();
+            self.zlsc.next = self.zero32.val();
             self.zn.next = self.zero32.val();
         }
-        self.nsci.next = self.zero64.val();
+        self.nsci.next = self.zero33.val();
         if self.d_nsc.q.val() {
-            self.nsci.next = self.one64.val();
+            self.nsci.next = self.one33.val();
         }
+        self.w1_s.next = bit_cast::<33, 32>(self.zl1_s.val())
+            + bit_cast::<33, 32>(bit_cast::<32, 64>(self.d_es.q.val()));
+        self.w1_c.next = bit_cast::<33, 32>(self.zl1_c.val())
+            + bit_cast::<33, 32>(bit_cast::<32, 64>(self.d_ec.q.val()));
+        self.w2_s.next =
+            bit_cast::<33, 32>(self.zl2_s.val()) + bit_cast::<33, 32>(self.p_ss.q.val());
+        self.w2_c.next =
+            bit_cast::<33, 32>(self.zl2_c.val()) + bit_cast::<33, 32>(self.p_cc.q.val());
+        // zsc -+ |e_s e_c| = zsc + (p_sc, inverted when negative) + carry-in.
+        self.wsc.next = bit_cast::<33, 32>(self.zlsc.val())
+            + bit_cast::<33, 32>(bit_cast::<32, 64>(self.p_sc.q.val()))
+            + self.nsci.val();
+        self.f_v.d.next = self.d_v.q.val();
+        self.f_rs.d.next = self.d_rs.q.val();
         if self.d_v.q.val() {
-            self.s1_s.d.next = self.z1_s.val() + self.d_es.q.val();
-            self.s1_c.d.next = self.z1_c.val() + self.d_ec.q.val();
-            self.s2_s.d.next = self.z2_s.val() + bit_cast::<64, 32>(self.p_ss.q.val());
-            self.s2_c.d.next = self.z2_c.val() + bit_cast::<64, 32>(self.p_cc.q.val());
-            // zsc -+ |e_s e_c| = zsc + (p_sc, inverted when negative) + carry-in.
-            self.ssc.d.next = self.zsc.val() + self.p_sc.q.val() + self.nsci.val();
+            self.l1_s.d.next = bit_cast::<32, 33>(self.w1_s.val());
+            self.l1_c.d.next = bit_cast::<32, 33>(self.w1_c.val());
+            self.l2_s.d.next = bit_cast::<32, 33>(self.w2_s.val());
+            self.l2_c.d.next = bit_cast::<32, 33>(self.w2_c.val());
+            self.lsc.d.next = bit_cast::<32, 33>(self.wsc.val());
+            self.y1_s.d.next = self.w1_s.val().get_bit(32);
+            self.y1_c.d.next = self.w1_c.val().get_bit(32);
+            self.y2_s.d.next = self.w2_s.val().get_bit(32);
+            self.y2_c.d.next = self.w2_c.val().get_bit(32);
+            self.ysc.d.next = self.wsc.val().get_bit(32);
+            self.x1_s.d.next = bit_cast::<32, 64>(self.d_es.q.val() >> self.s32w.val());
+            self.x1_c.d.next = bit_cast::<32, 64>(self.d_ec.q.val() >> self.s32w.val());
+            self.xsc.d.next = bit_cast::<32, 64>(self.p_sc.q.val() >> self.s32w.val());
             self.cnt.d.next = self.zn.val() + self.one32.val();
         }
+        self.zh1_s.next = self.h1_s.q.val();
+        self.zh1_c.next = self.h1_c.q.val();
+        self.zh2_s.next = self.h2_s.q.val();
+        self.zh2_c.next = self.h2_c.q.val();
+        self.zhsc.next = self.hsc.q.val();
+        if self.f_rs.q.val() {
+            self.zh1_s.next = self.zero32.val();
+            self.zh1_c.next = self.zero32.val();
+            self.zh2_s.next = self.zero32.val();
+            self.zh2_c.next = self.zero32.val();
+            self.zhsc.next = self.zero32.val();
+        }
+        if self.f_v.q.val() {
+            self.h1_s.d.next =
+                self.zh1_s.val() + self.x1_s.q.val() + bit_cast::<32, 1>(self.y1_s.q.val().into());
+            self.h1_c.d.next =
+                self.zh1_c.val() + self.x1_c.q.val() + bit_cast::<32, 1>(self.y1_c.q.val().into());
+            self.h2_s.d.next = self.zh2_s.val() + bit_cast::<32, 1>(self.y2_s.q.val().into());
+            self.h2_c.d.next = self.zh2_c.val() + bit_cast::<32, 1>(self.y2_c.q.val().into());
+            self.hsc.d.next =
+                self.zhsc.val() + self.xsc.q.val() + bit_cast::<32, 1>(self.ysc.q.val().into());
+        }
         self.slv.n.next = self.cnt.q.val();
-        self.slv.s1_s.next = self.s1_s.q.val();
-        self.slv.s1_c.next = self.s1_c.q.val();
-        self.slv.s2_s.next = self.s2_s.q.val();
-        self.slv.s2_c.next = self.s2_c.q.val();
-        self.slv.ssc.next = self.ssc.q.val();
+        self.slv.s1_s.next = (bit_cast::<64, 32>(self.h1_s.q.val()) << self.s32w.val())
+            | bit_cast::<64, 32>(self.l1_s.q.val());
+        self.slv.s1_c.next = (bit_cast::<64, 32>(self.h1_c.q.val()) << self.s32w.val())
+            | bit_cast::<64, 32>(self.l1_c.q.val());
+        self.slv.s2_s.next = (bit_cast::<64, 32>(self.h2_s.q.val()) << self.s32w.val())
+            | bit_cast::<64, 32>(self.l2_s.q.val());
+        self.slv.s2_c.next = (bit_cast::<64, 32>(self.h2_c.q.val()) << self.s32w.val())
+            | bit_cast::<64, 32>(self.l2_c.q.val());
+        self.slv.ssc.next = (bit_cast::<64, 32>(self.hsc.q.val()) << self.s32w.val())
+            | bit_cast::<64, 32>(self.lsc.q.val());
         self.slv.bref_s.next = self.bs_s.q.val();
         self.slv.bref_c.next = self.bs_c.q.val();
         if self.rst.val() {
