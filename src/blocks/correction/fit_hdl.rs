@@ -21,8 +21,10 @@
 //!           sign-extended to 64 bits; the
 //!           closing sample's start (leaving C3) starts FitSolve (if idle) on the sums
 //!           (they hold the window's samples by then) and the window's b_ref
-//!  stage E: N, Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (64-bit); the sums then restart from
-//!           the sample; FitSolve ─► b_cur, g, k (all at once)
+//!  stage E: N, and the low 32 bits of Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (33-bit sums,
+//!           carries registered); the sums then restart from the sample
+//!  stage E2 (a clock later): their high 32 bits (high addend + carry): 64-bit sums
+//!           FitSolve ─► b_cur, g, k (all at once)
 //! ```
 //!
 //! # Widths and bit growth (A = 10..=16)
@@ -32,7 +34,10 @@
 //!   words, exact (each tree level is a 32-bit sum of partial products of the same
 //!   product, [`super::multree`]).
 //! * N <= N_MAX = 2^24 (a longer window is abandoned, [`super::fit::N_MAX`]): |Σd| < 2^40,
-//!   Σd² and |Σd_s d_c| < 2^56, so the 64-bit sums never wrap; each is one adder. A
+//!   Σd² and |Σd_s d_c| < 2^56, so the 64-bit sums never wrap; each is two adders: its
+//!   low 32 bits plus the entry's in stage E (33 bits, the carry registered), its high 32
+//!   bits plus the entry's bits 63..32 and that carry a clock later (stage E2), so no path
+//!   holds a 64-bit chain. A
 //!   negative cross product is added as !|p| + 1 (64-bit ones' complement registered in
 //!   stage D, the +1 the sum's carry-in), which equals -|p| in a 64-bit word.
 //! * net (the quadrants since the window opened) changes by at most 2 per sample and is
