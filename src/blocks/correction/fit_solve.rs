@@ -44,7 +44,7 @@
 //!  one-hot load flags (x_*, d_*) under one registered enable (x_en, d_en); the sources a
 //!  return loads are final long before it and reach u_x / u_d through free-running
 //!  registers (uxr, udr); compares and negations the states need (clamps, amplitude and
-//!  offset checks, 2^30 - S², -u_d, ±m_s m_c, the remainder's zero tests) are free-running
+//!  offset checks, 2^30 - S², -u_d, V - m², Cq ± |m_s m_c|, the remainder's zero tests) are free-running
 //!  registers, read a state after their inputs settle (u_mag's clamps from the quotient
 //!  u_x, two clocks ahead); the run's flags and `it` follow the registered mode flags
 //! ```
@@ -267,12 +267,16 @@ pub struct FitSolve {
     /// Remainder, product or root remainder, two's complement (|u_r| < 2^50).
     u_r: DFF<Bits<52>>,
     u_mag: DFF<Bits<64>>,
-    /// The signed quotient: u_mag, or -(u_x + adj) = !u_x + !adj when u_neg, written beside
-    /// it (two chains, then the sign's mux), loaded into u_x by DivNeg.
+    /// The signed quotient: u_mag, or -(u_x + adj) = !u_x + !adj when u_neg (uxs + u_adjq),
+    /// written beside it, loaded into u_x by DivNeg.
     u_q: DFF<Bits<64>>,
     u_neg: DFF<Bit>,
     u_rnd: DFF<Bit>,
     u_adj: DFF<Bit>,
+    /// u_adj ^ u_neg, written beside it: the addend of the signed quotient u_q = uxs + it.
+    u_adjq: DFF<Bit>,
+    /// u_x, inverted when u_neg (free-running): -(u_x + adj) = !u_x + !adj.
+    uxs: DFF<Bits<64>>,
     it: DFF<Bits<8>>,
     sn: DFF<Bits<64>>,
     a1_s: DFF<Bits<64>>,
@@ -440,9 +444,14 @@ pub struct FitSolve {
     /// u_d's source for the static return selects rd_* (N, m_s, m_c, Amp_s, Cc, |S|,
     /// Amp_s Cc; 0 otherwise), free-running a clock behind them, final long before the return.
     udr: DFF<Bits<52>>,
-    /// -m_s m_c from the product |m_s m_c| in u_r and the means' signs (free-running): the
-    /// addend of C = Cq - m_s m_c.
-    pm: DFF<Bits<64>>,
+    /// v_s - u_r (free-running): V_s - m_s², loaded by M2.
+    vsd: DFF<Bits<64>>,
+    /// v_c - u_r (free-running): V_c - m_c², loaded by M3.
+    vcd: DFF<Bits<64>>,
+    /// cc + u_r (free-running): C = Cq - m_s m_c when the means' signs differ, loaded by Cv.
+    ccp: DFF<Bits<64>>,
+    /// cc - u_r (free-running): C = Cq - m_s m_c when they agree.
+    ccm: DFF<Bits<64>>,
     /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
     nd: DFF<Bits<52>>,
     /// u_r ^ nd (free-running).
@@ -463,6 +472,15 @@ pub struct FitSolve {
     lo_c: DFF<Bit>,
     /// An offset o_s / o_c outside the A-bit range (free-running).
     oor: DFF<Bit>,
+    /// u_x bits 31..16 not all zero (free-running; with the seven below, u_mag's compares
+    /// two clocks ahead, from the quotient that u_mag = u_x + adj rounds).
+    xh1: DFF<Bit>,
+    /// u_x bits 47..32 not all zero (free-running).
+    xh2: DFF<Bit>,
+    /// u_x bits 63..48 not all zero (free-running).
+    xh3: DFF<Bit>,
+    /// u_x bits 15..0 not all zero (free-running).
+    xl: DFF<Bit>,
     /// A solve starts in this clock (idle and `start`).
     go: Signal<Local, Bit>,
     /// Sn passes the amplitude check.
@@ -479,23 +497,26 @@ pub struct FitSolve {
     udn: Signal<Local, Bits<52>>,
     /// u_d's next value when d_en: its selected sources ORed.
     udn2: Signal<Local, Bits<52>>,
-    /// u_x bits 63..16 not all zero (free-running; with the five below, u_mag's compares
-    /// two clocks ahead, from the quotient that u_mag = u_x + adj rounds).
-    xh: DFF<Bit>,
+    /// uxa's next value: its selected sources ORed.
+    uxan: Signal<Local, Bits<64>>,
+    /// uxb's next value.
+    uxbn: Signal<Local, Bits<64>>,
+    /// uxc's next value.
+    uxcn: Signal<Local, Bits<64>>,
     /// u_x bits 15..0 > smax (free-running).
     xgt_s: DFF<Bit>,
     /// u_x bits 15..0 >= smax (free-running).
     xge_s: DFF<Bit>,
     /// u_x bits 15..0 all ones (free-running).
     xff: DFF<Bit>,
-    /// u_x != 0 (free-running).
-    xnz: DFF<Bit>,
     /// u_mag > smax, a clock after u_mag (free-running: xh | (adj ? xge_s : xgt_s)).
     big_s: DFF<Bit>,
     /// u_mag > 65535, a clock after u_mag (free-running: xh | (adj & xff)).
     big_c: DFF<Bit>,
-    /// u_mag != 0, a clock after u_mag (free-running: xnz | adj).
+    /// u_mag != 0, a clock after u_mag (free-running: xh | xl | adj).
     mnz: DFF<Bit>,
+    /// u_x bits 63..16 not all zero: xh1 | xh2 | xh3.
+    xh: Signal<Local, Bit>,
     /// u_r < 0 (the non-restoring remainder's sign: add the divisor / trial back).
     rneg: Signal<Local, Bit>,
     /// The chain's first operand: 2 u_r (+ msb(u_x) in a division step) or
@@ -507,8 +528,10 @@ pub struct FitSolve {
     opb: Signal<Local, Bits<52>>,
     /// u_adj as a 64-bit addend.
     adjw: Signal<Local, Bits<64>>,
-    /// !u_adj as a 64-bit addend.
-    nadjw: Signal<Local, Bits<64>>,
+    /// u_adjq as a 64-bit addend.
+    adjqw: Signal<Local, Bits<64>>,
+    /// The rounding increment DivTst writes into u_adj.
+    adjn: Signal<Local, Bit>,
     /// Upper bound of |S|: round(2^15 sin 15 deg).
     smax: Constant<Bits<64>>,
     /// min_amplitude 2^8.
@@ -563,6 +586,7 @@ pub struct FitSolve {
     two32: Constant<Bits<32>>,
     s8: Constant<Bits<32>>,
     s16: Constant<Bits<32>>,
+    s48: Constant<Bits<32>>,
     s62: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
@@ -674,6 +698,8 @@ impl FitSolve {
             u_neg: Default::default(),
             u_rnd: Default::default(),
             u_adj: Default::default(),
+            u_adjq: Default::default(),
+            uxs: Default::default(),
             it: Default::default(),
             sn: Default::default(),
             a1_s: Default::default(),
@@ -775,7 +801,10 @@ impl FitSolve {
             rd_q2: Default::default(),
             rd_amps: Default::default(),
             udr: Default::default(),
-            pm: Default::default(),
+            vsd: Default::default(),
+            vcd: Default::default(),
+            ccp: Default::default(),
+            ccm: Default::default(),
             nd: Default::default(),
             xr: Default::default(),
             rz: Default::default(),
@@ -786,6 +815,10 @@ impl FitSolve {
             lo_s: Default::default(),
             lo_c: Default::default(),
             oor: Default::default(),
+            xh1: Default::default(),
+            xh2: Default::default(),
+            xh3: Default::default(),
+            xl: Default::default(),
             go: Default::default(),
             ok_sn: Default::default(),
             ok_q1: Default::default(),
@@ -794,20 +827,23 @@ impl FitSolve {
             uxn: Default::default(),
             udn: Default::default(),
             udn2: Default::default(),
-            xh: Default::default(),
+            uxan: Default::default(),
+            uxbn: Default::default(),
+            uxcn: Default::default(),
             xgt_s: Default::default(),
             xge_s: Default::default(),
             xff: Default::default(),
-            xnz: Default::default(),
             big_s: Default::default(),
             big_c: Default::default(),
             mnz: Default::default(),
+            xh: Default::default(),
             rneg: Default::default(),
             opa: Default::default(),
             up: Default::default(),
             opb: Default::default(),
             adjw: Default::default(),
-            nadjw: Default::default(),
+            adjqw: Default::default(),
+            adjn: Default::default(),
             smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
             minamp: c64((k.min_amplitude as u64) << 8),
             tgs: c64(t << (gf + 8)),
@@ -843,6 +879,7 @@ impl FitSolve {
             two32: c32(2),
             s8: c32(8),
             s16: c32(16),
+            s48: c32(48),
             s62: c32(62),
             one64: c64(1),
             zero64: c64(0),

@@ -10,16 +10,16 @@ impl Logic for FitSolve {
             s_chk, s_sn, s_sn2, s_offa, s_cs, s_offb, s_offc, s_q1, s_gc, s_q2, s_ts, s_kd, s_load,
             s_dadj, s_dtst, s_dinc, s_dneg, p_mc, p_vs, p_vc, p_cq, p_m1, p_m2, p_m3, p_cv, p_sqc,
             p_chk, p_sn, p_sn2, p_offa, p_offb, p_q1, p_gc, p_q2, p_ts, p_kd, p_load, f_ret, u_x,
-            u_d, u_r, u_mag, u_q, u_neg, u_rnd, u_adj, it, sn, a1_s, a1_c, n1_s, n1_c, a2_s, a2_c,
-            asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos, amp_s, amp_c, smag, sneg, cs,
-            t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs, r_gc, r_km, r_kn, r_done, f_div,
-            f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last, f_ld, f_80, neg_n, oa, ob, x_a1s,
-            x_uxr, x_scl, x_t30, x_urk, x_q, x_en, d_sn, d_udr, d_uq, d_ur, d_scl, d_one, d_en,
-            clr_r, rx_uxr, rx_scl, rx_urk, rx_a1c8, rx_a2s, rx_a2c, rx_asc, rx_vs2, rx_tgs,
-            rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32, rx_cmag16, rx_tgc, rx_tamp32, uxr, uxa,
-            uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one, rd_sn, rd_ms, rd_mc, rd_cs, rd_smag,
-            rd_q2, rd_amps, udr, pm, nd, xr, rz, req, t30, scl, ngf, lo_s, lo_c, oor, xh, xgt_s,
-            xge_s, xff, xnz, big_s, big_c, mnz
+            u_d, u_r, u_mag, u_q, u_neg, u_rnd, u_adj, u_adjq, uxs, it, sn, a1_s, a1_c, n1_s, n1_c,
+            a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos, amp_s, amp_c,
+            smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs, r_gc, r_km, r_kn,
+            r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last, f_ld, f_80, neg_n,
+            oa, ob, x_a1s, x_uxr, x_scl, x_t30, x_urk, x_q, x_en, d_sn, d_udr, d_uq, d_ur, d_scl,
+            d_one, d_en, clr_r, rx_uxr, rx_scl, rx_urk, rx_a1c8, rx_a2s, rx_a2c, rx_asc, rx_vs2,
+            rx_tgs, rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32, rx_cmag16, rx_tgc, rx_tamp32,
+            uxr, uxa, uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one, rd_sn, rd_ms, rd_mc, rd_cs,
+            rd_smag, rd_q2, rd_amps, udr, vsd, vcd, ccp, ccm, nd, xr, rz, req, t30, scl, ngf, lo_s,
+            lo_c, oor, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c, mnz
         );
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
         // chain's operands oa / ob (free-running, one LUT each from registers: u_r, its sign,
@@ -67,20 +67,25 @@ impl Logic for FitSolve {
                 (bit_cast::<53, 52>(self.opb.val()) << self.one32.val()) | self.one53.val();
         }
         self.adjw.next = self.zero64.val();
-        self.nadjw.next = self.one64.val();
         if self.u_adj.q.val() {
             self.adjw.next = self.one64.val();
-            self.nadjw.next = self.zero64.val();
+        }
+        self.adjqw.next = self.zero64.val();
+        if self.u_adjq.q.val() {
+            self.adjqw.next = self.one64.val();
         }
         // Free-running registers: compares and negations one clock ahead of their use.
         self.nd.d.next = self.zero52.val() - self.u_d.q.val();
         self.xr.d.next = self.u_r.q.val() ^ self.nd.q.val();
         self.rz.d.next = self.u_r.q.val() == self.zero52.val();
         self.req.d.next = self.xr.q.val() == self.zero52.val();
-        self.pm.d.next = self.zero64.val() - bit_cast::<64, 52>(self.u_r.q.val());
-        if self.n1_s.q.val() ^ self.n1_c.q.val() {
-            self.pm.d.next = bit_cast::<64, 52>(self.u_r.q.val());
-        }
+        // The subtractions and the sum that end a product's state (V_s -= m_s², V_c -= m_c²,
+        // C = Cq -+ |m_s m_c|), free-running from the product in u_r (final from the run's
+        // last B clock on): the state after the return loads them through a LUT, not a chain.
+        self.vsd.d.next = self.v_s.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
+        self.vcd.d.next = self.v_c.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
+        self.ccp.d.next = self.cc.q.val() + bit_cast::<64, 52>(self.u_r.q.val());
+        self.ccm.d.next = self.cc.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
         self.t30.d.next = self.two30.val() - bit_cast::<64, 52>(self.u_r.q.val());
         self.lo_s.d.next = self.amp_s.q.val() < self.minamp.val();
         self.lo_c.d.next = self.amp_c.q.val() < self.minamp.val();
@@ -91,17 +96,26 @@ impl Logic for FitSolve {
         // u_mag's compares from the quotient it rounds (u_mag = u_x + adj): u_x is final from
         // the division's rounding sum on, so these are settled when DivNeg reads big_s / big_c /
         // mnz (u_mag > K <=> u_x > K - adj, K < 2^16; u_mag != 0 <=> u_x != 0 | adj).
-        self.xh.d.next = (self.u_x.q.val() >> self.s16.val()).any();
+        self.xh1.d.next = bit_cast::<16, 64>(self.u_x.q.val() >> self.s16.val()).any();
+        self.xh2.d.next = bit_cast::<16, 64>(self.u_x.q.val() >> self.s32.val()).any();
+        self.xh3.d.next = bit_cast::<16, 64>(self.u_x.q.val() >> self.s48.val()).any();
+        self.xl.d.next = bit_cast::<16, 64>(self.u_x.q.val()).any();
         self.xgt_s.d.next = bit_cast::<16, 64>(self.u_x.q.val()) > self.smax16.val();
         self.xge_s.d.next = bit_cast::<16, 64>(self.u_x.q.val()) >= self.smax16.val();
         self.xff.d.next = bit_cast::<16, 64>(self.u_x.q.val()) == self.cmax16.val();
-        self.xnz.d.next = self.u_x.q.val().any();
-        self.big_s.d.next = self.xh.q.val() | self.xgt_s.q.val();
+        self.xh.next = self.xh1.q.val() | self.xh2.q.val() | self.xh3.q.val();
+        self.big_s.d.next = self.xh.val() | self.xgt_s.q.val();
         if self.u_adj.q.val() {
-            self.big_s.d.next = self.xh.q.val() | self.xge_s.q.val();
+            self.big_s.d.next = self.xh.val() | self.xge_s.q.val();
         }
-        self.big_c.d.next = self.xh.q.val() | (self.u_adj.q.val() & self.xff.q.val());
-        self.mnz.d.next = self.xnz.q.val() | self.u_adj.q.val();
+        self.big_c.d.next = self.xh.val() | (self.u_adj.q.val() & self.xff.q.val());
+        self.mnz.d.next = self.xh.val() | self.xl.q.val() | self.u_adj.q.val();
+        // u_x with its bits inverted for a negative quotient (free-running; u_x and u_neg are
+        // settled from the rounding sum on): DivInc adds adj ^ u_neg to it.
+        self.uxs.d.next = self.u_x.q.val();
+        if self.u_neg.q.val() {
+            self.uxs.d.next = !self.u_x.q.val();
+        }
         self.scl.d.next = self.u_mag.q.val();
         if self.big_s.q.val() {
             self.scl.d.next = self.smax.val();
@@ -379,14 +393,17 @@ impl Logic for FitSolve {
             self.cc.d.next = self.u_x.q.val();
         }
         if self.s_m2.q.val() {
-            self.v_s.d.next = self.v_s.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
+            self.v_s.d.next = self.vsd.q.val();
         }
         if self.s_m3.q.val() {
-            self.v_c.d.next = self.v_c.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
+            self.v_c.d.next = self.vcd.q.val();
         }
         if self.s_cv.q.val() {
             // C = Cq - m_s m_c, the product's sign from the means' signs.
-            self.cc.d.next = self.cc.q.val() + self.pm.q.val();
+            self.cc.d.next = self.ccm.q.val();
+            if self.n1_s.q.val() ^ self.n1_c.q.val() {
+                self.cc.d.next = self.ccp.q.val();
+            }
         }
         if self.s_sqs.q.val() {
             // |C| and the sign of -C (rdiv's sign below; C = 0 gives 0 either way).
@@ -444,25 +461,24 @@ impl Logic for FitSolve {
         }
         // DivAdj: a rounding division adds 2 u_r -+ u_d in this clock (2 r >= d is its sign);
         // a truncating one keeps u_r while `req` settles.
+        // The true remainder is u_r, or u_r + u_d when u_r < 0 (zero when u_r = -u_d: `req`);
+        // truncation toward zero adds one to a negative quotient when r != 0.
+        self.adjn.next = self.u_neg.q.val() & !self.rz.q.val();
+        if self.rneg.val() {
+            self.adjn.next = self.u_neg.q.val() & !self.req.q.val();
+        }
+        if self.u_rnd.q.val() {
+            self.adjn.next = !self.rneg.val();
+        }
         if self.s_dtst.q.val() {
-            // The true remainder is u_r, or u_r + u_d when u_r < 0 (zero when u_r = -u_d:
-            // `req`); truncation toward zero adds one to a negative quotient when r != 0.
-            self.u_adj.d.next = self.u_neg.q.val() & !self.rz.q.val();
-            if self.rneg.val() {
-                self.u_adj.d.next = self.u_neg.q.val() & !self.req.q.val();
-            }
-            if self.u_rnd.q.val() {
-                self.u_adj.d.next = !self.rneg.val();
-            }
+            self.u_adj.d.next = self.adjn.val();
+            self.u_adjq.d.next = self.adjn.val() ^ self.u_neg.q.val();
         }
         if self.s_dinc.q.val() {
             // u_mag = u_x + adj, and the signed quotient u_q = u_mag or -(u_x + adj) =
-            // !u_x + !adj (adj the carry in; two chains side by side, then the sign's mux).
+            // !u_x + !adj, one chain each from registers: u_q = uxs + (adj ^ u_neg).
             self.u_mag.d.next = self.u_x.q.val() + self.adjw.val();
-            self.u_q.d.next = self.u_x.q.val() + self.adjw.val();
-            if self.u_neg.q.val() {
-                self.u_q.d.next = !self.u_x.q.val() + self.nadjw.val();
-            }
+            self.u_q.d.next = self.uxs.q.val() + self.adjqw.val();
         }
         // DivNeg: u_x takes u_q (x_q), f_ret returns.
         // Reset: idle, no state, pending state or stored select, and the mode flags cleared
@@ -583,53 +599,56 @@ impl Logic for FitSolve {
         }
         self.udr.d.next = self.udn.val();
         // The sources a return loads into u_x (final long before it) through free-running
-        // registers, selected by rx_* in three groups (uxa, uxb, uxc; zero when not
-        // selected), then ORed into uxr.
-        self.uxa.d.next = self.zero64.val();
-        self.uxb.d.next = self.zero64.val();
-        self.uxc.d.next = self.zero64.val();
+        // registers, selected by rx_* in three groups (uxa, uxb, uxc; the flags are one-hot,
+        // so the selects are ANDed and ORed), then ORed into uxr.
+        self.uxan.next = self.zero64.val();
+        self.uxbn.next = self.zero64.val();
+        self.uxcn.next = self.zero64.val();
         if self.rx_a1c8.q.val() {
-            self.uxa.d.next = self.a1_c.q.val() << self.s8.val();
+            self.uxan.next = self.uxan.val() | (self.a1_c.q.val() << self.s8.val());
         }
         if self.rx_a2s.q.val() {
-            self.uxa.d.next = self.a2_s.q.val();
+            self.uxan.next = self.uxan.val() | self.a2_s.q.val();
         }
         if self.rx_a2c.q.val() {
-            self.uxa.d.next = self.a2_c.q.val();
+            self.uxan.next = self.uxan.val() | self.a2_c.q.val();
         }
         if self.rx_asc.q.val() {
-            self.uxa.d.next = self.asc.q.val();
+            self.uxan.next = self.uxan.val() | self.asc.q.val();
         }
         if self.rx_vs2.q.val() & !(self.v_s.q.val() & self.sign63.val()).any() {
-            self.uxa.d.next = self.v_s.q.val() << self.one32.val();
+            self.uxan.next = self.uxan.val() | (self.v_s.q.val() << self.one32.val());
         }
         if self.rx_ms32.q.val() {
-            self.uxb.d.next = self.m_s.q.val() << self.s32.val();
+            self.uxbn.next = self.uxbn.val() | (self.m_s.q.val() << self.s32.val());
         }
         if self.rx_mc32.q.val() {
-            self.uxb.d.next = self.m_c.q.val() << self.s32.val();
+            self.uxbn.next = self.uxbn.val() | (self.m_c.q.val() << self.s32.val());
         }
         if self.rx_vc2.q.val() & !(self.v_c.q.val() & self.sign63.val()).any() {
-            self.uxb.d.next = self.v_c.q.val() << self.one32.val();
+            self.uxbn.next = self.uxbn.val() | (self.v_c.q.val() << self.one32.val());
         }
         if self.rx_amps32.q.val() {
-            self.uxb.d.next = self.amp_s.q.val() << self.s32.val();
+            self.uxbn.next = self.uxbn.val() | (self.amp_s.q.val() << self.s32.val());
         }
         if self.rx_ampc32.q.val() {
-            self.uxc.d.next = self.amp_c.q.val() << self.s32.val();
+            self.uxcn.next = self.uxcn.val() | (self.amp_c.q.val() << self.s32.val());
         }
         if self.rx_cmag16.q.val() {
-            self.uxc.d.next = self.cmag.q.val() << self.s16.val();
+            self.uxcn.next = self.uxcn.val() | (self.cmag.q.val() << self.s16.val());
         }
         if self.rx_tgs.q.val() {
-            self.uxc.d.next = self.tgs.val();
+            self.uxcn.next = self.uxcn.val() | self.tgs.val();
         }
         if self.rx_tgc.q.val() {
-            self.uxc.d.next = self.tgc.val();
+            self.uxcn.next = self.uxcn.val() | self.tgc.val();
         }
         if self.rx_tamp32.q.val() {
-            self.uxc.d.next = self.tamp32.val();
+            self.uxcn.next = self.uxcn.val() | self.tamp32.val();
         }
+        self.uxa.d.next = self.uxan.val();
+        self.uxb.d.next = self.uxbn.val();
+        self.uxc.d.next = self.uxcn.val();
         self.uxr.d.next = self.uxa.q.val() | self.uxb.q.val() | self.uxc.q.val();
         // u_x: its sources by one-hot registered flags, ANDed and ORed, under one registered
         // enable; then the division's quotient bit from the adder into bit 0.
