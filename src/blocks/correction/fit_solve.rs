@@ -31,7 +31,8 @@
 //!  when u_r < 0, zero when u_r = nd = -u_d, a register)
 //!  then: adj = round ? 2 r >= u_d (sign of the rounding sum 2 u_r -+ u_d, one more A clock)
 //!  : neg & r != 0 (registered zero tests rz, req); u_mag = u_x + adj and the signed
-//!  u_q = neg ? !u_x + !adj = -(u_x + adj) : u_x + adj (adj the carry in); u_x = u_q
+//!  u_q = uxs + (adj ^ neg), uxs = neg ? !u_x : u_x (free-running), i.e. -(u_x + adj) =
+//!  !u_x + !adj or u_x + adj, one chain from registers (adj the carry in); u_x = u_q
 //!  MUL (MSB first, multiplier a < 2^32 in the top half of u_x, 32 steps):
 //!    u_r = 2 u_r + (msb(u_x) ? u_d : 0); u_x <<= 1
 //!
@@ -43,10 +44,11 @@
 //!  each wide register loads on one state flag; u_x and u_d AND-OR their sources by
 //!  one-hot load flags (x_*, d_*) under one registered enable (x_en, d_en); the sources a
 //!  return loads are final long before it and reach u_x / u_d through free-running
-//!  registers (uxr, udr); compares and negations the states need (clamps, amplitude and
-//!  offset checks, 2^30 - S², -u_d, V - m², Cq ± |m_s m_c|, the remainder's zero tests) are free-running
-//!  registers, read a state after their inputs settle (u_mag's clamps from the quotient
-//!  u_x, two clocks ahead); the run's flags and `it` follow the registered mode flags
+//!  registers (uxr, udr); compares, sums and negations the states need (clamps,
+//!  amplitude and offset checks, 2^30 - S², -u_d, V - m², Cq ± |m_s m_c|, the remainder's
+//!  zero tests) are free-running registers, read a state after their inputs settle
+//!  (u_mag's clamps from the quotient u_x, two clocks ahead); the run's flags and `it`
+//!  follow the registered mode flags
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -270,13 +272,17 @@ pub struct FitSolve {
     /// The signed quotient: u_mag, or -(u_x + adj) = !u_x + !adj when u_neg (uxs + u_adjq),
     /// written beside it, loaded into u_x by DivNeg.
     u_q: DFF<Bits<64>>,
+    /// The division's quotient is negated (taken from neg_n in B_0).
     u_neg: DFF<Bit>,
+    /// The division rounds (64 steps) rather than truncates (80 steps), taken in B_0.
     u_rnd: DFF<Bit>,
+    /// The quotient's increment adj (DivTst).
     u_adj: DFF<Bit>,
     /// u_adj ^ u_neg, written beside it: the addend of the signed quotient u_q = uxs + it.
     u_adjq: DFF<Bit>,
     /// u_x, inverted when u_neg (free-running): -(u_x + adj) = !u_x + !adj.
     uxs: DFF<Bits<64>>,
+    /// Steps left in the run.
     it: DFF<Bits<8>>,
     sn: DFF<Bits<64>>,
     a1_s: DFF<Bits<64>>,
@@ -333,7 +339,8 @@ pub struct FitSolve {
     f_qd: DFF<Bit>,
     /// The run's last B clock (the last step's bit; a division's rounding operands).
     f_last: DFF<Bit>,
-    /// Set-up state: `it` loads `itn` in the next clock (B_0).
+    /// No run in the clock before (B_0 of a run, or outside one): `it` loads the step count
+    /// (32, 64 or 80 from the mode flags and f_80), u_rnd and u_neg a division's settings.
     f_ld: DFF<Bit>,
     /// Vs, Vc or Cq was the state before: the run is an 80-step (truncating) division.
     f_80: DFF<Bit>,
