@@ -43,10 +43,10 @@ struct Design {
 }
 
 /// Floor for the auto-correction top: 0.7 x. The ellipse fit does not meet even the
-/// configured clock yet (123.18 MHz at seed 1 against 133.33 MHz with the run-time
-/// products as shift-add trees and the solver's steps over two clocks; 119.29 MHz before,
-/// 96.09 MHz four rounds ago; docs/correction.md); the floor only catches a further
-/// regression of its fit tracker and solver selects.
+/// configured clock yet (129.58 MHz at seed 1 against 133.33 MHz with the solver's
+/// control one-hot, limited by the fit's tracker; 123.18 MHz before, 96.09 MHz five
+/// rounds ago; docs/correction.md); the floor only catches a further regression of its
+/// fit tracker and solver.
 const AUTO_FLOOR: f64 = 0.7;
 
 /// Floor for the static top with real gains (1.02 / 0.97) and a 1 deg phase correction:

@@ -30,17 +30,25 @@
 //!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
 //!  when u_r < 0, zero when u_r = nd = -u_d, a register)
 //!  then: adj = round ? 2 r >= u_d (sign of the rounding sum 2 u_r -+ u_d, one more A clock)
-//!  : neg & r != 0 (registered zero tests rz, req); u_mag = u_x + adj and
-//!  u_nmag = !u_x + !adj = -(u_x + adj) side by side (adj the carry in); u_x = u_mag / u_nmag
+//!  : neg & r != 0 (registered zero tests rz, req); u_mag = u_x + adj and the signed
+//!  u_q = uxs + (adj ^ neg), uxs = neg ? !u_x : u_x (free-running), i.e. -(u_x + adj) =
+//!  !u_x + !adj or u_x + adj, one chain from registers (adj the carry in); u_x = u_q
 //!  MUL (MSB first, multiplier a < 2^32 in the top half of u_x, 32 steps):
 //!    u_r = 2 u_r + (msb(u_x) ? u_d : 0); u_x <<= 1
 //!
-//!  wide loads: u_x and u_d take one of their sources by a registered select (xs, ds) that
-//!  the state before sets (a return to `ret` takes the select stored with it); compares and
-//!  negations the states need (clamps, amplitude and offset checks, 2^30 - S², -u_d,
-//!  ±m_s m_c, the remainder's zero tests) are free-running registers, read a state after
-//!  their inputs settle; the run's flags and `it` follow the registered mode flags, not
-//!  the state
+//!  control, one-hot: a flag per state (s_*), set for one clock by the state before; a
+//!  set-up state leaves its successor pending (p_*) with the loads of the return (rx_*,
+//!  rd_*) and sets the mode flag of its run; the run returns with f_ret (a product's or
+//!  square root's last B clock, a division's sign state DivNeg):
+//!    s_P ──► p_X, rx_*, rd_*, f_div|f_sq|f_mul ──► run ── f_ret ──► s_X, x_*, d_*
+//!  each wide register loads on one state flag; u_x and u_d AND-OR their sources by
+//!  one-hot load flags (x_*, d_*) under one registered enable (x_en, d_en); the sources a
+//!  return loads are final long before it and reach u_x / u_d through free-running
+//!  registers (uxr, udr); compares, sums and negations the states need (clamps,
+//!  amplitude and offset checks, 2^30 - S², -u_d, V - m², Cq ± |m_s m_c|, the remainder's
+//!  zero tests) are free-running registers, read a state after their inputs settle
+//!  (u_mag's clamps from the quotient u_x, two clocks ahead); the run's flags and `it`
+//!  follow the registered mode flags
 //! ```
 //!
 //! # Bit growth (A <= 16, N <= N_MAX = 2^24, T < 2^15, GF <= 15)
@@ -112,147 +120,6 @@ fn c8(v: u64) -> Constant<Bits<8>> {
     Constant::new(Bits::<8>::from(v))
 }
 
-/// What u_x loads in a state (one registered select, decoded from the next state).
-#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
-pub enum XSel {
-    /// Keep (or the run state's shift).
-    Hold,
-    /// |Σd_s| 2^8.
-    A1s8,
-    /// |Σd_c| 2^8.
-    A1c8,
-    /// Σd_s².
-    A2s,
-    /// Σd_c².
-    A2c,
-    /// |Σd_s d_c|.
-    Asc,
-    /// m_s 2^32 (a multiplier operand sits in the top half).
-    Ms32,
-    /// m_c 2^32.
-    Mc32,
-    /// 2 V_s (0 if V_s < 0).
-    Vs2,
-    /// 2 V_c (0 if V_c < 0).
-    Vc2,
-    /// Amp_s 2^32.
-    Amps32,
-    /// Amp_c 2^32.
-    Ampc32,
-    /// |C| 2^16.
-    Cmag16,
-    /// Clamped |S| 2^32.
-    Scl32,
-    /// 2^30 - S².
-    T30,
-    /// T 2^(GF+8).
-    Tgs,
-    /// T 2^(GF+23).
-    Tgc,
-    /// T 2^32.
-    Tamp32,
-    /// T |S| 2^(GF+8).
-    Urk,
-    /// The rounded quotient's magnitude.
-    Mag,
-    /// Its negation.
-    NMag,
-}
-
-/// What u_d loads in a state.
-#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
-pub enum DSel {
-    /// Keep.
-    Hold,
-    /// N.
-    Sn,
-    /// m_s.
-    Ms,
-    /// m_c.
-    Mc,
-    /// The square root just finished (Amp_c).
-    Uq,
-    /// The product just finished.
-    Ur,
-    /// Clamped |S|.
-    Scl,
-    /// Amp_s.
-    Amps,
-    /// Cc.
-    Cs,
-    /// |S|.
-    Smag,
-    /// Amp_s Cc.
-    Q2,
-    /// 1: a square root's first trial 8 q + 1 (q = 0).
-    One,
-}
-
-/// Steps of the solve (the operation in each state's comment is the one it starts).
-#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
-pub enum FitState {
-    /// Waiting for `start`.
-    Idle,
-    /// m_s = rdiv(Σd_s 2^8, N).
-    Ms,
-    /// m_c = rdiv(Σd_c 2^8, N).
-    Mc,
-    /// floor(Σd_s² 2^16 / N).
-    Vs,
-    /// floor(Σd_c² 2^16 / N).
-    Vc,
-    /// floor(Σd_s d_c 2^16 / N).
-    Cq,
-    /// m_s².
-    M1,
-    /// V_s -= m_s²; m_c².
-    M2,
-    /// V_c -= m_c²; |m_s m_c|.
-    M3,
-    /// C = Cq - m_s m_c.
-    Cv,
-    /// |C|; Amp_s = isqrt(2 V_s).
-    SqS,
-    /// Amp_c = isqrt(2 V_c).
-    SqC,
-    /// Amp_s Amp_c.
-    Chk,
-    /// Amplitude check; S = rdiv(-C 2^16, Amp_s Amp_c).
-    Sn,
-    /// Clamp S; S².
-    Sn2,
-    /// round(|m| / 2^8).
-    OffA,
-    /// Cc = isqrt(2^30 - S²).
-    Cs,
-    /// b = b_ref +- round(|m| / 2^8).
-    OffB,
-    /// g_s = rdiv(T 2^(GF+8), Amp_s).
-    OffC,
-    /// Offset range check; clamp g_s; Amp_c Cc.
-    Q1,
-    /// g_c = rdiv(T 2^(GF+23), Amp_c Cc).
-    Gc,
-    /// Clamp g_c; Amp_s Cc.
-    Q2,
-    /// T |S|.
-    Ts,
-    /// k = rdiv(T S 2^(GF+8), Amp_s Cc).
-    Kd,
-    /// Clamp k; load every coefficient.
-    Load,
-    /// Steps of a division, square root or product (f_div / f_sq / f_mul), B and A clocks.
-    Run,
-    /// Divider rounding sum (2 u_r -+ u_d).
-    DivAdj,
-    /// Divider rounding decision.
-    DivTst,
-    /// Divider rounding add.
-    DivInc,
-    /// Divider sign.
-    DivNeg,
-}
-
 /// The serial solver and the coefficient registers it loads.
 #[derive(LogicBlock)]
 pub struct FitSolve {
@@ -294,8 +161,107 @@ pub struct FitSolve {
     pub k_mag: Signal<Out, Bits<16>>,
     /// k < 0 (never with |k| = 0).
     pub k_neg: Signal<Out, Bit>,
-    state: DFF<FitState>,
-    ret: DFF<FitState>,
+    /// A solve is under way (not idle): set by `start`, cleared after Load or a refusal.
+    busy_r: DFF<Bit>,
+    /// State ms (one clock): m_s = rdiv(Σd_s 2^8, N).
+    s_ms: DFF<Bit>,
+    /// State mc (one clock): m_c = rdiv(Σd_c 2^8, N).
+    s_mc: DFF<Bit>,
+    /// State vs (one clock): floor(Σd_s² 2^16 / N).
+    s_vs: DFF<Bit>,
+    /// State vc (one clock): floor(Σd_c² 2^16 / N).
+    s_vc: DFF<Bit>,
+    /// State cq (one clock): floor(Σd_s d_c 2^16 / N).
+    s_cq: DFF<Bit>,
+    /// State m1 (one clock): m_s².
+    s_m1: DFF<Bit>,
+    /// State m2 (one clock): V_s -= m_s²; m_c².
+    s_m2: DFF<Bit>,
+    /// State m3 (one clock): V_c -= m_c²; |m_s m_c|.
+    s_m3: DFF<Bit>,
+    /// State cv (one clock): C = Cq - m_s m_c.
+    s_cv: DFF<Bit>,
+    /// State sqs (one clock): |C|; Amp_s = isqrt(2 V_s).
+    s_sqs: DFF<Bit>,
+    /// State sqc (one clock): Amp_c = isqrt(2 V_c).
+    s_sqc: DFF<Bit>,
+    /// State chk (one clock): Amp_s Amp_c.
+    s_chk: DFF<Bit>,
+    /// State sn (one clock): amplitude check; S = rdiv(-C 2^16, Amp_s Amp_c).
+    s_sn: DFF<Bit>,
+    /// State sn2 (one clock): clamp S; S².
+    s_sn2: DFF<Bit>,
+    /// State offa (one clock): round(|m| / 2^8).
+    s_offa: DFF<Bit>,
+    /// State cs (one clock): Cc = isqrt(2^30 - S²).
+    s_cs: DFF<Bit>,
+    /// State offb (one clock): b = b_ref +- round(|m| / 2^8).
+    s_offb: DFF<Bit>,
+    /// State offc (one clock): g_s = rdiv(T 2^(GF+8), Amp_s).
+    s_offc: DFF<Bit>,
+    /// State q1 (one clock): offset range check; clamp g_s; Amp_c Cc.
+    s_q1: DFF<Bit>,
+    /// State gc (one clock): g_c = rdiv(T 2^(GF+23), Amp_c Cc).
+    s_gc: DFF<Bit>,
+    /// State q2 (one clock): clamp g_c; Amp_s Cc.
+    s_q2: DFF<Bit>,
+    /// State ts (one clock): T |S|.
+    s_ts: DFF<Bit>,
+    /// State kd (one clock): k = rdiv(T S 2^(GF+8), Amp_s Cc).
+    s_kd: DFF<Bit>,
+    /// State load (one clock): clamp k; load every coefficient.
+    s_load: DFF<Bit>,
+    /// State dadj (one clock, after a division's run): divider rounding sum (2 u_r -+ u_d).
+    s_dadj: DFF<Bit>,
+    /// State dtst (one clock, after a division's run): divider rounding decision.
+    s_dtst: DFF<Bit>,
+    /// State dinc (one clock, after a division's run): divider rounding add.
+    s_dinc: DFF<Bit>,
+    /// State dneg (one clock, after a division's run): divider sign.
+    s_dneg: DFF<Bit>,
+    /// State mc follows the run under way (set by the state before, cleared by `f_ret`).
+    p_mc: DFF<Bit>,
+    /// State vs follows the run under way (set by the state before, cleared by `f_ret`).
+    p_vs: DFF<Bit>,
+    /// State vc follows the run under way (set by the state before, cleared by `f_ret`).
+    p_vc: DFF<Bit>,
+    /// State cq follows the run under way (set by the state before, cleared by `f_ret`).
+    p_cq: DFF<Bit>,
+    /// State m1 follows the run under way (set by the state before, cleared by `f_ret`).
+    p_m1: DFF<Bit>,
+    /// State m2 follows the run under way (set by the state before, cleared by `f_ret`).
+    p_m2: DFF<Bit>,
+    /// State m3 follows the run under way (set by the state before, cleared by `f_ret`).
+    p_m3: DFF<Bit>,
+    /// State cv follows the run under way (set by the state before, cleared by `f_ret`).
+    p_cv: DFF<Bit>,
+    /// State sqc follows the run under way (set by the state before, cleared by `f_ret`).
+    p_sqc: DFF<Bit>,
+    /// State chk follows the run under way (set by the state before, cleared by `f_ret`).
+    p_chk: DFF<Bit>,
+    /// State sn follows the run under way (set by the state before, cleared by `f_ret`).
+    p_sn: DFF<Bit>,
+    /// State sn2 follows the run under way (set by the state before, cleared by `f_ret`).
+    p_sn2: DFF<Bit>,
+    /// State offa follows the run under way (set by the state before, cleared by `f_ret`).
+    p_offa: DFF<Bit>,
+    /// State offb follows the run under way (set by the state before, cleared by `f_ret`).
+    p_offb: DFF<Bit>,
+    /// State q1 follows the run under way (set by the state before, cleared by `f_ret`).
+    p_q1: DFF<Bit>,
+    /// State gc follows the run under way (set by the state before, cleared by `f_ret`).
+    p_gc: DFF<Bit>,
+    /// State q2 follows the run under way (set by the state before, cleared by `f_ret`).
+    p_q2: DFF<Bit>,
+    /// State ts follows the run under way (set by the state before, cleared by `f_ret`).
+    p_ts: DFF<Bit>,
+    /// State kd follows the run under way (set by the state before, cleared by `f_ret`).
+    p_kd: DFF<Bit>,
+    /// State load follows the run under way (set by the state before, cleared by `f_ret`).
+    p_load: DFF<Bit>,
+    /// This clock returns from a run: the pending state `p_*` is next (a product's or
+    /// square root's last B clock, or a division's sign state).
+    f_ret: DFF<Bit>,
     /// Dividend / quotient, multiplier operand or radicand: shifted out at the top.
     u_x: DFF<Bits<64>>,
     /// Divisor or multiplicand; in a square root the trial 8 q + 1 (q: the root so far).
@@ -303,11 +269,20 @@ pub struct FitSolve {
     /// Remainder, product or root remainder, two's complement (|u_r| < 2^50).
     u_r: DFF<Bits<52>>,
     u_mag: DFF<Bits<64>>,
-    /// -(u_x + adj), written beside u_mag: the negated quotient without an adder after a mux.
-    u_nmag: DFF<Bits<64>>,
+    /// The signed quotient: u_mag, or -(u_x + adj) = !u_x + !adj when u_neg (uxs + u_adjq),
+    /// written beside it, loaded into u_x by DivNeg.
+    u_q: DFF<Bits<64>>,
+    /// The division's quotient is negated (taken from neg_n in B_0).
     u_neg: DFF<Bit>,
+    /// The division rounds (64 steps) rather than truncates (80 steps), taken in B_0.
     u_rnd: DFF<Bit>,
+    /// The quotient's increment adj (DivTst).
     u_adj: DFF<Bit>,
+    /// u_adj ^ u_neg, written beside it: the addend of the signed quotient u_q = uxs + it.
+    u_adjq: DFF<Bit>,
+    /// u_x, inverted when u_neg (free-running): -(u_x + adj) = !u_x + !adj.
+    uxs: DFF<Bits<64>>,
+    /// Steps left in the run.
     it: DFF<Bits<8>>,
     sn: DFF<Bits<64>>,
     a1_s: DFF<Bits<64>>,
@@ -346,10 +321,7 @@ pub struct FitSolve {
     r_km: DFF<Bits<16>>,
     r_kn: DFF<Bit>,
     r_done: DFF<Bit>,
-    /// Next state (registered in `state`, and decoded a clock ahead into the flags and
-    /// selects below).
-    nstate: Signal<Local, FitState>,
-    /// Run is a division (registered from `nstate`, like every flag below).
+    /// Run is a division (set by its set-up state, like the two below).
     f_div: DFF<Bit>,
     /// Run is a square root.
     f_sq: DFF<Bit>,
@@ -367,35 +339,126 @@ pub struct FitSolve {
     f_qd: DFF<Bit>,
     /// The run's last B clock (the last step's bit; a division's rounding operands).
     f_last: DFF<Bit>,
-    /// Set-up state: `it` loads `itn` in the next clock (B_0).
+    /// No run in the clock before (B_0 of a run, or outside one): `it` loads the step count
+    /// (32, 64 or 80 from the mode flags and f_80), u_rnd and u_neg a division's settings.
     f_ld: DFF<Bit>,
-    /// The step count of the operation being set up (32, 64 or 80).
-    itn: DFF<Bits<8>>,
+    /// Vs, Vc or Cq was the state before: the run is an 80-step (truncating) division.
+    f_80: DFF<Bit>,
+    /// The sign the division set up in the state before applies (u_neg, taken in B_0).
+    neg_n: DFF<Bit>,
     /// {opa, 1}: the chain's first operand, written in a B clock.
     oa: DFF<Bits<53>>,
     /// {opb, cin}: its second operand and carry in.
     ob: DFF<Bits<53>>,
-    /// What u_x loads in this state (registered from `nstate`).
-    xs: DFF<XSel>,
-    /// What u_d loads in this state.
-    ds: DFF<DSel>,
+    /// u_x loads |Σd_s| 2^8 in this clock.
+    x_a1s: DFF<Bit>,
+    /// u_x loads uxr (a return with a select of the uxa / uxb / uxc groups) in this clock.
+    x_uxr: DFF<Bit>,
+    /// u_x loads the clamped |S| 2^32 (a return) in this clock.
+    x_scl: DFF<Bit>,
+    /// u_x loads 2^30 - S² in this clock.
+    x_t30: DFF<Bit>,
+    /// u_x loads T |S| 2^(GF+8) (a return) in this clock.
+    x_urk: DFF<Bit>,
+    /// u_x loads the signed quotient u_q in this clock (DivNeg).
+    x_q: DFF<Bit>,
+    /// u_x loads (one of the x_* flags, or a run's shift) in this clock.
+    x_en: DFF<Bit>,
+    /// u_d loads N (the first division) in this clock.
+    d_sn: DFF<Bit>,
+    /// u_d loads udr (a return with a select of the static sources) in this clock.
+    d_udr: DFF<Bit>,
+    /// u_d loads the square root just finished, (8 q + 1) >> 3 (a return) in this clock.
+    d_uq: DFF<Bit>,
+    /// u_d loads the product just finished, u_r (a return) in this clock.
+    d_ur: DFF<Bit>,
+    /// u_d loads the clamped |S| (a return) in this clock.
+    d_scl: DFF<Bit>,
+    /// u_d loads 1: a square root's first trial 8 q + 1 (q = 0) in this clock.
+    d_one: DFF<Bit>,
+    /// u_d loads (one of the d_* flags, or a square root's root bit) in this clock.
+    d_en: DFF<Bit>,
     /// u_r is cleared in this state.
     clr_r: DFF<Bit>,
-    /// The selects of the state `ret` names, stored with it.
-    rxs: DFF<XSel>,
-    /// u_x's source for the select `rxs` a return will take: uxa | uxb | uxc (free-running,
-    /// two clocks behind the sources, every one of which is final long before the return).
+    /// One of the uxr groups' return selects is set (free-running, a clock behind them).
+    rx_uxr: DFF<Bit>,
+    /// Return select (set by Sn): u_x loads the clamped |S| 2^32.
+    rx_scl: DFF<Bit>,
+    /// Return select (set by Ts): u_x loads T |S| 2^(GF+8).
+    rx_urk: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes Σd_c 2^8.
+    rx_a1c8: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes Σd_s².
+    rx_a2s: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes Σd_c².
+    rx_a2c: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes |Σd_s d_c|.
+    rx_asc: DFF<Bit>,
+    /// Return select (set by M3, cleared by the return): uxr takes 2 V_s (0 if V_s < 0).
+    rx_vs2: DFF<Bit>,
+    /// Return select (set by Cs): uxr takes T 2^(GF+8).
+    rx_tgs: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes m_s 2^32.
+    rx_ms32: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes m_c 2^32.
+    rx_mc32: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes 2 V_c.
+    rx_vc2: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes Amp_s 2^32.
+    rx_amps32: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes Amp_c 2^32.
+    rx_ampc32: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes |C| 2^16.
+    rx_cmag16: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes T 2^(GF+23).
+    rx_tgc: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): uxr takes T 2^32.
+    rx_tamp32: DFF<Bit>,
+    /// u_x's source for the return selects rx_*: uxa | uxb | uxc (free-running, two clocks
+    /// behind the sources, every one of which is final long before the return).
     uxr: DFF<Bits<64>>,
-    /// The selected source among Σd_c 2^8, Σd_s², Σd_c², |Σd_s d_c| (0 otherwise).
+    /// The selected source among Σd_c 2^8, Σd_s², Σd_c², |Σd_s d_c|, 2 V_s (0 otherwise).
     uxa: DFF<Bits<64>>,
     /// The selected source among m_s 2^32, m_c 2^32, 2 V_c, Amp_s 2^32 (0 otherwise).
     uxb: DFF<Bits<64>>,
-    /// The selected source among Amp_c 2^32, |C| 2^16, T 2^(GF+23), T 2^32 (0 otherwise).
+    /// The selected source among Amp_c 2^32, |C| 2^16, T 2^(GF+8), T 2^(GF+23), T 2^32 (0
+    /// otherwise).
     uxc: DFF<Bits<64>>,
-    rds: DFF<DSel>,
-    /// -m_s m_c from the product |m_s m_c| in u_r and the means' signs (free-running): the
-    /// addend of C = Cq - m_s m_c.
-    pm: DFF<Bits<64>>,
+    /// One of udr's return selects is set (free-running, a clock behind them).
+    rd_st: DFF<Bit>,
+    /// Return select (set by SqC): u_d loads the root (8 q + 1) >> 3.
+    rd_uq: DFF<Bit>,
+    /// Return select (set by Chk, Q1): u_d loads the product u_r.
+    rd_ur: DFF<Bit>,
+    /// Return select (set by Sn): u_d loads the clamped |S|.
+    rd_scl: DFF<Bit>,
+    /// Return select (set by SqS): u_d loads 1.
+    rd_one: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): udr takes N.
+    rd_sn: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): udr takes m_s.
+    rd_ms: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): udr takes m_c.
+    rd_mc: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): udr takes Cc.
+    rd_cs: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): udr takes |S|.
+    rd_smag: DFF<Bit>,
+    /// Return select (set by the set-up state, cleared by the return): udr takes Amp_s Cc.
+    rd_q2: DFF<Bit>,
+    /// Return select (set by Cs): udr takes Amp_s.
+    rd_amps: DFF<Bit>,
+    /// u_d's source for the static return selects rd_* (N, m_s, m_c, Amp_s, Cc, |S|,
+    /// Amp_s Cc; 0 otherwise), free-running a clock behind them, final long before the return.
+    udr: DFF<Bits<52>>,
+    /// v_s - u_r (free-running): V_s - m_s², loaded by M2.
+    vsd: DFF<Bits<64>>,
+    /// v_c - u_r (free-running): V_c - m_c², loaded by M3.
+    vcd: DFF<Bits<64>>,
+    /// cc + u_r (free-running): C = Cq - m_s m_c when the means' signs differ, loaded by Cv.
+    ccp: DFF<Bits<64>>,
+    /// cc - u_r (free-running): C = Cq - m_s m_c when they agree.
+    ccm: DFF<Bits<64>>,
     /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
     nd: DFF<Bits<52>>,
     /// u_r ^ nd (free-running).
@@ -416,6 +479,51 @@ pub struct FitSolve {
     lo_c: DFF<Bit>,
     /// An offset o_s / o_c outside the A-bit range (free-running).
     oor: DFF<Bit>,
+    /// u_x bits 31..16 not all zero (free-running; with the seven below, u_mag's compares
+    /// two clocks ahead, from the quotient that u_mag = u_x + adj rounds).
+    xh1: DFF<Bit>,
+    /// u_x bits 47..32 not all zero (free-running).
+    xh2: DFF<Bit>,
+    /// u_x bits 63..48 not all zero (free-running).
+    xh3: DFF<Bit>,
+    /// u_x bits 15..0 not all zero (free-running).
+    xl: DFF<Bit>,
+    /// A solve starts in this clock (idle and `start`).
+    go: Signal<Local, Bit>,
+    /// Sn passes the amplitude check.
+    ok_sn: Signal<Local, Bit>,
+    /// Q1 passes the offset range check.
+    ok_q1: Signal<Local, Bit>,
+    /// A run is under way (a mode flag is set).
+    run: Signal<Local, Bit>,
+    /// A run's B clock that is not its last: the next clock is an A clock.
+    step: Signal<Local, Bit>,
+    /// u_x's next value when x_en: its selected sources ORed (each zero unless selected).
+    uxn: Signal<Local, Bits<64>>,
+    /// udr's next value: its selected sources ORed.
+    udn: Signal<Local, Bits<52>>,
+    /// u_d's next value when d_en: its selected sources ORed.
+    udn2: Signal<Local, Bits<52>>,
+    /// uxa's next value: its selected sources ORed.
+    uxan: Signal<Local, Bits<64>>,
+    /// uxb's next value.
+    uxbn: Signal<Local, Bits<64>>,
+    /// uxc's next value.
+    uxcn: Signal<Local, Bits<64>>,
+    /// u_x bits 15..0 > smax (free-running).
+    xgt_s: DFF<Bit>,
+    /// u_x bits 15..0 >= smax (free-running).
+    xge_s: DFF<Bit>,
+    /// u_x bits 15..0 all ones (free-running).
+    xff: DFF<Bit>,
+    /// u_mag > smax, a clock after u_mag (free-running: xh | (adj ? xge_s : xgt_s)).
+    big_s: DFF<Bit>,
+    /// u_mag > 65535, a clock after u_mag (free-running: xh | (adj & xff)).
+    big_c: DFF<Bit>,
+    /// u_mag != 0, a clock after u_mag (free-running: xh | xl | adj).
+    mnz: DFF<Bit>,
+    /// u_x bits 63..16 not all zero: xh1 | xh2 | xh3.
+    xh: Signal<Local, Bit>,
     /// u_r < 0 (the non-restoring remainder's sign: add the divisor / trial back).
     rneg: Signal<Local, Bit>,
     /// The chain's first operand: 2 u_r (+ msb(u_x) in a division step) or
@@ -427,8 +535,10 @@ pub struct FitSolve {
     opb: Signal<Local, Bits<52>>,
     /// u_adj as a 64-bit addend.
     adjw: Signal<Local, Bits<64>>,
-    /// !u_adj as a 64-bit addend.
-    nadjw: Signal<Local, Bits<64>>,
+    /// u_adjq as a 64-bit addend.
+    adjqw: Signal<Local, Bits<64>>,
+    /// The rounding increment DivTst writes into u_adj.
+    adjn: Signal<Local, Bit>,
     /// Upper bound of |S|: round(2^15 sin 15 deg).
     smax: Constant<Bits<64>>,
     /// min_amplitude 2^8.
@@ -441,8 +551,6 @@ pub struct FitSolve {
     kshift: Constant<Bits<32>>,
     /// 2^30.
     two30: Constant<Bits<64>>,
-    /// Largest gain / cross code.
-    cmax: Constant<Bits<64>>,
     /// 2^(A-1) - 2^31 ... the offset range limits with the sign bit flipped: b < lo_f or
     /// b >= hi_f (unsigned, flipped) is out of range.
     lo_f: Constant<Bits<32>>,
@@ -480,9 +588,12 @@ pub struct FitSolve {
     tamp32: Constant<Bits<64>>,
     /// 65535 as a gain code.
     cmax16: Constant<Bits<16>>,
+    /// smax in 16 bits (the low half of u_x's compare).
+    smax16: Constant<Bits<16>>,
     two32: Constant<Bits<32>>,
     s8: Constant<Bits<32>>,
     s16: Constant<Bits<32>>,
+    s48: Constant<Bits<32>>,
     s62: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
@@ -536,16 +647,66 @@ impl FitSolve {
             g_c: Default::default(),
             k_mag: Default::default(),
             k_neg: Default::default(),
-            state: Default::default(),
-            ret: Default::default(),
+            busy_r: Default::default(),
+            s_ms: Default::default(),
+            s_mc: Default::default(),
+            s_vs: Default::default(),
+            s_vc: Default::default(),
+            s_cq: Default::default(),
+            s_m1: Default::default(),
+            s_m2: Default::default(),
+            s_m3: Default::default(),
+            s_cv: Default::default(),
+            s_sqs: Default::default(),
+            s_sqc: Default::default(),
+            s_chk: Default::default(),
+            s_sn: Default::default(),
+            s_sn2: Default::default(),
+            s_offa: Default::default(),
+            s_cs: Default::default(),
+            s_offb: Default::default(),
+            s_offc: Default::default(),
+            s_q1: Default::default(),
+            s_gc: Default::default(),
+            s_q2: Default::default(),
+            s_ts: Default::default(),
+            s_kd: Default::default(),
+            s_load: Default::default(),
+            s_dadj: Default::default(),
+            s_dtst: Default::default(),
+            s_dinc: Default::default(),
+            s_dneg: Default::default(),
+            p_mc: Default::default(),
+            p_vs: Default::default(),
+            p_vc: Default::default(),
+            p_cq: Default::default(),
+            p_m1: Default::default(),
+            p_m2: Default::default(),
+            p_m3: Default::default(),
+            p_cv: Default::default(),
+            p_sqc: Default::default(),
+            p_chk: Default::default(),
+            p_sn: Default::default(),
+            p_sn2: Default::default(),
+            p_offa: Default::default(),
+            p_offb: Default::default(),
+            p_q1: Default::default(),
+            p_gc: Default::default(),
+            p_q2: Default::default(),
+            p_ts: Default::default(),
+            p_kd: Default::default(),
+            p_load: Default::default(),
+            f_ret: Default::default(),
             u_x: Default::default(),
             u_d: Default::default(),
             u_r: Default::default(),
             u_mag: Default::default(),
-            u_nmag: Default::default(),
+            u_q: Default::default(),
             u_neg: Default::default(),
             u_rnd: Default::default(),
             u_adj: Default::default(),
+            u_adjq: Default::default(),
+            uxs: Default::default(),
             it: Default::default(),
             sn: Default::default(),
             a1_s: Default::default(),
@@ -584,7 +745,6 @@ impl FitSolve {
             r_km: Default::default(),
             r_kn: Default::default(),
             r_done: Default::default(),
-            nstate: Default::default(),
             f_div: Default::default(),
             f_sq: Default::default(),
             f_mul: Default::default(),
@@ -595,19 +755,63 @@ impl FitSolve {
             f_qd: Default::default(),
             f_last: Default::default(),
             f_ld: Default::default(),
-            itn: Default::default(),
+            f_80: Default::default(),
+            neg_n: Default::default(),
             oa: Default::default(),
             ob: Default::default(),
-            xs: Default::default(),
-            ds: Default::default(),
+            x_a1s: Default::default(),
+            x_uxr: Default::default(),
+            x_scl: Default::default(),
+            x_t30: Default::default(),
+            x_urk: Default::default(),
+            x_q: Default::default(),
+            x_en: Default::default(),
+            d_sn: Default::default(),
+            d_udr: Default::default(),
+            d_uq: Default::default(),
+            d_ur: Default::default(),
+            d_scl: Default::default(),
+            d_one: Default::default(),
+            d_en: Default::default(),
             clr_r: Default::default(),
-            rxs: Default::default(),
+            rx_uxr: Default::default(),
+            rx_scl: Default::default(),
+            rx_urk: Default::default(),
+            rx_a1c8: Default::default(),
+            rx_a2s: Default::default(),
+            rx_a2c: Default::default(),
+            rx_asc: Default::default(),
+            rx_vs2: Default::default(),
+            rx_tgs: Default::default(),
+            rx_ms32: Default::default(),
+            rx_mc32: Default::default(),
+            rx_vc2: Default::default(),
+            rx_amps32: Default::default(),
+            rx_ampc32: Default::default(),
+            rx_cmag16: Default::default(),
+            rx_tgc: Default::default(),
+            rx_tamp32: Default::default(),
             uxr: Default::default(),
             uxa: Default::default(),
             uxb: Default::default(),
             uxc: Default::default(),
-            rds: Default::default(),
-            pm: Default::default(),
+            rd_st: Default::default(),
+            rd_uq: Default::default(),
+            rd_ur: Default::default(),
+            rd_scl: Default::default(),
+            rd_one: Default::default(),
+            rd_sn: Default::default(),
+            rd_ms: Default::default(),
+            rd_mc: Default::default(),
+            rd_cs: Default::default(),
+            rd_smag: Default::default(),
+            rd_q2: Default::default(),
+            rd_amps: Default::default(),
+            udr: Default::default(),
+            vsd: Default::default(),
+            vcd: Default::default(),
+            ccp: Default::default(),
+            ccm: Default::default(),
             nd: Default::default(),
             xr: Default::default(),
             rz: Default::default(),
@@ -618,21 +822,41 @@ impl FitSolve {
             lo_s: Default::default(),
             lo_c: Default::default(),
             oor: Default::default(),
+            xh1: Default::default(),
+            xh2: Default::default(),
+            xh3: Default::default(),
+            xl: Default::default(),
+            go: Default::default(),
+            ok_sn: Default::default(),
+            ok_q1: Default::default(),
+            run: Default::default(),
+            step: Default::default(),
+            uxn: Default::default(),
+            udn: Default::default(),
+            udn2: Default::default(),
+            uxan: Default::default(),
+            uxbn: Default::default(),
+            uxcn: Default::default(),
+            xgt_s: Default::default(),
+            xge_s: Default::default(),
+            xff: Default::default(),
+            big_s: Default::default(),
+            big_c: Default::default(),
+            mnz: Default::default(),
+            xh: Default::default(),
             rneg: Default::default(),
             opa: Default::default(),
             up: Default::default(),
             opb: Default::default(),
             adjw: Default::default(),
-            nadjw: Default::default(),
+            adjqw: Default::default(),
+            adjn: Default::default(),
             smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
             minamp: c64((k.min_amplitude as u64) << 8),
             tgs: c64(t << (gf + 8)),
             tgc: c64(t << (gf + 23)),
-            tamp32: c64(t << 32),
-            cmax16: c16(0xffff),
             kshift: c32((gf + 8) as u64),
             two30: c64(1 << 30),
-            cmax: c64(0xffff),
             lo_f: c32(flip(-lim)),
             hi_f: c32(flip(lim)),
             sign32: c32(1 << 31),
@@ -656,9 +880,13 @@ impl FitSolve {
             one8: c8(1),
             one32: c32(1),
             s32: c32(32),
+            tamp32: c64(t << 32),
+            cmax16: c16(0xffff),
+            smax16: c16((32768.0 * 15f64.to_radians().sin()).round() as u64),
             two32: c32(2),
             s8: c32(8),
             s16: c32(16),
+            s48: c32(48),
             s62: c32(62),
             one64: c64(1),
             zero64: c64(0),
