@@ -5,7 +5,7 @@
 //! code together.
 //!
 //! ```text
-//!           stage A (reg,        stage B1 (reg)            stage B2 (reg)        stage C (reg)
+//!           stage A (reg,     Q (reg) stage B1 (reg)       stage B2 (reg)        stage C (reg)
 //!            held per sample)
 //!  x ─►sext─► d  = x - b_ref ─┐                    ┌────────► entry d or e, |.|, ─► |e_s|, |e_c|,
 //!            -d  = b_ref - x  ├─► q, step ─► net += s, N += 1, cmd (add/restart/    e_s, e_c,
@@ -13,7 +13,8 @@
 //!  tracks)   -e  = b_cur - x ─┘   d, or e    (add / restart /  restart b_ref :=        │
 //!                                 while b_ref snapshot / use e) b_cur, net := 0,        │
 //!                                 is loaded)   from registered   N := 1                 │
-//!                                              compares of net, N                       ▼
+//!                                 from A's     compares of net, N                       │
+//!                                 registers)   a clock earlier)                         ▼
 //!  stages C1-C3 (reg): three run-time shift-add trees (multree.rs) for |e_s|², |e_c|²,
 //!           |e_s e_c|; e_s, e_c, valid, restart, start and the product's sign beside them
 //!  stage D (reg): the products (the trees' last sums; |e_s e_c| as a 64-bit ones'
@@ -64,13 +65,17 @@
 //!   step and these ten flags (about six inputs per decision).
 //! * b_ref of a new window is b_cur at its first sample, i.e. the offsets before the update
 //!   its predecessor triggers (the model does the same, [`super::fit`]). b_ref is loaded in
-//!   stage B2, while stage A already takes the next sample: that sample's quadrant comes
-//!   from the signs of e = x - b_cur (the new b_ref) and its entry is e (`fresh`).
+//!   stage B2, while stage A may already take the next sample: that sample's quadrant
+//!   comes from the signs of e = x - b_cur (the new b_ref) and its entry is e (`fresh`).
+//! * Stage Q, a clock after A, forms the quadrant and the step from the signs of the
+//!   differences registered in stage A (of e when `fresh`), so no LUT follows stage A's
+//!   subtractors and no carry chain precedes stage Q's LUTs.
 //! * The products are run-time shift-add trees (three register levels, C1-C3, then the
 //!   product register of stage D: one LUT level and one carry chain per path, no hard
 //!   multiplier); the entries and flags of stage C travel beside them. The solve starts as
-//!   the closing sample leaves C3, [`FIT_STAGES`] = 6 clocks after the sample (the sums are
-//!   complete: the window's last sample, at least two clocks earlier, has reached stage E),
+//!   the closing sample leaves C3, [`FIT_STAGES`] = 7 clocks after the sample (the sums are
+//!   complete: the window's last sample, at least three clocks earlier, has left stage
+//!   E2),
 //!   so [`super::fit_solve::UPDATE_LATENCY`] = [`super::fit_solve::SOLVE_CYCLES`] +
 //!   [`FIT_STAGES`]. The window's b_ref snapshot (`bs_*`, loaded in stage B2) cannot change
 //!   before the start: the next window needs at least two more samples.
@@ -88,10 +93,10 @@ use rust_hdl::prelude::*;
 mod update;
 
 /// Clocks from a sample at the fit's input to the solver's start when the sample closes a
-/// window: stages A, B1, B2 and the [`TREE_LEVELS`] levels of stage C's product trees
+/// window: stages A, Q, B1, B2 and the [`TREE_LEVELS`] levels of stage C's product trees
 /// (the solve starts as the closing sample leaves them, C3). [`super::fit_solve::UPDATE_LATENCY`]
 /// is [`super::fit_solve::SOLVE_CYCLES`] plus this.
-pub const FIT_STAGES: u32 = 3 + TREE_LEVELS;
+pub const FIT_STAGES: u32 = 4 + TREE_LEVELS;
 
 fn c2(v: u64) -> Constant<Bits<2>> {
     Constant::new(Bits::<2>::from(v & 3))
@@ -145,6 +150,8 @@ pub struct FitCal {
     e3_c: DFF<Bits<32>>,
     kd_m: DFF<Bits<16>>,
     kd_n: DFF<Bit>,
+    /// The sample's valid in stage Q (registered in stage A) and in stage B1.
+    va0: DFF<Bit>,
     va: DFF<Bit>,
     da_s: DFF<Bits<32>>,
     nda_s: DFF<Bits<32>>,
@@ -421,6 +428,7 @@ impl FitCal {
             e3_c: Default::default(),
             kd_m: Default::default(),
             kd_n: Default::default(),
+            va0: Default::default(),
             va: Default::default(),
             da_s: Default::default(),
             nda_s: Default::default(),

@@ -6,7 +6,7 @@ impl Logic for FitCal {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
+            self, clk, va0, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, l1_s,
             l1_c, l2_s, l2_c, lsc, y1_s, y1_c, y2_s, y2_c, ysc, h1_s, h1_c, h2_s, h2_c, hsc, x1_s,
@@ -26,7 +26,8 @@ impl Logic for FitCal {
         if (self.xc.val() & self.asign.val()).any() {
             self.xc.next = self.xc.val() | self.asext.val();
         }
-        self.va.d.next = self.valid.val() & !self.rst.val();
+        self.va0.d.next = self.valid.val() & !self.rst.val();
+        self.va.d.next = self.va0.q.val() & !self.rst.val();
         self.das.next = self.xs.val() - self.bref_s.q.val();
         self.dac.next = self.xc.val() - self.bref_c.q.val();
         self.eas.next = self.xs.val() - self.slv.off_s.val();
@@ -44,13 +45,15 @@ impl Logic for FitCal {
             // this sample's entry is e = x - b_cur, the new b_ref.
             self.fresh.d.next = self.a_rs.q.val();
         }
-        // Quadrant (CORDIC mapper convention) and step, registered for stage B1: the signs
-        // of d, or of e while b_ref is being loaded with b_cur; tq is the previous sample's.
-        self.ngs.next = (self.das.val() & self.sign32.val()).any();
-        self.ngc.next = (self.dac.val() & self.sign32.val()).any();
-        if self.a_rs.q.val() {
-            self.ngs.next = (self.eas.val() & self.sign32.val()).any();
-            self.ngc.next = (self.eac.val() & self.sign32.val()).any();
+        // Stage Q, a clock after A: the quadrant (CORDIC mapper convention) and step,
+        // registered for stage B1, from the registered differences' signs: those of d, or
+        // of e when b_ref was being loaded with b_cur at stage A (`fresh`); tq is the
+        // previous sample's. No carry chain in front of these LUTs.
+        self.ngs.next = (self.da_s.q.val() & self.sign32.val()).any();
+        self.ngc.next = (self.da_c.q.val() & self.sign32.val()).any();
+        if self.fresh.q.val() {
+            self.ngs.next = (self.ea_s.q.val() & self.sign32.val()).any();
+            self.ngc.next = (self.ea_c.q.val() & self.sign32.val()).any();
         }
         self.q.next = self.q0.val();
         if self.ngs.val() {
