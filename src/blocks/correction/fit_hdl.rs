@@ -346,8 +346,6 @@ pub struct FitCal {
     zero64: Constant<Bits<64>>,
     /// All ones, 64 bits.
     ones64: Constant<Bits<64>>,
-    /// One, 64 bits.
-    one64: Constant<Bits<64>>,
     /// -|e_s e_c|'s ones' complement mask in stage D.
     nscm: Signal<Local, Bits<64>>,
     /// The carry-in of the cross sum in stage E (one when e_s e_c < 0).
@@ -580,7 +578,6 @@ impl FitCal {
             zero32: c32(0),
             zero64: c64(0),
             ones64: c64(u64::MAX),
-            one64: c64(1),
             s32w: c64(32),
             one33: Constant::new(Bits::<33>::from(1u64)),
             zero33: Constant::new(Bits::<33>::from(0u64)),

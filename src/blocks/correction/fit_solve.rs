@@ -217,8 +217,6 @@ pub struct FitSolve {
     s_dtst: DFF<Bit>,
     /// State dinc (one clock, after a division's run): divider rounding add.
     s_dinc: DFF<Bit>,
-    /// State dneg (one clock, after a division's run): divider sign.
-    s_dneg: DFF<Bit>,
     /// State mc follows the run under way (set by the state before, cleared by `f_ret`).
     p_mc: DFF<Bit>,
     /// State vs follows the run under way (set by the state before, cleared by `f_ret`).
@@ -675,7 +673,6 @@ impl FitSolve {
             s_dadj: Default::default(),
             s_dtst: Default::default(),
             s_dinc: Default::default(),
-            s_dneg: Default::default(),
             p_mc: Default::default(),
             p_vs: Default::default(),
             p_vc: Default::default(),

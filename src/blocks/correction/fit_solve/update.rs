@@ -8,9 +8,9 @@ impl Logic for FitSolve {
         dff_setup!(
             self, clk, busy_r, s_ms, s_mc, s_vs, s_vc, s_cq, s_m1, s_m2, s_m3, s_cv, s_sqs, s_sqc,
             s_chk, s_sn, s_sn2, s_offa, s_cs, s_offb, s_offc, s_q1, s_gc, s_q2, s_ts, s_kd, s_load,
-            s_dadj, s_dtst, s_dinc, s_dneg, p_mc, p_vs, p_vc, p_cq, p_m1, p_m2, p_m3, p_cv, p_sqc,
-            p_chk, p_sn, p_sn2, p_offa, p_offb, p_q1, p_gc, p_q2, p_ts, p_kd, p_load, f_ret, u_x,
-            u_d, u_r, u_mag, u_q, u_neg, u_rnd, u_adj, u_adjq, uxs, it, sn, a1_s, a1_c, n1_s, n1_c,
+            s_dadj, s_dtst, s_dinc, p_mc, p_vs, p_vc, p_cq, p_m1, p_m2, p_m3, p_cv, p_sqc, p_chk,
+            p_sn, p_sn2, p_offa, p_offb, p_q1, p_gc, p_q2, p_ts, p_kd, p_load, f_ret, u_x, u_d,
+            u_r, u_mag, u_q, u_neg, u_rnd, u_adj, u_adjq, uxs, it, sn, a1_s, a1_c, n1_s, n1_c,
             a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos, amp_s, amp_c,
             smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs, r_gc, r_km, r_kn,
             r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last, f_ld, f_80, neg_n,
@@ -156,7 +156,6 @@ impl Logic for FitSolve {
         self.s_dadj.d.next = self.f_div.q.val() & self.f_last.q.val();
         self.s_dtst.d.next = self.s_dadj.q.val();
         self.s_dinc.d.next = self.s_dtst.q.val();
-        self.s_dneg.d.next = self.s_dinc.q.val();
         // The checks refuse at Sn (amplitude, its compares registered since Chk) and at Q1
         // (offsets, registered since OffC): no run, nothing pending, busy_r clears.
         self.ok_sn.next = self.s_sn.q.val() & !(self.lo_s.q.val() | self.lo_c.q.val());
@@ -514,7 +513,6 @@ impl Logic for FitSolve {
             self.s_dadj.d.next = false;
             self.s_dtst.d.next = false;
             self.s_dinc.d.next = false;
-            self.s_dneg.d.next = false;
             self.p_mc.d.next = false;
             self.p_vs.d.next = false;
             self.p_vc.d.next = false;
