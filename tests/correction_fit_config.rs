@@ -47,13 +47,14 @@ fn min_samples_out_of_range_or_too_short_is_refused_at_the_key() {
         "min_samples = 16777217",
         &["correction.min_samples"],
     );
-    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 19 samples = 1938 clocks < 2039
-    // (the 2032-clock solve and the fit's 7 stages A, Q, B1, B2, C1-C3).
+    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 19 samples = 1938 clocks < 2042
+    // (the 2032-clock solve and the fit's 10 stages A, Q, B1, B2, the tree's operand
+    // register, C1-C3 and the products' phases 1 and 2).
     refused(
         &with("mode = \"auto\"\nmin_samples = 19"),
         "min_samples = 19",
         &[
-            "outlast the 2039 clocks",
+            "outlast the 2042 clocks",
             "2032-clock solve",
             "at least 20 samples",
         ],

@@ -1,6 +1,6 @@
 //! rust-hdl description of the automatic calibration by least-squares ellipse fit (mode
 //! `auto`): the quadrant tracker and the window sums of [`super::fit::EllipseFit`], one
-//! sample every second clock at most (the ADC delivers one per frame), feeding the serial
+//! sample every third clock at most (the ADC delivers one per frame), feeding the serial
 //! solver [`super::fit_solve::FitSolve`], which loads offsets, gains and the phase cross
 //! code together.
 //!
@@ -15,13 +15,14 @@
 //!                                 is loaded)   from registered   N := 1                 │
 //!                                 from A's     compares of net, N                       │
 //!                                 registers)   a clock earlier)                         ▼
-//!  stages C1-C3 (reg): three run-time shift-add trees (multree.rs) for |e_s|², |e_c|²,
-//!           |e_s e_c|; e_s, e_c, valid, restart, start and the product's sign beside them
-//!  stage D (reg): the products (the trees' last sums; |e_s e_c| as a 64-bit ones'
-//!           complement when negative, its +1 kept as stage E's carry-in), e
-//!           sign-extended to 64 bits; the
-//!           closing sample's start (leaving C3) starts FitSolve (if idle) on the sums
-//!           (they hold the window's samples by then) and the window's b_ref
+//!  phases 0-2 (reg ta, tc, one a clock): (|e_s|, |e_s|), (|e_c|, |e_c|), (|e_s|, |e_c|)
+//!  stages C1-C3 (reg): one run-time shift-add tree (multree.rs), one product a clock;
+//!           valid, restart, snapshot in shift lines (ln_*), e_s, e_c held (e1, e2)
+//!  stage D (reg): each product as its phase leaves the tree (phase 0: |e_s|², 1: |e_c|²,
+//!           2: |e_s e_c| as a 64-bit ones' complement when negative, its +1 kept as
+//!           stage E's carry-in), e sign-extended to 64 bits; the closing sample's
+//!           phase 2 leaving the tree starts FitSolve (if idle) on the sums (they hold the
+//!           window's samples by then) and the window's b_ref
 //!  stage E: N, and the low 32 bits of Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (33-bit sums,
 //!           carries registered); the sums then restart from the sample
 //!  stage E2 (a clock later): their high 32 bits (high addend + carry): 64-bit sums
@@ -70,12 +71,18 @@
 //! * Stage Q, a clock after A, forms the quadrant and the step from the signs of the
 //!   differences registered in stage A (of e when `fresh`), so no LUT follows stage A's
 //!   subtractors and no carry chain precedes stage Q's LUTs.
-//! * The products are run-time shift-add trees (three register levels, C1-C3, then the
-//!   product register of stage D: one LUT level and one carry chain per path, no hard
-//!   multiplier); the entries and flags of stage C travel beside them. The solve starts as
-//!   the closing sample leaves C3, [`FIT_STAGES`] = 7 clocks after the sample (the sums are
-//!   complete: the window's last sample, at least three clocks earlier, has left stage
-//!   E2),
+//! * The three products share one run-time shift-add tree (three register levels, C1-C3,
+//!   then the product registers of stage D: one LUT level and one carry chain per path, no
+//!   hard multiplier), one product a clock from the operand registers `ta`, `tc` (a mux
+//!   of registers in front of them, none in front of the tree): |e_s|² a clock after
+//!   stage C, |e_c|² and |e_s e_c| in the two clocks after that. Samples at least three
+//!   clocks apart never meet in the tree. Stage C's flags follow in shift lines and the
+//!   entries in two hold registers, so stage E adds all five sums in the clock after phase
+//!   2's product is registered (six clocks after stage C). The solve starts as the closing
+//!   sample's phase 2 leaves the tree, [`FIT_STAGES`] = 10 clocks after the sample (the
+//!   sums are complete: the window's last sample, at least three clocks earlier, has left
+//!   stage E2, and the closing sample's stage E comes two clocks later). One tree instead
+//!   of three: 3 more clocks,
 //!   so [`super::fit_solve::UPDATE_LATENCY`] = [`super::fit_solve::SOLVE_CYCLES`] +
 //!   [`FIT_STAGES`]. The window's b_ref snapshot (`bs_*`, loaded in stage B2) cannot change
 //!   before the start: the next window needs at least two more samples.
@@ -93,10 +100,11 @@ use rust_hdl::prelude::*;
 mod update;
 
 /// Clocks from a sample at the fit's input to the solver's start when the sample closes a
-/// window: stages A, Q, B1, B2 and the [`TREE_LEVELS`] levels of stage C's product trees
-/// (the solve starts as the closing sample leaves them, C3). [`super::fit_solve::UPDATE_LATENCY`]
-/// is [`super::fit_solve::SOLVE_CYCLES`] plus this.
-pub const FIT_STAGES: u32 = 4 + TREE_LEVELS;
+/// window: stages A, Q, B1, B2, the tree's operand register, the [`TREE_LEVELS`] levels of
+/// the shared product tree and its phases 1 and 2 (the solve starts as the closing sample's
+/// phase 2 leaves the tree). [`super::fit_solve::UPDATE_LATENCY`] is
+/// [`super::fit_solve::SOLVE_CYCLES`] plus this.
+pub const FIT_STAGES: u32 = 4 + 1 + TREE_LEVELS + 2;
 
 fn c2(v: u64) -> Constant<Bits<2>> {
     Constant::new(Bits::<2>::from(v & 3))
@@ -134,20 +142,31 @@ pub struct FitCal {
     /// `k_neg` one clock late.
     pub k_neg_d: Signal<Out, Bit>,
     slv: FitSolve,
-    /// Stage C's products as run-time shift-add trees (stages C1-C3). |e_s|², carrying the
-    /// sample's valid bit (`v`) and restart flag (`neg`).
-    tss: MulTree,
-    /// |e_c|², carrying the solver's start (valid and snapshot, `v`).
-    tcc: MulTree,
-    /// |e_s e_c|, carrying the product's sign (`neg`).
-    tsc: MulTree,
-    /// The entries e_s, e_c through stages C1, C2, C3 (beside the trees).
+    /// Stage C's products on one run-time shift-add tree (multree.rs), one product a clock:
+    /// |e_s|² in phase 0, |e_c|² in phase 1, |e_s e_c| in phase 2, carrying the cross
+    /// product's sign (`neg`); the phases are the bits of `ln_v`.
+    tr: MulTree,
+    /// The tree's operand registers: (|e_s|, |e_s|), (|e_c|, |e_c|), (|e_s|, |e_c|) in
+    /// phases 0, 1, 2.
+    ta: DFF<Bits<16>>,
+    tc: DFF<Bits<16>>,
+    /// |e_s|, |e_c| and the cross product's sign held from stage C for phases 1 and 2.
+    h_ms: DFF<Bits<16>>,
+    h_mc: DFF<Bits<16>>,
+    h_nsc: DFF<Bit>,
+    /// Shift lines of stage C's flags: bit j is the flag of the sample that was in stage C
+    /// j + 1 clocks ago: valid (`ln_v`), restart (`ln_rs`), valid and snapshot (`ln_sn`).
+    ln_v: DFF<Bits<8>>,
+    ln_rs: DFF<Bits<8>>,
+    ln_sn: DFF<Bits<8>>,
+    /// The tree's sum out_x + out_y: the product of the phase leaving the tree.
+    pr: Signal<Local, Bits<32>>,
+    /// The entries e_s, e_c held from stage C (e1, loaded with it) and from phase 2 (e2,
+    /// loaded from e1 three clocks after stage C) to stage D.
     e1_s: DFF<Bits<32>>,
     e2_s: DFF<Bits<32>>,
-    e3_s: DFF<Bits<32>>,
     e1_c: DFF<Bits<32>>,
     e2_c: DFF<Bits<32>>,
-    e3_c: DFF<Bits<32>>,
     kd_m: DFF<Bits<16>>,
     kd_n: DFF<Bit>,
     /// The sample's valid in stage Q (registered in stage A) and in stage B1.
@@ -354,6 +373,8 @@ pub struct FitCal {
     s32w: Constant<Bits<64>>,
     /// One, 33 bits.
     one33: Constant<Bits<33>>,
+    /// Zero, 8 bits (the flag lines' reset).
+    zero8: Constant<Bits<8>>,
     /// Zero, 33 bits.
     zero33: Constant<Bits<33>>,
     /// Configured (reset) offsets, 32-bit two's complement.
@@ -415,15 +436,20 @@ impl FitCal {
             k_mag_d: Default::default(),
             k_neg_d: Default::default(),
             slv: FitSolve::new(p, k.solve),
-            tss: MulTree::run_time(),
-            tcc: MulTree::run_time(),
-            tsc: MulTree::run_time(),
+            tr: MulTree::run_time(),
+            ta: Default::default(),
+            tc: Default::default(),
+            h_ms: Default::default(),
+            h_mc: Default::default(),
+            h_nsc: Default::default(),
+            ln_v: Default::default(),
+            ln_rs: Default::default(),
+            ln_sn: Default::default(),
+            pr: Default::default(),
             e1_s: Default::default(),
             e2_s: Default::default(),
-            e3_s: Default::default(),
             e1_c: Default::default(),
             e2_c: Default::default(),
-            e3_c: Default::default(),
             kd_m: Default::default(),
             kd_n: Default::default(),
             va0: Default::default(),
@@ -580,6 +606,7 @@ impl FitCal {
             ones64: c64(u64::MAX),
             s32w: c64(32),
             one33: Constant::new(Bits::<33>::from(1u64)),
+            zero8: Constant::new(Bits::<8>::from(0u64)),
             zero33: Constant::new(Bits::<33>::from(0u64)),
             nscm: Default::default(),
             nsci: Default::default(),

@@ -10,9 +10,9 @@ impl Logic for FitCal {
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, l1_s,
             l1_c, l2_s, l2_c, lsc, y1_s, y1_c, y2_s, y2_c, ysc, h1_s, h1_c, h2_s, h2_c, hsc, x1_s,
-            x1_c, xsc, f_v, f_rs, kd_m, kd_n, e1_s, e2_s, e3_s, e1_c, e2_c, e3_c, h_p1, h_m1, h_p2,
-            h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, cl1, cl3, cl2, rs1, rs3, rs2,
-            av0, av1, av3, av2
+            x1_c, xsc, f_v, f_rs, kd_m, kd_n, e1_s, e2_s, e1_c, e2_c, ta, tc, h_ms, h_mc, h_nsc,
+            ln_v, ln_rs, ln_sn, h_p1, h_m1, h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb,
+            a_snap, a_ue, cl1, cl3, cl2, rs1, rs3, rs2, av0, av1, av3, av2
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -234,66 +234,87 @@ impl Logic for FitCal {
         self.c_ec.d.next = self.dc.val();
         self.c_nsc.d.next =
             (self.ds.val() & self.sign32.val()).any() ^ (self.dc.val() & self.sign32.val()).any();
-        // Stage C: the three products of the entry, as shift-add trees of run-time codes
-        // (stages C1-C3, then the product registers of stage D take their last sums); the
-        // entry and the flags travel beside them.
-        self.tss.clk.next = self.clk.val();
-        self.tss.rst.next = self.rst.val();
-        self.tss.a.next = self.c_ms.q.val();
-        self.tss.code.next = self.c_ms.q.val();
-        self.tss.v.next = self.c_v.q.val();
-        self.tss.neg.next = self.c_rs.q.val();
-        self.tcc.clk.next = self.clk.val();
-        self.tcc.rst.next = self.rst.val();
-        self.tcc.a.next = self.c_mc.q.val();
-        self.tcc.code.next = self.c_mc.q.val();
-        self.tcc.v.next = self.c_v.q.val() & self.c_snap.q.val();
-        self.tcc.neg.next = false;
-        self.tsc.clk.next = self.clk.val();
-        self.tsc.rst.next = self.rst.val();
-        self.tsc.a.next = self.c_ms.q.val();
-        self.tsc.code.next = self.c_mc.q.val();
-        self.tsc.v.next = false;
-        self.tsc.neg.next = self.c_nsc.q.val();
-        self.e1_s.d.next = self.c_es.q.val();
-        self.e2_s.d.next = self.e1_s.q.val();
-        self.e3_s.d.next = self.e2_s.q.val();
-        self.e1_c.d.next = self.c_ec.q.val();
-        self.e2_c.d.next = self.e1_c.q.val();
-        self.e3_c.d.next = self.e2_c.q.val();
-        // Stage D: the products and the sign-extended entries registered.
-        self.d_v.d.next = self.tss.out_v.val();
-        self.d_es.d.next = bit_cast::<64, 32>(self.e3_s.q.val());
-        if (self.e3_s.q.val() & self.sign32.val()).any() {
-            self.d_es.d.next = bit_cast::<64, 32>(self.e3_s.q.val()) | self.sext64.val();
+        // Stage C: the three products of the entry on one shift-add tree of run-time codes,
+        // one a clock: phase 0 (a clock after stage C) |e_s|², phase 1 |e_c|², phase 2
+        // |e_s e_c|, each from the operand registers ta, tc (so the tree's level 1 reads
+        // registers only); the flags of stage C follow in shift lines (bit j: j + 1 clocks
+        // after stage C). Samples at least three clocks apart keep the phases apart.
+        self.ln_v.d.next =
+            (self.ln_v.q.val() << self.one32.val()) | bit_cast::<8, 1>(self.c_v.q.val().into());
+        self.ln_rs.d.next = (self.ln_rs.q.val() << self.one32.val())
+            | bit_cast::<8, 1>((self.c_v.q.val() & self.c_rs.q.val()).into());
+        self.ln_sn.d.next = (self.ln_sn.q.val() << self.one32.val())
+            | bit_cast::<8, 1>((self.c_v.q.val() & self.c_snap.q.val()).into());
+        if self.c_v.q.val() {
+            self.h_ms.d.next = self.c_ms.q.val();
+            self.h_mc.d.next = self.c_mc.q.val();
+            self.h_nsc.d.next = self.c_nsc.q.val();
+            self.e1_s.d.next = self.c_es.q.val();
+            self.e1_c.d.next = self.c_ec.q.val();
         }
-        self.d_ec.d.next = bit_cast::<64, 32>(self.e3_c.q.val());
-        if (self.e3_c.q.val() & self.sign32.val()).any() {
-            self.d_ec.d.next = bit_cast::<64, 32>(self.e3_c.q.val()) | self.sext64.val();
+        self.ta.d.next = self.c_ms.q.val();
+        self.tc.d.next = self.c_ms.q.val();
+        if self.ln_v.q.val().get_bit(0) {
+            self.ta.d.next = self.h_mc.q.val();
+            self.tc.d.next = self.h_mc.q.val();
         }
-        self.p_ss.d.next = self.tss.out_x.val() + self.tss.out_y.val();
-        self.p_cc.d.next = self.tcc.out_x.val() + self.tcc.out_y.val();
+        if self.ln_v.q.val().get_bit(1) {
+            self.ta.d.next = self.h_ms.q.val();
+            self.tc.d.next = self.h_mc.q.val();
+        }
+        self.tr.clk.next = self.clk.val();
+        self.tr.rst.next = self.rst.val();
+        self.tr.a.next = self.ta.q.val();
+        self.tr.code.next = self.tc.q.val();
+        self.tr.v.next = false;
+        // The sign is held from stage C: the tree returns it with phase 2's product.
+        self.tr.neg.next = self.h_nsc.q.val();
+        // e1 (held from stage C) moves to e2 in phase 2, read by stage D three clocks later.
+        if self.ln_v.q.val().get_bit(2) {
+            self.e2_s.d.next = self.e1_s.q.val();
+            self.e2_c.d.next = self.e1_c.q.val();
+        }
+        // Stage D: each product registered as its phase leaves the tree (phase 0 four
+        // clocks after stage C, phases 1 and 2 a clock and two later), and in the clock
+        // after phase 2 the sign-extended entries and the flags, so stage E adds all five.
+        self.pr.next = self.tr.out_x.val() + self.tr.out_y.val();
+        if self.ln_v.q.val().get_bit(3) {
+            self.p_ss.d.next = self.pr.val();
+        }
+        if self.ln_v.q.val().get_bit(4) {
+            self.p_cc.d.next = self.pr.val();
+        }
+        self.d_v.d.next = self.ln_v.q.val().get_bit(5);
+        self.d_rs.d.next = self.ln_rs.q.val().get_bit(5);
+        self.d_es.d.next = bit_cast::<64, 32>(self.e2_s.q.val());
+        if (self.e2_s.q.val() & self.sign32.val()).any() {
+            self.d_es.d.next = bit_cast::<64, 32>(self.e2_s.q.val()) | self.sext64.val();
+        }
+        self.d_ec.d.next = bit_cast::<64, 32>(self.e2_c.q.val());
+        if (self.e2_c.q.val() & self.sign32.val()).any() {
+            self.d_ec.d.next = bit_cast::<64, 32>(self.e2_c.q.val()) | self.sext64.val();
+        }
         // The cross product's sign is applied here, after its adder (one LUT a bit), as a
         // ones' complement whose +1 is stage E's carry-in: an adder then a subtractor in
         // one stage put a negation chain in front of the sum's chain.
         self.nscm.next = self.zero64.val();
-        if self.tsc.out_neg.val() {
+        if self.tr.out_neg.val() {
             self.nscm.next = self.ones64.val();
         }
-        self.p_sc.d.next =
-            bit_cast::<64, 32>(self.tsc.out_x.val() + self.tsc.out_y.val()) ^ self.nscm.val();
-        self.d_nsc.d.next = self.tsc.out_neg.val();
-        // The snapshot goes to an idle solver as the closing sample leaves the trees (C3):
-        // the sums hold the window's last sample by then (its stage E was at least two
-        // clocks earlier).
-        self.slv.start.next = self.tcc.out_v.val() & !self.slv.busy.val();
+        if self.ln_v.q.val().get_bit(5) {
+            self.p_sc.d.next = bit_cast::<64, 32>(self.pr.val()) ^ self.nscm.val();
+            self.d_nsc.d.next = self.tr.out_neg.val();
+        }
+        // The snapshot goes to an idle solver as the closing sample's phase 2 leaves the
+        // tree: the sums hold the window's last sample by then (its stage E2, at least
+        // three clocks later in the pipeline, was at least one clock earlier).
+        self.slv.start.next = self.ln_sn.q.val().get_bit(5) & !self.slv.busy.val();
         // Stage E: the sums' low halves as 33-bit sums on registers (restart: from zero,
-        // one clock after the restart flag c_rs leaves the trees), the carries registered;
+        // with the restart flag of the clock after phase 2), the carries registered;
         // stage E2, a clock later: the high halves, high addend plus carry. Each is one
         // 33- or 32-bit chain instead of one 64-bit chain; the high half lags a clock, and
         // samples are at least three clocks apart, so a sample's E2 ends before the next
         // sample's E and before any snapshot.
-        self.d_rs.d.next = self.tss.out_neg.val();
         self.zl1_s.next = self.l1_s.q.val();
         self.zl1_c.next = self.l1_c.q.val();
         self.zl2_s.next = self.l2_s.q.val();
@@ -392,6 +413,9 @@ impl Logic for FitCal {
             self.a_rb.d.next = true;
             self.a_snap.d.next = false;
             self.c_v.d.next = false;
+            self.ln_v.d.next = self.zero8.val();
+            self.ln_rs.d.next = self.zero8.val();
+            self.ln_sn.d.next = self.zero8.val();
             self.d_v.d.next = false;
         }
         self.b_sin.next = self.slv.off_s.val();
