@@ -47,19 +47,19 @@ fn min_samples_out_of_range_or_too_short_is_refused_at_the_key() {
         "min_samples = 16777217",
         &["correction.min_samples"],
     );
-    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 19 samples = 1938 clocks < 2042
-    // (the 2032-clock solve and the fit's 10 stages A, Q, B1, B2, the tree's operand
-    // register, C1-C3 and the products' phases 1 and 2).
+    // 133.33 MHz / 1.307 Msps = 102 clocks per sample: 20 samples = 2040 clocks < 2043 (the
+    // 2032-clock solve and the fit's 11 stages A, Q, B1, B2, the tree's operand register,
+    // C1-C3, the products' phases 1 and 2 and the coefficients' output copy).
     refused(
-        &with("mode = \"auto\"\nmin_samples = 19"),
-        "min_samples = 19",
+        &with("mode = \"auto\"\nmin_samples = 20"),
+        "min_samples = 20",
         &[
-            "outlast the 2042 clocks",
+            "outlast the 2043 clocks",
             "2032-clock solve",
-            "at least 20 samples",
+            "at least 21 samples",
         ],
     );
-    assert!(Loaded::parse(&with("mode = \"auto\"\nmin_samples = 20"), "ok.toml").is_ok());
+    assert!(Loaded::parse(&with("mode = \"auto\"\nmin_samples = 21"), "ok.toml").is_ok());
     refused(
         &with("mode = \"auto\"\nphase_deg = 2.0"),
         "phase_deg = 2.0",

@@ -79,13 +79,16 @@
 //!   clocks apart never meet in the tree. Stage C's flags follow in shift lines and the
 //!   entries in two hold registers, so stage E adds all five sums in the clock after phase
 //!   2's product is registered (six clocks after stage C). The solve starts as the closing
-//!   sample's phase 2 leaves the tree, [`FIT_STAGES`] = 10 clocks after the sample (the
+//!   sample's phase 2 leaves the tree, 10 clocks after the sample (the
 //!   sums are complete: the window's last sample, at least three clocks earlier, has left
 //!   stage E2, and the closing sample's stage E comes two clocks later). One tree instead
-//!   of three: 3 more clocks,
-//!   so [`super::fit_solve::UPDATE_LATENCY`] = [`super::fit_solve::SOLVE_CYCLES`] +
-//!   [`FIT_STAGES`]. The window's b_ref snapshot (`bs_*`, loaded in stage B2) cannot change
-//!   before the start: the next window needs at least two more samples.
+//!   of three: 3 more clocks.
+//! * The outputs (offsets, gains, cross code, update) are copies of the solver's registers
+//!   a clock later, so the datapath reads registers placed beside it (the tracker reads
+//!   the solver's own): [`FIT_STAGES`] = 11 and [`super::fit_solve::UPDATE_LATENCY`] =
+//!   [`super::fit_solve::SOLVE_CYCLES`] + [`FIT_STAGES`].
+//! * The window's b_ref snapshot (`bs_*`, loaded in stage B2) cannot change before the
+//!   start: the next window needs at least two more samples.
 //! * A window that ends while the solver is still busy is dropped (the model has no such
 //!   case: the config requires `min_samples` x clocks per sample > [`super::fit_solve::SOLVE_CYCLES`]).
 //! * Reset (synchronous, active high): configured offsets and gains, k = 0, tracker waiting
@@ -99,12 +102,13 @@ use rust_hdl::prelude::*;
 
 mod update;
 
-/// Clocks from a sample at the fit's input to the solver's start when the sample closes a
-/// window: stages A, Q, B1, B2, the tree's operand register, the [`TREE_LEVELS`] levels of
-/// the shared product tree and its phases 1 and 2 (the solve starts as the closing sample's
-/// phase 2 leaves the tree). [`super::fit_solve::UPDATE_LATENCY`] is
+/// Clocks the fit adds to the solve: from a sample at its input to the solver's start
+/// when the sample closes a window (stages A, Q, B1, B2, the tree's operand register, the
+/// [`TREE_LEVELS`] levels of the shared product tree and its phases 1 and 2: the solve
+/// starts as the closing sample's phase 2 leaves the tree), and the output copies of the
+/// coefficients (one clock). [`super::fit_solve::UPDATE_LATENCY`] is
 /// [`super::fit_solve::SOLVE_CYCLES`] plus this.
-pub const FIT_STAGES: u32 = 4 + 1 + TREE_LEVELS + 2;
+pub const FIT_STAGES: u32 = 4 + 1 + TREE_LEVELS + 2 + 1;
 
 fn c2(v: u64) -> Constant<Bits<2>> {
     Constant::new(Bits::<2>::from(v & 3))
@@ -167,6 +171,16 @@ pub struct FitCal {
     e2_s: DFF<Bits<32>>,
     e1_c: DFF<Bits<32>>,
     e2_c: DFF<Bits<32>>,
+    /// The coefficients' output copies, a clock behind the solver's registers (reset with
+    /// them): the datapath reads registers it can have beside it, not the solver's.
+    o_bs: DFFWithInit<Bits<32>>,
+    o_bc: DFFWithInit<Bits<32>>,
+    o_gs: DFFWithInit<Bits<16>>,
+    o_gc: DFFWithInit<Bits<16>>,
+    o_km: DFF<Bits<16>>,
+    o_kn: DFF<Bit>,
+    o_up: DFF<Bit>,
+    /// The cross code a clock behind its output copy (`k_mag_d`, `k_neg_d`).
     kd_m: DFF<Bits<16>>,
     kd_n: DFF<Bit>,
     /// The sample's valid in stage Q (registered in stage A) and in stage B1.
@@ -380,6 +394,11 @@ pub struct FitCal {
     /// Configured (reset) offsets, 32-bit two's complement.
     b0_s: Constant<Bits<32>>,
     b0_c: Constant<Bits<32>>,
+    /// Configured (reset) gain codes.
+    g0_s: Constant<Bits<16>>,
+    g0_c: Constant<Bits<16>>,
+    /// Zero, 16 bits.
+    zero16: Constant<Bits<16>>,
 }
 
 /// Settings of the fit besides the datapath's.
@@ -450,6 +469,13 @@ impl FitCal {
             e2_s: Default::default(),
             e1_c: Default::default(),
             e2_c: Default::default(),
+            o_bs: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[SIN]))),
+            o_bc: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[COS]))),
+            o_gs: DFFWithInit::new(Bits::<16>::from(p.gain()[SIN] as u64)),
+            o_gc: DFFWithInit::new(Bits::<16>::from(p.gain()[COS] as u64)),
+            o_km: Default::default(),
+            o_kn: Default::default(),
+            o_up: Default::default(),
             kd_m: Default::default(),
             kd_n: Default::default(),
             va0: Default::default(),
@@ -612,6 +638,9 @@ impl FitCal {
             nsci: Default::default(),
             b0_s: c32(sext(p.offset()[SIN])),
             b0_c: c32(sext(p.offset()[COS])),
+            g0_s: Constant::new(Bits::<16>::from(p.gain()[SIN] as u64)),
+            g0_c: Constant::new(Bits::<16>::from(p.gain()[COS] as u64)),
+            zero16: Constant::new(Bits::<16>::from(0u64)),
         }
     }
 }

@@ -10,9 +10,10 @@ impl Logic for FitCal {
             tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
             c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, l1_s,
             l1_c, l2_s, l2_c, lsc, y1_s, y1_c, y2_s, y2_c, ysc, h1_s, h1_c, h2_s, h2_c, hsc, x1_s,
-            x1_c, xsc, f_v, f_rs, kd_m, kd_n, e1_s, e2_s, e1_c, e2_c, ta, tc, h_ms, h_mc, h_nsc,
-            ln_v, ln_rs, ln_sn, h_p1, h_m1, h_p2, h_m2, nbge, nbmx, qb, sb, a_v, a_rs, a_rb,
-            a_snap, a_ue, cl1, cl3, cl2, rs1, rs3, rs2, av0, av1, av3, av2
+            x1_c, xsc, f_v, f_rs, o_bs, o_bc, o_gs, o_gc, o_km, o_kn, o_up, kd_m, kd_n, e1_s, e2_s,
+            e1_c, e2_c, ta, tc, h_ms, h_mc, h_nsc, ln_v, ln_rs, ln_sn, h_p1, h_m1, h_p2, h_m2,
+            nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, cl1, cl3, cl2, rs1, rs3, rs2, av0,
+            av1, av3, av2
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -418,15 +419,33 @@ impl Logic for FitCal {
             self.ln_sn.d.next = self.zero8.val();
             self.d_v.d.next = false;
         }
-        self.b_sin.next = self.slv.off_s.val();
-        self.b_cos.next = self.slv.off_c.val();
-        self.g_sin.next = self.slv.g_s.val();
-        self.g_cos.next = self.slv.g_c.val();
-        self.k_mag.next = self.slv.k_mag.val();
-        self.k_neg.next = self.slv.k_neg.val();
-        self.update.next = self.slv.done.val();
-        self.kd_m.d.next = self.slv.k_mag.val();
-        self.kd_n.d.next = self.slv.k_neg.val();
+        // The outputs: copies of the solver's coefficient registers, a clock later (the
+        // tracker above reads the solver's own), reset with them.
+        self.o_bs.d.next = self.slv.off_s.val();
+        self.o_bc.d.next = self.slv.off_c.val();
+        self.o_gs.d.next = self.slv.g_s.val();
+        self.o_gc.d.next = self.slv.g_c.val();
+        self.o_km.d.next = self.slv.k_mag.val();
+        self.o_kn.d.next = self.slv.k_neg.val();
+        self.o_up.d.next = self.slv.done.val();
+        if self.rst.val() {
+            self.o_bs.d.next = self.b0_s.val();
+            self.o_bc.d.next = self.b0_c.val();
+            self.o_gs.d.next = self.g0_s.val();
+            self.o_gc.d.next = self.g0_c.val();
+            self.o_km.d.next = self.zero16.val();
+            self.o_kn.d.next = false;
+            self.o_up.d.next = false;
+        }
+        self.b_sin.next = self.o_bs.q.val();
+        self.b_cos.next = self.o_bc.q.val();
+        self.g_sin.next = self.o_gs.q.val();
+        self.g_cos.next = self.o_gc.q.val();
+        self.k_mag.next = self.o_km.q.val();
+        self.k_neg.next = self.o_kn.q.val();
+        self.update.next = self.o_up.q.val();
+        self.kd_m.d.next = self.o_km.q.val();
+        self.kd_n.d.next = self.o_kn.q.val();
         self.k_mag_d.next = self.kd_m.q.val();
         self.k_neg_d.next = self.kd_n.q.val();
     }
