@@ -78,6 +78,12 @@ fn check_explains_the_fits_window_speed_limit_and_minimum() {
     assert_eq!(ms, "3.13 ms");
     assert!(s.contains(&format!("4096 samples ({ms}")), "{s}");
     assert!(s.contains("2032-clock solve"), "{s}");
+    // 2032 + the fit's 11 stages (A, Q, B1, B2, the tree's operand register, C1-C3, the
+    // products' phases 1 and 2, the coefficients' output copy).
+    assert!(
+        s.contains("new coefficients 2043 clocks after the window's closing sample"),
+        "{s}"
+    );
     assert!(
         s.contains(&format!(
             "{:.0} rpm unwrap limit",

@@ -529,13 +529,15 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
         };
         return format!(
             "correction                  auto: least-squares ellipse fit over whole periods (offset, gain and phase; cross code and two more clocks); products as run-time shift-add trees, no hard multiplier ({} more clocks)\n\
-             auto fit window             at least {} periods and {} samples ({:.2} ms at the sample rate), then a {}-clock solve; 1st update after about {:.1} ms at 300 rpm, {:.1} ms at 3000 rpm\n\
+             auto fit window             at least {} periods and {} samples ({:.2} ms at the sample rate), then a {}-clock solve: new coefficients {} clocks after the window's closing sample (with the fit's {} pipeline stages); 1st update after about {:.1} ms at 300 rpm, {:.1} ms at 3000 rpm\n\
              auto fit limits             works up to the decoder's {:.0} rpm unwrap limit (a two-quadrant step counts in the last direction); no update below {} LSB amplitude or with an offset outside the ADC range; a window longer than 2^24 samples is abandoned\n",
             crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES,
             f.periods(),
             f.min_samples(),
             1e3 * f.min_samples() as f64 / fs,
             crate::blocks::correction::fit_solve::SOLVE_CYCLES,
+            crate::blocks::correction::fit_solve::UPDATE_LATENCY,
+            crate::blocks::correction::fit_hdl::FIT_STAGES,
             1e3 * win(300.0),
             1e3 * win(3000.0),
             max_rpm,
