@@ -266,7 +266,9 @@ pub struct FitSolve {
     u_d: DFF<Bits<52>>,
     /// Remainder, product or root remainder, two's complement (|u_r| < 2^50).
     u_r: DFF<Bits<52>>,
-    u_mag: DFF<Bits<64>>,
+    /// The division's rounded quotient magnitude u_x + adj, low 24 bits: what is read of
+    /// it is m (< 2^24), or a value checked against a clamp below 2^16 (`big_s`, `big_c`).
+    u_mag: DFF<Bits<24>>,
     /// The signed quotient: u_mag, or -(u_x + adj) = !u_x + !adj when u_neg (uxs + u_adjq),
     /// written beside it, loaded into u_x by DivNeg.
     u_q: DFF<Bits<64>>,
@@ -282,36 +284,67 @@ pub struct FitSolve {
     uxs: DFF<Bits<64>>,
     /// Steps left in the run.
     it: DFF<Bits<8>>,
-    sn: DFF<Bits<64>>,
-    a1_s: DFF<Bits<64>>,
-    a1_c: DFF<Bits<64>>,
+    /// N of the window (N <= 2^24: 25 bits).
+    sn: DFF<Bits<25>>,
+    /// |Σd_s| (< 2^40).
+    a1_s: DFF<Bits<40>>,
+    /// |Σd_c| (< 2^40).
+    a1_c: DFF<Bits<40>>,
+    /// Σd_s < 0.
     n1_s: DFF<Bit>,
+    /// Σd_c < 0.
     n1_c: DFF<Bit>,
-    a2_s: DFF<Bits<64>>,
-    a2_c: DFF<Bits<64>>,
-    asc: DFF<Bits<64>>,
+    /// Σd_s² (< 2^56).
+    a2_s: DFF<Bits<56>>,
+    /// Σd_c² (< 2^56).
+    a2_c: DFF<Bits<56>>,
+    /// |Σd_s d_c| (< 2^56).
+    asc: DFF<Bits<56>>,
+    /// Σd_s d_c < 0.
     nsc: DFF<Bit>,
+    /// Sine b_ref of the window.
     br_s: DFF<Bits<32>>,
+    /// Cosine b_ref of the window.
     br_c: DFF<Bits<32>>,
-    m_s: DFF<Bits<64>>,
-    m_c: DFF<Bits<64>>,
-    v_s: DFF<Bits<64>>,
-    v_c: DFF<Bits<64>>,
-    cc: DFF<Bits<64>>,
-    cmag: DFF<Bits<64>>,
+    /// |m_s| = |rdiv(Σd_s 2^8, N)| (< 2^24).
+    m_s: DFF<Bits<24>>,
+    /// |m_c| (< 2^24).
+    m_c: DFF<Bits<24>>,
+    /// floor(Σd_s² 2^16 / N) (< 2^48), then V_s = that - m_s², 49-bit two's complement.
+    v_s: DFF<Bits<49>>,
+    /// floor(Σd_c² 2^16 / N), then V_c, 49-bit two's complement.
+    v_c: DFF<Bits<49>>,
+    /// Cq = floor(Σd_s d_c 2^16 / N) (|Cq| < 2^48), then C = Cq - m_s m_c (|C| < 2^49),
+    /// 50-bit two's complement.
+    cc: DFF<Bits<50>>,
+    /// |C|, the 48 bits that |C| 2^16 keeps in a 64-bit dividend (|C| < 2^46).
+    cmag: DFF<Bits<48>>,
+    /// C >= 0 (the quotient -C 2^16 / (Amp_s Amp_c) is negated).
     cpos: DFF<Bit>,
-    amp_s: DFF<Bits<64>>,
-    amp_c: DFF<Bits<64>>,
-    smag: DFF<Bits<64>>,
+    /// Amp_s = isqrt(2 V_s) (< 2^25).
+    amp_s: DFF<Bits<25>>,
+    /// Amp_c (< 2^25).
+    amp_c: DFF<Bits<25>>,
+    /// |S|, clamped to smax (< 2^14).
+    smag: DFF<Bits<16>>,
+    /// S < 0.
     sneg: DFF<Bit>,
-    cs: DFF<Bits<64>>,
+    /// Cc = isqrt(2^30 - S²) (<= 2^15).
+    cs: DFF<Bits<16>>,
+    /// round(|m_s| / 2^8).
     t_s: DFF<Bits<32>>,
+    /// round(|m_c| / 2^8).
     t_c: DFF<Bits<32>>,
+    /// The new sine offset b_ref +- t_s.
     o_s: DFF<Bits<32>>,
+    /// The new cosine offset.
     o_c: DFF<Bits<32>>,
+    /// The new sine gain code, clamped.
     ng_s: DFF<Bits<16>>,
+    /// The new cosine gain code, clamped.
     ng_c: DFF<Bits<16>>,
-    q2: DFF<Bits<64>>,
+    /// Amp_s Cc (< 2^40), the divisor of k.
+    q2: DFF<Bits<40>>,
     r_os: DFFWithInit<Bits<32>>,
     r_oc: DFFWithInit<Bits<32>>,
     r_gs: DFFWithInit<Bits<16>>,
@@ -450,13 +483,13 @@ pub struct FitSolve {
     /// Amp_s Cc; 0 otherwise), free-running a clock behind them, final long before the return.
     udr: DFF<Bits<52>>,
     /// v_s - u_r (free-running): V_s - m_s², loaded by M2.
-    vsd: DFF<Bits<64>>,
+    vsd: DFF<Bits<49>>,
     /// v_c - u_r (free-running): V_c - m_c², loaded by M3.
-    vcd: DFF<Bits<64>>,
+    vcd: DFF<Bits<49>>,
     /// cc + u_r (free-running): C = Cq - m_s m_c when the means' signs differ, loaded by Cv.
-    ccp: DFF<Bits<64>>,
+    ccp: DFF<Bits<50>>,
     /// cc - u_r (free-running): C = Cq - m_s m_c when they agree.
-    ccm: DFF<Bits<64>>,
+    ccm: DFF<Bits<50>>,
     /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
     nd: DFF<Bits<52>>,
     /// u_r ^ nd (free-running).
@@ -465,10 +498,11 @@ pub struct FitSolve {
     rz: DFF<Bit>,
     /// xr == 0, i.e. u_r == -u_d (free-running, a clock behind xr).
     req: DFF<Bit>,
-    /// 2^30 - u_r (free-running): the radicand of Cc one state after S².
-    t30: DFF<Bits<64>>,
+    /// 2^30 - u_r, low 31 bits (free-running): the radicand of Cc one state after S²
+    /// (2^30 - S² in (2^29, 2^30]).
+    t30: DFF<Bits<31>>,
     /// min(u_mag, smax) (free-running): the clamped |S| one state after its division.
-    scl: DFF<Bits<64>>,
+    scl: DFF<Bits<16>>,
     /// min(u_mag, 65535) (free-running): a clamped gain or cross code.
     ngf: DFF<Bits<16>>,
     /// amp_s < min_amplitude 2^8 (free-running).
@@ -531,24 +565,28 @@ pub struct FitSolve {
     up: Signal<Local, Bit>,
     /// The chain's second operand: u_d / the trial when adding, its complement otherwise.
     opb: Signal<Local, Bits<52>>,
-    /// u_adj as a 64-bit addend.
-    adjw: Signal<Local, Bits<64>>,
+    /// u_adj as a 24-bit addend (of u_mag).
+    adjw: Signal<Local, Bits<24>>,
     /// u_adjq as a 64-bit addend.
     adjqw: Signal<Local, Bits<64>>,
     /// The rounding increment DivTst writes into u_adj.
     adjn: Signal<Local, Bit>,
-    /// Upper bound of |S|: round(2^15 sin 15 deg).
-    smax: Constant<Bits<64>>,
-    /// min_amplitude 2^8.
-    minamp: Constant<Bits<64>>,
+    /// min_amplitude 2^8 (< 2^23).
+    minamp: Constant<Bits<25>>,
     /// T 2^(GF+8): dividend of g_s.
     tgs: Constant<Bits<64>>,
     /// T 2^(GF+23): dividend of g_c.
     tgc: Constant<Bits<64>>,
     /// GF + 8: shift of T |S|.
     kshift: Constant<Bits<32>>,
-    /// 2^30.
-    two30: Constant<Bits<64>>,
+    /// 2^30 in 31 bits.
+    two30: Constant<Bits<31>>,
+    /// 0 in 50 bits.
+    zero50: Constant<Bits<50>>,
+    /// u_adj as a 24-bit addend when set.
+    one24: Constant<Bits<24>>,
+    /// 0 in 24 bits.
+    zero24: Constant<Bits<24>>,
     /// 2^(A-1) - 2^31 ... the offset range limits with the sign bit flipped: b < lo_f or
     /// b >= hi_f (unsigned, flipped) is out of range.
     lo_f: Constant<Bits<32>>,
@@ -573,8 +611,6 @@ pub struct FitSolve {
     one53: Constant<Bits<53>>,
     /// 128: the rounding half of a division by 2^8.
     half8: Constant<Bits<32>>,
-    /// Mask of 16 bits.
-    m16: Constant<Bits<64>>,
     /// Step counts and shifts.
     i32c: Constant<Bits<8>>,
     i64c: Constant<Bits<8>>,
@@ -586,7 +622,8 @@ pub struct FitSolve {
     tamp32: Constant<Bits<64>>,
     /// 65535 as a gain code.
     cmax16: Constant<Bits<16>>,
-    /// smax in 16 bits (the low half of u_x's compare).
+    /// Upper bound of |S|, round(2^15 sin 15 deg), in 16 bits: the clamp of scl and the low
+    /// half of u_x's compare.
     smax16: Constant<Bits<16>>,
     two32: Constant<Bits<32>>,
     s8: Constant<Bits<32>>,
@@ -848,12 +885,14 @@ impl FitSolve {
             adjw: Default::default(),
             adjqw: Default::default(),
             adjn: Default::default(),
-            smax: c64((32768.0 * 15f64.to_radians().sin()).round() as u64),
-            minamp: c64((k.min_amplitude as u64) << 8),
+            minamp: cw((k.min_amplitude as u64) << 8),
             tgs: c64(t << (gf + 8)),
             tgc: c64(t << (gf + 23)),
             kshift: c32((gf + 8) as u64),
-            two30: c64(1 << 30),
+            two30: cw(1 << 30),
+            zero50: cw(0),
+            one24: cw(1),
+            zero24: cw(0),
             lo_f: c32(flip(-lim)),
             hi_f: c32(flip(lim)),
             sign32: c32(1 << 31),
@@ -870,7 +909,6 @@ impl FitSolve {
             nb2: cw(mask(52) ^ 4),
             one53: cw(1),
             half8: c32(128),
-            m16: c64(0xffff),
             i32c: c8(32),
             i64c: c8(64),
             i80c: c8(80),
@@ -893,6 +931,69 @@ impl FitSolve {
             g0_s: c16(p.gain()[SIN] as u64),
             g0_c: c16(p.gain()[COS] as u64),
         }
+    }
+}
+
+impl crate::cosim::step::Clocked for FitSolve {
+    fn set_clock(&mut self, high: bool) {
+        self.clk.next = Clock::from(high);
+    }
+}
+
+/// The solver on its own in the co-simulation harness (`tests/correction_fit_solver.rs`
+/// feeds it window sums at the limits of the module doc's bounds).
+impl crate::cosim::CosimBlock for FitSolve {
+    fn input_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
+        vec![
+            Port::new("rst", 1),
+            Port::new("start", 1),
+            Port::new("n", 32),
+            Port::new("s1_s", 64),
+            Port::new("s1_c", 64),
+            Port::new("s2_s", 64),
+            Port::new("s2_c", 64),
+            Port::new("ssc", 64),
+            Port::new("bref_s", 32),
+            Port::new("bref_c", 32),
+        ]
+    }
+    fn output_ports(&self) -> Vec<crate::cosim::Port> {
+        use crate::cosim::Port;
+        vec![
+            Port::new("busy", 1),
+            Port::new("done", 1),
+            Port::new("off_s", 32),
+            Port::new("off_c", 32),
+            Port::new("g_s", 16),
+            Port::new("g_c", 16),
+            Port::new("k_mag", 16),
+            Port::new("k_neg", 1),
+        ]
+    }
+    fn apply(&mut self, r: &[u64]) {
+        self.rst.next = r[0] != 0;
+        self.start.next = r[1] != 0;
+        self.n.next = Bits::<32>::from(r[2] & mask(32));
+        self.s1_s.next = Bits::<64>::from(r[3]);
+        self.s1_c.next = Bits::<64>::from(r[4]);
+        self.s2_s.next = Bits::<64>::from(r[5]);
+        self.s2_c.next = Bits::<64>::from(r[6]);
+        self.ssc.next = Bits::<64>::from(r[7]);
+        self.bref_s.next = Bits::<32>::from(r[8] & mask(32));
+        self.bref_c.next = Bits::<32>::from(r[9] & mask(32));
+    }
+    fn sample(&self) -> Vec<u64> {
+        vec![
+            self.busy.val() as u64,
+            self.done.val() as u64,
+            self.off_s.val().to_u64(),
+            self.off_c.val().to_u64(),
+            self.g_s.val().to_u64(),
+            self.g_c.val().to_u64(),
+            self.k_mag.val().to_u64(),
+            self.k_neg.val() as u64,
+        ]
     }
 }
 

@@ -66,9 +66,9 @@ impl Logic for FitSolve {
             self.ob.d.next =
                 (bit_cast::<53, 52>(self.opb.val()) << self.one32.val()) | self.one53.val();
         }
-        self.adjw.next = self.zero64.val();
+        self.adjw.next = self.zero24.val();
         if self.u_adj.q.val() {
-            self.adjw.next = self.one64.val();
+            self.adjw.next = self.one24.val();
         }
         self.adjqw.next = self.zero64.val();
         if self.u_adjq.q.val() {
@@ -82,11 +82,13 @@ impl Logic for FitSolve {
         // The subtractions and the sum that end a product's state (V_s -= m_s², V_c -= m_c²,
         // C = Cq -+ |m_s m_c|), free-running from the product in u_r (final from the run's
         // last B clock on): the state after the return loads them through a LUT, not a chain.
-        self.vsd.d.next = self.v_s.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
-        self.vcd.d.next = self.v_c.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
-        self.ccp.d.next = self.cc.q.val() + bit_cast::<64, 52>(self.u_r.q.val());
-        self.ccm.d.next = self.cc.q.val() - bit_cast::<64, 52>(self.u_r.q.val());
-        self.t30.d.next = self.two30.val() - bit_cast::<64, 52>(self.u_r.q.val());
+        // Each is exact in its width when it is read: u_r then holds m² or |m_s m_c| (< 2^48)
+        // or S² (< 2^27), and V (|V| < 2^48), C (|C| < 2^49), 2^30 - S² fit.
+        self.vsd.d.next = self.v_s.q.val() - bit_cast::<49, 52>(self.u_r.q.val());
+        self.vcd.d.next = self.v_c.q.val() - bit_cast::<49, 52>(self.u_r.q.val());
+        self.ccp.d.next = self.cc.q.val() + bit_cast::<50, 52>(self.u_r.q.val());
+        self.ccm.d.next = self.cc.q.val() - bit_cast::<50, 52>(self.u_r.q.val());
+        self.t30.d.next = self.two30.val() - bit_cast::<31, 52>(self.u_r.q.val());
         self.lo_s.d.next = self.amp_s.q.val() < self.minamp.val();
         self.lo_c.d.next = self.amp_c.q.val() < self.minamp.val();
         self.oor.d.next = ((self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val())
@@ -116,11 +118,11 @@ impl Logic for FitSolve {
         if self.u_neg.q.val() {
             self.uxs.d.next = !self.u_x.q.val();
         }
-        self.scl.d.next = self.u_mag.q.val();
+        self.scl.d.next = bit_cast::<16, 24>(self.u_mag.q.val());
         if self.big_s.q.val() {
-            self.scl.d.next = self.smax.val();
+            self.scl.d.next = self.smax16.val();
         }
-        self.ngf.d.next = bit_cast::<16, 64>(self.u_mag.q.val() & self.m16.val());
+        self.ngf.d.next = bit_cast::<16, 24>(self.u_mag.q.val());
         if self.big_c.q.val() {
             self.ngf.d.next = self.cmax16.val();
         }
@@ -355,23 +357,23 @@ impl Logic for FitSolve {
             | (self.f_sq.q.val() & self.f_add.q.val());
         // The states' register writes.
         if self.go.val() {
-            self.sn.d.next = bit_cast::<64, 32>(self.n.val());
-            self.a1_s.d.next = self.s1_s.val();
+            self.sn.d.next = bit_cast::<25, 32>(self.n.val());
+            self.a1_s.d.next = bit_cast::<40, 64>(self.s1_s.val());
             self.n1_s.d.next = (self.s1_s.val() & self.sign63.val()).any();
             if (self.s1_s.val() & self.sign63.val()).any() {
-                self.a1_s.d.next = self.zero64.val() - self.s1_s.val();
+                self.a1_s.d.next = bit_cast::<40, 64>(self.zero64.val() - self.s1_s.val());
             }
-            self.a1_c.d.next = self.s1_c.val();
+            self.a1_c.d.next = bit_cast::<40, 64>(self.s1_c.val());
             self.n1_c.d.next = (self.s1_c.val() & self.sign63.val()).any();
             if (self.s1_c.val() & self.sign63.val()).any() {
-                self.a1_c.d.next = self.zero64.val() - self.s1_c.val();
+                self.a1_c.d.next = bit_cast::<40, 64>(self.zero64.val() - self.s1_c.val());
             }
-            self.a2_s.d.next = self.s2_s.val();
-            self.a2_c.d.next = self.s2_c.val();
-            self.asc.d.next = self.ssc.val();
+            self.a2_s.d.next = bit_cast::<56, 64>(self.s2_s.val());
+            self.a2_c.d.next = bit_cast::<56, 64>(self.s2_c.val());
+            self.asc.d.next = bit_cast::<56, 64>(self.ssc.val());
             self.nsc.d.next = (self.ssc.val() & self.sign63.val()).any();
             if (self.ssc.val() & self.sign63.val()).any() {
-                self.asc.d.next = self.zero64.val() - self.ssc.val();
+                self.asc.d.next = bit_cast::<56, 64>(self.zero64.val() - self.ssc.val());
             }
             self.br_s.d.next = self.bref_s.val();
             self.br_c.d.next = self.bref_c.val();
@@ -383,13 +385,13 @@ impl Logic for FitSolve {
             self.m_c.d.next = self.u_mag.q.val();
         }
         if self.s_vc.q.val() {
-            self.v_s.d.next = self.u_x.q.val();
+            self.v_s.d.next = bit_cast::<49, 64>(self.u_x.q.val());
         }
         if self.s_cq.q.val() {
-            self.v_c.d.next = self.u_x.q.val();
+            self.v_c.d.next = bit_cast::<49, 64>(self.u_x.q.val());
         }
         if self.s_m1.q.val() {
-            self.cc.d.next = self.u_x.q.val();
+            self.cc.d.next = bit_cast::<50, 64>(self.u_x.q.val());
         }
         if self.s_m2.q.val() {
             self.v_s.d.next = self.vsd.q.val();
@@ -406,18 +408,18 @@ impl Logic for FitSolve {
         }
         if self.s_sqs.q.val() {
             // |C| and the sign of -C (rdiv's sign below; C = 0 gives 0 either way).
-            self.cmag.d.next = self.cc.q.val();
+            self.cmag.d.next = bit_cast::<48, 50>(self.cc.q.val());
             self.cpos.d.next = true;
-            if (self.cc.q.val() & self.sign63.val()).any() {
-                self.cmag.d.next = self.zero64.val() - self.cc.q.val();
+            if self.cc.q.val().get_bit(49) {
+                self.cmag.d.next = bit_cast::<48, 50>(self.zero50.val() - self.cc.q.val());
                 self.cpos.d.next = false;
             }
         }
         if self.s_sqc.q.val() {
-            self.amp_s.d.next = bit_cast::<64, 52>(self.u_d.q.val() >> self.s3.val());
+            self.amp_s.d.next = bit_cast::<25, 52>(self.u_d.q.val() >> self.s3.val());
         }
         if self.s_chk.q.val() {
-            self.amp_c.d.next = bit_cast::<64, 52>(self.u_d.q.val() >> self.s3.val());
+            self.amp_c.d.next = bit_cast::<25, 52>(self.u_d.q.val() >> self.s3.val());
         }
         if self.s_sn2.q.val() {
             self.smag.d.next = self.scl.q.val();
@@ -425,12 +427,12 @@ impl Logic for FitSolve {
         }
         if self.s_offa.q.val() {
             self.t_s.d.next =
-                (bit_cast::<32, 64>(self.m_s.q.val()) + self.half8.val()) >> self.s8.val();
+                (bit_cast::<32, 24>(self.m_s.q.val()) + self.half8.val()) >> self.s8.val();
             self.t_c.d.next =
-                (bit_cast::<32, 64>(self.m_c.q.val()) + self.half8.val()) >> self.s8.val();
+                (bit_cast::<32, 24>(self.m_c.q.val()) + self.half8.val()) >> self.s8.val();
         }
         if self.s_offb.q.val() {
-            self.cs.d.next = bit_cast::<64, 52>(self.u_d.q.val() >> self.s3.val());
+            self.cs.d.next = bit_cast::<16, 52>(self.u_d.q.val() >> self.s3.val());
             self.o_s.d.next = self.br_s.q.val() + self.t_s.q.val();
             if self.n1_s.q.val() {
                 self.o_s.d.next = self.br_s.q.val() - self.t_s.q.val();
@@ -447,7 +449,7 @@ impl Logic for FitSolve {
             self.ng_c.d.next = self.ngf.q.val();
         }
         if self.s_ts.q.val() {
-            self.q2.d.next = bit_cast::<64, 52>(self.u_r.q.val());
+            self.q2.d.next = bit_cast::<40, 52>(self.u_r.q.val());
         }
         if self.s_load.q.val() {
             self.r_km.d.next = self.ngf.q.val();
@@ -476,7 +478,7 @@ impl Logic for FitSolve {
         if self.s_dinc.q.val() {
             // u_mag = u_x + adj, and the signed quotient u_q = u_mag or -(u_x + adj) =
             // !u_x + !adj, one chain each from registers: u_q = uxs + (adj ^ u_neg).
-            self.u_mag.d.next = self.u_x.q.val() + self.adjw.val();
+            self.u_mag.d.next = bit_cast::<24, 64>(self.u_x.q.val()) + self.adjw.val();
             self.u_q.d.next = self.uxs.q.val() + self.adjqw.val();
         }
         // DivNeg: u_x takes u_q (x_q), f_ret returns.
@@ -575,25 +577,25 @@ impl Logic for FitSolve {
         // flags are one-hot, so the selects are ANDed and ORed).
         self.udn.next = self.zero52.val();
         if self.rd_sn.q.val() {
-            self.udn.next = self.udn.val() | bit_cast::<52, 64>(self.sn.q.val());
+            self.udn.next = self.udn.val() | bit_cast::<52, 25>(self.sn.q.val());
         }
         if self.rd_ms.q.val() {
-            self.udn.next = self.udn.val() | bit_cast::<52, 64>(self.m_s.q.val());
+            self.udn.next = self.udn.val() | bit_cast::<52, 24>(self.m_s.q.val());
         }
         if self.rd_mc.q.val() {
-            self.udn.next = self.udn.val() | bit_cast::<52, 64>(self.m_c.q.val());
+            self.udn.next = self.udn.val() | bit_cast::<52, 24>(self.m_c.q.val());
         }
         if self.rd_amps.q.val() {
-            self.udn.next = self.udn.val() | bit_cast::<52, 64>(self.amp_s.q.val());
+            self.udn.next = self.udn.val() | bit_cast::<52, 25>(self.amp_s.q.val());
         }
         if self.rd_cs.q.val() {
-            self.udn.next = self.udn.val() | bit_cast::<52, 64>(self.cs.q.val());
+            self.udn.next = self.udn.val() | bit_cast::<52, 16>(self.cs.q.val());
         }
         if self.rd_smag.q.val() {
-            self.udn.next = self.udn.val() | bit_cast::<52, 64>(self.smag.q.val());
+            self.udn.next = self.udn.val() | bit_cast::<52, 16>(self.smag.q.val());
         }
         if self.rd_q2.q.val() {
-            self.udn.next = self.udn.val() | bit_cast::<52, 64>(self.q2.q.val());
+            self.udn.next = self.udn.val() | bit_cast::<52, 40>(self.q2.q.val());
         }
         self.udr.d.next = self.udn.val();
         // The sources a return loads into u_x (final long before it) through free-running
@@ -603,37 +605,45 @@ impl Logic for FitSolve {
         self.uxbn.next = self.zero64.val();
         self.uxcn.next = self.zero64.val();
         if self.rx_a1c8.q.val() {
-            self.uxan.next = self.uxan.val() | (self.a1_c.q.val() << self.s8.val());
+            self.uxan.next =
+                self.uxan.val() | (bit_cast::<64, 40>(self.a1_c.q.val()) << self.s8.val());
         }
         if self.rx_a2s.q.val() {
-            self.uxan.next = self.uxan.val() | self.a2_s.q.val();
+            self.uxan.next = self.uxan.val() | bit_cast::<64, 56>(self.a2_s.q.val());
         }
         if self.rx_a2c.q.val() {
-            self.uxan.next = self.uxan.val() | self.a2_c.q.val();
+            self.uxan.next = self.uxan.val() | bit_cast::<64, 56>(self.a2_c.q.val());
         }
         if self.rx_asc.q.val() {
-            self.uxan.next = self.uxan.val() | self.asc.q.val();
+            self.uxan.next = self.uxan.val() | bit_cast::<64, 56>(self.asc.q.val());
         }
-        if self.rx_vs2.q.val() & !(self.v_s.q.val() & self.sign63.val()).any() {
-            self.uxan.next = self.uxan.val() | (self.v_s.q.val() << self.one32.val());
+        if self.rx_vs2.q.val() & !self.v_s.q.val().get_bit(48) {
+            self.uxan.next =
+                self.uxan.val() | (bit_cast::<64, 49>(self.v_s.q.val()) << self.one32.val());
         }
         if self.rx_ms32.q.val() {
-            self.uxbn.next = self.uxbn.val() | (self.m_s.q.val() << self.s32.val());
+            self.uxbn.next =
+                self.uxbn.val() | (bit_cast::<64, 24>(self.m_s.q.val()) << self.s32.val());
         }
         if self.rx_mc32.q.val() {
-            self.uxbn.next = self.uxbn.val() | (self.m_c.q.val() << self.s32.val());
+            self.uxbn.next =
+                self.uxbn.val() | (bit_cast::<64, 24>(self.m_c.q.val()) << self.s32.val());
         }
-        if self.rx_vc2.q.val() & !(self.v_c.q.val() & self.sign63.val()).any() {
-            self.uxbn.next = self.uxbn.val() | (self.v_c.q.val() << self.one32.val());
+        if self.rx_vc2.q.val() & !self.v_c.q.val().get_bit(48) {
+            self.uxbn.next =
+                self.uxbn.val() | (bit_cast::<64, 49>(self.v_c.q.val()) << self.one32.val());
         }
         if self.rx_amps32.q.val() {
-            self.uxbn.next = self.uxbn.val() | (self.amp_s.q.val() << self.s32.val());
+            self.uxbn.next =
+                self.uxbn.val() | (bit_cast::<64, 25>(self.amp_s.q.val()) << self.s32.val());
         }
         if self.rx_ampc32.q.val() {
-            self.uxcn.next = self.uxcn.val() | (self.amp_c.q.val() << self.s32.val());
+            self.uxcn.next =
+                self.uxcn.val() | (bit_cast::<64, 25>(self.amp_c.q.val()) << self.s32.val());
         }
         if self.rx_cmag16.q.val() {
-            self.uxcn.next = self.uxcn.val() | (self.cmag.q.val() << self.s16.val());
+            self.uxcn.next =
+                self.uxcn.val() | (bit_cast::<64, 48>(self.cmag.q.val()) << self.s16.val());
         }
         if self.rx_tgs.q.val() {
             self.uxcn.next = self.uxcn.val() | self.tgs.val();
@@ -652,16 +662,18 @@ impl Logic for FitSolve {
         // enable; then the division's quotient bit from the adder into bit 0.
         self.uxn.next = self.zero64.val();
         if self.x_a1s.q.val() {
-            self.uxn.next = self.uxn.val() | (self.a1_s.q.val() << self.s8.val());
+            self.uxn.next =
+                self.uxn.val() | (bit_cast::<64, 40>(self.a1_s.q.val()) << self.s8.val());
         }
         if self.x_uxr.q.val() {
             self.uxn.next = self.uxn.val() | self.uxr.q.val();
         }
         if self.x_scl.q.val() {
-            self.uxn.next = self.uxn.val() | (self.scl.q.val() << self.s32.val());
+            self.uxn.next =
+                self.uxn.val() | (bit_cast::<64, 16>(self.scl.q.val()) << self.s32.val());
         }
         if self.x_t30.q.val() {
-            self.uxn.next = self.uxn.val() | self.t30.q.val();
+            self.uxn.next = self.uxn.val() | bit_cast::<64, 31>(self.t30.q.val());
         }
         if self.x_urk.q.val() {
             self.uxn.next =
@@ -689,7 +701,7 @@ impl Logic for FitSolve {
         // 010).
         self.udn2.next = self.zero52.val();
         if self.d_sn.q.val() {
-            self.udn2.next = self.udn2.val() | bit_cast::<52, 64>(self.sn.q.val());
+            self.udn2.next = self.udn2.val() | bit_cast::<52, 25>(self.sn.q.val());
         }
         if self.d_udr.q.val() {
             self.udn2.next = self.udn2.val() | self.udr.q.val();
@@ -701,7 +713,7 @@ impl Logic for FitSolve {
             self.udn2.next = self.udn2.val() | self.u_r.q.val();
         }
         if self.d_scl.q.val() {
-            self.udn2.next = self.udn2.val() | bit_cast::<52, 64>(self.scl.q.val());
+            self.udn2.next = self.udn2.val() | bit_cast::<52, 16>(self.scl.q.val());
         }
         if self.d_one.q.val() {
             self.udn2.next = self.udn2.val() | self.one52.val();
