@@ -30,7 +30,8 @@
 //! ```
 //!
 //! # Widths and bit growth (A = 10..=16)
-//! * x, b in [-2^(A-1), 2^(A-1)): d = x - b in (-2^A, 2^A), 32-bit two's complement; |d| is
+//! * x, b in [-2^(A-1), 2^(A-1)): d = x - b in (-2^A, 2^A), 18-bit two's complement (the
+//!   low 18 bits of the 32-bit difference, exact); |d| is
 //!   the select of d or -d (two subtractors side by side), at most 2^A - 1 <= 65535, the
 //!   unsigned 16-bit operand of a shift-add tree; products <= (2^16 - 1)^2 < 2^32 in 32-bit
 //!   words, exact (each tree level is a 32-bit sum of partial products of the same
@@ -167,10 +168,10 @@ pub struct FitCal {
     pr: Signal<Local, Bits<32>>,
     /// The entries e_s, e_c held from stage C (e1, loaded with it) and from phase 2 (e2,
     /// loaded from e1 three clocks after stage C) to stage D.
-    e1_s: DFF<Bits<32>>,
-    e2_s: DFF<Bits<32>>,
-    e1_c: DFF<Bits<32>>,
-    e2_c: DFF<Bits<32>>,
+    e1_s: DFF<Bits<18>>,
+    e2_s: DFF<Bits<18>>,
+    e1_c: DFF<Bits<18>>,
+    e2_c: DFF<Bits<18>>,
     /// The coefficients' output copies, a clock behind the solver's registers (reset with
     /// them): the datapath reads registers it can have beside it, not the solver's.
     o_bs: DFFWithInit<Bits<32>>,
@@ -186,14 +187,16 @@ pub struct FitCal {
     /// The sample's valid in stage Q (registered in stage A) and in stage B1.
     va0: DFF<Bit>,
     va: DFF<Bit>,
-    da_s: DFF<Bits<32>>,
-    nda_s: DFF<Bits<32>>,
-    ea_s: DFF<Bits<32>>,
-    nea_s: DFF<Bits<32>>,
-    da_c: DFF<Bits<32>>,
-    nda_c: DFF<Bits<32>>,
-    ea_c: DFF<Bits<32>>,
-    nea_c: DFF<Bits<32>>,
+    /// Stage A's differences, 18-bit two's complement (|x - b| < 2^A <= 2^16): d = x -
+    /// b_ref, -d, e = x - b_cur, -e per track.
+    da_s: DFF<Bits<18>>,
+    nda_s: DFF<Bits<18>>,
+    ea_s: DFF<Bits<18>>,
+    nea_s: DFF<Bits<18>>,
+    da_c: DFF<Bits<18>>,
+    nda_c: DFF<Bits<18>>,
+    ea_c: DFF<Bits<18>>,
+    nea_c: DFF<Bits<18>>,
     bref_s: DFFWithInit<Bits<32>>,
     bref_c: DFFWithInit<Bits<32>>,
     tinit: DFF<Bit>,
@@ -209,8 +212,8 @@ pub struct FitCal {
     c_v: DFF<Bit>,
     c_rs: DFF<Bit>,
     c_snap: DFF<Bit>,
-    c_es: DFF<Bits<32>>,
-    c_ec: DFF<Bits<32>>,
+    c_es: DFF<Bits<18>>,
+    c_ec: DFF<Bits<18>>,
     c_ms: DFF<Bits<16>>,
     c_mc: DFF<Bits<16>>,
     c_nsc: DFF<Bit>,
@@ -284,14 +287,14 @@ pub struct FitCal {
     xs: Signal<Local, Bits<32>>,
     xc: Signal<Local, Bits<32>>,
     /// Stage B2: the sample's entry to the sums (d, or e at or right after a restart).
-    ds: Signal<Local, Bits<32>>,
-    dc: Signal<Local, Bits<32>>,
+    ds: Signal<Local, Bits<18>>,
+    dc: Signal<Local, Bits<18>>,
     /// Stage A: x - b_ref (the quadrant's signs), the quadrant and the step from tq.
-    das: Signal<Local, Bits<32>>,
-    dac: Signal<Local, Bits<32>>,
+    das: Signal<Local, Bits<18>>,
+    dac: Signal<Local, Bits<18>>,
     /// Stage A: x - b_cur.
-    eas: Signal<Local, Bits<32>>,
-    eac: Signal<Local, Bits<32>>,
+    eas: Signal<Local, Bits<18>>,
+    eac: Signal<Local, Bits<18>>,
     /// Stage A: the signs the quadrant is taken from.
     ngs: Signal<Local, Bit>,
     ngc: Signal<Local, Bit>,
@@ -371,8 +374,9 @@ pub struct FitCal {
     amask: Constant<Bits<32>>,
     asign: Constant<Bits<32>>,
     asext: Constant<Bits<32>>,
-    /// Bit 31 and bits 32..63 (sign extension to 64 bits).
+    /// Bit 31.
     sign32: Constant<Bits<32>>,
+    /// Bits 18..63: an 18-bit entry's sign extension to 64 bits.
     sext64: Constant<Bits<64>>,
     one32: Constant<Bits<32>>,
     zero32: Constant<Bits<32>>,
@@ -625,7 +629,7 @@ impl FitCal {
             asign: c32(1 << (a - 1)),
             asext: c32(fill(32, 32 - a)),
             sign32: c32(1 << 31),
-            sext64: c64(fill(64, 32)),
+            sext64: c64(fill(64, 46)),
             one32: c32(1),
             zero32: c32(0),
             zero64: c64(0),

@@ -15,11 +15,11 @@
 //!  g_s, g_c, k                      MUL, DIV x 3, clamp ──► Load: all coefficients at once
 //!
 //!  shared adder, one 53-bit carry chain, each step over two clocks:
-//!    B clock: oa = {opa, 1}, ob = {opb, cin}: opa = 2 u_r (+ msb(u_x)) or 4 u_r + top2(u_x);
+//!    B clock: oa = opa, ob = {opb, cin}: opa = 2 u_r (+ msb(u_x)) or 4 u_r + top2(u_x);
 //!             opb = up ? u_d : !u_d (!0 in a MUL), cin = !up, up = u_r < 0 (MUL: msb(u_x));
 //!             one LUT a bit from registers (u_r, u_x, u_d, flags); the previous step's
 //!             bit (!sign of u_r) into u_x bit 0 (DIV) or into u_d (SQRT)
-//!    A clock: u_r = (oa + ob) >> 1 (the chain and nothing else); u_x <<= 1 (2 in a SQRT)
+//!    A clock: u_r = ({oa, 1} + ob) >> 1 (the chain and nothing else); u_x <<= 1 (2 in a SQRT)
 //!    ┌──────────┐  B   ┌─────────┐  A   ┌────────────┐
 //!    │u_r u_x u_d├─LUT─►│ oa  ob  ├─+───►│ u_r (52 b) │── sign ──► next B
 //!    └──────────┘      └─────────┘      └────────────┘
@@ -70,6 +70,16 @@
 //!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits (u_x stays 64 bits).
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
 //!   all below 2^32 (the 32 steps), products below 2^50.
+//! * Stored values at the widths these bounds give (Yosys cannot know them, so a 64-bit
+//!   register would keep 64 flip-flops and its load select 64 LUTs): N 25 bits, |Σd| 40,
+//!   Σd² and |Σd_s d_c| 56, |m| 24 (|Σd| 2^8 / N <= (2^16 - 1) 2^8 < 2^24, and the rounding
+//!   stays below), V 49 (two's complement: floor(Σd² 2^16 / N) < 2^48 less m² < 2^48), C 50
+//!   (|Cq| < 2^48 plus |m_s m_c| < 2^48), |C| 48 (the bits |C| 2^16 keeps), Amp 25, |S| and
+//!   Cc 16, Amp_s Cc 40, 2^30 - S² 31, the quotient's magnitude u_mag 24 (read as m, or
+//!   under a clamp below 2^16). A difference such as V - m² is taken in the narrow width:
+//!   its low bits are exact, and the true value fits. `tests/correction_fit_solver.rs`
+//!   drives the solver at these bounds (N = 2^24, |d| = 2^16 - 1, full correlation); with
+//!   m one bit narrower it fails.
 //! * Each state writes its registers through at most one adder or compare (the timing rule
 //!   of docs/correction.md): abs, add, round and negate are separate states or free-running
 //!   registers.
@@ -358,7 +368,7 @@ pub struct FitSolve {
     f_sq: DFF<Bit>,
     /// Run is a multiplication.
     f_mul: DFF<Bit>,
-    /// An A clock: u_r takes the chain's sum oa + ob (also the divider's rounding sum).
+    /// An A clock: u_r takes the chain's sum {oa, 1} + ob (also the divider's rounding sum).
     f_add: DFF<Bit>,
     /// An A clock of a division or product: u_x shifts by one.
     f_sh1: DFF<Bit>,
@@ -377,8 +387,10 @@ pub struct FitSolve {
     f_80: DFF<Bit>,
     /// The sign the division set up in the state before applies (u_neg, taken in B_0).
     neg_n: DFF<Bit>,
-    /// {opa, 1}: the chain's first operand, written in a B clock.
-    oa: DFF<Bits<53>>,
+    /// opa, the chain's first operand, written in a B clock; the chain adds {oa, 1} (the
+    /// constant 1 is not a register: a flip-flop that only ever loads 1 is merged by Yosys
+    /// with any other such flip-flop of the design, wherever it is placed).
+    oa: DFF<Bits<52>>,
     /// {opb, cin}: its second operand and carry in.
     ob: DFF<Bits<53>>,
     /// u_x loads |Σd_s| 2^8 in this clock.

@@ -29,19 +29,27 @@ impl Logic for FitCal {
         }
         self.va0.d.next = self.valid.val() & !self.rst.val();
         self.va.d.next = self.va0.q.val() & !self.rst.val();
-        self.das.next = self.xs.val() - self.bref_s.q.val();
-        self.dac.next = self.xc.val() - self.bref_c.q.val();
-        self.eas.next = self.xs.val() - self.slv.off_s.val();
-        self.eac.next = self.xc.val() - self.slv.off_c.val();
+        // 18-bit differences: x and the offsets lie in [-2^(A-1), 2^(A-1)), so each
+        // difference is below 2^A <= 2^16 in magnitude and its low 18 bits are exact.
+        self.das.next = bit_cast::<18, 32>(self.xs.val()) - bit_cast::<18, 32>(self.bref_s.q.val());
+        self.dac.next = bit_cast::<18, 32>(self.xc.val()) - bit_cast::<18, 32>(self.bref_c.q.val());
+        self.eas.next =
+            bit_cast::<18, 32>(self.xs.val()) - bit_cast::<18, 32>(self.slv.off_s.val());
+        self.eac.next =
+            bit_cast::<18, 32>(self.xc.val()) - bit_cast::<18, 32>(self.slv.off_c.val());
         if self.valid.val() {
             self.da_s.d.next = self.das.val();
-            self.nda_s.d.next = self.bref_s.q.val() - self.xs.val();
+            self.nda_s.d.next =
+                bit_cast::<18, 32>(self.bref_s.q.val()) - bit_cast::<18, 32>(self.xs.val());
             self.ea_s.d.next = self.eas.val();
-            self.nea_s.d.next = self.slv.off_s.val() - self.xs.val();
+            self.nea_s.d.next =
+                bit_cast::<18, 32>(self.slv.off_s.val()) - bit_cast::<18, 32>(self.xs.val());
             self.da_c.d.next = self.dac.val();
-            self.nda_c.d.next = self.bref_c.q.val() - self.xc.val();
+            self.nda_c.d.next =
+                bit_cast::<18, 32>(self.bref_c.q.val()) - bit_cast::<18, 32>(self.xc.val());
             self.ea_c.d.next = self.eac.val();
-            self.nea_c.d.next = self.slv.off_c.val() - self.xc.val();
+            self.nea_c.d.next =
+                bit_cast::<18, 32>(self.slv.off_c.val()) - bit_cast::<18, 32>(self.xc.val());
             // b_ref changes at this clock's edge (the previous sample restarted the window):
             // this sample's entry is e = x - b_cur, the new b_ref.
             self.fresh.d.next = self.a_rs.q.val();
@@ -50,11 +58,11 @@ impl Logic for FitCal {
         // registered for stage B1, from the registered differences' signs: those of d, or
         // of e when b_ref was being loaded with b_cur at stage A (`fresh`); tq is the
         // previous sample's. No carry chain in front of these LUTs.
-        self.ngs.next = (self.da_s.q.val() & self.sign32.val()).any();
-        self.ngc.next = (self.da_c.q.val() & self.sign32.val()).any();
+        self.ngs.next = self.da_s.q.val().get_bit(17);
+        self.ngc.next = self.da_c.q.val().get_bit(17);
         if self.fresh.q.val() {
-            self.ngs.next = (self.ea_s.q.val() & self.sign32.val()).any();
-            self.ngc.next = (self.ea_c.q.val() & self.sign32.val()).any();
+            self.ngs.next = self.ea_s.q.val().get_bit(17);
+            self.ngc.next = self.ea_c.q.val().get_bit(17);
         }
         self.q.next = self.q0.val();
         if self.ngs.val() {
@@ -211,30 +219,29 @@ impl Logic for FitCal {
         self.c_snap.d.next = self.a_snap.q.val();
         self.ds.next = self.da_s.q.val();
         self.dc.next = self.da_c.q.val();
-        self.c_ms.d.next = bit_cast::<16, 32>(self.da_s.q.val());
-        if (self.da_s.q.val() & self.sign32.val()).any() {
-            self.c_ms.d.next = bit_cast::<16, 32>(self.nda_s.q.val());
+        self.c_ms.d.next = bit_cast::<16, 18>(self.da_s.q.val());
+        if self.da_s.q.val().get_bit(17) {
+            self.c_ms.d.next = bit_cast::<16, 18>(self.nda_s.q.val());
         }
-        self.c_mc.d.next = bit_cast::<16, 32>(self.da_c.q.val());
-        if (self.da_c.q.val() & self.sign32.val()).any() {
-            self.c_mc.d.next = bit_cast::<16, 32>(self.nda_c.q.val());
+        self.c_mc.d.next = bit_cast::<16, 18>(self.da_c.q.val());
+        if self.da_c.q.val().get_bit(17) {
+            self.c_mc.d.next = bit_cast::<16, 18>(self.nda_c.q.val());
         }
         if self.a_ue.q.val() {
             self.ds.next = self.ea_s.q.val();
             self.dc.next = self.ea_c.q.val();
-            self.c_ms.d.next = bit_cast::<16, 32>(self.ea_s.q.val());
-            if (self.ea_s.q.val() & self.sign32.val()).any() {
-                self.c_ms.d.next = bit_cast::<16, 32>(self.nea_s.q.val());
+            self.c_ms.d.next = bit_cast::<16, 18>(self.ea_s.q.val());
+            if self.ea_s.q.val().get_bit(17) {
+                self.c_ms.d.next = bit_cast::<16, 18>(self.nea_s.q.val());
             }
-            self.c_mc.d.next = bit_cast::<16, 32>(self.ea_c.q.val());
-            if (self.ea_c.q.val() & self.sign32.val()).any() {
-                self.c_mc.d.next = bit_cast::<16, 32>(self.nea_c.q.val());
+            self.c_mc.d.next = bit_cast::<16, 18>(self.ea_c.q.val());
+            if self.ea_c.q.val().get_bit(17) {
+                self.c_mc.d.next = bit_cast::<16, 18>(self.nea_c.q.val());
             }
         }
         self.c_es.d.next = self.ds.val();
         self.c_ec.d.next = self.dc.val();
-        self.c_nsc.d.next =
-            (self.ds.val() & self.sign32.val()).any() ^ (self.dc.val() & self.sign32.val()).any();
+        self.c_nsc.d.next = self.ds.val().get_bit(17) ^ self.dc.val().get_bit(17);
         // Stage C: the three products of the entry on one shift-add tree of run-time codes,
         // one a clock: phase 0 (a clock after stage C) |e_s|², phase 1 |e_c|², phase 2
         // |e_s e_c|, each from the operand registers ta, tc (so the tree's level 1 reads
@@ -287,13 +294,13 @@ impl Logic for FitCal {
         }
         self.d_v.d.next = self.ln_v.q.val().get_bit(5);
         self.d_rs.d.next = self.ln_rs.q.val().get_bit(5);
-        self.d_es.d.next = bit_cast::<64, 32>(self.e2_s.q.val());
-        if (self.e2_s.q.val() & self.sign32.val()).any() {
-            self.d_es.d.next = bit_cast::<64, 32>(self.e2_s.q.val()) | self.sext64.val();
+        self.d_es.d.next = bit_cast::<64, 18>(self.e2_s.q.val());
+        if self.e2_s.q.val().get_bit(17) {
+            self.d_es.d.next = bit_cast::<64, 18>(self.e2_s.q.val()) | self.sext64.val();
         }
-        self.d_ec.d.next = bit_cast::<64, 32>(self.e2_c.q.val());
-        if (self.e2_c.q.val() & self.sign32.val()).any() {
-            self.d_ec.d.next = bit_cast::<64, 32>(self.e2_c.q.val()) | self.sext64.val();
+        self.d_ec.d.next = bit_cast::<64, 18>(self.e2_c.q.val());
+        if self.e2_c.q.val().get_bit(17) {
+            self.d_ec.d.next = bit_cast::<64, 18>(self.e2_c.q.val()) | self.sext64.val();
         }
         // The cross product's sign is applied here, after its adder (one LUT a bit), as a
         // ones' complement whose +1 is stage E's carry-in: an adder then a subtractor in

@@ -59,8 +59,7 @@ impl Logic for FitSolve {
                 self.opb.next = self.opb.val() | self.b2.val();
             }
         }
-        self.oa.d.next =
-            (bit_cast::<53, 52>(self.opa.val()) << self.one32.val()) | self.one53.val();
+        self.oa.d.next = self.opa.val();
         self.ob.d.next = bit_cast::<53, 52>(self.opb.val()) << self.one32.val();
         if !self.up.val() {
             self.ob.d.next =
@@ -735,8 +734,11 @@ impl Logic for FitSolve {
             self.u_r.d.next = self.zero52.val();
         }
         if self.f_add.q.val() {
-            self.u_r.d.next =
-                bit_cast::<52, 53>((self.oa.q.val() + self.ob.q.val()) >> self.one32.val());
+            self.u_r.d.next = bit_cast::<52, 53>(
+                (((bit_cast::<53, 52>(self.oa.q.val()) << self.one32.val()) | self.one53.val())
+                    + self.ob.q.val())
+                    >> self.one32.val(),
+            );
         }
         self.busy.next = self.busy_r.q.val();
         self.done.next = self.r_done.q.val();
