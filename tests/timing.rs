@@ -43,9 +43,11 @@ struct Design {
 }
 
 /// Floor for the auto-correction top: 1.1 x. It meets the configured clock but not yet
-/// the 1.3 x rule (158.03 MHz at seed 1 against 133.33 MHz, 1.19 x, 155.62 / 152.18 MHz at
-/// seeds 2 / 3; with the fit's three products on one tree and the coefficients' output
-/// copies; 152.58 MHz before them; with the solver's control one-hot, the fit's stage Q
+/// the 1.3 x rule (152.00 MHz at seed 1 against 133.33 MHz, 1.14 x, 152.51 / 158.83 /
+/// 165.23 / 166.03 MHz at seeds 2-5, mean 158.92, with the solver's and the fit's registers
+/// at their bounded widths; 158.03 MHz at seed 1 before, mean 154.04 over seeds 1-5; with
+/// the fit's three products on one tree and the coefficients' output copies; 152.58 MHz
+/// before them; with the solver's control one-hot, the fit's stage Q
 /// and split sums; 129.58 MHz with the one-hot solver
 /// alone, 123.18 MHz before, 96.09 MHz six rounds ago; docs/correction.md); the floor
 /// catches a regression of its fit tracker and solver.
