@@ -182,20 +182,13 @@ fn solver_rtl_equals_the_specification_at_the_bounds_of_its_widths() {
         ]);
         rows.extend(vec![vec![0u64; 10]; gap]);
     }
-    let dir = common::workdir("fit_solver");
-    let t = sinedec::verify::block_traces(
+    let out = &common::simulators_agree(
         FitSolve::new(&cp, k),
         "fit_solver",
-        "clk",
+        "fit_solver",
         &rows,
         Simulators::ALL,
-        &dir,
-    )
-    .expect("simulators ran");
-    if let Some(m) = t.mismatch() {
-        panic!("fit_solver: {m}");
-    }
-    let out = &t.rust_hdl;
+    );
     let word = |v: u64| v as u32 as i32 as i64;
     // Coefficients in use: the configured ones (identity) until the first accepted solve.
     let mut cur = (0i64, 0i64, 1u64 << GF, 1u64 << GF, 0i64);

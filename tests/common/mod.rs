@@ -11,17 +11,31 @@ pub fn check_against_model<B: sinedec::cosim::CosimBlock>(
     model: &[Vec<u64>],
     sims: sinedec::verify::Simulators,
 ) -> Vec<Vec<u64>> {
-    let dir = workdir(tag);
-    let t =
-        sinedec::verify::block_traces(uut, tag, "clk", rows, sims, &dir).expect("simulators ran");
-    for (k, (r, m)) in t.rust_hdl.iter().zip(model).enumerate() {
+    let t = simulators_agree(uut, tag, tag, rows, sims);
+    for (k, (r, m)) in t.iter().zip(model).enumerate() {
         assert_eq!(
             r, m,
             "{tag} row {k}: rust-hdl vs model (inputs {:?})",
             rows[k]
         );
     }
-    assert_eq!(t.rust_hdl.len(), model.len());
+    assert_eq!(t.len(), model.len());
+    t
+}
+
+/// Runs `uut` (top module `top`, work directory `tag`) on `rows` in rust-hdl and the
+/// Verilog simulators `sims` selects; panics unless they agree on every output at every
+/// clock; returns the rust-hdl trace.
+pub fn simulators_agree<B: sinedec::cosim::CosimBlock>(
+    uut: B,
+    top: &str,
+    tag: &str,
+    rows: &[Vec<u64>],
+    sims: sinedec::verify::Simulators,
+) -> Vec<Vec<u64>> {
+    let dir = workdir(tag);
+    let t =
+        sinedec::verify::block_traces(uut, top, "clk", rows, sims, &dir).expect("simulators ran");
     if let Some(m) = t.mismatch() {
         panic!("{tag}: {m}");
     }
@@ -98,14 +112,9 @@ pub fn replay_in_all_simulators<B: sinedec::cosim::CosimBlock>(
     recorded: &[Vec<u64>],
     tag: &str,
 ) {
-    use sinedec::verify::{block_traces, Simulators};
-    let dir = workdir(tag);
-    let bt = block_traces(uut, top, "clk", rows, Simulators::ALL, &dir).expect("simulators ran");
-    if let Some(m) = bt.mismatch() {
-        panic!("{tag}: {m}");
-    }
+    let t = simulators_agree(uut, top, tag, rows, sinedec::verify::Simulators::ALL);
     assert!(
-        bt.rust_hdl == recorded,
+        t == recorded,
         "{tag}: the replay differs from the closed loop"
     );
 }
