@@ -28,7 +28,7 @@
 //!    u_r = u_r < 0 ? t + u_d : t - u_d                      u_r = u_r < 0 ? t + (4q+3) : t - (4q+1)
 //!    u_x = 2 u_x + (u_r >= 0)                               q = 2 q + (u_r >= 0); u_d = 8 q + 1
 //!  (the quotient bits equal the restoring ones; the true remainder is u_r, or u_r + u_d
-//!  when u_r < 0, zero when u_r = nd = -u_d, a register)
+//!  when u_r < 0, zero when u_r + u_d = 0: (u_r ^ u_d) == (u_r | u_d) << 1, no chain)
 //!  then: adj = round ? 2 r >= u_d (sign of the rounding sum 2 u_r -+ u_d, one more A clock)
 //!  : neg & r != 0 (registered zero tests rz, req); u_mag = u_x + adj and the signed
 //!  u_q = uxs + (adj ^ neg), uxs = neg ? !u_x : u_x (free-running), i.e. -(u_x + adj) =
@@ -45,7 +45,8 @@
 //!  one-hot load flags (x_*, d_*) under one registered enable (x_en, d_en); the sources a
 //!  return loads are final long before it and reach u_x / u_d through free-running
 //!  registers (uxr, udr); compares, sums and negations the states need (clamps,
-//!  amplitude and offset checks, 2^30 - S², -u_d, V - m², Cq ± |m_s m_c|, the remainder's
+//!  amplitude and offset checks, 2^30 - S², V - m² (one register for V_s, V_c), Cq ±
+//!  |m_s m_c|, the remainder's
 //!  zero tests) are free-running registers, read a state after their inputs settle
 //!  (u_mag's clamps from the quotient u_x, two clocks ahead); the run's flags and `it`
 //!  follow the registered mode flags
@@ -494,21 +495,21 @@ pub struct FitSolve {
     /// u_d's source for the static return selects rd_* (N, m_s, m_c, Amp_s, Cc, |S|,
     /// Amp_s Cc; 0 otherwise), free-running a clock behind them, final long before the return.
     udr: DFF<Bits<52>>,
-    /// v_s - u_r (free-running): V_s - m_s², loaded by M2.
-    vsd: DFF<Bits<49>>,
-    /// v_c - u_r (free-running): V_c - m_c², loaded by M3.
-    vcd: DFF<Bits<49>>,
+    /// (v_c while M3 is pending, else v_s) - u_r (free-running): V_s - m_s², loaded by M2,
+    /// then V_c - m_c², loaded by M3.
+    vd: DFF<Bits<49>>,
     /// cc + u_r (free-running): C = Cq - m_s m_c when the means' signs differ, loaded by Cv.
     ccp: DFF<Bits<50>>,
     /// cc - u_r (free-running): C = Cq - m_s m_c when they agree.
     ccm: DFF<Bits<50>>,
-    /// -u_d (free-running): u_r == nd is the zero test of the true remainder u_r + u_d.
-    nd: DFF<Bits<52>>,
-    /// u_r ^ nd (free-running).
+    /// (u_r ^ u_d) ^ ((u_r | u_d) << 1) (free-running): zero exactly when u_r + u_d = 0
+    /// (mod 2^52), the zero test of the true remainder u_r + u_d without a carry chain (in
+    /// a zero sum every bit a ^ b ^ carry is 0, so the carry into bit i is a_i ^ b_i and the
+    /// carry out of it a_i | b_i).
     xr: DFF<Bits<52>>,
     /// u_r == 0 (free-running).
     rz: DFF<Bit>,
-    /// xr == 0, i.e. u_r == -u_d (free-running, a clock behind xr).
+    /// xr == 0, i.e. u_r == -u_d (free-running, a clock behind xr, two behind u_r).
     req: DFF<Bit>,
     /// 2^30 - u_r, low 31 bits (free-running): the radicand of Cc one state after S²
     /// (2^30 - S² in (2^29, 2^30]).
@@ -577,6 +578,8 @@ pub struct FitSolve {
     up: Signal<Local, Bit>,
     /// The chain's second operand: u_d / the trial when adding, its complement otherwise.
     opb: Signal<Local, Bits<52>>,
+    /// The minuend of `vd`: v_c while M3 is pending, else v_s.
+    vsel: Signal<Local, Bits<49>>,
     /// u_adj as a 24-bit addend (of u_mag).
     adjw: Signal<Local, Bits<24>>,
     /// u_adjq as a 64-bit addend.
@@ -854,11 +857,9 @@ impl FitSolve {
             rd_q2: Default::default(),
             rd_amps: Default::default(),
             udr: Default::default(),
-            vsd: Default::default(),
-            vcd: Default::default(),
+            vd: Default::default(),
             ccp: Default::default(),
             ccm: Default::default(),
-            nd: Default::default(),
             xr: Default::default(),
             rz: Default::default(),
             req: Default::default(),
@@ -894,6 +895,7 @@ impl FitSolve {
             opa: Default::default(),
             up: Default::default(),
             opb: Default::default(),
+            vsel: Default::default(),
             adjw: Default::default(),
             adjqw: Default::default(),
             adjn: Default::default(),

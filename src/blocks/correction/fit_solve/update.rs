@@ -18,8 +18,8 @@ impl Logic for FitSolve {
             d_one, d_en, clr_r, rx_uxr, rx_scl, rx_urk, rx_a1c8, rx_a2s, rx_a2c, rx_asc, rx_vs2,
             rx_tgs, rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32, rx_cmag16, rx_tgc, rx_tamp32,
             uxr, uxa, uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one, rd_sn, rd_ms, rd_mc, rd_cs,
-            rd_smag, rd_q2, rd_amps, udr, vsd, vcd, ccp, ccm, nd, xr, rz, req, t30, scl, ngf, lo_s,
-            lo_c, oor, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c, mnz
+            rd_smag, rd_q2, rd_amps, udr, vd, ccp, ccm, xr, rz, req, t30, scl, ngf, lo_s, lo_c,
+            oor, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c, mnz
         );
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
         // chain's operands oa / ob (free-running, one LUT each from registers: u_r, its sign,
@@ -74,8 +74,8 @@ impl Logic for FitSolve {
             self.adjqw.next = self.one64.val();
         }
         // Free-running registers: compares and negations one clock ahead of their use.
-        self.nd.d.next = self.zero52.val() - self.u_d.q.val();
-        self.xr.d.next = self.u_r.q.val() ^ self.nd.q.val();
+        self.xr.d.next = (self.u_r.q.val() ^ self.u_d.q.val())
+            ^ ((self.u_r.q.val() | self.u_d.q.val()) << self.one32.val());
         self.rz.d.next = self.u_r.q.val() == self.zero52.val();
         self.req.d.next = self.xr.q.val() == self.zero52.val();
         // The subtractions and the sum that end a product's state (V_s -= m_s², V_c -= m_c²,
@@ -83,8 +83,11 @@ impl Logic for FitSolve {
         // last B clock on): the state after the return loads them through a LUT, not a chain.
         // Each is exact in its width when it is read: u_r then holds m² or |m_s m_c| (< 2^48)
         // or S² (< 2^27), and V (|V| < 2^48), C (|C| < 2^49), 2^30 - S² fit.
-        self.vsd.d.next = self.v_s.q.val() - bit_cast::<49, 52>(self.u_r.q.val());
-        self.vcd.d.next = self.v_c.q.val() - bit_cast::<49, 52>(self.u_r.q.val());
+        self.vsel.next = self.v_s.q.val();
+        if self.p_m3.q.val() {
+            self.vsel.next = self.v_c.q.val();
+        }
+        self.vd.d.next = self.vsel.val() - bit_cast::<49, 52>(self.u_r.q.val());
         self.ccp.d.next = self.cc.q.val() + bit_cast::<50, 52>(self.u_r.q.val());
         self.ccm.d.next = self.cc.q.val() - bit_cast::<50, 52>(self.u_r.q.val());
         self.t30.d.next = self.two30.val() - bit_cast::<31, 52>(self.u_r.q.val());
@@ -393,10 +396,10 @@ impl Logic for FitSolve {
             self.cc.d.next = bit_cast::<50, 64>(self.u_x.q.val());
         }
         if self.s_m2.q.val() {
-            self.v_s.d.next = self.vsd.q.val();
+            self.v_s.d.next = self.vd.q.val();
         }
         if self.s_m3.q.val() {
-            self.v_c.d.next = self.vcd.q.val();
+            self.v_c.d.next = self.vd.q.val();
         }
         if self.s_cv.q.val() {
             // C = Cq - m_s m_c, the product's sign from the means' signs.
