@@ -229,3 +229,23 @@ fn solver_rtl_equals_the_specification_at_the_bounds_of_its_widths() {
         "{accepted} accepted, {refused} refused"
     );
 }
+
+/// The solver's remainder zero test (`xr` in `fit_solve.rs`): u_r + u_d = 0 (mod 2^w)
+/// exactly when (u_r ^ u_d) == (u_r | u_d) << 1 (mod 2^w), with no carry chain. Checked for
+/// every pair of 9-bit words. The case it decides (a truncating division of a negative
+/// quotient with a zero remainder, Cq of an exact window) moves Cq by one, which an
+/// accepted window's coefficients almost never show (S moves by 2^16 / (Amp_s Amp_c) per
+/// unit of C, under 2^-23 above this test's minimum amplitude), so the windows above do not
+/// catch a wrong test (with `&` for `|` they pass); this does.
+#[test]
+fn the_carry_free_zero_test_is_a_plus_b_equals_zero() {
+    let w = 9;
+    let m = (1u32 << w) - 1;
+    for a in 0..=m {
+        for b in 0..=m {
+            let zero = (a + b) & m == 0;
+            let test = (a ^ b) & m == ((a | b) << 1) & m;
+            assert_eq!(zero, test, "a = {a}, b = {b}");
+        }
+    }
+}
