@@ -43,8 +43,8 @@ struct Design {
 }
 
 /// Floor for the auto-correction top: 1.1 x. It meets the configured clock but not yet
-/// the 1.3 x rule (152.00 MHz at seed 1 against 133.33 MHz, 1.14 x, 152.51 / 158.83 /
-/// 165.23 / 166.03 MHz at seeds 2-5, mean 158.92, with the solver's and the fit's registers
+/// the 1.3 x rule (151.01 MHz at seed 1 against 133.33 MHz, 1.13 x, 166.33 / 165.15 /
+/// 161.47 / 163.83 MHz at seeds 2-5, mean 161.56, with the solver's and the fit's registers
 /// at their bounded widths; 158.03 MHz at seed 1 before, mean 154.04 over seeds 1-5; with
 /// the fit's three products on one tree and the coefficients' output copies; 152.58 MHz
 /// before them; with the solver's control one-hot, the fit's stage Q

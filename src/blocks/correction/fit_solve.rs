@@ -71,8 +71,8 @@
 //!   T |S| 2^(GF+8) < 2^52; every dividend fits 64 bits (u_x stays 64 bits).
 //! * Multiplier operands: |m| < 2^(A+8) <= 2^24, Amp < 2^25, |S| < 2^14, Cc <= 2^15, T < 2^15:
 //!   all below 2^32 (the 32 steps), products below 2^50.
-//! * Stored values at the widths these bounds give (Yosys cannot know them, so a 64-bit
-//!   register would keep 64 flip-flops and its load select 64 LUTs): N 25 bits, |Σd| 40,
+//! * Stored values at the widths these bounds give (Yosys cannot know them: a 64-bit
+//!   register keeps every bit some read uses, and the LUTs of their load select): N 25 bits, |Σd| 40,
 //!   Σd² and |Σd_s d_c| 56, |m| 24 (|Σd| 2^8 / N <= (2^16 - 1) 2^8 < 2^24, and the rounding
 //!   stays below), V 49 (two's complement: floor(Σd² 2^16 / N) < 2^48 less m² < 2^48), C 50
 //!   (|Cq| < 2^48 plus |m_s m_c| < 2^48), |C| 48 (the bits |C| 2^16 keeps), Amp 25, |S| and
