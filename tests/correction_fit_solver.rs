@@ -100,7 +100,7 @@ fn cases() -> Vec<Case> {
         case("correlated", &[(H, H, w), (-H, -H, w)], [0, 0]),
         case("anti_correlated", &[(H, -H, w), (-H, H, w)], [0, 0]),
         case("one_sample", &[(M, -M, 1)], [0, 0]),
-        // Small amplitude at the refusal limit, and just above it.
+        // A small variance around a large mean: refused at the amplitude check.
         case("small", &[(3276, 3276, w), (-3276, -3276, 3)], [5, -5]),
     ];
     let mut r = SplitMix64(0x5017e5);
