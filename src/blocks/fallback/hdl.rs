@@ -192,7 +192,7 @@ impl Fallback {
         // modulo 4PPR, and those that are -2, 2, modulo 2^(quadrant_bits + 1).
         let near1 = [0, 1, dm, (q - 1) & dm, 1u64.wrapping_sub(q) & dm];
         let near2 = [2, dm - 1, q.wrapping_sub(2) & dm, 2u64.wrapping_sub(q) & dm];
-        // mvr and its tests take two clocks: the ADC's out_valid must come at least three
+        // The motion's chunk compares and its tests take two clocks: the ADC's out_valid must come at least three
         // clocks after a CONV rise (it comes in the frame's last SCK cycles).
         debug_assert!(d.adc.conv_to_valid_clocks() % d.adc.period_clocks >= 3);
         Self {

@@ -168,10 +168,13 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
     wire  qep_decoder_a_filt;
     wire  qep_decoder_b_filt;
     wire  qep_decoder_z_filt;
+    wire  qep_decoder_up;
+    wire  qep_decoder_down;
     reg  fallback_clk;
     reg  fallback_rst;
     reg  fallback_enable;
-    reg  [31:0] fallback_qep_count;
+    reg  fallback_qep_up;
+    reg  fallback_qep_down;
     reg  fallback_conv;
     reg  fallback_adc_valid;
     reg  fallback_core_valid;
@@ -289,13 +292,16 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
         .illegal_seen(qep_decoder_illegal_seen),
         .a_filt(qep_decoder_a_filt),
         .b_filt(qep_decoder_b_filt),
-        .z_filt(qep_decoder_z_filt)
+        .z_filt(qep_decoder_z_filt),
+        .up(qep_decoder_up),
+        .down(qep_decoder_down)
     );
     sd_top_rtl_fallback fallback(
         .clk(fallback_clk),
         .rst(fallback_rst),
         .enable(fallback_enable),
-        .qep_count(fallback_qep_count),
+        .qep_up(fallback_qep_up),
+        .qep_down(fallback_qep_down),
         .conv(fallback_conv),
         .adc_valid(fallback_adc_valid),
         .core_valid(fallback_core_valid),
@@ -359,7 +365,8 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
         fallback_clk = clk;
         fallback_rst = rst;
         fallback_enable = qep_enable;
-        fallback_qep_count = qep_decoder_count;
+        fallback_qep_up = qep_decoder_up;
+        fallback_qep_down = qep_decoder_down;
         fallback_conv = adc_adc_conv;
         fallback_adc_valid = adc_out_valid;
         fallback_core_valid = core_out_valid;
@@ -8079,13 +8086,14 @@ module sd_top_rtl_correction_v3(d,q,clock);
 
 endmodule // sd_top_rtl_correction_v3
 
-module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,core_error,core_warning,core_qc,core_turns,load,load_qc,load_turns,mismatch,active);
+module sd_top_rtl_fallback(clk,rst,enable,qep_up,qep_down,conv,adc_valid,core_valid,core_error,core_warning,core_qc,core_turns,load,load_qc,load_turns,mismatch,active);
 
     // Module arguments
     input wire  clk;
     input wire  rst;
     input wire  enable;
-    input wire  [31:0] qep_count;
+    input wire  qep_up;
+    input wire  qep_down;
     input wire  conv;
     input wire  adc_valid;
     input wire  core_valid;
@@ -8104,19 +8112,12 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     localparam  qturn = 32'h2000;
     localparam  qlast = 32'h1fff;
     localparam  qlast_m1 = 32'h1ffe;
-    localparam  dqlast = 32'h1fff;
-    localparam  dmqturn_p1 = 32'h2001;
-    localparam  dmqturn_p2 = 32'h2002;
-    localparam  dqturn_m2 = 32'h1ffe;
-    localparam  dminus_one = 32'h3fff;
-    localparam  dminus_two = 32'h3ffe;
     localparam  mqturn = 32'hffffe000;
     localparam  dmask = 32'h3fff;
     localparam  tmask = 32'hfff;
     localparam  dsign = 32'h2000;
     localparam  qmask = 32'h1fff;
     localparam  one = 32'h1;
-    localparam  two = 32'h2;
     localparam  zero = 32'h0;
     localparam  ones = 32'hffffffff;
     localparam  three = 2'b11;
@@ -8127,9 +8128,6 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     localparam  qone = 8'h1;
 
     // Stub signals
-    reg  [31:0] cnt_prev_d;
-    wire  [31:0] cnt_prev_q;
-    reg  cnt_prev_clock;
     reg  conv_prev_d;
     wire  conv_prev_q;
     reg  conv_prev_clock;
@@ -8244,12 +8242,18 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     reg  kw2_d;
     wire  kw2_q;
     reg  kw2_clock;
-    reg  [31:0] ddr_d;
-    wire  [31:0] ddr_q;
-    reg  ddr_clock;
-    reg  [31:0] mvr_d;
-    wire  [31:0] mvr_q;
-    reg  mvr_clock;
+    reg  ddn_clk;
+    reg  [31:0] ddn_x;
+    wire  ddn_hit;
+    reg  gk_d;
+    wire  gk_q;
+    reg  gk_clock;
+    reg  mvn1_clk;
+    reg  [31:0] mvn1_x;
+    wire  mvn1_hit;
+    reg  mvn2_clk;
+    reg  [31:0] mvn2_x;
+    wire  mvn2_hit;
     reg  fast_n_d;
     wire  fast_n_q;
     reg  fast_n_clock;
@@ -8272,23 +8276,15 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     reg  [31:0] ksel;
     reg  [31:0] kt0;
     reg  [31:0] kt1;
-    reg  [31:0] sx;
     reg  inc;
     reg  dec;
     reg  [31:0] dq0;
     reg  [31:0] dq1;
-    reg  [31:0] dd;
-    reg  [31:0] mv;
     reg  [31:0] nq;
     reg  [31:0] nt;
     reg  bad;
 
     // Sub module instances
-    sd_top_rtl_fallback_cnt_prev cnt_prev(
-        .d(cnt_prev_d),
-        .q(cnt_prev_q),
-        .clock(cnt_prev_clock)
-    );
     sd_top_rtl_fallback_conv_prev conv_prev(
         .d(conv_prev_d),
         .q(conv_prev_q),
@@ -8479,15 +8475,25 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         .q(kw2_q),
         .clock(kw2_clock)
     );
-    sd_top_rtl_fallback_ddr ddr(
-        .d(ddr_d),
-        .q(ddr_q),
-        .clock(ddr_clock)
+    sd_top_rtl_fallback_ddn ddn(
+        .clk(ddn_clk),
+        .x(ddn_x),
+        .hit(ddn_hit)
     );
-    sd_top_rtl_fallback_mvr mvr(
-        .d(mvr_d),
-        .q(mvr_q),
-        .clock(mvr_clock)
+    sd_top_rtl_fallback_gk gk(
+        .d(gk_d),
+        .q(gk_q),
+        .clock(gk_clock)
+    );
+    sd_top_rtl_fallback_mvn1 mvn1(
+        .clk(mvn1_clk),
+        .x(mvn1_x),
+        .hit(mvn1_hit)
+    );
+    sd_top_rtl_fallback_mvn2 mvn2(
+        .clk(mvn2_clk),
+        .x(mvn2_x),
+        .hit(mvn2_hit)
     );
     sd_top_rtl_fallback_fast_n fast_n(
         .d(fast_n_d),
@@ -8502,7 +8508,6 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
 
     // Update code
     always @(*) begin
-        cnt_prev_clock = clk;
         conv_prev_clock = clk;
         qq_clock = clk;
         qt_clock = clk;
@@ -8541,11 +8546,9 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         kt_clock = clk;
         kv2_clock = clk;
         kw2_clock = clk;
-        ddr_clock = clk;
-        mvr_clock = clk;
+        gk_clock = clk;
         fast_n_clock = clk;
         busy_n_clock = clk;
-        cnt_prev_d = cnt_prev_q;
         conv_prev_d = conv_prev_q;
         qq_d = qq_q;
         qt_d = qt_q;
@@ -8584,25 +8587,24 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         kt_d = kt_q;
         kv2_d = kv2_q;
         kw2_d = kw2_q;
-        ddr_d = ddr_q;
-        mvr_d = mvr_q;
+        gk_d = gk_q;
         fast_n_d = fast_n_q;
         busy_n_d = busy_n_q;
-        cnt_prev_d = qep_count;
         conv_prev_d = conv;
-        sx = qep_count ^ cnt_prev_q;
-        inc = |(sx & one) & ~(|(sx & two) ^ |(cnt_prev_q & one));
-        dec = |(sx & one) & (|(sx & two) ^ |(cnt_prev_q & one));
+        inc = qep_up;
+        dec = qep_down;
         if (conv & ~conv_prev_q) begin
             c1q_d = qq_q;
             c1t_d = qt_q;
             c2q_d = c1q_q;
             c2t_d = c1t_q;
         end
-        mvr_d = (c2q_q - prevq_q) & dmask;
-        mv = mvr_q;
-        fast_n_d = ~((mv == zero) | (mv == one) | (mv == two) | (mv == dminus_one) | (mv == dminus_two) | (mv == dqlast) | (mv == dqturn_m2) | (mv == dmqturn_p1) | (mv == dmqturn_p2));
-        busy_n_d = ~((mv == zero) | (mv == one) | (mv == dminus_one) | (mv == dqlast) | (mv == dmqturn_p1));
+        mvn1_clk = clk;
+        mvn2_clk = clk;
+        mvn1_x = (c2q_q - prevq_q) & dmask;
+        mvn2_x = (c2q_q - prevq_q) & dmask;
+        fast_n_d = ~(mvn1_hit | mvn2_hit);
+        busy_n_d = ~mvn1_hit;
         lq0 = (c2q_q + oq_q) & dmask;
         lq1 = (c2q_q + oqm_q) & dmask;
         lsel = zero;
@@ -8663,9 +8665,10 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         kw_d = core_warning;
         kv2_d = kv_q;
         kw2_d = kw_q;
-        ddr_d = (kq_q - oq_q) & dmask;
-        dd = ddr_q;
-        bad = (aligned_q == three) & ~((dd == zero) | (dd == one) | (dd == dminus_one) | (dd == dqlast) | (dd == dmqturn_p1));
+        ddn_clk = clk;
+        ddn_x = (kq_q - oq_q) & dmask;
+        gk_d = kv_q & (aligned_q == three) & ~act_q;
+        bad = gk_q & ~ddn_hit;
         nq = qq_q;
         nt = qt_q;
         qlf_d = qlf_q;
@@ -8693,7 +8696,7 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
             end
         end
         if (kv2_q & enable) begin
-            mis_d = bad & ~act_q;
+            mis_d = bad;
             if (kw2_q | (fast_q & (aligned_q == three))) begin
                 act_d = 1'b1;
                 quiet_d = qzero;
@@ -8722,7 +8725,6 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         qq_d = nq;
         qt_d = nt & tmask;
         if (rst | ~enable) begin
-            cnt_prev_d = zero;
             qq_d = zero;
             qt_d = zero;
             qlf_d = 1'b0;
@@ -8737,6 +8739,7 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
             busy_d = 1'b0;
             kv_d = 1'b0;
             kv2_d = 1'b0;
+            gk_d = 1'b0;
             oq_d = zero;
             ot_d = zero;
             oqm_d = mqturn;
@@ -8895,24 +8898,6 @@ module sd_top_rtl_fallback_c2t(d,q,clock);
 
 endmodule // sd_top_rtl_fallback_c2t
 
-module sd_top_rtl_fallback_cnt_prev(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_fallback_cnt_prev
-
 module sd_top_rtl_fallback_conv_prev(d,q,clock);
 
     // Module arguments
@@ -8931,7 +8916,129 @@ module sd_top_rtl_fallback_conv_prev(d,q,clock);
 
 endmodule // sd_top_rtl_fallback_conv_prev
 
-module sd_top_rtl_fallback_ddr(d,q,clock);
+module sd_top_rtl_fallback_ddn(clk,x,hit);
+
+    // Module arguments
+    input wire  clk;
+    input wire  [31:0] x;
+    output reg  hit;
+
+    // Constant declarations
+    localparam  pv_0 = 32'h0;
+    localparam  pv_1 = 32'h0;
+    localparam  pv_2 = 32'h0;
+    localparam  pv_3 = 32'h0;
+    localparam  pv_4 = 32'h1;
+    localparam  pv_5 = 32'hf;
+    localparam  pv_6 = 32'hf0;
+    localparam  pv_7 = 32'hf00;
+    localparam  pv_8 = 32'h3000;
+    localparam  pv_9 = 32'h1000;
+    localparam  pv_10 = 32'h2000;
+    localparam  pm_0 = 32'hf;
+    localparam  pm_1 = 32'hf0;
+    localparam  pm_2 = 32'hf00;
+    localparam  pm_3 = 32'h3000;
+    localparam  pm_4 = 32'hf;
+    localparam  pm_5 = 32'hf;
+    localparam  pm_6 = 32'hf0;
+    localparam  pm_7 = 32'hf00;
+    localparam  pm_8 = 32'h3000;
+    localparam  pm_9 = 32'h3000;
+    localparam  pm_10 = 32'h3000;
+    localparam  pb_0 = 32'h1;
+    localparam  pb_1 = 32'h2;
+    localparam  pb_2 = 32'h4;
+    localparam  pb_3 = 32'h8;
+    localparam  pb_4 = 32'h10;
+    localparam  pb_5 = 32'h20;
+    localparam  pb_6 = 32'h40;
+    localparam  pb_7 = 32'h80;
+    localparam  pb_8 = 32'h100;
+    localparam  pb_9 = 32'h200;
+    localparam  pb_10 = 32'h400;
+    localparam  cm_0 = 32'hf;
+    localparam  cm_1 = 32'h1e;
+    localparam  cm_2 = 32'h1e0;
+    localparam  cm_3 = 32'h2e0;
+    localparam  cm_4 = 32'h416;
+    localparam  zero = 32'h0;
+
+    // Stub signals
+    reg  [31:0] f_d;
+    wire  [31:0] f_q;
+    reg  f_clock;
+
+    // Local signals
+    reg  [31:0] acc;
+
+    // Sub module instances
+    sd_top_rtl_fallback_ddn_f f(
+        .d(f_d),
+        .q(f_q),
+        .clock(f_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        f_clock = clk;
+        f_d = f_q;
+        acc = zero;
+        if (~|((x ^ pv_0) & pm_0)) begin
+            acc = acc | pb_0;
+        end
+        if (~|((x ^ pv_1) & pm_1)) begin
+            acc = acc | pb_1;
+        end
+        if (~|((x ^ pv_2) & pm_2)) begin
+            acc = acc | pb_2;
+        end
+        if (~|((x ^ pv_3) & pm_3)) begin
+            acc = acc | pb_3;
+        end
+        if (~|((x ^ pv_4) & pm_4)) begin
+            acc = acc | pb_4;
+        end
+        if (~|((x ^ pv_5) & pm_5)) begin
+            acc = acc | pb_5;
+        end
+        if (~|((x ^ pv_6) & pm_6)) begin
+            acc = acc | pb_6;
+        end
+        if (~|((x ^ pv_7) & pm_7)) begin
+            acc = acc | pb_7;
+        end
+        if (~|((x ^ pv_8) & pm_8)) begin
+            acc = acc | pb_8;
+        end
+        if (~|((x ^ pv_9) & pm_9)) begin
+            acc = acc | pb_9;
+        end
+        if (~|((x ^ pv_10) & pm_10)) begin
+            acc = acc | pb_10;
+        end
+        f_d = acc;
+        hit = 1'b0;
+        if ((f_q & cm_0) == cm_0) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_1) == cm_1) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_2) == cm_2) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_3) == cm_3) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_4) == cm_4) begin
+            hit = 1'b1;
+        end
+    end
+
+endmodule // sd_top_rtl_fallback_ddn
+
+module sd_top_rtl_fallback_ddn_f(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -8947,7 +9054,7 @@ module sd_top_rtl_fallback_ddr(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_fallback_ddr
+endmodule // sd_top_rtl_fallback_ddn_f
 
 module sd_top_rtl_fallback_fast(d,q,clock);
 
@@ -8984,6 +9091,24 @@ module sd_top_rtl_fallback_fast_n(d,q,clock);
     end
 
 endmodule // sd_top_rtl_fallback_fast_n
+
+module sd_top_rtl_fallback_gk(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_fallback_gk
 
 module sd_top_rtl_fallback_kq(d,q,clock);
 
@@ -9183,7 +9308,129 @@ module sd_top_rtl_fallback_mis(d,q,clock);
 
 endmodule // sd_top_rtl_fallback_mis
 
-module sd_top_rtl_fallback_mvr(d,q,clock);
+module sd_top_rtl_fallback_mvn1(clk,x,hit);
+
+    // Module arguments
+    input wire  clk;
+    input wire  [31:0] x;
+    output reg  hit;
+
+    // Constant declarations
+    localparam  pv_0 = 32'h0;
+    localparam  pv_1 = 32'h0;
+    localparam  pv_2 = 32'h0;
+    localparam  pv_3 = 32'h0;
+    localparam  pv_4 = 32'h1;
+    localparam  pv_5 = 32'hf;
+    localparam  pv_6 = 32'hf0;
+    localparam  pv_7 = 32'hf00;
+    localparam  pv_8 = 32'h3000;
+    localparam  pv_9 = 32'h1000;
+    localparam  pv_10 = 32'h2000;
+    localparam  pm_0 = 32'hf;
+    localparam  pm_1 = 32'hf0;
+    localparam  pm_2 = 32'hf00;
+    localparam  pm_3 = 32'h3000;
+    localparam  pm_4 = 32'hf;
+    localparam  pm_5 = 32'hf;
+    localparam  pm_6 = 32'hf0;
+    localparam  pm_7 = 32'hf00;
+    localparam  pm_8 = 32'h3000;
+    localparam  pm_9 = 32'h3000;
+    localparam  pm_10 = 32'h3000;
+    localparam  pb_0 = 32'h1;
+    localparam  pb_1 = 32'h2;
+    localparam  pb_2 = 32'h4;
+    localparam  pb_3 = 32'h8;
+    localparam  pb_4 = 32'h10;
+    localparam  pb_5 = 32'h20;
+    localparam  pb_6 = 32'h40;
+    localparam  pb_7 = 32'h80;
+    localparam  pb_8 = 32'h100;
+    localparam  pb_9 = 32'h200;
+    localparam  pb_10 = 32'h400;
+    localparam  cm_0 = 32'hf;
+    localparam  cm_1 = 32'h1e;
+    localparam  cm_2 = 32'h1e0;
+    localparam  cm_3 = 32'h2e0;
+    localparam  cm_4 = 32'h416;
+    localparam  zero = 32'h0;
+
+    // Stub signals
+    reg  [31:0] f_d;
+    wire  [31:0] f_q;
+    reg  f_clock;
+
+    // Local signals
+    reg  [31:0] acc;
+
+    // Sub module instances
+    sd_top_rtl_fallback_mvn1_f f(
+        .d(f_d),
+        .q(f_q),
+        .clock(f_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        f_clock = clk;
+        f_d = f_q;
+        acc = zero;
+        if (~|((x ^ pv_0) & pm_0)) begin
+            acc = acc | pb_0;
+        end
+        if (~|((x ^ pv_1) & pm_1)) begin
+            acc = acc | pb_1;
+        end
+        if (~|((x ^ pv_2) & pm_2)) begin
+            acc = acc | pb_2;
+        end
+        if (~|((x ^ pv_3) & pm_3)) begin
+            acc = acc | pb_3;
+        end
+        if (~|((x ^ pv_4) & pm_4)) begin
+            acc = acc | pb_4;
+        end
+        if (~|((x ^ pv_5) & pm_5)) begin
+            acc = acc | pb_5;
+        end
+        if (~|((x ^ pv_6) & pm_6)) begin
+            acc = acc | pb_6;
+        end
+        if (~|((x ^ pv_7) & pm_7)) begin
+            acc = acc | pb_7;
+        end
+        if (~|((x ^ pv_8) & pm_8)) begin
+            acc = acc | pb_8;
+        end
+        if (~|((x ^ pv_9) & pm_9)) begin
+            acc = acc | pb_9;
+        end
+        if (~|((x ^ pv_10) & pm_10)) begin
+            acc = acc | pb_10;
+        end
+        f_d = acc;
+        hit = 1'b0;
+        if ((f_q & cm_0) == cm_0) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_1) == cm_1) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_2) == cm_2) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_3) == cm_3) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_4) == cm_4) begin
+            hit = 1'b1;
+        end
+    end
+
+endmodule // sd_top_rtl_fallback_mvn1
+
+module sd_top_rtl_fallback_mvn1_f(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -9199,7 +9446,137 @@ module sd_top_rtl_fallback_mvr(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_fallback_mvr
+endmodule // sd_top_rtl_fallback_mvn1_f
+
+module sd_top_rtl_fallback_mvn2(clk,x,hit);
+
+    // Module arguments
+    input wire  clk;
+    input wire  [31:0] x;
+    output reg  hit;
+
+    // Constant declarations
+    localparam  pv_0 = 32'h2;
+    localparam  pv_1 = 32'h0;
+    localparam  pv_2 = 32'h0;
+    localparam  pv_3 = 32'h0;
+    localparam  pv_4 = 32'he;
+    localparam  pv_5 = 32'hf0;
+    localparam  pv_6 = 32'hf00;
+    localparam  pv_7 = 32'h3000;
+    localparam  pv_8 = 32'h1000;
+    localparam  pv_9 = 32'h2000;
+    localparam  pm_0 = 32'hf;
+    localparam  pm_1 = 32'hf0;
+    localparam  pm_2 = 32'hf00;
+    localparam  pm_3 = 32'h3000;
+    localparam  pm_4 = 32'hf;
+    localparam  pm_5 = 32'hf0;
+    localparam  pm_6 = 32'hf00;
+    localparam  pm_7 = 32'h3000;
+    localparam  pm_8 = 32'h3000;
+    localparam  pm_9 = 32'h3000;
+    localparam  pb_0 = 32'h1;
+    localparam  pb_1 = 32'h2;
+    localparam  pb_2 = 32'h4;
+    localparam  pb_3 = 32'h8;
+    localparam  pb_4 = 32'h10;
+    localparam  pb_5 = 32'h20;
+    localparam  pb_6 = 32'h40;
+    localparam  pb_7 = 32'h80;
+    localparam  pb_8 = 32'h100;
+    localparam  pb_9 = 32'h200;
+    localparam  cm_0 = 32'hf;
+    localparam  cm_1 = 32'hf0;
+    localparam  cm_2 = 32'h170;
+    localparam  cm_3 = 32'h207;
+    localparam  zero = 32'h0;
+
+    // Stub signals
+    reg  [31:0] f_d;
+    wire  [31:0] f_q;
+    reg  f_clock;
+
+    // Local signals
+    reg  [31:0] acc;
+
+    // Sub module instances
+    sd_top_rtl_fallback_mvn2_f f(
+        .d(f_d),
+        .q(f_q),
+        .clock(f_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        f_clock = clk;
+        f_d = f_q;
+        acc = zero;
+        if (~|((x ^ pv_0) & pm_0)) begin
+            acc = acc | pb_0;
+        end
+        if (~|((x ^ pv_1) & pm_1)) begin
+            acc = acc | pb_1;
+        end
+        if (~|((x ^ pv_2) & pm_2)) begin
+            acc = acc | pb_2;
+        end
+        if (~|((x ^ pv_3) & pm_3)) begin
+            acc = acc | pb_3;
+        end
+        if (~|((x ^ pv_4) & pm_4)) begin
+            acc = acc | pb_4;
+        end
+        if (~|((x ^ pv_5) & pm_5)) begin
+            acc = acc | pb_5;
+        end
+        if (~|((x ^ pv_6) & pm_6)) begin
+            acc = acc | pb_6;
+        end
+        if (~|((x ^ pv_7) & pm_7)) begin
+            acc = acc | pb_7;
+        end
+        if (~|((x ^ pv_8) & pm_8)) begin
+            acc = acc | pb_8;
+        end
+        if (~|((x ^ pv_9) & pm_9)) begin
+            acc = acc | pb_9;
+        end
+        f_d = acc;
+        hit = 1'b0;
+        if ((f_q & cm_0) == cm_0) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_1) == cm_1) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_2) == cm_2) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_3) == cm_3) begin
+            hit = 1'b1;
+        end
+    end
+
+endmodule // sd_top_rtl_fallback_mvn2
+
+module sd_top_rtl_fallback_mvn2_f(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_fallback_mvn2_f
 
 module sd_top_rtl_fallback_oq(d,q,clock);
 
@@ -10540,7 +10917,7 @@ module sd_top_rtl_preamp_step(d,q,clock);
 
 endmodule // sd_top_rtl_preamp_step
 
-module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_strobe,index_seen,illegal,illegal_seen,a_filt,b_filt,z_filt);
+module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_strobe,index_seen,illegal,illegal_seen,a_filt,b_filt,z_filt,up,down);
 
     // Module arguments
     input wire  clk;
@@ -10557,6 +10934,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
     output reg  a_filt;
     output reg  b_filt;
     output reg  z_filt;
+    output reg  up;
+    output reg  down;
 
     // Constant declarations
     localparam  flast = 32'h3;
@@ -10629,6 +11008,12 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
     reg  illseen_reg_d;
     wire  illseen_reg_q;
     reg  illseen_reg_clock;
+    reg  up_reg_d;
+    wire  up_reg_q;
+    reg  up_reg_clock;
+    reg  down_reg_d;
+    wire  down_reg_q;
+    reg  down_reg_clock;
 
     // Local signals
     reg  da;
@@ -10741,6 +11126,16 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         .q(illseen_reg_q),
         .clock(illseen_reg_clock)
     );
+    sd_top_rtl_qep_decoder_up_reg up_reg(
+        .d(up_reg_d),
+        .q(up_reg_q),
+        .clock(up_reg_clock)
+    );
+    sd_top_rtl_qep_decoder_down_reg down_reg(
+        .d(down_reg_d),
+        .q(down_reg_q),
+        .clock(down_reg_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -10765,6 +11160,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         iseen_reg_clock = clk;
         ill_reg_clock = clk;
         illseen_reg_clock = clk;
+        up_reg_clock = clk;
+        down_reg_clock = clk;
         a1_d = a1_q;
         a2_d = a2_q;
         b1_d = b1_q;
@@ -10786,6 +11183,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         iseen_reg_d = iseen_reg_q;
         ill_reg_d = ill_reg_q;
         illseen_reg_d = illseen_reg_q;
+        up_reg_d = up_reg_q;
+        down_reg_d = down_reg_q;
         a1_d = qep_a;
         a2_d = a1_q;
         b1_d = qep_b;
@@ -10830,6 +11229,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         count_n = count_reg_q & cmask;
         icount_reg_d = icount_reg_q & cmask;
         ill_reg_d = 1'b0;
+        up_reg_d = 1'b0;
+        down_reg_d = 1'b0;
         if (da & db) begin
             ill_reg_d = 1'b1;
             illseen_reg_d = 1'b1;
@@ -10837,17 +11238,21 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         else if (da) begin
             if (af_q ^ bf_q) begin
                 count_n = (count_reg_q + one) & cmask;
+                up_reg_d = 1'b1;
             end
             else begin
                 count_n = (count_reg_q - one) & cmask;
+                down_reg_d = 1'b1;
             end
         end
         else if (db) begin
             if (af_q == bf_q) begin
                 count_n = (count_reg_q + one) & cmask;
+                up_reg_d = 1'b1;
             end
             else begin
                 count_n = (count_reg_q - one) & cmask;
+                down_reg_d = 1'b1;
             end
         end
         count_reg_d = count_n;
@@ -10873,6 +11278,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
             iseen_reg_d = 1'b0;
             ill_reg_d = 1'b0;
             illseen_reg_d = 1'b0;
+            up_reg_d = 1'b0;
+            down_reg_d = 1'b0;
         end
         count = count_reg_q;
         index_count = icount_reg_q;
@@ -10883,6 +11290,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         a_filt = af_q;
         b_filt = bf_q;
         z_filt = zf_q;
+        up = up_reg_q;
+        down = down_reg_q;
     end
 
 endmodule // sd_top_rtl_qep_decoder
@@ -11049,6 +11458,24 @@ module sd_top_rtl_qep_decoder_count_reg(d,q,clock);
 
 endmodule // sd_top_rtl_qep_decoder_count_reg
 
+module sd_top_rtl_qep_decoder_down_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_qep_decoder_down_reg
+
 module sd_top_rtl_qep_decoder_icount_reg(d,q,clock);
 
     // Module arguments
@@ -11192,6 +11619,24 @@ module sd_top_rtl_qep_decoder_pz(d,q,clock);
     end
 
 endmodule // sd_top_rtl_qep_decoder_pz
+
+module sd_top_rtl_qep_decoder_up_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_qep_decoder_up_reg
 
 module sd_top_rtl_qep_decoder_z1(d,q,clock);
 
