@@ -245,10 +245,27 @@ impl Logic for Monitor {
         self.mag.next = self.magnitude.val() & self.wmask.val();
         self.rs.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
         self.rc.next = bit_cast::<32, 16>(self.in_cos.val()) & self.amask.val();
-        self.fs_hit.next =
-            (self.rs.val() == self.code_min.val()) | (self.rs.val() == self.code_max.val());
-        self.fs_hc.next =
-            (self.rc.val() == self.code_min.val()) | (self.rc.val() == self.code_max.val());
+        // A full-scale code is 1 then A-1 zeros or 0 then A-1 ones: the low A-1 bits are all
+        // ones when low + 1 carries into bit A-1, and all zeros when low + 2^(A-1) - 1 does
+        // not. Two carry chains per sample word, entered from its register and followed by
+        // one LUT of three inputs (Yosys cannot spread that over several levels, as it can
+        // an A-bit equality).
+        self.fs_hit.next = ((((self.rs.val() & self.code_max.val()) + self.one.val())
+            & self.code_min.val())
+        .any()
+            & !(self.rs.val() & self.code_min.val()).any())
+            | (!(((self.rs.val() & self.code_max.val()) + self.code_max.val())
+                & self.code_min.val())
+            .any()
+                & (self.rs.val() & self.code_min.val()).any());
+        self.fs_hc.next = ((((self.rc.val() & self.code_max.val()) + self.one.val())
+            & self.code_min.val())
+        .any()
+            & !(self.rc.val() & self.code_min.val()).any())
+            | (!(((self.rc.val() & self.code_max.val()) + self.code_max.val())
+                & self.code_min.val())
+            .any()
+                & (self.rc.val() & self.code_min.val()).any());
         // With W <= 31 the magnitude and the thresholds are below 2^W, so bit W of
         // 2^W + a - b is set exactly when a >= b: one carry chain of W + 1 bits per test
         // (Yosys drops the unused bits above W).
