@@ -45,14 +45,17 @@
 //!
 //! # Registers (timing)
 //! Every flag changes at the edge of the sample that decides it, but the logic after the
-//! inputs is kept short (at most one LUT after a threshold test's carry chain, three LUT
-//! levels after a raw sample; docs/timing.md explains why):
+//! inputs is kept short (at most one LUT after a threshold test's or a code test's carry
+//! chain; docs/timing.md explains why):
 //! * `los` is one register; the window counter and its flags (`los_cnt`, N-1 and N-2
 //!   flags) apply each sample's step one clock later from two pending registers (sample
 //!   taken, sample counted), so the threshold tests reach only `los` and the pending bit.
 //!   `los` is cleared through the flip-flop's synchronous reset (its power-up value 0).
 //! * `full_scale` = (sine at a full-scale code) | (cosine at one) | (held by the counter),
-//!   three registers loaded on `in_valid`: one code test per register, no logic after it.
+//!   three registers loaded on `in_valid`. A word is at a full-scale code when its low A-1
+//!   bits are all ones (low + 1 carries into bit A-1) and its top bit is 0, or all zeros
+//!   (low + 2^(A-1) - 1 does not carry) and its top bit is 1: two carry chains per word and
+//!   one LUT of three inputs, a fixed structure Yosys cannot stretch over more levels.
 //!   The hold counter applies each raw sample's step one clock later, as the window
 //!   counter does.
 //!
