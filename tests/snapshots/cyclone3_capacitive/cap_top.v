@@ -270,6 +270,7 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     output reg  [15:0] out_ch1;
 
     // Constant declarations
+    localparam  atl_idle = 1'b0;
     localparam  wa_lo = 8'h13;
     localparam  wa_hi = 8'h11;
     localparam  wa_z = 1'b1;
@@ -306,6 +307,7 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     localparam  lead_zero = 1'b1;
     localparam  p_last_m1 = 16'h7b;
     localparam  lead_m2 = 16'hfffe;
+    localparam  pc_mask = 16'h7f;
     localparam  kl = 1'b0;
     localparam  km = 1'b0;
     localparam  one_ch = 1'b1;
@@ -359,6 +361,36 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     reg  rst_d_d;
     wire  rst_d_q;
     reg  rst_d_clock;
+    reg  atl_d;
+    wire  atl_q;
+    reg  atl_clock;
+    reg  ewa_lo_d;
+    wire  ewa_lo_q;
+    reg  ewa_lo_clock;
+    reg  ewa_hi_d;
+    wire  ewa_hi_q;
+    reg  ewa_hi_clock;
+    reg  ew0_lo_d;
+    wire  ew0_lo_q;
+    reg  ew0_lo_clock;
+    reg  ew0_hi_d;
+    wire  ew0_hi_q;
+    reg  ew0_hi_clock;
+    reg  ew1_lo_d;
+    wire  ew1_lo_q;
+    reg  ew1_lo_clock;
+    reg  ew1_hi_d;
+    wire  ew1_hi_q;
+    reg  ew1_hi_clock;
+    reg  ewl_lo_d;
+    wire  ewl_lo_q;
+    reg  ewl_lo_clock;
+    reg  ewl_hi_d;
+    wire  ewl_hi_q;
+    reg  ewl_hi_clock;
+    reg  est_d;
+    wire  est_q;
+    reg  est_clock;
     reg  pcl_x_d;
     wire  pcl_x_q;
     reg  pcl_x_clock;
@@ -392,6 +424,11 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
 
     // Local signals
     reg  at_lead;
+    reg  pcl_n;
+    reg  pcm_n;
+    reg  atl_n;
+    reg  pc_eqp;
+    reg  pc_eql;
     reg  run;
     reg  [15:0] pc_n;
     reg  fl;
@@ -489,6 +526,56 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         .q(rst_d_q),
         .clock(rst_d_clock)
     );
+    cap_top_rtl_adc_atl atl(
+        .d(atl_d),
+        .q(atl_q),
+        .clock(atl_clock)
+    );
+    cap_top_rtl_adc_ewa_lo ewa_lo(
+        .d(ewa_lo_d),
+        .q(ewa_lo_q),
+        .clock(ewa_lo_clock)
+    );
+    cap_top_rtl_adc_ewa_hi ewa_hi(
+        .d(ewa_hi_d),
+        .q(ewa_hi_q),
+        .clock(ewa_hi_clock)
+    );
+    cap_top_rtl_adc_ew0_lo ew0_lo(
+        .d(ew0_lo_d),
+        .q(ew0_lo_q),
+        .clock(ew0_lo_clock)
+    );
+    cap_top_rtl_adc_ew0_hi ew0_hi(
+        .d(ew0_hi_d),
+        .q(ew0_hi_q),
+        .clock(ew0_hi_clock)
+    );
+    cap_top_rtl_adc_ew1_lo ew1_lo(
+        .d(ew1_lo_d),
+        .q(ew1_lo_q),
+        .clock(ew1_lo_clock)
+    );
+    cap_top_rtl_adc_ew1_hi ew1_hi(
+        .d(ew1_hi_d),
+        .q(ew1_hi_q),
+        .clock(ew1_hi_clock)
+    );
+    cap_top_rtl_adc_ewl_lo ewl_lo(
+        .d(ewl_lo_d),
+        .q(ewl_lo_q),
+        .clock(ewl_lo_clock)
+    );
+    cap_top_rtl_adc_ewl_hi ewl_hi(
+        .d(ewl_hi_d),
+        .q(ewl_hi_q),
+        .clock(ewl_hi_clock)
+    );
+    cap_top_rtl_adc_est est(
+        .d(est_d),
+        .q(est_q),
+        .clock(est_clock)
+    );
     cap_top_rtl_adc_pcl_x pcl_x(
         .d(pcl_x_d),
         .q(pcl_x_q),
@@ -566,6 +653,16 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         wc_clock = clk;
         cst_clock = clk;
         plx_clock = clk;
+        atl_clock = clk;
+        ewa_lo_clock = clk;
+        ewa_hi_clock = clk;
+        ew0_lo_clock = clk;
+        ew0_hi_clock = clk;
+        ew1_lo_clock = clk;
+        ew1_hi_clock = clk;
+        ewl_lo_clock = clk;
+        ewl_hi_clock = clk;
+        est_clock = clk;
         live_d = live_q;
         pc_d = pc_q;
         ph_d = ph_q;
@@ -590,18 +687,28 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         wc_d = wc_q;
         cst_d = cst_q;
         plx_d = plx_q;
+        atl_d = atl_q;
+        ewa_lo_d = ewa_lo_q;
+        ewa_hi_d = ewa_hi_q;
+        ew0_lo_d = ew0_lo_q;
+        ew0_hi_d = ew0_hi_q;
+        ew1_lo_d = ew1_lo_q;
+        ew1_hi_d = ew1_hi_q;
+        ewl_lo_d = ewl_lo_q;
+        ewl_hi_d = ewl_hi_q;
+        est_d = est_q;
         run = enable & ~rst;
-        pc_n = zero16;
-        warm_n = warm_init;
         fl = pcl_x_q ^ kl;
         fm = pcm_x_q ^ km;
-        pcl_x_d = 1'b0;
-        pcm_x_d = 1'b0;
-        at_lead = lead_zero;
-        if (live_q & ~fl) begin
-            at_lead = fm;
-        end
-        if (run & live_q) begin
+        at_lead = atl_q ^ lead_zero;
+        pc_eqp = (pc_q & pc_mask) == p_last_m1;
+        pc_eql = (pc_q & pc_mask) == lead_m2;
+        pc_n = zero16;
+        warm_n = warm_init;
+        pcl_n = 1'b0;
+        pcm_n = 1'b0;
+        atl_n = atl_idle;
+        if (live_q) begin
             if (fl) begin
                 pc_n = zero16;
                 if (warm_q == zero4) begin
@@ -614,10 +721,35 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             else begin
                 pc_n = pc_q + one16;
                 warm_n = warm_q;
-                pcl_x_d = (pc_q == p_last_m1) ^ kl;
-                pcm_x_d = (pc_q == lead_m2) ^ km;
+                pcl_n = pc_eqp ^ kl;
+                pcm_n = pc_eql ^ km;
+                atl_n = lead_zero;
+                if (~pc_eqp) begin
+                    atl_n = pc_eql;
+                end
             end
         end
+        if (~run) begin
+            pc_n = zero16;
+            warm_n = warm_init;
+            pcl_n = 1'b0;
+            pcm_n = 1'b0;
+        end
+        pcl_x_d = pcl_n;
+        pcm_x_d = pcm_n;
+        atl_d = atl_n ^ lead_zero;
+        if (~run) begin
+            atl_d = 1'b0;
+        end
+        ewa_lo_d = cyc_q == wa_lo;
+        ewa_hi_d = cyc_q == wa_hi;
+        ew0_lo_d = cyc_q == w0_lo;
+        ew0_hi_d = cyc_q == w0_hi;
+        ew1_lo_d = cyc_q == w1_lo;
+        ew1_hi_d = cyc_q == w1_hi;
+        ewl_lo_d = cyc_q == wl_lo;
+        ewl_hi_d = cyc_q == wl_hi;
+        est_d = cyc_q == cyc_stop_m1;
         pl_end = plx_q ^ d_one;
         cinc = 1'b0;
         pinc = 1'b0;
@@ -641,7 +773,7 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             ph_n = zero8;
             cyc_n = cyc_q + one8;
             cinc = 1'b1;
-            cst_d = cyc_q == cyc_stop_m1;
+            cst_d = est_q;
         end
         else begin
             ph_n = ph_q + one8;
@@ -673,10 +805,10 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             wl_d = 1'b0;
         end
         if (cinc) begin
-            wa_d = ((cyc_q == wa_lo) | (pa & (cyc_q != wa_hi))) ^ wa_z;
-            w0_d = ((cyc_q == w0_lo) | (p0 & (cyc_q != w0_hi))) ^ w0_z;
-            w1_d = ((cyc_q == w1_lo) | (p1 & (cyc_q != w1_hi))) ^ w1_z;
-            wl_d = ((cyc_q == wl_lo) | (pl & (cyc_q != wl_hi))) ^ wl_z;
+            wa_d = (ewa_lo_q | (pa & ~ewa_hi_q)) ^ wa_z;
+            w0_d = (ew0_lo_q | (p0 & ~ew0_hi_q)) ^ w0_z;
+            w1_d = (ew1_lo_q | (p1 & ~ew1_hi_q)) ^ w1_z;
+            wl_d = (ewl_lo_q | (pl & ~ewl_hi_q)) ^ wl_z;
         end
         if (~run) begin
             wa_d = wa_s ^ wa_z;
@@ -752,6 +884,24 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     end
 
 endmodule // cap_top_rtl_adc
+
+module cap_top_rtl_adc_atl(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_atl
 
 module cap_top_rtl_adc_ch0_reg(d,q,clock);
 
@@ -842,6 +992,168 @@ module cap_top_rtl_adc_cyc(d,q,clock);
     end
 
 endmodule // cap_top_rtl_adc_cyc
+
+module cap_top_rtl_adc_est(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_est
+
+module cap_top_rtl_adc_ew0_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew0_hi
+
+module cap_top_rtl_adc_ew0_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew0_lo
+
+module cap_top_rtl_adc_ew1_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew1_hi
+
+module cap_top_rtl_adc_ew1_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew1_lo
+
+module cap_top_rtl_adc_ewa_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewa_hi
+
+module cap_top_rtl_adc_ewa_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewa_lo
+
+module cap_top_rtl_adc_ewl_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewl_hi
+
+module cap_top_rtl_adc_ewl_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewl_lo
 
 module cap_top_rtl_adc_live(d,q,clock);
 

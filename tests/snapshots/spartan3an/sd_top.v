@@ -423,6 +423,7 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     output reg  [15:0] out_ch1;
 
     // Constant declarations
+    localparam  atl_idle = 1'b0;
     localparam  wa_lo = 8'h23;
     localparam  wa_hi = 8'h21;
     localparam  wa_z = 1'b1;
@@ -459,6 +460,7 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     localparam  lead_zero = 1'b1;
     localparam  p_last_m1 = 16'h64;
     localparam  lead_m2 = 16'hfffe;
+    localparam  pc_mask = 16'h7f;
     localparam  kl = 1'b0;
     localparam  km = 1'b0;
     localparam  one_ch = 1'b0;
@@ -512,6 +514,36 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     reg  rst_d_d;
     wire  rst_d_q;
     reg  rst_d_clock;
+    reg  atl_d;
+    wire  atl_q;
+    reg  atl_clock;
+    reg  ewa_lo_d;
+    wire  ewa_lo_q;
+    reg  ewa_lo_clock;
+    reg  ewa_hi_d;
+    wire  ewa_hi_q;
+    reg  ewa_hi_clock;
+    reg  ew0_lo_d;
+    wire  ew0_lo_q;
+    reg  ew0_lo_clock;
+    reg  ew0_hi_d;
+    wire  ew0_hi_q;
+    reg  ew0_hi_clock;
+    reg  ew1_lo_d;
+    wire  ew1_lo_q;
+    reg  ew1_lo_clock;
+    reg  ew1_hi_d;
+    wire  ew1_hi_q;
+    reg  ew1_hi_clock;
+    reg  ewl_lo_d;
+    wire  ewl_lo_q;
+    reg  ewl_lo_clock;
+    reg  ewl_hi_d;
+    wire  ewl_hi_q;
+    reg  ewl_hi_clock;
+    reg  est_d;
+    wire  est_q;
+    reg  est_clock;
     reg  pcl_x_d;
     wire  pcl_x_q;
     reg  pcl_x_clock;
@@ -545,6 +577,11 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
 
     // Local signals
     reg  at_lead;
+    reg  pcl_n;
+    reg  pcm_n;
+    reg  atl_n;
+    reg  pc_eqp;
+    reg  pc_eql;
     reg  run;
     reg  [15:0] pc_n;
     reg  fl;
@@ -642,6 +679,56 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         .q(rst_d_q),
         .clock(rst_d_clock)
     );
+    sd_top_rtl_adc_atl atl(
+        .d(atl_d),
+        .q(atl_q),
+        .clock(atl_clock)
+    );
+    sd_top_rtl_adc_ewa_lo ewa_lo(
+        .d(ewa_lo_d),
+        .q(ewa_lo_q),
+        .clock(ewa_lo_clock)
+    );
+    sd_top_rtl_adc_ewa_hi ewa_hi(
+        .d(ewa_hi_d),
+        .q(ewa_hi_q),
+        .clock(ewa_hi_clock)
+    );
+    sd_top_rtl_adc_ew0_lo ew0_lo(
+        .d(ew0_lo_d),
+        .q(ew0_lo_q),
+        .clock(ew0_lo_clock)
+    );
+    sd_top_rtl_adc_ew0_hi ew0_hi(
+        .d(ew0_hi_d),
+        .q(ew0_hi_q),
+        .clock(ew0_hi_clock)
+    );
+    sd_top_rtl_adc_ew1_lo ew1_lo(
+        .d(ew1_lo_d),
+        .q(ew1_lo_q),
+        .clock(ew1_lo_clock)
+    );
+    sd_top_rtl_adc_ew1_hi ew1_hi(
+        .d(ew1_hi_d),
+        .q(ew1_hi_q),
+        .clock(ew1_hi_clock)
+    );
+    sd_top_rtl_adc_ewl_lo ewl_lo(
+        .d(ewl_lo_d),
+        .q(ewl_lo_q),
+        .clock(ewl_lo_clock)
+    );
+    sd_top_rtl_adc_ewl_hi ewl_hi(
+        .d(ewl_hi_d),
+        .q(ewl_hi_q),
+        .clock(ewl_hi_clock)
+    );
+    sd_top_rtl_adc_est est(
+        .d(est_d),
+        .q(est_q),
+        .clock(est_clock)
+    );
     sd_top_rtl_adc_pcl_x pcl_x(
         .d(pcl_x_d),
         .q(pcl_x_q),
@@ -719,6 +806,16 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         wc_clock = clk;
         cst_clock = clk;
         plx_clock = clk;
+        atl_clock = clk;
+        ewa_lo_clock = clk;
+        ewa_hi_clock = clk;
+        ew0_lo_clock = clk;
+        ew0_hi_clock = clk;
+        ew1_lo_clock = clk;
+        ew1_hi_clock = clk;
+        ewl_lo_clock = clk;
+        ewl_hi_clock = clk;
+        est_clock = clk;
         live_d = live_q;
         pc_d = pc_q;
         ph_d = ph_q;
@@ -743,18 +840,28 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         wc_d = wc_q;
         cst_d = cst_q;
         plx_d = plx_q;
+        atl_d = atl_q;
+        ewa_lo_d = ewa_lo_q;
+        ewa_hi_d = ewa_hi_q;
+        ew0_lo_d = ew0_lo_q;
+        ew0_hi_d = ew0_hi_q;
+        ew1_lo_d = ew1_lo_q;
+        ew1_hi_d = ew1_hi_q;
+        ewl_lo_d = ewl_lo_q;
+        ewl_hi_d = ewl_hi_q;
+        est_d = est_q;
         run = enable & ~rst;
-        pc_n = zero16;
-        warm_n = warm_init;
         fl = pcl_x_q ^ kl;
         fm = pcm_x_q ^ km;
-        pcl_x_d = 1'b0;
-        pcm_x_d = 1'b0;
-        at_lead = lead_zero;
-        if (live_q & ~fl) begin
-            at_lead = fm;
-        end
-        if (run & live_q) begin
+        at_lead = atl_q ^ lead_zero;
+        pc_eqp = (pc_q & pc_mask) == p_last_m1;
+        pc_eql = (pc_q & pc_mask) == lead_m2;
+        pc_n = zero16;
+        warm_n = warm_init;
+        pcl_n = 1'b0;
+        pcm_n = 1'b0;
+        atl_n = atl_idle;
+        if (live_q) begin
             if (fl) begin
                 pc_n = zero16;
                 if (warm_q == zero4) begin
@@ -767,10 +874,35 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             else begin
                 pc_n = pc_q + one16;
                 warm_n = warm_q;
-                pcl_x_d = (pc_q == p_last_m1) ^ kl;
-                pcm_x_d = (pc_q == lead_m2) ^ km;
+                pcl_n = pc_eqp ^ kl;
+                pcm_n = pc_eql ^ km;
+                atl_n = lead_zero;
+                if (~pc_eqp) begin
+                    atl_n = pc_eql;
+                end
             end
         end
+        if (~run) begin
+            pc_n = zero16;
+            warm_n = warm_init;
+            pcl_n = 1'b0;
+            pcm_n = 1'b0;
+        end
+        pcl_x_d = pcl_n;
+        pcm_x_d = pcm_n;
+        atl_d = atl_n ^ lead_zero;
+        if (~run) begin
+            atl_d = 1'b0;
+        end
+        ewa_lo_d = cyc_q == wa_lo;
+        ewa_hi_d = cyc_q == wa_hi;
+        ew0_lo_d = cyc_q == w0_lo;
+        ew0_hi_d = cyc_q == w0_hi;
+        ew1_lo_d = cyc_q == w1_lo;
+        ew1_hi_d = cyc_q == w1_hi;
+        ewl_lo_d = cyc_q == wl_lo;
+        ewl_hi_d = cyc_q == wl_hi;
+        est_d = cyc_q == cyc_stop_m1;
         pl_end = plx_q ^ d_one;
         cinc = 1'b0;
         pinc = 1'b0;
@@ -794,7 +926,7 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             ph_n = zero8;
             cyc_n = cyc_q + one8;
             cinc = 1'b1;
-            cst_d = cyc_q == cyc_stop_m1;
+            cst_d = est_q;
         end
         else begin
             ph_n = ph_q + one8;
@@ -826,10 +958,10 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             wl_d = 1'b0;
         end
         if (cinc) begin
-            wa_d = ((cyc_q == wa_lo) | (pa & (cyc_q != wa_hi))) ^ wa_z;
-            w0_d = ((cyc_q == w0_lo) | (p0 & (cyc_q != w0_hi))) ^ w0_z;
-            w1_d = ((cyc_q == w1_lo) | (p1 & (cyc_q != w1_hi))) ^ w1_z;
-            wl_d = ((cyc_q == wl_lo) | (pl & (cyc_q != wl_hi))) ^ wl_z;
+            wa_d = (ewa_lo_q | (pa & ~ewa_hi_q)) ^ wa_z;
+            w0_d = (ew0_lo_q | (p0 & ~ew0_hi_q)) ^ w0_z;
+            w1_d = (ew1_lo_q | (p1 & ~ew1_hi_q)) ^ w1_z;
+            wl_d = (ewl_lo_q | (pl & ~ewl_hi_q)) ^ wl_z;
         end
         if (~run) begin
             wa_d = wa_s ^ wa_z;
@@ -905,6 +1037,24 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     end
 
 endmodule // sd_top_rtl_adc
+
+module sd_top_rtl_adc_atl(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_atl
 
 module sd_top_rtl_adc_ch0_reg(d,q,clock);
 
@@ -995,6 +1145,168 @@ module sd_top_rtl_adc_cyc(d,q,clock);
     end
 
 endmodule // sd_top_rtl_adc_cyc
+
+module sd_top_rtl_adc_est(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_est
+
+module sd_top_rtl_adc_ew0_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew0_hi
+
+module sd_top_rtl_adc_ew0_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew0_lo
+
+module sd_top_rtl_adc_ew1_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew1_hi
+
+module sd_top_rtl_adc_ew1_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew1_lo
+
+module sd_top_rtl_adc_ewa_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewa_hi
+
+module sd_top_rtl_adc_ewa_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewa_lo
+
+module sd_top_rtl_adc_ewl_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewl_hi
+
+module sd_top_rtl_adc_ewl_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewl_lo
 
 module sd_top_rtl_adc_live(d,q,clock);
 
@@ -10118,7 +10430,8 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     localparam  clip_thr = 32'hd2c274;
     localparam  clip_thr_w = 32'h4d2c274;
     localparam  nmask = 32'h7;
-    localparam  nlast_m1 = 32'h6;
+    localparam  nlast_m2 = 32'h5;
+    localparam  n_two = 1'b0;
     localparam  n_one = 1'b0;
     localparam  hlast_m1 = 32'he;
     localparam  h_one = 1'b0;
@@ -10142,6 +10455,9 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     reg  fs_reg_d;
     wire  fs_reg_q;
     reg  fs_reg_clock;
+    reg  fs_c_d;
+    wire  fs_c_q;
+    reg  fs_c_clock;
     reg  [31:0] fs_cnt_d;
     wire  [31:0] fs_cnt_q;
     reg  fs_cnt_clock;
@@ -10151,30 +10467,49 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     reg  los_lx_d;
     wire  los_lx_q;
     reg  los_lx_clock;
+    reg  los_nxr_d;
+    wire  los_nxr_q;
+    reg  los_nxr_clock;
+    reg  los_pv_d;
+    wire  los_pv_q;
+    reg  los_pv_clock;
+    reg  los_pq_d;
+    wire  los_pq_q;
+    reg  los_pq_clock;
     reg  clip_k_d;
     wire  clip_k_q;
     reg  clip_k_clock;
     reg  fs_k_d;
     wire  fs_k_q;
     reg  fs_k_clock;
+    reg  fs_b_d;
+    wire  fs_b_q;
+    reg  fs_b_clock;
+    reg  fs_pv_d;
+    wire  fs_pv_q;
+    reg  fs_pv_clock;
 
     // Local signals
+    reg  [31:0] fs_cl;
+    reg  fs_kl;
     reg  los_last;
     reg  los_q;
     reg  [31:0] los_inc;
-    reg  los_nx;
-    reg  [31:0] los_ga;
-    reg  [31:0] los_la;
-    reg  los_gx;
-    reg  los_lx_l;
-    reg  [31:0] los_gv;
-    reg  [31:0] los_lv;
+    reg  [31:0] los_x;
+    reg  los_y;
+    reg  los_ny;
+    reg  [31:0] los_cl;
+    reg  los_ll;
+    reg  los_nl;
+    reg  los_lend;
+    reg  los_clr;
     reg  low;
     reg  good;
     reg  [31:0] mag;
     reg  [31:0] rs;
     reg  [31:0] rc;
     reg  fs_hit;
+    reg  fs_hc;
     reg  over;
 
     // Sub module instances
@@ -10203,6 +10538,11 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .q(fs_reg_q),
         .clock(fs_reg_clock)
     );
+    sd_top_rtl_monitor_fs_c fs_c(
+        .d(fs_c_d),
+        .q(fs_c_q),
+        .clock(fs_c_clock)
+    );
     sd_top_rtl_monitor_fs_cnt fs_cnt(
         .d(fs_cnt_d),
         .q(fs_cnt_q),
@@ -10218,6 +10558,21 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .q(los_lx_q),
         .clock(los_lx_clock)
     );
+    sd_top_rtl_monitor_los_nxr los_nxr(
+        .d(los_nxr_d),
+        .q(los_nxr_q),
+        .clock(los_nxr_clock)
+    );
+    sd_top_rtl_monitor_los_pv los_pv(
+        .d(los_pv_d),
+        .q(los_pv_q),
+        .clock(los_pv_clock)
+    );
+    sd_top_rtl_monitor_los_pq los_pq(
+        .d(los_pq_d),
+        .q(los_pq_q),
+        .clock(los_pq_clock)
+    );
     sd_top_rtl_monitor_clip_k clip_k(
         .d(clip_k_d),
         .q(clip_k_q),
@@ -10227,6 +10582,16 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .d(fs_k_d),
         .q(fs_k_q),
         .clock(fs_k_clock)
+    );
+    sd_top_rtl_monitor_fs_b fs_b(
+        .d(fs_b_d),
+        .q(fs_b_q),
+        .clock(fs_b_clock)
+    );
+    sd_top_rtl_monitor_fs_pv fs_pv(
+        .d(fs_pv_d),
+        .q(fs_pv_q),
+        .clock(fs_pv_clock)
     );
 
     // Update code
@@ -10241,6 +10606,12 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         los_lx_clock = clk;
         clip_k_clock = clk;
         fs_k_clock = clk;
+        los_nxr_clock = clk;
+        los_pv_clock = clk;
+        los_pq_clock = clk;
+        fs_b_clock = clk;
+        fs_c_clock = clk;
+        fs_pv_clock = clk;
         los_reg_d = los_reg_q;
         los_cnt_d = los_cnt_q;
         clip_reg_d = clip_reg_q;
@@ -10251,10 +10622,17 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         los_lx_d = los_lx_q;
         clip_k_d = clip_k_q;
         fs_k_d = fs_k_q;
+        los_nxr_d = los_nxr_q;
+        los_pv_d = los_pv_q;
+        los_pq_d = los_pq_q;
+        fs_b_d = fs_b_q;
+        fs_c_d = fs_c_q;
+        fs_pv_d = fs_pv_q;
         mag = magnitude & wmask;
         rs = {16'd0, in_sin} & amask;
         rc = {16'd0, in_cos} & amask;
-        fs_hit = (rs == code_min) | (rs == code_max) | (rc == code_min) | (rc == code_max);
+        fs_hit = (|(((rs & code_max) + one) & code_min) & ~|(rs & code_min)) | (~|(((rs & code_max) + code_max) & code_min) & |(rs & code_min));
+        fs_hc = (|(((rc & code_max) + one) & code_min) & ~|(rc & code_min)) | (~|(((rc & code_max) + code_max) & code_min) & |(rc & code_min));
         if (narrow) begin
             low = ~|(((mag | wbit) - los_thr) & wbit);
             good = |(((mag | wbit) - los_rel) & wbit);
@@ -10265,37 +10643,40 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
             good = mag >= los_rel;
             over = mag > clip_thr;
         end
-        los_last = los_lx_q ^ n_one;
         los_q = low;
         if (los_reg_q) begin
             los_q = good;
         end
+        los_last = los_lx_q ^ n_one;
         los_inc = (los_cnt_q + one) & nmask;
-        los_nx = (los_cnt_q == nlast_m1) ^ n_one;
-        los_ga = zero;
-        los_la = zero;
+        los_x = zero;
+        los_ny = n_two;
         if (~los_last) begin
-            if (los_reg_q) begin
-                los_ga = los_inc;
+            los_x = los_inc;
+            los_ny = los_cnt_q == nlast_m2;
+        end
+        los_y = ~los_last & (los_nxr_q ^ n_two);
+        los_cl = los_cnt_q;
+        los_ll = los_lx_q;
+        los_nl = los_nxr_q ^ n_two;
+        if (los_pv_q) begin
+            los_cl = zero;
+            los_ll = 1'b0;
+            los_nl = n_two;
+            if (los_pq_q) begin
+                los_cl = los_x;
+                los_ll = los_y;
+                los_nl = los_ny;
             end
-            else begin
-                los_la = los_inc;
-            end
         end
-        los_gx = ~los_last & los_reg_q & los_nx;
-        los_lx_l = ~los_last & ~los_reg_q & los_nx;
-        los_gv = zero;
-        if (good) begin
-            los_gv = los_ga;
-        end
-        los_lv = zero;
-        if (low) begin
-            los_lv = los_la;
-        end
+        los_lend = los_ll ^ n_one;
+        los_cnt_d = los_cl;
+        los_lx_d = los_ll;
+        los_nxr_d = los_nl ^ n_two;
+        los_pv_d = mag_valid;
+        los_pq_d = los_q;
         if (mag_valid) begin
-            los_reg_d = los_reg_q ^ (los_q & los_last);
-            los_cnt_d = los_gv | los_lv;
-            los_lx_d = (good & los_gx) | (low & los_lx_l);
+            los_reg_d = los_reg_q | (low & los_lend);
             clip_reg_d = over | clip_k_q;
             clip_cnt_d = zero;
             if (over) begin
@@ -10309,19 +10690,29 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
                 clip_k_d = 1'b0;
             end
         end
-        if (in_valid) begin
-            fs_reg_d = fs_hit | fs_k_q;
-            fs_cnt_d = zero;
-            if (fs_hit) begin
-                fs_k_d = ~h_one;
+        fs_cl = fs_cnt_q;
+        fs_kl = fs_k_q;
+        if (fs_pv_q) begin
+            if (fs_reg_q | fs_c_q) begin
+                fs_cl = zero;
+                fs_kl = ~h_one;
             end
             else if (fs_k_q) begin
-                fs_cnt_d = (fs_cnt_q + one) & hmask;
-                fs_k_d = fs_cnt_q != hlast_m1;
+                fs_cl = (fs_cnt_q + one) & hmask;
+                fs_kl = fs_cnt_q != hlast_m1;
             end
             else begin
-                fs_k_d = 1'b0;
+                fs_cl = zero;
+                fs_kl = 1'b0;
             end
+        end
+        fs_cnt_d = fs_cl;
+        fs_k_d = fs_kl;
+        fs_pv_d = in_valid;
+        if (in_valid) begin
+            fs_reg_d = fs_hit;
+            fs_c_d = fs_hc;
+            fs_b_d = fs_kl;
         end
         warn_reg_d = overspeed | qep_mismatch;
         if (rst) begin
@@ -10333,14 +10724,24 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
             fs_cnt_d = zero;
             warn_reg_d = 1'b0;
             los_lx_d = 1'b0;
+            los_nxr_d = 1'b0;
+            los_pv_d = 1'b0;
+            los_pq_d = 1'b0;
             clip_k_d = 1'b0;
             fs_k_d = 1'b0;
+            fs_b_d = 1'b0;
+            fs_c_d = 1'b0;
+            fs_pv_d = 1'b0;
         end
-        error = los_reg_q | clip_reg_q | fs_reg_q;
+        los_clr = ~rst & mag_valid & los_reg_q & good & los_lend;
+        if (los_clr) begin
+            los_reg_d = 1'b0;
+        end
+        error = los_reg_q | clip_reg_q | fs_reg_q | fs_c_q | fs_b_q;
         warning = warn_reg_q;
         los = los_reg_q;
         clip = clip_reg_q;
-        full_scale = fs_reg_q;
+        full_scale = fs_reg_q | fs_c_q | fs_b_q;
     end
 
 endmodule // sd_top_rtl_monitor
@@ -10399,6 +10800,42 @@ module sd_top_rtl_monitor_clip_reg(d,q,clock);
 
 endmodule // sd_top_rtl_monitor_clip_reg
 
+module sd_top_rtl_monitor_fs_b(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_fs_b
+
+module sd_top_rtl_monitor_fs_c(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_fs_c
+
 module sd_top_rtl_monitor_fs_cnt(d,q,clock);
 
     // Module arguments
@@ -10434,6 +10871,24 @@ module sd_top_rtl_monitor_fs_k(d,q,clock);
     end
 
 endmodule // sd_top_rtl_monitor_fs_k
+
+module sd_top_rtl_monitor_fs_pv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_fs_pv
 
 module sd_top_rtl_monitor_fs_reg(d,q,clock);
 
@@ -10488,6 +10943,60 @@ module sd_top_rtl_monitor_los_lx(d,q,clock);
     end
 
 endmodule // sd_top_rtl_monitor_los_lx
+
+module sd_top_rtl_monitor_los_nxr(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_los_nxr
+
+module sd_top_rtl_monitor_los_pq(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_los_pq
+
+module sd_top_rtl_monitor_los_pv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_los_pv
 
 module sd_top_rtl_monitor_los_reg(d,q,clock);
 
