@@ -1676,23 +1676,11 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     localparam  ackn_m1 = 32'h0;
     localparam  nbits_m1 = 32'h1a;
     localparam  five = 32'h5;
-    localparam  tlast_m1 = 32'ha69;
+    localparam  tlast_m2 = 32'ha68;
     localparam  ack_is1 = 1'b1;
     localparam  n_is1 = 1'b0;
     localparam  tlast_is0 = 1'b0;
-
-    // Enums
-    localparam BissState_Timeout = 0;
-    localparam BissState_Idle = 1;
-    localparam BissState_First = 2;
-    localparam BissState_Second = 3;
-    localparam BissState_Ack = 4;
-    localparam BissState_Start = 5;
-    localparam BissState_Cds = 6;
-    localparam BissState_Data = 7;
-    localparam BissState_Err = 8;
-    localparam BissState_Warn = 9;
-    localparam BissState_Crc = 10;
+    localparam  tpre_is0 = 1'b0;
 
     // Stub signals
     reg  sync_clk;
@@ -1712,9 +1700,54 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     wire  [31:0] posw_word;
     wire  posw_err;
     wire  posw_warn;
-    reg  [3:0] state_d;
-    wire  [3:0] state_q;
-    reg  state_clock;
+    reg  s_tmo_d;
+    wire  s_tmo_q;
+    reg  s_tmo_clock;
+    reg  s_first_d;
+    wire  s_first_q;
+    reg  s_first_clock;
+    reg  s_second_d;
+    wire  s_second_q;
+    reg  s_second_clock;
+    reg  s_ack_d;
+    wire  s_ack_q;
+    reg  s_ack_clock;
+    reg  s_start_d;
+    wire  s_start_q;
+    reg  s_start_clock;
+    reg  s_cds_d;
+    wire  s_cds_q;
+    reg  s_cds_clock;
+    reg  s_data_d;
+    wire  s_data_q;
+    reg  s_data_clock;
+    reg  s_err_d;
+    wire  s_err_q;
+    reg  s_err_clock;
+    reg  s_warn_d;
+    wire  s_warn_q;
+    reg  s_warn_clock;
+    reg  s_crc_d;
+    wire  s_crc_q;
+    reg  s_crc_clock;
+    reg  pact_d;
+    wire  pact_q;
+    reg  pact_clock;
+    reg  pfb_d;
+    wire  pfb_q;
+    reg  pfb_clock;
+    reg  pinc_d;
+    wire  pinc_q;
+    reg  pinc_clock;
+    reg  pld_d;
+    wire  pld_q;
+    reg  pld_clock;
+    reg  rven_d;
+    wire  rven_q;
+    reg  rven_clock;
+    reg  rv_d;
+    wire  rv_q;
+    reg  rv_clock;
     reg  slo_reg_d;
     wire  slo_reg_q;
     reg  slo_reg_clock;
@@ -1745,9 +1778,12 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  fsix_d;
     wire  fsix_q;
     reg  fsix_clock;
-    reg  ftl_d;
-    wire  ftl_q;
-    reg  ftl_clock;
+    reg  tmoq_d;
+    wire  tmoq_q;
+    reg  tmoq_clock;
+    reg  fpre_d;
+    wire  fpre_q;
+    reg  fpre_clock;
     reg  sidle_d;
     wire  sidle_q;
     reg  sidle_clock;
@@ -1756,13 +1792,14 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  sshift_clock;
 
     // Local signals
-    reg  cld1;
-    reg  cinc;
     reg  mae;
+    reg  tmo;
+    reg  ftln;
+    reg  sidlen;
+    reg  live;
     reg  dbit;
     reg  cbit;
-    reg  cupd;
-    reg  fb;
+    reg  [31:0] cnext;
 
     // Sub module instances
     sd_top_rtl_biss_slave_sync sync(
@@ -1786,10 +1823,85 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .err(posw_err),
         .warn(posw_warn)
     );
-    sd_top_rtl_biss_slave_state state(
-        .d(state_d),
-        .q(state_q),
-        .clock(state_clock)
+    sd_top_rtl_biss_slave_s_tmo s_tmo(
+        .d(s_tmo_d),
+        .q(s_tmo_q),
+        .clock(s_tmo_clock)
+    );
+    sd_top_rtl_biss_slave_s_first s_first(
+        .d(s_first_d),
+        .q(s_first_q),
+        .clock(s_first_clock)
+    );
+    sd_top_rtl_biss_slave_s_second s_second(
+        .d(s_second_d),
+        .q(s_second_q),
+        .clock(s_second_clock)
+    );
+    sd_top_rtl_biss_slave_s_ack s_ack(
+        .d(s_ack_d),
+        .q(s_ack_q),
+        .clock(s_ack_clock)
+    );
+    sd_top_rtl_biss_slave_s_start s_start(
+        .d(s_start_d),
+        .q(s_start_q),
+        .clock(s_start_clock)
+    );
+    sd_top_rtl_biss_slave_s_cds s_cds(
+        .d(s_cds_d),
+        .q(s_cds_q),
+        .clock(s_cds_clock)
+    );
+    sd_top_rtl_biss_slave_s_data s_data(
+        .d(s_data_d),
+        .q(s_data_q),
+        .clock(s_data_clock)
+    );
+    sd_top_rtl_biss_slave_s_err s_err(
+        .d(s_err_d),
+        .q(s_err_q),
+        .clock(s_err_clock)
+    );
+    sd_top_rtl_biss_slave_s_warn s_warn(
+        .d(s_warn_d),
+        .q(s_warn_q),
+        .clock(s_warn_clock)
+    );
+    sd_top_rtl_biss_slave_s_crc s_crc(
+        .d(s_crc_d),
+        .q(s_crc_q),
+        .clock(s_crc_clock)
+    );
+    sd_top_rtl_biss_slave_pact pact(
+        .d(pact_d),
+        .q(pact_q),
+        .clock(pact_clock)
+    );
+    sd_top_rtl_biss_slave_pfb pfb(
+        .d(pfb_d),
+        .q(pfb_q),
+        .clock(pfb_clock)
+    );
+    sd_top_rtl_biss_slave_pinc pinc(
+        .d(pinc_d),
+        .q(pinc_q),
+        .clock(pinc_clock)
+    );
+    sd_top_rtl_biss_slave_pld pld(
+        .d(pld_d),
+        .q(pld_q),
+        .clock(pld_clock)
+    );
+    sd_top_rtl_biss_slave_rven rven(
+        .d(rven_d),
+        .q(rven_q),
+        .clock(rven_clock)
+    );
+    sd_top_rtl_biss_slave_rv rv(
+        .d(rv_d),
+        .q(rv_q),
+        .clock(rv_clock)
     );
     sd_top_rtl_biss_slave_slo_reg slo_reg(
         .d(slo_reg_d),
@@ -1841,10 +1953,15 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .q(fsix_q),
         .clock(fsix_clock)
     );
-    sd_top_rtl_biss_slave_ftl ftl(
-        .d(ftl_d),
-        .q(ftl_q),
-        .clock(ftl_clock)
+    sd_top_rtl_biss_slave_tmoq tmoq(
+        .d(tmoq_d),
+        .q(tmoq_q),
+        .clock(tmoq_clock)
+    );
+    sd_top_rtl_biss_slave_fpre fpre(
+        .d(fpre_d),
+        .q(fpre_q),
+        .clock(fpre_clock)
     );
     sd_top_rtl_biss_slave_sidle sidle(
         .d(sidle_d),
@@ -1859,7 +1976,22 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
 
     // Update code
     always @(*) begin
-        state_clock = clk;
+        s_tmo_clock = clk;
+        s_first_clock = clk;
+        s_second_clock = clk;
+        s_ack_clock = clk;
+        s_start_clock = clk;
+        s_cds_clock = clk;
+        s_data_clock = clk;
+        s_err_clock = clk;
+        s_warn_clock = clk;
+        s_crc_clock = clk;
+        pact_clock = clk;
+        pfb_clock = clk;
+        pinc_clock = clk;
+        pld_clock = clk;
+        rven_clock = clk;
+        rv_clock = clk;
         slo_reg_clock = clk;
         sh_clock = clk;
         crc_clock = clk;
@@ -1870,10 +2002,26 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fack_clock = clk;
         fnb_clock = clk;
         fsix_clock = clk;
-        ftl_clock = clk;
+        tmoq_clock = clk;
+        fpre_clock = clk;
         sidle_clock = clk;
         sshift_clock = clk;
-        state_d = state_q;
+        s_tmo_d = s_tmo_q;
+        s_first_d = s_first_q;
+        s_second_d = s_second_q;
+        s_ack_d = s_ack_q;
+        s_start_d = s_start_q;
+        s_cds_d = s_cds_q;
+        s_data_d = s_data_q;
+        s_err_d = s_err_q;
+        s_warn_d = s_warn_q;
+        s_crc_d = s_crc_q;
+        pact_d = pact_q;
+        pfb_d = pfb_q;
+        pinc_d = pinc_q;
+        pld_d = pld_q;
+        rven_d = rven_q;
+        rv_d = rv_q;
         slo_reg_d = slo_reg_q;
         sh_d = sh_q;
         crc_d = crc_q;
@@ -1884,7 +2032,8 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fack_d = fack_q;
         fnb_d = fnb_q;
         fsix_d = fsix_q;
-        ftl_d = ftl_q;
+        tmoq_d = tmoq_q;
+        fpre_d = fpre_q;
         sidle_d = sidle_q;
         sshift_d = sshift_q;
         sync_clk = clk;
@@ -1899,124 +2048,67 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         posw_warning = warning;
         posw_take = 1'b0;
         mae = sync_rise | sync_fall;
-        dbit = |(sh_q & msb);
-        cbit = dbit;
-        cupd = 1'b0;
-        cld1 = 1'b0;
-        cinc = 1'b0;
+        tmo = tmoq_q & ~mae;
+        live = ~tmo & ~rst;
         if (mae) begin
             tcnt_d = zero;
-            ftl_d = tlast_is0;
+            ftln = tlast_is0;
+            fpre_d = tpre_is0;
         end
         else begin
             tcnt_d = (tcnt_q + one) & tmask;
-            ftl_d = tcnt_q == tlast_m1;
+            ftln = fpre_q;
+            fpre_d = tcnt_q == tlast_m2;
         end
-        case (state_q)
-            BissState_Timeout:
-                begin
-                end
-            BissState_Idle:
-                begin
-                    if (sync_fall) begin
-                        state_d = BissState_First;
-                    end
-                end
-            BissState_First:
-                begin
-                    if (sync_rise) begin
-                        state_d = BissState_Second;
-                    end
-                end
-            BissState_Second:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = 1'b0;
-                        cld1 = 1'b1;
-                        state_d = BissState_Ack;
-                    end
-                end
-            BissState_Ack:
-                begin
-                    if (sync_rise) begin
-                        if (fack_q) begin
-                            slo_reg_d = 1'b1;
-                            state_d = BissState_Start;
-                        end
-                        else begin
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-            BissState_Start:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = 1'b0;
-                        state_d = BissState_Cds;
-                    end
-                end
-            BissState_Cds:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = dbit;
-                        cupd = 1'b1;
-                        cld1 = 1'b1;
-                        state_d = BissState_Data;
-                    end
-                end
-            BissState_Data:
-                begin
-                    if (sync_rise) begin
-                        cupd = 1'b1;
-                        if (fnb_q) begin
-                            cbit = ~errl_q;
-                            slo_reg_d = ~errl_q;
-                            state_d = BissState_Err;
-                        end
-                        else begin
-                            slo_reg_d = dbit;
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-            BissState_Err:
-                begin
-                    if (sync_rise) begin
-                        cupd = 1'b1;
-                        cbit = ~warnl_q;
-                        slo_reg_d = ~warnl_q;
-                        state_d = BissState_Warn;
-                    end
-                end
-            BissState_Warn:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = ~|(crc_q & crcmsb);
-                        crc_d = (crc_q << one) & crcmask;
-                        cld1 = 1'b1;
-                        state_d = BissState_Crc;
-                    end
-                end
-            BissState_Crc:
-                begin
-                    if (sync_rise) begin
-                        if (fsix_q) begin
-                            slo_reg_d = 1'b0;
-                            state_d = BissState_Timeout;
-                        end
-                        else begin
-                            slo_reg_d = ~|(crc_q & crcmsb);
-                            crc_d = (crc_q << one) & crcmask;
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-        endcase
+        if (rst) begin
+            tcnt_d = zero;
+            ftln = tlast_is0;
+            fpre_d = tpre_is0;
+        end
+        s_tmo_d = rst | (~tmo & (s_tmo_q | (s_crc_q & sync_rise & fsix_q)));
+        sidlen = ~rst & (tmo | (sidle_q & ~sync_fall));
+        sidle_d = sidlen;
+        tmoq_d = ~sidlen & ftln;
+        s_first_d = live & ((sidle_q & sync_fall) | (s_first_q & ~sync_rise));
+        s_second_d = live & ((s_first_q & sync_rise) | (s_second_q & ~sync_rise));
+        s_ack_d = live & ((s_second_q & sync_rise) | (s_ack_q & ~(sync_rise & fack_q)));
+        s_start_d = live & ((s_ack_q & sync_rise & fack_q) | (s_start_q & ~sync_rise));
+        s_cds_d = live & ((s_start_q & sync_rise) | (s_cds_q & ~sync_rise));
+        s_data_d = live & ((s_cds_q & sync_rise) | (s_data_q & ~(sync_rise & fnb_q)));
+        s_err_d = live & ((s_data_q & sync_rise & fnb_q) | (s_err_q & ~sync_rise));
+        s_warn_d = live & ((s_err_q & sync_rise) | (s_warn_q & ~sync_rise));
+        s_crc_d = live & ((s_warn_q & sync_rise) | (s_crc_q & ~(sync_rise & fsix_q)));
+        dbit = |(sh_q & msb);
+        cbit = dbit;
+        if (s_data_q & fnb_q) begin
+            cbit = ~errl_q;
+        end
+        if (s_err_q) begin
+            cbit = ~warnl_q;
+        end
+        pact_d = (s_cds_q | s_data_q | s_err_q | s_warn_q | (s_crc_q & ~fsix_q)) & live;
+        pfb_d = (s_cds_q | s_data_q | s_err_q) & (cbit ^ |(crc_q & crcmsb));
+        pinc_d = ((s_ack_q & ~fack_q) | (s_data_q & ~fnb_q) | (s_crc_q & ~fsix_q)) & live;
+        pld_d = (s_second_q | s_cds_q | s_warn_q) & live;
+        rven_d = ~(s_tmo_q | sidle_q | s_first_q | (s_ack_q & ~fack_q)) & live;
+        rv_d = s_ack_q | ((s_cds_q | (s_data_q & ~fnb_q)) & dbit) | ((s_data_q & fnb_q) & ~errl_q) | (s_err_q & ~warnl_q) | ((s_warn_q | (s_crc_q & ~fsix_q)) & ~|(crc_q & crcmsb));
+        if (sync_rise & rven_q) begin
+            slo_reg_d = rv_q;
+        end
+        if (s_crc_q & sync_rise & fsix_q) begin
+        end
         if (sidle_q & sync_fall) begin
             posw_take = 1'b1;
             errl_d = posw_err;
             warnl_d = posw_warn;
             crc_d = zero;
+        end
+        cnext = (crc_q << one) & crcmask;
+        if (pfb_q) begin
+            cnext = ((crc_q << one) & crcmask) ^ taps;
+        end
+        if (sync_rise & pact_q) begin
+            crc_d = cnext;
         end
         if (sidle_q & sync_fall) begin
             sh_d = posw_word & nmask;
@@ -2024,39 +2116,25 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         if (sshift_q & sync_rise) begin
             sh_d = (sh_q << one) & nmask;
         end
-        if (cinc) begin
+        if (sync_rise & pinc_q) begin
             cnt_d = (cnt_q + one) & cmask;
             fack_d = cnt_q == ackn_m1;
             fnb_d = cnt_q == nbits_m1;
             fsix_d = cnt_q == five;
         end
-        if (cld1) begin
+        if (sync_rise & pld_q) begin
             cnt_d = one;
             fack_d = ack_is1;
             fnb_d = n_is1;
             fsix_d = 1'b0;
         end
-        fb = cbit ^ |(crc_q & crcmsb);
-        if (cupd) begin
-            if (fb) begin
-                crc_d = ((crc_q << one) & crcmask) ^ taps;
-            end
-            else begin
-                crc_d = (crc_q << one) & crcmask;
-            end
-        end
-        if ((state_q != BissState_Idle) & ~mae & ftl_q) begin
+        if (tmo) begin
             slo_reg_d = 1'b1;
-            state_d = BissState_Idle;
         end
         if (rst) begin
-            state_d = BissState_Timeout;
             slo_reg_d = 1'b0;
-            tcnt_d = zero;
-            ftl_d = tlast_is0;
         end
-        sidle_d = state_d == BissState_Idle;
-        sshift_d = ((state_q == BissState_Cds) | ((state_q == BissState_Data) & ~fnb_q)) & ~(~mae & ftl_q) & ~rst;
+        sshift_d = (s_cds_q | (s_data_q & ~fnb_q)) & live;
         slo = slo_reg_q;
     end
 
@@ -2152,6 +2230,24 @@ module sd_top_rtl_biss_slave_fnb(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_fnb
 
+module sd_top_rtl_biss_slave_fpre(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_fpre
+
 module sd_top_rtl_biss_slave_fsix(d,q,clock);
 
     // Module arguments
@@ -2170,7 +2266,7 @@ module sd_top_rtl_biss_slave_fsix(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_fsix
 
-module sd_top_rtl_biss_slave_ftl(d,q,clock);
+module sd_top_rtl_biss_slave_pact(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -2186,7 +2282,61 @@ module sd_top_rtl_biss_slave_ftl(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_biss_slave_ftl
+endmodule // sd_top_rtl_biss_slave_pact
+
+module sd_top_rtl_biss_slave_pfb(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_pfb
+
+module sd_top_rtl_biss_slave_pinc(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_pinc
+
+module sd_top_rtl_biss_slave_pld(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_pld
 
 module sd_top_rtl_biss_slave_posw(clk,rst,pos,turns,pos_valid,error,warning,take,word,err,warn);
 
@@ -2402,6 +2552,253 @@ module sd_top_rtl_biss_slave_posw_warnacc(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_posw_warnacc
 
+module sd_top_rtl_biss_slave_rv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_rv
+
+module sd_top_rtl_biss_slave_rven(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_rven
+
+module sd_top_rtl_biss_slave_s_ack(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_ack
+
+module sd_top_rtl_biss_slave_s_cds(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_cds
+
+module sd_top_rtl_biss_slave_s_crc(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_crc
+
+module sd_top_rtl_biss_slave_s_data(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_data
+
+module sd_top_rtl_biss_slave_s_err(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_err
+
+module sd_top_rtl_biss_slave_s_first(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_first
+
+module sd_top_rtl_biss_slave_s_second(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_second
+
+module sd_top_rtl_biss_slave_s_start(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_start
+
+module sd_top_rtl_biss_slave_s_tmo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+
+    // Stub signals
+    reg  dff_d;
+    wire  dff_q;
+    reg  dff_clock;
+
+    // Sub module instances
+    sd_top_rtl_biss_slave_s_tmo_dff dff(
+        .d(dff_d),
+        .q(dff_q),
+        .clock(dff_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        dff_clock = clock;
+        q = dff_q ^ init;
+        dff_d = d ^ init;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_tmo
+
+module sd_top_rtl_biss_slave_s_tmo_dff(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_tmo_dff
+
+module sd_top_rtl_biss_slave_s_warn(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_warn
+
 module sd_top_rtl_biss_slave_sh(d,q,clock);
 
     // Module arguments
@@ -2473,37 +2870,6 @@ module sd_top_rtl_biss_slave_sshift(d,q,clock);
     end
 
 endmodule // sd_top_rtl_biss_slave_sshift
-
-module sd_top_rtl_biss_slave_state(d,q,clock);
-
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-
-    // Enums
-    localparam BissState_Timeout = 0;
-    localparam BissState_Idle = 1;
-    localparam BissState_First = 2;
-    localparam BissState_Second = 3;
-    localparam BissState_Ack = 4;
-    localparam BissState_Start = 5;
-    localparam BissState_Cds = 6;
-    localparam BissState_Data = 7;
-    localparam BissState_Err = 8;
-    localparam BissState_Warn = 9;
-    localparam BissState_Crc = 10;
-
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_state
 
 module sd_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
 
@@ -2754,6 +3120,24 @@ module sd_top_rtl_biss_slave_tcnt(d,q,clock);
     end
 
 endmodule // sd_top_rtl_biss_slave_tcnt
+
+module sd_top_rtl_biss_slave_tmoq(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_tmoq
 
 module sd_top_rtl_biss_slave_warnl(d,q,clock);
 
