@@ -48,7 +48,7 @@
 //!   u = PPR-1 up; otherwise u = PPR-1 is a constant compare and the wrapped u a constant.
 //!   Each wrap adds +1 or -1 to the turns, chosen from registers: turns + 1 and turns - 1
 //!   are M-bit adders into registers of their own at every clock (for a load, load_turns
-//!   + 1 and - 1 are taken when the load is latched), so the turn register's input is a
+//!   plus and minus one are taken when the load is latched), so the turn register's input is a
 //!   selection with no carry chain. In the clock after the turns move those registers are
 //!   stale, and the update that moved them leaves the one the next sample can use in a
 //!   register of its own with a flag (no carry chain and no wrap logic in front of the
