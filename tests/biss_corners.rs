@@ -336,12 +336,15 @@ fn synthesizes_for_both_families() {
         let dir = common::workdir(&format!("biss_synth_{st}_{mt}_{filter}"));
         let n = p.data_bits() as u64;
         let tbits = 32 - (p.timeout_clocks - 1).leading_zeros() as u64;
-        // sync 4 (3 without the filter), position hold S + M + 3, state 4, SLO, shift N,
-        // CRC 6, bit counter 7, timeout counter, latched flags 2, the registered counter
-        // compares 4 (bit counter = A, N, 6; timeout counter at its end), the registered
-        // state decodes of the shift register 2 (Idle; Cds or Data before the last bit),
-        // the synchronizer's registered edge pulses 2 (rise, fall).
-        let want = 3 + filter as u64 + n + 3 + 4 + 1 + n + 6 + 7 + tbits + 2 + 4 + 2 + 2;
+        // sync 4 (3 without the filter), position hold S + M + 3, one-hot state 11 (Timeout,
+        // Idle, First, Second, Ack, Start, Cds, Data, nE, nW, Crc), SLO, shift N, CRC 6, bit
+        // counter 7, timeout counter, latched flags 2, the registered counter compares 4 (bit
+        // counter = A, N, 6; timeout counter one before its end), the registered timeout gate
+        // 1 (not Idle and the timeout counter at its end), the shift register's registered
+        // state decode 1 (Cds or Data before the last bit), the next rise's actions 6 (CRC
+        // step and feedback, count up, load 1, SLO enable and value), the synchronizer's
+        // registered edge pulses 2 (rise, fall).
+        let want = 3 + filter as u64 + n + 3 + 11 + 1 + n + 6 + 7 + tbits + 2 + 4 + 1 + 1 + 6 + 2;
         for fam in [Family::Xc3sa, Family::CycloneIve] {
             let s = synthesize(&v, "biss_slave", fam, &dir).expect("synthesis");
             eprintln!(

@@ -4,6 +4,14 @@
 //! Every register (counters, pins, shift registers, outputs) loads at the same clock edge
 //! from the *next* counter state, so the pins in a clock cycle always match the counter
 //! values of that cycle (no decode glitches on SCK or CONV, no hidden one-clock skew).
+//!
+//! For timing (docs/timing.md) the decodes in front of the counters are registers: the
+//! lead clock (`atl`, computed from the next values of the period counter's flags), the
+//! cycle counter's equality tests (`ewa_lo` ..., exact wherever they are used because the
+//! cycle counter never changes in the clock before a step when D >= 2), and the period
+//! counter's tests compare only its ceil(log2 P) low bits. `run` (enable and not reset)
+//! is the outermost test of every register, so it is the flip-flops' synchronous reset or
+//! one LUT in front of their data inputs.
 use super::{AdcParams, SignFormat};
 use crate::blocks::mask;
 use rust_hdl::prelude::*;
@@ -96,8 +104,40 @@ pub struct AdcController {
     /// registered state, one clock after it is entered (see the module docs).
     miso_d: DFF<Bit>,
     rst_d: DFF<Bit>,
-    /// The state entered at the previous edge starts an SCK frame (pc_n == lead).
+    /// The state entered at the previous edge starts an SCK frame (pc_n == lead): decoded
+    /// from `atl`.
     at_lead: Signal<Local, Bit>,
+    /// at_lead ^ (lead = 0), registered: at_lead of the next state is computed from the
+    /// next values of live, pcl_x and pcm_x (see `update`), so the counters' reloads and
+    /// the window flags start from a flip-flop (0 at power-up, where at_lead = (lead = 0)).
+    atl: DFF<Bit>,
+    /// Next value of pcl_x (see `pcl_x`).
+    pcl_n: Signal<Local, Bit>,
+    /// Next value of pcm_x.
+    pcm_n: Signal<Local, Bit>,
+    /// at_lead of the next state.
+    atl_n: Signal<Local, Bit>,
+    /// pc == P - 2 (pc's low bits: pc <= P - 1 always).
+    pc_eqp: Signal<Local, Bit>,
+    /// pc == lead - 2.
+    pc_eql: Signal<Local, Bit>,
+    /// at_lead of the next state when running and pc does not step: kl ? (lead = 0) : km.
+    atl_idle: Constant<Bit>,
+    /// Equality tests of the cycle counter, registered every clock, so each holds the test
+    /// of the current `cyc` whenever `cyc` was the same one clock before. The counters step
+    /// (`cinc`) only at ph = D - 1, and every change of `cyc` puts ph at 0, so with D >= 2
+    /// (checked by `AdcParams::validate`) `cyc` never changes in the clock before a step
+    /// and the tests used there are exact: cyc == lo - 1 and cyc == hi - 1 per window flag,
+    /// cyc == frame (the step onto the stop value).
+    ewa_lo: DFF<Bit>,
+    ewa_hi: DFF<Bit>,
+    ew0_lo: DFF<Bit>,
+    ew0_hi: DFF<Bit>,
+    ew1_lo: DFF<Bit>,
+    ew1_hi: DFF<Bit>,
+    ewl_lo: DFF<Bit>,
+    ewl_hi: DFF<Bit>,
+    est: DFF<Bit>,
     // Next-state values.
     run: Signal<Local, Bit>,
     pc_n: Signal<Local, Bits<16>>,
@@ -206,6 +246,9 @@ pub struct AdcController {
     /// P - 2 and lead - 2: pc before a step onto P - 1 and lead - 1 (lead = 0: never reached).
     p_last_m1: Constant<Bits<16>>,
     lead_m2: Constant<Bits<16>>,
+    /// Mask of the period counter's bits (pc <= P - 1 always, so its equality tests need
+    /// only these).
+    pc_mask: Constant<Bits<16>>,
     /// P - 1 == 0 and lead - 1 == 0: the flags' values at pc = 0.
     kl: Constant<Bit>,
     km: Constant<Bit>,
@@ -270,6 +313,26 @@ impl AdcController {
             miso_d: Default::default(),
             rst_d: Default::default(),
             at_lead: Default::default(),
+            atl: Default::default(),
+            pcl_n: Default::default(),
+            pcm_n: Default::default(),
+            atl_n: Default::default(),
+            pc_eqp: Default::default(),
+            pc_eql: Default::default(),
+            atl_idle: Constant::new(if p.period_clocks.saturating_sub(1) == 0 {
+                f.lead_clocks == 0
+            } else {
+                f.lead_clocks == 1
+            }),
+            ewa_lo: Default::default(),
+            ewa_hi: Default::default(),
+            ew0_lo: Default::default(),
+            ew0_hi: Default::default(),
+            ew1_lo: Default::default(),
+            ew1_hi: Default::default(),
+            ewl_lo: Default::default(),
+            ewl_hi: Default::default(),
+            est: Default::default(),
             run: Default::default(),
             pc_n: Default::default(),
             pcl_x: Default::default(),
@@ -344,6 +407,7 @@ impl AdcController {
             lead_zero: Constant::new(f.lead_clocks == 0),
             p_last_m1: c16((p.period_clocks.saturating_sub(1) as u64).wrapping_sub(1) & 0xffff),
             lead_m2: c16((f.lead_clocks as u64).wrapping_sub(2) & 0xffff),
+            pc_mask: c16(mask(32 - p.period_clocks.saturating_sub(1).leading_zeros())),
             kl: Constant::new(p.period_clocks.saturating_sub(1) == 0),
             km: Constant::new(f.lead_clocks == 1),
             one_ch: Constant::new(f.channels < 2),
@@ -362,27 +426,33 @@ impl Logic for AdcController {
     fn update(&mut self) {
         dff_setup!(
             self, clk, live, pc, ph, cyc, warm, sr0, sr1, sck_reg, conv_reg, valid_reg, ch0_reg,
-            ch1_reg, miso_d, rst_d, pcl_x, pcm_x, wa, w0, w1, wl, wb, wc, cst, plx
+            ch1_reg, miso_d, rst_d, pcl_x, pcm_x, wa, w0, w1, wl, wb, wc, cst, plx, atl, ewa_lo,
+            ewa_hi, ew0_lo, ew0_hi, ew1_lo, ew1_hi, ewl_lo, ewl_hi, est
         );
         self.run.next = self.enable.val() & !self.rst.val();
         // Period counter and warm-up count (flush period, then discarded frames).
-        self.pc_n.next = self.zero16.val();
-        self.warm_n.next = self.warm_init.val();
         // pc_n == lead, from pc (equality tests, not a compare after the increment). The
         // two tests on pc are flags registered with pc: pc_n = 0 gives (0 == X) ^ k = 0,
         // pc_n = pc + 1 (pc < P - 1, no wrap) gives (pc == X - 1) ^ k.
         self.fl.next = self.pcl_x.q.val() ^ self.kl.val();
         self.fm.next = self.pcm_x.q.val() ^ self.km.val();
-        self.pcl_x.d.next = false;
-        self.pcm_x.d.next = false;
         // The lead clock (used only while running, so decoded without `run`: every
         // register below loads its idle value when `run` is low, and that test is the
-        // outermost, which Yosys maps onto the flip-flops' synchronous reset).
-        self.at_lead.next = self.lead_zero.val();
-        if self.live.q.val() & !self.fl.val() {
-            self.at_lead.next = self.fm.val();
-        }
-        if self.run.val() & self.live.q.val() {
+        // outermost, which Yosys maps onto the flip-flops' synchronous reset). It is
+        // (live & !fl) ? fm : (lead = 0), kept in `atl` from the next values.
+        self.at_lead.next = self.atl.q.val() ^ self.lead_zero.val();
+        self.pc_eqp.next = (self.pc.q.val() & self.pc_mask.val()) == self.p_last_m1.val();
+        self.pc_eql.next = (self.pc.q.val() & self.pc_mask.val()) == self.lead_m2.val();
+        // Next values while running (`run` is applied last, as the outermost test, so the
+        // data inputs below do not depend on it). at_lead of the next state: live' = run,
+        // fl' = pcl_x' ^ kl, fm' = pcm_x' ^ km, i.e. (kl ? (lead = 0) : km) unless pc steps
+        // (then pc_eqp ? (lead = 0) : pc_eql).
+        self.pc_n.next = self.zero16.val();
+        self.warm_n.next = self.warm_init.val();
+        self.pcl_n.next = false;
+        self.pcm_n.next = false;
+        self.atl_n.next = self.atl_idle.val();
+        if self.live.q.val() {
             if self.fl.val() {
                 self.pc_n.next = self.zero16.val();
                 if self.warm.q.val() == self.zero4.val() {
@@ -393,10 +463,37 @@ impl Logic for AdcController {
             } else {
                 self.pc_n.next = self.pc.q.val() + self.one16.val();
                 self.warm_n.next = self.warm.q.val();
-                self.pcl_x.d.next = (self.pc.q.val() == self.p_last_m1.val()) ^ self.kl.val();
-                self.pcm_x.d.next = (self.pc.q.val() == self.lead_m2.val()) ^ self.km.val();
+                self.pcl_n.next = self.pc_eqp.val() ^ self.kl.val();
+                self.pcm_n.next = self.pc_eql.val() ^ self.km.val();
+                self.atl_n.next = self.lead_zero.val();
+                if !self.pc_eqp.val() {
+                    self.atl_n.next = self.pc_eql.val();
+                }
             }
         }
+        if !self.run.val() {
+            self.pc_n.next = self.zero16.val();
+            self.warm_n.next = self.warm_init.val();
+            self.pcl_n.next = false;
+            self.pcm_n.next = false;
+        }
+        self.pcl_x.d.next = self.pcl_n.val();
+        self.pcm_x.d.next = self.pcm_n.val();
+        // Stopped: at_lead' = (lead = 0), stored 0 (a synchronous reset of atl).
+        self.atl.d.next = self.atl_n.val() ^ self.lead_zero.val();
+        if !self.run.val() {
+            self.atl.d.next = false;
+        }
+        // The cycle counter's equality tests (see `ewa_lo`).
+        self.ewa_lo.d.next = self.cyc.q.val() == self.wa_lo.val();
+        self.ewa_hi.d.next = self.cyc.q.val() == self.wa_hi.val();
+        self.ew0_lo.d.next = self.cyc.q.val() == self.w0_lo.val();
+        self.ew0_hi.d.next = self.cyc.q.val() == self.w0_hi.val();
+        self.ew1_lo.d.next = self.cyc.q.val() == self.w1_lo.val();
+        self.ew1_hi.d.next = self.cyc.q.val() == self.w1_hi.val();
+        self.ewl_lo.d.next = self.cyc.q.val() == self.wl_lo.val();
+        self.ewl_hi.d.next = self.cyc.q.val() == self.wl_hi.val();
+        self.est.d.next = self.cyc.q.val() == self.cyc_stop_m1.val();
         // SCK phase and cycle counters: restart at the lead clock, stop after the frame.
         // cyc == frame + 1 and ph == D - 1 are flags registered with the counters (set
         // from the old count on a step), so no compare sits in front of the step enables.
@@ -421,7 +518,7 @@ impl Logic for AdcController {
             self.ph_n.next = self.zero8.val();
             self.cyc_n.next = self.cyc.q.val() + self.one8.val();
             self.cinc.next = true;
-            self.cst.d.next = self.cyc.q.val() == self.cyc_stop_m1.val();
+            self.cst.d.next = self.est.q.val();
         } else {
             self.ph_n.next = self.ph.q.val() + self.one8.val();
             self.cyc_n.next = self.cyc.q.val();
@@ -455,18 +552,14 @@ impl Logic for AdcController {
             self.wl.d.next = false;
         }
         if self.cinc.val() {
-            self.wa.d.next = ((self.cyc.q.val() == self.wa_lo.val())
-                | (self.pa.val() & (self.cyc.q.val() != self.wa_hi.val())))
-                ^ self.wa_z.val();
-            self.w0.d.next = ((self.cyc.q.val() == self.w0_lo.val())
-                | (self.p0.val() & (self.cyc.q.val() != self.w0_hi.val())))
-                ^ self.w0_z.val();
-            self.w1.d.next = ((self.cyc.q.val() == self.w1_lo.val())
-                | (self.p1.val() & (self.cyc.q.val() != self.w1_hi.val())))
-                ^ self.w1_z.val();
-            self.wl.d.next = ((self.cyc.q.val() == self.wl_lo.val())
-                | (self.pl.val() & (self.cyc.q.val() != self.wl_hi.val())))
-                ^ self.wl_z.val();
+            self.wa.d.next =
+                (self.ewa_lo.q.val() | (self.pa.val() & !self.ewa_hi.q.val())) ^ self.wa_z.val();
+            self.w0.d.next =
+                (self.ew0_lo.q.val() | (self.p0.val() & !self.ew0_hi.q.val())) ^ self.w0_z.val();
+            self.w1.d.next =
+                (self.ew1_lo.q.val() | (self.p1.val() & !self.ew1_hi.q.val())) ^ self.w1_z.val();
+            self.wl.d.next =
+                (self.ewl_lo.q.val() | (self.pl.val() & !self.ewl_hi.q.val())) ^ self.wl_z.val();
         }
         if !self.run.val() {
             self.wa.d.next = self.wa_s.val() ^ self.wa_z.val();

@@ -9,10 +9,13 @@
 //!  timeout over (SLO -> 1)  ────── expire ─────────┴─&─> stp (registered) ─┐
 //!  filtered MA level ───────────── ma ──> !ma ──────────> b  (registered) ─┤ one CDM bit
 //!                                                                         v
-//!     zcnt (zero run, 0..14)   state (Idle, Cts, Id, Adr, Crc, R, W, Start, Read, Write,
-//!     n (bit count, 0..11)            Stop, Next)     crc (CRC4)  addr (7)  sh (8)
-//!     regs: RegFile 128 x 8 in eight 16 x 8 banks, registered read at addr, loaded
-//!           into sh while a read waits for its first bit; written at P of a write
+//!     zcnt (zero run, 0..14)   state, one-hot q_* (Idle, Cts, Id, Adr, Crc, R, W, Start,
+//!     n (bit count, 0..11)     Read, Write, Stop, Next)  crc (CRC4)  addr (7)  sh (8)
+//!     step actions for b = 1 and b = 0 (answer, next state, bad, n): registered from the
+//!           state flags and decodes between steps, selected by b at the step
+//!     regs: RegFile 128 x 8 in eight 16 x 8 banks, registered read at addr (one-hot bank
+//!           select), registered again (rdq) and loaded into sh while a read waits for
+//!           its first bit; written at P of a write
 //!                                                                         │
 //!  Start bit of the next frame: SLO <- cds <──────────────────────────────┘ (registered)
 //! ```
@@ -23,6 +26,12 @@
 //! without feedback, shift, clear: four flip-flops set from the step's inputs and the
 //! registered state decodes), so the state decode ends in those flip-flops and the CRC's
 //! next value is one LUT of registers; the CRC is read only at a step, a frame later.
+//! The step itself is a select: the state is one-hot (`q_*`), and everything a step does
+//! that depends on more than a few flags (the answer, the next Idle, Start, Read, Write
+//! and Stop flags, bad, the bit count's clear and count) is registered twice between
+//! steps, once for each value of the CDM bit b, so that the step takes b ? x1 : x0, one
+//! LUT on flip-flops. These are valid from the fifth clock after a step (they read the
+//! CRC, one clock late, and the shift register's reload); the next step is a frame away.
 //! The answers are the table of docs/biss_control.md; [`super::control_model`] is the same
 //! table in plain Rust.
 //!
@@ -33,7 +42,8 @@ use super::regs::{BissIdent, FIRST_READ_ONLY, POLY4};
 use rust_hdl::prelude::*;
 use std::collections::BTreeMap;
 
-/// Where the control channel is in a control frame (one step per CDM bit).
+/// Where the control channel is in a control frame (one step per CDM bit). The hardware
+/// holds it one-hot, one flag per state (`q_idle` .. `q_next` of [`BissControl`]).
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
 pub enum CtlState {
     /// Waiting for a start bit after at least 14 zeros.
@@ -81,7 +91,20 @@ pub struct BissControl {
     armed: DFF<Bit>,
     stp: DFF<Bit>,
     bq: DFF<Bit>,
-    state: DFF<CtlState>,
+    /// The control-frame state (see [`CtlState`]), one-hot: one flag per state, Idle set
+    /// at power-up and by the reset.
+    q_idle: DFFWithInit<Bit>,
+    q_cts: DFF<Bit>,
+    q_id: DFF<Bit>,
+    q_adr: DFF<Bit>,
+    q_crc: DFF<Bit>,
+    q_rb: DFF<Bit>,
+    q_wb: DFF<Bit>,
+    q_start: DFF<Bit>,
+    q_read: DFF<Bit>,
+    q_write: DFF<Bit>,
+    q_stop: DFF<Bit>,
+    q_next: DFF<Bit>,
     zcnt: DFF<Bits<4>>,
     n: DFF<Bits<4>>,
     crc: DFF<Bits<4>>,
@@ -125,19 +148,54 @@ pub struct BissControl {
     ufb: DFF<Bit>,
     ushf: DFF<Bit>,
     uclr: DFF<Bit>,
+    /// What a step does, registered from the state flags and the decodes above (valid from
+    /// the third clock after a step; steps are a frame apart), in two versions where it
+    /// depends on the CDM bit: `..1` for b = 1, `..0` for b = 0. The step then selects with
+    /// b, one LUT on flip-flops. The answer (`ans1`, `ans0`; a 0 at the zero run's end
+    /// answers 0 whatever `ans0` says).
+    ans1: DFF<Bit>,
+    ans0: DFF<Bit>,
+    /// The state flags' next values that depend on more than a few flags: Idle, Start,
+    /// Read, Write, Stop (a 0 at the zero run's end goes to Idle whatever these say).
+    idle1: DFF<Bit>,
+    idle0: DFF<Bit>,
+    start1: DFF<Bit>,
+    start0: DFF<Bit>,
+    read1: DFF<Bit>,
+    read0: DFF<Bit>,
+    write1: DFF<Bit>,
+    write0: DFF<Bit>,
+    stop1: DFF<Bit>,
+    stop0: DFF<Bit>,
+    /// `bad` after the step.
+    bad1: DFF<Bit>,
+    bad0: DFF<Bit>,
+    /// The bit count after the step clears (`nclr..`) or counts up (`ninc..`).
+    nclr1: DFF<Bit>,
+    nclr0: DFF<Bit>,
+    ninc1: DFF<Bit>,
+    ninc0: DFF<Bit>,
+    /// A read's data bit (Read, n < 8: sh shifts when b = 0) and a write's data bit
+    /// (Write, n < 8: sh shifts b in), registered.
+    rdsh: DFF<Bit>,
+    wrsh: DFF<Bit>,
+    /// A write is performed at a step with b = 0 (Stop, W set, no error).
+    stwe: DFF<Bit>,
+    /// A read waits for its first bit (Read, n = 0, no step), registered: the shift
+    /// register takes `rdq` while it is set and no step is taken.
+    ldq: DFF<Bit>,
+    /// The register file's read data, registered.
+    rdq: DFF<Bits<8>>,
     /// The CDM bit being taken.
     b: Signal<Local, Bit>,
     /// The CRC MSB.
     c3: Signal<Local, Bit>,
-    /// A read waits for its first bit (state Read, n = 0, no step this clock): the shift
-    /// register takes the register at `addr` (the registered read of the register file).
-    ld: Signal<Local, Bit>,
+    /// A 0 at the zero run's end (b = 0 with 13 or 14 zeros before it): the frame ends.
+    zk: Signal<Local, Bit>,
     /// The shift register's MSB: the data bit a read sends.
     dbit: Signal<Local, Bit>,
     /// addr + 1 (7 bits, wraps).
     nadr: Signal<Local, Bits<7>>,
-    /// The CDS answer of this step.
-    ans: Signal<Local, Bit>,
     /// A write is performed this clock.
     we: Signal<Local, Bit>,
     /// 1, 2, 3, 6, 11, 13, 14 at 4 bits; 3 (the CRC taps) and 8 (its MSB) at 4 bits.
@@ -178,7 +236,18 @@ impl BissControl {
             armed: Default::default(),
             stp: Default::default(),
             bq: Default::default(),
-            state: Default::default(),
+            q_idle: DFFWithInit::new(true),
+            q_cts: Default::default(),
+            q_id: Default::default(),
+            q_adr: Default::default(),
+            q_crc: Default::default(),
+            q_rb: Default::default(),
+            q_wb: Default::default(),
+            q_start: Default::default(),
+            q_read: Default::default(),
+            q_write: Default::default(),
+            q_stop: Default::default(),
+            q_next: Default::default(),
             zcnt: Default::default(),
             n: Default::default(),
             crc: Default::default(),
@@ -208,12 +277,34 @@ impl BissControl {
             ufb: Default::default(),
             ushf: Default::default(),
             uclr: Default::default(),
+            ans1: Default::default(),
+            ans0: Default::default(),
+            idle1: Default::default(),
+            idle0: Default::default(),
+            start1: Default::default(),
+            start0: Default::default(),
+            read1: Default::default(),
+            read0: Default::default(),
+            write1: Default::default(),
+            write0: Default::default(),
+            stop1: Default::default(),
+            stop0: Default::default(),
+            bad1: Default::default(),
+            bad0: Default::default(),
+            nclr1: Default::default(),
+            nclr0: Default::default(),
+            ninc1: Default::default(),
+            ninc0: Default::default(),
+            rdsh: Default::default(),
+            wrsh: Default::default(),
+            stwe: Default::default(),
+            ldq: Default::default(),
+            rdq: Default::default(),
             b: Default::default(),
             c3: Default::default(),
-            ld: Default::default(),
+            zk: Default::default(),
             dbit: Default::default(),
             nadr: Default::default(),
-            ans: Default::default(),
             we: Default::default(),
             one4: c4(1),
             two4: c4(2),
@@ -237,9 +328,12 @@ impl Logic for BissControl {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, armed, stp, bq, state, zcnt, n, crc, bad, addr, rb, wr, sh, cds_r, nadr_r,
+            self, clk, armed, stp, bq, q_idle, q_cts, q_id, q_adr, q_crc, q_rb, q_wb, q_start,
+            q_read, q_write, q_stop, q_next, zcnt, n, crc, bad, addr, rb, wr, sh, cds_r, nadr_r,
             awr, nwr, zend, zfull, n2, n3, n6, n11, nhi, kupd, kshf, rdl, rdh, kclr, sread, uupd,
-            ufb, ushf, uclr
+            ufb, ushf, uclr, ans1, ans0, idle1, idle0, start1, start0, read1, read0, write1,
+            write0, stop1, stop0, bad1, bad0, nclr1, nclr0, ninc1, ninc0, rdsh, wrsh, stwe, ldq,
+            rdq
         );
         self.regs.clock.next = self.clk.val();
         self.regs.address.next = self.addr.q.val();
@@ -254,6 +348,7 @@ impl Logic for BissControl {
         }
         self.bq.d.next = !self.ma.val();
         self.b.next = self.bq.q.val();
+        self.zk.next = !self.b.val() & self.zend.q.val();
         self.c3.next = (self.crc.q.val() & self.msb4.val()).any();
         self.nadr.next = self.addr.q.val() + self.one7.val();
         self.nadr_r.d.next = self.nadr.val();
@@ -267,193 +362,185 @@ impl Logic for BissControl {
         self.n6.d.next = self.n.q.val() == self.six4.val();
         self.n11.d.next = self.n.q.val() == self.eleven4.val();
         self.nhi.d.next = (self.n.q.val() & self.msb4.val()).any();
-        // The CRC register's action at a step, from the state decodes above (the step's
-        // case analysis below leaves the CRC alone): the same action the step took before,
-        // now one clock later.
-        self.kupd.d.next = (self.state.q.val() == CtlState::Cts)
-            | (self.state.q.val() == CtlState::Id)
-            | (self.state.q.val() == CtlState::Adr)
-            | ((self.state.q.val() == CtlState::Write) & !(self.n.q.val() & self.msb4.val()).any());
-        self.kshf.d.next = (self.state.q.val() == CtlState::Crc)
-            | ((self.state.q.val() == CtlState::Write) & (self.n.q.val() & self.msb4.val()).any());
-        self.rdl.d.next =
-            (self.state.q.val() == CtlState::Read) & !(self.n.q.val() & self.msb4.val()).any();
-        self.rdh.d.next =
-            (self.state.q.val() == CtlState::Read) & (self.n.q.val() & self.msb4.val()).any();
-        self.sread.d.next = self.state.q.val() == CtlState::Read;
-        self.kclr.d.next = ((self.state.q.val() == CtlState::Idle) & self.zfull.q.val())
-            | (self.state.q.val() == CtlState::Start)
-            | ((self.state.q.val() == CtlState::Next) & (!self.wr.q.val() | self.nwr.q.val()));
+        // The CRC register's action at a step, from the state flags above (the step's case
+        // analysis below leaves the CRC alone): the same action the step took before, now
+        // one clock later.
+        self.kupd.d.next = self.q_cts.q.val()
+            | self.q_id.q.val()
+            | self.q_adr.q.val()
+            | (self.q_write.q.val() & !(self.n.q.val() & self.msb4.val()).any());
+        self.kshf.d.next =
+            self.q_crc.q.val() | (self.q_write.q.val() & (self.n.q.val() & self.msb4.val()).any());
+        self.rdl.d.next = self.q_read.q.val() & !(self.n.q.val() & self.msb4.val()).any();
+        self.rdh.d.next = self.q_read.q.val() & (self.n.q.val() & self.msb4.val()).any();
+        self.sread.d.next = self.q_read.q.val();
+        self.kclr.d.next = (self.q_idle.q.val() & self.zfull.q.val())
+            | self.q_start.q.val()
+            | (self.q_next.q.val() & (!self.wr.q.val() | self.nwr.q.val()));
         self.uupd.d.next =
             self.stp.q.val() & (self.kupd.q.val() | (self.rdl.q.val() & !self.b.val()));
         self.ushf.d.next =
             self.stp.q.val() & (self.kshf.q.val() | (self.rdh.q.val() & !self.b.val()));
         self.uclr.d.next = self.stp.q.val() & self.kclr.q.val() & self.b.val();
-        self.ans.next = false;
-        self.we.next = false;
-        // The registered read: until a read's first bit, the shift register holds the
-        // register at addr (addr is stable from the clock after the step that set it, and
-        // steps are a frame apart, so sh holds mem[addr] long before that bit's step).
-        self.ld.next = !self.stp.q.val()
-            & (self.state.q.val() == CtlState::Read)
-            & (self.n.q.val() == self.zero4.val());
-        if self.ld.val() {
-            self.sh.d.next = self.regs.read_data.val();
-        }
         self.dbit.next = (self.sh.q.val() & self.msb8.val()).any();
         self.ufb.d.next = self.b.val() ^ self.c3.val();
         if self.sread.q.val() {
             self.ufb.d.next = self.dbit.val() ^ self.c3.val();
         }
+        // The step's table (docs/biss_control.md), precomputed for b = 1 and b = 0 from the
+        // state flags and the registered decodes (all stable between steps).
+        // The answer: Idle at 14 zeros, R without error, W accepted, start bits, a read's
+        // data and CRC bits, a write's echoed data and CRC bits.
+        self.ans1.d.next = (self.q_idle.q.val() & self.zfull.q.val())
+            | (self.q_rb.q.val() & !self.bad.q.val())
+            | (self.q_wb.q.val() & !self.bad.q.val() & !self.rb.q.val() & self.awr.q.val())
+            | self.q_start.q.val()
+            | (self.q_next.q.val() & (!self.wr.q.val() | self.nwr.q.val()))
+            | (self.q_write.q.val() & (!self.nhi.q.val() | !self.c3.val()));
+        self.ans0.d.next = (self.q_read.q.val() & self.nhi.q.val() & !self.c3.val())
+            | (self.q_read.q.val() & !self.nhi.q.val() & self.dbit.val())
+            | (self.q_write.q.val() & self.nhi.q.val() & !self.c3.val());
+        // The next state where several states lead to it.
+        self.idle1.d.next = (self.q_idle.q.val() & !self.zfull.q.val())
+            | (self.q_wb.q.val() & !(!self.bad.q.val() & !self.rb.q.val() & self.awr.q.val()))
+            | self.q_read.q.val()
+            | self.q_stop.q.val()
+            | (self.q_next.q.val() & self.wr.q.val() & !self.nwr.q.val());
+        self.idle0.d.next = self.q_idle.q.val()
+            | (self.q_wb.q.val() & !(!self.bad.q.val() & self.rb.q.val()))
+            | self.q_start.q.val()
+            | self.q_next.q.val();
+        self.start1.d.next =
+            self.q_wb.q.val() & !self.bad.q.val() & !self.rb.q.val() & self.awr.q.val();
+        self.start0.d.next = self.q_wb.q.val() & !self.bad.q.val() & self.rb.q.val();
+        self.read1.d.next = (self.q_start.q.val() | self.q_next.q.val()) & !self.wr.q.val();
+        self.read0.d.next = self.q_read.q.val() & !self.n11.q.val();
+        self.write1.d.next = ((self.q_start.q.val() | (self.q_next.q.val() & self.nwr.q.val()))
+            & self.wr.q.val())
+            | (self.q_write.q.val() & !self.n11.q.val());
+        self.write0.d.next = self.q_write.q.val() & !self.n11.q.val();
+        self.stop1.d.next = self.q_write.q.val() & self.n11.q.val();
+        self.stop0.d.next = (self.q_read.q.val() | self.q_write.q.val()) & self.n11.q.val();
+        // bad: cleared by a frame's start (Idle at 14 zeros, a data part's start bit),
+        // set by a wrong CTS, a set ID bit, a CRC4 mismatch.
+        self.bad1.d.next = (self.bad.q.val()
+            & !((self.q_idle.q.val() & self.zfull.q.val())
+                | self.q_start.q.val()
+                | (self.q_next.q.val() & (!self.wr.q.val() | self.nwr.q.val()))))
+            | self.q_id.q.val()
+            | ((self.q_crc.q.val() | (self.q_write.q.val() & self.nhi.q.val())) & self.c3.val());
+        self.bad0.d.next = self.bad.q.val()
+            | self.q_cts.q.val()
+            | ((self.q_crc.q.val() | (self.q_write.q.val() & self.nhi.q.val())) & !self.c3.val());
+        // The bit count: cleared on entering ID, address and a data part; counted in ID,
+        // address, CRC4 and the data parts.
+        self.nclr0.d.next = self.q_cts.q.val()
+            | (self.q_id.q.val() & self.n2.q.val())
+            | (self.q_adr.q.val() & self.n6.q.val());
+        self.nclr1.d.next = self.q_cts.q.val()
+            | (self.q_id.q.val() & self.n2.q.val())
+            | (self.q_adr.q.val() & self.n6.q.val())
+            | self.q_start.q.val()
+            | (self.q_next.q.val() & (!self.wr.q.val() | self.nwr.q.val()));
+        self.ninc1.d.next = (self.q_id.q.val() & !self.n2.q.val())
+            | (self.q_adr.q.val() & !self.n6.q.val())
+            | self.q_crc.q.val()
+            | self.q_write.q.val();
+        self.ninc0.d.next = (self.q_id.q.val() & !self.n2.q.val())
+            | (self.q_adr.q.val() & !self.n6.q.val())
+            | self.q_crc.q.val()
+            | self.q_read.q.val()
+            | self.q_write.q.val();
+        self.rdsh.d.next = self.q_read.q.val() & !self.nhi.q.val();
+        self.wrsh.d.next = self.q_write.q.val() & !self.nhi.q.val();
+        self.stwe.d.next = self.q_stop.q.val() & self.wr.q.val() & !self.bad.q.val();
+        self.we.next = false;
+        // The registered read: until a read's first bit, the shift register holds the
+        // register at addr (addr is stable from the clock after the step that set it, the
+        // bank output from the clock after that, and steps are a frame apart, so sh holds
+        // mem[addr] long before that bit's step).
+        self.rdq.d.next = self.regs.read_data.val();
+        self.ldq.d.next =
+            self.q_read.q.val() & (self.n.q.val() == self.zero4.val()) & !self.stp.q.val();
+        if self.ldq.q.val() & !self.stp.q.val() {
+            self.sh.d.next = self.rdq.q.val();
+        }
         if self.stp.q.val() {
-            match self.state.q.val() {
-                CtlState::Idle => {
-                    if self.b.val() & self.zfull.q.val() {
-                        self.ans.next = true;
-                        self.bad.d.next = false;
-                        self.state.d.next = CtlState::Cts;
-                    }
-                }
-                CtlState::Cts => {
-                    if !self.b.val() {
-                        self.bad.d.next = true;
-                    }
-                    self.n.d.next = self.zero4.val();
-                    self.state.d.next = CtlState::Id;
-                }
-                CtlState::Id => {
-                    if self.b.val() {
-                        self.bad.d.next = true;
-                    }
-                    self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n2.q.val() {
-                        self.n.d.next = self.zero4.val();
-                        self.state.d.next = CtlState::Adr;
-                    }
-                }
-                CtlState::Adr => {
-                    if self.b.val() {
-                        self.addr.d.next = (self.addr.q.val() << self.one7.val()) | self.one7.val();
-                    } else {
-                        self.addr.d.next = self.addr.q.val() << self.one7.val();
-                    }
-                    self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n6.q.val() {
-                        self.n.d.next = self.zero4.val();
-                        self.state.d.next = CtlState::Crc;
-                    }
-                }
-                CtlState::Crc => {
-                    if self.b.val() == self.c3.val() {
-                        self.bad.d.next = true;
-                    }
-                    self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n3.q.val() {
-                        self.state.d.next = CtlState::Rb;
-                    }
-                }
-                CtlState::Rb => {
-                    self.rb.d.next = self.b.val();
-                    self.ans.next = self.b.val() & !self.bad.q.val();
-                    self.state.d.next = CtlState::Wb;
-                }
-                CtlState::Wb => {
-                    self.wr.d.next = self.b.val();
-                    self.state.d.next = CtlState::Idle;
-                    if !self.bad.q.val()
-                        & (self.rb.q.val() != self.b.val())
-                        & (!self.b.val() | self.awr.q.val())
-                    {
-                        self.ans.next = self.b.val();
-                        self.state.d.next = CtlState::Start;
-                    }
-                }
-                CtlState::Start => {
-                    self.state.d.next = CtlState::Idle;
-                    if self.b.val() {
-                        self.ans.next = true;
-                        self.n.d.next = self.zero4.val();
-                        self.bad.d.next = false;
-                        if self.wr.q.val() {
-                            self.state.d.next = CtlState::Write;
-                        } else {
-                            self.state.d.next = CtlState::Read;
-                        }
-                    }
-                }
-                CtlState::Read => {
-                    if self.b.val() {
-                        self.state.d.next = CtlState::Idle;
-                    } else {
-                        self.n.d.next = self.n.q.val() + self.one4.val();
-                        if self.n11.q.val() {
-                            self.state.d.next = CtlState::Stop;
-                        }
-                        if self.nhi.q.val() {
-                            // CRC bits: the inverted CRC4, MSB first.
-                            self.ans.next = !self.c3.val();
-                        } else {
-                            self.ans.next = self.dbit.val();
-                            self.sh.d.next = self.sh.q.val() << self.one8.val();
-                        }
-                    }
-                }
-                CtlState::Write => {
-                    self.n.d.next = self.n.q.val() + self.one4.val();
-                    if self.n11.q.val() {
-                        self.state.d.next = CtlState::Stop;
-                    }
-                    if self.nhi.q.val() {
-                        // CRC bits: answer the own CRC4 of the received byte.
-                        self.ans.next = !self.c3.val();
-                        if self.b.val() == self.c3.val() {
-                            self.bad.d.next = true;
-                        }
-                    } else {
-                        self.ans.next = self.b.val();
-                        if self.b.val() {
-                            self.sh.d.next = (self.sh.q.val() << self.one8.val()) | self.one8.val();
-                        } else {
-                            self.sh.d.next = self.sh.q.val() << self.one8.val();
-                        }
-                    }
-                }
-                CtlState::Stop => {
-                    if self.b.val() {
-                        self.state.d.next = CtlState::Idle;
-                    } else {
-                        self.we.next = self.wr.q.val() & !self.bad.q.val();
-                        self.state.d.next = CtlState::Next;
-                    }
-                }
-                CtlState::Next => {
-                    self.state.d.next = CtlState::Idle;
-                    if self.b.val() {
-                        self.addr.d.next = self.nadr_r.q.val();
-                        if !self.wr.q.val() | self.nwr.q.val() {
-                            self.ans.next = true;
-                            self.n.d.next = self.zero4.val();
-                            self.bad.d.next = false;
-                            if self.wr.q.val() {
-                                self.state.d.next = CtlState::Write;
-                            } else {
-                                self.state.d.next = CtlState::Read;
-                            }
-                        }
-                    }
-                }
-            }
-            // The zero run: 14 zeros end any control frame.
+            // The state flags.
+            self.q_cts.d.next = self.b.val() & self.q_idle.q.val() & self.zfull.q.val();
+            self.q_id.d.next =
+                (self.q_cts.q.val() | (self.q_id.q.val() & !self.n2.q.val())) & !self.zk.val();
+            self.q_adr.d.next = ((self.q_id.q.val() & self.n2.q.val())
+                | (self.q_adr.q.val() & !self.n6.q.val()))
+                & !self.zk.val();
+            self.q_crc.d.next = ((self.q_adr.q.val() & self.n6.q.val())
+                | (self.q_crc.q.val() & !self.n3.q.val()))
+                & !self.zk.val();
+            self.q_rb.d.next = self.q_crc.q.val() & self.n3.q.val() & !self.zk.val();
+            self.q_wb.d.next = self.q_rb.q.val() & !self.zk.val();
+            self.q_next.d.next = !self.b.val() & self.q_stop.q.val() & !self.zend.q.val();
             if self.b.val() {
+                self.q_idle.d.next = self.idle1.q.val();
+                self.q_start.d.next = self.start1.q.val();
+                self.q_read.d.next = self.read1.q.val();
+                self.q_write.d.next = self.write1.q.val();
+                self.q_stop.d.next = self.stop1.q.val();
+                self.bad.d.next = self.bad1.q.val();
+                self.cds_r.d.next = self.ans1.q.val();
+                if self.nclr1.q.val() {
+                    self.n.d.next = self.zero4.val();
+                } else if self.ninc1.q.val() {
+                    self.n.d.next = self.n.q.val() + self.one4.val();
+                }
+                // The zero run: 14 zeros end any control frame.
                 self.zcnt.d.next = self.zero4.val();
-            } else if !self.zfull.q.val() {
-                self.zcnt.d.next = self.zcnt.q.val() + self.one4.val();
+            } else {
+                self.q_idle.d.next = self.idle0.q.val() | self.zend.q.val();
+                self.q_start.d.next = self.start0.q.val() & !self.zend.q.val();
+                self.q_read.d.next = self.read0.q.val() & !self.zend.q.val();
+                self.q_write.d.next = self.write0.q.val() & !self.zend.q.val();
+                self.q_stop.d.next = self.stop0.q.val() & !self.zend.q.val();
+                self.bad.d.next = self.bad0.q.val();
+                self.cds_r.d.next = self.ans0.q.val() & !self.zend.q.val();
+                if self.nclr0.q.val() {
+                    self.n.d.next = self.zero4.val();
+                } else if self.ninc0.q.val() {
+                    self.n.d.next = self.n.q.val() + self.one4.val();
+                }
+                if !self.zfull.q.val() {
+                    self.zcnt.d.next = self.zcnt.q.val() + self.one4.val();
+                }
+                self.we.next = self.stwe.q.val();
             }
-            if !self.b.val() & self.zend.q.val() {
-                self.ans.next = false;
-                self.state.d.next = CtlState::Idle;
+            // R and W are taken in their states, the address bits in Adr (MSB first), the
+            // next address at Next's start bit.
+            if self.q_rb.q.val() {
+                self.rb.d.next = self.b.val();
             }
-            self.cds_r.d.next = self.ans.val();
+            if self.q_wb.q.val() {
+                self.wr.d.next = self.b.val();
+            }
+            if self.q_adr.q.val() {
+                if self.b.val() {
+                    self.addr.d.next = (self.addr.q.val() << self.one7.val()) | self.one7.val();
+                } else {
+                    self.addr.d.next = self.addr.q.val() << self.one7.val();
+                }
+            }
+            if self.q_next.q.val() & self.b.val() {
+                self.addr.d.next = self.nadr_r.q.val();
+            }
+            // A read's data bits shift out (its answer is the MSB), a write's shift in.
+            if self.rdsh.q.val() & !self.b.val() {
+                self.sh.d.next = self.sh.q.val() << self.one8.val();
+            }
+            if self.wrsh.q.val() {
+                if self.b.val() {
+                    self.sh.d.next = (self.sh.q.val() << self.one8.val()) | self.one8.val();
+                } else {
+                    self.sh.d.next = self.sh.q.val() << self.one8.val();
+                }
+            }
         }
         // Serial CRC4 (taps x + 1), one clock after the step that decided it.
         if self.uupd.q.val() {
@@ -473,7 +560,18 @@ impl Logic for BissControl {
         if self.rst.val() {
             self.armed.d.next = false;
             self.stp.d.next = false;
-            self.state.d.next = CtlState::Idle;
+            self.q_idle.d.next = true;
+            self.q_cts.d.next = false;
+            self.q_id.d.next = false;
+            self.q_adr.d.next = false;
+            self.q_crc.d.next = false;
+            self.q_rb.d.next = false;
+            self.q_wb.d.next = false;
+            self.q_start.d.next = false;
+            self.q_read.d.next = false;
+            self.q_write.d.next = false;
+            self.q_stop.d.next = false;
+            self.q_next.d.next = false;
             self.zcnt.d.next = self.zero4.val();
             self.cds_r.d.next = false;
             self.regs.write_enable.next = false;
@@ -486,13 +584,18 @@ impl Logic for BissControl {
 /// written at the clock edge with `write_enable`, with initial contents, and a registered
 /// read: at every clock edge each bank's byte at address bits 3..0 goes into that bank's
 /// output register (the value before a write at the same edge), and `read_data` is the
-/// output register of the bank that `address` selects now. With the address stable for
-/// two clocks, `read_data` is the register at that address.
+/// output register of the bank that `address` selected at the same edge (a registered
+/// one-hot bank select `bsel`). With the address stable for two clocks, `read_data` is the
+/// register at that address.
 ///
 /// ```text
 ///  address[3:0] ──► bank 0..7 (16 x 8, LUT RAM) ──► bq 0..7 (8 x 8 FF) ──┐
-///  address[6:4] ─────────────────────────────────────────────────► 8:1 mux ──► read_data
+///  address[6:4] ──► 1 << a ──► bsel (8 FF, one-hot) ──────────────► AND-OR ──► read_data
 /// ```
+///
+/// The AND-OR of eight (select, byte) pairs is two LUT levels on flip-flops; an 8:1
+/// multiplexer on the address itself shared the address decode with the write enables and
+/// came out four LUTs deep on ECP5.
 ///
 /// Why banks: one 128-deep LUT RAM read is an 8:1 multiplexer tree behind the RAM cells,
 /// and with the address fan-out it made the slowest path of the control-enabled top on the
@@ -516,6 +619,8 @@ pub struct RegFile {
     _sim: BTreeMap<Bits<7>, Bits<8>>,
     /// The banks' output registers (simulation).
     _bq: [Bits<8>; 8],
+    /// The bank `address` selected at the last clock edge (simulation; `bsel` in Verilog).
+    _bsel: usize,
 }
 
 impl RegFile {
@@ -537,11 +642,12 @@ impl Logic for RegFile {
                 let k = Bits::<7>::from(((b << 4) | (a & 0xf)) as u64);
                 *q = self._sim.get(&k).copied().unwrap_or_default();
             }
+            self._bsel = a >> 4;
             if self.write_enable.val() {
                 self._sim.insert(self.address.val(), self.write_data.val());
             }
         }
-        self.read_data.next = self._bq[a >> 4];
+        self.read_data.next = self._bq[self._bsel];
     }
 
     fn connect(&mut self) {
@@ -553,7 +659,7 @@ impl Logic for RegFile {
         for b in 0..8usize {
             v += &format!("reg [7:0] mem{b} [15:0];\nreg [7:0] bq{b};\n");
         }
-        v += "\ninitial begin\n";
+        v += "reg [7:0] bsel;\n\ninitial begin\n   bsel = 8'h1;\n";
         for b in 0..8usize {
             v += &format!("   bq{b} = 8'h0;\n");
         }
@@ -567,11 +673,12 @@ impl Logic for RegFile {
                 "   if (write_enable && address[6:4] == 3'd{b}) begin\n      mem{b}[address[3:0]] <= write_data;\n   end\n   bq{b} <= mem{b}[address[3:0]];\n"
             );
         }
-        v += "end\n\nalways @(*) begin\n   case (address[6:4])\n";
+        v += "   bsel <= 8'h1 << address[6:4];\nend\n\nalways @(*) begin\n   read_data =";
         for b in 0..8usize {
-            v += &format!("      3'd{b}: read_data = bq{b};\n");
+            let or = if b == 0 { "" } else { "\n      |" };
+            v += &format!("{or} (bq{b} & {{8{{bsel[{b}]}}}})");
         }
-        v += "      default: read_data = bq0;\n   endcase\nend\n";
+        v += ";\nend\n";
         Verilog::Custom(v)
     }
 }

@@ -12,33 +12,6 @@ fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
 }
 
-/// Where the BiSS slave is in its frame (see the module docs for the edge table).
-#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
-pub enum BissState {
-    /// SLO low until MA has been quiet for the timeout (after a frame and after reset).
-    Timeout,
-    /// SLO high, waiting for the first MA falling edge.
-    Idle,
-    /// After F1, waiting for R1 (SLO high).
-    First,
-    /// After R1, waiting for R2 (SLO high).
-    Second,
-    /// Ack: SLO low for `ack_periods` periods.
-    Ack,
-    /// Start bit (1) on SLO.
-    Start,
-    /// CDS bit (0) on SLO.
-    Cds,
-    /// Data bits on SLO.
-    Data,
-    /// nE on SLO.
-    Err,
-    /// nW on SLO.
-    Warn,
-    /// CRC bits on SLO.
-    Crc,
-}
-
 /// BiSS-C slave, point-to-point, single-cycle data.
 #[derive(LogicBlock)]
 pub struct BissSlave {
@@ -74,7 +47,30 @@ pub struct BissSlave {
     posw: PosWord,
     /// The control channel: one instance with `control`, none without (no Verilog).
     ctl: Vec<BissControl>,
-    state: DFF<BissState>,
+    /// Where the slave is in its frame (see the module docs' edge table), one-hot: SLO low
+    /// until MA has been quiet for the timeout (after a frame and after reset; the power-up
+    /// state); after F1, waiting for R1; after R1, waiting for R2; Ack (SLO low for
+    /// `ack_periods` periods); Start bit; CDS bit; data bits; nE; nW; CRC bits. Idle (SLO
+    /// high, waiting for F1) is `sidle`.
+    s_tmo: DFFWithInit<Bit>,
+    s_first: DFF<Bit>,
+    s_second: DFF<Bit>,
+    s_ack: DFF<Bit>,
+    s_start: DFF<Bit>,
+    s_cds: DFF<Bit>,
+    s_data: DFF<Bit>,
+    s_err: DFF<Bit>,
+    s_warn: DFF<Bit>,
+    s_crc: DFF<Bit>,
+    /// What the next rising MA edge does, registered from the state and the flags one clock
+    /// earlier (see `update`): the CRC steps (`pact`) with feedback `pfb`; cnt counts up
+    /// (`pinc`) or takes 1 (`pld`); SLO takes `rv` (`rven`).
+    pact: DFF<Bit>,
+    pfb: DFF<Bit>,
+    pinc: DFF<Bit>,
+    pld: DFF<Bit>,
+    rven: DFF<Bit>,
+    rv: DFF<Bit>,
     slo_reg: DFF<Bit>,
     sh: DFF<Bits<32>>,
     crc: DFF<Bits<32>>,
@@ -89,23 +85,33 @@ pub struct BissSlave {
     fnb: DFF<Bit>,
     /// cnt == 6, registered with cnt.
     fsix: DFF<Bit>,
-    /// tcnt == timeout_clocks - 1, registered with tcnt.
-    ftl: DFF<Bit>,
-    /// state == Idle, registered with state (decoded from its next value), so the shift
-    /// register's load enable is one LUT of registers, not a state decode.
+    /// The timeout ends this clock unless MA has an edge: not Idle and tcnt ==
+    /// timeout_clocks - 1, registered from their next values (the gate then waits on the
+    /// edge pulses only).
+    tmoq: DFF<Bit>,
+    /// tcnt == timeout_clocks - 2, registered with tcnt: tcnt's end one clock ahead.
+    fpre: DFF<Bit>,
+    /// The Idle state's flag of the one-hot state (SLO high, waiting for F1).
     sidle: DFF<Bit>,
     /// state == Cds, or state == Data with fnb low, one clock late (see `update`): the
     /// shift register's shift states, read only at a rise.
     sshift: DFF<Bit>,
-    /// cnt takes 1 this clock.
-    cld1: Signal<Local, Bit>,
-    /// cnt counts up this clock.
-    cinc: Signal<Local, Bit>,
+    /// An MA edge this clock.
     mae: Signal<Local, Bit>,
+    /// The timeout ends this clock (MA quiet for timeout_clocks, not in Idle).
+    tmo: Signal<Local, Bit>,
+    /// tcnt == timeout_clocks - 1 at the next clock.
+    ftln: Signal<Local, Bit>,
+    /// sidle at the next clock.
+    sidlen: Signal<Local, Bit>,
+    /// Not the reset and not the end of the timeout: the state stays or follows an edge.
+    live: Signal<Local, Bit>,
+    /// The data MSB of the shift register.
     dbit: Signal<Local, Bit>,
+    /// The bit that enters the CRC at the next rise.
     cbit: Signal<Local, Bit>,
-    cupd: Signal<Local, Bit>,
-    fb: Signal<Local, Bit>,
+    /// The CRC's next value when it steps.
+    cnext: Signal<Local, Bits<32>>,
     /// Mask of the N data bits.
     nmask: Constant<Bits<32>>,
     /// Bit N-1: the data MSB in the shift register.
@@ -124,17 +130,20 @@ pub struct BissSlave {
     one: Constant<Bits<32>>,
     /// Zero.
     zero: Constant<Bits<32>>,
-    /// A - 1, N - 1, 5 and timeout_clocks - 2, masked to their counters: the counter value
-    /// before a step up onto A, N, 6 and timeout_clocks - 1 (where SLO returns high).
+    /// A - 1, N - 1, 5 and timeout_clocks - 3, masked to their counters: the counter value
+    /// before a step up onto A, N, 6 and timeout_clocks - 2 (one clock before SLO returns
+    /// high).
     ackn_m1: Constant<Bits<32>>,
     nbits_m1: Constant<Bits<32>>,
     five: Constant<Bits<32>>,
-    tlast_m1: Constant<Bits<32>>,
+    tlast_m2: Constant<Bits<32>>,
     /// 1 == A, 1 == N: the flags after cnt takes 1.
     ack_is1: Constant<Bit>,
     n_is1: Constant<Bit>,
-    /// 0 == timeout_clocks - 1: the flag after tcnt takes 0.
+    /// 0 == timeout_clocks - 1 and 0 == timeout_clocks - 2: tcnt's end flags after it takes 0
+    /// (false: `timeout_clocks` >= 8).
     tlast_is0: Constant<Bit>,
+    tpre_is0: Constant<Bit>,
 }
 
 impl BissSlave {
@@ -163,7 +172,22 @@ impl BissSlave {
             sync: LineSync::new(p.glitch_filter),
             posw: PosWord::new(p.position_bits, p.multiturn_bits, p.gray),
             ctl: p.control.iter().map(BissControl::new).collect(),
-            state: Default::default(),
+            s_tmo: DFFWithInit::new(true),
+            s_first: Default::default(),
+            s_second: Default::default(),
+            s_ack: Default::default(),
+            s_start: Default::default(),
+            s_cds: Default::default(),
+            s_data: Default::default(),
+            s_err: Default::default(),
+            s_warn: Default::default(),
+            s_crc: Default::default(),
+            pact: Default::default(),
+            pfb: Default::default(),
+            pinc: Default::default(),
+            pld: Default::default(),
+            rven: Default::default(),
+            rv: Default::default(),
             slo_reg: Default::default(),
             sh: Default::default(),
             crc: Default::default(),
@@ -176,14 +200,16 @@ impl BissSlave {
             sidle: Default::default(),
             sshift: Default::default(),
             fsix: Default::default(),
-            ftl: Default::default(),
-            cld1: Default::default(),
-            cinc: Default::default(),
+            tmoq: Default::default(),
+            fpre: Default::default(),
             mae: Default::default(),
+            tmo: Default::default(),
+            ftln: Default::default(),
+            sidlen: Default::default(),
+            live: Default::default(),
             dbit: Default::default(),
             cbit: Default::default(),
-            cupd: Default::default(),
-            fb: Default::default(),
+            cnext: Default::default(),
             nmask: c32(mask(n)),
             msb: c32(1 << (n - 1)),
             cmask: c32(mask(7)),
@@ -196,12 +222,15 @@ impl BissSlave {
             ackn_m1: c32((p.ack_periods as u64).wrapping_sub(1) & mask(7)),
             nbits_m1: c32((nf as u64).wrapping_sub(1) & mask(7)),
             five: c32(5),
-            tlast_m1: c32(
-                (p.timeout_clocks as u64 - 1).wrapping_sub(1) & timeout_mask(p.timeout_clocks)
+            tlast_m2: c32(
+                (p.timeout_clocks as u64 - 1).wrapping_sub(2) & timeout_mask(p.timeout_clocks)
             ),
             ack_is1: Constant::new(p.ack_periods == 1),
             n_is1: Constant::new(nf == 1),
             tlast_is0: Constant::new(p.timeout_clocks == 1),
+            tpre_is0: Constant::new(
+                (p.timeout_clocks as u64 - 1).wrapping_sub(1) & timeout_mask(p.timeout_clocks) == 0,
+            ),
         })
     }
 }
@@ -210,8 +239,9 @@ impl Logic for BissSlave {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, slo_reg, sh, crc, cnt, tcnt, errl, warnl, fack, fnb, fsix, ftl,
-            sidle, sshift
+            self, clk, s_tmo, s_first, s_second, s_ack, s_start, s_cds, s_data, s_err, s_warn,
+            s_crc, pact, pfb, pinc, pld, rven, rv, slo_reg, sh, crc, cnt, tcnt, errl, warnl, fack,
+            fnb, fsix, tmoq, fpre, sidle, sshift
         );
         self.sync.clk.next = self.clk.val();
         self.sync.rst.next = self.rst.val();
@@ -232,120 +262,145 @@ impl Logic for BissSlave {
             self.ctl[i].expire.next = false;
         }
         self.mae.next = self.sync.rise.val() | self.sync.fall.val();
-        // Data MSB of the shift register, and the bit that enters the CRC this cycle.
-        self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
-        self.cbit.next = self.dbit.val();
-        self.cupd.next = false;
-        self.cld1.next = false;
-        self.cinc.next = false;
-        // Cycles since the last MA edge.
+        // The timeout ends every state but Idle: MA quiet for timeout_clocks -> idle, SLO high.
+        // tmoq holds "not Idle and tcnt at its end" (registered), so the gate of every state
+        // flag is one LUT on registers (tmoq, the edge pulses, the reset).
+        self.tmo.next = self.tmoq.q.val() & !self.mae.val();
+        self.live.next = !self.tmo.val() & !self.rst.val();
+        // Cycles since the last MA edge, with tcnt == timeout_clocks - 2 registered beside it
+        // (the compare is taken on the value before the step), so that the end flag at the
+        // next clock is a select of registers.
         if self.mae.val() {
             self.tcnt.d.next = self.zero.val();
-            self.ftl.d.next = self.tlast_is0.val();
+            self.ftln.next = self.tlast_is0.val();
+            self.fpre.d.next = self.tpre_is0.val();
         } else {
             self.tcnt.d.next = (self.tcnt.q.val() + self.one.val()) & self.tmask.val();
-            self.ftl.d.next = self.tcnt.q.val() == self.tlast_m1.val();
+            self.ftln.next = self.fpre.q.val();
+            self.fpre.d.next = self.tcnt.q.val() == self.tlast_m2.val();
         }
-        match self.state.q.val() {
-            BissState::Timeout => {}
-            BissState::Idle => {
-                if self.sync.fall.val() {
-                    self.state.d.next = BissState::First;
-                }
-            }
-            BissState::First => {
-                if self.sync.rise.val() {
-                    self.state.d.next = BissState::Second;
-                }
-            }
-            BissState::Second => {
-                if self.sync.rise.val() {
-                    self.slo_reg.d.next = false;
-                    self.cld1.next = true;
-                    self.state.d.next = BissState::Ack;
-                }
-            }
-            BissState::Ack => {
-                if self.sync.rise.val() {
-                    if self.fack.q.val() {
-                        self.slo_reg.d.next = true;
-                        self.state.d.next = BissState::Start;
-                    } else {
-                        self.cinc.next = true;
-                    }
-                }
-            }
-            BissState::Start => {
-                if self.sync.rise.val() {
-                    self.slo_reg.d.next = false;
-                    // With the control channel, the CDS bit it prepared.
-                    for i in 0..self.ctl.len() {
-                        self.slo_reg.d.next = self.ctl[i].cds.val();
-                    }
-                    self.state.d.next = BissState::Cds;
-                }
-            }
-            BissState::Cds => {
-                if self.sync.rise.val() {
-                    self.slo_reg.d.next = self.dbit.val();
-                    self.cupd.next = true;
-                    self.cld1.next = true;
-                    self.state.d.next = BissState::Data;
-                }
-            }
-            BissState::Data => {
-                if self.sync.rise.val() {
-                    self.cupd.next = true;
-                    if self.fnb.q.val() {
-                        self.cbit.next = !self.errl.q.val();
-                        self.slo_reg.d.next = !self.errl.q.val();
-                        self.state.d.next = BissState::Err;
-                    } else {
-                        self.slo_reg.d.next = self.dbit.val();
-                        self.cinc.next = true;
-                    }
-                }
-            }
-            BissState::Err => {
-                if self.sync.rise.val() {
-                    self.cupd.next = true;
-                    self.cbit.next = !self.warnl.q.val();
-                    self.slo_reg.d.next = !self.warnl.q.val();
-                    self.state.d.next = BissState::Warn;
-                }
-            }
-            BissState::Warn => {
-                if self.sync.rise.val() {
-                    self.slo_reg.d.next = !(self.crc.q.val() & self.crcmsb.val()).any();
-                    self.crc.d.next = (self.crc.q.val() << self.one.val()) & self.crcmask.val();
-                    self.cld1.next = true;
-                    self.state.d.next = BissState::Crc;
-                }
-            }
-            BissState::Crc => {
-                if self.sync.rise.val() {
-                    if self.fsix.q.val() {
-                        self.slo_reg.d.next = false;
-                        self.state.d.next = BissState::Timeout;
-                        // The final pulse: the frame is complete, its CDM will count.
-                        for i in 0..self.ctl.len() {
-                            self.ctl[i].done.next = true;
-                        }
-                    } else {
-                        self.slo_reg.d.next = !(self.crc.q.val() & self.crcmsb.val()).any();
-                        self.crc.d.next = (self.crc.q.val() << self.one.val()) & self.crcmask.val();
-                        self.cinc.next = true;
-                    }
-                }
+        if self.rst.val() {
+            self.tcnt.d.next = self.zero.val();
+            self.ftln.next = self.tlast_is0.val();
+            self.fpre.d.next = self.tpre_is0.val();
+        }
+        // The one-hot state: F1 leaves Idle, each rise moves on (Ack, Data and Crc stay
+        // until their counter flag), the timeout goes to Idle (never with an edge: it needs
+        // MA quiet), the reset to Timeout.
+        self.s_tmo.d.next = self.rst.val()
+            | (!self.tmo.val()
+                & (self.s_tmo.q.val()
+                    | (self.s_crc.q.val() & self.sync.rise.val() & self.fsix.q.val())));
+        self.sidlen.next =
+            !self.rst.val() & (self.tmo.val() | (self.sidle.q.val() & !self.sync.fall.val()));
+        self.sidle.d.next = self.sidlen.val();
+        self.tmoq.d.next = !self.sidlen.val() & self.ftln.val();
+        self.s_first.d.next = self.live.val()
+            & ((self.sidle.q.val() & self.sync.fall.val())
+                | (self.s_first.q.val() & !self.sync.rise.val()));
+        self.s_second.d.next = self.live.val()
+            & ((self.s_first.q.val() & self.sync.rise.val())
+                | (self.s_second.q.val() & !self.sync.rise.val()));
+        self.s_ack.d.next = self.live.val()
+            & ((self.s_second.q.val() & self.sync.rise.val())
+                | (self.s_ack.q.val() & !(self.sync.rise.val() & self.fack.q.val())));
+        self.s_start.d.next = self.live.val()
+            & ((self.s_ack.q.val() & self.sync.rise.val() & self.fack.q.val())
+                | (self.s_start.q.val() & !self.sync.rise.val()));
+        self.s_cds.d.next = self.live.val()
+            & ((self.s_start.q.val() & self.sync.rise.val())
+                | (self.s_cds.q.val() & !self.sync.rise.val()));
+        self.s_data.d.next = self.live.val()
+            & ((self.s_cds.q.val() & self.sync.rise.val())
+                | (self.s_data.q.val() & !(self.sync.rise.val() & self.fnb.q.val())));
+        self.s_err.d.next = self.live.val()
+            & ((self.s_data.q.val() & self.sync.rise.val() & self.fnb.q.val())
+                | (self.s_err.q.val() & !self.sync.rise.val()));
+        self.s_warn.d.next = self.live.val()
+            & ((self.s_err.q.val() & self.sync.rise.val())
+                | (self.s_warn.q.val() & !self.sync.rise.val()));
+        self.s_crc.d.next = self.live.val()
+            & ((self.s_warn.q.val() & self.sync.rise.val())
+                | (self.s_crc.q.val() & !(self.sync.rise.val() & self.fsix.q.val())));
+        // What the next rise does, registered one clock ahead from the state and the flags.
+        // A rise reads them at least two clocks after the previous rise (the synchronizer's
+        // level must fall in between), and between rises the state, cnt's flags, the CRC, the
+        // shift register, errl, warnl and the control channel's CDS bit change only at F1
+        // (Idle -> First: a rise does nothing in either), at the end of the timeout (-> Idle)
+        // and at the reset (-> Timeout), which clear these flags; so at every rise they equal
+        // the decode of that clock's state.
+        // Data MSB of the shift register, and the bit that enters the CRC at the rise.
+        self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
+        self.cbit.next = self.dbit.val();
+        if self.s_data.q.val() & self.fnb.q.val() {
+            self.cbit.next = !self.errl.q.val();
+        }
+        if self.s_err.q.val() {
+            self.cbit.next = !self.warnl.q.val();
+        }
+        // The CRC steps at a rise in Cds, Data and Err with the bit sent (serial CRC6 of the
+        // data, nE and nW bits), and shifts out in Warn and Crc before the last bit.
+        self.pact.d.next = (self.s_cds.q.val()
+            | self.s_data.q.val()
+            | self.s_err.q.val()
+            | self.s_warn.q.val()
+            | (self.s_crc.q.val() & !self.fsix.q.val()))
+            & self.live.val();
+        self.pfb.d.next = (self.s_cds.q.val() | self.s_data.q.val() | self.s_err.q.val())
+            & (self.cbit.val() ^ (self.crc.q.val() & self.crcmsb.val()).any());
+        // cnt counts up in Ack, Data and Crc before their flag, and takes 1 on entering
+        // Ack, Data and Crc.
+        self.pinc.d.next = ((self.s_ack.q.val() & !self.fack.q.val())
+            | (self.s_data.q.val() & !self.fnb.q.val())
+            | (self.s_crc.q.val() & !self.fsix.q.val()))
+            & self.live.val();
+        self.pld.d.next =
+            (self.s_second.q.val() | self.s_cds.q.val() | self.s_warn.q.val()) & self.live.val();
+        // SLO at a rise: Second -> 0 (Ack), Ack at its end -> 1 (Start), Start -> CDS (0, or
+        // the control channel's bit), Cds and Data -> the data bit, the last data bit ->
+        // nE, Err -> nW, Warn and Crc -> the inverted CRC MSB, Crc at its end -> 0. Timeout,
+        // Idle, First and Ack before its end keep it.
+        self.rven.d.next = !(self.s_tmo.q.val()
+            | self.sidle.q.val()
+            | self.s_first.q.val()
+            | (self.s_ack.q.val() & !self.fack.q.val()))
+            & self.live.val();
+        self.rv.d.next = self.s_ack.q.val()
+            | ((self.s_cds.q.val() | (self.s_data.q.val() & !self.fnb.q.val())) & self.dbit.val())
+            | ((self.s_data.q.val() & self.fnb.q.val()) & !self.errl.q.val())
+            | (self.s_err.q.val() & !self.warnl.q.val())
+            | ((self.s_warn.q.val() | (self.s_crc.q.val() & !self.fsix.q.val()))
+                & !(self.crc.q.val() & self.crcmsb.val()).any());
+        // With the control channel, the CDS bit it prepared.
+        for i in 0..self.ctl.len() {
+            if self.s_start.q.val() & self.ctl[i].cds.val() {
+                self.rv.d.next = true;
             }
         }
-        // F1 in Idle (sidle is the registered state == Idle): latch the word and the flags,
-        // clear the CRC.
+        if self.sync.rise.val() & self.rven.q.val() {
+            self.slo_reg.d.next = self.rv.q.val();
+        }
+        // The final pulse: the frame is complete, its CDM will count.
+        if self.s_crc.q.val() & self.sync.rise.val() & self.fsix.q.val() {
+            for i in 0..self.ctl.len() {
+                self.ctl[i].done.next = true;
+            }
+        }
+        // F1 in Idle: latch the word and the flags, clear the CRC.
         if self.sidle.q.val() & self.sync.fall.val() {
             self.posw.take.next = true;
             self.errl.d.next = self.posw.err.val();
             self.warnl.d.next = self.posw.warn.val();
             self.crc.d.next = self.zero.val();
+        }
+        // The CRC step of a rise (6 bits, taps x + 1 with the feedback).
+        self.cnext.next = (self.crc.q.val() << self.one.val()) & self.crcmask.val();
+        if self.pfb.q.val() {
+            self.cnext.next =
+                ((self.crc.q.val() << self.one.val()) & self.crcmask.val()) ^ self.taps.val();
+        }
+        if self.sync.rise.val() & self.pact.q.val() {
+            self.crc.d.next = self.cnext.val();
         }
         // The shift register: loaded at F1 in Idle, shifted at each rising MA edge in Cds
         // and in Data before the last bit (the state decodes are registered flags).
@@ -371,56 +426,35 @@ impl Logic for BissSlave {
             }
         }
         // The bit counter and its compare flags.
-        if self.cinc.val() {
+        if self.sync.rise.val() & self.pinc.q.val() {
             self.cnt.d.next = (self.cnt.q.val() + self.one.val()) & self.cmask.val();
             self.fack.d.next = self.cnt.q.val() == self.ackn_m1.val();
             self.fnb.d.next = self.cnt.q.val() == self.nbits_m1.val();
             self.fsix.d.next = self.cnt.q.val() == self.five.val();
         }
-        if self.cld1.val() {
+        if self.sync.rise.val() & self.pld.q.val() {
             self.cnt.d.next = self.one.val();
             self.fack.d.next = self.ack_is1.val();
             self.fnb.d.next = self.n_is1.val();
             self.fsix.d.next = false;
         }
-        // Serial CRC6 of the data, nE and nW bits as they are put on SLO.
-        self.fb.next = self.cbit.val() ^ (self.crc.q.val() & self.crcmsb.val()).any();
-        if self.cupd.val() {
-            if self.fb.val() {
-                self.crc.d.next =
-                    ((self.crc.q.val() << self.one.val()) & self.crcmask.val()) ^ self.taps.val();
-            } else {
-                self.crc.d.next = (self.crc.q.val() << self.one.val()) & self.crcmask.val();
-            }
-        }
-        // The timeout ends every state but Idle: MA quiet for timeout_clocks -> idle, SLO high.
-        if (self.state.q.val() != BissState::Idle) & !self.mae.val() & self.ftl.q.val() {
+        if self.tmo.val() {
             self.slo_reg.d.next = true;
-            self.state.d.next = BissState::Idle;
             // The control channel takes the CDM bit (the MA level held during the timeout).
             for i in 0..self.ctl.len() {
                 self.ctl[i].expire.next = true;
             }
         }
         if self.rst.val() {
-            self.state.d.next = BissState::Timeout;
             self.slo_reg.d.next = false;
-            self.tcnt.d.next = self.zero.val();
-            self.ftl.d.next = self.tlast_is0.val();
         }
-        // Decoded from the next state: following sidle through its own transitions measured
-        // 168.18 MHz on the default top at seed 1 against 176.12 MHz with this decode
-        // (docs/timing.md, third round).
-        self.sidle.d.next = self.state.d.val() == BissState::Idle;
         // sshift is read only with `rise`, and rises are at least two clocks apart (the
         // synchronizer's level must fall in between), so it may lag the state by a clock: it
         // is decoded from the registered state and fnb, which change only at a rise, a fall
         // (Idle -> First, where it is low either way), the timeout (-> Idle) or the reset;
-        // the last two clear it. Registers in, one or two LUTs deep.
-        self.sshift.d.next = ((self.state.q.val() == BissState::Cds)
-            | ((self.state.q.val() == BissState::Data) & !self.fnb.q.val()))
-            & !(!self.mae.val() & self.ftl.q.val())
-            & !self.rst.val();
+        // the last two clear it. Registers in, two LUTs deep.
+        self.sshift.d.next =
+            (self.s_cds.q.val() | (self.s_data.q.val() & !self.fnb.q.val())) & self.live.val();
         self.slo.next = self.slo_reg.q.val();
     }
 }

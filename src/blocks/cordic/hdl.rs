@@ -213,6 +213,10 @@ pub struct CordicStage {
     c: Signal<Local, Bits<32>>,
     nm: Signal<Local, Bits<32>>,
     nc: Signal<Local, Bits<32>>,
+    /// z_in + atan(2^-i) (ZW bits): z when y >= 0.
+    zp: Signal<Local, Bits<32>>,
+    /// z_in - atan(2^-i) (ZW bits): z when y < 0.
+    zm: Signal<Local, Bits<32>>,
     /// All ones: operand inversion mask for a subtraction.
     ones: Constant<Bits<32>>,
     /// One: carry-in of a subtraction.
@@ -231,6 +235,8 @@ pub struct CordicStage {
     zmask: Constant<Bits<32>>,
     /// atan(2^-i) in 2^-(F+Gz) quadrant.
     atan: Constant<Bits<32>>,
+    /// -atan(2^-i), 32-bit two's complement.
+    natan: Constant<Bits<32>>,
 }
 
 impl CordicStage {
@@ -261,6 +267,8 @@ impl CordicStage {
             c: Default::default(),
             nm: Default::default(),
             nc: Default::default(),
+            zp: Default::default(),
+            zm: Default::default(),
             ones: c32(mask(32)),
             one: c32(1),
             zero: c32(0),
@@ -270,6 +278,7 @@ impl CordicStage {
             xmask: c32(mask(w)),
             zmask: c32(mask(d.z_width)),
             atan: c32(d.atan_table[i as usize]),
+            natan: c32(d.atan_table[i as usize].wrapping_neg() & mask(32)),
         }
     }
 }
@@ -283,9 +292,9 @@ impl Logic for CordicStage {
             self.xs.next = self.xs.val() | self.sfill.val();
         }
         self.ys.next = self.y_in.val() >> self.shift.val();
-        // Direction: y < 0 rotates up (x - ys, y + xs, z - atan), else down. Each of the
-        // three add/subtracts is one adder: a - b = a + (b ^ ones) + 1, with the inversion
-        // mask and carry-in chosen by the sign (Yosys maps the carry-in into the chain).
+        // Direction: y < 0 rotates up (x - ys, y + xs, z - atan), else down. x and y are
+        // one adder each: a - b = a + (b ^ ones) + 1, with the inversion mask and carry-in
+        // chosen by the sign (Yosys maps the carry-in into the chain); z is below.
         self.m.next = self.zero.val();
         self.c.next = self.zero.val();
         self.nm.next = self.ones.val();
@@ -301,8 +310,15 @@ impl Logic for CordicStage {
             (self.x_in.val() + (self.ys.val() ^ self.m.val()) + self.c.val()) & self.xmask.val();
         self.y_reg.d.next =
             (self.y_in.val() + (self.xs.val() ^ self.nm.val()) + self.nc.val()) & self.xmask.val();
-        self.z_reg.d.next =
-            (self.z_in.val() + (self.atan.val() ^ self.m.val()) + self.c.val()) & self.zmask.val();
+        // z +- atan: both constants added beside each other and the sign selecting after
+        // the chains, so the sign (which also drives the x and y adders) reaches z through
+        // one LUT instead of a carry chain.
+        self.zp.next = (self.z_in.val() + self.atan.val()) & self.zmask.val();
+        self.zm.next = (self.z_in.val() + self.natan.val()) & self.zmask.val();
+        self.z_reg.d.next = self.zp.val();
+        if (self.y_in.val() & self.xsign.val()).any() {
+            self.z_reg.d.next = self.zm.val();
+        }
         self.q_reg.d.next = self.q_in.val();
         self.v_reg.d.next = self.v_in.val() & !self.rst.val();
         self.x_out.next = self.x_reg.q.val();

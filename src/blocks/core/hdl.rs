@@ -159,6 +159,8 @@ impl Logic for CoreRtl {
         self.counter.clk.next = self.clk.val();
         self.counter.rst.next = self.rst.val();
         self.counter.p_in.next = self.combiner.p.val();
+        self.counter.q_next.next = self.combiner.q_next.val();
+        self.counter.acc_in.next = self.combiner.acc.val();
         self.counter.ok_in.next = self.combiner.mag_ok.val();
         self.counter.v_in.next = self.combiner.v.val();
         self.counter.up_in.next = self.combiner.up.val();

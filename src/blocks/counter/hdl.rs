@@ -1,5 +1,5 @@
 //! rust-hdl description of the combiner and the quadrant counter.
-use crate::blocks::params::Derived;
+use crate::blocks::params::{Architecture, Derived};
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
@@ -41,6 +41,12 @@ pub struct Combiner {
     pub wq: Signal<Out, Bits<32>>,
     /// Registered: the low F-2 bits of delta are zero.
     pub wz: Signal<Out, Bit>,
+    /// Not registered: the quadrant of p before its register (2 bits), so the counter can
+    /// decode a load's step a clock ahead.
+    pub q_next: Signal<Out, Bits<32>>,
+    /// Registered: valid and mag_ok (the sample is accepted).
+    pub acc: Signal<Out, Bit>,
+    acc_reg: DFF<Bit>,
     p_reg: DFF<Bits<32>>,
     ok_reg: DFF<Bit>,
     v_reg: DFF<Bit>,
@@ -109,6 +115,9 @@ impl Combiner {
             step: Default::default(),
             wq: Default::default(),
             wz: Default::default(),
+            q_next: Default::default(),
+            acc: Default::default(),
+            acc_reg: Default::default(),
             p_reg: Default::default(),
             ok_reg: Default::default(),
             v_reg: Default::default(),
@@ -152,7 +161,8 @@ impl Logic for Combiner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, p_reg, ok_reg, v_reg, plast_reg, up_reg, down_reg, step_reg, wq_reg, wz_reg
+            self, clk, p_reg, ok_reg, v_reg, plast_reg, up_reg, down_reg, step_reg, wq_reg, wz_reg,
+            acc_reg
         );
         self.pn.next = (self.z_in.val() >> self.zshift.val()) & self.pmask.val();
         self.okn.next = self.x_in.val() >= self.minmag.val();
@@ -175,6 +185,9 @@ impl Logic for Combiner {
         self.up_reg.d.next = !self.back.val() & (self.qnew.val() < self.qlast.val());
         self.down_reg.d.next = self.back.val() & (self.qnew.val() > self.qlast.val());
         self.step_reg.d.next = self.up_reg.d.val() | self.down_reg.d.val();
+        // The sample is accepted (valid and mag_ok) in one register, from the compare's
+        // chain, so the counter's turn selection starts from it.
+        self.acc_reg.d.next = self.okv.val();
         self.wq_reg.d.next = self.delta.val() >> self.wshift.val();
         // (pn - plast) mod 2^(F-2) is zero exactly when the low F-2 bits agree: an
         // equality test, off the subtractor's carry chain.
@@ -188,6 +201,8 @@ impl Logic for Combiner {
         self.step.next = self.step_reg.q.val();
         self.wq.next = self.wq_reg.q.val();
         self.wz.next = self.wz_reg.q.val();
+        self.q_next.next = self.qnew.val();
+        self.acc.next = self.acc_reg.q.val();
     }
 }
 
@@ -205,6 +220,10 @@ pub struct QuadrantCounter {
     pub rst: Signal<In, Bit>,
     /// Electrical angle p of the sample (F+2 bits).
     pub p_in: Signal<In, Bits<32>>,
+    /// The quadrant of the next clock's p_in (2 bits; the combiner's `q_next`).
+    pub q_next: Signal<In, Bits<32>>,
+    /// v_in and ok_in (the combiner's `acc`).
+    pub acc_in: Signal<In, Bit>,
     /// Magnitude test of the sample.
     pub ok_in: Signal<In, Bit>,
     /// Valid bit of the sample.
@@ -250,6 +269,18 @@ pub struct QuadrantCounter {
     pending_reg: DFF<Bit>,
     lqc_reg: DFF<Bits<32>>,
     lturns_reg: DFF<Bits<32>>,
+    /// turns_reg + 1 (M bits), taken at every clock: one clock stale after the turns move.
+    tinc_reg: DFF<Bits<32>>,
+    /// turns_reg - 1 (M bits), taken at every clock like `tinc_reg`.
+    tdec_reg: DFF<Bits<32>>,
+    /// The turns + 1 to use instead of `tinc_reg` in the clock after an update (`ovi_reg`).
+    tio_reg: DFF<Bits<32>>,
+    /// The turns - 1 to use instead of `tdec_reg` in the clock after an update (`ovd_reg`).
+    tdo_reg: DFF<Bits<32>>,
+    /// The last clock's update left `tinc_reg` stale where the next sample may read it.
+    ovi_reg: DFF<Bit>,
+    /// The last clock's update left `tdec_reg` stale where the next sample may read it.
+    ovd_reg: DFF<Bit>,
     /// The latched turn count plus and minus one (M bits), taken at the load, so a load's
     /// step adds no carry chain after `pending`.
     ltinc_reg: DFF<Bits<32>>,
@@ -263,6 +294,36 @@ pub struct QuadrantCounter {
     lpen_reg: DFF<Bit>,
     /// The latched count's period is 1 (a backward step from it ends on 0).
     lone_reg: DFF<Bit>,
+    /// A load's step from the latched count to this clock's sample crosses quadrant 3 -> 0
+    /// forwards, decoded a clock ahead from the count being latched and `q_next`.
+    ul_reg: DFF<Bit>,
+    /// A load's step crosses quadrant 0 -> 3 backwards, decoded like `ul_reg`.
+    dl_reg: DFF<Bit>,
+    /// A load's step wraps the turn forwards (`ul_reg` and the latched period is PPR - 1),
+    /// decoded like `ul_reg`.
+    uwl_reg: DFF<Bit>,
+    /// A load's step wraps the turn backwards (`dl_reg` and the latched period is 0).
+    dwl_reg: DFF<Bit>,
+    /// A load's step wraps the turn forwards (`uwl_reg`, or decoded in this clock when not
+    /// `flat`).
+    uwl: Signal<Local, Bit>,
+    /// A load's step wraps the turn backwards (`dwl_reg`, or decoded in this clock).
+    dwl: Signal<Local, Bit>,
+    /// Quadrant of the latched count (2 bits; the decode in the clock when not `flat`).
+    qlat: Signal<Local, Bits<32>>,
+    /// Quadrant of this clock's sample, p_in >> F (2 bits; likewise).
+    qnow: Signal<Local, Bits<32>>,
+    /// The running count's step wraps the turn forwards (acc_in, up_in at u = PPR - 1).
+    rwu: Signal<Local, Bit>,
+    /// The running count's step wraps the turn backwards (acc_in, down_in at u = 0).
+    rwd: Signal<Local, Bit>,
+    /// Iterative (not `flat`): the turn count the selected step starts from (turns, or the
+    /// latched count when a load is pending).
+    base_turns: Signal<Local, Bits<32>>,
+    /// The turn count after a load's step (latched count, + 1 or - 1).
+    tsel_p: Signal<Local, Bits<32>>,
+    /// The turn count after the running count's step (turns, + 1 or - 1).
+    tsel_r: Signal<Local, Bits<32>>,
     /// u = PPR - 1, registered with u (a forward step from it wraps), so the wrap comes
     /// from flags instead of the end of the u adder's carry chain.
     ulast_reg: DFF<Bit>,
@@ -278,23 +339,21 @@ pub struct QuadrantCounter {
     /// The next u is PPR - 1 / is 0 (from the compares and the step's direction).
     nlast: Signal<Local, Bit>,
     nzero: Signal<Local, Bit>,
-    /// Quadrant of the sample, p >> F (2 bits).
+    /// Quadrant of the next clock's sample (`q_next`, 2 bits).
     qnew: Signal<Local, Bits<32>>,
-    /// Quadrant of the latched count (2 bits), where a load's step starts.
+    /// Quadrant of the count latched for the next clock (2 bits), where a load's step starts.
     base_q: Signal<Local, Bits<32>>,
     /// The latched count's period (quadrant_bits - 2 bits), where a load's step starts.
     base_u: Signal<Local, Bits<32>>,
-    /// Turn count the step starts from (M bits).
-    base_turns: Signal<Local, Bits<32>>,
     /// The step crosses into the next period (carry from quadrant 3 to 0).
     up: Signal<Local, Bit>,
     /// The step crosses into the previous period (carry from quadrant 0 to 3).
     down: Signal<Local, Bit>,
     /// +1 (up), -1 (down) or 0: the addend of the running period counter.
     ustep: Signal<Local, Bits<32>>,
-    /// A load's step crosses into the next period (from the two quadrants).
+    /// A load's step crosses into the next period (`ul_reg`).
     up_l: Signal<Local, Bit>,
-    /// A load's step crosses into the previous period.
+    /// A load's step crosses into the previous period (`dl_reg`).
     down_l: Signal<Local, Bit>,
     /// +1, -1 or 0: the addend of a load's period.
     ustep_l: Signal<Local, Bits<32>>,
@@ -309,9 +368,9 @@ pub struct QuadrantCounter {
     un: Signal<Local, Bits<32>>,
     /// The step leaves the turn (u = PPR-1 up, or u = 0 down).
     wrap: Signal<Local, Bit>,
-    /// The base turn count plus one (a carry chain beside the wrap decision).
+    /// The turn count plus one (`tinc_reg`, or `tio_reg` in the clock after an update).
     tinc: Signal<Local, Bits<32>>,
-    /// The base turn count minus one.
+    /// The turn count minus one (`tdec_reg`, or `tdo_reg` in the clock after an update).
     tdec: Signal<Local, Bits<32>>,
     /// F.
     fshift: Constant<Bits<32>>,
@@ -337,6 +396,10 @@ pub struct QuadrantCounter {
     uone_c: Constant<Bits<32>>,
     /// PPR = 1: every step wraps (u has no bits; the flags are not used).
     ppr1: Constant<Bit>,
+    /// The turns' + 1 and - 1 come from registers (`tinc_reg`, `tdec_reg`, with the
+    /// stale-value fix): the unrolled architecture; the iterative one adds them in front of
+    /// the selection.
+    flat: Constant<Bit>,
     /// Mask of M turn bits.
     tmask: Constant<Bits<32>>,
     /// One.
@@ -361,6 +424,8 @@ impl QuadrantCounter {
             clk: Default::default(),
             rst: Default::default(),
             p_in: Default::default(),
+            q_next: Default::default(),
+            acc_in: Default::default(),
             ok_in: Default::default(),
             v_in: Default::default(),
             up_in: Default::default(),
@@ -382,6 +447,12 @@ impl QuadrantCounter {
             u_reg: Default::default(),
             fine_reg: Default::default(),
             turns_reg: Default::default(),
+            tinc_reg: Default::default(),
+            tdec_reg: Default::default(),
+            tio_reg: Default::default(),
+            tdo_reg: Default::default(),
+            ovi_reg: Default::default(),
+            ovd_reg: Default::default(),
             valid_reg: Default::default(),
             error_reg: Default::default(),
             warning_reg: Default::default(),
@@ -394,6 +465,19 @@ impl QuadrantCounter {
             lzero_reg: Default::default(),
             lpen_reg: Default::default(),
             lone_reg: Default::default(),
+            ul_reg: Default::default(),
+            dl_reg: Default::default(),
+            uwl_reg: Default::default(),
+            dwl_reg: Default::default(),
+            uwl: Default::default(),
+            dwl: Default::default(),
+            qlat: Default::default(),
+            qnow: Default::default(),
+            rwu: Default::default(),
+            rwd: Default::default(),
+            base_turns: Default::default(),
+            tsel_p: Default::default(),
+            tsel_r: Default::default(),
             ulast_reg: Default::default(),
             unz_reg: Default::default(),
             upen: Default::default(),
@@ -405,7 +489,6 @@ impl QuadrantCounter {
             qnew: Default::default(),
             base_q: Default::default(),
             base_u: Default::default(),
-            base_turns: Default::default(),
             up: Default::default(),
             down: Default::default(),
             ustep: Default::default(),
@@ -431,6 +514,7 @@ impl QuadrantCounter {
             upenult: c32((d.quadrants_per_turn / 4).wrapping_sub(2) & mask(d.quadrant_bits - 2)),
             uone_c: c32(1 & mask(d.quadrant_bits - 2)),
             ppr1: Constant::new(d.quadrants_per_turn == 4),
+            flat: Constant::new(d.architecture == Architecture::Unrolled),
             tmask: c32(mask(d.multiturn_bits)),
             one: c32(1),
             three: c32(3),
@@ -452,6 +536,12 @@ impl Logic for QuadrantCounter {
             u_reg,
             fine_reg,
             turns_reg,
+            tinc_reg,
+            tdec_reg,
+            tio_reg,
+            tdo_reg,
+            ovi_reg,
+            ovd_reg,
             valid_reg,
             error_reg,
             warning_reg,
@@ -464,10 +554,13 @@ impl Logic for QuadrantCounter {
             lzero_reg,
             lpen_reg,
             lone_reg,
+            ul_reg,
+            dl_reg,
+            uwl_reg,
+            dwl_reg,
             ulast_reg,
             unz_reg
         );
-        self.qnew.next = (self.p_in.val() >> self.fshift.val()) & self.three.val();
         // Two candidate steps side by side, each with its own period adder, chosen by
         // `pending` after the adders (a mux in front of an adder is a LUT level more):
         // the running count's, whose direction comes from the combiner (up, down: the sign
@@ -510,19 +603,32 @@ impl Logic for QuadrantCounter {
             self.nlast.next = self.uzer.val();
             self.nzero.next = self.uone.val();
         }
-        self.base_q.next = self.lqc_reg.q.val() & self.three.val();
         self.base_u.next = (self.lqc_reg.q.val() >> self.two.val()) & self.umask.val();
         // Four-input functions of the two quadrants written out, so that no 2-bit
         // subtractor or comparator (a carry chain on xc3sa) sits in front of usum_l.
         // Forward steps +1, +2 pass 3 -> 0 from quadrant 2 to 0 and from 3 to 0 or 1;
         // the backward step -1 passes 0 -> 3 only from 0 to 3.
-        self.up_l.next = self.base_q.val().get_bit(1)
-            & !self.qnew.val().get_bit(1)
-            & (self.base_q.val().get_bit(0) | !self.qnew.val().get_bit(0));
-        self.down_l.next = !self.base_q.val().get_bit(1)
-            & !self.base_q.val().get_bit(0)
-            & self.qnew.val().get_bit(1)
-            & self.qnew.val().get_bit(0);
+        // The unrolled architecture takes them from the registers decoded a clock ahead
+        // (below); the iterative one decodes them here, from the latched count and this
+        // clock's sample (the registers cost it LUTs; `tests/iterative.rs`).
+        if self.flat.val() {
+            self.up_l.next = self.ul_reg.q.val();
+            self.down_l.next = self.dl_reg.q.val();
+            self.uwl.next = self.uwl_reg.q.val();
+            self.dwl.next = self.dwl_reg.q.val();
+        } else {
+            self.qlat.next = self.lqc_reg.q.val() & self.three.val();
+            self.qnow.next = (self.p_in.val() >> self.fshift.val()) & self.three.val();
+            self.up_l.next = self.qlat.val().get_bit(1)
+                & !self.qnow.val().get_bit(1)
+                & (self.qlat.val().get_bit(0) | !self.qnow.val().get_bit(0));
+            self.down_l.next = !self.qlat.val().get_bit(1)
+                & !self.qlat.val().get_bit(0)
+                & self.qnow.val().get_bit(1)
+                & self.qnow.val().get_bit(0);
+            self.uwl.next = self.up_l.val() & self.llast_reg.q.val();
+            self.dwl.next = self.down_l.val() & self.lzero_reg.q.val();
+        }
         self.ustep_l.next = self.zero.val();
         if self.up_l.val() {
             self.ustep_l.next = self.one.val();
@@ -531,23 +637,39 @@ impl Logic for QuadrantCounter {
             self.ustep_l.next = self.minus_one.val();
         }
         self.usum_l.next = (self.base_u.val() + self.ustep_l.val()) & self.usmask.val();
-        self.wrap_l.next = (self.up_l.val() & self.llast_reg.q.val())
-            | (self.down_l.val() & self.lzero_reg.q.val());
+        self.wrap_l.next = self.uwl.val() | self.dwl.val();
         // The selection.
         self.up.next = self.up_in.val();
         self.down.next = self.down_in.val();
         self.un.next = self.usum.val() & self.umask.val();
+        // turns +- 1 into registers at every clock (the only carry chains on the turns).
+        // In the clock after an update that moves the turns they are stale, and that
+        // update leaves the value the next sample may read in tio / tdo with a flag (below).
+        // A step forward over quadrant 3 -> 0 ends in quadrant 0 or 1 (steps are under 2
+        // quadrants), so the next sample cannot step forward over it again: after a wrap
+        // up only turns - 1 can be read at the next sample, and it is the turn count the
+        // wrap started from; after a wrap down only turns + 1, likewise; after a load's
+        // step without a wrap both, the latched + 1 and - 1.
+        self.tinc_reg.d.next = (self.turns_reg.q.val() + self.one.val()) & self.tmask.val();
+        self.tdec_reg.d.next = (self.turns_reg.q.val() + self.minus_one.val()) & self.tmask.val();
+        // The iterative architecture keeps the adders in front of the selection (the
+        // registers above and their stale-value fix cost it about 80 LUTs, a fifth of its
+        // core; `tests/iterative.rs`), and synthesis drops the registers it does not read.
+        self.tinc.next = self.tinc_reg.q.val();
+        if self.ovi_reg.q.val() {
+            self.tinc.next = self.tio_reg.q.val();
+        }
+        self.tdec.next = self.tdec_reg.q.val();
+        if self.ovd_reg.q.val() {
+            self.tdec.next = self.tdo_reg.q.val();
+        }
         self.base_turns.next = self.turns_reg.q.val();
-        self.tinc.next = (self.turns_reg.q.val() + self.one.val()) & self.tmask.val();
-        self.tdec.next = (self.turns_reg.q.val() + self.minus_one.val()) & self.tmask.val();
         if self.pending_reg.q.val() {
             self.up.next = self.up_l.val();
             self.down.next = self.down_l.val();
             self.un.next = self.usum_l.val() & self.umask.val();
             self.wrap.next = self.wrap_l.val();
             self.base_turns.next = self.lturns_reg.q.val();
-            self.tinc.next = self.ltinc_reg.q.val();
-            self.tdec.next = self.ltdec_reg.q.val();
             self.nlast.next = self.llast_reg.q.val();
             self.nzero.next = self.lzero_reg.q.val();
             if self.up_l.val() {
@@ -624,16 +746,86 @@ impl Logic for QuadrantCounter {
                         self.u_reg.d.next = self.ulast.val();
                     }
                 }
-                self.turns_reg.d.next = self.base_turns.val() & self.tmask.val();
-                if self.wrap.val() {
-                    if self.up.val() {
-                        self.turns_reg.d.next = self.tinc.val();
-                    } else {
-                        self.turns_reg.d.next = self.tdec.val();
+                // Iterative: the turns from the selected step (the flat form is below).
+                if !self.flat.val() {
+                    self.turns_reg.d.next = self.base_turns.val() & self.tmask.val();
+                    if self.wrap.val() {
+                        if self.up.val() {
+                            self.turns_reg.d.next =
+                                (self.base_turns.val() + self.one.val()) & self.tmask.val();
+                        } else {
+                            self.turns_reg.d.next =
+                                (self.base_turns.val() + self.minus_one.val()) & self.tmask.val();
+                        }
                     }
                 }
                 self.fine_reg.d.next = self.p_in.val() & self.fmask.val();
                 self.pprev_reg.d.next = self.p_in.val();
+            }
+        }
+        // A load's step for the next clock's sample, from the quadrant of the count latched
+        // by then (lqc's next value) and of that sample (the combiner's p before its
+        // register, which p_in will be), so the load's step direction comes from registers.
+        self.base_q.next = self.lqc_reg.d.val() & self.three.val();
+        self.qnew.next = self.q_next.val() & self.three.val();
+        self.ul_reg.d.next = self.base_q.val().get_bit(1)
+            & !self.qnew.val().get_bit(1)
+            & (self.base_q.val().get_bit(0) | !self.qnew.val().get_bit(0));
+        self.dl_reg.d.next = !self.base_q.val().get_bit(1)
+            & !self.base_q.val().get_bit(0)
+            & self.qnew.val().get_bit(1)
+            & self.qnew.val().get_bit(0);
+        self.uwl_reg.d.next = self.ul_reg.d.val() & self.llast_reg.d.val();
+        self.dwl_reg.d.next = self.dl_reg.d.val() & self.lzero_reg.d.val();
+        // The turn register, a selection from registers with its selects from registered
+        // flags (no carry chain, and no decode of p or of the step's direction): hold; a
+        // load's step (latched count, + 1 on uwl, - 1 on dwl); the running step (turns,
+        // + 1 at u = PPR - 1 forwards, - 1 at u = 0 backwards); 0 at a reset.
+        self.rwu.next =
+            self.acc_in.val() & self.up_in.val() & (self.ulast_reg.q.val() | self.ppr1.val());
+        self.rwd.next =
+            self.acc_in.val() & self.down_in.val() & (!self.unz_reg.q.val() | self.ppr1.val());
+        self.tsel_p.next = self.lturns_reg.q.val();
+        if self.uwl.val() {
+            self.tsel_p.next = self.ltinc_reg.q.val();
+        }
+        if self.dwl.val() {
+            self.tsel_p.next = self.ltdec_reg.q.val();
+        }
+        self.tsel_r.next = self.turns_reg.q.val();
+        if self.rwu.val() {
+            self.tsel_r.next = self.tinc.val();
+        }
+        if self.rwd.val() {
+            self.tsel_r.next = self.tdec.val();
+        }
+        // The values for the clock after the update (turns +- 1 stale, see above): the
+        // count a step started from, the latched +- 1 after a load's step; the flags say
+        // which the next sample may read (after a wrap up turns - 1, after a wrap down
+        // turns + 1, after a load's step without a wrap both).
+        self.ovi_reg.d.next = false;
+        self.ovd_reg.d.next = false;
+        self.tio_reg.d.next = self.turns_reg.q.val();
+        self.tdo_reg.d.next = self.turns_reg.q.val();
+        if self.pending_reg.q.val() {
+            self.tio_reg.d.next = self.ltinc_reg.q.val();
+            self.tdo_reg.d.next = self.ltdec_reg.q.val();
+            if self.dwl.val() {
+                self.tio_reg.d.next = self.lturns_reg.q.val();
+            }
+            if self.uwl.val() {
+                self.tdo_reg.d.next = self.lturns_reg.q.val();
+            }
+        }
+        if self.flat.val() & self.acc_in.val() & self.init_reg.q.val() & !self.rst.val() {
+            if self.pending_reg.q.val() {
+                self.turns_reg.d.next = self.tsel_p.val() & self.tmask.val();
+                self.ovi_reg.d.next = !self.uwl.val();
+                self.ovd_reg.d.next = !self.dwl.val();
+            } else {
+                self.turns_reg.d.next = self.tsel_r.val() & self.tmask.val();
+                self.ovi_reg.d.next = self.rwd.val();
+                self.ovd_reg.d.next = self.rwu.val();
             }
         }
         self.qc.next = (self.u_reg.q.val() << self.two.val())

@@ -46,10 +46,22 @@
 //!   (0 -> 3): two 2-bit compares replace total and carry. u + {+1, 0, -1} is one
 //!   (quadrant_bits - 1)-bit adder whose top bit flags u = 0 down and (PPR a power of two)
 //!   u = PPR-1 up; otherwise u = PPR-1 is a constant compare and the wrapped u a constant.
-//!   Each wrap adds +1 or -1 to the turns: two M-bit adders side by side (turns + 1,
-//!   turns - 1; for a load, load_turns + 1 and - 1 taken when the load is latched), chosen
-//!   after the wrap, so no register-to-register path holds two carry chains (the wrap is
-//!   the end of the u adder's). The warning compares
+//!   Each wrap adds +1 or -1 to the turns, chosen from registers: turns + 1 and turns - 1
+//!   are M-bit adders into registers of their own at every clock (for a load, load_turns
+//!   plus and minus one are taken when the load is latched), so the turn register's input is a
+//!   selection with no carry chain. In the clock after the turns move those registers are
+//!   stale, and the update that moved them leaves the one the next sample can use in a
+//!   register of its own with a flag (no carry chain and no wrap logic in front of the
+//!   adders' registers, one registered select behind them): a step
+//!   over quadrant 3 -> 0 ends in quadrant 0 or 1 and steps are under 2 quadrants, so two
+//!   consecutive samples never both wrap up (or both down); after a wrap up, turns - 1 is
+//!   the count the wrap started from, after a wrap down turns + 1 is, and after a load's
+//!   step without a wrap they are the latched + 1 and - 1. The turn register's selects
+//!   come from registers too: the combiner registers acc = valid and mag_ok (from its
+//!   compare's chain), and a load's wrap (its step crosses the turn
+//!   from the latched period) is registered a clock ahead with the load's direction
+//!   (below), so the selection is hold, latched count (+- 1) or turns (+- 1), with no
+//!   decode of p in front of it. The warning compares
 //!   delta >> (F-2) (4 bits) with 7 and 9 plus a zero test of the low F-2 bits; that test
 //!   is an equality of the low F-2 bits of p and p_last ((p - p_last) mod 2^(F-2) is zero
 //!   exactly when they agree), so it sits beside the delta subtractor, not after it.
@@ -64,7 +76,9 @@
 //!   load_qc by -1..=+2 to the sample's quadrant, wrapping at 4PPR as above (up and down
 //!   from the two 2-bit quadrants as four-input functions, with no subtractor or comparator
 //!   in front of the u adder: up = b1 & !a1 & (b0 | !a0), down = !b1 & !b0 & a1 & a0 for
-//!   the load's quadrant b and the sample's a). The running count's step and a load's step
+//!   the load's quadrant b and the sample's a; both are registered a clock ahead, from the
+//!   count being latched and the combiner's quadrant before its p register, so a load's
+//!   step reaches the turn and period registers from registers, not from p). The running count's step and a load's step
 //!   have a u adder each, chosen by `pending` after the adders, and a load's wrap comes
 //!   from two flags taken when the load is latched (its period is PPR-1, is 0), so no
 //!   multiplexer sits in front of an adder; load_qc must lie

@@ -12,8 +12,10 @@ pub struct Fallback {
     pub rst: Signal<In, Bit>,
     /// Enable (0: never active, no mismatch, no loads).
     pub enable: Signal<In, Bit>,
-    /// QEP decoder count (32-bit, wrapping).
-    pub qep_count: Signal<In, Bits<32>>,
+    /// The QEP decoder's count stepped +1 at the last clock edge (its registered `up`).
+    pub qep_up: Signal<In, Bit>,
+    /// The QEP decoder's count stepped -1 at the last clock edge (its registered `down`).
+    pub qep_down: Signal<In, Bit>,
     /// ADC CONV pin level.
     pub conv: Signal<In, Bit>,
     /// ADC sample strobe.
@@ -38,7 +40,6 @@ pub struct Fallback {
     pub mismatch: Signal<Out, Bit>,
     /// Fallback mode.
     pub active: Signal<Out, Bit>,
-    cnt_prev: DFF<Bits<32>>,
     conv_prev: DFF<Bit>,
     qq: DFF<Bits<32>>,
     qt: DFF<Bits<32>>,
@@ -97,11 +98,18 @@ pub struct Fallback {
     /// Stage k2: the good sample and its warning one clock later, with dd = kq - oq.
     kv2: DFF<Bit>,
     kw2: DFF<Bit>,
-    ddr: DFF<Bits<32>>,
-    /// The tracker's motion mv = c2q - prevq, registered, and its tests registered after
-    /// it: read at the ADC's out_valid, at least three clocks after c2q and prevq last
-    /// changed (a CONV rise, the previous out_valid).
-    mvr: DFF<Bits<32>>,
+    /// dd = kq - oq tested against -1, 0, 1 modulo 4PPR: chunk compares registered from the
+    /// subtraction, combined after the register (see [`NearSet`]).
+    ddn: NearSet,
+    /// kv2 & aligned == 3 & !act: the gate of the mismatch, registered beside kv2 (aligned
+    /// and act change only at a kv2 pulse or the reset, and kv2 pulses are a sample apart).
+    gk: DFF<Bit>,
+    /// The tracker's motion mv = c2q - prevq tested against -1, 0, 1 (`mvn1`) and -2, 2
+    /// (`mvn2`) modulo 4PPR, chunk compares registered from the subtraction, and the tests
+    /// registered after them: read at the ADC's out_valid, at least three clocks after c2q
+    /// and prevq last changed (a CONV rise, the previous out_valid).
+    mvn1: NearSet,
+    mvn2: NearSet,
     fast_n: DFF<Bit>,
     busy_n: DFF<Bit>,
     lq0: Signal<Local, Bits<32>>,
@@ -118,17 +126,12 @@ pub struct Fallback {
     /// kt's candidates: core turns minus the capture's, and minus the capture's + 1.
     kt0: Signal<Local, Bits<32>>,
     kt1: Signal<Local, Bits<32>>,
-    /// QEP count step, low two bits: +1 / -1 (the count moves by at most one per clock).
-    sx: Signal<Local, Bits<32>>,
+    /// QEP count step: +1 / -1 (the count moves by at most one per clock).
     inc: Signal<Local, Bit>,
     dec: Signal<Local, Bit>,
     dq0: Signal<Local, Bits<32>>,
     dq1: Signal<Local, Bits<32>>,
-    /// Difference of the held offset and the sample's (dq - oq), not reduced, in
-    /// quadrant_bits + 1 bits.
-    dd: Signal<Local, Bits<32>>,
-    /// Tracker motion between two conversions, not reduced, in quadrant_bits + 1 bits.
-    mv: Signal<Local, Bits<32>>,
+
     nq: Signal<Local, Bits<32>>,
     nt: Signal<Local, Bits<32>>,
     bad: Signal<Local, Bit>,
@@ -138,14 +141,6 @@ pub struct Fallback {
     qlast: Constant<Bits<32>>,
     /// 4 PPR - 2 (the quadrant before the last).
     qlast_m1: Constant<Bits<32>>,
-    /// The test values of the differences modulo 2^(quadrant_bits + 1): 4PPR - 1,
-    /// 1 - 4PPR, 2 - 4PPR, 4PPR - 2, -1, -2.
-    dqlast: Constant<Bits<32>>,
-    dmqturn_p1: Constant<Bits<32>>,
-    dmqturn_p2: Constant<Bits<32>>,
-    dqturn_m2: Constant<Bits<32>>,
-    dminus_one: Constant<Bits<32>>,
-    dminus_two: Constant<Bits<32>>,
     /// Minus 4 PPR.
     mqturn: Constant<Bits<32>>,
     /// Mask of quadrant_bits + 1 bits: the differences of two counts in 0..4PPR-1 are
@@ -160,8 +155,6 @@ pub struct Fallback {
     qmask: Constant<Bits<32>>,
     /// 1.
     one: Constant<Bits<32>>,
-    /// 2.
-    two: Constant<Bits<32>>,
     /// 0.
     zero: Constant<Bits<32>>,
     /// All ones.
@@ -195,14 +188,19 @@ impl Fallback {
     pub fn new(d: &Derived) -> Self {
         let q = d.quadrants_per_turn;
         let dm = mask(d.quadrant_bits + 1);
-        // mvr and its tests take two clocks: the ADC's out_valid must come at least three
+        // The differences of two counts in 0..4PPR-1 (in -4PPR+1..4PPR-1) that are -1, 0, 1
+        // modulo 4PPR, and those that are -2, 2, modulo 2^(quadrant_bits + 1).
+        let near1 = [0, 1, dm, (q - 1) & dm, 1u64.wrapping_sub(q) & dm];
+        let near2 = [2, dm - 1, q.wrapping_sub(2) & dm, 2u64.wrapping_sub(q) & dm];
+        // The motion's chunk compares and its tests take two clocks: the ADC's out_valid must come at least three
         // clocks after a CONV rise (it comes in the frame's last SCK cycles).
         debug_assert!(d.adc.conv_to_valid_clocks() % d.adc.period_clocks >= 3);
         Self {
             clk: Default::default(),
             rst: Default::default(),
             enable: Default::default(),
-            qep_count: Default::default(),
+            qep_up: Default::default(),
+            qep_down: Default::default(),
             conv: Default::default(),
             adc_valid: Default::default(),
             core_valid: Default::default(),
@@ -215,7 +213,6 @@ impl Fallback {
             load_turns: Default::default(),
             mismatch: Default::default(),
             active: Default::default(),
-            cnt_prev: Default::default(),
             conv_prev: Default::default(),
             qq: Default::default(),
             qt: Default::default(),
@@ -259,8 +256,10 @@ impl Fallback {
             kt: Default::default(),
             kv2: Default::default(),
             kw2: Default::default(),
-            ddr: Default::default(),
-            mvr: Default::default(),
+            ddn: NearSet::new(&near1, d.quadrant_bits + 1),
+            gk: Default::default(),
+            mvn1: NearSet::new(&near1, d.quadrant_bits + 1),
+            mvn2: NearSet::new(&near2, d.quadrant_bits + 1),
             fast_n: Default::default(),
             busy_n: Default::default(),
             lq0: Default::default(),
@@ -273,13 +272,10 @@ impl Fallback {
             ksel: Default::default(),
             kt0: Default::default(),
             kt1: Default::default(),
-            sx: Default::default(),
             inc: Default::default(),
             dec: Default::default(),
             dq0: Default::default(),
             dq1: Default::default(),
-            dd: Default::default(),
-            mv: Default::default(),
             nq: Default::default(),
             nt: Default::default(),
             bad: Default::default(),
@@ -287,18 +283,11 @@ impl Fallback {
             dmask: c32(dm),
             qlast: c32(q - 1),
             qlast_m1: c32(q - 2),
-            dqlast: c32((q - 1) & dm),
-            dmqturn_p1: c32(1u64.wrapping_sub(q) & dm),
-            dmqturn_p2: c32(2u64.wrapping_sub(q) & dm),
-            dqturn_m2: c32(q.wrapping_sub(2) & dm),
-            dminus_one: c32(dm),
-            dminus_two: c32(dm - 1),
             mqturn: c32(q.wrapping_neg() & mask(32)),
             tmask: c32(mask(d.multiturn_bits)),
             dsign: c32(1 << d.quadrant_bits),
             qmask: c32(mask(d.quadrant_bits)),
             one: c32(1),
-            two: c32(2),
             zero: c32(0),
             ones: c32(mask(32)),
             three: Constant::new(Bits::<2>::from(3u64)),
@@ -315,21 +304,15 @@ impl Logic for Fallback {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, cnt_prev, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sqm, stp,
-            sq2, st2, sq2m, st2p, qlf, qnz, lpend, fast, busy, aligned, act, quiet, load_r, lqc,
-            lturns, mis, oq, ot, oqm, otp, kv, kw, kq, kt, kv2, kw2, ddr, mvr, fast_n, busy_n
+            self, clk, conv_prev, qq, qt, c1q, c1t, c2q, c2t, prevq, sq, st, sqm, stp, sq2, st2,
+            sq2m, st2p, qlf, qnz, lpend, fast, busy, aligned, act, quiet, load_r, lqc, lturns, mis,
+            oq, ot, oqm, otp, kv, kw, kq, kt, kv2, kw2, gk, fast_n, busy_n
         );
-        self.cnt_prev.d.next = self.qep_count.val();
         self.conv_prev.d.next = self.conv.val();
-        // The QEP count moves by at most one per clock (and is 0 after reset, like
-        // cnt_prev): +1 / -1 from its two low bits.
-        self.sx.next = self.qep_count.val() ^ self.cnt_prev.q.val();
-        self.inc.next = (self.sx.val() & self.one.val()).any()
-            & !((self.sx.val() & self.two.val()).any()
-                ^ (self.cnt_prev.q.val() & self.one.val()).any());
-        self.dec.next = (self.sx.val() & self.one.val()).any()
-            & ((self.sx.val() & self.two.val()).any()
-                ^ (self.cnt_prev.q.val() & self.one.val()).any());
+        // The QEP count's step at the last edge, registered in the decoder (flip-flops, so
+        // no decode of the count precedes the tracker's logic).
+        self.inc.next = self.qep_up.val();
+        self.dec.next = self.qep_down.val();
         // Capture at the CONV rise.
         if self.conv.val() & !self.conv_prev.q.val() {
             self.c1q.d.next = self.qq.q.val();
@@ -340,22 +323,12 @@ impl Logic for Fallback {
         // The tracker's motion between two conversions, mv = c2q - prevq in -4PPR+1..4PPR-1;
         // modulo 4PPR it is within -2..2 (-1..1) exactly when mv is one of the values
         // tested below (equality tests, no second adder).
-        self.mvr.d.next = (self.c2q.q.val() - self.prevq.q.val()) & self.dmask.val();
-        self.mv.next = self.mvr.q.val();
-        self.fast_n.d.next = !((self.mv.val() == self.zero.val())
-            | (self.mv.val() == self.one.val())
-            | (self.mv.val() == self.two.val())
-            | (self.mv.val() == self.dminus_one.val())
-            | (self.mv.val() == self.dminus_two.val())
-            | (self.mv.val() == self.dqlast.val())
-            | (self.mv.val() == self.dqturn_m2.val())
-            | (self.mv.val() == self.dmqturn_p1.val())
-            | (self.mv.val() == self.dmqturn_p2.val()));
-        self.busy_n.d.next = !((self.mv.val() == self.zero.val())
-            | (self.mv.val() == self.one.val())
-            | (self.mv.val() == self.dminus_one.val())
-            | (self.mv.val() == self.dqlast.val())
-            | (self.mv.val() == self.dmqturn_p1.val()));
+        self.mvn1.clk.next = self.clk.val();
+        self.mvn2.clk.next = self.clk.val();
+        self.mvn1.x.next = (self.c2q.q.val() - self.prevq.q.val()) & self.dmask.val();
+        self.mvn2.x.next = (self.c2q.q.val() - self.prevq.q.val()) & self.dmask.val();
+        self.fast_n.d.next = !(self.mvn1.hit.val() | self.mvn2.hit.val());
+        self.busy_n.d.next = !self.mvn1.hit.val();
         // Load value: the sample's capture plus the QEP-to-CORDIC offset, wrapped at 4PPR
         // (lq1 = lq0 - 4PPR is not negative exactly when lq0 >= 4PPR).
         // On quadrant_bits + 1 bits (lq0 < 8PPR, lq1 in -4PPR+1..4PPR-1, the chosen one in
@@ -435,14 +408,12 @@ impl Logic for Fallback {
         // modulo 4PPR exactly when it is one of the values tested here.
         self.kv2.d.next = self.kv.q.val();
         self.kw2.d.next = self.kw.q.val();
-        self.ddr.d.next = (self.kq.q.val() - self.oq.q.val()) & self.dmask.val();
-        self.dd.next = self.ddr.q.val();
-        self.bad.next = (self.aligned.q.val() == self.three.val())
-            & !((self.dd.val() == self.zero.val())
-                | (self.dd.val() == self.one.val())
-                | (self.dd.val() == self.dminus_one.val())
-                | (self.dd.val() == self.dqlast.val())
-                | (self.dd.val() == self.dmqturn_p1.val()));
+        self.ddn.clk.next = self.clk.val();
+        self.ddn.x.next = (self.kq.q.val() - self.oq.q.val()) & self.dmask.val();
+        self.gk.d.next =
+            self.kv.q.val() & (self.aligned.q.val() == self.three.val()) & !self.act.q.val();
+        // bad & !act at a kv2 pulse: gk is kv2 & aligned == 3 & !act there.
+        self.bad.next = self.gk.q.val() & !self.ddn.hit.val();
         // Tracker: the QEP steps only, wrapped into 0..4PPR-1 with the turns. The wrap tests
         // (qq == 4PPR - 1, qq == 0) are registered flags kept with qq, so no compare precedes
         // the turn adders: qq stays in 0..4PPR-1 (4PPR >= 4), so a step up lands on the last
@@ -473,7 +444,7 @@ impl Logic for Fallback {
             }
         }
         if self.kv2.q.val() & self.enable.val() {
-            self.mis.d.next = self.bad.val() & !self.act.q.val();
+            self.mis.d.next = self.bad.val();
             // A disagreement alone only warns: with good signals (no core error) the
             // CORDIC count is kept, so a faulty comparator line cannot move the position.
             if self.kw2.q.val() | (self.fast.q.val() & (self.aligned.q.val() == self.three.val())) {
@@ -509,7 +480,6 @@ impl Logic for Fallback {
         self.qq.d.next = self.nq.val();
         self.qt.d.next = self.nt.val() & self.tmask.val();
         if self.rst.val() | !self.enable.val() {
-            self.cnt_prev.d.next = self.zero.val();
             self.qq.d.next = self.zero.val();
             self.qt.d.next = self.zero.val();
             self.qlf.d.next = false;
@@ -524,6 +494,7 @@ impl Logic for Fallback {
             self.busy.d.next = false;
             self.kv.d.next = false;
             self.kv2.d.next = false;
+            self.gk.d.next = false;
             self.oq.d.next = self.zero.val();
             self.ot.d.next = self.zero.val();
             self.oqm.d.next = self.mqturn.val();
@@ -534,5 +505,94 @@ impl Logic for Fallback {
         self.load_turns.next = self.lturns.q.val();
         self.mismatch.next = self.mis.q.val();
         self.active.next = self.act.q.val();
+    }
+}
+
+/// A registered test of whether a (quadrant_bits + 1)-bit difference x is one of a few
+/// constants, with no wide compare behind a register: each 4-bit chunk of x is compared
+/// with the chunks the constants have there (one LUT behind x's subtraction), the distinct
+/// chunk compares are registered as bits of `f`, and `hit` is the OR over the constants of
+/// the AND of their chunk bits (masks of `f`), one or two LUTs of flip-flops. `hit` is the
+/// test of the x presented one clock earlier.
+#[derive(LogicBlock)]
+pub struct NearSet {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// The difference to test (upper bits 0).
+    pub x: Signal<In, Bits<32>>,
+    /// x of the previous clock was one of the constants.
+    pub hit: Signal<Out, Bit>,
+    /// The registered chunk compares, one bit per distinct (chunk, value).
+    f: DFF<Bits<32>>,
+    /// Per distinct chunk compare: the chunk's value in place, its mask, its bit in `f`.
+    pv: Vec<Constant<Bits<32>>>,
+    pm: Vec<Constant<Bits<32>>>,
+    pb: Vec<Constant<Bits<32>>>,
+    /// Per constant: the bits of `f` that must all be set.
+    cm: Vec<Constant<Bits<32>>>,
+    /// The chunk compares being collected.
+    acc: Signal<Local, Bits<32>>,
+    /// 0.
+    zero: Constant<Bits<32>>,
+}
+
+impl NearSet {
+    /// Test against `consts` (each below 2^bits, bits <= 20: at most 32 distinct chunk
+    /// compares for the at most five constants of a set).
+    pub fn new(consts: &[u64], bits: u32) -> Self {
+        let chunks = bits.div_ceil(4);
+        let mut pairs: Vec<(u32, u64)> = Vec::new();
+        let mut cm = Vec::new();
+        for &c in consts {
+            let mut m = 0u64;
+            for k in 0..chunks {
+                let key = (k, (c >> (4 * k)) & 0xf);
+                let j = match pairs.iter().position(|p| *p == key) {
+                    Some(j) => j,
+                    None => {
+                        pairs.push(key);
+                        pairs.len() - 1
+                    }
+                };
+                m |= 1 << j;
+            }
+            cm.push(c32(m));
+        }
+        debug_assert!(pairs.len() <= 32);
+        Self {
+            clk: Default::default(),
+            x: Default::default(),
+            hit: Default::default(),
+            f: Default::default(),
+            pv: pairs.iter().map(|&(k, v)| c32(v << (4 * k))).collect(),
+            pm: pairs
+                .iter()
+                .map(|&(k, _)| c32((0xf << (4 * k)) & mask(bits)))
+                .collect(),
+            pb: (0..pairs.len()).map(|j| c32(1 << j)).collect(),
+            cm,
+            acc: Default::default(),
+            zero: c32(0),
+        }
+    }
+}
+
+impl Logic for NearSet {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clk, f);
+        self.acc.next = self.zero.val();
+        for i in 0..self.pv.len() {
+            if !((self.x.val() ^ self.pv[i].val()) & self.pm[i].val()).any() {
+                self.acc.next = self.acc.val() | self.pb[i].val();
+            }
+        }
+        self.f.d.next = self.acc.val();
+        self.hit.next = false;
+        for i in 0..self.cm.len() {
+            if (self.f.q.val() & self.cm[i].val()) == self.cm[i].val() {
+                self.hit.next = true;
+            }
+        }
     }
 }

@@ -10,8 +10,8 @@
 //!                                       active: load core with (sq, st) at every sample
 //! ```
 //!
-//! * Tracker: every clock qq += step (the QEP decoder's count difference, -1/0/+1), wrapped
-//!   into 0..4PPR-1 with the turn count qt.
+//! * Tracker: every clock qq += step (the QEP decoder's registered `up` / `down`: its count's
+//!   step at the last edge, -1/0/+1), wrapped into 0..4PPR-1 with the turn count qt.
 //! * Each sample is matched to the tracker value at its conversion: (qq, qt) is captured at
 //!   every CONV rise into c1, c1 moves to c2, and the ADC delivers the data of the
 //!   conversion before the last CONV (LTC1407A-1: one frame of pipeline), so at the ADC's
@@ -40,5 +40,13 @@
 //!   the core's counter with the capture plus the offset: the core takes the nearest count congruent with
 //!   its own quadrant, so the position keeps the CORDIC's fine resolution and the QEP's
 //!   count, and the core is in step when the speed falls again.
-//! * Widths: 32-bit words holding qq (< 4PPR <= 2^18), qt (M bits) and the QEP count.
+//! * Compares behind registers: the tests of the motion mv = c2q - prevq and of
+//!   dd = kq - oq against the few values that are within 1 (2) of 0 modulo 4PPR are
+//!   [`hdl::NearSet`]s: 4-bit chunk compares registered one LUT behind the subtraction, then
+//!   an AND per value and an OR over the values (one or two LUTs of flip-flops), the same
+//!   results in the same clocks as registering the difference and comparing it. The
+//!   mismatch's gate kv2 & aligned == 3 & !act is the register gk beside kv2 (aligned and act
+//!   change only at a kv2 pulse or the reset, and the core's out_valid pulses are a sample
+//!   apart).
+//! * Widths: 32-bit words holding qq (< 4PPR <= 2^18) and qt (M bits).
 pub mod hdl;

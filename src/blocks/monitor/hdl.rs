@@ -39,38 +39,64 @@ pub struct Monitor {
     los_cnt: DFF<Bits<32>>,
     clip_reg: DFF<Bit>,
     clip_cnt: DFF<Bits<32>>,
+    /// The sine of the last raw sample (in_valid) was at a full-scale code.
     fs_reg: DFF<Bit>,
+    /// The cosine of the last raw sample was at a full-scale code (full_scale = fs_reg |
+    /// fs_c | fs_b: each code test is one register, 14 input bits at A = 14).
+    fs_c: DFF<Bit>,
+    /// Clean raw samples since full_scale was set, stored one raw sample step behind (the
+    /// step of the last sample is applied at the next edge, from fs_pv and fs_reg).
     fs_cnt: DFF<Bits<32>>,
     warn_reg: DFF<Bit>,
     /// (los_cnt == N-1) ^ (N == 1), registered with the counter from its value before the
     /// step (see `update`), so no compare follows the counter's adder; 0 at power-up and
-    /// whenever the counter is 0.
+    /// whenever the counter is 0. los_cnt, los_lx and los_nxr lag one clock behind the
+    /// magnitude samples: a sample's effect on them is held in los_pv / los_pq and applied
+    /// at the next edge (the *logical* counter is the one with it applied), so the
+    /// threshold tests' carry chains reach only los_reg and los_pq, through one LUT.
     los_lx: DFF<Bit>,
+    /// (los_cnt == N-2) ^ (N == 2), registered with the counter (0 at counter 0).
+    los_nxr: DFF<Bit>,
+    /// A magnitude sample was taken at the previous edge (its counter step is pending).
+    los_pv: DFF<Bit>,
+    /// That sample counted towards the window (low while los = 0, good while los = 1).
+    los_pq: DFF<Bit>,
     /// clip = 1 and clip_cnt < H-1 (one more clean sample keeps clip set), registered
     /// with the counter from its value before the step.
     clip_k: DFF<Bit>,
-    /// full_scale = 1 and fs_cnt < H-1, the same way.
+    /// full_scale = 1 and fs_cnt < H-1 (the next clean raw sample keeps full_scale set),
+    /// stored one raw sample step behind with fs_cnt.
     fs_k: DFF<Bit>,
-    /// los_cnt == N-1 (decoded flag).
+    /// full_scale held by the counter: the logical fs_k at the last raw sample.
+    fs_b: DFF<Bit>,
+    /// A raw sample was taken at the previous edge (its counter step is pending).
+    fs_pv: DFF<Bit>,
+    /// The logical full-scale counter (the pending step applied), fs_cnt's next value.
+    fs_cl: Signal<Local, Bits<32>>,
+    /// The logical fs_k, fs_k's next value and fs_b's on a raw sample.
+    fs_kl: Signal<Local, Bit>,
+    /// Stored los_cnt == N-1 (decoded los_lx, before the pending step).
     los_last: Signal<Local, Bit>,
     /// The sample counts towards the los window (low while los = 0, good while los = 1).
     los_q: Signal<Local, Bit>,
-    /// los_cnt + 1.
+    /// Stored los_cnt + 1.
     los_inc: Signal<Local, Bits<32>>,
-    /// The step lands on N-1: (los_cnt == N-2) ^ (N == 1).
-    los_nx: Signal<Local, Bit>,
-    /// los_cnt's next value if the sample is good (los = 1 and not at N-1: the step).
-    los_ga: Signal<Local, Bits<32>>,
-    /// los_cnt's next value if the sample is low (los = 0 and not at N-1: the step).
-    los_la: Signal<Local, Bits<32>>,
-    /// los_lx's next value if the sample is good.
-    los_gx: Signal<Local, Bit>,
-    /// los_lx's next value if the sample is low.
-    los_lx_l: Signal<Local, Bit>,
-    /// good ? los_ga : 0.
-    los_gv: Signal<Local, Bits<32>>,
-    /// low ? los_la : 0.
-    los_lv: Signal<Local, Bits<32>>,
+    /// The counter after a counting step from the stored one: 0 at N-1, else los_inc.
+    los_x: Signal<Local, Bits<32>>,
+    /// los_lx after a counting step: the stored counter is N-2.
+    los_y: Signal<Local, Bit>,
+    /// The counter after a counting step is N-2.
+    los_ny: Signal<Local, Bit>,
+    /// The logical counter (the pending step applied), los_cnt's next value.
+    los_cl: Signal<Local, Bits<32>>,
+    /// The logical los_lx, its next value.
+    los_ll: Signal<Local, Bit>,
+    /// The logical counter is N-2 (los_nxr's next value XOR (N == 2)).
+    los_nl: Signal<Local, Bit>,
+    /// The logical counter is N-1: this sample, if it counts, toggles los.
+    los_lend: Signal<Local, Bit>,
+    /// A good sample at the window's end while los = 1 (and no reset): los clears.
+    los_clr: Signal<Local, Bit>,
     /// mag < los_threshold.
     low: Signal<Local, Bit>,
     /// mag >= los_release.
@@ -78,7 +104,10 @@ pub struct Monitor {
     mag: Signal<Local, Bits<32>>,
     rs: Signal<Local, Bits<32>>,
     rc: Signal<Local, Bits<32>>,
+    /// The sine is at a full-scale code.
     fs_hit: Signal<Local, Bit>,
+    /// The cosine is at a full-scale code.
+    fs_hc: Signal<Local, Bit>,
     /// mag > clip_threshold.
     over: Signal<Local, Bit>,
     /// W <= 31: the three threshold tests are bit W of (W+1)-bit differences (one carry
@@ -104,8 +133,10 @@ pub struct Monitor {
     clip_thr_w: Constant<Bits<32>>,
     /// Mask of the window counter bits.
     nmask: Constant<Bits<32>>,
-    /// N-2: the counter value before a step onto N-1 (never stepped from when N = 1).
-    nlast_m1: Constant<Bits<32>>,
+    /// N-3: the counter value before a step onto N-2 (never reached when N <= 2).
+    nlast_m2: Constant<Bits<32>>,
+    /// N = 2: the counter is N-2 at 0.
+    n_two: Constant<Bit>,
     /// N = 1: the window flag is set at counter 0.
     n_one: Constant<Bit>,
     /// H-2: the counter value before a step onto H-1 (never stepped from when H = 1).
@@ -152,24 +183,34 @@ impl Monitor {
             fs_cnt: Default::default(),
             warn_reg: Default::default(),
             los_lx: Default::default(),
+            los_nxr: Default::default(),
+            los_pv: Default::default(),
+            los_pq: Default::default(),
             clip_k: Default::default(),
             fs_k: Default::default(),
+            fs_b: Default::default(),
+            fs_c: Default::default(),
+            fs_pv: Default::default(),
+            fs_cl: Default::default(),
+            fs_kl: Default::default(),
             los_last: Default::default(),
             los_q: Default::default(),
             los_inc: Default::default(),
-            los_nx: Default::default(),
-            los_ga: Default::default(),
-            los_la: Default::default(),
-            los_gx: Default::default(),
-            los_lx_l: Default::default(),
-            los_gv: Default::default(),
-            los_lv: Default::default(),
+            los_x: Default::default(),
+            los_y: Default::default(),
+            los_ny: Default::default(),
+            los_cl: Default::default(),
+            los_ll: Default::default(),
+            los_nl: Default::default(),
+            los_lend: Default::default(),
+            los_clr: Default::default(),
             low: Default::default(),
             good: Default::default(),
             mag: Default::default(),
             rs: Default::default(),
             rc: Default::default(),
             fs_hit: Default::default(),
+            fs_hc: Default::default(),
             over: Default::default(),
             narrow: Constant::new(p.mag_width() <= 31),
             wbit: c32(wbit),
@@ -181,7 +222,8 @@ impl Monitor {
             los_rel: c32(p.los_release()),
             clip_thr: c32(p.clip_threshold()),
             clip_thr_w: c32(p.clip_threshold() | wbit),
-            nlast_m1: c32((p.window() as u64).wrapping_sub(2) & 0xffff_ffff),
+            nlast_m2: c32((p.window() as u64).wrapping_sub(3) & 0xffff_ffff),
+            n_two: Constant::new(p.window() == 2),
             n_one: Constant::new(p.window() == 1),
             nmask: c32(mask(count_bits(p.window()))),
             hlast_m1: c32((p.hold() as u64).wrapping_sub(2) & 0xffff_ffff),
@@ -198,15 +240,32 @@ impl Logic for Monitor {
     fn update(&mut self) {
         dff_setup!(
             self, clk, los_reg, los_cnt, clip_reg, clip_cnt, fs_reg, fs_cnt, warn_reg, los_lx,
-            clip_k, fs_k
+            clip_k, fs_k, los_nxr, los_pv, los_pq, fs_b, fs_c, fs_pv
         );
         self.mag.next = self.magnitude.val() & self.wmask.val();
         self.rs.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
         self.rc.next = bit_cast::<32, 16>(self.in_cos.val()) & self.amask.val();
-        self.fs_hit.next = (self.rs.val() == self.code_min.val())
-            | (self.rs.val() == self.code_max.val())
-            | (self.rc.val() == self.code_min.val())
-            | (self.rc.val() == self.code_max.val());
+        // A full-scale code is 1 then A-1 zeros or 0 then A-1 ones: the low A-1 bits are all
+        // ones when low + 1 carries into bit A-1, and all zeros when low + 2^(A-1) - 1 does
+        // not. Two carry chains per sample word, entered from its register and followed by
+        // one LUT of three inputs (Yosys cannot spread that over several levels, as it can
+        // an A-bit equality).
+        self.fs_hit.next = ((((self.rs.val() & self.code_max.val()) + self.one.val())
+            & self.code_min.val())
+        .any()
+            & !(self.rs.val() & self.code_min.val()).any())
+            | (!(((self.rs.val() & self.code_max.val()) + self.code_max.val())
+                & self.code_min.val())
+            .any()
+                & (self.rs.val() & self.code_min.val()).any());
+        self.fs_hc.next = ((((self.rc.val() & self.code_max.val()) + self.one.val())
+            & self.code_min.val())
+        .any()
+            & !(self.rc.val() & self.code_min.val()).any())
+            | (!(((self.rc.val() & self.code_max.val()) + self.code_max.val())
+                & self.code_min.val())
+            .any()
+                & (self.rc.val() & self.code_min.val()).any());
         // With W <= 31 the magnitude and the thresholds are below 2^W, so bit W of
         // 2^W + a - b is set exactly when a >= b: one carry chain of W + 1 bits per test
         // (Yosys drops the unused bits above W).
@@ -224,45 +283,51 @@ impl Logic for Monitor {
         }
         // Each counter's "at its last value" flag is a register kept with the counter:
         // cleared with it, and on a step to cnt + 1 set from cnt == last - 1 (the value
-        // before the step), so the flags and the counters' next values are one level of
-        // logic after the threshold tests. Stored XOR its value at counter 0 (N = 1 or
-        // H = 1), so the power-up 0 is right.
-        self.los_last.next = self.los_lx.q.val() ^ self.n_one.val();
+        // before the step), so no compare follows an adder. Stored XOR its value at counter
+        // 0 (N = 1 or H = 1), so the power-up 0 is right.
         self.los_q.next = self.low.val();
         if self.los_reg.q.val() {
             self.los_q.next = self.good.val();
         }
-        // The counter's next value and flag as (good & A) | (low & B), A and B from
-        // registers only, so the threshold tests' carry chains are not followed by the
-        // low/good selection.
+        // Loss-of-signal counter: the stored registers lag one sample step (los_pv,
+        // los_pq); the logical values apply it, from registers only, so the threshold
+        // tests are followed by one LUT (los_reg's and los_pq's next values) and the
+        // counter's update never waits for them.
+        self.los_last.next = self.los_lx.q.val() ^ self.n_one.val();
         self.los_inc.next = (self.los_cnt.q.val() + self.one.val()) & self.nmask.val();
-        self.los_nx.next = (self.los_cnt.q.val() == self.nlast_m1.val()) ^ self.n_one.val();
-        self.los_ga.next = self.zero.val();
-        self.los_la.next = self.zero.val();
+        self.los_x.next = self.zero.val();
+        self.los_ny.next = self.n_two.val();
         if !self.los_last.val() {
-            if self.los_reg.q.val() {
-                self.los_ga.next = self.los_inc.val();
-            } else {
-                self.los_la.next = self.los_inc.val();
+            self.los_x.next = self.los_inc.val();
+            self.los_ny.next = self.los_cnt.q.val() == self.nlast_m2.val();
+        }
+        self.los_y.next = !self.los_last.val() & (self.los_nxr.q.val() ^ self.n_two.val());
+        self.los_cl.next = self.los_cnt.q.val();
+        self.los_ll.next = self.los_lx.q.val();
+        self.los_nl.next = self.los_nxr.q.val() ^ self.n_two.val();
+        if self.los_pv.q.val() {
+            self.los_cl.next = self.zero.val();
+            self.los_ll.next = false;
+            self.los_nl.next = self.n_two.val();
+            if self.los_pq.q.val() {
+                self.los_cl.next = self.los_x.val();
+                self.los_ll.next = self.los_y.val();
+                self.los_nl.next = self.los_ny.val();
             }
         }
-        self.los_gx.next = !self.los_last.val() & self.los_reg.q.val() & self.los_nx.val();
-        self.los_lx_l.next = !self.los_last.val() & !self.los_reg.q.val() & self.los_nx.val();
-        self.los_gv.next = self.zero.val();
-        if self.good.val() {
-            self.los_gv.next = self.los_ga.val();
-        }
-        self.los_lv.next = self.zero.val();
-        if self.low.val() {
-            self.los_lv.next = self.los_la.val();
-        }
+        self.los_lend.next = self.los_ll.val() ^ self.n_one.val();
+        self.los_cnt.d.next = self.los_cl.val();
+        self.los_lx.d.next = self.los_ll.val();
+        self.los_nxr.d.next = self.los_nl.val() ^ self.n_two.val();
+        self.los_pv.d.next = self.mag_valid.val();
+        self.los_pq.d.next = self.los_q.val();
         if self.mag_valid.val() {
             // Loss of signal: N consecutive low (good) samples set (clear) it; any other
-            // sample clears the counter.
-            self.los_reg.d.next = self.los_reg.q.val() ^ (self.los_q.val() & self.los_last.val());
-            self.los_cnt.d.next = self.los_gv.val() | self.los_lv.val();
-            self.los_lx.d.next =
-                (self.good.val() & self.los_gx.val()) | (self.low.val() & self.los_lx_l.val());
+            // sample clears the counter; the counter's step is pending until the next edge
+            // (see above).
+            // los = 0: set by a low sample at the window's end; los = 1: held here and
+            // cleared by los_clr below (a good sample at the window's end).
+            self.los_reg.d.next = self.los_reg.q.val() | (self.low.val() & self.los_lend.val());
             // Clipping: set at once, clear after H clean samples. clip_k = clip & the
             // counter below H - 1, so clip' = over | clip_k. While clip = 0 the counter is
             // 0, so loading 0 there is the same as holding it.
@@ -277,18 +342,31 @@ impl Logic for Monitor {
                 self.clip_k.d.next = false;
             }
         }
-        if self.in_valid.val() {
-            // Full scale: set at once, clear after H clean raw samples (as clip).
-            self.fs_reg.d.next = self.fs_hit.val() | self.fs_k.q.val();
-            self.fs_cnt.d.next = self.zero.val();
-            if self.fs_hit.val() {
-                self.fs_k.d.next = !self.h_one.val();
+        // Full scale: set at once, clear after H clean raw samples (as clip), as two
+        // registers: fs_reg takes the code test of each raw sample (the only logic after
+        // the sample), fs_b the hold by the counter; the counter and fs_k apply a sample's
+        // step at the next edge (fs_pv), from registers only.
+        self.fs_cl.next = self.fs_cnt.q.val();
+        self.fs_kl.next = self.fs_k.q.val();
+        if self.fs_pv.q.val() {
+            if self.fs_reg.q.val() | self.fs_c.q.val() {
+                self.fs_cl.next = self.zero.val();
+                self.fs_kl.next = !self.h_one.val();
             } else if self.fs_k.q.val() {
-                self.fs_cnt.d.next = (self.fs_cnt.q.val() + self.one.val()) & self.hmask.val();
-                self.fs_k.d.next = self.fs_cnt.q.val() != self.hlast_m1.val();
+                self.fs_cl.next = (self.fs_cnt.q.val() + self.one.val()) & self.hmask.val();
+                self.fs_kl.next = self.fs_cnt.q.val() != self.hlast_m1.val();
             } else {
-                self.fs_k.d.next = false;
+                self.fs_cl.next = self.zero.val();
+                self.fs_kl.next = false;
             }
+        }
+        self.fs_cnt.d.next = self.fs_cl.val();
+        self.fs_k.d.next = self.fs_kl.val();
+        self.fs_pv.d.next = self.in_valid.val();
+        if self.in_valid.val() {
+            self.fs_reg.d.next = self.fs_hit.val();
+            self.fs_c.d.next = self.fs_hc.val();
+            self.fs_b.d.next = self.fs_kl.val();
         }
         self.warn_reg.d.next = self.overspeed.val() | self.qep_mismatch.val();
         if self.rst.val() {
@@ -300,14 +378,37 @@ impl Logic for Monitor {
             self.fs_cnt.d.next = self.zero.val();
             self.warn_reg.d.next = false;
             self.los_lx.d.next = false;
+            self.los_nxr.d.next = false;
+            self.los_pv.d.next = false;
+            self.los_pq.d.next = false;
             self.clip_k.d.next = false;
             self.fs_k.d.next = false;
+            self.fs_b.d.next = false;
+            self.fs_c.d.next = false;
+            self.fs_pv.d.next = false;
         }
-        self.error.next = self.los_reg.q.val() | self.clip_reg.q.val() | self.fs_reg.q.val();
+        // Clearing los is the outermost assignment, a synchronous reset of los_reg to its
+        // power-up value 0 (the reset above sets it to 1, which the flip-flop's reset
+        // cannot, as its power-up value is 0): so los_reg's data input is one LUT of
+        // (rst, los, low, los_lend) and its reset one LUT of (good, a register-only
+        // term), each one LUT after the threshold tests' chains.
+        self.los_clr.next = !self.rst.val()
+            & self.mag_valid.val()
+            & self.los_reg.q.val()
+            & self.good.val()
+            & self.los_lend.val();
+        if self.los_clr.val() {
+            self.los_reg.d.next = false;
+        }
+        self.error.next = self.los_reg.q.val()
+            | self.clip_reg.q.val()
+            | self.fs_reg.q.val()
+            | self.fs_c.q.val()
+            | self.fs_b.q.val();
         self.warning.next = self.warn_reg.q.val();
         self.los.next = self.los_reg.q.val();
         self.clip.next = self.clip_reg.q.val();
-        self.full_scale.next = self.fs_reg.q.val();
+        self.full_scale.next = self.fs_reg.q.val() | self.fs_c.q.val() | self.fs_b.q.val();
     }
 }
 

@@ -14,7 +14,7 @@
 //!  in_sin ────┼─►│ sin or cos = -2^(A-1) or      ├───────┘
 //!  in_cos ────┘  │ 2^(A-1)-1 -> fs = 1; H clean   │
 //!                │ raw samples -> fs = 0          │
-//!                └───────────────────────────reg──┘
+//!                └──sin reg | cos reg | hold reg──┘
 //!  overspeed ────┐
 //!  qep_mismatch ─┴──OR──►[reg]──► warning
 //! ```
@@ -39,13 +39,30 @@
 //! * Full scale (`full_scale`): a raw sample (`in_valid`) with sin or cos at the most
 //!   negative (-2^(A-1)) or most positive (2^(A-1)-1) A-bit code sets it at once; it clears
 //!   on the H-th consecutive raw sample with neither.
-//! * `error = los | clip | full_scale` (combinational OR of the three registers).
+//! * `error = los | clip | full_scale` (combinational OR of registers: `full_scale` is
+//!   itself the OR of three, see below).
 //! * `warning` = `overspeed | qep_mismatch`, registered (one clock).
+//!
+//! # Registers (timing)
+//! Every flag changes at the edge of the sample that decides it, but the logic after the
+//! inputs is kept short (at most one LUT after a threshold test's or a code test's carry
+//! chain; docs/timing.md explains why):
+//! * `los` is one register; the window counter and its flags (`los_cnt`, N-1 and N-2
+//!   flags) apply each sample's step one clock later from two pending registers (sample
+//!   taken, sample counted), so the threshold tests reach only `los` and the pending bit.
+//!   `los` is cleared through the flip-flop's synchronous reset (its power-up value 0).
+//! * `full_scale` = (sine at a full-scale code) | (cosine at one) | (held by the counter),
+//!   three registers loaded on `in_valid`. A word is at a full-scale code when its low A-1
+//!   bits are all ones (low + 1 carries into bit A-1) and its top bit is 0, or all zeros
+//!   (low + 2^(A-1) - 1 does not carry) and its top bit is 1: two carry chains per word and
+//!   one LUT of three inputs, a fixed structure Yosys cannot stretch over more levels.
+//!   The hold counter applies each raw sample's step one clock later, as the window
+//!   counter does.
 //!
 //! # Widths
 //! Magnitude and thresholds are W-bit unsigned (compared in 32-bit words whose upper bits
-//! are masked to 0); the two counters hold 0..N-1 and 0..H-1 (ceil(log2) bits, masked, so
-//! Yosys keeps only those bits). A raw sample is masked to A bits before the code compare.
+//! are masked to 0); the three counters hold 0..N-1, 0..H-1 and 0..H-1 (ceil(log2) bits,
+//! masked, so Yosys keeps only those bits). A raw sample is masked to A bits before the code compare.
 pub mod hdl;
 pub mod model;
 

@@ -36,6 +36,10 @@ pub struct QepDecoder {
     pub b_filt: Signal<Out, Bit>,
     /// Filtered Z level.
     pub z_filt: Signal<Out, Bit>,
+    /// `count` moved +1 at the last clock edge (registered beside `count_reg`).
+    pub up: Signal<Out, Bit>,
+    /// `count` moved -1 at the last clock edge (registered beside `count_reg`).
+    pub down: Signal<Out, Bit>,
     a1: DFF<Bit>,
     a2: DFF<Bit>,
     b1: DFF<Bit>,
@@ -57,6 +61,10 @@ pub struct QepDecoder {
     iseen_reg: DFF<Bit>,
     ill_reg: DFF<Bit>,
     illseen_reg: DFF<Bit>,
+    /// The count's step at the last edge, +1 / -1 (the fallback's tracker reads these
+    /// instead of decoding the count's low bits).
+    up_reg: DFF<Bit>,
+    down_reg: DFF<Bit>,
     da: Signal<Local, Bit>,
     db: Signal<Local, Bit>,
     count_n: Signal<Local, Bits<32>>,
@@ -90,6 +98,8 @@ impl QepDecoder {
             a_filt: Default::default(),
             b_filt: Default::default(),
             z_filt: Default::default(),
+            up: Default::default(),
+            down: Default::default(),
             a1: Default::default(),
             a2: Default::default(),
             b1: Default::default(),
@@ -111,6 +121,8 @@ impl QepDecoder {
             iseen_reg: Default::default(),
             ill_reg: Default::default(),
             illseen_reg: Default::default(),
+            up_reg: Default::default(),
+            down_reg: Default::default(),
             da: Default::default(),
             db: Default::default(),
             count_n: Default::default(),
@@ -149,7 +161,9 @@ impl Logic for QepDecoder {
             istrobe_reg,
             iseen_reg,
             ill_reg,
-            illseen_reg
+            illseen_reg,
+            up_reg,
+            down_reg
         );
         // Two-flop synchronizers.
         self.a1.d.next = self.qep_a.val();
@@ -193,20 +207,26 @@ impl Logic for QepDecoder {
         self.count_n.next = self.count_reg.q.val() & self.cmask.val();
         self.icount_reg.d.next = self.icount_reg.q.val() & self.cmask.val();
         self.ill_reg.d.next = false;
+        self.up_reg.d.next = false;
+        self.down_reg.d.next = false;
         if self.da.val() & self.db.val() {
             self.ill_reg.d.next = true;
             self.illseen_reg.d.next = true;
         } else if self.da.val() {
             if self.af.q.val() ^ self.bf.q.val() {
                 self.count_n.next = (self.count_reg.q.val() + self.one.val()) & self.cmask.val();
+                self.up_reg.d.next = true;
             } else {
                 self.count_n.next = (self.count_reg.q.val() - self.one.val()) & self.cmask.val();
+                self.down_reg.d.next = true;
             }
         } else if self.db.val() {
             if self.af.q.val() == self.bf.q.val() {
                 self.count_n.next = (self.count_reg.q.val() + self.one.val()) & self.cmask.val();
+                self.up_reg.d.next = true;
             } else {
                 self.count_n.next = (self.count_reg.q.val() - self.one.val()) & self.cmask.val();
+                self.down_reg.d.next = true;
             }
         }
         self.count_reg.d.next = self.count_n.val();
@@ -233,6 +253,8 @@ impl Logic for QepDecoder {
             self.iseen_reg.d.next = false;
             self.ill_reg.d.next = false;
             self.illseen_reg.d.next = false;
+            self.up_reg.d.next = false;
+            self.down_reg.d.next = false;
         }
         self.count.next = self.count_reg.q.val();
         self.index_count.next = self.icount_reg.q.val();
@@ -243,6 +265,8 @@ impl Logic for QepDecoder {
         self.a_filt.next = self.af.q.val();
         self.b_filt.next = self.bf.q.val();
         self.z_filt.next = self.zf.q.val();
+        self.up.next = self.up_reg.q.val();
+        self.down.next = self.down_reg.q.val();
     }
 }
 

@@ -10,7 +10,7 @@
 //!  qep_b ─►[b1]─►[b2]──┼──►│  count; at   │ bf ├──►[pb]──►│ db = bf^pb├──►│ +-1 mod  │
 //!                      │   │  F-1 accept  │    │          │ up/down/  │   │ 2^C      ├─► illegal
 //!  qep_z ─►[z1]─►[z2]──┴──►└──────────────┘ zf └──►[pz]──►│ illegal   │   │ Z rising:├─► index_*
-//!                                                         └───────────┘   │ latch    │
+//!                                                         └───────────┘   │ latch    ├─► up, down
 //!                                                                         └──────────┘
 //! ```
 //!
@@ -28,6 +28,8 @@
 //!   `illegal` for one clock, count unchanged.
 //! * Count: C-bit two's complement (C = 2..=32) in the low bits of a 32-bit word,
 //!   `count' = (count +- 1) mod 2^C` (wraps, like the 2^C counter it is).
+//! * `up` / `down`: registered beside the count, 1 for one clock after an edge that stepped
+//!   it by +1 / -1 (0 after reset); the QEP fallback's tracker counts with them.
 //! * Index: on a rising edge of the accepted Z (`zf & !pz`), `index_count` latches the count
 //!   *including* the step of that same clock, so in the output cycle where `index_strobe`
 //!   is 1, `index_count == count`; `index_seen` is sticky until reset.

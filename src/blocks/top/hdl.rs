@@ -209,7 +209,8 @@ impl Logic for TopRtl {
         self.fallback.clk.next = self.clk.val();
         self.fallback.rst.next = self.rst.val();
         self.fallback.enable.next = self.qep_enable.val();
-        self.fallback.qep_count.next = self.qep_decoder.count.val();
+        self.fallback.qep_up.next = self.qep_decoder.up.val();
+        self.fallback.qep_down.next = self.qep_decoder.down.val();
         self.fallback.conv.next = self.adc.adc_conv.val();
         self.fallback.adc_valid.next = self.adc.out_valid.val();
         self.fallback.core_valid.next = self.core.out_valid.val();
