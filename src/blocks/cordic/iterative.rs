@@ -9,7 +9,7 @@
 //!            │ └──────────┘          │ xr ─► digit ─► ( x ± tap(y>>k) ) ─► xr top ───┼──► combiner
 //!            │                       │ yr ─► digit ─► ( y ∓ tap(x>>k) ) ─► yr top  │      ─► counter
 //!            │                       │ xr,yr: W'-bit shift registers, 4 bits/clock │
-//!            │                       │ z ± atan ROM[k], once per iteration (W_z)   │
+//!            │                       │ z ± atan ROM[k], at digit 1 of each iter.   │
 //!            └── & in_ready ◄────────┤ one-hot j/k masks, k, busy, lost mark       │
 //!                                    └──────────────────────────────────────────────┘
 //! ```
@@ -39,7 +39,10 @@
 //!   replaced by copies of bit W - 1: the result wraps to W bits like the unrolled stage's
 //!   `& xmask`.
 //! * z (W_z bits, parallel) adds or subtracts atan(2^-k) from a ROM holding
-//!   `Derived::atan_table` once per iteration, at j = 0; it starts from 0.
+//!   `Derived::atan_table` once per iteration, at j = 1 (D >= 3 since adc.width >= 10);
+//!   the first clock of a sample loads its start value (the rounding half plus the
+//!   quadrant), whose constant bits synthesis maps to the flip-flops' synchronous set and
+//!   reset: xc3sa 382 -> 364 LUT at N = 14 (docs/timing.md, "Thirteenth round").
 //! * The direction of iteration k is the sign of y_k: bit W - 1 of the mapper's y' (k = 0)
 //!   or of the register (k >= 1) at j = 0, held for the other digits.
 //!
@@ -209,7 +212,6 @@ pub struct IterativeCordic {
     sy: Signal<Local, Bits<8>>,
     dx: Signal<Local, Bits<8>>,
     dy: Signal<Local, Bits<8>>,
-    zi: Signal<Local, Bits<32>>,
     m: Signal<Local, Bits<32>>,
     c: Signal<Local, Bits<32>>,
     /// All ones.
@@ -463,21 +465,25 @@ impl Logic for IterativeCordic {
         self.cx_reg.d.next = (self.sx.val() & self.dcarry.val()).any();
         self.cy_reg.d.next = (self.sy.val() & self.dcarry.val()).any();
         self.dir_reg.d.next = self.dir.val();
-        self.zi.next = self.zr.q.val();
-        if self.first.val() {
-            // The angle starts at the rounding half plus the quadrant (see the combiner).
-            self.zi.next =
-                self.zhalf.val() | (bit_cast::<32, 2>(self.q_in.val()) << self.zqshift.val());
-        }
         if self.active.val() {
             self.xr.d.next = (self.xr.q.val() >> self.dsh.val())
                 | (bit_cast::<32, 8>(self.dx.val()) << self.topsh.val());
             self.yr.d.next = (self.yr.q.val() >> self.dsh.val())
                 | (bit_cast::<32, 8>(self.dy.val()) << self.topsh.val());
-            if self.j0.val() {
+            // z: the add of iteration k at its digit 1 (D >= 3: adc.width >= 10), so that
+            // the first clock only loads the start value (the rounding half plus the
+            // quadrant, see the combiner). That load is written last, as the outermost
+            // choice in front of z's register, so synthesis maps its constant bits to the
+            // flip-flops' synchronous set and reset: no gating LUT in front of z's adder.
+            // z still holds the last sample's result through that first clock.
+            if self.jhot[1].q.val().get_bit(0) {
                 self.zr.d.next =
-                    (self.zi.val() + (self.rom.data.val() ^ self.m.val()) + self.c.val())
+                    (self.zr.q.val() + (self.rom.data.val() ^ self.m.val()) + self.c.val())
                         & self.zmask.val();
+            }
+            if self.j0.val() & self.first.val() {
+                self.zr.d.next =
+                    self.zhalf.val() | (bit_cast::<32, 2>(self.q_in.val()) << self.zqshift.val());
             }
         }
         self.kn.next = self.kin.val();

@@ -11,6 +11,8 @@ impl IterativeCordic {
     pub fn new(d: &Derived) -> Self {
         let w = d.xy_width;
         let wp = digits(w) * DIGIT;
+        // z adds at digit 1 (`update`): adc.width >= 10 gives W >= 12, D >= 3.
+        debug_assert!(digits(w) >= 2);
         let mut table = BTreeMap::new();
         for (i, &a) in d.atan_table.iter().enumerate() {
             table.insert(Bits::<5>::from(i as u64), Bits::<32>::from(a & mask(32)));
@@ -91,7 +93,6 @@ impl IterativeCordic {
             sy: Default::default(),
             dx: Default::default(),
             dy: Default::default(),
-            zi: Default::default(),
             m: Default::default(),
             c: Default::default(),
             ones: c32(mask(32)),
