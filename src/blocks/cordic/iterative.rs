@@ -265,6 +265,8 @@ pub struct IterativeCordic {
     /// Mask of the thermometer code's N bits (k <= N - 1), so that synthesis keeps no
     /// flip-flop above them.
     kmask: Constant<Bits<32>>,
+    /// The bits k can use: k < N, so ceil(log2 N) bits.
+    kamask: Constant<Bits<5>>,
     /// Fill bit b of a tap digit.
     fb0: Constant<Bits<8>>,
     fb1: Constant<Bits<8>>,
@@ -287,7 +289,9 @@ impl Logic for IterativeCordic {
         // Position: iteration k, digit j (a new sample starts at 0, 0).
         // The iteration index: k_reg is 0 whenever the engine is idle (it is cleared at the
         // edge after a sample's last clock and by reset), so it needs no select by busy.
-        self.kin.next = self.k_reg.q.val();
+        // k < N: the bits above ceil(log2 N) are zero, and masking them tells synthesis so
+        // (the ROM's and the increment's functions lose an input).
+        self.kin.next = self.k_reg.q.val() & self.kamask.val();
         self.q_reg.d.next = self.q_in.val();
         self.loste_reg.d.next = self.lostm_reg.q.val();
         if self.busy_reg.q.val() {

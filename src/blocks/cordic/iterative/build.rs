@@ -122,6 +122,9 @@ impl IterativeCordic {
             bsh64: Constant::new(Bits::<64>::from(1u64)),
             kge1: c32(2),
             kmask: c32(mask(d.iterations)),
+            kamask: Constant::new(Bits::<5>::from(
+                mask(d.iterations.next_power_of_two().trailing_zeros()) & 0x1f,
+            )),
             fb0: c8(1),
             fb1: c8(2),
             fb2: c8(4),
