@@ -593,6 +593,12 @@ impl Logic for QuadrantCounter {
         self.ulst.next = (self.u_reg.q.val() & self.umask.val()) == self.ulast.val();
         self.uzer.next = (self.u_reg.q.val() & self.umask.val()) == self.zero.val();
         self.uone.next = (self.u_reg.q.val() & self.umask.val()) == self.uone_c.val();
+        // Iterative: the wrap from compares of u itself, so the flags kept with u go unread
+        // and synthesis drops them (fewer LUTs; `tests/iterative.rs`).
+        if !self.flat.val() {
+            self.wrap.next = (self.up_in.val() & (self.ulst.val() | self.ppr1.val()))
+                | (self.down_in.val() & (self.uzer.val() | self.ppr1.val()));
+        }
         self.nlast.next = self.ulst.val();
         self.nzero.next = self.uzer.val();
         if self.up_in.val() {
