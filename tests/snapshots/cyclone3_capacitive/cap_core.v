@@ -277,9 +277,13 @@ module cap_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_v
     wire  combiner_step;
     wire  [31:0] combiner_wq;
     wire  combiner_wz;
+    wire  [31:0] combiner_q_next;
+    wire  combiner_acc;
     reg  counter_clk;
     reg  counter_rst;
     reg  [31:0] counter_p_in;
+    reg  [31:0] counter_q_next;
+    reg  counter_acc_in;
     reg  counter_ok_in;
     reg  counter_v_in;
     reg  counter_up_in;
@@ -546,12 +550,16 @@ module cap_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_v
         .down(combiner_down),
         .step(combiner_step),
         .wq(combiner_wq),
-        .wz(combiner_wz)
+        .wz(combiner_wz),
+        .q_next(combiner_q_next),
+        .acc(combiner_acc)
     );
     cap_core_rtl_counter counter(
         .clk(counter_clk),
         .rst(counter_rst),
         .p_in(counter_p_in),
+        .q_next(counter_q_next),
+        .acc_in(counter_acc_in),
         .ok_in(counter_ok_in),
         .v_in(counter_v_in),
         .up_in(counter_up_in),
@@ -850,6 +858,8 @@ module cap_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_v
         counter_clk = clk;
         counter_rst = rst;
         counter_p_in = combiner_p;
+        counter_q_next = combiner_q_next;
+        counter_acc_in = combiner_acc;
         counter_ok_in = combiner_mag_ok;
         counter_v_in = combiner_v;
         counter_up_in = combiner_up;
@@ -870,7 +880,7 @@ module cap_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_v
 
 endmodule // cap_core_rtl
 
-module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz);
+module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz,q_next,acc);
 
     // Module arguments
     input wire  clk;
@@ -886,6 +896,8 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
     output reg  step;
     output reg  [31:0] wq;
     output reg  wz;
+    output reg  [31:0] q_next;
+    output reg  acc;
 
     // Constant declarations
     localparam  zshift = 32'h6;
@@ -901,6 +913,9 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
     localparam  vbit = 32'h80000000;
 
     // Stub signals
+    reg  acc_reg_d;
+    wire  acc_reg_q;
+    reg  acc_reg_clock;
     reg  [31:0] p_reg_d;
     wire  [31:0] p_reg_q;
     reg  p_reg_clock;
@@ -940,6 +955,11 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
     reg  [31:0] qlast;
 
     // Sub module instances
+    cap_core_rtl_combiner_acc_reg acc_reg(
+        .d(acc_reg_d),
+        .q(acc_reg_q),
+        .clock(acc_reg_clock)
+    );
     cap_core_rtl_combiner_p_reg p_reg(
         .d(p_reg_d),
         .q(p_reg_q),
@@ -997,6 +1017,7 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
         step_reg_clock = clk;
         wq_reg_clock = clk;
         wz_reg_clock = clk;
+        acc_reg_clock = clk;
         p_reg_d = p_reg_q;
         ok_reg_d = ok_reg_q;
         v_reg_d = v_reg_q;
@@ -1006,6 +1027,7 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
         step_reg_d = step_reg_q;
         wq_reg_d = wq_reg_q;
         wz_reg_d = wz_reg_q;
+        acc_reg_d = acc_reg_q;
         pn = (z_in >> zshift) & pmask;
         okn = x_in >= minmag;
         p_reg_d = pn;
@@ -1026,6 +1048,7 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
         up_reg_d = ~back & (qnew < qlast);
         down_reg_d = back & (qnew > qlast);
         step_reg_d = up_reg_d | down_reg_d;
+        acc_reg_d = okv;
         wq_reg_d = delta >> wshift;
         wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;
         p = p_reg_q;
@@ -1036,9 +1059,29 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
         step = step_reg_q;
         wq = wq_reg_q;
         wz = wz_reg_q;
+        q_next = qnew;
+        acc = acc_reg_q;
     end
 
 endmodule // cap_core_rtl_combiner
+
+module cap_core_rtl_combiner_acc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_combiner_acc_reg
 
 module cap_core_rtl_combiner_down_reg(d,q,clock);
 
@@ -1202,12 +1245,14 @@ module cap_core_rtl_combiner_wz_reg(d,q,clock);
 
 endmodule // cap_core_rtl_combiner_wz_reg
 
-module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
+module cap_core_rtl_counter(clk,rst,p_in,q_next,acc_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
 
     // Module arguments
     input wire  clk;
     input wire  rst;
     input wire  [31:0] p_in;
+    input wire  [31:0] q_next;
+    input wire  acc_in;
     input wire  ok_in;
     input wire  v_in;
     input wire  up_in;
@@ -1238,6 +1283,7 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
     localparam  upenult = 32'he;
     localparam  uone_c = 32'h1;
     localparam  ppr1 = 1'b0;
+    localparam  flat = 1'b1;
     localparam  tmask = 32'hfff;
     localparam  one = 32'h1;
     localparam  three = 32'h3;
@@ -1279,6 +1325,24 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
     reg  [31:0] lturns_reg_d;
     wire  [31:0] lturns_reg_q;
     reg  lturns_reg_clock;
+    reg  [31:0] tinc_reg_d;
+    wire  [31:0] tinc_reg_q;
+    reg  tinc_reg_clock;
+    reg  [31:0] tdec_reg_d;
+    wire  [31:0] tdec_reg_q;
+    reg  tdec_reg_clock;
+    reg  [31:0] tio_reg_d;
+    wire  [31:0] tio_reg_q;
+    reg  tio_reg_clock;
+    reg  [31:0] tdo_reg_d;
+    wire  [31:0] tdo_reg_q;
+    reg  tdo_reg_clock;
+    reg  ovi_reg_d;
+    wire  ovi_reg_q;
+    reg  ovi_reg_clock;
+    reg  ovd_reg_d;
+    wire  ovd_reg_q;
+    reg  ovd_reg_clock;
     reg  [31:0] ltinc_reg_d;
     wire  [31:0] ltinc_reg_q;
     reg  ltinc_reg_clock;
@@ -1297,6 +1361,18 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
     reg  lone_reg_d;
     wire  lone_reg_q;
     reg  lone_reg_clock;
+    reg  ul_reg_d;
+    wire  ul_reg_q;
+    reg  ul_reg_clock;
+    reg  dl_reg_d;
+    wire  dl_reg_q;
+    reg  dl_reg_clock;
+    reg  uwl_reg_d;
+    wire  uwl_reg_q;
+    reg  uwl_reg_clock;
+    reg  dwl_reg_d;
+    wire  dwl_reg_q;
+    reg  dwl_reg_clock;
     reg  ulast_reg_d;
     wire  ulast_reg_q;
     reg  ulast_reg_clock;
@@ -1305,6 +1381,15 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
     reg  unz_reg_clock;
 
     // Local signals
+    reg  uwl;
+    reg  dwl;
+    reg  [31:0] qlat;
+    reg  [31:0] qnow;
+    reg  rwu;
+    reg  rwd;
+    reg  [31:0] base_turns;
+    reg  [31:0] tsel_p;
+    reg  [31:0] tsel_r;
     reg  upen;
     reg  ulst;
     reg  uzer;
@@ -1314,7 +1399,6 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
     reg  [31:0] qnew;
     reg  [31:0] base_q;
     reg  [31:0] base_u;
-    reg  [31:0] base_turns;
     reg  up;
     reg  down;
     reg  [31:0] ustep;
@@ -1385,6 +1469,36 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
         .q(lturns_reg_q),
         .clock(lturns_reg_clock)
     );
+    cap_core_rtl_counter_tinc_reg tinc_reg(
+        .d(tinc_reg_d),
+        .q(tinc_reg_q),
+        .clock(tinc_reg_clock)
+    );
+    cap_core_rtl_counter_tdec_reg tdec_reg(
+        .d(tdec_reg_d),
+        .q(tdec_reg_q),
+        .clock(tdec_reg_clock)
+    );
+    cap_core_rtl_counter_tio_reg tio_reg(
+        .d(tio_reg_d),
+        .q(tio_reg_q),
+        .clock(tio_reg_clock)
+    );
+    cap_core_rtl_counter_tdo_reg tdo_reg(
+        .d(tdo_reg_d),
+        .q(tdo_reg_q),
+        .clock(tdo_reg_clock)
+    );
+    cap_core_rtl_counter_ovi_reg ovi_reg(
+        .d(ovi_reg_d),
+        .q(ovi_reg_q),
+        .clock(ovi_reg_clock)
+    );
+    cap_core_rtl_counter_ovd_reg ovd_reg(
+        .d(ovd_reg_d),
+        .q(ovd_reg_q),
+        .clock(ovd_reg_clock)
+    );
     cap_core_rtl_counter_ltinc_reg ltinc_reg(
         .d(ltinc_reg_d),
         .q(ltinc_reg_q),
@@ -1415,6 +1529,26 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
         .q(lone_reg_q),
         .clock(lone_reg_clock)
     );
+    cap_core_rtl_counter_ul_reg ul_reg(
+        .d(ul_reg_d),
+        .q(ul_reg_q),
+        .clock(ul_reg_clock)
+    );
+    cap_core_rtl_counter_dl_reg dl_reg(
+        .d(dl_reg_d),
+        .q(dl_reg_q),
+        .clock(dl_reg_clock)
+    );
+    cap_core_rtl_counter_uwl_reg uwl_reg(
+        .d(uwl_reg_d),
+        .q(uwl_reg_q),
+        .clock(uwl_reg_clock)
+    );
+    cap_core_rtl_counter_dwl_reg dwl_reg(
+        .d(dwl_reg_d),
+        .q(dwl_reg_q),
+        .clock(dwl_reg_clock)
+    );
     cap_core_rtl_counter_ulast_reg ulast_reg(
         .d(ulast_reg_d),
         .q(ulast_reg_q),
@@ -1433,6 +1567,12 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
         u_reg_clock = clk;
         fine_reg_clock = clk;
         turns_reg_clock = clk;
+        tinc_reg_clock = clk;
+        tdec_reg_clock = clk;
+        tio_reg_clock = clk;
+        tdo_reg_clock = clk;
+        ovi_reg_clock = clk;
+        ovd_reg_clock = clk;
         valid_reg_clock = clk;
         error_reg_clock = clk;
         warning_reg_clock = clk;
@@ -1445,6 +1585,10 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
         lzero_reg_clock = clk;
         lpen_reg_clock = clk;
         lone_reg_clock = clk;
+        ul_reg_clock = clk;
+        dl_reg_clock = clk;
+        uwl_reg_clock = clk;
+        dwl_reg_clock = clk;
         ulast_reg_clock = clk;
         unz_reg_clock = clk;
         init_reg_d = init_reg_q;
@@ -1452,6 +1596,12 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
         u_reg_d = u_reg_q;
         fine_reg_d = fine_reg_q;
         turns_reg_d = turns_reg_q;
+        tinc_reg_d = tinc_reg_q;
+        tdec_reg_d = tdec_reg_q;
+        tio_reg_d = tio_reg_q;
+        tdo_reg_d = tdo_reg_q;
+        ovi_reg_d = ovi_reg_q;
+        ovd_reg_d = ovd_reg_q;
         valid_reg_d = valid_reg_q;
         error_reg_d = error_reg_q;
         warning_reg_d = warning_reg_q;
@@ -1464,9 +1614,12 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
         lzero_reg_d = lzero_reg_q;
         lpen_reg_d = lpen_reg_q;
         lone_reg_d = lone_reg_q;
+        ul_reg_d = ul_reg_q;
+        dl_reg_d = dl_reg_q;
+        uwl_reg_d = uwl_reg_q;
+        dwl_reg_d = dwl_reg_q;
         ulast_reg_d = ulast_reg_q;
         unz_reg_d = unz_reg_q;
-        qnew = (p_in >> fshift) & three;
         ustep = zero;
         if (down_in) begin
             ustep = minus_two;
@@ -1480,6 +1633,9 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
         ulst = (u_reg_q & umask) == ulast;
         uzer = (u_reg_q & umask) == zero;
         uone = (u_reg_q & umask) == uone_c;
+        if (~flat) begin
+            wrap = (up_in & (ulst | ppr1)) | (down_in & (uzer | ppr1));
+        end
         nlast = ulst;
         nzero = uzer;
         if (up_in) begin
@@ -1490,10 +1646,21 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
             nlast = uzer;
             nzero = uone;
         end
-        base_q = lqc_reg_q & three;
         base_u = (lqc_reg_q >> two) & umask;
-        up_l = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
-        down_l = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        if (flat) begin
+            up_l = ul_reg_q;
+            down_l = dl_reg_q;
+            uwl = uwl_reg_q;
+            dwl = dwl_reg_q;
+        end
+        else begin
+            qlat = lqc_reg_q & three;
+            qnow = (p_in >> fshift) & three;
+            up_l = qlat[32'h1] & ~qnow[32'h1] & (qlat[32'h0] | ~qnow[32'h0]);
+            down_l = ~qlat[32'h1] & ~qlat[32'h0] & qnow[32'h1] & qnow[32'h0];
+            uwl = up_l & llast_reg_q;
+            dwl = down_l & lzero_reg_q;
+        end
         ustep_l = zero;
         if (up_l) begin
             ustep_l = one;
@@ -1502,21 +1669,27 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
             ustep_l = minus_one;
         end
         usum_l = (base_u + ustep_l) & usmask;
-        wrap_l = (up_l & llast_reg_q) | (down_l & lzero_reg_q);
+        wrap_l = uwl | dwl;
         up = up_in;
         down = down_in;
         un = usum & umask;
+        tinc_reg_d = (turns_reg_q + one) & tmask;
+        tdec_reg_d = (turns_reg_q + minus_one) & tmask;
+        tinc = tinc_reg_q;
+        if (ovi_reg_q) begin
+            tinc = tio_reg_q;
+        end
+        tdec = tdec_reg_q;
+        if (ovd_reg_q) begin
+            tdec = tdo_reg_q;
+        end
         base_turns = turns_reg_q;
-        tinc = (turns_reg_q + one) & tmask;
-        tdec = (turns_reg_q + minus_one) & tmask;
         if (pending_reg_q) begin
             up = up_l;
             down = down_l;
             un = usum_l & umask;
             wrap = wrap_l;
             base_turns = lturns_reg_q;
-            tinc = ltinc_reg_q;
-            tdec = ltdec_reg_q;
             nlast = llast_reg_q;
             nzero = lzero_reg_q;
             if (up_l) begin
@@ -1588,17 +1761,67 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
                         u_reg_d = ulast;
                     end
                 end
-                turns_reg_d = base_turns & tmask;
-                if (wrap) begin
-                    if (up) begin
-                        turns_reg_d = tinc;
-                    end
-                    else begin
-                        turns_reg_d = tdec;
+                if (~flat) begin
+                    turns_reg_d = base_turns & tmask;
+                    if (wrap) begin
+                        if (up) begin
+                            turns_reg_d = (base_turns + one) & tmask;
+                        end
+                        else begin
+                            turns_reg_d = (base_turns + minus_one) & tmask;
+                        end
                     end
                 end
                 fine_reg_d = p_in & fmask;
                 pprev_reg_d = p_in;
+            end
+        end
+        base_q = lqc_reg_d & three;
+        qnew = q_next & three;
+        ul_reg_d = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+        dl_reg_d = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        uwl_reg_d = ul_reg_d & llast_reg_d;
+        dwl_reg_d = dl_reg_d & lzero_reg_d;
+        rwu = acc_in & up_in & (ulast_reg_q | ppr1);
+        rwd = acc_in & down_in & (~unz_reg_q | ppr1);
+        tsel_p = lturns_reg_q;
+        if (uwl) begin
+            tsel_p = ltinc_reg_q;
+        end
+        if (dwl) begin
+            tsel_p = ltdec_reg_q;
+        end
+        tsel_r = turns_reg_q;
+        if (rwu) begin
+            tsel_r = tinc;
+        end
+        if (rwd) begin
+            tsel_r = tdec;
+        end
+        ovi_reg_d = 1'b0;
+        ovd_reg_d = 1'b0;
+        tio_reg_d = turns_reg_q;
+        tdo_reg_d = turns_reg_q;
+        if (pending_reg_q) begin
+            tio_reg_d = ltinc_reg_q;
+            tdo_reg_d = ltdec_reg_q;
+            if (dwl) begin
+                tio_reg_d = lturns_reg_q;
+            end
+            if (uwl) begin
+                tdo_reg_d = lturns_reg_q;
+            end
+        end
+        if (flat & acc_in & init_reg_q & ~rst) begin
+            if (pending_reg_q) begin
+                turns_reg_d = tsel_p & tmask;
+                ovi_reg_d = ~uwl;
+                ovd_reg_d = ~dwl;
+            end
+            else begin
+                turns_reg_d = tsel_r & tmask;
+                ovi_reg_d = rwd;
+                ovd_reg_d = rwu;
             end
         end
         qc = (u_reg_q << two) | ((pprev_reg_q >> fshift) & three);
@@ -1610,6 +1833,42 @@ module cap_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,
     end
 
 endmodule // cap_core_rtl_counter
+
+module cap_core_rtl_counter_dl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_dl_reg
+
+module cap_core_rtl_counter_dwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_dwl_reg
 
 module cap_core_rtl_counter_error_reg(d,q,clock);
 
@@ -1809,6 +2068,42 @@ module cap_core_rtl_counter_lzero_reg(d,q,clock);
 
 endmodule // cap_core_rtl_counter_lzero_reg
 
+module cap_core_rtl_counter_ovd_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_ovd_reg
+
+module cap_core_rtl_counter_ovi_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_ovi_reg
+
 module cap_core_rtl_counter_pending_reg(d,q,clock);
 
     // Module arguments
@@ -1844,6 +2139,78 @@ module cap_core_rtl_counter_pprev_reg(d,q,clock);
     end
 
 endmodule // cap_core_rtl_counter_pprev_reg
+
+module cap_core_rtl_counter_tdec_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_tdec_reg
+
+module cap_core_rtl_counter_tdo_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_tdo_reg
+
+module cap_core_rtl_counter_tinc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_tinc_reg
+
+module cap_core_rtl_counter_tio_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_tio_reg
 
 module cap_core_rtl_counter_turns_reg(d,q,clock);
 
@@ -1881,6 +2248,24 @@ module cap_core_rtl_counter_u_reg(d,q,clock);
 
 endmodule // cap_core_rtl_counter_u_reg
 
+module cap_core_rtl_counter_ul_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_ul_reg
+
 module cap_core_rtl_counter_ulast_reg(d,q,clock);
 
     // Module arguments
@@ -1916,6 +2301,24 @@ module cap_core_rtl_counter_unz_reg(d,q,clock);
     end
 
 endmodule // cap_core_rtl_counter_unz_reg
+
+module cap_core_rtl_counter_uwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_core_rtl_counter_uwl_reg
 
 module cap_core_rtl_counter_valid_reg(d,q,clock);
 
@@ -2183,6 +2586,7 @@ module cap_core_rtl_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h80000;
+    localparam  natan = 32'hfff80000;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2208,6 +2612,8 @@ module cap_core_rtl_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_0_x_reg x_reg(
@@ -2266,7 +2672,12 @@ module cap_core_rtl_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -2394,6 +2805,7 @@ module cap_core_rtl_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h4b901;
+    localparam  natan = 32'hfffb46ff;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2419,6 +2831,8 @@ module cap_core_rtl_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_1_x_reg x_reg(
@@ -2477,7 +2891,12 @@ module cap_core_rtl_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -2605,6 +3024,7 @@ module cap_core_rtl_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28c;
+    localparam  natan = 32'hfffffd74;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2630,6 +3050,8 @@ module cap_core_rtl_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_10_x_reg x_reg(
@@ -2688,7 +3110,12 @@ module cap_core_rtl_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -2816,6 +3243,7 @@ module cap_core_rtl_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h146;
+    localparam  natan = 32'hfffffeba;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2841,6 +3269,8 @@ module cap_core_rtl_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_11_x_reg x_reg(
@@ -2899,7 +3329,12 @@ module cap_core_rtl_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3027,6 +3462,7 @@ module cap_core_rtl_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha3;
+    localparam  natan = 32'hffffff5d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3052,6 +3488,8 @@ module cap_core_rtl_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_12_x_reg x_reg(
@@ -3110,7 +3548,12 @@ module cap_core_rtl_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3238,6 +3681,7 @@ module cap_core_rtl_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h51;
+    localparam  natan = 32'hffffffaf;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3263,6 +3707,8 @@ module cap_core_rtl_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_13_x_reg x_reg(
@@ -3321,7 +3767,12 @@ module cap_core_rtl_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3449,6 +3900,7 @@ module cap_core_rtl_stages_14(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h29;
+    localparam  natan = 32'hffffffd7;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3474,6 +3926,8 @@ module cap_core_rtl_stages_14(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_14_x_reg x_reg(
@@ -3532,7 +3986,12 @@ module cap_core_rtl_stages_14(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3660,6 +4119,7 @@ module cap_core_rtl_stages_15(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h14;
+    localparam  natan = 32'hffffffec;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3685,6 +4145,8 @@ module cap_core_rtl_stages_15(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_15_x_reg x_reg(
@@ -3743,7 +4205,12 @@ module cap_core_rtl_stages_15(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3871,6 +4338,7 @@ module cap_core_rtl_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h27ece;
+    localparam  natan = 32'hfffd8132;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3896,6 +4364,8 @@ module cap_core_rtl_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_2_x_reg x_reg(
@@ -3954,7 +4424,12 @@ module cap_core_rtl_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4082,6 +4557,7 @@ module cap_core_rtl_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h14444;
+    localparam  natan = 32'hfffebbbc;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4107,6 +4583,8 @@ module cap_core_rtl_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_3_x_reg x_reg(
@@ -4165,7 +4643,12 @@ module cap_core_rtl_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4293,6 +4776,7 @@ module cap_core_rtl_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha2c3;
+    localparam  natan = 32'hffff5d3d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4318,6 +4802,8 @@ module cap_core_rtl_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_4_x_reg x_reg(
@@ -4376,7 +4862,12 @@ module cap_core_rtl_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4504,6 +4995,7 @@ module cap_core_rtl_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h5176;
+    localparam  natan = 32'hffffae8a;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4529,6 +5021,8 @@ module cap_core_rtl_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_5_x_reg x_reg(
@@ -4587,7 +5081,12 @@ module cap_core_rtl_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4715,6 +5214,7 @@ module cap_core_rtl_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28be;
+    localparam  natan = 32'hffffd742;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4740,6 +5240,8 @@ module cap_core_rtl_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_6_x_reg x_reg(
@@ -4798,7 +5300,12 @@ module cap_core_rtl_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4926,6 +5433,7 @@ module cap_core_rtl_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h145f;
+    localparam  natan = 32'hffffeba1;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4951,6 +5459,8 @@ module cap_core_rtl_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_7_x_reg x_reg(
@@ -5009,7 +5519,12 @@ module cap_core_rtl_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5137,6 +5652,7 @@ module cap_core_rtl_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha30;
+    localparam  natan = 32'hfffff5d0;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5162,6 +5678,8 @@ module cap_core_rtl_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_8_x_reg x_reg(
@@ -5220,7 +5738,12 @@ module cap_core_rtl_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5348,6 +5871,7 @@ module cap_core_rtl_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h518;
+    localparam  natan = 32'hfffffae8;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5373,6 +5897,8 @@ module cap_core_rtl_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_core_rtl_stages_9_x_reg x_reg(
@@ -5431,7 +5957,12 @@ module cap_core_rtl_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;

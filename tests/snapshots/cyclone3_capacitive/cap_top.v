@@ -270,6 +270,7 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     output reg  [15:0] out_ch1;
 
     // Constant declarations
+    localparam  atl_idle = 1'b0;
     localparam  wa_lo = 8'h13;
     localparam  wa_hi = 8'h11;
     localparam  wa_z = 1'b1;
@@ -306,6 +307,7 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     localparam  lead_zero = 1'b1;
     localparam  p_last_m1 = 16'h7b;
     localparam  lead_m2 = 16'hfffe;
+    localparam  pc_mask = 16'h7f;
     localparam  kl = 1'b0;
     localparam  km = 1'b0;
     localparam  one_ch = 1'b1;
@@ -359,6 +361,36 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     reg  rst_d_d;
     wire  rst_d_q;
     reg  rst_d_clock;
+    reg  atl_d;
+    wire  atl_q;
+    reg  atl_clock;
+    reg  ewa_lo_d;
+    wire  ewa_lo_q;
+    reg  ewa_lo_clock;
+    reg  ewa_hi_d;
+    wire  ewa_hi_q;
+    reg  ewa_hi_clock;
+    reg  ew0_lo_d;
+    wire  ew0_lo_q;
+    reg  ew0_lo_clock;
+    reg  ew0_hi_d;
+    wire  ew0_hi_q;
+    reg  ew0_hi_clock;
+    reg  ew1_lo_d;
+    wire  ew1_lo_q;
+    reg  ew1_lo_clock;
+    reg  ew1_hi_d;
+    wire  ew1_hi_q;
+    reg  ew1_hi_clock;
+    reg  ewl_lo_d;
+    wire  ewl_lo_q;
+    reg  ewl_lo_clock;
+    reg  ewl_hi_d;
+    wire  ewl_hi_q;
+    reg  ewl_hi_clock;
+    reg  est_d;
+    wire  est_q;
+    reg  est_clock;
     reg  pcl_x_d;
     wire  pcl_x_q;
     reg  pcl_x_clock;
@@ -392,6 +424,11 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
 
     // Local signals
     reg  at_lead;
+    reg  pcl_n;
+    reg  pcm_n;
+    reg  atl_n;
+    reg  pc_eqp;
+    reg  pc_eql;
     reg  run;
     reg  [15:0] pc_n;
     reg  fl;
@@ -489,6 +526,56 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         .q(rst_d_q),
         .clock(rst_d_clock)
     );
+    cap_top_rtl_adc_atl atl(
+        .d(atl_d),
+        .q(atl_q),
+        .clock(atl_clock)
+    );
+    cap_top_rtl_adc_ewa_lo ewa_lo(
+        .d(ewa_lo_d),
+        .q(ewa_lo_q),
+        .clock(ewa_lo_clock)
+    );
+    cap_top_rtl_adc_ewa_hi ewa_hi(
+        .d(ewa_hi_d),
+        .q(ewa_hi_q),
+        .clock(ewa_hi_clock)
+    );
+    cap_top_rtl_adc_ew0_lo ew0_lo(
+        .d(ew0_lo_d),
+        .q(ew0_lo_q),
+        .clock(ew0_lo_clock)
+    );
+    cap_top_rtl_adc_ew0_hi ew0_hi(
+        .d(ew0_hi_d),
+        .q(ew0_hi_q),
+        .clock(ew0_hi_clock)
+    );
+    cap_top_rtl_adc_ew1_lo ew1_lo(
+        .d(ew1_lo_d),
+        .q(ew1_lo_q),
+        .clock(ew1_lo_clock)
+    );
+    cap_top_rtl_adc_ew1_hi ew1_hi(
+        .d(ew1_hi_d),
+        .q(ew1_hi_q),
+        .clock(ew1_hi_clock)
+    );
+    cap_top_rtl_adc_ewl_lo ewl_lo(
+        .d(ewl_lo_d),
+        .q(ewl_lo_q),
+        .clock(ewl_lo_clock)
+    );
+    cap_top_rtl_adc_ewl_hi ewl_hi(
+        .d(ewl_hi_d),
+        .q(ewl_hi_q),
+        .clock(ewl_hi_clock)
+    );
+    cap_top_rtl_adc_est est(
+        .d(est_d),
+        .q(est_q),
+        .clock(est_clock)
+    );
     cap_top_rtl_adc_pcl_x pcl_x(
         .d(pcl_x_d),
         .q(pcl_x_q),
@@ -566,6 +653,16 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         wc_clock = clk;
         cst_clock = clk;
         plx_clock = clk;
+        atl_clock = clk;
+        ewa_lo_clock = clk;
+        ewa_hi_clock = clk;
+        ew0_lo_clock = clk;
+        ew0_hi_clock = clk;
+        ew1_lo_clock = clk;
+        ew1_hi_clock = clk;
+        ewl_lo_clock = clk;
+        ewl_hi_clock = clk;
+        est_clock = clk;
         live_d = live_q;
         pc_d = pc_q;
         ph_d = ph_q;
@@ -590,18 +687,28 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
         wc_d = wc_q;
         cst_d = cst_q;
         plx_d = plx_q;
+        atl_d = atl_q;
+        ewa_lo_d = ewa_lo_q;
+        ewa_hi_d = ewa_hi_q;
+        ew0_lo_d = ew0_lo_q;
+        ew0_hi_d = ew0_hi_q;
+        ew1_lo_d = ew1_lo_q;
+        ew1_hi_d = ew1_hi_q;
+        ewl_lo_d = ewl_lo_q;
+        ewl_hi_d = ewl_hi_q;
+        est_d = est_q;
         run = enable & ~rst;
-        pc_n = zero16;
-        warm_n = warm_init;
         fl = pcl_x_q ^ kl;
         fm = pcm_x_q ^ km;
-        pcl_x_d = 1'b0;
-        pcm_x_d = 1'b0;
-        at_lead = lead_zero;
-        if (live_q & ~fl) begin
-            at_lead = fm;
-        end
-        if (run & live_q) begin
+        at_lead = atl_q ^ lead_zero;
+        pc_eqp = (pc_q & pc_mask) == p_last_m1;
+        pc_eql = (pc_q & pc_mask) == lead_m2;
+        pc_n = zero16;
+        warm_n = warm_init;
+        pcl_n = 1'b0;
+        pcm_n = 1'b0;
+        atl_n = atl_idle;
+        if (live_q) begin
             if (fl) begin
                 pc_n = zero16;
                 if (warm_q == zero4) begin
@@ -614,10 +721,35 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             else begin
                 pc_n = pc_q + one16;
                 warm_n = warm_q;
-                pcl_x_d = (pc_q == p_last_m1) ^ kl;
-                pcm_x_d = (pc_q == lead_m2) ^ km;
+                pcl_n = pc_eqp ^ kl;
+                pcm_n = pc_eql ^ km;
+                atl_n = lead_zero;
+                if (~pc_eqp) begin
+                    atl_n = pc_eql;
+                end
             end
         end
+        if (~run) begin
+            pc_n = zero16;
+            warm_n = warm_init;
+            pcl_n = 1'b0;
+            pcm_n = 1'b0;
+        end
+        pcl_x_d = pcl_n;
+        pcm_x_d = pcm_n;
+        atl_d = atl_n ^ lead_zero;
+        if (~run) begin
+            atl_d = 1'b0;
+        end
+        ewa_lo_d = cyc_q == wa_lo;
+        ewa_hi_d = cyc_q == wa_hi;
+        ew0_lo_d = cyc_q == w0_lo;
+        ew0_hi_d = cyc_q == w0_hi;
+        ew1_lo_d = cyc_q == w1_lo;
+        ew1_hi_d = cyc_q == w1_hi;
+        ewl_lo_d = cyc_q == wl_lo;
+        ewl_hi_d = cyc_q == wl_hi;
+        est_d = cyc_q == cyc_stop_m1;
         pl_end = plx_q ^ d_one;
         cinc = 1'b0;
         pinc = 1'b0;
@@ -641,7 +773,7 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             ph_n = zero8;
             cyc_n = cyc_q + one8;
             cinc = 1'b1;
-            cst_d = cyc_q == cyc_stop_m1;
+            cst_d = est_q;
         end
         else begin
             ph_n = ph_q + one8;
@@ -673,10 +805,10 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
             wl_d = 1'b0;
         end
         if (cinc) begin
-            wa_d = ((cyc_q == wa_lo) | (pa & (cyc_q != wa_hi))) ^ wa_z;
-            w0_d = ((cyc_q == w0_lo) | (p0 & (cyc_q != w0_hi))) ^ w0_z;
-            w1_d = ((cyc_q == w1_lo) | (p1 & (cyc_q != w1_hi))) ^ w1_z;
-            wl_d = ((cyc_q == wl_lo) | (pl & (cyc_q != wl_hi))) ^ wl_z;
+            wa_d = (ewa_lo_q | (pa & ~ewa_hi_q)) ^ wa_z;
+            w0_d = (ew0_lo_q | (p0 & ~ew0_hi_q)) ^ w0_z;
+            w1_d = (ew1_lo_q | (p1 & ~ew1_hi_q)) ^ w1_z;
+            wl_d = (ewl_lo_q | (pl & ~ewl_hi_q)) ^ wl_z;
         end
         if (~run) begin
             wa_d = wa_s ^ wa_z;
@@ -752,6 +884,24 @@ module cap_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch
     end
 
 endmodule // cap_top_rtl_adc
+
+module cap_top_rtl_adc_atl(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_atl
 
 module cap_top_rtl_adc_ch0_reg(d,q,clock);
 
@@ -842,6 +992,168 @@ module cap_top_rtl_adc_cyc(d,q,clock);
     end
 
 endmodule // cap_top_rtl_adc_cyc
+
+module cap_top_rtl_adc_est(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_est
+
+module cap_top_rtl_adc_ew0_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew0_hi
+
+module cap_top_rtl_adc_ew0_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew0_lo
+
+module cap_top_rtl_adc_ew1_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew1_hi
+
+module cap_top_rtl_adc_ew1_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ew1_lo
+
+module cap_top_rtl_adc_ewa_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewa_hi
+
+module cap_top_rtl_adc_ewa_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewa_lo
+
+module cap_top_rtl_adc_ewl_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewl_hi
+
+module cap_top_rtl_adc_ewl_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_adc_ewl_lo
 
 module cap_top_rtl_adc_live(d,q,clock);
 
@@ -1211,23 +1523,11 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     localparam  ackn_m1 = 32'h0;
     localparam  nbits_m1 = 32'h13;
     localparam  five = 32'h5;
-    localparam  tlast_m1 = 32'h3e6;
+    localparam  tlast_m2 = 32'h3e5;
     localparam  ack_is1 = 1'b1;
     localparam  n_is1 = 1'b0;
     localparam  tlast_is0 = 1'b0;
-
-    // Enums
-    localparam BissState_Timeout = 0;
-    localparam BissState_Idle = 1;
-    localparam BissState_First = 2;
-    localparam BissState_Second = 3;
-    localparam BissState_Ack = 4;
-    localparam BissState_Start = 5;
-    localparam BissState_Cds = 6;
-    localparam BissState_Data = 7;
-    localparam BissState_Err = 8;
-    localparam BissState_Warn = 9;
-    localparam BissState_Crc = 10;
+    localparam  tpre_is0 = 1'b0;
 
     // Stub signals
     reg  sync_clk;
@@ -1247,9 +1547,54 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     wire  [31:0] posw_word;
     wire  posw_err;
     wire  posw_warn;
-    reg  [3:0] state_d;
-    wire  [3:0] state_q;
-    reg  state_clock;
+    reg  s_tmo_d;
+    wire  s_tmo_q;
+    reg  s_tmo_clock;
+    reg  s_first_d;
+    wire  s_first_q;
+    reg  s_first_clock;
+    reg  s_second_d;
+    wire  s_second_q;
+    reg  s_second_clock;
+    reg  s_ack_d;
+    wire  s_ack_q;
+    reg  s_ack_clock;
+    reg  s_start_d;
+    wire  s_start_q;
+    reg  s_start_clock;
+    reg  s_cds_d;
+    wire  s_cds_q;
+    reg  s_cds_clock;
+    reg  s_data_d;
+    wire  s_data_q;
+    reg  s_data_clock;
+    reg  s_err_d;
+    wire  s_err_q;
+    reg  s_err_clock;
+    reg  s_warn_d;
+    wire  s_warn_q;
+    reg  s_warn_clock;
+    reg  s_crc_d;
+    wire  s_crc_q;
+    reg  s_crc_clock;
+    reg  pact_d;
+    wire  pact_q;
+    reg  pact_clock;
+    reg  pfb_d;
+    wire  pfb_q;
+    reg  pfb_clock;
+    reg  pinc_d;
+    wire  pinc_q;
+    reg  pinc_clock;
+    reg  pld_d;
+    wire  pld_q;
+    reg  pld_clock;
+    reg  rven_d;
+    wire  rven_q;
+    reg  rven_clock;
+    reg  rv_d;
+    wire  rv_q;
+    reg  rv_clock;
     reg  slo_reg_d;
     wire  slo_reg_q;
     reg  slo_reg_clock;
@@ -1280,9 +1625,12 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  fsix_d;
     wire  fsix_q;
     reg  fsix_clock;
-    reg  ftl_d;
-    wire  ftl_q;
-    reg  ftl_clock;
+    reg  tmoq_d;
+    wire  tmoq_q;
+    reg  tmoq_clock;
+    reg  fpre_d;
+    wire  fpre_q;
+    reg  fpre_clock;
     reg  sidle_d;
     wire  sidle_q;
     reg  sidle_clock;
@@ -1291,13 +1639,14 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  sshift_clock;
 
     // Local signals
-    reg  cld1;
-    reg  cinc;
     reg  mae;
+    reg  tmo;
+    reg  ftln;
+    reg  sidlen;
+    reg  live;
     reg  dbit;
     reg  cbit;
-    reg  cupd;
-    reg  fb;
+    reg  [31:0] cnext;
 
     // Sub module instances
     cap_top_rtl_biss_slave_sync sync(
@@ -1321,10 +1670,85 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .err(posw_err),
         .warn(posw_warn)
     );
-    cap_top_rtl_biss_slave_state state(
-        .d(state_d),
-        .q(state_q),
-        .clock(state_clock)
+    cap_top_rtl_biss_slave_s_tmo s_tmo(
+        .d(s_tmo_d),
+        .q(s_tmo_q),
+        .clock(s_tmo_clock)
+    );
+    cap_top_rtl_biss_slave_s_first s_first(
+        .d(s_first_d),
+        .q(s_first_q),
+        .clock(s_first_clock)
+    );
+    cap_top_rtl_biss_slave_s_second s_second(
+        .d(s_second_d),
+        .q(s_second_q),
+        .clock(s_second_clock)
+    );
+    cap_top_rtl_biss_slave_s_ack s_ack(
+        .d(s_ack_d),
+        .q(s_ack_q),
+        .clock(s_ack_clock)
+    );
+    cap_top_rtl_biss_slave_s_start s_start(
+        .d(s_start_d),
+        .q(s_start_q),
+        .clock(s_start_clock)
+    );
+    cap_top_rtl_biss_slave_s_cds s_cds(
+        .d(s_cds_d),
+        .q(s_cds_q),
+        .clock(s_cds_clock)
+    );
+    cap_top_rtl_biss_slave_s_data s_data(
+        .d(s_data_d),
+        .q(s_data_q),
+        .clock(s_data_clock)
+    );
+    cap_top_rtl_biss_slave_s_err s_err(
+        .d(s_err_d),
+        .q(s_err_q),
+        .clock(s_err_clock)
+    );
+    cap_top_rtl_biss_slave_s_warn s_warn(
+        .d(s_warn_d),
+        .q(s_warn_q),
+        .clock(s_warn_clock)
+    );
+    cap_top_rtl_biss_slave_s_crc s_crc(
+        .d(s_crc_d),
+        .q(s_crc_q),
+        .clock(s_crc_clock)
+    );
+    cap_top_rtl_biss_slave_pact pact(
+        .d(pact_d),
+        .q(pact_q),
+        .clock(pact_clock)
+    );
+    cap_top_rtl_biss_slave_pfb pfb(
+        .d(pfb_d),
+        .q(pfb_q),
+        .clock(pfb_clock)
+    );
+    cap_top_rtl_biss_slave_pinc pinc(
+        .d(pinc_d),
+        .q(pinc_q),
+        .clock(pinc_clock)
+    );
+    cap_top_rtl_biss_slave_pld pld(
+        .d(pld_d),
+        .q(pld_q),
+        .clock(pld_clock)
+    );
+    cap_top_rtl_biss_slave_rven rven(
+        .d(rven_d),
+        .q(rven_q),
+        .clock(rven_clock)
+    );
+    cap_top_rtl_biss_slave_rv rv(
+        .d(rv_d),
+        .q(rv_q),
+        .clock(rv_clock)
     );
     cap_top_rtl_biss_slave_slo_reg slo_reg(
         .d(slo_reg_d),
@@ -1376,10 +1800,15 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .q(fsix_q),
         .clock(fsix_clock)
     );
-    cap_top_rtl_biss_slave_ftl ftl(
-        .d(ftl_d),
-        .q(ftl_q),
-        .clock(ftl_clock)
+    cap_top_rtl_biss_slave_tmoq tmoq(
+        .d(tmoq_d),
+        .q(tmoq_q),
+        .clock(tmoq_clock)
+    );
+    cap_top_rtl_biss_slave_fpre fpre(
+        .d(fpre_d),
+        .q(fpre_q),
+        .clock(fpre_clock)
     );
     cap_top_rtl_biss_slave_sidle sidle(
         .d(sidle_d),
@@ -1394,7 +1823,22 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
 
     // Update code
     always @(*) begin
-        state_clock = clk;
+        s_tmo_clock = clk;
+        s_first_clock = clk;
+        s_second_clock = clk;
+        s_ack_clock = clk;
+        s_start_clock = clk;
+        s_cds_clock = clk;
+        s_data_clock = clk;
+        s_err_clock = clk;
+        s_warn_clock = clk;
+        s_crc_clock = clk;
+        pact_clock = clk;
+        pfb_clock = clk;
+        pinc_clock = clk;
+        pld_clock = clk;
+        rven_clock = clk;
+        rv_clock = clk;
         slo_reg_clock = clk;
         sh_clock = clk;
         crc_clock = clk;
@@ -1405,10 +1849,26 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fack_clock = clk;
         fnb_clock = clk;
         fsix_clock = clk;
-        ftl_clock = clk;
+        tmoq_clock = clk;
+        fpre_clock = clk;
         sidle_clock = clk;
         sshift_clock = clk;
-        state_d = state_q;
+        s_tmo_d = s_tmo_q;
+        s_first_d = s_first_q;
+        s_second_d = s_second_q;
+        s_ack_d = s_ack_q;
+        s_start_d = s_start_q;
+        s_cds_d = s_cds_q;
+        s_data_d = s_data_q;
+        s_err_d = s_err_q;
+        s_warn_d = s_warn_q;
+        s_crc_d = s_crc_q;
+        pact_d = pact_q;
+        pfb_d = pfb_q;
+        pinc_d = pinc_q;
+        pld_d = pld_q;
+        rven_d = rven_q;
+        rv_d = rv_q;
         slo_reg_d = slo_reg_q;
         sh_d = sh_q;
         crc_d = crc_q;
@@ -1419,7 +1879,8 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fack_d = fack_q;
         fnb_d = fnb_q;
         fsix_d = fsix_q;
-        ftl_d = ftl_q;
+        tmoq_d = tmoq_q;
+        fpre_d = fpre_q;
         sidle_d = sidle_q;
         sshift_d = sshift_q;
         sync_clk = clk;
@@ -1434,124 +1895,67 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         posw_warning = warning;
         posw_take = 1'b0;
         mae = sync_rise | sync_fall;
-        dbit = |(sh_q & msb);
-        cbit = dbit;
-        cupd = 1'b0;
-        cld1 = 1'b0;
-        cinc = 1'b0;
+        tmo = tmoq_q & ~mae;
+        live = ~tmo & ~rst;
         if (mae) begin
             tcnt_d = zero;
-            ftl_d = tlast_is0;
+            ftln = tlast_is0;
+            fpre_d = tpre_is0;
         end
         else begin
             tcnt_d = (tcnt_q + one) & tmask;
-            ftl_d = tcnt_q == tlast_m1;
+            ftln = fpre_q;
+            fpre_d = tcnt_q == tlast_m2;
         end
-        case (state_q)
-            BissState_Timeout:
-                begin
-                end
-            BissState_Idle:
-                begin
-                    if (sync_fall) begin
-                        state_d = BissState_First;
-                    end
-                end
-            BissState_First:
-                begin
-                    if (sync_rise) begin
-                        state_d = BissState_Second;
-                    end
-                end
-            BissState_Second:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = 1'b0;
-                        cld1 = 1'b1;
-                        state_d = BissState_Ack;
-                    end
-                end
-            BissState_Ack:
-                begin
-                    if (sync_rise) begin
-                        if (fack_q) begin
-                            slo_reg_d = 1'b1;
-                            state_d = BissState_Start;
-                        end
-                        else begin
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-            BissState_Start:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = 1'b0;
-                        state_d = BissState_Cds;
-                    end
-                end
-            BissState_Cds:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = dbit;
-                        cupd = 1'b1;
-                        cld1 = 1'b1;
-                        state_d = BissState_Data;
-                    end
-                end
-            BissState_Data:
-                begin
-                    if (sync_rise) begin
-                        cupd = 1'b1;
-                        if (fnb_q) begin
-                            cbit = ~errl_q;
-                            slo_reg_d = ~errl_q;
-                            state_d = BissState_Err;
-                        end
-                        else begin
-                            slo_reg_d = dbit;
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-            BissState_Err:
-                begin
-                    if (sync_rise) begin
-                        cupd = 1'b1;
-                        cbit = ~warnl_q;
-                        slo_reg_d = ~warnl_q;
-                        state_d = BissState_Warn;
-                    end
-                end
-            BissState_Warn:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = ~|(crc_q & crcmsb);
-                        crc_d = (crc_q << one) & crcmask;
-                        cld1 = 1'b1;
-                        state_d = BissState_Crc;
-                    end
-                end
-            BissState_Crc:
-                begin
-                    if (sync_rise) begin
-                        if (fsix_q) begin
-                            slo_reg_d = 1'b0;
-                            state_d = BissState_Timeout;
-                        end
-                        else begin
-                            slo_reg_d = ~|(crc_q & crcmsb);
-                            crc_d = (crc_q << one) & crcmask;
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-        endcase
+        if (rst) begin
+            tcnt_d = zero;
+            ftln = tlast_is0;
+            fpre_d = tpre_is0;
+        end
+        s_tmo_d = rst | (~tmo & (s_tmo_q | (s_crc_q & sync_rise & fsix_q)));
+        sidlen = ~rst & (tmo | (sidle_q & ~sync_fall));
+        sidle_d = sidlen;
+        tmoq_d = ~sidlen & ftln;
+        s_first_d = live & ((sidle_q & sync_fall) | (s_first_q & ~sync_rise));
+        s_second_d = live & ((s_first_q & sync_rise) | (s_second_q & ~sync_rise));
+        s_ack_d = live & ((s_second_q & sync_rise) | (s_ack_q & ~(sync_rise & fack_q)));
+        s_start_d = live & ((s_ack_q & sync_rise & fack_q) | (s_start_q & ~sync_rise));
+        s_cds_d = live & ((s_start_q & sync_rise) | (s_cds_q & ~sync_rise));
+        s_data_d = live & ((s_cds_q & sync_rise) | (s_data_q & ~(sync_rise & fnb_q)));
+        s_err_d = live & ((s_data_q & sync_rise & fnb_q) | (s_err_q & ~sync_rise));
+        s_warn_d = live & ((s_err_q & sync_rise) | (s_warn_q & ~sync_rise));
+        s_crc_d = live & ((s_warn_q & sync_rise) | (s_crc_q & ~(sync_rise & fsix_q)));
+        dbit = |(sh_q & msb);
+        cbit = dbit;
+        if (s_data_q & fnb_q) begin
+            cbit = ~errl_q;
+        end
+        if (s_err_q) begin
+            cbit = ~warnl_q;
+        end
+        pact_d = (s_cds_q | s_data_q | s_err_q | s_warn_q | (s_crc_q & ~fsix_q)) & live;
+        pfb_d = (s_cds_q | s_data_q | s_err_q) & (cbit ^ |(crc_q & crcmsb));
+        pinc_d = ((s_ack_q & ~fack_q) | (s_data_q & ~fnb_q) | (s_crc_q & ~fsix_q)) & live;
+        pld_d = (s_second_q | s_cds_q | s_warn_q) & live;
+        rven_d = ~(s_tmo_q | sidle_q | s_first_q | (s_ack_q & ~fack_q)) & live;
+        rv_d = s_ack_q | ((s_cds_q | (s_data_q & ~fnb_q)) & dbit) | ((s_data_q & fnb_q) & ~errl_q) | (s_err_q & ~warnl_q) | ((s_warn_q | (s_crc_q & ~fsix_q)) & ~|(crc_q & crcmsb));
+        if (sync_rise & rven_q) begin
+            slo_reg_d = rv_q;
+        end
+        if (s_crc_q & sync_rise & fsix_q) begin
+        end
         if (sidle_q & sync_fall) begin
             posw_take = 1'b1;
             errl_d = posw_err;
             warnl_d = posw_warn;
             crc_d = zero;
+        end
+        cnext = (crc_q << one) & crcmask;
+        if (pfb_q) begin
+            cnext = ((crc_q << one) & crcmask) ^ taps;
+        end
+        if (sync_rise & pact_q) begin
+            crc_d = cnext;
         end
         if (sidle_q & sync_fall) begin
             sh_d = posw_word & nmask;
@@ -1559,39 +1963,25 @@ module cap_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         if (sshift_q & sync_rise) begin
             sh_d = (sh_q << one) & nmask;
         end
-        if (cinc) begin
+        if (sync_rise & pinc_q) begin
             cnt_d = (cnt_q + one) & cmask;
             fack_d = cnt_q == ackn_m1;
             fnb_d = cnt_q == nbits_m1;
             fsix_d = cnt_q == five;
         end
-        if (cld1) begin
+        if (sync_rise & pld_q) begin
             cnt_d = one;
             fack_d = ack_is1;
             fnb_d = n_is1;
             fsix_d = 1'b0;
         end
-        fb = cbit ^ |(crc_q & crcmsb);
-        if (cupd) begin
-            if (fb) begin
-                crc_d = ((crc_q << one) & crcmask) ^ taps;
-            end
-            else begin
-                crc_d = (crc_q << one) & crcmask;
-            end
-        end
-        if ((state_q != BissState_Idle) & ~mae & ftl_q) begin
+        if (tmo) begin
             slo_reg_d = 1'b1;
-            state_d = BissState_Idle;
         end
         if (rst) begin
-            state_d = BissState_Timeout;
             slo_reg_d = 1'b0;
-            tcnt_d = zero;
-            ftl_d = tlast_is0;
         end
-        sidle_d = state_d == BissState_Idle;
-        sshift_d = ((state_q == BissState_Cds) | ((state_q == BissState_Data) & ~fnb_q)) & ~(~mae & ftl_q) & ~rst;
+        sshift_d = (s_cds_q | (s_data_q & ~fnb_q)) & live;
         slo = slo_reg_q;
     end
 
@@ -1687,6 +2077,24 @@ module cap_top_rtl_biss_slave_fnb(d,q,clock);
 
 endmodule // cap_top_rtl_biss_slave_fnb
 
+module cap_top_rtl_biss_slave_fpre(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_fpre
+
 module cap_top_rtl_biss_slave_fsix(d,q,clock);
 
     // Module arguments
@@ -1705,7 +2113,7 @@ module cap_top_rtl_biss_slave_fsix(d,q,clock);
 
 endmodule // cap_top_rtl_biss_slave_fsix
 
-module cap_top_rtl_biss_slave_ftl(d,q,clock);
+module cap_top_rtl_biss_slave_pact(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -1721,7 +2129,61 @@ module cap_top_rtl_biss_slave_ftl(d,q,clock);
        q <= d;
     end
 
-endmodule // cap_top_rtl_biss_slave_ftl
+endmodule // cap_top_rtl_biss_slave_pact
+
+module cap_top_rtl_biss_slave_pfb(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_pfb
+
+module cap_top_rtl_biss_slave_pinc(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_pinc
+
+module cap_top_rtl_biss_slave_pld(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_pld
 
 module cap_top_rtl_biss_slave_posw(clk,rst,pos,turns,pos_valid,error,warning,take,word,err,warn);
 
@@ -1937,6 +2399,253 @@ module cap_top_rtl_biss_slave_posw_warnacc(d,q,clock);
 
 endmodule // cap_top_rtl_biss_slave_posw_warnacc
 
+module cap_top_rtl_biss_slave_rv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_rv
+
+module cap_top_rtl_biss_slave_rven(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_rven
+
+module cap_top_rtl_biss_slave_s_ack(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_ack
+
+module cap_top_rtl_biss_slave_s_cds(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_cds
+
+module cap_top_rtl_biss_slave_s_crc(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_crc
+
+module cap_top_rtl_biss_slave_s_data(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_data
+
+module cap_top_rtl_biss_slave_s_err(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_err
+
+module cap_top_rtl_biss_slave_s_first(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_first
+
+module cap_top_rtl_biss_slave_s_second(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_second
+
+module cap_top_rtl_biss_slave_s_start(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_start
+
+module cap_top_rtl_biss_slave_s_tmo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+
+    // Stub signals
+    reg  dff_d;
+    wire  dff_q;
+    reg  dff_clock;
+
+    // Sub module instances
+    cap_top_rtl_biss_slave_s_tmo_dff dff(
+        .d(dff_d),
+        .q(dff_q),
+        .clock(dff_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        dff_clock = clock;
+        q = dff_q ^ init;
+        dff_d = d ^ init;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_tmo
+
+module cap_top_rtl_biss_slave_s_tmo_dff(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_tmo_dff
+
+module cap_top_rtl_biss_slave_s_warn(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_s_warn
+
 module cap_top_rtl_biss_slave_sh(d,q,clock);
 
     // Module arguments
@@ -2008,37 +2717,6 @@ module cap_top_rtl_biss_slave_sshift(d,q,clock);
     end
 
 endmodule // cap_top_rtl_biss_slave_sshift
-
-module cap_top_rtl_biss_slave_state(d,q,clock);
-
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-
-    // Enums
-    localparam BissState_Timeout = 0;
-    localparam BissState_Idle = 1;
-    localparam BissState_First = 2;
-    localparam BissState_Second = 3;
-    localparam BissState_Ack = 4;
-    localparam BissState_Start = 5;
-    localparam BissState_Cds = 6;
-    localparam BissState_Data = 7;
-    localparam BissState_Err = 8;
-    localparam BissState_Warn = 9;
-    localparam BissState_Crc = 10;
-
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // cap_top_rtl_biss_slave_state
 
 module cap_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
 
@@ -2289,6 +2967,24 @@ module cap_top_rtl_biss_slave_tcnt(d,q,clock);
     end
 
 endmodule // cap_top_rtl_biss_slave_tcnt
+
+module cap_top_rtl_biss_slave_tmoq(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_biss_slave_tmoq
 
 module cap_top_rtl_biss_slave_warnl(d,q,clock);
 
@@ -2548,9 +3244,13 @@ module cap_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,o
     wire  combiner_step;
     wire  [31:0] combiner_wq;
     wire  combiner_wz;
+    wire  [31:0] combiner_q_next;
+    wire  combiner_acc;
     reg  counter_clk;
     reg  counter_rst;
     reg  [31:0] counter_p_in;
+    reg  [31:0] counter_q_next;
+    reg  counter_acc_in;
     reg  counter_ok_in;
     reg  counter_v_in;
     reg  counter_up_in;
@@ -2817,12 +3517,16 @@ module cap_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,o
         .down(combiner_down),
         .step(combiner_step),
         .wq(combiner_wq),
-        .wz(combiner_wz)
+        .wz(combiner_wz),
+        .q_next(combiner_q_next),
+        .acc(combiner_acc)
     );
     cap_top_rtl_core_counter counter(
         .clk(counter_clk),
         .rst(counter_rst),
         .p_in(counter_p_in),
+        .q_next(counter_q_next),
+        .acc_in(counter_acc_in),
         .ok_in(counter_ok_in),
         .v_in(counter_v_in),
         .up_in(counter_up_in),
@@ -3121,6 +3825,8 @@ module cap_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,o
         counter_clk = clk;
         counter_rst = rst;
         counter_p_in = combiner_p;
+        counter_q_next = combiner_q_next;
+        counter_acc_in = combiner_acc;
         counter_ok_in = combiner_mag_ok;
         counter_v_in = combiner_v;
         counter_up_in = combiner_up;
@@ -3141,7 +3847,7 @@ module cap_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,o
 
 endmodule // cap_top_rtl_core
 
-module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz);
+module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz,q_next,acc);
 
     // Module arguments
     input wire  clk;
@@ -3157,6 +3863,8 @@ module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,
     output reg  step;
     output reg  [31:0] wq;
     output reg  wz;
+    output reg  [31:0] q_next;
+    output reg  acc;
 
     // Constant declarations
     localparam  zshift = 32'h6;
@@ -3172,6 +3880,9 @@ module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,
     localparam  vbit = 32'h80000000;
 
     // Stub signals
+    reg  acc_reg_d;
+    wire  acc_reg_q;
+    reg  acc_reg_clock;
     reg  [31:0] p_reg_d;
     wire  [31:0] p_reg_q;
     reg  p_reg_clock;
@@ -3211,6 +3922,11 @@ module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,
     reg  [31:0] qlast;
 
     // Sub module instances
+    cap_top_rtl_core_combiner_acc_reg acc_reg(
+        .d(acc_reg_d),
+        .q(acc_reg_q),
+        .clock(acc_reg_clock)
+    );
     cap_top_rtl_core_combiner_p_reg p_reg(
         .d(p_reg_d),
         .q(p_reg_q),
@@ -3268,6 +3984,7 @@ module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,
         step_reg_clock = clk;
         wq_reg_clock = clk;
         wz_reg_clock = clk;
+        acc_reg_clock = clk;
         p_reg_d = p_reg_q;
         ok_reg_d = ok_reg_q;
         v_reg_d = v_reg_q;
@@ -3277,6 +3994,7 @@ module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,
         step_reg_d = step_reg_q;
         wq_reg_d = wq_reg_q;
         wz_reg_d = wz_reg_q;
+        acc_reg_d = acc_reg_q;
         pn = (z_in >> zshift) & pmask;
         okn = x_in >= minmag;
         p_reg_d = pn;
@@ -3297,6 +4015,7 @@ module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,
         up_reg_d = ~back & (qnew < qlast);
         down_reg_d = back & (qnew > qlast);
         step_reg_d = up_reg_d | down_reg_d;
+        acc_reg_d = okv;
         wq_reg_d = delta >> wshift;
         wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;
         p = p_reg_q;
@@ -3307,9 +4026,29 @@ module cap_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,
         step = step_reg_q;
         wq = wq_reg_q;
         wz = wz_reg_q;
+        q_next = qnew;
+        acc = acc_reg_q;
     end
 
 endmodule // cap_top_rtl_core_combiner
+
+module cap_top_rtl_core_combiner_acc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_combiner_acc_reg
 
 module cap_top_rtl_core_combiner_down_reg(d,q,clock);
 
@@ -3473,12 +4212,14 @@ module cap_top_rtl_core_combiner_wz_reg(d,q,clock);
 
 endmodule // cap_top_rtl_core_combiner_wz_reg
 
-module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
+module cap_top_rtl_core_counter(clk,rst,p_in,q_next,acc_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
 
     // Module arguments
     input wire  clk;
     input wire  rst;
     input wire  [31:0] p_in;
+    input wire  [31:0] q_next;
+    input wire  acc_in;
     input wire  ok_in;
     input wire  v_in;
     input wire  up_in;
@@ -3509,6 +4250,7 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
     localparam  upenult = 32'he;
     localparam  uone_c = 32'h1;
     localparam  ppr1 = 1'b0;
+    localparam  flat = 1'b1;
     localparam  tmask = 32'hfff;
     localparam  one = 32'h1;
     localparam  three = 32'h3;
@@ -3550,6 +4292,24 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
     reg  [31:0] lturns_reg_d;
     wire  [31:0] lturns_reg_q;
     reg  lturns_reg_clock;
+    reg  [31:0] tinc_reg_d;
+    wire  [31:0] tinc_reg_q;
+    reg  tinc_reg_clock;
+    reg  [31:0] tdec_reg_d;
+    wire  [31:0] tdec_reg_q;
+    reg  tdec_reg_clock;
+    reg  [31:0] tio_reg_d;
+    wire  [31:0] tio_reg_q;
+    reg  tio_reg_clock;
+    reg  [31:0] tdo_reg_d;
+    wire  [31:0] tdo_reg_q;
+    reg  tdo_reg_clock;
+    reg  ovi_reg_d;
+    wire  ovi_reg_q;
+    reg  ovi_reg_clock;
+    reg  ovd_reg_d;
+    wire  ovd_reg_q;
+    reg  ovd_reg_clock;
     reg  [31:0] ltinc_reg_d;
     wire  [31:0] ltinc_reg_q;
     reg  ltinc_reg_clock;
@@ -3568,6 +4328,18 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
     reg  lone_reg_d;
     wire  lone_reg_q;
     reg  lone_reg_clock;
+    reg  ul_reg_d;
+    wire  ul_reg_q;
+    reg  ul_reg_clock;
+    reg  dl_reg_d;
+    wire  dl_reg_q;
+    reg  dl_reg_clock;
+    reg  uwl_reg_d;
+    wire  uwl_reg_q;
+    reg  uwl_reg_clock;
+    reg  dwl_reg_d;
+    wire  dwl_reg_q;
+    reg  dwl_reg_clock;
     reg  ulast_reg_d;
     wire  ulast_reg_q;
     reg  ulast_reg_clock;
@@ -3576,6 +4348,15 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
     reg  unz_reg_clock;
 
     // Local signals
+    reg  uwl;
+    reg  dwl;
+    reg  [31:0] qlat;
+    reg  [31:0] qnow;
+    reg  rwu;
+    reg  rwd;
+    reg  [31:0] base_turns;
+    reg  [31:0] tsel_p;
+    reg  [31:0] tsel_r;
     reg  upen;
     reg  ulst;
     reg  uzer;
@@ -3585,7 +4366,6 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
     reg  [31:0] qnew;
     reg  [31:0] base_q;
     reg  [31:0] base_u;
-    reg  [31:0] base_turns;
     reg  up;
     reg  down;
     reg  [31:0] ustep;
@@ -3656,6 +4436,36 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
         .q(lturns_reg_q),
         .clock(lturns_reg_clock)
     );
+    cap_top_rtl_core_counter_tinc_reg tinc_reg(
+        .d(tinc_reg_d),
+        .q(tinc_reg_q),
+        .clock(tinc_reg_clock)
+    );
+    cap_top_rtl_core_counter_tdec_reg tdec_reg(
+        .d(tdec_reg_d),
+        .q(tdec_reg_q),
+        .clock(tdec_reg_clock)
+    );
+    cap_top_rtl_core_counter_tio_reg tio_reg(
+        .d(tio_reg_d),
+        .q(tio_reg_q),
+        .clock(tio_reg_clock)
+    );
+    cap_top_rtl_core_counter_tdo_reg tdo_reg(
+        .d(tdo_reg_d),
+        .q(tdo_reg_q),
+        .clock(tdo_reg_clock)
+    );
+    cap_top_rtl_core_counter_ovi_reg ovi_reg(
+        .d(ovi_reg_d),
+        .q(ovi_reg_q),
+        .clock(ovi_reg_clock)
+    );
+    cap_top_rtl_core_counter_ovd_reg ovd_reg(
+        .d(ovd_reg_d),
+        .q(ovd_reg_q),
+        .clock(ovd_reg_clock)
+    );
     cap_top_rtl_core_counter_ltinc_reg ltinc_reg(
         .d(ltinc_reg_d),
         .q(ltinc_reg_q),
@@ -3686,6 +4496,26 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
         .q(lone_reg_q),
         .clock(lone_reg_clock)
     );
+    cap_top_rtl_core_counter_ul_reg ul_reg(
+        .d(ul_reg_d),
+        .q(ul_reg_q),
+        .clock(ul_reg_clock)
+    );
+    cap_top_rtl_core_counter_dl_reg dl_reg(
+        .d(dl_reg_d),
+        .q(dl_reg_q),
+        .clock(dl_reg_clock)
+    );
+    cap_top_rtl_core_counter_uwl_reg uwl_reg(
+        .d(uwl_reg_d),
+        .q(uwl_reg_q),
+        .clock(uwl_reg_clock)
+    );
+    cap_top_rtl_core_counter_dwl_reg dwl_reg(
+        .d(dwl_reg_d),
+        .q(dwl_reg_q),
+        .clock(dwl_reg_clock)
+    );
     cap_top_rtl_core_counter_ulast_reg ulast_reg(
         .d(ulast_reg_d),
         .q(ulast_reg_q),
@@ -3704,6 +4534,12 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
         u_reg_clock = clk;
         fine_reg_clock = clk;
         turns_reg_clock = clk;
+        tinc_reg_clock = clk;
+        tdec_reg_clock = clk;
+        tio_reg_clock = clk;
+        tdo_reg_clock = clk;
+        ovi_reg_clock = clk;
+        ovd_reg_clock = clk;
         valid_reg_clock = clk;
         error_reg_clock = clk;
         warning_reg_clock = clk;
@@ -3716,6 +4552,10 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
         lzero_reg_clock = clk;
         lpen_reg_clock = clk;
         lone_reg_clock = clk;
+        ul_reg_clock = clk;
+        dl_reg_clock = clk;
+        uwl_reg_clock = clk;
+        dwl_reg_clock = clk;
         ulast_reg_clock = clk;
         unz_reg_clock = clk;
         init_reg_d = init_reg_q;
@@ -3723,6 +4563,12 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
         u_reg_d = u_reg_q;
         fine_reg_d = fine_reg_q;
         turns_reg_d = turns_reg_q;
+        tinc_reg_d = tinc_reg_q;
+        tdec_reg_d = tdec_reg_q;
+        tio_reg_d = tio_reg_q;
+        tdo_reg_d = tdo_reg_q;
+        ovi_reg_d = ovi_reg_q;
+        ovd_reg_d = ovd_reg_q;
         valid_reg_d = valid_reg_q;
         error_reg_d = error_reg_q;
         warning_reg_d = warning_reg_q;
@@ -3735,9 +4581,12 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
         lzero_reg_d = lzero_reg_q;
         lpen_reg_d = lpen_reg_q;
         lone_reg_d = lone_reg_q;
+        ul_reg_d = ul_reg_q;
+        dl_reg_d = dl_reg_q;
+        uwl_reg_d = uwl_reg_q;
+        dwl_reg_d = dwl_reg_q;
         ulast_reg_d = ulast_reg_q;
         unz_reg_d = unz_reg_q;
-        qnew = (p_in >> fshift) & three;
         ustep = zero;
         if (down_in) begin
             ustep = minus_two;
@@ -3751,6 +4600,9 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
         ulst = (u_reg_q & umask) == ulast;
         uzer = (u_reg_q & umask) == zero;
         uone = (u_reg_q & umask) == uone_c;
+        if (~flat) begin
+            wrap = (up_in & (ulst | ppr1)) | (down_in & (uzer | ppr1));
+        end
         nlast = ulst;
         nzero = uzer;
         if (up_in) begin
@@ -3761,10 +4613,21 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
             nlast = uzer;
             nzero = uone;
         end
-        base_q = lqc_reg_q & three;
         base_u = (lqc_reg_q >> two) & umask;
-        up_l = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
-        down_l = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        if (flat) begin
+            up_l = ul_reg_q;
+            down_l = dl_reg_q;
+            uwl = uwl_reg_q;
+            dwl = dwl_reg_q;
+        end
+        else begin
+            qlat = lqc_reg_q & three;
+            qnow = (p_in >> fshift) & three;
+            up_l = qlat[32'h1] & ~qnow[32'h1] & (qlat[32'h0] | ~qnow[32'h0]);
+            down_l = ~qlat[32'h1] & ~qlat[32'h0] & qnow[32'h1] & qnow[32'h0];
+            uwl = up_l & llast_reg_q;
+            dwl = down_l & lzero_reg_q;
+        end
         ustep_l = zero;
         if (up_l) begin
             ustep_l = one;
@@ -3773,21 +4636,27 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
             ustep_l = minus_one;
         end
         usum_l = (base_u + ustep_l) & usmask;
-        wrap_l = (up_l & llast_reg_q) | (down_l & lzero_reg_q);
+        wrap_l = uwl | dwl;
         up = up_in;
         down = down_in;
         un = usum & umask;
+        tinc_reg_d = (turns_reg_q + one) & tmask;
+        tdec_reg_d = (turns_reg_q + minus_one) & tmask;
+        tinc = tinc_reg_q;
+        if (ovi_reg_q) begin
+            tinc = tio_reg_q;
+        end
+        tdec = tdec_reg_q;
+        if (ovd_reg_q) begin
+            tdec = tdo_reg_q;
+        end
         base_turns = turns_reg_q;
-        tinc = (turns_reg_q + one) & tmask;
-        tdec = (turns_reg_q + minus_one) & tmask;
         if (pending_reg_q) begin
             up = up_l;
             down = down_l;
             un = usum_l & umask;
             wrap = wrap_l;
             base_turns = lturns_reg_q;
-            tinc = ltinc_reg_q;
-            tdec = ltdec_reg_q;
             nlast = llast_reg_q;
             nzero = lzero_reg_q;
             if (up_l) begin
@@ -3859,17 +4728,67 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
                         u_reg_d = ulast;
                     end
                 end
-                turns_reg_d = base_turns & tmask;
-                if (wrap) begin
-                    if (up) begin
-                        turns_reg_d = tinc;
-                    end
-                    else begin
-                        turns_reg_d = tdec;
+                if (~flat) begin
+                    turns_reg_d = base_turns & tmask;
+                    if (wrap) begin
+                        if (up) begin
+                            turns_reg_d = (base_turns + one) & tmask;
+                        end
+                        else begin
+                            turns_reg_d = (base_turns + minus_one) & tmask;
+                        end
                     end
                 end
                 fine_reg_d = p_in & fmask;
                 pprev_reg_d = p_in;
+            end
+        end
+        base_q = lqc_reg_d & three;
+        qnew = q_next & three;
+        ul_reg_d = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+        dl_reg_d = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        uwl_reg_d = ul_reg_d & llast_reg_d;
+        dwl_reg_d = dl_reg_d & lzero_reg_d;
+        rwu = acc_in & up_in & (ulast_reg_q | ppr1);
+        rwd = acc_in & down_in & (~unz_reg_q | ppr1);
+        tsel_p = lturns_reg_q;
+        if (uwl) begin
+            tsel_p = ltinc_reg_q;
+        end
+        if (dwl) begin
+            tsel_p = ltdec_reg_q;
+        end
+        tsel_r = turns_reg_q;
+        if (rwu) begin
+            tsel_r = tinc;
+        end
+        if (rwd) begin
+            tsel_r = tdec;
+        end
+        ovi_reg_d = 1'b0;
+        ovd_reg_d = 1'b0;
+        tio_reg_d = turns_reg_q;
+        tdo_reg_d = turns_reg_q;
+        if (pending_reg_q) begin
+            tio_reg_d = ltinc_reg_q;
+            tdo_reg_d = ltdec_reg_q;
+            if (dwl) begin
+                tio_reg_d = lturns_reg_q;
+            end
+            if (uwl) begin
+                tdo_reg_d = lturns_reg_q;
+            end
+        end
+        if (flat & acc_in & init_reg_q & ~rst) begin
+            if (pending_reg_q) begin
+                turns_reg_d = tsel_p & tmask;
+                ovi_reg_d = ~uwl;
+                ovd_reg_d = ~dwl;
+            end
+            else begin
+                turns_reg_d = tsel_r & tmask;
+                ovi_reg_d = rwd;
+                ovd_reg_d = rwu;
             end
         end
         qc = (u_reg_q << two) | ((pprev_reg_q >> fshift) & three);
@@ -3881,6 +4800,42 @@ module cap_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq
     end
 
 endmodule // cap_top_rtl_core_counter
+
+module cap_top_rtl_core_counter_dl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_dl_reg
+
+module cap_top_rtl_core_counter_dwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_dwl_reg
 
 module cap_top_rtl_core_counter_error_reg(d,q,clock);
 
@@ -4080,6 +5035,42 @@ module cap_top_rtl_core_counter_lzero_reg(d,q,clock);
 
 endmodule // cap_top_rtl_core_counter_lzero_reg
 
+module cap_top_rtl_core_counter_ovd_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_ovd_reg
+
+module cap_top_rtl_core_counter_ovi_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_ovi_reg
+
 module cap_top_rtl_core_counter_pending_reg(d,q,clock);
 
     // Module arguments
@@ -4115,6 +5106,78 @@ module cap_top_rtl_core_counter_pprev_reg(d,q,clock);
     end
 
 endmodule // cap_top_rtl_core_counter_pprev_reg
+
+module cap_top_rtl_core_counter_tdec_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_tdec_reg
+
+module cap_top_rtl_core_counter_tdo_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_tdo_reg
+
+module cap_top_rtl_core_counter_tinc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_tinc_reg
+
+module cap_top_rtl_core_counter_tio_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_tio_reg
 
 module cap_top_rtl_core_counter_turns_reg(d,q,clock);
 
@@ -4152,6 +5215,24 @@ module cap_top_rtl_core_counter_u_reg(d,q,clock);
 
 endmodule // cap_top_rtl_core_counter_u_reg
 
+module cap_top_rtl_core_counter_ul_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_ul_reg
+
 module cap_top_rtl_core_counter_ulast_reg(d,q,clock);
 
     // Module arguments
@@ -4187,6 +5268,24 @@ module cap_top_rtl_core_counter_unz_reg(d,q,clock);
     end
 
 endmodule // cap_top_rtl_core_counter_unz_reg
+
+module cap_top_rtl_core_counter_uwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // cap_top_rtl_core_counter_uwl_reg
 
 module cap_top_rtl_core_counter_valid_reg(d,q,clock);
 
@@ -4454,6 +5553,7 @@ module cap_top_rtl_core_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h80000;
+    localparam  natan = 32'hfff80000;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4479,6 +5579,8 @@ module cap_top_rtl_core_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_0_x_reg x_reg(
@@ -4537,7 +5639,12 @@ module cap_top_rtl_core_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4665,6 +5772,7 @@ module cap_top_rtl_core_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h4b901;
+    localparam  natan = 32'hfffb46ff;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4690,6 +5798,8 @@ module cap_top_rtl_core_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_1_x_reg x_reg(
@@ -4748,7 +5858,12 @@ module cap_top_rtl_core_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4876,6 +5991,7 @@ module cap_top_rtl_core_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28c;
+    localparam  natan = 32'hfffffd74;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4901,6 +6017,8 @@ module cap_top_rtl_core_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_10_x_reg x_reg(
@@ -4959,7 +6077,12 @@ module cap_top_rtl_core_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5087,6 +6210,7 @@ module cap_top_rtl_core_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h146;
+    localparam  natan = 32'hfffffeba;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5112,6 +6236,8 @@ module cap_top_rtl_core_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_11_x_reg x_reg(
@@ -5170,7 +6296,12 @@ module cap_top_rtl_core_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5298,6 +6429,7 @@ module cap_top_rtl_core_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha3;
+    localparam  natan = 32'hffffff5d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5323,6 +6455,8 @@ module cap_top_rtl_core_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_12_x_reg x_reg(
@@ -5381,7 +6515,12 @@ module cap_top_rtl_core_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5509,6 +6648,7 @@ module cap_top_rtl_core_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h51;
+    localparam  natan = 32'hffffffaf;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5534,6 +6674,8 @@ module cap_top_rtl_core_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_13_x_reg x_reg(
@@ -5592,7 +6734,12 @@ module cap_top_rtl_core_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5720,6 +6867,7 @@ module cap_top_rtl_core_stages_14(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h29;
+    localparam  natan = 32'hffffffd7;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5745,6 +6893,8 @@ module cap_top_rtl_core_stages_14(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_14_x_reg x_reg(
@@ -5803,7 +6953,12 @@ module cap_top_rtl_core_stages_14(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5931,6 +7086,7 @@ module cap_top_rtl_core_stages_15(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h14;
+    localparam  natan = 32'hffffffec;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5956,6 +7112,8 @@ module cap_top_rtl_core_stages_15(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_15_x_reg x_reg(
@@ -6014,7 +7172,12 @@ module cap_top_rtl_core_stages_15(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6142,6 +7305,7 @@ module cap_top_rtl_core_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h27ece;
+    localparam  natan = 32'hfffd8132;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6167,6 +7331,8 @@ module cap_top_rtl_core_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_2_x_reg x_reg(
@@ -6225,7 +7391,12 @@ module cap_top_rtl_core_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6353,6 +7524,7 @@ module cap_top_rtl_core_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h14444;
+    localparam  natan = 32'hfffebbbc;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6378,6 +7550,8 @@ module cap_top_rtl_core_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_3_x_reg x_reg(
@@ -6436,7 +7610,12 @@ module cap_top_rtl_core_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6564,6 +7743,7 @@ module cap_top_rtl_core_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha2c3;
+    localparam  natan = 32'hffff5d3d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6589,6 +7769,8 @@ module cap_top_rtl_core_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_4_x_reg x_reg(
@@ -6647,7 +7829,12 @@ module cap_top_rtl_core_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6775,6 +7962,7 @@ module cap_top_rtl_core_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h5176;
+    localparam  natan = 32'hffffae8a;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6800,6 +7988,8 @@ module cap_top_rtl_core_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_5_x_reg x_reg(
@@ -6858,7 +8048,12 @@ module cap_top_rtl_core_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6986,6 +8181,7 @@ module cap_top_rtl_core_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28be;
+    localparam  natan = 32'hffffd742;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -7011,6 +8207,8 @@ module cap_top_rtl_core_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_6_x_reg x_reg(
@@ -7069,7 +8267,12 @@ module cap_top_rtl_core_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -7197,6 +8400,7 @@ module cap_top_rtl_core_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h145f;
+    localparam  natan = 32'hffffeba1;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -7222,6 +8426,8 @@ module cap_top_rtl_core_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_7_x_reg x_reg(
@@ -7280,7 +8486,12 @@ module cap_top_rtl_core_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -7408,6 +8619,7 @@ module cap_top_rtl_core_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha30;
+    localparam  natan = 32'hfffff5d0;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -7433,6 +8645,8 @@ module cap_top_rtl_core_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_8_x_reg x_reg(
@@ -7491,7 +8705,12 @@ module cap_top_rtl_core_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -7619,6 +8838,7 @@ module cap_top_rtl_core_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h518;
+    localparam  natan = 32'hfffffae8;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -7644,6 +8864,8 @@ module cap_top_rtl_core_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     cap_top_rtl_core_stages_9_x_reg x_reg(
@@ -7702,7 +8924,12 @@ module cap_top_rtl_core_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;

@@ -253,9 +253,13 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
     wire  combiner_step;
     wire  [31:0] combiner_wq;
     wire  combiner_wz;
+    wire  [31:0] combiner_q_next;
+    wire  combiner_acc;
     reg  counter_clk;
     reg  counter_rst;
     reg  [31:0] counter_p_in;
+    reg  [31:0] counter_q_next;
+    reg  counter_acc_in;
     reg  counter_ok_in;
     reg  counter_v_in;
     reg  counter_up_in;
@@ -494,12 +498,16 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
         .down(combiner_down),
         .step(combiner_step),
         .wq(combiner_wq),
-        .wz(combiner_wz)
+        .wz(combiner_wz),
+        .q_next(combiner_q_next),
+        .acc(combiner_acc)
     );
     sd_core_rtl_counter counter(
         .clk(counter_clk),
         .rst(counter_rst),
         .p_in(counter_p_in),
+        .q_next(counter_q_next),
+        .acc_in(counter_acc_in),
         .ok_in(counter_ok_in),
         .v_in(counter_v_in),
         .up_in(counter_up_in),
@@ -764,6 +772,8 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
         counter_clk = clk;
         counter_rst = rst;
         counter_p_in = combiner_p;
+        counter_q_next = combiner_q_next;
+        counter_acc_in = combiner_acc;
         counter_ok_in = combiner_mag_ok;
         counter_v_in = combiner_v;
         counter_up_in = combiner_up;
@@ -784,7 +794,7 @@ module sd_core_rtl(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,out_va
 
 endmodule // sd_core_rtl
 
-module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz);
+module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz,q_next,acc);
 
     // Module arguments
     input wire  clk;
@@ -800,6 +810,8 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz
     output reg  step;
     output reg  [31:0] wq;
     output reg  wz;
+    output reg  [31:0] q_next;
+    output reg  acc;
 
     // Constant declarations
     localparam  zshift = 32'h6;
@@ -815,6 +827,9 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz
     localparam  vbit = 32'h80000000;
 
     // Stub signals
+    reg  acc_reg_d;
+    wire  acc_reg_q;
+    reg  acc_reg_clock;
     reg  [31:0] p_reg_d;
     wire  [31:0] p_reg_q;
     reg  p_reg_clock;
@@ -854,6 +869,11 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz
     reg  [31:0] qlast;
 
     // Sub module instances
+    sd_core_rtl_combiner_acc_reg acc_reg(
+        .d(acc_reg_d),
+        .q(acc_reg_q),
+        .clock(acc_reg_clock)
+    );
     sd_core_rtl_combiner_p_reg p_reg(
         .d(p_reg_d),
         .q(p_reg_q),
@@ -911,6 +931,7 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz
         step_reg_clock = clk;
         wq_reg_clock = clk;
         wz_reg_clock = clk;
+        acc_reg_clock = clk;
         p_reg_d = p_reg_q;
         ok_reg_d = ok_reg_q;
         v_reg_d = v_reg_q;
@@ -920,6 +941,7 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz
         step_reg_d = step_reg_q;
         wq_reg_d = wq_reg_q;
         wz_reg_d = wz_reg_q;
+        acc_reg_d = acc_reg_q;
         pn = (z_in >> zshift) & pmask;
         okn = x_in >= minmag;
         p_reg_d = pn;
@@ -940,6 +962,7 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz
         up_reg_d = ~back & (qnew < qlast);
         down_reg_d = back & (qnew > qlast);
         step_reg_d = up_reg_d | down_reg_d;
+        acc_reg_d = okv;
         wq_reg_d = delta >> wshift;
         wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;
         p = p_reg_q;
@@ -950,9 +973,29 @@ module sd_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz
         step = step_reg_q;
         wq = wq_reg_q;
         wz = wz_reg_q;
+        q_next = qnew;
+        acc = acc_reg_q;
     end
 
 endmodule // sd_core_rtl_combiner
+
+module sd_core_rtl_combiner_acc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_combiner_acc_reg
 
 module sd_core_rtl_combiner_down_reg(d,q,clock);
 
@@ -1116,12 +1159,14 @@ module sd_core_rtl_combiner_wz_reg(d,q,clock);
 
 endmodule // sd_core_rtl_combiner_wz_reg
 
-module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
+module sd_core_rtl_counter(clk,rst,p_in,q_next,acc_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
 
     // Module arguments
     input wire  clk;
     input wire  rst;
     input wire  [31:0] p_in;
+    input wire  [31:0] q_next;
+    input wire  acc_in;
     input wire  ok_in;
     input wire  v_in;
     input wire  up_in;
@@ -1152,6 +1197,7 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     localparam  upenult = 32'h7fe;
     localparam  uone_c = 32'h1;
     localparam  ppr1 = 1'b0;
+    localparam  flat = 1'b1;
     localparam  tmask = 32'hfff;
     localparam  one = 32'h1;
     localparam  three = 32'h3;
@@ -1193,6 +1239,24 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     reg  [31:0] lturns_reg_d;
     wire  [31:0] lturns_reg_q;
     reg  lturns_reg_clock;
+    reg  [31:0] tinc_reg_d;
+    wire  [31:0] tinc_reg_q;
+    reg  tinc_reg_clock;
+    reg  [31:0] tdec_reg_d;
+    wire  [31:0] tdec_reg_q;
+    reg  tdec_reg_clock;
+    reg  [31:0] tio_reg_d;
+    wire  [31:0] tio_reg_q;
+    reg  tio_reg_clock;
+    reg  [31:0] tdo_reg_d;
+    wire  [31:0] tdo_reg_q;
+    reg  tdo_reg_clock;
+    reg  ovi_reg_d;
+    wire  ovi_reg_q;
+    reg  ovi_reg_clock;
+    reg  ovd_reg_d;
+    wire  ovd_reg_q;
+    reg  ovd_reg_clock;
     reg  [31:0] ltinc_reg_d;
     wire  [31:0] ltinc_reg_q;
     reg  ltinc_reg_clock;
@@ -1211,6 +1275,18 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     reg  lone_reg_d;
     wire  lone_reg_q;
     reg  lone_reg_clock;
+    reg  ul_reg_d;
+    wire  ul_reg_q;
+    reg  ul_reg_clock;
+    reg  dl_reg_d;
+    wire  dl_reg_q;
+    reg  dl_reg_clock;
+    reg  uwl_reg_d;
+    wire  uwl_reg_q;
+    reg  uwl_reg_clock;
+    reg  dwl_reg_d;
+    wire  dwl_reg_q;
+    reg  dwl_reg_clock;
     reg  ulast_reg_d;
     wire  ulast_reg_q;
     reg  ulast_reg_clock;
@@ -1219,6 +1295,15 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     reg  unz_reg_clock;
 
     // Local signals
+    reg  uwl;
+    reg  dwl;
+    reg  [31:0] qlat;
+    reg  [31:0] qnow;
+    reg  rwu;
+    reg  rwd;
+    reg  [31:0] base_turns;
+    reg  [31:0] tsel_p;
+    reg  [31:0] tsel_r;
     reg  upen;
     reg  ulst;
     reg  uzer;
@@ -1228,7 +1313,6 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     reg  [31:0] qnew;
     reg  [31:0] base_q;
     reg  [31:0] base_u;
-    reg  [31:0] base_turns;
     reg  up;
     reg  down;
     reg  [31:0] ustep;
@@ -1299,6 +1383,36 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         .q(lturns_reg_q),
         .clock(lturns_reg_clock)
     );
+    sd_core_rtl_counter_tinc_reg tinc_reg(
+        .d(tinc_reg_d),
+        .q(tinc_reg_q),
+        .clock(tinc_reg_clock)
+    );
+    sd_core_rtl_counter_tdec_reg tdec_reg(
+        .d(tdec_reg_d),
+        .q(tdec_reg_q),
+        .clock(tdec_reg_clock)
+    );
+    sd_core_rtl_counter_tio_reg tio_reg(
+        .d(tio_reg_d),
+        .q(tio_reg_q),
+        .clock(tio_reg_clock)
+    );
+    sd_core_rtl_counter_tdo_reg tdo_reg(
+        .d(tdo_reg_d),
+        .q(tdo_reg_q),
+        .clock(tdo_reg_clock)
+    );
+    sd_core_rtl_counter_ovi_reg ovi_reg(
+        .d(ovi_reg_d),
+        .q(ovi_reg_q),
+        .clock(ovi_reg_clock)
+    );
+    sd_core_rtl_counter_ovd_reg ovd_reg(
+        .d(ovd_reg_d),
+        .q(ovd_reg_q),
+        .clock(ovd_reg_clock)
+    );
     sd_core_rtl_counter_ltinc_reg ltinc_reg(
         .d(ltinc_reg_d),
         .q(ltinc_reg_q),
@@ -1329,6 +1443,26 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         .q(lone_reg_q),
         .clock(lone_reg_clock)
     );
+    sd_core_rtl_counter_ul_reg ul_reg(
+        .d(ul_reg_d),
+        .q(ul_reg_q),
+        .clock(ul_reg_clock)
+    );
+    sd_core_rtl_counter_dl_reg dl_reg(
+        .d(dl_reg_d),
+        .q(dl_reg_q),
+        .clock(dl_reg_clock)
+    );
+    sd_core_rtl_counter_uwl_reg uwl_reg(
+        .d(uwl_reg_d),
+        .q(uwl_reg_q),
+        .clock(uwl_reg_clock)
+    );
+    sd_core_rtl_counter_dwl_reg dwl_reg(
+        .d(dwl_reg_d),
+        .q(dwl_reg_q),
+        .clock(dwl_reg_clock)
+    );
     sd_core_rtl_counter_ulast_reg ulast_reg(
         .d(ulast_reg_d),
         .q(ulast_reg_q),
@@ -1347,6 +1481,12 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         u_reg_clock = clk;
         fine_reg_clock = clk;
         turns_reg_clock = clk;
+        tinc_reg_clock = clk;
+        tdec_reg_clock = clk;
+        tio_reg_clock = clk;
+        tdo_reg_clock = clk;
+        ovi_reg_clock = clk;
+        ovd_reg_clock = clk;
         valid_reg_clock = clk;
         error_reg_clock = clk;
         warning_reg_clock = clk;
@@ -1359,6 +1499,10 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         lzero_reg_clock = clk;
         lpen_reg_clock = clk;
         lone_reg_clock = clk;
+        ul_reg_clock = clk;
+        dl_reg_clock = clk;
+        uwl_reg_clock = clk;
+        dwl_reg_clock = clk;
         ulast_reg_clock = clk;
         unz_reg_clock = clk;
         init_reg_d = init_reg_q;
@@ -1366,6 +1510,12 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         u_reg_d = u_reg_q;
         fine_reg_d = fine_reg_q;
         turns_reg_d = turns_reg_q;
+        tinc_reg_d = tinc_reg_q;
+        tdec_reg_d = tdec_reg_q;
+        tio_reg_d = tio_reg_q;
+        tdo_reg_d = tdo_reg_q;
+        ovi_reg_d = ovi_reg_q;
+        ovd_reg_d = ovd_reg_q;
         valid_reg_d = valid_reg_q;
         error_reg_d = error_reg_q;
         warning_reg_d = warning_reg_q;
@@ -1378,9 +1528,12 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         lzero_reg_d = lzero_reg_q;
         lpen_reg_d = lpen_reg_q;
         lone_reg_d = lone_reg_q;
+        ul_reg_d = ul_reg_q;
+        dl_reg_d = dl_reg_q;
+        uwl_reg_d = uwl_reg_q;
+        dwl_reg_d = dwl_reg_q;
         ulast_reg_d = ulast_reg_q;
         unz_reg_d = unz_reg_q;
-        qnew = (p_in >> fshift) & three;
         ustep = zero;
         if (down_in) begin
             ustep = minus_two;
@@ -1394,6 +1547,9 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
         ulst = (u_reg_q & umask) == ulast;
         uzer = (u_reg_q & umask) == zero;
         uone = (u_reg_q & umask) == uone_c;
+        if (~flat) begin
+            wrap = (up_in & (ulst | ppr1)) | (down_in & (uzer | ppr1));
+        end
         nlast = ulst;
         nzero = uzer;
         if (up_in) begin
@@ -1404,10 +1560,21 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
             nlast = uzer;
             nzero = uone;
         end
-        base_q = lqc_reg_q & three;
         base_u = (lqc_reg_q >> two) & umask;
-        up_l = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
-        down_l = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        if (flat) begin
+            up_l = ul_reg_q;
+            down_l = dl_reg_q;
+            uwl = uwl_reg_q;
+            dwl = dwl_reg_q;
+        end
+        else begin
+            qlat = lqc_reg_q & three;
+            qnow = (p_in >> fshift) & three;
+            up_l = qlat[32'h1] & ~qnow[32'h1] & (qlat[32'h0] | ~qnow[32'h0]);
+            down_l = ~qlat[32'h1] & ~qlat[32'h0] & qnow[32'h1] & qnow[32'h0];
+            uwl = up_l & llast_reg_q;
+            dwl = down_l & lzero_reg_q;
+        end
         ustep_l = zero;
         if (up_l) begin
             ustep_l = one;
@@ -1416,21 +1583,27 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
             ustep_l = minus_one;
         end
         usum_l = (base_u + ustep_l) & usmask;
-        wrap_l = (up_l & llast_reg_q) | (down_l & lzero_reg_q);
+        wrap_l = uwl | dwl;
         up = up_in;
         down = down_in;
         un = usum & umask;
+        tinc_reg_d = (turns_reg_q + one) & tmask;
+        tdec_reg_d = (turns_reg_q + minus_one) & tmask;
+        tinc = tinc_reg_q;
+        if (ovi_reg_q) begin
+            tinc = tio_reg_q;
+        end
+        tdec = tdec_reg_q;
+        if (ovd_reg_q) begin
+            tdec = tdo_reg_q;
+        end
         base_turns = turns_reg_q;
-        tinc = (turns_reg_q + one) & tmask;
-        tdec = (turns_reg_q + minus_one) & tmask;
         if (pending_reg_q) begin
             up = up_l;
             down = down_l;
             un = usum_l & umask;
             wrap = wrap_l;
             base_turns = lturns_reg_q;
-            tinc = ltinc_reg_q;
-            tdec = ltdec_reg_q;
             nlast = llast_reg_q;
             nzero = lzero_reg_q;
             if (up_l) begin
@@ -1502,17 +1675,67 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
                         u_reg_d = ulast;
                     end
                 end
-                turns_reg_d = base_turns & tmask;
-                if (wrap) begin
-                    if (up) begin
-                        turns_reg_d = tinc;
-                    end
-                    else begin
-                        turns_reg_d = tdec;
+                if (~flat) begin
+                    turns_reg_d = base_turns & tmask;
+                    if (wrap) begin
+                        if (up) begin
+                            turns_reg_d = (base_turns + one) & tmask;
+                        end
+                        else begin
+                            turns_reg_d = (base_turns + minus_one) & tmask;
+                        end
                     end
                 end
                 fine_reg_d = p_in & fmask;
                 pprev_reg_d = p_in;
+            end
+        end
+        base_q = lqc_reg_d & three;
+        qnew = q_next & three;
+        ul_reg_d = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+        dl_reg_d = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        uwl_reg_d = ul_reg_d & llast_reg_d;
+        dwl_reg_d = dl_reg_d & lzero_reg_d;
+        rwu = acc_in & up_in & (ulast_reg_q | ppr1);
+        rwd = acc_in & down_in & (~unz_reg_q | ppr1);
+        tsel_p = lturns_reg_q;
+        if (uwl) begin
+            tsel_p = ltinc_reg_q;
+        end
+        if (dwl) begin
+            tsel_p = ltdec_reg_q;
+        end
+        tsel_r = turns_reg_q;
+        if (rwu) begin
+            tsel_r = tinc;
+        end
+        if (rwd) begin
+            tsel_r = tdec;
+        end
+        ovi_reg_d = 1'b0;
+        ovd_reg_d = 1'b0;
+        tio_reg_d = turns_reg_q;
+        tdo_reg_d = turns_reg_q;
+        if (pending_reg_q) begin
+            tio_reg_d = ltinc_reg_q;
+            tdo_reg_d = ltdec_reg_q;
+            if (dwl) begin
+                tio_reg_d = lturns_reg_q;
+            end
+            if (uwl) begin
+                tdo_reg_d = lturns_reg_q;
+            end
+        end
+        if (flat & acc_in & init_reg_q & ~rst) begin
+            if (pending_reg_q) begin
+                turns_reg_d = tsel_p & tmask;
+                ovi_reg_d = ~uwl;
+                ovd_reg_d = ~dwl;
+            end
+            else begin
+                turns_reg_d = tsel_r & tmask;
+                ovi_reg_d = rwd;
+                ovd_reg_d = rwu;
             end
         end
         qc = (u_reg_q << two) | ((pprev_reg_q >> fshift) & three);
@@ -1524,6 +1747,42 @@ module sd_core_rtl_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,w
     end
 
 endmodule // sd_core_rtl_counter
+
+module sd_core_rtl_counter_dl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_dl_reg
+
+module sd_core_rtl_counter_dwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_dwl_reg
 
 module sd_core_rtl_counter_error_reg(d,q,clock);
 
@@ -1723,6 +1982,42 @@ module sd_core_rtl_counter_lzero_reg(d,q,clock);
 
 endmodule // sd_core_rtl_counter_lzero_reg
 
+module sd_core_rtl_counter_ovd_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_ovd_reg
+
+module sd_core_rtl_counter_ovi_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_ovi_reg
+
 module sd_core_rtl_counter_pending_reg(d,q,clock);
 
     // Module arguments
@@ -1758,6 +2053,78 @@ module sd_core_rtl_counter_pprev_reg(d,q,clock);
     end
 
 endmodule // sd_core_rtl_counter_pprev_reg
+
+module sd_core_rtl_counter_tdec_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_tdec_reg
+
+module sd_core_rtl_counter_tdo_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_tdo_reg
+
+module sd_core_rtl_counter_tinc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_tinc_reg
+
+module sd_core_rtl_counter_tio_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_tio_reg
 
 module sd_core_rtl_counter_turns_reg(d,q,clock);
 
@@ -1795,6 +2162,24 @@ module sd_core_rtl_counter_u_reg(d,q,clock);
 
 endmodule // sd_core_rtl_counter_u_reg
 
+module sd_core_rtl_counter_ul_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_ul_reg
+
 module sd_core_rtl_counter_ulast_reg(d,q,clock);
 
     // Module arguments
@@ -1830,6 +2215,24 @@ module sd_core_rtl_counter_unz_reg(d,q,clock);
     end
 
 endmodule // sd_core_rtl_counter_unz_reg
+
+module sd_core_rtl_counter_uwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_core_rtl_counter_uwl_reg
 
 module sd_core_rtl_counter_valid_reg(d,q,clock);
 
@@ -2097,6 +2500,7 @@ module sd_core_rtl_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h80000;
+    localparam  natan = 32'hfff80000;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2122,6 +2526,8 @@ module sd_core_rtl_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_0_x_reg x_reg(
@@ -2180,7 +2586,12 @@ module sd_core_rtl_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -2308,6 +2719,7 @@ module sd_core_rtl_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h4b901;
+    localparam  natan = 32'hfffb46ff;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2333,6 +2745,8 @@ module sd_core_rtl_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_1_x_reg x_reg(
@@ -2391,7 +2805,12 @@ module sd_core_rtl_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -2519,6 +2938,7 @@ module sd_core_rtl_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28c;
+    localparam  natan = 32'hfffffd74;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2544,6 +2964,8 @@ module sd_core_rtl_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_10_x_reg x_reg(
@@ -2602,7 +3024,12 @@ module sd_core_rtl_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -2730,6 +3157,7 @@ module sd_core_rtl_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h146;
+    localparam  natan = 32'hfffffeba;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2755,6 +3183,8 @@ module sd_core_rtl_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_11_x_reg x_reg(
@@ -2813,7 +3243,12 @@ module sd_core_rtl_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -2941,6 +3376,7 @@ module sd_core_rtl_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha3;
+    localparam  natan = 32'hffffff5d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -2966,6 +3402,8 @@ module sd_core_rtl_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_12_x_reg x_reg(
@@ -3024,7 +3462,12 @@ module sd_core_rtl_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3152,6 +3595,7 @@ module sd_core_rtl_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h51;
+    localparam  natan = 32'hffffffaf;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3177,6 +3621,8 @@ module sd_core_rtl_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_13_x_reg x_reg(
@@ -3235,7 +3681,12 @@ module sd_core_rtl_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3363,6 +3814,7 @@ module sd_core_rtl_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h27ece;
+    localparam  natan = 32'hfffd8132;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3388,6 +3840,8 @@ module sd_core_rtl_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_2_x_reg x_reg(
@@ -3446,7 +3900,12 @@ module sd_core_rtl_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3574,6 +4033,7 @@ module sd_core_rtl_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h14444;
+    localparam  natan = 32'hfffebbbc;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3599,6 +4059,8 @@ module sd_core_rtl_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_3_x_reg x_reg(
@@ -3657,7 +4119,12 @@ module sd_core_rtl_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3785,6 +4252,7 @@ module sd_core_rtl_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha2c3;
+    localparam  natan = 32'hffff5d3d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -3810,6 +4278,8 @@ module sd_core_rtl_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_4_x_reg x_reg(
@@ -3868,7 +4338,12 @@ module sd_core_rtl_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -3996,6 +4471,7 @@ module sd_core_rtl_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h5176;
+    localparam  natan = 32'hffffae8a;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4021,6 +4497,8 @@ module sd_core_rtl_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_5_x_reg x_reg(
@@ -4079,7 +4557,12 @@ module sd_core_rtl_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4207,6 +4690,7 @@ module sd_core_rtl_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28be;
+    localparam  natan = 32'hffffd742;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4232,6 +4716,8 @@ module sd_core_rtl_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_6_x_reg x_reg(
@@ -4290,7 +4776,12 @@ module sd_core_rtl_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4418,6 +4909,7 @@ module sd_core_rtl_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h145f;
+    localparam  natan = 32'hffffeba1;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4443,6 +4935,8 @@ module sd_core_rtl_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_7_x_reg x_reg(
@@ -4501,7 +4995,12 @@ module sd_core_rtl_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4629,6 +5128,7 @@ module sd_core_rtl_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha30;
+    localparam  natan = 32'hfffff5d0;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4654,6 +5154,8 @@ module sd_core_rtl_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_8_x_reg x_reg(
@@ -4712,7 +5214,12 @@ module sd_core_rtl_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4840,6 +5347,7 @@ module sd_core_rtl_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h518;
+    localparam  natan = 32'hfffffae8;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4865,6 +5373,8 @@ module sd_core_rtl_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_core_rtl_stages_9_x_reg x_reg(
@@ -4923,7 +5433,12 @@ module sd_core_rtl_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_out,q
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;

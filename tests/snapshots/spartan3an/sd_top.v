@@ -168,10 +168,13 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
     wire  qep_decoder_a_filt;
     wire  qep_decoder_b_filt;
     wire  qep_decoder_z_filt;
+    wire  qep_decoder_up;
+    wire  qep_decoder_down;
     reg  fallback_clk;
     reg  fallback_rst;
     reg  fallback_enable;
-    reg  [31:0] fallback_qep_count;
+    reg  fallback_qep_up;
+    reg  fallback_qep_down;
     reg  fallback_conv;
     reg  fallback_adc_valid;
     reg  fallback_core_valid;
@@ -289,13 +292,16 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
         .illegal_seen(qep_decoder_illegal_seen),
         .a_filt(qep_decoder_a_filt),
         .b_filt(qep_decoder_b_filt),
-        .z_filt(qep_decoder_z_filt)
+        .z_filt(qep_decoder_z_filt),
+        .up(qep_decoder_up),
+        .down(qep_decoder_down)
     );
     sd_top_rtl_fallback fallback(
         .clk(fallback_clk),
         .rst(fallback_rst),
         .enable(fallback_enable),
-        .qep_count(fallback_qep_count),
+        .qep_up(fallback_qep_up),
+        .qep_down(fallback_qep_down),
         .conv(fallback_conv),
         .adc_valid(fallback_adc_valid),
         .core_valid(fallback_core_valid),
@@ -359,7 +365,8 @@ module sd_top_rtl(clk,rst,adc_miso,adc_sck,adc_conv,amp_cs,amp_mosi,amp_shdn,dac
         fallback_clk = clk;
         fallback_rst = rst;
         fallback_enable = qep_enable;
-        fallback_qep_count = qep_decoder_count;
+        fallback_qep_up = qep_decoder_up;
+        fallback_qep_down = qep_decoder_down;
         fallback_conv = adc_adc_conv;
         fallback_adc_valid = adc_out_valid;
         fallback_core_valid = core_out_valid;
@@ -416,6 +423,7 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     output reg  [15:0] out_ch1;
 
     // Constant declarations
+    localparam  atl_idle = 1'b0;
     localparam  wa_lo = 8'h23;
     localparam  wa_hi = 8'h21;
     localparam  wa_z = 1'b1;
@@ -452,6 +460,7 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     localparam  lead_zero = 1'b1;
     localparam  p_last_m1 = 16'h64;
     localparam  lead_m2 = 16'hfffe;
+    localparam  pc_mask = 16'h7f;
     localparam  kl = 1'b0;
     localparam  km = 1'b0;
     localparam  one_ch = 1'b0;
@@ -505,6 +514,36 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     reg  rst_d_d;
     wire  rst_d_q;
     reg  rst_d_clock;
+    reg  atl_d;
+    wire  atl_q;
+    reg  atl_clock;
+    reg  ewa_lo_d;
+    wire  ewa_lo_q;
+    reg  ewa_lo_clock;
+    reg  ewa_hi_d;
+    wire  ewa_hi_q;
+    reg  ewa_hi_clock;
+    reg  ew0_lo_d;
+    wire  ew0_lo_q;
+    reg  ew0_lo_clock;
+    reg  ew0_hi_d;
+    wire  ew0_hi_q;
+    reg  ew0_hi_clock;
+    reg  ew1_lo_d;
+    wire  ew1_lo_q;
+    reg  ew1_lo_clock;
+    reg  ew1_hi_d;
+    wire  ew1_hi_q;
+    reg  ew1_hi_clock;
+    reg  ewl_lo_d;
+    wire  ewl_lo_q;
+    reg  ewl_lo_clock;
+    reg  ewl_hi_d;
+    wire  ewl_hi_q;
+    reg  ewl_hi_clock;
+    reg  est_d;
+    wire  est_q;
+    reg  est_clock;
     reg  pcl_x_d;
     wire  pcl_x_q;
     reg  pcl_x_clock;
@@ -538,6 +577,11 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
 
     // Local signals
     reg  at_lead;
+    reg  pcl_n;
+    reg  pcm_n;
+    reg  atl_n;
+    reg  pc_eqp;
+    reg  pc_eql;
     reg  run;
     reg  [15:0] pc_n;
     reg  fl;
@@ -635,6 +679,56 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         .q(rst_d_q),
         .clock(rst_d_clock)
     );
+    sd_top_rtl_adc_atl atl(
+        .d(atl_d),
+        .q(atl_q),
+        .clock(atl_clock)
+    );
+    sd_top_rtl_adc_ewa_lo ewa_lo(
+        .d(ewa_lo_d),
+        .q(ewa_lo_q),
+        .clock(ewa_lo_clock)
+    );
+    sd_top_rtl_adc_ewa_hi ewa_hi(
+        .d(ewa_hi_d),
+        .q(ewa_hi_q),
+        .clock(ewa_hi_clock)
+    );
+    sd_top_rtl_adc_ew0_lo ew0_lo(
+        .d(ew0_lo_d),
+        .q(ew0_lo_q),
+        .clock(ew0_lo_clock)
+    );
+    sd_top_rtl_adc_ew0_hi ew0_hi(
+        .d(ew0_hi_d),
+        .q(ew0_hi_q),
+        .clock(ew0_hi_clock)
+    );
+    sd_top_rtl_adc_ew1_lo ew1_lo(
+        .d(ew1_lo_d),
+        .q(ew1_lo_q),
+        .clock(ew1_lo_clock)
+    );
+    sd_top_rtl_adc_ew1_hi ew1_hi(
+        .d(ew1_hi_d),
+        .q(ew1_hi_q),
+        .clock(ew1_hi_clock)
+    );
+    sd_top_rtl_adc_ewl_lo ewl_lo(
+        .d(ewl_lo_d),
+        .q(ewl_lo_q),
+        .clock(ewl_lo_clock)
+    );
+    sd_top_rtl_adc_ewl_hi ewl_hi(
+        .d(ewl_hi_d),
+        .q(ewl_hi_q),
+        .clock(ewl_hi_clock)
+    );
+    sd_top_rtl_adc_est est(
+        .d(est_d),
+        .q(est_q),
+        .clock(est_clock)
+    );
     sd_top_rtl_adc_pcl_x pcl_x(
         .d(pcl_x_d),
         .q(pcl_x_q),
@@ -712,6 +806,16 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         wc_clock = clk;
         cst_clock = clk;
         plx_clock = clk;
+        atl_clock = clk;
+        ewa_lo_clock = clk;
+        ewa_hi_clock = clk;
+        ew0_lo_clock = clk;
+        ew0_hi_clock = clk;
+        ew1_lo_clock = clk;
+        ew1_hi_clock = clk;
+        ewl_lo_clock = clk;
+        ewl_hi_clock = clk;
+        est_clock = clk;
         live_d = live_q;
         pc_d = pc_q;
         ph_d = ph_q;
@@ -736,18 +840,28 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         wc_d = wc_q;
         cst_d = cst_q;
         plx_d = plx_q;
+        atl_d = atl_q;
+        ewa_lo_d = ewa_lo_q;
+        ewa_hi_d = ewa_hi_q;
+        ew0_lo_d = ew0_lo_q;
+        ew0_hi_d = ew0_hi_q;
+        ew1_lo_d = ew1_lo_q;
+        ew1_hi_d = ew1_hi_q;
+        ewl_lo_d = ewl_lo_q;
+        ewl_hi_d = ewl_hi_q;
+        est_d = est_q;
         run = enable & ~rst;
-        pc_n = zero16;
-        warm_n = warm_init;
         fl = pcl_x_q ^ kl;
         fm = pcm_x_q ^ km;
-        pcl_x_d = 1'b0;
-        pcm_x_d = 1'b0;
-        at_lead = lead_zero;
-        if (live_q & ~fl) begin
-            at_lead = fm;
-        end
-        if (run & live_q) begin
+        at_lead = atl_q ^ lead_zero;
+        pc_eqp = (pc_q & pc_mask) == p_last_m1;
+        pc_eql = (pc_q & pc_mask) == lead_m2;
+        pc_n = zero16;
+        warm_n = warm_init;
+        pcl_n = 1'b0;
+        pcm_n = 1'b0;
+        atl_n = atl_idle;
+        if (live_q) begin
             if (fl) begin
                 pc_n = zero16;
                 if (warm_q == zero4) begin
@@ -760,10 +874,35 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             else begin
                 pc_n = pc_q + one16;
                 warm_n = warm_q;
-                pcl_x_d = (pc_q == p_last_m1) ^ kl;
-                pcm_x_d = (pc_q == lead_m2) ^ km;
+                pcl_n = pc_eqp ^ kl;
+                pcm_n = pc_eql ^ km;
+                atl_n = lead_zero;
+                if (~pc_eqp) begin
+                    atl_n = pc_eql;
+                end
             end
         end
+        if (~run) begin
+            pc_n = zero16;
+            warm_n = warm_init;
+            pcl_n = 1'b0;
+            pcm_n = 1'b0;
+        end
+        pcl_x_d = pcl_n;
+        pcm_x_d = pcm_n;
+        atl_d = atl_n ^ lead_zero;
+        if (~run) begin
+            atl_d = 1'b0;
+        end
+        ewa_lo_d = cyc_q == wa_lo;
+        ewa_hi_d = cyc_q == wa_hi;
+        ew0_lo_d = cyc_q == w0_lo;
+        ew0_hi_d = cyc_q == w0_hi;
+        ew1_lo_d = cyc_q == w1_lo;
+        ew1_hi_d = cyc_q == w1_hi;
+        ewl_lo_d = cyc_q == wl_lo;
+        ewl_hi_d = cyc_q == wl_hi;
+        est_d = cyc_q == cyc_stop_m1;
         pl_end = plx_q ^ d_one;
         cinc = 1'b0;
         pinc = 1'b0;
@@ -787,7 +926,7 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             ph_n = zero8;
             cyc_n = cyc_q + one8;
             cinc = 1'b1;
-            cst_d = cyc_q == cyc_stop_m1;
+            cst_d = est_q;
         end
         else begin
             ph_n = ph_q + one8;
@@ -819,10 +958,10 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             wl_d = 1'b0;
         end
         if (cinc) begin
-            wa_d = ((cyc_q == wa_lo) | (pa & (cyc_q != wa_hi))) ^ wa_z;
-            w0_d = ((cyc_q == w0_lo) | (p0 & (cyc_q != w0_hi))) ^ w0_z;
-            w1_d = ((cyc_q == w1_lo) | (p1 & (cyc_q != w1_hi))) ^ w1_z;
-            wl_d = ((cyc_q == wl_lo) | (pl & (cyc_q != wl_hi))) ^ wl_z;
+            wa_d = (ewa_lo_q | (pa & ~ewa_hi_q)) ^ wa_z;
+            w0_d = (ew0_lo_q | (p0 & ~ew0_hi_q)) ^ w0_z;
+            w1_d = (ew1_lo_q | (p1 & ~ew1_hi_q)) ^ w1_z;
+            wl_d = (ewl_lo_q | (pl & ~ewl_hi_q)) ^ wl_z;
         end
         if (~run) begin
             wa_d = wa_s ^ wa_z;
@@ -898,6 +1037,24 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     end
 
 endmodule // sd_top_rtl_adc
+
+module sd_top_rtl_adc_atl(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_atl
 
 module sd_top_rtl_adc_ch0_reg(d,q,clock);
 
@@ -988,6 +1145,168 @@ module sd_top_rtl_adc_cyc(d,q,clock);
     end
 
 endmodule // sd_top_rtl_adc_cyc
+
+module sd_top_rtl_adc_est(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_est
+
+module sd_top_rtl_adc_ew0_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew0_hi
+
+module sd_top_rtl_adc_ew0_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew0_lo
+
+module sd_top_rtl_adc_ew1_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew1_hi
+
+module sd_top_rtl_adc_ew1_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ew1_lo
+
+module sd_top_rtl_adc_ewa_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewa_hi
+
+module sd_top_rtl_adc_ewa_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewa_lo
+
+module sd_top_rtl_adc_ewl_hi(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewl_hi
+
+module sd_top_rtl_adc_ewl_lo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_ewl_lo
 
 module sd_top_rtl_adc_live(d,q,clock);
 
@@ -1357,23 +1676,11 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     localparam  ackn_m1 = 32'h0;
     localparam  nbits_m1 = 32'h1a;
     localparam  five = 32'h5;
-    localparam  tlast_m1 = 32'ha69;
+    localparam  tlast_m2 = 32'ha68;
     localparam  ack_is1 = 1'b1;
     localparam  n_is1 = 1'b0;
     localparam  tlast_is0 = 1'b0;
-
-    // Enums
-    localparam BissState_Timeout = 0;
-    localparam BissState_Idle = 1;
-    localparam BissState_First = 2;
-    localparam BissState_Second = 3;
-    localparam BissState_Ack = 4;
-    localparam BissState_Start = 5;
-    localparam BissState_Cds = 6;
-    localparam BissState_Data = 7;
-    localparam BissState_Err = 8;
-    localparam BissState_Warn = 9;
-    localparam BissState_Crc = 10;
+    localparam  tpre_is0 = 1'b0;
 
     // Stub signals
     reg  sync_clk;
@@ -1393,9 +1700,54 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     wire  [31:0] posw_word;
     wire  posw_err;
     wire  posw_warn;
-    reg  [3:0] state_d;
-    wire  [3:0] state_q;
-    reg  state_clock;
+    reg  s_tmo_d;
+    wire  s_tmo_q;
+    reg  s_tmo_clock;
+    reg  s_first_d;
+    wire  s_first_q;
+    reg  s_first_clock;
+    reg  s_second_d;
+    wire  s_second_q;
+    reg  s_second_clock;
+    reg  s_ack_d;
+    wire  s_ack_q;
+    reg  s_ack_clock;
+    reg  s_start_d;
+    wire  s_start_q;
+    reg  s_start_clock;
+    reg  s_cds_d;
+    wire  s_cds_q;
+    reg  s_cds_clock;
+    reg  s_data_d;
+    wire  s_data_q;
+    reg  s_data_clock;
+    reg  s_err_d;
+    wire  s_err_q;
+    reg  s_err_clock;
+    reg  s_warn_d;
+    wire  s_warn_q;
+    reg  s_warn_clock;
+    reg  s_crc_d;
+    wire  s_crc_q;
+    reg  s_crc_clock;
+    reg  pact_d;
+    wire  pact_q;
+    reg  pact_clock;
+    reg  pfb_d;
+    wire  pfb_q;
+    reg  pfb_clock;
+    reg  pinc_d;
+    wire  pinc_q;
+    reg  pinc_clock;
+    reg  pld_d;
+    wire  pld_q;
+    reg  pld_clock;
+    reg  rven_d;
+    wire  rven_q;
+    reg  rven_clock;
+    reg  rv_d;
+    wire  rv_q;
+    reg  rv_clock;
     reg  slo_reg_d;
     wire  slo_reg_q;
     reg  slo_reg_clock;
@@ -1426,9 +1778,12 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  fsix_d;
     wire  fsix_q;
     reg  fsix_clock;
-    reg  ftl_d;
-    wire  ftl_q;
-    reg  ftl_clock;
+    reg  tmoq_d;
+    wire  tmoq_q;
+    reg  tmoq_clock;
+    reg  fpre_d;
+    wire  fpre_q;
+    reg  fpre_clock;
     reg  sidle_d;
     wire  sidle_q;
     reg  sidle_clock;
@@ -1437,13 +1792,14 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  sshift_clock;
 
     // Local signals
-    reg  cld1;
-    reg  cinc;
     reg  mae;
+    reg  tmo;
+    reg  ftln;
+    reg  sidlen;
+    reg  live;
     reg  dbit;
     reg  cbit;
-    reg  cupd;
-    reg  fb;
+    reg  [31:0] cnext;
 
     // Sub module instances
     sd_top_rtl_biss_slave_sync sync(
@@ -1467,10 +1823,85 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .err(posw_err),
         .warn(posw_warn)
     );
-    sd_top_rtl_biss_slave_state state(
-        .d(state_d),
-        .q(state_q),
-        .clock(state_clock)
+    sd_top_rtl_biss_slave_s_tmo s_tmo(
+        .d(s_tmo_d),
+        .q(s_tmo_q),
+        .clock(s_tmo_clock)
+    );
+    sd_top_rtl_biss_slave_s_first s_first(
+        .d(s_first_d),
+        .q(s_first_q),
+        .clock(s_first_clock)
+    );
+    sd_top_rtl_biss_slave_s_second s_second(
+        .d(s_second_d),
+        .q(s_second_q),
+        .clock(s_second_clock)
+    );
+    sd_top_rtl_biss_slave_s_ack s_ack(
+        .d(s_ack_d),
+        .q(s_ack_q),
+        .clock(s_ack_clock)
+    );
+    sd_top_rtl_biss_slave_s_start s_start(
+        .d(s_start_d),
+        .q(s_start_q),
+        .clock(s_start_clock)
+    );
+    sd_top_rtl_biss_slave_s_cds s_cds(
+        .d(s_cds_d),
+        .q(s_cds_q),
+        .clock(s_cds_clock)
+    );
+    sd_top_rtl_biss_slave_s_data s_data(
+        .d(s_data_d),
+        .q(s_data_q),
+        .clock(s_data_clock)
+    );
+    sd_top_rtl_biss_slave_s_err s_err(
+        .d(s_err_d),
+        .q(s_err_q),
+        .clock(s_err_clock)
+    );
+    sd_top_rtl_biss_slave_s_warn s_warn(
+        .d(s_warn_d),
+        .q(s_warn_q),
+        .clock(s_warn_clock)
+    );
+    sd_top_rtl_biss_slave_s_crc s_crc(
+        .d(s_crc_d),
+        .q(s_crc_q),
+        .clock(s_crc_clock)
+    );
+    sd_top_rtl_biss_slave_pact pact(
+        .d(pact_d),
+        .q(pact_q),
+        .clock(pact_clock)
+    );
+    sd_top_rtl_biss_slave_pfb pfb(
+        .d(pfb_d),
+        .q(pfb_q),
+        .clock(pfb_clock)
+    );
+    sd_top_rtl_biss_slave_pinc pinc(
+        .d(pinc_d),
+        .q(pinc_q),
+        .clock(pinc_clock)
+    );
+    sd_top_rtl_biss_slave_pld pld(
+        .d(pld_d),
+        .q(pld_q),
+        .clock(pld_clock)
+    );
+    sd_top_rtl_biss_slave_rven rven(
+        .d(rven_d),
+        .q(rven_q),
+        .clock(rven_clock)
+    );
+    sd_top_rtl_biss_slave_rv rv(
+        .d(rv_d),
+        .q(rv_q),
+        .clock(rv_clock)
     );
     sd_top_rtl_biss_slave_slo_reg slo_reg(
         .d(slo_reg_d),
@@ -1522,10 +1953,15 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .q(fsix_q),
         .clock(fsix_clock)
     );
-    sd_top_rtl_biss_slave_ftl ftl(
-        .d(ftl_d),
-        .q(ftl_q),
-        .clock(ftl_clock)
+    sd_top_rtl_biss_slave_tmoq tmoq(
+        .d(tmoq_d),
+        .q(tmoq_q),
+        .clock(tmoq_clock)
+    );
+    sd_top_rtl_biss_slave_fpre fpre(
+        .d(fpre_d),
+        .q(fpre_q),
+        .clock(fpre_clock)
     );
     sd_top_rtl_biss_slave_sidle sidle(
         .d(sidle_d),
@@ -1540,7 +1976,22 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
 
     // Update code
     always @(*) begin
-        state_clock = clk;
+        s_tmo_clock = clk;
+        s_first_clock = clk;
+        s_second_clock = clk;
+        s_ack_clock = clk;
+        s_start_clock = clk;
+        s_cds_clock = clk;
+        s_data_clock = clk;
+        s_err_clock = clk;
+        s_warn_clock = clk;
+        s_crc_clock = clk;
+        pact_clock = clk;
+        pfb_clock = clk;
+        pinc_clock = clk;
+        pld_clock = clk;
+        rven_clock = clk;
+        rv_clock = clk;
         slo_reg_clock = clk;
         sh_clock = clk;
         crc_clock = clk;
@@ -1551,10 +2002,26 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fack_clock = clk;
         fnb_clock = clk;
         fsix_clock = clk;
-        ftl_clock = clk;
+        tmoq_clock = clk;
+        fpre_clock = clk;
         sidle_clock = clk;
         sshift_clock = clk;
-        state_d = state_q;
+        s_tmo_d = s_tmo_q;
+        s_first_d = s_first_q;
+        s_second_d = s_second_q;
+        s_ack_d = s_ack_q;
+        s_start_d = s_start_q;
+        s_cds_d = s_cds_q;
+        s_data_d = s_data_q;
+        s_err_d = s_err_q;
+        s_warn_d = s_warn_q;
+        s_crc_d = s_crc_q;
+        pact_d = pact_q;
+        pfb_d = pfb_q;
+        pinc_d = pinc_q;
+        pld_d = pld_q;
+        rven_d = rven_q;
+        rv_d = rv_q;
         slo_reg_d = slo_reg_q;
         sh_d = sh_q;
         crc_d = crc_q;
@@ -1565,7 +2032,8 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fack_d = fack_q;
         fnb_d = fnb_q;
         fsix_d = fsix_q;
-        ftl_d = ftl_q;
+        tmoq_d = tmoq_q;
+        fpre_d = fpre_q;
         sidle_d = sidle_q;
         sshift_d = sshift_q;
         sync_clk = clk;
@@ -1580,124 +2048,67 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         posw_warning = warning;
         posw_take = 1'b0;
         mae = sync_rise | sync_fall;
-        dbit = |(sh_q & msb);
-        cbit = dbit;
-        cupd = 1'b0;
-        cld1 = 1'b0;
-        cinc = 1'b0;
+        tmo = tmoq_q & ~mae;
+        live = ~tmo & ~rst;
         if (mae) begin
             tcnt_d = zero;
-            ftl_d = tlast_is0;
+            ftln = tlast_is0;
+            fpre_d = tpre_is0;
         end
         else begin
             tcnt_d = (tcnt_q + one) & tmask;
-            ftl_d = tcnt_q == tlast_m1;
+            ftln = fpre_q;
+            fpre_d = tcnt_q == tlast_m2;
         end
-        case (state_q)
-            BissState_Timeout:
-                begin
-                end
-            BissState_Idle:
-                begin
-                    if (sync_fall) begin
-                        state_d = BissState_First;
-                    end
-                end
-            BissState_First:
-                begin
-                    if (sync_rise) begin
-                        state_d = BissState_Second;
-                    end
-                end
-            BissState_Second:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = 1'b0;
-                        cld1 = 1'b1;
-                        state_d = BissState_Ack;
-                    end
-                end
-            BissState_Ack:
-                begin
-                    if (sync_rise) begin
-                        if (fack_q) begin
-                            slo_reg_d = 1'b1;
-                            state_d = BissState_Start;
-                        end
-                        else begin
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-            BissState_Start:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = 1'b0;
-                        state_d = BissState_Cds;
-                    end
-                end
-            BissState_Cds:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = dbit;
-                        cupd = 1'b1;
-                        cld1 = 1'b1;
-                        state_d = BissState_Data;
-                    end
-                end
-            BissState_Data:
-                begin
-                    if (sync_rise) begin
-                        cupd = 1'b1;
-                        if (fnb_q) begin
-                            cbit = ~errl_q;
-                            slo_reg_d = ~errl_q;
-                            state_d = BissState_Err;
-                        end
-                        else begin
-                            slo_reg_d = dbit;
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-            BissState_Err:
-                begin
-                    if (sync_rise) begin
-                        cupd = 1'b1;
-                        cbit = ~warnl_q;
-                        slo_reg_d = ~warnl_q;
-                        state_d = BissState_Warn;
-                    end
-                end
-            BissState_Warn:
-                begin
-                    if (sync_rise) begin
-                        slo_reg_d = ~|(crc_q & crcmsb);
-                        crc_d = (crc_q << one) & crcmask;
-                        cld1 = 1'b1;
-                        state_d = BissState_Crc;
-                    end
-                end
-            BissState_Crc:
-                begin
-                    if (sync_rise) begin
-                        if (fsix_q) begin
-                            slo_reg_d = 1'b0;
-                            state_d = BissState_Timeout;
-                        end
-                        else begin
-                            slo_reg_d = ~|(crc_q & crcmsb);
-                            crc_d = (crc_q << one) & crcmask;
-                            cinc = 1'b1;
-                        end
-                    end
-                end
-        endcase
+        if (rst) begin
+            tcnt_d = zero;
+            ftln = tlast_is0;
+            fpre_d = tpre_is0;
+        end
+        s_tmo_d = rst | (~tmo & (s_tmo_q | (s_crc_q & sync_rise & fsix_q)));
+        sidlen = ~rst & (tmo | (sidle_q & ~sync_fall));
+        sidle_d = sidlen;
+        tmoq_d = ~sidlen & ftln;
+        s_first_d = live & ((sidle_q & sync_fall) | (s_first_q & ~sync_rise));
+        s_second_d = live & ((s_first_q & sync_rise) | (s_second_q & ~sync_rise));
+        s_ack_d = live & ((s_second_q & sync_rise) | (s_ack_q & ~(sync_rise & fack_q)));
+        s_start_d = live & ((s_ack_q & sync_rise & fack_q) | (s_start_q & ~sync_rise));
+        s_cds_d = live & ((s_start_q & sync_rise) | (s_cds_q & ~sync_rise));
+        s_data_d = live & ((s_cds_q & sync_rise) | (s_data_q & ~(sync_rise & fnb_q)));
+        s_err_d = live & ((s_data_q & sync_rise & fnb_q) | (s_err_q & ~sync_rise));
+        s_warn_d = live & ((s_err_q & sync_rise) | (s_warn_q & ~sync_rise));
+        s_crc_d = live & ((s_warn_q & sync_rise) | (s_crc_q & ~(sync_rise & fsix_q)));
+        dbit = |(sh_q & msb);
+        cbit = dbit;
+        if (s_data_q & fnb_q) begin
+            cbit = ~errl_q;
+        end
+        if (s_err_q) begin
+            cbit = ~warnl_q;
+        end
+        pact_d = (s_cds_q | s_data_q | s_err_q | s_warn_q | (s_crc_q & ~fsix_q)) & live;
+        pfb_d = (s_cds_q | s_data_q | s_err_q) & (cbit ^ |(crc_q & crcmsb));
+        pinc_d = ((s_ack_q & ~fack_q) | (s_data_q & ~fnb_q) | (s_crc_q & ~fsix_q)) & live;
+        pld_d = (s_second_q | s_cds_q | s_warn_q) & live;
+        rven_d = ~(s_tmo_q | sidle_q | s_first_q | (s_ack_q & ~fack_q)) & live;
+        rv_d = s_ack_q | ((s_cds_q | (s_data_q & ~fnb_q)) & dbit) | ((s_data_q & fnb_q) & ~errl_q) | (s_err_q & ~warnl_q) | ((s_warn_q | (s_crc_q & ~fsix_q)) & ~|(crc_q & crcmsb));
+        if (sync_rise & rven_q) begin
+            slo_reg_d = rv_q;
+        end
+        if (s_crc_q & sync_rise & fsix_q) begin
+        end
         if (sidle_q & sync_fall) begin
             posw_take = 1'b1;
             errl_d = posw_err;
             warnl_d = posw_warn;
             crc_d = zero;
+        end
+        cnext = (crc_q << one) & crcmask;
+        if (pfb_q) begin
+            cnext = ((crc_q << one) & crcmask) ^ taps;
+        end
+        if (sync_rise & pact_q) begin
+            crc_d = cnext;
         end
         if (sidle_q & sync_fall) begin
             sh_d = posw_word & nmask;
@@ -1705,39 +2116,25 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         if (sshift_q & sync_rise) begin
             sh_d = (sh_q << one) & nmask;
         end
-        if (cinc) begin
+        if (sync_rise & pinc_q) begin
             cnt_d = (cnt_q + one) & cmask;
             fack_d = cnt_q == ackn_m1;
             fnb_d = cnt_q == nbits_m1;
             fsix_d = cnt_q == five;
         end
-        if (cld1) begin
+        if (sync_rise & pld_q) begin
             cnt_d = one;
             fack_d = ack_is1;
             fnb_d = n_is1;
             fsix_d = 1'b0;
         end
-        fb = cbit ^ |(crc_q & crcmsb);
-        if (cupd) begin
-            if (fb) begin
-                crc_d = ((crc_q << one) & crcmask) ^ taps;
-            end
-            else begin
-                crc_d = (crc_q << one) & crcmask;
-            end
-        end
-        if ((state_q != BissState_Idle) & ~mae & ftl_q) begin
+        if (tmo) begin
             slo_reg_d = 1'b1;
-            state_d = BissState_Idle;
         end
         if (rst) begin
-            state_d = BissState_Timeout;
             slo_reg_d = 1'b0;
-            tcnt_d = zero;
-            ftl_d = tlast_is0;
         end
-        sidle_d = state_d == BissState_Idle;
-        sshift_d = ((state_q == BissState_Cds) | ((state_q == BissState_Data) & ~fnb_q)) & ~(~mae & ftl_q) & ~rst;
+        sshift_d = (s_cds_q | (s_data_q & ~fnb_q)) & live;
         slo = slo_reg_q;
     end
 
@@ -1833,6 +2230,24 @@ module sd_top_rtl_biss_slave_fnb(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_fnb
 
+module sd_top_rtl_biss_slave_fpre(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_fpre
+
 module sd_top_rtl_biss_slave_fsix(d,q,clock);
 
     // Module arguments
@@ -1851,7 +2266,7 @@ module sd_top_rtl_biss_slave_fsix(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_fsix
 
-module sd_top_rtl_biss_slave_ftl(d,q,clock);
+module sd_top_rtl_biss_slave_pact(d,q,clock);
 
     // Module arguments
     input wire  d;
@@ -1867,7 +2282,61 @@ module sd_top_rtl_biss_slave_ftl(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_biss_slave_ftl
+endmodule // sd_top_rtl_biss_slave_pact
+
+module sd_top_rtl_biss_slave_pfb(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_pfb
+
+module sd_top_rtl_biss_slave_pinc(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_pinc
+
+module sd_top_rtl_biss_slave_pld(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_pld
 
 module sd_top_rtl_biss_slave_posw(clk,rst,pos,turns,pos_valid,error,warning,take,word,err,warn);
 
@@ -2083,6 +2552,253 @@ module sd_top_rtl_biss_slave_posw_warnacc(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_posw_warnacc
 
+module sd_top_rtl_biss_slave_rv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_rv
+
+module sd_top_rtl_biss_slave_rven(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_rven
+
+module sd_top_rtl_biss_slave_s_ack(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_ack
+
+module sd_top_rtl_biss_slave_s_cds(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_cds
+
+module sd_top_rtl_biss_slave_s_crc(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_crc
+
+module sd_top_rtl_biss_slave_s_data(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_data
+
+module sd_top_rtl_biss_slave_s_err(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_err
+
+module sd_top_rtl_biss_slave_s_first(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_first
+
+module sd_top_rtl_biss_slave_s_second(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_second
+
+module sd_top_rtl_biss_slave_s_start(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_start
+
+module sd_top_rtl_biss_slave_s_tmo(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+
+    // Stub signals
+    reg  dff_d;
+    wire  dff_q;
+    reg  dff_clock;
+
+    // Sub module instances
+    sd_top_rtl_biss_slave_s_tmo_dff dff(
+        .d(dff_d),
+        .q(dff_q),
+        .clock(dff_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        dff_clock = clock;
+        q = dff_q ^ init;
+        dff_d = d ^ init;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_tmo
+
+module sd_top_rtl_biss_slave_s_tmo_dff(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_tmo_dff
+
+module sd_top_rtl_biss_slave_s_warn(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_s_warn
+
 module sd_top_rtl_biss_slave_sh(d,q,clock);
 
     // Module arguments
@@ -2154,37 +2870,6 @@ module sd_top_rtl_biss_slave_sshift(d,q,clock);
     end
 
 endmodule // sd_top_rtl_biss_slave_sshift
-
-module sd_top_rtl_biss_slave_state(d,q,clock);
-
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-
-    // Enums
-    localparam BissState_Timeout = 0;
-    localparam BissState_Idle = 1;
-    localparam BissState_First = 2;
-    localparam BissState_Second = 3;
-    localparam BissState_Ack = 4;
-    localparam BissState_Start = 5;
-    localparam BissState_Cds = 6;
-    localparam BissState_Data = 7;
-    localparam BissState_Err = 8;
-    localparam BissState_Warn = 9;
-    localparam BissState_Crc = 10;
-
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_state
 
 module sd_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
 
@@ -2436,6 +3121,24 @@ module sd_top_rtl_biss_slave_tcnt(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_tcnt
 
+module sd_top_rtl_biss_slave_tmoq(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_tmoq
+
 module sd_top_rtl_biss_slave_warnl(d,q,clock);
 
     // Module arguments
@@ -2670,9 +3373,13 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
     wire  combiner_step;
     wire  [31:0] combiner_wq;
     wire  combiner_wz;
+    wire  [31:0] combiner_q_next;
+    wire  combiner_acc;
     reg  counter_clk;
     reg  counter_rst;
     reg  [31:0] counter_p_in;
+    reg  [31:0] counter_q_next;
+    reg  counter_acc_in;
     reg  counter_ok_in;
     reg  counter_v_in;
     reg  counter_up_in;
@@ -2911,12 +3618,16 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
         .down(combiner_down),
         .step(combiner_step),
         .wq(combiner_wq),
-        .wz(combiner_wz)
+        .wz(combiner_wz),
+        .q_next(combiner_q_next),
+        .acc(combiner_acc)
     );
     sd_top_rtl_core_counter counter(
         .clk(counter_clk),
         .rst(counter_rst),
         .p_in(counter_p_in),
+        .q_next(counter_q_next),
+        .acc_in(counter_acc_in),
         .ok_in(counter_ok_in),
         .v_in(counter_v_in),
         .up_in(counter_up_in),
@@ -3181,6 +3892,8 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
         counter_clk = clk;
         counter_rst = rst;
         counter_p_in = combiner_p;
+        counter_q_next = combiner_q_next;
+        counter_acc_in = combiner_acc;
         counter_ok_in = combiner_mag_ok;
         counter_v_in = combiner_v;
         counter_up_in = combiner_up;
@@ -3201,7 +3914,7 @@ module sd_top_rtl_core(clk,rst,in_valid,in_sin,in_cos,load,load_qc,load_turns,ou
 
 endmodule // sd_top_rtl_core
 
-module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz);
+module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,wz,q_next,acc);
 
     // Module arguments
     input wire  clk;
@@ -3217,6 +3930,8 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
     output reg  step;
     output reg  [31:0] wq;
     output reg  wz;
+    output reg  [31:0] q_next;
+    output reg  acc;
 
     // Constant declarations
     localparam  zshift = 32'h6;
@@ -3232,6 +3947,9 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
     localparam  vbit = 32'h80000000;
 
     // Stub signals
+    reg  acc_reg_d;
+    wire  acc_reg_q;
+    reg  acc_reg_clock;
     reg  [31:0] p_reg_d;
     wire  [31:0] p_reg_q;
     reg  p_reg_clock;
@@ -3271,6 +3989,11 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
     reg  [31:0] qlast;
 
     // Sub module instances
+    sd_top_rtl_core_combiner_acc_reg acc_reg(
+        .d(acc_reg_d),
+        .q(acc_reg_q),
+        .clock(acc_reg_clock)
+    );
     sd_top_rtl_core_combiner_p_reg p_reg(
         .d(p_reg_d),
         .q(p_reg_q),
@@ -3328,6 +4051,7 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
         step_reg_clock = clk;
         wq_reg_clock = clk;
         wz_reg_clock = clk;
+        acc_reg_clock = clk;
         p_reg_d = p_reg_q;
         ok_reg_d = ok_reg_q;
         v_reg_d = v_reg_q;
@@ -3337,6 +4061,7 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
         step_reg_d = step_reg_q;
         wq_reg_d = wq_reg_q;
         wz_reg_d = wz_reg_q;
+        acc_reg_d = acc_reg_q;
         pn = (z_in >> zshift) & pmask;
         okn = x_in >= minmag;
         p_reg_d = pn;
@@ -3357,6 +4082,7 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
         up_reg_d = ~back & (qnew < qlast);
         down_reg_d = back & (qnew > qlast);
         step_reg_d = up_reg_d | down_reg_d;
+        acc_reg_d = okv;
         wq_reg_d = delta >> wshift;
         wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;
         p = p_reg_q;
@@ -3367,9 +4093,29 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
         step = step_reg_q;
         wq = wq_reg_q;
         wz = wz_reg_q;
+        q_next = qnew;
+        acc = acc_reg_q;
     end
 
 endmodule // sd_top_rtl_core_combiner
+
+module sd_top_rtl_core_combiner_acc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_combiner_acc_reg
 
 module sd_top_rtl_core_combiner_down_reg(d,q,clock);
 
@@ -3533,12 +4279,14 @@ module sd_top_rtl_core_combiner_wz_reg(d,q,clock);
 
 endmodule // sd_top_rtl_core_combiner_wz_reg
 
-module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
+module sd_top_rtl_core_counter(clk,rst,p_in,q_next,acc_in,ok_in,v_in,up_in,down_in,step_in,wq_in,wz_in,load,load_qc,load_turns,qc,fine,turns,valid,error,warning);
 
     // Module arguments
     input wire  clk;
     input wire  rst;
     input wire  [31:0] p_in;
+    input wire  [31:0] q_next;
+    input wire  acc_in;
     input wire  ok_in;
     input wire  v_in;
     input wire  up_in;
@@ -3569,6 +4317,7 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
     localparam  upenult = 32'h7fe;
     localparam  uone_c = 32'h1;
     localparam  ppr1 = 1'b0;
+    localparam  flat = 1'b1;
     localparam  tmask = 32'hfff;
     localparam  one = 32'h1;
     localparam  three = 32'h3;
@@ -3610,6 +4359,24 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
     reg  [31:0] lturns_reg_d;
     wire  [31:0] lturns_reg_q;
     reg  lturns_reg_clock;
+    reg  [31:0] tinc_reg_d;
+    wire  [31:0] tinc_reg_q;
+    reg  tinc_reg_clock;
+    reg  [31:0] tdec_reg_d;
+    wire  [31:0] tdec_reg_q;
+    reg  tdec_reg_clock;
+    reg  [31:0] tio_reg_d;
+    wire  [31:0] tio_reg_q;
+    reg  tio_reg_clock;
+    reg  [31:0] tdo_reg_d;
+    wire  [31:0] tdo_reg_q;
+    reg  tdo_reg_clock;
+    reg  ovi_reg_d;
+    wire  ovi_reg_q;
+    reg  ovi_reg_clock;
+    reg  ovd_reg_d;
+    wire  ovd_reg_q;
+    reg  ovd_reg_clock;
     reg  [31:0] ltinc_reg_d;
     wire  [31:0] ltinc_reg_q;
     reg  ltinc_reg_clock;
@@ -3628,6 +4395,18 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
     reg  lone_reg_d;
     wire  lone_reg_q;
     reg  lone_reg_clock;
+    reg  ul_reg_d;
+    wire  ul_reg_q;
+    reg  ul_reg_clock;
+    reg  dl_reg_d;
+    wire  dl_reg_q;
+    reg  dl_reg_clock;
+    reg  uwl_reg_d;
+    wire  uwl_reg_q;
+    reg  uwl_reg_clock;
+    reg  dwl_reg_d;
+    wire  dwl_reg_q;
+    reg  dwl_reg_clock;
     reg  ulast_reg_d;
     wire  ulast_reg_q;
     reg  ulast_reg_clock;
@@ -3636,6 +4415,15 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
     reg  unz_reg_clock;
 
     // Local signals
+    reg  uwl;
+    reg  dwl;
+    reg  [31:0] qlat;
+    reg  [31:0] qnow;
+    reg  rwu;
+    reg  rwd;
+    reg  [31:0] base_turns;
+    reg  [31:0] tsel_p;
+    reg  [31:0] tsel_r;
     reg  upen;
     reg  ulst;
     reg  uzer;
@@ -3645,7 +4433,6 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
     reg  [31:0] qnew;
     reg  [31:0] base_q;
     reg  [31:0] base_u;
-    reg  [31:0] base_turns;
     reg  up;
     reg  down;
     reg  [31:0] ustep;
@@ -3716,6 +4503,36 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
         .q(lturns_reg_q),
         .clock(lturns_reg_clock)
     );
+    sd_top_rtl_core_counter_tinc_reg tinc_reg(
+        .d(tinc_reg_d),
+        .q(tinc_reg_q),
+        .clock(tinc_reg_clock)
+    );
+    sd_top_rtl_core_counter_tdec_reg tdec_reg(
+        .d(tdec_reg_d),
+        .q(tdec_reg_q),
+        .clock(tdec_reg_clock)
+    );
+    sd_top_rtl_core_counter_tio_reg tio_reg(
+        .d(tio_reg_d),
+        .q(tio_reg_q),
+        .clock(tio_reg_clock)
+    );
+    sd_top_rtl_core_counter_tdo_reg tdo_reg(
+        .d(tdo_reg_d),
+        .q(tdo_reg_q),
+        .clock(tdo_reg_clock)
+    );
+    sd_top_rtl_core_counter_ovi_reg ovi_reg(
+        .d(ovi_reg_d),
+        .q(ovi_reg_q),
+        .clock(ovi_reg_clock)
+    );
+    sd_top_rtl_core_counter_ovd_reg ovd_reg(
+        .d(ovd_reg_d),
+        .q(ovd_reg_q),
+        .clock(ovd_reg_clock)
+    );
     sd_top_rtl_core_counter_ltinc_reg ltinc_reg(
         .d(ltinc_reg_d),
         .q(ltinc_reg_q),
@@ -3746,6 +4563,26 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
         .q(lone_reg_q),
         .clock(lone_reg_clock)
     );
+    sd_top_rtl_core_counter_ul_reg ul_reg(
+        .d(ul_reg_d),
+        .q(ul_reg_q),
+        .clock(ul_reg_clock)
+    );
+    sd_top_rtl_core_counter_dl_reg dl_reg(
+        .d(dl_reg_d),
+        .q(dl_reg_q),
+        .clock(dl_reg_clock)
+    );
+    sd_top_rtl_core_counter_uwl_reg uwl_reg(
+        .d(uwl_reg_d),
+        .q(uwl_reg_q),
+        .clock(uwl_reg_clock)
+    );
+    sd_top_rtl_core_counter_dwl_reg dwl_reg(
+        .d(dwl_reg_d),
+        .q(dwl_reg_q),
+        .clock(dwl_reg_clock)
+    );
     sd_top_rtl_core_counter_ulast_reg ulast_reg(
         .d(ulast_reg_d),
         .q(ulast_reg_q),
@@ -3764,6 +4601,12 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
         u_reg_clock = clk;
         fine_reg_clock = clk;
         turns_reg_clock = clk;
+        tinc_reg_clock = clk;
+        tdec_reg_clock = clk;
+        tio_reg_clock = clk;
+        tdo_reg_clock = clk;
+        ovi_reg_clock = clk;
+        ovd_reg_clock = clk;
         valid_reg_clock = clk;
         error_reg_clock = clk;
         warning_reg_clock = clk;
@@ -3776,6 +4619,10 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
         lzero_reg_clock = clk;
         lpen_reg_clock = clk;
         lone_reg_clock = clk;
+        ul_reg_clock = clk;
+        dl_reg_clock = clk;
+        uwl_reg_clock = clk;
+        dwl_reg_clock = clk;
         ulast_reg_clock = clk;
         unz_reg_clock = clk;
         init_reg_d = init_reg_q;
@@ -3783,6 +4630,12 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
         u_reg_d = u_reg_q;
         fine_reg_d = fine_reg_q;
         turns_reg_d = turns_reg_q;
+        tinc_reg_d = tinc_reg_q;
+        tdec_reg_d = tdec_reg_q;
+        tio_reg_d = tio_reg_q;
+        tdo_reg_d = tdo_reg_q;
+        ovi_reg_d = ovi_reg_q;
+        ovd_reg_d = ovd_reg_q;
         valid_reg_d = valid_reg_q;
         error_reg_d = error_reg_q;
         warning_reg_d = warning_reg_q;
@@ -3795,9 +4648,12 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
         lzero_reg_d = lzero_reg_q;
         lpen_reg_d = lpen_reg_q;
         lone_reg_d = lone_reg_q;
+        ul_reg_d = ul_reg_q;
+        dl_reg_d = dl_reg_q;
+        uwl_reg_d = uwl_reg_q;
+        dwl_reg_d = dwl_reg_q;
         ulast_reg_d = ulast_reg_q;
         unz_reg_d = unz_reg_q;
-        qnew = (p_in >> fshift) & three;
         ustep = zero;
         if (down_in) begin
             ustep = minus_two;
@@ -3811,6 +4667,9 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
         ulst = (u_reg_q & umask) == ulast;
         uzer = (u_reg_q & umask) == zero;
         uone = (u_reg_q & umask) == uone_c;
+        if (~flat) begin
+            wrap = (up_in & (ulst | ppr1)) | (down_in & (uzer | ppr1));
+        end
         nlast = ulst;
         nzero = uzer;
         if (up_in) begin
@@ -3821,10 +4680,21 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
             nlast = uzer;
             nzero = uone;
         end
-        base_q = lqc_reg_q & three;
         base_u = (lqc_reg_q >> two) & umask;
-        up_l = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
-        down_l = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        if (flat) begin
+            up_l = ul_reg_q;
+            down_l = dl_reg_q;
+            uwl = uwl_reg_q;
+            dwl = dwl_reg_q;
+        end
+        else begin
+            qlat = lqc_reg_q & three;
+            qnow = (p_in >> fshift) & three;
+            up_l = qlat[32'h1] & ~qnow[32'h1] & (qlat[32'h0] | ~qnow[32'h0]);
+            down_l = ~qlat[32'h1] & ~qlat[32'h0] & qnow[32'h1] & qnow[32'h0];
+            uwl = up_l & llast_reg_q;
+            dwl = down_l & lzero_reg_q;
+        end
         ustep_l = zero;
         if (up_l) begin
             ustep_l = one;
@@ -3833,21 +4703,27 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
             ustep_l = minus_one;
         end
         usum_l = (base_u + ustep_l) & usmask;
-        wrap_l = (up_l & llast_reg_q) | (down_l & lzero_reg_q);
+        wrap_l = uwl | dwl;
         up = up_in;
         down = down_in;
         un = usum & umask;
+        tinc_reg_d = (turns_reg_q + one) & tmask;
+        tdec_reg_d = (turns_reg_q + minus_one) & tmask;
+        tinc = tinc_reg_q;
+        if (ovi_reg_q) begin
+            tinc = tio_reg_q;
+        end
+        tdec = tdec_reg_q;
+        if (ovd_reg_q) begin
+            tdec = tdo_reg_q;
+        end
         base_turns = turns_reg_q;
-        tinc = (turns_reg_q + one) & tmask;
-        tdec = (turns_reg_q + minus_one) & tmask;
         if (pending_reg_q) begin
             up = up_l;
             down = down_l;
             un = usum_l & umask;
             wrap = wrap_l;
             base_turns = lturns_reg_q;
-            tinc = ltinc_reg_q;
-            tdec = ltdec_reg_q;
             nlast = llast_reg_q;
             nzero = lzero_reg_q;
             if (up_l) begin
@@ -3919,17 +4795,67 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
                         u_reg_d = ulast;
                     end
                 end
-                turns_reg_d = base_turns & tmask;
-                if (wrap) begin
-                    if (up) begin
-                        turns_reg_d = tinc;
-                    end
-                    else begin
-                        turns_reg_d = tdec;
+                if (~flat) begin
+                    turns_reg_d = base_turns & tmask;
+                    if (wrap) begin
+                        if (up) begin
+                            turns_reg_d = (base_turns + one) & tmask;
+                        end
+                        else begin
+                            turns_reg_d = (base_turns + minus_one) & tmask;
+                        end
                     end
                 end
                 fine_reg_d = p_in & fmask;
                 pprev_reg_d = p_in;
+            end
+        end
+        base_q = lqc_reg_d & three;
+        qnew = q_next & three;
+        ul_reg_d = base_q[32'h1] & ~qnew[32'h1] & (base_q[32'h0] | ~qnew[32'h0]);
+        dl_reg_d = ~base_q[32'h1] & ~base_q[32'h0] & qnew[32'h1] & qnew[32'h0];
+        uwl_reg_d = ul_reg_d & llast_reg_d;
+        dwl_reg_d = dl_reg_d & lzero_reg_d;
+        rwu = acc_in & up_in & (ulast_reg_q | ppr1);
+        rwd = acc_in & down_in & (~unz_reg_q | ppr1);
+        tsel_p = lturns_reg_q;
+        if (uwl) begin
+            tsel_p = ltinc_reg_q;
+        end
+        if (dwl) begin
+            tsel_p = ltdec_reg_q;
+        end
+        tsel_r = turns_reg_q;
+        if (rwu) begin
+            tsel_r = tinc;
+        end
+        if (rwd) begin
+            tsel_r = tdec;
+        end
+        ovi_reg_d = 1'b0;
+        ovd_reg_d = 1'b0;
+        tio_reg_d = turns_reg_q;
+        tdo_reg_d = turns_reg_q;
+        if (pending_reg_q) begin
+            tio_reg_d = ltinc_reg_q;
+            tdo_reg_d = ltdec_reg_q;
+            if (dwl) begin
+                tio_reg_d = lturns_reg_q;
+            end
+            if (uwl) begin
+                tdo_reg_d = lturns_reg_q;
+            end
+        end
+        if (flat & acc_in & init_reg_q & ~rst) begin
+            if (pending_reg_q) begin
+                turns_reg_d = tsel_p & tmask;
+                ovi_reg_d = ~uwl;
+                ovd_reg_d = ~dwl;
+            end
+            else begin
+                turns_reg_d = tsel_r & tmask;
+                ovi_reg_d = rwd;
+                ovd_reg_d = rwu;
             end
         end
         qc = (u_reg_q << two) | ((pprev_reg_q >> fshift) & three);
@@ -3941,6 +4867,42 @@ module sd_top_rtl_core_counter(clk,rst,p_in,ok_in,v_in,up_in,down_in,step_in,wq_
     end
 
 endmodule // sd_top_rtl_core_counter
+
+module sd_top_rtl_core_counter_dl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_dl_reg
+
+module sd_top_rtl_core_counter_dwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_dwl_reg
 
 module sd_top_rtl_core_counter_error_reg(d,q,clock);
 
@@ -4140,6 +5102,42 @@ module sd_top_rtl_core_counter_lzero_reg(d,q,clock);
 
 endmodule // sd_top_rtl_core_counter_lzero_reg
 
+module sd_top_rtl_core_counter_ovd_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_ovd_reg
+
+module sd_top_rtl_core_counter_ovi_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_ovi_reg
+
 module sd_top_rtl_core_counter_pending_reg(d,q,clock);
 
     // Module arguments
@@ -4175,6 +5173,78 @@ module sd_top_rtl_core_counter_pprev_reg(d,q,clock);
     end
 
 endmodule // sd_top_rtl_core_counter_pprev_reg
+
+module sd_top_rtl_core_counter_tdec_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_tdec_reg
+
+module sd_top_rtl_core_counter_tdo_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_tdo_reg
+
+module sd_top_rtl_core_counter_tinc_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_tinc_reg
+
+module sd_top_rtl_core_counter_tio_reg(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_tio_reg
 
 module sd_top_rtl_core_counter_turns_reg(d,q,clock);
 
@@ -4212,6 +5282,24 @@ module sd_top_rtl_core_counter_u_reg(d,q,clock);
 
 endmodule // sd_top_rtl_core_counter_u_reg
 
+module sd_top_rtl_core_counter_ul_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_ul_reg
+
 module sd_top_rtl_core_counter_ulast_reg(d,q,clock);
 
     // Module arguments
@@ -4247,6 +5335,24 @@ module sd_top_rtl_core_counter_unz_reg(d,q,clock);
     end
 
 endmodule // sd_top_rtl_core_counter_unz_reg
+
+module sd_top_rtl_core_counter_uwl_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_core_counter_uwl_reg
 
 module sd_top_rtl_core_counter_valid_reg(d,q,clock);
 
@@ -4514,6 +5620,7 @@ module sd_top_rtl_core_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h80000;
+    localparam  natan = 32'hfff80000;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4539,6 +5646,8 @@ module sd_top_rtl_core_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_0_x_reg x_reg(
@@ -4597,7 +5706,12 @@ module sd_top_rtl_core_stages_0(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4725,6 +5839,7 @@ module sd_top_rtl_core_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h4b901;
+    localparam  natan = 32'hfffb46ff;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4750,6 +5865,8 @@ module sd_top_rtl_core_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_1_x_reg x_reg(
@@ -4808,7 +5925,12 @@ module sd_top_rtl_core_stages_1(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -4936,6 +6058,7 @@ module sd_top_rtl_core_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28c;
+    localparam  natan = 32'hfffffd74;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -4961,6 +6084,8 @@ module sd_top_rtl_core_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_10_x_reg x_reg(
@@ -5019,7 +6144,12 @@ module sd_top_rtl_core_stages_10(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5147,6 +6277,7 @@ module sd_top_rtl_core_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h146;
+    localparam  natan = 32'hfffffeba;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5172,6 +6303,8 @@ module sd_top_rtl_core_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_11_x_reg x_reg(
@@ -5230,7 +6363,12 @@ module sd_top_rtl_core_stages_11(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5358,6 +6496,7 @@ module sd_top_rtl_core_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha3;
+    localparam  natan = 32'hffffff5d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5383,6 +6522,8 @@ module sd_top_rtl_core_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_12_x_reg x_reg(
@@ -5441,7 +6582,12 @@ module sd_top_rtl_core_stages_12(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5569,6 +6715,7 @@ module sd_top_rtl_core_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h51;
+    localparam  natan = 32'hffffffaf;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5594,6 +6741,8 @@ module sd_top_rtl_core_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_13_x_reg x_reg(
@@ -5652,7 +6801,12 @@ module sd_top_rtl_core_stages_13(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5780,6 +6934,7 @@ module sd_top_rtl_core_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h27ece;
+    localparam  natan = 32'hfffd8132;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -5805,6 +6960,8 @@ module sd_top_rtl_core_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_2_x_reg x_reg(
@@ -5863,7 +7020,12 @@ module sd_top_rtl_core_stages_2(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -5991,6 +7153,7 @@ module sd_top_rtl_core_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h14444;
+    localparam  natan = 32'hfffebbbc;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6016,6 +7179,8 @@ module sd_top_rtl_core_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_3_x_reg x_reg(
@@ -6074,7 +7239,12 @@ module sd_top_rtl_core_stages_3(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6202,6 +7372,7 @@ module sd_top_rtl_core_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha2c3;
+    localparam  natan = 32'hffff5d3d;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6227,6 +7398,8 @@ module sd_top_rtl_core_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_4_x_reg x_reg(
@@ -6285,7 +7458,12 @@ module sd_top_rtl_core_stages_4(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6413,6 +7591,7 @@ module sd_top_rtl_core_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h5176;
+    localparam  natan = 32'hffffae8a;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6438,6 +7617,8 @@ module sd_top_rtl_core_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_5_x_reg x_reg(
@@ -6496,7 +7677,12 @@ module sd_top_rtl_core_stages_5(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6624,6 +7810,7 @@ module sd_top_rtl_core_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h28be;
+    localparam  natan = 32'hffffd742;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6649,6 +7836,8 @@ module sd_top_rtl_core_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_6_x_reg x_reg(
@@ -6707,7 +7896,12 @@ module sd_top_rtl_core_stages_6(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -6835,6 +8029,7 @@ module sd_top_rtl_core_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h145f;
+    localparam  natan = 32'hffffeba1;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -6860,6 +8055,8 @@ module sd_top_rtl_core_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_7_x_reg x_reg(
@@ -6918,7 +8115,12 @@ module sd_top_rtl_core_stages_7(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -7046,6 +8248,7 @@ module sd_top_rtl_core_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'ha30;
+    localparam  natan = 32'hfffff5d0;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -7071,6 +8274,8 @@ module sd_top_rtl_core_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_8_x_reg x_reg(
@@ -7129,7 +8334,12 @@ module sd_top_rtl_core_stages_8(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -7257,6 +8467,7 @@ module sd_top_rtl_core_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     localparam  xmask = 32'h3ffffff;
     localparam  zmask = 32'h3fffff;
     localparam  atan = 32'h518;
+    localparam  natan = 32'hfffffae8;
 
     // Stub signals
     reg  [31:0] x_reg_d;
@@ -7282,6 +8493,8 @@ module sd_top_rtl_core_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
     reg  [31:0] c;
     reg  [31:0] nm;
     reg  [31:0] nc;
+    reg  [31:0] zp;
+    reg  [31:0] zm;
 
     // Sub module instances
     sd_top_rtl_core_stages_9_x_reg x_reg(
@@ -7340,7 +8553,12 @@ module sd_top_rtl_core_stages_9(clk,rst,x_in,y_in,z_in,q_in,v_in,x_out,y_out,z_o
         end
         x_reg_d = (x_in + (ys ^ m) + c) & xmask;
         y_reg_d = (y_in + (xs ^ nm) + nc) & xmask;
-        z_reg_d = (z_in + (atan ^ m) + c) & zmask;
+        zp = (z_in + atan) & zmask;
+        zm = (z_in + natan) & zmask;
+        z_reg_d = zp;
+        if (|(y_in & xsign)) begin
+            z_reg_d = zm;
+        end
         q_reg_d = q_in;
         v_reg_d = v_in & ~rst;
         x_out = x_reg_q;
@@ -8079,13 +9297,14 @@ module sd_top_rtl_correction_v3(d,q,clock);
 
 endmodule // sd_top_rtl_correction_v3
 
-module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,core_error,core_warning,core_qc,core_turns,load,load_qc,load_turns,mismatch,active);
+module sd_top_rtl_fallback(clk,rst,enable,qep_up,qep_down,conv,adc_valid,core_valid,core_error,core_warning,core_qc,core_turns,load,load_qc,load_turns,mismatch,active);
 
     // Module arguments
     input wire  clk;
     input wire  rst;
     input wire  enable;
-    input wire  [31:0] qep_count;
+    input wire  qep_up;
+    input wire  qep_down;
     input wire  conv;
     input wire  adc_valid;
     input wire  core_valid;
@@ -8104,19 +9323,12 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     localparam  qturn = 32'h2000;
     localparam  qlast = 32'h1fff;
     localparam  qlast_m1 = 32'h1ffe;
-    localparam  dqlast = 32'h1fff;
-    localparam  dmqturn_p1 = 32'h2001;
-    localparam  dmqturn_p2 = 32'h2002;
-    localparam  dqturn_m2 = 32'h1ffe;
-    localparam  dminus_one = 32'h3fff;
-    localparam  dminus_two = 32'h3ffe;
     localparam  mqturn = 32'hffffe000;
     localparam  dmask = 32'h3fff;
     localparam  tmask = 32'hfff;
     localparam  dsign = 32'h2000;
     localparam  qmask = 32'h1fff;
     localparam  one = 32'h1;
-    localparam  two = 32'h2;
     localparam  zero = 32'h0;
     localparam  ones = 32'hffffffff;
     localparam  three = 2'b11;
@@ -8127,9 +9339,6 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     localparam  qone = 8'h1;
 
     // Stub signals
-    reg  [31:0] cnt_prev_d;
-    wire  [31:0] cnt_prev_q;
-    reg  cnt_prev_clock;
     reg  conv_prev_d;
     wire  conv_prev_q;
     reg  conv_prev_clock;
@@ -8244,12 +9453,18 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     reg  kw2_d;
     wire  kw2_q;
     reg  kw2_clock;
-    reg  [31:0] ddr_d;
-    wire  [31:0] ddr_q;
-    reg  ddr_clock;
-    reg  [31:0] mvr_d;
-    wire  [31:0] mvr_q;
-    reg  mvr_clock;
+    reg  ddn_clk;
+    reg  [31:0] ddn_x;
+    wire  ddn_hit;
+    reg  gk_d;
+    wire  gk_q;
+    reg  gk_clock;
+    reg  mvn1_clk;
+    reg  [31:0] mvn1_x;
+    wire  mvn1_hit;
+    reg  mvn2_clk;
+    reg  [31:0] mvn2_x;
+    wire  mvn2_hit;
     reg  fast_n_d;
     wire  fast_n_q;
     reg  fast_n_clock;
@@ -8272,23 +9487,15 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
     reg  [31:0] ksel;
     reg  [31:0] kt0;
     reg  [31:0] kt1;
-    reg  [31:0] sx;
     reg  inc;
     reg  dec;
     reg  [31:0] dq0;
     reg  [31:0] dq1;
-    reg  [31:0] dd;
-    reg  [31:0] mv;
     reg  [31:0] nq;
     reg  [31:0] nt;
     reg  bad;
 
     // Sub module instances
-    sd_top_rtl_fallback_cnt_prev cnt_prev(
-        .d(cnt_prev_d),
-        .q(cnt_prev_q),
-        .clock(cnt_prev_clock)
-    );
     sd_top_rtl_fallback_conv_prev conv_prev(
         .d(conv_prev_d),
         .q(conv_prev_q),
@@ -8479,15 +9686,25 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         .q(kw2_q),
         .clock(kw2_clock)
     );
-    sd_top_rtl_fallback_ddr ddr(
-        .d(ddr_d),
-        .q(ddr_q),
-        .clock(ddr_clock)
+    sd_top_rtl_fallback_ddn ddn(
+        .clk(ddn_clk),
+        .x(ddn_x),
+        .hit(ddn_hit)
     );
-    sd_top_rtl_fallback_mvr mvr(
-        .d(mvr_d),
-        .q(mvr_q),
-        .clock(mvr_clock)
+    sd_top_rtl_fallback_gk gk(
+        .d(gk_d),
+        .q(gk_q),
+        .clock(gk_clock)
+    );
+    sd_top_rtl_fallback_mvn1 mvn1(
+        .clk(mvn1_clk),
+        .x(mvn1_x),
+        .hit(mvn1_hit)
+    );
+    sd_top_rtl_fallback_mvn2 mvn2(
+        .clk(mvn2_clk),
+        .x(mvn2_x),
+        .hit(mvn2_hit)
     );
     sd_top_rtl_fallback_fast_n fast_n(
         .d(fast_n_d),
@@ -8502,7 +9719,6 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
 
     // Update code
     always @(*) begin
-        cnt_prev_clock = clk;
         conv_prev_clock = clk;
         qq_clock = clk;
         qt_clock = clk;
@@ -8541,11 +9757,9 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         kt_clock = clk;
         kv2_clock = clk;
         kw2_clock = clk;
-        ddr_clock = clk;
-        mvr_clock = clk;
+        gk_clock = clk;
         fast_n_clock = clk;
         busy_n_clock = clk;
-        cnt_prev_d = cnt_prev_q;
         conv_prev_d = conv_prev_q;
         qq_d = qq_q;
         qt_d = qt_q;
@@ -8584,25 +9798,24 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         kt_d = kt_q;
         kv2_d = kv2_q;
         kw2_d = kw2_q;
-        ddr_d = ddr_q;
-        mvr_d = mvr_q;
+        gk_d = gk_q;
         fast_n_d = fast_n_q;
         busy_n_d = busy_n_q;
-        cnt_prev_d = qep_count;
         conv_prev_d = conv;
-        sx = qep_count ^ cnt_prev_q;
-        inc = |(sx & one) & ~(|(sx & two) ^ |(cnt_prev_q & one));
-        dec = |(sx & one) & (|(sx & two) ^ |(cnt_prev_q & one));
+        inc = qep_up;
+        dec = qep_down;
         if (conv & ~conv_prev_q) begin
             c1q_d = qq_q;
             c1t_d = qt_q;
             c2q_d = c1q_q;
             c2t_d = c1t_q;
         end
-        mvr_d = (c2q_q - prevq_q) & dmask;
-        mv = mvr_q;
-        fast_n_d = ~((mv == zero) | (mv == one) | (mv == two) | (mv == dminus_one) | (mv == dminus_two) | (mv == dqlast) | (mv == dqturn_m2) | (mv == dmqturn_p1) | (mv == dmqturn_p2));
-        busy_n_d = ~((mv == zero) | (mv == one) | (mv == dminus_one) | (mv == dqlast) | (mv == dmqturn_p1));
+        mvn1_clk = clk;
+        mvn2_clk = clk;
+        mvn1_x = (c2q_q - prevq_q) & dmask;
+        mvn2_x = (c2q_q - prevq_q) & dmask;
+        fast_n_d = ~(mvn1_hit | mvn2_hit);
+        busy_n_d = ~mvn1_hit;
         lq0 = (c2q_q + oq_q) & dmask;
         lq1 = (c2q_q + oqm_q) & dmask;
         lsel = zero;
@@ -8663,9 +9876,10 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         kw_d = core_warning;
         kv2_d = kv_q;
         kw2_d = kw_q;
-        ddr_d = (kq_q - oq_q) & dmask;
-        dd = ddr_q;
-        bad = (aligned_q == three) & ~((dd == zero) | (dd == one) | (dd == dminus_one) | (dd == dqlast) | (dd == dmqturn_p1));
+        ddn_clk = clk;
+        ddn_x = (kq_q - oq_q) & dmask;
+        gk_d = kv_q & (aligned_q == three) & ~act_q;
+        bad = gk_q & ~ddn_hit;
         nq = qq_q;
         nt = qt_q;
         qlf_d = qlf_q;
@@ -8693,7 +9907,7 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
             end
         end
         if (kv2_q & enable) begin
-            mis_d = bad & ~act_q;
+            mis_d = bad;
             if (kw2_q | (fast_q & (aligned_q == three))) begin
                 act_d = 1'b1;
                 quiet_d = qzero;
@@ -8722,7 +9936,6 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
         qq_d = nq;
         qt_d = nt & tmask;
         if (rst | ~enable) begin
-            cnt_prev_d = zero;
             qq_d = zero;
             qt_d = zero;
             qlf_d = 1'b0;
@@ -8737,6 +9950,7 @@ module sd_top_rtl_fallback(clk,rst,enable,qep_count,conv,adc_valid,core_valid,co
             busy_d = 1'b0;
             kv_d = 1'b0;
             kv2_d = 1'b0;
+            gk_d = 1'b0;
             oq_d = zero;
             ot_d = zero;
             oqm_d = mqturn;
@@ -8895,24 +10109,6 @@ module sd_top_rtl_fallback_c2t(d,q,clock);
 
 endmodule // sd_top_rtl_fallback_c2t
 
-module sd_top_rtl_fallback_cnt_prev(d,q,clock);
-
-    // Module arguments
-    input wire  [31:0] d;
-    output reg  [31:0] q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 32'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_fallback_cnt_prev
-
 module sd_top_rtl_fallback_conv_prev(d,q,clock);
 
     // Module arguments
@@ -8931,7 +10127,129 @@ module sd_top_rtl_fallback_conv_prev(d,q,clock);
 
 endmodule // sd_top_rtl_fallback_conv_prev
 
-module sd_top_rtl_fallback_ddr(d,q,clock);
+module sd_top_rtl_fallback_ddn(clk,x,hit);
+
+    // Module arguments
+    input wire  clk;
+    input wire  [31:0] x;
+    output reg  hit;
+
+    // Constant declarations
+    localparam  pv_0 = 32'h0;
+    localparam  pv_1 = 32'h0;
+    localparam  pv_2 = 32'h0;
+    localparam  pv_3 = 32'h0;
+    localparam  pv_4 = 32'h1;
+    localparam  pv_5 = 32'hf;
+    localparam  pv_6 = 32'hf0;
+    localparam  pv_7 = 32'hf00;
+    localparam  pv_8 = 32'h3000;
+    localparam  pv_9 = 32'h1000;
+    localparam  pv_10 = 32'h2000;
+    localparam  pm_0 = 32'hf;
+    localparam  pm_1 = 32'hf0;
+    localparam  pm_2 = 32'hf00;
+    localparam  pm_3 = 32'h3000;
+    localparam  pm_4 = 32'hf;
+    localparam  pm_5 = 32'hf;
+    localparam  pm_6 = 32'hf0;
+    localparam  pm_7 = 32'hf00;
+    localparam  pm_8 = 32'h3000;
+    localparam  pm_9 = 32'h3000;
+    localparam  pm_10 = 32'h3000;
+    localparam  pb_0 = 32'h1;
+    localparam  pb_1 = 32'h2;
+    localparam  pb_2 = 32'h4;
+    localparam  pb_3 = 32'h8;
+    localparam  pb_4 = 32'h10;
+    localparam  pb_5 = 32'h20;
+    localparam  pb_6 = 32'h40;
+    localparam  pb_7 = 32'h80;
+    localparam  pb_8 = 32'h100;
+    localparam  pb_9 = 32'h200;
+    localparam  pb_10 = 32'h400;
+    localparam  cm_0 = 32'hf;
+    localparam  cm_1 = 32'h1e;
+    localparam  cm_2 = 32'h1e0;
+    localparam  cm_3 = 32'h2e0;
+    localparam  cm_4 = 32'h416;
+    localparam  zero = 32'h0;
+
+    // Stub signals
+    reg  [31:0] f_d;
+    wire  [31:0] f_q;
+    reg  f_clock;
+
+    // Local signals
+    reg  [31:0] acc;
+
+    // Sub module instances
+    sd_top_rtl_fallback_ddn_f f(
+        .d(f_d),
+        .q(f_q),
+        .clock(f_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        f_clock = clk;
+        f_d = f_q;
+        acc = zero;
+        if (~|((x ^ pv_0) & pm_0)) begin
+            acc = acc | pb_0;
+        end
+        if (~|((x ^ pv_1) & pm_1)) begin
+            acc = acc | pb_1;
+        end
+        if (~|((x ^ pv_2) & pm_2)) begin
+            acc = acc | pb_2;
+        end
+        if (~|((x ^ pv_3) & pm_3)) begin
+            acc = acc | pb_3;
+        end
+        if (~|((x ^ pv_4) & pm_4)) begin
+            acc = acc | pb_4;
+        end
+        if (~|((x ^ pv_5) & pm_5)) begin
+            acc = acc | pb_5;
+        end
+        if (~|((x ^ pv_6) & pm_6)) begin
+            acc = acc | pb_6;
+        end
+        if (~|((x ^ pv_7) & pm_7)) begin
+            acc = acc | pb_7;
+        end
+        if (~|((x ^ pv_8) & pm_8)) begin
+            acc = acc | pb_8;
+        end
+        if (~|((x ^ pv_9) & pm_9)) begin
+            acc = acc | pb_9;
+        end
+        if (~|((x ^ pv_10) & pm_10)) begin
+            acc = acc | pb_10;
+        end
+        f_d = acc;
+        hit = 1'b0;
+        if ((f_q & cm_0) == cm_0) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_1) == cm_1) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_2) == cm_2) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_3) == cm_3) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_4) == cm_4) begin
+            hit = 1'b1;
+        end
+    end
+
+endmodule // sd_top_rtl_fallback_ddn
+
+module sd_top_rtl_fallback_ddn_f(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -8947,7 +10265,7 @@ module sd_top_rtl_fallback_ddr(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_fallback_ddr
+endmodule // sd_top_rtl_fallback_ddn_f
 
 module sd_top_rtl_fallback_fast(d,q,clock);
 
@@ -8984,6 +10302,24 @@ module sd_top_rtl_fallback_fast_n(d,q,clock);
     end
 
 endmodule // sd_top_rtl_fallback_fast_n
+
+module sd_top_rtl_fallback_gk(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_fallback_gk
 
 module sd_top_rtl_fallback_kq(d,q,clock);
 
@@ -9183,7 +10519,129 @@ module sd_top_rtl_fallback_mis(d,q,clock);
 
 endmodule // sd_top_rtl_fallback_mis
 
-module sd_top_rtl_fallback_mvr(d,q,clock);
+module sd_top_rtl_fallback_mvn1(clk,x,hit);
+
+    // Module arguments
+    input wire  clk;
+    input wire  [31:0] x;
+    output reg  hit;
+
+    // Constant declarations
+    localparam  pv_0 = 32'h0;
+    localparam  pv_1 = 32'h0;
+    localparam  pv_2 = 32'h0;
+    localparam  pv_3 = 32'h0;
+    localparam  pv_4 = 32'h1;
+    localparam  pv_5 = 32'hf;
+    localparam  pv_6 = 32'hf0;
+    localparam  pv_7 = 32'hf00;
+    localparam  pv_8 = 32'h3000;
+    localparam  pv_9 = 32'h1000;
+    localparam  pv_10 = 32'h2000;
+    localparam  pm_0 = 32'hf;
+    localparam  pm_1 = 32'hf0;
+    localparam  pm_2 = 32'hf00;
+    localparam  pm_3 = 32'h3000;
+    localparam  pm_4 = 32'hf;
+    localparam  pm_5 = 32'hf;
+    localparam  pm_6 = 32'hf0;
+    localparam  pm_7 = 32'hf00;
+    localparam  pm_8 = 32'h3000;
+    localparam  pm_9 = 32'h3000;
+    localparam  pm_10 = 32'h3000;
+    localparam  pb_0 = 32'h1;
+    localparam  pb_1 = 32'h2;
+    localparam  pb_2 = 32'h4;
+    localparam  pb_3 = 32'h8;
+    localparam  pb_4 = 32'h10;
+    localparam  pb_5 = 32'h20;
+    localparam  pb_6 = 32'h40;
+    localparam  pb_7 = 32'h80;
+    localparam  pb_8 = 32'h100;
+    localparam  pb_9 = 32'h200;
+    localparam  pb_10 = 32'h400;
+    localparam  cm_0 = 32'hf;
+    localparam  cm_1 = 32'h1e;
+    localparam  cm_2 = 32'h1e0;
+    localparam  cm_3 = 32'h2e0;
+    localparam  cm_4 = 32'h416;
+    localparam  zero = 32'h0;
+
+    // Stub signals
+    reg  [31:0] f_d;
+    wire  [31:0] f_q;
+    reg  f_clock;
+
+    // Local signals
+    reg  [31:0] acc;
+
+    // Sub module instances
+    sd_top_rtl_fallback_mvn1_f f(
+        .d(f_d),
+        .q(f_q),
+        .clock(f_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        f_clock = clk;
+        f_d = f_q;
+        acc = zero;
+        if (~|((x ^ pv_0) & pm_0)) begin
+            acc = acc | pb_0;
+        end
+        if (~|((x ^ pv_1) & pm_1)) begin
+            acc = acc | pb_1;
+        end
+        if (~|((x ^ pv_2) & pm_2)) begin
+            acc = acc | pb_2;
+        end
+        if (~|((x ^ pv_3) & pm_3)) begin
+            acc = acc | pb_3;
+        end
+        if (~|((x ^ pv_4) & pm_4)) begin
+            acc = acc | pb_4;
+        end
+        if (~|((x ^ pv_5) & pm_5)) begin
+            acc = acc | pb_5;
+        end
+        if (~|((x ^ pv_6) & pm_6)) begin
+            acc = acc | pb_6;
+        end
+        if (~|((x ^ pv_7) & pm_7)) begin
+            acc = acc | pb_7;
+        end
+        if (~|((x ^ pv_8) & pm_8)) begin
+            acc = acc | pb_8;
+        end
+        if (~|((x ^ pv_9) & pm_9)) begin
+            acc = acc | pb_9;
+        end
+        if (~|((x ^ pv_10) & pm_10)) begin
+            acc = acc | pb_10;
+        end
+        f_d = acc;
+        hit = 1'b0;
+        if ((f_q & cm_0) == cm_0) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_1) == cm_1) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_2) == cm_2) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_3) == cm_3) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_4) == cm_4) begin
+            hit = 1'b1;
+        end
+    end
+
+endmodule // sd_top_rtl_fallback_mvn1
+
+module sd_top_rtl_fallback_mvn1_f(d,q,clock);
 
     // Module arguments
     input wire  [31:0] d;
@@ -9199,7 +10657,137 @@ module sd_top_rtl_fallback_mvr(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_fallback_mvr
+endmodule // sd_top_rtl_fallback_mvn1_f
+
+module sd_top_rtl_fallback_mvn2(clk,x,hit);
+
+    // Module arguments
+    input wire  clk;
+    input wire  [31:0] x;
+    output reg  hit;
+
+    // Constant declarations
+    localparam  pv_0 = 32'h2;
+    localparam  pv_1 = 32'h0;
+    localparam  pv_2 = 32'h0;
+    localparam  pv_3 = 32'h0;
+    localparam  pv_4 = 32'he;
+    localparam  pv_5 = 32'hf0;
+    localparam  pv_6 = 32'hf00;
+    localparam  pv_7 = 32'h3000;
+    localparam  pv_8 = 32'h1000;
+    localparam  pv_9 = 32'h2000;
+    localparam  pm_0 = 32'hf;
+    localparam  pm_1 = 32'hf0;
+    localparam  pm_2 = 32'hf00;
+    localparam  pm_3 = 32'h3000;
+    localparam  pm_4 = 32'hf;
+    localparam  pm_5 = 32'hf0;
+    localparam  pm_6 = 32'hf00;
+    localparam  pm_7 = 32'h3000;
+    localparam  pm_8 = 32'h3000;
+    localparam  pm_9 = 32'h3000;
+    localparam  pb_0 = 32'h1;
+    localparam  pb_1 = 32'h2;
+    localparam  pb_2 = 32'h4;
+    localparam  pb_3 = 32'h8;
+    localparam  pb_4 = 32'h10;
+    localparam  pb_5 = 32'h20;
+    localparam  pb_6 = 32'h40;
+    localparam  pb_7 = 32'h80;
+    localparam  pb_8 = 32'h100;
+    localparam  pb_9 = 32'h200;
+    localparam  cm_0 = 32'hf;
+    localparam  cm_1 = 32'hf0;
+    localparam  cm_2 = 32'h170;
+    localparam  cm_3 = 32'h207;
+    localparam  zero = 32'h0;
+
+    // Stub signals
+    reg  [31:0] f_d;
+    wire  [31:0] f_q;
+    reg  f_clock;
+
+    // Local signals
+    reg  [31:0] acc;
+
+    // Sub module instances
+    sd_top_rtl_fallback_mvn2_f f(
+        .d(f_d),
+        .q(f_q),
+        .clock(f_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        f_clock = clk;
+        f_d = f_q;
+        acc = zero;
+        if (~|((x ^ pv_0) & pm_0)) begin
+            acc = acc | pb_0;
+        end
+        if (~|((x ^ pv_1) & pm_1)) begin
+            acc = acc | pb_1;
+        end
+        if (~|((x ^ pv_2) & pm_2)) begin
+            acc = acc | pb_2;
+        end
+        if (~|((x ^ pv_3) & pm_3)) begin
+            acc = acc | pb_3;
+        end
+        if (~|((x ^ pv_4) & pm_4)) begin
+            acc = acc | pb_4;
+        end
+        if (~|((x ^ pv_5) & pm_5)) begin
+            acc = acc | pb_5;
+        end
+        if (~|((x ^ pv_6) & pm_6)) begin
+            acc = acc | pb_6;
+        end
+        if (~|((x ^ pv_7) & pm_7)) begin
+            acc = acc | pb_7;
+        end
+        if (~|((x ^ pv_8) & pm_8)) begin
+            acc = acc | pb_8;
+        end
+        if (~|((x ^ pv_9) & pm_9)) begin
+            acc = acc | pb_9;
+        end
+        f_d = acc;
+        hit = 1'b0;
+        if ((f_q & cm_0) == cm_0) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_1) == cm_1) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_2) == cm_2) begin
+            hit = 1'b1;
+        end
+        if ((f_q & cm_3) == cm_3) begin
+            hit = 1'b1;
+        end
+    end
+
+endmodule // sd_top_rtl_fallback_mvn2
+
+module sd_top_rtl_fallback_mvn2_f(d,q,clock);
+
+    // Module arguments
+    input wire  [31:0] d;
+    output reg  [31:0] q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 32'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_fallback_mvn2_f
 
 module sd_top_rtl_fallback_oq(d,q,clock);
 
@@ -9741,7 +11329,8 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     localparam  clip_thr = 32'hd2c274;
     localparam  clip_thr_w = 32'h4d2c274;
     localparam  nmask = 32'h7;
-    localparam  nlast_m1 = 32'h6;
+    localparam  nlast_m2 = 32'h5;
+    localparam  n_two = 1'b0;
     localparam  n_one = 1'b0;
     localparam  hlast_m1 = 32'he;
     localparam  h_one = 1'b0;
@@ -9765,6 +11354,9 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     reg  fs_reg_d;
     wire  fs_reg_q;
     reg  fs_reg_clock;
+    reg  fs_c_d;
+    wire  fs_c_q;
+    reg  fs_c_clock;
     reg  [31:0] fs_cnt_d;
     wire  [31:0] fs_cnt_q;
     reg  fs_cnt_clock;
@@ -9774,30 +11366,49 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     reg  los_lx_d;
     wire  los_lx_q;
     reg  los_lx_clock;
+    reg  los_nxr_d;
+    wire  los_nxr_q;
+    reg  los_nxr_clock;
+    reg  los_pv_d;
+    wire  los_pv_q;
+    reg  los_pv_clock;
+    reg  los_pq_d;
+    wire  los_pq_q;
+    reg  los_pq_clock;
     reg  clip_k_d;
     wire  clip_k_q;
     reg  clip_k_clock;
     reg  fs_k_d;
     wire  fs_k_q;
     reg  fs_k_clock;
+    reg  fs_b_d;
+    wire  fs_b_q;
+    reg  fs_b_clock;
+    reg  fs_pv_d;
+    wire  fs_pv_q;
+    reg  fs_pv_clock;
 
     // Local signals
+    reg  [31:0] fs_cl;
+    reg  fs_kl;
     reg  los_last;
     reg  los_q;
     reg  [31:0] los_inc;
-    reg  los_nx;
-    reg  [31:0] los_ga;
-    reg  [31:0] los_la;
-    reg  los_gx;
-    reg  los_lx_l;
-    reg  [31:0] los_gv;
-    reg  [31:0] los_lv;
+    reg  [31:0] los_x;
+    reg  los_y;
+    reg  los_ny;
+    reg  [31:0] los_cl;
+    reg  los_ll;
+    reg  los_nl;
+    reg  los_lend;
+    reg  los_clr;
     reg  low;
     reg  good;
     reg  [31:0] mag;
     reg  [31:0] rs;
     reg  [31:0] rc;
     reg  fs_hit;
+    reg  fs_hc;
     reg  over;
 
     // Sub module instances
@@ -9826,6 +11437,11 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .q(fs_reg_q),
         .clock(fs_reg_clock)
     );
+    sd_top_rtl_monitor_fs_c fs_c(
+        .d(fs_c_d),
+        .q(fs_c_q),
+        .clock(fs_c_clock)
+    );
     sd_top_rtl_monitor_fs_cnt fs_cnt(
         .d(fs_cnt_d),
         .q(fs_cnt_q),
@@ -9841,6 +11457,21 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .q(los_lx_q),
         .clock(los_lx_clock)
     );
+    sd_top_rtl_monitor_los_nxr los_nxr(
+        .d(los_nxr_d),
+        .q(los_nxr_q),
+        .clock(los_nxr_clock)
+    );
+    sd_top_rtl_monitor_los_pv los_pv(
+        .d(los_pv_d),
+        .q(los_pv_q),
+        .clock(los_pv_clock)
+    );
+    sd_top_rtl_monitor_los_pq los_pq(
+        .d(los_pq_d),
+        .q(los_pq_q),
+        .clock(los_pq_clock)
+    );
     sd_top_rtl_monitor_clip_k clip_k(
         .d(clip_k_d),
         .q(clip_k_q),
@@ -9850,6 +11481,16 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .d(fs_k_d),
         .q(fs_k_q),
         .clock(fs_k_clock)
+    );
+    sd_top_rtl_monitor_fs_b fs_b(
+        .d(fs_b_d),
+        .q(fs_b_q),
+        .clock(fs_b_clock)
+    );
+    sd_top_rtl_monitor_fs_pv fs_pv(
+        .d(fs_pv_d),
+        .q(fs_pv_q),
+        .clock(fs_pv_clock)
     );
 
     // Update code
@@ -9864,6 +11505,12 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         los_lx_clock = clk;
         clip_k_clock = clk;
         fs_k_clock = clk;
+        los_nxr_clock = clk;
+        los_pv_clock = clk;
+        los_pq_clock = clk;
+        fs_b_clock = clk;
+        fs_c_clock = clk;
+        fs_pv_clock = clk;
         los_reg_d = los_reg_q;
         los_cnt_d = los_cnt_q;
         clip_reg_d = clip_reg_q;
@@ -9874,10 +11521,17 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         los_lx_d = los_lx_q;
         clip_k_d = clip_k_q;
         fs_k_d = fs_k_q;
+        los_nxr_d = los_nxr_q;
+        los_pv_d = los_pv_q;
+        los_pq_d = los_pq_q;
+        fs_b_d = fs_b_q;
+        fs_c_d = fs_c_q;
+        fs_pv_d = fs_pv_q;
         mag = magnitude & wmask;
         rs = {16'd0, in_sin} & amask;
         rc = {16'd0, in_cos} & amask;
-        fs_hit = (rs == code_min) | (rs == code_max) | (rc == code_min) | (rc == code_max);
+        fs_hit = (|(((rs & code_max) + one) & code_min) & ~|(rs & code_min)) | (~|(((rs & code_max) + code_max) & code_min) & |(rs & code_min));
+        fs_hc = (|(((rc & code_max) + one) & code_min) & ~|(rc & code_min)) | (~|(((rc & code_max) + code_max) & code_min) & |(rc & code_min));
         if (narrow) begin
             low = ~|(((mag | wbit) - los_thr) & wbit);
             good = |(((mag | wbit) - los_rel) & wbit);
@@ -9888,37 +11542,40 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
             good = mag >= los_rel;
             over = mag > clip_thr;
         end
-        los_last = los_lx_q ^ n_one;
         los_q = low;
         if (los_reg_q) begin
             los_q = good;
         end
+        los_last = los_lx_q ^ n_one;
         los_inc = (los_cnt_q + one) & nmask;
-        los_nx = (los_cnt_q == nlast_m1) ^ n_one;
-        los_ga = zero;
-        los_la = zero;
+        los_x = zero;
+        los_ny = n_two;
         if (~los_last) begin
-            if (los_reg_q) begin
-                los_ga = los_inc;
+            los_x = los_inc;
+            los_ny = los_cnt_q == nlast_m2;
+        end
+        los_y = ~los_last & (los_nxr_q ^ n_two);
+        los_cl = los_cnt_q;
+        los_ll = los_lx_q;
+        los_nl = los_nxr_q ^ n_two;
+        if (los_pv_q) begin
+            los_cl = zero;
+            los_ll = 1'b0;
+            los_nl = n_two;
+            if (los_pq_q) begin
+                los_cl = los_x;
+                los_ll = los_y;
+                los_nl = los_ny;
             end
-            else begin
-                los_la = los_inc;
-            end
         end
-        los_gx = ~los_last & los_reg_q & los_nx;
-        los_lx_l = ~los_last & ~los_reg_q & los_nx;
-        los_gv = zero;
-        if (good) begin
-            los_gv = los_ga;
-        end
-        los_lv = zero;
-        if (low) begin
-            los_lv = los_la;
-        end
+        los_lend = los_ll ^ n_one;
+        los_cnt_d = los_cl;
+        los_lx_d = los_ll;
+        los_nxr_d = los_nl ^ n_two;
+        los_pv_d = mag_valid;
+        los_pq_d = los_q;
         if (mag_valid) begin
-            los_reg_d = los_reg_q ^ (los_q & los_last);
-            los_cnt_d = los_gv | los_lv;
-            los_lx_d = (good & los_gx) | (low & los_lx_l);
+            los_reg_d = los_reg_q | (low & los_lend);
             clip_reg_d = over | clip_k_q;
             clip_cnt_d = zero;
             if (over) begin
@@ -9932,19 +11589,29 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
                 clip_k_d = 1'b0;
             end
         end
-        if (in_valid) begin
-            fs_reg_d = fs_hit | fs_k_q;
-            fs_cnt_d = zero;
-            if (fs_hit) begin
-                fs_k_d = ~h_one;
+        fs_cl = fs_cnt_q;
+        fs_kl = fs_k_q;
+        if (fs_pv_q) begin
+            if (fs_reg_q | fs_c_q) begin
+                fs_cl = zero;
+                fs_kl = ~h_one;
             end
             else if (fs_k_q) begin
-                fs_cnt_d = (fs_cnt_q + one) & hmask;
-                fs_k_d = fs_cnt_q != hlast_m1;
+                fs_cl = (fs_cnt_q + one) & hmask;
+                fs_kl = fs_cnt_q != hlast_m1;
             end
             else begin
-                fs_k_d = 1'b0;
+                fs_cl = zero;
+                fs_kl = 1'b0;
             end
+        end
+        fs_cnt_d = fs_cl;
+        fs_k_d = fs_kl;
+        fs_pv_d = in_valid;
+        if (in_valid) begin
+            fs_reg_d = fs_hit;
+            fs_c_d = fs_hc;
+            fs_b_d = fs_kl;
         end
         warn_reg_d = overspeed | qep_mismatch;
         if (rst) begin
@@ -9956,14 +11623,24 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
             fs_cnt_d = zero;
             warn_reg_d = 1'b0;
             los_lx_d = 1'b0;
+            los_nxr_d = 1'b0;
+            los_pv_d = 1'b0;
+            los_pq_d = 1'b0;
             clip_k_d = 1'b0;
             fs_k_d = 1'b0;
+            fs_b_d = 1'b0;
+            fs_c_d = 1'b0;
+            fs_pv_d = 1'b0;
         end
-        error = los_reg_q | clip_reg_q | fs_reg_q;
+        los_clr = ~rst & mag_valid & los_reg_q & good & los_lend;
+        if (los_clr) begin
+            los_reg_d = 1'b0;
+        end
+        error = los_reg_q | clip_reg_q | fs_reg_q | fs_c_q | fs_b_q;
         warning = warn_reg_q;
         los = los_reg_q;
         clip = clip_reg_q;
-        full_scale = fs_reg_q;
+        full_scale = fs_reg_q | fs_c_q | fs_b_q;
     end
 
 endmodule // sd_top_rtl_monitor
@@ -10022,6 +11699,42 @@ module sd_top_rtl_monitor_clip_reg(d,q,clock);
 
 endmodule // sd_top_rtl_monitor_clip_reg
 
+module sd_top_rtl_monitor_fs_b(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_fs_b
+
+module sd_top_rtl_monitor_fs_c(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_fs_c
+
 module sd_top_rtl_monitor_fs_cnt(d,q,clock);
 
     // Module arguments
@@ -10057,6 +11770,24 @@ module sd_top_rtl_monitor_fs_k(d,q,clock);
     end
 
 endmodule // sd_top_rtl_monitor_fs_k
+
+module sd_top_rtl_monitor_fs_pv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_fs_pv
 
 module sd_top_rtl_monitor_fs_reg(d,q,clock);
 
@@ -10111,6 +11842,60 @@ module sd_top_rtl_monitor_los_lx(d,q,clock);
     end
 
 endmodule // sd_top_rtl_monitor_los_lx
+
+module sd_top_rtl_monitor_los_nxr(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_los_nxr
+
+module sd_top_rtl_monitor_los_pq(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_los_pq
+
+module sd_top_rtl_monitor_los_pv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_los_pv
 
 module sd_top_rtl_monitor_los_reg(d,q,clock);
 
@@ -10540,7 +12325,7 @@ module sd_top_rtl_preamp_step(d,q,clock);
 
 endmodule // sd_top_rtl_preamp_step
 
-module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_strobe,index_seen,illegal,illegal_seen,a_filt,b_filt,z_filt);
+module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_strobe,index_seen,illegal,illegal_seen,a_filt,b_filt,z_filt,up,down);
 
     // Module arguments
     input wire  clk;
@@ -10557,6 +12342,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
     output reg  a_filt;
     output reg  b_filt;
     output reg  z_filt;
+    output reg  up;
+    output reg  down;
 
     // Constant declarations
     localparam  flast = 32'h3;
@@ -10629,6 +12416,12 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
     reg  illseen_reg_d;
     wire  illseen_reg_q;
     reg  illseen_reg_clock;
+    reg  up_reg_d;
+    wire  up_reg_q;
+    reg  up_reg_clock;
+    reg  down_reg_d;
+    wire  down_reg_q;
+    reg  down_reg_clock;
 
     // Local signals
     reg  da;
@@ -10741,6 +12534,16 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         .q(illseen_reg_q),
         .clock(illseen_reg_clock)
     );
+    sd_top_rtl_qep_decoder_up_reg up_reg(
+        .d(up_reg_d),
+        .q(up_reg_q),
+        .clock(up_reg_clock)
+    );
+    sd_top_rtl_qep_decoder_down_reg down_reg(
+        .d(down_reg_d),
+        .q(down_reg_q),
+        .clock(down_reg_clock)
+    );
 
     // Update code
     always @(*) begin
@@ -10765,6 +12568,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         iseen_reg_clock = clk;
         ill_reg_clock = clk;
         illseen_reg_clock = clk;
+        up_reg_clock = clk;
+        down_reg_clock = clk;
         a1_d = a1_q;
         a2_d = a2_q;
         b1_d = b1_q;
@@ -10786,6 +12591,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         iseen_reg_d = iseen_reg_q;
         ill_reg_d = ill_reg_q;
         illseen_reg_d = illseen_reg_q;
+        up_reg_d = up_reg_q;
+        down_reg_d = down_reg_q;
         a1_d = qep_a;
         a2_d = a1_q;
         b1_d = qep_b;
@@ -10830,6 +12637,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         count_n = count_reg_q & cmask;
         icount_reg_d = icount_reg_q & cmask;
         ill_reg_d = 1'b0;
+        up_reg_d = 1'b0;
+        down_reg_d = 1'b0;
         if (da & db) begin
             ill_reg_d = 1'b1;
             illseen_reg_d = 1'b1;
@@ -10837,17 +12646,21 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         else if (da) begin
             if (af_q ^ bf_q) begin
                 count_n = (count_reg_q + one) & cmask;
+                up_reg_d = 1'b1;
             end
             else begin
                 count_n = (count_reg_q - one) & cmask;
+                down_reg_d = 1'b1;
             end
         end
         else if (db) begin
             if (af_q == bf_q) begin
                 count_n = (count_reg_q + one) & cmask;
+                up_reg_d = 1'b1;
             end
             else begin
                 count_n = (count_reg_q - one) & cmask;
+                down_reg_d = 1'b1;
             end
         end
         count_reg_d = count_n;
@@ -10873,6 +12686,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
             iseen_reg_d = 1'b0;
             ill_reg_d = 1'b0;
             illseen_reg_d = 1'b0;
+            up_reg_d = 1'b0;
+            down_reg_d = 1'b0;
         end
         count = count_reg_q;
         index_count = icount_reg_q;
@@ -10883,6 +12698,8 @@ module sd_top_rtl_qep_decoder(clk,rst,qep_a,qep_b,qep_z,count,index_count,index_
         a_filt = af_q;
         b_filt = bf_q;
         z_filt = zf_q;
+        up = up_reg_q;
+        down = down_reg_q;
     end
 
 endmodule // sd_top_rtl_qep_decoder
@@ -11049,6 +12866,24 @@ module sd_top_rtl_qep_decoder_count_reg(d,q,clock);
 
 endmodule // sd_top_rtl_qep_decoder_count_reg
 
+module sd_top_rtl_qep_decoder_down_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_qep_decoder_down_reg
+
 module sd_top_rtl_qep_decoder_icount_reg(d,q,clock);
 
     // Module arguments
@@ -11192,6 +13027,24 @@ module sd_top_rtl_qep_decoder_pz(d,q,clock);
     end
 
 endmodule // sd_top_rtl_qep_decoder_pz
+
+module sd_top_rtl_qep_decoder_up_reg(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_qep_decoder_up_reg
 
 module sd_top_rtl_qep_decoder_z1(d,q,clock);
 
