@@ -396,9 +396,12 @@ pub struct QuadrantCounter {
     uone_c: Constant<Bits<32>>,
     /// PPR = 1: every step wraps (u has no bits; the flags are not used).
     ppr1: Constant<Bit>,
-    /// The turns' + 1 and - 1 come from registers (`tinc_reg`, `tdec_reg`, with the
-    /// stale-value fix): the unrolled architecture; the iterative one adds them in front of
-    /// the selection.
+    /// The unrolled architecture's timing form: the turns' + 1 and - 1 from registers
+    /// (`tinc_reg`, `tdec_reg`, with the stale-value fix), a load's step decoded a clock
+    /// ahead, the wrap from the flags kept with u. The iterative architecture (not `flat`)
+    /// adds + 1 / - 1 after the choice of base, decodes a load's step in the clock and takes
+    /// the wrap from compares of u: fewer LUTs, which its area target needs
+    /// (`tests/iterative.rs`, docs/timing.md "Thirteenth round").
     flat: Constant<Bit>,
     /// Mask of M turn bits.
     tmask: Constant<Bits<32>>,
@@ -658,9 +661,8 @@ impl Logic for QuadrantCounter {
         // step without a wrap both, the latched + 1 and - 1.
         self.tinc_reg.d.next = (self.turns_reg.q.val() + self.one.val()) & self.tmask.val();
         self.tdec_reg.d.next = (self.turns_reg.q.val() + self.minus_one.val()) & self.tmask.val();
-        // The iterative architecture keeps the adders in front of the selection (the
-        // registers above and their stale-value fix cost it about 80 LUTs, a fifth of its
-        // core; `tests/iterative.rs`), and synthesis drops the registers it does not read.
+        // Only the flat form (unrolled) reads these; the iterative one adds + 1 / - 1 after
+        // the choice of base (below), and synthesis drops the registers it does not read.
         self.tinc.next = self.tinc_reg.q.val();
         if self.ovi_reg.q.val() {
             self.tinc.next = self.tio_reg.q.val();
