@@ -24,7 +24,9 @@
 //!           phase 2 leaving the tree starts FitSolve (if idle) on the sums (they hold the
 //!           window's samples by then) and the window's b_ref
 //!  stage E: N, and the low 32 bits of Σe_s, Σe_c, Σe_s², Σe_c², Σe_s e_c (33-bit sums,
-//!           carries registered); the sums then restart from the sample
+//!           carries registered); a restart clears the sums and N a clock earlier (as the
+//!           registers' synchronous reset, in the snapshot's clock), so they restart from
+//!           the sample
 //!  stage E2 (a clock later): their high 32 bits (high addend + carry): 64-bit sums
 //!           FitSolve ─► b_cur, g, k (all at once)
 //! ```
@@ -45,8 +47,11 @@
 //!   stage D, the +1 the sum's carry-in), which equals -|p| in a 64-bit word.
 //! * net (the quadrants since the window opened) changes by at most 2 per sample and is
 //!   bounded by 2 N_MAX: 32 bits. The window-closing test |net + s| >= 4K is done as compares
-//!   of the registered net against constants (one per step s = +-1, +-2, registered), beside the adder
-//!   net + s, so each path has one carry chain; (net + s) mod 4 = 0 is a 2-bit match.
+//!   of the registered net against constants, beside the adder net + s, so each path has one
+//!   carry chain; (net + s) mod 4 = 0 is a 2-bit match. Where it holds, net + s is 4 (q + 1)
+//!   for s = +1, +2 and 4 q for s = -1, -2 (q = floor(net / 4), net's bits 31..2), so two
+//!   registered tests of q, |q + 1| >= K and |q| >= K (two 30-bit compares each), serve
+//!   the four steps.
 //!
 //! # Timing and semantics
 //! * The tracker and the sums follow the model sample for sample. Samples must be at least
@@ -61,7 +66,8 @@
 //!   four flags instead of by the compares through the decision). While a restart clears
 //!   net and N the compares are forced to describe net = 0, N = 1.
 //! * The registered compares, N's flags and the decision's other operands (`p_*`, from
-//!   the tracker's state and net mod 4) are combined a clock later into one register per
+//!   the tracker's state and net mod 4, registered beside the compares) are combined a
+//!   clock later into one register per
 //!   step class and outcome (`cl*` closes, `rs*` restarts, `av*` takes the sample), final
 //!   three clocks after the previous sample's stage B1; stage B1 reads only registers: the
 //!   step and these ten flags (about six inputs per decision).
@@ -69,9 +75,10 @@
 //!   its predecessor triggers (the model does the same, [`super::fit`]). b_ref is loaded in
 //!   stage B2, while stage A may already take the next sample: that sample's quadrant
 //!   comes from the signs of e = x - b_cur (the new b_ref) and its entry is e (`fresh`).
-//! * Stage Q, a clock after A, forms the quadrant and the step from the signs of the
-//!   differences registered in stage A (of e when `fresh`), so no LUT follows stage A's
-//!   subtractors and no carry chain precedes stage Q's LUTs.
+//! * Stage A registers the signs the quadrant is taken from (of e when the sample is
+//!   `fresh`: one LUT after the subtractors' top bits); stage Q, a clock later, forms the
+//!   quadrant and the step from them and the previous quadrant (one LUT of four
+//!   registers), so no carry chain precedes stage Q's LUTs.
 //! * The three products share one run-time shift-add tree (three register levels, C1-C3,
 //!   then the product registers of stage D: one LUT level and one carry chain per path, no
 //!   hard multiplier), one product a clock from the operand registers `ta`, `tc` (a mux
@@ -110,6 +117,9 @@ mod update;
 /// coefficients (one clock). [`super::fit_solve::UPDATE_LATENCY`] is
 /// [`super::fit_solve::SOLVE_CYCLES`] plus this.
 pub const FIT_STAGES: u32 = 4 + 1 + TREE_LEVELS + 2 + 1;
+
+// `nmax` takes N >= N_MAX from N's high bits.
+const _: () = assert!(N_MAX.is_power_of_two());
 
 fn c2(v: u64) -> Constant<Bits<2>> {
     Constant::new(Bits::<2>::from(v & 3))
@@ -205,6 +215,9 @@ pub struct FitCal {
     dneg: DFF<Bit>,
     open: DFF<Bit>,
     fresh: DFF<Bit>,
+    /// Stage A: the signs the quadrant is taken from (of d, or of e at a restart).
+    sg_s: DFF<Bit>,
+    sg_c: DFF<Bit>,
     net: DFF<Bits<32>>,
     nb: DFF<Bits<32>>,
     bs_s: DFF<Bits<32>>,
@@ -218,7 +231,6 @@ pub struct FitCal {
     c_mc: DFF<Bits<16>>,
     c_nsc: DFF<Bit>,
     d_v: DFF<Bit>,
-    d_rs: DFF<Bit>,
     d_es: DFF<Bits<64>>,
     d_ec: DFF<Bits<64>>,
     p_ss: DFF<Bits<32>>,
@@ -228,29 +240,29 @@ pub struct FitCal {
     p_sc: DFF<Bits<64>>,
     d_nsc: DFF<Bit>,
     cnt: DFF<Bits<32>>,
-    /// The window-closing compares |net + s| >= 4K for s = +1, -1, +2, -2 and N >= min_samples,
-    /// registered from `net` and `nb` (free-running; final two clocks after a sample's
-    /// stage B1).
-    h_p1: DFF<Bit>,
-    h_m1: DFF<Bit>,
-    h_p2: DFF<Bit>,
-    h_m2: DFF<Bit>,
+    /// The window-closing compares |net + s| >= 4K where net + s is a multiple of 4 and
+    /// N >= min_samples, registered from `net` and `nb` (free-running; final two clocks
+    /// after a sample's stage B1): |q + 1| >= K for s = +1, +2 (`h_up`), |q| >= K for
+    /// s = -1, -2 (`h_dn`), q = floor(net / 4).
+    h_up: DFF<Bit>,
+    h_dn: DFF<Bit>,
     nbge: DFF<Bit>,
-    /// N = N_MAX, registered like the compares above.
+    /// N >= N_MAX (N's bits from log2 N_MAX up; while the window is open N <= N_MAX, so
+    /// this is N = N_MAX), registered like the compares above.
     nbmx: DFF<Bit>,
-    /// Stage B1's operands that do not wait for the compares, from the tracker's state
-    /// (final a clock before stage B1): open at a +-1 step (`p_r1`) or a known 2-step
-    /// (`p_r2`); the window is open (`p_o1`; with a known direction `p_o2`).
-    p_r1: Signal<Local, Bit>,
-    p_r2: Signal<Local, Bit>,
-    p_o1: Signal<Local, Bit>,
-    p_o2: Signal<Local, Bit>,
+    /// Stage B1's operands that do not wait for the compares, registered like them from
+    /// the tracker's state (written in stage B1): open at a +-1 step (`p_r1`) or a known
+    /// 2-step (`p_r2`); the window is open (`p_o1`; with a known direction `p_o2`).
+    p_r1: DFF<Bit>,
+    p_r2: DFF<Bit>,
+    p_o1: DFF<Bit>,
+    p_o2: DFF<Bit>,
     /// The window is open and net + s is a multiple of 4, for s = +1 (`p_w1`), -1 (`p_w3`),
     /// +2 (`p_w2p`) and -2 (`p_w2m`, the known direction chooses s = +-2).
-    p_w1: Signal<Local, Bit>,
-    p_w3: Signal<Local, Bit>,
-    p_w2p: Signal<Local, Bit>,
-    p_w2m: Signal<Local, Bit>,
+    p_w1: DFF<Bit>,
+    p_w3: DFF<Bit>,
+    p_w2p: DFF<Bit>,
+    p_w2m: DFF<Bit>,
     /// Stage B1's decision for stage B2: add the sample, restart the sums (and b_ref, net,
     /// N), snapshot the window, take the entry from e = x - b_cur.
     a_v: DFF<Bit>,
@@ -278,12 +290,11 @@ pub struct FitCal {
     h2_c: DFF<Bits<32>>,
     hsc: DFF<Bits<32>>,
     /// Stage E2's high addends (bits 63..32 of the entries: sign extensions of e and of
-    /// the cross product's ones' complement), its valid and restart flags.
+    /// the cross product's ones' complement), its valid flag.
     x1_s: DFF<Bits<32>>,
     x1_c: DFF<Bits<32>>,
     xsc: DFF<Bits<32>>,
     f_v: DFF<Bit>,
-    f_rs: DFF<Bit>,
     xs: Signal<Local, Bits<32>>,
     xc: Signal<Local, Bits<32>>,
     /// Stage B2: the sample's entry to the sums (d, or e at or right after a restart).
@@ -295,9 +306,6 @@ pub struct FitCal {
     /// Stage A: x - b_cur.
     eas: Signal<Local, Bits<18>>,
     eac: Signal<Local, Bits<18>>,
-    /// Stage A: the signs the quadrant is taken from.
-    ngs: Signal<Local, Bit>,
-    ngc: Signal<Local, Bit>,
     q: Signal<Local, Bits<2>>,
     stp: Signal<Local, Bits<2>>,
     /// Stage B: the sample's quadrant and step (registered in stage A).
@@ -305,7 +313,7 @@ pub struct FitCal {
     sb: DFF<Bits<2>>,
     /// Stage B: the step s as a 32-bit word, and the closing tests for it.
     sval: Signal<Local, Bits<32>>,
-    netf: Signal<Local, Bits<32>>,
+    netq: Signal<Local, Bits<32>>,
     /// Stage B1's operands per step class (+1, -1, +-2), each one register formed from the
     /// registered compares and the tracker's flags above (final three clocks after a
     /// sample's stage B1, so samples must be at least three clocks apart):
@@ -323,24 +331,12 @@ pub struct FitCal {
     av2: DFF<Bit>,
     /// Stage B1: the restart (`rs*` chosen by the step).
     rsd: Signal<Local, Bit>,
-    /// Stage E: the low halves' bases (0 at a restart) and their 33-bit sums.
-    zl1_s: Signal<Local, Bits<32>>,
-    zl1_c: Signal<Local, Bits<32>>,
-    zl2_s: Signal<Local, Bits<32>>,
-    zl2_c: Signal<Local, Bits<32>>,
-    zlsc: Signal<Local, Bits<32>>,
+    /// Stage E: the low halves' 33-bit sums.
     w1_s: Signal<Local, Bits<33>>,
     w1_c: Signal<Local, Bits<33>>,
     w2_s: Signal<Local, Bits<33>>,
     w2_c: Signal<Local, Bits<33>>,
     wsc: Signal<Local, Bits<33>>,
-    /// Stage E2: the high halves' bases (0 at the restart).
-    zh1_s: Signal<Local, Bits<32>>,
-    zh1_c: Signal<Local, Bits<32>>,
-    zh2_s: Signal<Local, Bits<32>>,
-    zh2_c: Signal<Local, Bits<32>>,
-    zhsc: Signal<Local, Bits<32>>,
-    zn: Signal<Local, Bits<32>>,
     /// Quadrant codes.
     q0: Constant<Bits<2>>,
     q1: Constant<Bits<2>>,
@@ -351,23 +347,22 @@ pub struct FitCal {
     sm1: Constant<Bits<32>>,
     sp2: Constant<Bits<32>>,
     sm2: Constant<Bits<32>>,
-    /// Closing compares (net with its sign bit flipped against flipped constants): for
-    /// step s, net >= 4K - s (ge_*) or net < -4K - s + 1 (lt_*).
-    ge_p1: Constant<Bits<32>>,
-    lt_p1: Constant<Bits<32>>,
-    ge_m1: Constant<Bits<32>>,
-    lt_m1: Constant<Bits<32>>,
-    ge_p2: Constant<Bits<32>>,
-    lt_p2: Constant<Bits<32>>,
-    ge_m2: Constant<Bits<32>>,
-    lt_m2: Constant<Bits<32>>,
+    /// Closing compares of q = floor(net / 4) (net's sign bit flipped, shifted right by 2,
+    /// against constants formed the same way): q >= K - 1 or q < -K (|q + 1| >= K, `*_up`),
+    /// q >= K or q < -K + 1 (|q| >= K, `*_dn`).
+    ge_up: Constant<Bits<32>>,
+    lt_up: Constant<Bits<32>>,
+    ge_dn: Constant<Bits<32>>,
+    lt_dn: Constant<Bits<32>>,
+    /// Shift of 2.
+    two32: Constant<Bits<32>>,
     /// net mod 4 that makes net + s a multiple of 4: 3 for +1, 1 for -1, 2 for +-2.
     r3: Constant<Bits<32>>,
     r1: Constant<Bits<32>>,
     r2: Constant<Bits<32>>,
     /// Mask of two bits.
     m2: Constant<Bits<32>>,
-    /// min_samples and N_MAX.
+    /// min_samples, and the bits of N from log2 N_MAX up (N_MAX is a power of two).
     nmin: Constant<Bits<32>>,
     nmax: Constant<Bits<32>>,
     /// A-bit sample handling.
@@ -513,7 +508,6 @@ impl FitCal {
             c_mc: Default::default(),
             c_nsc: Default::default(),
             d_v: Default::default(),
-            d_rs: Default::default(),
             d_es: Default::default(),
             d_ec: Default::default(),
             p_ss: Default::default(),
@@ -521,10 +515,8 @@ impl FitCal {
             p_sc: Default::default(),
             d_nsc: Default::default(),
             cnt: Default::default(),
-            h_p1: Default::default(),
-            h_m1: Default::default(),
-            h_p2: Default::default(),
-            h_m2: Default::default(),
+            h_up: Default::default(),
+            h_dn: Default::default(),
             nbge: Default::default(),
             nbmx: Default::default(),
             p_r1: Default::default(),
@@ -559,7 +551,6 @@ impl FitCal {
             x1_c: Default::default(),
             xsc: Default::default(),
             f_v: Default::default(),
-            f_rs: Default::default(),
             xs: Default::default(),
             xc: Default::default(),
             ds: Default::default(),
@@ -568,14 +559,14 @@ impl FitCal {
             dac: Default::default(),
             eas: Default::default(),
             eac: Default::default(),
-            ngs: Default::default(),
-            ngc: Default::default(),
+            sg_s: Default::default(),
+            sg_c: Default::default(),
             q: Default::default(),
             stp: Default::default(),
             qb: Default::default(),
             sb: Default::default(),
             sval: Default::default(),
-            netf: Default::default(),
+            netq: Default::default(),
             cl1: Default::default(),
             cl3: Default::default(),
             cl2: Default::default(),
@@ -587,22 +578,11 @@ impl FitCal {
             av3: Default::default(),
             av2: Default::default(),
             rsd: Default::default(),
-            zl1_s: Default::default(),
-            zl1_c: Default::default(),
-            zl2_s: Default::default(),
-            zl2_c: Default::default(),
-            zlsc: Default::default(),
             w1_s: Default::default(),
             w1_c: Default::default(),
             w2_s: Default::default(),
             w2_c: Default::default(),
             wsc: Default::default(),
-            zh1_s: Default::default(),
-            zh1_c: Default::default(),
-            zh2_s: Default::default(),
-            zh2_c: Default::default(),
-            zhsc: Default::default(),
-            zn: Default::default(),
             q0: c2(0),
             q1: c2(1),
             q2: c2(2),
@@ -611,20 +591,17 @@ impl FitCal {
             sm1: c32(mask(32)),
             sp2: c32(2),
             sm2: c32(mask(32) - 1),
-            ge_p1: c32(flip(w - 1)),
-            lt_p1: c32(flip(-w)),
-            ge_m1: c32(flip(w + 1)),
-            lt_m1: c32(flip(-w + 2)),
-            ge_p2: c32(flip(w - 2)),
-            lt_p2: c32(flip(-w - 1)),
-            ge_m2: c32(flip(w + 2)),
-            lt_m2: c32(flip(-w + 3)),
+            ge_up: c32(flip(w - 4) >> 2),
+            lt_up: c32(flip(-w) >> 2),
+            ge_dn: c32(flip(w) >> 2),
+            lt_dn: c32(flip(-w + 4) >> 2),
+            two32: c32(2),
             r3: c32(3),
             r1: c32(1),
             r2: c32(2),
             m2: c32(3),
             nmin: c32(k.min_samples as u64),
-            nmax: c32(N_MAX as u64),
+            nmax: c32(mask(32) & !(N_MAX as u64 - 1)),
             amask: c32(mask(a)),
             asign: c32(1 << (a - 1)),
             asext: c32(fill(32, 32 - a)),

@@ -309,7 +309,7 @@ pub struct FitSolve {
     a2_s: DFF<Bits<56>>,
     /// Σd_c² (< 2^56).
     a2_c: DFF<Bits<56>>,
-    /// |Σd_s d_c| (< 2^56).
+    /// |Σd_s d_c| (< 2^56), from the clock after the load (the load takes Σd_s d_c).
     asc: DFF<Bits<56>>,
     /// Σd_s d_c < 0.
     nsc: DFF<Bit>,
@@ -522,8 +522,12 @@ pub struct FitSolve {
     lo_s: DFF<Bit>,
     /// amp_c < min_amplitude 2^8 (free-running).
     lo_c: DFF<Bit>,
-    /// An offset o_s / o_c outside the A-bit range (free-running).
-    oor: DFF<Bit>,
+    /// o_s below / at or above the A-bit range (free-running).
+    oor_sl: DFF<Bit>,
+    oor_sh: DFF<Bit>,
+    /// o_c below / at or above the A-bit range (free-running).
+    oor_cl: DFF<Bit>,
+    oor_ch: DFF<Bit>,
     /// u_x bits 31..16 not all zero (free-running; with the seven below, u_mag's compares
     /// two clocks ahead, from the quotient that u_mag = u_x + adj rounds).
     xh1: DFF<Bit>,
@@ -868,7 +872,10 @@ impl FitSolve {
             ngf: Default::default(),
             lo_s: Default::default(),
             lo_c: Default::default(),
-            oor: Default::default(),
+            oor_sl: Default::default(),
+            oor_sh: Default::default(),
+            oor_cl: Default::default(),
+            oor_ch: Default::default(),
             xh1: Default::default(),
             xh2: Default::default(),
             xh3: Default::default(),

@@ -7,13 +7,13 @@ impl Logic for FitCal {
     fn update(&mut self) {
         dff_setup!(
             self, clk, va0, va, da_s, nda_s, ea_s, nea_s, da_c, nda_c, ea_c, nea_c, bref_s, bref_c,
-            tinit, tq, dknown, dneg, open, fresh, net, nb, bs_s, bs_c, c_v, c_rs, c_snap, c_es,
-            c_ec, c_ms, c_mc, c_nsc, d_v, d_rs, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt, l1_s,
-            l1_c, l2_s, l2_c, lsc, y1_s, y1_c, y2_s, y2_c, ysc, h1_s, h1_c, h2_s, h2_c, hsc, x1_s,
-            x1_c, xsc, f_v, f_rs, o_bs, o_bc, o_gs, o_gc, o_km, o_kn, o_up, kd_m, kd_n, e1_s, e2_s,
-            e1_c, e2_c, ta, tc, h_ms, h_mc, h_nsc, ln_v, ln_rs, ln_sn, h_p1, h_m1, h_p2, h_m2,
-            nbge, nbmx, qb, sb, a_v, a_rs, a_rb, a_snap, a_ue, cl1, cl3, cl2, rs1, rs3, rs2, av0,
-            av1, av3, av2
+            tinit, tq, dknown, dneg, open, fresh, sg_s, sg_c, net, nb, bs_s, bs_c, c_v, c_rs,
+            c_snap, c_es, c_ec, c_ms, c_mc, c_nsc, d_v, d_es, d_ec, p_ss, p_cc, p_sc, d_nsc, cnt,
+            l1_s, l1_c, l2_s, l2_c, lsc, y1_s, y1_c, y2_s, y2_c, ysc, h1_s, h1_c, h2_s, h2_c, hsc,
+            x1_s, x1_c, xsc, f_v, o_bs, o_bc, o_gs, o_gc, o_km, o_kn, o_up, kd_m, kd_n, e1_s, e2_s,
+            e1_c, e2_c, ta, tc, h_ms, h_mc, h_nsc, ln_v, ln_rs, ln_sn, h_up, h_dn, nbge, nbmx,
+            p_r1, p_r2, p_o1, p_o2, p_w1, p_w3, p_w2p, p_w2m, qb, sb, a_v, a_rs, a_rb, a_snap,
+            a_ue, cl1, cl3, cl2, rs1, rs3, rs2, av0, av1, av3, av2
         );
         self.slv.clk.next = self.clk.val();
         self.slv.rst.next = self.rst.val();
@@ -53,25 +53,28 @@ impl Logic for FitCal {
             // b_ref changes at this clock's edge (the previous sample restarted the window):
             // this sample's entry is e = x - b_cur, the new b_ref.
             self.fresh.d.next = self.a_rs.q.val();
+            // The signs stage Q takes the quadrant from: those of d, or of e when b_ref is
+            // being loaded with b_cur at this clock's edge (one LUT after the subtractors'
+            // top bits, so stage Q's step is one LUT of four registers).
+            self.sg_s.d.next = self.das.val().get_bit(17);
+            self.sg_c.d.next = self.dac.val().get_bit(17);
+            if self.a_rs.q.val() {
+                self.sg_s.d.next = self.eas.val().get_bit(17);
+                self.sg_c.d.next = self.eac.val().get_bit(17);
+            }
         }
         // Stage Q, a clock after A: the quadrant (CORDIC mapper convention) and step,
-        // registered for stage B1, from the registered differences' signs: those of d, or
-        // of e when b_ref was being loaded with b_cur at stage A (`fresh`); tq is the
-        // previous sample's. No carry chain in front of these LUTs.
-        self.ngs.next = self.da_s.q.val().get_bit(17);
-        self.ngc.next = self.da_c.q.val().get_bit(17);
-        if self.fresh.q.val() {
-            self.ngs.next = self.ea_s.q.val().get_bit(17);
-            self.ngc.next = self.ea_c.q.val().get_bit(17);
-        }
+        // registered for stage B1, from the signs registered in stage A (of d, or of e when
+        // b_ref was being loaded with b_cur at stage A); tq is the previous sample's. No
+        // carry chain in front of these LUTs.
         self.q.next = self.q0.val();
-        if self.ngs.val() {
-            if self.ngc.val() {
+        if self.sg_s.q.val() {
+            if self.sg_c.q.val() {
                 self.q.next = self.q2.val();
             } else {
                 self.q.next = self.q3.val();
             }
-        } else if self.ngc.val() {
+        } else if self.sg_c.q.val() {
             self.q.next = self.q1.val();
         }
         // q - tq mod 4 as logic (a borrow into bit 1), not a second carry chain after d's.
@@ -79,52 +82,48 @@ impl Logic for FitCal {
             ^ (((!self.q.val()) & self.tq.q.val() & self.q1.val()) << self.one32.val());
         self.qb.d.next = self.q.val();
         self.sb.d.next = self.stp.val();
-        // Free-running compares of net and N: |net + s| >= 4K for each step s,
-        // N >= min_samples, N = N_MAX (final two clocks after a sample's stage B1; while a
-        // restart clears net and N (a_rs), they describe net = 0 and N = 1). A clock later
-        // they and the tracker's flags below form one free-running register per step class
-        // and outcome (cl*, rs*, av*), final three clocks after the sample's stage B1, in
-        // time for the next sample's (samples at least three clocks apart).
-        self.netf.next = self.net.q.val() ^ self.sign32.val();
-        self.h_p1.d.next = ((self.netf.val() >= self.ge_p1.val())
-            | (self.netf.val() < self.lt_p1.val()))
+        // Free-running compares of net and N: |net + s| >= 4K for each step s, N >= min_samples,
+        // N >= N_MAX (final two clocks after a sample's stage B1; while a restart clears net
+        // and N (a_rs), they describe net = 0 and N = 1). The window closes only where
+        // net + s is a multiple of 4 (the p_w* flags below match net mod 4), and there, with
+        // q = floor(net / 4), net + s is 4 (q + 1) for s = +1 and +2 (net mod 4 = 3, 2) and
+        // 4 q for s = -1 and -2 (net mod 4 = 1, 2): two tests of q's 30 bits, |q + 1| >= K
+        // (h_up) and |q| >= K (h_dn), stand for the four. A clock later they and the
+        // tracker's flags below form one free-running register per step class and outcome
+        // (cl*, rs*, av*), final three clocks after the sample's stage B1, in time for the
+        // next sample's (samples at least three clocks apart).
+        self.netq.next = (self.net.q.val() ^ self.sign32.val()) >> self.two32.val();
+        self.h_up.d.next = ((self.netq.val() >= self.ge_up.val())
+            | (self.netq.val() < self.lt_up.val()))
             & !self.a_rs.q.val();
-        self.h_m1.d.next = ((self.netf.val() >= self.ge_m1.val())
-            | (self.netf.val() < self.lt_m1.val()))
-            & !self.a_rs.q.val();
-        self.h_p2.d.next = ((self.netf.val() >= self.ge_p2.val())
-            | (self.netf.val() < self.lt_p2.val()))
-            & !self.a_rs.q.val();
-        self.h_m2.d.next = ((self.netf.val() >= self.ge_m2.val())
-            | (self.netf.val() < self.lt_m2.val()))
+        self.h_dn.d.next = ((self.netq.val() >= self.ge_dn.val())
+            | (self.netq.val() < self.lt_dn.val()))
             & !self.a_rs.q.val();
         self.nbge.d.next = self.nb.q.val() >= self.nmin.val();
-        self.nbmx.d.next = (self.nb.q.val() == self.nmax.val()) & !self.a_rs.q.val();
+        self.nbmx.d.next = (self.nb.q.val() & self.nmax.val()).any() & !self.a_rs.q.val();
         if self.a_rs.q.val() {
             self.nbge.d.next = self.one32.val() >= self.nmin.val();
         }
-        // The decision's other operands, from the tracker's state (written in stage B1, at
-        // least a clock earlier) and net mod 4 (0 while a restart clears net).
-        self.p_r1.next = self.tinit.q.val() & !self.open.q.val();
-        self.p_r2.next = self.tinit.q.val() & self.dknown.q.val() & !self.open.q.val();
-        self.p_o1.next = self.tinit.q.val() & self.open.q.val();
-        self.p_o2.next = self.tinit.q.val() & self.dknown.q.val() & self.open.q.val();
-        self.p_w1.next = self.tinit.q.val()
-            & self.open.q.val()
+        // The decision's other operands, registered beside the compares from the tracker's
+        // state (written in stage B1) and net mod 4 (0 while a restart clears net).
+        // An open window implies tinit (both are written at every sample, tinit true, and
+        // cleared by reset), so the open terms leave tinit out.
+        self.p_r1.d.next = self.tinit.q.val() & !self.open.q.val();
+        self.p_r2.d.next = self.tinit.q.val() & self.dknown.q.val() & !self.open.q.val();
+        self.p_o1.d.next = self.open.q.val();
+        self.p_o2.d.next = self.dknown.q.val() & self.open.q.val();
+        self.p_w1.d.next = self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r3.val());
-        self.p_w3.next = self.tinit.q.val()
-            & self.open.q.val()
+        self.p_w3.d.next = self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r1.val());
-        self.p_w2p.next = self.tinit.q.val()
-            & self.dknown.q.val()
+        self.p_w2p.d.next = self.dknown.q.val()
             & !self.dneg.q.val()
             & self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r2.val());
-        self.p_w2m.next = self.tinit.q.val()
-            & self.dknown.q.val()
+        self.p_w2m.d.next = self.dknown.q.val()
             & self.dneg.q.val()
             & self.open.q.val()
             & !self.a_rs.q.val()
@@ -146,18 +145,18 @@ impl Logic for FitCal {
                 self.sval.next = self.sm2.val();
             }
         }
-        self.cl1.d.next = self.p_w1.val() & self.h_p1.q.val() & self.nbge.q.val();
-        self.cl3.d.next = self.p_w3.val() & self.h_m1.q.val() & self.nbge.q.val();
-        self.cl2.d.next = ((self.p_w2p.val() & self.h_p2.q.val())
-            | (self.p_w2m.val() & self.h_m2.q.val()))
+        self.cl1.d.next = self.p_w1.q.val() & self.h_up.q.val() & self.nbge.q.val();
+        self.cl3.d.next = self.p_w3.q.val() & self.h_dn.q.val() & self.nbge.q.val();
+        self.cl2.d.next = ((self.p_w2p.q.val() & self.h_up.q.val())
+            | (self.p_w2m.q.val() & self.h_dn.q.val()))
             & self.nbge.q.val();
-        self.rs1.d.next = self.p_r1.val() | self.cl1.d.val();
-        self.rs3.d.next = self.p_r1.val() | self.cl3.d.val();
-        self.rs2.d.next = self.p_r2.val() | self.cl2.d.val();
-        self.av0.d.next = self.p_o1.val() & !self.nbmx.q.val();
+        self.rs1.d.next = self.p_r1.q.val() | self.cl1.d.val();
+        self.rs3.d.next = self.p_r1.q.val() | self.cl3.d.val();
+        self.rs2.d.next = self.p_r2.q.val() | self.cl2.d.val();
+        self.av0.d.next = self.p_o1.q.val() & !self.nbmx.q.val();
         self.av1.d.next = self.rs1.d.val() | self.av0.d.val();
         self.av3.d.next = self.rs3.d.val() | self.av0.d.val();
-        self.av2.d.next = self.rs2.d.val() | (self.p_o2.val() & !self.nbmx.q.val());
+        self.av2.d.next = self.rs2.d.val() | (self.p_o2.q.val() & !self.nbmx.q.val());
         self.rsd.next = false;
         self.a_v.d.next = false;
         self.a_snap.d.next = false;
@@ -293,7 +292,6 @@ impl Logic for FitCal {
             self.p_cc.d.next = self.pr.val();
         }
         self.d_v.d.next = self.ln_v.q.val().get_bit(5);
-        self.d_rs.d.next = self.ln_rs.q.val().get_bit(5);
         self.d_es.d.next = bit_cast::<64, 18>(self.e2_s.q.val());
         if self.e2_s.q.val().get_bit(17) {
             self.d_es.d.next = bit_cast::<64, 18>(self.e2_s.q.val()) | self.sext64.val();
@@ -317,44 +315,31 @@ impl Logic for FitCal {
         // tree: the sums hold the window's last sample by then (its stage E2, at least
         // three clocks later in the pipeline, was at least one clock earlier).
         self.slv.start.next = self.ln_sn.q.val().get_bit(5) & !self.slv.busy.val();
-        // Stage E: the sums' low halves as 33-bit sums on registers (restart: from zero,
-        // with the restart flag of the clock after phase 2), the carries registered;
-        // stage E2, a clock later: the high halves, high addend plus carry. Each is one
-        // 33- or 32-bit chain instead of one 64-bit chain; the high half lags a clock, and
-        // samples are at least three clocks apart, so a sample's E2 ends before the next
-        // sample's E and before any snapshot.
-        self.zl1_s.next = self.l1_s.q.val();
-        self.zl1_c.next = self.l1_c.q.val();
-        self.zl2_s.next = self.l2_s.q.val();
-        self.zl2_c.next = self.l2_c.q.val();
-        self.zlsc.next = self.lsc.q.val();
-        self.zn.next = self.cnt.q.val();
-        if self.d_rs.q.val() {
-            self.zl1_s.next = self.zero32.val();
-            self.zl1_c.next = self.zero32.val();
-            self.zl2_s.next = self.zero32.val();
-            self.zl2_c.next = self.zero32.val();
-            self.zlsc.next = self.zero32.val();
-            self.zn.next = self.zero32.val();
-        }
+        // Stage E: the sums' low halves as 33-bit sums on registers, the carries
+        // registered; stage E2, a clock later: the high halves, high addend plus carry. Each
+        // is one 33- or 32-bit chain instead of one 64-bit chain; the high half lags a clock,
+        // and samples are at least three clocks apart, so a sample's E2 ends before the next
+        // sample's E and before any snapshot. A restart clears the sums and N a clock before
+        // the sample's stage E (the clock the snapshot is taken; no stage E or E2 of an
+        // earlier sample is that late), as the registers' synchronous reset, so no
+        // restart select stands in front of the adders.
         self.nsci.next = self.zero33.val();
         if self.d_nsc.q.val() {
             self.nsci.next = self.one33.val();
         }
-        self.w1_s.next = bit_cast::<33, 32>(self.zl1_s.val())
+        self.w1_s.next = bit_cast::<33, 32>(self.l1_s.q.val())
             + bit_cast::<33, 32>(bit_cast::<32, 64>(self.d_es.q.val()));
-        self.w1_c.next = bit_cast::<33, 32>(self.zl1_c.val())
+        self.w1_c.next = bit_cast::<33, 32>(self.l1_c.q.val())
             + bit_cast::<33, 32>(bit_cast::<32, 64>(self.d_ec.q.val()));
         self.w2_s.next =
-            bit_cast::<33, 32>(self.zl2_s.val()) + bit_cast::<33, 32>(self.p_ss.q.val());
+            bit_cast::<33, 32>(self.l2_s.q.val()) + bit_cast::<33, 32>(self.p_ss.q.val());
         self.w2_c.next =
-            bit_cast::<33, 32>(self.zl2_c.val()) + bit_cast::<33, 32>(self.p_cc.q.val());
-        // zsc -+ |e_s e_c| = zsc + (p_sc, inverted when negative) + carry-in.
-        self.wsc.next = bit_cast::<33, 32>(self.zlsc.val())
+            bit_cast::<33, 32>(self.l2_c.q.val()) + bit_cast::<33, 32>(self.p_cc.q.val());
+        // lsc -+ |e_s e_c| = lsc + (p_sc, inverted when negative) + carry-in.
+        self.wsc.next = bit_cast::<33, 32>(self.lsc.q.val())
             + bit_cast::<33, 32>(bit_cast::<32, 64>(self.p_sc.q.val()))
             + self.nsci.val();
         self.f_v.d.next = self.d_v.q.val();
-        self.f_rs.d.next = self.d_rs.q.val();
         if self.d_v.q.val() {
             self.l1_s.d.next = bit_cast::<32, 33>(self.w1_s.val());
             self.l1_c.d.next = bit_cast::<32, 33>(self.w1_c.val());
@@ -369,29 +354,30 @@ impl Logic for FitCal {
             self.x1_s.d.next = bit_cast::<32, 64>(self.d_es.q.val() >> self.s32w.val());
             self.x1_c.d.next = bit_cast::<32, 64>(self.d_ec.q.val() >> self.s32w.val());
             self.xsc.d.next = bit_cast::<32, 64>(self.p_sc.q.val() >> self.s32w.val());
-            self.cnt.d.next = self.zn.val() + self.one32.val();
-        }
-        self.zh1_s.next = self.h1_s.q.val();
-        self.zh1_c.next = self.h1_c.q.val();
-        self.zh2_s.next = self.h2_s.q.val();
-        self.zh2_c.next = self.h2_c.q.val();
-        self.zhsc.next = self.hsc.q.val();
-        if self.f_rs.q.val() {
-            self.zh1_s.next = self.zero32.val();
-            self.zh1_c.next = self.zero32.val();
-            self.zh2_s.next = self.zero32.val();
-            self.zh2_c.next = self.zero32.val();
-            self.zhsc.next = self.zero32.val();
+            self.cnt.d.next = self.cnt.q.val() + self.one32.val();
         }
         if self.f_v.q.val() {
             self.h1_s.d.next =
-                self.zh1_s.val() + self.x1_s.q.val() + bit_cast::<32, 1>(self.y1_s.q.val().into());
+                self.h1_s.q.val() + self.x1_s.q.val() + bit_cast::<32, 1>(self.y1_s.q.val().into());
             self.h1_c.d.next =
-                self.zh1_c.val() + self.x1_c.q.val() + bit_cast::<32, 1>(self.y1_c.q.val().into());
-            self.h2_s.d.next = self.zh2_s.val() + bit_cast::<32, 1>(self.y2_s.q.val().into());
-            self.h2_c.d.next = self.zh2_c.val() + bit_cast::<32, 1>(self.y2_c.q.val().into());
+                self.h1_c.q.val() + self.x1_c.q.val() + bit_cast::<32, 1>(self.y1_c.q.val().into());
+            self.h2_s.d.next = self.h2_s.q.val() + bit_cast::<32, 1>(self.y2_s.q.val().into());
+            self.h2_c.d.next = self.h2_c.q.val() + bit_cast::<32, 1>(self.y2_c.q.val().into());
             self.hsc.d.next =
-                self.zhsc.val() + self.xsc.q.val() + bit_cast::<32, 1>(self.ysc.q.val().into());
+                self.hsc.q.val() + self.xsc.q.val() + bit_cast::<32, 1>(self.ysc.q.val().into());
+        }
+        if self.ln_rs.q.val().get_bit(5) {
+            self.l1_s.d.next = self.zero32.val();
+            self.l1_c.d.next = self.zero32.val();
+            self.l2_s.d.next = self.zero32.val();
+            self.l2_c.d.next = self.zero32.val();
+            self.lsc.d.next = self.zero32.val();
+            self.h1_s.d.next = self.zero32.val();
+            self.h1_c.d.next = self.zero32.val();
+            self.h2_s.d.next = self.zero32.val();
+            self.h2_c.d.next = self.zero32.val();
+            self.hsc.d.next = self.zero32.val();
+            self.cnt.d.next = self.zero32.val();
         }
         self.slv.n.next = self.cnt.q.val();
         self.slv.s1_s.next = (bit_cast::<64, 32>(self.h1_s.q.val()) << self.s32w.val())

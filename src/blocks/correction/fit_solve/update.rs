@@ -19,7 +19,8 @@ impl Logic for FitSolve {
             rx_tgs, rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32, rx_cmag16, rx_tgc, rx_tamp32,
             uxr, uxa, uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one, rd_sn, rd_ms, rd_mc, rd_cs,
             rd_smag, rd_q2, rd_amps, udr, vd, ccp, ccm, xr, rz, req, t30, scl, ngf, lo_s, lo_c,
-            oor, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c, mnz
+            oor_sl, oor_sh, oor_cl, oor_ch, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c,
+            mnz
         );
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
         // chain's operands oa / ob (free-running, one LUT each from registers: u_r, its sign,
@@ -93,10 +94,12 @@ impl Logic for FitSolve {
         self.t30.d.next = self.two30.val() - bit_cast::<31, 52>(self.u_r.q.val());
         self.lo_s.d.next = self.amp_s.q.val() < self.minamp.val();
         self.lo_c.d.next = self.amp_c.q.val() < self.minamp.val();
-        self.oor.d.next = ((self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val())
-            | ((self.o_s.q.val() ^ self.sign32.val()) >= self.hi_f.val())
-            | ((self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val())
-            | ((self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val());
+        // Offsets out of range: one register per compare (the four chains lie beside
+        // their offsets; Q1 ORs the flags).
+        self.oor_sl.d.next = (self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val();
+        self.oor_sh.d.next = (self.o_s.q.val() ^ self.sign32.val()) >= self.hi_f.val();
+        self.oor_cl.d.next = (self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val();
+        self.oor_ch.d.next = (self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val();
         // u_mag's compares from the quotient it rounds (u_mag = u_x + adj): u_x is final from
         // the division's rounding sum on, so these are settled when DivNeg reads big_s / big_c /
         // mnz (u_mag > K <=> u_x > K - adj, K < 2^16; u_mag != 0 <=> u_x != 0 | adj).
@@ -163,7 +166,11 @@ impl Logic for FitSolve {
         // The checks refuse at Sn (amplitude, its compares registered since Chk) and at Q1
         // (offsets, registered since OffC): no run, nothing pending, busy_r clears.
         self.ok_sn.next = self.s_sn.q.val() & !(self.lo_s.q.val() | self.lo_c.q.val());
-        self.ok_q1.next = self.s_q1.q.val() & !self.oor.q.val();
+        self.ok_q1.next = self.s_q1.q.val()
+            & !(self.oor_sl.q.val()
+                | self.oor_sh.q.val()
+                | self.oor_cl.q.val()
+                | self.oor_ch.q.val());
         // Pending successors: set by the set-up state, held until the return.
         self.p_mc.d.next = self.s_ms.q.val() | (self.p_mc.q.val() & !self.f_ret.q.val());
         self.p_vs.d.next = self.s_mc.q.val() | (self.p_vs.q.val() & !self.f_ret.q.val());
@@ -374,11 +381,15 @@ impl Logic for FitSolve {
             self.a2_c.d.next = bit_cast::<56, 64>(self.s2_c.val());
             self.asc.d.next = bit_cast::<56, 64>(self.ssc.val());
             self.nsc.d.next = (self.ssc.val() & self.sign63.val()).any();
-            if (self.ssc.val() & self.sign63.val()).any() {
-                self.asc.d.next = bit_cast::<56, 64>(self.zero64.val() - self.ssc.val());
-            }
             self.br_s.d.next = self.bref_s.val();
             self.br_c.d.next = self.bref_c.val();
+        }
+        // Ms, the clock after the load: asc takes |Σsc|, negated in its own register (its
+        // 56-bit chain starts at asc, beside it, not at the fit's sums); it is first read
+        // at the return after Vc.
+        if self.s_ms.q.val() & self.nsc.q.val() {
+            self.asc.d.next =
+                bit_cast::<56, 64>(self.zero64.val() - bit_cast::<64, 56>(self.asc.q.val()));
         }
         if self.s_mc.q.val() {
             self.m_s.d.next = self.u_mag.q.val();
