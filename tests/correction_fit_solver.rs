@@ -99,6 +99,19 @@ fn cases() -> Vec<Case> {
         // Fully correlated and anti-correlated tracks: S at its clamp, Cc at its least.
         case("correlated", &[(H, H, w), (-H, -H, w)], [0, 0]),
         case("anti_correlated", &[(H, -H, w), (-H, H, w)], [0, 0]),
+        // Σd_s d_c = -2^28 (N = 2^12): its low 28 bits are zero, so |Σd_s d_c| takes the
+        // carry from the low half of its negation into the high half; a slight
+        // anti-correlation, so S is not at its clamp and the carry changes k.
+        case(
+            "carry_into_the_high_half_of_sc",
+            &[
+                (H, -8, 1 << 10),
+                (-H, 8, 1 << 10),
+                (4, H, 1 << 10),
+                (-4, -H, 1 << 10),
+            ],
+            [0, 0],
+        ),
         case("one_sample", &[(M, -M, 1)], [0, 0]),
         // A small variance around a large mean: refused at the amplitude check.
         case("small", &[(3276, 3276, w), (-3276, -3276, 3)], [5, -5]),

@@ -309,8 +309,16 @@ pub struct FitSolve {
     a2_s: DFF<Bits<56>>,
     /// Σd_c² (< 2^56).
     a2_c: DFF<Bits<56>>,
-    /// |Σd_s d_c| (< 2^56), from the clock after the load (the load takes Σd_s d_c).
+    /// |Σd_s d_c| (< 2^56), from two clocks after the load (the load takes Σd_s d_c; a
+    /// negative sum is negated over the two clocks after it, bits 0-27 then bits 28-55,
+    /// each a 28-bit chain).
     asc: DFF<Bits<56>>,
+    /// The clock after Ms with Σd_s d_c < 0: asc's bits 28-55 take ~hi + asc_z.
+    asc_h: DFF<Bit>,
+    /// Bits 0-27 of the negative Σd_s d_c were zero (the carry of -x = ~x + 1 into bit 28).
+    asc_z: DFF<Bit>,
+    /// asc_z as a 56-bit addend.
+    ascz: Signal<Local, Bits<56>>,
     /// Σd_s d_c < 0.
     nsc: DFF<Bit>,
     /// Sine b_ref of the window.
@@ -582,8 +590,11 @@ pub struct FitSolve {
     up: Signal<Local, Bit>,
     /// The chain's second operand: u_d / the trial when adding, its complement otherwise.
     opb: Signal<Local, Bits<52>>,
-    /// The minuend of `vd`: v_c while M3 is pending, else v_s.
-    vsel: Signal<Local, Bits<49>>,
+    /// The minuend of `vd`: v_c while M3 is pending, else v_s (free-running, a clock
+    /// behind p_m3, v_s and v_c, so vd's chain starts at registers: M2 and M3 read vd long
+    /// after their minuend settles, v_s and v_c being loaded states earlier and p_m3
+    /// rising 65 clocks before M3).
+    vsel: DFF<Bits<49>>,
     /// u_adj as a 24-bit addend (of u_mag).
     adjw: Signal<Local, Bits<24>>,
     /// u_adjq as a 64-bit addend.
@@ -651,6 +662,15 @@ pub struct FitSolve {
     s62: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
+    /// Bits 0-27 of a 56-bit word (asc's two halves).
+    lo28: Constant<Bits<56>>,
+    /// Bit 28 of a 56-bit word: the borrow of 0 - (bits 0-27).
+    b28: Constant<Bits<56>>,
+    /// 28: the shift of asc's high half.
+    s28: Constant<Bits<32>>,
+    /// 0 and 1, 56-bit.
+    zero56: Constant<Bits<56>>,
+    one56: Constant<Bits<56>>,
     zero16: Constant<Bits<16>>,
     /// Configured (reset) offsets and gains.
     b0_s: Constant<Bits<32>>,
@@ -769,6 +789,9 @@ impl FitSolve {
             a2_s: Default::default(),
             a2_c: Default::default(),
             asc: Default::default(),
+            asc_h: Default::default(),
+            asc_z: Default::default(),
+            ascz: Default::default(),
             nsc: Default::default(),
             br_s: Default::default(),
             br_c: Default::default(),
@@ -946,6 +969,11 @@ impl FitSolve {
             s62: c32(62),
             one64: c64(1),
             zero64: c64(0),
+            lo28: cw(mask(28)),
+            b28: cw(1 << 28),
+            s28: c32(28),
+            zero56: cw(0),
+            one56: cw(1),
             zero16: c16(0),
             b0_s: c32(sext(p.offset()[SIN])),
             b0_c: c32(sext(p.offset()[COS])),

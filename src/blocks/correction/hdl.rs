@@ -108,8 +108,9 @@ pub struct Correction {
     /// (2^(A-1+GF) - 2^(GF-1)) >> (GF-1) = 2^A - 1: the smallest P' whose rounded magnitude
     /// is 2^(A-1).
     pbig: Constant<Bits<32>>,
-    /// Bit 31: sign of a 32-bit word.
-    sign32: Constant<Bits<32>>,
+    /// Bit A: the sign of d = x - b. Both are A-bit two's complement words, so d fits A + 1
+    /// bits and bit A equals bit 31: the sign test is a chain of A + 1 bits, not 32.
+    dsign: Constant<Bits<32>>,
     /// GF-1: the product bits below the rounding half that are dropped.
     hshift: Constant<Bits<32>>,
     /// Mask of the 33-GF bits of P'.
@@ -208,7 +209,7 @@ impl Correction {
             asext: c32(fill(32, 32 - a)),
             pmax: c32(mask(a - 1)),
             pbig: c32(((1u64 << (a - 1 + gf)) - (1u64 << (gf - 1))) >> (gf - 1)),
-            sign32: c32(1 << 31),
+            dsign: c32(1 << a),
             hshift: c32((gf - 1) as u64),
             phmask: c32(mask(33 - gf)),
             one1: c32(1),
@@ -282,16 +283,16 @@ impl Logic for Correction {
         self.nd_s.next = self.bs_s.val() - self.xs_s.val();
         self.nd_c.next = self.bs_c.val() - self.xs_c.val();
         self.md_s.next = self.d_s.val();
-        if (self.d_s.val() & self.sign32.val()).any() {
+        if (self.d_s.val() & self.dsign.val()).any() {
             self.md_s.next = self.nd_s.val();
         }
         self.md_c.next = self.d_c.val();
-        if (self.d_c.val() & self.sign32.val()).any() {
+        if (self.d_c.val() & self.dsign.val()).any() {
             self.md_c.next = self.nd_c.val();
         }
         self.v1.d.next = self.in_valid.val() & !self.rst.val();
-        self.sg1_s.d.next = (self.d_s.val() & self.sign32.val()).any();
-        self.sg1_c.d.next = (self.d_c.val() & self.sign32.val()).any();
+        self.sg1_s.d.next = (self.d_s.val() & self.dsign.val()).any();
+        self.sg1_c.d.next = (self.d_c.val() & self.dsign.val()).any();
         self.m1_s.d.next = bit_cast::<16, 32>(self.md_s.val() & self.amask.val());
         self.m1_c.d.next = bit_cast::<16, 32>(self.md_c.val() & self.amask.val());
         self.g1_s.d.next = self.g_s.val();

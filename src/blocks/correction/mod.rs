@@ -40,7 +40,8 @@
 //!
 //! # Datapath and bit growth (A = ADC width 10..=16, GF = gain fraction bits 8..=15)
 //! * x, b in [-2^(A-1), 2^(A-1)-1] (b is an integer offset in LSB).
-//!   d = x - b in [-(2^A - 1), 2^A - 1]: A+1 bits signed, exact in a 32-bit word.
+//!   d = x - b in [-(2^A - 1), 2^A - 1]: A+1 bits signed, exact in a 32-bit word; its sign
+//!   is bit A, so the sign test needs a carry chain of A+1 bits, not 32.
 //! * Sign/magnitude: |d| <= 2^A - 1 <= 2^16 - 1 fits the unsigned 16-bit multiplier operand
 //!   (rust-hdl's only multiply is `Bits<16> * Bits<16> -> Bits<32>`, emitted as a Verilog
 //!   `*` with a 32-bit destination, so the product is never truncated). Signed operands are

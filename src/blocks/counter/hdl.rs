@@ -65,14 +65,16 @@ pub struct Combiner {
     /// The sample is valid and passes the magnitude test: one compare of xv against
     /// 2^31 + minmag, so the carry chain's output drives plast's enable with no LUT after it.
     okv: Signal<Local, Bit>,
+    /// p - plast, 32-bit.
+    dfull: Signal<Local, Bits<32>>,
     /// delta = (p - plast) mod 2^(F+2).
     delta: Signal<Local, Bits<32>>,
+    /// p < plast (the borrow, bit F+2 of dfull).
+    lt: Signal<Local, Bit>,
     /// The step is backwards (delta negative).
     back: Signal<Local, Bit>,
     /// Quadrant of p.
     qnew: Signal<Local, Bits<32>>,
-    /// Quadrant of plast.
-    qlast: Signal<Local, Bits<32>>,
     /// Gz: shift from z units to fine LSB.
     zshift: Constant<Bits<32>>,
     /// F: shift of the quadrant out of p.
@@ -81,6 +83,8 @@ pub struct Combiner {
     pmask: Constant<Bits<32>>,
     /// Sign bit of an (F+2)-bit word.
     psign: Constant<Bits<32>>,
+    /// Bit F+2 (the borrow of p - plast).
+    pborrow: Constant<Bits<32>>,
     /// Three (the 2-bit mask).
     three: Constant<Bits<32>>,
     /// F-2: the warning thresholds are multiples of 2^(F-2).
@@ -131,14 +135,16 @@ impl Combiner {
             okn: Default::default(),
             xv: Default::default(),
             okv: Default::default(),
+            dfull: Default::default(),
             delta: Default::default(),
+            lt: Default::default(),
             back: Default::default(),
             qnew: Default::default(),
-            qlast: Default::default(),
             zshift: c32(d.z_guard as u64),
             fshift: c32(f as u64),
             pmask: c32(mask(f + 2)),
             psign: c32(1 << (f + 1)),
+            pborrow: c32(1 << (f + 2)),
             three: c32(3),
             wshift: c32((f - 2) as u64),
             wmask: c32(mask(f - 2)),
@@ -178,13 +184,20 @@ impl Logic for Combiner {
             self.plast_reg.d.next = self.pn.val();
         }
         // The step to the last accepted sample, as the counter takes it (module docs).
-        self.delta.next = (self.pn.val() - self.plast_reg.q.val()) & self.pmask.val();
-        self.back.next = (self.delta.val() & self.psign.val()).any();
+        // One subtractor of F+3 bits: bit F+1 of p - plast is delta's sign (back), bit F+2
+        // its borrow (p < plast). For p, plast in [0, 2^(F+2)): a forward step (delta <
+        // half a turn) has p < plast exactly when it crosses 3 -> 0 (then plast - p is over
+        // two quadrants, so q < qlast; and p >= plast gives q >= qlast), and a backward
+        // step has p > plast exactly when it crosses 0 -> 3 (p - plast is at least two
+        // quadrants). So up, down and step are one LUT after the chain.
+        self.dfull.next = self.pn.val() - self.plast_reg.q.val();
+        self.delta.next = self.dfull.val() & self.pmask.val();
+        self.back.next = (self.dfull.val() & self.psign.val()).any();
+        self.lt.next = (self.dfull.val() & self.pborrow.val()).any();
         self.qnew.next = (self.pn.val() >> self.fshift.val()) & self.three.val();
-        self.qlast.next = (self.plast_reg.q.val() >> self.fshift.val()) & self.three.val();
-        self.up_reg.d.next = !self.back.val() & (self.qnew.val() < self.qlast.val());
-        self.down_reg.d.next = self.back.val() & (self.qnew.val() > self.qlast.val());
-        self.step_reg.d.next = self.up_reg.d.val() | self.down_reg.d.val();
+        self.up_reg.d.next = !self.back.val() & self.lt.val();
+        self.down_reg.d.next = self.back.val() & !self.lt.val();
+        self.step_reg.d.next = self.back.val() ^ self.lt.val();
         // The sample is accepted (valid and mag_ok) in one register, from the compare's
         // chain, so the counter's turn selection starts from it.
         self.acc_reg.d.next = self.okv.val();

@@ -37,7 +37,12 @@ pub struct Monitor {
     pub full_scale: Signal<Out, Bit>,
     los_reg: DFF<Bit>,
     los_cnt: DFF<Bits<32>>,
+    /// The last magnitude sample was over the clipping threshold (clip = clip_reg | clip_b:
+    /// the threshold test's chain reaches this register and nothing else).
     clip_reg: DFF<Bit>,
+    /// Clean magnitude samples since clip was set, stored one magnitude sample step behind
+    /// (the step of the last sample is applied at the next edge, from clip_pv and
+    /// clip_reg), as fs_cnt.
     clip_cnt: DFF<Bits<32>>,
     /// The sine of the last raw sample (in_valid) was at a full-scale code.
     fs_reg: DFF<Bit>,
@@ -61,9 +66,17 @@ pub struct Monitor {
     los_pv: DFF<Bit>,
     /// That sample counted towards the window (low while los = 0, good while los = 1).
     los_pq: DFF<Bit>,
-    /// clip = 1 and clip_cnt < H-1 (one more clean sample keeps clip set), registered
-    /// with the counter from its value before the step.
+    /// clip = 1 and clip_cnt < H-1 (one more clean sample keeps clip set), stored one
+    /// magnitude sample step behind with clip_cnt.
     clip_k: DFF<Bit>,
+    /// clip held by the counter: the logical clip_k at the last magnitude sample.
+    clip_b: DFF<Bit>,
+    /// A magnitude sample was taken at the previous edge (its hold counter step is pending).
+    clip_pv: DFF<Bit>,
+    /// The logical hold counter of clip (the pending step applied), clip_cnt's next value.
+    clip_cl: Signal<Local, Bits<32>>,
+    /// The logical clip_k, its next value.
+    clip_kl: Signal<Local, Bit>,
     /// full_scale = 1 and fs_cnt < H-1 (the next clean raw sample keeps full_scale set),
     /// stored one raw sample step behind with fs_cnt.
     fs_k: DFF<Bit>,
@@ -187,6 +200,10 @@ impl Monitor {
             los_pv: Default::default(),
             los_pq: Default::default(),
             clip_k: Default::default(),
+            clip_b: Default::default(),
+            clip_pv: Default::default(),
+            clip_cl: Default::default(),
+            clip_kl: Default::default(),
             fs_k: Default::default(),
             fs_b: Default::default(),
             fs_c: Default::default(),
@@ -240,7 +257,7 @@ impl Logic for Monitor {
     fn update(&mut self) {
         dff_setup!(
             self, clk, los_reg, los_cnt, clip_reg, clip_cnt, fs_reg, fs_cnt, warn_reg, los_lx,
-            clip_k, fs_k, los_nxr, los_pv, los_pq, fs_b, fs_c, fs_pv
+            clip_k, fs_k, los_nxr, los_pv, los_pq, fs_b, fs_c, fs_pv, clip_b, clip_pv
         );
         self.mag.next = self.magnitude.val() & self.wmask.val();
         self.rs.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
@@ -321,6 +338,27 @@ impl Logic for Monitor {
         self.los_nxr.d.next = self.los_nl.val() ^ self.n_two.val();
         self.los_pv.d.next = self.mag_valid.val();
         self.los_pq.d.next = self.los_q.val();
+        // The clip hold counter and clip_k apply a magnitude sample's step at the next edge
+        // (clip_pv), from registers only. clip_k = clip & the counter below H - 1 (the next
+        // clean sample keeps clip set). While clip = 0 the counter is 0, so loading 0 there
+        // is the same as holding it.
+        self.clip_cl.next = self.clip_cnt.q.val();
+        self.clip_kl.next = self.clip_k.q.val();
+        if self.clip_pv.q.val() {
+            if self.clip_reg.q.val() {
+                self.clip_cl.next = self.zero.val();
+                self.clip_kl.next = !self.h_one.val();
+            } else if self.clip_k.q.val() {
+                self.clip_cl.next = (self.clip_cnt.q.val() + self.one.val()) & self.hmask.val();
+                self.clip_kl.next = self.clip_cnt.q.val() != self.hlast_m1.val();
+            } else {
+                self.clip_cl.next = self.zero.val();
+                self.clip_kl.next = false;
+            }
+        }
+        self.clip_cnt.d.next = self.clip_cl.val();
+        self.clip_k.d.next = self.clip_kl.val();
+        self.clip_pv.d.next = self.mag_valid.val();
         if self.mag_valid.val() {
             // Loss of signal: N consecutive low (good) samples set (clear) it; any other
             // sample clears the counter; the counter's step is pending until the next edge
@@ -328,19 +366,11 @@ impl Logic for Monitor {
             // los = 0: set by a low sample at the window's end; los = 1: held here and
             // cleared by los_clr below (a good sample at the window's end).
             self.los_reg.d.next = self.los_reg.q.val() | (self.low.val() & self.los_lend.val());
-            // Clipping: set at once, clear after H clean samples. clip_k = clip & the
-            // counter below H - 1, so clip' = over | clip_k. While clip = 0 the counter is
-            // 0, so loading 0 there is the same as holding it.
-            self.clip_reg.d.next = self.over.val() | self.clip_k.q.val();
-            self.clip_cnt.d.next = self.zero.val();
-            if self.over.val() {
-                self.clip_k.d.next = !self.h_one.val();
-            } else if self.clip_k.q.val() {
-                self.clip_cnt.d.next = (self.clip_cnt.q.val() + self.one.val()) & self.hmask.val();
-                self.clip_k.d.next = self.clip_cnt.q.val() != self.hlast_m1.val();
-            } else {
-                self.clip_k.d.next = false;
-            }
+            // Clipping: set at once, clear after H clean samples, as full scale below:
+            // clip_reg takes the threshold test (the only logic after the magnitude),
+            // clip_b the hold by the counter.
+            self.clip_reg.d.next = self.over.val();
+            self.clip_b.d.next = self.clip_kl.val();
         }
         // Full scale: set at once, clear after H clean raw samples (as clip), as two
         // registers: fs_reg takes the code test of each raw sample (the only logic after
@@ -382,6 +412,8 @@ impl Logic for Monitor {
             self.los_pv.d.next = false;
             self.los_pq.d.next = false;
             self.clip_k.d.next = false;
+            self.clip_b.d.next = false;
+            self.clip_pv.d.next = false;
             self.fs_k.d.next = false;
             self.fs_b.d.next = false;
             self.fs_c.d.next = false;
@@ -402,12 +434,13 @@ impl Logic for Monitor {
         }
         self.error.next = self.los_reg.q.val()
             | self.clip_reg.q.val()
+            | self.clip_b.q.val()
             | self.fs_reg.q.val()
             | self.fs_c.q.val()
             | self.fs_b.q.val();
         self.warning.next = self.warn_reg.q.val();
         self.los.next = self.los_reg.q.val();
-        self.clip.next = self.clip_reg.q.val();
+        self.clip.next = self.clip_reg.q.val() | self.clip_b.q.val();
         self.full_scale.next = self.fs_reg.q.val() | self.fs_c.q.val() | self.fs_b.q.val();
     }
 }

@@ -39,8 +39,8 @@
 //! * Full scale (`full_scale`): a raw sample (`in_valid`) with sin or cos at the most
 //!   negative (-2^(A-1)) or most positive (2^(A-1)-1) A-bit code sets it at once; it clears
 //!   on the H-th consecutive raw sample with neither.
-//! * `error = los | clip | full_scale` (combinational OR of registers: `full_scale` is
-//!   itself the OR of three, see below).
+//! * `error = los | clip | full_scale` (combinational OR of registers: `clip` is itself
+//!   the OR of two and `full_scale` of three, see below).
 //! * `warning` = `overspeed | qep_mismatch`, registered (one clock).
 //!
 //! # Registers (timing)
@@ -51,6 +51,10 @@
 //!   flags) apply each sample's step one clock later from two pending registers (sample
 //!   taken, sample counted), so the threshold tests reach only `los` and the pending bit.
 //!   `los` is cleared through the flip-flop's synchronous reset (its power-up value 0).
+//! * `clip` = (the last magnitude sample over the threshold) | (held by the counter), two
+//!   registers loaded on `mag_valid`: the threshold test's carry chain reaches one
+//!   flip-flop and nothing else. The hold counter and its H-1 flag apply each magnitude
+//!   sample's step one clock later, from registers (as `full_scale`'s below).
 //! * `full_scale` = (sine at a full-scale code) | (cosine at one) | (held by the counter),
 //!   three registers loaded on `in_valid`. A word is at a full-scale code when its low A-1
 //!   bits are all ones (low + 1 carries into bit A-1) and its top bit is 0, or all zeros

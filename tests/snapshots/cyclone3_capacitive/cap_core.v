@@ -904,6 +904,7 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
     localparam  fshift = 32'he;
     localparam  pmask = 32'hffff;
     localparam  psign = 32'h8000;
+    localparam  pborrow = 32'h10000;
     localparam  three = 32'h3;
     localparam  wshift = 32'hc;
     localparam  wmask = 32'hfff;
@@ -949,10 +950,11 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
     reg  okn;
     reg  [31:0] xv;
     reg  okv;
+    reg  [31:0] dfull;
     reg  [31:0] delta;
+    reg  lt;
     reg  back;
     reg  [31:0] qnew;
-    reg  [31:0] qlast;
 
     // Sub module instances
     cap_core_rtl_combiner_acc_reg acc_reg(
@@ -1041,13 +1043,14 @@ module cap_core_rtl_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,wq,w
         if (okv) begin
             plast_reg_d = pn;
         end
-        delta = (pn - plast_reg_q) & pmask;
-        back = |(delta & psign);
+        dfull = pn - plast_reg_q;
+        delta = dfull & pmask;
+        back = |(dfull & psign);
+        lt = |(dfull & pborrow);
         qnew = (pn >> fshift) & three;
-        qlast = (plast_reg_q >> fshift) & three;
-        up_reg_d = ~back & (qnew < qlast);
-        down_reg_d = back & (qnew > qlast);
-        step_reg_d = up_reg_d | down_reg_d;
+        up_reg_d = ~back & lt;
+        down_reg_d = back & ~lt;
+        step_reg_d = back ^ lt;
         acc_reg_d = okv;
         wq_reg_d = delta >> wshift;
         wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;

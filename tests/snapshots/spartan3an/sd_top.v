@@ -3938,6 +3938,7 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
     localparam  fshift = 32'he;
     localparam  pmask = 32'hffff;
     localparam  psign = 32'h8000;
+    localparam  pborrow = 32'h10000;
     localparam  three = 32'h3;
     localparam  wshift = 32'hc;
     localparam  wmask = 32'hfff;
@@ -3983,10 +3984,11 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
     reg  okn;
     reg  [31:0] xv;
     reg  okv;
+    reg  [31:0] dfull;
     reg  [31:0] delta;
+    reg  lt;
     reg  back;
     reg  [31:0] qnew;
-    reg  [31:0] qlast;
 
     // Sub module instances
     sd_top_rtl_core_combiner_acc_reg acc_reg(
@@ -4075,13 +4077,14 @@ module sd_top_rtl_core_combiner(clk,rst,z_in,x_in,v_in,p,mag_ok,v,up,down,step,w
         if (okv) begin
             plast_reg_d = pn;
         end
-        delta = (pn - plast_reg_q) & pmask;
-        back = |(delta & psign);
+        dfull = pn - plast_reg_q;
+        delta = dfull & pmask;
+        back = |(dfull & psign);
+        lt = |(dfull & pborrow);
         qnew = (pn >> fshift) & three;
-        qlast = (plast_reg_q >> fshift) & three;
-        up_reg_d = ~back & (qnew < qlast);
-        down_reg_d = back & (qnew > qlast);
-        step_reg_d = up_reg_d | down_reg_d;
+        up_reg_d = ~back & lt;
+        down_reg_d = back & ~lt;
+        step_reg_d = back ^ lt;
         acc_reg_d = okv;
         wq_reg_d = delta >> wshift;
         wz_reg_d = ((pn ^ plast_reg_q) & wmask) == zero;
@@ -8683,7 +8686,7 @@ module sd_top_rtl_correction(clk,rst,in_valid,in_sin,in_cos,out_valid,out_sin,ou
     localparam  asext = 32'hffffc000;
     localparam  pmax = 32'h1fff;
     localparam  pbig = 32'h3fff;
-    localparam  sign32 = 32'h80000000;
+    localparam  dsign = 32'h4000;
     localparam  hshift = 32'hd;
     localparam  phmask = 32'h7ffff;
     localparam  one1 = 32'h1;
@@ -8920,16 +8923,16 @@ module sd_top_rtl_correction(clk,rst,in_valid,in_sin,in_cos,out_valid,out_sin,ou
         nd_s = bs_s - xs_s;
         nd_c = bs_c - xs_c;
         md_s = d_s;
-        if (|(d_s & sign32)) begin
+        if (|(d_s & dsign)) begin
             md_s = nd_s;
         end
         md_c = d_c;
-        if (|(d_c & sign32)) begin
+        if (|(d_c & dsign)) begin
             md_c = nd_c;
         end
         v1_d = in_valid & ~rst;
-        sg1_s_d = |(d_s & sign32);
-        sg1_c_d = |(d_c & sign32);
+        sg1_s_d = |(d_s & dsign);
+        sg1_c_d = |(d_c & dsign);
         m1_s_d = sinedec_trunc_32_16(md_s & amask);
         m1_c_d = sinedec_trunc_32_16(md_c & amask);
         g1_s_d = g_s;
@@ -11378,6 +11381,12 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     reg  clip_k_d;
     wire  clip_k_q;
     reg  clip_k_clock;
+    reg  clip_b_d;
+    wire  clip_b_q;
+    reg  clip_b_clock;
+    reg  clip_pv_d;
+    wire  clip_pv_q;
+    reg  clip_pv_clock;
     reg  fs_k_d;
     wire  fs_k_q;
     reg  fs_k_clock;
@@ -11389,6 +11398,8 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
     reg  fs_pv_clock;
 
     // Local signals
+    reg  [31:0] clip_cl;
+    reg  clip_kl;
     reg  [31:0] fs_cl;
     reg  fs_kl;
     reg  los_last;
@@ -11477,6 +11488,16 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         .q(clip_k_q),
         .clock(clip_k_clock)
     );
+    sd_top_rtl_monitor_clip_b clip_b(
+        .d(clip_b_d),
+        .q(clip_b_q),
+        .clock(clip_b_clock)
+    );
+    sd_top_rtl_monitor_clip_pv clip_pv(
+        .d(clip_pv_d),
+        .q(clip_pv_q),
+        .clock(clip_pv_clock)
+    );
     sd_top_rtl_monitor_fs_k fs_k(
         .d(fs_k_d),
         .q(fs_k_q),
@@ -11511,6 +11532,8 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         fs_b_clock = clk;
         fs_c_clock = clk;
         fs_pv_clock = clk;
+        clip_b_clock = clk;
+        clip_pv_clock = clk;
         los_reg_d = los_reg_q;
         los_cnt_d = los_cnt_q;
         clip_reg_d = clip_reg_q;
@@ -11527,6 +11550,8 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         fs_b_d = fs_b_q;
         fs_c_d = fs_c_q;
         fs_pv_d = fs_pv_q;
+        clip_b_d = clip_b_q;
+        clip_pv_d = clip_pv_q;
         mag = magnitude & wmask;
         rs = {16'd0, in_sin} & amask;
         rc = {16'd0, in_cos} & amask;
@@ -11574,20 +11599,29 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         los_nxr_d = los_nl ^ n_two;
         los_pv_d = mag_valid;
         los_pq_d = los_q;
-        if (mag_valid) begin
-            los_reg_d = los_reg_q | (low & los_lend);
-            clip_reg_d = over | clip_k_q;
-            clip_cnt_d = zero;
-            if (over) begin
-                clip_k_d = ~h_one;
+        clip_cl = clip_cnt_q;
+        clip_kl = clip_k_q;
+        if (clip_pv_q) begin
+            if (clip_reg_q) begin
+                clip_cl = zero;
+                clip_kl = ~h_one;
             end
             else if (clip_k_q) begin
-                clip_cnt_d = (clip_cnt_q + one) & hmask;
-                clip_k_d = clip_cnt_q != hlast_m1;
+                clip_cl = (clip_cnt_q + one) & hmask;
+                clip_kl = clip_cnt_q != hlast_m1;
             end
             else begin
-                clip_k_d = 1'b0;
+                clip_cl = zero;
+                clip_kl = 1'b0;
             end
+        end
+        clip_cnt_d = clip_cl;
+        clip_k_d = clip_kl;
+        clip_pv_d = mag_valid;
+        if (mag_valid) begin
+            los_reg_d = los_reg_q | (low & los_lend);
+            clip_reg_d = over;
+            clip_b_d = clip_kl;
         end
         fs_cl = fs_cnt_q;
         fs_kl = fs_k_q;
@@ -11627,6 +11661,8 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
             los_pv_d = 1'b0;
             los_pq_d = 1'b0;
             clip_k_d = 1'b0;
+            clip_b_d = 1'b0;
+            clip_pv_d = 1'b0;
             fs_k_d = 1'b0;
             fs_b_d = 1'b0;
             fs_c_d = 1'b0;
@@ -11636,14 +11672,32 @@ module sd_top_rtl_monitor(clk,rst,in_valid,in_sin,in_cos,mag_valid,magnitude,ove
         if (los_clr) begin
             los_reg_d = 1'b0;
         end
-        error = los_reg_q | clip_reg_q | fs_reg_q | fs_c_q | fs_b_q;
+        error = los_reg_q | clip_reg_q | clip_b_q | fs_reg_q | fs_c_q | fs_b_q;
         warning = warn_reg_q;
         los = los_reg_q;
-        clip = clip_reg_q;
+        clip = clip_reg_q | clip_b_q;
         full_scale = fs_reg_q | fs_c_q | fs_b_q;
     end
 
 endmodule // sd_top_rtl_monitor
+
+module sd_top_rtl_monitor_clip_b(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_clip_b
 
 module sd_top_rtl_monitor_clip_cnt(d,q,clock);
 
@@ -11680,6 +11734,24 @@ module sd_top_rtl_monitor_clip_k(d,q,clock);
     end
 
 endmodule // sd_top_rtl_monitor_clip_k
+
+module sd_top_rtl_monitor_clip_pv(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_monitor_clip_pv
 
 module sd_top_rtl_monitor_clip_reg(d,q,clock);
 

@@ -11,16 +11,16 @@ impl Logic for FitSolve {
             s_dadj, s_dtst, s_dinc, p_mc, p_vs, p_vc, p_cq, p_m1, p_m2, p_m3, p_cv, p_sqc, p_chk,
             p_sn, p_sn2, p_offa, p_offb, p_q1, p_gc, p_q2, p_ts, p_kd, p_load, f_ret, u_x, u_d,
             u_r, u_mag, u_q, u_neg, u_rnd, u_adj, u_adjq, uxs, it, sn, a1_s, a1_c, n1_s, n1_c,
-            a2_s, a2_c, asc, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos, amp_s, amp_c,
-            smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs, r_gc, r_km, r_kn,
-            r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last, f_ld, f_80, neg_n,
-            oa, ob, x_a1s, x_uxr, x_scl, x_t30, x_urk, x_q, x_en, d_sn, d_udr, d_uq, d_ur, d_scl,
-            d_one, d_en, clr_r, rx_uxr, rx_scl, rx_urk, rx_a1c8, rx_a2s, rx_a2c, rx_asc, rx_vs2,
-            rx_tgs, rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32, rx_cmag16, rx_tgc, rx_tamp32,
-            uxr, uxa, uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one, rd_sn, rd_ms, rd_mc, rd_cs,
-            rd_smag, rd_q2, rd_amps, udr, vd, ccp, ccm, xr, rz, req, t30, scl, ngf, lo_s, lo_c,
-            oor_sl, oor_sh, oor_cl, oor_ch, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c,
-            mnz
+            a2_s, a2_c, asc, asc_h, asc_z, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos,
+            amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs,
+            r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last,
+            f_ld, f_80, neg_n, oa, ob, x_a1s, x_uxr, x_scl, x_t30, x_urk, x_q, x_en, d_sn, d_udr,
+            d_uq, d_ur, d_scl, d_one, d_en, clr_r, rx_uxr, rx_scl, rx_urk, rx_a1c8, rx_a2s, rx_a2c,
+            rx_asc, rx_vs2, rx_tgs, rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32, rx_cmag16,
+            rx_tgc, rx_tamp32, uxr, uxa, uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one, rd_sn,
+            rd_ms, rd_mc, rd_cs, rd_smag, rd_q2, rd_amps, udr, vsel, vd, ccp, ccm, xr, rz, req,
+            t30, scl, ngf, lo_s, lo_c, oor_sl, oor_sh, oor_cl, oor_ch, xh1, xh2, xh3, xl, xgt_s,
+            xge_s, xff, big_s, big_c, mnz
         );
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
         // chain's operands oa / ob (free-running, one LUT each from registers: u_r, its sign,
@@ -84,11 +84,11 @@ impl Logic for FitSolve {
         // last B clock on): the state after the return loads them through a LUT, not a chain.
         // Each is exact in its width when it is read: u_r then holds m² or |m_s m_c| (< 2^48)
         // or S² (< 2^27), and V (|V| < 2^48), C (|C| < 2^49), 2^30 - S² fit.
-        self.vsel.next = self.v_s.q.val();
+        self.vsel.d.next = self.v_s.q.val();
         if self.p_m3.q.val() {
-            self.vsel.next = self.v_c.q.val();
+            self.vsel.d.next = self.v_c.q.val();
         }
-        self.vd.d.next = self.vsel.val() - bit_cast::<49, 52>(self.u_r.q.val());
+        self.vd.d.next = self.vsel.q.val() - bit_cast::<49, 52>(self.u_r.q.val());
         self.ccp.d.next = self.cc.q.val() + bit_cast::<50, 52>(self.u_r.q.val());
         self.ccm.d.next = self.cc.q.val() - bit_cast::<50, 52>(self.u_r.q.val());
         self.t30.d.next = self.two30.val() - bit_cast::<31, 52>(self.u_r.q.val());
@@ -384,12 +384,27 @@ impl Logic for FitSolve {
             self.br_s.d.next = self.bref_s.val();
             self.br_c.d.next = self.bref_c.val();
         }
-        // Ms, the clock after the load: asc takes |Σsc|, negated in its own register (its
-        // 56-bit chain starts at asc, beside it, not at the fit's sums); it is first read
-        // at the return after Vc.
+        // Ms, the clock after the load, and the clock after it: asc takes |Σsc|, negated in
+        // its own register (its chains start at asc, beside it, not at the fit's sums), -x =
+        // ~x + 1 in two 28-bit halves: at Ms the low half 0 - lo and its borrow (lo != 0),
+        // then the high half ~hi + (lo == 0). It is first read at the return after Vc.
+        self.asc_h.d.next = self.s_ms.q.val() & self.nsc.q.val();
         if self.s_ms.q.val() & self.nsc.q.val() {
-            self.asc.d.next =
-                bit_cast::<56, 64>(self.zero64.val() - bit_cast::<64, 56>(self.asc.q.val()));
+            self.asc.d.next = (self.asc.q.val() & !self.lo28.val())
+                | ((self.zero56.val() - (self.asc.q.val() & self.lo28.val())) & self.lo28.val());
+            self.asc_z.d.next = !((self.zero56.val() - (self.asc.q.val() & self.lo28.val()))
+                & self.b28.val())
+            .any();
+        }
+        self.ascz.next = self.zero56.val();
+        if self.asc_z.q.val() {
+            self.ascz.next = self.one56.val();
+        }
+        if self.asc_h.q.val() {
+            self.asc.d.next = ((((self.asc.q.val() >> self.s28.val()) ^ self.lo28.val())
+                + self.ascz.val())
+                << self.s28.val())
+                | (self.asc.q.val() & self.lo28.val());
         }
         if self.s_mc.q.val() {
             self.m_s.d.next = self.u_mag.q.val();
@@ -502,6 +517,7 @@ impl Logic for FitSolve {
             self.busy_r.d.next = false;
             self.f_ret.d.next = false;
             self.s_ms.d.next = false;
+            self.asc_h.d.next = false;
             self.s_mc.d.next = false;
             self.s_vs.d.next = false;
             self.s_vc.d.next = false;
