@@ -359,9 +359,11 @@ fn throughput_check_rejects_too_slow_iterative_designs() {
 
 /// Synthesis figures of both cores at N = 14, default widths (Yosys `synth_xilinx -family
 /// xc3sa`, the report's method): the issue's target, the iterative core at most a third of
-/// the unrolled core's LUTs. Measured: 359 vs 1093 LUT (0.328, docs/timing.md, "Thirteenth
-/// round": the unrolled stages' z select took 146 LUTs off the unrolled core, the iterative
-/// core dropped the counter's timing flags and its z start gating; 382 vs 1186 before, 354
+/// the unrolled core's LUTs. Measured: 353 vs 1085 LUT (0.325, docs/timing.md, "Fifteenth
+/// round": the combiner's step from its subtractor's borrow). 359 vs 1093 after the
+/// "Thirteenth round" (the unrolled stages' z select took 146 LUTs off the unrolled core,
+/// the iterative core dropped the counter's timing flags and its z start gating); 382 vs
+/// 1186 before, 354
 /// vs 1140 before that, 375 before the tap and fill registers of issue 12). The CORDIC part
 /// alone (core minus the N = 1 core, which bounds the shared mapper/combiner/counter plus
 /// one stage) is checked too, so that a shrinking shared part cannot hide a growing engine.
