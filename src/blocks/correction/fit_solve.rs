@@ -4,7 +4,7 @@
 //! machine.
 //!
 //! ```text
-//!  start ─► snapshot N, |Σd| (+sign), Σd², Σd_s d_c (its magnitude a clock later), b_ref
+//!  start ─► snapshot N, |Σd| (+sign), Σd², Σd_s d_c (its magnitude two clocks later), b_ref
 //!   │
 //!   ▼ one operation at a time on the shared units (u_x, u_d, u_r, it):
 //!  m_s,m_c = rdiv(|Σd| 2^8, N)      DIV 64 steps   V = floor(Σd² 2^16 / N)  DIV 80 steps
