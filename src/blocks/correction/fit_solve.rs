@@ -192,9 +192,9 @@ pub struct FitSolve {
     s_m3: DFF<Bit>,
     /// State cv (one clock): C = Cq - m_s m_c.
     s_cv: DFF<Bit>,
-    /// State sqs (one clock): |C|; Amp_s = isqrt(2 V_s).
+    /// State sqs (one clock): Amp_s = isqrt(2 V_s).
     s_sqs: DFF<Bit>,
-    /// State sqc (one clock): Amp_c = isqrt(2 V_c).
+    /// State sqc (one clock): |C| (from C or its negation `ccn`); Amp_c = isqrt(2 V_c).
     s_sqc: DFF<Bit>,
     /// State chk (one clock): Amp_s Amp_c.
     s_chk: DFF<Bit>,
@@ -310,15 +310,18 @@ pub struct FitSolve {
     /// Σd_c² (< 2^56).
     a2_c: DFF<Bits<56>>,
     /// |Σd_s d_c| (< 2^56), from two clocks after the load (the load takes Σd_s d_c; a
-    /// negative sum is negated over the two clocks after it, bits 0-27 then bits 28-55,
-    /// each a 28-bit chain).
+    /// negative sum is replaced in the clock after Ms by -x = ~x + 1 from the free-running
+    /// halves below: a select, no chain).
     asc: DFF<Bits<56>>,
-    /// The clock after Ms with Σd_s d_c < 0: asc's bits 28-55 take ~hi + asc_z.
+    /// The clock after Ms with Σd_s d_c < 0: asc takes its negation.
     asc_h: DFF<Bit>,
-    /// Bits 0-27 of the negative Σd_s d_c were zero (the carry of -x = ~x + 1 into bit 28).
-    asc_z: DFF<Bit>,
-    /// asc_z as a 56-bit addend.
-    ascz: Signal<Local, Bits<56>>,
+    /// 0 - asc's bits 0-27 (free-running, a 28-bit chain from asc): the low half of -x.
+    asl: DFF<Bits<28>>,
+    /// 0 - asc's bits 28-55 (free-running): the high half of -x when bits 0-27 are zero
+    /// (~hi + 1); otherwise the high half is ~hi.
+    ash: DFF<Bits<28>>,
+    /// asc's bits 0-27 are zero (free-running): the carry of ~x + 1 into bit 28.
+    alz: DFF<Bit>,
     /// Σd_s d_c < 0.
     nsc: DFF<Bit>,
     /// Sine b_ref of the window.
@@ -336,8 +339,11 @@ pub struct FitSolve {
     /// Cq = floor(Σd_s d_c 2^16 / N) (|Cq| < 2^48), then C = Cq - m_s m_c (|C| < 2^49),
     /// 50-bit two's complement.
     cc: DFF<Bits<50>>,
-    /// |C|, the 48 bits that |C| 2^16 keeps in a 64-bit dividend (|C| < 2^46).
+    /// |C|, the 48 bits that |C| 2^16 keeps in a 64-bit dividend (|C| < 2^46): C or
+    /// `ccn`, selected by C's sign in state sqc (no chain in front of it).
     cmag: DFF<Bits<48>>,
+    /// The low 48 bits of -C (free-running, settled a clock after C's load in state cv).
+    ccn: DFF<Bits<48>>,
     /// C >= 0 (the quotient -C 2^16 / (Amp_s Amp_c) is negated).
     cpos: DFF<Bit>,
     /// Amp_s = isqrt(2 V_s) (< 2^25).
@@ -662,15 +668,10 @@ pub struct FitSolve {
     s62: Constant<Bits<32>>,
     one64: Constant<Bits<64>>,
     zero64: Constant<Bits<64>>,
-    /// Bits 0-27 of a 56-bit word (asc's two halves).
-    lo28: Constant<Bits<56>>,
-    /// Bit 28 of a 56-bit word: the borrow of 0 - (bits 0-27).
-    b28: Constant<Bits<56>>,
     /// 28: the shift of asc's high half.
     s28: Constant<Bits<32>>,
-    /// 0 and 1, 56-bit.
-    zero56: Constant<Bits<56>>,
-    one56: Constant<Bits<56>>,
+    /// 0, 28-bit.
+    zero28: Constant<Bits<28>>,
     zero16: Constant<Bits<16>>,
     /// Configured (reset) offsets and gains.
     b0_s: Constant<Bits<32>>,
@@ -790,8 +791,9 @@ impl FitSolve {
             a2_c: Default::default(),
             asc: Default::default(),
             asc_h: Default::default(),
-            asc_z: Default::default(),
-            ascz: Default::default(),
+            asl: Default::default(),
+            ash: Default::default(),
+            alz: Default::default(),
             nsc: Default::default(),
             br_s: Default::default(),
             br_c: Default::default(),
@@ -887,6 +889,7 @@ impl FitSolve {
             vd: Default::default(),
             ccp: Default::default(),
             ccm: Default::default(),
+            ccn: Default::default(),
             xr: Default::default(),
             rz: Default::default(),
             req: Default::default(),
@@ -969,11 +972,8 @@ impl FitSolve {
             s62: c32(62),
             one64: c64(1),
             zero64: c64(0),
-            lo28: cw(mask(28)),
-            b28: cw(1 << 28),
             s28: c32(28),
-            zero56: cw(0),
-            one56: cw(1),
+            zero28: cw(0),
             zero16: c16(0),
             b0_s: c32(sext(p.offset()[SIN])),
             b0_c: c32(sext(p.offset()[COS])),

@@ -813,11 +813,11 @@ impl Logic for QuadrantCounter {
         if self.dwl.val() {
             self.tsel_p.next = self.ltdec_reg.q.val();
         }
-        self.tsel_r.next = self.turns_reg.q.val();
-        if self.rwu.val() {
-            self.tsel_r.next = self.tinc.val();
-        }
-        if self.rwd.val() {
+        // The running step's value, read only when rwu or rwd holds: then up and down are
+        // exclusive and the step is backwards exactly when down is set, so the select
+        // needs neither rwu nor rwd (the enable below has them).
+        self.tsel_r.next = self.tinc.val();
+        if self.down_in.val() {
             self.tsel_r.next = self.tdec.val();
         }
         // The values for the clock after the update (turns +- 1 stale, see above): the
@@ -838,13 +838,25 @@ impl Logic for QuadrantCounter {
                 self.tdo_reg.d.next = self.lturns_reg.q.val();
             }
         }
-        if self.flat.val() & self.acc_in.val() & self.init_reg.q.val() & !self.rst.val() {
+        // Flat form: the turn register's update (selected above) on an accepted sample of an
+        // initialised counter, then the reset again (as above), which overrides it: so the
+        // reset is the flip-flops' synchronous reset over the enable, and the enable reads
+        // acc_in, init and the selects only (rst is not one of its inputs).
+        if self.flat.val() & self.acc_in.val() & self.init_reg.q.val() {
             if self.pending_reg.q.val() {
                 self.turns_reg.d.next = self.tsel_p.val() & self.tmask.val();
+            } else if self.rwu.val() | self.rwd.val() {
+                self.turns_reg.d.next = self.tsel_r.val() & self.tmask.val();
+            }
+        }
+        if self.rst.val() {
+            self.turns_reg.d.next = self.zero.val();
+        }
+        if self.flat.val() & self.acc_in.val() & self.init_reg.q.val() & !self.rst.val() {
+            if self.pending_reg.q.val() {
                 self.ovi_reg.d.next = !self.uwl.val();
                 self.ovd_reg.d.next = !self.dwl.val();
             } else {
-                self.turns_reg.d.next = self.tsel_r.val() & self.tmask.val();
                 self.ovi_reg.d.next = self.rwd.val();
                 self.ovd_reg.d.next = self.rwu.val();
             }

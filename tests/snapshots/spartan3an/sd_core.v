@@ -1708,11 +1708,8 @@ module sd_core_rtl_counter(clk,rst,p_in,q_next,acc_in,ok_in,v_in,up_in,down_in,s
         if (dwl) begin
             tsel_p = ltdec_reg_q;
         end
-        tsel_r = turns_reg_q;
-        if (rwu) begin
-            tsel_r = tinc;
-        end
-        if (rwd) begin
+        tsel_r = tinc;
+        if (down_in) begin
             tsel_r = tdec;
         end
         ovi_reg_d = 1'b0;
@@ -1729,14 +1726,23 @@ module sd_core_rtl_counter(clk,rst,p_in,q_next,acc_in,ok_in,v_in,up_in,down_in,s
                 tdo_reg_d = lturns_reg_q;
             end
         end
-        if (flat & acc_in & init_reg_q & ~rst) begin
+        if (flat & acc_in & init_reg_q) begin
             if (pending_reg_q) begin
                 turns_reg_d = tsel_p & tmask;
+            end
+            else if (rwu | rwd) begin
+                turns_reg_d = tsel_r & tmask;
+            end
+        end
+        if (rst) begin
+            turns_reg_d = zero;
+        end
+        if (flat & acc_in & init_reg_q & ~rst) begin
+            if (pending_reg_q) begin
                 ovi_reg_d = ~uwl;
                 ovd_reg_d = ~dwl;
             end
             else begin
-                turns_reg_d = tsel_r & tmask;
                 ovi_reg_d = rwd;
                 ovd_reg_d = rwu;
             end
