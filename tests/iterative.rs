@@ -359,8 +359,10 @@ fn throughput_check_rejects_too_slow_iterative_designs() {
 
 /// Synthesis figures of both cores at N = 14, default widths (Yosys `synth_xilinx -family
 /// xc3sa`, the report's method): the issue's target, the iterative core at most a third of
-/// the unrolled core's LUTs. Measured: 353 vs 1085 LUT (0.325, docs/timing.md, "Fifteenth
-/// round": the combiner's step from its subtractor's borrow). 359 vs 1093 after the
+/// the unrolled core's LUTs. Measured: 353 vs 1074 LUT (0.329, docs/timing.md, "Sixteenth
+/// round": the turn register's select; 360 vs 1077 with the same logic in another statement
+/// order, which fails). 353 vs 1085 after the "Fifteenth round" (the combiner's step from
+/// its subtractor's borrow). 359 vs 1093 after the
 /// "Thirteenth round" (the unrolled stages' z select took 146 LUTs off the unrolled core,
 /// the iterative core dropped the counter's timing flags and its z start gating); 382 vs
 /// 1186 before, 354

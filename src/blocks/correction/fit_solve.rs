@@ -45,7 +45,7 @@
 //!  one-hot load flags (x_*, d_*) under one registered enable (x_en, d_en); the sources a
 //!  return loads are final long before it and reach u_x / u_d through free-running
 //!  registers (uxr, udr); compares, sums and negations the states need (clamps,
-//!  amplitude and offset checks, 2^30 - S², V - m² (one register for V_s, V_c), Cq ±
+//!  amplitude and offset checks, 2^30 - S², V - m² (one register for V_s, V_c), -C, Cq ±
 //!  |m_s m_c|, the remainder's
 //!  zero tests) are free-running registers, read a state after their inputs settle
 //!  (u_mag's clamps from the quotient u_x, two clocks ahead); the run's flags and `it`

@@ -11,16 +11,16 @@ impl Logic for FitSolve {
             s_dadj, s_dtst, s_dinc, p_mc, p_vs, p_vc, p_cq, p_m1, p_m2, p_m3, p_cv, p_sqc, p_chk,
             p_sn, p_sn2, p_offa, p_offb, p_q1, p_gc, p_q2, p_ts, p_kd, p_load, f_ret, u_x, u_d,
             u_r, u_mag, u_q, u_neg, u_rnd, u_adj, u_adjq, uxs, it, sn, a1_s, a1_c, n1_s, n1_c,
-            a2_s, a2_c, asc, asc_h, asl, ash, alz, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag, cpos,
-            amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc, r_gs,
-            r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last,
-            f_ld, f_80, neg_n, oa, ob, x_a1s, x_uxr, x_scl, x_t30, x_urk, x_q, x_en, d_sn, d_udr,
-            d_uq, d_ur, d_scl, d_one, d_en, clr_r, rx_uxr, rx_scl, rx_urk, rx_a1c8, rx_a2s, rx_a2c,
-            rx_asc, rx_vs2, rx_tgs, rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32, rx_cmag16,
-            rx_tgc, rx_tamp32, uxr, uxa, uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one, rd_sn,
-            rd_ms, rd_mc, rd_cs, rd_smag, rd_q2, rd_amps, udr, vsel, vd, ccp, ccm, ccn, xr, rz, req,
-            t30, scl, ngf, lo_s, lo_c, oor_sl, oor_sh, oor_cl, oor_ch, xh1, xh2, xh3, xl, xgt_s,
-            xge_s, xff, big_s, big_c, mnz
+            a2_s, a2_c, asc, asc_h, asl, ash, alz, nsc, br_s, br_c, m_s, m_c, v_s, v_c, cc, cmag,
+            cpos, amp_s, amp_c, smag, sneg, cs, t_s, t_c, o_s, o_c, ng_s, ng_c, q2, r_os, r_oc,
+            r_gs, r_gc, r_km, r_kn, r_done, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd,
+            f_last, f_ld, f_80, neg_n, oa, ob, x_a1s, x_uxr, x_scl, x_t30, x_urk, x_q, x_en, d_sn,
+            d_udr, d_uq, d_ur, d_scl, d_one, d_en, clr_r, rx_uxr, rx_scl, rx_urk, rx_a1c8, rx_a2s,
+            rx_a2c, rx_asc, rx_vs2, rx_tgs, rx_ms32, rx_mc32, rx_vc2, rx_amps32, rx_ampc32,
+            rx_cmag16, rx_tgc, rx_tamp32, uxr, uxa, uxb, uxc, rd_st, rd_uq, rd_ur, rd_scl, rd_one,
+            rd_sn, rd_ms, rd_mc, rd_cs, rd_smag, rd_q2, rd_amps, udr, vsel, vd, ccp, ccm, ccn, xr,
+            rz, req, t30, scl, ngf, lo_s, lo_c, oor_sl, oor_sh, oor_cl, oor_ch, xh1, xh2, xh3, xl,
+            xgt_s, xge_s, xff, big_s, big_c, mnz
         );
         // The shared adder, non-restoring, one step over two clocks: a B clock writes the
         // chain's operands oa / ob (free-running, one LUT each from registers: u_r, its sign,
@@ -395,10 +395,10 @@ impl Logic for FitSolve {
         self.alz.d.next = bit_cast::<28, 56>(self.asc.q.val()) == self.zero28.val();
         self.asc_h.d.next = self.s_ms.q.val() & self.nsc.q.val();
         if self.asc_h.q.val() {
-            self.asc.d.next = (bit_cast::<56, 28>(!bit_cast::<28, 56>(
-                self.asc.q.val() >> self.s28.val(),
-            )) << self.s28.val())
-                | bit_cast::<56, 28>(self.asl.q.val());
+            self.asc.d.next =
+                (bit_cast::<56, 28>(!bit_cast::<28, 56>(self.asc.q.val() >> self.s28.val()))
+                    << self.s28.val())
+                    | bit_cast::<56, 28>(self.asl.q.val());
             if self.alz.q.val() {
                 self.asc.d.next = (bit_cast::<56, 28>(self.ash.q.val()) << self.s28.val())
                     | bit_cast::<56, 28>(self.asl.q.val());
