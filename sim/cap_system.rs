@@ -271,7 +271,7 @@ impl CapSystem {
 /// The same loop on the bit-accurate models (sample-level front end, cycle-level core) for
 /// long runs: a whole turn at 800 rpm is 30,000 samples. Sample n is converted at n / fs
 /// with the DAC words the NCO holds then; the result's records use sample indices as
-/// cycles. Proven equal to the RTL by tests/capacitive.rs (front end and top replays).
+/// cycles. Proven equal to the RTL by tests/capacitive/capacitive.rs (front end and top replays).
 pub fn model_run(
     d: &Derived,
     p: CapParams,

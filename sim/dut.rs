@@ -1,6 +1,6 @@
 //! The design a closed loop drives: a board top's rust-hdl rtl stepped by hand (the
 //! reference) or the compiled engine built from the Verilog that same rtl exports
-//! (`crate::engine`; tests/engine.rs and tests/engine_loop.rs prove them equal cycle for
+//! (`crate::engine`; tests/system/engine.rs and tests/system/engine_loop.rs prove them equal cycle for
 //! cycle). The loop reads and writes pins by fixed indices into its own pin lists
 //! ([`IN_PINS`]/[`OUT_PINS`] for the sinewave top, [`CAP_IN_PINS`]/[`CAP_OUT_PINS`] for the
 //! capacitive one), so every engine looks the same to it.

@@ -84,7 +84,7 @@ enum Command {
         /// 100-250x rust-hdl); without rustc it is interpreted, without Yosys rust-hdl runs,
         /// each fallback said on stderr. rust-hdl: the reference simulation. interpreter: the
         /// engine's netlist interpreted (no rustc needed). All give the same report, proven
-        /// by tests/engine.rs, tests/engine_loop.rs and the co-simulation tests.
+        /// by tests/system/engine.rs, tests/system/engine_loop.rs and the co-simulation tests.
         #[arg(long, value_enum, default_value = "compiled")]
         engine: EngineArg,
     },

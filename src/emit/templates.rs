@@ -6,7 +6,7 @@
 //! The templates are compiled into the binary (`include_str!`), so `sinedec` needs no file
 //! at run time. Rust computes every value (numbers are formatted before they reach a
 //! template) and the templates hold the text around them. Undefined variables are errors,
-//! so a template and its context cannot drift apart silently; `tests/snapshots.rs` pins
+//! so a template and its context cannot drift apart silently; `tests/cli/snapshots.rs` pins
 //! the rendered bytes.
 //!
 //! Whitespace rules (minijinja's `trim_blocks` and `lstrip_blocks`): a line holding only a

@@ -10,7 +10,7 @@
 //!
 //! Both print PASS and exit 0, or print FAIL with the first mismatches and exit non-zero
 //! (`$fatal`: vvp exits 1, the Verilator binary aborts), so a CI job can use the exit status.
-//! `-g2012` works as well: no identifier is a SystemVerilog keyword (`tests/testbench.rs`).
+//! `-g2012` works as well: no identifier is a SystemVerilog keyword (`tests/flow/testbench.rs`).
 //!
 //! Timing per cycle (the co-simulation harness's semantics): inputs change while `clk` is
 //! low, `clk` rises, outputs are compared 1 ns after the edge.

@@ -322,8 +322,12 @@ pub const BLOCK_COLUMNS: &[(&str, &str)] = &[
     ("clocks_per_sample", "clocks per sample"),
     ("rate_sps", "rate (samples/s)"),
     ("timing", "timing"),
-    ("ecp5_fmax_mhz", "ECP5-6 post-route Fmax (MHz)"),
-    ("ecp5_slack_ns", "ECP5-6 slack (ns)"),
+    (
+        "ecp5_fmax_mhz",
+        "ECP5-6 post-route Fmax, median of seeds 1-3 (MHz)",
+    ),
+    ("ecp5_seeds_mhz", "ECP5-6 Fmax at seeds 1 / 2 / 3 (MHz)"),
+    ("ecp5_slack_ns", "ECP5-6 slack at the median (ns)"),
     ("ecp5_path", "ECP5 critical path"),
     ("xc3sa_lut_levels", "xc3sa LUT levels"),
     ("xc3sa_carry_bits", "xc3sa carry bits"),
@@ -361,6 +365,8 @@ pub fn block_cells(r: &BlockRow) -> Vec<String> {
         t.rate_sps.map(|v| format!("{v:.0}")).unwrap_or_default(),
         clean(&t.text),
         e.map(|e| super::fmax_cell(e.fmax_mhz)).unwrap_or_default(),
+        e.map(|e| super::nextpnr::seeds_text(&e.seeds_mhz))
+            .unwrap_or_default(),
         e.and_then(|e| e.slack_ns())
             .map(|v| format!("{v:.2}"))
             .unwrap_or_default(),

@@ -9,7 +9,7 @@ impl Report {
             (
                 "sweep",
                 format!(
-                    "Accuracy: the bit-accurate model of the datapath (quadrant mapping, N CORDIC stages, rounding to F bits; `blocks::core::model::sample`, proven equal to the RTL by the co-simulation tests and cross-checked against the rust-hdl simulation by tests/report.rs) over {}. The error of a sample is its electrical angle minus atan2(sin, cos) of the same integer inputs in f64, in fine LSB (2^-F quadrant), wrapped into +-2 quadrants; max is the largest |error|, RMS the root of the mean square, mean the signed mean. Samples the magnitude monitor rejects are counted under `rejected` and left out. Sums are exact fixed-point integers (2^-40 LSB), so the figures do not depend on thread count.",
+                    "Accuracy: the bit-accurate model of the datapath (quadrant mapping, N CORDIC stages, rounding to F bits; `blocks::core::model::sample`, proven equal to the RTL by the co-simulation tests and cross-checked against the rust-hdl simulation by tests/report/report.rs) over {}. The error of a sample is its electrical angle minus atan2(sin, cos) of the same integer inputs in f64, in fine LSB (2^-F quadrant), wrapped into +-2 quadrants; max is the largest |error|, RMS the root of the mean square, mean the signed mean. Samples the magnitude monitor rejects are counted under `rejected` and left out. Sums are exact fixed-point integers (2^-40 LSB), so the figures do not depend on thread count.",
                     self.plan.describe()
                 ),
             ),
@@ -22,7 +22,7 @@ impl Report {
             ),
             (
                 "predicted",
-                "Residual bound: (2/pi) atan(2^-(N-1)) 2^F LSB, the angle N stages cannot resolve; the design's guarantee (README, tests/accuracy.rs) is max <= bound + 1 LSB for inputs of at least 1/8 full scale. Quantization RMS as ZipCPU's cordic generator estimates the phase variance (sw/cordiclib.cpp, phase_variance): 1/12 LSB^2 for the output quantization plus the squared rounding error of each angle-table entry (its table truncates; ours rounds, and our table errors are used). Predicted RMS adds the CORDIC residual as uniform within +-bound (bound^2/3). Neither estimate models the truncation of the x/y shifts (kept small by the guard bits).".into(),
+                "Residual bound: (2/pi) atan(2^-(N-1)) 2^F LSB, the angle N stages cannot resolve; the design's guarantee (README, tests/blocks/accuracy.rs) is max <= bound + 1 LSB for inputs of at least 1/8 full scale. Quantization RMS as ZipCPU's cordic generator estimates the phase variance (sw/cordiclib.cpp, phase_variance): 1/12 LSB^2 for the output quantization plus the squared rounding error of each angle-table entry (its table truncates; ours rounds, and our table errors are used). Predicted RMS adds the CORDIC residual as uniform within +-bound (bound^2/3). Neither estimate models the truncation of the x/y shifts (kept small by the guard bits).".into(),
             ),
             (
                 "fpga",
@@ -51,11 +51,17 @@ impl Report {
                         .collect();
                     let mean = per_net.iter().sum::<f64>() / per_net.len().max(1) as f64;
                     format!(
-                        "Post-route timing ({}): every design of this report (each N, both architectures, every block, the whole top) is synthesized with `synth_ecp5 -top T -json T.json` and placed and routed with nextpnr-ecp5 `{} --out-of-context --timing-allow-fail --seed {} --freq {:.3}` (the configured clock). ECP5 speed 6 is a LUT4 + carry-chain family faster than Spartan-3A -4 and Cyclone III C8, so these figures flatter the target FPGAs. Fmax is the last `Max frequency` of the log (after routing), for register-to-register paths; slack = clock period - 1/Fmax (negative: the configured clock fails). The critical path's start and end are named by block: nextpnr's cell names keep the RTL register names (`rtl.counter.usum_TRELLIS_FF_Q_3` is register `usum` of block `counter`); `(top level)` is a register named after a port of the top. The full register names are in the list below and in the JSON's `details`. Out of context, ports are not timed, so paths from and to the pins are not included. Results are cached by design hash. Mean routing delay per routed net on this report's critical paths: {:.3} ns over {} paths (the calibration of delay_model, docs/timing.md).",
+                        "Post-route timing ({}): every design of this report (each N, both architectures, every block, the whole top) is synthesized with `synth_ecp5 -top T -json T.json` and placed and routed with nextpnr-ecp5 `{} --out-of-context --timing-allow-fail --seed S --freq {:.3}` (the configured clock) at seeds S = {}. ECP5 speed 6 is a LUT4 + carry-chain family faster than Spartan-3A -4 and Cyclone III C8, so these figures flatter the target FPGAs. A seed's Fmax is the last `Max frequency` of its log (after routing), for register-to-register paths; one seed moves about +-6 % on the same netlist, so the figure is the median of the seeds, and the critical path is that of the median seed. The timing rule (docs/timing.md): median >= {} x the clock and every seed >= {} x. Slack = clock period - 1/median (negative: the configured clock fails). The critical path's start and end are named by block: nextpnr's cell names keep the RTL register names (`rtl.counter.usum_TRELLIS_FF_Q_3` is register `usum` of block `counter`); `(top level)` is a register named after a port of the top. The full register names are in the list below and in the JSON's `details`. Out of context, ports are not timed, so paths from and to the pins are not included. Results are cached by design hash. Mean routing delay per routed net on this report's critical paths: {:.3} ns over {} paths (the calibration of delay_model, docs/timing.md).",
                         self.ecp5_version,
                         nextpnr::DEVICE_ARGS.join(" "),
-                        nextpnr::SEED,
                         d.clock_hz / 1e6,
+                        nextpnr::SEEDS
+                            .iter()
+                            .map(|s| s.to_string())
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                        nextpnr::MEDIAN_MARGIN,
+                        nextpnr::SEED_MARGIN,
                         mean,
                         per_net.len(),
                     )
@@ -96,7 +102,7 @@ impl Report {
                         .filter_map(|r| r.other.rejected().map(|e| format!("N = {}: {e}", r.n)))
                         .collect();
                     format!(
-                        "For every N the core is synthesized a second time with cordic.architecture = \"{}\" (the configured one is \"{}\": its columns repeat the main table's), for xc3sa and cycloneive with the same scripts and cache. Latency is N + 2 cycles unrolled and S + 2 iterative (S = N·ceil(W/4): the iterative core is digit-serial, 4 bits per clock); throughput is the configured clock ({:.3} MHz) divided by the clocks per accepted sample (1 unrolled, S iterative). The ratio is iterative / unrolled xc3sa LUT4. The accuracy is identical for both architectures (their outputs are bit-identical for every input, proven by tests/iterative.rs), so the accuracy sweep is not repeated: the accuracy columns hold for both. {}",
+                        "For every N the core is synthesized a second time with cordic.architecture = \"{}\" (the configured one is \"{}\": its columns repeat the main table's), for xc3sa and cycloneive with the same scripts and cache. Latency is N + 2 cycles unrolled and S + 2 iterative (S = N·ceil(W/4): the iterative core is digit-serial, 4 bits per clock); throughput is the configured clock ({:.3} MHz) divided by the clocks per accepted sample (1 unrolled, S iterative). The ratio is iterative / unrolled xc3sa LUT4. The accuracy is identical for both architectures (their outputs are bit-identical for every input, proven by tests/blocks/iterative.rs), so the accuracy sweep is not repeated: the accuracy columns hold for both. {}",
                         arch_name(other),
                         arch_name(own),
                         d.clock_hz / 1e6,

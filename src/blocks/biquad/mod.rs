@@ -60,7 +60,7 @@
 //! Truncation bias: the five floors of a section average about -2.5 S-LSB per sample and
 //! the low-pass recursion amplifies them by its DC gain 1/(1 + a1 + a2) (about 260 for the
 //! 4 kHz / 400 kHz Butterworth), so with G = 2 the output of that low-pass sits up to
-//! ~160 LSB low; G = 8 brings the error below 4 LSB (tests/biquad.rs measures both).
+//! ~160 LSB low; G = 8 brings the error below 4 LSB (tests/capacitive/biquad.rs measures both).
 //!
 //! # Sketch
 //!

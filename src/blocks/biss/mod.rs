@@ -87,7 +87,7 @@
 //! frame is good), the minimum high and low time is one clock period (f_MA <= f_clk / 2) and
 //! the answer comes 2 to 3 clock periods after the edge.
 //!
-//! Measured (`tests/biss_corners.rs`, `maximum_ma_rate_measured`): the highest MA frequency, in
+//! Measured (`tests/outputs/biss_corners.rs`, `maximum_ma_rate_measured`): the highest MA frequency, in
 //! 0.25 MHz steps, at which every one of 24 frames at varying MA/clock phase was read
 //! correctly, with 25 ns of line delay each way (about 5 m of cable); "compensated" is a
 //! master with BiSS line-delay compensation (samples at r_n + D + T/2), "next edge" one that

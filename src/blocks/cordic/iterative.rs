@@ -42,7 +42,7 @@
 //!   `Derived::atan_table` once per iteration, at j = 1 (D >= 3 since adc.width >= 10);
 //!   the first clock of a sample loads its start value (the rounding half plus the
 //!   quadrant), whose constant bits synthesis maps to the flip-flops' synchronous set and
-//!   reset: xc3sa 382 -> 366 LUT at N = 14 (docs/timing.md, "Thirteenth round").
+//!   reset: xc3sa 382 -> 366 LUT at N = 14.
 //! * The direction of iteration k is the sign of y_k: bit W - 1 of the mapper's y' (k = 0)
 //!   or of the register (k >= 1) at j = 0, held for the other digits.
 //!

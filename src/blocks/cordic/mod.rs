@@ -30,7 +30,7 @@
 //!   In the unrolled stage x and y are one adder each with y's sign in the operand's
 //!   inversion and carry-in; z + atan and z - atan are two adders side by side and y's sign
 //!   selects after them, so the sign (about 3W loads) reaches z through one LUT, not a
-//!   carry chain (docs/timing.md, "Twelfth round").
+//!   carry chain (docs/timing.md, "Design rules learned").
 //!   z starts at 0; the angle table atan(2^-i) is pre-scaled by 1/(pi/2) and held in units
 //!   of 2^-(F+Gz) quadrant, rounded to nearest (`crate::exact`).
 //! * z reaches sum atan(2^-i) = 1.7433 rad = 1.11 quadrant and can dip to -0.11 quadrant

@@ -1,7 +1,7 @@
 //! Automatic offset, gain and phase calibration by a least-squares ellipse fit over whole
 //! signal periods (`correction.mode = "auto"`): the bit-accurate integer specification of
 //! the RTL in [`super::fit_hdl`] (tracker, sums) and [`super::fit_solve`] (one serial
-//! multiplier, one serial divider / square root), which `tests/correction_fit_rtl.rs`
+//! multiplier, one serial divider / square root), which `tests/blocks/correction_fit_rtl.rs`
 //! checks update by update.
 //!
 //! ```text

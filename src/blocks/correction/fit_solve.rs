@@ -78,7 +78,7 @@
 //!   (|Cq| < 2^48 plus |m_s m_c| < 2^48), |C| 48 (the bits |C| 2^16 keeps), Amp 25, |S| and
 //!   Cc 16, Amp_s Cc 40, 2^30 - S² 31, the quotient's magnitude u_mag 24 (read as m, or
 //!   under a clamp below 2^16). A difference such as V - m² is taken in the narrow width:
-//!   its low bits are exact, and the true value fits. `tests/correction_fit_solver.rs`
+//!   its low bits are exact, and the true value fits. `tests/blocks/correction_fit_solver.rs`
 //!   drives the solver at these bounds (N = 2^24, |d| = 2^16 - 1, full correlation); with
 //!   m one bit narrower it fails.
 //! * Each state writes its registers through at most one adder or compare (the timing rule
@@ -109,7 +109,7 @@ pub const SOLVE_CYCLES: u32 =
 /// Clocks from a window's first sample after its closing boundary (the sample presented
 /// before rising edge j) to the new coefficients (on the outputs after edge j +
 /// UPDATE_LATENCY): the fit's pipeline stages ([`super::fit_hdl::FIT_STAGES`]), then [`SOLVE_CYCLES`];
-/// `tests/correction_fit_rtl.rs` checks every update against it.
+/// `tests/blocks/correction_fit_rtl.rs` checks every update against it.
 pub const UPDATE_LATENCY: u32 = SOLVE_CYCLES + super::fit_hdl::FIT_STAGES;
 
 // The widths of the module doc assume windows of at most 2^24 samples.
@@ -989,7 +989,7 @@ impl crate::cosim::step::Clocked for FitSolve {
     }
 }
 
-/// The solver on its own in the co-simulation harness (`tests/correction_fit_solver.rs`
+/// The solver on its own in the co-simulation harness (`tests/blocks/correction_fit_solver.rs`
 /// feeds it window sums at the limits of the module doc's bounds).
 impl crate::cosim::CosimBlock for FitSolve {
     fn input_ports(&self) -> Vec<crate::cosim::Port> {

@@ -414,7 +414,7 @@ pub struct QuadrantCounter {
     /// ahead, the wrap from the flags kept with u. The iterative architecture (not `flat`)
     /// adds + 1 / - 1 after the choice of base, decodes a load's step in the clock and takes
     /// the wrap from compares of u: fewer LUTs, which its area target needs
-    /// (`tests/iterative.rs`, docs/timing.md "Thirteenth round").
+    /// (`tests/blocks/iterative.rs`).
     flat: Constant<Bit>,
     /// Mask of M turn bits.
     tmask: Constant<Bits<32>>,
@@ -610,7 +610,7 @@ impl Logic for QuadrantCounter {
         self.uzer.next = (self.u_reg.q.val() & self.umask.val()) == self.zero.val();
         self.uone.next = (self.u_reg.q.val() & self.umask.val()) == self.uone_c.val();
         // Iterative: the wrap from compares of u itself, so the flags kept with u go unread
-        // and synthesis drops them (fewer LUTs; `tests/iterative.rs`).
+        // and synthesis drops them (fewer LUTs; `tests/blocks/iterative.rs`).
         if !self.flat.val() {
             self.wrap.next = (self.up_in.val() & (self.ulst.val() | self.ppr1.val()))
                 | (self.down_in.val() & (self.uzer.val() | self.ppr1.val()));
@@ -632,7 +632,7 @@ impl Logic for QuadrantCounter {
         // the backward step -1 passes 0 -> 3 only from 0 to 3.
         // The unrolled architecture takes them from the registers decoded a clock ahead
         // (below); the iterative one decodes them here, from the latched count and this
-        // clock's sample (the registers cost it LUTs; `tests/iterative.rs`).
+        // clock's sample (the registers cost it LUTs; `tests/blocks/iterative.rs`).
         if self.flat.val() {
             self.up_l.next = self.ul_reg.q.val();
             self.down_l.next = self.dl_reg.q.val();

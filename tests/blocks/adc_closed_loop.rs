@@ -1,0 +1,173 @@
+//! SPI ADC controller: parameters and limits, closed loop with the LTC1407A-1 chip model in
+//! the rust-hdl simulation (every delivered sample equals the code the chip sampled, at the
+//! predicted latency, back to back, across resets, no protocol violation), a generic SPI
+//! ADC in closed loop with an independent slave model, and rust-hdl == Icarus == Verilator
+//! (the MISO sequence of the closed loop replayed as stimulus) for both presets.
+//!
+//! (Second half of the tests of `tests/blocks/adc.rs`; helpers in `tests/blocks/adc_util/`.)
+use crate::adc_util;
+use crate::common;
+use adc_util::*;
+use sinedec::blocks::adc::hdl::AdcController;
+use sinedec::blocks::adc::AdcParams;
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::sim::ltc1407a::{Ltc1407a, ViolationKind};
+use sinedec::verify::{block_traces, Simulators};
+
+#[test]
+fn chip_model_flags_a_controller_that_breaks_the_timing() {
+    // SCK of 2 clocks at 133.33 MHz (66.7 MHz) bypassing validate(): the model must report
+    // it and the data read 15 ns after the shifting edge (t8 = 8 ns is met, but the SCK is
+    // too fast) still decode; then a period one SCK short of the acquisition time.
+    let p = AdcParams::ltc1407a(F133, 2, None);
+    assert!(p.validate().is_err());
+    let mut chip = ltc_with_list(F133, code_list(20, 1), 2);
+    let cycles = 2 + p.startup_clocks() as usize + 5 * p.period_clocks as usize;
+    closed_loop(&p, &mut chip, &|k| (k < 2, true), cycles);
+    assert!(chip
+        .violations()
+        .iter()
+        .any(|v| v.kind == ViolationKind::SckTooFast));
+    // Period of 33 SCK: CONV comes 30 ns after the 32nd rise, and the second CONV of a
+    // too-short period is ignored when it arrives before the 32nd edge.
+    let mut p = AdcParams::ltc1407a(F133, 3, None);
+    p.frame.frame_sck = 33;
+    p.period_clocks = 33 * 3;
+    let mut chip = ltc_with_list(F133, code_list(20, 1), 2);
+    let cycles = 2 + p.startup_clocks() as usize + 5 * p.period_clocks as usize;
+    closed_loop(&p, &mut chip, &|k| (k < 2, true), cycles);
+    assert!(chip
+        .violations()
+        .iter()
+        .any(|v| v.kind == ViolationKind::AcquisitionTooShort));
+    let mut p = AdcParams::ltc1407a(F133, 3, None);
+    p.period_clocks = 31 * 3;
+    p.frame.frame_sck = 31;
+    p.frame.offsets = [2, 16];
+    let mut chip = ltc_with_list(F133, code_list(20, 1), 2);
+    let cycles = 2 + p.startup_clocks() as usize + 5 * p.period_clocks as usize;
+    closed_loop(&p, &mut chip, &|k| (k < 2, true), cycles);
+    assert!(chip
+        .violations()
+        .iter()
+        .any(|v| v.kind == ViolationKind::ConvBeforeConversionDone));
+}
+
+#[test]
+fn reading_too_early_gives_wrong_data() {
+    // A controller that captures one clock after the shifting edge (7.5 ns < t8 = 8 ns)
+    // reads undefined bits: emulate it by shifting the chip's answer one clock earlier.
+    struct Early(Ltc1407a, std::collections::VecDeque<bool>);
+    impl Slave for Early {
+        fn step(&mut self, conv: bool, sck: bool) -> bool {
+            // Delay the chip's answers by two clocks: the controller, capturing three
+            // clocks after the shifting edge, then sees the level one clock (7.5 ns) after
+            // it, inside the t8 window.
+            self.1.push_back(self.0.step(conv, sck));
+            if self.1.len() > 2 {
+                self.1.pop_front().unwrap_or(false)
+            } else {
+                false
+            }
+        }
+    }
+    let p = AdcParams::ltc1407a_fastest(F133).expect("feasible");
+    let codes = code_list(30, 4);
+    let mut chip = Early(ltc_with_list(F133, codes.clone(), 4), Default::default());
+    let cycles = 2 + p.startup_clocks() as usize + 20 * p.period_clocks as usize;
+    let run = closed_loop(&p, &mut chip, &|k| (k < 2, true), cycles);
+    let s = run.samples(14);
+    let wrong = s
+        .iter()
+        .enumerate()
+        .filter(|(j, &(_, a, b))| [a, b] != [codes[*j][0] as i64, codes[*j][1] as i64])
+        .count();
+    assert!(wrong > s.len() / 2, "only {wrong} of {} wrong", s.len());
+}
+
+#[test]
+fn generic_one_channel_offset_binary_cs_framed() {
+    let p = generic_one_channel();
+    generic_closed_loop(&p, 30);
+    println!("{}", p.describe());
+}
+
+#[test]
+fn generic_two_channels_cpha1_asymmetric_sck() {
+    let p = generic_two_channels();
+    generic_closed_loop(&p, 30);
+    println!("{}", p.describe());
+}
+
+#[test]
+fn cosim_ltc1407a_fastest_divider_with_resets() {
+    let p = AdcParams::ltc1407a_fastest(F133).expect("feasible");
+    let per = p.period_clocks as usize;
+    let resets = [(3 + per * 4 + 40, 2usize), (3 + per * 9 + 97, 1)];
+    let drop_at = 3 + per * 14 + 20;
+    let sched = move |k: usize| {
+        let rst = k < 3 || resets.iter().any(|&(a, n)| k >= a && k < a + n);
+        (rst, !(k >= drop_at && k < drop_at + 9))
+    };
+    let mut chip = ltc_with_list(F133, code_list(100, 21), 21);
+    let run = closed_loop(&p, &mut chip, &sched, 3 + per * 20);
+    assert!(chip.violations().is_empty());
+    assert!(check_against_chip(&p, &run, &chip) >= 8);
+    cosim(&p, &run, "adc_ltc133");
+}
+
+#[test]
+fn cosim_ltc1407a_50mhz() {
+    let p = AdcParams::ltc1407a_fastest(F50).expect("feasible");
+    let per = p.period_clocks as usize;
+    let mut chip = ltc_with_list(F50, code_list(100, 22), 22);
+    let run = closed_loop(
+        &p,
+        &mut chip,
+        &|k| (k < 2 || k == 2 + per * 5 + 33, true),
+        per * 16,
+    );
+    assert!(chip.violations().is_empty());
+    assert!(check_against_chip(&p, &run, &chip) >= 8);
+    cosim(&p, &run, "adc_ltc50");
+}
+
+#[test]
+fn cosim_generic_presets() {
+    for (p, top) in [
+        (generic_one_channel(), "adc_gen1"),
+        (generic_two_channels(), "adc_gen2"),
+    ] {
+        let run = generic_closed_loop(&p, 12);
+        // Add a reset in the middle of a frame and random MISO afterwards.
+        let mut rows = run.rows.clone();
+        let mut r = SplitMix64(5);
+        let at = rows.len() / 2 + 7;
+        for (k, row) in rows.iter_mut().enumerate() {
+            if k >= at && k < at + 2 {
+                row[0] = 1;
+            }
+            if k >= at {
+                row[2] = r.next_u64() & 1;
+            }
+        }
+        let dir = common::workdir(top);
+        let t = block_traces(
+            AdcController::new(&p),
+            top,
+            "clk",
+            &rows,
+            Simulators::ALL,
+            &dir,
+        )
+        .expect("simulators ran");
+        if let Some(m) = t.mismatch() {
+            panic!("{top}: {m}");
+        }
+        assert_eq!(t.rust_hdl[..at], run.outs[..at], "{top}");
+        assert!(
+            t.rust_hdl.iter().skip(at).any(|o| o[2] == 1),
+            "{top}: restarts"
+        );
+    }
+}

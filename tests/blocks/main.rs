@@ -1,0 +1,33 @@
+//! Blocks of the sinewave path, each against its model and in rust-hdl, Icarus and Verilator:
+//! the SPI ADC controller, the pre-amplifier set-up, the correction (static, peak, auto fit),
+//! the monitor, the QEP decoder, the core (CORDIC, quadrant counter) and its iterative
+//! architecture.
+//!
+//! One test binary per area (`cargo test --test blocks`; `-- <module>::` narrows it to one
+//! file).
+mod adc_util;
+#[path = "../common/mod.rs"]
+mod common;
+mod correction_util;
+
+mod accuracy;
+mod adc;
+mod adc_closed_loop;
+mod core_behaviour;
+mod core_sweep;
+mod correction;
+mod correction_auto;
+mod correction_fit;
+mod correction_fit_config;
+mod correction_fit_rtl;
+mod correction_fit_solver;
+mod correction_phase;
+mod cosim_core;
+mod cosim_harness;
+mod cosim_stage;
+mod counter_load;
+mod iterative;
+mod monitor;
+mod preamp;
+mod qep;
+mod rtl_vs_model;

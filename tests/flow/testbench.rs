@@ -1,0 +1,443 @@
+//! The emitted self-checking testbench passes in Icarus (as Verilog-2005 and as
+//! SystemVerilog-2012) and in Verilator against the emitted core; when the core is changed it
+//! reports FAIL and the simulator process exits non-zero in both simulators. It uses no
+//! SystemVerilog keyword as an identifier. The commands are the ones the README documents.
+use crate::common;
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// Exit status and stdout of one simulator run.
+struct Run {
+    ok: bool,
+    code: Option<i32>,
+    stdout: String,
+}
+
+fn tool(cmd: &mut Command, what: &str) -> Output {
+    cmd.output()
+        .unwrap_or_else(|e| panic!("{what} does not start: {e}"))
+}
+
+/// `iverilog -g<generation> -o tb.vvp core.v tb.v && vvp -n tb.vvp`.
+fn icarus(core: &str, tb: &str, dir: &Path, generation: &str) -> Run {
+    sinedec::cosim::require_tool("iverilog").expect("iverilog installed");
+    std::fs::write(dir.join("core.v"), core).expect("write");
+    std::fs::write(dir.join("tb.v"), tb).expect("write");
+    let c = tool(
+        Command::new("iverilog")
+            .arg(format!("-g{generation}"))
+            .arg("-o")
+            .arg(dir.join("tb.vvp"))
+            .arg(dir.join("core.v"))
+            .arg(dir.join("tb.v")),
+        "iverilog",
+    );
+    assert!(
+        c.status.success(),
+        "iverilog -g{generation}: {}",
+        String::from_utf8_lossy(&c.stderr)
+    );
+    let r = tool(Command::new("vvp").arg("-n").arg(dir.join("tb.vvp")), "vvp");
+    Run {
+        ok: r.status.success(),
+        code: r.status.code(),
+        stdout: String::from_utf8_lossy(&r.stdout).to_string(),
+    }
+}
+
+/// `verilator --binary --timing --top-module sd_core_tb core.v tb.v &&
+/// obj_dir/Vsd_core_tb`; no warning may concern the testbench itself.
+fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
+    sinedec::cosim::require_tool("verilator").expect("verilator installed");
+    let _ = std::fs::remove_dir_all(dir.join("obj_dir"));
+    std::fs::write(dir.join("core.v"), core).expect("write");
+    std::fs::write(dir.join("tb.v"), tb).expect("write");
+    let c = tool(
+        Command::new("verilator")
+            .args(["--binary", "--timing", "-j", "1"])
+            .args(["--top-module", "sd_core_tb"])
+            .arg("core.v")
+            .arg("tb.v")
+            .current_dir(dir),
+        "verilator",
+    );
+    assert!(
+        c.status.success(),
+        "verilator: {}",
+        String::from_utf8_lossy(&c.stderr)
+    );
+    let log = String::from_utf8_lossy(&c.stderr);
+    assert!(
+        !log.lines()
+            .any(|l| l.starts_with('%') && l.contains("tb.v:")),
+        "warnings about the testbench:\n{log}"
+    );
+    let r = tool(
+        &mut Command::new(dir.join("obj_dir/Vsd_core_tb")),
+        "Vsd_core_tb",
+    );
+    Run {
+        ok: r.status.success(),
+        code: r.status.code(),
+        stdout: String::from_utf8_lossy(&r.stdout).to_string(),
+    }
+}
+
+/// The core and testbench of a small config, and the core broken (fine LSB dropped).
+fn files() -> (String, String, String) {
+    let l = common::cfg(6, 12, 14, 5, 3);
+    let g = sinedec::emit::generate(&l, "test").expect("generate");
+    let get = |n: &str| {
+        g.files
+            .iter()
+            .find(|f| f.name == n)
+            .unwrap_or_else(|| panic!("{n} missing"))
+            .text
+            .clone()
+    };
+    let core = get("sd_core.v");
+    let tb = get("sd_core_tb.v");
+    let broken = core.replacen(
+        "assign out_fine = fine[11:0];",
+        "assign out_fine = fine[11:0] & 12'hffe;",
+        1,
+    );
+    assert_ne!(broken, core);
+    (core, tb, broken)
+}
+
+#[test]
+fn emitted_testbench_passes_and_catches_a_change() {
+    let (core, tb, broken) = files();
+    let dir = common::workdir("testbench");
+    for generation in ["2005", "2012"] {
+        let r = icarus(&core, &tb, &dir, generation);
+        assert!(
+            r.stdout.contains("PASS") && r.ok,
+            "-g{generation}: {}",
+            r.stdout
+        );
+        let r = icarus(&broken, &tb, &dir, generation);
+        assert!(r.stdout.contains("FAIL"), "-g{generation}: {}", r.stdout);
+        assert!(
+            !r.ok,
+            "-g{generation}: vvp exited {:?} after a mismatch",
+            r.code
+        );
+    }
+}
+
+#[test]
+fn emitted_testbench_runs_in_verilator_and_fails_on_a_change() {
+    let (core, tb, broken) = files();
+    let dir = common::workdir("testbench_verilator");
+    let r = verilator(&core, &tb, &dir);
+    assert!(
+        r.stdout.contains("PASS") && r.ok,
+        "{:?} {}",
+        r.code,
+        r.stdout
+    );
+    let r = verilator(&broken, &tb, &dir);
+    assert!(r.stdout.contains("FAIL"), "{}", r.stdout);
+    assert!(!r.ok, "the simulation exited {:?} after a mismatch", r.code);
+}
+
+/// IEEE 1800-2017 Annex B reserved keywords (SystemVerilog), which a Verilog-2001 file
+/// read as SystemVerilog must not use as identifiers.
+const SV_KEYWORDS: &[&str] = &[
+    "accept_on",
+    "alias",
+    "always",
+    "always_comb",
+    "always_ff",
+    "always_latch",
+    "and",
+    "assert",
+    "assign",
+    "assume",
+    "automatic",
+    "before",
+    "begin",
+    "bind",
+    "bins",
+    "binsof",
+    "bit",
+    "break",
+    "buf",
+    "bufif0",
+    "bufif1",
+    "byte",
+    "case",
+    "casex",
+    "casez",
+    "cell",
+    "chandle",
+    "checker",
+    "class",
+    "clocking",
+    "cmos",
+    "config",
+    "const",
+    "constraint",
+    "context",
+    "continue",
+    "cover",
+    "covergroup",
+    "coverpoint",
+    "cross",
+    "deassign",
+    "default",
+    "defparam",
+    "design",
+    "disable",
+    "dist",
+    "do",
+    "edge",
+    "else",
+    "end",
+    "endcase",
+    "endchecker",
+    "endclass",
+    "endclocking",
+    "endconfig",
+    "endfunction",
+    "endgenerate",
+    "endgroup",
+    "endinterface",
+    "endmodule",
+    "endpackage",
+    "endprimitive",
+    "endprogram",
+    "endproperty",
+    "endspecify",
+    "endsequence",
+    "endtable",
+    "endtask",
+    "enum",
+    "event",
+    "eventually",
+    "expect",
+    "export",
+    "extends",
+    "extern",
+    "final",
+    "first_match",
+    "for",
+    "force",
+    "foreach",
+    "forever",
+    "fork",
+    "forkjoin",
+    "function",
+    "generate",
+    "genvar",
+    "global",
+    "highz0",
+    "highz1",
+    "if",
+    "iff",
+    "ifnone",
+    "ignore_bins",
+    "illegal_bins",
+    "implements",
+    "implies",
+    "import",
+    "incdir",
+    "include",
+    "initial",
+    "inout",
+    "input",
+    "inside",
+    "instance",
+    "int",
+    "integer",
+    "interconnect",
+    "interface",
+    "intersect",
+    "join",
+    "join_any",
+    "join_none",
+    "large",
+    "let",
+    "liblist",
+    "library",
+    "local",
+    "localparam",
+    "logic",
+    "longint",
+    "macromodule",
+    "matches",
+    "medium",
+    "modport",
+    "module",
+    "nand",
+    "negedge",
+    "nettype",
+    "new",
+    "nexttime",
+    "nmos",
+    "nor",
+    "noshowcancelled",
+    "not",
+    "notif0",
+    "notif1",
+    "null",
+    "or",
+    "output",
+    "package",
+    "packed",
+    "parameter",
+    "pmos",
+    "posedge",
+    "primitive",
+    "priority",
+    "program",
+    "property",
+    "protected",
+    "pull0",
+    "pull1",
+    "pulldown",
+    "pullup",
+    "pulsestyle_ondetect",
+    "pulsestyle_onevent",
+    "pure",
+    "rand",
+    "randc",
+    "randcase",
+    "randsequence",
+    "rcmos",
+    "real",
+    "realtime",
+    "ref",
+    "reg",
+    "reject_on",
+    "release",
+    "repeat",
+    "restrict",
+    "return",
+    "rnmos",
+    "rpmos",
+    "rtran",
+    "rtranif0",
+    "rtranif1",
+    "s_always",
+    "s_eventually",
+    "s_nexttime",
+    "s_until",
+    "s_until_with",
+    "scalared",
+    "sequence",
+    "shortint",
+    "shortreal",
+    "showcancelled",
+    "signed",
+    "small",
+    "soft",
+    "solve",
+    "specify",
+    "specparam",
+    "static",
+    "string",
+    "strong",
+    "strong0",
+    "strong1",
+    "struct",
+    "super",
+    "supply0",
+    "supply1",
+    "sync_accept_on",
+    "sync_reject_on",
+    "table",
+    "tagged",
+    "task",
+    "this",
+    "throughout",
+    "time",
+    "timeprecision",
+    "timeunit",
+    "tran",
+    "tranif0",
+    "tranif1",
+    "tri",
+    "tri0",
+    "tri1",
+    "triand",
+    "trior",
+    "trireg",
+    "type",
+    "typedef",
+    "union",
+    "unique",
+    "unique0",
+    "unsigned",
+    "until",
+    "until_with",
+    "untyped",
+    "use",
+    "uwire",
+    "var",
+    "vectored",
+    "virtual",
+    "void",
+    "wait",
+    "wait_order",
+    "wand",
+    "weak",
+    "weak0",
+    "weak1",
+    "while",
+    "wildcard",
+    "wire",
+    "with",
+    "within",
+    "wor",
+    "xnor",
+    "xor",
+];
+
+/// Every identifier the testbench declares (reg, wire, integer, module, instance names) is
+/// not a SystemVerilog keyword.
+#[test]
+fn testbench_declares_no_systemverilog_keyword() {
+    let (_, tb, _) = files();
+    let mut declared = vec![];
+    for line in tb.lines().map(str::trim_start) {
+        if line.starts_with("//") {
+            continue;
+        }
+        let decl = ["reg ", "wire ", "integer ", "module "]
+            .iter()
+            .find_map(|k| line.strip_prefix(k));
+        if let Some(rest) = decl {
+            let rest = rest.trim_start();
+            let rest = if rest.starts_with('[') {
+                rest.split_once(']').map(|x| x.1).unwrap_or(rest)
+            } else {
+                rest
+            };
+            let name: String = rest
+                .trim_start()
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            declared.push(name);
+        }
+        // Instance: "<module> <instance>(".
+        if let Some((m, rest)) = line.split_once(' ') {
+            if m.ends_with("_core") {
+                declared.push(rest.split('(').next().unwrap_or("").trim().to_string());
+            }
+        }
+    }
+    assert!(declared.len() >= 8, "{declared:?}");
+    for d in &declared {
+        assert!(!d.is_empty(), "{declared:?}");
+        assert!(
+            !SV_KEYWORDS.contains(&d.as_str()),
+            "`{d}` is a SystemVerilog keyword: {declared:?}"
+        );
+    }
+    // The memory of expected values in particular (it was named `expect`).
+    assert!(!tb.contains("expect ["), "{}", &tb[..tb.len().min(2000)]);
+}

@@ -1,0 +1,18 @@
+//! Whole tops in closed loop: the encoder, ADC and master models around `<name>_top`,
+//! `simulate` on both engines, the compiled engine itself.
+//!
+//! One test binary per area (`cargo test --test system`; `-- <module>::` narrows it to one
+//! file).
+#[path = "../common/mod.rs"]
+mod common;
+
+mod abz_top;
+mod correction_fit_loop;
+mod e2e;
+mod engine;
+mod engine_loop;
+mod outputs_top;
+mod simulate_engine;
+mod simulate_truth;
+mod system;
+mod velocity_top;

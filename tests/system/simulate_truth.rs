@@ -1,0 +1,602 @@
+//! `simulate` tells the truth (issue 13, section E), at the library level: meaningless
+//! options are rejected with the option's name and allowed range, a run without a decoded
+//! sample is an error, single-turn positions compare modulo one turn, a decoder started
+//! above the unwrap limit with the QEP fallback keeps a consistent count, the capacitive
+//! path rejects the track imperfections it cannot model, `check` and `simulate` name their
+//! latencies alike, the capacitive `check` prints one speed limit, the CSV columns are the
+//! README's on both paths, and the VCD streams `<name>_top`'s ports.
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
+use sinedec::sim::encoder::Profile;
+use sinedec::simulate::{run, run_capacitive, run_capacitive_traced, run_traced, SimOptions};
+use std::cell::RefCell;
+use std::io::Write;
+use std::rc::Rc;
+
+const CAP: &str = include_str!("../../configs/cyclone3_capacitive.toml");
+
+fn default() -> Loaded {
+    Loaded::default_config().expect("default config")
+}
+
+fn cap() -> Loaded {
+    Loaded::parse(CAP, "cyclone3_capacitive.toml").expect("capacitive config")
+}
+
+fn err_of<T>(r: sinedec::error::Result<T>) -> String {
+    match r {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// Every meaningless option is rejected before the simulation runs, naming the option and
+/// its allowed range.
+#[test]
+fn meaningless_options_are_rejected_by_name() {
+    let l = default();
+    let base = SimOptions {
+        duration_s: 1e-3,
+        ..Default::default()
+    };
+    let cases: Vec<(SimOptions, &str, &str)> = vec![
+        (
+            SimOptions {
+                profile: Profile::Constant { rpm: f64::NAN },
+                ..base.clone()
+            },
+            "--profile",
+            "rpm",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Constant { rpm: f64::INFINITY },
+                ..base.clone()
+            },
+            "--profile",
+            "rpm",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Constant { rpm: 1e12 },
+                ..base.clone()
+            },
+            "--profile",
+            "1000000",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Ramp {
+                    from: 0.0,
+                    to: 3000.0,
+                    over: 0.0,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "ramp time",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Ramp {
+                    from: 0.0,
+                    to: 3000.0,
+                    over: -1.0,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "ramp time",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Reversal {
+                    rpm: 300.0,
+                    at: 1e-4,
+                    over: 0.0,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "reversal time",
+        ),
+        (
+            SimOptions {
+                profile: Profile::Reversal {
+                    rpm: 300.0,
+                    at: f64::NAN,
+                    over: 1e-4,
+                },
+                ..base.clone()
+            },
+            "--profile",
+            "reversal start",
+        ),
+        (
+            SimOptions {
+                noise_lsb: -1.0,
+                ..base.clone()
+            },
+            "--noise-lsb",
+            "0..=10000",
+        ),
+        (
+            SimOptions {
+                noise_lsb: f64::NAN,
+                ..base.clone()
+            },
+            "--noise-lsb",
+            "0..=10000",
+        ),
+        (
+            SimOptions {
+                amplitude: 0.0,
+                ..base.clone()
+            },
+            "--amplitude",
+            "0 < amplitude <= 1",
+        ),
+        (
+            SimOptions {
+                amplitude: 1.5,
+                ..base.clone()
+            },
+            "--amplitude",
+            "0 < amplitude <= 1",
+        ),
+        (
+            SimOptions {
+                amplitude: f64::NAN,
+                ..base.clone()
+            },
+            "--amplitude",
+            "0 < amplitude <= 1",
+        ),
+        (
+            SimOptions {
+                offset: (f64::NAN, 0.0),
+                ..base.clone()
+            },
+            "--offset-sin",
+            "-1..=1",
+        ),
+        (
+            SimOptions {
+                offset: (0.0, 2.0),
+                ..base.clone()
+            },
+            "--offset-cos",
+            "-1..=1",
+        ),
+        (
+            SimOptions {
+                gain_mismatch: f64::NAN,
+                ..base.clone()
+            },
+            "--gain-mismatch",
+            "-1..=1",
+        ),
+        (
+            SimOptions {
+                phase_error_deg: f64::NAN,
+                ..base.clone()
+            },
+            "--phase-error",
+            "-45..=45",
+        ),
+        (
+            SimOptions {
+                third_harmonic: f64::INFINITY,
+                ..base.clone()
+            },
+            "--harmonic3",
+            "-0.5..=0.5",
+        ),
+        (
+            SimOptions {
+                duration_s: 0.0,
+                ..base.clone()
+            },
+            "--duration",
+            "0 < seconds <= 10",
+        ),
+    ];
+    for (o, opt, allowed) in cases {
+        let t0 = std::time::Instant::now();
+        let e = err_of(run(&l, &o, |_, _| {}));
+        assert!(e.contains(&format!("`{opt}`")), "{o:?}: {e}");
+        assert!(e.contains(allowed), "{o:?}: {e}");
+        // Rejected up front: a 1 ms run takes seconds of simulation.
+        assert!(t0.elapsed().as_secs_f64() < 0.5, "{o:?} ran before failing");
+    }
+}
+
+/// A run too short for any decoded sample past the settling ones is an error naming
+/// `--duration`, not "max |error| 0.00 LSB".
+#[test]
+fn a_run_without_a_decoded_sample_is_an_error() {
+    let l = default();
+    let o = SimOptions {
+        duration_s: 2e-6,
+        ..Default::default()
+    };
+    let e = err_of(run(&l, &o, |_, _| {}));
+    assert!(
+        e.contains("`--duration`") && e.contains("no decoded sample"),
+        "{e}"
+    );
+    let c = cap();
+    let e = err_of(run_capacitive(&c, &o, |_, _| {}));
+    assert!(
+        e.contains("`--duration`") && e.contains("no decoded sample"),
+        "{e}"
+    );
+}
+
+/// Single-turn: the position wraps every turn, and the comparison does too. Reversing at
+/// 3000 rpm through position 0 with multiturn_bits = 0 used to report 134,217,730 LSB.
+#[test]
+fn single_turn_configs_compare_modulo_one_turn() {
+    let text = DEFAULT_CONFIG.replacen("multiturn_bits = 12", "multiturn_bits = 0", 1);
+    let l = Loaded::parse(&text, "single.toml").expect("single-turn config");
+    assert_eq!(l.derived.multiturn_bits, 0);
+    let o = SimOptions {
+        // Forward for 0.3 ms (0.015 turn), then back through 0 to about -0.03 turn.
+        profile: Profile::Reversal {
+            rpm: 3000.0,
+            at: 3e-4,
+            over: 2e-4,
+        },
+        duration_s: 1.2e-3,
+        ..Default::default()
+    };
+    let r = run(&l, &o, |_, _| {}).expect("runs");
+    // The decoded position did wrap (so the test exercises the wrap).
+    let turn = l.derived.quadrants_per_turn << l.derived.fine_bits;
+    assert!(
+        r.result.records.iter().any(|x| x.position > turn / 2),
+        "never wrapped"
+    );
+    eprintln!("single-turn reversal: max {:.2} LSB", r.stats.max_lsb);
+    assert!(r.stats.max_lsb < 10.0, "{:?}", r.stats);
+}
+
+/// Started already turning above the unwrap limit (16,754 rpm for 2048 PPR at 1.307 Msps),
+/// the QEP fallback used to freeze an offset taken from an aliased CORDIC count: a constant
+/// whole-period error (65,538 LSB at 20,000 rpm, 196,610 at 22,000-26,000). The decoder
+/// must report a position consistent with the count it resynchronises from.
+#[test]
+fn starting_above_the_unwrap_limit_keeps_a_consistent_count() {
+    let l = default();
+    let period = 4u64 << l.derived.fine_bits;
+    for rpm in [17_000.0, 20_000.0, 22_000.0, 24_000.0, 26_000.0] {
+        let o = SimOptions {
+            profile: Profile::Constant { rpm },
+            duration_s: 2.5e-4,
+            ..Default::default()
+        };
+        let r = run(&l, &o, |_, _| {}).expect("runs");
+        let s = r.stats;
+        eprintln!(
+            "start at {rpm} rpm: {} samples, max {:.2} LSB, mean {:.2} LSB",
+            s.samples, s.max_lsb, s.mean_lsb
+        );
+        assert!(s.samples > 250);
+        // Far below a period: the noise-free error of the fallback (the ramp test's 5.9 LSB
+        // with noise).
+        assert!(
+            s.max_lsb < 8.0,
+            "{rpm} rpm: {s:?} (one period = {period} LSB)"
+        );
+    }
+}
+
+/// The capacitive encoder model has no sin/cos tracks: the track imperfections are
+/// rejected by name instead of being silently ignored.
+#[test]
+fn capacitive_path_rejects_track_imperfections() {
+    let c = cap();
+    let base = SimOptions {
+        duration_s: 3e-3,
+        ..Default::default()
+    };
+    for (o, opt) in [
+        (
+            SimOptions {
+                phase_error_deg: 1.0,
+                ..base.clone()
+            },
+            "--phase-error",
+        ),
+        (
+            SimOptions {
+                third_harmonic: 0.01,
+                ..base.clone()
+            },
+            "--harmonic3",
+        ),
+        (
+            SimOptions {
+                offset: (0.05, 0.0),
+                ..base.clone()
+            },
+            "--offset-sin",
+        ),
+        (
+            SimOptions {
+                offset: (0.0, 0.05),
+                ..base.clone()
+            },
+            "--offset-cos",
+        ),
+        (
+            SimOptions {
+                gain_mismatch: 0.05,
+                ..base.clone()
+            },
+            "--gain-mismatch",
+        ),
+    ] {
+        let e = err_of(run_capacitive(&c, &o, |_, _| {}));
+        assert!(
+            e.contains(&format!("`{opt}`")) && e.contains("capacitive"),
+            "{e}"
+        );
+    }
+}
+
+/// A `name  value` line of the describe text.
+fn value_of(text: &str, label: &str) -> Option<f64> {
+    let l = text.lines().find(|l| l.starts_with(label))?;
+    l[label.len()..].split_whitespace().next()?.parse().ok()
+}
+
+/// `check` and `simulate` name the same latency the same way with the same value, and the
+/// ADC's own latency (200 clocks) is named differently.
+#[test]
+fn check_and_simulate_name_their_latencies_alike() {
+    let l = default();
+    let check = format!("{}{}", l.derived.describe(), l.derived.adc.describe());
+    let o = SimOptions {
+        duration_s: 1e-4,
+        ..Default::default()
+    };
+    let r = run(&l, &o, |_, _| {}).expect("runs");
+    let sim = r.summary(&l);
+    let label = "latency CONV -> position";
+    let c = value_of(&check, label).expect("check prints the CONV -> position latency");
+    let s = value_of(&sim, label).expect("simulate prints it");
+    assert_eq!(c, s);
+    // The records confirm it: every sample matched its conversion at that latency.
+    assert_eq!(r.result.latency_mismatches, 0);
+    // Any latency label both print has one value.
+    for line in check.lines().filter(|l| l.contains("latency")) {
+        let label = line[..28.min(line.len())].trim_end();
+        if let (Some(a), Some(b)) = (value_of(&check, label), value_of(&sim, label)) {
+            assert_eq!(a, b, "{label}");
+        }
+        // No bare "latency" label: each says what it spans.
+        assert!(label.contains("->"), "{line}");
+    }
+}
+
+/// The capacitive `check` printed two different speed limits (the CORDIC's unwrap limit,
+/// 656,227 rpm, and the low-pass's 15,000 rpm): it prints one, the lower.
+#[test]
+fn capacitive_check_prints_one_speed_limit() {
+    let c = cap();
+    let text = c.derived.describe();
+    let speed_lines: Vec<&str> = text.lines().filter(|l| l.contains(" rpm")).collect();
+    assert_eq!(speed_lines.len(), 1, "{speed_lines:?}");
+    // The low-pass corner (4 kHz) over 16 periods per turn: 15,000 rpm.
+    let k = c.derived.capacitive.as_ref().unwrap();
+    let want = k.config.lowpass.corner_hz.unwrap() / 16.0 * 60.0;
+    assert_eq!(value_of(&text, "max speed"), Some(want.round()), "{text}");
+}
+
+/// The README's `--csv` column table, in order.
+fn readme_csv_columns() -> Vec<String> {
+    let readme = include_str!("../../README.md");
+    let start = readme
+        .find("### `simulate --csv` columns")
+        .expect("README documents the CSV columns");
+    readme[start..]
+        .lines()
+        .skip_while(|l| !l.starts_with("| column"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| l.split('`').nth(1).expect("`name` in the row").to_string())
+        .collect()
+}
+
+/// Both paths write the README's columns; warm-up rows are marked and are exactly the
+/// rows left out of the statistics; error_lsb carries the summary's figures.
+#[test]
+fn csv_columns_are_documented_and_shared_by_both_paths() {
+    let cols = readme_csv_columns();
+    assert!(cols.len() >= 8, "{cols:?}");
+    let l = default();
+    let o = SimOptions {
+        duration_s: 1e-4,
+        ..Default::default()
+    };
+    let r = run(&l, &o, |_, _| {}).expect("runs");
+    let csv = r.csv(&l, o.skip);
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    // The default config has no velocity estimator: the README's columns marked "only with
+    // `[velocity] enabled`" are absent (tests/system/velocity_top.rs checks them when enabled).
+    let readme = include_str!("../../README.md");
+    let always: Vec<&String> = cols
+        .iter()
+        .filter(|c| {
+            let row = readme
+                .lines()
+                .find(|l| l.starts_with(&format!("| `{c}` |")))
+                .unwrap();
+            !row.contains("only with `[velocity] enabled`")
+        })
+        .collect();
+    assert!(
+        always.len() < cols.len(),
+        "the velocity columns are documented"
+    );
+    assert_eq!(header, always);
+    let w = header.iter().position(|c| *c == "warmup").unwrap();
+    let e = header.iter().position(|c| *c == "error_lsb").unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|x| x.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), r.result.records.len());
+    assert_eq!(rows.iter().filter(|x| x[w] == "1").count(), o.skip);
+    let stat: Vec<f64> = rows
+        .iter()
+        .filter(|x| x[w] == "0")
+        .map(|x| x[e].parse().unwrap())
+        .collect();
+    assert_eq!(stat.len(), r.stats.samples);
+    let max = stat.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(
+        (max - r.stats.max_lsb).abs() < 2e-3,
+        "{max} vs {:?}",
+        r.stats
+    );
+
+    let c = cap();
+    let o = SimOptions {
+        duration_s: 4e-3,
+        ..Default::default()
+    };
+    let (_, csv) = run_capacitive(&c, &o, |_, _| {}).expect("capacitive runs");
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(header, always, "the capacitive CSV uses the same columns");
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|x| x.split(',').collect())
+        .collect();
+    assert!(rows.iter().any(|x| x[w] == "1") && rows.iter().any(|x| x[w] == "0"));
+}
+
+/// A writer into a shared buffer that also counts what arrived.
+#[derive(Clone, Default)]
+struct Shared(Rc<RefCell<Vec<u8>>>);
+impl Write for Shared {
+    fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+        self.0.borrow_mut().extend_from_slice(b);
+        Ok(b.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// (name, width) of every port of the emitted `<name>_top` module (the wrapper's
+/// declarations, `input`/`output wire [H:0] name,`).
+fn emitted_top_ports(l: &Loaded) -> Vec<(String, u32)> {
+    let g = sinedec::emit::generate(l, "test").expect("generate");
+    let top = format!("{}_top", l.config.name);
+    let v = &g
+        .files
+        .iter()
+        .find(|f| f.name == format!("{top}.v"))
+        .expect("top file")
+        .text;
+    let start = v.find(&format!("module {top} (")).expect("module");
+    let body = &v[start..v[start..].find(");").unwrap() + start];
+    body.lines()
+        .filter_map(|line| {
+            let t = line.trim_start();
+            let rest = t
+                .strip_prefix("input")
+                .or_else(|| t.strip_prefix("output"))?;
+            let rest = rest.trim_start().strip_prefix("wire")?.trim_start();
+            let (width, rest) = if let Some(r) = rest.strip_prefix('[') {
+                let (hi, r) = r.split_once(":0]").unwrap();
+                (hi.trim().parse::<u32>().unwrap() + 1, r)
+            } else {
+                (1, rest)
+            };
+            let name = rest.trim_start().split([',', ' ']).next()?.to_string();
+            Some((name, width))
+        })
+        .collect()
+}
+
+/// (name, width) of the VCD's variables, read with the vcd crate's parser.
+fn vcd_vars(text: &[u8]) -> (String, Vec<(String, u32)>) {
+    let mut p = vcd::Parser::new(text);
+    let h = p.parse_header().expect("VCD header parses");
+    let scope = h
+        .items
+        .iter()
+        .find_map(|i| match i {
+            vcd::ScopeItem::Scope(s) => Some(s.clone()),
+            _ => None,
+        })
+        .expect("a scope");
+    let vars = scope
+        .children
+        .iter()
+        .filter_map(|i| match i {
+            vcd::ScopeItem::Var(v) => Some((v.reference.clone(), v.size)),
+            _ => None,
+        })
+        .collect();
+    (scope.identifier, vars)
+}
+
+/// The VCD streams while the simulation runs (bytes arrive before the end), and holds
+/// `<name>_top`'s ports with their emitted names and widths, on both paths.
+#[test]
+fn vcd_streams_the_top_ports_on_both_paths() {
+    for (l, duration) in [(default(), 2.5e-4), (cap(), 3.2e-3)] {
+        let buf = Shared::default();
+        let seen = Rc::new(RefCell::new(Vec::new()));
+        let (b2, s2) = (buf.clone(), seen.clone());
+        let progress = move |done: u64, _| s2.borrow_mut().push((done, b2.0.borrow().len()));
+        let o = SimOptions {
+            duration_s: duration,
+            ..Default::default()
+        };
+        let records = if l.derived.capacitive.is_some() {
+            run_capacitive_traced(&l, &o, progress, Some(Box::new(buf.clone()))).expect("runs");
+            None
+        } else {
+            Some(
+                run_traced(&l, &o, progress, Some(Box::new(buf.clone())))
+                    .expect("runs")
+                    .result
+                    .records,
+            )
+        };
+        let seen = seen.borrow();
+        let total = buf.0.borrow().len();
+        assert!(seen.len() >= 2);
+        assert!(
+            seen[0].1 > 0 && seen[0].1 < total,
+            "nothing streamed before the end: {seen:?}"
+        );
+        let text = buf.0.borrow().clone();
+        let (scope, vars) = vcd_vars(&text);
+        assert_eq!(scope, format!("{}_top", l.config.name));
+        assert_eq!(vars, emitted_top_ports(&l));
+        assert!(vars
+            .iter()
+            .all(|(n, _)| !n.ends_with("_rtl") && n != "par_qc"));
+        // The positions in the VCD are the decoded ones.
+        if let Some(recs) = records {
+            let s = String::from_utf8(text).unwrap();
+            let want = format!(
+                "b{:0w$b} ",
+                recs[20].position,
+                w = l.derived.position_width as usize
+            );
+            assert!(
+                s.contains(&want),
+                "position {} not in the VCD",
+                recs[20].position
+            );
+        }
+    }
+}
