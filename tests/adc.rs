@@ -316,7 +316,7 @@ fn capture_distance_measured_in_the_rtl_is_the_derived_one() {
         cases.push(p);
         let mut p = generic_one_channel();
         p.sck_period_clocks = d;
-        p.sck_high_clocks = (d + 1) / 2;
+        p.sck_high_clocks = d.div_ceil(2);
         p.frame.conv_clocks = p.frame.lead_clocks + p.frame.frame_sck * d + 1;
         p.conv_clocks = p.frame.conv_clocks;
         p.period_clocks = p.min_period_clocks();
