@@ -115,7 +115,8 @@ impl CapSystem {
         let clock_hz = d.clock_hz;
         let (e2, d2) = (enc.clone(), dac.clone());
         let adc = SpiAdc::new(
-            d.adc.frame,
+            &d.adc,
+            crate::sim::adc_pins::PinTiming::from_io(&d.io_timing),
             Box::new(move |clock| {
                 let (s, c) = *d2.borrow();
                 let code = e2.borrow_mut().sample(clock as f64 / clock_hz, s, c);

@@ -2,9 +2,12 @@
 //! its datasheet (Linear Technology 14071fb) and the Spartan-3A/3AN Starter Kit user guide
 //! (UG334), independently of the controller in `blocks::adc`.
 //!
-//! Driven once per system clock with the CONV and SCK levels the controller drives in that
-//! clock; returns the SDO level at the next system clock edge (where the controller
-//! samples). Behaviour modelled:
+//! Driven once per system clock with the CONV and SCK levels the controller's registers
+//! take at that clock edge; returns the level the controller's input register reads at
+//! `adc_miso` at the next system clock edge. The pins keep real time ([`super::adc_pins`]):
+//! an edge reaches the chip FPGA clock-to-out + one trace after its clock edge, SDO comes
+//! back over a second trace, and the FPGA needs it set up before its edge (the `[board]`
+//! budget of `check`, defaults 6 + 1 + 1 + 3 ns). Behaviour modelled:
 //!
 //! * A rising CONV edge samples both channels (codes from a caller closure, 0 and 0 without one)
 //!   and starts a conversion that needs 32 SCK rising edges; CONV rising edges before those
@@ -14,9 +17,10 @@
 //!   2 idle, 14, 2 idle, 14, 2 idle). The words are those of the *previous* conversion
 //!   ("each pair of output data words represent the two analog input channels at the start
 //!   of the previous conversion"); before any completed conversion they are undefined.
-//! * After a rising SCK edge the previous bit stays valid for 2 ns (t10), the new one is
-//!   valid 8 ns after the edge (t8); in between, and while Hi-Z, the returned level is a
-//!   pseudo-random bit, so a controller that samples there reads garbage.
+//! * After a rising SCK edge at the chip the previous bit stays valid for 2 ns (t10), the
+//!   new one is valid 8 ns after the edge (t8); a level read at the FPGA outside a bit's
+//!   valid window (set-up and hold at the pad), and while Hi-Z, is a pseudo-random bit,
+//!   so a controller that samples there reads garbage.
 //! * Timing checks (violations are recorded, never panics): SCK period >= 19.6 ns and
 //!   <= 10 us during a conversion (a slower conversion is corrupted: its data become
 //!   undefined), SCK high/low >= 2 ns, CONV high >= 4 ns, CONV low >= 15 ns, CONV rise to
@@ -26,7 +30,7 @@
 //! Codes: D = GAIN * (VIN - 1.65 V) / 1.25 V * 8192, rounded to nearest and clamped to the
 //! 14-bit two's-complement range -8192..=8191 (UG334 equation 9-1; GAIN is the signed
 //! pre-amplifier gain, -1 .. -100 on the kit since the LTC6912 inverts).
-use crate::cosim::stimulus::SplitMix64;
+use super::adc_pins::{DataLine, Level, PinTiming};
 
 /// Timing limits of the LTC1407A-1 in ns (VDD = 3 V).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -129,7 +133,6 @@ type CodeFn = Box<dyn FnMut(u64, f64) -> [i16; 2]>;
 pub struct Ltc1407a {
     period_ns: f64,
     timing: Ltc1407aTiming,
-    rng: SplitMix64,
     source: Option<CodeFn>,
     clock: u64,
     prev_conv: bool,
@@ -149,9 +152,10 @@ pub struct Ltc1407a {
     out_frame: Option<[i16; 2]>,
     frame_edges: u32,
     framed: bool,
-    sdo_old: Sdo,
-    sdo_new: Sdo,
-    sdo_change: f64,
+    /// SDO at the FPGA's pad.
+    line: DataLine,
+    /// Seed of the random bits read outside the valid window.
+    seed: u64,
     conversions: Vec<Conversion>,
     /// Conversions ever made (the source's index; survives [`Ltc1407a::clear_conversions`]).
     count: u64,
@@ -160,7 +164,8 @@ pub struct Ltc1407a {
 
 impl Ltc1407a {
     /// The chip clocked by a controller running at `clock_hz`, with codes 0, 0 until a source
-    /// is set (`with_codes`, `with_voltages`) and pseudo-random Hi-Z bits from `seed`.
+    /// is set (`with_codes`, `with_voltages`), pseudo-random Hi-Z bits from `seed`, the
+    /// datasheet timing and the default board pins ([`PinTiming::board_default`]).
     pub fn new(clock_hz: f64, seed: u64) -> Self {
         let period_ns = if clock_hz.is_finite() && clock_hz > 0.0 {
             1e9 / clock_hz
@@ -170,7 +175,6 @@ impl Ltc1407a {
         Ltc1407a {
             period_ns,
             timing: Ltc1407aTiming::DATASHEET,
-            rng: SplitMix64(seed),
             source: None,
             clock: 0,
             prev_conv: false,
@@ -190,13 +194,29 @@ impl Ltc1407a {
             out_frame: None,
             frame_edges: 0,
             framed: false,
-            sdo_old: Sdo::HiZ,
-            sdo_new: Sdo::HiZ,
-            sdo_change: f64::NEG_INFINITY,
+            line: DataLine::new(PinTiming::board_default(), seed),
+            seed,
             conversions: Vec::new(),
             count: 0,
             violations: Vec::new(),
         }
+    }
+
+    /// The pins between the FPGA and the chip (`[board]` budget of the config).
+    pub fn with_pins(mut self, pins: PinTiming) -> Self {
+        self.line = DataLine::new(pins, self.seed);
+        self
+    }
+
+    /// Other chip timing (a sweep of t8, a slower part).
+    pub fn with_timing(mut self, timing: Ltc1407aTiming) -> Self {
+        self.timing = timing;
+        self
+    }
+
+    /// The chip timing in use.
+    pub fn timing(&self) -> Ltc1407aTiming {
+        self.timing
     }
 
     /// Codes for each conversion from `f(conversion index, time of the CONV rise in s)`.
@@ -267,8 +287,10 @@ impl Ltc1407a {
         }
     }
 
-    /// One system clock: `conv` and `sck` are the levels driven from this clock edge on.
-    /// Returns the SDO level seen at the next clock edge.
+    /// One system clock: `conv` and `sck` are the levels the FPGA launches at this clock
+    /// edge (they reach the chip clock-to-out + one trace later; the chip's own checks use
+    /// differences of these times). Returns what the FPGA reads at `adc_miso` at the next
+    /// clock edge.
     pub fn step(&mut self, conv: bool, sck: bool) -> bool {
         let t = self.clock as f64 * self.period_ns;
         let tm = self.timing;
@@ -328,9 +350,8 @@ impl Ltc1407a {
                 self.out_frame = self.result;
                 self.frame_edges = 0;
                 self.framed = true;
-                self.sdo_old = self.sdo_new;
-                self.sdo_new = Sdo::HiZ;
-                self.sdo_change = t;
+                self.line
+                    .change(t, tm.sdo_hold_ns, tm.sdo_valid_ns, Level::Undefined);
             }
             self.last_conv_rise = Some(t);
         }
@@ -401,9 +422,11 @@ impl Ltc1407a {
             }
             if self.framed {
                 self.frame_edges = self.frame_edges.saturating_add(1);
-                self.sdo_old = self.sdo_new;
-                self.sdo_new = self.slot(self.frame_edges);
-                self.sdo_change = t;
+                let level = match self.slot(self.frame_edges) {
+                    Sdo::Bit(b) => Level::Bit(b),
+                    Sdo::HiZ | Sdo::Undefined => Level::Undefined,
+                };
+                self.line.change(t, tm.sdo_hold_ns, tm.sdo_valid_ns, level);
             }
             self.last_sck_rise = Some(t);
         }
@@ -421,20 +444,8 @@ impl Ltc1407a {
         self.prev_conv = conv;
         self.prev_sck = sck;
         self.clock += 1;
-        // Level at the next clock edge.
-        let ts = self.clock as f64 * self.period_ns;
-        let dt = ts - self.sdo_change;
-        let seen = if dt + 1e-9 < tm.sdo_hold_ns {
-            self.sdo_old
-        } else if dt + 1e-9 < tm.sdo_valid_ns {
-            Sdo::Undefined
-        } else {
-            self.sdo_new
-        };
-        match seen {
-            Sdo::Bit(b) => b,
-            Sdo::HiZ | Sdo::Undefined => self.rng.next_u64() & 1 == 1,
-        }
+        // The level the FPGA's input register takes at the next clock edge.
+        self.line.sample(self.clock as f64 * self.period_ns)
     }
 }
 

@@ -14,6 +14,7 @@
 //! models use the blocks' Params and rtl, so a separate crate would either depend on
 //! `sinedec` while `sinedec` depends on it (a cycle Cargo rejects) or force the `simulate`
 //! command out of the library. The one-way rule above is what keeps it separable.
+pub mod adc_pins;
 pub mod biss_control;
 pub mod biss_master;
 pub mod cap_system;

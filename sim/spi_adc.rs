@@ -4,8 +4,15 @@
 //! result is taken at the CONV (or chip-select) edge from a code source, so a caller can
 //! sample an analog model at that instant. Bits outside the channel slots and an idle line
 //! are random, so a controller that reads them is caught.
-use crate::blocks::adc::{AdcFrame, SignFormat};
-use crate::cosim::stimulus::SplitMix64;
+//!
+//! The pins keep real time ([`super::adc_pins`]): an SCK or CONV / CS edge reaches the chip
+//! FPGA clock-to-out + one trace after the clock edge that launched it; the chip drives
+//! the new bit `data_valid_ns` after it (`[adc.timing] data_valid_ns`, default 10 ns) and
+//! holds the old one `data_hold_ns` (0: `[adc.timing]` has no hold figure, so none is
+//! assumed); the bit travels one trace back and the FPGA reads it with its input set-up
+//! (the `[board]` budget of `check`). A level read outside its valid window is random.
+use super::adc_pins::{DataLine, Level, PinTiming};
+use crate::blocks::adc::{AdcFrame, AdcParams, SignFormat};
 
 /// The code source: called at each conversion start with the clock index; returns the
 /// codes of channel 0 and 1 (channel 1 ignored for a one-channel frame).
@@ -14,6 +21,14 @@ pub type CodeSource = Box<dyn FnMut(usize) -> [i32; 2]>;
 /// Generic SPI ADC model.
 pub struct SpiAdc {
     f: AdcFrame,
+    /// System clock period, ns.
+    period_ns: f64,
+    /// SCK (or CONV / CS) edge at the chip to the new bit valid, ns.
+    valid_ns: f64,
+    /// SCK edge at the chip to the old bit no longer held, ns.
+    hold_ns: f64,
+    /// SDO at the FPGA's pad.
+    line: DataLine,
     source: CodeSource,
     taken: Vec<(usize, [i32; 2])>,
     clock: usize,
@@ -21,15 +36,24 @@ pub struct SpiAdc {
     prev_sck: bool,
     active: bool,
     slot: i64,
-    out: bool,
-    rng: SplitMix64,
 }
 
 impl SpiAdc {
-    /// A model that converts `source`'s codes.
-    pub fn new(f: AdcFrame, source: CodeSource) -> Self {
+    /// A model of the chip the controller parameters `p` describe (frame, system clock,
+    /// `data_valid_ns`, no hold) behind the board pins `pins`, converting `source`'s codes.
+    pub fn new(p: &AdcParams, pins: PinTiming, source: CodeSource) -> Self {
+        let period_ns = if p.clock_hz.is_finite() && p.clock_hz > 0.0 {
+            1e9 / p.clock_hz
+        } else {
+            1.0
+        };
+        let f = p.frame;
         SpiAdc {
             f,
+            period_ns,
+            valid_ns: p.timing.data_valid_ns,
+            hold_ns: 0.0,
+            line: DataLine::new(pins, 78),
             source,
             taken: Vec::new(),
             clock: 0,
@@ -37,16 +61,23 @@ impl SpiAdc {
             prev_sck: f.cpol,
             active: false,
             slot: -1,
-            out: false,
-            rng: SplitMix64(77),
         }
     }
 
+    /// Other chip delays: new bit valid `valid_ns` and old bit held `hold_ns` after the
+    /// edge at the chip (a sweep, a part with a hold figure).
+    pub fn with_delays(mut self, valid_ns: f64, hold_ns: f64) -> Self {
+        self.valid_ns = valid_ns;
+        self.hold_ns = hold_ns;
+        self
+    }
+
     /// A model that cycles through a fixed list of codes.
-    pub fn with_codes(f: AdcFrame, codes: Vec<[i32; 2]>) -> Self {
+    pub fn with_codes(p: &AdcParams, pins: PinTiming, codes: Vec<[i32; 2]>) -> Self {
         let mut k = 0usize;
         Self::new(
-            f,
+            p,
+            pins,
             Box::new(move |_| {
                 let c = codes[k % codes.len()];
                 k += 1;
@@ -69,7 +100,7 @@ impl SpiAdc {
         }
     }
 
-    fn bit(&mut self, slot: i64) -> bool {
+    fn bit(&self, slot: i64) -> Level {
         let w = self.f.width as i64;
         let cur = self.taken.last().map(|t| t.1).unwrap_or([0, 0]);
         let n = self.f.channels as usize;
@@ -80,14 +111,17 @@ impl SpiAdc {
                 if self.f.sign == SignFormat::OffsetBinary {
                     v ^= 1 << (w - 1);
                 }
-                return (v >> (w - 1 - (slot - o))) & 1 == 1;
+                return Level::Bit((v >> (w - 1 - (slot - o))) & 1 == 1);
             }
         }
-        self.rng.next_u64() & 1 == 1
+        Level::Undefined
     }
 
-    /// One system clock: the pins the model sees; returns its SDO level.
+    /// One system clock: `conv` and `sck` are the levels the FPGA launches at this clock
+    /// edge. Returns what the FPGA reads at `adc_miso` at the next clock edge.
     pub fn step(&mut self, conv: bool, sck: bool) -> bool {
+        let t = self.clock as f64 * self.period_ns;
+        let (valid, hold) = (self.valid_ns, self.hold_ns);
         let on = conv == self.f.conv_active_high;
         let was_on = self.prev_conv == self.f.conv_active_high;
         if on && !was_on {
@@ -95,35 +129,34 @@ impl SpiAdc {
             self.taken.push((self.clock, c));
             self.active = true;
             self.slot = 0;
-            self.out = if self.f.cpha {
-                self.rng.next_u64() & 1 == 1
+            let level = if self.f.cpha {
+                Level::Undefined
             } else {
                 self.bit(0)
             };
+            self.line.change(t, hold, valid, level);
         }
-        if !on && self.f.conv_clocks > 1 {
-            self.active = false; // chip select framing: deselected ends the frame
+        if !on && self.f.conv_clocks > 1 && self.active {
+            // Chip select framing: deselected ends the frame.
+            self.active = false;
+            self.line.change(t, hold, valid, Level::Undefined);
         }
         let leading = sck != self.f.cpol && self.prev_sck == self.f.cpol;
         let trailing = sck == self.f.cpol && self.prev_sck != self.f.cpol;
         if self.active {
             if self.f.cpha && leading {
-                let s = self.slot;
-                self.out = self.bit(s);
+                let level = self.bit(self.slot);
                 self.slot += 1;
+                self.line.change(t, hold, valid, level);
             } else if !self.f.cpha && trailing {
                 self.slot += 1;
-                let s = self.slot;
-                self.out = self.bit(s);
+                let level = self.bit(self.slot);
+                self.line.change(t, hold, valid, level);
             }
         }
         self.prev_conv = conv;
         self.prev_sck = sck;
         self.clock += 1;
-        if self.active {
-            self.out
-        } else {
-            self.rng.next_u64() & 1 == 1
-        }
+        self.line.sample(self.clock as f64 * self.period_ns)
     }
 }

@@ -356,10 +356,12 @@ impl System {
         let gains = [pre.gain_a as f64, pre.gain_b as f64];
         let truth = encoder.clone();
         let mut enc = encoder;
-        let adc = Ltc1407a::new(d.clock_hz, 7).with_voltages(gains, move |_k, t| {
-            let (s, c) = enc.voltages(t);
-            [s, c]
-        });
+        let adc = Ltc1407a::new(d.clock_hz, 7)
+            .with_pins(crate::sim::adc_pins::PinTiming::from_io(&d.io_timing))
+            .with_voltages(gains, move |_k, t| {
+                let (s, c) = enc.voltages(t);
+                [s, c]
+            });
         Ok(System {
             d: d.clone(),
             top,

@@ -30,21 +30,28 @@
 //!
 //! # ADC round trip (LTC1407A-1 or generic SPI ADC)
 //!
-//! The controller launches a rising SCK edge at system clock edge k and captures the bit it
-//! shifts out at edge k + D (D = `adc.sck_period_clocks`). The bit reaches the FPGA's input
-//! pin at most `t_co + t_trace + t_sdo + t_trace` after edge k (t_co: the FPGA's clock to
-//! output pad; t_trace: one board trace; t_sdo: the chip's SCK-to-SDO delay, LTC1407A-1
-//! t8 = 8 ns) and must be there `t_su` (pad set-up) before edge k + D:
+//! The controller moves the `adc_sck` pin with the edge that shifts a bit out at system
+//! clock edge k, and its input register samples `adc_miso` for that bit at edge k + C, with
+//! C the capture distance `AdcParams::capture_distance_clocks` (C = D =
+//! `adc.sck_period_clocks`: the sample is taken at the edge that launches the next shifting
+//! SCK edge). The bit reaches the FPGA's input pin at most `t_co + t_trace + t_sdo + t_trace`
+//! after edge k (t_co: the FPGA's clock to output pad; t_trace: one board trace; t_sdo: the
+//! chip's SCK-to-SDO delay, LTC1407A-1 t8 = 8 ns) and must be there `t_su` (pad set-up)
+//! before edge k + C:
 //!
 //! ```text
-//! D x T  >=  t_co + 2 t_trace + t_sdo + t_su        (T = 1 / clock.frequency_hz)
+//! C x T  >=  t_co + 2 t_trace + t_sdo + t_su        (T = 1 / clock.frequency_hz)
 //! ```
 //!
 //! At the shipped config: 3 x 7.5 = 22.5 ns >= 6 + 2 x 1 + 8 + 3 = 19 ns (3.5 ns slack).
-//! t_co and t_su are budgets ([`IoTiming`], `[board]` keys `fpga_clock_to_out_ns` and
-//! `fpga_input_setup_ns`), and the UCF/SDC make the vendor tool verify them: OFFSET OUT
-//! (`set_output_delay`) bounds the FPGA's clock-to-out of the ADC outputs by t_co, OFFSET IN
-//! (`set_input_delay`) bounds the set-up the FPGA needs at `adc_miso` by t_su.
+//! The hold side: the next SCK edge leaves the FPGA at edge k + C, so the sampled bit stays
+//! at the pin for t_co + 2 t_trace + the chip's hold (LTC1407A-1 t10 = 2 ns) after the
+//! sampling edge. t_co and t_su are budgets ([`IoTiming`], `[board]` keys
+//! `fpga_clock_to_out_ns` and `fpga_input_setup_ns`), and the UCF/SDC make the vendor tool
+//! verify them: OFFSET OUT (`set_output_delay`) bounds the FPGA's clock-to-out of the ADC
+//! outputs by t_co, OFFSET IN (`set_input_delay`) bounds the set-up the FPGA needs at
+//! `adc_miso` by t_su. The chip models of `simulate` (`sim::ltc1407a`, `sim::spi_adc`)
+//! put the same delays on their pins.
 use crate::config::Target;
 use crate::error::Error;
 
@@ -247,15 +254,15 @@ impl IoTiming {
     };
 }
 
-/// The ADC round trip at `sck_period_clocks` D and `clock_hz`: (available D x T, needed
-/// t_co + 2 t_trace + t_sdo + t_su), ns.
+/// The ADC round trip at capture distance C (`AdcParams::capture_distance_clocks`) and
+/// `clock_hz`: (available C x T, needed t_co + 2 t_trace + t_sdo + t_su), ns.
 pub fn adc_round_trip(
     io: &IoTiming,
     sdo_delay_ns: f64,
-    sck_period_clocks: u32,
+    capture_distance_clocks: u32,
     clock_hz: f64,
 ) -> (f64, f64) {
-    let available = sck_period_clocks as f64 * 1e9 / clock_hz;
+    let available = capture_distance_clocks as f64 * 1e9 / clock_hz;
     let needed = io.clock_to_out_ns + 2.0 * io.trace_ns + sdo_delay_ns + io.input_setup_ns;
     (available, needed)
 }

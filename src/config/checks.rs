@@ -67,8 +67,12 @@ pub(super) fn board_timing(
         );
     }
     let d = adc.sck_period_clocks;
-    let (available, needed) =
-        crate::board::adc_round_trip(&io, adc.timing.data_valid_ns, d, adc.clock_hz);
+    let (available, needed) = crate::board::adc_round_trip(
+        &io,
+        adc.timing.data_valid_ns,
+        adc.capture_distance_clocks(),
+        adc.clock_hz,
+    );
     if available + 1e-9 < needed {
         let t = 1e9 / adc.clock_hz;
         let min_d = ((needed / t) - 1e-9).ceil() as u32;
@@ -89,7 +93,7 @@ pub(super) fn board_timing(
             table,
             key,
             format!(
-                "an SCK period of {d} clocks ({available:.2} ns at {:.3} MHz) is shorter than the ADC round trip of {needed:.2} ns: FPGA clock-to-out {:.2} + 2 x board trace {:.2} + the ADC's SCK-to-data delay {:.2} + FPGA input set-up {:.2} ns (board.fpga_clock_to_out_ns, board.trace_delay_ns, board.fpga_input_setup_ns); use an SCK period of at least {min_d} clocks",
+                "an SCK period of {d} clocks (capture {available:.2} ns after the shifting edge at {:.3} MHz) is shorter than the ADC round trip of {needed:.2} ns: FPGA clock-to-out {:.2} + 2 x board trace {:.2} + the ADC's SCK-to-data delay {:.2} + FPGA input set-up {:.2} ns (board.fpga_clock_to_out_ns, board.trace_delay_ns, board.fpga_input_setup_ns); use an SCK period of at least {min_d} clocks",
                 adc.clock_hz / 1e6,
                 io.clock_to_out_ns,
                 io.trace_ns,

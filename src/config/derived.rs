@@ -359,17 +359,19 @@ impl Derived {
         let (available, needed) = crate::board::adc_round_trip(
             io,
             self.adc.timing.data_valid_ns,
-            self.adc.sck_period_clocks,
+            self.adc.capture_distance_clocks(),
             self.adc.clock_hz,
         );
         s.push_str(&format!(
-            "ADC round trip              {needed:.2} ns of {available:.2} ns (SCK period {} clocks): clock-to-out {:.2} + 2 x trace {:.2} + SCK-to-data {:.2} + input set-up {:.2}; slack {:.2} ns\n",
+            "ADC round trip              {needed:.2} ns of {available:.2} ns (capture distance {} clocks: adc_sck edge to the adc_miso sample; SCK period {} clocks): clock-to-out {:.2} + 2 x trace {:.2} + SCK-to-data {:.2} + input set-up {:.2}; slack {:.2} ns (SCK-to-data up to {:.2} ns)\n",
+            self.adc.capture_distance_clocks(),
             self.adc.sck_period_clocks,
             io.clock_to_out_ns,
             io.trace_ns,
             self.adc.timing.data_valid_ns,
             io.input_setup_ns,
-            available - needed
+            available - needed,
+            self.adc.timing.data_valid_ns + available - needed
         ));
         s
     }

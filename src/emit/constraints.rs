@@ -57,6 +57,7 @@ pub(super) fn xilinx_files(
             period_ns => format!("{period:.3}"),
             tco_ns => format!("{:.2}", io.clock_to_out_ns),
             tsu_ns => format!("{:.2}", io.input_setup_ns),
+            capture => capture_comment(loaded),
             tig => tig,
             pins => located,
             iostandard => b.effective_iostandard().unwrap_or_default(),
@@ -171,7 +172,7 @@ pub(super) fn cap_constraints(
             clock_comment => clock_comment(&clock, "#"),
             period_ns => format!("{:.3}", 1e9 / clock.osc_hz),
             synth => clock.synth.is_some(),
-            sck_clocks => loaded.derived.adc.sck_period_clocks,
+            capture => capture_comment(loaded),
             tco_ns => format!("{:.2}", io.clock_to_out_ns),
             tsu_ns => format!("{:.2}", io.input_setup_ns),
             sys_clock => sys,
@@ -192,6 +193,25 @@ pub(super) fn cap_constraints(
         },
     )?;
     Ok(Some((q, s, p)))
+}
+
+/// The capture distance and the round trip it leaves, for the UCF/SDC comments (the
+/// figures `check` prints; see `crate::board`).
+fn capture_comment(loaded: &Loaded) -> String {
+    let adc = &loaded.derived.adc;
+    let c = adc.capture_distance_clocks();
+    let (available, needed) = crate::board::adc_round_trip(
+        &loaded.derived.io_timing,
+        adc.timing.data_valid_ns,
+        c,
+        adc.clock_hz,
+    );
+    format!(
+        "# adc_miso is sampled {c} system clocks ({available:.2} ns) after the clock edge that\n\
+         # moves adc_sck to shift the bit out (AdcParams::capture_distance_clocks); the round\n\
+         # trip through the chip needs {needed:.2} ns: slack {:.2} ns (`sinedec check`).\n",
+        available - needed
+    )
 }
 
 /// The Verilog files a synthesis project needs and its top module: `<name>_top.v`, plus

@@ -8,6 +8,7 @@
 use crate::adc_util;
 use adc_util::*;
 use sinedec::blocks::adc::{AdcFrame, AdcParams, AdcTiming};
+use sinedec::sim::adc_pins::PinTiming;
 use sinedec::sim::ltc1407a::Ltc1407a;
 
 #[test]
@@ -18,11 +19,13 @@ fn ltc1407a_rates_and_latencies_at_the_kit_clocks() {
     // Rate from clock counts: 133.33e6 / 102.
     assert!(fast.sample_rate_hz() >= 1.2e6, "{}", fast.sample_rate_hz());
     assert!(fast.sample_rate_hz() <= 1.5e6);
-    assert_eq!(fast.conv_to_valid_clocks(), 102 + 32 * 3 + 2);
+    // Last capture state at pc = 32 x 3 + 2; the bit is sampled one clock later and
+    // shifted in (with the strobe) one clock after that: + 1 against CONV on its pin.
+    assert_eq!(fast.conv_to_valid_clocks(), 102 + 32 * 3 + 2 + 1);
     let slow = AdcParams::ltc1407a_fastest(F50).expect("feasible");
     assert_eq!(slow.sck_period_clocks, 2);
     assert_eq!(slow.period_clocks, 68);
-    assert_eq!(slow.conv_to_valid_clocks(), 68 + 32 * 2 + 1);
+    assert_eq!(slow.conv_to_valid_clocks(), 68 + 32 * 2 + 1 + 1);
     println!(
         "--- 133.33 MHz\n{}--- 50 MHz\n{}",
         fast.describe(),
@@ -162,11 +165,13 @@ fn reset_and_enable_mid_frame() {
             s.iter().any(|&(r, _, _)| r == resume),
             "resumes at row {resume}"
         );
-        // No sample is delivered from a frame disturbed by a reset.
+        // No sample is delivered from a frame disturbed by a reset. The outputs of row a
+        // leave the edge that registers the reset (rst_d), so a sample there belongs to a
+        // frame completed before it (and check_against_chip proved it right).
         for &(row, _, _) in &s {
             for &(a, len) in &resets {
                 assert!(
-                    !(row >= a && row < a + len + p.startup_clocks() as usize),
+                    !(row > a && row < a + len + p.startup_clocks() as usize),
                     "sample at {row} too soon after the reset at {a}"
                 );
             }
@@ -210,5 +215,177 @@ fn voltages_through_the_preamp_gain() {
     assert!(
         run.samples(14).iter().any(|s| s.1.abs() > 1500),
         "a real swing is seen"
+    );
+}
+
+/// Measures the capture distance in the rust-hdl simulation: the controller is fed a
+/// pseudo-random `adc_miso` level at every edge, and for every bit of every delivered
+/// sample the test finds the pin edge of `adc_sck` that shifted that slot out (counted on
+/// the pin trace from the CONV / chip-select edge that opens the frame) and the offset
+/// `delta` such that the level applied at edge `pin edge + delta` is the bit delivered.
+/// Exactly one offset must explain every bit; it is returned.
+fn measured_capture_distance(p: &AdcParams) -> usize {
+    use sinedec::blocks::adc::hdl::AdcController;
+    use sinedec::cosim::step::{prepare, tick};
+    use sinedec::cosim::stimulus::SplitMix64;
+    let f = p.frame;
+    let per = p.period_clocks as usize;
+    let cycles = 3 + p.startup_clocks() as usize + 6 * per;
+    let mut r = SplitMix64(p.sck_period_clocks as u64 * 7919 + f.width as u64);
+    let miso: Vec<bool> = (0..cycles).map(|_| r.next_u64() & 1 == 1).collect();
+    let mut uut = AdcController::new(p);
+    prepare(&mut uut).expect("settles");
+    // Pins and outputs after edge k: (sck, conv, valid, ch0, ch1).
+    let mut outs = Vec::with_capacity(cycles);
+    for (k, &m) in miso.iter().enumerate() {
+        uut.rst.next = k < 3;
+        uut.enable.next = true;
+        uut.adc_miso.next = m;
+        tick(&mut uut).expect("settles");
+        outs.push((
+            uut.adc_sck.val(),
+            uut.adc_conv.val(),
+            uut.out_valid.val(),
+            uut.out_ch0.val().to_u64(),
+            uut.out_ch1.val().to_u64(),
+        ));
+    }
+    let active = |k: usize| outs[k].1 == f.conv_active_high;
+    let mut candidates: Vec<usize> = (0..3 * p.sck_period_clocks as usize + 4).collect();
+    let mut checked = 0;
+    for v in (1..cycles).filter(|&k| outs[k].2) {
+        // The frame: the last CONV / CS assertion on the pin before the strobe.
+        let Some(start) = (1..v).rev().find(|&k| active(k) && !active(k - 1)) else {
+            continue;
+        };
+        // Pin edges after the frame start: leading (leaving CPOL) and trailing.
+        let (mut leading, mut trailing) = (vec![], vec![]);
+        for k in start..v {
+            if outs[k].0 != outs[k - 1].0 {
+                if outs[k].0 != f.cpol {
+                    leading.push(k);
+                } else {
+                    trailing.push(k);
+                }
+            }
+        }
+        for c in 0..f.channels as usize {
+            let word = if c == 0 { outs[v].3 } else { outs[v].4 };
+            let raw = if p.frame.sign == sinedec::blocks::adc::SignFormat::OffsetBinary {
+                word ^ (1 << (f.width - 1))
+            } else {
+                word
+            };
+            for i in 0..f.width {
+                let slot = (f.offsets[c] + i) as usize;
+                // CPHA = 1: slot s leaves on the leading edge of cycle s; CPHA = 0: on the
+                // trailing edge of cycle s - 1 (slot 0 at the CS edge: not an SCK edge).
+                let edge = match (f.cpha, slot) {
+                    (true, s) => leading[s],
+                    (false, 0) => continue,
+                    (false, s) => trailing[s - 1],
+                };
+                let bit = (raw >> (f.width - 1 - i)) & 1 == 1;
+                candidates.retain(|&d| edge + d < cycles && miso[edge + d] == bit);
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 40, "only {checked} bits delivered");
+    assert_eq!(
+        candidates.len(),
+        1,
+        "offsets explaining every bit: {candidates:?}"
+    );
+    candidates[0]
+}
+
+#[test]
+fn capture_distance_measured_in_the_rtl_is_the_derived_one() {
+    let mut cases = vec![];
+    for d in [3, 4, 5, 7, 8] {
+        cases.push(AdcParams::ltc1407a(F133, d, None));
+    }
+    cases.push(AdcParams::ltc1407a(F50, 2, None));
+    for d in [3, 5, 6, 7] {
+        let mut p = generic_two_channels();
+        p.sck_period_clocks = d;
+        p.sck_high_clocks = d / 2;
+        p.period_clocks = p.min_period_clocks() + 3;
+        cases.push(p);
+        let mut p = generic_one_channel();
+        p.sck_period_clocks = d;
+        p.sck_high_clocks = d.div_ceil(2);
+        p.frame.conv_clocks = p.frame.lead_clocks + p.frame.frame_sck * d + 1;
+        p.conv_clocks = p.frame.conv_clocks;
+        p.period_clocks = p.min_period_clocks();
+        cases.push(p);
+    }
+    for p in &cases {
+        let want = p.capture_distance_clocks() as usize;
+        assert_eq!(
+            want, p.sck_period_clocks as usize,
+            "the documented window is D"
+        );
+        let got = measured_capture_distance(p);
+        assert_eq!(
+            got, want,
+            "{} at D = {} (cpha {}): adc_sck pin edge to the miso sample",
+            p.chip, p.sck_period_clocks, p.frame.cpha
+        );
+    }
+}
+
+/// Sweeps the chip's SCK-to-data valid delay across the capture window with the chip
+/// models behind the board pins of a shipped config: every sample exact up to the limit
+/// `check` prints (its slack added to the delay it assumes), every sample wrong from just
+/// beyond it to one clock period beyond.
+fn sweep_data_valid(
+    name: &str,
+    text: &str,
+    run: &dyn Fn(&AdcParams, PinTiming, f64) -> (usize, usize),
+) {
+    let l = sinedec::config::Loaded::parse(text, "w.toml").expect("config");
+    let p = l.derived.adc.clone();
+    let pins = PinTiming::from_io(&l.derived.io_timing);
+    let (c, slack) = check_round_trip(text);
+    assert_eq!(
+        c,
+        p.capture_distance_clocks(),
+        "{name}: check prints the distance"
+    );
+    let limit = p.timing.data_valid_ns + slack;
+    let t = 1e9 / p.clock_hz;
+    println!(
+        "{name}: capture distance {c} clocks, slack {slack:.2} ns, data valid up to {limit:.2} ns"
+    );
+    // `check` prints the slack to 10 ps: the sweep steps around the limit by 20 ps.
+    for v in [0.5 * limit, limit - 0.02] {
+        let (wrong, n) = run(&p, pins, v);
+        assert_eq!(
+            wrong, 0,
+            "{name}: data valid {v:.2} ns <= {limit:.2} ns: {wrong} of {n} wrong"
+        );
+    }
+    for v in [limit + 0.02, limit + 0.5 * t, limit + t - 0.02] {
+        let (wrong, n) = run(&p, pins, v);
+        assert!(
+            wrong * 4 >= n * 3,
+            "{name}: data valid {v:.2} ns > {limit:.2} ns: only {wrong} of {n} wrong"
+        );
+    }
+}
+
+#[test]
+fn the_decoder_is_exact_up_to_the_window_check_prints() {
+    sweep_data_valid(
+        "spartan3an (LTC1407A-1)",
+        include_str!("../configs/spartan3an.toml"),
+        &|p, pins, v| ltc_wrong_samples(p, pins, v, 6),
+    );
+    sweep_data_valid(
+        "cyclone3_capacitive (generic)",
+        include_str!("../configs/cyclone3_capacitive.toml"),
+        &|p, pins, v| generic_wrong_samples(p, pins, v, 6),
     );
 }

@@ -351,7 +351,7 @@ fn value_of(text: &str, label: &str) -> Option<f64> {
 }
 
 /// `check` and `simulate` name the same latency the same way with the same value, and the
-/// ADC's own latency (200 clocks) is named differently.
+/// ADC's own latency (201 clocks) is named differently.
 #[test]
 fn check_and_simulate_name_their_latencies_alike() {
     let l = default();

@@ -100,10 +100,21 @@ pub struct AdcController {
     valid_reg: DFF<Bit>,
     ch0_reg: DFF<Bits<16>>,
     ch1_reg: DFF<Bits<16>>,
-    /// adc_miso and rst one clock late: the pins and the capture are decoded from the
-    /// registered state, one clock after it is entered (see the module docs).
+    /// adc_miso registered at every edge (the input flip-flop the pad set-up budget
+    /// `board.fpga_input_setup_ns` is for). A capture state S samples it at the edge one
+    /// clock after S is entered (`MISO_SAMPLE_LAG_CLOCKS`), the edge that also moves the
+    /// pins of S: D clocks after the pin edge that shifted the bit out.
     miso_d: DFF<Bit>,
+    /// rst one clock late: the data registers are cleared with the pins, one clock after
+    /// the state (see the module docs).
     rst_d: DFF<Bit>,
+    /// The capture enables of the state entered at the previous edge, registered, so the
+    /// shift (one clock after miso_d sampled the bit) and the sample strobe follow the
+    /// capture state by two clocks: channel 0, channel 1, and the last slot of a frame
+    /// that is delivered (warm-up over).
+    cap0_d: DFF<Bit>,
+    cap1_d: DFF<Bit>,
+    capv_d: DFF<Bit>,
     /// The state entered at the previous edge starts an SCK frame (pc_n == lead): decoded
     /// from `atl`.
     at_lead: Signal<Local, Bit>,
@@ -312,6 +323,9 @@ impl AdcController {
             ch1_reg: Default::default(),
             miso_d: Default::default(),
             rst_d: Default::default(),
+            cap0_d: Default::default(),
+            cap1_d: Default::default(),
+            capv_d: Default::default(),
             at_lead: Default::default(),
             atl: Default::default(),
             pcl_n: Default::default(),
@@ -427,7 +441,7 @@ impl Logic for AdcController {
         dff_setup!(
             self, clk, live, pc, ph, cyc, warm, sr0, sr1, sck_reg, conv_reg, valid_reg, ch0_reg,
             ch1_reg, miso_d, rst_d, pcl_x, pcm_x, wa, w0, w1, wl, wb, wc, cst, plx, atl, ewa_lo,
-            ewa_hi, ew0_lo, ew0_hi, ew1_lo, ew1_hi, ewl_lo, ewl_hi, est
+            ewa_hi, ew0_lo, ew0_hi, ew1_lo, ew1_hi, ewl_lo, ewl_hi, est, cap0_d, cap1_d, capv_d
         );
         self.run.next = self.enable.val() & !self.rst.val();
         // Period counter and warm-up count (flush period, then discarded frames).
@@ -593,12 +607,19 @@ impl Logic for AdcController {
             & (self.warm.q.val() < self.warm_init.val());
         self.sck_reg.d.next = self.sck_act.val() ^ self.cpol.val();
         self.conv_reg.d.next = self.conv_act.val() ^ self.conv_idle.val();
-        // Capture: the state entered at the previous edge launches the next shifting SCK
-        // edge; the bit is adc_miso of the clock before that edge (miso_d). Slot k is
-        // cycle k + 1 (the constants hold slot + 1).
+        // Capture: the state entered at the previous edge (capture state S) launches the
+        // next shifting SCK edge at this edge; miso_d samples adc_miso at this same edge,
+        // D clocks after the pin edge that shifted the bit out
+        // (`AdcParams::capture_distance_clocks`). The enables of S are registered
+        // (cap0_d ...) and the bit is shifted in at the next edge. Slot k is cycle k + 1
+        // (the constants hold slot + 1).
         self.miso_d.d.next = self.adc_miso.val();
         self.rst_d.d.next = self.rst.val();
         self.cap.next = self.live.q.val() & self.pcp.val();
+        self.cap0_d.d.next = self.cap.val() & self.p0.val();
+        self.cap1_d.d.next = self.cap.val() & self.p1.val();
+        self.capv_d.d.next =
+            self.cap.val() & self.pl.val() & (self.warm.q.val() == self.zero4.val());
         self.shifted0.next = (self.sr0.q.val() << self.one16.val()) & self.wmask.val();
         if self.miso_d.q.val() {
             self.shifted0.next =
@@ -610,17 +631,17 @@ impl Logic for AdcController {
                 ((self.sr1.q.val() << self.one16.val()) | self.one16.val()) & self.wmask.val();
         }
         self.sr0_n.next = self.sr0.q.val();
-        if self.cap.val() & self.p0.val() {
+        if self.cap0_d.q.val() {
             self.sr0_n.next = self.shifted0.val();
         }
         self.sr1_n.next = self.sr1.q.val();
-        if self.cap.val() & self.p1.val() {
+        if self.cap1_d.q.val() {
             self.sr1_n.next = self.shifted1.val();
         }
         self.sr0.d.next = self.sr0_n.val();
         self.sr1.d.next = self.sr1_n.val();
         self.valid_reg.d.next = false;
-        if self.cap.val() & self.pl.val() & (self.warm.q.val() == self.zero4.val()) {
+        if self.capv_d.q.val() {
             self.valid_reg.d.next = true;
             self.ch0_reg.d.next = (self.sr0_n.val() ^ self.flip.val()) & self.wmask.val();
             self.ch1_reg.d.next = (self.sr1_n.val() ^ self.flip.val()) & self.wmask.val();

@@ -57,6 +57,10 @@ pub struct AdcModel {
     cyc: u32,
     warm: u32,
     sr: [u16; 2],
+    /// The capture enables of the state entered at the previous step (channel 0, channel 1,
+    /// deliver): the bit is the `miso` of the next step, the level the input register takes
+    /// at the edge that moves the capture state's pins (`MISO_SAMPLE_LAG_CLOCKS`).
+    pend: [bool; 3],
     out: AdcOut,
     /// The registered pins and data: `out` of the previous clock (the hardware decodes
     /// them from the state one clock after it is entered).
@@ -74,6 +78,7 @@ impl AdcModel {
             cyc: 0,
             warm: 0,
             sr: [0; 2],
+            pend: [false; 3],
             out: AdcOut::default(),
             pins: AdcOut {
                 sck: p.frame.cpol,
@@ -118,10 +123,17 @@ impl AdcModel {
         let cap = run && ph_n == p.capture_phase() && cyc_n >= 1 && cyc_n <= f.frame_sck;
         let slot = cyc_n.wrapping_sub(1) & 0xff;
         let wmask = mask(f.width) as u16;
-        let mut sr_n = self.sr;
         let chans = f.channels.min(2) as usize;
+        let mut pend = [false; 3];
+        for (c, e) in pend.iter_mut().enumerate().take(chans) {
+            *e = cap && slot >= f.offsets[c] && slot < f.offsets[c] + f.width;
+        }
+        pend[2] = cap && slot == p.data_slots().1 && warm_n == 0;
+        // The bits of the capture state entered at the previous step: `i.miso` is the level
+        // sampled at the edge that moved its pins.
+        let mut sr_n = self.sr;
         for (c, (sr, old)) in sr_n.iter_mut().zip(self.sr).enumerate().take(chans) {
-            if cap && slot >= f.offsets[c] && slot < f.offsets[c] + f.width {
+            if self.pend[c] {
                 *sr = ((old << 1) | i.miso as u16) & wmask;
             }
         }
@@ -136,7 +148,7 @@ impl AdcModel {
             ch0: self.out.ch0,
             ch1: self.out.ch1,
         };
-        if cap && slot == p.data_slots().1 && warm_n == 0 {
+        if self.pend[2] {
             out.valid = true;
             out.ch0 = (sr_n[0] ^ flip) & wmask;
             out.ch1 = if f.channels >= 2 {
@@ -151,6 +163,7 @@ impl AdcModel {
             out.ch0 = 0;
             out.ch1 = 0;
         }
+        self.pend = pend;
         self.live = run;
         self.pc = pc_n;
         self.ph = ph_n;

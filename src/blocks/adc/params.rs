@@ -149,6 +149,16 @@ pub struct AdcParams {
     pub period_clocks: u32,
 }
 
+/// Clocks from the edge that enters a controller state to the edge that moves the pins
+/// (SCK, CONV) of that state: the pins are registers loaded from the state.
+pub const PIN_LAG_CLOCKS: u32 = 1;
+
+/// Clocks from the edge that enters a capture state to the edge at which `adc_miso` is
+/// sampled for it: the input register `miso_d` takes the pin at the next edge (the one that
+/// moves the capture state's pins), and the registered capture enables shift it in one
+/// clock after that.
+pub const MISO_SAMPLE_LAG_CLOCKS: u32 = 1;
+
 /// Largest supported period (16-bit period counter).
 pub const MAX_PERIOD_CLOCKS: u32 = 65_535;
 
@@ -299,7 +309,39 @@ impl AdcParams {
             .saturating_add(self.capture_phase())
     }
 
-    /// Period counter value at which the last data bit is captured and `out_valid` rises.
+    /// Period counter value of the state whose pins make the SCK edge that shifts slot `k`
+    /// out of the chip (k >= 1): the leading edge of SCK cycle k for CPHA = 1, the trailing
+    /// edge of cycle k - 1 for CPHA = 0 (slot 0 of CPHA = 0 is shifted by CONV / CS).
+    pub fn shift_clock(&self, k: u32) -> u32 {
+        let edge = if self.frame.cpha {
+            self.sck_low_clocks()
+        } else {
+            0
+        };
+        self.frame
+            .lead_clocks
+            .saturating_add(k.saturating_mul(self.sck_period_clocks))
+            .saturating_add(edge)
+    }
+
+    /// The capture distance: system clocks from the clock edge that moves the `adc_sck` pin
+    /// (the edge that shifts a bit out of the chip) to the clock edge whose register
+    /// (`miso_d`) samples `adc_miso` for that bit. Derived from the controller's structure
+    /// (capture state, shifting state, pin and sample lags); it is the same for every slot.
+    /// The I/O budget (`check`, the UCF/SDC, the chip models' valid window) is this many
+    /// clock periods: D with the capture at the edge that launches the next shifting edge.
+    pub fn capture_distance_clocks(&self) -> u32 {
+        let k = 1;
+        (self.capture_clock(k) + MISO_SAMPLE_LAG_CLOCKS)
+            .saturating_sub(self.shift_clock(k) + PIN_LAG_CLOCKS)
+    }
+
+    /// [`capture_distance_clocks`](Self::capture_distance_clocks) in ns.
+    pub fn capture_window_ns(&self) -> f64 {
+        self.capture_distance_clocks() as f64 * 1e9 / self.clock_hz
+    }
+
+    /// Period counter value at which the last data bit is captured (its capture state).
     pub fn last_capture_clock(&self) -> u32 {
         self.capture_clock(self.data_slots().1)
     }
@@ -326,10 +368,14 @@ impl AdcParams {
     /// Clocks from the first clock CONV is active (the sampling edge) to the `out_valid`
     /// strobe that delivers that sample.
     pub fn conv_to_valid_clocks(&self) -> u32 {
+        // CONV and out_valid both leave registers: CONV one clock after its state, the
+        // strobe one clock after the shift, which is MISO_SAMPLE_LAG_CLOCKS + 1 after the
+        // capture state.
         self.frame
             .pipeline
             .saturating_mul(self.period_clocks)
             .saturating_add(self.last_capture_clock())
+            .saturating_add(MISO_SAMPLE_LAG_CLOCKS + 1 - PIN_LAG_CLOCKS)
     }
 
     /// [`conv_to_valid_clocks`](Self::conv_to_valid_clocks) in seconds.

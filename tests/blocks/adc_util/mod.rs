@@ -8,6 +8,7 @@ use sinedec::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
 use sinedec::blocks::sext;
 use sinedec::cosim::step::{prepare, tick};
 use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::sim::adc_pins::PinTiming;
 use sinedec::sim::ltc1407a::Ltc1407a;
 use sinedec::sim::spi_adc::SpiAdc;
 use sinedec::verify::{block_traces, Simulators};
@@ -296,7 +297,7 @@ pub fn generic_closed_loop(p: &AdcParams, n: usize) -> Run {
     p.validate().expect("feasible");
     let w = p.frame.width;
     let codes = generic_codes(w, n + 4, w as u64);
-    let mut slave = SpiAdc::with_codes(p.frame, codes.clone());
+    let mut slave = SpiAdc::with_codes(p, PinTiming::board_default(), codes.clone());
     let per = p.period_clocks as usize;
     let cycles = 2 + p.startup_clocks() as usize + (n - 1) * per + 1;
     let run = closed_loop(p, &mut slave, &|k| (k < 2, true), cycles);
@@ -345,4 +346,78 @@ pub fn cosim(p: &AdcParams, run: &Run, top: &str) {
         "{top}: replay differs from the closed loop"
     );
     assert!(t.icarus.is_some() && t.verilator.is_some());
+}
+
+// ---------------------------------------------------------------------------------------
+// The capture window against chip models that keep real time.
+
+/// The capture distance and the round-trip slack `check` prints for a config (parsed from
+/// the `ADC round trip` line of its describe text).
+pub fn check_round_trip(text: &str) -> (u32, f64) {
+    let l = sinedec::config::Loaded::parse(text, "w.toml").expect("config");
+    let d = l.derived.describe();
+    let line = d
+        .lines()
+        .find(|l| l.starts_with("ADC round trip"))
+        .expect("round-trip line");
+    let after = |key: &str| -> &str {
+        let i = line.find(key).unwrap_or_else(|| panic!("{key} in {line}")) + key.len();
+        line[i..].split_whitespace().next().unwrap_or("")
+    };
+    let c = after("capture distance ").parse().expect("distance");
+    let slack = after("slack ").parse().expect("slack");
+    (c, slack)
+}
+
+/// Runs the LTC1407A-1 controller against the chip with SCK-to-data valid `t8_ns` behind
+/// `pins`; returns (wrong samples, samples).
+pub fn ltc_wrong_samples(p: &AdcParams, pins: PinTiming, t8_ns: f64, n: usize) -> (usize, usize) {
+    use sinedec::sim::ltc1407a::Ltc1407aTiming;
+    let codes = code_list(n + 4, 11);
+    let mut chip = ltc_with_list(p.clock_hz, codes.clone(), 5)
+        .with_pins(pins)
+        .with_timing(Ltc1407aTiming {
+            sdo_valid_ns: t8_ns,
+            ..Ltc1407aTiming::DATASHEET
+        });
+    let cycles = 3 + p.startup_clocks() as usize + (n - 1) * p.period_clocks as usize + 1;
+    let run = closed_loop(p, &mut chip, &|k| (k < 3, true), cycles);
+    let s = run.samples(14);
+    assert_eq!(s.len(), n);
+    let wrong = s
+        .iter()
+        .enumerate()
+        .filter(|(j, &(_, a, b))| [a, b] != [codes[*j][0] as i64, codes[*j][1] as i64])
+        .count();
+    (wrong, s.len())
+}
+
+/// The same with the generic SPI ADC model (data valid `valid_ns`, no hold).
+pub fn generic_wrong_samples(
+    p: &AdcParams,
+    pins: PinTiming,
+    valid_ns: f64,
+    n: usize,
+) -> (usize, usize) {
+    let w = p.frame.width;
+    let codes = generic_codes(w, n + 4, 3);
+    let mut slave = SpiAdc::with_codes(p, pins, codes).with_delays(valid_ns, 0.0);
+    let cycles = 3 + p.startup_clocks() as usize + (n - 1) * p.period_clocks as usize + 1;
+    let run = closed_loop(p, &mut slave, &|k| (k < 3, true), cycles);
+    let s = run.samples(w);
+    assert_eq!(s.len(), n);
+    let wrong = s
+        .iter()
+        .enumerate()
+        .filter(|(j, &(_, a, b))| {
+            let c = slave.taken()[*j].1;
+            let b_expect = if p.frame.channels == 2 {
+                c[1] as i64
+            } else {
+                0
+            };
+            [a, b] != [c[0] as i64, b_expect]
+        })
+        .count();
+    (wrong, s.len())
 }

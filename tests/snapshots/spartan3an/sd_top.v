@@ -514,6 +514,15 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
     reg  rst_d_d;
     wire  rst_d_q;
     reg  rst_d_clock;
+    reg  cap0_d_d;
+    wire  cap0_d_q;
+    reg  cap0_d_clock;
+    reg  cap1_d_d;
+    wire  cap1_d_q;
+    reg  cap1_d_clock;
+    reg  capv_d_d;
+    wire  capv_d_q;
+    reg  capv_d_clock;
     reg  atl_d;
     wire  atl_q;
     reg  atl_clock;
@@ -679,6 +688,21 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         .q(rst_d_q),
         .clock(rst_d_clock)
     );
+    sd_top_rtl_adc_cap0_d cap0_d(
+        .d(cap0_d_d),
+        .q(cap0_d_q),
+        .clock(cap0_d_clock)
+    );
+    sd_top_rtl_adc_cap1_d cap1_d(
+        .d(cap1_d_d),
+        .q(cap1_d_q),
+        .clock(cap1_d_clock)
+    );
+    sd_top_rtl_adc_capv_d capv_d(
+        .d(capv_d_d),
+        .q(capv_d_q),
+        .clock(capv_d_clock)
+    );
     sd_top_rtl_adc_atl atl(
         .d(atl_d),
         .q(atl_q),
@@ -816,6 +840,9 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         ewl_lo_clock = clk;
         ewl_hi_clock = clk;
         est_clock = clk;
+        cap0_d_clock = clk;
+        cap1_d_clock = clk;
+        capv_d_clock = clk;
         live_d = live_q;
         pc_d = pc_q;
         ph_d = ph_q;
@@ -850,6 +877,9 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         ewl_lo_d = ewl_lo_q;
         ewl_hi_d = ewl_hi_q;
         est_d = est_q;
+        cap0_d_d = cap0_d_q;
+        cap1_d_d = cap1_d_q;
+        capv_d_d = capv_d_q;
         run = enable & ~rst;
         fl = pcl_x_q ^ kl;
         fm = pcm_x_q ^ km;
@@ -990,6 +1020,9 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
         miso_d_d = adc_miso;
         rst_d_d = rst;
         cap = live_q & pcp;
+        cap0_d_d = cap & p0;
+        cap1_d_d = cap & p1;
+        capv_d_d = cap & pl & (warm_q == zero4);
         shifted0 = (sr0_q << one16) & wmask;
         if (miso_d_q) begin
             shifted0 = ((sr0_q << one16) | one16) & wmask;
@@ -999,17 +1032,17 @@ module sd_top_rtl_adc(clk,rst,enable,adc_miso,adc_sck,adc_conv,out_valid,out_ch0
             shifted1 = ((sr1_q << one16) | one16) & wmask;
         end
         sr0_n = sr0_q;
-        if (cap & p0) begin
+        if (cap0_d_q) begin
             sr0_n = shifted0;
         end
         sr1_n = sr1_q;
-        if (cap & p1) begin
+        if (cap1_d_q) begin
             sr1_n = shifted1;
         end
         sr0_d = sr0_n;
         sr1_d = sr1_n;
         valid_reg_d = 1'b0;
-        if (cap & pl & (warm_q == zero4)) begin
+        if (capv_d_q) begin
             valid_reg_d = 1'b1;
             ch0_reg_d = (sr0_n ^ flip) & wmask;
             ch1_reg_d = (sr1_n ^ flip) & wmask;
@@ -1055,6 +1088,60 @@ module sd_top_rtl_adc_atl(d,q,clock);
     end
 
 endmodule // sd_top_rtl_adc_atl
+
+module sd_top_rtl_adc_cap0_d(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_cap0_d
+
+module sd_top_rtl_adc_cap1_d(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_cap1_d
+
+module sd_top_rtl_adc_capv_d(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_adc_capv_d
 
 module sd_top_rtl_adc_ch0_reg(d,q,clock);
 
