@@ -380,12 +380,12 @@ fn sweep_data_valid(
 fn the_decoder_is_exact_up_to_the_window_check_prints() {
     sweep_data_valid(
         "spartan3an (LTC1407A-1)",
-        include_str!("../configs/spartan3an.toml"),
+        include_str!("../../configs/spartan3an.toml"),
         &|p, pins, v| ltc_wrong_samples(p, pins, v, 6),
     );
     sweep_data_valid(
         "cyclone3_capacitive (generic)",
-        include_str!("../configs/cyclone3_capacitive.toml"),
+        include_str!("../../configs/cyclone3_capacitive.toml"),
         &|p, pins, v| generic_wrong_samples(p, pins, v, 6),
     );
 }
