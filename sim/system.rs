@@ -273,7 +273,12 @@ impl SimResult {
     /// the first sample is a step to the encoder's position.
     pub fn velocity_stats(&self, d: &Derived) -> Option<VelStats> {
         let v = d.velocity.as_ref()?;
-        let first = self.records.first()?.cycle;
+        // The first decoded sample: the kept records' or, without them, the streamed one.
+        let first = match (self.records.first(), &self.streamed) {
+            (Some(r), _) => r.cycle,
+            (None, Some(s)) => s.first?.cycle,
+            (None, None) => return None,
+        };
         let before = self
             .velocity
             .iter()

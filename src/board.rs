@@ -272,7 +272,7 @@ pub fn adc_round_trip(
 pub struct WrapperPort {
     /// "input " or "output".
     pub dir: String,
-    /// "" or "[7:0] ".
+    /// "", "[7:0] " or "signed [31:0] ".
     pub range: String,
     /// Port name.
     pub name: String,
@@ -311,6 +311,7 @@ pub fn wrapper_ports(text: &str) -> Vec<WrapperPort> {
         let (range, name) = match rest.as_slice() {
             [n] => (String::new(), n.to_string()),
             [r, n] => (format!("{r} "), n.to_string()),
+            ["signed", r, n] => (format!("signed {r} "), n.to_string()),
             _ => continue,
         };
         out.push(WrapperPort {
@@ -379,5 +380,13 @@ mod tests {
         assert_eq!(p[1].range, "[9:0] ");
         assert_eq!(p[2].name, "par_warning");
         assert_eq!(p[0].dir, "input ");
+        // A signed port (par_velocity) is a port too.
+        let t = "module x (\n    output wire signed [31:0] par_velocity, // v\n    output wire par_velocity_valid // s\n);\n";
+        let p = wrapper_ports(t);
+        assert_eq!(p.len(), 2, "{p:?}");
+        assert_eq!(
+            (p[0].range.as_str(), p[0].name.as_str()),
+            ("signed [31:0] ", "par_velocity")
+        );
     }
 }

@@ -376,6 +376,78 @@ impl Derived {
         s
     }
 
+    /// The serial slaves' line timing for `describe` (one line per slave, from
+    /// [`crate::blocks::serial::answer_window`] and
+    /// [`crate::blocks::serial::max_round_trip_ns`]; docs/interfaces.md): when the answer
+    /// leaves the pin after the master's clock edge, and the longest line round trip
+    /// (cable and transceivers) at each rate up to the synchronizer's limit.
+    fn describe_lines(&self) -> String {
+        use crate::blocks::serial::{answer_window, max_round_trip_ns, LINE_RATES_HZ};
+        let io = &self.io_timing;
+        let rates = |max_hz: f64,
+                     window: &dyn Fn(f64) -> f64,
+                     a: &crate::blocks::serial::AnswerWindow|
+         -> String {
+            LINE_RATES_HZ
+                .iter()
+                .filter(|&&f| f <= max_hz)
+                .map(|&f| {
+                    let r = max_round_trip_ns(window(f), a);
+                    let at = if f >= 1e6 {
+                        format!("{:.0} MHz", f / 1e6)
+                    } else {
+                        format!("{:.0} kHz", f / 1e3)
+                    };
+                    if r >= 0.0 {
+                        format!("{r:.1} ns at {at}")
+                    } else {
+                        format!("none at {at}")
+                    }
+                })
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let answer = |what: &str, a: &crate::blocks::serial::AnswerWindow, l: u32| {
+            format!(
+                "{what} {:.2}..{:.2} ns after the master's edge at the pin ({l}..{} clocks, input set-up {:.2}, clock-to-out {:.2})",
+                a.min_ns,
+                a.max_ns,
+                l + 1,
+                io.input_setup_ns,
+                io.clock_to_out_ns
+            )
+        };
+        let period = |f: f64| 1e9 / f;
+        let b = &self.biss;
+        let a = answer_window(b.clock_hz, b.glitch_filter, io);
+        let mut s = format!(
+            "biss line timing            {}; round trip (cable + transceivers, both ways) for a master reading each bit at the next MA rising edge: {}; a BiSS-C master with line-delay compensation: any round trip it compensates (MA up to {:.2} MHz)\n",
+            answer("SLO answers", &a, b.latch_latency()),
+            rates(b.max_ma_hz(), &period, &a),
+            b.max_ma_hz() / 1e6
+        );
+        if let Some(x) = &self.ssi {
+            let a = answer_window(x.clock_hz, x.glitch_filter, io);
+            let max =
+                x.clock_hz / (2 * crate::blocks::serial::min_level_clocks(x.glitch_filter)) as f64;
+            s.push_str(&format!(
+                "ssi line timing             {}; round trip for a master reading each bit at the next rising clock edge: {}\n",
+                answer("data answers", &a, x.latch_latency()),
+                rates(max, &period, &a)
+            ));
+        }
+        if let Some(x) = &self.spi {
+            let a = answer_window(x.clock_hz, x.glitch_filter, io);
+            let half = |f: f64| 0.5e9 / f;
+            s.push_str(&format!(
+                "spi line timing             {}; round trip for a master sampling at the rising SCK edge after the falling one (50 % duty): {}\n",
+                answer("MISO answers a falling SCK edge", &a, x.latch_latency()),
+                rates(x.max_sck_hz(0.0), &half, &a)
+            ));
+        }
+        s
+    }
+
     /// Latency in nanoseconds at the configured clock.
     pub fn latency_ns(&self) -> f64 {
         self.latency_cycles as f64 * 1e9 / self.clock_hz
@@ -410,6 +482,7 @@ impl Derived {
                 s.push_str(&describe_abz(a, self.clock_hz));
             }
             s.push_str(&describe_biss(&self.biss));
+            s.push_str(&self.describe_lines());
             s.push_str(&self.describe_board());
             return s;
         };

@@ -75,37 +75,160 @@ fn declarations(lines: &[&str]) -> BTreeMap<String, u32> {
     w
 }
 
-/// The width of `expr` when it is certain (see the module doc), else None.
+/// The width of `expr` when it is certain (see the module doc), else None: Verilog's
+/// self-determined width of identifiers, part and bit selects (`x[31:0]`, `x[32'h20]`), sized
+/// literals, this rewrite's `sinedec_trunc_M_W(..)` (W), concatenations (the sum), `~` and `-` (the operand's), `& | ^ + -` (the widest
+/// operand's) and `<< >>` (the left operand's; the amount is self-determined). A level of
+/// parentheses that mixes shifts with other operators is uncertain (precedence would decide).
 fn expr_width(expr: &str, widths: &BTreeMap<String, u32>) -> Option<u32> {
-    let b = expr.as_bytes();
-    let mut i = 0;
-    let mut max = 0;
-    while i < b.len() {
-        let c = b[i];
-        if c.is_ascii_alphabetic() || c == b'_' {
-            let s = i;
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
-                i += 1;
-            }
-            max = max.max(*widths.get(&expr[s..i])?);
-        } else if c.is_ascii_digit() {
-            let s = i;
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'\'') {
-                i += 1;
-            }
-            max = max.max(literal_width(&expr[s..i])?);
-        } else if b" ()~&|^+-".contains(&c) {
-            // `&&`, `||` and reductions do not occur in the patterns we rewrite; a doubled
-            // operator makes the width uncertain.
-            if i + 1 < b.len() && (c == b'&' || c == b'|') && b[i + 1] == c {
-                return None;
-            }
-            i += 1;
-        } else {
-            return None;
+    let mut p = WidthParser {
+        s: expr.as_bytes(),
+        i: 0,
+        widths,
+    };
+    let w = p.binary()?;
+    p.skip_ws();
+    (p.i == p.s.len() && w > 0).then_some(w)
+}
+
+/// The recursive reader of [`expr_width`].
+struct WidthParser<'a> {
+    s: &'a [u8],
+    i: usize,
+    widths: &'a BTreeMap<String, u32>,
+}
+
+impl WidthParser<'_> {
+    fn skip_ws(&mut self) {
+        while self.s.get(self.i) == Some(&b' ') {
+            self.i += 1;
         }
     }
-    (max > 0).then_some(max)
+
+    /// Operands joined by binary operators at one level of parentheses.
+    fn binary(&mut self) -> Option<u32> {
+        let mut w = self.unary()?;
+        let (mut shift, mut other) = (false, false);
+        loop {
+            self.skip_ws();
+            let c = match self.s.get(self.i) {
+                Some(c) => *c,
+                None => break,
+            };
+            let next = self.s.get(self.i + 1).copied();
+            let is_shift = match c {
+                b'<' | b'>' if next == Some(c) && self.s.get(self.i + 2) != Some(&c) => {
+                    self.i += 2;
+                    true
+                }
+                // `&&`, `||`, `^~` and reductions do not occur in the patterns rewritten.
+                b'&' | b'|' if next == Some(c) => return None,
+                b'&' | b'|' | b'^' | b'+' | b'-' => {
+                    self.i += 1;
+                    false
+                }
+                _ => break,
+            };
+            let r = self.unary()?;
+            if is_shift {
+                shift = true;
+            } else {
+                other = true;
+                w = w.max(r);
+            }
+            if shift && other {
+                return None;
+            }
+        }
+        Some(w)
+    }
+
+    /// An operand: `~` or `-` and an operand, a parenthesized expression, a concatenation,
+    /// an identifier with an optional select, or a sized literal.
+    fn unary(&mut self) -> Option<u32> {
+        self.skip_ws();
+        let c = *self.s.get(self.i)?;
+        let start = self.i;
+        match c {
+            b'~' | b'-' => {
+                self.i += 1;
+                if matches!(self.s.get(self.i), Some(b'&' | b'|' | b'^')) {
+                    return None;
+                }
+                self.unary()
+            }
+            b'(' => {
+                self.i += 1;
+                let w = self.binary()?;
+                self.skip_ws();
+                (self.s.get(self.i) == Some(&b')')).then(|| self.i += 1)?;
+                Some(w)
+            }
+            b'{' => {
+                self.i += 1;
+                let mut w = 0;
+                loop {
+                    w += self.binary()?;
+                    self.skip_ws();
+                    match self.s.get(self.i) {
+                        Some(b',') => self.i += 1,
+                        Some(b'}') => {
+                            self.i += 1;
+                            return Some(w);
+                        }
+                        _ => return None,
+                    }
+                }
+            }
+            c if c.is_ascii_alphabetic() || c == b'_' => {
+                while self
+                    .s
+                    .get(self.i)
+                    .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
+                {
+                    self.i += 1;
+                }
+                let name = std::str::from_utf8(&self.s[start..self.i]).ok()?;
+                // A truncation this rewrite wrote: W bits.
+                if let (Some(mw), Some(b'(')) =
+                    (name.strip_prefix("sinedec_trunc_"), self.s.get(self.i))
+                {
+                    let w: u32 = mw.split_once('_')?.1.parse().ok()?;
+                    self.i += 1;
+                    self.binary()?;
+                    self.skip_ws();
+                    (self.s.get(self.i) == Some(&b')')).then(|| self.i += 1)?;
+                    return Some(w);
+                }
+                let w = *self.widths.get(name)?;
+                if self.s.get(self.i) != Some(&b'[') {
+                    return Some(w);
+                }
+                let close = self.i + self.s[self.i..].iter().position(|&b| b == b']')?;
+                let sel = std::str::from_utf8(&self.s[self.i + 1..close]).ok()?;
+                self.i = close + 1;
+                match sel.split_once(':') {
+                    Some((h, l)) => {
+                        let h: u32 = h.trim().parse().ok()?;
+                        let l: u32 = l.trim().parse().ok()?;
+                        (h >= l && h < w).then_some(h - l + 1)
+                    }
+                    None => Some(1),
+                }
+            }
+            c if c.is_ascii_digit() => {
+                while self
+                    .s
+                    .get(self.i)
+                    .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'\'')
+                {
+                    self.i += 1;
+                }
+                literal_width(std::str::from_utf8(&self.s[start..self.i]).ok()?)
+            }
+            _ => None,
+        }
+    }
 }
 
 /// Is `lit` a sized hex literal of all ones (`16'hffff`, `14'h3fff`), and of what width?
@@ -448,6 +571,33 @@ mod tests {
         // 7 does not fit in 2 bits: left alone (Verilator then reports it, as it should).
         assert!(c.contains("q <= 32'h7;"), "{c}");
         assert!(c.contains("sx = (sx);"), "{c}");
+    }
+
+    /// The patterns of the correction fit's RTL: a cast of a part select, casts of shifted
+    /// words, and a shift of a sum of a concatenation (its width is the sum's, 53 bits).
+    #[test]
+    fn selects_shifts_and_concatenations() {
+        let t = "module m (\n    input wire  [63:0] e,\n    input wire  [31:0] l,\n    input wire  [51:0] b\n);\n    localparam  s32 = 64'h20;\n    localparam  one53 = 53'h1;\n    reg  [32:0] w;\n    reg  [31:0] x;\n    reg  [27:0] z;\n    reg  [51:0] r;\n    always @(*) begin\n        w = {1'd0, l} + ((e[31:0]) & 33'h1ffffffff);\n        x = ((e >> s32) & 32'hffffffff);\n        z = z - ((e >> s32) & 28'hfffffff);\n        r = (((({1'd0, b} << s32) | one53) >> s32) & 52'hfffffffffffff);\n        x = ((l + e >> s32) & 32'hffffffff);\n    end\nendmodule\n";
+        let c = clean_widths(t);
+        assert!(c.contains("w = {1'd0, l} + {1'd0, e[31:0]};"), "{c}");
+        assert!(c.contains("x = sinedec_trunc_64_32(e >> s32);"), "{c}");
+        assert!(c.contains("z = z - sinedec_trunc_64_28(e >> s32);"), "{c}");
+        assert!(
+            c.contains("r = sinedec_trunc_53_52((({1'd0, b} << s32) | one53) >> s32);"),
+            "{c}"
+        );
+        // A cast of a truncation this rewrite wrote (the fit's `~` of a high half).
+        let t2 = t.replace(
+            "        x = ((l + e >> s32) & 32'hffffffff);\n",
+            "        x = ((l + e >> s32) & 32'hffffffff);\n        r = (((~((e >> s32) & 28'hfffffff)) & 52'hfffffffffffff) << s32);\n",
+        );
+        let c2 = clean_widths(&t2);
+        assert!(
+            c2.contains("r = ({24'd0, ~sinedec_trunc_64_28(e >> s32)} << s32);"),
+            "{c2}"
+        );
+        // A shift next to another operator at one level: precedence decides, left alone.
+        assert!(c.contains("x = ((l + e >> s32) & 32'hffffffff);"), "{c}");
     }
 
     #[test]

@@ -3,7 +3,9 @@
 //! `<name>_lint.vlt`, whose waivers each state their reason: the core, the top and the
 //! self-checking testbench of the shipped sinewave config, of its iterative-CORDIC variant
 //! and of the capacitive config, and the kit preset's board wrapper with the clock
-//! simulation model and the DCM_SP clock module. (`<name>_inst.v` holds instantiation
+//! simulation model and the DCM_SP clock module; and the same files and the board wrapper
+//! for every option combination the shipped tests use (velocity, ABZ, BiSS control, auto
+//! correction, phase correction, and those together). (`<name>_inst.v` holds instantiation
 //! templates, not a module; the other emitted files are not Verilog.)
 use crate::common;
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
@@ -58,6 +60,12 @@ fn assert_clean((ok, findings): (bool, Vec<String>), what: &str) {
 
 fn lint_clean(text: &str, tag: &str, name: &str) {
     let (dir, files) = generated(text, tag);
+    lint_generated(&dir, &files, tag, name);
+}
+
+/// [`lint_clean`] of files already generated into `dir`.
+fn lint_generated(dir: &std::path::Path, files: &[String], tag: &str, name: &str) {
+    let dir = dir.to_path_buf();
     let vlt = format!("{name}_lint.vlt");
     assert!(files.contains(&vlt), "{vlt} not generated: {files:?}");
     for m in ["core", "top"] {
@@ -151,6 +159,77 @@ fn the_board_wrapper_is_lint_clean_with_the_clock_model() {
         "sd_clock",
     );
     assert_clean(r, "sd_clock, -Wall with sd_lint.vlt");
+}
+
+/// The option combinations the shipped tests use, as (tag, config text): the velocity
+/// estimator, ABZ output, the BiSS control channel, auto correction, static phase
+/// correction, and all of velocity, ABZ, control and auto together. Each on the Starter
+/// Kit preset, so that `<name>_board.v` (the DCM wrapper) is written as well.
+fn option_combinations() -> Vec<(&'static str, String)> {
+    let set = |from: &str, to: &str, text: &str| {
+        assert_eq!(
+            text.matches(from).count(),
+            1,
+            "{from:?} moved in the default config"
+        );
+        text.replacen(from, to, 1)
+    };
+    let velocity = "\n[velocity]\nenabled = true\nrate_hz = 200e3\nbandwidth_hz = 20000.0\n";
+    let abz = "\n[abz]\nenabled = true\n";
+    let control = |t: &str| set("[biss]\n", "[biss]\ncontrol = true\n", t);
+    let auto = |t: &str| set("\nmode = \"static\"\n", "\nmode = \"auto\"\n", t);
+    let phase = |t: &str| {
+        set(
+            "\nmode = \"static\"\n",
+            "\nmode = \"static\"\nphase_deg = 3.0\n",
+            t,
+        )
+    };
+    let d = DEFAULT_CONFIG;
+    let combos = vec![
+        ("velocity", format!("{d}{velocity}")),
+        ("abz", format!("{d}{abz}")),
+        ("control", control(d)),
+        ("auto", auto(d)),
+        ("phase", phase(d)),
+        ("all", format!("{}{velocity}{abz}", auto(&control(d)))),
+    ];
+    combos
+        .into_iter()
+        .map(|(tag, t)| {
+            let abz_pins = if t.contains("\n[abz]\n") {
+                "abz_a = \"J1\"\nabz_b = \"J2\"\nabz_z = \"J3\"\n"
+            } else {
+                ""
+            };
+            (
+                tag,
+                format!(
+                    "{t}\n[board]\npreset = \"spartan3an-starter-kit\"\n[board.pins]\nqep_a = \"H1\"\nqep_b = \"H2\"\nqep_z = \"H3\"\nbiss_ma = \"H4\"\nbiss_slo = \"H5\"\n{abz_pins}"
+                ),
+            )
+        })
+        .collect()
+}
+
+/// Every emitted Verilog file of every option combination the shipped tests use is lint
+/// clean at the default warnings and with `-Wall` plus the emitted `.vlt`: the core, the top,
+/// the core's testbench, and the board wrapper with the clock model (which must carry every
+/// port of `<name>_top`, signed and optional ones: a missing one is PINMISSING).
+#[test]
+fn every_option_combination_is_lint_clean_with_its_board_wrapper() {
+    for (tag, text) in option_combinations() {
+        let (dir, files) = generated(&text, tag);
+        lint_generated(&dir, &files, tag, "sd");
+        assert!(files.iter().any(|f| f == "sd_board.v"), "{tag}: {files:?}");
+        let board = ["sd_board.v", "sd_clock_sim.v", "sd_top.v"];
+        let r = verilator(&dir, &["--timing"], &board, "sd_board");
+        assert_clean(r, &format!("{tag} sd_board, default warnings"));
+        let mut all = vec!["sd_lint.vlt"];
+        all.extend(board);
+        let r = verilator(&dir, &["--timing", "-Wall"], &all, "sd_board");
+        assert_clean(r, &format!("{tag} sd_board, -Wall with sd_lint.vlt"));
+    }
 }
 
 /// The capacitive top's board wrapper on Cyclone III (a 25 MHz oscillator: an ALTPLL makes the

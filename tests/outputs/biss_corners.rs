@@ -314,6 +314,190 @@ fn maximum_ma_rate_measured() {
 }
 
 // ---------------------------------------------------------------------------------------
+// Line delay
+// ---------------------------------------------------------------------------------------
+
+/// How the frames of one run ended: read with a good CRC and the latched position, failed
+/// loudly (bad CRC, no Ack or Start, not ready), or read with a good CRC and a wrong
+/// position (silently wrong: must never happen).
+#[derive(Debug, Default, PartialEq)]
+struct Tally {
+    right: usize,
+    loud: usize,
+    silent: usize,
+}
+
+/// Frames at `hz` over a line whose round trip, pads included, is `rt_ns`, at many
+/// MA/clock phases (a gap of 7.3 ns more before each frame).
+fn tally(p: &BissParams, rt_ns: f64, hz: f64, compensate: bool, frames: usize) -> Tally {
+    let t = timing(p.clock_hz, rt_ns / 2.0);
+    let reqs: Vec<_> = (0..frames)
+        .map(|i| FrameRequest::new(hz).gap(7.3 * i as f64))
+        .collect();
+    let mut c = BissMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
+    c.compensate = compensate;
+    c.max_ack_bits = 40;
+    c.line.recover_ns = 2.0 * p.timeout_us() * 1e3 + rt_ns;
+    let mut m = BissMaster::new(c, reqs.clone(), 300.0);
+    let stream = Stream {
+        every: 1,
+        ..Default::default()
+    };
+    let n = cycles_for(
+        p,
+        &reqs,
+        frames as f64 * (rt_ns + 3.0 * p.timeout_us() * 1e3),
+    );
+    let run = closed_loop(p, &mut m, &stream, n, |_, _| Ctl::default(), t);
+    assert_eq!(run.frames.len(), frames, "{:#?}", run.frames);
+    let mut out = Tally::default();
+    for f in &run.frames {
+        match f.good() {
+            None => out.loud += 1,
+            Some(d) => {
+                let l = run.latch_row(f.t_start_ns, p);
+                if d.position == run.expect(p, l, 0).0 {
+                    out.right += 1;
+                } else {
+                    out.silent += 1;
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The supported line round trip (cable and transceivers, both ways) at each MA rate, the
+/// figure `check` prints (`sinedec::blocks::serial::max_round_trip_ns`, docs/interfaces.md):
+/// with the `[board]` default pad budgets (set-up 3 ns, clock-to-out 6 ns) added to the
+/// model's line, a master that reads each answer at the next MA rising edge reads every
+/// frame right at that round trip; from there to two clock periods beyond it no frame is
+/// silently wrong (bad CRC, or read right one bit late, as BiSS's Ack/Start search allows);
+/// a compensating master reads every frame right at ten times the limit (and 1 us).
+#[test]
+fn supported_round_trip_at_each_ma_rate() {
+    use sinedec::blocks::serial::{answer_window, max_round_trip_ns};
+    let io = sinedec::board::IoTiming::DEFAULT;
+    let pads = io.input_setup_ns + io.clock_to_out_ns;
+    let mut table = String::new();
+    for clock in [50e6, 133.33e6] {
+        let mut p = BissParams::new(19, 0, clock).unwrap();
+        p.set_timeout_us(2.0).unwrap();
+        let a = answer_window(clock, p.glitch_filter, &io);
+        let tclk = 1e9 / clock;
+        for hz in [1e6, 4e6, 10e6] {
+            let limit = max_round_trip_ns(1e9 / hz, &a);
+            assert!(limit > 0.0, "{clock} Hz, {hz} Hz: limit {limit}");
+            let at = tally(&p, limit + pads - 0.05, hz, false, 16);
+            assert_eq!(
+                at.right, 16,
+                "{clock} Hz clock, MA {hz} Hz at the limit: {at:?}"
+            );
+            let mut beyond = Tally::default();
+            for k in 1..=8 {
+                let t = tally(&p, limit + pads + k as f64 * tclk / 4.0, hz, false, 8);
+                beyond.right += t.right;
+                beyond.loud += t.loud;
+                beyond.silent += t.silent;
+            }
+            assert_eq!(
+                beyond.silent, 0,
+                "{clock} Hz, MA {hz} Hz beyond: {beyond:?}"
+            );
+            let far = (10.0 * limit).max(1000.0);
+            let comp = tally(&p, far + pads, hz, true, 8);
+            assert_eq!(comp.right, 8, "compensated at {far} ns: {comp:?}");
+            table += &format!(
+                "| {:>7.2} MHz | {:>5.1} MHz | {:>7.1} ns | {:>3} right, {:>3} loud |\n",
+                clock / 1e6,
+                hz / 1e6,
+                limit,
+                beyond.right,
+                beyond.loud
+            );
+        }
+    }
+    println!(
+        "| clock | MA | max round trip | beyond (up to +2 T_clk) |\n|---|---|---|---|\n{table}"
+    );
+}
+
+/// `sinedec check` prints each serial slave's answer window and its supported round trip at
+/// each rate up to the synchronizer's limit, the same figures as the functions the sweeps
+/// above and `tests/ssi.rs`, `tests/spi_slave.rs` hold the slaves to; a `[board]` budget
+/// moves them.
+#[test]
+fn check_prints_the_supported_round_trip() {
+    use sinedec::blocks::serial::{answer_window, max_round_trip_ns, LINE_RATES_HZ};
+    let text = sinedec::config::DEFAULT_CONFIG
+        .replace(
+            "[ssi]\n# SSI slave on ssi_clk/ssi_data, sending the BiSS data word (binary or Gray).\nenabled = false",
+            "[ssi]\nenabled = true",
+        )
+        .replace(
+            "enc_miso: the BiSS data word, then E and W.\nenabled = false",
+            "enc_miso: the BiSS data word, then E and W.\nenabled = true",
+        );
+    // The kit preset with the header pins, and budgets of 4.5 ns and 1 ns.
+    let board = format!(
+        "{}\n[board]\npreset = \"spartan3an-starter-kit\"\nfpga_clock_to_out_ns = 4.5\nfpga_input_setup_ns = 1.0\n[board.pins]\nqep_a = \"H1\"\nqep_b = \"H2\"\nqep_z = \"H3\"\nbiss_ma = \"H4\"\nbiss_slo = \"H5\"\n",
+        sinedec::config::DEFAULT_CONFIG
+    );
+    for (text, co, su) in [(text, 6.0, 3.0), (board, 4.5, 1.0)] {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("c.toml"), &text).unwrap();
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
+            .args(["check", "c.toml"])
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8_lossy(&o.stdout).to_string();
+        let l = sinedec::config::Loaded::parse(&text, "c.toml").unwrap();
+        let d = &l.derived;
+        let io = sinedec::board::IoTiming {
+            clock_to_out_ns: co,
+            input_setup_ns: su,
+            ..sinedec::board::IoTiming::DEFAULT
+        };
+        let a = answer_window(d.clock_hz, d.biss.glitch_filter, &io);
+        let mut lines = vec![("biss line timing", 1.0, d.biss.max_ma_hz())];
+        if let Some(x) = &d.spi {
+            lines.push(("ssi line timing", 1.0, d.biss.max_ma_hz()));
+            lines.push(("spi line timing", 0.5, x.max_sck_hz(0.0)));
+        }
+        for (label, window, max_hz) in lines {
+            let line = out
+                .lines()
+                .find(|x| x.starts_with(label))
+                .unwrap_or_else(|| panic!("no `{label}` in:\n{out}"));
+            assert!(
+                line.contains(&format!("{:.2}..{:.2} ns", a.min_ns, a.max_ns)),
+                "{line}"
+            );
+            for f in LINE_RATES_HZ.iter().filter(|&&f| f <= max_hz) {
+                let r = max_round_trip_ns(window * 1e9 / f, &a);
+                let at = if *f >= 1e6 {
+                    format!("{:.0} MHz", f / 1e6)
+                } else {
+                    format!("{:.0} kHz", f / 1e3)
+                };
+                assert!(
+                    line.contains(&format!("{r:.1} ns at {at}")),
+                    "{r:.1} at {at}: {line}"
+                );
+            }
+        }
+    }
+    // The shipped figures: 133.33 MHz, filter on, default pads: 4 clocks + 9 ns = 39.00 ns;
+    // 10 MHz MA leaves 100 - 39.00 = 61.0 ns of round trip.
+    let io = sinedec::board::IoTiming::DEFAULT;
+    let a = answer_window(133.33e6, true, &io);
+    assert!((a.max_ns - (4e9 / 133.33e6 + 9.0)).abs() < 1e-9);
+    assert!((max_round_trip_ns(100.0, &a) - (100.0 - 4e9 / 133.33e6 - 9.0)).abs() < 1e-9);
+}
+
+// ---------------------------------------------------------------------------------------
 // Synthesis
 // ---------------------------------------------------------------------------------------
 

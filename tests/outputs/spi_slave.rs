@@ -202,6 +202,54 @@ fn words_in_mode_0_and_3() {
     }
 }
 
+/// The supported line round trip (cable and transceivers, both ways) at each SCK rate, the
+/// figure `check` prints (`sinedec::blocks::serial::max_round_trip_ns` with the SCK low time
+/// as the window, docs/interfaces.md), with the `[board]` default pad budgets added to the
+/// model's line: every word is read right at the limit in modes 0 and 3; one clock period
+/// beyond it every bit after the first is read one SCK period late, a wrong word that SPI,
+/// without a check sum, cannot flag (why the limit must be kept).
+#[test]
+fn supported_round_trip_at_each_sck_rate() {
+    use sinedec::blocks::serial::{answer_window, max_round_trip_ns};
+    let io = sinedec::board::IoTiming::DEFAULT;
+    let pads = io.input_setup_ns + io.clock_to_out_ns;
+    let clock = 50e6;
+    let p = SpiSlaveParams::new(19, 0, clock).unwrap();
+    let a = answer_window(clock, p.glitch_filter, &io);
+    for hz in [1e6, 4e6] {
+        let limit = max_round_trip_ns(0.5e9 / hz, &a);
+        for (rt, right) in [(limit - 0.05, true), (limit + 1e9 / clock + 0.05, false)] {
+            let t = LineTiming {
+                clock_hz: clock,
+                line_delay_ns: (rt + pads) / 2.0,
+            };
+            let tx: Vec<Txn> = [0, 3, 0, 3]
+                .iter()
+                .map(|&mode| Txn {
+                    mode,
+                    sck_hz: hz,
+                    clocks: p.word_bits(),
+                    gap_ns: 500.0 + rt,
+                })
+                .collect();
+            let pl = SpiMaster::new(t, &tx, 300.0);
+            let r = run(&p, t, &tx, &[], &[], |_| Ctl::default());
+            let mut prev = 0;
+            for (i, x) in pl.txns().iter().enumerate() {
+                let l = r.cs_row(&p, x.t_cs_ns);
+                let want = r.expect(&p, l, prev);
+                prev = l;
+                assert_eq!(
+                    r.words[i] == want,
+                    right,
+                    "{hz} Hz, round trip {rt:.2} ns (limit {limit:.2}): word {i} {:?} vs {want:?}",
+                    r.words[i]
+                );
+            }
+        }
+    }
+}
+
 /// Corner cases and the three simulators: back-to-back words, early deselect, extra clocks,
 /// SCK glitches of one sample, reset mid-word.
 fn scenario(p: &SpiSlaveParams, tag: &str) {

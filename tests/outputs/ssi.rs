@@ -242,6 +242,53 @@ fn compensating_master_at_10mhz() {
     }
 }
 
+/// The supported line round trip (cable and transceivers, both ways) at each clock rate,
+/// the figure `check` prints (`sinedec::blocks::serial::max_round_trip_ns`,
+/// docs/interfaces.md), with the `[board]` default pad budgets added to the model's line:
+/// a master reading each bit at the next rising edge reads every frame right at the limit;
+/// one clock period beyond it every answer is late and the master reads the word one bit
+/// late, a wrong position that SSI, without a check sum, cannot flag (why the limit must
+/// be kept; BiSS-C's CRC and Ack/Start search catch or absorb it).
+#[test]
+fn supported_round_trip_at_each_clock_rate() {
+    use sinedec::blocks::serial::{answer_window, max_round_trip_ns};
+    let io = sinedec::board::IoTiming::DEFAULT;
+    let pads = io.input_setup_ns + io.clock_to_out_ns;
+    let clock = 50e6;
+    let mut p = SsiParams::new(19, 0, clock).unwrap();
+    p.set_timeout_us(2.0).unwrap();
+    let a = answer_window(clock, p.glitch_filter, &io);
+    for hz in [1e6, 4e6] {
+        let limit = max_round_trip_ns(1e9 / hz, &a);
+        for (rt, right) in [(limit - 0.05, true), (limit + 1e9 / clock + 0.05, false)] {
+            let t = LineTiming {
+                clock_hz: clock,
+                line_delay_ns: (rt + pads) / 2.0,
+            };
+            let reqs: Vec<_> = (0..6)
+                .map(|i| FrameRequest::new(hz).gap(7.3 * i as f64))
+                .collect();
+            let mut m = master(&p, t, reqs.clone());
+            let n = cycles_for(&p, &reqs, 6.0 * rt);
+            let run = closed_loop(&p, &mut m, 1, &[], n, |_, _| Ctl::default(), t);
+            assert_eq!(run.frames.len(), reqs.len());
+            for (i, f) in run.frames.iter().enumerate() {
+                let SsiOutcome::Data(d) = &f.outcome else {
+                    panic!("frame {i}: {f:#?}")
+                };
+                let l = run.latch_row(f.t_start_ns, &p);
+                let want = run.expect(&p, l, 0).0;
+                assert_eq!(
+                    d.position == want,
+                    right,
+                    "{hz} Hz, round trip {rt:.2} ns (limit {limit:.2}): frame {i} read {:#x}, latched {want:#x}",
+                    d.position
+                );
+            }
+        }
+    }
+}
+
 /// Corner cases, then the replay in three simulators.
 fn scenario(p: &SsiParams, d: f64, tag: &str) {
     let t = LineTiming {

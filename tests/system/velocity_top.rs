@@ -202,6 +202,95 @@ fn simulate_reports_the_velocity_only_when_enabled() {
     assert!(!rep.csv(&off, o.skip).contains("velocity"));
 }
 
+/// The number after `label` (after the line's start when empty) in the summary line that
+/// starts with `line`.
+fn number_after(text: &str, line: &str, label: &str) -> f64 {
+    let l = text
+        .lines()
+        .find(|l| l.starts_with(line))
+        .unwrap_or_else(|| panic!("no `{line}` line in:\n{text}"));
+    let rest = &l[line.len()..];
+    let rest = &rest[rest
+        .find(label)
+        .unwrap_or_else(|| panic!("no `{label}` in `{l}`"))
+        + label.len()..];
+    let word = rest.split_whitespace().next().expect("a number");
+    word.trim_matches(|c| c == '(' || c == ')')
+        .parse()
+        .unwrap_or_else(|e| panic!("`{word}` in `{l}`: {e}"))
+}
+
+/// `sinedec simulate` without `--csv` keeps no records (bounded memory); the velocity
+/// statistics must still print, and equal those of the same run with its records kept
+/// (the library's `keep_records`, the path `--csv` takes). At 300 rpm and 667 clocks per
+/// update (200 kHz asked) the true speed is 300 / 60 x 8192 x 2^14 x 667 / 133.33e6 =
+/// 3357.2 LSB per update period.
+#[test]
+fn simulate_prints_the_velocity_statistics_without_csv() {
+    use sinedec::simulate::{run, SimOptions};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = format!(
+        "{DEFAULT_CONFIG}\n[velocity]\nenabled = true\nrate_hz = 200e3\nbandwidth_hz = 20000.0\n"
+    );
+    std::fs::write(dir.path().join("v.toml"), &text).expect("write");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
+        .args([
+            "simulate",
+            "v.toml",
+            "--duration",
+            "0.003",
+            "--profile",
+            "constant:300",
+        ])
+        .current_dir(dir.path())
+        .output()
+        .expect("sinedec runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let cli = String::from_utf8(out.stdout).expect("utf-8");
+    assert!(!cli.contains("no update after the warm-up"), "{cli}");
+    let l = config();
+    let rep = run(
+        &l,
+        &SimOptions {
+            duration_s: 0.003,
+            keep_records: true,
+            ..Default::default()
+        },
+        |_, _| {},
+    )
+    .expect("runs");
+    let s = rep.result.velocity_stats(&l.derived).expect("updates");
+    let updates = number_after(&cli, "velocity error mean", "rpm (");
+    assert_eq!(updates, s.updates as f64, "{cli}");
+    assert!(updates > 100.0, "{cli}");
+    let mean = number_after(&cli, "velocity error mean", "");
+    assert!(
+        (mean - s.mean_err).abs() < 1e-4,
+        "{mean} vs {}: {cli}",
+        s.mean_err
+    );
+    let std = number_after(&cli, "velocity error std", "");
+    assert!(
+        (std - s.std_err).abs() < 1e-4,
+        "{std} vs {}: {cli}",
+        s.std_err
+    );
+    let v = l.derived.velocity.as_ref().expect("enabled");
+    let truth = 300.0 / 60.0 * 8192.0 * 16384.0 * v.period_clocks as f64 / l.derived.clock_hz;
+    let last_truth = number_after(&cli, "velocity at the end", "(true ");
+    assert!((last_truth - truth).abs() < 1e-3, "{last_truth} vs {truth}");
+    let last = number_after(&cli, "velocity at the end", "");
+    // The last estimate lies within the run's largest error of the truth, and the mean
+    // error is a small fraction of the speed.
+    let max = number_after(&cli, "velocity error std", "max |error| ");
+    assert!((last - truth).abs() <= max + 1e-3, "{last} vs {truth}: {cli}");
+    assert!(mean.abs() < 0.01 * truth, "{mean} vs {truth}: {cli}");
+}
+
 /// The configuration of [`config`] with the velocity word in the frames, the SSI and SPI
 /// slaves on, and 2 us timeouts (many frames in a short run).
 fn frames_config() -> Loaded {

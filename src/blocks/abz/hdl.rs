@@ -39,7 +39,9 @@ pub struct AbzEmulator {
     done: DFF<Bit>,
     init: DFF<Bit>,
     told: DFF<Bits<32>>,
-    d: DFF<Bits<32>>,
+    /// d = t - t_old of the module docs (not named `d`: its DFF's port `d` would hide it,
+    /// VARHIDDEN).
+    dt: DFF<Bits<32>>,
     s1: DFF<Bit>,
     d2: DFF<Bits<32>>,
     fh: DFF<Bit>,
@@ -168,7 +170,7 @@ impl AbzEmulator {
             done: Default::default(),
             init: Default::default(),
             told: Default::default(),
-            d: Default::default(),
+            dt: Default::default(),
             s1: Default::default(),
             d2: Default::default(),
             fh: Default::default(),
@@ -238,7 +240,7 @@ impl Logic for AbzEmulator {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, have, qcap, fcap, busy, pbit, qsh, fsh, cnt, r, t, done, init, told, d, s1,
+            self, clk, have, qcap, fcap, busy, pbit, qsh, fsh, cnt, r, t, done, init, told, dt, s1,
             d2, fh, fl, s2, dd, incp, incd, pend, pnz, pn, p1, stepped, hold, tm, c, cadd, ao, bo,
             zo, warn
         );
@@ -309,7 +311,7 @@ impl Logic for AbzEmulator {
         if self.done.q.val() {
             self.told.d.next = self.t.q.val();
             if self.init.q.val() {
-                self.d.d.next = self.t.q.val() - self.told.q.val();
+                self.dt.d.next = self.t.q.val() - self.told.q.val();
                 self.s1.d.next = true;
             } else {
                 self.init.d.next = true;
@@ -317,11 +319,11 @@ impl Logic for AbzEmulator {
         }
         self.s2.d.next = self.s1.q.val();
         if self.s1.q.val() {
-            self.d2.d.next = self.d.q.val();
+            self.d2.d.next = self.dt.q.val();
             self.fh.d.next =
-                !(self.d.q.val() & self.sign.val()).any() & (self.d.q.val() > self.half.val());
+                !(self.dt.q.val() & self.sign.val()).any() & (self.dt.q.val() > self.half.val());
             self.fl.d.next =
-                (self.d.q.val() & self.sign.val()).any() & (self.d.q.val() <= self.nhalf.val());
+                (self.dt.q.val() & self.sign.val()).any() & (self.dt.q.val() <= self.nhalf.val());
         }
         // Emitter: one step toward pend = 0 at most every S clocks.
         self.nonzero.next = self.pnz.q.val() & !(self.stepped.q.val() & self.p1.q.val());
@@ -420,7 +422,7 @@ impl Logic for AbzEmulator {
             self.done.d.next = false;
             self.init.d.next = false;
             self.told.d.next = self.zero.val();
-            self.d.d.next = self.zero.val();
+            self.dt.d.next = self.zero.val();
             self.s1.d.next = false;
             self.d2.d.next = self.zero.val();
             self.fh.d.next = false;

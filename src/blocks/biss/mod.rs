@@ -107,6 +107,12 @@
 //! BiSS-C's 10 MHz therefore needs a compensating master (standard for BiSS) at 50 MHz and
 //! works with either master at 133.33 MHz.
 //!
+//! The line round trip (cable and transceivers) each master supports at each MA rate, with
+//! the FPGA's pad budgets, comes from [`crate::blocks::serial::answer_window`] and
+//! [`crate::blocks::serial::max_round_trip_ns`]; `check` prints it and docs/interfaces.md
+//! tabulates it. A compensating master is limited only by its own compensation range, so
+//! `[biss]` has no cable key.
+//!
 //! # Control channel (`control`)
 //!
 //! With [`BissParams::control`] set, the slave takes one CDM bit per complete frame: the

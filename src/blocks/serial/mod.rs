@@ -50,6 +50,31 @@
 //! A new line level acts at the clock edge [`sync_latency`] cycles after the first cycle in
 //! which it is presented (3 with the glitch filter, 2 without), and must last
 //! [`min_level_clocks`] clock periods (2, or 1) to be seen for sure.
+//!
+//! # Line timing (the one derivation; docs/interfaces.md)
+//!
+//! A master's clock edge (BiSS MA, SSI clock, SPI SCK) reaches the slave's pin at some
+//! phase of the system clock; the first clock edge after it (or after the pad's input
+//! delay, bounded by the set-up budget t_su) samples it, and the slave's registered output
+//! changes L clock edges later (L = [`sync_latency`]), then leaves the pad after the
+//! clock-to-out t_co. The answer therefore comes, at the slave's pins,
+//!
+//! ```text
+//!   a_min = L T_clk   <   a   <=   a_max = (L + 1) T_clk + t_su + t_co
+//! ```
+//!
+//! after the edge ([`answer_window`]; t_co and t_su are the `[board]` budgets,
+//! `fpga_clock_to_out_ns` and `fpga_input_setup_ns`). A master that samples the answer a
+//! fixed window W after the edge that asked for it reads it while the round trip of the
+//! line r (cable and transceivers, both directions) satisfies r + a_max <= W
+//! ([`max_round_trip_ns`]): W = one clock period for an SSI master or a BiSS master without
+//! line-delay compensation (it reads the answer to rising edge n at rising edge n + 1), and
+//! the SCK low time for an SPI master (MISO changes after a falling edge and is sampled at
+//! the next rising edge). A BiSS-C master with line-delay compensation measures r + a on
+//! the Ack edge and samples each bit half an MA period later: every round trip within its
+//! compensation range works as long as the answer's spread a_max - a_min stays below half
+//! an MA period, which [`min_level_clocks`] already guarantees (an MA level of 2 clocks
+//! with the filter, a spread of one clock plus the constant pad delays).
 pub mod hdl;
 
 use crate::error::{Error, Result};
@@ -78,6 +103,50 @@ pub fn min_level_clocks(glitch_filter: bool) -> u32 {
         1
     }
 }
+
+/// When a serial slave's answer leaves its pin after the master's clock edge reaches the
+/// pin, ns (see the module docs, "Line timing").
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct AnswerWindow {
+    /// Earliest: L system clock periods (the answer comes strictly later).
+    pub min_ns: f64,
+    /// Latest: L + 1 periods, the input pad's set-up budget and the output's clock-to-out.
+    pub max_ns: f64,
+}
+
+/// The answer window of a slave at `clock_hz` with or without the glitch filter; `io`
+/// gives the pads' budgets (clock-to-out, input set-up).
+pub fn answer_window(
+    clock_hz: f64,
+    glitch_filter: bool,
+    io: &crate::board::IoTiming,
+) -> AnswerWindow {
+    let t = 1e9 / clock_hz;
+    let l = sync_latency(glitch_filter) as f64;
+    AnswerWindow {
+        min_ns: l * t,
+        max_ns: (l + 1.0) * t + io.input_setup_ns + io.clock_to_out_ns,
+    }
+}
+
+/// No pad delays (a simulation's ideal pins): the answer window of the synchronizer alone.
+pub const NO_PADS: crate::board::IoTiming = crate::board::IoTiming {
+    clock_to_out_ns: 0.0,
+    input_setup_ns: 0.0,
+    ..crate::board::IoTiming::DEFAULT
+};
+
+/// The longest line round trip (cable and transceivers, both directions), ns, for a master
+/// that samples the answer `sample_after_ns` after the clock edge that asks for it (one
+/// clock period for SSI and uncompensated BiSS, the SCK low time for SPI); negative when
+/// even a zero-length line is too slow.
+pub fn max_round_trip_ns(sample_after_ns: f64, a: &AnswerWindow) -> f64 {
+    sample_after_ns - a.max_ns
+}
+
+/// MA / SSI clock / SCK rates at which `check` states the supported round trip, Hz (those
+/// up to the synchronizer's limit are printed).
+pub const LINE_RATES_HZ: [f64; 6] = [100e3, 500e3, 1e6, 2e6, 5e6, 10e6];
 
 /// Mask of a timeout counter that counts 0 ..= `timeout_clocks` - 1.
 pub fn timeout_mask(timeout_clocks: u32) -> u64 {

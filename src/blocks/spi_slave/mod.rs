@@ -30,6 +30,9 @@
 //! * SCK low time and high time: at least 2 clock periods (1 without the filter);
 //! * the new bit appears (L + 1) clock periods + 2d after the falling edge, at most, so the
 //!   SCK low time must exceed that: f_SCK <= 1 / (2 ((L + 1) T_clk + 2d)) at 50 % duty.
+//!   With the FPGA's pad budgets the supported round trip per SCK rate is
+//!   [`crate::blocks::serial::max_round_trip_ns`] of the SCK low time, printed by `check`
+//!   (docs/interfaces.md).
 //!
 //! `miso_oe` is high while the slave is selected (a top level drives a tri-state pin with it);
 //! `miso` is 0 while deselected. Ports of [`hdl::SpiSlave`]: `clk`, `rst`, `sck`, `cs_n`,
@@ -99,9 +102,15 @@ impl SpiSlaveParams {
     }
 
     /// Longest time from an SCK falling edge (or chip select) at the slave's pin to the new
-    /// bit on MISO, in ns: (L + 1) clock periods.
+    /// bit on MISO, in ns, without the pads' delays: (L + 1) clock periods
+    /// ([`crate::blocks::serial::answer_window`] with no pad budget).
     pub fn response_ns(&self) -> f64 {
-        (self.latch_latency() + 1) as f64 * 1e9 / self.clock_hz
+        crate::blocks::serial::answer_window(
+            self.clock_hz,
+            self.glitch_filter,
+            &crate::blocks::serial::NO_PADS,
+        )
+        .max_ns
     }
 
     /// Highest SCK frequency at 50 % duty for a one-way line delay (see the module docs).

@@ -23,7 +23,9 @@
 //!
 //! A master gives N + 1 clock pulses (N + 2 with the error bit) and reads each bit at the
 //! next rising edge (the slave's answer, 2-4 clock periods plus the cable round trip, must
-//! arrive within one clock period), or at a compensated delay. The data word, the Gray code,
+//! arrive within one clock period; the supported round trip per rate is
+//! [`crate::blocks::serial::max_round_trip_ns`], printed by `check`, docs/interfaces.md), or
+//! at a compensated delay. The data word, the Gray code,
 //! the position hold, the sticky error and the synchronizer with its glitch filter are those
 //! of the BiSS slave ([`crate::blocks::serial`]); so are the behaviour during the timeout (clock
 //! edges restart it and start nothing) and after reset (line low for t_m, then idle).

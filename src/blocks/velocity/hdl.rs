@@ -114,8 +114,9 @@ pub struct Velocity {
     snap: DFF<Bits<64>>,
     /// diff_lpf/kalman: positions theta(k-1) (one); lsq: the M newest, oldest first.
     hist: Vec<DFF<Bits<64>>>,
-    /// The multiplier's next operand: Delta then U - X (diff_lpf/kalman), e (tracking).
-    d: DFF<Bits<64>>,
+    /// The multiplier's next operand: Delta then U - X (diff_lpf/kalman), e (tracking); `d`
+    /// in the module docs (not named `d`: its DFF's port `d` would hide it, VARHIDDEN).
+    opd: DFF<Bits<64>>,
     /// Tracking: the loop's position Theta (Wp + S + G bits).
     theta: DFF<Bits<64>>,
     /// The accumulator: X, W or P.
@@ -260,7 +261,7 @@ impl Velocity {
             first: Default::default(),
             snap: Default::default(),
             hist: (0..nhist).map(|_| DFF::default()).collect(),
-            d: Default::default(),
+            opd: Default::default(),
             theta: Default::default(),
             acc: Default::default(),
             k: Default::default(),
@@ -330,7 +331,7 @@ impl Logic for Velocity {
     fn update(&mut self) {
         dff_setup!(
             self, clk, init, pos, padj, cnt, tickr, busy, sop, sprod, sacc, sout, mlast, j, jlr,
-            primed, first, snap, d, theta, acc, k, tx, inprep, tsel, mwait, opa, out_reg,
+            primed, first, snap, opd, theta, acc, k, tx, inprep, tsel, mwait, opa, out_reg,
             valid_reg
         );
         for i in 0..self.hist.len() {
@@ -445,9 +446,9 @@ impl Logic for Velocity {
                 }
                 self.first.d.next = !self.primed.q.val();
                 if !self.is_lsq.val() & !self.is_track.val() {
-                    self.d.d.next = self.sdelta.val();
+                    self.opd.d.next = self.sdelta.val();
                     if !self.primed.q.val() {
-                        self.d.d.next = self.zero64.val();
+                        self.opd.d.next = self.zero64.val();
                     }
                 }
                 if !self.primed.q.val() {
@@ -477,20 +478,20 @@ impl Logic for Velocity {
             } else if self.is_track.val() {
                 // e (0 at the first update); Theta += W (or the load), + q(beta e) and
                 // q(alpha e) in the two `Acc`.
-                self.d.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
+                self.opd.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
                 if self.first.q.val() {
-                    self.d.d.next = self.zero64.val();
+                    self.opd.d.next = self.zero64.val();
                 }
                 self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
             } else {
-                self.d.d.next =
-                    ((self.d.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
+                self.opd.d.next =
+                    ((self.opd.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
                 self.hist[0].d.next = self.snap.q.val();
             }
         }
         if self.sop.q.val() {
             // Op
-            self.opa.d.next = self.d.q.val();
+            self.opa.d.next = self.opd.q.val();
             if self.is_lsq.val() {
                 // Rotate the history: x_1 comes back to the front after M multiplies.
                 self.opa.d.next = self.rext.val();
@@ -566,7 +567,7 @@ impl Logic for Velocity {
             for i in 0..self.hist.len() {
                 self.hist[i].d.next = self.zero64.val();
             }
-            self.d.d.next = self.zero64.val();
+            self.opd.d.next = self.zero64.val();
             self.theta.d.next = self.zero64.val();
             self.acc.d.next = self.zero64.val();
             self.k.d.next = self.zero.val();
