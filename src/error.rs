@@ -194,9 +194,7 @@ fn not_a_directory(path: &std::path::Path, e: &std::io::Error) -> Option<String>
         return None;
     }
     let is_file = |p: &std::path::Path| {
-        !p.as_os_str().is_empty()
-            && std::fs::symlink_metadata(p).is_ok()
-            && !p.is_dir()
+        !p.as_os_str().is_empty() && std::fs::symlink_metadata(p).is_ok() && !p.is_dir()
     };
     if e.kind() == K::AlreadyExists && is_file(path) {
         return Some("exists and is not a directory".into());

@@ -507,14 +507,26 @@ fn a_profile_beyond_the_followable_speed_is_warned_about() {
     let tmp = tempfile::tempdir().unwrap();
     let fast = run(
         tmp.path(),
-        &["simulate", "--duration", "0.0005", "--profile", "constant:600000"],
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--profile",
+            "constant:600000",
+        ],
     );
     let e = String::from_utf8_lossy(&fast.stderr);
     assert!(fast.status.success(), "{e}");
     assert!(e.contains("warning") && e.contains("600000 rpm"), "{e}");
     let slow = run(
         tmp.path(),
-        &["simulate", "--duration", "0.0005", "--profile", "constant:300"],
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--profile",
+            "constant:300",
+        ],
     );
     assert!(!String::from_utf8_lossy(&slow.stderr).contains("warning"));
 }

@@ -327,7 +327,10 @@ type Node = (std::path::PathBuf, std::os::unix::net::UnixListener);
 /// A FIFO and a Unix socket made in `dir` (never under /dev).
 fn special_nodes(dir: &std::path::Path) -> Vec<Node> {
     let fifo = dir.join("fifo");
-    let st = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo runs");
+    let st = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
     assert!(st.success());
     let sock = dir.join("sock");
     let l = std::os::unix::net::UnixListener::bind(&sock).expect("socket");
@@ -337,7 +340,9 @@ fn special_nodes(dir: &std::path::Path) -> Vec<Node> {
 
 fn is_special(p: &std::path::Path) -> bool {
     use std::os::unix::fs::FileTypeExt;
-    let t = std::fs::symlink_metadata(p).expect("still there").file_type();
+    let t = std::fs::symlink_metadata(p)
+        .expect("still there")
+        .file_type();
     t.is_fifo() || t.is_socket()
 }
 
@@ -356,7 +361,10 @@ fn special_files_are_refused_and_kept() {
             vec!["init", name, "--force"],
         ] {
             let e = refused(dir, &args);
-            assert!(e.contains(name) && e.contains("regular file"), "{args:?}: {e}");
+            assert!(
+                e.contains(name) && e.contains("regular file"),
+                "{args:?}: {e}"
+            );
             assert!(is_special(node), "{args:?} replaced {name}");
         }
     }
@@ -373,16 +381,41 @@ fn outputs_that_overwrite_inputs_are_refused() {
     let dir = tmp.path();
     std::fs::write(dir.join("cfg.toml"), DEFAULT_CONFIG).unwrap();
     for args in [
-        &["simulate", "cfg.toml", "--duration", "0.0005", "--csv", "cfg.toml"][..],
-        &["simulate", "cfg.toml", "--duration", "0.0005", "--vcd", "./cfg.toml"][..],
-        &["simulate", "--duration", "0.0005", "--csv", "x", "--vcd", "x"][..],
+        &[
+            "simulate",
+            "cfg.toml",
+            "--duration",
+            "0.0005",
+            "--csv",
+            "cfg.toml",
+        ][..],
+        &[
+            "simulate",
+            "cfg.toml",
+            "--duration",
+            "0.0005",
+            "--vcd",
+            "./cfg.toml",
+        ][..],
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--csv",
+            "x",
+            "--vcd",
+            "x",
+        ][..],
     ] {
         let e = refused(dir, args);
         assert!(
             e.contains("configuration file") || e.contains("its own path"),
             "{args:?}: {e}"
         );
-        assert_eq!(std::fs::read_to_string(dir.join("cfg.toml")).unwrap(), DEFAULT_CONFIG);
+        assert_eq!(
+            std::fs::read_to_string(dir.join("cfg.toml")).unwrap(),
+            DEFAULT_CONFIG
+        );
         assert_eq!(listing(dir), vec!["cfg.toml"], "{args:?}");
     }
 }
@@ -443,13 +476,28 @@ fn io_errors_are_one_plain_sentence() {
     for args in [
         &["generate", "-o", "notes.txt/out"][..],
         &["init", "notes.txt/a/b.toml"][..],
-        &["simulate", "--duration", "0.0005", "--csv", "notes.txt/run.csv"][..],
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--csv",
+            "notes.txt/run.csv",
+        ][..],
     ] {
         let e = refused(dir, args);
-        assert!(e.contains("notes.txt") && e.contains("not a directory"), "{args:?}: {e}");
-        assert!(!e.contains("os error") && !e.contains("at path"), "{args:?}: {e}");
+        assert!(
+            e.contains("notes.txt") && e.contains("not a directory"),
+            "{args:?}: {e}"
+        );
+        assert!(
+            !e.contains("os error") && !e.contains("at path"),
+            "{args:?}: {e}"
+        );
     }
-    assert_eq!(std::fs::read_to_string(dir.join("notes.txt")).unwrap(), "mine");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("notes.txt")).unwrap(),
+        "mine"
+    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -491,7 +539,9 @@ fn children(pid: u32) -> Vec<(u32, String)> {
         let Ok(stat) = std::fs::read_to_string(format!("/proc/{p}/stat")) else {
             continue;
         };
-        let Some(close) = stat.rfind(')') else { continue };
+        let Some(close) = stat.rfind(')') else {
+            continue;
+        };
         let name = stat[stat.find('(').unwrap() + 1..close].to_string();
         let ppid: u32 = stat[close + 2..]
             .split(' ')
@@ -558,7 +608,14 @@ fn sighup_during_simulate_removes_csv_and_vcd_temporaries() {
     let dir = tmp.path();
     let mut c = Command::new(BIN)
         .args([
-            "simulate", "--engine", "rust-hdl", "--duration", "0.05", "--csv", "a.csv", "--vcd",
+            "simulate",
+            "--engine",
+            "rust-hdl",
+            "--duration",
+            "0.05",
+            "--csv",
+            "a.csv",
+            "--vcd",
             "a.vcd",
         ])
         .current_dir(dir)
@@ -585,7 +642,14 @@ fn sigint_during_report_stops_yosys_and_removes_its_directory() {
     let tmpdir = dir.join("tmp");
     std::fs::create_dir(&tmpdir).unwrap();
     let mut c = Command::new(BIN)
-        .args(["report", "--iterations", "8..=12", "--no-cache", "-o", "rep"])
+        .args([
+            "report",
+            "--iterations",
+            "8..=12",
+            "--no-cache",
+            "-o",
+            "rep",
+        ])
         .current_dir(dir)
         .env("TMPDIR", &tmpdir)
         .stdout(Stdio::null())

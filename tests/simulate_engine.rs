@@ -254,7 +254,8 @@ fn bad_cache_or_temporary_locations_name_the_variable() {
     std::fs::write(&file, "x").unwrap();
     let mut c = Command::new(env!("CARGO_BIN_EXE_sinedec"));
     c.arg("simulate").args(SHORT).current_dir(&dir);
-    c.env_remove("SINEDEC_ENGINE_CACHE").env("XDG_CACHE_HOME", &file);
+    c.env_remove("SINEDEC_ENGINE_CACHE")
+        .env("XDG_CACHE_HOME", &file);
     let out = c.output().expect("runs");
     let err = stderr(&out);
     assert!(out.status.success(), "{err}");
@@ -263,7 +264,10 @@ fn bad_cache_or_temporary_locations_name_the_variable() {
     // TMPDIR at a file: the engine's scratch directory cannot be made.
     let env = [
         ("TMPDIR", file.clone().into_os_string()),
-        ("SINEDEC_ENGINE_CACHE", dir.join("fresh_cache").into_os_string()),
+        (
+            "SINEDEC_ENGINE_CACHE",
+            dir.join("fresh_cache").into_os_string(),
+        ),
     ];
     let out = simulate_raw(&SHORT, &dir, &env);
     let err = stderr(&out);

@@ -33,13 +33,12 @@ pub fn rustc() -> String {
 
 /// `rustc --version`, for the cache key.
 pub fn rustc_version() -> Result<String> {
-    let out = crate::cleanup::output(Command::new(rustc()).arg("--version"))
-        .map_err(|e| {
-            Error::Tool(CosimError::ToolMissing {
-                tool: format!("rustc ({e})"),
-                install: "curl https://sh.rustup.rs -sSf | sh".into(),
-            })
-        })?;
+    let out = crate::cleanup::output(Command::new(rustc()).arg("--version")).map_err(|e| {
+        Error::Tool(CosimError::ToolMissing {
+            tool: format!("rustc ({e})"),
+            install: "curl https://sh.rustup.rs -sSf | sh".into(),
+        })
+    })?;
     Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
@@ -71,7 +70,10 @@ pub fn cache_root() -> (PathBuf, Option<&'static str>) {
         return (p.join("sinedec").join("engine"), Some("XDG_CACHE_HOME"));
     }
     if let Some(p) = absolute_var("HOME") {
-        return (p.join(".cache").join("sinedec").join("engine"), Some("HOME"));
+        return (
+            p.join(".cache").join("sinedec").join("engine"),
+            Some("HOME"),
+        );
     }
     (std::env::temp_dir().join("sinedec-engine"), Some("TMPDIR"))
 }
@@ -107,21 +109,16 @@ impl EntryError {
     /// As a library error about `dir`.
     pub(crate) fn into_error(self, dir: &Path) -> Error {
         match self {
-            EntryError::Cache(why) => Error::Simulation(format!(
-                "engine library in {}: {why}",
-                dir.display()
-            )),
+            EntryError::Cache(why) => {
+                Error::Simulation(format!("engine library in {}: {why}", dir.display()))
+            }
             EntryError::Other(e) => e,
         }
     }
 }
 
 fn cache_error(path: &Path, e: std::io::Error) -> EntryError {
-    EntryError::Cache(format!(
-        "{}: {}",
-        path.display(),
-        crate::error::io_text(&e)
-    ))
+    EntryError::Cache(format!("{}: {}", path.display(), crate::error::io_text(&e)))
 }
 
 /// Writes `bytes` to `path` through a temporary file in `dir` renamed into place.
@@ -163,7 +160,11 @@ fn build(source: &str, dir: &Path, lib: &Path) -> std::result::Result<(), EntryE
     let src = dir.join("engine.rs");
     std::fs::write(&src, source).map_err(|e| cache_error(&src, e))?;
     let (tmp, _entry) = crate::cleanup::create_dir(
-        || tempfile::Builder::new().prefix(".tmp-build").tempdir_in(dir),
+        || {
+            tempfile::Builder::new()
+                .prefix(".tmp-build")
+                .tempdir_in(dir)
+        },
         |d: &tempfile::TempDir| d.path().to_path_buf(),
     )
     .map_err(|e| cache_error(dir, e))?;

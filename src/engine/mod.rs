@@ -214,11 +214,14 @@ impl Engine {
         let shape = shape_of(&nl);
         let t0 = Instant::now();
         let (sim, scratch_dir) = match compiled::build_entry(&source, &shape, &dir) {
-            Ok(()) => (compiled::Compiled::load(
-                &dir.join(compiled::LIB),
-                shape.inputs.len(),
-                shape.outputs.len(),
-            )?, None),
+            Ok(()) => (
+                compiled::Compiled::load(
+                    &dir.join(compiled::LIB),
+                    shape.inputs.len(),
+                    shape.outputs.len(),
+                )?,
+                None,
+            ),
             Err(compiled::EntryError::Cache(why)) => {
                 let from = var.map_or(String::new(), |v| format!(" (from {v})"));
                 info.cache_note = Some(format!(
