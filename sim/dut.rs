@@ -6,9 +6,11 @@
 //! capacitive one), so every engine looks the same to it.
 //!
 //! The compiled engine needs Yosys (netlist) and rustc (build); a cached library needs
-//! neither Yosys nor a build. When rustc is missing the same netlist is interpreted; when
-//! Yosys is missing the loop runs on rust-hdl. Either way [`Dut::note`] says what ran and
-//! why, for the command line to print.
+//! neither Yosys nor a build. [`EngineKind::Auto`] (the default) falls back: when rustc is
+//! missing the same netlist is interpreted; when Yosys is missing the loop runs on rust-hdl.
+//! An engine asked for by name runs or fails. Either way [`Dut::note`] says what ran and
+//! why (a fallback, or an engine cache that could not be used), for the command line to
+//! print.
 use crate::blocks::captop::hdl::CapTopRtl;
 use crate::blocks::top::hdl::TopRtl;
 use crate::cosim::step::{prepare, tick, NoConvergence};
@@ -63,10 +65,13 @@ pub const OPTIONAL_OUT_PINS: usize = 2;
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum EngineKind {
+    /// The default: the compiled engine, else the interpreter (no rustc), else rust-hdl (no
+    /// Yosys), the fallback said in [`Dut::note`].
+    #[default]
+    Auto,
     /// rust-hdl's own simulation (the reference).
     RustHdl,
-    /// The compiled engine (Yosys + rustc, cached); the default.
-    #[default]
+    /// The compiled engine (Yosys + rustc, cached), asked for by name: no fallback.
     Compiled,
     /// The engine's interpreter of the same netlist (Yosys only; the fallback without rustc).
     Interpreted,
@@ -77,7 +82,7 @@ impl EngineKind {
     pub fn name(self) -> &'static str {
         match self {
             EngineKind::RustHdl => "rust-hdl",
-            EngineKind::Compiled => "compiled",
+            EngineKind::Compiled | EngineKind::Auto => "compiled",
             EngineKind::Interpreted => "interpreter",
         }
     }
@@ -182,15 +187,19 @@ impl<B: BoardTop> Dut<B> {
         // The same instance gives the Verilog and the co-simulation port lists.
         rust_hdl::prelude::Block::connect_all(rtl.as_mut());
         let verilog = crate::emit::verilog::export(rtl.as_ref(), "top", B::MODULE)?;
-        let mut used = kind;
+        let mut used = match kind {
+            EngineKind::Auto => EngineKind::Compiled,
+            k => k,
+        };
         let mut note = None;
         let first = match kind {
             EngineKind::Interpreted => Kind::Interpreted,
             _ => Kind::Compiled,
         };
         let mut built = Engine::new(&verilog, B::MODULE, "clk", first);
+        let fallback = kind == EngineKind::Auto;
         if let Err(e) = &built {
-            if let Some(tool) = missing_tool(e).filter(|t| t.starts_with("rustc")) {
+            if let Some(tool) = missing_tool(e).filter(|t| fallback && t.starts_with("rustc")) {
                 note = Some(format!(
                     "engine: interpreter instead of the compiled engine, because {tool} could not be run (install Rust to compile the model; the interpreter gives the same results, slower)"
                 ));
@@ -199,8 +208,13 @@ impl<B: BoardTop> Dut<B> {
             }
         }
         let e = match built {
-            Ok(e) => e,
-            Err(e) => match missing_tool(&e).filter(|t| t.starts_with("yosys")) {
+            Ok(e) => {
+                if let Some(n) = &e.info().cache_note {
+                    note.get_or_insert_with(|| n.clone());
+                }
+                e
+            }
+            Err(e) => match missing_tool(&e).filter(|t| fallback && t.starts_with("yosys")) {
                 Some(_) => {
                     let why = note.map_or(String::new(), |_| " (and rustc)".to_string());
                     let n = format!(

@@ -39,13 +39,25 @@ pub enum Error {
         /// The value given, what is wrong and what is allowed.
         message: String,
     },
-    /// Reading or writing a file failed.
-    #[error("{path}: {source}")]
+    /// Reading or writing a file failed; the message is one plain sentence about the
+    /// user's path ([`io_text`], or the part of the path that is not a directory), not the
+    /// OS's text with its error number.
+    #[error("{}: {detail}", path.display())]
     Io {
         /// The file or directory.
         path: PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
+        /// What went wrong, in words.
+        detail: String,
+        /// The underlying error (kept out of the message).
+        error: std::io::Error,
+    },
+    /// The temporary directory cannot be used.
+    #[error("the temporary directory {} cannot be used ({reason}); set TMPDIR to a writable directory", path.display())]
+    TempDir {
+        /// The directory (`TMPDIR`, else `/tmp`).
+        path: PathBuf,
+        /// Why, in words.
+        reason: String,
     },
     /// rust-hdl rejected the generated design (a connection or latch check failed).
     #[error("rust-hdl check of `{block}` failed: {message}")]
@@ -174,6 +186,65 @@ impl std::fmt::Display for Quoted<'_> {
     }
 }
 
+/// When `e` at `path` comes from a part of the path that exists and is not a directory
+/// (`-o notes.txt/out`, `init notes.txt/a.toml`): that part, in a sentence.
+fn not_a_directory(path: &std::path::Path, e: &std::io::Error) -> Option<String> {
+    use std::io::ErrorKind as K;
+    if !matches!(e.kind(), K::NotADirectory | K::AlreadyExists | K::NotFound) {
+        return None;
+    }
+    let is_file = |p: &std::path::Path| {
+        !p.as_os_str().is_empty() && std::fs::symlink_metadata(p).is_ok() && !p.is_dir()
+    };
+    if e.kind() == K::AlreadyExists && is_file(path) {
+        return Some("exists and is not a directory".into());
+    }
+    path.ancestors().skip(1).find(|a| is_file(a)).map(|a| {
+        format!(
+            "{} is a file, not a directory, so nothing can be created or found under it",
+            a.display()
+        )
+    })
+}
+
+/// `e` in plain words, without the OS's error number or a temporary file's Debug-quoted
+/// path (`tempfile` appends `at path "/x/.tmpAbCd"`): "permission denied", "the disk is
+/// full", ...
+pub fn io_text(e: &std::io::Error) -> String {
+    use std::io::ErrorKind as K;
+    let plain = match e.kind() {
+        K::NotFound => "does not exist",
+        K::PermissionDenied => "permission denied",
+        K::AlreadyExists => "exists already",
+        K::NotADirectory => "a part of the path is not a directory",
+        K::IsADirectory => "is a directory",
+        K::ReadOnlyFilesystem => "the file system is read-only",
+        K::StorageFull => "the disk is full",
+        K::QuotaExceeded => "the disk quota is exceeded",
+        K::DirectoryNotEmpty => "the directory is not empty",
+        K::InvalidFilename => "the file name is too long or not allowed",
+        K::FileTooLarge => "the file is too large",
+        K::CrossesDevices => "it would move a file across file systems",
+        K::TooManyLinks => "too many links",
+        K::Deadlock => "a file lock would deadlock",
+        _ => "",
+    };
+    if !plain.is_empty() {
+        return plain.to_string();
+    }
+    let t = e.to_string();
+    let t = t.split(" at path ").next().unwrap_or(&t);
+    let t = match t.find(" (os error ") {
+        Some(i) => &t[..i],
+        None => t,
+    };
+    let mut c = t.chars();
+    match c.next() {
+        Some(f) => f.to_lowercase().chain(c).collect(),
+        None => "unknown error".into(),
+    }
+}
+
 /// Shorthand result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
@@ -204,10 +275,16 @@ impl Error {
     }
 
     /// I/O error with the path it concerns.
-    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Error {
+    pub fn io(path: impl Into<PathBuf>, error: std::io::Error) -> Error {
+        let path = path.into();
+        let detail = match not_a_directory(&path, &error) {
+            Some(d) => d,
+            None => io_text(&error),
+        };
         Error::Io {
-            path: path.into(),
-            source,
+            path,
+            detail,
+            error,
         }
     }
 }

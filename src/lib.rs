@@ -1,6 +1,7 @@
 //! sinedec: generator of verified Verilog for a sine/cosine encoder decoder.
 pub mod blocks;
 pub mod board;
+pub mod cleanup;
 pub mod config;
 pub mod cosim;
 pub mod csv_out;

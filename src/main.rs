@@ -7,7 +7,7 @@
 use anyhow::{bail, Result};
 use clap::{Parser, Subcommand};
 use sinedec::config::Loaded;
-use sinedec::emit::output::{check_output_dir, OutputOptions, PendingFile};
+use sinedec::emit::output::{check_output_dir, same_file, OutputOptions, PendingFile};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -46,28 +46,28 @@ enum Command {
         #[arg(long, default_value = "constant:300")]
         profile: String,
         /// Simulated time in seconds.
-        #[arg(long, default_value_t = 0.002)]
+        #[arg(long, default_value_t = 0.002, allow_hyphen_values = true)]
         duration: f64,
         /// Track amplitude as a fraction of the ADC input range.
-        #[arg(long, default_value_t = 0.8)]
+        #[arg(long, default_value_t = 0.8, allow_hyphen_values = true)]
         amplitude: f64,
         /// Gaussian noise, RMS in ADC LSB.
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         noise_lsb: f64,
         /// Offset of the sin track, fraction of the amplitude.
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         offset_sin: f64,
         /// Offset of the cos track, fraction of the amplitude.
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         offset_cos: f64,
         /// Relative gain mismatch of the tracks.
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         gain_mismatch: f64,
         /// Quadrature phase error in degrees.
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         phase_error: f64,
         /// Third-harmonic ratio.
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
         harmonic3: f64,
         /// Noise seed.
         #[arg(long, default_value_t = 1)]
@@ -79,14 +79,15 @@ enum Command {
         /// Write the top's pins, cycle by cycle, as VCD (checked like --csv).
         #[arg(long)]
         vcd: Option<PathBuf>,
-        /// Simulation engine of the top. compiled (the default): Yosys turns the emitted
-        /// Verilog into a netlist, rustc compiles it (cached under ~/.cache/sinedec/engine;
-        /// 100-250x rust-hdl); without rustc it is interpreted, without Yosys rust-hdl runs,
-        /// each fallback said on stderr. rust-hdl: the reference simulation. interpreter: the
-        /// engine's netlist interpreted (no rustc needed). All give the same report, proven
-        /// by tests/system/engine.rs, tests/system/engine_loop.rs and the co-simulation tests.
-        #[arg(long, value_enum, default_value = "compiled")]
-        engine: EngineArg,
+        /// Simulation engine of the top. compiled: Yosys turns the emitted Verilog into a
+        /// netlist, rustc compiles it (cached under ~/.cache/sinedec/engine; 100-250x
+        /// rust-hdl). rust-hdl: the reference simulation. interpreter: the engine's netlist
+        /// interpreted (no rustc needed). Without --engine the compiled engine runs, or the
+        /// interpreter without rustc, or rust-hdl without Yosys, each fallback said on
+        /// stderr; an engine named here runs or fails. All give the same report, proven by
+        /// tests/system/engine.rs, tests/system/engine_loop.rs and the co-simulation tests.
+        #[arg(long, value_enum)]
+        engine: Option<EngineArg>,
     },
     /// Validates a configuration and prints its derived parameters.
     Check {
@@ -142,11 +143,62 @@ enum EngineArg {
     Interpreter,
 }
 
+/// Largest configuration file read, bytes: a config is a few kB; a larger file (or a
+/// device such as /dev/zero) is not one.
+const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
 fn load(config: &Option<PathBuf>) -> Result<Loaded> {
     Ok(match config {
-        Some(p) => Loaded::from_file(p)?,
+        Some(p) => {
+            // A missing file is reported by the loader, with its own words.
+            if let Ok(m) = std::fs::metadata(p) {
+                if !m.is_file() {
+                    let what = if m.is_dir() {
+                        "a directory"
+                    } else {
+                        "not a regular file (a device, FIFO or socket)"
+                    };
+                    bail!(
+                        "{}: is {what}; give the path of a TOML configuration file",
+                        p.display()
+                    );
+                }
+                if m.len() > MAX_CONFIG_BYTES {
+                    bail!(
+                        "{}: is {} bytes; a configuration file is at most 1 MB ({MAX_CONFIG_BYTES} bytes)",
+                        p.display(),
+                        m.len()
+                    );
+                }
+            }
+            Loaded::from_file(p)?
+        }
         None => Loaded::default_config()?,
     })
+}
+
+/// Refuses an output path that names the configuration or another output (`--csv cfg.toml`,
+/// `--csv x --vcd x`): one file cannot be both.
+fn distinct_outputs(config: &Option<PathBuf>, outputs: &[(&str, Option<&PathBuf>)]) -> Result<()> {
+    for (i, (opt, path)) in outputs.iter().enumerate() {
+        let Some(path) = path else { continue };
+        if let Some(c) = config.as_ref().filter(|c| same_file(c, path)) {
+            bail!(
+                "{opt} {}: is the configuration file {}, which this run reads; give the output another path",
+                path.display(),
+                c.display()
+            );
+        }
+        for (other, q) in &outputs[..i] {
+            if q.is_some_and(|q| same_file(q, path)) {
+                bail!(
+                    "{opt} {}: is also the path of {other}; give each output its own path",
+                    path.display()
+                );
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The command line as quoted in file headers (program name normalized so the bytes do not
@@ -222,6 +274,7 @@ fn run(cli: Cli) -> Result<()> {
             if !(duration > 0.0 && duration <= 10.0) {
                 bail!("--duration {duration}: allowed 0 < seconds <= 10");
             }
+            distinct_outputs(&config, &[("--csv", csv.as_ref()), ("--vcd", vcd.as_ref())])?;
             // The output files are checked (and their temporary files created beside them)
             // before the simulation runs.
             let mut csv_out = csv.as_deref().map(PendingFile::new).transpose()?;
@@ -237,14 +290,18 @@ fn run(cli: Cli) -> Result<()> {
                 third_harmonic: harmonic3,
                 seed,
                 engine: match engine {
-                    EngineArg::RustHdl => sinedec::sim::dut::EngineKind::RustHdl,
-                    EngineArg::Compiled => sinedec::sim::dut::EngineKind::Compiled,
-                    EngineArg::Interpreter => sinedec::sim::dut::EngineKind::Interpreted,
+                    None => sinedec::sim::dut::EngineKind::Auto,
+                    Some(EngineArg::RustHdl) => sinedec::sim::dut::EngineKind::RustHdl,
+                    Some(EngineArg::Compiled) => sinedec::sim::dut::EngineKind::Compiled,
+                    Some(EngineArg::Interpreter) => sinedec::sim::dut::EngineKind::Interpreted,
                 },
                 // Without --csv no sample is kept: memory stays bounded on long runs.
                 keep_records: csv.is_some(),
                 ..Default::default()
             };
+            if let Some(w) = sinedec::simulate::speed_warning(&loaded, &o) {
+                let _ = writeln!(std::io::stderr(), "{w}");
+            }
             // The VCD streams during the run into its temporary file (checked above, renamed
             // onto the path when the run is complete).
             let trace: Option<Box<dyn std::io::Write>> = match vcd_out.as_mut() {
@@ -367,6 +424,7 @@ fn run(cli: Cli) -> Result<()> {
                     path.display()
                 );
             }
+            sinedec::emit::output::check_target(&path)?;
             if path.exists() && !force {
                 bail!("{}: exists; pass --force to overwrite it", path.display());
             }
@@ -417,6 +475,13 @@ fn message(e: &anyhow::Error) -> String {
 
 fn main() {
     let cli = Cli::parse();
+    // SIGINT, SIGTERM, SIGHUP: temporaries removed, children killed, exit 130/143/129.
+    if let Err(e) = sinedec::cleanup::install() {
+        let _ = writeln!(
+            std::io::stderr(),
+            "warning: cannot handle SIGINT/SIGTERM/SIGHUP ({e}); a stop by a signal may leave temporary files"
+        );
+    }
     if let Err(e) = run(cli) {
         let broken_pipe = e.chain().any(|c| {
             c.downcast_ref::<StdoutError>()

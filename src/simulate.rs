@@ -266,6 +266,48 @@ fn top_trace(
     .map_err(|e| Error::io("VCD output", e))
 }
 
+/// Settling time of the capacitive path (band-pass, demodulation and low-pass filters):
+/// positions before it are not measured, and a shorter `--duration` is refused.
+pub const CAP_SETTLE_S: f64 = 1.5e-3;
+
+/// The highest speed `profile` reaches within `duration_s`, rpm (absolute).
+pub fn peak_rpm(profile: &Profile, duration_s: f64) -> f64 {
+    match *profile {
+        Profile::Constant { rpm } => rpm.abs(),
+        Profile::Ramp { from, to, over } => {
+            let end = from + (to - from) * (duration_s / over).clamp(0.0, 1.0);
+            from.abs().max(end.abs())
+        }
+        Profile::Reversal { rpm, .. } => rpm.abs(),
+    }
+}
+
+/// The fastest the decoder follows, rpm: the fine-angle unwrap's limit (1.75 quadrants per
+/// sample, where the monitor warns) and, on the capacitive path, the low-pass corner.
+pub fn followable_rpm(loaded: &Loaded) -> f64 {
+    let d = &loaded.derived;
+    match &d.capacitive {
+        Some(k) => {
+            let ppr = d.quadrants_per_turn as f64 / 4.0;
+            let corner = k.config.lowpass.corner_hz.unwrap_or(f64::INFINITY);
+            (corner / ppr * 60.0).min(d.max_speed_rpm_full_res)
+        }
+        None => d.max_speed_rpm_full_res,
+    }
+}
+
+/// A one-line warning when `o`'s profile is faster than the decoder follows
+/// ([`followable_rpm`]): its error figures then measure a lost track, not accuracy.
+pub fn speed_warning(loaded: &Loaded, o: &SimOptions) -> Option<String> {
+    let peak = peak_rpm(&o.profile, o.duration_s);
+    let limit = followable_rpm(loaded);
+    (peak > limit).then(|| {
+        format!(
+            "warning: --profile reaches {peak:.0} rpm, above the {limit:.0} rpm this decoder follows (see `sinedec check`, max speed); the error figures measure a lost track, not accuracy"
+        )
+    })
+}
+
 /// The error for a run that decoded no sample past the settling ones.
 fn no_sample(duration_s: f64, decoded: usize, skip: String, need_s: f64) -> Error {
     Error::option(
@@ -582,6 +624,20 @@ pub fn run_capacitive_report(
     let k = d.capacitive.as_ref().ok_or_else(|| {
         Error::Simulation("run_capacitive needs a configuration with [capacitive]".into())
     })?;
+    // The settling window is fixed: a shorter run would measure the filters' transient.
+    let skip = CAP_SETTLE_S;
+    // Ten decoded positions past the settling window at least.
+    let need = CAP_SETTLE_S + 10.0 / k.sample_rate_hz;
+    if o.duration_s < need {
+        return Err(Error::option(
+            "--duration",
+            format!(
+                "{} s: the capacitive path's filters settle for the first {:.1} ms, which are not measured; use at least {need:.6} s",
+                o.duration_s,
+                CAP_SETTLE_S * 1e3
+            ),
+        ));
+    }
     let mut p = CapParams::ideal(loaded.config.encoder.ppr, 0.0);
     p.profile = o.profile.clone();
     p.dac_bits = k.config.dac_width;
@@ -613,16 +669,13 @@ pub fn run_capacitive_report(
     }
     let wall = t0.elapsed().as_secs_f64();
     sys.finish_trace().map_err(|e| Error::io("VCD output", e))?;
-    let skip = 1.5e-3f64.min(o.duration_s / 2.0);
     let s = sys.stats(skip);
     if s.samples == 0 {
-        let need =
-            2.0 * (d.adc.startup_clocks() as f64 + 2.0 * d.adc.period_clocks as f64) / d.clock_hz;
         return Err(no_sample(
             o.duration_s,
             sys.decoded(),
             format!("those of the first {:.3} ms are settling", skip * 1e3),
-            need.max(3.0e-3),
+            need,
         ));
     }
     let front = crate::blocks::capacitive::CapFrontParams::new(d)?;

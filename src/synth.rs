@@ -173,16 +173,13 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
     );
     let ys = workdir.join(format!("synth_{tag}.ys"));
     std::fs::write(&ys, script).map_err(|e| Error::io(&ys, e))?;
-    let out = Command::new("yosys")
-        .arg("-q")
-        .arg("-s")
-        .arg(&ys)
-        .output()
-        .map_err(|e| CosimError::ToolFailed {
+    let out = crate::cleanup::output(Command::new("yosys").arg("-q").arg("-s").arg(&ys)).map_err(
+        |e| CosimError::ToolFailed {
             tool: "yosys".into(),
             stage: "launch".into(),
             message: e.to_string(),
-        })?;
+        },
+    )?;
     let log = format!(
         "{}{}",
         String::from_utf8_lossy(&out.stdout),

@@ -155,13 +155,20 @@ pub(crate) fn launch(
             )
         }
     };
+    // Unique names of sinedec's own, entered before they exist: a signal removes them.
+    let _entries = (!keep).then(|| {
+        (
+            crate::cleanup::temp_file(&out_path),
+            crate::cleanup::temp_file(&err_path),
+        )
+    });
     let out_file = fs::File::create(&out_path).map_err(|e| io_err(&out_path, e))?;
     let err_file = fs::File::create(&err_path).map_err(|e| io_err(&err_path, e))?;
     cmd.stdin(Stdio::null())
         .stdout(Stdio::from(out_file))
         .stderr(Stdio::from(err_file));
-    let result = match cmd.spawn() {
-        Ok(child) => wait_with_timeout(child, tool),
+    let result = match crate::cleanup::spawn(cmd) {
+        Ok((child, _entry)) => wait_with_timeout(child, tool),
         Err(e) => return Err(spawn_error(e, tool, install)),
     };
     let stdout = fs::read(&out_path)

@@ -14,6 +14,14 @@
 //!   overwrites a file it did not write).
 //! - DIR exists and is not a directory: refused.
 //!
+//! One sinedec writes DIR at a time: the write holds `flock` on DIR itself (no lock file is
+//! left), and a second writer meanwhile is refused with "another sinedec is writing DIR"
+//! ([`check_output_dir`] probes the lock too). A single file the user names (`init PATH`,
+//! `simulate --csv/--vcd PATH`, [`PendingFile`]) must be absent or a regular file: a device,
+//! FIFO, socket, link or directory at PATH is refused and left as it is ([`check_target`]).
+//! Every temporary file and every directory this module creates is entered in
+//! [`crate::cleanup`], so SIGINT, SIGTERM or SIGHUP removes it.
+//!
 //! Every check runs before the first byte is written. The new files are written to unique
 //! temporary names (`.sinedec-XXXXXX.tmp`, the `tempfile` crate) in DIR, synced, and only when
 //! all of them are complete renamed over their targets, one rename per file: each target is
@@ -165,7 +173,32 @@ fn inspect(dir: &Path, opts: &OutputOptions) -> Result<State> {
 /// Checks, without writing, that `dir` can take a command's output under the rule above
 /// (run it before a long computation). Name clashes are checked when writing.
 pub fn check_output_dir(dir: &Path, opts: &OutputOptions) -> Result<()> {
+    if dir.is_dir() {
+        drop(lock_dir(dir)?);
+    }
     inspect(dir, opts).map(|_| ())
+}
+
+/// Takes the output directory's lock (`flock` on the directory itself, so no lock file is
+/// left behind): one sinedec writes a directory at a time, and the other one is told so.
+/// A file system without locks is written unlocked.
+fn lock_dir(dir: &Path) -> Result<Option<std::fs::File>> {
+    let f = match std::fs::File::open(dir) {
+        Ok(f) => f,
+        Err(_) => return Ok(None),
+    };
+    match f.try_lock() {
+        Ok(()) => Ok(Some(f)),
+        Err(std::fs::TryLockError::WouldBlock) => Err(refuse(
+            dir,
+            format!(
+                "another sinedec is writing {} now; nothing was written. Wait until it \
+                 finishes, or choose another directory",
+                dir.display()
+            ),
+        )),
+        Err(std::fs::TryLockError::Error(_)) => Ok(None),
+    }
 }
 
 /// The manifest text for `entries`.
@@ -180,32 +213,69 @@ fn manifest_text(entries: &[(String, String)]) -> String {
     s
 }
 
-/// A complete temporary file in `dir` holding `bytes` (synced), not yet at its name.
-fn temp_with(dir: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile> {
-    let mut b = tempfile::Builder::new();
-    b.prefix(".sinedec-").suffix(".tmp");
-    #[cfg(unix)]
-    {
-        // The permissions `std::fs::write` gives (0666 less the umask), not tempfile's 0600.
-        use std::os::unix::fs::PermissionsExt;
-        b.permissions(std::fs::Permissions::from_mode(0o666));
+/// A temporary file of sinedec's beside its target, entered in [`crate::cleanup`] while
+/// it exists (a signal removes it).
+#[derive(Debug)]
+struct Temp {
+    file: tempfile::NamedTempFile,
+    // After `file`: the file is deleted before its entry goes.
+    _entry: crate::cleanup::Entry,
+}
+
+impl Temp {
+    /// An empty temporary file in `dir` (`.sinedec-XXXXXX.tmp`).
+    fn new(dir: &Path) -> Result<Temp> {
+        let mut b = tempfile::Builder::new();
+        b.prefix(".sinedec-").suffix(".tmp");
+        #[cfg(unix)]
+        {
+            // The permissions `std::fs::write` gives (0666 less the umask), not tempfile's 0600.
+            use std::os::unix::fs::PermissionsExt;
+            b.permissions(std::fs::Permissions::from_mode(0o666));
+        }
+        let (file, _entry) = crate::cleanup::create_file(
+            || b.tempfile_in(dir),
+            |t: &tempfile::NamedTempFile| t.path().to_path_buf(),
+        )
+        .map_err(|e| Error::io(dir, e))?;
+        Ok(Temp { file, _entry })
     }
-    let mut t = b.tempfile_in(dir).map_err(|e| Error::io(dir, e))?;
-    let path = t.path().to_path_buf();
-    t.write_all(bytes).map_err(|e| Error::io(&path, e))?;
-    t.as_file().sync_all().map_err(|e| Error::io(&path, e))?;
+
+    /// Renames the file onto `path` (replacing a file there unless `noclobber`).
+    fn persist(self, path: &Path, noclobber: bool) -> std::result::Result<(), std::io::Error> {
+        let Temp { file, _entry } = self;
+        let r = if noclobber {
+            file.persist_noclobber(path)
+        } else {
+            file.persist(path)
+        };
+        r.map(|_| ()).map_err(|e| e.error)
+    }
+}
+
+/// A complete temporary file in `dir` holding `bytes` (synced), not yet at its name.
+/// Errors name `target`, the file the user will see.
+fn temp_with(dir: &Path, target: &Path, bytes: &[u8]) -> Result<Temp> {
+    let mut t = Temp::new(dir)?;
+    t.file.write_all(bytes).map_err(|e| Error::io(target, e))?;
+    t.file
+        .as_file()
+        .sync_all()
+        .map_err(|e| Error::io(target, e))?;
     Ok(t)
 }
 
 fn write_manifest(dir: &Path, entries: &[(String, String)]) -> Result<()> {
-    let t = temp_with(dir, manifest_text(entries).as_bytes())?;
     let path = dir.join(MANIFEST);
-    t.persist(&path).map_err(|e| Error::io(&path, e.error))?;
+    let t = temp_with(dir, &path, manifest_text(entries).as_bytes())?;
+    t.persist(&path, false).map_err(|e| Error::io(&path, e))?;
     Ok(())
 }
 
-/// Creates `dir` and its missing parents; returns the directories created, outermost first.
-fn create_dirs(dir: &Path) -> Result<Vec<PathBuf>> {
+/// Creates `dir` and its missing parents; returns the directories created, outermost first,
+/// each entered in [`crate::cleanup`] (a signal removes it while empty) until the entries
+/// are dropped.
+fn create_dirs(dir: &Path) -> Result<(Vec<PathBuf>, Vec<crate::cleanup::Entry>)> {
     let mut missing = vec![];
     let mut p = Some(dir);
     while let Some(d) = p {
@@ -217,9 +287,14 @@ fn create_dirs(dir: &Path) -> Result<Vec<PathBuf>> {
     }
     missing.reverse();
     let mut created = vec![];
+    let mut entries = vec![];
     for d in missing {
+        let entry = crate::cleanup::created_dir(&d);
         match std::fs::create_dir(&d) {
-            Ok(()) => created.push(d),
+            Ok(()) => {
+                created.push(d);
+                entries.push(entry);
+            }
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && d.is_dir() => {}
             Err(e) => {
                 remove_created(&created);
@@ -227,7 +302,7 @@ fn create_dirs(dir: &Path) -> Result<Vec<PathBuf>> {
             }
         }
     }
-    Ok(created)
+    Ok((created, entries))
 }
 
 /// Removes directories this call created (innermost first), each only while empty.
@@ -245,7 +320,23 @@ pub fn write_files(dir: &Path, files: &[(&str, &[u8])], opts: &OutputOptions) ->
             crate::error::Quoted(&crate::error::clip(n, 80))
         )));
     }
-    let state = inspect(dir, opts)?;
+    // A missing directory is created first, so that it can be locked before it is looked at.
+    let (created, _created_entries) = if dir.as_os_str().is_empty() || dir.exists() {
+        (vec![], vec![])
+    } else {
+        inspect(dir, opts)?;
+        create_dirs(dir)?
+    };
+    // Held until the last rename; on a refusal here the created directories stay (the
+    // other sinedec writes into them).
+    let _lock = lock_dir(dir)?;
+    let state = match inspect(dir, opts) {
+        Ok(s) => s,
+        Err(e) => {
+            remove_created(&created);
+            return Err(e);
+        }
+    };
     let previous = match &state {
         State::Managed(e) => e.clone(),
         _ => vec![],
@@ -281,10 +372,6 @@ pub fn write_files(dir: &Path, files: &[(&str, &[u8])], opts: &OutputOptions) ->
             }
         }
     }
-    let created = match state {
-        State::Missing => create_dirs(dir)?,
-        _ => vec![],
-    };
     let result = (|| {
         // 1. Every new file complete under a temporary name.
         let mut temps = Vec::with_capacity(files.len());
@@ -292,8 +379,9 @@ pub fn write_files(dir: &Path, files: &[(&str, &[u8])], opts: &OutputOptions) ->
             if opts.fail_after_temps == Some(temps.len()) {
                 return Err(Error::Export("injected failure (test)".into()));
             }
-            temps.push((*name, temp_with(dir, bytes)?));
+            temps.push((*name, temp_with(dir, &dir.join(name), bytes)?));
         }
+        crate::cleanup::test_pause("output-temps");
         // 2. The manifest covers the old and the new files.
         let mut union = previous.clone();
         for (name, _) in files {
@@ -315,7 +403,7 @@ pub fn write_files(dir: &Path, files: &[(&str, &[u8])], opts: &OutputOptions) ->
     // 3. One rename per file.
     for (name, t) in temps {
         let path = dir.join(name);
-        t.persist(&path).map_err(|e| Error::io(&path, e.error))?;
+        t.persist(&path, false).map_err(|e| Error::io(&path, e))?;
     }
     // 4. Files this command wrote before and no longer produces go; the manifest narrows.
     let mut kept = vec![];
@@ -341,19 +429,97 @@ pub fn write_files(dir: &Path, files: &[(&str, &[u8])], opts: &OutputOptions) ->
     write_manifest(dir, &kept)
 }
 
+/// What a path that exists and is not a regular file is, in words, or None for a regular
+/// file.
+fn special_kind(m: &std::fs::Metadata) -> Option<&'static str> {
+    let t = m.file_type();
+    if t.is_file() {
+        return None;
+    }
+    if t.is_dir() {
+        return Some("a directory");
+    }
+    if t.is_symlink() {
+        return Some("a symbolic link");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return Some("a FIFO (named pipe)");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+        if t.is_char_device() {
+            return Some("a character device");
+        }
+        if t.is_block_device() {
+            return Some("a block device");
+        }
+    }
+    Some("not a regular file")
+}
+
+/// Checks that `path`, a file the user named for sinedec to write, is absent or a regular
+/// file: sinedec never replaces a device, a FIFO, a socket, a link or a directory.
+pub fn check_target(path: &Path) -> Result<()> {
+    match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(Error::io(path, e)),
+        Ok(m) if m.is_dir() => Err(refuse(
+            path,
+            "is a directory; give the path of the file to write",
+        )),
+        Ok(m) => match special_kind(&m) {
+            None => Ok(()),
+            Some(kind) => Err(refuse(
+                path,
+                format!(
+                    "is {kind}; sinedec writes only regular files and never replaces anything                      else: give the path of a new or regular file"
+                ),
+            )),
+        },
+    }
+}
+
+/// Whether `a` and `b` name the same file: the same device and inode when both exist, else
+/// the same absolute path (symbolic links in the directories resolved).
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return x.dev() == y.dev() && x.ino() == y.ino();
+        }
+    }
+    fn absolute(p: &Path) -> Option<PathBuf> {
+        let parent = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        Some(std::fs::canonicalize(parent).ok()?.join(p.file_name()?))
+    }
+    match (absolute(a), absolute(b)) {
+        (Some(x), Some(y)) => x == y,
+        _ => a == b,
+    }
+}
+
 /// One file the user named (`init PATH`, `simulate --csv F`), checked and opened under a
 /// unique temporary name beside it before the work that fills it: the temporary file is
-/// deleted if the program stops with an error first, and [`PendingFile::commit`] renames it
-/// onto the path in one step.
+/// deleted if the program stops with an error or a signal first, and
+/// [`PendingFile::commit`] renames it onto the path in one step. The path must be absent or
+/// a regular file ([`check_target`]).
 #[derive(Debug)]
 pub struct PendingFile {
     path: PathBuf,
-    temp: tempfile::NamedTempFile,
+    temp: Temp,
 }
 
 impl PendingFile {
-    /// Checks that `path` can be written (not a directory, its directory exists) and opens
-    /// the temporary file.
+    /// Checks that `path` can be written (absent or a regular file, its directory exists)
+    /// and opens the temporary file.
     pub fn new(path: &Path) -> Result<PendingFile> {
         if path.as_os_str().is_empty() {
             return Err(refuse(path, "an empty path"));
@@ -369,43 +535,55 @@ impl PendingFile {
             _ => PathBuf::from("."),
         };
         if !parent.is_dir() {
-            return Err(refuse(
-                path,
-                format!("the directory {} does not exist", parent.display()),
-            ));
+            let why = if parent.exists() {
+                format!("{} is not a directory", parent.display())
+            } else {
+                format!("the directory {} does not exist", parent.display())
+            };
+            return Err(refuse(path, why));
         }
-        let temp = temp_with(&parent, b"")?;
+        check_target(path)?;
+        let temp = temp_with(&parent, path, b"")?;
         Ok(PendingFile {
             path: path.to_path_buf(),
             temp,
         })
     }
 
+    /// The path the file will have.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
     /// The open temporary file, for streaming writes.
     pub fn file(&mut self) -> &mut std::fs::File {
-        self.temp.as_file_mut()
+        self.temp.file.as_file_mut()
     }
 
     /// Appends `bytes`.
     pub fn write_all(&mut self, bytes: &[u8]) -> Result<()> {
-        let p = self.temp.path().to_path_buf();
-        self.temp.write_all(bytes).map_err(|e| Error::io(p, e))
+        self.temp
+            .file
+            .write_all(bytes)
+            .map_err(|e| Error::io(&self.path, e))
     }
 
     fn sync(&mut self) -> Result<()> {
-        let p = self.temp.path().to_path_buf();
         self.temp
+            .file
             .flush()
-            .and_then(|_| self.temp.as_file().sync_all())
-            .map_err(|e| Error::io(p, e))
+            .and_then(|_| self.temp.file.as_file().sync_all())
+            .map_err(|e| Error::io(&self.path, e))
     }
 
-    /// Renames the complete file onto its path, replacing a file there; returns the path.
+    /// Renames the complete file onto its path, replacing a regular file there; returns the
+    /// path.
     pub fn commit(mut self) -> Result<PathBuf> {
         self.sync()?;
+        check_target(&self.path)?;
         self.temp
-            .persist(&self.path)
-            .map_err(|e| Error::io(&self.path, e.error))?;
+            .persist(&self.path, false)
+            .map_err(|e| Error::io(&self.path, e))?;
         Ok(self.path)
     }
 
@@ -413,11 +591,12 @@ impl PendingFile {
     /// exists by then.
     pub fn commit_new(mut self) -> Result<PathBuf> {
         self.sync()?;
-        self.temp.persist_noclobber(&self.path).map_err(|e| {
-            if e.error.kind() == std::io::ErrorKind::AlreadyExists {
+        check_target(&self.path)?;
+        self.temp.persist(&self.path, true).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::AlreadyExists {
                 refuse(&self.path, "exists; pass --force to overwrite it")
             } else {
-                Error::io(&self.path, e.error)
+                Error::io(&self.path, e)
             }
         })?;
         Ok(self.path)

@@ -33,46 +33,142 @@ pub fn rustc() -> String {
 
 /// `rustc --version`, for the cache key.
 pub fn rustc_version() -> Result<String> {
-    let out = Command::new(rustc())
-        .arg("--version")
-        .output()
-        .map_err(|e| {
-            Error::Tool(CosimError::ToolMissing {
-                tool: format!("rustc ({e})"),
-                install: "curl https://sh.rustup.rs -sSf | sh".into(),
-            })
-        })?;
+    let out = crate::cleanup::output(Command::new(rustc()).arg("--version")).map_err(|e| {
+        Error::Tool(CosimError::ToolMissing {
+            tool: format!("rustc ({e})"),
+            install: "curl https://sh.rustup.rs -sSf | sh".into(),
+        })
+    })?;
     Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
-/// The cache directory: `$SINEDEC_ENGINE_CACHE`, else `$XDG_CACHE_HOME/sinedec/engine`,
-/// else `~/.cache/sinedec/engine`, else the temporary directory's `sinedec-engine`.
-pub fn cache_root() -> PathBuf {
-    if let Some(p) = std::env::var_os("SINEDEC_ENGINE_CACHE") {
-        return PathBuf::from(p);
-    }
-    if let Some(p) = std::env::var_os("XDG_CACHE_HOME") {
-        return PathBuf::from(p).join("sinedec").join("engine");
-    }
-    if let Some(p) = std::env::var_os("HOME") {
-        return PathBuf::from(p)
-            .join(".cache")
-            .join("sinedec")
-            .join("engine");
-    }
-    std::env::temp_dir().join("sinedec-engine")
+/// The library's file name in a cache entry.
+pub const LIB: &str = "libsdengine.so";
+/// The file beside the library holding the SHA-256 of its bytes (hex): a library is loaded
+/// from the cache only when its bytes still give that hash.
+pub const LIB_HASH: &str = "libsdengine.so.sha256";
+/// The ports' shape beside the library.
+pub const SHAPE: &str = "shape.json";
+
+/// An absolute path from environment variable `var`; an empty or relative value is
+/// ignored, as the XDG Base Directory specification asks.
+fn absolute_var(var: &str) -> Option<PathBuf> {
+    std::env::var_os(var)
+        .map(PathBuf::from)
+        .filter(|p| p.is_absolute())
 }
 
-/// Compiles `source` into `lib` (through a temporary file in the same directory, renamed
-/// into place, so concurrent builds of one key do not see half a library).
-pub fn build(source: &str, dir: &Path, lib: &Path) -> Result<()> {
+/// The cache directory and the environment variable it comes from:
+/// `$SINEDEC_ENGINE_CACHE`, else `$XDG_CACHE_HOME/sinedec/engine`, else
+/// `$HOME/.cache/sinedec/engine`, else the temporary directory's `sinedec-engine` (empty
+/// or relative values skipped).
+pub fn cache_root() -> (PathBuf, Option<&'static str>) {
+    if let Some(p) = absolute_var("SINEDEC_ENGINE_CACHE") {
+        return (p, Some("SINEDEC_ENGINE_CACHE"));
+    }
+    if let Some(p) = absolute_var("XDG_CACHE_HOME") {
+        return (p.join("sinedec").join("engine"), Some("XDG_CACHE_HOME"));
+    }
+    if let Some(p) = absolute_var("HOME") {
+        return (
+            p.join(".cache").join("sinedec").join("engine"),
+            Some("HOME"),
+        );
+    }
+    (std::env::temp_dir().join("sinedec-engine"), Some("TMPDIR"))
+}
+
+fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// The shape of the cache entry `dir` when the entry is whole: its shape file parses and
+/// its library's bytes give the hash stored beside it. None for a missing, partial or
+/// damaged entry (truncated or scrambled library, a file where the directory should be).
+pub(crate) fn cached_shape(dir: &Path) -> Option<super::Shape> {
+    let shape = std::fs::read_to_string(dir.join(SHAPE)).ok()?;
+    let shape: super::Shape = serde_json::from_str(&shape).ok()?;
+    let want = std::fs::read_to_string(dir.join(LIB_HASH)).ok()?;
+    let lib = std::fs::read(dir.join(LIB)).ok()?;
+    (sha256_hex(&lib) == want.trim()).then_some(shape)
+}
+
+/// Why a cache entry could not be built.
+pub(crate) enum EntryError {
+    /// The entry's directory cannot be created or written (the reason, with the path).
+    Cache(String),
+    /// rustc is missing or failed.
+    Other(Error),
+}
+
+impl EntryError {
+    /// As a library error about `dir`.
+    pub(crate) fn into_error(self, dir: &Path) -> Error {
+        match self {
+            EntryError::Cache(why) => {
+                Error::Simulation(format!("engine library in {}: {why}", dir.display()))
+            }
+            EntryError::Other(e) => e,
+        }
+    }
+}
+
+fn cache_error(path: &Path, e: std::io::Error) -> EntryError {
+    EntryError::Cache(format!("{}: {}", path.display(), crate::error::io_text(&e)))
+}
+
+/// Writes `bytes` to `path` through a temporary file in `dir` renamed into place.
+fn write_atomic(dir: &Path, path: &Path, bytes: &[u8]) -> std::result::Result<(), EntryError> {
+    use std::io::Write;
+    let mut t = tempfile::Builder::new()
+        .prefix(".write")
+        .tempfile_in(dir)
+        .map_err(|e| cache_error(dir, e))?;
+    t.write_all(bytes).map_err(|e| cache_error(path, e))?;
+    t.persist(path).map_err(|e| cache_error(path, e.error))?;
+    Ok(())
+}
+
+/// Builds the cache entry `dir` for `source`: the library compiled by rustc, its shape,
+/// and last the hash of its bytes (an entry interrupted before that is rebuilt).
+pub(crate) fn build_entry(
+    source: &str,
+    shape: &super::Shape,
+    dir: &Path,
+) -> std::result::Result<(), EntryError> {
+    std::fs::create_dir_all(dir).map_err(|e| cache_error(dir, e))?;
+    let lib = dir.join(LIB);
+    build(source, dir, &lib)?;
+    let bytes = std::fs::read(&lib).map_err(|e| cache_error(&lib, e))?;
+    let text = serde_json::to_string(shape).map_err(|e| {
+        EntryError::Other(Error::Json {
+            what: "engine shape".into(),
+            source: e,
+        })
+    })?;
+    write_atomic(dir, &dir.join(SHAPE), text.as_bytes())?;
+    write_atomic(dir, &dir.join(LIB_HASH), sha256_hex(&bytes).as_bytes())
+}
+
+/// Compiles `source` into `lib` (through a temporary directory in the same directory,
+/// renamed into place, so concurrent builds of one key do not see half a library).
+fn build(source: &str, dir: &Path, lib: &Path) -> std::result::Result<(), EntryError> {
     let src = dir.join("engine.rs");
-    std::fs::write(&src, source).map_err(|e| Error::io(&src, e))?;
-    let tmp = tempfile::Builder::new()
-        .prefix("build")
-        .tempdir_in(dir)
-        .map_err(|e| Error::io(dir, e))?;
-    let out = tmp.path().join("libsdengine.so");
+    std::fs::write(&src, source).map_err(|e| cache_error(&src, e))?;
+    let (tmp, _entry) = crate::cleanup::create_dir(
+        || {
+            tempfile::Builder::new()
+                .prefix(".tmp-build")
+                .tempdir_in(dir)
+        },
+        |d: &tempfile::TempDir| d.path().to_path_buf(),
+    )
+    .map_err(|e| cache_error(dir, e))?;
+    let out = tmp.path().join(LIB);
     let mut cmd = Command::new(rustc());
     cmd.current_dir(dir)
         .args(RUSTC_FLAGS)
@@ -81,8 +177,9 @@ pub fn build(source: &str, dir: &Path, lib: &Path) -> Result<()> {
         .arg("-o")
         .arg(&out)
         .arg(&src);
-    crate::cosim::run_checked(&mut cmd, "rustc", "engine build", dir, "engine_rustc")?;
-    std::fs::rename(&out, lib).map_err(|e| Error::io(lib, e))
+    crate::cosim::run_checked(&mut cmd, "rustc", "engine build", dir, "engine_rustc")
+        .map_err(|e| EntryError::Other(e.into()))?;
+    std::fs::rename(&out, lib).map_err(|e| cache_error(lib, e))
 }
 
 type NewFn = unsafe extern "C" fn() -> *mut c_void;

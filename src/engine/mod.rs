@@ -68,6 +68,9 @@ pub struct BuildInfo {
     pub regs: usize,
     /// The cache directory of the compiled library.
     pub dir: Option<PathBuf>,
+    /// Why the engine cache could not be used, naming its path (one line), when the
+    /// library was built in a temporary directory instead.
+    pub cache_note: Option<String>,
 }
 
 /// A model of one Verilog top module, stepped cycle by cycle.
@@ -80,7 +83,7 @@ pub struct Engine {
 
 /// The ports' names and widths, kept next to a cached library.
 #[derive(serde::Serialize, serde::Deserialize)]
-struct Shape {
+pub(crate) struct Shape {
     inputs: Vec<(String, u32)>,
     outputs: Vec<(String, u32)>,
     cells: usize,
@@ -91,10 +94,34 @@ fn ports(v: &[(String, u32)]) -> Vec<Port> {
     v.iter().map(|(n, w)| Port::new(n, *w)).collect()
 }
 
+/// A scratch directory `sinedec-engine-XXXXXX` in the temporary directory, entered in
+/// [`crate::cleanup`] (a signal removes it); an error names `TMPDIR`.
+struct Scratch {
+    dir: tempfile::TempDir,
+    _entry: crate::cleanup::Entry,
+}
+
+fn scratch() -> Result<Scratch> {
+    let base = std::env::temp_dir();
+    let (dir, _entry) = crate::cleanup::create_dir(
+        || {
+            tempfile::Builder::new()
+                .prefix("sinedec-engine-")
+                .tempdir_in(&base)
+        },
+        |d: &tempfile::TempDir| d.path().to_path_buf(),
+    )
+    .map_err(|e| Error::TempDir {
+        path: base.clone(),
+        reason: crate::error::io_text(&e),
+    })?;
+    Ok(Scratch { dir, _entry })
+}
+
 fn netlist_of(verilog: &str, top: &str, clock: &str) -> Result<(netlist::Netlist, f64)> {
     let t0 = Instant::now();
-    let dir = tempfile::tempdir().map_err(|e| Error::io(std::env::temp_dir(), e))?;
-    let json = yosys::run(verilog, top, dir.path())?;
+    let dir = scratch()?;
+    let json = yosys::run(verilog, top, dir.dir.path())?;
     let m = yosys::parse(&json, top)?;
     let nl = netlist::build(&m, clock)?;
     Ok((nl, t0.elapsed().as_secs_f64()))
@@ -162,47 +189,73 @@ impl Engine {
             .take(12)
             .map(|b| format!("{b:02x}"))
             .collect();
-        let dir = compiled::cache_root().join(format!("{top}-{key}"));
-        let lib = dir.join("libsdengine.so");
-        let shape_file = dir.join("shape.json");
+        let (root, var) = compiled::cache_root();
+        let dir = root.join(format!("{top}-{key}"));
         let mut info = BuildInfo {
             dir: Some(dir.clone()),
             ..Default::default()
         };
-        let cached = std::fs::read_to_string(&shape_file)
-            .ok()
-            .and_then(|t| serde_json::from_str::<Shape>(&t).ok())
-            .filter(|_| lib.is_file());
-        let shape = match cached {
-            Some(s) => {
+        // 1. A cached library whose content matches the hash stored beside it.
+        if let Some(shape) = compiled::cached_shape(&dir) {
+            if let Ok(sim) = compiled::Compiled::load(
+                &dir.join(compiled::LIB),
+                shape.inputs.len(),
+                shape.outputs.len(),
+            ) {
                 info.cached = true;
-                s
+                return Ok(Engine::of_compiled(sim, shape, info));
             }
-            None => {
-                let (nl, yosys_s) = netlist_of(verilog, top, clock)?;
-                info.yosys_s = yosys_s;
-                std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
-                let t0 = Instant::now();
-                compiled::build(&codegen::generate(&nl), &dir, &lib)?;
-                info.rustc_s = t0.elapsed().as_secs_f64();
-                let s = shape_of(&nl);
-                let text = serde_json::to_string(&s).map_err(|e| Error::Json {
-                    what: "engine shape".into(),
-                    source: e,
-                })?;
-                std::fs::write(&shape_file, text).map_err(|e| Error::io(&shape_file, e))?;
-                s
+        }
+        // 2. Built into the cache (a damaged entry is rebuilt over), or, when the cache
+        // cannot be written, into a scratch directory, said in one line.
+        let (nl, yosys_s) = netlist_of(verilog, top, clock)?;
+        info.yosys_s = yosys_s;
+        let source = codegen::generate(&nl);
+        let shape = shape_of(&nl);
+        let t0 = Instant::now();
+        let (sim, scratch_dir) = match compiled::build_entry(&source, &shape, &dir) {
+            Ok(()) => (
+                compiled::Compiled::load(
+                    &dir.join(compiled::LIB),
+                    shape.inputs.len(),
+                    shape.outputs.len(),
+                )?,
+                None,
+            ),
+            Err(compiled::EntryError::Cache(why)) => {
+                let from = var.map_or(String::new(), |v| format!(" (from {v})"));
+                info.cache_note = Some(format!(
+                    "engine: the cache {}{from} cannot be used ({why}); the model was built in a temporary directory and is not cached",
+                    root.display()
+                ));
+                info.dir = None;
+                let s = scratch()?;
+                let d = s.dir.path().join("entry");
+                compiled::build_entry(&source, &shape, &d).map_err(|e| e.into_error(&d))?;
+                let sim = compiled::Compiled::load(
+                    &d.join(compiled::LIB),
+                    shape.inputs.len(),
+                    shape.outputs.len(),
+                )?;
+                (sim, Some(s))
             }
+            Err(e) => return Err(e.into_error(&dir)),
         };
+        // The library stays mapped after its scratch directory goes.
+        drop(scratch_dir);
+        info.rustc_s = t0.elapsed().as_secs_f64();
+        Ok(Engine::of_compiled(sim, shape, info))
+    }
+
+    fn of_compiled(sim: compiled::Compiled, shape: Shape, mut info: BuildInfo) -> Engine {
         info.cells = shape.cells;
         info.regs = shape.regs;
-        let sim = compiled::Compiled::load(&lib, shape.inputs.len(), shape.outputs.len())?;
-        Ok(Engine {
+        Engine {
             sim: Box::new(sim),
             inputs: ports(&shape.inputs),
             outputs: ports(&shape.outputs),
             info,
-        })
+        }
     }
 
     /// The input ports (clock left out), in index order.

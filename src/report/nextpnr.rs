@@ -397,11 +397,8 @@ pub struct Ecp5 {
 }
 
 fn run_tool(bin: &Path, dir: &Path, args: &[&str], tool: &str) -> Result<(bool, String)> {
-    let out = Command::new(bin)
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .map_err(|e| {
+    let out =
+        crate::cleanup::output(Command::new(bin).current_dir(dir).args(args)).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound {
                 missing(tool)
             } else {

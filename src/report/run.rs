@@ -74,10 +74,14 @@ pub fn build(loaded: &Loaded, opts: &Options) -> Result<Report> {
             .map(|d| d.as_nanos())
             .unwrap_or(0)
     ));
-    let ys = Yosys::new(opts.cache_dir.clone(), work.clone())?;
-    // The same cache directory: the entries' names are hashes with distinct prefixes.
-    let pnr = Ecp5::new(opts.cache_dir.clone(), work.join("ecp5"))?;
-    let result = build_inner(loaded, opts, &designs, angle_design, angle_n, &ys, &pnr);
+    // Entered before it exists: a signal removes it with its content.
+    let _work_entry = crate::cleanup::temp_dir(&work);
+    let result = (|| {
+        let ys = Yosys::new(opts.cache_dir.clone(), work.clone())?;
+        // The same cache directory: the entries' names are hashes with distinct prefixes.
+        let pnr = Ecp5::new(opts.cache_dir.clone(), work.join("ecp5"))?;
+        build_inner(loaded, opts, &designs, angle_design, angle_n, &ys, &pnr)
+    })();
     let _ = std::fs::remove_dir_all(&work);
     result
 }

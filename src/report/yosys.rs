@@ -165,7 +165,7 @@ impl Yosys {
             Err(CosimError::ToolMissing { install, .. }) => return Err(missing(&install)),
             Err(e) => return Err(e.into()),
         }
-        let out = Command::new("yosys").arg("-V").output().map_err(|e| {
+        let out = crate::cleanup::output(Command::new("yosys").arg("-V")).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound {
                 missing("apt-get install -y yosys")
             } else {
@@ -255,11 +255,7 @@ impl Yosys {
             .replace("{ltp}", &ltp.display().to_string());
         let ys = dir.join("generic.ys");
         std::fs::write(&ys, script).map_err(|e| Error::io(&ys, e))?;
-        let out = Command::new("yosys")
-            .arg("-q")
-            .arg("-s")
-            .arg(&ys)
-            .output()
+        let out = crate::cleanup::output(Command::new("yosys").arg("-q").arg("-s").arg(&ys))
             .map_err(|e| {
                 Error::Tool(CosimError::ToolFailed {
                     tool: "yosys".into(),

@@ -374,6 +374,26 @@ fn simulate_and_check_run_on_the_capacitive_config() {
     );
 }
 
+/// M5: a `--duration` that leaves no time past the capacitive filters' settling window is
+/// an error (as on the sinewave path), not the transient reported as accuracy.
+#[test]
+fn a_duration_inside_the_settling_window_is_an_error() {
+    let cfg = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/cyclone3_capacitive.toml"
+    );
+    for d in ["0.0001", "0.0002", "0.0015"] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_sinedec"))
+            .args(["simulate", cfg, "--duration", d])
+            .output()
+            .expect("runs");
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "--duration {d}: {e}");
+        assert!(e.contains("--duration") && e.contains("settle"), "{d}: {e}");
+        assert!(!String::from_utf8_lossy(&out.stdout).contains("max "));
+    }
+}
+
 /// A filter quantized too coarsely is rejected with the key and the section named.
 #[test]
 fn an_unstable_quantized_filter_is_rejected_by_name() {

@@ -478,3 +478,74 @@ fn init_refuses_to_overwrite_without_force() {
     assert_eq!(listing(dir), vec!["my.toml"]);
     ok(dir, &["check", "my.toml"]);
 }
+
+/// L3: negative option values in scientific notation are numbers, not flags.
+#[test]
+fn negative_values_in_scientific_notation_are_accepted() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = ok(
+        tmp.path(),
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--offset-sin",
+            "-1e-1",
+            "--offset-cos",
+            "-2E-2",
+            "--phase-error",
+            "-1.5e0",
+        ],
+    );
+    assert!(out.contains("max |error|"), "{out}");
+}
+
+/// L4: a profile faster than the decoder follows (its unwrap limit, `check`'s max speed)
+/// is run with a warning on stderr; a speed within it gets none.
+#[test]
+fn a_profile_beyond_the_followable_speed_is_warned_about() {
+    let tmp = tempfile::tempdir().unwrap();
+    let fast = run(
+        tmp.path(),
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--profile",
+            "constant:600000",
+        ],
+    );
+    let e = String::from_utf8_lossy(&fast.stderr);
+    assert!(fast.status.success(), "{e}");
+    assert!(e.contains("warning") && e.contains("600000 rpm"), "{e}");
+    let slow = run(
+        tmp.path(),
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--profile",
+            "constant:300",
+        ],
+    );
+    assert!(!String::from_utf8_lossy(&slow.stderr).contains("warning"));
+}
+
+/// L11: a config that is not a regular file, or larger than 1 MB, is refused unread.
+#[test]
+fn a_config_that_is_huge_or_not_a_file_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let mut big = DEFAULT_CONFIG.to_string();
+    while big.len() <= 1 << 20 {
+        big.push_str("# padding padding padding padding padding padding padding padding\n");
+    }
+    std::fs::write(dir.join("big.toml"), &big).unwrap();
+    let _sock = std::os::unix::net::UnixListener::bind(dir.join("sock.toml")).unwrap();
+    for (name, says) in [("big.toml", "1 MB"), ("sock.toml", "not a regular file")] {
+        let o = run(dir, &["check", name]);
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{name}: {e}");
+        assert!(e.contains(name) && e.contains(says), "{name}: {e}");
+    }
+}

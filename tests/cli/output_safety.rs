@@ -317,3 +317,399 @@ fn closed_stdout_exits_quietly() {
         assert!(e.trim().is_empty(), "{args:?}: {e}");
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// E. Special files, outputs that are inputs, the directory lock, plain messages (issue 42)
+
+/// A node of `special_nodes` and the listener that keeps a socket bound.
+type Node = (std::path::PathBuf, std::os::unix::net::UnixListener);
+
+/// A FIFO and a Unix socket made in `dir` (never under /dev).
+fn special_nodes(dir: &std::path::Path) -> Vec<Node> {
+    let fifo = dir.join("fifo");
+    let st = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(st.success());
+    let sock = dir.join("sock");
+    let l = std::os::unix::net::UnixListener::bind(&sock).expect("socket");
+    let l2 = l.try_clone().expect("clone");
+    vec![(fifo, l), (sock, l2)]
+}
+
+fn is_special(p: &std::path::Path) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    let t = std::fs::symlink_metadata(p)
+        .expect("still there")
+        .file_type();
+    t.is_fifo() || t.is_socket()
+}
+
+/// H1: `--csv`, `--vcd` and `init --force` refuse a FIFO or a socket (README "Output
+/// directory": sinedec writes only regular files) and leave it in place.
+#[test]
+fn special_files_are_refused_and_kept() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let nodes = special_nodes(dir);
+    for (node, _keep) in &nodes {
+        let name = node.file_name().unwrap().to_str().unwrap();
+        for args in [
+            vec!["simulate", "--duration", "0.0005", "--csv", name],
+            vec!["simulate", "--duration", "0.0005", "--vcd", name],
+            vec!["init", name, "--force"],
+        ] {
+            let e = refused(dir, &args);
+            assert!(
+                e.contains(name) && e.contains("regular file"),
+                "{args:?}: {e}"
+            );
+            assert!(is_special(node), "{args:?} replaced {name}");
+        }
+    }
+    let mut left = listing(dir);
+    left.sort();
+    assert_eq!(left, vec!["fifo", "sock"], "temporaries left");
+}
+
+/// M4: an output that is the config, or both outputs at one path, is refused before the
+/// run; the config keeps its bytes.
+#[test]
+fn outputs_that_overwrite_inputs_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("cfg.toml"), DEFAULT_CONFIG).unwrap();
+    for args in [
+        &[
+            "simulate",
+            "cfg.toml",
+            "--duration",
+            "0.0005",
+            "--csv",
+            "cfg.toml",
+        ][..],
+        &[
+            "simulate",
+            "cfg.toml",
+            "--duration",
+            "0.0005",
+            "--vcd",
+            "./cfg.toml",
+        ][..],
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--csv",
+            "x",
+            "--vcd",
+            "x",
+        ][..],
+    ] {
+        let e = refused(dir, args);
+        assert!(
+            e.contains("configuration file") || e.contains("its own path"),
+            "{args:?}: {e}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(dir.join("cfg.toml")).unwrap(),
+            DEFAULT_CONFIG
+        );
+        assert_eq!(listing(dir), vec!["cfg.toml"], "{args:?}");
+    }
+}
+
+/// L1: while another sinedec holds the output directory's lock (`flock` on the directory,
+/// README "Output directory"), `generate -o d` says so and writes nothing.
+#[test]
+fn a_locked_output_directory_is_named_as_busy() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::create_dir(dir.join("d")).unwrap();
+    let held = std::fs::File::open(dir.join("d")).unwrap();
+    held.try_lock().expect("lock");
+    let e = refused(dir, &["generate", "-o", "d"]);
+    assert!(e.contains("another sinedec is writing d"), "{e}");
+    assert!(listing(&dir.join("d")).is_empty());
+    drop(held);
+    ok(dir, &["generate", "-o", "d"]);
+}
+
+/// L1: two `generate -o d` at once: each succeeds, or one says the other is writing; never
+/// "sinedec did not write it".
+#[test]
+fn concurrent_generates_into_one_directory() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    for round in 0..4 {
+        let d = format!("d{round}");
+        let spawn = || {
+            Command::new(BIN)
+                .args(["generate", "-o", &d])
+                .current_dir(dir)
+                .stdout(Stdio::null())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap()
+        };
+        let (a, b) = (spawn(), spawn());
+        for c in [a, b] {
+            let o = c.wait_with_output().unwrap();
+            let e = stderr(&o);
+            assert!(
+                o.status.success() || e.contains("another sinedec is writing"),
+                "{e}"
+            );
+        }
+        assert!(!listing(&dir.join(&d)).iter().any(|f| f.ends_with(".tmp")));
+    }
+}
+
+/// L2: a path through a regular file gets one sentence naming that file, not an OS error
+/// number or a Debug-quoted temporary path.
+#[test]
+fn io_errors_are_one_plain_sentence() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("notes.txt"), "mine").unwrap();
+    for args in [
+        &["generate", "-o", "notes.txt/out"][..],
+        &["init", "notes.txt/a/b.toml"][..],
+        &[
+            "simulate",
+            "--duration",
+            "0.0005",
+            "--csv",
+            "notes.txt/run.csv",
+        ][..],
+    ] {
+        let e = refused(dir, args);
+        assert!(
+            e.contains("notes.txt") && e.contains("not a directory"),
+            "{args:?}: {e}"
+        );
+        assert!(
+            !e.contains("os error") && !e.contains("at path"),
+            "{args:?}: {e}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_to_string(dir.join("notes.txt")).unwrap(),
+        "mine"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// F. Signals (issue 42, M1-M3): temporaries removed, children stopped, 128 + signal
+
+/// Sends `sig` to `pid`.
+fn signal(pid: u32, sig: &str) {
+    let st = Command::new("kill")
+        .args([&format!("-{sig}"), &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(st.success());
+}
+
+/// Polls `cond` every 10 ms up to `limit_s` seconds (a liveness bound, not a timing
+/// assertion).
+fn wait_up_to(limit_s: u64, what: &str, mut cond: impl FnMut() -> bool) {
+    for _ in 0..limit_s * 100 {
+        if cond() {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    panic!("never saw {what}");
+}
+
+/// [`wait_up_to`] 300 s: for a stage of a run to begin.
+fn wait_for(what: &str, cond: impl FnMut() -> bool) {
+    wait_up_to(300, what, cond)
+}
+
+/// Children of `pid` (from /proc), with their command names.
+fn children(pid: u32) -> Vec<(u32, String)> {
+    let mut v = vec![];
+    for e in std::fs::read_dir("/proc").unwrap().flatten() {
+        let Ok(p) = e.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
+        let Ok(stat) = std::fs::read_to_string(format!("/proc/{p}/stat")) else {
+            continue;
+        };
+        let Some(close) = stat.rfind(')') else {
+            continue;
+        };
+        let name = stat[stat.find('(').unwrap() + 1..close].to_string();
+        let ppid: u32 = stat[close + 2..]
+            .split(' ')
+            .nth(1)
+            .and_then(|x| x.parse().ok())
+            .unwrap_or(0);
+        if ppid == pid {
+            v.push((p, name));
+        }
+    }
+    v
+}
+
+/// Whether process `pid` is gone (or a zombie awaiting its reaper).
+fn gone(pid: u32) -> bool {
+    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+        Err(_) => true,
+        Ok(s) => s.rfind(')').is_some_and(|i| s[i + 2..].starts_with('Z')),
+    }
+}
+
+/// Temporary names sinedec makes, found in `dir`.
+fn temporaries(dir: &std::path::Path) -> Vec<String> {
+    listing(dir)
+        .into_iter()
+        .filter(|f| {
+            (f.starts_with(".sinedec-") && f.ends_with(".tmp"))
+                || f.starts_with("sinedec-")
+                || f.starts_with(".tmp")
+        })
+        .collect()
+}
+
+/// M1: SIGTERM while `generate -o new` has its temporary files written leaves no
+/// `.sinedec-*.tmp` behind, exits 143, and the next run needs no --force.
+#[test]
+fn sigterm_during_generate_leaves_no_temporaries() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let mut c = Command::new(BIN)
+        .args(["generate", "-o", "new"])
+        .current_dir(dir)
+        .env("SINEDEC_TEST_PAUSE", "output-temps")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let out = dir.join("new");
+    wait_for("the temporary files", || {
+        out.is_dir() && listing(&out).iter().any(|f| f.ends_with(".tmp"))
+    });
+    signal(c.id(), "TERM");
+    let st = c.wait().unwrap();
+    let left = if out.exists() { listing(&out) } else { vec![] };
+    assert!(left.iter().all(|f| !f.ends_with(".tmp")), "{left:?}");
+    assert_eq!(st.code(), Some(143), "{st:?}");
+    ok(dir, &["generate", "-o", "new"]);
+}
+
+/// M2: SIGHUP during `simulate --csv --vcd` removes both hidden temporaries and exits 129.
+#[test]
+fn sighup_during_simulate_removes_csv_and_vcd_temporaries() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let mut c = Command::new(BIN)
+        .args([
+            "simulate",
+            "--engine",
+            "rust-hdl",
+            "--duration",
+            "0.05",
+            "--csv",
+            "a.csv",
+            "--vcd",
+            "a.vcd",
+        ])
+        .current_dir(dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    wait_for("two temporary files", || {
+        listing(dir).iter().filter(|f| f.ends_with(".tmp")).count() == 2
+    });
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    signal(c.id(), "HUP");
+    let st = c.wait().unwrap();
+    assert_eq!(listing(dir), Vec::<String>::new());
+    assert_eq!(st.code(), Some(129), "{st:?}");
+}
+
+/// M3: SIGINT during `report` kills its Yosys children (no orphan keeps running), removes
+/// the `sinedec-report-*` directory and exits 130.
+#[test]
+fn sigint_during_report_stops_yosys_and_removes_its_directory() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let tmpdir = dir.join("tmp");
+    std::fs::create_dir(&tmpdir).unwrap();
+    let mut c = Command::new(BIN)
+        .args([
+            "report",
+            "--iterations",
+            "8..=12",
+            "--no-cache",
+            "-o",
+            "rep",
+        ])
+        .current_dir(dir)
+        .env("TMPDIR", &tmpdir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let pid = c.id();
+    let mut kids = vec![];
+    wait_for("a yosys child", || {
+        kids = children(pid);
+        kids.iter().any(|(_, n)| n.starts_with("yosys"))
+    });
+    signal(pid, "INT");
+    let st = c.wait().unwrap();
+    for (k, name) in &kids {
+        // A killed child is gone at once; an orphan would run on for seconds.
+        wait_up_to(3, &format!("child {name} ({k}) stopped"), || gone(*k));
+    }
+    assert_eq!(temporaries(&tmpdir), Vec::<String>::new());
+    let rep = dir.join("rep");
+    assert!(!rep.exists() || listing(&rep).is_empty());
+    assert_eq!(st.code(), Some(130), "{st:?}");
+}
+
+/// M3: SIGTERM during the engine build in `simulate` kills rustc (or Yosys), removes the
+/// scratch and build directories and exits 143.
+#[test]
+fn sigterm_during_the_engine_build_stops_the_build() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let tmpdir = dir.join("tmp");
+    let cache = dir.join("cache");
+    std::fs::create_dir(&tmpdir).unwrap();
+    let mut c = Command::new(BIN)
+        .args(["simulate", "--duration", "0.0005"])
+        .current_dir(dir)
+        .env("TMPDIR", &tmpdir)
+        .env("SINEDEC_ENGINE_CACHE", &cache)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let pid = c.id();
+    let mut kids = vec![];
+    wait_for("a rustc child", || {
+        kids = children(pid);
+        kids.iter().any(|(_, n)| n.starts_with("rustc"))
+    });
+    signal(pid, "TERM");
+    let st = c.wait().unwrap();
+    for (k, name) in &kids {
+        // A killed child is gone at once; an orphan would run on for seconds.
+        wait_up_to(3, &format!("child {name} ({k}) stopped"), || gone(*k));
+    }
+    assert_eq!(temporaries(&tmpdir), Vec::<String>::new());
+    // The cache entry keeps files only (no half-built library's directory).
+    for e in std::fs::read_dir(&cache).unwrap().flatten() {
+        for f in std::fs::read_dir(e.path()).unwrap().flatten() {
+            assert!(!f.path().is_dir(), "left: {}", f.path().display());
+        }
+    }
+    assert_eq!(st.code(), Some(143), "{st:?}");
+}
