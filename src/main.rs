@@ -364,6 +364,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Check { config } => {
             let loaded = load(&config)?;
             say!("{}: ok", loaded.source_name)?;
+            out(&loaded.scope())?;
             out(&loaded.derived.describe())?;
             out(&loaded.derived.adc.describe())?;
             if let Some(k) = &loaded.derived.capacitive {

@@ -327,6 +327,7 @@ pub fn run_traced(
     vcd: Option<Box<dyn std::io::Write>>,
 ) -> Result<SimReport> {
     o.validate(false)?;
+    loaded.needs_board_top("simulate")?;
     let d = &loaded.derived;
     let mut sys = System::on(d, encoder(loaded, o), o.engine)?;
     let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {

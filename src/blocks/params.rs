@@ -165,7 +165,8 @@ pub struct CapacitiveConfig {
     /// NCO quarter-wave table address bits (4..=12).
     #[serde(default = "cap_table_bits")]
     pub table_bits: u32,
-    /// Data width of the filters and of the CORDIC's inputs (12..=16 bits, >= adc.width).
+    /// Data width of the filters and of the CORDIC's inputs (12..=16 bits, >= adc.width;
+    /// default 16, the CORDIC's widest input).
     #[serde(default = "cap_data_width")]
     pub data_width: u32,
     /// Fractional guard bits the biquad engine keeps below the data LSB in its state.
@@ -192,7 +193,7 @@ fn cap_table_bits() -> u32 {
 }
 
 fn cap_data_width() -> u32 {
-    18
+    16
 }
 
 fn cap_guard_frac() -> u32 {

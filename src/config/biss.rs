@@ -52,13 +52,34 @@ pub(super) fn biss_params(c: &Config, position_width: u32, err: &ErrFn) -> Resul
         ));
     }
     let mb = b.multiturn_bits.unwrap_or(0);
-    if mb > c.encoder.multiturn_bits || pb + mb > 32 {
+    if mb > c.encoder.multiturn_bits {
         return Err(err(
             "biss",
             "multiturn_bits",
             format!(
-                "{mb} bits: at most encoder.multiturn_bits ({}) and position_bits + multiturn_bits <= 32 (position_bits = {pb})",
+                "{mb} bits: at most encoder.multiturn_bits ({}), the turns the decoder counts",
                 c.encoder.multiturn_bits
+            ),
+        ));
+    }
+    if pb + mb > 32 {
+        let pos = if b.position_bits.is_some() {
+            format!("position_bits = {pb}")
+        } else {
+            format!("position_bits (default {pb}: all of out_position)")
+        };
+        return Err(err(
+            "biss",
+            if b.multiturn_bits.is_some() {
+                "multiturn_bits"
+            } else {
+                "position_bits"
+            },
+            format!(
+                "the data word would be {mb} + {pb} = {} bits (multiturn_bits = {mb}, {pos}), more than the 32 a BiSS word holds; use at most {} multi-turn bits, or set position_bits to at most {}",
+                mb + pb,
+                32u32.saturating_sub(pb),
+                32 - mb
             ),
         ));
     }

@@ -93,7 +93,7 @@ pub(super) fn board_timing(
             table,
             key,
             format!(
-                "an SCK period of {d} clocks (capture {available:.2} ns after the shifting edge at {:.3} MHz) is shorter than the ADC round trip of {needed:.2} ns: FPGA clock-to-out {:.2} + 2 x board trace {:.2} + the ADC's SCK-to-data delay {:.2} + FPGA input set-up {:.2} ns (board.fpga_clock_to_out_ns, board.trace_delay_ns, board.fpga_input_setup_ns); use an SCK period of at least {min_d} clocks",
+                "an SCK period of {d} clocks (capture {available:.2} ns after the shifting edge at {:.3} MHz, `clock.frequency_hz`) is shorter than the ADC round trip of {needed:.2} ns: FPGA clock-to-out {:.2} + 2 x board trace {:.2} + the ADC's SCK-to-data delay {:.2} + FPGA input set-up {:.2} ns (board.fpga_clock_to_out_ns, board.trace_delay_ns, board.fpga_input_setup_ns); use an SCK period of at least {min_d} clocks",
                 adc.clock_hz / 1e6,
                 io.clock_to_out_ns,
                 io.trace_ns,
@@ -154,4 +154,38 @@ pub(super) fn check_target(c: &Config, err: &ErrFn) -> Result<()> {
         )),
         _ => Ok(()),
     }
+}
+
+/// The capacitive top has no QEP inputs and no offset, gain or phase correction: `[qep]
+/// enabled = true`, or a `[correction]` value other than its default, would only show in the
+/// parameter files. Each is rejected at its key; the defaults written out are accepted.
+pub(super) fn check_capacitive_scope(c: &Config, err: &ErrFn) -> Result<()> {
+    if c.capacitive.is_none() {
+        return Ok(());
+    }
+    if c.qep.enabled {
+        return Err(err(
+            "qep",
+            "enabled",
+            "the capacitive top has no QEP inputs (qep_a/b/z) to cross-check: set enabled = false with [capacitive]".into(),
+        ));
+    }
+    let k = &c.correction;
+    for (key, differs) in [
+        ("mode", k.mode != "static"),
+        ("offset_sin", k.offset_sin != 0),
+        ("offset_cos", k.offset_cos != 0),
+        ("gain_sin", k.gain_sin != 1.0),
+        ("gain_cos", k.gain_cos != 1.0),
+        ("phase_deg", k.phase_deg != 0.0),
+    ] {
+        if differs {
+            return Err(err(
+                "correction",
+                key,
+                format!("the capacitive top has no offset, gain or phase correction (the filters take the ADC's samples as they are): remove `{key}` with [capacitive]"),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -6,17 +6,23 @@ use super::*;
 impl Derived {
     /// Cross-field validation and derivation.
     pub fn compute(c: &Config, text: &str, source_name: &str) -> Result<Derived> {
-        let err = |table: &str, key: &str, message: String| Error::ConfigValue {
-            source_name: source_name.to_string(),
-            location: locate(text, table, key),
-            key: if table.is_empty() {
-                key.to_string()
+        // The key blamed is located in the text (or its table, for a default), and every
+        // other key the message names in backquotes gets its position too.
+        let err = |table: &str, name: &str, message: String| {
+            let key = if table.is_empty() {
+                name.to_string()
             } else {
-                format!("{table}.{key}")
-            },
-            message,
+                format!("{table}.{name}")
+            };
+            Error::ConfigValue {
+                source_name: source_name.to_string(),
+                location: locate_or_table(text, table, name),
+                message: cite_keys(text, &message, &key),
+                key,
+            }
         };
         check_target(c, &err)?;
+        check_capacitive_scope(c, &err)?;
         // The core's input width: the ADC's, or the filters' on the capacitive path.
         let a = match &c.capacitive {
             Some(k) => {
@@ -78,7 +84,7 @@ impl Derived {
         let quadrant_bits = 64 - (quadrants_per_turn - 1).leading_zeros();
         let position_width = quadrant_bits + f;
         let clock_hz = c.clock.frequency_hz;
-        let (adc, preamp) = adc_params(c, &err)?;
+        let (adc, preamp) = adc_params(c, text, &err)?;
         let rate = adc.sample_rate_hz();
         // Warn at 1.75 quadrants per sample: the fine-angle unwrap is exact below 2.
         let warn_step = 7u64 << (f - 2);
@@ -96,7 +102,7 @@ impl Derived {
             .map_err(|m| err("cordic", "architecture", m.detail()))?;
         let mut biss = biss_params(c, position_width, &err)?;
         let abz = abz_params(c, quadrants_per_turn, f, &err)?;
-        let velocity = velocity_params(c, f, rate, warn_step, &err)?;
+        let velocity = velocity_params(c, text, f, rate, warn_step, &err)?;
         // `[velocity] in_frames`: the velocity word in every serial frame (BiSS, SSI, SPI).
         let vel_bits = velocity_frame_bits(c, velocity.as_ref(), &err)?;
         let in_frames = |m: crate::error::Error| err("velocity", "in_frames", m.detail());
@@ -168,9 +174,9 @@ impl Derived {
                 None => {
                     return Err(err(
                         "board",
-                        "pins",
+                        "iostandard",
                         format!(
-                            "`iostandard` is required without a `preset`; allowed: {}",
+                            "missing: [board] needs `iostandard` when it has no `preset`; allowed: {}",
                             stds.join(", ")
                         ),
                     ))
@@ -185,39 +191,10 @@ impl Derived {
             }
             let pins = b.effective_pins();
             let (package_name, package_file, balls) = crate::board::package(c.target);
-            let valid = |v: &str| balls.contains(&v);
             let ports = board_ports(c);
-            let mut names: Vec<String> = ports
-                .iter()
-                .filter(|(p, _)| !DESELECT_PINS.contains(p))
-                .map(|(p, w)| match w {
-                    Some(w) => format!("{p} ({w} pins)"),
-                    None => p.to_string(),
-                })
-                .collect();
-            if c.capacitive.is_none() {
-                names.extend(DESELECT_PINS.iter().map(|p| format!("{p} (optional)")));
-            }
             for (k, v) in &b.pins {
-                let ok = match (ports.iter().find(|p| p.0 == k.as_str()), v) {
-                    (Some((_, None)), PinValue::One(p)) => valid(p),
-                    (Some((_, Some(w))), PinValue::Bus(ps)) => {
-                        ps.len() == *w as usize && ps.iter().all(|p| valid(p))
-                    }
-                    _ => false,
-                };
-                if !ok {
-                    return Err(err(
-                        "board.pins",
-                        k,
-                        format!(
-                            "`{}` = {}: the key must be one of the top's ports ({}) and the value a ball of the {package_name} package like \"{}\" (listed in {package_file}; a list of that many balls, LSB first, for a bus)",
-                            clip(k),
-                            pin_text(v),
-                            names.join(", "),
-                            balls.get(balls.len() / 2).copied().unwrap_or("A1"),
-                        ),
-                    ));
+                if let Some(m) = pin_problem(c, &ports, k, v, &balls, package_name, package_file) {
+                    return Err(err("board.pins", k, m));
                 }
             }
             // One ball, one port: a pin given twice, or on a pin the preset already uses.

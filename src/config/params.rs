@@ -7,7 +7,11 @@ use super::*;
 pub(super) type ErrFn<'a> = dyn Fn(&str, &str, String) -> Error + 'a;
 
 /// ADC and preamp parameters from the config, validated against the chips' limits.
-pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<PreampParams>)> {
+pub(super) fn adc_params(
+    c: &Config,
+    text: &str,
+    err: &ErrFn,
+) -> Result<(AdcParams, Option<PreampParams>)> {
     let a = c.adc.width;
     let clock_hz = c.clock.frequency_hz;
     let (frame, timing) = match c.adc.preset {
@@ -17,7 +21,7 @@ pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<P
                     "adc",
                     "width",
                     format!(
-                        "the LTC1407A-1 delivers 14-bit samples; width {a} needs preset \"generic\""
+                        "the LTC1407A-1 delivers 14-bit samples; width {a} needs `adc.preset` = \"generic\""
                     ),
                 ));
             }
@@ -40,7 +44,51 @@ pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<P
                         .into(),
                 )
             })?;
+            if !(max.is_finite() && max > 0.0) {
+                return Err(err(
+                    "adc",
+                    "max_sample_rate_hz",
+                    format!("{max} Hz: allowed a finite rate above 0 (the chip's per-channel limit in samples/s)"),
+                ));
+            }
             let f = c.adc.frame.clone().unwrap_or_default();
+            let channels = f.channels.unwrap_or(2);
+            if let Some(o) = &f.offsets {
+                // One slot per channel; a one-channel frame may keep a second, unused one.
+                let lo = channels.clamp(1, 2) as usize;
+                if !(lo..=2).contains(&o.len()) {
+                    return Err(err(
+                        "adc.frame",
+                        "offsets",
+                        format!(
+                            "{} entries: allowed one SCK slot per channel ({} with channels = {channels}), the first for sin (or the single channel), the second for cos",
+                            o.len(),
+                            if lo == 1 { "1 or 2" } else { "2" }
+                        ),
+                    ));
+                }
+            }
+            if let Some(t) = &c.adc.timing {
+                for (key, v) in [
+                    ("sck_min_period_ns", t.sck_min_period_ns),
+                    ("sck_min_pulse_ns", t.sck_min_pulse_ns),
+                    ("data_valid_ns", t.data_valid_ns),
+                    ("conv_min_pulse_ns", t.conv_min_pulse_ns),
+                    ("conv_min_low_ns", t.conv_min_low_ns),
+                    ("conv_to_sck_ns", t.conv_to_sck_ns),
+                    ("acquisition_ns", t.acquisition_ns),
+                ] {
+                    if let Some(v) = v {
+                        if !(0.0..=1e6).contains(&v) {
+                            return Err(err(
+                                "adc.timing",
+                                key,
+                                format!("{v} ns: allowed 0..=1000000 ns (a time from the ADC's data sheet)"),
+                            ));
+                        }
+                    }
+                }
+            }
             let sign = match f.sign.as_deref() {
                 None | Some("twos-complement") => SignFormat::TwosComplement,
                 Some("offset-binary") => SignFormat::OffsetBinary,
@@ -57,8 +105,12 @@ pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<P
             };
             let frame = AdcFrame {
                 frame_sck: f.frame_sck.unwrap_or(2 * a + 4),
-                channels: f.channels.unwrap_or(2),
-                offsets: f.offsets.unwrap_or([1, a + 2]),
+                channels,
+                offsets: match f.offsets.as_deref() {
+                    Some([x]) => [*x, 0],
+                    Some([x, y, ..]) => [*x, *y],
+                    _ => [1, a + 2],
+                },
                 width: a,
                 sign,
                 cpol: f.cpol.unwrap_or(false),
@@ -103,12 +155,9 @@ pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<P
     } else {
         fastest
     };
-    let key = if c.adc.sck_period_clocks.is_some() {
-        "sck_period_clocks"
-    } else {
-        "preset"
-    };
-    params.validate().map_err(|m| err("adc", key, m.detail()))?;
+    params
+        .validate()
+        .map_err(|m| adc_err(c, text, &m.detail(), None, err))?;
     if let Some(rate) = c.adc.sample_rate_hz {
         let p = AdcParams::period_for_rate(clock_hz, rate);
         if rate.is_nan() || rate <= 0.0 || p < params.period_clocks {
@@ -116,9 +165,10 @@ pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<P
                 "adc",
                 "sample_rate_hz",
                 format!(
-                    "{rate} Hz is not reachable: at most {:.0} samples/s per channel at the clock of {} MHz with an SCK period of {d} clocks (the ADC's per-channel limit is {} samples/s); omit the key for the fastest",
+                    "{rate} Hz is not reachable: at most {:.0} samples/s per channel at the clock of {} MHz (`clock.frequency_hz`) with an SCK period of {d} clocks (`adc.sck_period_clocks`), a frame of {} SCK (`adc.frame.frame_sck`) and the ADC's per-channel limit of {} samples/s (`adc.max_sample_rate_hz`); omit the key for the fastest",
                     params.sample_rate_hz(),
                     clock_hz / 1e6,
+                    params.frame.frame_sck,
                     timing.max_sample_rate_hz
                 ),
             ));
@@ -126,7 +176,7 @@ pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<P
         params = build(Some(p));
         params
             .validate()
-            .map_err(|m| err("adc", "sample_rate_hz", m.detail()))?;
+            .map_err(|m| adc_err(c, text, &m.detail(), Some("sample_rate_hz"), err))?;
     }
     let preamp = match c.adc.preset {
         AdcPreset::Ltc1407a1 => {
@@ -160,13 +210,118 @@ pub(super) fn adc_params(c: &Config, err: &ErrFn) -> Result<(AdcParams, Option<P
     Ok((params, preamp))
 }
 
+/// An error of the ADC's checks (`AdcParams::validate`) at the key it belongs to (see
+/// [`adc_keys`]): the first of the keys that set the value at fault that the text holds, else
+/// `fallback` (in `[adc]`) or the first of them; the others the text holds are named after
+/// the message.
+fn adc_err(c: &Config, text: &str, m: &str, fallback: Option<&str>, err: &ErrFn) -> Error {
+    let keys = adc_keys(c, m);
+    let mut given = keys.iter().filter(|(t, k)| written(text, t, k));
+    let (table, key) = match (given.next(), fallback) {
+        (Some(&k), _) => k,
+        (None, Some(f)) => ("adc", f),
+        (None, None) => keys.first().copied().unwrap_or(("adc", "preset")),
+    };
+    let also: Vec<String> = keys
+        .iter()
+        .filter(|(t, k)| (*t, *k) != (table, key) && written(text, t, k))
+        .map(|(t, k)| format!("`{t}.{k}`"))
+        .collect();
+    let m = if also.is_empty() {
+        m.to_string()
+    } else {
+        format!("{m} (set by {})", also.join(", "))
+    };
+    err(table, key, m)
+}
+
+/// The keys that set the value an ADC check found at fault, by the message's subject, most
+/// specific first (`adc.preset` when the preset's own limits are at fault).
+fn adc_keys(c: &Config, message: &str) -> Vec<(&'static str, &'static str)> {
+    let candidates: &[(&'static str, &'static str)] = if message.contains(" channels: ") {
+        &[("adc.frame", "channels")]
+    } else if message.starts_with("sample width") {
+        &[("adc", "width")]
+    } else if message.starts_with("frame of") {
+        &[("adc.frame", "frame_sck")]
+    } else if message.starts_with("pipeline of") {
+        &[("adc.frame", "pipeline")]
+    } else if message.starts_with("channel ") {
+        &[
+            ("adc.frame", "offsets"),
+            ("adc.frame", "frame_sck"),
+            ("adc.frame", "channels"),
+            ("adc", "width"),
+        ]
+    } else if message.starts_with("SCK period of") || message.starts_with("SCK of") {
+        &[
+            ("adc", "sck_period_clocks"),
+            ("adc.timing", "sck_min_period_ns"),
+        ]
+    } else if message.starts_with("SCK pulse") {
+        &[
+            ("adc.timing", "sck_min_pulse_ns"),
+            ("adc", "sck_period_clocks"),
+        ]
+    } else if message.starts_with("SCK period") && message.contains("data-valid") {
+        &[
+            ("adc.timing", "data_valid_ns"),
+            ("adc", "sck_period_clocks"),
+        ]
+    } else if message.starts_with("CONV pulse") {
+        &[
+            ("adc.frame", "conv_clocks"),
+            ("adc.timing", "conv_min_pulse_ns"),
+        ]
+    } else if message.starts_with("CONV to first SCK") {
+        &[
+            ("adc.frame", "lead_clocks"),
+            ("adc.timing", "conv_to_sck_ns"),
+        ]
+    } else if message.starts_with("CONV is active") {
+        &[
+            ("adc.frame", "conv_clocks"),
+            ("adc.timing", "conv_min_low_ns"),
+        ]
+    } else if message.contains("acquisition time") {
+        &[("adc.timing", "acquisition_ns"), ("adc", "sample_rate_hz")]
+    } else if message.starts_with("conversion period") {
+        &[
+            ("adc", "sample_rate_hz"),
+            ("adc", "sck_period_clocks"),
+            ("adc.frame", "frame_sck"),
+            ("adc.frame", "lead_clocks"),
+            ("adc.frame", "pipeline"),
+            ("adc", "max_sample_rate_hz"),
+        ]
+    } else if message.starts_with("sample rate") {
+        &[("adc", "sample_rate_hz"), ("adc", "max_sample_rate_hz")]
+    } else {
+        &[]
+    };
+    // The LTC1407A-1's frame and timing are fixed: only the `[adc]` keys are the user's.
+    let mut keys: Vec<(&'static str, &'static str)> = candidates
+        .iter()
+        .copied()
+        .filter(|(t, _)| c.adc.preset == AdcPreset::Generic || *t == "adc")
+        .collect();
+    // Times in clocks come from times in ns at the system clock.
+    if ["SCK", "CONV", "conversion", "sample rate"]
+        .iter()
+        .any(|p| message.starts_with(p))
+    {
+        keys.push(("clock", "frequency_hz"));
+    }
+    keys
+}
+
 /// Default `abz.max_edge_hz`: 12.5 M edges per second (or clock / 2 if that is lower).
 pub const ABZ_DEFAULT_EDGE_HZ: f64 = 12.5e6;
 
 /// `[abz]`: the emulator's parameters when enabled (None otherwise). `lines` defaults to
 /// 16 x PPR (at most a quarter of the positions per turn); `max_edge_hz` to
 /// [`ABZ_DEFAULT_EDGE_HZ`], at most clock / 2 and at least clock / 2^24; the edge spacing is
-/// ceil(clock / max_edge_hz) clocks. The keys are range-checked even when disabled.
+/// ceil(clock / max_edge_hz) clocks. The keys are checked only when enabled.
 pub(super) fn abz_params(
     c: &Config,
     quadrants_per_turn: u64,
@@ -174,6 +329,11 @@ pub(super) fn abz_params(
     err: &ErrFn,
 ) -> Result<Option<AbzParams>> {
     let a = &c.abz;
+    // Off: the keys have no effect and are not checked (the rule for every section with an
+    // `enabled` key).
+    if !a.enabled {
+        return Ok(None);
+    }
     let clock = c.clock.frequency_hz;
     let positions = quadrants_per_turn << fine_bits;
     let lines = a
@@ -203,9 +363,6 @@ pub(super) fn abz_params(
                 clock / 2.0
             ),
         ));
-    }
-    if !a.enabled {
-        return Ok(None);
     }
     if c.capacitive.is_some() {
         return Err(err(
@@ -271,7 +428,9 @@ pub(super) fn correction_params(c: &Config, rate: f64, err: &ErrFn) -> Result<Co
         let m = m.detail();
         err(
             "correction",
-            if m.contains("offset") {
+            if m.contains("cos offset") {
+                "offset_cos"
+            } else if m.contains("offset") {
                 "offset_sin"
             } else {
                 "gain_frac_bits"
@@ -475,6 +634,39 @@ pub(super) fn cap_params(
     ranged("table_bits", k.table_bits, 4, 12.min(k.phase_bits - 2))?;
     ranged("data_width", k.data_width, 12, 16)?;
     ranged("guard_frac", k.guard_frac, 0, 12)?;
+    // The coefficient format: the biquad engine's ROM words (2..=30 bits) with at least one
+    // integer bit besides the sign.
+    let (cw, cf) = (k.coef.width, k.coef.frac);
+    if !(2..=30).contains(&cw) {
+        return Err(err(
+            "capacitive.coef",
+            "width",
+            format!("{cw} bits: allowed 2..=30 (the biquad engine's coefficient words)"),
+        ));
+    }
+    if !(1..cw).contains(&cf) {
+        return Err(err(
+            "capacitive.coef",
+            "frac",
+            format!(
+                "{cf} fractional bits: allowed 1..={} for `capacitive.coef.width` = {cw} (the sign bit is not fractional)",
+                cw - 1
+            ),
+        ));
+    }
+    // The biquad engine's accumulator: data + guard + integer bits of the coefficients + 2.
+    let acc =
+        k.data_width as i64 + k.guard_frac as i64 + k.coef.width as i64 - k.coef.frac as i64 + 2;
+    if acc > 32 {
+        return Err(err(
+            "capacitive.coef",
+            "width",
+            format!(
+                "the filters' accumulator `capacitive.data_width` + `capacitive.guard_frac` + `capacitive.coef.width` - `capacitive.coef.frac` + 2 = {} + {} + {} - {} + 2 = {acc} bits exceeds the 32-bit word; use fewer integer bits (width - frac) or a smaller guard_frac",
+                k.data_width, k.guard_frac, k.coef.width, k.coef.frac
+            ),
+        ));
+    }
     if k.data_width < c.adc.width {
         return Err(err(
             t,
@@ -512,18 +704,39 @@ pub(super) fn cap_params(
     let design = |key: &str, spec: &crate::filter::FilterSpec| -> Result<crate::filter::Designed> {
         if (spec.sample_rate_hz - rate).abs() > rate * 1e-3 {
             return Err(err(
-                t,
-                key,
+                &format!("{t}.{key}"),
+                "sample_rate_hz",
                 format!(
-                    "sample_rate_hz = {} but the ADC samples at {:.3} Hz (clock / adc period): make them equal",
+                    "sample_rate_hz = {} but the ADC samples at {:.3} Hz (`clock.frequency_hz` / the ADC period, `adc.sample_rate_hz`): make them equal",
                     spec.sample_rate_hz, rate
                 ),
             ));
         }
         let mut s = spec.clone();
         s.sample_rate_hz = rate;
-        crate::filter::design_with_probes(&s, k.coef, &[2.0 * k.carrier_hz])
-            .map_err(|e| err(t, key, e.to_string()))
+        crate::filter::design_with_probes(&s, k.coef, &[2.0 * k.carrier_hz]).map_err(|e| {
+            use crate::filter::FilterError as F;
+            match &e {
+                // The specification's own field.
+                F::InvalidSpec { field, .. } => err(&format!("{t}.{key}"), field, e.to_string()),
+                // The quantization: more integer or fractional bits, i.e. the format.
+                F::InvalidFormat { .. }
+                | F::CoefficientOverflow { .. }
+                | F::UnstableSection { .. }
+                | F::GainUnderflow { .. } => err(
+                    "capacitive.coef",
+                    "frac",
+                    format!(
+                        "{e} (the filter of `{t}.{key}.order` and `{t}.{key}.{}`)",
+                        if key == "bandpass" {
+                            "band_hz"
+                        } else {
+                            "corner_hz"
+                        }
+                    ),
+                ),
+            }
+        })
     };
     let bandpass = design("bandpass", &k.bandpass)?;
     let lowpass = design("lowpass", &k.lowpass)?;

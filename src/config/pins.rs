@@ -104,3 +104,98 @@ impl BoardConfig {
 pub const ABZ_PINS: &[&str] = &["abz_a", "abz_b", "abz_z"];
 
 pub use crate::blocks::top::hdl::{DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS};
+
+/// The section that makes `port` a port of `<name>_top`, for a port this configuration's
+/// top does not have; None for a name that is no port of either top.
+fn section_of_port(c: &Config, port: &str) -> Option<&'static str> {
+    let sine = "the sinewave board top (a config without [capacitive])";
+    let on = |pins: &[&str], section: &'static str| pins.contains(&port).then_some(section);
+    if c.capacitive.is_some() {
+        if TOP_PINS.contains(&port)
+            || QEP_PINS.contains(&port)
+            || SSI_PINS.contains(&port)
+            || SPI_PINS.contains(&port)
+            || ABZ_PINS.contains(&port)
+            || DESELECT_PINS.contains(&port)
+        {
+            return Some(sine);
+        }
+        return None;
+    }
+    if CAP_TOP_PINS.contains(&port) || CAP_TOP_BUSES.contains(&port) {
+        return Some("the capacitive top ([capacitive])");
+    }
+    on(QEP_PINS, "[qep] enabled = true")
+        .or_else(|| on(SSI_PINS, "[ssi] enabled = true"))
+        .or_else(|| on(SPI_PINS, "[spi] enabled = true"))
+        .or_else(|| on(ABZ_PINS, "[abz] enabled = true"))
+}
+
+/// What is wrong with `[board.pins] key = value`, if anything, in one sentence: the port is
+/// not in this configuration's top (and which section adds it) or in no top at all; the
+/// value's shape does not fit the port (one ball for a pin, `width` balls LSB first for a
+/// bus); or a ball is not in the package.
+pub(super) fn pin_problem(
+    c: &Config,
+    ports: &[(&str, Option<u32>)],
+    key: &str,
+    value: &PinValue,
+    balls: &[&str],
+    package: &str,
+    file: &str,
+) -> Option<String> {
+    let example = balls.get(balls.len() / 2).copied().unwrap_or("A1");
+    let not_a_ball = |p: &str| -> Option<String> {
+        (!balls.contains(&p)).then(|| {
+            format!(
+                "{} is not a ball of the {package} package (its balls are listed in {file}, e.g. \"{example}\")",
+                Quoted(&clip(p))
+            )
+        })
+    };
+    let key = clip(key);
+    match ports.iter().find(|p| p.0 == key) {
+        None if key.starts_with("par_") => Some(format!(
+            "`{key}` belongs to the parallel bus, which is not pinned (it is meant for logic in the same FPGA)"
+        )),
+        None => Some(match section_of_port(c, &key) {
+            Some(section) => format!(
+                "`{key}` is not a port of this configuration's top: it is one with {section}"
+            ),
+            None => {
+                let mut names: Vec<String> = ports
+                    .iter()
+                    .filter(|(p, _)| !DESELECT_PINS.contains(p))
+                    .map(|(p, w)| match w {
+                        Some(w) => format!("{p} ({w} pins)"),
+                        None => p.to_string(),
+                    })
+                    .collect();
+                if c.capacitive.is_none() {
+                    names.extend(DESELECT_PINS.iter().map(|p| format!("{p} (optional)")));
+                }
+                format!(
+                    "the top has no port `{key}`; its ports: {}",
+                    names.join(", ")
+                )
+            }
+        }),
+        Some((_, None)) => match value {
+            PinValue::One(p) => not_a_ball(p),
+            PinValue::Bus(ps) => Some(format!(
+                "`{key}` is one pin: give one ball such as \"{example}\", not a list ({} given)",
+                ps.len()
+            )),
+        },
+        Some((_, Some(w))) => match value {
+            PinValue::Bus(ps) if ps.len() == *w as usize => ps.iter().find_map(|p| not_a_ball(p)),
+            PinValue::Bus(ps) => Some(format!(
+                "`{key}` is a {w}-bit bus: give a list of {w} balls, LSB first ({} given)",
+                ps.len()
+            )),
+            PinValue::One(_) => Some(format!(
+                "`{key}` is a {w}-bit bus: give a list of {w} balls, LSB first, not one ball"
+            )),
+        },
+    }
+}

@@ -399,8 +399,9 @@ pub struct FrameConfig {
     pub frame_sck: Option<u32>,
     /// Channels: 1 or 2 (default 2).
     pub channels: Option<u32>,
-    /// Slot of each channel's MSB (default [1, W + 2]).
-    pub offsets: Option<[u32; 2]>,
+    /// Slot of each channel's MSB (default [1, W + 2]); one entry per channel (a
+    /// one-channel frame may keep an unused second one).
+    pub offsets: Option<Vec<u32>>,
     /// "twos-complement" (default) or "offset-binary".
     pub sign: Option<String>,
     /// SCK idle level (default false).

@@ -377,3 +377,71 @@ fn the_kit_clock_is_the_50_mhz_oscillator_and_a_dcm_makes_133_mhz() {
     let d = l.derived.describe();
     assert!(d.contains("DCM_SP CLKFX x 8 / 3 = 133.333 MHz"), "{d}");
 }
+
+/// Pin errors say which part is wrong (they used to give one paragraph for every case): the
+/// ball is not in the package; the port is not in this configuration (and which section
+/// turns it on); the value is one ball for a bus, or a list of the wrong length. Each names
+/// the key at its line.
+#[test]
+fn pin_errors_say_which_part_is_wrong() {
+    let generic = "the key must be one of the top's ports";
+    let check = |text: &str, key: &str, needle: &str, says: &[&str]| {
+        let e = Loaded::parse(text, "b.toml").expect_err(needle);
+        let m = e.to_string();
+        let off = text.find(needle).expect("needle");
+        assert_eq!(text.matches(needle).count(), 1, "{needle}");
+        let line = text[..off].matches('\n').count() + 1;
+        assert!(m.starts_with(&format!("b.toml:{line}:")), "{m}");
+        assert!(m.contains(&format!("`{key}`")), "{m}");
+        for s in says {
+            assert!(m.contains(s), "{needle}: {m:?} should say {s:?}");
+        }
+        assert!(!m.contains(generic), "{m}");
+    };
+    let sine = |extra: &str| format!("{}{extra}\n", with_board(Some("biss_ma")));
+    check(
+        &sine("biss_ma = \"ZZ99\""),
+        "board.pins.biss_ma",
+        "biss_ma = \"ZZ99\"",
+        &[
+            "\"ZZ99\" is not a ball of the XC3S700AN FGG484",
+            "data/packages/xc3s700an_fg484.txt",
+        ],
+    );
+    check(
+        &sine("biss_ma = \"A1\"\nssi_clk = \"A2\""),
+        "board.pins.ssi_clk",
+        "ssi_clk = \"A2\"",
+        &["not a port of this configuration", "[ssi] enabled = true"],
+    );
+    check(
+        &sine("biss_ma = \"A1\"\nled7 = \"A2\""),
+        "board.pins.led7",
+        "led7 = \"A2\"",
+        &["no port `led7`", "biss_slo"],
+    );
+    check(
+        &sine("biss_ma = [\"A1\", \"A2\"]"),
+        "board.pins.biss_ma",
+        "biss_ma = [\"A1\", \"A2\"]",
+        &["one ball", "2 given"],
+    );
+    // The capacitive top's DAC buses: capacitive.dac_width balls each.
+    let cap = format!(
+        "{}\n[board]\niostandard = \"{}\"\n[board.pins]\n",
+        include_str!("../configs/cyclone3_capacitive.toml"),
+        sinedec::board::iostandards(sinedec::config::Target::Cyclone3)[0]
+    );
+    check(
+        &format!("{cap}exc_sin = [\"A1\", \"A2\", \"A3\"]\n"),
+        "board.pins.exc_sin",
+        "exc_sin = [",
+        &["16-bit bus", "16 balls", "3 given"],
+    );
+    check(
+        &format!("{cap}exc_cos = \"A1\"\n"),
+        "board.pins.exc_cos",
+        "exc_cos = \"A1\"",
+        &["16-bit bus", "16 balls"],
+    );
+}

@@ -1,35 +1,14 @@
-//! Bad configurations: the library reports `ConfigSyntax` / `ConfigValue` with 1-based line
-//! and column, and the command line (`check` and `generate`) exits non-zero with a message
-//! naming the key, the position and what is allowed, without writing or touching any output.
+//! Ranges: every documented bound is the accepted one (README, "Supported ranges", and the
+//! usage lines), values outside a key's range are rejected at that key, and a value that
+//! rounds to a code the hardware cannot use is rejected with the code it rounds to.
 //!
 //! Every expected position is computed here from the text the test wrote (byte offset of a
-//! unique needle -> line and column), never copied from a run.
-//!
-//! (Second half of the tests of `tests/cli/config_errors.rs`; helpers in `tests/cli/config_errors_util/`.)
+//! unique needle -> line and column), never copied from a run. The helpers (`expect_bad`:
+//! the library's error, position and message, then `check` and `generate` on the command
+//! line, nothing written) are in `tests/cli/config_errors_util/`.
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use crate::config_errors_util;
 use config_errors_util::*;
-use sinedec::config::{Loaded, DEFAULT_CONFIG};
-
-#[test]
-fn value_error_key_named_in_a_comment_first() {
-    // A comment mentioning `width = ...` before the real key must not be reported.
-    let t = default_with(&[
-        (
-            "[adc]",
-            "[adc]\n# width = 14 is what the LTC1407A-1 delivers",
-        ),
-        ("width = 14\n", "width = 12\n"),
-    ]);
-    expect_bad(
-        &t,
-        Kind::Value("adc.width"),
-        at(&t, "width = 12"),
-        &["adc.width"],
-    );
-}
-
-// ---------------------------------------------------------------------------------------
-// Sanity: the edits above start from a config that is accepted.
 
 #[test]
 fn default_and_generic_base_configs_are_accepted() {
@@ -52,111 +31,6 @@ fn default_and_generic_base_configs_are_accepted() {
     .expect("generic 10, guard 0, 10 iterations (the most that fit)");
 }
 
-#[test]
-fn sck_beyond_the_adc_limit() {
-    // 2 clocks at 133.33 MHz = 66.7 MHz, above the LTC1407A-1's 1/19.6 ns = 51 MHz.
-    let t = default_with(&[("# sck_period_clocks = 3", "sck_period_clocks = 2")]);
-    expect_bad(
-        &t,
-        Kind::Value("adc.sck_period_clocks"),
-        at(&t, "sck_period_clocks = 2"),
-        &["adc.sck_period_clocks", "LTC1407A-1", "at least 3 clocks"],
-    );
-}
-
-#[test]
-fn preamp_gain_not_in_the_ltc6912_set() {
-    let t = default_with(&[("gain_b = -1", "gain_b = -3")]);
-    expect_bad(
-        &t,
-        Kind::Value("preamp.gain_b"),
-        at(&t, "gain_b = -3"),
-        &["preamp.gain_b", "-3", "-1, -2, -5, -10, -20, -50, -100"],
-    );
-}
-
-#[test]
-fn preamp_section_with_the_generic_preset() {
-    let t = default_with(&[GENERIC, ("width = 14", "width = 12")]);
-    expect_bad(
-        &t,
-        Kind::Value("preamp.gain_a"),
-        at(&t, "gain_a = -1"),
-        &["preamp", "ltc1407a-1"],
-    );
-}
-
-/// A low-pass section declared as a high-pass used to be accepted (simulate then reported
-/// 219 degrees of error): the low-pass after the demodulator must be a low-pass.
-#[test]
-fn capacitive_lowpass_declared_highpass() {
-    let t = cap_with(&[("kind = \"lowpass\"", "kind = \"highpass\"")]);
-    expect_bad(
-        &t,
-        Kind::Value("capacitive.lowpass.kind"),
-        at(&t, "kind = \"highpass\""),
-        &["capacitive.lowpass.kind", "\"highpass\"", "\"lowpass\""],
-    );
-}
-
-/// The band-pass in front of the demodulator must be a band-pass.
-#[test]
-fn capacitive_bandpass_declared_lowpass() {
-    let t = cap_with(&[(
-        "kind = \"bandpass\", order = 2, band_hz = [15_000.0, 25_000.0]",
-        "kind = \"lowpass\", order = 2, corner_hz = 25_000.0",
-    )]);
-    expect_bad(
-        &t,
-        Kind::Value("capacitive.bandpass.kind"),
-        at(&t, "kind = \"lowpass\", order = 2"),
-        &["capacitive.bandpass.kind", "\"bandpass\""],
-    );
-}
-
-/// `target = "spartan3an"` with `[capacitive]` used to write a Quartus QSF.
-#[test]
-fn spartan3an_target_with_the_capacitive_path() {
-    let t = cap_with(&[("target = \"cyclone3\"", "target = \"spartan3an\"")]);
-    expect_bad(
-        &t,
-        Kind::Value("target"),
-        at(&t, "target = \"spartan3an\""),
-        &["`target`", "\"cyclone3\"", "[capacitive]"],
-    );
-}
-
-/// `target = "cyclone3"` with the LTC1407A-1 preset used to leave out `<name>_top.v`
-/// without a word.
-#[test]
-fn cyclone3_target_with_the_ltc1407a1_preset() {
-    let t = default_with(&[("target = \"spartan3an\"", "target = \"cyclone3\"")]);
-    expect_bad(
-        &t,
-        Kind::Value("target"),
-        at(&t, "target = \"cyclone3\""),
-        &["`target`", "\"spartan3an\"", "ltc1407a-1"],
-    );
-}
-
-/// `capacitive.coef.width` 30 and 31 were accepted by `check` and rejected by `generate`
-/// with a message without a location: both now fail the same way, at the key.
-#[test]
-fn capacitive_coef_width_30_and_31_rejected_by_check_too() {
-    for w in [30, 31] {
-        let t = cap_with(&[(
-            "coef = { width = 25, frac = 22 }",
-            &format!("coef = {{ width = {w}, frac = 22 }}"),
-        )]);
-        expect_bad(
-            &t,
-            Kind::Value("capacitive.coef.width"),
-            at(&t, &format!("width = {w}")),
-            &["capacitive.coef.width", &format!("{w}")],
-        );
-    }
-}
-
 /// `correction.periods` is documented as 1..=256: 0 and 257 were accepted in static mode.
 #[test]
 fn correction_periods_out_of_range_in_static_mode() {
@@ -170,87 +44,6 @@ fn correction_periods_out_of_range_in_static_mode() {
             &["`correction.periods`", "1..=256"],
         );
     }
-}
-
-/// `gain_frac_bits` = 16 used to be blamed on `gain_sin`.
-#[test]
-fn gain_frac_bits_named_not_gain_sin() {
-    for v in ["16", "7", "64"] {
-        let new = format!("gain_frac_bits = {v}");
-        let t = default_with(&[("gain_frac_bits = 14", &new)]);
-        expect_bad(
-            &t,
-            Kind::Syntax,
-            value_at(&t, &new),
-            &["`correction.gain_frac_bits`", "8..=15"],
-        );
-    }
-}
-
-/// Loss-of-signal and clipping settings are blamed on their own key, in fractions of full
-/// scale (the user's units), not on `los_amplitude` in internal magnitude units.
-#[test]
-fn monitor_keys_blamed_on_themselves_in_user_units() {
-    let t = default_with(&[("los_release = 0.3", "los_release = 0.2")]);
-    expect_bad(
-        &t,
-        Kind::Value("monitor.los_release"),
-        at(&t, "los_release = 0.2"),
-        &[
-            "monitor.los_release",
-            "0.2",
-            "0.25",
-            "fractions of full scale",
-        ],
-    );
-    let t = default_with(&[("clip_amplitude = 1.0", "clip_amplitude = 0.28")]);
-    expect_bad(
-        &t,
-        Kind::Value("monitor.clip_amplitude"),
-        at(&t, "clip_amplitude = 0.28"),
-        &["monitor.clip_amplitude", "0.28", "0.3"],
-    );
-    for (old, new, key) in [
-        ("los_window = 8", "los_window = 0", "monitor.los_window"),
-        ("los_window = 8", "los_window = 65536", "monitor.los_window"),
-        ("clip_hold = 16", "clip_hold = 0", "monitor.clip_hold"),
-    ] {
-        let t = default_with(&[(old, new)]);
-        expect_bad(&t, Kind::Value(key), at(&t, new), &[key, "1..=65535"]);
-    }
-    // A los_amplitude above the default release level is blamed on los_amplitude, the key in
-    // the file, and the message says where the other value comes from.
-    let t = default_with(&[
-        ("los_amplitude = 0.25", "los_amplitude = 0.5"),
-        ("los_release = 0.3\n", ""),
-    ]);
-    expect_bad(
-        &t,
-        Kind::Value("monitor.los_amplitude"),
-        at(&t, "los_amplitude = 0.5"),
-        &[
-            "monitor.los_amplitude",
-            "0.5",
-            "monitor.los_release",
-            "default 0.3",
-        ],
-    );
-}
-
-/// `report --angle-n 0` used to be blamed on `cordic.iterations`.
-#[test]
-fn report_angle_n_zero_names_the_option() {
-    let l = Loaded::default_config().unwrap();
-    let mut o = sinedec::report::Options::new("test");
-    o.iterations = vec![14];
-    o.angle_n = Some(0);
-    let e = match sinedec::report::build(&l, &o) {
-        Ok(_) => panic!("--angle-n 0 accepted"),
-        Err(e) => e.to_string(),
-    };
-    assert!(e.contains("--angle-n"), "{e}");
-    assert!(e.contains("1..=20"), "{e}");
-    assert!(!e.contains("cordic.iterations"), "{e}");
 }
 
 /// Every documented bound is accepted and the value just outside it rejected, each in a
@@ -308,6 +101,21 @@ fn documented_ranges_equal_accepted_ones() {
             "gain_frac_bits = 14",
             "gain_frac_bits = {}",
             vec![],
+        ),
+        (
+            "adc.sck_period_clocks",
+            "# sck_period_clocks = 3",
+            "sck_period_clocks = {}",
+            // A generic ADC at 50 MHz: 2 clocks (40 ns) meet its 20 ns SCK limit and the
+            // board round trip; 255 clocks keep the frame within the longest period.
+            vec![
+                GENERIC,
+                NO_PREAMP,
+                (
+                    "frequency_hz = 133_330_000.0",
+                    "frequency_hz = 50_000_000.0",
+                ),
+            ],
         ),
         (
             "qep.filter_clocks",
@@ -385,4 +193,118 @@ fn correction_phase_deg_range_and_mode() {
         at(&t, "phase_deg = 2.5"),
         &["correction.phase_deg", "static"],
     );
+}
+
+/// A static gain that rounds to code 0 (`gain_sin = 0.0`, or 1e-9) passed `check`, then
+/// every sample was flagged: it is rejected at the key, and the smallest gain whose code is
+/// 1 (2^-14 x 0.5 rounds up to it at 14 fraction bits) is accepted.
+#[test]
+fn a_gain_that_rounds_to_code_0_is_rejected() {
+    for v in ["0.0", "1e-9", "0.00003"] {
+        let new = format!("gain_sin = {v}");
+        let t = default_with(&[("gain_sin = 1.0", &new)]);
+        expect_bad(
+            &t,
+            Kind::Value("correction.gain_sin"),
+            at(&t, &new),
+            &["correction.gain_sin", "code 0"],
+        );
+    }
+    // 0.00004 x 2^14 = 0.66: code 1.
+    let t = default_with(&[("gain_cos = 1.0", "gain_cos = 0.00004")]);
+    Loaded::parse(&t, SRC).unwrap_or_else(|e| panic!("code 1 rejected: {e}"));
+}
+
+/// `gain_sin = 1.99999` at 15 fraction bits was reported as "outside 0..2": the message
+/// says that the code rounds to 65536, one above the 16-bit word's 65535.
+#[test]
+fn a_gain_that_rounds_to_65536_says_so() {
+    let t = default_with(&[
+        ("gain_sin = 1.0", "gain_sin = 1.99999"),
+        ("gain_frac_bits = 14", "gain_frac_bits = 15"),
+    ]);
+    expect_bad(
+        &t,
+        Kind::Value("correction.gain_sin"),
+        at(&t, "gain_sin = 1.99999"),
+        &["correction.gain_sin", "65536", "65535"],
+    );
+}
+
+/// The generic ADC's limits: `max_sample_rate_hz` 0, -1 or NaN, a negative
+/// `sck_min_period_ns` and a NaN `conv_min_pulse_ns` were accepted, and so was a third
+/// channel offset on a one-channel frame. Each is rejected at its key.
+#[test]
+fn generic_adc_limits_are_checked_at_their_keys() {
+    for v in ["0.0", "-1.0", "nan", "inf"] {
+        let new = format!("max_sample_rate_hz = {v}");
+        let t = default_with(&[
+            (
+                "preset = \"ltc1407a-1\"",
+                &format!("preset = \"generic\"\n{new}"),
+            ),
+            NO_PREAMP,
+        ]);
+        expect_bad(
+            &t,
+            Kind::Value("adc.max_sample_rate_hz"),
+            at(&t, &new),
+            &["adc.max_sample_rate_hz"],
+        );
+    }
+    for (section, key, needle) in [
+        (
+            "[adc.timing]\nsck_min_period_ns = -5.0",
+            "adc.timing.sck_min_period_ns",
+            "sck_min_period_ns = -5.0",
+        ),
+        (
+            "[adc.timing]\nconv_min_pulse_ns = nan",
+            "adc.timing.conv_min_pulse_ns",
+            "conv_min_pulse_ns = nan",
+        ),
+        (
+            "[adc.timing]\nacquisition_ns = -1.0",
+            "adc.timing.acquisition_ns",
+            "acquisition_ns = -1.0",
+        ),
+        (
+            "[adc.frame]\nchannels = 1\noffsets = [1, 0, 0]",
+            "adc.frame.offsets",
+            "offsets = [1, 0, 0]",
+        ),
+        (
+            "[adc.frame]\noffsets = [1]",
+            "adc.frame.offsets",
+            "offsets = [1]",
+        ),
+    ] {
+        let t = generic_with(section);
+        expect_bad(&t, Kind::Value(key), at(&t, needle), &[key]);
+    }
+}
+
+/// `report --iterations` accepts what the README's usage line documents, and nothing
+/// outside it (`--iterations 1` was accepted while the README said 2..=20).
+#[test]
+fn report_iterations_documented_range_is_the_accepted_one() {
+    let readme = include_str!("../../README.md");
+    let row = readme
+        .lines()
+        .find(|l| l.starts_with("| `sinedec report"))
+        .expect("README has the report row");
+    let range = row
+        .split("[--iterations ")
+        .nth(1)
+        .and_then(|s| s.split(']').next())
+        .expect("the usage documents --iterations");
+    let (lo, hi) = range.split_once("..=").expect("a lo..=hi range");
+    let (lo, hi): (u32, u32) = (lo.parse().unwrap(), hi.parse().unwrap());
+    for (n, ok) in [(lo, true), (hi, true), (lo - 1, false), (hi + 1, false)] {
+        assert_eq!(
+            sinedec::report::parse_iterations(&n.to_string()).is_ok(),
+            ok,
+            "--iterations {n} (README: {range})"
+        );
+    }
 }

@@ -485,3 +485,80 @@ fn every_leaf_at_every_edge_value() {
         "only {accepted} mutants accepted: the sweep is too narrow"
     );
 }
+
+/// 1-based line and column of the key at `path` (table names, then the key; array indices
+/// dropped) in text written by `toml::to_string`: a `[table]` header, then `key = value`
+/// lines. Counted here from the text, independently of the crate.
+fn key_position(text: &str, path: &[String]) -> Option<(usize, usize)> {
+    let path: Vec<&str> = path
+        .iter()
+        .map(String::as_str)
+        .filter(|p| p.parse::<usize>().is_err())
+        .collect();
+    let (key, table) = path.split_last()?;
+    let table = table.join(".");
+    let mut current = String::new();
+    for (i, line) in text.lines().enumerate() {
+        let l = line.trim_start();
+        if let Some(h) = l.strip_prefix('[') {
+            current = h.trim_end().trim_end_matches(']').to_string();
+            continue;
+        }
+        if current == table && l.starts_with(&format!("{key} = ")) {
+            return Some((i + 1, line.len() - l.len() + 1));
+        }
+    }
+    None
+}
+
+/// Every leaf of both shipped configs set, one at a time, to each edge value of its type:
+/// when the mutant is rejected, the error names the key that was changed (its dotted name
+/// in backquotes) with the line of that key, either as the error's own position or as a
+/// citation `` `key` (line:col) `` of a key that takes part in the error.
+#[test]
+fn a_rejected_leaf_mutant_names_the_changed_key_with_its_position() {
+    let mut failures = Vec::new();
+    let mut rejected = 0usize;
+    for (name, base) in CONFIGS {
+        let v0: toml::Value = toml::from_str(base).unwrap();
+        let mut ls = Vec::new();
+        leaves(&v0, &mut Vec::new(), &mut ls);
+        for path in &ls {
+            let old = get_mut(&mut v0.clone(), path).cloned();
+            for new in edge_values(old.as_ref()) {
+                let mut v = v0.clone();
+                let Some(x) = get_mut(&mut v, path) else {
+                    continue;
+                };
+                *x = new.clone();
+                let text = toml::to_string(&v).unwrap();
+                let Err(e) = Loaded::parse(&text, "mutant.toml") else {
+                    continue;
+                };
+                rejected += 1;
+                let key: Vec<&str> = path
+                    .iter()
+                    .map(String::as_str)
+                    .filter(|p| p.parse::<usize>().is_err())
+                    .collect();
+                let key = key.join(".");
+                let (line, col) = key_position(&text, path)
+                    .unwrap_or_else(|| panic!("{key} not found in\n{text}"));
+                let m = e.to_string();
+                let own = m.starts_with(&format!("mutant.toml:{line}:"))
+                    && m.contains(&format!("`{key}`"));
+                let cited = m.contains(&format!("`{key}` ({line}:{col})"));
+                if !(own || cited) {
+                    failures.push(format!("{name} {key} = {new}: {m}"));
+                }
+            }
+        }
+    }
+    assert!(rejected > 500, "only {rejected} mutants rejected");
+    assert!(
+        failures.is_empty(),
+        "{} of {rejected} rejected mutants do not name the changed key at its line:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}

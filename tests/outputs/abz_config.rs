@@ -16,7 +16,7 @@ fn with_abz(section: &str) -> String {
 fn off_by_default_and_defaults_when_enabled() {
     let l = Loaded::parse(DEFAULT_CONFIG, "d.toml").unwrap();
     assert!(l.derived.abz.is_none());
-    // Keys are checked even when the emulator is off, but build nothing.
+    // Off, the keys are not checked (they have no effect) and build nothing.
     let l = Loaded::parse(&with_abz("lines = 1000"), "d.toml").unwrap();
     assert!(l.derived.abz.is_none());
     let l = Loaded::parse(&with_abz("enabled = true"), "d.toml").unwrap();
@@ -92,7 +92,7 @@ fn bad_values_name_the_key_the_position_and_the_range() {
             &["`abz.max_edge_hz`", "66665000 Hz"],
         ),
         (
-            "max_edge_hz = 1.0",
+            "enabled = true\nmax_edge_hz = 1.0",
             "max_edge_hz = 1.0",
             &["`abz.max_edge_hz`", "allowed"],
         ),

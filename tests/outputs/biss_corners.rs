@@ -424,7 +424,7 @@ fn supported_round_trip_at_each_ma_rate() {
 
 /// `sinedec check` prints each serial slave's answer window and its supported round trip at
 /// each rate up to the synchronizer's limit, the same figures as the functions the sweeps
-/// above and `tests/ssi.rs`, `tests/spi_slave.rs` hold the slaves to; a `[board]` budget
+/// above and `tests/outputs/ssi.rs`, `tests/outputs/spi_slave.rs` hold the slaves to; a `[board]` budget
 /// moves them.
 #[test]
 fn check_prints_the_supported_round_trip() {

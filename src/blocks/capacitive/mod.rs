@@ -131,9 +131,9 @@ impl CapFrontParams {
         };
         if p.cycles_per_sample() + 2 > d.adc.period_clocks {
             return Err(bad(
-                "lowpass",
+                "lowpass.order",
                 format!(
-                    "the filters need {} clocks per sample (biquad engine {} + demodulation 2) but the ADC delivers one every {} clocks: use fewer sections or a faster clock",
+                    "the filters need {} clocks per sample (biquad engine {} + demodulation 2) but the ADC delivers one every {} clocks: use fewer sections (`capacitive.lowpass.order`, `capacitive.bandpass.order`) or a faster clock (`clock.frequency_hz`)",
                     p.cycles_per_sample(),
                     p.engine.cycles_per_sample(),
                     d.adc.period_clocks

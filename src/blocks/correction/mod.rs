@@ -507,11 +507,23 @@ impl CorrectionParams {
 /// Gain code for a correction factor `g` (= 1/m, the inverse of the channel's gain):
 /// round(g 2^GF), which must fit 16 bits.
 pub fn gain_code(gain_frac_bits: u32, g: f64) -> crate::error::Result<u32> {
-    let c = (g * (1u64 << gain_frac_bits) as f64).round();
-    if !(0.0..=65535.0).contains(&c) {
+    let scale = (1u64 << gain_frac_bits) as f64;
+    let c = (g * scale).round();
+    // The largest gain whose code fits 16 bits, and the smallest whose code is 1.
+    let (max, min) = (65535.5 / scale, 0.5 / scale);
+    if c.is_nan() || c < 0.0 {
         return Err(invalid(format!(
-            "gain correction {g} is outside 0..{} for {gain_frac_bits} fraction bits",
-            65536.0 / (1u64 << gain_frac_bits) as f64
+            "gain correction {g}: allowed {min} ..< {max} (codes 1..=65535 of 2^-{gain_frac_bits})"
+        )));
+    }
+    if c == 0.0 {
+        return Err(invalid(format!(
+            "gain correction {g} rounds to code 0 with {gain_frac_bits} fraction bits: every sample would be scaled to 0; use at least {min} (code 1)"
+        )));
+    }
+    if c > 65535.0 {
+        return Err(invalid(format!(
+            "gain correction {g} rounds to code {c} with {gain_frac_bits} fraction bits, above the 16-bit word's 65535; use less than {max}, or fewer gain_frac_bits"
         )));
     }
     Ok(c as u32)

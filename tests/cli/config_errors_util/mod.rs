@@ -1,5 +1,7 @@
-//! Helpers shared by `tests/cli/config_errors.rs` and `tests/cli/config_ranges.rs` (moved out of `tests/cli/config_errors.rs` so that
-//! no test file is longer than about 600 lines).
+//! Helpers shared by the tests of bad configurations: `tests/cli/config_errors.rs` (syntax,
+//! schema, types, message wording), `tests/config_blame.rs` (the key an error names),
+//! `tests/config_ranges.rs` (ranges) and `tests/config_scope.rs` (what applies to which
+//! design).
 #![allow(dead_code)]
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::error::Error;
@@ -42,6 +44,16 @@ pub const NO_PREAMP: (&str, &str) = (
     "[preamp]\n# LTC6912-1 gains (inverting): -1, -2, -5, -10, -20, -50 or -100. A feeds sin, B cos.\ngain_a = -1\ngain_b = -1\n",
     "",
 );
+
+/// The generic-preset default config with `section` (e.g. "[adc.frame]\nframe_sck = 20")
+/// inserted before `[cordic]`.
+pub fn generic_with(section: &str) -> String {
+    default_with(&[
+        GENERIC,
+        NO_PREAMP,
+        ("\n[cordic]", &format!("\n{section}\n\n[cordic]")),
+    ])
+}
 
 /// 1-based (line, column) of byte offset `off`, counted independently of the crate.
 pub fn line_col_of(text: &str, off: usize) -> (usize, usize) {
