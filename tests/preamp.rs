@@ -347,9 +347,10 @@ fn preamp_and_adc_synthesize_without_latches() {
         // pc 16 + ph 8 + cyc 8 + warm 4 + live + 2 x 16 shift + 2 x 16 out + 3 pins, the
         // delayed adc_miso and rst 2, the period-counter flags 2 and the six window flags
         // (SCK and capture windows kept with cyc and ph), and the stop / last-phase flags
-        // of cyc and ph at most.
+        // of cyc and ph at most, and the three registered capture enables (the bit is
+        // shifted in one clock after miso_d samples it).
         assert!(
-            s.ffs <= 16 + 8 + 8 + 4 + 1 + 64 + 3 + 2 + 2 + 6 + 2,
+            s.ffs <= 16 + 8 + 8 + 4 + 1 + 64 + 3 + 2 + 2 + 6 + 2 + 3,
             "{} FF",
             s.ffs
         );
