@@ -2,7 +2,6 @@
 //! timing and the other bus devices' levels hold, invalid gains are rejected, a reset in the
 //! middle of the transfer restarts it, the SCK hand-over to the ADC works with both chip
 //! models on the shared line, and rust-hdl == Icarus == Verilator.
-use crate::common;
 use sinedec::blocks::adc::hdl::AdcController;
 use sinedec::blocks::adc::AdcParams;
 use sinedec::blocks::preamp::hdl::PreampSetup;
@@ -14,6 +13,7 @@ use sinedec::sim::ltc1407a::Ltc1407a;
 use sinedec::sim::ltc6912::Ltc6912;
 use sinedec::synth::{synthesize, Family};
 use sinedec::verify::{block_traces, Simulators};
+mod common;
 
 const F133: f64 = 133.33e6;
 const F50: f64 = 50e6;
@@ -347,8 +347,8 @@ fn preamp_and_adc_synthesize_without_latches() {
         // pc 16 + ph 8 + cyc 8 + warm 4 + live + 2 x 16 shift + 2 x 16 out + 3 pins, the
         // delayed adc_miso and rst 2, the period-counter flags 2 and the six window flags
         // (SCK and capture windows kept with cyc and ph), and the stop / last-phase flags
-        // of cyc and ph at most, and the three registered capture enables (channel 0,
-        // channel 1, the delivered last slot).
+        // of cyc and ph at most, and the three registered capture enables (the bit is
+        // shifted in one clock after miso_d samples it).
         assert!(
             s.ffs <= 16 + 8 + 8 + 4 + 1 + 64 + 3 + 2 + 2 + 6 + 2 + 3,
             "{} FF",
