@@ -143,6 +143,120 @@ fn emitted_testbench_runs_in_verilator_and_fails_on_a_change() {
     assert!(!r.ok, "the simulation exited {:?} after a mismatch", r.code);
 }
 
+/// A velocity configuration (tracking estimator at 20 kHz, 6667 clocks per update): its
+/// core and testbench, and the testbench with the lowest velocity bit of one expected
+/// update flipped.
+fn velocity_files() -> (String, String, String) {
+    let text = format!(
+        "{}\n[velocity]\nenabled = true\nrate_hz = 20e3\nbandwidth_hz = 2000.0\n",
+        sinedec::config::DEFAULT_CONFIG
+    );
+    let l = sinedec::config::Loaded::parse(&text, "v.toml").expect("config");
+    let g = sinedec::emit::generate(&l, "test").expect("generate");
+    let get = |n: &str| {
+        g.files
+            .iter()
+            .find(|f| f.name == n)
+            .unwrap_or_else(|| panic!("{n} missing"))
+            .text
+            .clone()
+    };
+    let (core, tb) = (get("sd_core.v"), get("sd_core_tb.v"));
+    // An expected value whose last two fields are a non-zero velocity and its strobe:
+    // flip the velocity's lowest bit.
+    let line = tb
+        .lines()
+        .find(|l| {
+            l.contains("expected[") && l.trim_end().ends_with("_1;") && {
+                let f: Vec<&str> = l.rsplit('_').collect();
+                f[1].contains('1')
+            }
+        })
+        .expect("an expected velocity update");
+    let cut = line.len() - "_1;".len() - 1;
+    let flipped_bit = if &line[cut..cut + 1] == "0" { "1" } else { "0" };
+    let flipped = format!("{}{flipped_bit}{}", &line[..cut], &line[cut + 1..]);
+    let broken = tb.replacen(line, &flipped, 1);
+    assert_ne!(broken, tb);
+    (core, tb, broken)
+}
+
+/// With `[velocity] enabled` the testbench connects `out_velocity` / `out_velocity_valid`,
+/// checks them over several updates of both signs, passes in Icarus and Verilator, and
+/// fails in both when one velocity bit of the expected data is wrong.
+#[test]
+fn velocity_testbench_checks_the_velocity_in_icarus_and_verilator() {
+    let (core, tb, broken) = velocity_files();
+    for port in ["out_velocity", "out_velocity_valid"] {
+        assert!(
+            tb.contains(&format!(".{port}({port})")),
+            "{port} not connected"
+        );
+    }
+    let dir = common::workdir("testbench_velocity");
+    let r = icarus(&core, &tb, &dir, "2005");
+    assert!(r.stdout.contains("PASS") && r.ok, "{}", r.stdout);
+    let r = icarus(&core, &broken, &dir, "2005");
+    assert!(r.stdout.contains("FAIL") && !r.ok, "{}", r.stdout);
+    let dir = common::workdir("testbench_velocity_verilator");
+    let r = verilator(&core, &tb, &dir);
+    assert!(
+        r.stdout.contains("PASS") && r.ok,
+        "{:?} {}",
+        r.code,
+        r.stdout
+    );
+    let r = verilator(&core, &broken, &dir);
+    assert!(
+        r.stdout.contains("FAIL") && !r.ok,
+        "{:?} {}",
+        r.code,
+        r.stdout
+    );
+}
+
+/// The velocity testbench's expected data hold several updates at the default update rate
+/// (7.5 kHz: 17777 clocks per update), not just the warm-up: the stimulus runs
+/// `VELOCITY_TB_UPDATES` update periods each way, and the estimate rises, then falls.
+#[test]
+fn velocity_testbench_spans_several_updates_at_the_default_rate() {
+    use sinedec::emit::testbench::{
+        testbench_expected, testbench_output_ports, testbench_stimulus, VELOCITY_TB_UPDATES,
+    };
+    let text = format!(
+        "{}\n[velocity]\nenabled = true\n",
+        sinedec::config::DEFAULT_CONFIG
+    );
+    let l = sinedec::config::Loaded::parse(&text, "v.toml").expect("config");
+    let w = l.derived.velocity.as_ref().expect("enabled").spec.width;
+    let stim = testbench_stimulus(&l);
+    let rows = testbench_expected(&l, &stim);
+    let n = testbench_output_ports(&l).len();
+    let updates: Vec<i64> = rows
+        .iter()
+        .filter(|r| r[n - 1] == 1)
+        .map(|r| ((r[n - 2] << (64 - w)) as i64) >> (64 - w))
+        .collect();
+    assert!(
+        updates.len() as u64 >= 2 * VELOCITY_TB_UPDATES - 1,
+        "{} updates",
+        updates.len()
+    );
+    // Not just the warm-up's zeros: the estimate rises through the forward rotation and
+    // falls after the reversal.
+    let peak = (0..updates.len())
+        .max_by_key(|&i| updates[i])
+        .expect("updates");
+    assert!(
+        updates[peak] > 0 && peak > 1 && peak + 1 < updates.len(),
+        "{updates:?}"
+    );
+    assert!(
+        updates[peak + 1..].windows(2).all(|w| w[1] < w[0]),
+        "{updates:?}"
+    );
+}
+
 /// IEEE 1800-2017 Annex B reserved keywords (SystemVerilog), which a Verilog-2001 file
 /// read as SystemVerilog must not use as identifiers.
 const SV_KEYWORDS: &[&str] = &[

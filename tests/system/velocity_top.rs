@@ -287,7 +287,10 @@ fn simulate_prints_the_velocity_statistics_without_csv() {
     // The last estimate lies within the run's largest error of the truth, and the mean
     // error is a small fraction of the speed.
     let max = number_after(&cli, "velocity error std", "max |error| ");
-    assert!((last - truth).abs() <= max + 1e-3, "{last} vs {truth}: {cli}");
+    assert!(
+        (last - truth).abs() <= max + 1e-3,
+        "{last} vs {truth}: {cli}"
+    );
     assert!(mean.abs() < 0.01 * truth, "{mean} vs {truth}: {cli}");
 }
 
