@@ -694,9 +694,14 @@ fn sigterm_during_the_engine_build_stops_the_build() {
         .unwrap();
     let pid = c.id();
     let mut kids = vec![];
-    wait_for("a rustc child", || {
+    // The build itself (`rustc ... engine.rs`), not the `rustc --version` of the cache key.
+    wait_for("rustc building the engine", || {
         kids = children(pid);
-        kids.iter().any(|(_, n)| n.starts_with("rustc"))
+        kids.iter().any(|(k, n)| {
+            n.starts_with("rustc")
+                && std::fs::read(format!("/proc/{k}/cmdline"))
+                    .is_ok_and(|c| String::from_utf8_lossy(&c).contains("engine.rs"))
+        })
     });
     signal(pid, "TERM");
     let st = c.wait().unwrap();
