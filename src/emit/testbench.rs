@@ -33,7 +33,7 @@ pub const VELOCITY_TB_UPDATES: u64 = 4;
 /// rotation at the ADC's sample spacing for [`VELOCITY_TB_UPDATES`] velocity update periods
 /// in each direction (0.3 quadrant per sample forward, 0.21 backward), so that
 /// `out_velocity` is checked over several updates, rising and falling (of both signs when the
-/// estimator's loop is fast enough: `tests/testbench.rs`).
+/// estimator's loop is fast enough: `tests/flow/testbench.rs`).
 pub fn testbench_stimulus(loaded: &Loaded) -> Vec<CoreIn> {
     let d = &loaded.derived;
     let a = d.adc_width;

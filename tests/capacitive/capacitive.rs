@@ -349,7 +349,7 @@ fn simulate_and_check_run_on_the_capacitive_config() {
     );
     assert!(text.contains("(0 flagged)"), "{text}");
     // One CSV line per decoded position (400 kHz for 2.5 ms, minus the start-up), with the
-    // sinewave path's columns (README, "simulate --csv columns"): 10 numeric fields.
+    // sinewave path's columns (docs/cli.md, "simulate --csv columns"): 10 numeric fields.
     let table = std::fs::read_to_string(&csv).expect("csv written");
     let lines: Vec<&str> = table.lines().collect();
     assert_eq!(lines[0], sinedec::simulate::CSV_COLUMNS.join(","));

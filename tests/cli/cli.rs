@@ -339,7 +339,7 @@ fn module_names_follow_config_name() {
 }
 
 /// Regenerating into a directory sinedec wrote replaces its files and removes the ones it no
-/// longer produces; files it did not write stay (the rule: README "Output directory"; a
+/// longer produces; files it did not write stay (the rule: docs/cli.md "Output directory"; a
 /// directory sinedec did not write is refused, see tests/cli/output_safety.rs). Until issue 13
 /// this test asked for the whole directory to be replaced, which deleted the user's files.
 #[test]

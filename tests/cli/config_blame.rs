@@ -4,7 +4,7 @@
 //! Every expected position is computed here from the text the test wrote (byte offset of a
 //! unique needle -> line and column), never copied from a run. The helpers (`expect_bad`:
 //! the library's error, position and message, then `check` and `generate` on the command
-//! line, nothing written) are in `tests/config_errors_util/`.
+//! line, nothing written) are in `tests/cli/config_errors_util/`.
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use crate::config_errors_util;
 use config_errors_util::*;

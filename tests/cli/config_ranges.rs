@@ -1,4 +1,4 @@
-//! Ranges: every documented bound is the accepted one (README, "Supported ranges", and the
+//! Ranges: every documented bound is the accepted one (docs/cli.md, "Supported ranges", and the
 //! usage lines), values outside a key's range are rejected at that key, and a value that
 //! rounds to a code the hardware cannot use is rejected with the code it rounds to.
 //!
@@ -284,15 +284,15 @@ fn generic_adc_limits_are_checked_at_their_keys() {
     }
 }
 
-/// `report --iterations` accepts what the README's usage line documents, and nothing
-/// outside it (`--iterations 1` was accepted while the README said 2..=20).
+/// `report --iterations` accepts what docs/cli.md's usage line documents, and nothing
+/// outside it (`--iterations 1` was accepted while the docs said 2..=20).
 #[test]
 fn report_iterations_documented_range_is_the_accepted_one() {
-    let readme = include_str!("../../README.md");
+    let readme = include_str!("../../docs/cli.md");
     let row = readme
         .lines()
         .find(|l| l.starts_with("| `sinedec report"))
-        .expect("README has the report row");
+        .expect("docs/cli.md has the report row");
     let range = row
         .split("[--iterations ")
         .nth(1)
@@ -304,7 +304,7 @@ fn report_iterations_documented_range_is_the_accepted_one() {
         assert_eq!(
             sinedec::report::parse_iterations(&n.to_string()).is_ok(),
             ok,
-            "--iterations {n} (README: {range})"
+            "--iterations {n} (docs/cli.md: {range})"
         );
     }
 }

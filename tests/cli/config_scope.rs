@@ -5,7 +5,7 @@
 //! Every expected position is computed here from the text the test wrote (byte offset of a
 //! unique needle -> line and column), never copied from a run. The helpers (`expect_bad`:
 //! the library's error, position and message, then `check` and `generate` on the command
-//! line, nothing written) are in `tests/config_errors_util/`.
+//! line, nothing written) are in `tests/cli/config_errors_util/`.
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use crate::config_errors_util;
 use config_errors_util::*;
@@ -117,19 +117,19 @@ fn qep_and_correction_are_rejected_with_the_capacitive_path() {
 }
 
 /// Without `capacitive.data_width` the default (18) was outside the allowed 12..=16: the
-/// key can be left out, and the default is the CORDIC's widest input, 16 bits (README,
+/// key can be left out, and the default is the CORDIC's widest input, 16 bits (docs/cli.md,
 /// "Supported ranges").
 #[test]
 fn capacitive_data_width_may_be_left_out() {
     let t = cap_with(&[("data_width = 16\n", "")]);
     let l = Loaded::parse(&t, SRC).unwrap_or_else(|e| panic!("rejected: {e}"));
     assert_eq!(l.derived.adc_width, 16);
-    let readme = include_str!("../../README.md");
+    let readme = include_str!("../../docs/cli.md");
     assert!(
         readme
             .lines()
             .any(|l| l.starts_with("| `capacitive.data_width` |") && l.contains("default 16")),
-        "README documents the default of capacitive.data_width"
+        "docs/cli.md documents the default of capacitive.data_width"
     );
 }
 
@@ -166,11 +166,11 @@ fn keys_of_a_disabled_section_are_checked_only_when_it_is_on() {
         at(&on, "timeout_us = -1.0"),
         &["ssi.timeout_us"],
     );
-    // The README states the rule.
-    let readme = include_str!("../../README.md");
+    // docs/cli.md states the rule.
+    let readme = include_str!("../../docs/cli.md");
     assert!(
         readme.contains("keys of a section that is off"),
-        "README states the rule for disabled sections"
+        "docs/cli.md states the rule for disabled sections"
     );
 }
 

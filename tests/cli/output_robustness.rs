@@ -1,5 +1,5 @@
 //! Data safety and robustness of the command line (issue 13, sections A, B and D):
-//! the output-directory rule (README "Output directory"), refusal of `-o` at a regular file,
+//! the output-directory rule (docs/cli.md "Output directory"), refusal of `-o` at a regular file,
 //! no fixed temporary names, up-front `--csv`/`--vcd` checks, `init` parents, non-UTF-8
 //! paths, a closed or full stdout, OS errors printed once, no Rust Debug text in user output,
 //! long echoed values clipped, negative option values.

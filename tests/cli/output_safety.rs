@@ -1,5 +1,5 @@
 //! Data safety and robustness of the command line (issue 13, sections A, B and D):
-//! the output-directory rule (README "Output directory"), refusal of `-o` at a regular file,
+//! the output-directory rule (docs/cli.md "Output directory"), refusal of `-o` at a regular file,
 //! no fixed temporary names, up-front `--csv`/`--vcd` checks, `init` parents, non-UTF-8
 //! paths, a closed or full stdout, OS errors printed once, no Rust Debug text in user output,
 //! long echoed values clipped, negative option values.
@@ -346,7 +346,7 @@ fn is_special(p: &std::path::Path) -> bool {
     t.is_fifo() || t.is_socket()
 }
 
-/// H1: `--csv`, `--vcd` and `init --force` refuse a FIFO or a socket (README "Output
+/// H1: `--csv`, `--vcd` and `init --force` refuse a FIFO or a socket (docs/cli.md "Output
 /// directory": sinedec writes only regular files) and leave it in place.
 #[test]
 fn special_files_are_refused_and_kept() {
@@ -421,7 +421,7 @@ fn outputs_that_overwrite_inputs_are_refused() {
 }
 
 /// L1: while another sinedec holds the output directory's lock (`flock` on the directory,
-/// README "Output directory"), `generate -o d` says so and writes nothing.
+/// docs/cli.md "Output directory"), `generate -o d` says so and writes nothing.
 #[test]
 fn a_locked_output_directory_is_named_as_busy() {
     let tmp = tempfile::tempdir().unwrap();

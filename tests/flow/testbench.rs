@@ -1,7 +1,7 @@
 //! The emitted self-checking testbench passes in Icarus (as Verilog-2005 and as
 //! SystemVerilog-2012) and in Verilator against the emitted core; when the core is changed it
 //! reports FAIL and the simulator process exits non-zero in both simulators. It uses no
-//! SystemVerilog keyword as an identifier. The commands are the ones the README documents.
+//! SystemVerilog keyword as an identifier. The commands are the ones docs/verification.md documents.
 use crate::common;
 use std::path::Path;
 use std::process::{Command, Output};

@@ -4,7 +4,7 @@
 //! above the unwrap limit with the QEP fallback keeps a consistent count, the capacitive
 //! path rejects the track imperfections it cannot model, `check` and `simulate` name their
 //! latencies alike, the capacitive `check` prints one speed limit, the CSV columns are the
-//! README's on both paths, and the VCD streams `<name>_top`'s ports.
+//! docs/cli.md's on both paths, and the VCD streams `<name>_top`'s ports.
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::sim::encoder::Profile;
 use sinedec::simulate::{run, run_capacitive, run_capacitive_traced, run_traced, SimOptions};
@@ -393,12 +393,12 @@ fn capacitive_check_prints_one_speed_limit() {
     assert_eq!(value_of(&text, "max speed"), Some(want.round()), "{text}");
 }
 
-/// The README's `--csv` column table, in order.
+/// The docs/cli.md's `--csv` column table, in order.
 fn readme_csv_columns() -> Vec<String> {
-    let readme = include_str!("../../README.md");
+    let readme = include_str!("../../docs/cli.md");
     let start = readme
         .find("### `simulate --csv` columns")
-        .expect("README documents the CSV columns");
+        .expect("docs/cli.md documents the CSV columns");
     readme[start..]
         .lines()
         .skip_while(|l| !l.starts_with("| column"))
@@ -408,7 +408,7 @@ fn readme_csv_columns() -> Vec<String> {
         .collect()
 }
 
-/// Both paths write the README's columns; warm-up rows are marked and are exactly the
+/// Both paths write docs/cli.md's columns; warm-up rows are marked and are exactly the
 /// rows left out of the statistics; error_lsb carries the summary's figures.
 #[test]
 fn csv_columns_are_documented_and_shared_by_both_paths() {
@@ -422,9 +422,9 @@ fn csv_columns_are_documented_and_shared_by_both_paths() {
     let r = run(&l, &o, |_, _| {}).expect("runs");
     let csv = r.csv(&l, o.skip);
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-    // The default config has no velocity estimator: the README's columns marked "only with
+    // The default config has no velocity estimator: docs/cli.md's columns marked "only with
     // `[velocity] enabled`" are absent (tests/system/velocity_top.rs checks them when enabled).
-    let readme = include_str!("../../README.md");
+    let readme = include_str!("../../docs/cli.md");
     let always: Vec<&String> = cols
         .iter()
         .filter(|c| {

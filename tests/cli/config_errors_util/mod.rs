@@ -247,13 +247,13 @@ pub fn cap_with(edits: &[(&str, &str)]) -> String {
         .fold(CAP.to_string(), |t, (old, new)| edit(&t, old, new))
 }
 
-/// The README's "Supported ranges" table for `key`: the `lo..=hi` it documents.
+/// The docs/cli.md's "Supported ranges" table for `key`: the `lo..=hi` it documents.
 pub fn documented_range(key: &str) -> (i64, i64) {
-    let readme = include_str!("../../../README.md");
+    let readme = include_str!("../../../docs/cli.md");
     let row = readme
         .lines()
         .find(|l| l.starts_with(&format!("| `{key}` |")))
-        .unwrap_or_else(|| panic!("README has no range row for `{key}`"));
+        .unwrap_or_else(|| panic!("docs/cli.md has no range row for `{key}`"));
     let cell = row.split('|').nth(2).expect("range cell");
     let range = cell
         .split_whitespace()
