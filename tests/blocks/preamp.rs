@@ -13,7 +13,7 @@ use sinedec::sim::ltc1407a::Ltc1407a;
 use sinedec::sim::ltc6912::Ltc6912;
 use sinedec::synth::{synthesize, Family};
 use sinedec::verify::{block_traces, Simulators};
-mod common;
+use crate::common;
 
 const F133: f64 = 133.33e6;
 const F50: f64 = 50e6;

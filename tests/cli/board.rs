@@ -429,7 +429,7 @@ fn pin_errors_say_which_part_is_wrong() {
     // The capacitive top's DAC buses: capacitive.dac_width balls each.
     let cap = format!(
         "{}\n[board]\niostandard = \"{}\"\n[board.pins]\n",
-        include_str!("../configs/cyclone3_capacitive.toml"),
+        include_str!("../../configs/cyclone3_capacitive.toml"),
         sinedec::board::iostandards(sinedec::config::Target::Cyclone3)[0]
     );
     check(
