@@ -61,7 +61,7 @@ fn check(case: &str, text: &str, source: &str, base: Option<&str>) {
         if shared {
             continue;
         }
-        expect_file![format!("snapshots/{case}/{}", f.name)].assert_eq(&text);
+        expect_file![format!("../snapshots/{case}/{}", f.name)].assert_eq(&text);
         names.push(f.name.clone());
     }
     names.sort();
