@@ -2,6 +2,7 @@
 //! timing and the other bus devices' levels hold, invalid gains are rejected, a reset in the
 //! middle of the transfer restarts it, the SCK hand-over to the ADC works with both chip
 //! models on the shared line, and rust-hdl == Icarus == Verilator.
+use crate::common;
 use sinedec::blocks::adc::hdl::AdcController;
 use sinedec::blocks::adc::AdcParams;
 use sinedec::blocks::preamp::hdl::PreampSetup;
@@ -13,7 +14,6 @@ use sinedec::sim::ltc1407a::Ltc1407a;
 use sinedec::sim::ltc6912::Ltc6912;
 use sinedec::synth::{synthesize, Family};
 use sinedec::verify::{block_traces, Simulators};
-use crate::common;
 
 const F133: f64 = 133.33e6;
 const F50: f64 = 50e6;

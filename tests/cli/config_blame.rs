@@ -5,9 +5,9 @@
 //! unique needle -> line and column), never copied from a run. The helpers (`expect_bad`:
 //! the library's error, position and message, then `check` and `generate` on the command
 //! line, nothing written) are in `tests/cli/config_errors_util/`.
-use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use crate::config_errors_util;
 use config_errors_util::*;
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
 
 #[test]
 fn value_error_key_named_in_a_comment_first() {

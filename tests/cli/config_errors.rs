@@ -8,9 +8,9 @@
 //! The helpers are in `tests/cli/config_errors_util/`; which key an error blames is tested in
 //! `tests/config_blame.rs`, ranges in `tests/config_ranges.rs`, what applies to which design
 //! in `tests/config_scope.rs`.
-use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use crate::config_errors_util;
 use config_errors_util::*;
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
 
 // ---------------------------------------------------------------------------------------
 // Malformed TOML.

@@ -6,9 +6,9 @@
 //! unique needle -> line and column), never copied from a run. The helpers (`expect_bad`:
 //! the library's error, position and message, then `check` and `generate` on the command
 //! line, nothing written) are in `tests/cli/config_errors_util/`.
-use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use crate::config_errors_util;
 use config_errors_util::*;
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
 
 /// A low-pass section declared as a high-pass used to be accepted (simulate then reported
 /// 219 degrees of error): the low-pass after the demodulator must be a low-pass.
