@@ -49,6 +49,7 @@ use serde::{Deserialize, Deserializer};
 mod biss;
 mod checks;
 mod derived;
+mod describe;
 mod params;
 mod pins;
 mod schema;
