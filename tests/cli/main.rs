@@ -19,4 +19,5 @@ mod config_scope;
 mod no_panic;
 mod output_robustness;
 mod output_safety;
+mod signals;
 mod snapshots;
