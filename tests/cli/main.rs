@@ -16,6 +16,7 @@ mod config_blame;
 mod config_errors;
 mod config_ranges;
 mod config_scope;
+mod config_wording;
 mod no_panic;
 mod output_robustness;
 mod output_safety;
