@@ -373,13 +373,21 @@ fn run_jobs(
 
 /// The tools' figures per unit, and how many runs the caches answered.
 struct Figures {
+    /// Spartan-3A synthesis, per unit.
     xc: Vec<SynthStats>,
+    /// Cyclone IV E synthesis, per unit.
     cy: Vec<SynthStats>,
+    /// Generic gate counts, per unit (default where not asked for).
     ge: Vec<GateStats>,
+    /// ECP5 post-route timing, per unit.
     pn: Vec<PnrTiming>,
+    /// Yosys runs the cache answered.
     hits: usize,
+    /// Yosys runs made.
     runs: usize,
+    /// Place-and-route runs the cache answered.
     pnr_hits: usize,
+    /// Place-and-route runs made.
     pnr_runs: usize,
 }
 
