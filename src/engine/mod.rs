@@ -5,7 +5,7 @@
 //! ```text
 //!  emitted Verilog ──► Yosys: proc; flatten; opt; wreduce ──► JSON (word-level cells)
 //!        (yosys.rs)                                                 │
-//!  netlist.rs: bits regrouped into words, registers, memories ◄─────┘
+//!  netlist/:   bits regrouped into words, registers, memories ◄─────┘
 //!  order.rs:   combinational cells in topological order, next-state and output cones
 //!        ├──► codegen.rs: straight-line Rust ──► rustc -O ──► cdylib ──► compiled.rs
 //!        │    (cached by a hash of its inputs)                      (libloading, C ABI)
