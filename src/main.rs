@@ -86,56 +86,7 @@ enum Command {
     /// Without `--csv` no decoded sample is kept (the statistics are gathered as they come),
     /// so memory stays bounded however long the run.
     #[command(allow_negative_numbers = true)]
-    Simulate {
-        /// Configuration file (TOML); the embedded default when omitted.
-        config: Option<PathBuf>,
-        /// Speed profile: constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep.
-        #[arg(long, default_value = "constant:300")]
-        profile: String,
-        /// Simulated time in seconds.
-        #[arg(long, default_value_t = 0.002, allow_hyphen_values = true)]
-        duration: f64,
-        /// Track amplitude as a fraction of the ADC input range.
-        #[arg(long, default_value_t = 0.8, allow_hyphen_values = true)]
-        amplitude: f64,
-        /// Gaussian noise, RMS in ADC LSB.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        noise_lsb: f64,
-        /// Offset of the sin track, fraction of the amplitude.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        offset_sin: f64,
-        /// Offset of the cos track, fraction of the amplitude.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        offset_cos: f64,
-        /// Relative gain mismatch of the tracks.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        gain_mismatch: f64,
-        /// Quadrature phase error in degrees.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        phase_error: f64,
-        /// Third-harmonic ratio.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        harmonic3: f64,
-        /// Noise seed.
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
-        /// Write every decoded sample as CSV (checked before the simulation; the directory
-        /// must exist; an existing file is replaced).
-        #[arg(long)]
-        csv: Option<PathBuf>,
-        /// Write the top's pins, cycle by cycle, as VCD (checked like --csv).
-        #[arg(long)]
-        vcd: Option<PathBuf>,
-        /// Simulation engine of the top. compiled: Yosys turns the emitted Verilog into a
-        /// netlist, rustc compiles it (cached under ~/.cache/sinedec/engine; 100-250x
-        /// rust-hdl). rust-hdl: the reference simulation. interpreter: the engine's netlist
-        /// interpreted (no rustc needed). Without --engine the compiled engine runs, or the
-        /// interpreter without rustc, or rust-hdl without Yosys, each fallback said on
-        /// stderr; an engine named here runs or fails. All give the same report, proven by
-        /// tests/system/engine.rs, tests/system/engine_loop.rs and the co-simulation tests.
-        #[arg(long, value_enum)]
-        engine: Option<EngineArg>,
-    },
+    Simulate(SimulateArgs),
     /// Validates a configuration and prints its derived parameters.
     ///
     /// Says first whether the config has a board top (`<name>_top.v`, beyond the core and its
@@ -203,6 +154,59 @@ enum Command {
         #[arg(long)]
         no_cache: bool,
     },
+}
+
+/// `simulate`'s arguments (the command's help is on [`Command::Simulate`]).
+#[derive(clap::Args)]
+struct SimulateArgs {
+    /// Configuration file (TOML); the embedded default when omitted.
+    config: Option<PathBuf>,
+    /// Speed profile: constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep.
+    #[arg(long, default_value = "constant:300")]
+    profile: String,
+    /// Simulated time in seconds.
+    #[arg(long, default_value_t = 0.002, allow_hyphen_values = true)]
+    duration: f64,
+    /// Track amplitude as a fraction of the ADC input range.
+    #[arg(long, default_value_t = 0.8, allow_hyphen_values = true)]
+    amplitude: f64,
+    /// Gaussian noise, RMS in ADC LSB.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    noise_lsb: f64,
+    /// Offset of the sin track, fraction of the amplitude.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    offset_sin: f64,
+    /// Offset of the cos track, fraction of the amplitude.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    offset_cos: f64,
+    /// Relative gain mismatch of the tracks.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    gain_mismatch: f64,
+    /// Quadrature phase error in degrees.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    phase_error: f64,
+    /// Third-harmonic ratio.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    harmonic3: f64,
+    /// Noise seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Write every decoded sample as CSV (checked before the simulation; the directory
+    /// must exist; an existing file is replaced).
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Write the top's pins, cycle by cycle, as VCD (checked like --csv).
+    #[arg(long)]
+    vcd: Option<PathBuf>,
+    /// Simulation engine of the top. compiled: Yosys turns the emitted Verilog into a
+    /// netlist, rustc compiles it (cached under ~/.cache/sinedec/engine; 100-250x
+    /// rust-hdl). rust-hdl: the reference simulation. interpreter: the engine's netlist
+    /// interpreted (no rustc needed). Without --engine the compiled engine runs, or the
+    /// interpreter without rustc, or rust-hdl without Yosys, each fallback said on
+    /// stderr; an engine named here runs or fails. All give the same report, proven by
+    /// tests/system/engine.rs, tests/system/engine_loop.rs and the co-simulation tests.
+    #[arg(long, value_enum)]
+    engine: Option<EngineArg>,
 }
 
 /// `simulate --engine`.
@@ -310,6 +314,114 @@ macro_rules! say {
     ($($t:tt)*) => { out(&format!("{}\n", format_args!($($t)*))) };
 }
 
+/// `sinedec simulate`: checks the options and outputs, runs the closed loop with a progress
+/// bar, then writes the CSV and VCD and prints the summary.
+fn simulate(args: SimulateArgs) -> Result<()> {
+    let SimulateArgs {
+        config,
+        profile,
+        duration,
+        amplitude,
+        noise_lsb,
+        offset_sin,
+        offset_cos,
+        gain_mismatch,
+        phase_error,
+        harmonic3,
+        seed,
+        csv,
+        vcd,
+        engine,
+    } = args;
+    let loaded = load(&config)?;
+    if !(duration > 0.0 && duration <= 10.0) {
+        bail!("--duration {duration}: allowed 0 < seconds <= 10");
+    }
+    distinct_outputs(&config, &[("--csv", csv.as_ref()), ("--vcd", vcd.as_ref())])?;
+    // The output files are checked (and their temporary files created beside them)
+    // before the simulation runs.
+    let mut csv_out = csv.as_deref().map(PendingFile::new).transpose()?;
+    let mut vcd_out = vcd.as_deref().map(PendingFile::new).transpose()?;
+    let o = sinedec::simulate::SimOptions {
+        profile: sinedec::simulate::parse_profile(&profile)?,
+        duration_s: duration,
+        amplitude,
+        noise_lsb,
+        offset: (offset_sin, offset_cos),
+        gain_mismatch,
+        phase_error_deg: phase_error,
+        third_harmonic: harmonic3,
+        seed,
+        engine: match engine {
+            None => sinedec::sim::dut::EngineKind::Auto,
+            Some(EngineArg::RustHdl) => sinedec::sim::dut::EngineKind::RustHdl,
+            Some(EngineArg::Compiled) => sinedec::sim::dut::EngineKind::Compiled,
+            Some(EngineArg::Interpreter) => sinedec::sim::dut::EngineKind::Interpreted,
+        },
+        // Without --csv no sample is kept: memory stays bounded on long runs.
+        keep_records: csv.is_some(),
+        ..Default::default()
+    };
+    if let Some(w) = sinedec::simulate::speed_warning(&loaded, &o) {
+        let _ = writeln!(std::io::stderr(), "{w}");
+    }
+    // The VCD streams during the run into its temporary file (checked above, renamed
+    // onto the path when the run is complete).
+    let trace: Option<Box<dyn std::io::Write>> = match vcd_out.as_mut() {
+        Some(f) => Some(Box::new(std::io::BufWriter::new(
+            f.file()
+                .try_clone()
+                .map_err(|e| anyhow::anyhow!("opening the VCD's temporary file: {e}"))?,
+        ))),
+        None => None,
+    };
+    let total = (duration * loaded.derived.clock_hz).ceil() as u64;
+    let bar = indicatif::ProgressBar::new(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    // Files first, then standard output: a closed stdout cannot lose them.
+    let mut wrote = vec![];
+    let summary = if loaded.derived.capacitive.is_some() {
+        let r = sinedec::simulate::run_capacitive_report(
+            &loaded,
+            &o,
+            |done, _| bar.set_position(done),
+            trace,
+        )?;
+        bar.finish_and_clear();
+        if let Some(n) = &r.engine_note {
+            let _ = writeln!(std::io::stderr(), "{n}");
+        }
+        if let Some(mut f) = csv_out.take() {
+            f.write_all(r.csv.as_bytes())?;
+            wrote.push(f.commit()?);
+        }
+        r.summary
+    } else {
+        let report =
+            sinedec::simulate::run_traced(&loaded, &o, |done, _| bar.set_position(done), trace)?;
+        bar.finish_and_clear();
+        if let Some(n) = &report.engine_note {
+            let _ = writeln!(std::io::stderr(), "{n}");
+        }
+        if let Some(mut f) = csv_out.take() {
+            f.write_all(report.csv(&loaded, o.skip).as_bytes())?;
+            wrote.push(f.commit()?);
+        }
+        report.summary(&loaded)
+    };
+    if let Some(f) = vcd_out.take() {
+        wrote.push(f.commit()?);
+    }
+    out(&summary)?;
+    for p in wrote {
+        say!("wrote {}", p.display())?;
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Generate {
@@ -327,113 +439,7 @@ fn run(cli: Cli) -> Result<()> {
                 say!("wrote {}", output.join(&f.name).display())?;
             }
         }
-        Command::Simulate {
-            config,
-            profile,
-            duration,
-            amplitude,
-            noise_lsb,
-            offset_sin,
-            offset_cos,
-            gain_mismatch,
-            phase_error,
-            harmonic3,
-            seed,
-            csv,
-            vcd,
-            engine,
-        } => {
-            let loaded = load(&config)?;
-            if !(duration > 0.0 && duration <= 10.0) {
-                bail!("--duration {duration}: allowed 0 < seconds <= 10");
-            }
-            distinct_outputs(&config, &[("--csv", csv.as_ref()), ("--vcd", vcd.as_ref())])?;
-            // The output files are checked (and their temporary files created beside them)
-            // before the simulation runs.
-            let mut csv_out = csv.as_deref().map(PendingFile::new).transpose()?;
-            let mut vcd_out = vcd.as_deref().map(PendingFile::new).transpose()?;
-            let o = sinedec::simulate::SimOptions {
-                profile: sinedec::simulate::parse_profile(&profile)?,
-                duration_s: duration,
-                amplitude,
-                noise_lsb,
-                offset: (offset_sin, offset_cos),
-                gain_mismatch,
-                phase_error_deg: phase_error,
-                third_harmonic: harmonic3,
-                seed,
-                engine: match engine {
-                    None => sinedec::sim::dut::EngineKind::Auto,
-                    Some(EngineArg::RustHdl) => sinedec::sim::dut::EngineKind::RustHdl,
-                    Some(EngineArg::Compiled) => sinedec::sim::dut::EngineKind::Compiled,
-                    Some(EngineArg::Interpreter) => sinedec::sim::dut::EngineKind::Interpreted,
-                },
-                // Without --csv no sample is kept: memory stays bounded on long runs.
-                keep_records: csv.is_some(),
-                ..Default::default()
-            };
-            if let Some(w) = sinedec::simulate::speed_warning(&loaded, &o) {
-                let _ = writeln!(std::io::stderr(), "{w}");
-            }
-            // The VCD streams during the run into its temporary file (checked above, renamed
-            // onto the path when the run is complete).
-            let trace: Option<Box<dyn std::io::Write>> = match vcd_out.as_mut() {
-                Some(f) => Some(Box::new(std::io::BufWriter::new(
-                    f.file()
-                        .try_clone()
-                        .map_err(|e| anyhow::anyhow!("opening the VCD's temporary file: {e}"))?,
-                ))),
-                None => None,
-            };
-            let total = (duration * loaded.derived.clock_hz).ceil() as u64;
-            let bar = indicatif::ProgressBar::new(total);
-            bar.set_style(
-                indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
-                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-            );
-            // Files first, then standard output: a closed stdout cannot lose them.
-            let mut wrote = vec![];
-            let summary = if loaded.derived.capacitive.is_some() {
-                let r = sinedec::simulate::run_capacitive_report(
-                    &loaded,
-                    &o,
-                    |done, _| bar.set_position(done),
-                    trace,
-                )?;
-                bar.finish_and_clear();
-                if let Some(n) = &r.engine_note {
-                    let _ = writeln!(std::io::stderr(), "{n}");
-                }
-                if let Some(mut f) = csv_out.take() {
-                    f.write_all(r.csv.as_bytes())?;
-                    wrote.push(f.commit()?);
-                }
-                r.summary
-            } else {
-                let report = sinedec::simulate::run_traced(
-                    &loaded,
-                    &o,
-                    |done, _| bar.set_position(done),
-                    trace,
-                )?;
-                bar.finish_and_clear();
-                if let Some(n) = &report.engine_note {
-                    let _ = writeln!(std::io::stderr(), "{n}");
-                }
-                if let Some(mut f) = csv_out.take() {
-                    f.write_all(report.csv(&loaded, o.skip).as_bytes())?;
-                    wrote.push(f.commit()?);
-                }
-                report.summary(&loaded)
-            };
-            if let Some(f) = vcd_out.take() {
-                wrote.push(f.commit()?);
-            }
-            out(&summary)?;
-            for p in wrote {
-                say!("wrote {}", p.display())?;
-            }
-        }
+        Command::Simulate(args) => simulate(args)?,
         Command::Check { config } => {
             let loaded = load(&config)?;
             say!("{}: ok", loaded.source_name)?;
