@@ -14,7 +14,7 @@ trap 'rm -f "$log"; rm -rf "$collect"' EXIT
 n=0
 while read -r key; do
   [ -f "$collect/$key.json" ] && continue
-  for dir in target/tmp/timing-cache target/tmp/report_cli/cache tests/data/ecp5-cache; do
+  for dir in target/tmp/timing-cache-* target/tmp/report_cli_*/cache tests/data/ecp5-cache; do
     if [ -f "$dir/$key.json" ]; then
       cp "$dir/$key.json" "$collect/$key.json"
       n=$((n + 1))

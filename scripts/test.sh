@@ -55,8 +55,11 @@ fi
 export SINEDEC_YOWASP_BIN="$yowasp_bin"
 # Icarus and Verilator verdicts by design hash (src/cosim/cache.rs): a design whose Verilog,
 # stimulus and tool version match a committed entry is not simulated again, and a run that
-# misses adds its entry (scripts/cosim_cache.sh rebuilds the directory from scratch).
+# misses adds its entry (scripts/tool_caches.sh rebuilds the directory from scratch).
 export SINEDEC_COSIM_CACHE="${SINEDEC_COSIM_CACHE-$PWD/tests/data/cosim-cache}"
+# Yosys synthesis results by design hash (src/synth.rs), in the same way.
+export SINEDEC_SYNTH_CACHE="${SINEDEC_SYNTH_CACHE-$PWD/tests/data/yosys-cache}"
+mkdir -p "$SINEDEC_COSIM_CACHE" "$SINEDEC_SYNTH_CACHE"
 yosys -V
 iverilog -V 2>&1 | sed -n 1p || true
 verilator --version

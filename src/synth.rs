@@ -12,9 +12,25 @@
 //! `write_json` ([`crate::report::levels`]).
 use crate::cosim::{require_tool, CosimError};
 use crate::error::{Error, Result};
+use crate::report::yosys::{cache_key, cache_load, cache_store, CachedSynth};
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::OnceLock;
+
+/// The environment variable naming a directory of synthesis results (unset or empty: none).
+/// [`synthesize`] answers a design whose Verilog, top, family, Yosys version and counting
+/// rules match an entry from it, and stores what it runs. `scripts/test.sh` points it at
+/// `tests/data/yosys-cache`, committed, so CI runs Yosys only for the designs that changed.
+pub const SYNTH_CACHE_ENV: &str = "SINEDEC_SYNTH_CACHE";
+
+/// Source of the FPGA synthesis (this file: script and counting rules) and of the path
+/// analysis, hashed into cache keys so that a change to either misses the cache.
+pub(crate) const SYNTH_SOURCE: &str = concat!(
+    include_str!("synth.rs"),
+    include_str!("report/levels/mod.rs"),
+    include_str!("report/levels/delay.rs")
+);
 
 /// FPGA family to synthesize for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,6 +74,9 @@ pub struct SynthStats {
     pub brams: u64,
     /// Worst register-to-register path of the mapped netlist (None: no such path).
     pub path: Option<crate::report::levels::PathLevels>,
+    /// The register-to-register path that enters the most carry chains
+    /// ([`crate::report::levels::most_carry_chains`]; None: no such path).
+    pub chain_path: Option<crate::report::levels::PathLevels>,
 }
 
 /// Yosys warnings that do not change results.
@@ -148,9 +167,59 @@ pub fn parse_stat_json(json: &str, top: &str) -> Option<BTreeMap<String, u64>> {
     Some(m.num_cells_by_type.clone())
 }
 
-/// Synthesizes `verilog` (top module `top`) for `family` in `workdir`.
+/// Synthesizes `verilog` (top module `top`) for `family` in `workdir`, answered from the
+/// directory [`SYNTH_CACHE_ENV`] names when it holds the same run.
 pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> Result<SynthStats> {
+    let cache = std::env::var_os(SYNTH_CACHE_ENV)
+        .filter(|v| !v.is_empty())
+        .map(PathBuf::from);
+    if cache.is_none() {
+        return synthesize_uncached(verilog, top, family, workdir);
+    }
+    static VERSION: OnceLock<String> = OnceLock::new();
+    let version = match VERSION.get() {
+        Some(v) => v.clone(),
+        None => VERSION
+            .get_or_init(|| crate::report::yosys::yosys_version().unwrap_or_default())
+            .clone(),
+    };
+    if version.is_empty() {
+        // No Yosys: the uncached run reports it with its install hint.
+        return synthesize_uncached(verilog, top, family, workdir);
+    }
+    Ok(synthesize_cached(verilog, top, family, workdir, cache.as_deref(), &version)?.0)
+}
+
+/// [`synthesize`] through the cache directory `cache` (None: no cache) for Yosys `version`
+/// (`yosys -V`): the figures, and whether they came from the cache. A failed run stores
+/// nothing, so an error always comes from a real run.
+pub fn synthesize_cached(
+    verilog: &str,
+    top: &str,
+    family: Family,
+    workdir: &Path,
+    cache: Option<&Path>,
+    version: &str,
+) -> Result<(SynthStats, bool)> {
+    let kind = format!("family {} top {top}", family.name());
+    let key = cache_key(&kind, version, SYNTH_SOURCE, verilog);
+    if let Some(c) = cache_load::<CachedSynth>(cache, &key) {
+        return Ok((c.into(), true));
+    }
+    let s = synthesize_uncached(verilog, top, family, workdir)?;
+    cache_store(cache, &key, &CachedSynth::from(&s))?;
+    Ok((s, false))
+}
+
+/// The Yosys run behind [`synthesize`], without a cache.
+fn synthesize_uncached(
+    verilog: &str,
+    top: &str,
+    family: Family,
+    workdir: &Path,
+) -> Result<SynthStats> {
     require_tool("yosys")?;
+    std::fs::create_dir_all(workdir).map_err(|e| Error::io(workdir, e))?;
     let tag = family.name();
     let vfile = workdir.join(format!("synth_{tag}.v"));
     std::fs::write(&vfile, verilog).map_err(|e| Error::io(&vfile, e))?;
@@ -224,13 +293,15 @@ pub fn synthesize(verilog: &str, top: &str, family: Family, workdir: &Path) -> R
     }
     let mut s = classify(&cells, family);
     let netlist = std::fs::read_to_string(&json).map_err(|e| Error::io(&json, e))?;
-    s.path = crate::report::levels::analyze(&netlist, top, family).map_err(|e| match e {
+    let named = |e: Error| match e {
         Error::ToolOutput { tool, message } => Error::ToolOutput {
             tool,
             message: format!("path analysis of `{top}` ({tag}): {message}"),
         },
         other => other,
-    })?;
+    };
+    s.path = crate::report::levels::analyze(&netlist, top, family).map_err(named)?;
+    s.chain_path = crate::report::levels::most_carry_chains(&netlist, top).map_err(named)?;
     Ok(s)
 }
 

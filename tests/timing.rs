@@ -144,10 +144,11 @@ fn shipped_tops_meet_the_timing_rule_after_place_and_route() {
 fn check_designs(what: &str, pick: fn(&Design) -> bool) {
     let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let work = root.join(format!("timing-work-{what}-{}", std::process::id()));
-    // The recorded results, shared with the report tests (report_util::ECP5_SEED).
-    report_util::seed_ecp5_cache(&root.join("timing-cache"));
-    let ecp5 =
-        Ecp5::new(Some(root.join("timing-cache")), work.clone()).unwrap_or_else(|e| panic!("{e}"));
+    // The recorded results, shared with the report tests (report_util::ECP5_SEED), copied
+    // into a directory of this test's own (the other test of this file may run beside it).
+    let cache = root.join(format!("timing-cache-{what}"));
+    report_util::seed_report_cache(&cache);
+    let ecp5 = Ecp5::new(Some(cache), work.clone()).unwrap_or_else(|e| panic!("{e}"));
     let ds: Vec<Design> = designs().into_iter().filter(pick).collect();
     assert!(!ds.is_empty(), "no {what}");
     let started = std::time::Instant::now();

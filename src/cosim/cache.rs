@@ -19,7 +19,7 @@
 //!
 //! The cache is off unless [`COSIM_CACHE_ENV`] names a directory. `scripts/test.sh` points it
 //! at `tests/data/cosim-cache`, committed, so that CI on a fresh clone runs Icarus and
-//! Verilator only for the designs whose Verilog changed (`scripts/cosim_cache.sh` refreshes
+//! Verilator only for the designs whose Verilog changed (`scripts/tool_caches.sh` refreshes
 //! it). Written by hand: the key must cover this harness's own files, which no generic
 //! memoizing crate knows.
 use super::tool::{install_hint, tool_version_named};

@@ -13,7 +13,7 @@
 //! any change to any of them misses the cache.
 use crate::cosim::{require_tool, CosimError};
 use crate::error::{Error, Result};
-use crate::synth::{parse_stat_json, synthesize, Family, SynthStats};
+use crate::synth::{parse_stat_json, synthesize_cached, Family, SynthStats};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
@@ -32,14 +32,6 @@ opt_clean
 tee -q -o {stat} stat -json
 tee -q -o {ltp} ltp -noff
 ";
-
-/// Source of the FPGA synthesis (script and counting rules) and of the path analysis,
-/// hashed into cache keys.
-const SYNTH_SOURCE: &str = concat!(
-    include_str!("../synth.rs"),
-    include_str!("levels/mod.rs"),
-    include_str!("levels/delay.rs")
-);
 
 /// Version of the cache entry layout.
 const CACHE_VERSION: &str = "sinedec-report-cache-2";
@@ -69,7 +61,7 @@ pub struct GateStats {
 
 /// Serializable copy of [`SynthStats`].
 #[derive(Clone, Debug, Serialize, Deserialize)]
-struct CachedSynth {
+pub(crate) struct CachedSynth {
     cells: BTreeMap<String, u64>,
     luts: u64,
     ffs: u64,
@@ -78,6 +70,8 @@ struct CachedSynth {
     brams: u64,
     #[serde(default)]
     path: Option<super::levels::PathLevels>,
+    #[serde(default)]
+    chain_path: Option<super::levels::PathLevels>,
 }
 
 impl From<&SynthStats> for CachedSynth {
@@ -90,6 +84,7 @@ impl From<&SynthStats> for CachedSynth {
             multipliers: s.multipliers,
             brams: s.brams,
             path: s.path.clone(),
+            chain_path: s.chain_path.clone(),
         }
     }
 }
@@ -104,6 +99,7 @@ impl From<CachedSynth> for SynthStats {
             multipliers: c.multipliers,
             brams: c.brams,
             path: c.path,
+            chain_path: c.chain_path,
         }
     }
 }
@@ -137,6 +133,39 @@ pub(crate) fn cache_store<T: Serialize>(dir: Option<&Path>, key: &str, value: &T
     Ok(())
 }
 
+/// The name of a cache entry: the SHA-256 of the entry layout's version, the run kind
+/// (family and top), the Yosys version, the script (for FPGA runs, the source of
+/// `src/synth.rs` and of the path analysis) and the Verilog, each framed by its length.
+pub(crate) fn cache_key(kind: &str, version: &str, script: &str, verilog: &str) -> String {
+    let mut h = Sha256::new();
+    for part in [CACHE_VERSION, kind, version, script, verilog] {
+        h.update((part.len() as u64).to_le_bytes());
+        h.update(part.as_bytes());
+    }
+    h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// `yosys -V`'s output, trimmed; a missing Yosys is an error with its install hint.
+pub fn yosys_version() -> Result<String> {
+    match require_tool("yosys") {
+        Ok(()) => {}
+        Err(CosimError::ToolMissing { install, .. }) => return Err(missing(&install)),
+        Err(e) => return Err(e.into()),
+    }
+    let out = crate::cleanup::output(Command::new("yosys").arg("-V")).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            missing("apt-get install -y yosys")
+        } else {
+            Error::Tool(CosimError::ToolFailed {
+                tool: "yosys".into(),
+                stage: "version".into(),
+                message: e.to_string(),
+            })
+        }
+    })?;
+    Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
+}
+
 /// Runs Yosys with a cache.
 #[derive(Clone, Debug)]
 pub struct Yosys {
@@ -160,23 +189,7 @@ impl Yosys {
     /// Checks that Yosys runs and records its version; `cache` is the cache directory
     /// (None: no cache), `work` a scratch directory for the runs (created on demand).
     pub fn new(cache: Option<PathBuf>, work: PathBuf) -> Result<Yosys> {
-        match require_tool("yosys") {
-            Ok(()) => {}
-            Err(CosimError::ToolMissing { install, .. }) => return Err(missing(&install)),
-            Err(e) => return Err(e.into()),
-        }
-        let out = crate::cleanup::output(Command::new("yosys").arg("-V")).map_err(|e| {
-            if e.kind() == std::io::ErrorKind::NotFound {
-                missing("apt-get install -y yosys")
-            } else {
-                Error::Tool(CosimError::ToolFailed {
-                    tool: "yosys".into(),
-                    stage: "version".into(),
-                    message: e.to_string(),
-                })
-            }
-        })?;
-        let version = String::from_utf8_lossy(&out.stdout).trim().to_string();
+        let version = yosys_version()?;
         Ok(Yosys {
             version,
             cache,
@@ -190,12 +203,7 @@ impl Yosys {
     }
 
     fn key(&self, kind: &str, script: &str, verilog: &str) -> String {
-        let mut h = Sha256::new();
-        for part in [CACHE_VERSION, kind, &self.version, script, verilog] {
-            h.update((part.len() as u64).to_le_bytes());
-            h.update(part.as_bytes());
-        }
-        h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+        cache_key(kind, &self.version, script, verilog)
     }
 
     fn load<T: for<'de> Deserialize<'de>>(&self, key: &str) -> Option<T> {
@@ -224,16 +232,17 @@ impl Yosys {
         family: Family,
         tag: &str,
     ) -> Result<(SynthStats, bool)> {
-        let kind = format!("family {} top {top}", family.name());
-        let key = self.key(&kind, SYNTH_SOURCE, verilog);
-        if let Some(c) = self.load::<CachedSynth>(&key) {
-            return Ok((c.into(), true));
-        }
-        let dir = self.scratch(tag)?;
-        let s = synthesize(verilog, top, family, &dir)?;
-        self.store(&key, &CachedSynth::from(&s))?;
+        let dir = self.work.join(tag);
+        let s = synthesize_cached(
+            verilog,
+            top,
+            family,
+            &dir,
+            self.cache.as_deref(),
+            &self.version,
+        );
         let _ = std::fs::remove_dir_all(&dir);
-        Ok((s, false))
+        s
     }
 
     /// Generic gate count and logic depth ([`GENERIC_SCRIPT`]).

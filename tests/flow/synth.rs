@@ -48,3 +48,59 @@ fn an_undriven_net_is_rejected() {
     let e = synthesize(v, "undriven", Family::CycloneIve, &dir).expect_err("must fail");
     assert!(e.to_string().contains("undriven"), "{e}");
 }
+
+#[test]
+fn the_synthesis_cache_answers_only_the_same_run() {
+    use sinedec::synth::synthesize_cached;
+    let v = "module acc(input wire clk, input wire [3:0] d, output reg [3:0] q);\n\
+             always @(posedge clk) q <= q + d;\nendmodule\n";
+    let dir = common::workdir("synth_cache");
+    let cache = dir.join("cache");
+    let version = sinedec::report::yosys::yosys_version().expect("yosys -V");
+    let run = |v: &str, fam: Family, version: &str| {
+        synthesize_cached(v, "acc", fam, &dir.join("work"), Some(&cache), version)
+            .expect("synthesis")
+    };
+    let entries = || std::fs::read_dir(&cache).map_or(0, |d| d.count());
+    let (first, hit) = run(v, Family::Xc3sa, &version);
+    assert!(!hit, "an empty cache cannot answer");
+    assert_eq!(entries(), 1);
+    assert!(first.ffs == 4 && first.luts > 0, "{first:?}");
+    let (again, hit) = run(v, Family::Xc3sa, &version);
+    assert!(hit, "the same run is answered from the cache");
+    assert_eq!(again, first);
+    // The answer is the entry's: an edited entry is what comes back.
+    let entry = std::fs::read_dir(&cache)
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let text = std::fs::read_to_string(&entry).unwrap();
+    let edited = text.replacen("\"ffs\": 4", "\"ffs\": 40", 1);
+    assert_ne!(edited, text, "entry holds the flip-flop count: {text}");
+    std::fs::write(&entry, edited).unwrap();
+    assert_eq!(run(v, Family::Xc3sa, &version).0.ffs, 40);
+    // A different design, family or Yosys version is a miss and a new entry.
+    let wider = v.replace("[3:0] d", "[4:0] d");
+    assert!(!run(&wider, Family::Xc3sa, &version).1);
+    assert!(!run(v, Family::CycloneIve, &version).1);
+    assert!(!run(v, Family::Xc3sa, "Yosys 0.0 (another build)").1);
+    assert_eq!(entries(), 4);
+    // A failed run stores nothing: the error comes from Yosys every time.
+    let latchy = "module acc(input wire en, input wire d, output reg q);\n\
+                  always @(*) if (en) q = d;\nendmodule\n";
+    for _ in 0..2 {
+        let e = synthesize_cached(
+            latchy,
+            "acc",
+            Family::Xc3sa,
+            &dir.join("w"),
+            Some(&cache),
+            &version,
+        )
+        .expect_err("latch must fail");
+        assert!(e.to_string().contains("latch inferred"), "{e}");
+    }
+    assert_eq!(entries(), 4);
+}

@@ -8,7 +8,6 @@ use sinedec::blocks::velocity::hdl::Velocity;
 use sinedec::blocks::velocity::model::{VelIn, VelocityModel};
 use sinedec::blocks::velocity::{Method, VelocityParams, VelocitySpec};
 use sinedec::blocks::{mask, sext};
-use sinedec::report::levels::{analyze_with, DelayModel, PathLevels};
 use sinedec::synth::{synthesize, Family};
 use sinedec::verify::{block_traces, Simulators};
 
@@ -119,29 +118,6 @@ fn export(p: &VelocityParams, name: &str) -> String {
     sinedec::emit::verilog::export(&uut, name, name).expect("export")
 }
 
-/// The register-to-register path of a Yosys xc3sa netlist with the most carry chains: the
-/// path analysis with a delay model in which entering a carry chain costs far more than
-/// everything else together (LUTs and carry bits break ties), so the slowest path is the
-/// one that enters the most chains, over every path, not only the slowest in time.
-fn most_carry_chains(json: &str, top: &str) -> PathLevels {
-    let chains = DelayModel {
-        name: "carry chains",
-        tcko_ps: 0,
-        tsu_ps: 0,
-        lut_ps: 1,
-        carry_entry_ps: 1_000_000,
-        carry_bit_ps: 1,
-        carry_sum_ps: 0,
-        mux_ps: 1,
-        mult_ps: 1,
-        ram_tco_ps: 0,
-        route_ps: 0,
-    };
-    analyze_with(json, top, &chains)
-        .expect("netlist analysed")
-        .expect("a register-to-register path")
-}
-
 /// Every method at the default constants for both families.
 #[test]
 fn synthesizes_for_both_families() {
@@ -159,8 +135,7 @@ fn synthesizes_for_both_families() {
         // The multiplier is built from adds (docs/velocity.md): no MULT18X18, and no path
         // through two carry chains (the timing rule of docs/timing.md, on every path).
         assert_eq!(x.multipliers, 0, "{m}: hard multipliers");
-        let json = std::fs::read_to_string(dir.join("synth_xc3sa.json")).expect("netlist");
-        let worst = most_carry_chains(&json, &name);
+        let worst = x.chain_path.clone().expect("a register-to-register path");
         assert!(
             worst.carry_chains == 1,
             "{m}: {} carry chains on {} -> {}",

@@ -101,6 +101,29 @@ pub fn analyze(json: &str, top: &str, family: Family) -> Result<Option<PathLevel
     analyze_with(json, top, model(family))
 }
 
+/// A delay model in which entering a carry chain costs far more than everything else
+/// together (LUTs and carry bits break ties): its slowest path is the one that enters the
+/// most carry chains, over every register-to-register path, not only the slowest in time.
+pub const CHAIN_COUNT: DelayModel = DelayModel {
+    name: "carry chains",
+    tcko_ps: 0,
+    tsu_ps: 0,
+    lut_ps: 1,
+    carry_entry_ps: 1_000_000,
+    carry_bit_ps: 1,
+    carry_sum_ps: 0,
+    mux_ps: 1,
+    mult_ps: 1,
+    ram_tco_ps: 0,
+    route_ps: 0,
+};
+
+/// The register-to-register path of module `top` that enters the most carry chains
+/// ([`CHAIN_COUNT`]); the project's rule is one per path (`docs/timing.md`).
+pub fn most_carry_chains(json: &str, top: &str) -> Result<Option<PathLevels>> {
+    analyze_with(json, top, &CHAIN_COUNT)
+}
+
 /// [`analyze`] with an explicit delay model.
 pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<PathLevels>> {
     let v: Value =

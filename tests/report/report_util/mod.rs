@@ -112,24 +112,59 @@ pub fn small_config() -> sinedec::config::Loaded {
 /// report's cache with them keeps about 19 nextpnr runs out of every test run. They are the
 /// tools' own results, not expected values: a design or tool change changes the hash, the
 /// entry is not found and the tools run (then refresh the directory from
-/// `target/tmp/report_cli/cache`, the entries holding `fmax_mhz`).
+/// `target/tmp/report_cli_<pid>/cache`, the entries holding `fmax_mhz`).
 pub const ECP5_SEED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ecp5-cache");
 
-/// Copies the [`ECP5_SEED`] entries into the cache directory `cache`.
-pub fn seed_ecp5_cache(cache: &Path) {
+/// Copies the [`ECP5_SEED`] entries, and the Yosys entries of the directory
+/// `SINEDEC_SYNTH_CACHE` names (`tests/data/yosys-cache` under scripts/test.sh; the report's
+/// Yosys runs use the keys of `sinedec::synth::synthesize`), into the cache directory `cache`.
+pub fn seed_report_cache(cache: &Path) {
     std::fs::create_dir_all(cache).unwrap();
-    for e in std::fs::read_dir(ECP5_SEED).expect("tests/data/ecp5-cache") {
+    let mut seeds = vec![std::path::PathBuf::from(ECP5_SEED)];
+    seeds.extend(synth_cache());
+    for seed in seeds {
+        let Ok(entries) = std::fs::read_dir(&seed) else {
+            continue;
+        };
+        for e in entries {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "json") {
+                std::fs::copy(&p, cache.join(p.file_name().unwrap())).unwrap();
+            }
+        }
+    }
+}
+
+/// The directory `SINEDEC_SYNTH_CACHE` names, if any.
+fn synth_cache() -> Option<std::path::PathBuf> {
+    std::env::var_os(sinedec::synth::SYNTH_CACHE_ENV)
+        .filter(|v| !v.is_empty())
+        .map(std::path::PathBuf::from)
+}
+
+/// Adds the Yosys entries the report stored in `cache` (every entry without a place-and-route
+/// `fmax_mhz`) to the directory `SINEDEC_SYNTH_CACHE` names, as `synthesize` itself does.
+fn keep_yosys_entries(cache: &Path) {
+    let Some(dir) = synth_cache() else {
+        return;
+    };
+    for e in std::fs::read_dir(cache).expect("report cache") {
         let p = e.unwrap().path();
-        if p.extension().is_some_and(|x| x == "json") {
-            std::fs::copy(&p, cache.join(p.file_name().unwrap())).unwrap();
+        let Some(name) = p.file_name() else { continue };
+        if p.extension().is_none_or(|x| x != "json") || dir.join(name).exists() {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        if !text.contains("\"fmax_mhz\"") {
+            std::fs::write(dir.join(name), text).unwrap();
         }
     }
 }
 
 /// Runs `sinedec report` on [`small_config`] for N = 2..=4 into `work/out` with the cache
-/// `work/cache` (seeded with [`ECP5_SEED`]).
+/// `work/cache` (seeded by [`seed_report_cache`]).
 pub fn run_report(work: &Path, out: &str) {
-    seed_ecp5_cache(&work.join("cache"));
+    seed_report_cache(&work.join("cache"));
     let cfg = work.join("small.toml");
     std::fs::write(&cfg, &small_config().text).unwrap();
     let o = Command::new(BIN)
@@ -146,6 +181,7 @@ pub fn run_report(work: &Path, out: &str) {
         "sinedec report failed: {}",
         String::from_utf8_lossy(&o.stderr)
     );
+    keep_yosys_entries(&work.join("cache"));
 }
 
 /// One report shared by the tests of this file (the Yosys runs of the whole top dominate):
@@ -154,7 +190,9 @@ pub fn shared_report() -> &'static (std::path::PathBuf, BTreeMap<String, String>
     static R: std::sync::OnceLock<(std::path::PathBuf, BTreeMap<String, String>)> =
         std::sync::OnceLock::new();
     R.get_or_init(|| {
-        let work = common::workdir("report_cli");
+        // One directory per process: the test runner may run this file's tests in
+        // parallel processes, each with its own report.
+        let work = common::workdir(&format!("report_cli_{}", std::process::id()));
         run_report(&work, "r");
         let files = read_dir(&work.join("r"));
         (work, files)
