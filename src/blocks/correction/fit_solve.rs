@@ -86,263 +86,12 @@
 //! longer (`min_samples` x clocks per sample), which the config checks; a window that ends
 //! while the solver is busy is dropped.
 use super::autocal::c16;
-use super::fit::N_MAX;
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::ROM;
-
-/// The operation of a row on the shared units.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Op {
-    /// u_x / u_d over `steps` (64: u_x / u_d; 80: u_x 2^16 / u_d); rounded half away from
-    /// zero (`round`) or floored; negated when `neg` holds.
-    Div {
-        /// Quotient bits: 64 or 80.
-        steps: u32,
-        /// Round (else floor).
-        round: bool,
-        /// The sign of the result.
-        neg: Sign,
-    },
-    /// (u_x >> 32) u_d, one multiplier bit a step (32 steps).
-    Mul,
-    /// isqrt(u_x), two radicand bits a step (32 steps); u_d starts at 1.
-    Sqrt,
-}
-
-/// The sign a division gives its quotient.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Sign {
-    /// Non-negative.
-    Pos,
-    /// Σd_s < 0.
-    SumS,
-    /// Σd_c < 0.
-    SumC,
-    /// Σd_s d_c < 0.
-    SumSc,
-    /// C >= 0 (S = rdiv(-C 2^16, ...)).
-    CPos,
-    /// The sign S was given.
-    SNeg,
-}
-
-/// A value a row loads into u_x (dividend, multiplier 2^32, radicand) or u_d (divisor,
-/// multiplicand, first trial). The last six are the row before's result, loaded directly.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Src {
-    /// |Σd_s| 2^8 (u_x).
-    A1s8,
-    /// |Σd_c| 2^8 (u_x).
-    A1c8,
-    /// Σd_s² (u_x).
-    A2s,
-    /// Σd_c² (u_x).
-    A2c,
-    /// |Σd_s d_c| (u_x).
-    Asc,
-    /// |m_s| 2^32 (u_x).
-    Ms32,
-    /// |m_c| 2^32 (u_x).
-    Mc32,
-    /// 2 V_s, 0 if V_s < 0 (u_x).
-    Vs2,
-    /// 2 V_c, 0 if V_c < 0 (u_x).
-    Vc2,
-    /// Amp_s 2^32 (u_x).
-    AmpS32,
-    /// Amp_c 2^32 (u_x).
-    AmpC32,
-    /// |C| 2^16 (u_x).
-    Cmag16,
-    /// T 2^(GF+8) (u_x).
-    Tgs,
-    /// T 2^(GF+23) (u_x).
-    Tgc,
-    /// T 2^32 (u_x).
-    T32,
-    /// N (u_d).
-    N,
-    /// |m_s| (u_d).
-    Ms,
-    /// |m_c| (u_d).
-    Mc,
-    /// Amp_s (u_d).
-    AmpS,
-    /// Cc (u_d).
-    Cs,
-    /// |S| (u_d).
-    Smag,
-    /// Amp_s Cc (u_d).
-    Q2,
-    /// 1, a square root's first trial 8 q + 1 (u_d).
-    One,
-    /// The row before's root (u_d).
-    Root,
-    /// The row before's product (u_d).
-    Prod,
-    /// The row before's product 2^(GF+8) (u_x).
-    ProdK,
-    /// 2^30 - the row before's product (u_x).
-    T30,
-    /// The row before's |quotient| clamped to round(2^15 sin 15°) (u_d).
-    Scl,
-    /// That, 2^32 (u_x).
-    Scl32,
-}
-
-/// Where a row's result goes (written at the next row's set-up, or at Load).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Dst {
-    /// Nowhere: the next row loads it directly.
-    Next,
-    /// m_s (magnitude; its sign is Σd_s's).
-    Ms,
-    /// m_c.
-    Mc,
-    /// V_s.
-    Vs,
-    /// V_c.
-    Vc,
-    /// C (Cq for now).
-    Cq,
-    /// V_s -= the product.
-    VsLessProd,
-    /// V_c -= the product.
-    VcLessProd,
-    /// C = Cq - m_s m_c (the product's sign from Σd_s's and Σd_c's).
-    C,
-    /// Amp_s.
-    AmpS,
-    /// Amp_c.
-    AmpC,
-    /// S, clamped to +-round(2^15 sin 15°).
-    S,
-    /// Cc.
-    Cs,
-    /// g_s, clamped to 65535.
-    Gs,
-    /// g_c, clamped to 65535.
-    Gc,
-    /// Amp_s Cc.
-    Q2,
-    /// k, |k| clamped to 65535; then every coefficient loads.
-    K,
-}
-
-/// One step of the solve.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Row {
-    /// Operation.
-    pub op: Op,
-    /// u_x's source.
-    pub x: Src,
-    /// u_d's source.
-    pub d: Src,
-    /// Destination of the result.
-    pub dst: Dst,
-    /// Before this row: refuse (no update) if an amplitude is below min_amplitude 2^8 or an
-    /// offset b_ref + round(m / 2^8) is outside the A-bit range.
-    pub check: bool,
-}
-
-const fn div(steps: u32, round: bool, neg: Sign, x: Src, d: Src, dst: Dst) -> Row {
-    let op = Op::Div { steps, round, neg };
-    Row {
-        op,
-        x,
-        d,
-        dst,
-        check: false,
-    }
-}
-
-const fn mul(x: Src, d: Src, dst: Dst) -> Row {
-    Row {
-        op: Op::Mul,
-        x,
-        d,
-        dst,
-        check: false,
-    }
-}
-
-const fn sqrt(x: Src, dst: Dst) -> Row {
-    Row {
-        op: Op::Sqrt,
-        x,
-        d: Src::One,
-        dst,
-        check: false,
-    }
-}
-
-const fn checked(r: Row) -> Row {
-    Row { check: true, ..r }
-}
-
-const RND: bool = true;
-const FLOOR: bool = false;
-
-/// The solve, beside the lines of [`super::fit::solve`] it computes (s = the sums, m, v, c,
-/// amp, sn, cs, gs, gc, k as there).
-#[rustfmt::skip]
-pub const TABLE: [Row; 20] = {
-    use {Dst as D, Sign as G, Src as S};
-    [
-        div(64, RND, G::SumS, S::A1s8, S::N, D::Ms),      // m[0] = rdiv(s1[0] << 8, n)
-        div(64, RND, G::SumC, S::A1c8, S::N, D::Mc),      // m[1] = rdiv(s1[1] << 8, n)
-        div(80, FLOOR, G::Pos, S::A2s, S::N, D::Vs),      // v[0] = (s2[0] << 16).div_euclid(n)
-        div(80, FLOOR, G::Pos, S::A2c, S::N, D::Vc),      // v[1] = (s2[1] << 16).div_euclid(n)
-        div(80, FLOOR, G::SumSc, S::Asc, S::N, D::Cq),    // c = (sc << 16).div_euclid(n)
-        mul(S::Ms32, S::Ms, D::VsLessProd),               //   v[0] -= m[0] * m[0]
-        mul(S::Mc32, S::Mc, D::VcLessProd),               //   v[1] -= m[1] * m[1]
-        mul(S::Ms32, S::Mc, D::C),                        //   c -= m[0] * m[1]
-        sqrt(S::Vs2, D::AmpS),                            // amp[0] = isqrt(2 * v[0])
-        sqrt(S::Vc2, D::AmpC),                            // amp[1] = isqrt(2 * v[1])
-        mul(S::AmpS32, S::Root, D::Next),                 // amp[0] * amp[1]
-        checked(div(64, RND, G::CPos, S::Cmag16, S::Prod, D::S)), // amp < min, offset: None;
-                                                          // sn = rdiv(-2c << 15, ..).clamp(..)
-        mul(S::Scl32, S::Scl, D::Next),                   // sn * sn
-        sqrt(S::T30, D::Cs),                              // cs = isqrt((1 << 30) - sn * sn)
-        div(64, RND, G::Pos, S::Tgs, S::AmpS, D::Gs),     // gs = rdiv(t << (gf + 8), amp[0])
-        mul(S::AmpC32, S::Cs, D::Next),                   // amp[1] * cs
-        div(64, RND, G::Pos, S::Tgc, S::Prod, D::Gc),     // gc = rdiv(t << (gf + 23), ..)
-        mul(S::AmpS32, S::Cs, D::Q2),                     // amp[0] * cs
-        mul(S::T32, S::Smag, D::Next),                    // t * sn
-        div(64, RND, G::SNeg, S::ProdK, S::Q2, D::K),     // k = rdiv((t * sn) << (gf + 8), ..)
-    ]
-};
-
-/// Clocks a row takes: its set-up, 2 n + 1 for n steps (B, then A and B a step), and a
-/// division's RoundSum, RoundTst, RoundInc and RoundNeg.
-pub const fn row_cycles(r: &Row) -> u32 {
-    match r.op {
-        Op::Div { steps, .. } => 1 + (2 * steps + 1) + 4,
-        Op::Mul | Op::Sqrt => 1 + (2 * 32 + 1),
-    }
-}
-
-/// Clocks from the rising edge that takes `start` to the one that loads the coefficients
-/// of an accepted solve: every row of [`TABLE`], then Load.
-pub const SOLVE_CYCLES: u32 = {
-    let (mut c, mut i) = (1, 0);
-    while i < TABLE.len() {
-        c += row_cycles(&TABLE[i]);
-        i += 1;
-    }
-    c
-};
-
-/// Clocks from a window's first sample after its closing boundary (the sample presented
-/// before rising edge j) to the new coefficients (on the outputs after edge j +
-/// UPDATE_LATENCY): the fit's pipeline stages ([`super::fit_hdl::FIT_STAGES`]), then
-/// [`SOLVE_CYCLES`]; `tests/blocks/correction_fit_rtl.rs` checks every update against it.
-pub const UPDATE_LATENCY: u32 = SOLVE_CYCLES + super::fit_hdl::FIT_STAGES;
-
-// The widths of the module doc assume windows of at most 2^24 samples.
-const _: () = assert!(N_MAX <= 1 << 24);
+pub use table::{row_cycles, Dst, Op, Row, Sign, Src, SOLVE_CYCLES, TABLE, UPDATE_LATENCY};
+use table::{sel, Sel};
 
 /// The sequencer's phase.
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
@@ -363,158 +112,6 @@ pub enum SolveState {
     RoundNeg,
     /// The coefficients load (an accepted solve's last row); pc's decode is back at row 0.
     Load,
-}
-
-/// A row decoded into one-hot selects (`x_*`/`d_*`: u_x / u_d sources that load directly;
-/// `xs_*`/`ds_*`: those through uxr / udr; `w_*`: the row before's destination).
-#[derive(Clone, Copy, Debug, Default, PartialEq, LogicStruct)]
-struct Sel {
-    div: Bit,
-    sq: Bit,
-    mul: Bit,
-    n80: Bit,
-    rnd: Bit,
-    ng_s: Bit,
-    ng_c: Bit,
-    ng_sc: Bit,
-    ng_cpos: Bit,
-    ng_sneg: Bit,
-    x_a1s: Bit,
-    x_scl: Bit,
-    x_t30: Bit,
-    x_urk: Bit,
-    x_st: Bit,
-    xs_a1c: Bit,
-    xs_a2s: Bit,
-    xs_a2c: Bit,
-    xs_asc: Bit,
-    xs_ms: Bit,
-    xs_mc: Bit,
-    xs_vs2: Bit,
-    xs_vc2: Bit,
-    xs_amps: Bit,
-    xs_ampc: Bit,
-    xs_cmag: Bit,
-    xs_tgs: Bit,
-    xs_tgc: Bit,
-    xs_t32: Bit,
-    d_sn: Bit,
-    d_root: Bit,
-    d_prod: Bit,
-    d_scl: Bit,
-    d_one: Bit,
-    d_st: Bit,
-    ds_ms: Bit,
-    ds_mc: Bit,
-    ds_amps: Bit,
-    ds_cs: Bit,
-    ds_smag: Bit,
-    ds_q2: Bit,
-    w_ms: Bit,
-    w_mc: Bit,
-    w_vs: Bit,
-    w_vc: Bit,
-    w_cq: Bit,
-    w_vss: Bit,
-    w_vcs: Bit,
-    w_c: Bit,
-    w_amps: Bit,
-    w_ampc: Bit,
-    w_s: Bit,
-    w_cs: Bit,
-    w_gs: Bit,
-    w_gc: Bit,
-    w_q2: Bit,
-    w_k: Bit,
-    chk: Bit,
-    end: Bit,
-}
-
-/// ROM word `i`: row i's operation, sources and check, and row i - 1's destination (written
-/// at row i's set-up); word 20 ends the program (Load).
-fn sel(i: usize) -> Sel {
-    let mut s = Sel::default();
-    match i.checked_sub(1).map(|j| TABLE[j].dst) {
-        Some(Dst::Ms) => s.w_ms = true,
-        Some(Dst::Mc) => s.w_mc = true,
-        Some(Dst::Vs) => s.w_vs = true,
-        Some(Dst::Vc) => s.w_vc = true,
-        Some(Dst::Cq) => s.w_cq = true,
-        Some(Dst::VsLessProd) => s.w_vss = true,
-        Some(Dst::VcLessProd) => s.w_vcs = true,
-        Some(Dst::C) => s.w_c = true,
-        Some(Dst::AmpS) => s.w_amps = true,
-        Some(Dst::AmpC) => s.w_ampc = true,
-        Some(Dst::S) => s.w_s = true,
-        Some(Dst::Cs) => s.w_cs = true,
-        Some(Dst::Gs) => s.w_gs = true,
-        Some(Dst::Gc) => s.w_gc = true,
-        Some(Dst::Q2) => s.w_q2 = true,
-        Some(Dst::K) => s.w_k = true,
-        Some(Dst::Next) | None => {}
-    }
-    let Some(r) = TABLE.get(i) else {
-        s.end = true;
-        return s;
-    };
-    s.chk = r.check;
-    match r.op {
-        Op::Div { steps, round, neg } => {
-            assert!(
-                steps == 64 || steps == 80,
-                "row {i}: the divider runs 64 or 80 steps"
-            );
-            (s.div, s.n80, s.rnd) = (true, steps == 80, round);
-            match neg {
-                Sign::Pos => {}
-                Sign::SumS => s.ng_s = true,
-                Sign::SumC => s.ng_c = true,
-                Sign::SumSc => s.ng_sc = true,
-                Sign::CPos => s.ng_cpos = true,
-                Sign::SNeg => s.ng_sneg = true,
-            }
-        }
-        Op::Mul => s.mul = true,
-        Op::Sqrt => s.sq = true,
-    }
-    s.x_st = true;
-    match r.x {
-        Src::A1s8 => (s.x_a1s, s.x_st) = (true, false),
-        Src::Scl32 => (s.x_scl, s.x_st) = (true, false),
-        Src::T30 => (s.x_t30, s.x_st) = (true, false),
-        Src::ProdK => (s.x_urk, s.x_st) = (true, false),
-        Src::A1c8 => s.xs_a1c = true,
-        Src::A2s => s.xs_a2s = true,
-        Src::A2c => s.xs_a2c = true,
-        Src::Asc => s.xs_asc = true,
-        Src::Ms32 => s.xs_ms = true,
-        Src::Mc32 => s.xs_mc = true,
-        Src::Vs2 => s.xs_vs2 = true,
-        Src::Vc2 => s.xs_vc2 = true,
-        Src::AmpS32 => s.xs_amps = true,
-        Src::AmpC32 => s.xs_ampc = true,
-        Src::Cmag16 => s.xs_cmag = true,
-        Src::Tgs => s.xs_tgs = true,
-        Src::Tgc => s.xs_tgc = true,
-        Src::T32 => s.xs_t32 = true,
-        x => panic!("row {i}: {x:?} is not a u_x source"),
-    }
-    s.d_st = true;
-    match r.d {
-        Src::N => (s.d_sn, s.d_st) = (true, false),
-        Src::Root => (s.d_root, s.d_st) = (true, false),
-        Src::Prod => (s.d_prod, s.d_st) = (true, false),
-        Src::Scl => (s.d_scl, s.d_st) = (true, false),
-        Src::One => (s.d_one, s.d_st) = (true, false),
-        Src::Ms => s.ds_ms = true,
-        Src::Mc => s.ds_mc = true,
-        Src::AmpS => s.ds_amps = true,
-        Src::Cs => s.ds_cs = true,
-        Src::Smag => s.ds_smag = true,
-        Src::Q2 => s.ds_q2 = true,
-        d => panic!("row {i}: {d:?} is not a u_d source"),
-    }
-    s
 }
 
 /// A 64-bit constant.
@@ -927,6 +524,13 @@ pub struct SolveConsts {
     pub min_amplitude: u32,
 }
 
+/// `T { the fields given, every other field named after the braces: Default::default() }`.
+macro_rules! with_defaults {
+    ($t:ident { $($f:ident: $v:expr,)* } $($d:ident)*) => {
+        $t { $($f: $v,)* $($d: Default::default(),)* }
+    };
+}
+
 impl FitSolve {
     /// Solver for `k` starting from (and reset to) the offsets and gains of `p`.
     pub fn new(p: &CorrectionParams, k: SolveConsts) -> Self {
@@ -936,153 +540,13 @@ impl FitSolve {
         let flip = |v: i64| (v as u64 & mask(32)) ^ (1 << 31);
         let sext = |v: i32| v as i64 as u64 & mask(32);
         let rom = (0..=TABLE.len()).map(|i| (Bits::<5>::from(i as u64), sel(i)));
-        Self {
-            clk: Default::default(),
-            rst: Default::default(),
-            start: Default::default(),
-            n: Default::default(),
-            s1_s: Default::default(),
-            s1_c: Default::default(),
-            s2_s: Default::default(),
-            s2_c: Default::default(),
-            ssc: Default::default(),
-            bref_s: Default::default(),
-            bref_c: Default::default(),
-            busy: Default::default(),
-            done: Default::default(),
-            off_s: Default::default(),
-            off_c: Default::default(),
-            g_s: Default::default(),
-            g_c: Default::default(),
-            k_mag: Default::default(),
-            k_neg: Default::default(),
-            state: Default::default(),
-            pc: Default::default(),
+        with_defaults!(Self {
             rom: ROM::new(rom.collect()),
-            dn: Default::default(),
-            pl: Default::default(),
-            f_ret: Default::default(),
-            bad: Default::default(),
-            go: Default::default(),
-            ret: Default::default(),
-            ok: Default::default(),
             nosel: Constant::new(Sel::default()),
-            u_x: Default::default(),
-            u_d: Default::default(),
-            u_r: Default::default(),
-            u_mag: Default::default(),
-            u_q: Default::default(),
-            u_neg: Default::default(),
-            u_rnd: Default::default(),
-            u_adj: Default::default(),
-            u_adjq: Default::default(),
-            uxs: Default::default(),
-            it: Default::default(),
-            f_div: Default::default(),
-            f_sq: Default::default(),
-            f_mul: Default::default(),
-            f_add: Default::default(),
-            f_sh1: Default::default(),
-            f_sh2: Default::default(),
-            f_qx: Default::default(),
-            f_qd: Default::default(),
-            f_last: Default::default(),
-            x_q: Default::default(),
-            x_en: Default::default(),
-            d_en: Default::default(),
-            clr_r: Default::default(),
-            oa: Default::default(),
-            ob: Default::default(),
-            uxr: Default::default(),
-            uxa: Default::default(),
-            uxb: Default::default(),
-            uxc: Default::default(),
-            udr: Default::default(),
-            xr: Default::default(),
-            rz: Default::default(),
-            req: Default::default(),
-            rneg: Default::default(),
-            run: Default::default(),
-            step: Default::default(),
-            opa: Default::default(),
-            up: Default::default(),
-            opb: Default::default(),
-            adjw: Default::default(),
-            adjqw: Default::default(),
-            adjn: Default::default(),
-            negn: Default::default(),
-            uxn: Default::default(),
-            udn: Default::default(),
-            uxan: Default::default(),
-            uxbn: Default::default(),
-            uxcn: Default::default(),
-            udrn: Default::default(),
-            sn: Default::default(),
-            a1_s: Default::default(),
-            a1_c: Default::default(),
-            n1_s: Default::default(),
-            n1_c: Default::default(),
-            a2_s: Default::default(),
-            a2_c: Default::default(),
-            asc: Default::default(),
-            asc_h: Default::default(),
-            asl: Default::default(),
-            ash: Default::default(),
-            alz: Default::default(),
-            nsc: Default::default(),
-            br_s: Default::default(),
-            br_c: Default::default(),
-            m_s: Default::default(),
-            m_c: Default::default(),
-            v_s: Default::default(),
-            v_c: Default::default(),
-            cc: Default::default(),
-            amp_s: Default::default(),
-            amp_c: Default::default(),
-            smag: Default::default(),
-            sneg: Default::default(),
-            cs: Default::default(),
-            ng_s: Default::default(),
-            ng_c: Default::default(),
-            q2: Default::default(),
-            vsel: Default::default(),
-            vd: Default::default(),
-            ccp: Default::default(),
-            ccm: Default::default(),
-            ccn: Default::default(),
-            cmag: Default::default(),
-            cpos: Default::default(),
-            t30: Default::default(),
-            t_s: Default::default(),
-            t_c: Default::default(),
-            o_s: Default::default(),
-            o_c: Default::default(),
-            lo_s: Default::default(),
-            lo_c: Default::default(),
-            oor_sl: Default::default(),
-            oor_sh: Default::default(),
-            oor_cl: Default::default(),
-            oor_ch: Default::default(),
-            xh1: Default::default(),
-            xh2: Default::default(),
-            xh3: Default::default(),
-            xl: Default::default(),
-            xgt_s: Default::default(),
-            xge_s: Default::default(),
-            xff: Default::default(),
-            big_s: Default::default(),
-            big_c: Default::default(),
-            mnz: Default::default(),
-            xh: Default::default(),
-            scl: Default::default(),
-            ngf: Default::default(),
             r_os: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[SIN]))),
             r_oc: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[COS]))),
             r_gs: DFFWithInit::new(Bits::<16>::from(p.gain()[SIN] as u64)),
             r_gc: DFFWithInit::new(Bits::<16>::from(p.gain()[COS] as u64)),
-            r_km: Default::default(),
-            r_kn: Default::default(),
-            r_done: Default::default(),
             minamp: cw((k.min_amplitude as u64) << 8),
             tgs: c64(t << (gf + 8)),
             tgc: c64(t << (gf + 23)),
@@ -1123,6 +587,15 @@ impl FitSolve {
             g0_s: c16(p.gain()[SIN] as u64),
             g0_c: c16(p.gain()[COS] as u64),
         }
+            clk rst start n s1_s s1_c s2_s s2_c ssc bref_s bref_c busy done off_s off_c g_s
+            g_c k_mag k_neg state pc dn pl f_ret bad go ret ok u_x u_d u_r u_mag u_q u_neg
+            u_rnd u_adj u_adjq uxs it f_div f_sq f_mul f_add f_sh1 f_sh2 f_qx f_qd f_last
+            x_q x_en d_en clr_r oa ob uxr uxa uxb uxc udr xr rz req rneg run step opa up opb
+            adjw adjqw adjn negn uxn udn uxan uxbn uxcn udrn sn a1_s a1_c n1_s n1_c a2_s
+            a2_c asc asc_h asl ash alz nsc br_s br_c m_s m_c v_s v_c cc amp_s amp_c smag
+            sneg cs ng_s ng_c q2 vsel vd ccp ccm ccn cmag cpos t30 t_s t_c o_s o_c lo_s lo_c
+            oor_sl oor_sh oor_cl oor_ch xh1 xh2 xh3 xl xgt_s xge_s xff big_s big_c mnz xh
+            scl ngf r_km r_kn r_done)
     }
 }
 impl crate::cosim::step::Clocked for FitSolve {
@@ -1188,4 +661,5 @@ impl crate::cosim::CosimBlock for FitSolve {
     }
 }
 
+mod table;
 mod update;
