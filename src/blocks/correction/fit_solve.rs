@@ -174,11 +174,13 @@ pub struct FitSolve {
     rom: ROM<Sel, 5>,
     /// ROM word of pc, registered (held through the row before's run).
     dn: DFF<Sel>,
-    /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects.
+    /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
+    /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
     pl: DFF<Sel>,
     /// The next clock is a set-up or Load: an operation's last B clock or RoundNeg.
     f_ret: DFF<Bit>,
-    /// A checked row refuses: an amplitude low or an offset out of range (free-running).
+    /// A checked row refuses: an amplitude low or an offset out of range (free-running;
+    /// timing: keeps the six compares off the `ok` -> `pl` path).
     bad: DFF<Bit>,
     /// A solve starts in this clock (idle and `start`).
     go: Signal<Local, Bit>,
@@ -205,9 +207,9 @@ pub struct FitSolve {
     u_rnd: DFF<Bit>,
     /// The quotient's increment adj (RoundTst).
     u_adj: DFF<Bit>,
-    /// u_adj ^ u_neg, written beside it: the addend of u_q = uxs + it.
+    /// u_adj ^ u_neg, written beside it (timing: the u_q chain starts at registers).
     u_adjq: DFF<Bit>,
-    /// u_x, inverted when u_neg (free-running).
+    /// u_x, inverted when u_neg (free-running; timing: the u_q chain starts at registers).
     uxs: DFF<Bits<64>>,
     /// Steps left in the run.
     it: DFF<Bits<8>>,
@@ -232,7 +234,8 @@ pub struct FitSolve {
     f_last: DFF<Bit>,
     /// u_x loads u_q (RoundNeg).
     x_q: DFF<Bit>,
-    /// u_x loads (a set-up, a shift, RoundNeg): the registered enable of its AND-OR mux.
+    /// u_x loads (a set-up, a shift, RoundNeg): the registered enable of its AND-OR mux
+    /// (timing: no state decode on u_x's enable path; d_en, clr_r, x_q likewise).
     x_en: DFF<Bit>,
     /// u_d loads (a set-up, a root bit).
     d_en: DFF<Bit>,
@@ -242,7 +245,8 @@ pub struct FitSolve {
     oa: DFF<Bits<52>>,
     /// {opb, cin}: its second operand and carry in.
     ob: DFF<Bits<53>>,
-    /// u_x's source through registers: uxa | uxb | uxc (free-running).
+    /// u_x's source through registers: uxa | uxb | uxc (free-running; timing: with the three
+    /// below, the sources written rows earlier stay off the u_x mux path).
     uxr: DFF<Bits<64>>,
     /// The source dn selects among Σd_c 2^8, Σd_s², Σd_c², |Σd_s d_c|, 2 V_s.
     uxa: DFF<Bits<64>>,
@@ -251,7 +255,7 @@ pub struct FitSolve {
     /// The source dn selects among Amp_c 2^32, |C| 2^16, T 2^(GF+8), T 2^(GF+23), T 2^32.
     uxc: DFF<Bits<64>>,
     /// u_d's source through a register: the one dn selects among m_s, m_c, Amp_s, Cc, |S|,
-    /// Amp_s Cc.
+    /// Amp_s Cc (timing: off the u_d mux path).
     udr: DFF<Bits<52>>,
     /// (u_r ^ u_d) ^ ((u_r | u_d) << 1), zero exactly when u_r + u_d = 0 (mod 2^52): in a
     /// zero sum the carry into bit i is a_i ^ b_i and out of it a_i | b_i (free-running).
@@ -312,7 +316,7 @@ pub struct FitSolve {
     asc: DFF<Bits<56>>,
     /// The clock after the start with Σd_s d_c < 0: asc takes its negation.
     asc_h: DFF<Bit>,
-    /// 0 - asc's bits 0-27 (free-running; asc's negation in two 28-bit chains).
+    /// 0 - asc's bits 0-27 (free-running; timing: asc's negation in two 28-bit chains).
     asl: DFF<Bits<28>>,
     /// 0 - asc's bits 28-55 (free-running): the high half of -x when bits 0-27 are zero.
     ash: DFF<Bits<28>>,
@@ -351,7 +355,8 @@ pub struct FitSolve {
     /// Amp_s Cc.
     q2: DFF<Bits<40>>,
     // ---- free-running: each a clock behind its inputs, read rows later
-    /// v_c when the running row subtracts from V_c, else v_s.
+    /// v_c when the running row subtracts from V_c, else v_s (timing: vd's chain starts at
+    /// registers).
     vsel: DFF<Bits<49>>,
     /// vsel - u_r: V - m².
     vd: DFF<Bits<49>>,
@@ -379,7 +384,7 @@ pub struct FitSolve {
     lo_s: DFF<Bit>,
     /// Amp_c < min_amplitude 2^8.
     lo_c: DFF<Bit>,
-    /// o_s below the A-bit range (one compare a register, beside its offset).
+    /// o_s below the A-bit range (timing: one compare a register, beside its offset).
     oor_sl: DFF<Bit>,
     /// o_s at or above it.
     oor_sh: DFF<Bit>,
@@ -388,7 +393,7 @@ pub struct FitSolve {
     /// o_c at or above it.
     oor_ch: DFF<Bit>,
     /// u_x bits 31..16 not all zero (with the six below, u_mag's compares from the quotient
-    /// it rounds, two clocks ahead).
+    /// it rounds, two clocks ahead; timing: no chain in front of scl / ngf / big_*).
     xh1: DFF<Bit>,
     /// u_x bits 47..32 not all zero.
     xh2: DFF<Bit>,
