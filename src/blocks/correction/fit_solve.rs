@@ -89,9 +89,8 @@ use super::autocal::c16;
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
-use rust_hdl::widgets::prelude::ROM;
 pub use table::{row_cycles, Dst, Op, Row, Sign, Src, SOLVE_CYCLES, TABLE, UPDATE_LATENCY};
-use table::{sel, Sel};
+use table::{Sel, TableRom};
 
 /// The sequencer's phase.
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
@@ -170,8 +169,8 @@ pub struct FitSolve {
     state: DFF<SolveState>,
     /// Program counter: the row the next set-up starts (20: Load).
     pc: DFF<Bits<5>>,
-    /// The table, one word a row ([`sel`]).
-    rom: ROM<Sel, 5>,
+    /// The table, one word a row.
+    rom: TableRom,
     /// ROM word of pc, registered (held through the row before's run).
     dn: DFF<Sel>,
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
@@ -544,9 +543,8 @@ impl FitSolve {
         let lim = 1i64 << (k.adc_width - 1);
         let flip = |v: i64| (v as u64 & mask(32)) ^ (1 << 31);
         let sext = |v: i32| v as i64 as u64 & mask(32);
-        let rom = (0..=TABLE.len()).map(|i| (Bits::<5>::from(i as u64), sel(i)));
         with_defaults!(Self {
-            rom: ROM::new(rom.collect()),
+            rom: TableRom::new(),
             nosel: Constant::new(Sel::default()),
             r_os: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[SIN]))),
             r_oc: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[COS]))),

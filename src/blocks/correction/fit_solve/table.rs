@@ -418,3 +418,49 @@ pub(super) fn sel(i: usize) -> Sel {
     }
     s
 }
+
+/// [`TABLE`] as a combinational ROM: `data` is the word [`sel`] of row `address` (0 past
+/// the end). Its Verilog ORs the words ANDed with their address compares, no case
+/// statement: no synthesis flow infers a memory from it (a block RAM's clock-to-out would
+/// sit in front of `dn`, and the Cyclone flow cannot map one).
+#[derive(LogicBlock)]
+pub(super) struct TableRom {
+    /// The program counter.
+    pub address: Signal<In, Bits<5>>,
+    /// Its row's word.
+    pub data: Signal<Out, Sel>,
+    _words: Vec<Sel>,
+}
+
+impl TableRom {
+    /// The ROM of [`TABLE`].
+    pub(super) fn new() -> Self {
+        Self {
+            address: Default::default(),
+            data: Default::default(),
+            _words: (0..=TABLE.len()).map(sel).collect(),
+        }
+    }
+}
+
+impl Logic for TableRom {
+    fn update(&mut self) {
+        let i = self.address.val().index();
+        self.data.next = self._words.get(i).copied().unwrap_or_default();
+    }
+
+    fn connect(&mut self) {
+        self.data.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        let w = Sel::BITS;
+        let terms = self
+            ._words
+            .iter()
+            .enumerate()
+            .map(|(i, s)| format!("({{{w}{{address == 5'd{i}}}}} & {})", s.verilog()));
+        let terms: Vec<String> = terms.collect();
+        Verilog::Custom(format!("always @* data = {};", terms.join("\n    | ")))
+    }
+}
