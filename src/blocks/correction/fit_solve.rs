@@ -90,7 +90,7 @@ use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 pub use table::{row_cycles, Dst, Op, Row, Sign, Src, SOLVE_CYCLES, TABLE, UPDATE_LATENCY};
-use table::{Sel, TableRom};
+use table::{sel, Sel, TableRom};
 
 /// The sequencer's phase.
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
@@ -171,7 +171,8 @@ pub struct FitSolve {
     pc: DFF<Bits<5>>,
     /// The table, one word a row.
     rom: TableRom,
-    /// ROM word of pc, registered (held through the row before's run).
+    /// ROM word of pc, registered (held through the row before's run; row 0's from the
+    /// clock after a reset).
     dn: DFF<Sel>,
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
     /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
@@ -181,7 +182,8 @@ pub struct FitSolve {
     /// A checked row refuses: an amplitude low or an offset out of range (free-running;
     /// timing: keeps the six compares off the `ok` -> `pl` path).
     bad: DFF<Bit>,
-    /// A solve starts in this clock (idle and `start`).
+    /// A solve starts in this clock: idle, `start`, and dn holds row 0 (not so only in the
+    /// first clock after power-up, before dn has loaded).
     go: Signal<Local, Bit>,
     /// The set-up (or Load) is next: `go` or `f_ret`, no reset.
     ret: Signal<Local, Bit>,
@@ -189,6 +191,8 @@ pub struct FitSolve {
     ok: Signal<Local, Bit>,
     /// All selects clear.
     nosel: Constant<Sel>,
+    /// Row 0's word.
+    row0: Constant<Sel>,
     // ---- the shared units
     /// Dividend / quotient, multiplier operand or radicand: shifted out at the top.
     u_x: DFF<Bits<64>>,
@@ -546,6 +550,7 @@ impl FitSolve {
         with_defaults!(Self {
             rom: TableRom::new(),
             nosel: Constant::new(Sel::default()),
+            row0: Constant::new(sel(0)),
             r_os: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[SIN]))),
             r_oc: DFFWithInit::new(Bits::<32>::from(sext(p.offset()[COS]))),
             r_gs: DFFWithInit::new(Bits::<16>::from(p.gain()[SIN] as u64)),

@@ -19,7 +19,8 @@ impl Logic for FitSolve {
         // again as one-clock selects (pl); `ret` is the clock before a set-up or Load.
         self.rom.address.next = self.pc.q.val();
         self.dn.d.next = self.rom.data.val();
-        self.go.next = (self.state.q.val() == SolveState::Idle) & self.start.val();
+        self.go.next =
+            (self.state.q.val() == SolveState::Idle) & self.start.val() & self.dn.q.val().x_a1s;
         self.ret.next = (self.go.val() | self.f_ret.q.val()) & !self.rst.val();
         self.ok.next = !(self.dn.q.val().chk & self.bad.q.val());
         self.pl.d.next = self.nosel.val();
@@ -485,12 +486,13 @@ impl Logic for FitSolve {
             self.r_gc.d.next = self.ng_c.q.val();
             self.r_done.d.next = true;
         }
-        // Reset: idle at row 0, no run, no return, no pending selects (`ret` is low, so pl
+        // Reset: idle at row 0 (dn its word from the next clock on), no run, no return, no pending selects (`ret` is low, so pl
         // clears); the configured coefficients. Working registers are loaded or cleared by
         // every solve before it reads them.
         if self.rst.val() {
             self.state.d.next = SolveState::Idle;
             self.pc.d.next = self.zero5.val();
+            self.dn.d.next = self.row0.val();
             self.f_ret.d.next = false;
             self.f_div.d.next = false;
             self.f_sq.d.next = false;
