@@ -2,6 +2,28 @@
 //! bit growth): the sequencer, the shared units, the solve's values.
 use super::*;
 
+/// The sequencer's phase.
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum SolveState {
+    /// Waiting for `start`.
+    Idle,
+    /// Operands in, the row before's result out.
+    SetUp,
+    /// The steps of the row's operation.
+    Run,
+    /// A division's rounding sum 2 u_r -+ u_d.
+    RoundSum,
+    /// Its increment adj.
+    RoundTst,
+    /// u_mag = u_x + adj, u_q the signed quotient.
+    RoundInc,
+    /// u_x = u_q.
+    RoundNeg,
+    /// The coefficients load after the last row (a refused solve loads nothing); dn is
+    /// back at row 0.
+    Load,
+}
+
 impl Logic for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
