@@ -53,6 +53,10 @@ if [ ! -x "$yowasp_bin/fusesoc" ] && ! command -v fusesoc >/dev/null 2>&1; then
   "$fs_pip" install -q fusesoc==2.4.7
 fi
 export SINEDEC_YOWASP_BIN="$yowasp_bin"
+# Icarus and Verilator verdicts by design hash (src/cosim/cache.rs): a design whose Verilog,
+# stimulus and tool version match a committed entry is not simulated again, and a run that
+# misses adds its entry (scripts/cosim_cache.sh rebuilds the directory from scratch).
+export SINEDEC_COSIM_CACHE="${SINEDEC_COSIM_CACHE-$PWD/tests/data/cosim-cache}"
 yosys -V
 iverilog -V 2>&1 | sed -n 1p || true
 verilator --version
@@ -63,4 +67,12 @@ verilator --version
 # Free disk before the build (the suite's build takes about 2 GB): printed so that a tool
 # failing on a full disk can be told from a real failure.
 df -h . "${TMPDIR:-/tmp}" 2>/dev/null || true
-cargo test --all-targets "$@"
+# cargo-nextest (on the project's machines beside cargo) runs every test of every binary
+# from one queue, so a binary's last long test does not leave the other core idle; it does
+# not run benches, which `cargo test --benches` runs once each as a smoke test.
+if cargo nextest --version >/dev/null 2>&1; then
+  cargo nextest run --lib --bins --tests --no-fail-fast "$@"
+  cargo test --benches --examples
+else
+  cargo test --all-targets "$@"
+fi

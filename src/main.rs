@@ -25,6 +25,20 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Writes Verilog and the parameter report for a configuration.
+    ///
+    /// Writes `<name>_core.v`, `<name>_core_tb.v` (self-checking testbench), `<name>_top.v`,
+    /// `<name>_params.md`, `<name>_params.json`, `<name>_inst.v`, `<name>_sinedec.core`
+    /// (FuseSoC) and `<name>_lint.vlt` (Verilator `-Wall` waivers with their reasons).
+    ///
+    /// With a `[board]` section it adds `<name>_top.ucf`, plus `<name>_board.v`,
+    /// `<name>_clock.v` and `<name>_clock_sim.v` when the board's oscillator is not the system
+    /// clock (see `[board] clock_hz`); with `preset = "spartan3an-starter-kit"` also
+    /// `<name>_top.ut`, BitGen options for `bitgen -f <name>_top.ut`: `-g UnusedPin:PullUp`.
+    /// A `[capacitive]` config gets `<name>_top.qsf` and `<name>_top.sdc` for Quartus.
+    ///
+    /// Without CONFIG it uses the embedded `configs/spartan3an.toml`. DIR follows the
+    /// output-directory rule: sinedec never overwrites or removes a file it did not write.
+    /// Same config and command give the same bytes.
     Generate {
         /// Configuration file (TOML); the embedded Spartan-3AN default when omitted.
         config: Option<PathBuf>,
@@ -38,63 +52,55 @@ enum Command {
         force: bool,
     },
     /// Simulates the board top cycle by cycle against encoder, ADC and amplifier models.
+    ///
+    /// Cycle-accurate simulation of `<name>_top` against an encoder model (imperfections,
+    /// speed profile `constant:RPM`, `ramp:FROM:TO:S`, `reversal:RPM:AT:OVER`, `creep`), an
+    /// LTC1407A-1 model answering the SPI frames and an LTC6912-1 model. Prints max/RMS error
+    /// in LSB and arc-seconds, sample rate, latency, flags, ADC protocol violations and
+    /// simulation speed, with a progress bar.
+    ///
+    /// On a `[capacitive]` config it runs `cap_top` against the capacitive encoder and a
+    /// 16-bit SPI ADC model and prints the error in mechanical degrees and the per-sample
+    /// processing time; the track imperfections
+    /// (`--offset-sin/--offset-cos/--gain-mismatch/--phase-error/--harmonic3`) do not apply
+    /// there and are rejected.
+    ///
+    /// The compiled engine runs by default: built from the Verilog of the same rust-hdl top
+    /// by Yosys and rustc, cached under `$SINEDEC_ENGINE_CACHE`, else
+    /// `$XDG_CACHE_HOME/sinedec/engine`, else `~/.cache/sinedec/engine` (empty or relative
+    /// values ignored, as the XDG specification says). A cached library is loaded only when
+    /// its bytes match the SHA-256 stored beside it; a damaged entry is rebuilt, and a cache
+    /// that cannot be written is said in one stderr line naming its path and variable while
+    /// the model is built in a temporary directory.
+    ///
+    /// Options are checked before the run: speeds finite within ±1,000,000 rpm, ramp and
+    /// reversal times > 0, `--amplitude` in (0, 1], `--noise-lsb` 0..=10000, offsets and
+    /// `--gain-mismatch` -1..=1, `--phase-error` -45..=45 degrees, `--harmonic3` -0.5..=0.5,
+    /// `--duration` (0, 10] s. A run with no decoded sample past the settling ones is an
+    /// error, and on the capacitive path a `--duration` within the filters' 1.5 ms settling
+    /// window is refused before the run. A profile faster than the decoder follows
+    /// (`check`'s max speed: the unwrap limit, on the capacitive path also the low-pass
+    /// corner) runs with a warning on stderr: its error figures measure a lost track.
+    /// Negative values may be written in scientific notation (`--offset-sin -1e-1`).
+    ///
+    /// Without `--csv` no decoded sample is kept (the statistics are gathered as they come),
+    /// so memory stays bounded however long the run.
     #[command(allow_negative_numbers = true)]
-    Simulate {
-        /// Configuration file (TOML); the embedded default when omitted.
-        config: Option<PathBuf>,
-        /// Speed profile: constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep.
-        #[arg(long, default_value = "constant:300")]
-        profile: String,
-        /// Simulated time in seconds.
-        #[arg(long, default_value_t = 0.002, allow_hyphen_values = true)]
-        duration: f64,
-        /// Track amplitude as a fraction of the ADC input range.
-        #[arg(long, default_value_t = 0.8, allow_hyphen_values = true)]
-        amplitude: f64,
-        /// Gaussian noise, RMS in ADC LSB.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        noise_lsb: f64,
-        /// Offset of the sin track, fraction of the amplitude.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        offset_sin: f64,
-        /// Offset of the cos track, fraction of the amplitude.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        offset_cos: f64,
-        /// Relative gain mismatch of the tracks.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        gain_mismatch: f64,
-        /// Quadrature phase error in degrees.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        phase_error: f64,
-        /// Third-harmonic ratio.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-        harmonic3: f64,
-        /// Noise seed.
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
-        /// Write every decoded sample as CSV (checked before the simulation; the directory
-        /// must exist; an existing file is replaced).
-        #[arg(long)]
-        csv: Option<PathBuf>,
-        /// Write the top's pins, cycle by cycle, as VCD (checked like --csv).
-        #[arg(long)]
-        vcd: Option<PathBuf>,
-        /// Simulation engine of the top. compiled: Yosys turns the emitted Verilog into a
-        /// netlist, rustc compiles it (cached under ~/.cache/sinedec/engine; 100-250x
-        /// rust-hdl). rust-hdl: the reference simulation. interpreter: the engine's netlist
-        /// interpreted (no rustc needed). Without --engine the compiled engine runs, or the
-        /// interpreter without rustc, or rust-hdl without Yosys, each fallback said on
-        /// stderr; an engine named here runs or fails. All give the same report, proven by
-        /// tests/system/engine.rs, tests/system/engine_loop.rs and the co-simulation tests.
-        #[arg(long, value_enum)]
-        engine: Option<EngineArg>,
-    },
+    Simulate(SimulateArgs),
     /// Validates a configuration and prints its derived parameters.
+    ///
+    /// Says first whether the config has a board top (`<name>_top.v`, beyond the core and its
+    /// testbench that `generate` always writes) and whether `simulate` can run (it runs the
+    /// board top: a `generic` sinewave config has none), then prints the derived parameters:
+    /// widths, guard bits, latency, ADC timing and its I/O budget, sample rate, resolution,
+    /// maximum speed at full resolution.
     Check {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,
     },
     /// Writes a commented example configuration.
+    ///
+    /// Creates missing parent directories; refuses an existing file without `--force`.
     Init {
         /// Where to write it (missing parent directories are created).
         #[arg(default_value = "sinedec.toml")]
@@ -105,6 +111,24 @@ enum Command {
     },
     /// Gates, LUTs, flip-flops, latency and accuracy per CORDIC iteration count (both
     /// architectures), and every block of the top synthesized alone.
+    ///
+    /// Per CORDIC iteration count (`--iterations`): latency, throughput, Yosys
+    /// LUT/FF/carry/multiplier/BRAM counts for xc3sa and cycloneive, a generic 2-input gate
+    /// count (`abc -g AND,NAND,OR,NOR,XOR,XNOR,ANDNOT,ORNOT,MUX`, MUX = 1 gate), logic depth
+    /// (`ltp -noff`), max/RMS error against exact atan2 over every 14-bit input pair of at
+    /// least 1/8 full scale, predicted error, the thesis's figures as marked reference rows,
+    /// and SVG plots.
+    ///
+    /// Per N it also synthesizes the other CORDIC architecture (table "Architectures
+    /// (unrolled vs iterative)": LUT/FF/LE, latency, throughput, LUT ratio; plot
+    /// `<name>_report_area_vs_n_arch.svg`), and it synthesizes every block of `<name>_top`
+    /// alone plus the whole top (table "Blocks of `<name>_top`", JSON `blocks`,
+    /// `<name>_report_blocks.csv`), with the post-route Fmax of nextpnr-ecp5 at placement
+    /// seeds 1, 2 and 3 and their median, the figures the timing rule of docs/timing.md
+    /// judges.
+    ///
+    /// Yosys and nextpnr results are cached by design hash. DIR follows the output-directory
+    /// rule, checked before the run.
     Report {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,
@@ -130,6 +154,59 @@ enum Command {
         #[arg(long)]
         no_cache: bool,
     },
+}
+
+/// `simulate`'s arguments (the command's help is on [`Command::Simulate`]).
+#[derive(clap::Args)]
+struct SimulateArgs {
+    /// Configuration file (TOML); the embedded default when omitted.
+    config: Option<PathBuf>,
+    /// Speed profile: constant:RPM, ramp:FROM:TO:SECONDS, reversal:RPM:AT_S:OVER_S, creep.
+    #[arg(long, default_value = "constant:300")]
+    profile: String,
+    /// Simulated time in seconds.
+    #[arg(long, default_value_t = 0.002, allow_hyphen_values = true)]
+    duration: f64,
+    /// Track amplitude as a fraction of the ADC input range.
+    #[arg(long, default_value_t = 0.8, allow_hyphen_values = true)]
+    amplitude: f64,
+    /// Gaussian noise, RMS in ADC LSB.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    noise_lsb: f64,
+    /// Offset of the sin track, fraction of the amplitude.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    offset_sin: f64,
+    /// Offset of the cos track, fraction of the amplitude.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    offset_cos: f64,
+    /// Relative gain mismatch of the tracks.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    gain_mismatch: f64,
+    /// Quadrature phase error in degrees.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    phase_error: f64,
+    /// Third-harmonic ratio.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    harmonic3: f64,
+    /// Noise seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Write every decoded sample as CSV (checked before the simulation; the directory
+    /// must exist; an existing file is replaced).
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Write the top's pins, cycle by cycle, as VCD (checked like --csv).
+    #[arg(long)]
+    vcd: Option<PathBuf>,
+    /// Simulation engine of the top. compiled: Yosys turns the emitted Verilog into a
+    /// netlist, rustc compiles it (cached under ~/.cache/sinedec/engine; 100-250x
+    /// rust-hdl). rust-hdl: the reference simulation. interpreter: the engine's netlist
+    /// interpreted (no rustc needed). Without --engine the compiled engine runs, or the
+    /// interpreter without rustc, or rust-hdl without Yosys, each fallback said on
+    /// stderr; an engine named here runs or fails. All give the same report, proven by
+    /// tests/system/engine.rs, tests/system/engine_loop.rs and the co-simulation tests.
+    #[arg(long, value_enum)]
+    engine: Option<EngineArg>,
 }
 
 /// `simulate --engine`.
@@ -237,6 +314,114 @@ macro_rules! say {
     ($($t:tt)*) => { out(&format!("{}\n", format_args!($($t)*))) };
 }
 
+/// `sinedec simulate`: checks the options and outputs, runs the closed loop with a progress
+/// bar, then writes the CSV and VCD and prints the summary.
+fn simulate(args: SimulateArgs) -> Result<()> {
+    let SimulateArgs {
+        config,
+        profile,
+        duration,
+        amplitude,
+        noise_lsb,
+        offset_sin,
+        offset_cos,
+        gain_mismatch,
+        phase_error,
+        harmonic3,
+        seed,
+        csv,
+        vcd,
+        engine,
+    } = args;
+    let loaded = load(&config)?;
+    if !(duration > 0.0 && duration <= 10.0) {
+        bail!("--duration {duration}: allowed 0 < seconds <= 10");
+    }
+    distinct_outputs(&config, &[("--csv", csv.as_ref()), ("--vcd", vcd.as_ref())])?;
+    // The output files are checked (and their temporary files created beside them)
+    // before the simulation runs.
+    let mut csv_out = csv.as_deref().map(PendingFile::new).transpose()?;
+    let mut vcd_out = vcd.as_deref().map(PendingFile::new).transpose()?;
+    let o = sinedec::simulate::SimOptions {
+        profile: sinedec::simulate::parse_profile(&profile)?,
+        duration_s: duration,
+        amplitude,
+        noise_lsb,
+        offset: (offset_sin, offset_cos),
+        gain_mismatch,
+        phase_error_deg: phase_error,
+        third_harmonic: harmonic3,
+        seed,
+        engine: match engine {
+            None => sinedec::sim::dut::EngineKind::Auto,
+            Some(EngineArg::RustHdl) => sinedec::sim::dut::EngineKind::RustHdl,
+            Some(EngineArg::Compiled) => sinedec::sim::dut::EngineKind::Compiled,
+            Some(EngineArg::Interpreter) => sinedec::sim::dut::EngineKind::Interpreted,
+        },
+        // Without --csv no sample is kept: memory stays bounded on long runs.
+        keep_records: csv.is_some(),
+        ..Default::default()
+    };
+    if let Some(w) = sinedec::simulate::speed_warning(&loaded, &o) {
+        let _ = writeln!(std::io::stderr(), "{w}");
+    }
+    // The VCD streams during the run into its temporary file (checked above, renamed
+    // onto the path when the run is complete).
+    let trace: Option<Box<dyn std::io::Write>> = match vcd_out.as_mut() {
+        Some(f) => Some(Box::new(std::io::BufWriter::new(
+            f.file()
+                .try_clone()
+                .map_err(|e| anyhow::anyhow!("opening the VCD's temporary file: {e}"))?,
+        ))),
+        None => None,
+    };
+    let total = (duration * loaded.derived.clock_hz).ceil() as u64;
+    let bar = indicatif::ProgressBar::new(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    // Files first, then standard output: a closed stdout cannot lose them.
+    let mut wrote = vec![];
+    let summary = if loaded.derived.capacitive.is_some() {
+        let r = sinedec::simulate::run_capacitive_report(
+            &loaded,
+            &o,
+            |done, _| bar.set_position(done),
+            trace,
+        )?;
+        bar.finish_and_clear();
+        if let Some(n) = &r.engine_note {
+            let _ = writeln!(std::io::stderr(), "{n}");
+        }
+        if let Some(mut f) = csv_out.take() {
+            f.write_all(r.csv.as_bytes())?;
+            wrote.push(f.commit()?);
+        }
+        r.summary
+    } else {
+        let report =
+            sinedec::simulate::run_traced(&loaded, &o, |done, _| bar.set_position(done), trace)?;
+        bar.finish_and_clear();
+        if let Some(n) = &report.engine_note {
+            let _ = writeln!(std::io::stderr(), "{n}");
+        }
+        if let Some(mut f) = csv_out.take() {
+            f.write_all(report.csv(&loaded, o.skip).as_bytes())?;
+            wrote.push(f.commit()?);
+        }
+        report.summary(&loaded)
+    };
+    if let Some(f) = vcd_out.take() {
+        wrote.push(f.commit()?);
+    }
+    out(&summary)?;
+    for p in wrote {
+        say!("wrote {}", p.display())?;
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Generate {
@@ -254,113 +439,7 @@ fn run(cli: Cli) -> Result<()> {
                 say!("wrote {}", output.join(&f.name).display())?;
             }
         }
-        Command::Simulate {
-            config,
-            profile,
-            duration,
-            amplitude,
-            noise_lsb,
-            offset_sin,
-            offset_cos,
-            gain_mismatch,
-            phase_error,
-            harmonic3,
-            seed,
-            csv,
-            vcd,
-            engine,
-        } => {
-            let loaded = load(&config)?;
-            if !(duration > 0.0 && duration <= 10.0) {
-                bail!("--duration {duration}: allowed 0 < seconds <= 10");
-            }
-            distinct_outputs(&config, &[("--csv", csv.as_ref()), ("--vcd", vcd.as_ref())])?;
-            // The output files are checked (and their temporary files created beside them)
-            // before the simulation runs.
-            let mut csv_out = csv.as_deref().map(PendingFile::new).transpose()?;
-            let mut vcd_out = vcd.as_deref().map(PendingFile::new).transpose()?;
-            let o = sinedec::simulate::SimOptions {
-                profile: sinedec::simulate::parse_profile(&profile)?,
-                duration_s: duration,
-                amplitude,
-                noise_lsb,
-                offset: (offset_sin, offset_cos),
-                gain_mismatch,
-                phase_error_deg: phase_error,
-                third_harmonic: harmonic3,
-                seed,
-                engine: match engine {
-                    None => sinedec::sim::dut::EngineKind::Auto,
-                    Some(EngineArg::RustHdl) => sinedec::sim::dut::EngineKind::RustHdl,
-                    Some(EngineArg::Compiled) => sinedec::sim::dut::EngineKind::Compiled,
-                    Some(EngineArg::Interpreter) => sinedec::sim::dut::EngineKind::Interpreted,
-                },
-                // Without --csv no sample is kept: memory stays bounded on long runs.
-                keep_records: csv.is_some(),
-                ..Default::default()
-            };
-            if let Some(w) = sinedec::simulate::speed_warning(&loaded, &o) {
-                let _ = writeln!(std::io::stderr(), "{w}");
-            }
-            // The VCD streams during the run into its temporary file (checked above, renamed
-            // onto the path when the run is complete).
-            let trace: Option<Box<dyn std::io::Write>> = match vcd_out.as_mut() {
-                Some(f) => Some(Box::new(std::io::BufWriter::new(
-                    f.file()
-                        .try_clone()
-                        .map_err(|e| anyhow::anyhow!("opening the VCD's temporary file: {e}"))?,
-                ))),
-                None => None,
-            };
-            let total = (duration * loaded.derived.clock_hz).ceil() as u64;
-            let bar = indicatif::ProgressBar::new(total);
-            bar.set_style(
-                indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
-                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-            );
-            // Files first, then standard output: a closed stdout cannot lose them.
-            let mut wrote = vec![];
-            let summary = if loaded.derived.capacitive.is_some() {
-                let r = sinedec::simulate::run_capacitive_report(
-                    &loaded,
-                    &o,
-                    |done, _| bar.set_position(done),
-                    trace,
-                )?;
-                bar.finish_and_clear();
-                if let Some(n) = &r.engine_note {
-                    let _ = writeln!(std::io::stderr(), "{n}");
-                }
-                if let Some(mut f) = csv_out.take() {
-                    f.write_all(r.csv.as_bytes())?;
-                    wrote.push(f.commit()?);
-                }
-                r.summary
-            } else {
-                let report = sinedec::simulate::run_traced(
-                    &loaded,
-                    &o,
-                    |done, _| bar.set_position(done),
-                    trace,
-                )?;
-                bar.finish_and_clear();
-                if let Some(n) = &report.engine_note {
-                    let _ = writeln!(std::io::stderr(), "{n}");
-                }
-                if let Some(mut f) = csv_out.take() {
-                    f.write_all(report.csv(&loaded, o.skip).as_bytes())?;
-                    wrote.push(f.commit()?);
-                }
-                report.summary(&loaded)
-            };
-            if let Some(f) = vcd_out.take() {
-                wrote.push(f.commit()?);
-            }
-            out(&summary)?;
-            for p in wrote {
-                say!("wrote {}", p.display())?;
-            }
-        }
+        Command::Simulate(args) => simulate(args)?,
         Command::Check { config } => {
             let loaded = load(&config)?;
             say!("{}: ok", loaded.source_name)?;

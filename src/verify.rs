@@ -8,7 +8,8 @@ use crate::blocks::core::model::{CoreIn, CoreModel};
 use crate::blocks::mask;
 use crate::config::Loaded;
 use crate::cosim::{
-    cosim_engine_kind, first_mismatch, run_engine, run_icarus, run_verilator, CosimSpec, Trace,
+    cosim_engine_kind, first_mismatch, run_engine, run_icarus_expecting, run_verilator_expecting,
+    CosimSpec, Trace,
 };
 use crate::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
 use crate::error::{Error, Result};
@@ -113,12 +114,12 @@ pub fn core_traces(
     };
     let rows = stimulus_rows(loaded, inputs);
     let icarus = if sims.icarus {
-        Some(run_icarus(&spec, &rows, workdir)?)
+        Some(run_icarus_expecting(&spec, &rows, workdir, &rust_hdl)?)
     } else {
         None
     };
     let verilator = if sims.verilator {
-        Some(run_verilator(&spec, &rows, workdir)?)
+        Some(run_verilator_expecting(&spec, &rows, workdir, &rust_hdl)?)
     } else {
         None
     };
@@ -197,12 +198,12 @@ pub fn block_traces<B: crate::cosim::CosimBlock>(
         outputs: &outs,
     };
     let icarus = if sims.icarus {
-        Some(run_icarus(&spec, rows, workdir)?)
+        Some(run_icarus_expecting(&spec, rows, workdir, &rust_hdl)?)
     } else {
         None
     };
     let verilator = if sims.verilator {
-        Some(run_verilator(&spec, rows, workdir)?)
+        Some(run_verilator_expecting(&spec, rows, workdir, &rust_hdl)?)
     } else {
         None
     };

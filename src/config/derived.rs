@@ -1,6 +1,8 @@
 //! [`Derived`]: the parameters computed once from a validated [`Config`] (cross-field
-//! checks, widths, tables and figures), and its human-readable description.
+//! checks, widths, tables and figures); its human-readable description is in
+//! `describe.rs`.
 
+use super::params::ErrFn;
 use super::*;
 
 impl Derived {
@@ -23,22 +25,7 @@ impl Derived {
         };
         check_target(c, &err)?;
         check_capacitive_scope(c, &err)?;
-        // The core's input width: the ADC's, or the filters' on the capacitive path.
-        let a = match &c.capacitive {
-            Some(k) => {
-                // Checked here, before any width arithmetic uses it (the rest of the
-                // capacitive checks run after the core's derivation).
-                if !(12..=16).contains(&k.data_width) {
-                    return Err(err(
-                        "capacitive",
-                        "data_width",
-                        format!("{}: allowed 12..=16", k.data_width),
-                    ));
-                }
-                k.data_width
-            }
-            None => c.adc.width,
-        };
+        let a = input_width(c, &err)?;
         let n = c.cordic.iterations;
         let f = c.cordic.fine_bits;
         // Guard bits so that truncation in the x/y shifts stays below 1/4 fine LSB for
@@ -113,148 +100,10 @@ impl Derived {
             None => None,
         };
         let correction = correction_params(c, rate, &err)?;
-        let ssi = if c.ssi.enabled {
-            let mut p = SsiParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
-                .map_err(|m| err("ssi", "enabled", m.to_string()))?;
-            p.gray = c.ssi.gray;
-            if let Some(t) = c.ssi.timeout_us {
-                p.set_timeout_us(t)
-                    .map_err(|m| err("ssi", "timeout_us", m.to_string()))?;
-            }
-            p.validate()
-                .map_err(|m| err("ssi", "enabled", m.to_string()))?;
-            p.velocity_bits = vel_bits;
-            p.validate().map_err(in_frames)?;
-            Some(p)
-        } else {
-            None
-        };
-        let spi = if c.spi.enabled {
-            let mut p = SpiSlaveParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
-                .map_err(|m| err("spi", "enabled", m.to_string()))?;
-            p.gray = c.spi.gray;
-            p.validate()
-                .map_err(|m| err("spi", "enabled", m.to_string()))?;
-            p.velocity_bits = vel_bits;
-            p.validate().map_err(in_frames)?;
-            Some(p)
-        } else {
-            None
-        };
+        let ssi = ssi_params(c, &biss, vel_bits, &err)?;
+        let spi = spi_params(c, &biss, vel_bits, &err)?;
         let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
-        if let Some(b) = &c.board {
-            if let Some(p) = &b.preset {
-                if !BOARD_PRESETS.contains(&p.as_str()) {
-                    return Err(err(
-                        "board",
-                        "preset",
-                        format!(
-                            "unknown board preset {}; allowed: {}",
-                            Quoted(p),
-                            BOARD_PRESETS.join(", ")
-                        ),
-                    ));
-                }
-            }
-            let stds = crate::board::iostandards(c.target);
-            match b.effective_iostandard() {
-                Some(s) if stds.contains(&s.as_str()) => {}
-                Some(s) => {
-                    return Err(err(
-                        "board",
-                        "iostandard",
-                        format!(
-                            "`iostandard` = \"{}\" is not a single-ended I/O standard of {}; allowed: {}",
-                            clip(&s),
-                            crate::board::package(c.target).0,
-                            stds.join(", ")
-                        ),
-                    ))
-                }
-                None => {
-                    return Err(err(
-                        "board",
-                        "iostandard",
-                        format!(
-                            "missing: [board] needs `iostandard` when it has no `preset`; allowed: {}",
-                            stds.join(", ")
-                        ),
-                    ))
-                }
-            }
-            if b.preset.is_some() && (c.target != Target::Spartan3an || c.capacitive.is_some()) {
-                return Err(err(
-                    "board",
-                    "preset",
-                    "the spartan3an-starter-kit preset applies to the sinewave top with target = \"spartan3an\"".into(),
-                ));
-            }
-            let pins = b.effective_pins();
-            let (package_name, package_file, balls) = crate::board::package(c.target);
-            let ports = board_ports(c);
-            for (k, v) in &b.pins {
-                if let Some(m) = pin_problem(c, &ports, k, v, &balls, package_name, package_file) {
-                    return Err(err("board.pins", k, m));
-                }
-            }
-            // One ball, one port: a pin given twice, or on a pin the preset already uses.
-            let preset_pins = BoardConfig {
-                pins: Default::default(),
-                ..b.clone()
-            }
-            .effective_pins();
-            let mut owner: std::collections::BTreeMap<&str, &str> = Default::default();
-            let in_use: Vec<&str> = ports.iter().map(|p| p.0).collect();
-            for (port, v) in pins.iter().filter(|(p, _)| in_use.contains(&p.as_str())) {
-                let balls_of: Vec<&str> = match v {
-                    PinValue::One(x) => vec![x.as_str()],
-                    PinValue::Bus(xs) => xs.iter().map(String::as_str).collect(),
-                };
-                for ball in balls_of {
-                    if let Some(first) = owner.insert(ball, port.as_str()) {
-                        // Blame the key the user wrote (the later one when both are theirs).
-                        let (blamed, other) = if b.pins.contains_key(port) {
-                            (port.as_str(), first)
-                        } else {
-                            (first, port.as_str())
-                        };
-                        let whose = if preset_pins
-                            .get(other)
-                            .is_some_and(|p| p.one() == Some(ball))
-                            && !b.pins.contains_key(other)
-                        {
-                            format!("the preset's pin for `{other}`")
-                        } else {
-                            format!("already given to `{other}`")
-                        };
-                        return Err(err(
-                            "board.pins",
-                            blamed,
-                            format!(
-                                "`{blamed}`: pin {ball} is {whose}; every port needs a ball of its own"
-                            ),
-                        ));
-                    }
-                }
-            }
-            let missing: Vec<&str> = ports
-                .iter()
-                .map(|p| p.0)
-                .filter(|p| !pins.contains_key(*p))
-                .collect();
-            if !missing.is_empty() {
-                let preset = if b.preset.is_some() {
-                    "; the preset fills in the kit's fixed pins, these are wiring on the kit's headers: give them in [board.pins]"
-                } else {
-                    ""
-                };
-                return Err(err(
-                    "board",
-                    "pins",
-                    format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one{preset})", missing.join(", ")),
-                ));
-            }
-        }
+        check_board(c, &err)?;
         let (board_clock, io_timing) = board_timing(c, &adc, &err)?;
         let qep = QepParams::new(c.qep.filter_clocks, 32)
             .map_err(|m| err("qep", "filter_clocks", m.detail()))?;
@@ -297,389 +146,99 @@ impl Derived {
             max_speed_rpm_full_res,
             resolution_bits: (quadrants_per_turn as f64).log2() + f as f64,
         };
-        // The capacitive front end's own checks (NCO, biquad engine widths and
-        // coefficients, clocks per sample) run here too, so that `check` accepts exactly
-        // what `generate` builds, and their errors point at the key.
-        if derived.capacitive.is_some() {
-            crate::blocks::capacitive::CapFrontParams::new(&derived).map_err(|e| match e {
-                Error::ConfigValue { key, message, .. } => {
-                    let (table, key) = key.rsplit_once('.').unwrap_or(("", key.as_str()));
-                    err(table, key, message)
-                }
-                e => e,
-            })?;
-        }
+        check_capacitive_front(&derived, &err)?;
         Ok(derived)
-    }
-
-    /// The board clock and the ADC round trip, for `describe`.
-    fn describe_board(&self) -> String {
-        let mut s = String::new();
-        if let Some(b) = &self.board_clock {
-            match b.synth {
-                None => s.push_str(&format!(
-                    "board clock                 {:.3} MHz oscillator = the system clock (no clock synthesizer)\n",
-                    b.osc_hz / 1e6
-                )),
-                Some(x) => s.push_str(&format!(
-                    "board clock                 {:.3} MHz oscillator -> {} x {} / {} = {:.3} MHz ({:+.0} ppm from clock.frequency_hz), reset held until locked\n",
-                    b.osc_hz / 1e6,
-                    x.kind.label(),
-                    x.multiply,
-                    x.divide,
-                    x.out_hz / 1e6,
-                    x.error_ppm
-                )),
-            }
-        }
-        let io = &self.io_timing;
-        let (available, needed) = crate::board::adc_round_trip(
-            io,
-            self.adc.timing.data_valid_ns,
-            self.adc.capture_distance_clocks(),
-            self.adc.clock_hz,
-        );
-        s.push_str(&format!(
-            "ADC round trip              {needed:.2} ns of {available:.2} ns (capture distance {} clocks: adc_sck edge to the adc_miso sample; SCK period {} clocks): clock-to-out {:.2} + 2 x trace {:.2} + SCK-to-data {:.2} + input set-up {:.2}; slack {:.2} ns (SCK-to-data up to {:.2} ns)\n",
-            self.adc.capture_distance_clocks(),
-            self.adc.sck_period_clocks,
-            io.clock_to_out_ns,
-            io.trace_ns,
-            self.adc.timing.data_valid_ns,
-            io.input_setup_ns,
-            available - needed,
-            self.adc.timing.data_valid_ns + available - needed
-        ));
-        s
-    }
-
-    /// The serial slaves' line timing for `describe` (one line per slave, from
-    /// [`crate::blocks::serial::answer_window`] and
-    /// [`crate::blocks::serial::max_round_trip_ns`]; docs/interfaces.md): when the answer
-    /// leaves the pin after the master's clock edge, and the longest line round trip
-    /// (cable and transceivers) at each rate up to the synchronizer's limit.
-    fn describe_lines(&self) -> String {
-        use crate::blocks::serial::{answer_window, max_round_trip_ns, LINE_RATES_HZ};
-        let io = &self.io_timing;
-        let rates = |max_hz: f64,
-                     window: &dyn Fn(f64) -> f64,
-                     a: &crate::blocks::serial::AnswerWindow|
-         -> String {
-            LINE_RATES_HZ
-                .iter()
-                .filter(|&&f| f <= max_hz)
-                .map(|&f| {
-                    let r = max_round_trip_ns(window(f), a);
-                    let at = if f >= 1e6 {
-                        format!("{:.0} MHz", f / 1e6)
-                    } else {
-                        format!("{:.0} kHz", f / 1e3)
-                    };
-                    if r >= 0.0 {
-                        format!("{r:.1} ns at {at}")
-                    } else {
-                        format!("none at {at}")
-                    }
-                })
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let answer = |what: &str, a: &crate::blocks::serial::AnswerWindow, l: u32| {
-            format!(
-                "{what} {:.2}..{:.2} ns after the master's edge at the pin ({l}..{} clocks, input set-up {:.2}, clock-to-out {:.2})",
-                a.min_ns,
-                a.max_ns,
-                l + 1,
-                io.input_setup_ns,
-                io.clock_to_out_ns
-            )
-        };
-        let period = |f: f64| 1e9 / f;
-        let b = &self.biss;
-        let a = answer_window(b.clock_hz, b.glitch_filter, io);
-        let mut s = format!(
-            "biss line timing            {}; round trip (cable + transceivers, both ways) for a master reading each bit at the next MA rising edge: {}; a BiSS-C master with line-delay compensation: any round trip it compensates (MA up to {:.2} MHz)\n",
-            answer("SLO answers", &a, b.latch_latency()),
-            rates(b.max_ma_hz(), &period, &a),
-            b.max_ma_hz() / 1e6
-        );
-        if let Some(x) = &self.ssi {
-            let a = answer_window(x.clock_hz, x.glitch_filter, io);
-            let max =
-                x.clock_hz / (2 * crate::blocks::serial::min_level_clocks(x.glitch_filter)) as f64;
-            s.push_str(&format!(
-                "ssi line timing             {}; round trip for a master reading each bit at the next rising clock edge: {}\n",
-                answer("data answers", &a, x.latch_latency()),
-                rates(max, &period, &a)
-            ));
-        }
-        if let Some(x) = &self.spi {
-            let a = answer_window(x.clock_hz, x.glitch_filter, io);
-            let half = |f: f64| 0.5e9 / f;
-            s.push_str(&format!(
-                "spi line timing             {}; round trip for a master sampling at the rising SCK edge after the falling one (50 % duty): {}\n",
-                answer("MISO answers a falling SCK edge", &a, x.latch_latency()),
-                rates(x.max_sck_hz(0.0), &half, &a)
-            ));
-        }
-        s
     }
 
     /// Latency in nanoseconds at the configured clock.
     pub fn latency_ns(&self) -> f64 {
         self.latency_cycles as f64 * 1e9 / self.clock_hz
     }
+}
 
-    /// Human-readable listing printed by `sinedec check`.
-    pub fn describe(&self) -> String {
-        let core = self.describe_core();
-        let Some(k) = &self.capacitive else {
-            let mut s = core;
-            if self.preamp.is_some() {
-                // The same quantity, under the same name, as `simulate` prints.
-                let c = crate::blocks::top::hdl::conv_to_position_cycles(self);
-                s.push_str(&format!(
-                    "latency CONV -> position    {c} cycles = {:.0} ns (ADC {} + correction {} + core {})\n",
-                    c as f64 * 1e9 / self.clock_hz,
-                    self.adc.conv_to_valid_clocks(),
-                    self.correction.latency_cycles(),
-                    self.latency_cycles
+/// The core's input width: the ADC's, or the filters' on the capacitive path.
+fn input_width(c: &Config, err: &ErrFn) -> Result<u32> {
+    Ok(match &c.capacitive {
+        Some(k) => {
+            // Checked here, before any width arithmetic uses it (the rest of the
+            // capacitive checks run after the core's derivation).
+            if !(12..=16).contains(&k.data_width) {
+                return Err(err(
+                    "capacitive",
+                    "data_width",
+                    format!("{}: allowed 12..=16", k.data_width),
                 ));
             }
-            s.push_str(&describe_correction(
-                &self.correction,
-                self.sample_rate_hz,
-                self.quadrants_per_turn / 4,
-                self.max_speed_rpm_full_res,
-            ));
-            if let Some(v) = &self.velocity {
-                s.push_str(&describe_velocity(v, self.quadrants_per_turn));
-            }
-            if let Some(a) = &self.abz {
-                s.push_str(&describe_abz(a, self.clock_hz));
-            }
-            s.push_str(&describe_biss(&self.biss));
-            s.push_str(&self.describe_lines());
-            s.push_str(&self.describe_board());
-            return s;
-        };
-        // One speed limit: theta moves periods_per_turn x rpm / 60 Hz, and the low-pass
-        // corner bounds it far below the CORDIC's unwrap limit.
-        let mut s: String = core
-            .lines()
-            .filter(|l| !l.starts_with("max speed at full res."))
-            .map(|l| format!("{l}\n"))
-            .collect();
-        let corner = k.config.lowpass.corner_hz.unwrap_or(0.0);
-        let ppr = self.quadrants_per_turn as f64 / 4.0;
-        let lp_rpm = corner / ppr * 60.0;
-        let limit = lp_rpm.min(self.max_speed_rpm_full_res);
-        s.push_str(&format!(
-            "core input                  the filters' I/Q outputs ({} bits; ADC {} bits)\n\
-             carrier                     {:.0} Hz, {:.1} samples per carrier period\n\
-             max speed                   {:.0} rpm: the low-pass corner {:.0} Hz with {} periods per turn (the CORDIC's unwrap alone would allow {:.0} rpm)\n",
-            self.adc_width,
-            self.adc.frame.width,
-            k.config.carrier_hz,
-            k.sample_rate_hz / k.config.carrier_hz,
-            limit,
-            corner,
-            ppr,
-            self.max_speed_rpm_full_res
-        ));
-        s.push_str(&self.describe_board());
-        s
-    }
-
-    fn describe_core(&self) -> String {
-        format!(
-            "core input width A          {} bits\n\
-             cordic iterations N         {}\n\
-             fine bits F                 {} (1 LSB = {:.4} arc-seconds of electrical angle)\n\
-             x/y datapath                {} bits ({} guard bits)\n\
-             angle accumulator           {} bits ({} guard bits)\n\
-             cordic gain K_N             {:.12}\n\
-             min magnitude (x units)     {}\n\
-             quadrant count              {} bits (4 x PPR = {} quadrants per turn)\n\
-             out_position width          {} bits ({:.2} bits per turn)\n\
-             out_turns width             {} bits\n\
-             core latency in -> out      {} cycles = {:.1} ns at {:.3} MHz\n\
-             throughput                  1 sample per {} clock(s) ({} CORDIC)\n\
-             sample rate                 {:.0} samples/s per channel\n\
-             max speed at full res.      {:.0} rpm (steps below {:.2} quadrants per sample)\n",
-            self.adc_width,
-            self.iterations,
-            self.fine_bits,
-            90.0 * 3600.0 / (1u64 << self.fine_bits) as f64,
-            self.xy_width,
-            self.xy_guard,
-            self.z_width,
-            self.z_guard,
-            self.gain,
-            self.min_magnitude,
-            self.quadrant_bits,
-            self.quadrants_per_turn,
-            self.position_width,
-            self.resolution_bits,
-            self.turns_width,
-            self.latency_cycles,
-            self.latency_ns(),
-            self.clock_hz / 1e6,
-            self.cycles_per_sample,
-            self.architecture,
-            self.sample_rate_hz,
-            self.max_speed_rpm_full_res,
-            self.warn_step as f64 / (1u64 << self.fine_bits) as f64,
-        )
-    }
+            k.data_width
+        }
+        None => c.adc.width,
+    })
 }
 
-/// The `[velocity]` lines of `check`: method, update period, the LSB of out_velocity in
-/// rpm and the largest speed it represents.
-fn describe_velocity(v: &VelocityParams, quadrants_per_turn: u64) -> String {
-    let lsb = v.lsb_rpm(quadrants_per_turn as f64);
-    let top = ((1u64 << (v.spec.width - 1)) - 1) as f64 * lsb;
-    format!(
-        "velocity                    method {}, one update every {} clocks ({:.1} Hz), latency {} clocks after the update's tick\n\
-         velocity LSB                {:.6e} rpm (2^-{} position LSB per update period)\n\
-         velocity range              +-{:.0} rpm representable in {} bits; the decoder's maximum speed gives at most {} LSB\n",
-        v.spec.method,
-        v.period_clocks,
-        v.spec.clock_hz / v.period_clocks as f64,
-        v.latency(),
-        lsb,
-        v.spec.frac_bits,
-        top,
-        v.spec.width,
-        v.max_output
-    )
-}
-
-/// The `[correction]` lines of `check`: the mode, the phase correction and, for `auto`,
-/// the limit of the peak tracker. A track sampled n times per signal period shows its
-/// peak low by up to 1 - cos(pi / n) of the amplitude (the nearest sample is at most half a
-/// sample period, pi / n, from the crest), so the tracked gain is too high by that much.
-/// The printed speed is where that deficit reaches one LSB of the A-bit half range,
-/// 2^-(A-1); the deficit is also given at 3000 rpm and at the decoder's speed limit.
-fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) -> String {
-    let phase = if c.has_phase() {
-        format!(
-            "static phase correction, cross code {} (2^-{}) and one more clock",
-            c.cross(),
-            c.phase_shift()
-        )
+/// The `[ssi]` slave's parameters, when enabled, with the velocity word of `[velocity]
+/// in_frames` in its frame.
+fn ssi_params(
+    c: &Config,
+    biss: &BissParams,
+    vel_bits: u32,
+    err: &ErrFn,
+) -> Result<Option<SsiParams>> {
+    let clock_hz = c.clock.frequency_hz;
+    let in_frames = |m: crate::error::Error| err("velocity", "in_frames", m.detail());
+    Ok(if c.ssi.enabled {
+        let mut p = SsiParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
+            .map_err(|m| err("ssi", "enabled", m.to_string()))?;
+        p.gray = c.ssi.gray;
+        if let Some(t) = c.ssi.timeout_us {
+            p.set_timeout_us(t)
+                .map_err(|m| err("ssi", "timeout_us", m.to_string()))?;
+        }
+        p.validate()
+            .map_err(|m| err("ssi", "enabled", m.to_string()))?;
+        p.velocity_bits = vel_bits;
+        p.validate().map_err(in_frames)?;
+        Some(p)
     } else {
-        "no phase correction (correction.phase_deg = 0)".to_string()
-    };
-    if let Some(f) = c.fit() {
-        let spp = |rpm: f64| fs / (ppr as f64 * rpm / 60.0);
-        let win = |rpm: f64| {
-            let per = spp(rpm);
-            // Whole periods: at least K, and enough of them for min_samples.
-            let k = (f.periods() as f64).max((f.min_samples() as f64 / per).ceil());
-            k * per / fs
-        };
-        return format!(
-            "correction                  auto: least-squares ellipse fit over whole periods (offset, gain and phase; cross code and two more clocks); products as run-time shift-add trees, no hard multiplier ({} more clocks)\n\
-             auto fit window             at least {} periods and {} samples ({:.2} ms at the sample rate), then a {}-clock solve: new coefficients {} clocks after the window's closing sample (with the fit's {} pipeline stages); 1st update after about {:.1} ms at 300 rpm, {:.1} ms at 3000 rpm\n\
-             auto fit limits             works up to the decoder's {:.0} rpm unwrap limit (a two-quadrant step counts in the last direction); no update below {} LSB amplitude or with an offset outside the ADC range; a window longer than 2^24 samples is abandoned\n",
-            crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES,
-            f.periods(),
-            f.min_samples(),
-            1e3 * f.min_samples() as f64 / fs,
-            crate::blocks::correction::fit_solve::SOLVE_CYCLES,
-            crate::blocks::correction::fit_solve::UPDATE_LATENCY,
-            crate::blocks::correction::fit_hdl::FIT_STAGES,
-            1e3 * win(300.0),
-            1e3 * win(3000.0),
-            max_rpm,
-            f.min_amplitude()
-        );
+        None
+    })
+}
+
+/// The `[spi]` slave's parameters, when enabled, with the velocity word of `[velocity]
+/// in_frames` in its frame.
+fn spi_params(
+    c: &Config,
+    biss: &BissParams,
+    vel_bits: u32,
+    err: &ErrFn,
+) -> Result<Option<SpiSlaveParams>> {
+    let clock_hz = c.clock.frequency_hz;
+    let in_frames = |m: crate::error::Error| err("velocity", "in_frames", m.detail());
+    Ok(if c.spi.enabled {
+        let mut p = SpiSlaveParams::new(biss.position_bits, biss.multiturn_bits, clock_hz)
+            .map_err(|m| err("spi", "enabled", m.to_string()))?;
+        p.gray = c.spi.gray;
+        p.validate()
+            .map_err(|m| err("spi", "enabled", m.to_string()))?;
+        p.velocity_bits = vel_bits;
+        p.validate().map_err(in_frames)?;
+        Some(p)
+    } else {
+        None
+    })
+}
+
+/// The capacitive front end's own checks (NCO, biquad engine widths and
+/// coefficients, clocks per sample) run here too, so that `check` accepts exactly
+/// what `generate` builds, and their errors point at the key.
+fn check_capacitive_front(derived: &Derived, err: &ErrFn) -> Result<()> {
+    if derived.capacitive.is_some() {
+        crate::blocks::capacitive::CapFrontParams::new(derived).map_err(|e| match e {
+            Error::ConfigValue { key, message, .. } => {
+                let (table, key) = key.rsplit_once('.').unwrap_or(("", key.as_str()));
+                err(table, key, message)
+            }
+            e => e,
+        })?;
     }
-    let Some(_) = c.auto() else {
-        // Codes that are not powers of two: constant products as shift-add trees.
-        let products = if c.shift_add() {
-            format!(
-                "; gain and cross products as shift-add trees, no hard multiplier ({} more clocks)",
-                crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES
-            )
-        } else {
-            String::new()
-        };
-        return format!(
-            "correction                  static: offsets {:?} LSB, gain codes {:?} (2^-{}); {phase}{products}\n",
-            c.offset(),
-            c.gain(),
-            c.gain_frac_bits()
-        );
-    };
-    // Deficit 1 - cos(pi / n) at n = fs / (ppr rpm / 60) samples per period.
-    let deficit = |rpm: f64| 1.0 - (std::f64::consts::PI * ppr as f64 * rpm / 60.0 / fs).cos();
-    let lsb = 2f64.powi(1 - c.adc_width() as i32);
-    let n_lsb = std::f64::consts::PI / (1.0 - lsb).acos();
-    let rpm_lsb = 60.0 * fs / (n_lsb * ppr as f64);
-    format!(
-        "correction                  peak: offset and gain from per-track peaks over whole periods (peak tracker); no phase correction; products as run-time shift-add trees, no hard multiplier ({} more clocks)\n\
-         peak-tracker limit          the sampled peaks are low by up to 1 - cos(pi / samples per period): within 1 LSB of 2^{} up to {:.0} rpm; {:.2} % at 3000 rpm, {:.2} % at the {:.0} rpm limit. Above that calibrate at low speed and copy the values into mode = \"static\" (which also takes phase_deg)\n",
-        crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES,
-        c.adc_width() - 1,
-        rpm_lsb,
-        100.0 * deficit(3000.0),
-        100.0 * deficit(max_rpm),
-        max_rpm
-    )
-}
-
-/// The `[abz]` lines of `check`: resolution, rounding rule, maximum edge rate and speed.
-/// The `[biss]` lines of `check`: the data word and, with `control = true`, the control
-/// channel's register map as the master will read it.
-fn describe_biss(b: &crate::blocks::biss::BissParams) -> String {
-    let mut s = format!(
-        "biss data word              {} bits ({} multi-turn + {} single-turn, {}), CRC6, timeout {} clocks\n",
-        b.multiturn_bits + b.position_bits,
-        b.multiturn_bits,
-        b.position_bits,
-        if b.gray { "Gray" } else { "binary" },
-        b.timeout_clocks
-    );
-    match &b.control {
-        None => s.push_str("biss control channel        off (CDS always 0)\n"),
-        Some(id) => s.push_str(&format!(
-            "biss control channel        on: 128-byte register file, 0x00..0x40 read/write; read-only IDs: \
-             EDS bank 0x41 = 0x{:02X}, profile 0x42..43 = 0x{:04X}, serial 0x44..47 = {}, \
-             device 0x78..7D = \"{}\", manufacturer 0x7E..7F = \"{}\"\n",
-            id.eds_bank,
-            id.profile_id,
-            id.serial_number,
-            ascii(&id.device_id),
-            ascii(&id.manufacturer_id)
-        )),
-    }
-    s
-}
-
-/// An ID register's bytes as text, the 0 padding dropped.
-fn ascii(b: &[u8]) -> String {
-    b.iter()
-        .take_while(|&&c| c != 0)
-        .map(|&c| c as char)
-        .collect()
-}
-
-fn describe_abz(a: &AbzParams, clock_hz: f64) -> String {
-    let rate = clock_hz / a.spacing() as f64;
-    let (ea, eb) = a.ratio();
-    format!(
-        "abz lines                   {} A/B periods per turn = {} edges; count = floor(position x {ea} / {eb}) (exact, no drift over a turn)\n\
-         abz max edge rate           {:.3} M edges/s (edges at least {} clocks apart; A/B at most {:.3} MHz)\n\
-         abz max speed               {:.0} rpm at that rate (faster: the output lags, catches up and raises the warning)\n\
-         abz latency                 {} cycles from the position to its first edge\n",
-        a.lines(),
-        a.edges(),
-        rate / 1e6,
-        a.spacing(),
-        rate / 4e6,
-        rate / a.edges() as f64 * 60.0,
-        a.latency()
-    )
+    Ok(())
 }

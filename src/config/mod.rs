@@ -46,9 +46,11 @@ use crate::error::{Error, Quoted, Result};
 use crate::exact;
 use serde::{Deserialize, Deserializer};
 
+mod adc;
 mod biss;
 mod checks;
 mod derived;
+mod describe;
 mod params;
 mod pins;
 mod schema;
@@ -56,6 +58,7 @@ mod spans;
 mod velocity;
 
 pub use crate::blocks::params::{Architecture, CapDerived, CapacitiveConfig, Derived};
+use adc::adc_params;
 use biss::biss_params;
 pub use biss::BissConfig;
 pub use checks::*;

@@ -1,6 +1,7 @@
 //! The board top's pinned ports and the Spartan-3A/3AN Starter Kit's known pins
 //! (`[board]`, `[board.pins]`).
 
+use super::params::ErrFn;
 use super::*;
 
 pub use crate::blocks::captop::hdl::{CAP_TOP_BUSES, CAP_TOP_PINS};
@@ -198,4 +199,124 @@ pub(super) fn pin_problem(
             )),
         },
     }
+}
+
+/// `[board]`: a known preset, a single-ended I/O standard of the target, and one ball of
+/// the package per port of `<name>_top`, none given twice.
+pub(super) fn check_board(c: &Config, err: &ErrFn) -> Result<()> {
+    let Some(b) = &c.board else {
+        return Ok(());
+    };
+    if let Some(p) = &b.preset {
+        if !BOARD_PRESETS.contains(&p.as_str()) {
+            return Err(err(
+                "board",
+                "preset",
+                format!(
+                    "unknown board preset {}; allowed: {}",
+                    Quoted(p),
+                    BOARD_PRESETS.join(", ")
+                ),
+            ));
+        }
+    }
+    let stds = crate::board::iostandards(c.target);
+    match b.effective_iostandard() {
+        Some(s) if stds.contains(&s.as_str()) => {}
+        Some(s) => {
+            return Err(err(
+                "board",
+                "iostandard",
+                format!(
+                    "`iostandard` = \"{}\" is not a single-ended I/O standard of {}; allowed: {}",
+                    clip(&s),
+                    crate::board::package(c.target).0,
+                    stds.join(", ")
+                ),
+            ))
+        }
+        None => {
+            return Err(err(
+                "board",
+                "iostandard",
+                format!(
+                    "missing: [board] needs `iostandard` when it has no `preset`; allowed: {}",
+                    stds.join(", ")
+                ),
+            ))
+        }
+    }
+    if b.preset.is_some() && (c.target != Target::Spartan3an || c.capacitive.is_some()) {
+        return Err(err(
+            "board",
+            "preset",
+            "the spartan3an-starter-kit preset applies to the sinewave top with target = \"spartan3an\"".into(),
+        ));
+    }
+    let pins = b.effective_pins();
+    let (package_name, package_file, balls) = crate::board::package(c.target);
+    let ports = board_ports(c);
+    for (k, v) in &b.pins {
+        if let Some(m) = pin_problem(c, &ports, k, v, &balls, package_name, package_file) {
+            return Err(err("board.pins", k, m));
+        }
+    }
+    // One ball, one port: a pin given twice, or on a pin the preset already uses.
+    let preset_pins = BoardConfig {
+        pins: Default::default(),
+        ..b.clone()
+    }
+    .effective_pins();
+    let mut owner: std::collections::BTreeMap<&str, &str> = Default::default();
+    let in_use: Vec<&str> = ports.iter().map(|p| p.0).collect();
+    for (port, v) in pins.iter().filter(|(p, _)| in_use.contains(&p.as_str())) {
+        let balls_of: Vec<&str> = match v {
+            PinValue::One(x) => vec![x.as_str()],
+            PinValue::Bus(xs) => xs.iter().map(String::as_str).collect(),
+        };
+        for ball in balls_of {
+            if let Some(first) = owner.insert(ball, port.as_str()) {
+                // Blame the key the user wrote (the later one when both are theirs).
+                let (blamed, other) = if b.pins.contains_key(port) {
+                    (port.as_str(), first)
+                } else {
+                    (first, port.as_str())
+                };
+                let whose = if preset_pins
+                    .get(other)
+                    .is_some_and(|p| p.one() == Some(ball))
+                    && !b.pins.contains_key(other)
+                {
+                    format!("the preset's pin for `{other}`")
+                } else {
+                    format!("already given to `{other}`")
+                };
+                return Err(err(
+                    "board.pins",
+                    blamed,
+                    format!(
+                        "`{blamed}`: pin {ball} is {whose}; every port needs a ball of its own"
+                    ),
+                ));
+            }
+        }
+    }
+    let missing: Vec<&str> = ports
+        .iter()
+        .map(|p| p.0)
+        .filter(|p| !pins.contains_key(*p))
+        .collect();
+    if !missing.is_empty() {
+        let preset = if b.preset.is_some() {
+            "; the preset fills in the kit's fixed pins, these are wiring on the kit's headers: give them in [board.pins]"
+        } else {
+            ""
+        };
+        return Err(err(
+            "board",
+            "pins",
+            format!("pins missing for the board: {} (every port of <name>_top but the parallel bus needs one{preset})", missing.join(", ")),
+        ));
+    }
+    Ok(())
 }

@@ -150,3 +150,20 @@ pub fn run_icarus(
     let out = run_checked(&mut run, "vvp", "run", workdir, "cosim_icarus_run")?;
     finish_run("icarus", &out, &out_path, spec, stimulus.len())
 }
+
+/// [`run_icarus`] behind the verdict cache (`cache.rs`): when the cache holds `expected` for
+/// exactly this run, returns it without simulating; otherwise simulates and records the
+/// trace. Either way the result is the trace Icarus prints for this run.
+pub fn run_icarus_expecting(
+    spec: &CosimSpec,
+    stimulus: &[Vec<u64>],
+    workdir: &Path,
+    expected: &Trace,
+) -> Result<Trace, CosimError> {
+    super::validate(spec, stimulus)?;
+    let tb = icarus_testbench(spec, stimulus.len());
+    let stim = super::stimulus_text(spec, stimulus);
+    super::cache::cached("iverilog", spec, &["-g2005", &tb, &stim], expected, || {
+        run_icarus(spec, stimulus, workdir)
+    })
+}

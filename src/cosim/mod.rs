@@ -60,6 +60,7 @@ use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
 mod block;
+mod cache;
 mod engine;
 mod icarus;
 pub mod step;
@@ -69,12 +70,13 @@ mod verilator;
 
 pub(crate) use block::cosim_block;
 pub use block::{CosimBlock, RowValue};
+pub use cache::COSIM_CACHE_ENV;
 pub use engine::{cosim_engine_kind, run_engine, BlockEngine, ENGINE_ENV};
-pub use icarus::run_icarus;
+pub use icarus::{run_icarus, run_icarus_expecting};
 pub(crate) use tool::run_checked;
 pub use tool::{check_tool_named, require_tool, CosimError, TOOL_TIMEOUT};
 use tool::{io_err, read_file, trim_message, write_file, ToolOutput};
-pub use verilator::run_verilator;
+pub use verilator::{run_verilator, run_verilator_expecting};
 
 /// One port of the design under test: its Verilog name and width in bits (1..=64).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -220,6 +222,11 @@ fn write_common_files(
     workdir: &Path,
 ) -> Result<(), CosimError> {
     write_file(&workdir.join(DESIGN_FILE), spec.verilog)?;
+    write_file(&workdir.join(STIMULUS_FILE), &stimulus_text(spec, stimulus))
+}
+
+/// The stimulus file: one line per cycle, the input values in hex separated by spaces.
+fn stimulus_text(spec: &CosimSpec, stimulus: &[Vec<u64>]) -> String {
     let mut text = String::with_capacity(stimulus.len() * (spec.inputs.len() * 6 + 1));
     for row in stimulus {
         for (i, (v, p)) in row.iter().zip(spec.inputs).enumerate() {
@@ -230,7 +237,7 @@ fn write_common_files(
         }
         text.push('\n');
     }
-    write_file(&workdir.join(STIMULUS_FILE), &text)
+    text
 }
 
 /// What both runners do before building their simulator: check `spec` and `stimulus`, write

@@ -50,7 +50,7 @@ pub const TOOL_TIMEOUT: Duration = Duration::from_secs(900);
 /// Maximum number of characters of tool output kept in [`CosimError::ToolFailed`] messages.
 const MAX_MESSAGE_CHARS: usize = 6000;
 /// Package-manager command that installs `tool` (Debian/Ubuntu package names).
-fn install_hint(tool: &str) -> String {
+pub(crate) fn install_hint(tool: &str) -> String {
     let package = match tool {
         "iverilog" | "vvp" => "iverilog",
         "verilator" => "verilator",
@@ -82,11 +82,22 @@ pub fn require_tool(tool: &str) -> Result<(), CosimError> {
 /// command; a program that starts but exits with a failure status yields
 /// [`CosimError::ToolFailed`].
 pub fn check_tool_named(bin: &str, install: &str) -> Result<(), CosimError> {
+    tool_version_named(bin, install).map(|_| ())
+}
+
+/// As [`check_tool_named`], returning the first line the version flag printed
+/// (`Icarus Verilog version 12.0 (stable) ()`, `Verilator 5.032 2025-01-01 rev ...`).
+pub(crate) fn tool_version_named(bin: &str, install: &str) -> Result<String, CosimError> {
     let mut cmd = Command::new(bin);
     cmd.arg(version_flag(bin));
     let out = launch(&mut cmd, bin, install, "run", None)?;
     if out.status.success() {
-        Ok(())
+        let text = if out.stdout.trim().is_empty() {
+            &out.stderr
+        } else {
+            &out.stdout
+        };
+        Ok(text.lines().next().unwrap_or("").trim().to_string())
     } else {
         Err(CosimError::ToolFailed {
             tool: bin.to_string(),

@@ -227,3 +227,33 @@ pub fn run_verilator(
     let out = run_checked(&mut run, "verilator", "run", workdir, "cosim_verilator_run")?;
     finish_run("verilator", &out, &out_path, spec, stimulus.len())
 }
+
+/// [`run_verilator`] behind the verdict cache (`cache.rs`): when the cache holds `expected`
+/// for exactly this run, returns it without building or simulating; otherwise runs and
+/// records the trace. Either way the result is the trace Verilator prints for this run.
+pub fn run_verilator_expecting(
+    spec: &CosimSpec,
+    stimulus: &[Vec<u64>],
+    workdir: &Path,
+    expected: &Trace,
+) -> Result<Trace, CosimError> {
+    super::validate(spec, stimulus)?;
+    let main = verilator_main(spec, stimulus.len());
+    // The build's arguments less its job count (`-j N`, the machine's cores): that one
+    // changes how fast the model builds, not what it prints.
+    let all = verilator_args(spec);
+    let mut kept = Vec::with_capacity(all.len());
+    let mut it = all.iter();
+    while let Some(a) = it.next() {
+        if a == "-j" {
+            it.next();
+        } else {
+            kept.push(a.as_str());
+        }
+    }
+    let args = kept.join(" ");
+    let stim = super::stimulus_text(spec, stimulus);
+    super::cache::cached("verilator", spec, &[&args, &main, &stim], expected, || {
+        run_verilator(spec, stimulus, workdir)
+    })
+}

@@ -1,6 +1,6 @@
 //! Yosys's combinational cell types and the operation of src/engine/ops.rs each maps to
 //! (the `op` numbers are those of ops.rs's functions). Sequential cells (`$dff`, `$dffe`,
-//! `$sdff`, `$sdffe`, `$sdffce`) and memory cells are read in src/engine/netlist.rs; any
+//! `$sdff`, `$sdffe`, `$sdffce`) and memory cells are read in src/engine/netlist/build.rs; any
 //! other type is reported as unsupported.
 use super::netlist::Op;
 

@@ -1,4 +1,4 @@
-//! The compiled path's code generator: the levelized netlist (src/engine/netlist.rs) as
+//! The compiled path's code generator: the levelized netlist (src/engine/netlist/) as
 //! one straight-line Rust source file, a `cdylib` with a small C ABI (see
 //! src/engine/compiled.rs for the loader):
 //!

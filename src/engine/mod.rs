@@ -5,7 +5,7 @@
 //! ```text
 //!  emitted Verilog ──► Yosys: proc; flatten; opt; wreduce ──► JSON (word-level cells)
 //!        (yosys.rs)                                                 │
-//!  netlist.rs: bits regrouped into words, registers, memories ◄─────┘
+//!  netlist/:   bits regrouped into words, registers, memories ◄─────┘
 //!  order.rs:   combinational cells in topological order, next-state and output cones
 //!        ├──► codegen.rs: straight-line Rust ──► rustc -O ──► cdylib ──► compiled.rs
 //!        │    (cached by a hash of its inputs)                      (libloading, C ABI)
@@ -174,7 +174,8 @@ impl Engine {
             include_str!("ops.rs"),
             include_str!("yosys.rs"),
             include_str!("cells.rs"),
-            include_str!("netlist.rs"),
+            include_str!("netlist/mod.rs"),
+            include_str!("netlist/build.rs"),
             include_str!("order.rs"),
             include_str!("codegen.rs"),
             &compiled::rustc_version()?,

@@ -221,96 +221,20 @@ pub(super) fn build_inner(
             })
         })
         .collect();
-    let jobs: Vec<Job> = units
-        .iter()
-        .enumerate()
-        .flat_map(|(i, u)| {
-            let g = u.generic.then_some(Job::Generic(i));
-            g.into_iter().chain([
-                Job::Pnr(i),
-                Job::Family(i, Family::Xc3sa),
-                Job::Family(i, Family::CycloneIve),
-            ])
-        })
-        .collect();
+    let jobs = jobs_for(&units);
     bar.set_length(jobs.len() as u64 + sweep::rows(plan));
     bar.set_message("synthesizing, placing, routing");
-    // Longest runs first (the whole top, large N, generic) so the two cores stay busy.
-    let weight = |j: &Job| match *j {
-        Job::Generic(i) => units[i].weight * 3 / 2 + 2,
-        Job::Pnr(i) => units[i].weight * 2 + 3,
-        Job::Family(i, _) => units[i].weight,
-    };
-    let mut order: Vec<usize> = (0..jobs.len()).collect();
-    order.sort_by_key(|&j| std::cmp::Reverse(weight(&jobs[j])));
-    let outs: Vec<(usize, JobOut)> = order
-        .par_iter()
-        .map(|&j| {
-            let r = match jobs[j] {
-                Job::Family(i, fam) => {
-                    let u = &units[i];
-                    let tag = format!("{}_{}", u.tag, fam.name());
-                    ys.family(&u.verilog, &u.top, fam, &tag)
-                        .map(|(s, hit)| JobOut::Family(s, hit))
-                }
-                Job::Generic(i) => {
-                    let u = &units[i];
-                    let tag = format!("{}_generic", u.tag);
-                    ys.generic(&u.verilog, &u.top, &tag)
-                        .map(|(g, hit)| JobOut::Generic(g, hit))
-                }
-                Job::Pnr(i) => {
-                    let u = &units[i];
-                    let tag = format!("{}_ecp5", u.tag);
-                    pnr.run(&u.verilog, &u.top, clock_mhz, &tag)
-                        .map(|(t, hit)| JobOut::Pnr(t, hit))
-                }
-            };
-            bar.inc(1);
-            r.map(|o| (j, o))
-        })
-        .collect::<Result<_>>()?;
-    let mut xc = vec![SynthStats::default(); units.len()];
-    let mut cy = vec![SynthStats::default(); units.len()];
-    let mut ge = vec![GateStats::default(); units.len()];
-    let mut pn = vec![PnrTiming::default(); units.len()];
-    let (mut hits, mut runs) = (0, 0);
-    let (mut pnr_hits, mut pnr_runs) = (0, 0);
-    for (j, o) in outs {
-        let hit = match (jobs[j], o) {
-            (Job::Family(i, Family::Xc3sa), JobOut::Family(s, h)) => {
-                xc[i] = s;
-                h
-            }
-            (Job::Family(i, Family::CycloneIve), JobOut::Family(s, h)) => {
-                cy[i] = s;
-                h
-            }
-            (Job::Generic(i), JobOut::Generic(g, h)) => {
-                ge[i] = g;
-                h
-            }
-            (Job::Pnr(i), JobOut::Pnr(t, h)) => {
-                pn[i] = t;
-                if h {
-                    pnr_hits += 1;
-                } else {
-                    pnr_runs += 1;
-                }
-                continue;
-            }
-            _ => {
-                return Err(Error::Export(
-                    "report: Yosys job and result disagree".into(),
-                ))
-            }
-        };
-        if hit {
-            hits += 1;
-        } else {
-            runs += 1;
-        }
-    }
+    let outs = run_jobs(&jobs, &units, ys, pnr, clock_mhz, &bar)?;
+    let Figures {
+        xc,
+        cy,
+        ge,
+        pn,
+        hits,
+        runs,
+        pnr_hits,
+        pnr_runs,
+    } = figures(&jobs, outs, units.len())?;
     bar.set_message("sweeping the model");
     let mut ds: Vec<&Derived> = designs.iter().map(|l| &l.derived).collect();
     if let Some(extra) = &angle_design.1 {
@@ -378,6 +302,145 @@ pub(super) fn build_inner(
         cache_hits: hits,
         yosys_runs: runs,
         ecp5_version: pnr.version().to_string(),
+        pnr_hits,
+        pnr_runs,
+    })
+}
+
+/// The tool runs per unit: ECP5 place and route, the two families' synthesis, and the
+/// generic gate count for the units that ask for it.
+fn jobs_for(units: &[Unit]) -> Vec<Job> {
+    units
+        .iter()
+        .enumerate()
+        .flat_map(|(i, u)| {
+            let g = u.generic.then_some(Job::Generic(i));
+            g.into_iter().chain([
+                Job::Pnr(i),
+                Job::Family(i, Family::Xc3sa),
+                Job::Family(i, Family::CycloneIve),
+            ])
+        })
+        .collect()
+}
+
+/// Runs every job in one parallel pool, the longest first; each result with its job's
+/// index.
+fn run_jobs(
+    jobs: &[Job],
+    units: &[Unit],
+    ys: &Yosys,
+    pnr: &Ecp5,
+    clock_mhz: f64,
+    bar: &indicatif::ProgressBar,
+) -> Result<Vec<(usize, JobOut)>> {
+    // Longest runs first (the whole top, large N, generic) so the two cores stay busy.
+    let weight = |j: &Job| match *j {
+        Job::Generic(i) => units[i].weight * 3 / 2 + 2,
+        Job::Pnr(i) => units[i].weight * 2 + 3,
+        Job::Family(i, _) => units[i].weight,
+    };
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by_key(|&j| std::cmp::Reverse(weight(&jobs[j])));
+    order
+        .par_iter()
+        .map(|&j| {
+            let r = match jobs[j] {
+                Job::Family(i, fam) => {
+                    let u = &units[i];
+                    let tag = format!("{}_{}", u.tag, fam.name());
+                    ys.family(&u.verilog, &u.top, fam, &tag)
+                        .map(|(s, hit)| JobOut::Family(s, hit))
+                }
+                Job::Generic(i) => {
+                    let u = &units[i];
+                    let tag = format!("{}_generic", u.tag);
+                    ys.generic(&u.verilog, &u.top, &tag)
+                        .map(|(g, hit)| JobOut::Generic(g, hit))
+                }
+                Job::Pnr(i) => {
+                    let u = &units[i];
+                    let tag = format!("{}_ecp5", u.tag);
+                    pnr.run(&u.verilog, &u.top, clock_mhz, &tag)
+                        .map(|(t, hit)| JobOut::Pnr(t, hit))
+                }
+            };
+            bar.inc(1);
+            r.map(|o| (j, o))
+        })
+        .collect::<Result<_>>()
+}
+
+/// The tools' figures per unit, and how many runs the caches answered.
+struct Figures {
+    /// Spartan-3A synthesis, per unit.
+    xc: Vec<SynthStats>,
+    /// Cyclone IV E synthesis, per unit.
+    cy: Vec<SynthStats>,
+    /// Generic gate counts, per unit (default where not asked for).
+    ge: Vec<GateStats>,
+    /// ECP5 post-route timing, per unit.
+    pn: Vec<PnrTiming>,
+    /// Yosys runs the cache answered.
+    hits: usize,
+    /// Yosys runs made.
+    runs: usize,
+    /// Place-and-route runs the cache answered.
+    pnr_hits: usize,
+    /// Place-and-route runs made.
+    pnr_runs: usize,
+}
+
+/// Sorts the jobs' results into [`Figures`] by unit.
+fn figures(jobs: &[Job], outs: Vec<(usize, JobOut)>, n_units: usize) -> Result<Figures> {
+    let mut xc = vec![SynthStats::default(); n_units];
+    let mut cy = vec![SynthStats::default(); n_units];
+    let mut ge = vec![GateStats::default(); n_units];
+    let mut pn = vec![PnrTiming::default(); n_units];
+    let (mut hits, mut runs) = (0, 0);
+    let (mut pnr_hits, mut pnr_runs) = (0, 0);
+    for (j, o) in outs {
+        let hit = match (jobs[j], o) {
+            (Job::Family(i, Family::Xc3sa), JobOut::Family(s, h)) => {
+                xc[i] = s;
+                h
+            }
+            (Job::Family(i, Family::CycloneIve), JobOut::Family(s, h)) => {
+                cy[i] = s;
+                h
+            }
+            (Job::Generic(i), JobOut::Generic(g, h)) => {
+                ge[i] = g;
+                h
+            }
+            (Job::Pnr(i), JobOut::Pnr(t, h)) => {
+                pn[i] = t;
+                if h {
+                    pnr_hits += 1;
+                } else {
+                    pnr_runs += 1;
+                }
+                continue;
+            }
+            _ => {
+                return Err(Error::Export(
+                    "report: Yosys job and result disagree".into(),
+                ))
+            }
+        };
+        if hit {
+            hits += 1;
+        } else {
+            runs += 1;
+        }
+    }
+    Ok(Figures {
+        xc,
+        cy,
+        ge,
+        pn,
+        hits,
+        runs,
         pnr_hits,
         pnr_runs,
     })

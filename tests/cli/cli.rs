@@ -549,3 +549,53 @@ fn a_config_that_is_huge_or_not_a_file_is_refused() {
         assert!(e.contains(name) && e.contains(says), "{name}: {e}");
     }
 }
+
+/// Whitespace collapsed to single spaces: clap joins a doc comment's lines and wraps nothing,
+/// the Markdown source breaks where it likes.
+fn words(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// docs/cli.md's command table names every command with its one-line summary, and each
+/// command's section there is what `sinedec <command> --help` prints: the reference has one
+/// text in two places, and this keeps them equal.
+#[test]
+fn long_help_carries_the_command_reference() {
+    let doc = include_str!("../../docs/cli.md");
+    let dir = tempfile::tempdir().expect("tempdir");
+    for cmd in ["generate", "check", "simulate", "report", "init"] {
+        let help = words(&ok(dir.path(), &[cmd, "--help"]));
+        let row = doc
+            .lines()
+            .find(|l| l.starts_with(&format!("| `sinedec {cmd}")))
+            .unwrap_or_else(|| panic!("docs/cli.md has no table row for `{cmd}`"));
+        let summary = row
+            .trim_end_matches(" |")
+            .rsplit(" | ")
+            .next()
+            .unwrap_or("");
+        assert!(
+            help.starts_with(&words(summary)),
+            "`{cmd} --help` does not open with the table's summary {summary:?}:\n{help}"
+        );
+        let head = format!("### `sinedec {cmd}`\n");
+        let start = doc
+            .find(&head)
+            .unwrap_or_else(|| panic!("docs/cli.md has no section {head:?}"))
+            + head.len();
+        let body = &doc[start..];
+        let body = &body[..body.find("\n#").unwrap_or(body.len())];
+        let paras: Vec<&str> = body
+            .split("\n\n")
+            .filter(|p| !p.trim().is_empty())
+            .collect();
+        assert!(!paras.is_empty(), "docs/cli.md's `{cmd}` section is empty");
+        for p in paras {
+            let p = words(p);
+            assert!(
+                help.contains(&p),
+                "`{cmd} --help` lacks docs/cli.md's paragraph:\n{p}\n\n--help:\n{help}"
+            );
+        }
+    }
+}

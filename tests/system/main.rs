@@ -13,6 +13,7 @@ mod engine;
 mod engine_loop;
 mod outputs_top;
 mod simulate_engine;
+mod simulate_outputs;
 mod simulate_truth;
 mod system;
 mod velocity_top;

@@ -109,66 +109,9 @@ pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<Path
         .get("modules")
         .and_then(|ms| ms.get(top))
         .ok_or_else(|| bad_netlist(format!("netlist has no module `{top}`")))?;
-    // Net bit -> a readable name (prefer names without `$`, then the shortest).
-    let mut names: HashMap<u64, String> = HashMap::new();
-    if let Some(nn) = module.get("netnames").and_then(Value::as_object) {
-        for (name, n) in nn {
-            let bs = n.get("bits").map(bits).unwrap_or_default();
-            let width = bs.len();
-            for (i, b) in bs.into_iter().enumerate() {
-                let Some(b) = b else { continue };
-                let full = if width == 1 {
-                    name.clone()
-                } else {
-                    format!("{name}[{i}]")
-                };
-                let better = match names.get(&b) {
-                    None => true,
-                    Some(old) => {
-                        let rank = |s: &str| (s.contains('$'), s.len(), s.to_string());
-                        rank(&full) < rank(old)
-                    }
-                };
-                if better {
-                    names.insert(b, full);
-                }
-            }
-        }
-    }
-    let mut cells: Vec<Cell> = Vec::new();
-    if let Some(cs) = module.get("cells").and_then(Value::as_object) {
-        for (name, c) in cs {
-            let ty = c.get("type").and_then(Value::as_str).unwrap_or("");
-            let dirs = c.get("port_directions").and_then(Value::as_object);
-            let mut ports = Vec::new();
-            if let Some(conn) = c.get("connections").and_then(Value::as_object) {
-                for (p, b) in conn {
-                    let out = dirs
-                        .and_then(|d| d.get(p))
-                        .and_then(Value::as_str)
-                        .map(|d| d == "output")
-                        .unwrap_or(false);
-                    ports.push((p.as_str(), out, bits(b)));
-                }
-            }
-            cells.push(Cell {
-                name: name.as_str(),
-                ty,
-                ports,
-            });
-        }
-    }
-    // Net bit -> (driving cell, output port).
-    let mut driver: HashMap<u64, (usize, usize)> = HashMap::new();
-    for (ci, c) in cells.iter().enumerate() {
-        for (pi, (_, out, bs)) in c.ports.iter().enumerate() {
-            if *out {
-                for b in bs.iter().flatten() {
-                    driver.insert(*b, (ci, pi));
-                }
-            }
-        }
-    }
+    let names = net_names(module);
+    let cells = read_cells(module);
+    let driver = drivers(&cells);
     let mut memo: HashMap<u64, Option<Arr>> = HashMap::new();
     // Iterative depth-first evaluation of arrival times (paths can be hundreds of cells).
     let mut visiting: std::collections::HashSet<u64> = std::collections::HashSet::new();
@@ -293,6 +236,93 @@ pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<Path
             .and_then(|b| names.get(&b).cloned())
             .unwrap_or_else(|| c.name.to_string())
     };
+    trace_back(&mut p, &memo, &names, &cells, end_bit);
+    p.carry_chains = chain_runs(&memo, end_bit);
+    Ok(Some(p))
+}
+
+/// Net bit -> a readable name (prefer names without `$`, then the shortest).
+fn net_names(module: &Value) -> HashMap<u64, String> {
+    let mut names: HashMap<u64, String> = HashMap::new();
+    if let Some(nn) = module.get("netnames").and_then(Value::as_object) {
+        for (name, n) in nn {
+            let bs = n.get("bits").map(bits).unwrap_or_default();
+            let width = bs.len();
+            for (i, b) in bs.into_iter().enumerate() {
+                let Some(b) = b else { continue };
+                let full = if width == 1 {
+                    name.clone()
+                } else {
+                    format!("{name}[{i}]")
+                };
+                let better = match names.get(&b) {
+                    None => true,
+                    Some(old) => {
+                        let rank = |s: &str| (s.contains('$'), s.len(), s.to_string());
+                        rank(&full) < rank(old)
+                    }
+                };
+                if better {
+                    names.insert(b, full);
+                }
+            }
+        }
+    }
+    names
+}
+
+/// The module's cells with their ports' directions and bits.
+fn read_cells(module: &Value) -> Vec<Cell<'_>> {
+    let mut cells: Vec<Cell> = Vec::new();
+    if let Some(cs) = module.get("cells").and_then(Value::as_object) {
+        for (name, c) in cs {
+            let ty = c.get("type").and_then(Value::as_str).unwrap_or("");
+            let dirs = c.get("port_directions").and_then(Value::as_object);
+            let mut ports = Vec::new();
+            if let Some(conn) = c.get("connections").and_then(Value::as_object) {
+                for (p, b) in conn {
+                    let out = dirs
+                        .and_then(|d| d.get(p))
+                        .and_then(Value::as_str)
+                        .map(|d| d == "output")
+                        .unwrap_or(false);
+                    ports.push((p.as_str(), out, bits(b)));
+                }
+            }
+            cells.push(Cell {
+                name: name.as_str(),
+                ty,
+                ports,
+            });
+        }
+    }
+    cells
+}
+
+/// Net bit -> (driving cell, output port).
+fn drivers(cells: &[Cell]) -> HashMap<u64, (usize, usize)> {
+    let mut driver: HashMap<u64, (usize, usize)> = HashMap::new();
+    for (ci, c) in cells.iter().enumerate() {
+        for (pi, (_, out, bs)) in c.ports.iter().enumerate() {
+            if *out {
+                for b in bs.iter().flatten() {
+                    driver.insert(*b, (ci, pi));
+                }
+            }
+        }
+    }
+    driver
+}
+
+/// Walks the worst path back from its end bit to its start, counting its levels into `p`
+/// and naming its start.
+fn trace_back(
+    p: &mut PathLevels,
+    memo: &HashMap<u64, Option<Arr>>,
+    names: &HashMap<u64, String>,
+    cells: &[Cell],
+    end_bit: u64,
+) {
     let mut b = end_bit;
     while let Some(Some(a)) = memo.get(&b).copied() {
         match a.prev {
@@ -325,8 +355,6 @@ pub fn analyze_with(json: &str, top: &str, m: &DelayModel) -> Result<Option<Path
             }
         }
     }
-    p.carry_chains = chain_runs(&memo, end_bit);
-    Ok(Some(p))
 }
 
 /// Number of separate runs of carry arcs on the path ending at `end` (walking backwards).

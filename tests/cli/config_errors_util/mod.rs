@@ -1,5 +1,5 @@
 //! Helpers shared by the tests of bad configurations: `tests/cli/config_errors.rs` (syntax,
-//! schema, types, message wording), `tests/config_blame.rs` (the key an error names),
+//! schema, types), `tests/cli/config_wording.rs` (message wording), `tests/config_blame.rs` (the key an error names),
 //! `tests/config_ranges.rs` (ranges) and `tests/config_scope.rs` (what applies to which
 //! design).
 #![allow(dead_code)]

@@ -1,4 +1,5 @@
-//! Helpers shared by `tests/cli/output_safety.rs` and `tests/cli/output_robustness.rs` (moved out of `tests/cli/output_safety.rs` so that
+//! Helpers shared by `tests/cli/output_safety.rs`, `tests/cli/output_robustness.rs` and
+//! `tests/cli/signals.rs` (moved out of `tests/cli/output_safety.rs` so that
 //! no test file is longer than about 600 lines).
 #![allow(dead_code)]
 use std::collections::BTreeMap;
@@ -139,4 +140,16 @@ pub fn marker(file: &str) -> Option<&'static str> {
         Some("md") => Some("<!--"),
         _ => None,
     }
+}
+
+/// Temporary names sinedec makes, found in `dir`.
+pub fn temporaries(dir: &std::path::Path) -> Vec<String> {
+    listing(dir)
+        .into_iter()
+        .filter(|f| {
+            (f.starts_with(".sinedec-") && f.ends_with(".tmp"))
+                || f.starts_with("sinedec-")
+                || f.starts_with(".tmp")
+        })
+        .collect()
 }

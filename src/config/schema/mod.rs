@@ -3,6 +3,12 @@
 
 use super::*;
 
+mod adc;
+mod board;
+
+pub use adc::*;
+pub use board::*;
+
 /// Largest internal datapath word: rust-hdl stores words above 32 bits bit by bit.
 pub const MAX_WORD_BITS: u32 = 31;
 
@@ -106,17 +112,6 @@ pub enum Target {
     Spartan3an,
     /// Intel/Altera Cyclone III (EP3C40F324C8).
     Cyclone3,
-}
-
-/// ADC chip presets.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-pub enum AdcPreset {
-    /// LTC1407A-1: dual 14-bit, 3 Msps total (1.5 Msps per channel).
-    #[serde(rename = "ltc1407a-1")]
-    Ltc1407a1,
-    /// Any other SPI ADC (limits come from `adc.max_sample_rate_hz`).
-    #[serde(rename = "generic")]
-    Generic,
 }
 
 /// Whole configuration file.
@@ -268,61 +263,6 @@ pub struct SpiConfig {
     pub gray: bool,
 }
 
-/// `[board]`: pin locations of `<name>_top`'s ports for the UCF.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BoardConfig {
-    /// Board whose fixed pins are filled in: "spartan3an-starter-kit" (see
-    /// [`STARTER_KIT_PINS`]; also writes `<name>_top.ut` with `-g UnusedPin:PullUp`).
-    #[serde(default)]
-    pub preset: Option<String>,
-    /// I/O standard of every pin (e.g. "LVCMOS33"); the preset's when omitted.
-    #[serde(default)]
-    pub iostandard: Option<String>,
-    /// Port name -> package pin (e.g. adc_conv = "Y6"), or a list of pins LSB first for a
-    /// bus (exc_sin = ["A1", "B1", ...]). Every port of the top except the parallel bus
-    /// (`par_*`, meant for logic in the same FPGA) needs one (see [`board_ports`]); the
-    /// [`DESELECT_PINS`] are optional and become ports when pinned. These override the
-    /// preset's.
-    #[serde(default)]
-    pub pins: std::collections::BTreeMap<String, PinValue>,
-    /// Oscillator on the `clk` pin, Hz: 50 MHz with the Starter Kit preset, else
-    /// `clock.frequency_hz`. When it differs from the system clock, `generate` writes
-    /// `<name>_board.v` with a DCM_SP (Spartan-3AN) or ALTPLL (Cyclone III) making it.
-    #[serde(default)]
-    pub clock_hz: Option<f64>,
-    /// Budget for the FPGA's clock-to-output of the ADC outputs, ns (default 6; the
-    /// UCF/SDC make the vendor tool verify it). See `crate::board`.
-    #[serde(default)]
-    pub fpga_clock_to_out_ns: Option<f64>,
-    /// Budget for the FPGA's pad set-up at `adc_miso`, ns (default 3; verified likewise).
-    #[serde(default)]
-    pub fpga_input_setup_ns: Option<f64>,
-    /// One board trace between the FPGA and the ADC, ns (default 1: about 15 cm).
-    #[serde(default)]
-    pub trace_delay_ns: Option<f64>,
-}
-
-/// A pin (`"Y6"`) or the pins of a bus, LSB first.
-#[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
-#[serde(untagged)]
-pub enum PinValue {
-    /// One package pin.
-    One(String),
-    /// One package pin per bit, LSB first.
-    Bus(Vec<String>),
-}
-
-impl PinValue {
-    /// The single pin, if this is one.
-    pub fn one(&self) -> Option<&str> {
-        match self {
-            PinValue::One(s) => Some(s),
-            PinValue::Bus(_) => None,
-        }
-    }
-}
-
 /// `[qep]`: comparator outputs A (cos > 0), B (sin > 0), Z (index) on `qep_a/b/z`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -361,100 +301,6 @@ pub struct EncoderConfig {
     /// Width of the signed multi-turn counter (0 = single-turn only).
     #[serde(deserialize_with = "r_mt")]
     pub multiturn_bits: u32,
-}
-
-/// `[adc]`
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AdcConfig {
-    /// Chip preset.
-    pub preset: AdcPreset,
-    /// Sample width in bits (two's complement).
-    #[serde(deserialize_with = "r_width")]
-    pub width: u32,
-    /// Target sample rate per channel (the rate reached is at most this); omitted: the
-    /// fastest the chip and the clock allow.
-    #[serde(default)]
-    pub sample_rate_hz: Option<f64>,
-    /// SCK period in system clocks (>= 2, odd allowed); omitted: the fastest allowed.
-    #[serde(default)]
-    pub sck_period_clocks: Option<u32>,
-    /// Upper limit of the chip's per-channel rate (required for `generic`).
-    #[serde(default)]
-    pub max_sample_rate_hz: Option<f64>,
-    /// Frame format of a `generic` ADC.
-    #[serde(default)]
-    pub frame: Option<FrameConfig>,
-    /// Timing limits of a `generic` ADC, in ns.
-    #[serde(default)]
-    pub timing: Option<TimingConfig>,
-}
-
-/// `[adc.frame]` (preset `generic`): defaults describe two channels of W bits, MSB first,
-/// one idle slot before each, shifted on rising SCK edges after a CONV pulse.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FrameConfig {
-    /// SCK cycles per frame (default 2W + 4).
-    pub frame_sck: Option<u32>,
-    /// Channels: 1 or 2 (default 2).
-    pub channels: Option<u32>,
-    /// Slot of each channel's MSB (default [1, W + 2]); one entry per channel (a
-    /// one-channel frame may keep an unused second one).
-    pub offsets: Option<Vec<u32>>,
-    /// "twos-complement" (default) or "offset-binary".
-    pub sign: Option<String>,
-    /// SCK idle level (default false).
-    pub cpol: Option<bool>,
-    /// The slave shifts on leading edges (default true).
-    pub cpha: Option<bool>,
-    /// CONV / chip select active high (default true).
-    pub conv_active_high: Option<bool>,
-    /// CONV active clocks (default 0 = the minimum pulse).
-    pub conv_clocks: Option<u32>,
-    /// Clocks from CONV to the first SCK cycle (default 0).
-    pub lead_clocks: Option<u32>,
-    /// Frames between a conversion and its data (default 0).
-    pub pipeline: Option<u32>,
-}
-
-/// `[adc.timing]` (preset `generic`), all in ns.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TimingConfig {
-    /// Minimum SCK period (default 20).
-    pub sck_min_period_ns: Option<f64>,
-    /// Minimum SCK high/low time (default 5).
-    pub sck_min_pulse_ns: Option<f64>,
-    /// SDO valid after the shifting edge (default 10).
-    pub data_valid_ns: Option<f64>,
-    /// Minimum CONV pulse (default 10).
-    pub conv_min_pulse_ns: Option<f64>,
-    /// Minimum CONV inactive time (default 10).
-    pub conv_min_low_ns: Option<f64>,
-    /// CONV to first SCK edge (default 5).
-    pub conv_to_sck_ns: Option<f64>,
-    /// Acquisition time before the next CONV (default 0).
-    pub acquisition_ns: Option<f64>,
-}
-
-/// `[preamp]`: LTC6912-1 gains (preset `ltc1407a-1` only).
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PreampConfig {
-    /// Gain of amplifier A (ADC channel 0, sin): -1, -2, -5, -10, -20, -50 or -100.
-    pub gain_a: i32,
-    /// Gain of amplifier B (ADC channel 1, cos).
-    pub gain_b: i32,
-}
-
-impl Default for PreampConfig {
-    fn default() -> Self {
-        PreampConfig {
-            gain_a: -1,
-            gain_b: -1,
-        }
-    }
 }
 
 /// `[cordic]`

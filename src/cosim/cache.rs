@@ -1,0 +1,247 @@
+//! Verdict cache of the Verilog simulators: Icarus and Verilator give the same trace for the
+//! same design, driver, stimulus and tool version, so a trace once produced need not be
+//! produced again to know it. The cache keeps, per run, only the SHA-256 of the trace the
+//! simulator printed, keyed by everything the run depends on:
+//!
+//! ```text
+//!  key = SHA-256(CACHE_VERSION, simulator, tool version, build arguments,
+//!                driver (testbench / C++ main), design Verilog, stimulus file)
+//!
+//!  run_*_expecting(spec, rows, expected) ─► key ─► <dir>/<key> holds SHA-256(trace)?
+//!     ├─ equals SHA-256(expected) ──► Ok(expected): the simulator printed exactly it
+//!     └─ absent or different ──► run the simulator ──► write SHA-256(its trace) ──► its trace
+//! ```
+//!
+//! A hit therefore proves that the simulator's trace equals `expected` bit for bit; any other
+//! case runs the tool, so a difference is always reported from a real run with its first
+//! mismatching cycle. The tool must still be installed (its version is part of the key):
+//! a missing simulator fails with its install hint, cached or not.
+//!
+//! The cache is off unless [`COSIM_CACHE_ENV`] names a directory. `scripts/test.sh` points it
+//! at `tests/data/cosim-cache`, committed, so that CI on a fresh clone runs Icarus and
+//! Verilator only for the designs whose Verilog changed (`scripts/cosim_cache.sh` refreshes
+//! it). Written by hand: the key must cover this harness's own files, which no generic
+//! memoizing crate knows.
+use super::tool::{install_hint, tool_version_named};
+use super::{CosimError, CosimSpec, Trace};
+use sha2::{Digest, Sha256};
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+/// The environment variable naming the cache directory (unset or empty: no cache).
+pub const COSIM_CACHE_ENV: &str = "SINEDEC_COSIM_CACHE";
+
+/// Changes whenever the meaning of a key or an entry changes.
+const CACHE_VERSION: &str = "sinedec-cosim-verdict-1";
+
+/// The cache directory, when one is configured.
+fn cache_dir() -> Option<PathBuf> {
+    std::env::var_os(COSIM_CACHE_ENV)
+        .filter(|v| !v.is_empty())
+        .map(PathBuf::from)
+}
+
+/// SHA-256 of a trace: every value as 8 little-endian bytes, rows framed by their length.
+pub(super) fn trace_digest(trace: &Trace) -> String {
+    let mut h = Sha256::new();
+    h.update((trace.len() as u64).to_le_bytes());
+    for row in trace {
+        h.update((row.len() as u64).to_le_bytes());
+        for v in row {
+            h.update(v.to_le_bytes());
+        }
+    }
+    hex(&h.finalize())
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// The version line of `tool` (`iverilog -V`'s first line, `verilator --version`), read once
+/// per process; a missing tool is [`CosimError::ToolMissing`] with its install hint.
+fn tool_version(tool: &'static str) -> Result<String, CosimError> {
+    static ICARUS: OnceLock<String> = OnceLock::new();
+    static VERILATOR: OnceLock<String> = OnceLock::new();
+    let cell = if tool == "verilator" {
+        &VERILATOR
+    } else {
+        &ICARUS
+    };
+    if let Some(v) = cell.get() {
+        return Ok(v.clone());
+    }
+    let v = tool_version_named(tool, &install_hint(tool))?;
+    Ok(cell.get_or_init(|| v).clone())
+}
+
+/// One run's place in the cache.
+pub(super) struct Entry {
+    path: PathBuf,
+}
+
+impl Entry {
+    /// The entry in `dir` of a run of `tool` (`iverilog` or `verilator`) whose inputs are
+    /// `parts`.
+    fn of(
+        dir: PathBuf,
+        tool: &'static str,
+        spec: &CosimSpec,
+        parts: &[&str],
+    ) -> Result<Entry, CosimError> {
+        let version = tool_version(tool)?;
+        let mut h = Sha256::new();
+        for part in [
+            CACHE_VERSION,
+            tool,
+            &version,
+            spec.top,
+            spec.clock,
+            spec.verilog,
+        ]
+        .into_iter()
+        .chain(parts.iter().copied())
+        {
+            h.update((part.len() as u64).to_le_bytes());
+            h.update(part.as_bytes());
+        }
+        Ok(Entry {
+            path: dir.join(hex(&h.finalize())),
+        })
+    }
+
+    /// True when the cached trace of this run is `expected`.
+    pub(super) fn holds(&self, expected: &Trace) -> bool {
+        std::fs::read_to_string(&self.path).is_ok_and(|s| s.trim() == trace_digest(expected))
+    }
+
+    /// Records the trace a real run printed (best effort: a cache that cannot be written
+    /// only costs the next run its time).
+    pub(super) fn store(&self, trace: &Trace) {
+        let Some(dir) = self.path.parent() else {
+            return;
+        };
+        if std::fs::create_dir_all(dir).is_err() {
+            return;
+        }
+        // Written beside and renamed over: parallel tests never read half an entry.
+        if let Ok(mut tmp) = tempfile::NamedTempFile::new_in(dir) {
+            use std::io::Write;
+            if writeln!(tmp, "{}", trace_digest(trace)).is_ok() {
+                let _ = tmp.persist(&self.path);
+            }
+        }
+    }
+}
+
+/// Runs `run` unless the cache of [`COSIM_CACHE_ENV`] holds `expected` for this run (see
+/// the module doc).
+pub(super) fn cached(
+    tool: &'static str,
+    spec: &CosimSpec,
+    parts: &[&str],
+    expected: &Trace,
+    run: impl FnOnce() -> Result<Trace, CosimError>,
+) -> Result<Trace, CosimError> {
+    cached_in(cache_dir(), tool, spec, parts, expected, run)
+}
+
+/// [`cached`] with the cache directory given (None: no cache, `run` runs).
+fn cached_in(
+    dir: Option<PathBuf>,
+    tool: &'static str,
+    spec: &CosimSpec,
+    parts: &[&str],
+    expected: &Trace,
+    run: impl FnOnce() -> Result<Trace, CosimError>,
+) -> Result<Trace, CosimError> {
+    let Some(dir) = dir else {
+        return run();
+    };
+    let entry = Entry::of(dir, tool, spec, parts)?;
+    if entry.holds(expected) {
+        return Ok(expected.clone());
+    }
+    let trace = run()?;
+    entry.store(&trace);
+    Ok(trace)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn digest_frames_rows() {
+        // [[1, 2]] and [[1], [2]] hold the same values; the framing keeps them apart.
+        assert_ne!(
+            trace_digest(&vec![vec![1, 2]]),
+            trace_digest(&vec![vec![1], vec![2]])
+        );
+        assert_eq!(trace_digest(&vec![vec![7]]), trace_digest(&vec![vec![7]]));
+    }
+
+    #[test]
+    fn an_entry_holds_only_its_own_trace() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let e = Entry {
+            path: dir.path().join("k"),
+        };
+        assert!(!e.holds(&vec![vec![1]]));
+        e.store(&vec![vec![1]]);
+        assert!(e.holds(&vec![vec![1]]));
+        assert!(!e.holds(&vec![vec![2]]));
+    }
+
+    /// A hit skips the run; a miss, a different expectation or a different design runs it.
+    /// (Needs iverilog for the version in the key, as every co-simulation does.)
+    #[test]
+    fn a_run_is_skipped_only_when_its_entry_holds_the_expected_trace() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let ports = [super::super::Port::new("a", 1)];
+        fn spec<'a>(verilog: &'a str, ports: &'a [super::super::Port]) -> CosimSpec<'a> {
+            CosimSpec {
+                verilog,
+                top: "t",
+                clock: "clk",
+                inputs: ports,
+                outputs: ports,
+            }
+        }
+        let runs = std::cell::Cell::new(0);
+        let go = |verilog: &str, stim: &str, expected: Trace, printed: Trace| {
+            cached_in(
+                Some(dir.path().to_path_buf()),
+                "iverilog",
+                &spec(verilog, &ports),
+                &[stim],
+                &expected,
+                || {
+                    runs.set(runs.get() + 1);
+                    Ok(printed)
+                },
+            )
+            .expect("cached run")
+        };
+        let t1 = vec![vec![1]];
+        let t0 = vec![vec![0]];
+        assert_eq!(go("v1", "s", t1.clone(), t1.clone()), t1); // miss: runs, stores
+        assert_eq!(runs.get(), 1);
+        assert_eq!(go("v1", "s", t1.clone(), t0.clone()), t1); // hit: the stored verdict
+        assert_eq!(runs.get(), 1);
+        // Expecting something else than the simulator printed: it runs and tells the truth.
+        assert_eq!(go("v1", "s", t0.clone(), t1.clone()), t1);
+        assert_eq!(runs.get(), 2);
+        // Another design or stimulus is another key.
+        go("v2", "s", t1.clone(), t1.clone());
+        go("v1", "s2", t1.clone(), t1.clone());
+        assert_eq!(runs.get(), 4);
+        // No cache: always runs.
+        cached_in(None, "iverilog", &spec("v1", &ports), &["s"], &t1, || {
+            runs.set(runs.get() + 1);
+            Ok(t1.clone())
+        })
+        .expect("uncached run");
+        assert_eq!(runs.get(), 5);
+    }
+}
