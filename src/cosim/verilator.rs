@@ -163,13 +163,15 @@ fn verilator_args(spec: &CosimSpec) -> Vec<String> {
     .iter()
     .map(|s| s.to_string())
     .collect();
-    // One job per core, at most 4: a small design yields only ~4 C++ files to compile.
-    let jobs = std::thread::available_parallelism().map_or(2, |n| n.get().min(4));
-    args.push("-j".to_string());
-    args.push(jobs.to_string());
     args.push("--top-module".to_string());
     args.push(spec.top.to_string());
     args
+}
+
+/// Make jobs of a build: one per core, at most 4 (a small design yields only ~4 C++ files
+/// to compile).
+fn build_jobs() -> usize {
+    std::thread::available_parallelism().map_or(2, |n| n.get().min(4))
 }
 
 /// Simulates `spec` in Verilator (`--cc --exe --build` with a generated C++ main) with
@@ -204,6 +206,7 @@ pub fn run_verilator(
     build
         .current_dir(workdir)
         .args(verilator_args(spec))
+        .args(["-j".to_string(), build_jobs().to_string()])
         .args([DESIGN_FILE, VERILATOR_MAIN_FILE]);
     run_checked(
         &mut build,
@@ -239,19 +242,9 @@ pub fn run_verilator_expecting(
 ) -> Result<Trace, CosimError> {
     super::validate(spec, stimulus)?;
     let main = verilator_main(spec, stimulus.len());
-    // The build's arguments less its job count (`-j N`, the machine's cores): that one
-    // changes how fast the model builds, not what it prints.
-    let all = verilator_args(spec);
-    let mut kept = Vec::with_capacity(all.len());
-    let mut it = all.iter();
-    while let Some(a) = it.next() {
-        if a == "-j" {
-            it.next();
-        } else {
-            kept.push(a.as_str());
-        }
-    }
-    let args = kept.join(" ");
+    // The job count is left out (see `build_jobs`): it changes how fast the model builds,
+    // not what it prints.
+    let args = verilator_args(spec).join(" ");
     let stim = super::stimulus_text(spec, stimulus);
     super::cache::cached("verilator", spec, &[&args, &main, &stim], expected, || {
         run_verilator(spec, stimulus, workdir)
