@@ -5,7 +5,7 @@
 //!
 //! ```text
 //!  start ─► snapshot N, |Σd| (+sign), Σd², Σd_s d_c (its magnitude two clocks later), b_ref
-//!   │       pc = 0
+//!   │       pc = 0; launch: the first set-up a clock later
 //!   ▼
 //!  ┌─► ROM: TABLE[pc] ─► dn (the row, registered) ─► pl (dn for one clock at the set-up)
 //!  │     row = (op, u_x source, u_d source, destination, options)
@@ -13,7 +13,8 @@
 //!  │          before writes its result (pl's destination select), pc += 1
 //!  │   Run:   DIV (64 or 80 steps) | MUL (32) | SQRT (32) on the shared adder
 //!  │   RoundSum, RoundTst, RoundInc, RoundNeg (a division): round or floor, sign
-//!  └── next row;  a row marked `check` refuses (amplitude, offset range) ─► Load ─► Idle
+//!  └── next row;  a row marked `check` refuses (amplitude, offset range; registered in
+//!                 `refuse` while the row before runs) ─► Load ─► Idle
 //!                 after the last row ─► Load: every coefficient at once, `done`
 //!
 //!  shared adder, one 53-bit carry chain, each step over two clocks:
@@ -76,7 +77,8 @@
 //! * Each clock writes a register through at most one adder or compare (the timing rule
 //!   of docs/correction.md): abs, add, round and negate are separate clocks or free-running
 //!   registers; the table's decode is registered twice (`dn`, `pl`) before a datapath
-//!   select reads it.
+//!   select reads it, and the state's next value depends on registers only (`launch`,
+//!   `f_ret`, `refuse`, dn's end bit, the run's flags).
 //! * The root has 32 bits (32 steps, one bit each; in u_d as 8 q + 1 while it grows);
 //!   `it` counts at most 80 steps: 8 bits.
 //!
@@ -157,6 +159,12 @@ pub struct FitSolve {
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
     /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
     pl: DFF<Sel>,
+    /// The clock after `go`: the first set-up is next (timing: keeps `start` and the state
+    /// decode off the `pl` and state paths).
+    launch: DFF<Bit>,
+    /// The row at pc refuses: its check fails (registered from dn and bad; timing: keeps the
+    /// check off the state and `pl` paths).
+    refuse: DFF<Bit>,
     /// The next clock is a set-up or Load: an operation's last B clock or RoundNeg.
     f_ret: DFF<Bit>,
     /// A checked row refuses: an amplitude low or an offset out of range (free-running;
@@ -165,10 +173,8 @@ pub struct FitSolve {
     /// A solve starts in this clock: idle, `start`, and dn holds row 0 (not so only in the
     /// first clock after power-up, before dn has loaded).
     go: Signal<Local, Bit>,
-    /// The set-up (or Load) is next: `go` or `f_ret`, no reset.
+    /// The set-up (or Load) is next: `launch` or `f_ret`.
     ret: Signal<Local, Bit>,
-    /// The row at pc passes its check.
-    ok: Signal<Local, Bit>,
     /// All selects clear.
     nosel: Constant<Sel>,
     /// Row 0's word.
@@ -576,7 +582,7 @@ impl FitSolve {
             g0_c: c16(p.gain()[COS] as u64),
         }
             clk rst start n s1_s s1_c s2_s s2_c ssc bref_s bref_c busy done off_s off_c g_s
-            g_c k_mag k_neg state pc dn pl f_ret bad go ret ok u_x u_d u_r u_mag u_q u_neg
+            g_c k_mag k_neg state pc dn pl launch refuse f_ret bad go ret u_x u_d u_r u_mag u_q u_neg
             u_rnd u_adj u_adjq uxs it f_div f_sq f_mul f_add f_sh1 f_sh2 f_qx f_qd f_last
             x_q x_en d_en clr_r oa ob uxr uxa uxb uxc udr xr rz req rneg run step opa up opb
             adjw adjqw adjn negn uxn udn uxan uxbn uxcn udrn sn a1_s a1_c n1_s n1_c a2_s

@@ -237,9 +237,9 @@ pub const fn row_cycles(r: &Row) -> u32 {
 }
 
 /// Clocks from the rising edge that takes `start` to the one that loads the coefficients
-/// of an accepted solve: every row of [`TABLE`], then Load.
+/// of an accepted solve: the launch clock, every row of [`TABLE`], then Load.
 pub const SOLVE_CYCLES: u32 = {
-    let (mut c, mut i) = (1, 0);
+    let (mut c, mut i) = (2, 0);
     while i < TABLE.len() {
         c += row_cycles(&TABLE[i]);
         i += 1;

@@ -28,7 +28,7 @@ impl Logic for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, pc, dn, pl, f_ret, bad, u_x, u_d, u_r, u_mag, u_q, u_neg, u_rnd,
+            self, clk, state, pc, dn, pl, launch, refuse, f_ret, bad, u_x, u_d, u_r, u_mag, u_q, u_neg, u_rnd,
             u_adj, u_adjq, uxs, it, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last,
             x_q, x_en, d_en, clr_r, oa, ob, uxr, uxa, uxb, uxc, udr, xr, rz, req, sn, a1_s, a1_c,
             n1_s, n1_c, a2_s, a2_c, asc, asc_h, asl, ash, alz, nsc, br_s, br_c, m_s, m_c, v_s, v_c,
@@ -41,12 +41,15 @@ impl Logic for FitSolve {
         // again as one-clock selects (pl); `ret` is the clock before a set-up or Load.
         self.rom.address.next = self.pc.q.val();
         self.dn.d.next = self.rom.data.val();
-        self.go.next =
-            (self.state.q.val() == SolveState::Idle) & self.start.val() & self.dn.q.val().x_a1s;
-        self.ret.next = (self.go.val() | self.f_ret.q.val()) & !self.rst.val();
-        self.ok.next = !(self.dn.q.val().chk & self.bad.q.val());
+        self.go.next = (self.state.q.val() == SolveState::Idle)
+            & self.start.val()
+            & self.dn.q.val().x_a1s
+            & !self.launch.q.val();
+        self.launch.d.next = self.go.val();
+        self.ret.next = self.launch.q.val() | self.f_ret.q.val();
+        self.refuse.d.next = self.dn.q.val().chk & self.bad.q.val();
         self.pl.d.next = self.nosel.val();
-        if self.ret.val() & self.ok.val() {
+        if self.ret.val() & !self.refuse.q.val() {
             self.pl.d.next = self.dn.q.val();
         }
         match self.state.q.val() {
@@ -78,7 +81,7 @@ impl Logic for FitSolve {
         }
         if self.ret.val() {
             self.state.d.next = SolveState::SetUp;
-            if !self.ok.val() | self.dn.q.val().end {
+            if self.refuse.q.val() | self.dn.q.val().end {
                 self.state.d.next = SolveState::Load;
                 self.pc.d.next = self.zero5.val();
             }
@@ -515,6 +518,8 @@ impl Logic for FitSolve {
             self.state.d.next = SolveState::Idle;
             self.pc.d.next = self.zero5.val();
             self.dn.d.next = self.row0.val();
+            self.pl.d.next = self.nosel.val();
+            self.launch.d.next = false;
             self.f_ret.d.next = false;
             self.f_div.d.next = false;
             self.f_sq.d.next = false;
