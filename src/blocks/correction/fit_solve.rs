@@ -4,8 +4,8 @@
 //! divider / square root, all three on one shared adder.
 //!
 //! ```text
-//!  start ─► snapshot N, |Σd| (+sign), Σd², Σd_s d_c (its magnitude two clocks later), b_ref
-//!   │       pc = 0; launch: the first set-up a clock later
+//!  start ─► snapshot N, Σd (|Σd| a clock later), Σd², Σd_s d_c (its magnitude two clocks
+//!   │       later), b_ref; pc = 0; launch: the first set-up a clock later
 //!   ▼
 //!  ┌─► ROM: TABLE[pc] ─► dn (the row, registered) ─► pl (dn for one clock at the set-up)
 //!  │     row = (op, u_x source, u_d source, destination, options)
@@ -159,6 +159,9 @@ pub struct FitSolve {
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
     /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
     pl: DFF<Sel>,
+    /// Idle, and no start taken in the clock before (timing: `go` is one LUT from registers
+    /// in front of the snapshot's 370 enables).
+    rdy: DFF<Bit>,
     /// The clock after `go`: the first set-up is next (timing: keeps `start` and the state
     /// decode off the `pl` and state paths).
     launch: DFF<Bit>,
@@ -170,8 +173,8 @@ pub struct FitSolve {
     /// A checked row refuses: an amplitude low or an offset out of range (free-running;
     /// timing: keeps the six compares off the `ok` -> `pl` path).
     bad: DFF<Bit>,
-    /// A solve starts in this clock: idle, `start`, and dn holds row 0 (not so only in the
-    /// first clock after power-up, before dn has loaded).
+    /// A solve starts in this clock: `rdy` and `start` (dn holds row 0 in every clock
+    /// `rdy` is set: pc is 0 from Load or reset on).
     go: Signal<Local, Bit>,
     /// The set-up (or Load) is next: `launch` or `f_ret`.
     ret: Signal<Local, Bit>,
@@ -288,9 +291,9 @@ pub struct FitSolve {
     // ---- the solve's values
     /// N of the window.
     sn: DFF<Bits<25>>,
-    /// |Σd_s|.
+    /// |Σd_s| (Σd_s's low 40 bits at the start, negated at launch when Σd_s < 0).
     a1_s: DFF<Bits<40>>,
-    /// |Σd_c|.
+    /// |Σd_c|, likewise.
     a1_c: DFF<Bits<40>>,
     /// Σd_s < 0.
     n1_s: DFF<Bit>,
@@ -482,6 +485,8 @@ pub struct FitSolve {
     /// See zero64.
     zero50: Constant<Bits<50>>,
     /// See zero64.
+    zero40: Constant<Bits<40>>,
+    /// See zero64.
     zero28: Constant<Bits<28>>,
     /// See zero64.
     zero24: Constant<Bits<24>>,
@@ -569,6 +574,7 @@ impl FitSolve {
             zero64: c64(0),
             zero52: cw(0),
             zero50: cw(0),
+            zero40: cw(0),
             zero28: cw(0),
             zero24: cw(0),
             zero16: c16(0),
@@ -582,7 +588,7 @@ impl FitSolve {
             g0_c: c16(p.gain()[COS] as u64),
         }
             clk rst start n s1_s s1_c s2_s s2_c ssc bref_s bref_c busy done off_s off_c g_s
-            g_c k_mag k_neg state pc dn pl launch refuse f_ret bad go ret u_x u_d u_r u_mag u_q u_neg
+            g_c k_mag k_neg state pc dn pl rdy launch refuse f_ret bad go ret u_x u_d u_r u_mag u_q u_neg
             u_rnd u_adj u_adjq uxs it f_div f_sq f_mul f_add f_sh1 f_sh2 f_qx f_qd f_last
             x_q x_en d_en clr_r oa ob uxr uxa uxb uxc udr xr rz req rneg run step opa up opb
             adjw adjqw adjn negn uxn udn uxan uxbn uxcn udrn sn a1_s a1_c n1_s n1_c a2_s

@@ -28,7 +28,7 @@ impl Logic for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, pc, dn, pl, launch, refuse, f_ret, bad, u_x, u_d, u_r, u_mag, u_q, u_neg, u_rnd,
+            self, clk, state, pc, dn, pl, rdy, launch, refuse, f_ret, bad, u_x, u_d, u_r, u_mag, u_q, u_neg, u_rnd,
             u_adj, u_adjq, uxs, it, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last,
             x_q, x_en, d_en, clr_r, oa, ob, uxr, uxa, uxb, uxc, udr, xr, rz, req, sn, a1_s, a1_c,
             n1_s, n1_c, a2_s, a2_c, asc, asc_h, asl, ash, alz, nsc, br_s, br_c, m_s, m_c, v_s, v_c,
@@ -41,10 +41,9 @@ impl Logic for FitSolve {
         // again as one-clock selects (pl); `ret` is the clock before a set-up or Load.
         self.rom.address.next = self.pc.q.val();
         self.dn.d.next = self.rom.data.val();
-        self.go.next = (self.state.q.val() == SolveState::Idle)
-            & self.start.val()
-            & self.dn.q.val().x_a1s
-            & !self.launch.q.val();
+        self.go.next = self.rdy.q.val() & self.start.val();
+        self.rdy.d.next = (self.state.q.val() == SolveState::Load)
+            | ((self.state.q.val() == SolveState::Idle) & !self.go.val() & !self.launch.q.val());
         self.launch.d.next = self.go.val();
         self.ret.next = self.launch.q.val() | self.f_ret.q.val();
         self.refuse.d.next = self.dn.q.val().chk & self.bad.q.val();
@@ -381,22 +380,15 @@ impl Logic for FitSolve {
                     >> 1,
             );
         }
-        // ---- The solve's values. The start snapshots the sums; |Σd_s d_c| two clocks
-        // later: -x = ~x + 1 in two 28-bit halves from registers (the high half 0 - hi when
-        // the low half is zero, else ~hi), selected in the clock after the start (row 0's
-        // set-up, the only one that loads |Σd_s| 2^8).
+        // ---- The solve's values. The start snapshots the sums (|Σd| negated from the
+        // register at launch, |Σd_s d_c| a clock later: -x = ~x + 1 in two 28-bit halves from
+        // registers, the high half 0 - hi when the low half is zero, else ~hi).
         if self.go.val() {
             self.sn.d.next = bit_cast::<25, 32>(self.n.val());
             self.a1_s.d.next = bit_cast::<40, 64>(self.s1_s.val());
-            self.n1_s.d.next = (self.s1_s.val() & self.sign63.val()).any();
-            if (self.s1_s.val() & self.sign63.val()).any() {
-                self.a1_s.d.next = bit_cast::<40, 64>(self.zero64.val() - self.s1_s.val());
-            }
+            self.n1_s.d.next = self.s1_s.val().get_bit(63);
             self.a1_c.d.next = bit_cast::<40, 64>(self.s1_c.val());
-            self.n1_c.d.next = (self.s1_c.val() & self.sign63.val()).any();
-            if (self.s1_c.val() & self.sign63.val()).any() {
-                self.a1_c.d.next = bit_cast::<40, 64>(self.zero64.val() - self.s1_c.val());
-            }
+            self.n1_c.d.next = self.s1_c.val().get_bit(63);
             self.a2_s.d.next = bit_cast::<56, 64>(self.s2_s.val());
             self.a2_c.d.next = bit_cast::<56, 64>(self.s2_c.val());
             self.asc.d.next = bit_cast::<56, 64>(self.ssc.val());
@@ -407,7 +399,13 @@ impl Logic for FitSolve {
         self.asl.d.next = self.zero28.val() - bit_cast::<28, 56>(self.asc.q.val());
         self.ash.d.next = self.zero28.val() - bit_cast::<28, 56>(self.asc.q.val() >> 28);
         self.alz.d.next = bit_cast::<28, 56>(self.asc.q.val()) == self.zero28.val();
-        self.asc_h.d.next = self.pl.q.val().x_a1s & self.nsc.q.val();
+        if self.launch.q.val() & self.n1_s.q.val() {
+            self.a1_s.d.next = self.zero40.val() - self.a1_s.q.val();
+        }
+        if self.launch.q.val() & self.n1_c.q.val() {
+            self.a1_c.d.next = self.zero40.val() - self.a1_c.q.val();
+        }
+        self.asc_h.d.next = self.launch.q.val() & self.nsc.q.val();
         if self.asc_h.q.val() {
             self.asc.d.next = (bit_cast::<56, 28>(!bit_cast::<28, 56>(self.asc.q.val() >> 28))
                 << 28)
@@ -520,6 +518,7 @@ impl Logic for FitSolve {
             self.dn.d.next = self.row0.val();
             self.pl.d.next = self.nosel.val();
             self.launch.d.next = false;
+            self.rdy.d.next = true;
             self.f_ret.d.next = false;
             self.f_div.d.next = false;
             self.f_sq.d.next = false;
