@@ -83,10 +83,8 @@
 //!   `it` counts at most 80 steps: 8 bits.
 //!
 //! # Timing
-//! [`SOLVE_CYCLES`] clocks from `start` to `done` when the update is accepted (fewer when
-//! refused), summed from [`TABLE`] by [`row_cycles`]. The window that follows must last
-//! longer (`min_samples` x clocks per sample), which the config checks; a window that ends
-//! while the solver is busy is dropped.
+//! [`SOLVE_CYCLES`] clocks from `start` to an accepted update's `done`, summed from [`TABLE`]
+//! by [`row_cycles`]; the config makes the next window longer; one ending while busy is dropped.
 use super::autocal::c16;
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{c32, mask};
@@ -153,14 +151,12 @@ pub struct FitSolve {
     pc: DFF<Bits<5>>,
     /// The table, one word a row.
     rom: TableRom,
-    /// ROM word of pc, registered (held through the row before's run; row 0's from the
-    /// clock after a reset).
+    /// ROM word of pc, registered (held through the row before's run; row 0 after a reset).
     dn: DFF<Sel>,
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
     /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
     pl: DFF<Sel>,
-    /// Idle, and no start taken in the clock before (timing: `go` is one LUT from registers
-    /// in front of the snapshot's 370 enables).
+    /// Idle, no start taken a clock before (timing: `go`, one LUT before 370 snapshot enables).
     rdy: DFF<Bit>,
     /// The clock after `go`: the first set-up is next (timing: keeps `start` and the state
     /// decode off the `pl` and state paths).
@@ -170,11 +166,9 @@ pub struct FitSolve {
     refuse: DFF<Bit>,
     /// The next clock is a set-up or Load: an operation's last B clock or RoundNeg.
     f_ret: DFF<Bit>,
-    /// A checked row refuses: an amplitude low or an offset out of range (free-running;
-    /// timing: keeps the six compares off the `ok` -> `pl` path).
+    /// An amplitude low or an offset out of range (timing: six compares off `refuse`).
     bad: DFF<Bit>,
-    /// A solve starts in this clock: `rdy` and `start` (dn holds row 0 in every clock
-    /// `rdy` is set: pc is 0 from Load or reset on).
+    /// A solve starts: `rdy` and `start` (dn holds row 0 whenever `rdy` is set).
     go: Signal<Local, Bit>,
     /// The set-up (or Load) is next: `launch` or `f_ret`.
     ret: Signal<Local, Bit>,
@@ -588,16 +582,18 @@ impl FitSolve {
             g0_c: c16(p.gain()[COS] as u64),
         }
             clk rst start n s1_s s1_c s2_s s2_c ssc bref_s bref_c busy done off_s off_c g_s
-            g_c k_mag k_neg state pc dn pl rdy launch refuse f_ret bad go ret u_x u_d u_r u_mag u_q u_neg
-            u_rnd u_adj u_adjq uxs it f_div f_sq f_mul f_add f_sh1 f_sh2 f_qx f_qd f_last
-            x_q x_en d_en clr_r oa ob uxr uxa uxb uxc udr xr rz req rneg run step opa up opb
-            adjw adjqw adjn negn uxn udn uxan uxbn uxcn udrn sn a1_s a1_c n1_s n1_c a2_s
-            a2_c asc asc_h asl ash alz nsc br_s br_c m_s m_c v_s v_c cc amp_s amp_c smag
-            sneg cs ng_s ng_c q2 vsel vd ccp ccm ccn cmag cpos t30 t_s t_c o_s o_c lo_s lo_c
-            oor_sl oor_sh oor_cl oor_ch xh1 xh2 xh3 xl xgt_s xge_s xff big_s big_c mnz xh
-            scl ngf r_km r_kn r_done)
+            g_c k_mag k_neg state pc dn pl rdy launch refuse f_ret bad go ret u_x u_d u_r
+            u_mag u_q u_neg u_rnd u_adj u_adjq uxs it f_div f_sq f_mul f_add f_sh1 f_sh2
+            f_qx f_qd f_last x_q x_en d_en clr_r oa ob uxr uxa uxb uxc udr xr rz req rneg
+            run step opa up opb adjw adjqw adjn negn uxn udn uxan uxbn uxcn udrn sn a1_s
+            a1_c n1_s n1_c a2_s a2_c asc asc_h asl ash alz nsc br_s br_c m_s m_c v_s v_c cc
+            amp_s amp_c smag sneg cs ng_s ng_c q2 vsel vd ccp ccm ccn cmag cpos t30 t_s t_c
+            o_s o_c lo_s lo_c oor_sl oor_sh oor_cl oor_ch xh1 xh2 xh3 xl xgt_s xge_s xff
+            big_s big_c mnz xh scl ngf r_km r_kn r_done)
     }
 }
 mod cosim;
+mod operands;
 mod table;
 mod update;
+mod values;

@@ -1,5 +1,6 @@
 //! The solver's logic: [`Logic`] for [`FitSolve`] (its module doc has the sketch and the
-//! bit growth): the sequencer, the shared units, the solve's values.
+//! bit growth) in stages: the sequencer, the run's steps, the rounding, the operands, the
+//! solve's values, reset.
 use super::*;
 
 /// The sequencer's phase.
@@ -24,18 +25,52 @@ pub enum SolveState {
     Load,
 }
 
-impl Logic for FitSolve {
+/// The solver's logic in named stages, run in this order: each stage is a `#[hdl_gen]`
+/// function (simulation, drivers, Verilog), and [`FitSolve`]'s one combinational block is
+/// their statements in sequence.
+macro_rules! stages {
+    ($($stage:ident),*) => {
+        $(
+            pub(super) trait $stage {
+                fn update(&mut self);
+                fn connect(&mut self);
+                fn hdl(&self) -> Verilog;
+            }
+        )*
+        impl Logic for FitSolve {
+            fn update(&mut self) {
+                $(<Self as $stage>::update(self);)*
+            }
+            fn connect(&mut self) {
+                $(<Self as $stage>::connect(self);)*
+            }
+            fn hdl(&self) -> Verilog {
+                let mut body = Vec::new();
+                $(
+                    if let Verilog::Combinatorial(b) = <Self as $stage>::hdl(self) {
+                        body.extend(b);
+                    }
+                )*
+                Verilog::Combinatorial(body)
+            }
+        }
+    };
+}
+stages!(Sequencer, Steps, Rounding, Operands, Values, Reset);
+
+/// The sequencer: the table's word, the state, the program counter.
+impl Sequencer for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, pc, dn, pl, rdy, launch, refuse, f_ret, bad, u_x, u_d, u_r, u_mag, u_q, u_neg, u_rnd,
-            u_adj, u_adjq, uxs, it, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2, f_qx, f_qd, f_last,
-            x_q, x_en, d_en, clr_r, oa, ob, uxr, uxa, uxb, uxc, udr, xr, rz, req, sn, a1_s, a1_c,
-            n1_s, n1_c, a2_s, a2_c, asc, asc_h, asl, ash, alz, nsc, br_s, br_c, m_s, m_c, v_s, v_c,
-            cc, amp_s, amp_c, smag, sneg, cs, ng_s, ng_c, q2, vsel, vd, ccp, ccm, ccn, cmag, cpos,
-            t30, t_s, t_c, o_s, o_c, lo_s, lo_c, oor_sl, oor_sh, oor_cl, oor_ch, xh1, xh2, xh3, xl,
-            xgt_s, xge_s, xff, big_s, big_c, mnz, scl, ngf, r_os, r_oc, r_gs, r_gc, r_km, r_kn,
-            r_done
+            self, clk, state, pc, dn, pl, rdy, launch, refuse, f_ret, bad, u_x, u_d, u_r, u_mag,
+            u_q, u_neg, u_rnd, u_adj, u_adjq, uxs, it, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2,
+            f_qx, f_qd, f_last, x_q, x_en, d_en, clr_r, oa, ob, uxr, uxa, uxb, uxc, udr, xr, rz,
+            req, sn, a1_s, a1_c, n1_s, n1_c, a2_s, a2_c, asc, asc_h, asl, ash, alz, nsc, br_s,
+            br_c, m_s, m_c, v_s, v_c, cc, amp_s, amp_c, smag, sneg, cs, ng_s, ng_c, q2, vsel, vd,
+            ccp, ccm, ccn, cmag, cpos, t30, t_s, t_c, o_s, o_c, lo_s, lo_c, oor_sl, oor_sh, oor_cl,
+            oor_ch, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c, mnz, scl, ngf, r_os, r_oc,
+            r_gs, r_gc, r_km, r_kn, r_done
         );
         // ---- Sequencer. The ROM word of pc is registered (dn) and, at a set-up, registered
         // again as one-clock selects (pl); `ret` is the clock before a set-up or Load.
@@ -92,6 +127,13 @@ impl Logic for FitSolve {
             | self.oor_sh.q.val()
             | self.oor_cl.q.val()
             | self.oor_ch.q.val();
+    }
+}
+
+/// The run: its flags, step count and settings from the set-up, and the chain's operands.
+impl Steps for FitSolve {
+    #[hdl_gen]
+    fn update(&mut self) {
         // ---- Shared units. The set-up loads the run's flags, step count and settings.
         self.f_div.d.next = self.pl.q.val().div | (self.f_div.q.val() & !self.f_last.q.val());
         self.f_sq.d.next = self.pl.q.val().sq | (self.f_sq.q.val() & !self.f_last.q.val());
@@ -173,6 +215,13 @@ impl Logic for FitSolve {
             self.ret.val() | self.step.val() | (self.state.q.val() == SolveState::RoundInc);
         self.d_en.d.next = self.ret.val() | (self.f_sq.q.val() & self.f_add.q.val());
         self.clr_r.d.next = self.ret.val();
+    }
+}
+
+/// A division's rounding, sign and clamps.
+impl Rounding for FitSolve {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Rounding. The true remainder is u_r, or u_r + u_d when u_r < 0 (zero when u_r =
         // -u_d: req); RoundSum leaves the sign of 2 r - u_d in u_r for a rounding division,
         // a floor adds one to a negative quotient when r != 0.
@@ -232,283 +281,13 @@ impl Logic for FitSolve {
         if self.big_c.q.val() {
             self.ngf.d.next = self.cmax16.val();
         }
-        // ---- u_x, u_d, u_r. Sources written rows earlier reach them through free-running
-        // registers that dn selects (AND-OR, the selects one-hot); a set-up loads those or a
-        // result of the row before by pl's one-hot selects, ANDed and ORed under one
-        // registered enable each.
-        self.uxan.next = self.zero64.val();
-        self.uxbn.next = self.zero64.val();
-        self.uxcn.next = self.zero64.val();
-        self.udrn.next = self.zero52.val();
-        if self.dn.q.val().xs_a1c {
-            self.uxan.next = self.uxan.val() | (bit_cast::<64, 40>(self.a1_c.q.val()) << 8);
-        }
-        if self.dn.q.val().xs_a2s {
-            self.uxan.next = self.uxan.val() | bit_cast::<64, 56>(self.a2_s.q.val());
-        }
-        if self.dn.q.val().xs_a2c {
-            self.uxan.next = self.uxan.val() | bit_cast::<64, 56>(self.a2_c.q.val());
-        }
-        if self.dn.q.val().xs_asc {
-            self.uxan.next = self.uxan.val() | bit_cast::<64, 56>(self.asc.q.val());
-        }
-        if self.dn.q.val().xs_vs2 & !self.v_s.q.val().get_bit(48) {
-            self.uxan.next = self.uxan.val() | (bit_cast::<64, 49>(self.v_s.q.val()) << 1);
-        }
-        if self.dn.q.val().xs_ms {
-            self.uxbn.next = self.uxbn.val() | (bit_cast::<64, 24>(self.m_s.q.val()) << 32);
-        }
-        if self.dn.q.val().xs_mc {
-            self.uxbn.next = self.uxbn.val() | (bit_cast::<64, 24>(self.m_c.q.val()) << 32);
-        }
-        if self.dn.q.val().xs_vc2 & !self.v_c.q.val().get_bit(48) {
-            self.uxbn.next = self.uxbn.val() | (bit_cast::<64, 49>(self.v_c.q.val()) << 1);
-        }
-        if self.dn.q.val().xs_amps {
-            self.uxbn.next = self.uxbn.val() | (bit_cast::<64, 25>(self.amp_s.q.val()) << 32);
-        }
-        if self.dn.q.val().xs_ampc {
-            self.uxcn.next = self.uxcn.val() | (bit_cast::<64, 25>(self.amp_c.q.val()) << 32);
-        }
-        if self.dn.q.val().xs_cmag {
-            self.uxcn.next = self.uxcn.val() | (bit_cast::<64, 48>(self.cmag.q.val()) << 16);
-        }
-        if self.dn.q.val().xs_tgs {
-            self.uxcn.next = self.uxcn.val() | self.tgs.val();
-        }
-        if self.dn.q.val().xs_tgc {
-            self.uxcn.next = self.uxcn.val() | self.tgc.val();
-        }
-        if self.dn.q.val().xs_t32 {
-            self.uxcn.next = self.uxcn.val() | self.tamp32.val();
-        }
-        self.uxa.d.next = self.uxan.val();
-        self.uxb.d.next = self.uxbn.val();
-        self.uxc.d.next = self.uxcn.val();
-        self.uxr.d.next = self.uxa.q.val() | self.uxb.q.val() | self.uxc.q.val();
-        if self.dn.q.val().ds_ms {
-            self.udrn.next = self.udrn.val() | bit_cast::<52, 24>(self.m_s.q.val());
-        }
-        if self.dn.q.val().ds_mc {
-            self.udrn.next = self.udrn.val() | bit_cast::<52, 24>(self.m_c.q.val());
-        }
-        if self.dn.q.val().ds_amps {
-            self.udrn.next = self.udrn.val() | bit_cast::<52, 25>(self.amp_s.q.val());
-        }
-        if self.dn.q.val().ds_cs {
-            self.udrn.next = self.udrn.val() | bit_cast::<52, 16>(self.cs.q.val());
-        }
-        if self.dn.q.val().ds_smag {
-            self.udrn.next = self.udrn.val() | bit_cast::<52, 16>(self.smag.q.val());
-        }
-        if self.dn.q.val().ds_q2 {
-            self.udrn.next = self.udrn.val() | bit_cast::<52, 40>(self.q2.q.val());
-        }
-        self.udr.d.next = self.udrn.val();
-        self.uxn.next = self.zero64.val();
-        if self.pl.q.val().x_a1s {
-            self.uxn.next = self.uxn.val() | (bit_cast::<64, 40>(self.a1_s.q.val()) << 8);
-        }
-        if self.pl.q.val().x_st {
-            self.uxn.next = self.uxn.val() | self.uxr.q.val();
-        }
-        if self.pl.q.val().x_scl {
-            self.uxn.next = self.uxn.val() | (bit_cast::<64, 16>(self.scl.q.val()) << 32);
-        }
-        if self.pl.q.val().x_t30 {
-            self.uxn.next = self.uxn.val() | bit_cast::<64, 31>(self.t30.q.val());
-        }
-        if self.pl.q.val().x_urk {
-            self.uxn.next =
-                self.uxn.val() | (bit_cast::<64, 52>(self.u_r.q.val()) << self.kshift.val());
-        }
-        if self.x_q.q.val() {
-            self.uxn.next = self.uxn.val() | self.u_q.q.val();
-        }
-        // An A clock shifts u_x; the B clock after it writes the quotient bit into bit 0.
-        if self.f_sh1.q.val() {
-            self.uxn.next = self.uxn.val() | (self.u_x.q.val() << 1);
-        }
-        if self.f_sh2.q.val() {
-            self.uxn.next = self.uxn.val() | (self.u_x.q.val() << 2);
-        }
-        if self.x_en.q.val() {
-            self.u_x.d.next = self.uxn.val();
-        }
-        if self.f_qx.q.val() & !self.rneg.val() {
-            self.u_x.d.next = self.u_x.q.val() | self.one64.val();
-        }
-        // u_d likewise; in a square root the trial 8 q + 1 takes the new root bit at bit 3
-        // in the B clock after an A clock (the old bits 0..2 are 001, one bit up 010).
-        self.udn.next = self.zero52.val();
-        if self.pl.q.val().d_sn {
-            self.udn.next = self.udn.val() | bit_cast::<52, 25>(self.sn.q.val());
-        }
-        if self.pl.q.val().d_st {
-            self.udn.next = self.udn.val() | self.udr.q.val();
-        }
-        if self.pl.q.val().d_root {
-            self.udn.next = self.udn.val() | (self.u_d.q.val() >> 3);
-        }
-        if self.pl.q.val().d_prod {
-            self.udn.next = self.udn.val() | self.u_r.q.val();
-        }
-        if self.pl.q.val().d_scl {
-            self.udn.next = self.udn.val() | bit_cast::<52, 16>(self.scl.q.val());
-        }
-        if self.pl.q.val().d_one {
-            self.udn.next = self.udn.val() | self.one52.val();
-        }
-        if self.f_qd.q.val() {
-            self.udn.next =
-                self.udn.val() | ((self.u_d.q.val() << 1) & self.nb1.val()) | self.one52.val();
-            if !self.rneg.val() {
-                self.udn.next = self.udn.val() | self.nine52.val();
-            }
-        }
-        if self.d_en.q.val() {
-            self.u_d.d.next = self.udn.val();
-        }
-        // u_r: cleared at a set-up, the chain's sum in an A clock (bits 52..1: bit 0 of
-        // {oa, 1} + {opb, cin} only carries cin in).
-        if self.clr_r.q.val() {
-            self.u_r.d.next = self.zero52.val();
-        }
-        if self.f_add.q.val() {
-            self.u_r.d.next = bit_cast::<52, 53>(
-                (((bit_cast::<53, 52>(self.oa.q.val()) << 1) | self.one53.val()) + self.ob.q.val())
-                    >> 1,
-            );
-        }
-        // ---- The solve's values. The start snapshots the sums (|Σd| negated from the
-        // register at launch, |Σd_s d_c| a clock later: -x = ~x + 1 in two 28-bit halves from
-        // registers, the high half 0 - hi when the low half is zero, else ~hi).
-        if self.go.val() {
-            self.sn.d.next = bit_cast::<25, 32>(self.n.val());
-            self.a1_s.d.next = bit_cast::<40, 64>(self.s1_s.val());
-            self.n1_s.d.next = self.s1_s.val().get_bit(63);
-            self.a1_c.d.next = bit_cast::<40, 64>(self.s1_c.val());
-            self.n1_c.d.next = self.s1_c.val().get_bit(63);
-            self.a2_s.d.next = bit_cast::<56, 64>(self.s2_s.val());
-            self.a2_c.d.next = bit_cast::<56, 64>(self.s2_c.val());
-            self.asc.d.next = bit_cast::<56, 64>(self.ssc.val());
-            self.nsc.d.next = (self.ssc.val() & self.sign63.val()).any();
-            self.br_s.d.next = self.bref_s.val();
-            self.br_c.d.next = self.bref_c.val();
-        }
-        self.asl.d.next = self.zero28.val() - bit_cast::<28, 56>(self.asc.q.val());
-        self.ash.d.next = self.zero28.val() - bit_cast::<28, 56>(self.asc.q.val() >> 28);
-        self.alz.d.next = bit_cast::<28, 56>(self.asc.q.val()) == self.zero28.val();
-        if self.launch.q.val() & self.n1_s.q.val() {
-            self.a1_s.d.next = self.zero40.val() - self.a1_s.q.val();
-        }
-        if self.launch.q.val() & self.n1_c.q.val() {
-            self.a1_c.d.next = self.zero40.val() - self.a1_c.q.val();
-        }
-        self.asc_h.d.next = self.launch.q.val() & self.nsc.q.val();
-        if self.asc_h.q.val() {
-            self.asc.d.next = (bit_cast::<56, 28>(!bit_cast::<28, 56>(self.asc.q.val() >> 28))
-                << 28)
-                | bit_cast::<56, 28>(self.asl.q.val());
-            if self.alz.q.val() {
-                self.asc.d.next = (bit_cast::<56, 28>(self.ash.q.val()) << 28)
-                    | bit_cast::<56, 28>(self.asl.q.val());
-            }
-        }
-        // Free-running sums, compares and selects, each exact in its width when read: V - m²
-        // (vsel: the row writing V_c - m_c²), Cq -+ |m_s m_c|, |C|, 2^30 - S², the offsets
-        // b_ref +- round(|m| / 2^8) and their range, the amplitude check.
-        self.vsel.d.next = self.v_s.q.val();
-        if self.dn.q.val().w_vcs {
-            self.vsel.d.next = self.v_c.q.val();
-        }
-        self.vd.d.next = self.vsel.q.val() - bit_cast::<49, 52>(self.u_r.q.val());
-        self.ccp.d.next = self.cc.q.val() + bit_cast::<50, 52>(self.u_r.q.val());
-        self.ccm.d.next = self.cc.q.val() - bit_cast::<50, 52>(self.u_r.q.val());
-        self.ccn.d.next = bit_cast::<48, 50>(self.zero50.val() - self.cc.q.val());
-        self.cmag.d.next = bit_cast::<48, 50>(self.cc.q.val());
-        self.cpos.d.next = !self.cc.q.val().get_bit(49);
-        if self.cc.q.val().get_bit(49) {
-            self.cmag.d.next = self.ccn.q.val();
-        }
-        self.t30.d.next = self.two30.val() - bit_cast::<31, 52>(self.u_r.q.val());
-        self.t_s.d.next = (bit_cast::<32, 24>(self.m_s.q.val()) + self.half8.val()) >> 8;
-        self.t_c.d.next = (bit_cast::<32, 24>(self.m_c.q.val()) + self.half8.val()) >> 8;
-        self.o_s.d.next = self.br_s.q.val() + self.t_s.q.val();
-        if self.n1_s.q.val() {
-            self.o_s.d.next = self.br_s.q.val() - self.t_s.q.val();
-        }
-        self.o_c.d.next = self.br_c.q.val() + self.t_c.q.val();
-        if self.n1_c.q.val() {
-            self.o_c.d.next = self.br_c.q.val() - self.t_c.q.val();
-        }
-        self.oor_sl.d.next = (self.o_s.q.val() ^ self.sign32.val()) < self.lo_f.val();
-        self.oor_sh.d.next = (self.o_s.q.val() ^ self.sign32.val()) >= self.hi_f.val();
-        self.oor_cl.d.next = (self.o_c.q.val() ^ self.sign32.val()) < self.lo_f.val();
-        self.oor_ch.d.next = (self.o_c.q.val() ^ self.sign32.val()) >= self.hi_f.val();
-        self.lo_s.d.next = self.amp_s.q.val() < self.minamp.val();
-        self.lo_c.d.next = self.amp_c.q.val() < self.minamp.val();
-        // The row before's result into its destination (pl's w_*, at a set-up or Load).
-        if self.pl.q.val().w_ms {
-            self.m_s.d.next = self.u_mag.q.val();
-        }
-        if self.pl.q.val().w_mc {
-            self.m_c.d.next = self.u_mag.q.val();
-        }
-        if self.pl.q.val().w_vs {
-            self.v_s.d.next = bit_cast::<49, 64>(self.u_x.q.val());
-        }
-        if self.pl.q.val().w_vc {
-            self.v_c.d.next = bit_cast::<49, 64>(self.u_x.q.val());
-        }
-        if self.pl.q.val().w_cq {
-            self.cc.d.next = bit_cast::<50, 64>(self.u_x.q.val());
-        }
-        if self.pl.q.val().w_vss {
-            self.v_s.d.next = self.vd.q.val();
-        }
-        if self.pl.q.val().w_vcs {
-            self.v_c.d.next = self.vd.q.val();
-        }
-        if self.pl.q.val().w_c {
-            // C = Cq - m_s m_c, the product's sign from the means' signs.
-            self.cc.d.next = self.ccm.q.val();
-            if self.n1_s.q.val() ^ self.n1_c.q.val() {
-                self.cc.d.next = self.ccp.q.val();
-            }
-        }
-        if self.pl.q.val().w_amps {
-            self.amp_s.d.next = bit_cast::<25, 52>(self.u_d.q.val() >> 3);
-        }
-        if self.pl.q.val().w_ampc {
-            self.amp_c.d.next = bit_cast::<25, 52>(self.u_d.q.val() >> 3);
-        }
-        if self.pl.q.val().w_s {
-            self.smag.d.next = self.scl.q.val();
-            self.sneg.d.next = self.u_neg.q.val();
-        }
-        if self.pl.q.val().w_cs {
-            self.cs.d.next = bit_cast::<16, 52>(self.u_d.q.val() >> 3);
-        }
-        if self.pl.q.val().w_gs {
-            self.ng_s.d.next = self.ngf.q.val();
-        }
-        if self.pl.q.val().w_gc {
-            self.ng_c.d.next = self.ngf.q.val();
-        }
-        if self.pl.q.val().w_q2 {
-            self.q2.d.next = bit_cast::<40, 52>(self.u_r.q.val());
-        }
-        self.r_done.d.next = false;
-        if self.pl.q.val().w_k {
-            self.r_km.d.next = self.ngf.q.val();
-            self.r_kn.d.next = self.sneg.q.val() & self.mnz.q.val();
-            self.r_os.d.next = self.o_s.q.val();
-            self.r_oc.d.next = self.o_c.q.val();
-            self.r_gs.d.next = self.ng_s.q.val();
-            self.r_gc.d.next = self.ng_c.q.val();
-            self.r_done.d.next = true;
-        }
+    }
+}
+
+/// Reset and the outputs.
+impl Reset for FitSolve {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Reset: idle at row 0 (dn its word from the next clock on), no run, no return, no pending selects (`ret` is low, so pl
         // clears); the configured coefficients. Working registers are loaded or cleared by
         // every solve before it reads them.
