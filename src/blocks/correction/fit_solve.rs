@@ -156,7 +156,8 @@ pub struct FitSolve {
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
     /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
     pl: DFF<Sel>,
-    /// Idle, no start taken a clock before (timing: `go`, one LUT before 370 snapshot enables).
+    /// Idle and not launching a clock before (timing: `go` is one LUT of registers, not of
+    /// the state, in front of the snapshot's 370 enables).
     rdy: DFF<Bit>,
     /// The clock after `go`: the first set-up is next (timing: keeps `start` and the state
     /// decode off the `pl` and state paths).
@@ -168,7 +169,7 @@ pub struct FitSolve {
     f_ret: DFF<Bit>,
     /// An amplitude low or an offset out of range (timing: six compares off `refuse`).
     bad: DFF<Bit>,
-    /// A solve starts: `rdy` and `start` (dn holds row 0 whenever `rdy` is set).
+    /// A solve starts: `rdy`, `start`, not `launch` (dn holds row 0 whenever `rdy` is set).
     go: Signal<Local, Bit>,
     /// The set-up (or Load) is next: `launch` or `f_ret`.
     ret: Signal<Local, Bit>,

@@ -76,9 +76,9 @@ impl Sequencer for FitSolve {
         // again as one-clock selects (pl); `ret` is the clock before a set-up or Load.
         self.rom.address.next = self.pc.q.val();
         self.dn.d.next = self.rom.data.val();
-        self.go.next = self.rdy.q.val() & self.start.val();
+        self.go.next = self.rdy.q.val() & self.start.val() & !self.launch.q.val();
         self.rdy.d.next = (self.state.q.val() == SolveState::Load)
-            | ((self.state.q.val() == SolveState::Idle) & !self.go.val() & !self.launch.q.val());
+            | ((self.state.q.val() == SolveState::Idle) & !self.launch.q.val());
         self.launch.d.next = self.go.val();
         self.ret.next = self.launch.q.val() | self.f_ret.q.val();
         self.refuse.d.next = self.dn.q.val().chk & self.bad.q.val();
