@@ -156,8 +156,8 @@ pub struct FitSolve {
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
     /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
     pl: DFF<Sel>,
-    /// Idle and not launching a clock before (timing: `go` is one LUT of registers, not of
-    /// the state, in front of the snapshot's 370 enables).
+    /// Idle, no start taken: the snapshot follows the sums (timing: the enable of its 370
+    /// registers is this flip-flop, no LUT; its last load is the start's).
     rdy: DFF<Bit>,
     /// The clock after `go`: the first set-up is next (timing: keeps `start` and the state
     /// decode off the `pl` and state paths).
@@ -169,7 +169,7 @@ pub struct FitSolve {
     f_ret: DFF<Bit>,
     /// An amplitude low or an offset out of range (timing: six compares off `refuse`).
     bad: DFF<Bit>,
-    /// A solve starts: `rdy`, `start`, not `launch` (dn holds row 0 whenever `rdy` is set).
+    /// A solve starts: `rdy` and `start` (dn holds row 0 whenever `rdy` is set).
     go: Signal<Local, Bit>,
     /// The set-up (or Load) is next: `launch` or `f_ret`.
     ret: Signal<Local, Bit>,
@@ -286,7 +286,11 @@ pub struct FitSolve {
     // ---- the solve's values
     /// N of the window.
     sn: DFF<Bits<25>>,
-    /// |Σd_s| (Σd_s's low 40 bits at the start, negated at launch when Σd_s < 0).
+    /// Σd_s's low 40 bits (the snapshot's registers load while `rdy`; the start's is last).
+    d1_s: DFF<Bits<40>>,
+    /// Σd_c's low 40 bits.
+    d1_c: DFF<Bits<40>>,
+    /// |Σd_s|, free-running from d1_s and its sign (a clock after the start).
     a1_s: DFF<Bits<40>>,
     /// |Σd_c|, likewise.
     a1_c: DFF<Bits<40>>,
@@ -298,16 +302,16 @@ pub struct FitSolve {
     a2_s: DFF<Bits<56>>,
     /// Σd_c².
     a2_c: DFF<Bits<56>>,
-    /// |Σd_s d_c|, from two clocks after the start (a negative sum is replaced by ~x + 1
-    /// from the registered halves below: a select, no chain).
+    /// Σd_s d_c's low 56 bits.
+    dsc: DFF<Bits<56>>,
+    /// |Σd_s d_c|, free-running (two clocks after the start): dsc, or when negative ~x + 1
+    /// from the registered halves below (a select, no chain).
     asc: DFF<Bits<56>>,
-    /// The clock after the start with Σd_s d_c < 0: asc takes its negation.
-    asc_h: DFF<Bit>,
-    /// 0 - asc's bits 0-27 (free-running; timing: asc's negation in two 28-bit chains).
+    /// 0 - dsc's bits 0-27 (free-running; timing: the negation in two 28-bit chains).
     asl: DFF<Bits<28>>,
-    /// 0 - asc's bits 28-55 (free-running): the high half of -x when bits 0-27 are zero.
+    /// 0 - dsc's bits 28-55 (free-running): the high half of -x when bits 0-27 are zero.
     ash: DFF<Bits<28>>,
-    /// asc's bits 0-27 are zero (free-running).
+    /// dsc's bits 0-27 are zero (free-running).
     alz: DFF<Bit>,
     /// Σd_s d_c < 0.
     nsc: DFF<Bit>,
@@ -586,11 +590,11 @@ impl FitSolve {
             g_c k_mag k_neg state pc dn pl rdy launch refuse f_ret bad go ret u_x u_d u_r
             u_mag u_q u_neg u_rnd u_adj u_adjq uxs it f_div f_sq f_mul f_add f_sh1 f_sh2
             f_qx f_qd f_last x_q x_en d_en clr_r oa ob uxr uxa uxb uxc udr xr rz req rneg
-            run step opa up opb adjw adjqw adjn negn uxn udn uxan uxbn uxcn udrn sn a1_s
-            a1_c n1_s n1_c a2_s a2_c asc asc_h asl ash alz nsc br_s br_c m_s m_c v_s v_c cc
-            amp_s amp_c smag sneg cs ng_s ng_c q2 vsel vd ccp ccm ccn cmag cpos t30 t_s t_c
-            o_s o_c lo_s lo_c oor_sl oor_sh oor_cl oor_ch xh1 xh2 xh3 xl xgt_s xge_s xff
-            big_s big_c mnz xh scl ngf r_km r_kn r_done)
+            run step opa up opb adjw adjqw adjn negn uxn udn uxan uxbn uxcn udrn sn d1_s
+            d1_c a1_s a1_c n1_s n1_c a2_s a2_c dsc asc asl ash alz nsc br_s br_c m_s m_c v_s
+            v_c cc amp_s amp_c smag sneg cs ng_s ng_c q2 vsel vd ccp ccm ccn cmag cpos t30
+            t_s t_c o_s o_c lo_s lo_c oor_sl oor_sh oor_cl oor_ch xh1 xh2 xh3 xl xgt_s xge_s
+            xff big_s big_c mnz xh scl ngf r_km r_kn r_done)
     }
 }
 mod cosim;

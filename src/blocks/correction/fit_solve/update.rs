@@ -66,19 +66,19 @@ impl Sequencer for FitSolve {
             self, clk, state, pc, dn, pl, rdy, launch, refuse, f_ret, bad, u_x, u_d, u_r, u_mag,
             u_q, u_neg, u_rnd, u_adj, u_adjq, uxs, it, f_div, f_sq, f_mul, f_add, f_sh1, f_sh2,
             f_qx, f_qd, f_last, x_q, x_en, d_en, clr_r, oa, ob, uxr, uxa, uxb, uxc, udr, xr, rz,
-            req, sn, a1_s, a1_c, n1_s, n1_c, a2_s, a2_c, asc, asc_h, asl, ash, alz, nsc, br_s,
-            br_c, m_s, m_c, v_s, v_c, cc, amp_s, amp_c, smag, sneg, cs, ng_s, ng_c, q2, vsel, vd,
-            ccp, ccm, ccn, cmag, cpos, t30, t_s, t_c, o_s, o_c, lo_s, lo_c, oor_sl, oor_sh, oor_cl,
-            oor_ch, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c, mnz, scl, ngf, r_os, r_oc,
-            r_gs, r_gc, r_km, r_kn, r_done
+            req, sn, d1_s, d1_c, a1_s, a1_c, n1_s, n1_c, a2_s, a2_c, dsc, asc, asl, ash, alz, nsc,
+            br_s, br_c, m_s, m_c, v_s, v_c, cc, amp_s, amp_c, smag, sneg, cs, ng_s, ng_c, q2, vsel,
+            vd, ccp, ccm, ccn, cmag, cpos, t30, t_s, t_c, o_s, o_c, lo_s, lo_c, oor_sl, oor_sh,
+            oor_cl, oor_ch, xh1, xh2, xh3, xl, xgt_s, xge_s, xff, big_s, big_c, mnz, scl, ngf,
+            r_os, r_oc, r_gs, r_gc, r_km, r_kn, r_done
         );
         // ---- Sequencer. The ROM word of pc is registered (dn) and, at a set-up, registered
         // again as one-clock selects (pl); `ret` is the clock before a set-up or Load.
         self.rom.address.next = self.pc.q.val();
         self.dn.d.next = self.rom.data.val();
-        self.go.next = self.rdy.q.val() & self.start.val() & !self.launch.q.val();
+        self.go.next = self.rdy.q.val() & self.start.val();
         self.rdy.d.next = (self.state.q.val() == SolveState::Load)
-            | ((self.state.q.val() == SolveState::Idle) & !self.launch.q.val());
+            | ((self.state.q.val() == SolveState::Idle) & !self.launch.q.val() & !self.go.val());
         self.launch.d.next = self.go.val();
         self.ret.next = self.launch.q.val() | self.f_ret.q.val();
         self.refuse.d.next = self.dn.q.val().chk & self.bad.q.val();
@@ -302,7 +302,6 @@ impl Reset for FitSolve {
             self.f_div.d.next = false;
             self.f_sq.d.next = false;
             self.f_mul.d.next = false;
-            self.asc_h.d.next = false;
             self.r_os.d.next = self.b0_s.val();
             self.r_oc.d.next = self.b0_c.val();
             self.r_gs.d.next = self.g0_s.val();

@@ -6,34 +6,37 @@ use super::*;
 impl Values for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
-        // ---- The solve's values. The start snapshots the sums (|Σd| negated from the
-        // register at launch, |Σd_s d_c| a clock later: -x = ~x + 1 in two 28-bit halves from
-        // registers, the high half 0 - hi when the low half is zero, else ~hi).
-        if self.go.val() {
+        // ---- The solve's values. The snapshot follows the sums while `rdy` (its last load
+        // is the start's); the magnitudes are free-running from it: |Σd| a clock later, and
+        // |Σd_s d_c| two: -x = ~x + 1 in two 28-bit halves from registers (the high half
+        // 0 - hi when the low half is zero, else ~hi).
+        if self.rdy.q.val() {
             self.sn.d.next = bit_cast::<25, 32>(self.n.val());
-            self.a1_s.d.next = bit_cast::<40, 64>(self.s1_s.val());
+            self.d1_s.d.next = bit_cast::<40, 64>(self.s1_s.val());
             self.n1_s.d.next = self.s1_s.val().get_bit(63);
-            self.a1_c.d.next = bit_cast::<40, 64>(self.s1_c.val());
+            self.d1_c.d.next = bit_cast::<40, 64>(self.s1_c.val());
             self.n1_c.d.next = self.s1_c.val().get_bit(63);
             self.a2_s.d.next = bit_cast::<56, 64>(self.s2_s.val());
             self.a2_c.d.next = bit_cast::<56, 64>(self.s2_c.val());
-            self.asc.d.next = bit_cast::<56, 64>(self.ssc.val());
-            self.nsc.d.next = (self.ssc.val() & self.sign63.val()).any();
+            self.dsc.d.next = bit_cast::<56, 64>(self.ssc.val());
+            self.nsc.d.next = self.ssc.val().get_bit(63);
             self.br_s.d.next = self.bref_s.val();
             self.br_c.d.next = self.bref_c.val();
         }
-        self.asl.d.next = self.zero28.val() - bit_cast::<28, 56>(self.asc.q.val());
-        self.ash.d.next = self.zero28.val() - bit_cast::<28, 56>(self.asc.q.val() >> 28);
-        self.alz.d.next = bit_cast::<28, 56>(self.asc.q.val()) == self.zero28.val();
-        if self.launch.q.val() & self.n1_s.q.val() {
-            self.a1_s.d.next = self.zero40.val() - self.a1_s.q.val();
+        self.a1_s.d.next = self.d1_s.q.val();
+        if self.n1_s.q.val() {
+            self.a1_s.d.next = self.zero40.val() - self.d1_s.q.val();
         }
-        if self.launch.q.val() & self.n1_c.q.val() {
-            self.a1_c.d.next = self.zero40.val() - self.a1_c.q.val();
+        self.a1_c.d.next = self.d1_c.q.val();
+        if self.n1_c.q.val() {
+            self.a1_c.d.next = self.zero40.val() - self.d1_c.q.val();
         }
-        self.asc_h.d.next = self.launch.q.val() & self.nsc.q.val();
-        if self.asc_h.q.val() {
-            self.asc.d.next = (bit_cast::<56, 28>(!bit_cast::<28, 56>(self.asc.q.val() >> 28))
+        self.asl.d.next = self.zero28.val() - bit_cast::<28, 56>(self.dsc.q.val());
+        self.ash.d.next = self.zero28.val() - bit_cast::<28, 56>(self.dsc.q.val() >> 28);
+        self.alz.d.next = bit_cast::<28, 56>(self.dsc.q.val()) == self.zero28.val();
+        self.asc.d.next = self.dsc.q.val();
+        if self.nsc.q.val() {
+            self.asc.d.next = (bit_cast::<56, 28>(!bit_cast::<28, 56>(self.dsc.q.val() >> 28))
                 << 28)
                 | bit_cast::<56, 28>(self.asl.q.val());
             if self.alz.q.val() {
