@@ -156,14 +156,11 @@ pub struct FitSolve {
     /// `dn` for one clock at the set-up (Load), else 0: the datapath's one-hot selects
     /// (timing: a second register keeps the ROM and `ret` off the u_x / u_d mux paths).
     pl: DFF<Sel>,
-    /// Idle, no start taken: the snapshot follows the sums (timing: the enable of its 370
-    /// registers is this flip-flop, no LUT; its last load is the start's).
+    /// Idle, no start taken: the snapshot loads (timing: a flip-flop as its 370 enables).
     rdy: DFF<Bit>,
-    /// The clock after `go`: the first set-up is next (timing: keeps `start` and the state
-    /// decode off the `pl` and state paths).
+    /// The clock after `go`, set-up next (timing: `start` off the `pl` and state paths).
     launch: DFF<Bit>,
-    /// The row at pc refuses: its check fails (registered from dn and bad; timing: keeps the
-    /// check off the state and `pl` paths).
+    /// dn's row fails its check (timing: dn & bad registered off the state and `pl` paths).
     refuse: DFF<Bit>,
     /// The next clock is a set-up or Load: an operation's last B clock or RoundNeg.
     f_ret: DFF<Bit>,
@@ -304,8 +301,7 @@ pub struct FitSolve {
     a2_c: DFF<Bits<56>>,
     /// Σd_s d_c's low 56 bits.
     dsc: DFF<Bits<56>>,
-    /// |Σd_s d_c|, free-running (two clocks after the start): dsc, or when negative ~x + 1
-    /// from the registered halves below (a select, no chain).
+    /// |Σd_s d_c| (free-running): dsc, or ~x + 1 from the registered halves below (a select).
     asc: DFF<Bits<56>>,
     /// 0 - dsc's bits 0-27 (free-running; timing: the negation in two 28-bit chains).
     asl: DFF<Bits<28>>,

@@ -288,9 +288,9 @@ impl Rounding for FitSolve {
 impl Reset for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
-        // Reset: idle at row 0 (dn its word from the next clock on), no run, no return, no pending selects (`ret` is low, so pl
-        // clears); the configured coefficients. Working registers are loaded or cleared by
-        // every solve before it reads them.
+        // Reset: idle and ready at row 0 (dn its word from the next clock on), no run, no
+        // launch or return, no pending selects; the configured coefficients. Working
+        // registers are loaded or cleared by every solve before it reads them.
         if self.rst.val() {
             self.state.d.next = SolveState::Idle;
             self.pc.d.next = self.zero5.val();
