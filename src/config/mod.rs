@@ -20,7 +20,7 @@
 //! | `correction.periods` | 1..=256 |
 //! | `correction.gain_frac_bits` | 8..=15 |
 //! | `correction.phase_deg` | -15..=15 degrees (static mode) |
-//! | `correction.min_samples` | 1..=2^24 samples (auto mode: also more than 2043 clocks) |
+//! | `correction.min_samples` | 1..=2^24 samples (auto mode: also more than 2041 clocks) |
 //! | `monitor.los_window`, `monitor.clip_hold` | 1..=65535 samples |
 //!
 //! `check`, `generate`, `simulate` and `report` all validate through [`Loaded::parse`]

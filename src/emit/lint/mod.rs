@@ -11,6 +11,9 @@
 //!   declared in the module), and as `(x)` when M = W.
 //! * A constant assigned to a narrower variable (`state = 32'h2;` with `reg [1:0] state`)
 //!   gets the variable's width (`2'h2`) when its value fits.
+//! * A `LogicStruct` field read, `x[(64'h39)+:(1)]` (its offset a 64-bit literal, which
+//!   `-Wall` flags as an index wider than the variable needs), becomes `x[57]`, or
+//!   `x[57 +: W]` for a field of W bits: the same bits.
 //!
 //! Only expressions whose width is known for certain are touched: identifiers declared in
 //! the module, sized literals and the operators `~ & | ^ + -` (whose result has the width
@@ -277,6 +280,35 @@ fn isolated_regs(module: &[&str], clockless: &[String]) -> BTreeSet<String> {
     }
 }
 
+/// `[(64'hK)+:(W)]` (a `LogicStruct` field) as `[K]` (W = 1) or `[K +: W]`, K in decimal.
+fn field_slices(l: &str) -> String {
+    let mut out = String::with_capacity(l.len());
+    let mut rest = l;
+    while let Some(a) = rest.find("[(64'h") {
+        let tail = &rest[a + 6..];
+        let parsed = tail.split_once(")+:(").and_then(|(k, t)| {
+            let (w, after) = t.split_once(")]")?;
+            let k = u64::from_str_radix(k, 16).ok()?;
+            let w: u64 = w.parse().ok()?;
+            Some((k, w, after))
+        });
+        let Some((k, w, after)) = parsed else {
+            out.push_str(&rest[..a + 6]);
+            rest = tail;
+            continue;
+        };
+        out.push_str(&rest[..a]);
+        if w == 1 {
+            out.push_str(&format!("[{k}]"));
+        } else {
+            out.push_str(&format!("[{k} +: {w}]"));
+        }
+        rest = after;
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Applies the rewrites to every module of `text` (see the module doc), and marks the
 /// variables of [`isolated_regs`] with Verilator's `isolate_assignments` hint (no warning is
 /// waived).
@@ -314,7 +346,7 @@ pub fn clean_widths(text: &str) -> String {
             .iter()
             .map(|l| {
                 let l = narrow_constant(&bit_casts(l, &widths, &mut funcs), &widths);
-                let l = zero_compares(&l, &zeros);
+                let l = field_slices(&zero_compares(&l, &zeros));
                 let name = l
                     .strip_prefix("    reg  ")
                     .and_then(|r| r.strip_suffix(';'))
@@ -354,6 +386,15 @@ pub fn clean_widths(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn struct_field_slices_lose_their_64_bit_offsets() {
+        assert_eq!(
+            field_slices("a = dn_q[(64'h39)+:(1)] & b[(64'h4)+:(3)] | c[3];"),
+            "a = dn_q[57] & b[4 +: 3] | c[3];"
+        );
+        assert_eq!(field_slices("x[(64'hzz)+:(1)]"), "x[(64'hzz)+:(1)]");
+    }
 
     const M: &str = "module m (\n    input wire  [15:0] in_cos,\n    input wire  [31:0] big\n);\n    reg  [1:0] q;\n    reg  [31:0] sx;\n    reg  [15:0] n;\n    localparam  amask = 32'h3fff;\n    always @(*) begin\n        sx = ((in_cos) & 32'hffffffff) & amask;\n        n = ((big) & 16'hffff);\n        n = ((big & amask) & 16'hffff);\n        q = 32'h2;\n        q <= 32'h7;\n        sx = ((sx) & 32'hffffffff);\n    end\nendmodule\n";
 
