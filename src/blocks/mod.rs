@@ -37,6 +37,58 @@ pub mod velocity;
 
 use rust_hdl::prelude::*;
 
+/// A block's logic in named stages, run in the order given: each stage is a trait of its
+/// own whose `update` is a `#[hdl_gen]` function (which also writes the trait's `connect`
+/// and `hdl`), and the block's [`Logic`] runs them in order and concatenates their
+/// combinational statements, so simulation, drivers and the exported Verilog are the same
+/// as from one `update` holding every stage's statements in sequence
+/// (`docs/rust-hdl.md`). Written by hand: rust-hdl's `#[hdl_gen]` takes one function.
+///
+/// ```text
+///   logic_stages!(Block: Capture, Track, Reset);
+///   impl stages::Capture for Block { #[hdl_gen] fn update(&mut self) { dff_setup!(..); .. } }
+///   impl stages::Track for Block { #[hdl_gen] fn update(&mut self) { .. } }
+/// ```
+macro_rules! logic_stages {
+    ($block:ty: $($stage:ident),*) => {
+        /// The stages of the block's logic (`logic_stages!`): traits in a module of their
+        /// own, so that their `update` and `connect` do not shadow the block's.
+        pub(crate) mod stages {
+            #[allow(unused_imports)]
+            use super::*;
+            $(
+                /// One stage of the block's logic.
+                pub(crate) trait $stage {
+                    /// The stage's statements.
+                    fn update(&mut self);
+                    /// The drivers its statements write.
+                    fn connect(&mut self);
+                    /// Its statements as Verilog.
+                    fn hdl(&self) -> Verilog;
+                }
+            )*
+            impl Logic for $block {
+                fn update(&mut self) {
+                    $(<Self as $stage>::update(self);)*
+                }
+                fn connect(&mut self) {
+                    $(<Self as $stage>::connect(self);)*
+                }
+                fn hdl(&self) -> Verilog {
+                    let mut body = Vec::new();
+                    $(
+                        if let Verilog::Combinatorial(b) = <Self as $stage>::hdl(self) {
+                            body.extend(b);
+                        }
+                    )*
+                    Verilog::Combinatorial(body)
+                }
+            }
+        }
+    };
+}
+pub(crate) use logic_stages;
+
 /// A 32-bit constant word.
 pub fn c32(v: u64) -> Constant<Bits<32>> {
     Constant::new(Bits::<32>::from(v & 0xffff_ffff))

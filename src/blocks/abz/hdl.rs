@@ -236,7 +236,11 @@ impl AbzEmulator {
     }
 }
 
-impl Logic for AbzEmulator {
+// The emulator's logic in named stages, run in this order (`logic_stages!`).
+crate::blocks::logic_stages!(AbzEmulator: Divide, Fold, Emit, Reset);
+
+/// The capture and the serial divider t = floor(p a / b).
+impl stages::Divide for AbzEmulator {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -306,6 +310,13 @@ impl Logic for AbzEmulator {
                 self.cnt.d.next = (self.cnt.q.val() - self.one.val()) & self.cntmask.val();
             }
         }
+    }
+}
+
+/// The fold: S1 difference, S2 compares, S3 add of +-E.
+impl stages::Fold for AbzEmulator {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Fold: S1 difference, S2 compares, S3 add of +-E.
         self.s1.d.next = false;
         if self.done.q.val() {
@@ -325,6 +336,13 @@ impl Logic for AbzEmulator {
             self.fl.d.next =
                 (self.dt.q.val() & self.sign.val()).any() & (self.dt.q.val() <= self.nhalf.val());
         }
+    }
+}
+
+/// The emitter: one step toward pend = 0 at most every S clocks, and the counter c.
+impl stages::Emit for AbzEmulator {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Emitter: one step toward pend = 0 at most every S clocks.
         self.nonzero.next = self.pnz.q.val() & !(self.stepped.q.val() & self.p1.q.val());
         self.step.next = !self.hold.q.val() & self.nonzero.val();
@@ -408,6 +426,13 @@ impl Logic for AbzEmulator {
         } else if !self.incd.q.val() & !self.nonzero.val() {
             self.warn.d.next = false;
         }
+    }
+}
+
+/// Reset.
+impl stages::Reset for AbzEmulator {
+    #[hdl_gen]
+    fn update(&mut self) {
         if self.rst.val() {
             self.have.d.next = false;
             self.qcap.d.next = self.zero.val();

@@ -235,7 +235,11 @@ impl BissSlave {
     }
 }
 
-impl Logic for BissSlave {
+// The slave's logic in named stages, run in this order (`logic_stages!`).
+crate::blocks::logic_stages!(BissSlave: Timeout, FrameState, NextRise, Shift);
+
+/// The MA edges and the timeout.
+impl stages::Timeout for BissSlave {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -284,6 +288,13 @@ impl Logic for BissSlave {
             self.ftln.next = self.tlast_is0.val();
             self.fpre.d.next = self.tpre_is0.val();
         }
+    }
+}
+
+/// The one-hot frame state.
+impl stages::FrameState for BissSlave {
+    #[hdl_gen]
+    fn update(&mut self) {
         // The one-hot state: F1 leaves Idle, each rise moves on (Ack, Data and Crc stay
         // until their counter flag), the timeout goes to Idle (never with an edge: it needs
         // MA quiet), the reset to Timeout.
@@ -322,6 +333,13 @@ impl Logic for BissSlave {
         self.s_crc.d.next = self.live.val()
             & ((self.s_warn.q.val() & self.sync.rise.val())
                 | (self.s_crc.q.val() & !(self.sync.rise.val() & self.fsix.q.val())));
+    }
+}
+
+/// What the next rise does: data bit, CRC, counter, SLO.
+impl stages::NextRise for BissSlave {
+    #[hdl_gen]
+    fn update(&mut self) {
         // What the next rise does, registered one clock ahead from the state and the flags.
         // A rise reads them at least two clocks after the previous rise (the synchronizer's
         // level must fall in between), and between rises the state, cnt's flags, the CRC, the
@@ -386,6 +404,13 @@ impl Logic for BissSlave {
                 self.ctl[i].done.next = true;
             }
         }
+    }
+}
+
+/// The latch at F1, the CRC, the shift register and the bit counter.
+impl stages::Shift for BissSlave {
+    #[hdl_gen]
+    fn update(&mut self) {
         // F1 in Idle: latch the word and the flags, clear the CRC.
         if self.sidle.q.val() & self.sync.fall.val() {
             self.posw.take.next = true;

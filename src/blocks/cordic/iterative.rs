@@ -278,7 +278,11 @@ pub struct IterativeCordic {
     kone: Constant<Bits<5>>,
 }
 
-impl Logic for IterativeCordic {
+// The engine's logic in named stages, run in this order (`logic_stages!`).
+crate::blocks::logic_stages!(IterativeCordic: Place, Digits, DigitAdd, FillMask);
+
+/// The position (iteration k, digit j), its flags and the direction.
+impl stages::Place for IterativeCordic {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -321,6 +325,13 @@ impl Logic for IterativeCordic {
                 self.dir.next = (self.yr.q.val() & self.xsign.val()).any();
             }
         }
+    }
+}
+
+/// The digits of the operands and the next clock's taps.
+impl stages::Digits for IterativeCordic {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Digit j of the mapper's words (AND-OR over the one-hot digit masks; x', y' are
         // W-bit words in 0..2^(A-1), so their bits W..W'-1 are already the sign, 0).
         // Digit 0 comes straight from the mapper (the first clock), digits 1.. from the
@@ -420,6 +431,13 @@ impl Logic for IterativeCordic {
                 self.hot[i].d.next = self.zero8.val();
             }
         }
+    }
+}
+
+/// The digit-serial add and the words' registers.
+impl stages::DigitAdd for IterativeCordic {
+    #[hdl_gen]
+    fn update(&mut self) {
         // x - y>>k when y < 0 (x + |y|>>k), else x + y>>k... in the unrolled stage's form:
         // x + ((y>>k) ^ m) + c and y + ((x>>k) ^ !m) + !c, m = all ones when y < 0.
         self.mm.next = self.zero8.val();
@@ -502,6 +520,13 @@ impl Logic for IterativeCordic {
             self.kge.d.next = self.zero.val();
         }
         self.k_reg.d.next = self.kn.val();
+    }
+}
+
+/// The next fill mask and the drop bookkeeping.
+impl stages::FillMask for IterativeCordic {
+    #[hdl_gen]
+    fn update(&mut self) {
         // The next clock's fill mask: tap bit b reads fill once 4j' + k' + b >= W' at the
         // next position (j', k'). From digit j < D - 1 it is (j + 1, k): bit W' - b of the
         // thermometer code shifted by 4(j + 1); from the last digit it is (0, k + 1): bit

@@ -2,7 +2,12 @@
 //! sketch, the bit growth and the timing).
 use super::*;
 
-impl Logic for FitCal {
+// The fit's logic in named stages, run in this order (`logic_stages!`): the stages of
+// the module doc's pipeline.
+crate::blocks::logic_stages!(FitCal: StageA, StageQ, StageB1, StageB2, StageC, StageD, StageE, Outputs);
+
+/// Stage A: sign-extend, the differences.
+impl stages::StageA for FitCal {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -63,6 +68,13 @@ impl Logic for FitCal {
                 self.sg_c.d.next = self.eac.val().get_bit(17);
             }
         }
+    }
+}
+
+/// Stage Q: the quadrant and step; the window's compares and operands.
+impl stages::StageQ for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Stage Q, a clock after A: the quadrant (CORDIC mapper convention) and step,
         // registered for stage B1, from the signs registered in stage A (of d, or of e when
         // b_ref was being loaded with b_cur at stage A); tq is the previous sample's. No
@@ -128,6 +140,13 @@ impl Logic for FitCal {
             & self.open.q.val()
             & !self.a_rs.q.val()
             & ((self.net.q.val() & self.m2.val()) == self.r2.val());
+    }
+}
+
+/// Stage B1: the step and the window decision; the restart.
+impl stages::StageB1 for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
         // The per-step-class flags (registered: formed from the compares and the tracker's
         // flags in the clock before stage B1). Stage B1: the step as a word and the window
         // decision, the registered flags chosen by the step. A 2-step with no known direction, or
@@ -197,6 +216,13 @@ impl Logic for FitCal {
                 self.dneg.d.next = self.sb.q.val() == self.q3.val();
             }
         }
+    }
+}
+
+/// Stage B2: the decision's actions.
+impl stages::StageB2 for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Stage B2, a clock after B1: the decision's actions. A restart loads b_ref with the
         // offsets in use (the window's snapshot keeps the old one) and clears net and N; the
         // command to the sums carries the entry of the sample (d, or e = x - b_cur at a
@@ -241,6 +267,13 @@ impl Logic for FitCal {
         self.c_es.d.next = self.ds.val();
         self.c_ec.d.next = self.dc.val();
         self.c_nsc.d.next = self.ds.val().get_bit(17) ^ self.dc.val().get_bit(17);
+    }
+}
+
+/// Stage C: the products on one shift-add tree.
+impl stages::StageC for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Stage C: the three products of the entry on one shift-add tree of run-time codes,
         // one a clock: phase 0 (a clock after stage C) |e_s|², phase 1 |e_c|², phase 2
         // |e_s e_c|, each from the operand registers ta, tc (so the tree's level 1 reads
@@ -281,6 +314,13 @@ impl Logic for FitCal {
             self.e2_s.d.next = self.e1_s.q.val();
             self.e2_c.d.next = self.e1_c.q.val();
         }
+    }
+}
+
+/// Stage D: the products registered; the snapshot.
+impl stages::StageD for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Stage D: each product registered as its phase leaves the tree (phase 0 four
         // clocks after stage C, phases 1 and 2 a clock and two later), and in the clock
         // after phase 2 the sign-extended entries and the flags, so stage E adds all five.
@@ -315,6 +355,13 @@ impl Logic for FitCal {
         // tree: the sums hold the window's last sample by then (its stage E2, at least
         // three clocks later in the pipeline, was at least one clock earlier).
         self.slv.start.next = self.ln_sn.q.val().get_bit(5) & !self.slv.busy.val();
+    }
+}
+
+/// Stages E and E2: the sums.
+impl stages::StageE for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
         // Stage E: the sums' low halves as 33-bit sums on registers, the carries
         // registered; stage E2, a clock later: the high halves, high addend plus carry. Each
         // is one 33- or 32-bit chain instead of one 64-bit chain; the high half lags a clock,
@@ -412,6 +459,13 @@ impl Logic for FitCal {
             self.ln_sn.d.next = self.zero8.val();
             self.d_v.d.next = false;
         }
+    }
+}
+
+/// The outputs.
+impl stages::Outputs for FitCal {
+    #[hdl_gen]
+    fn update(&mut self) {
         // The outputs: copies of the solver's coefficient registers, a clock later (the
         // tracker above reads the solver's own), reset with them.
         self.o_bs.d.next = self.slv.off_s.val();

@@ -1,5 +1,5 @@
 //! The solver's operands u_x, u_d, u_r (a stage of [`super::update`]).
-use super::update::Operands;
+use super::update::stages::Operands;
 use super::*;
 
 /// u_x, u_d and u_r: their sources, shifts and the chain's sum.

@@ -25,41 +25,13 @@ pub enum SolveState {
     Load,
 }
 
-/// The solver's logic in named stages, run in this order: each stage is a `#[hdl_gen]`
-/// function (simulation, drivers, Verilog), and [`FitSolve`]'s one combinational block is
-/// their statements in sequence.
-macro_rules! stages {
-    ($($stage:ident),*) => {
-        $(
-            pub(super) trait $stage {
-                fn update(&mut self);
-                fn connect(&mut self);
-                fn hdl(&self) -> Verilog;
-            }
-        )*
-        impl Logic for FitSolve {
-            fn update(&mut self) {
-                $(<Self as $stage>::update(self);)*
-            }
-            fn connect(&mut self) {
-                $(<Self as $stage>::connect(self);)*
-            }
-            fn hdl(&self) -> Verilog {
-                let mut body = Vec::new();
-                $(
-                    if let Verilog::Combinatorial(b) = <Self as $stage>::hdl(self) {
-                        body.extend(b);
-                    }
-                )*
-                Verilog::Combinatorial(body)
-            }
-        }
-    };
-}
-stages!(Sequencer, Steps, Rounding, Operands, Values, Reset);
+// The solver's logic in named stages, run in this order: each stage is a `#[hdl_gen]`
+// function (simulation, drivers, Verilog), and `FitSolve`'s one combinational block is
+// their statements in sequence.
+crate::blocks::logic_stages!(FitSolve: Sequencer, Steps, Rounding, Operands, Values, Reset);
 
 /// The sequencer: the table's word, the state, the program counter.
-impl Sequencer for FitSolve {
+impl stages::Sequencer for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -131,7 +103,7 @@ impl Sequencer for FitSolve {
 }
 
 /// The run: its flags, step count and settings from the set-up, and the chain's operands.
-impl Steps for FitSolve {
+impl stages::Steps for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         // ---- Shared units. The set-up loads the run's flags, step count and settings.
@@ -219,7 +191,7 @@ impl Steps for FitSolve {
 }
 
 /// A division's rounding, sign and clamps.
-impl Rounding for FitSolve {
+impl stages::Rounding for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         // Rounding. The true remainder is u_r, or u_r + u_d when u_r < 0 (zero when u_r =
@@ -285,7 +257,7 @@ impl Rounding for FitSolve {
 }
 
 /// Reset and the outputs.
-impl Reset for FitSolve {
+impl stages::Reset for FitSolve {
     #[hdl_gen]
     fn update(&mut self) {
         // Reset: idle and ready at row 0 (dn its word from the next clock on), no run, no

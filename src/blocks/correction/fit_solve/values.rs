@@ -1,5 +1,5 @@
 //! The solve's values (a stage of [`super::update`]).
-use super::update::Values;
+use super::update::stages::Values;
 use super::*;
 
 /// The solve's values: the snapshot, the free-running registers, the destinations.
