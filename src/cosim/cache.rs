@@ -167,6 +167,108 @@ fn cached_in(
     Ok(trace)
 }
 
+/// A check that passed once for exactly these inputs need not run again: `check` runs
+/// (and may panic, as a test's assertions do) unless the cache holds a pass for the key of
+/// `name`, the versions of `tools` and `parts`; when it returns, the pass is recorded.
+///
+/// ```text
+///  key = SHA-256(CACHE_VERSION, "check", name, version of each tool, parts...)
+///  <dir>/<key> holds "pass" ─► skip;  otherwise ─► check() ─► returns ─► write "pass"
+/// ```
+///
+/// For runs whose verdict is not one trace: an emitted testbench's PASS and FAIL, a lint
+/// run, a long sweep. `parts` must hold everything the verdict depends on (the design, the
+/// stimulus, the source text of the check itself, the models' source text), so that any
+/// change to them runs the check. A failure is never recorded: it reruns every time. The
+/// tools must be installed whatever the cache holds (their versions are in the key).
+pub fn passed_once(
+    name: &str,
+    tools: &[&str],
+    parts: &[&str],
+    check: impl FnOnce(),
+) -> Result<(), CosimError> {
+    passed_once_in(cache_dir(), name, tools, parts, check)
+}
+
+/// [`passed_once`] with the cache directory given (None: no cache, `check` runs).
+fn passed_once_in(
+    dir: Option<PathBuf>,
+    name: &str,
+    tools: &[&str],
+    parts: &[&str],
+    check: impl FnOnce(),
+) -> Result<(), CosimError> {
+    let verdict = Verdict::in_dir(dir, name, tools, parts)?;
+    if !verdict.passed() {
+        check();
+        verdict.record_pass();
+    }
+    Ok(())
+}
+
+/// The cached verdict of one check (see [`passed_once`]), for a caller that decides itself
+/// whether its run passed.
+pub struct Verdict {
+    /// The entry's path; None without a cache.
+    path: Option<PathBuf>,
+}
+
+impl Verdict {
+    /// The verdict of check `name` on `parts` with the installed versions of `tools`.
+    pub fn of(name: &str, tools: &[&str], parts: &[&str]) -> Result<Verdict, CosimError> {
+        Verdict::in_dir(cache_dir(), name, tools, parts)
+    }
+
+    fn in_dir(
+        dir: Option<PathBuf>,
+        name: &str,
+        tools: &[&str],
+        parts: &[&str],
+    ) -> Result<Verdict, CosimError> {
+        let mut h = Sha256::new();
+        let mut put = |part: &str| {
+            h.update((part.len() as u64).to_le_bytes());
+            h.update(part.as_bytes());
+        };
+        put(CACHE_VERSION);
+        put("check");
+        put(name);
+        for tool in tools {
+            put(&tool_version_named(tool, &install_hint(tool))?);
+        }
+        for part in parts {
+            put(part);
+        }
+        let key = hex(&h.finalize());
+        Ok(Verdict {
+            path: dir.map(|d| d.join(key)),
+        })
+    }
+
+    /// True when this check passed before on the same inputs.
+    pub fn passed(&self) -> bool {
+        self.path
+            .as_ref()
+            .is_some_and(|p| std::fs::read_to_string(p).is_ok_and(|s| s.trim() == "pass"))
+    }
+
+    /// Records that the check passed (best effort, written beside and renamed over).
+    pub fn record_pass(&self) {
+        let Some(dir) = self.path.as_ref().and_then(|p| p.parent()) else {
+            return;
+        };
+        if std::fs::create_dir_all(dir).is_err() {
+            return;
+        }
+        if let (Some(path), Ok(mut tmp)) = (&self.path, tempfile::NamedTempFile::new_in(dir)) {
+            use std::io::Write;
+            if writeln!(tmp, "pass").is_ok() {
+                let _ = tmp.persist(path);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -179,6 +281,36 @@ mod tests {
             trace_digest(&vec![vec![1], vec![2]])
         );
         assert_eq!(trace_digest(&vec![vec![7]]), trace_digest(&vec![vec![7]]));
+    }
+
+    /// A pass is recorded and skips the next run of the same check; other parts, another
+    /// name or no cache run it; a check that panics records nothing. (Needs iverilog for
+    /// the version in the key.)
+    #[test]
+    fn a_check_is_skipped_only_after_it_passed_for_the_same_inputs() {
+        use std::cell::Cell;
+        let dir = tempfile::tempdir().expect("tempdir");
+        let d = || Some(dir.path().to_path_buf());
+        let runs = Cell::new(0);
+        let count = || runs.set(runs.get() + 1);
+        let t = ["iverilog"];
+        passed_once_in(d(), "a", &t, &["x"], count).expect("ran");
+        passed_once_in(d(), "a", &t, &["x"], count).expect("hit");
+        assert_eq!(runs.get(), 1);
+        passed_once_in(d(), "a", &t, &["y"], count).expect("other part");
+        passed_once_in(d(), "b", &t, &["x"], count).expect("other name");
+        passed_once_in(None, "a", &t, &["x"], count).expect("no cache");
+        assert_eq!(runs.get(), 4);
+        let failed = std::panic::catch_unwind(|| {
+            let _ = passed_once_in(d(), "c", &t, &["x"], || panic!("check failed"));
+        });
+        assert!(failed.is_err());
+        passed_once_in(d(), "c", &t, &["x"], count).expect("reran");
+        assert_eq!(runs.get(), 5, "a failure is not recorded");
+        assert!(matches!(
+            passed_once_in(d(), "a", &["no-such-tool-sinedec"], &["x"], count),
+            Err(CosimError::ToolMissing { .. })
+        ));
     }
 
     #[test]

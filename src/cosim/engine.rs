@@ -79,6 +79,11 @@ impl BlockEngine {
         self.e.tick();
     }
 
+    /// Back to the power-up state ([`Engine::restart`]).
+    pub fn restart(&mut self) {
+        self.e.restart();
+    }
+
     /// The outputs in the block's output-port order.
     pub fn sample(&self) -> Vec<u64> {
         self.outs.iter().map(|&k| self.e.get(k)).collect()

@@ -70,7 +70,7 @@ mod verilator;
 
 pub(crate) use block::cosim_block;
 pub use block::{CosimBlock, RowValue};
-pub use cache::COSIM_CACHE_ENV;
+pub use cache::{passed_once, Verdict, COSIM_CACHE_ENV};
 pub use engine::{cosim_engine_kind, run_engine, BlockEngine, ENGINE_ENV};
 pub use icarus::{run_icarus, run_icarus_expecting};
 pub(crate) use tool::run_checked;

@@ -31,9 +31,30 @@ pub fn rustc() -> String {
     std::env::var("RUSTC").unwrap_or_else(|_| "rustc".to_string())
 }
 
-/// `rustc --version`, for the cache key.
+/// `rustc --version`, for the cache key; asked once per process and `rustc` path (a closed
+/// loop that builds an engine per run would otherwise start rustc, through rustup's proxy,
+/// at every run).
 pub fn rustc_version() -> Result<String> {
-    let out = crate::cleanup::output(Command::new(rustc()).arg("--version")).map_err(|e| {
+    use std::collections::HashMap;
+    use std::sync::Mutex;
+    static KNOWN: Mutex<Option<HashMap<String, String>>> = Mutex::new(None);
+    let bin = rustc();
+    if let Some(v) = KNOWN
+        .lock()
+        .ok()
+        .and_then(|m| m.as_ref().and_then(|m| m.get(&bin).cloned()))
+    {
+        return Ok(v);
+    }
+    let v = ask_rustc_version(&bin)?;
+    if let Ok(mut m) = KNOWN.lock() {
+        m.get_or_insert_with(HashMap::new).insert(bin, v.clone());
+    }
+    Ok(v)
+}
+
+fn ask_rustc_version(bin: &str) -> Result<String> {
+    let out = crate::cleanup::output(Command::new(bin).arg("--version")).map_err(|e| {
         Error::Tool(CosimError::ToolMissing {
             tool: format!("rustc ({e})"),
             install: "curl https://sh.rustup.rs -sSf | sh".into(),
@@ -193,6 +214,7 @@ type InfoFn = unsafe extern "C" fn() -> u64;
 /// A loaded library and one state of its model.
 pub struct Compiled {
     st: *mut c_void,
+    new: NewFn,
     free: FreeFn,
     set: SetFn,
     get: GetFn,
@@ -236,6 +258,7 @@ impl Compiled {
         let st = unsafe { new() };
         Ok(Compiled {
             st,
+            new,
             free: sym(&lib, "sdeng_free", path)?,
             set: sym(&lib, "sdeng_set", path)?,
             get: sym(&lib, "sdeng_get", path)?,
@@ -257,6 +280,15 @@ impl Drop for Compiled {
 }
 
 impl Sim for Compiled {
+    fn restart(&mut self) {
+        // SAFETY: st came from sdeng_new of this library and is not used after the free;
+        // sdeng_new returns a fresh boxed state.
+        unsafe {
+            (self.free)(self.st);
+            self.st = (self.new)();
+        }
+    }
+
     fn set(&mut self, input: usize, v: u64) {
         // SAFETY: the callee ignores an index out of range.
         unsafe { (self.set)(self.st, input as u32, v) }

@@ -96,6 +96,10 @@ impl Interp {
 }
 
 impl Sim for Interp {
+    fn restart(&mut self) {
+        *self = Interp::new(self.nl.clone());
+    }
+
     fn set(&mut self, input: usize, v: u64) {
         if let Some(&(_, sig)) = self.nl.inputs.get(input) {
             self.vals[sig] = v & ops::mask(self.nl.signals[sig].width);

@@ -42,6 +42,9 @@ trait Sim: Send {
     fn tick(&mut self);
     /// `rows.len() / n_in` cycles of set-all-inputs, tick, read-all-outputs.
     fn run(&mut self, rows: &[u64], outs: &mut Vec<u64>);
+    /// Back to the power-up state (registers and memories at their initial values, inputs
+    /// 0), as a model built anew would be.
+    fn restart(&mut self);
 }
 
 /// Which engine runs the model.
@@ -302,6 +305,12 @@ impl Engine {
     /// One rising edge of the clock, then the outputs settle.
     pub fn tick(&mut self) {
         self.sim.tick()
+    }
+
+    /// Back to the power-up state, as [`Engine::new`] leaves it, without building or
+    /// loading the model again (closed loops that run many short scenarios on one design).
+    pub fn restart(&mut self) {
+        self.sim.restart();
     }
 
     /// Runs `rows` (values in the order of `inputs`, which name ports of the model) one row

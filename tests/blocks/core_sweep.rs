@@ -102,6 +102,29 @@ fn every_input_pair_above_an_eighth_of_full_scale_equals_the_model() {
     assert_eq!(d.adc_width, 14, "the sweep is of the 14-bit default");
     assert_eq!(core_input_ports(d).len(), 4);
     let verilog = core_verilog(&l).expect("export");
+    // The sweep's verdict is cached (src/cosim/cache.rs, `passed_once`) by everything it
+    // depends on: the Verilog, the parameters, this file, the model's sources (core,
+    // CORDIC, counter and their shared helpers) and the engine's sources, with the versions
+    // of Yosys (the engine's front end) and rustc (its compiler). Any change runs it.
+    let params = format!("{d:?}");
+    let srcs = crate::common::sources(&[
+        "src/blocks/core/model.rs",
+        "src/blocks/cordic/model.rs",
+        "src/blocks/counter/model.rs",
+        "src/blocks/mod.rs",
+        "src/blocks/params.rs",
+        "src/engine",
+    ]);
+    let mut parts = vec![include_str!("core_sweep.rs"), verilog.as_str(), &params];
+    parts.extend(srcs.iter().map(String::as_str));
+    sinedec::cosim::passed_once("core sweep", &["yosys", "rustc"], &parts, || {
+        sweep(&l, &verilog)
+    })
+    .expect("yosys and rustc installed");
+}
+
+/// The sweep itself: 16 chunks of 1024 sin rows, in parallel.
+fn sweep(l: &Loaded, verilog: &str) {
     let half = 1i32 << 13;
     let chunks: Vec<std::ops::Range<i32>> = (0..16)
         .map(|k| (-half + k * 1024)..(-half + (k + 1) * 1024))
@@ -109,7 +132,7 @@ fn every_input_pair_above_an_eighth_of_full_scale_equals_the_model() {
     let t0 = std::time::Instant::now();
     let counts: Vec<Result<u64, String>> = chunks
         .into_par_iter()
-        .map(|r| chunk(&l, &verilog, r))
+        .map(|r| chunk(l, verilog, r))
         .collect();
     let mut total = 0;
     for c in counts {

@@ -94,6 +94,35 @@ pub fn cfg_named(name: &str, n: u32, f: u32, a: u32, ppr: u32, mt: u32) -> Loade
     Loaded::parse(&text, "test").expect("test config parses")
 }
 
+/// The text of the repository's source files under `paths` (files, or directories walked
+/// in name order), each preceded by its path: the part of a verdict-cache key
+/// (`sinedec::cosim::passed_once`) that covers the models and tools a check depends on.
+pub fn sources(paths: &[&str]) -> Vec<String> {
+    fn walk(p: &std::path::Path, root: &std::path::Path, out: &mut Vec<String>) {
+        if p.is_dir() {
+            let mut entries: Vec<_> = std::fs::read_dir(p)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .collect();
+            entries.sort();
+            for e in entries {
+                walk(&e, root, out);
+            }
+        } else {
+            let text =
+                std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            let rel = p.strip_prefix(root).unwrap_or(p);
+            out.push(format!("{}\n{text}", rel.display()));
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut out = Vec::new();
+    for p in paths {
+        walk(&root.join(p), root, &mut out);
+    }
+    out
+}
+
 /// A fresh work directory for tool runs (kept under target/ for inspection).
 pub fn workdir(tag: &str) -> std::path::PathBuf {
     let p = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(tag);

@@ -10,7 +10,8 @@ use sinedec::blocks::velocity::model::{VelIn, VelocityModel};
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::cosim::stimulus;
 use sinedec::cosim::{
-    cosim_engine_kind, first_mismatch, run_engine, run_icarus, run_verilator, CosimSpec, Port,
+    cosim_engine_kind, first_mismatch, run_engine, run_icarus_expecting, run_verilator_expecting,
+    CosimSpec, Port,
 };
 use sinedec::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
 use sinedec::verify::stimulus_rows;
@@ -116,8 +117,8 @@ fn emitted_core_velocity_equals_the_models_in_icarus_and_verilator() {
             std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("vel_core_{method}"));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).expect("dir");
-        let icarus = run_icarus(&spec, &rows, &dir).expect("icarus ran");
-        let verilator = run_verilator(&spec, &rows, &dir).expect("verilator ran");
+        let icarus = run_icarus_expecting(&spec, &rows, &dir, &want).expect("icarus ran");
+        let verilator = run_verilator_expecting(&spec, &rows, &dir, &want).expect("verilator ran");
         let kind = cosim_engine_kind().expect("engine choice");
         let engine = run_engine(&spec, &rows, kind).expect("engine ran");
         for (name, t) in [

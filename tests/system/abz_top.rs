@@ -11,8 +11,8 @@ use sinedec::blocks::abz::AbzParams;
 use sinedec::blocks::top::hdl::TopRtl;
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::cosim::{
-    cosim_engine_kind, first_mismatch, run_engine, run_icarus, run_verilator, CosimBlock,
-    CosimSpec, Port,
+    cosim_engine_kind, first_mismatch, run_engine, run_icarus_expecting, run_verilator_expecting,
+    CosimBlock, CosimSpec, Port,
 };
 use sinedec::emit::{top_name, top_verilog};
 use sinedec::sim::encoder::{EncoderModel, Profile};
@@ -113,10 +113,12 @@ fn replay(l: &Loaded, enc: EncoderModel, seconds: f64, tag: &str) -> Vec<Row> {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("abz_top_{tag}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("dir");
-    let icarus = run_icarus(&spec, &rows, &dir).expect("icarus ran");
-    let verilator = run_verilator(&spec, &rows, &dir).expect("verilator ran");
     let kind = cosim_engine_kind().expect("engine choice");
     let engine = run_engine(&spec, &rows, kind).expect("engine ran");
+    // The simulators' verdicts are cached against the engine's trace (src/cosim/cache.rs):
+    // a hit means each printed exactly it; a miss runs the tool and compares below.
+    let icarus = run_icarus_expecting(&spec, &rows, &dir, &engine).expect("icarus ran");
+    let verilator = run_verilator_expecting(&spec, &rows, &dir, &engine).expect("verilator ran");
     for (name, t) in [("verilator", &verilator), ("engine", &engine)] {
         if let Some(m) = first_mismatch("icarus", &icarus, name, t, &outs) {
             panic!("{m}");

@@ -2,6 +2,7 @@
 //! (preamp set-up, ADC controller, core) -> decoded position against the true angle.
 use crate::common;
 use sinedec::config::Loaded;
+use sinedec::sim::dut::EngineKind;
 use sinedec::sim::encoder::EncoderModel;
 use sinedec::sim::system::System;
 
@@ -121,7 +122,9 @@ fn qep_fault_raises_the_warning_and_does_not_move_the_position() {
     let l = Loaded::default_config().expect("default");
     let d = &l.derived;
     let enc = EncoderModel::ideal(2048, 1.0, 300.0);
-    let mut s = System::new(d, enc).expect("system");
+    // The top's Verilog on the compiled engine (tests/system/engine.rs and engine_loop.rs
+    // prove it equal to rust-hdl): 1.6 ms is 213 k clocks.
+    let mut s = System::on(d, enc, EngineKind::Compiled).expect("system");
     s.qep_b_stuck_low(0.4e-3, 0.9e-3);
     s.start().expect("settles");
     s.run((1.6e-3 * d.clock_hz) as u64).expect("runs");

@@ -63,9 +63,25 @@ pub fn closed_loop(
     // The slave's exported Verilog on the compiled engine: these loops test the protocol,
     // not rust-hdl's simulation (the replays in rust-hdl, Icarus, Verilator and the engine
     // check that they agree, on these very rows).
-    let uut = BissSlave::new(p).expect("params");
-    // Named as the replays name it: the same Verilog, so one cached library serves both.
-    let mut uut = BlockEngine::new(uut, "biss_slave", Kind::Compiled).expect("engine builds");
+    // Built once per parameter set and process, then restarted at power-up for each run
+    // (the glitch and rate sweeps run hundreds of short loops on one design).
+    thread_local! {
+        static BUILT: std::cell::RefCell<std::collections::HashMap<String, BlockEngine>> =
+            Default::default();
+    }
+    let key = format!("{p:?}");
+    let mut uut = BUILT
+        .with(|b| b.borrow_mut().remove(&key))
+        .map(|mut e| {
+            e.restart();
+            e
+        })
+        .unwrap_or_else(|| {
+            let uut = BissSlave::new(p).expect("params");
+            // Named as the replays name it: the same Verilog, so one cached library serves
+            // both.
+            BlockEngine::new(uut, "biss_slave", Kind::Compiled).expect("engine builds")
+        });
     let mut rows = Vec::with_capacity(cycles);
     let mut slo = Vec::with_capacity(cycles);
     for k in 0..cycles {
@@ -87,6 +103,7 @@ pub fn closed_loop(
         rows.push(row);
         master.push_slo((s != 0) ^ c.slo_flip);
     }
+    BUILT.with(|b| b.borrow_mut().insert(key, uut));
     Run {
         rows,
         slo,
