@@ -1,15 +1,15 @@
 //! Four-way check of the core: the rust-hdl simulation, the bit-accurate model, Icarus
 //! Verilog and Verilator on the exported Verilog, all driven by one stimulus; and the same
 //! check of any block without the model. Whenever a Verilog simulator runs, sinedec's own
-//! engine of the same Verilog runs too (`crate::cosim::run_engine`: the compiled engine, or
+//! engine of the same Verilog runs too (`crate::cosim::run_engine_expecting`: the compiled engine, or
 //! its interpreter with `SINEDEC_COSIM_ENGINE=interpreter`) and must give the same trace.
 use crate::blocks::core::hdl::simulate_rtl;
 use crate::blocks::core::model::{CoreIn, CoreModel};
 use crate::blocks::mask;
 use crate::config::Loaded;
 use crate::cosim::{
-    cosim_engine_kind, first_mismatch, run_engine, run_icarus_expecting, run_verilator_expecting,
-    CosimSpec, Trace,
+    cosim_engine_kind, first_mismatch, run_engine_expecting, run_icarus_expecting,
+    run_verilator_expecting, CosimSpec, Trace,
 };
 use crate::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
 use crate::error::{Error, Result};
@@ -123,7 +123,7 @@ pub fn core_traces(
     } else {
         None
     };
-    let engine = engine_trace(&spec, &rows, sims)?;
+    let engine = engine_trace(&spec, &rows, sims, &rust_hdl)?;
     Ok(CoreTraces {
         rust_hdl,
         model,
@@ -207,7 +207,7 @@ pub fn block_traces<B: crate::cosim::CosimBlock>(
     } else {
         None
     };
-    let engine = engine_trace(&spec, rows, sims)?;
+    let engine = engine_trace(&spec, rows, sims, &rust_hdl)?;
     Ok(BlockTraces {
         rust_hdl,
         icarus,
@@ -217,10 +217,16 @@ pub fn block_traces<B: crate::cosim::CosimBlock>(
     })
 }
 
-/// The engine's trace of `spec` on `rows` when a Verilog simulator is asked for.
-fn engine_trace(spec: &CosimSpec, rows: &[Vec<u64>], sims: Simulators) -> Result<Option<Trace>> {
+/// The engine's trace of `spec` on `rows` when a Verilog simulator is asked for, through
+/// the verdict cache as the simulators' (`expected`: rust-hdl's trace).
+fn engine_trace(
+    spec: &CosimSpec,
+    rows: &[Vec<u64>],
+    sims: Simulators,
+    expected: &Trace,
+) -> Result<Option<Trace>> {
     if !(sims.icarus || sims.verilator) {
         return Ok(None);
     }
-    run_engine(spec, rows, cosim_engine_kind()?).map(Some)
+    run_engine_expecting(spec, rows, cosim_engine_kind()?, expected).map(Some)
 }

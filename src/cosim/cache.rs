@@ -86,15 +86,15 @@ impl Entry {
     fn of(
         dir: PathBuf,
         tool: &'static str,
+        version: &str,
         spec: &CosimSpec,
         parts: &[&str],
     ) -> Result<Entry, CosimError> {
-        let version = tool_version(tool)?;
         let mut h = Sha256::new();
         for part in [
             CACHE_VERSION,
             tool,
-            &version,
+            version,
             spec.top,
             spec.clock,
             spec.verilog,
@@ -143,22 +143,40 @@ pub(super) fn cached(
     expected: &Trace,
     run: impl FnOnce() -> Result<Trace, CosimError>,
 ) -> Result<Trace, CosimError> {
-    cached_in(cache_dir(), tool, spec, parts, expected, run)
+    let version = match cache_dir() {
+        Some(_) => tool_version(tool)?,
+        None => String::new(),
+    };
+    cached_in(cache_dir(), tool, &version, spec, parts, expected, run)
 }
 
-/// [`cached`] with the cache directory given (None: no cache, `run` runs).
-fn cached_in(
-    dir: Option<PathBuf>,
+/// [`cached`] for a simulator whose version the caller gives (the compiled engine: a digest
+/// of its own sources and of the tools it builds with).
+pub(super) fn cached_as<E: From<CosimError>>(
     tool: &'static str,
+    version: &str,
     spec: &CosimSpec,
     parts: &[&str],
     expected: &Trace,
-    run: impl FnOnce() -> Result<Trace, CosimError>,
-) -> Result<Trace, CosimError> {
+    run: impl FnOnce() -> Result<Trace, E>,
+) -> Result<Trace, E> {
+    cached_in(cache_dir(), tool, version, spec, parts, expected, run)
+}
+
+/// [`cached`] with the cache directory given (None: no cache, `run` runs).
+fn cached_in<E: From<CosimError>>(
+    dir: Option<PathBuf>,
+    tool: &'static str,
+    version: &str,
+    spec: &CosimSpec,
+    parts: &[&str],
+    expected: &Trace,
+    run: impl FnOnce() -> Result<Trace, E>,
+) -> Result<Trace, E> {
     let Some(dir) = dir else {
         return run();
     };
-    let entry = Entry::of(dir, tool, spec, parts)?;
+    let entry = Entry::of(dir, tool, version, spec, parts)?;
     if entry.holds(expected) {
         return Ok(expected.clone());
     }
@@ -345,10 +363,11 @@ mod tests {
             cached_in(
                 Some(dir.path().to_path_buf()),
                 "iverilog",
+                "v",
                 &spec(verilog, &ports),
                 &[stim],
                 &expected,
-                || {
+                || -> Result<Trace, CosimError> {
                     runs.set(runs.get() + 1);
                     Ok(printed)
                 },
@@ -369,10 +388,18 @@ mod tests {
         go("v1", "s2", t1.clone(), t1.clone());
         assert_eq!(runs.get(), 4);
         // No cache: always runs.
-        cached_in(None, "iverilog", &spec("v1", &ports), &["s"], &t1, || {
-            runs.set(runs.get() + 1);
-            Ok(t1.clone())
-        })
+        cached_in(
+            None,
+            "iverilog",
+            "v",
+            &spec("v1", &ports),
+            &["s"],
+            &t1,
+            || {
+                runs.set(runs.get() + 1);
+                Ok::<_, CosimError>(t1.clone())
+            },
+        )
         .expect("uncached run");
         assert_eq!(runs.get(), 5);
     }

@@ -33,6 +33,24 @@ pub fn run_engine(spec: &CosimSpec, stimulus: &[Vec<u64>], kind: Kind) -> Result
     e.trace(spec.inputs, spec.outputs, stimulus)
 }
 
+/// [`run_engine`] behind the verdict cache (`cache.rs`), as `run_icarus_expecting`: when
+/// the cache holds `expected` for exactly this run (design, stimulus and
+/// [`crate::engine::version`]), returns it without building the engine; otherwise runs it
+/// and records the trace. Either way the result is the trace the engine gives.
+pub fn run_engine_expecting(
+    spec: &CosimSpec,
+    stimulus: &[Vec<u64>],
+    kind: Kind,
+    expected: &Trace,
+) -> Result<Trace> {
+    validate(spec, stimulus)?;
+    let version = crate::engine::version(kind)?;
+    let stim = super::stimulus_text(spec, stimulus);
+    super::cache::cached_as("engine", &version, spec, &[&stim], expected, || {
+        run_engine(spec, stimulus, kind)
+    })
+}
+
 /// A block's exported Verilog on the engine, stepped row by row like the rust-hdl block
 /// (`CosimBlock::apply`, `step::tick`, `CosimBlock::sample`): closed loops whose subject is
 /// the hardware's behaviour, not rust-hdl's simulation, run on it (the co-simulation tests

@@ -71,10 +71,10 @@ mod verilator;
 pub(crate) use block::cosim_block;
 pub use block::{CosimBlock, RowValue};
 pub use cache::{passed_once, Verdict, COSIM_CACHE_ENV};
-pub use engine::{cosim_engine_kind, run_engine, BlockEngine, ENGINE_ENV};
+pub use engine::{cosim_engine_kind, run_engine, run_engine_expecting, BlockEngine, ENGINE_ENV};
 pub use icarus::{run_icarus, run_icarus_expecting};
 pub(crate) use tool::run_checked;
-pub use tool::{check_tool_named, require_tool, CosimError, TOOL_TIMEOUT};
+pub use tool::{check_tool_named, require_tool, tool_version_of, CosimError, TOOL_TIMEOUT};
 use tool::{io_err, read_file, trim_message, write_file, ToolOutput};
 pub use verilator::{run_verilator, run_verilator_expecting};
 

@@ -70,6 +70,12 @@ fn version_flag(tool: &str) -> &'static str {
     }
 }
 
+/// The version line `tool` prints (e.g. "yosys", "iverilog", "verilator"), or
+/// [`CosimError::ToolMissing`] with its install hint.
+pub fn tool_version_of(tool: &str) -> Result<String, CosimError> {
+    tool_version_named(tool, &install_hint(tool))
+}
+
 /// Checks that `tool` (e.g. "iverilog", "verilator", "yosys") runs; returns ToolMissing with
 /// the apt-get package name otherwise.
 pub fn require_tool(tool: &str) -> Result<(), CosimError> {

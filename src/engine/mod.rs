@@ -144,6 +144,42 @@ fn shape_of(nl: &netlist::Netlist) -> Shape {
     }
 }
 
+/// What a trace of the engine `kind` depends on besides the design and its stimulus, as one
+/// digest: the engine's own sources, its Yosys script and the Yosys version (its front end),
+/// and for the compiled kind the rustc version and flags. The co-simulation's verdict cache
+/// (`crate::cosim::run_engine_expecting`) keys the engine's traces with it.
+pub fn version(kind: Kind) -> Result<String> {
+    let yosys_version = crate::cosim::tool_version_of("yosys")?;
+    let mut h = Sha256::new();
+    let compiled = match kind {
+        Kind::Compiled => format!(
+            "compiled\n{}\n{}",
+            compiled::rustc_version()?,
+            compiled::RUSTC_FLAGS.join(" ")
+        ),
+        Kind::Interpreted => "interpreted".to_string(),
+    };
+    for part in [
+        compiled.as_str(),
+        &yosys_version,
+        yosys::SCRIPT,
+        include_str!("mod.rs"),
+        include_str!("ops.rs"),
+        include_str!("yosys.rs"),
+        include_str!("cells.rs"),
+        include_str!("netlist/mod.rs"),
+        include_str!("netlist/build.rs"),
+        include_str!("order.rs"),
+        include_str!("codegen.rs"),
+        include_str!("compiled.rs"),
+        include_str!("interp.rs"),
+    ] {
+        h.update((part.len() as u64).to_le_bytes());
+        h.update(part.as_bytes());
+    }
+    Ok(h.finalize().iter().map(|b| format!("{b:02x}")).collect())
+}
+
 impl Engine {
     /// Builds the model of module `top` of `verilog` (clock input `clock`) with `kind`.
     pub fn new(verilog: &str, top: &str, clock: &str, kind: Kind) -> Result<Engine> {

@@ -10,8 +10,8 @@ use sinedec::blocks::velocity::model::{VelIn, VelocityModel};
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::cosim::stimulus;
 use sinedec::cosim::{
-    cosim_engine_kind, first_mismatch, run_engine, run_icarus_expecting, run_verilator_expecting,
-    CosimSpec, Port,
+    cosim_engine_kind, first_mismatch, run_engine_expecting, run_icarus_expecting,
+    run_verilator_expecting, CosimSpec, Port,
 };
 use sinedec::emit::{core_input_ports, core_name, core_output_ports, core_verilog};
 use sinedec::verify::stimulus_rows;
@@ -120,7 +120,7 @@ fn emitted_core_velocity_equals_the_models_in_icarus_and_verilator() {
         let icarus = run_icarus_expecting(&spec, &rows, &dir, &want).expect("icarus ran");
         let verilator = run_verilator_expecting(&spec, &rows, &dir, &want).expect("verilator ran");
         let kind = cosim_engine_kind().expect("engine choice");
-        let engine = run_engine(&spec, &rows, kind).expect("engine ran");
+        let engine = run_engine_expecting(&spec, &rows, kind, &want).expect("engine ran");
         for (name, t) in [
             ("icarus", &icarus),
             ("verilator", &verilator),
