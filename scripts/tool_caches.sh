@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Rebuilds, from scratch, the two tool-result caches the suite looks up:
-#   tests/data/cosim-cache  Icarus and Verilator verdicts (src/cosim/cache.rs);
+#   tests/data/cosim-cache  Icarus, Verilator and engine verdicts, and the passes of the
+#                           testbench, lint and sweep checks (src/cosim/cache.rs);
 #   tests/data/yosys-cache  Yosys synthesis results (src/synth.rs, SINEDEC_SYNTH_CACHE).
 # It runs every test with both caches pointed at empty directories, so that they end up
 # holding exactly the runs the suite makes. Run it after an RTL change and commit both

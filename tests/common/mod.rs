@@ -94,6 +94,14 @@ pub fn cfg_named(name: &str, n: u32, f: u32, a: u32, ppr: u32, mt: u32) -> Loade
     Loaded::parse(&text, "test").expect("test config parses")
 }
 
+/// `text` with the commit sinedec was built from, which the header of every generated file
+/// names, replaced by `-`: a verdict-cache key (`sinedec::cosim::passed_once`) of generated
+/// files must not change with every commit when the design does not.
+pub fn without_commit(text: &str) -> String {
+    let built = format!("(commit {})", sinedec::emit::commit());
+    text.replace(&built, "(commit -)")
+}
+
 /// The text of the repository's source files under `paths` (files, or directories walked
 /// in name order), each preceded by its path: the part of a verdict-cache key
 /// (`sinedec::cosim::passed_once`) that covers the models and tools a check depends on.

@@ -24,7 +24,8 @@ fn generated(text: &str, tag: &str) -> (std::path::PathBuf, Vec<String>) {
 
 /// Runs Verilator on `files` with `top`; returns (exit ok, every %Warning/%Error line).
 /// A clean run is recorded in the verdict cache (`sinedec::cosim::Verdict`, keyed by the
-/// Verilator version, the arguments, the files' text and this file's text), and a run
+/// Verilator version, the arguments, the files' text without the commit in their header,
+/// and this file's text), and a run
 /// recorded clean is not repeated; a run with findings always runs.
 fn verilator(
     dir: &std::path::Path,
@@ -35,6 +36,7 @@ fn verilator(
     let texts: Vec<String> = files
         .iter()
         .map(|f| std::fs::read_to_string(dir.join(f)).unwrap_or_else(|e| panic!("{f}: {e}")))
+        .map(|t| common::without_commit(&t))
         .collect();
     let mut parts = vec![include_str!("lint.rs"), top];
     parts.extend_from_slice(args);

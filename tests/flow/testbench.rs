@@ -83,12 +83,13 @@ fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
     }
 }
 
-/// Runs `check` unless it passed before for these files, these simulators' versions and
-/// this file's text (`sinedec::cosim::passed_once`, the verdict cache that scripts/test.sh
+/// Runs `check` unless it passed before for these files (the commit in their header aside),
+/// these simulators' versions and this file's text (`sinedec::cosim::passed_once`, the verdict cache that scripts/test.sh
 /// points at tests/data/cosim-cache): a change to any of them runs the simulators again.
 fn once(name: &str, tools: &[&str], files: &[&str], check: impl FnOnce()) {
+    let files: Vec<String> = files.iter().map(|f| common::without_commit(f)).collect();
     let mut parts = vec![include_str!("testbench.rs")];
-    parts.extend_from_slice(files);
+    parts.extend(files.iter().map(String::as_str));
     sinedec::cosim::passed_once(name, tools, &parts, check).expect("simulators installed");
 }
 
