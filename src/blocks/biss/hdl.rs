@@ -8,6 +8,34 @@ use crate::blocks::serial::timeout_mask;
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
+/// Where the slave is in its frame (the module docs' edge table).
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum BissState {
+    /// SLO low until MA has been quiet for the timeout (after a frame, after reset, and at
+    /// power-up: the first variant is the register's initial value).
+    Timeout,
+    /// SLO high, waiting for F1, the first MA falling edge.
+    Idle,
+    /// After F1, waiting for R1 (SLO high).
+    First,
+    /// After R1, waiting for R2 (SLO high).
+    Second,
+    /// Ack: SLO low for `ack_periods` periods.
+    Ack,
+    /// Start bit (1) on SLO.
+    Start,
+    /// CDS bit (0, or the control channel's answer) on SLO.
+    Cds,
+    /// Data bits on SLO (the position word, then the velocity word).
+    Data,
+    /// nE on SLO.
+    Err,
+    /// nW on SLO.
+    Warn,
+    /// CRC bits on SLO.
+    Crc,
+}
+
 fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
 }
@@ -47,54 +75,50 @@ pub struct BissSlave {
     posw: PosWord,
     /// The control channel: one instance with `control`, none without (no Verilog).
     ctl: Vec<BissControl>,
-    /// Where the slave is in its frame (see the module docs' edge table), one-hot: SLO low
-    /// until MA has been quiet for the timeout (after a frame and after reset; the power-up
-    /// state); after F1, waiting for R1; after R1, waiting for R2; Ack (SLO low for
-    /// `ack_periods` periods); Start bit; CDS bit; data bits; nE; nW; CRC bits. Idle (SLO
-    /// high, waiting for F1) is `sidle`.
-    s_tmo: DFFWithInit<Bit>,
-    s_first: DFF<Bit>,
-    s_second: DFF<Bit>,
-    s_ack: DFF<Bit>,
-    s_start: DFF<Bit>,
-    s_cds: DFF<Bit>,
-    s_data: DFF<Bit>,
-    s_err: DFF<Bit>,
-    s_warn: DFF<Bit>,
-    s_crc: DFF<Bit>,
-    /// What the next rising MA edge does, registered from the state and the flags one clock
-    /// earlier (see `update`): the CRC steps (`pact`) with feedback `pfb`; cnt counts up
-    /// (`pinc`) or takes 1 (`pld`); SLO takes `rv` (`rven`).
+    /// Where the slave is in its frame; power-up Timeout (the enum's first variant is the
+    /// register's initial value), like the reset.
+    state: DFF<BissState>,
+    // What the next rising MA edge does, registered one clock ahead from the state and the
+    // counter flags (`NextRise`):
+    /// The next rise steps the CRC (its enable a flip-flop, not a state decode).
     pact: DFF<Bit>,
+    /// That step's feedback: the bit sent XOR the CRC MSB (the bit's mux off the CRC's D).
     pfb: DFF<Bit>,
+    /// The next rise counts cnt up (its enable a flip-flop, not a state decode).
     pinc: DFF<Bit>,
+    /// The next rise loads cnt with 1 (likewise).
     pld: DFF<Bit>,
+    /// The next rise loads `slo_reg` with `rv` (likewise).
     rven: DFF<Bit>,
+    /// The value SLO takes at the next rise (the edge table's mux off `slo_reg`'s D).
     rv: DFF<Bit>,
+    /// SLO's output register.
     slo_reg: DFF<Bit>,
     sh: DFF<Bits<32>>,
     crc: DFF<Bits<32>>,
     cnt: DFF<Bits<32>>,
     tcnt: DFF<Bits<32>>,
+    /// The error flag latched at F1 (sent as nE = 0).
     errl: DFF<Bit>,
+    /// The warning flag latched at F1 (sent as nW = 0).
     warnl: DFF<Bit>,
     /// cnt == A, registered with cnt (the compares are taken on the value before the
     /// step, so none follows the counter's adder on the way to SLO).
     fack: DFF<Bit>,
-    /// cnt == N, registered with cnt.
+    /// cnt == N, registered with cnt (like `fack`: no compare on cnt -> state and SLO).
     fnb: DFF<Bit>,
-    /// cnt == 6, registered with cnt.
+    /// cnt == 6, registered with cnt (like `fack`: no compare on cnt -> state and SLO).
     fsix: DFF<Bit>,
     /// The timeout ends this clock unless MA has an edge: not Idle and tcnt ==
-    /// timeout_clocks - 1, registered from their next values (the gate then waits on the
-    /// edge pulses only).
+    /// timeout_clocks - 1, registered from their next values, so that the state's timeout
+    /// gate waits on the edge pulses only (tcnt and its compare off the path to the state).
     tmoq: DFF<Bit>,
-    /// tcnt == timeout_clocks - 2, registered with tcnt: tcnt's end one clock ahead.
+    /// tcnt == timeout_clocks - 2, registered with tcnt: tcnt's end one clock ahead, so
+    /// that `tmoq`'s next value is a select of registers (no compare after tcnt's adder).
     fpre: DFF<Bit>,
-    /// The Idle state's flag of the one-hot state (SLO high, waiting for F1).
-    sidle: DFF<Bit>,
-    /// state == Cds, or state == Data with fnb low, one clock late (see `update`): the
-    /// shift register's shift states, read only at a rise.
+    /// state == Cds, or state == Data with fnb low, one clock late (see `Shift`): the shift
+    /// register's shift enable as one flip-flop (the state decode off the path to the 32
+    /// bits of `sh`), read only at a rise.
     sshift: DFF<Bit>,
     /// An MA edge this clock.
     mae: Signal<Local, Bit>,
@@ -102,14 +126,16 @@ pub struct BissSlave {
     tmo: Signal<Local, Bit>,
     /// tcnt == timeout_clocks - 1 at the next clock.
     ftln: Signal<Local, Bit>,
-    /// sidle at the next clock.
-    sidlen: Signal<Local, Bit>,
+    /// The state's next value is Idle.
+    idlen: Signal<Local, Bit>,
+    /// F1: the first MA falling edge, in Idle (latch the word, load the shift register).
+    f1: Signal<Local, Bit>,
     /// Not the reset and not the end of the timeout: the state stays or follows an edge.
     live: Signal<Local, Bit>,
     /// The data MSB of the shift register.
     dbit: Signal<Local, Bit>,
-    /// The bit that enters the CRC at the next rise.
-    cbit: Signal<Local, Bit>,
+    /// The CRC's MSB.
+    cmsb: Signal<Local, Bit>,
     /// The CRC's next value when it steps.
     cnext: Signal<Local, Bits<32>>,
     /// Mask of the N data bits.
@@ -172,16 +198,7 @@ impl BissSlave {
             sync: LineSync::new(p.glitch_filter),
             posw: PosWord::new(p.position_bits, p.multiturn_bits, p.gray),
             ctl: p.control.iter().map(BissControl::new).collect(),
-            s_tmo: DFFWithInit::new(true),
-            s_first: Default::default(),
-            s_second: Default::default(),
-            s_ack: Default::default(),
-            s_start: Default::default(),
-            s_cds: Default::default(),
-            s_data: Default::default(),
-            s_err: Default::default(),
-            s_warn: Default::default(),
-            s_crc: Default::default(),
+            state: Default::default(),
             pact: Default::default(),
             pfb: Default::default(),
             pinc: Default::default(),
@@ -197,7 +214,6 @@ impl BissSlave {
             warnl: Default::default(),
             fack: Default::default(),
             fnb: Default::default(),
-            sidle: Default::default(),
             sshift: Default::default(),
             fsix: Default::default(),
             tmoq: Default::default(),
@@ -205,10 +221,11 @@ impl BissSlave {
             mae: Default::default(),
             tmo: Default::default(),
             ftln: Default::default(),
-            sidlen: Default::default(),
             live: Default::default(),
             dbit: Default::default(),
-            cbit: Default::default(),
+            cmsb: Default::default(),
+            f1: Default::default(),
+            idlen: Default::default(),
             cnext: Default::default(),
             nmask: c32(mask(n)),
             msb: c32(1 << (n - 1)),
@@ -243,9 +260,8 @@ impl stages::Timeout for BissSlave {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, s_tmo, s_first, s_second, s_ack, s_start, s_cds, s_data, s_err, s_warn,
-            s_crc, pact, pfb, pinc, pld, rven, rv, slo_reg, sh, crc, cnt, tcnt, errl, warnl, fack,
-            fnb, fsix, tmoq, fpre, sidle, sshift
+            self, clk, state, pact, pfb, pinc, pld, rven, rv, slo_reg, sh, crc, cnt, tcnt, errl,
+            warnl, fack, fnb, fsix, tmoq, fpre, sshift
         );
         self.sync.clk.next = self.clk.val();
         self.sync.rst.next = self.rst.val();
@@ -267,8 +283,8 @@ impl stages::Timeout for BissSlave {
         }
         self.mae.next = self.sync.rise.val() | self.sync.fall.val();
         // The timeout ends every state but Idle: MA quiet for timeout_clocks -> idle, SLO high.
-        // tmoq holds "not Idle and tcnt at its end" (registered), so the gate of every state
-        // flag is one LUT on registers (tmoq, the edge pulses, the reset).
+        // tmoq holds "not Idle and tcnt at its end" (registered), so the state's gate is one
+        // LUT on registers (tmoq, the edge pulses, the reset).
         self.tmo.next = self.tmoq.q.val() & !self.mae.val();
         self.live.next = !self.tmo.val() & !self.rst.val();
         // Cycles since the last MA edge, with tcnt == timeout_clocks - 2 registered beside it
@@ -291,48 +307,82 @@ impl stages::Timeout for BissSlave {
     }
 }
 
-/// The one-hot frame state.
+/// The frame state: one arm per row of the module docs' edge table.
 impl stages::FrameState for BissSlave {
     #[hdl_gen]
     fn update(&mut self) {
-        // The one-hot state: F1 leaves Idle, each rise moves on (Ack, Data and Crc stay
-        // until their counter flag), the timeout goes to Idle (never with an edge: it needs
-        // MA quiet), the reset to Timeout.
-        self.s_tmo.d.next = self.rst.val()
-            | (!self.tmo.val()
-                & (self.s_tmo.q.val()
-                    | (self.s_crc.q.val() & self.sync.rise.val() & self.fsix.q.val())));
-        self.sidlen.next =
-            !self.rst.val() & (self.tmo.val() | (self.sidle.q.val() & !self.sync.fall.val()));
-        self.sidle.d.next = self.sidlen.val();
-        self.tmoq.d.next = !self.sidlen.val() & self.ftln.val();
-        self.s_first.d.next = self.live.val()
-            & ((self.sidle.q.val() & self.sync.fall.val())
-                | (self.s_first.q.val() & !self.sync.rise.val()));
-        self.s_second.d.next = self.live.val()
-            & ((self.s_first.q.val() & self.sync.rise.val())
-                | (self.s_second.q.val() & !self.sync.rise.val()));
-        self.s_ack.d.next = self.live.val()
-            & ((self.s_second.q.val() & self.sync.rise.val())
-                | (self.s_ack.q.val() & !(self.sync.rise.val() & self.fack.q.val())));
-        self.s_start.d.next = self.live.val()
-            & ((self.s_ack.q.val() & self.sync.rise.val() & self.fack.q.val())
-                | (self.s_start.q.val() & !self.sync.rise.val()));
-        self.s_cds.d.next = self.live.val()
-            & ((self.s_start.q.val() & self.sync.rise.val())
-                | (self.s_cds.q.val() & !self.sync.rise.val()));
-        self.s_data.d.next = self.live.val()
-            & ((self.s_cds.q.val() & self.sync.rise.val())
-                | (self.s_data.q.val() & !(self.sync.rise.val() & self.fnb.q.val())));
-        self.s_err.d.next = self.live.val()
-            & ((self.s_data.q.val() & self.sync.rise.val() & self.fnb.q.val())
-                | (self.s_err.q.val() & !self.sync.rise.val()));
-        self.s_warn.d.next = self.live.val()
-            & ((self.s_err.q.val() & self.sync.rise.val())
-                | (self.s_warn.q.val() & !self.sync.rise.val()));
-        self.s_crc.d.next = self.live.val()
-            & ((self.s_warn.q.val() & self.sync.rise.val())
-                | (self.s_crc.q.val() & !(self.sync.rise.val() & self.fsix.q.val())));
+        // F1 leaves Idle, each rise moves on (Ack, Data and Crc stay until their counter
+        // flag), the timeout goes to Idle (never with an edge: it needs MA quiet), the reset
+        // to Timeout.
+        match self.state.q.val() {
+            BissState::Timeout => {}
+            BissState::Idle => {
+                if self.sync.fall.val() {
+                    self.state.d.next = BissState::First;
+                }
+            }
+            BissState::First => {
+                if self.sync.rise.val() {
+                    self.state.d.next = BissState::Second;
+                }
+            }
+            BissState::Second => {
+                if self.sync.rise.val() {
+                    self.state.d.next = BissState::Ack;
+                }
+            }
+            BissState::Ack => {
+                if self.sync.rise.val() & self.fack.q.val() {
+                    self.state.d.next = BissState::Start;
+                }
+            }
+            BissState::Start => {
+                if self.sync.rise.val() {
+                    self.state.d.next = BissState::Cds;
+                }
+            }
+            BissState::Cds => {
+                if self.sync.rise.val() {
+                    self.state.d.next = BissState::Data;
+                }
+            }
+            BissState::Data => {
+                if self.sync.rise.val() & self.fnb.q.val() {
+                    self.state.d.next = BissState::Err;
+                }
+            }
+            BissState::Err => {
+                if self.sync.rise.val() {
+                    self.state.d.next = BissState::Warn;
+                }
+            }
+            BissState::Warn => {
+                if self.sync.rise.val() {
+                    self.state.d.next = BissState::Crc;
+                }
+            }
+            BissState::Crc => {
+                if self.sync.rise.val() & self.fsix.q.val() {
+                    self.state.d.next = BissState::Timeout;
+                    // The final pulse: the frame is complete, its CDM will count.
+                    for i in 0..self.ctl.len() {
+                        self.ctl[i].done.next = true;
+                    }
+                }
+            }
+        }
+        if self.tmo.val() {
+            self.state.d.next = BissState::Idle;
+        }
+        if self.rst.val() {
+            self.state.d.next = BissState::Timeout;
+        }
+        // The next state is Idle, written out (not read from `state.d`), so that tmoq's
+        // path stays off the state's next-state mux.
+        self.idlen.next = !self.rst.val()
+            & (self.tmo.val() | ((self.state.q.val() == BissState::Idle) & !self.sync.fall.val()));
+        self.tmoq.d.next = !self.idlen.val() & self.ftln.val();
+        self.f1.next = (self.state.q.val() == BissState::Idle) & self.sync.fall.val();
     }
 }
 
@@ -346,63 +396,97 @@ impl stages::NextRise for BissSlave {
         // shift register, errl, warnl and the control channel's CDS bit change only at F1
         // (Idle -> First: a rise does nothing in either), at the end of the timeout (-> Idle)
         // and at the reset (-> Timeout), which clear these flags; so at every rise they equal
-        // the decode of that clock's state.
-        // Data MSB of the shift register, and the bit that enters the CRC at the rise.
+        // the decode of that clock's state. The CRC steps at a rise in Cds, Data and Err with
+        // the bit sent (serial CRC6 of the data, nE and nW bits, feedback `pfb`), and shifts
+        // out in Warn and Crc before the last bit; cnt takes 1 on entering Ack, Data and Crc
+        // and counts up in them before their flag; SLO takes the value of the edge table.
         self.dbit.next = (self.sh.q.val() & self.msb.val()).any();
-        self.cbit.next = self.dbit.val();
-        if self.s_data.q.val() & self.fnb.q.val() {
-            self.cbit.next = !self.errl.q.val();
-        }
-        if self.s_err.q.val() {
-            self.cbit.next = !self.warnl.q.val();
-        }
-        // The CRC steps at a rise in Cds, Data and Err with the bit sent (serial CRC6 of the
-        // data, nE and nW bits), and shifts out in Warn and Crc before the last bit.
-        self.pact.d.next = (self.s_cds.q.val()
-            | self.s_data.q.val()
-            | self.s_err.q.val()
-            | self.s_warn.q.val()
-            | (self.s_crc.q.val() & !self.fsix.q.val()))
-            & self.live.val();
-        self.pfb.d.next = (self.s_cds.q.val() | self.s_data.q.val() | self.s_err.q.val())
-            & (self.cbit.val() ^ (self.crc.q.val() & self.crcmsb.val()).any());
-        // cnt counts up in Ack, Data and Crc before their flag, and takes 1 on entering
-        // Ack, Data and Crc.
-        self.pinc.d.next = ((self.s_ack.q.val() & !self.fack.q.val())
-            | (self.s_data.q.val() & !self.fnb.q.val())
-            | (self.s_crc.q.val() & !self.fsix.q.val()))
-            & self.live.val();
-        self.pld.d.next =
-            (self.s_second.q.val() | self.s_cds.q.val() | self.s_warn.q.val()) & self.live.val();
-        // SLO at a rise: Second -> 0 (Ack), Ack at its end -> 1 (Start), Start -> CDS (0, or
-        // the control channel's bit), Cds and Data -> the data bit, the last data bit ->
-        // nE, Err -> nW, Warn and Crc -> the inverted CRC MSB, Crc at its end -> 0. Timeout,
-        // Idle, First and Ack before its end keep it.
-        self.rven.d.next = !(self.s_tmo.q.val()
-            | self.sidle.q.val()
-            | self.s_first.q.val()
-            | (self.s_ack.q.val() & !self.fack.q.val()))
-            & self.live.val();
-        self.rv.d.next = self.s_ack.q.val()
-            | ((self.s_cds.q.val() | (self.s_data.q.val() & !self.fnb.q.val())) & self.dbit.val())
-            | ((self.s_data.q.val() & self.fnb.q.val()) & !self.errl.q.val())
-            | (self.s_err.q.val() & !self.warnl.q.val())
-            | ((self.s_warn.q.val() | (self.s_crc.q.val() & !self.fsix.q.val()))
-                & !(self.crc.q.val() & self.crcmsb.val()).any());
-        // With the control channel, the CDS bit it prepared.
-        for i in 0..self.ctl.len() {
-            if self.s_start.q.val() & self.ctl[i].cds.val() {
+        self.cmsb.next = (self.crc.q.val() & self.crcmsb.val()).any();
+        self.pact.d.next = false;
+        self.pfb.d.next = false;
+        self.pinc.d.next = false;
+        self.pld.d.next = false;
+        self.rven.d.next = true;
+        self.rv.d.next = false;
+        self.sshift.d.next = false;
+        match self.state.q.val() {
+            BissState::Timeout => {
+                self.rven.d.next = false;
+            }
+            BissState::Idle => {
+                self.rven.d.next = false;
+            }
+            BissState::First => {
+                self.rven.d.next = false;
+            }
+            BissState::Second => {
+                // -> Ack: SLO 0.
+                self.pld.d.next = true;
+            }
+            BissState::Ack => {
+                // At its end -> Start: SLO 1.
+                self.pinc.d.next = !self.fack.q.val();
+                self.rven.d.next = self.fack.q.val();
                 self.rv.d.next = true;
             }
+            BissState::Start => {
+                // -> Cds: SLO 0, or with the control channel the CDS bit it prepared.
+                for i in 0..self.ctl.len() {
+                    self.rv.d.next = self.ctl[i].cds.val();
+                }
+            }
+            BissState::Cds => {
+                // -> Data: SLO the data MSB.
+                self.pact.d.next = true;
+                self.pfb.d.next = self.dbit.val() ^ self.cmsb.val();
+                self.pld.d.next = true;
+                self.rv.d.next = self.dbit.val();
+                self.sshift.d.next = true;
+            }
+            BissState::Data => {
+                // The next data bit, or after the last -> Err: SLO nE.
+                self.pact.d.next = true;
+                if self.fnb.q.val() {
+                    self.pfb.d.next = !self.errl.q.val() ^ self.cmsb.val();
+                    self.rv.d.next = !self.errl.q.val();
+                } else {
+                    self.pfb.d.next = self.dbit.val() ^ self.cmsb.val();
+                    self.pinc.d.next = true;
+                    self.rv.d.next = self.dbit.val();
+                    self.sshift.d.next = true;
+                }
+            }
+            BissState::Err => {
+                // -> Warn: SLO nW.
+                self.pact.d.next = true;
+                self.pfb.d.next = !self.warnl.q.val() ^ self.cmsb.val();
+                self.rv.d.next = !self.warnl.q.val();
+            }
+            BissState::Warn => {
+                // -> Crc: SLO the inverted CRC MSB.
+                self.pact.d.next = true;
+                self.pld.d.next = true;
+                self.rv.d.next = !self.cmsb.val();
+            }
+            BissState::Crc => {
+                // The next inverted CRC bit, or after the last -> Timeout: SLO 0.
+                if !self.fsix.q.val() {
+                    self.pact.d.next = true;
+                    self.pinc.d.next = true;
+                    self.rv.d.next = !self.cmsb.val();
+                }
+            }
+        }
+        // The timeout and the reset clear the enables (see above).
+        if !self.live.val() {
+            self.pact.d.next = false;
+            self.pinc.d.next = false;
+            self.pld.d.next = false;
+            self.rven.d.next = false;
+            self.sshift.d.next = false;
         }
         if self.sync.rise.val() & self.rven.q.val() {
             self.slo_reg.d.next = self.rv.q.val();
-        }
-        // The final pulse: the frame is complete, its CDM will count.
-        if self.s_crc.q.val() & self.sync.rise.val() & self.fsix.q.val() {
-            for i in 0..self.ctl.len() {
-                self.ctl[i].done.next = true;
-            }
         }
     }
 }
@@ -412,7 +496,7 @@ impl stages::Shift for BissSlave {
     #[hdl_gen]
     fn update(&mut self) {
         // F1 in Idle: latch the word and the flags, clear the CRC.
-        if self.sidle.q.val() & self.sync.fall.val() {
+        if self.f1.val() {
             self.posw.take.next = true;
             self.errl.d.next = self.posw.err.val();
             self.warnl.d.next = self.posw.warn.val();
@@ -429,7 +513,7 @@ impl stages::Shift for BissSlave {
         }
         // The shift register: loaded at F1 in Idle, shifted at each rising MA edge in Cds
         // and in Data before the last bit (the state decodes are registered flags).
-        if self.sidle.q.val() & self.sync.fall.val() {
+        if self.f1.val() {
             self.sh.d.next = self.posw.word.val() & self.nmask.val();
         }
         if self.sshift.q.val() & self.sync.rise.val() {
@@ -439,7 +523,7 @@ impl stages::Shift for BissSlave {
         for i in 0..self.vsh.len() {
             self.vsh[i].clock.next = self.clk.val();
             self.vsh[i].d.next = self.vsh[i].q.val();
-            if self.sidle.q.val() & self.sync.fall.val() {
+            if self.f1.val() {
                 self.vsh[i].d.next = self.vel[i].val() & self.vmask[i].val();
             }
             if self.sshift.q.val() & self.sync.rise.val() {
@@ -473,13 +557,6 @@ impl stages::Shift for BissSlave {
         if self.rst.val() {
             self.slo_reg.d.next = false;
         }
-        // sshift is read only with `rise`, and rises are at least two clocks apart (the
-        // synchronizer's level must fall in between), so it may lag the state by a clock: it
-        // is decoded from the registered state and fnb, which change only at a rise, a fall
-        // (Idle -> First, where it is low either way), the timeout (-> Idle) or the reset;
-        // the last two clear it. Registers in, two LUTs deep.
-        self.sshift.d.next =
-            (self.s_cds.q.val() | (self.s_data.q.val() & !self.fnb.q.val())) & self.live.val();
         self.slo.next = self.slo_reg.q.val();
     }
 }

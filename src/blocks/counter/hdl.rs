@@ -48,15 +48,24 @@ pub struct Combiner {
     pub q_next: Signal<Out, Bits<32>>,
     /// Registered: valid and mag_ok (the sample is accepted).
     pub acc: Signal<Out, Bit>,
+    /// `acc`'s register: valid and mag_ok from the compare's chain in one flip-flop, so the
+    /// counter's turn selection starts from a register.
     acc_reg: DFF<Bit>,
     p_reg: DFF<Bits<32>>,
+    /// `mag_ok`'s register.
     ok_reg: DFF<Bit>,
+    /// `v`'s register.
     v_reg: DFF<Bit>,
     plast_reg: DFF<Bits<32>>,
+    /// `up`'s register: the step's direction decoded here (one LUT after p - plast), so the
+    /// counter's u adder and turn selection start from registers.
     up_reg: DFF<Bit>,
+    /// `down`'s register, like `up_reg`.
     down_reg: DFF<Bit>,
+    /// `step`'s register (up or down): the low bit of the counter's u step from a register.
     step_reg: DFF<Bit>,
     wq_reg: DFF<Bits<32>>,
+    /// `wz`'s register: the low F-2 bits of delta are zero, for the warning's threshold.
     wz_reg: DFF<Bit>,
     /// p of this sample.
     pn: Signal<Local, Bits<32>>,
@@ -272,15 +281,20 @@ pub struct QuadrantCounter {
     pub error: Signal<Out, Bit>,
     /// Step near the 2-quadrant ambiguity.
     pub warning: Signal<Out, Bit>,
+    /// The first accepted sample since reset has loaded the count.
     init_reg: DFF<Bit>,
     pprev_reg: DFF<Bits<32>>,
     /// Signal period within the turn, u = qc >> 2 (quadrant_bits - 2 bits).
     u_reg: DFF<Bits<32>>,
     fine_reg: DFF<Bits<32>>,
     turns_reg: DFF<Bits<32>>,
+    /// `valid`'s register.
     valid_reg: DFF<Bit>,
+    /// `error`'s register.
     error_reg: DFF<Bit>,
+    /// `warning`'s register.
     warning_reg: DFF<Bit>,
+    /// A load is latched (`lqc_reg`, `lturns_reg`) and waits for the next accepted sample.
     pending_reg: DFF<Bit>,
     lqc_reg: DFF<Bits<32>>,
     lturns_reg: DFF<Bits<32>>,

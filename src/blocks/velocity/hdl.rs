@@ -30,9 +30,8 @@
 //! (no select of candidates after the chain); Delta is taken at the tick, U - X a clock
 //! later; Theta's one adder adds a register (`tx` or the multiplier's R); the tick, "last
 //! multiply" and "last multiplier clock" are registered; the multiplier's adder adds
-//! registers only. The schedule is one-hot flags, each next value one LUT of flags, and
-//! `j` and `mwait` have their own widths (bits(m - 1), bits(n)), so their compares are
-//! narrow.
+//! registers only. The schedule is one [`VelState`] register; `j` and `mwait` have their
+//! own widths (bits(m - 1), bits(n)), so their compares are narrow.
 pub use super::layout::Layout;
 use super::parts::{VelCoefRom, VelMul};
 use super::{MethodConsts, VelocityParams};
@@ -41,6 +40,23 @@ use crate::error::Result;
 use rust_hdl::prelude::*;
 
 mod update;
+
+/// Where the update is in its schedule (the states of the sketch above).
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum VelState {
+    /// Waiting for a tick (reset and power-up).
+    Idle,
+    /// Differences of this update into `d` (lsq: shift the history, clear P).
+    Prep,
+    /// Multiplier operands registered, multiplier started.
+    Op,
+    /// Multiplier running: n + 1 clocks (x cleared, then n Booth digits).
+    Prod,
+    /// Product accumulated.
+    Acc,
+    /// Output register loaded, strobe raised.
+    Out,
+}
 
 fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
@@ -88,25 +104,18 @@ pub struct Velocity {
     padj: DFF<Bits<64>>,
     /// The update divider's count, 0..D-1.
     cnt: DFF<Bits<32>>,
-    /// The divider's tick, registered: high while `cnt` = D - 1.
+    /// The divider's tick, registered: high while `cnt` = D - 1 (keeps the `cnt` compare
+    /// off the cnt -> state and cnt -> snap paths).
     tickr: DFF<Bit>,
-    /// The schedule's states as flags, one-hot (reset and power-up: all low, Idle): not
-    /// Idle (waiting for a tick); `inprep` below is Prep (differences into `d`; lsq: shift
-    /// the history, clear P).
-    busy: DFF<Bit>,
-    /// Op: multiplier operands registered, multiplier started.
-    sop: DFF<Bit>,
-    /// Prod: multiplier running, n + 1 clocks (x cleared, then n Booth digits).
-    sprod: DFF<Bit>,
-    /// Acc: product accumulated.
-    sacc: DFF<Bit>,
-    /// Out: output register loaded, strobe raised.
-    sout: DFF<Bit>,
-    /// `mwait` = n in `Prod` (the multiplier's last clock), registered a clock ahead.
+    /// The schedule's state.
+    state: DFF<VelState>,
+    /// `mwait` = n in `Prod` (the multiplier's last clock), registered a clock ahead: keeps
+    /// the `mwait` compare off the mwait -> state path.
     mlast: DFF<Bit>,
     /// The multiply of this update, 0..m-1 (bits(m - 1) bits).
     j: DFF<Bits<32>>,
-    /// j = m - 1 (this is the last multiply), registered with j.
+    /// j = m - 1 (this is the last multiply), registered with j: keeps the `j` compare off
+    /// the j -> state and j -> accumulator paths.
     jlr: DFF<Bit>,
     /// The first update has run (the history holds positions).
     primed: DFF<Bit>,
@@ -127,11 +136,9 @@ pub struct Velocity {
     k: DFF<Bits<32>>,
     /// Tracking: Theta's addend in `Prep` (theta 2^(S+G) at the first update, else W).
     tx: DFF<Bits<64>>,
-    /// Prep (one-hot with the flags above).
-    inprep: DFF<Bit>,
-    /// Theta's addend select: `inprep`'s copy without the reset, so that the select of
-    /// Theta's 41-bit chain has no other load (it differs from `inprep` only in the clock
-    /// after a reset, when neither `Prep` nor `Acc` adds to Theta).
+    /// The state is `Prep` (registered with it, without the reset): Theta's addend select,
+    /// so that the select of Theta's 41-bit chain is one flip-flop with no other load (after
+    /// a reset it may be high for a clock in which nothing adds to Theta).
     tsel: DFF<Bit>,
     /// Clocks waited in `Prod` for the multiplier, 0..n (bits(n) bits).
     mwait: DFF<Bits<32>>,
@@ -251,11 +258,7 @@ impl Velocity {
             padj: Default::default(),
             cnt: Default::default(),
             tickr: Default::default(),
-            busy: Default::default(),
-            sop: Default::default(),
-            sprod: Default::default(),
-            sacc: Default::default(),
-            sout: Default::default(),
+            state: Default::default(),
             mlast: Default::default(),
             j: Default::default(),
             jlr: Default::default(),
@@ -268,7 +271,6 @@ impl Velocity {
             acc: Default::default(),
             k: Default::default(),
             tx: Default::default(),
-            inprep: Default::default(),
             tsel: Default::default(),
             mwait: Default::default(),
             opa: Default::default(),

@@ -1769,6 +1769,19 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     localparam  tlast_is0 = 1'b0;
     localparam  tpre_is0 = 1'b0;
 
+    // Enums
+    localparam BissState_Timeout = 0;
+    localparam BissState_Idle = 1;
+    localparam BissState_First = 2;
+    localparam BissState_Second = 3;
+    localparam BissState_Ack = 4;
+    localparam BissState_Start = 5;
+    localparam BissState_Cds = 6;
+    localparam BissState_Data = 7;
+    localparam BissState_Err = 8;
+    localparam BissState_Warn = 9;
+    localparam BissState_Crc = 10;
+
     // Stub signals
     reg  sync_clk;
     reg  sync_rst;
@@ -1787,36 +1800,9 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     wire  [31:0] posw_word;
     wire  posw_err;
     wire  posw_warn;
-    reg  s_tmo_d;
-    wire  s_tmo_q;
-    reg  s_tmo_clock;
-    reg  s_first_d;
-    wire  s_first_q;
-    reg  s_first_clock;
-    reg  s_second_d;
-    wire  s_second_q;
-    reg  s_second_clock;
-    reg  s_ack_d;
-    wire  s_ack_q;
-    reg  s_ack_clock;
-    reg  s_start_d;
-    wire  s_start_q;
-    reg  s_start_clock;
-    reg  s_cds_d;
-    wire  s_cds_q;
-    reg  s_cds_clock;
-    reg  s_data_d;
-    wire  s_data_q;
-    reg  s_data_clock;
-    reg  s_err_d;
-    wire  s_err_q;
-    reg  s_err_clock;
-    reg  s_warn_d;
-    wire  s_warn_q;
-    reg  s_warn_clock;
-    reg  s_crc_d;
-    wire  s_crc_q;
-    reg  s_crc_clock;
+    reg  [3:0] state_d;
+    wire  [3:0] state_q;
+    reg  state_clock;
     reg  pact_d;
     wire  pact_q;
     reg  pact_clock;
@@ -1871,9 +1857,6 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  fpre_d;
     wire  fpre_q;
     reg  fpre_clock;
-    reg  sidle_d;
-    wire  sidle_q;
-    reg  sidle_clock;
     reg  sshift_d;
     wire  sshift_q;
     reg  sshift_clock;
@@ -1882,10 +1865,11 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
     reg  mae;
     reg  tmo;
     reg  ftln;
-    reg  sidlen;
+    reg  idlen;
+    reg  f1;
     reg  live;
     reg  dbit;
-    reg  cbit;
+    reg  cmsb;
     reg  [31:0] cnext;
 
     // Sub module instances
@@ -1910,55 +1894,10 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .err(posw_err),
         .warn(posw_warn)
     );
-    sd_top_rtl_biss_slave_s_tmo s_tmo(
-        .d(s_tmo_d),
-        .q(s_tmo_q),
-        .clock(s_tmo_clock)
-    );
-    sd_top_rtl_biss_slave_s_first s_first(
-        .d(s_first_d),
-        .q(s_first_q),
-        .clock(s_first_clock)
-    );
-    sd_top_rtl_biss_slave_s_second s_second(
-        .d(s_second_d),
-        .q(s_second_q),
-        .clock(s_second_clock)
-    );
-    sd_top_rtl_biss_slave_s_ack s_ack(
-        .d(s_ack_d),
-        .q(s_ack_q),
-        .clock(s_ack_clock)
-    );
-    sd_top_rtl_biss_slave_s_start s_start(
-        .d(s_start_d),
-        .q(s_start_q),
-        .clock(s_start_clock)
-    );
-    sd_top_rtl_biss_slave_s_cds s_cds(
-        .d(s_cds_d),
-        .q(s_cds_q),
-        .clock(s_cds_clock)
-    );
-    sd_top_rtl_biss_slave_s_data s_data(
-        .d(s_data_d),
-        .q(s_data_q),
-        .clock(s_data_clock)
-    );
-    sd_top_rtl_biss_slave_s_err s_err(
-        .d(s_err_d),
-        .q(s_err_q),
-        .clock(s_err_clock)
-    );
-    sd_top_rtl_biss_slave_s_warn s_warn(
-        .d(s_warn_d),
-        .q(s_warn_q),
-        .clock(s_warn_clock)
-    );
-    sd_top_rtl_biss_slave_s_crc s_crc(
-        .d(s_crc_d),
-        .q(s_crc_q),
-        .clock(s_crc_clock)
+    sd_top_rtl_biss_slave_state state(
+        .d(state_d),
+        .q(state_q),
+        .clock(state_clock)
     );
     sd_top_rtl_biss_slave_pact pact(
         .d(pact_d),
@@ -2050,11 +1989,6 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         .q(fpre_q),
         .clock(fpre_clock)
     );
-    sd_top_rtl_biss_slave_sidle sidle(
-        .d(sidle_d),
-        .q(sidle_q),
-        .clock(sidle_clock)
-    );
     sd_top_rtl_biss_slave_sshift sshift(
         .d(sshift_d),
         .q(sshift_q),
@@ -2063,16 +1997,7 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
 
     // Update code
     always @(*) begin
-        s_tmo_clock = clk;
-        s_first_clock = clk;
-        s_second_clock = clk;
-        s_ack_clock = clk;
-        s_start_clock = clk;
-        s_cds_clock = clk;
-        s_data_clock = clk;
-        s_err_clock = clk;
-        s_warn_clock = clk;
-        s_crc_clock = clk;
+        state_clock = clk;
         pact_clock = clk;
         pfb_clock = clk;
         pinc_clock = clk;
@@ -2091,18 +2016,8 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fsix_clock = clk;
         tmoq_clock = clk;
         fpre_clock = clk;
-        sidle_clock = clk;
         sshift_clock = clk;
-        s_tmo_d = s_tmo_q;
-        s_first_d = s_first_q;
-        s_second_d = s_second_q;
-        s_ack_d = s_ack_q;
-        s_start_d = s_start_q;
-        s_cds_d = s_cds_q;
-        s_data_d = s_data_q;
-        s_err_d = s_err_q;
-        s_warn_d = s_warn_q;
-        s_crc_d = s_crc_q;
+        state_d = state_q;
         pact_d = pact_q;
         pfb_d = pfb_q;
         pinc_d = pinc_q;
@@ -2121,7 +2036,6 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         fsix_d = fsix_q;
         tmoq_d = tmoq_q;
         fpre_d = fpre_q;
-        sidle_d = sidle_q;
         sshift_d = sshift_q;
         sync_clk = clk;
         sync_rst = rst;
@@ -2152,39 +2066,169 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
             ftln = tlast_is0;
             fpre_d = tpre_is0;
         end
-        s_tmo_d = rst | (~tmo & (s_tmo_q | (s_crc_q & sync_rise & fsix_q)));
-        sidlen = ~rst & (tmo | (sidle_q & ~sync_fall));
-        sidle_d = sidlen;
-        tmoq_d = ~sidlen & ftln;
-        s_first_d = live & ((sidle_q & sync_fall) | (s_first_q & ~sync_rise));
-        s_second_d = live & ((s_first_q & sync_rise) | (s_second_q & ~sync_rise));
-        s_ack_d = live & ((s_second_q & sync_rise) | (s_ack_q & ~(sync_rise & fack_q)));
-        s_start_d = live & ((s_ack_q & sync_rise & fack_q) | (s_start_q & ~sync_rise));
-        s_cds_d = live & ((s_start_q & sync_rise) | (s_cds_q & ~sync_rise));
-        s_data_d = live & ((s_cds_q & sync_rise) | (s_data_q & ~(sync_rise & fnb_q)));
-        s_err_d = live & ((s_data_q & sync_rise & fnb_q) | (s_err_q & ~sync_rise));
-        s_warn_d = live & ((s_err_q & sync_rise) | (s_warn_q & ~sync_rise));
-        s_crc_d = live & ((s_warn_q & sync_rise) | (s_crc_q & ~(sync_rise & fsix_q)));
+        case (state_q)
+            BissState_Timeout:
+                begin
+                end
+            BissState_Idle:
+                begin
+                    if (sync_fall) begin
+                        state_d = BissState_First;
+                    end
+                end
+            BissState_First:
+                begin
+                    if (sync_rise) begin
+                        state_d = BissState_Second;
+                    end
+                end
+            BissState_Second:
+                begin
+                    if (sync_rise) begin
+                        state_d = BissState_Ack;
+                    end
+                end
+            BissState_Ack:
+                begin
+                    if (sync_rise & fack_q) begin
+                        state_d = BissState_Start;
+                    end
+                end
+            BissState_Start:
+                begin
+                    if (sync_rise) begin
+                        state_d = BissState_Cds;
+                    end
+                end
+            BissState_Cds:
+                begin
+                    if (sync_rise) begin
+                        state_d = BissState_Data;
+                    end
+                end
+            BissState_Data:
+                begin
+                    if (sync_rise & fnb_q) begin
+                        state_d = BissState_Err;
+                    end
+                end
+            BissState_Err:
+                begin
+                    if (sync_rise) begin
+                        state_d = BissState_Warn;
+                    end
+                end
+            BissState_Warn:
+                begin
+                    if (sync_rise) begin
+                        state_d = BissState_Crc;
+                    end
+                end
+            BissState_Crc:
+                begin
+                    if (sync_rise & fsix_q) begin
+                        state_d = BissState_Timeout;
+                    end
+                end
+        endcase
+        if (tmo) begin
+            state_d = BissState_Idle;
+        end
+        if (rst) begin
+            state_d = BissState_Timeout;
+        end
+        idlen = ~rst & (tmo | ((state_q == BissState_Idle) & ~sync_fall));
+        tmoq_d = ~idlen & ftln;
+        f1 = (state_q == BissState_Idle) & sync_fall;
         dbit = |(sh_q & msb);
-        cbit = dbit;
-        if (s_data_q & fnb_q) begin
-            cbit = ~errl_q;
+        cmsb = |(crc_q & crcmsb);
+        pact_d = 1'b0;
+        pfb_d = 1'b0;
+        pinc_d = 1'b0;
+        pld_d = 1'b0;
+        rven_d = 1'b1;
+        rv_d = 1'b0;
+        sshift_d = 1'b0;
+        case (state_q)
+            BissState_Timeout:
+                begin
+                    rven_d = 1'b0;
+                end
+            BissState_Idle:
+                begin
+                    rven_d = 1'b0;
+                end
+            BissState_First:
+                begin
+                    rven_d = 1'b0;
+                end
+            BissState_Second:
+                begin
+                    pld_d = 1'b1;
+                end
+            BissState_Ack:
+                begin
+                    pinc_d = ~fack_q;
+                    rven_d = fack_q;
+                    rv_d = 1'b1;
+                end
+            BissState_Start:
+                begin
+                end
+            BissState_Cds:
+                begin
+                    pact_d = 1'b1;
+                    pfb_d = dbit ^ cmsb;
+                    pld_d = 1'b1;
+                    rv_d = dbit;
+                    sshift_d = 1'b1;
+                end
+            BissState_Data:
+                begin
+                    pact_d = 1'b1;
+                    if (fnb_q) begin
+                        pfb_d = ~errl_q ^ cmsb;
+                        rv_d = ~errl_q;
+                    end
+                    else begin
+                        pfb_d = dbit ^ cmsb;
+                        pinc_d = 1'b1;
+                        rv_d = dbit;
+                        sshift_d = 1'b1;
+                    end
+                end
+            BissState_Err:
+                begin
+                    pact_d = 1'b1;
+                    pfb_d = ~warnl_q ^ cmsb;
+                    rv_d = ~warnl_q;
+                end
+            BissState_Warn:
+                begin
+                    pact_d = 1'b1;
+                    pld_d = 1'b1;
+                    rv_d = ~cmsb;
+                end
+            BissState_Crc:
+                begin
+                    if (~fsix_q) begin
+                        pact_d = 1'b1;
+                        pinc_d = 1'b1;
+                        rv_d = ~cmsb;
+                    end
+                end
+        endcase
+        if (~live) begin
+            pact_d = 1'b0;
+            pinc_d = 1'b0;
+            pld_d = 1'b0;
+            rven_d = 1'b0;
+            sshift_d = 1'b0;
         end
-        if (s_err_q) begin
-            cbit = ~warnl_q;
-        end
-        pact_d = (s_cds_q | s_data_q | s_err_q | s_warn_q | (s_crc_q & ~fsix_q)) & live;
-        pfb_d = (s_cds_q | s_data_q | s_err_q) & (cbit ^ |(crc_q & crcmsb));
-        pinc_d = ((s_ack_q & ~fack_q) | (s_data_q & ~fnb_q) | (s_crc_q & ~fsix_q)) & live;
-        pld_d = (s_second_q | s_cds_q | s_warn_q) & live;
-        rven_d = ~(s_tmo_q | sidle_q | s_first_q | (s_ack_q & ~fack_q)) & live;
-        rv_d = s_ack_q | ((s_cds_q | (s_data_q & ~fnb_q)) & dbit) | ((s_data_q & fnb_q) & ~errl_q) | (s_err_q & ~warnl_q) | ((s_warn_q | (s_crc_q & ~fsix_q)) & ~|(crc_q & crcmsb));
         if (sync_rise & rven_q) begin
             slo_reg_d = rv_q;
         end
-        if (s_crc_q & sync_rise & fsix_q) begin
-        end
-        if (sidle_q & sync_fall) begin
+        if (f1) begin
             posw_take = 1'b1;
             errl_d = posw_err;
             warnl_d = posw_warn;
@@ -2197,7 +2241,7 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         if (sync_rise & pact_q) begin
             crc_d = cnext;
         end
-        if (sidle_q & sync_fall) begin
+        if (f1) begin
             sh_d = posw_word & nmask;
         end
         if (sshift_q & sync_rise) begin
@@ -2221,7 +2265,6 @@ module sd_top_rtl_biss_slave(clk,rst,ma,pos,turns,pos_valid,error,warning,slo);
         if (rst) begin
             slo_reg_d = 1'b0;
         end
-        sshift_d = (s_cds_q | (s_data_q & ~fnb_q)) & live;
         slo = slo_reg_q;
     end
 
@@ -2675,217 +2718,6 @@ module sd_top_rtl_biss_slave_rven(d,q,clock);
 
 endmodule // sd_top_rtl_biss_slave_rven
 
-module sd_top_rtl_biss_slave_s_ack(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_ack
-
-module sd_top_rtl_biss_slave_s_cds(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_cds
-
-module sd_top_rtl_biss_slave_s_crc(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_crc
-
-module sd_top_rtl_biss_slave_s_data(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_data
-
-module sd_top_rtl_biss_slave_s_err(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_err
-
-module sd_top_rtl_biss_slave_s_first(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_first
-
-module sd_top_rtl_biss_slave_s_second(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_second
-
-module sd_top_rtl_biss_slave_s_start(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_start
-
-module sd_top_rtl_biss_slave_s_tmo(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Constant declarations
-    localparam  init = 1'b1;
-
-    // Stub signals
-    reg  dff_d;
-    wire  dff_q;
-    reg  dff_clock;
-
-    // Sub module instances
-    sd_top_rtl_biss_slave_s_tmo_dff dff(
-        .d(dff_d),
-        .q(dff_q),
-        .clock(dff_clock)
-    );
-
-    // Update code
-    always @(*) begin
-        dff_clock = clock;
-        q = dff_q ^ init;
-        dff_d = d ^ init;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_tmo
-
-module sd_top_rtl_biss_slave_s_tmo_dff(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_tmo_dff
-
-module sd_top_rtl_biss_slave_s_warn(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_s_warn
-
 module sd_top_rtl_biss_slave_sh(d,q,clock);
 
     // Module arguments
@@ -2903,24 +2735,6 @@ module sd_top_rtl_biss_slave_sh(d,q,clock);
     end
 
 endmodule // sd_top_rtl_biss_slave_sh
-
-module sd_top_rtl_biss_slave_sidle(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-
-    always @(posedge clock) begin
-       q <= d;
-    end
-
-endmodule // sd_top_rtl_biss_slave_sidle
 
 module sd_top_rtl_biss_slave_slo_reg(d,q,clock);
 
@@ -2957,6 +2771,37 @@ module sd_top_rtl_biss_slave_sshift(d,q,clock);
     end
 
 endmodule // sd_top_rtl_biss_slave_sshift
+
+module sd_top_rtl_biss_slave_state(d,q,clock);
+
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+
+    // Enums
+    localparam BissState_Timeout = 0;
+    localparam BissState_Idle = 1;
+    localparam BissState_First = 2;
+    localparam BissState_Second = 3;
+    localparam BissState_Ack = 4;
+    localparam BissState_Start = 5;
+    localparam BissState_Cds = 6;
+    localparam BissState_Data = 7;
+    localparam BissState_Err = 8;
+    localparam BissState_Warn = 9;
+    localparam BissState_Crc = 10;
+
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+
+    always @(posedge clock) begin
+       q <= d;
+    end
+
+endmodule // sd_top_rtl_biss_slave_state
 
 module sd_top_rtl_biss_slave_sync(clk,rst,pin,level,rise,fall);
 

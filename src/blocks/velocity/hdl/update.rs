@@ -9,9 +9,8 @@ impl stages::FrontEnd for Velocity {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, init, pos, padj, cnt, tickr, busy, sop, sprod, sacc, sout, mlast, j, jlr,
-            primed, first, snap, opd, theta, acc, k, tx, inprep, tsel, mwait, opa, out_reg,
-            valid_reg
+            self, clk, init, pos, padj, cnt, tickr, state, mlast, j, jlr, primed, first, snap, opd,
+            theta, acc, k, tx, tsel, mwait, opa, out_reg, valid_reg
         );
         for i in 0..self.hist.len() {
             self.hist[i].clock.next = self.clk.val();
@@ -27,7 +26,7 @@ impl stages::FrontEnd for Velocity {
         self.mul.clk.next = self.clk.val();
         self.mul.a.next = self.opa.q.val();
         self.mul.b.next = self.rom.coef.val();
-        self.mul.start.next = self.sop.q.val();
+        self.mul.start.next = self.state.q.val() == VelState::Op;
         // One assignment (no default-then-override): a momentary value on a port between
         // two modules' combinational blocks makes Icarus loop forever at one time step.
         self.rom.addr.next =
@@ -95,7 +94,6 @@ impl stages::Operands for Velocity {
         if self.tsel.q.val() {
             self.tadd.next = self.tx.q.val();
         }
-        self.inprep.d.next = false;
         // lsq: r = x_i - theta (Wp bits) and P, each sign-extended/cut to operand a's width.
         self.r.next = (self.hist[0].q.val() - self.snap.q.val()) & self.wpmask.val();
         self.rext.next = self.r.val();
@@ -115,130 +113,120 @@ impl stages::Operands for Velocity {
     }
 }
 
-/// The schedule: one `if` per state of the one-hot flags.
+/// The schedule: one arm per state of the sketch in the module docs.
 impl stages::Schedule for Velocity {
     #[hdl_gen]
     fn update(&mut self) {
-        // The schedule (one `if` per state, the flags one-hot): each flag's next value is
-        // one LUT of flags, the tick, `jl` and `mlast`.
-        self.sop.d.next = false;
-        self.sacc.d.next = false;
-        self.sout.d.next = false;
+        self.tsel.d.next = false;
         self.mlast.d.next = false;
-        if !self.busy.q.val() {
-            // Idle
-            if self.tick.val() & self.init.q.val() {
-                self.snap.d.next = self.pos.q.val();
-                self.busy.d.next = true;
-                self.inprep.d.next = true;
-                // Theta = 0 before the first update (reset clears it): adding
-                // theta 2^(S+G) loads it.
-                self.tx.d.next = self.acc.q.val();
-                if !self.primed.q.val() {
-                    self.tx.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
-                }
-                self.first.d.next = !self.primed.q.val();
-                if !self.is_lsq.val() & !self.is_track.val() {
-                    self.opd.d.next = self.sdelta.val();
+        match self.state.q.val() {
+            VelState::Idle => {
+                if self.tick.val() & self.init.q.val() {
+                    self.snap.d.next = self.pos.q.val();
+                    self.state.d.next = VelState::Prep;
+                    self.tsel.d.next = true;
+                    // Theta = 0 before the first update (reset clears it): adding
+                    // theta 2^(S+G) loads it.
+                    self.tx.d.next = self.acc.q.val();
                     if !self.primed.q.val() {
+                        self.tx.d.next = (self.pos.q.val() << self.sg.val()) & self.twmask.val();
+                    }
+                    self.first.d.next = !self.primed.q.val();
+                    if !self.is_lsq.val() & !self.is_track.val() {
+                        self.opd.d.next = self.sdelta.val();
+                        if !self.primed.q.val() {
+                            self.opd.d.next = self.zero64.val();
+                        }
+                    }
+                    if !self.primed.q.val() {
+                        // First update: the history as if at rest at theta (output 0).
+                        self.primed.d.next = true;
+                        for i in 0..self.hist.len() {
+                            self.hist[i].d.next = self.pos.q.val();
+                        }
+                    }
+                }
+            }
+            VelState::Prep => {
+                self.j.d.next = self.zero.val();
+                self.jlr.d.next = self.jl0.val();
+                self.state.d.next = VelState::Op;
+                if self.is_lsq.val() {
+                    for i in 1..self.hist.len() {
+                        self.hist[i - 1].d.next = self.hist[i].q.val();
+                    }
+                    for i in self._hlast..self.hist.len() {
+                        self.hist[i].d.next = self.snap.q.val();
+                    }
+                    self.acc.d.next = self.zero64.val();
+                } else if self.is_track.val() {
+                    // e (0 at the first update); Theta += W (or the load), + q(beta e) and
+                    // q(alpha e) in the two `Acc`.
+                    self.opd.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
+                    if self.first.q.val() {
                         self.opd.d.next = self.zero64.val();
                     }
+                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
+                } else {
+                    self.opd.d.next =
+                        ((self.opd.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
+                    self.hist[0].d.next = self.snap.q.val();
                 }
-                if !self.primed.q.val() {
-                    // First update: the history as if at rest at theta (output 0).
-                    self.primed.d.next = true;
-                    for i in 0..self.hist.len() {
-                        self.hist[i].d.next = self.pos.q.val();
+            }
+            VelState::Op => {
+                self.opa.d.next = self.opd.q.val();
+                if self.is_lsq.val() {
+                    // Rotate the history: x_1 comes back to the front after M multiplies.
+                    self.opa.d.next = self.rext.val();
+                    if self.jl.val() {
+                        // P goes to the multiplier; the accumulator restarts from 0 for
+                        // q(P R / 2^B).
+                        self.opa.d.next = self.pa.val();
+                        self.acc.d.next = self.zero64.val();
+                    }
+                    for i in 1..self.hist.len() {
+                        self.hist[i - 1].d.next = self.hist[i].q.val();
+                    }
+                    for i in self._hlast..self.hist.len() {
+                        self.hist[i].d.next = self.hist[0].q.val();
                     }
                 }
+                self.mwait.d.next = self.zero.val();
+                self.state.d.next = VelState::Prod;
             }
-        }
-        // Before the reset below: tsel follows inprep's next value without it.
-        self.tsel.d.next = self.inprep.d.val();
-        if self.inprep.q.val() {
-            // Prep
-            self.j.d.next = self.zero.val();
-            self.jlr.d.next = self.jl0.val();
-            self.sop.d.next = true;
-            if self.is_lsq.val() {
-                for i in 1..self.hist.len() {
-                    self.hist[i - 1].d.next = self.hist[i].q.val();
+            VelState::Prod => {
+                // n + 1 clocks for the multiplier (its start clock zeroes x, then n
+                // digits); `mlast` marks the last (mwait = n).
+                self.mwait.d.next = (self.mwait.q.val() + self.one.val()) & self.wmask.val();
+                self.mlast.d.next = self.mwait.q.val() == self.wprev.val();
+                if self.mlast.q.val() {
+                    self.state.d.next = VelState::Acc;
                 }
-                for i in self._hlast..self.hist.len() {
-                    self.hist[i].d.next = self.snap.q.val();
-                }
-                self.acc.d.next = self.zero64.val();
-            } else if self.is_track.val() {
-                // e (0 at the first update); Theta += W (or the load), + q(beta e) and
-                // q(alpha e) in the two `Acc`.
-                self.opd.d.next = (self.meas.val() - self.theta.q.val()) & self.twmask.val();
-                if self.first.q.val() {
-                    self.opd.d.next = self.zero64.val();
-                }
-                self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
-            } else {
-                self.opd.d.next =
-                    ((self.opd.q.val() << self.sg.val()) - self.acc.q.val()) & self.smask.val();
-                self.hist[0].d.next = self.snap.q.val();
             }
-        }
-        if self.sop.q.val() {
-            // Op
-            self.opa.d.next = self.opd.q.val();
-            if self.is_lsq.val() {
-                // Rotate the history: x_1 comes back to the front after M multiplies.
-                self.opa.d.next = self.rext.val();
+            VelState::Acc => {
+                self.acc.d.next = (self.acc.q.val() + self.mul.p.val()) & self.accmask.val();
+                if self.is_track.val() {
+                    self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
+                    if self.jl.val() {
+                        self.acc.d.next = self.acc.q.val();
+                    }
+                }
+                if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
+                    self.k.d.next = self.k.q.val() + self.one.val();
+                }
                 if self.jl.val() {
-                    // P goes to the multiplier; the accumulator restarts from 0 for
-                    // q(P R / 2^B).
-                    self.opa.d.next = self.pa.val();
-                    self.acc.d.next = self.zero64.val();
-                }
-                for i in 1..self.hist.len() {
-                    self.hist[i - 1].d.next = self.hist[i].q.val();
-                }
-                for i in self._hlast..self.hist.len() {
-                    self.hist[i].d.next = self.hist[0].q.val();
+                    self.state.d.next = VelState::Out;
+                } else {
+                    self.j.d.next = (self.j.q.val() + self.one.val()) & self.jmask.val();
+                    self.jlr.d.next = self.j.q.val() == self.jprev.val();
+                    self.state.d.next = VelState::Op;
                 }
             }
-            self.mwait.d.next = self.zero.val();
-            self.sprod.d.next = true;
-        }
-        if self.sprod.q.val() {
-            // Prod: n + 1 clocks for the multiplier (its start clock zeroes x, then n
-            // digits); `mlast` marks the last (mwait = n).
-            self.mwait.d.next = (self.mwait.q.val() + self.one.val()) & self.wmask.val();
-            self.mlast.d.next = self.mwait.q.val() == self.wprev.val();
-            if self.mlast.q.val() {
-                self.sprod.d.next = false;
-                self.sacc.d.next = true;
+            VelState::Out => {
+                self.out_reg.d.next = self.ys.val();
+                self.valid_reg.d.next = true;
+                self.state.d.next = VelState::Idle;
             }
-        }
-        if self.sacc.q.val() {
-            // Acc
-            self.acc.d.next = (self.acc.q.val() + self.mul.p.val()) & self.accmask.val();
-            if self.is_track.val() {
-                self.theta.d.next = (self.theta.q.val() + self.tadd.val()) & self.twmask.val();
-                if self.jl.val() {
-                    self.acc.d.next = self.acc.q.val();
-                }
-            }
-            if self.is_kal.val() & !self.first.q.val() & (self.k.q.val() != self.klast.val()) {
-                self.k.d.next = self.k.q.val() + self.one.val();
-            }
-            if self.jl.val() {
-                self.sout.d.next = true;
-            } else {
-                self.j.d.next = (self.j.q.val() + self.one.val()) & self.jmask.val();
-                self.jlr.d.next = self.j.q.val() == self.jprev.val();
-                self.sop.d.next = true;
-            }
-        }
-        if self.sout.q.val() {
-            // Out
-            self.out_reg.d.next = self.ys.val();
-            self.valid_reg.d.next = true;
-            self.busy.d.next = false;
         }
     }
 }
@@ -253,11 +241,7 @@ impl stages::Reset for Velocity {
             self.padj.d.next = self.f2sign.val();
             self.cnt.d.next = self.zero.val();
             self.tickr.d.next = false;
-            self.busy.d.next = false;
-            self.sop.d.next = false;
-            self.sprod.d.next = false;
-            self.sacc.d.next = false;
-            self.sout.d.next = false;
+            self.state.d.next = VelState::Idle;
             self.mlast.d.next = false;
             self.j.d.next = self.zero.val();
             self.jlr.d.next = self.jl0.val();
@@ -272,7 +256,6 @@ impl stages::Reset for Velocity {
             self.acc.d.next = self.zero64.val();
             self.k.d.next = self.zero.val();
             self.tx.d.next = self.zero64.val();
-            self.inprep.d.next = false;
             self.mwait.d.next = self.zero.val();
             self.opa.d.next = self.zero64.val();
             self.out_reg.d.next = self.zero64.val();
