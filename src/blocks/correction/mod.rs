@@ -64,7 +64,8 @@
 //!   of two gets a constant tree (only its one bits cost adders). An inferred multiplier
 //!   would be a combinational hard block: on the ECP5 proxy flow Yosys leaves MULT18X18D's
 //!   own registers unused, so a register -> multiplier -> register path alone stays near
-//!   141-147 MHz (docs/correction.md), below 1.3 x 133.33 MHz. Static codes 0 and powers
+//!   141-147 MHz (docs/correction.md), below the timing rule's 1.25 x 133.33 MHz
+//!   (docs/timing.md). Static codes 0 and powers
 //!   of two are wiring, so static unity-gain designs keep the one-stage product
 //!   `|d| * g` (a Verilog `*` of a constant, a shift), bit for bit.
 //! * Latency: 3 clocks (5 with phase correction, below; 3 more with shift-add products,

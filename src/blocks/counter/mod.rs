@@ -46,8 +46,7 @@
 //!   (0 -> 3): two 2-bit compares replace total and carry. u + {+1, 0, -1} is one
 //!   (quadrant_bits - 1)-bit adder whose top bit flags u = 0 down and (PPR a power of two)
 //!   u = PPR-1 up; otherwise u = PPR-1 is a constant compare and the wrapped u a constant.
-//!   Two forms, the same bit for bit (a constant `flat` chooses; docs/timing.md,
-//!   "Thirteenth round"). The iterative architecture's: each wrap adds +1 or -1 to the
+//!   Two forms, the same bit for bit (a constant `flat` chooses; docs/timing.md). The iterative architecture's: each wrap adds +1 or -1 to the
 //!   turn count its step starts from (turns, or the latched count of a pending load), with
 //!   the wrap from compares of u with PPR-1 and 0 and a load's step decoded in the clock:
 //!   the fewest LUTs, which its area target needs. The unrolled architecture's, below,
