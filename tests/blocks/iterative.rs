@@ -86,6 +86,40 @@ fn rtl_eq_model(l: &Loaded, s: &[CoreIn]) -> Vec<(CoreOut, bool)> {
 
 #[test]
 fn iterative_equals_unrolled_equals_model_every_n() {
+    // 40 designs on the compiled engine: the verdict is cached (`cosim::passed_once`) by
+    // every design's Verilog and parameters, this file, the shared test helpers, the
+    // stimulus, the model's and the engine's sources, and the Yosys and rustc versions.
+    let mut texts = Vec::new();
+    for n in 1..=20u32 {
+        for arch in ["iterative", "unrolled"] {
+            let l = cfg(n, arch);
+            texts.push(sinedec::emit::core_verilog(&l).expect("export"));
+            texts.push(format!("{:?}", l.derived));
+        }
+    }
+    texts.extend(common::sources(&[
+        "tests/common/mod.rs",
+        "src/cosim/stimulus.rs",
+        "src/blocks/core/model.rs",
+        "src/blocks/cordic/model.rs",
+        "src/blocks/counter/model.rs",
+        "src/blocks/mod.rs",
+        "src/blocks/params.rs",
+        "src/engine",
+    ]));
+    let mut parts = vec![include_str!("iterative.rs")];
+    parts.extend(texts.iter().map(String::as_str));
+    sinedec::cosim::passed_once(
+        "iterative equals unrolled",
+        &["yosys", "rustc"],
+        &parts,
+        every_n,
+    )
+    .expect("yosys and rustc installed");
+}
+
+/// The check itself, for N = 1..=20.
+fn every_n() {
     for n in 1..=20u32 {
         let li = cfg(n, "iterative");
         let lu = cfg(n, "unrolled");
