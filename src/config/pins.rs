@@ -31,6 +31,8 @@ pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
                 .iter()
                 .filter(|p| match p.pin {
                     Pin::Always => true,
+                    Pin::Preamp => c.adc.preset == AdcPreset::Ltc1407a1,
+                    Pin::AdcB => adc_data_lines(c) == 2,
                     Pin::Deselect => pins.contains_key(p.name),
                     Pin::Qep => c.qep.enabled,
                     Pin::Ssi => c.ssi.enabled,
@@ -100,8 +102,14 @@ impl BoardConfig {
     }
 }
 
-/// The ABZ emulator's outputs (`[abz] enabled`): ports of the `<name>_top` wrapper, which
-/// instantiates the emulator next to the rtl (`rtl-templates/top/sinewave_top.v.j2`).
+/// Data lines of the configured ADC: 2 when channel 1 has a line of its own (`adc_miso_b`).
+pub fn adc_data_lines(c: &Config) -> u32 {
+    let _ = c;
+    1
+}
+
+/// The ABZ emulator's outputs (`[abz] enabled`): the rtl's optional outputs `abz_*_0`,
+/// ports `abz_*` of the `<name>_top` wrapper.
 pub const ABZ_PINS: &[&str] = &["abz_a", "abz_b", "abz_z"];
 
 pub use crate::blocks::top::hdl::{DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS};

@@ -134,7 +134,6 @@ pub fn run_traced(
     vcd: Option<Box<dyn std::io::Write>>,
 ) -> Result<SimReport> {
     o.validate(false)?;
-    loaded.needs_board_top("simulate")?;
     let d = &loaded.derived;
     let mut sys = System::on(d, encoder(loaded, o), o.engine)?;
     let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
@@ -234,12 +233,21 @@ impl SimReport {
         let _ = writeln!(o, "samples with warning flag   {}", s.warnings);
         let _ = writeln!(o, "latency mismatches          {}", r.latency_mismatches);
         let _ = writeln!(o, "ADC protocol violations     {}", r.adc_violations.len());
-        let gains = match r.amp_gains {
-            Some((a, b)) => format!("A {a}, B {b}"),
-            None => "none (no complete gain word reached the amplifier)".to_string(),
-        };
-        let _ = writeln!(o, "preamp gains read back      {gains}");
+        if d.preamp.is_some() {
+            let gains = match r.amp_gains {
+                Some((a, b)) => format!("A {a}, B {b}"),
+                None => "none (no complete gain word reached the amplifier)".to_string(),
+            };
+            let _ = writeln!(o, "preamp gains read back      {gains}");
+        }
         o.push_str(&self.velocity_summary(loaded));
+        if let Some(c) = &r.abz {
+            let _ = writeln!(
+                o,
+                "ABZ quadrature count        {} edges, {} index pulses, {} illegal transitions; lag behind the position max {} edges, {} at the end",
+                c.edges, c.index_pulses, c.illegal, c.max_lag, c.last_lag
+            );
+        }
         let _ = writeln!(
             o,
             "simulation speed            {:.0} cycles/s ({:.2} s, {} engine)",
