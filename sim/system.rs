@@ -121,6 +121,29 @@ impl AbzCount {
     }
 }
 
+/// What the BiSS-C master model read over a run ([`System::monitor_biss`]), against the
+/// parallel bus.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BissCheck {
+    /// MA frequency, Hz.
+    pub ma_hz: u64,
+    /// Frames the master finished.
+    pub frames: u64,
+    /// Frames read completely with a good CRC.
+    pub good: u64,
+    /// Frames read completely whose CRC was wrong.
+    pub crc_errors: u64,
+    /// Frames the master could not read (no Ack or Start, the slave not ready).
+    pub failed: u64,
+    /// Good frames whose position and turn count equal neither of the parallel bus's two
+    /// latest positions when the slave latched (its first MA edge plus the synchronizer).
+    pub position_mismatches: u64,
+}
+
+/// Parallel-bus positions kept for [`BissCheck`]: a frame ends a few samples after its
+/// latch.
+const PAR_HISTORY: usize = 64;
+
 /// One decoded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Record {
@@ -165,6 +188,8 @@ pub struct SimResult {
     pub velocity: Vec<VelRecord>,
     /// The quadrature counter on the ABZ outputs (with `[abz] enabled`).
     pub abz: Option<AbzCount>,
+    /// The BiSS-C master's frames against the parallel bus ([`System::monitor_biss`]).
+    pub biss: Option<BissCheck>,
     /// Clock cycles simulated.
     pub cycles: u64,
     /// Decoded samples whose conversion could not be found at the expected latency.
@@ -489,6 +514,10 @@ pub struct System {
     ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     spi: Option<std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>>,
     qep_b_stuck: Option<(f64, f64)>,
+    /// The BiSS-C master whose frames [`BissCheck`] checks.
+    biss: Option<std::rc::Rc<std::cell::RefCell<crate::sim::biss_master::BissMaster>>>,
+    /// (cycle, BiSS position word, turns) of the latest parallel-bus positions.
+    par_history: std::collections::VecDeque<(u64, u64, u64)>,
     trace: Option<crate::sim::vcd::TopTrace>,
     trace_error: Option<std::io::Error>,
 }
@@ -530,6 +559,8 @@ impl System {
             ssi: None,
             spi: None,
             qep_b_stuck: None,
+            biss: None,
+            par_history: std::collections::VecDeque::new(),
             trace: None,
             trace_error: None,
         })
@@ -575,6 +606,77 @@ impl System {
     /// without one).
     pub fn attach_master(&mut self, m: Box<dyn crate::sim::serial_line::LineMaster>) {
         self.ma = Some(m);
+    }
+
+    /// Connects a BiSS-C master that reads frames back to back at `ma_hz` for `seconds`, and
+    /// checks each against the parallel bus ([`SimResult::biss`]).
+    pub fn monitor_biss(&mut self, ma_hz: f64, seconds: f64) {
+        use crate::sim::biss_master::{BissMaster, BissMasterConfig};
+        let p = &self.d.biss;
+        let t = crate::sim::serial_line::LineTiming {
+            clock_hz: self.clock_hz,
+            line_delay_ns: self.d.io_timing.trace_ns,
+        };
+        let mut c = BissMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
+        c.word.gray = p.gray;
+        c.word = c.word.with_velocity(p.velocity_bits);
+        let gap_ns = 1000.0;
+        let frame_s =
+            (p.frame_rising_edges() + 1) as f64 / ma_hz + p.timeout_us() * 1e-6 + gap_ns * 1e-9;
+        let n = (seconds / frame_s).ceil() as usize + 1;
+        let reqs = vec![crate::sim::serial_line::FrameRequest::new(ma_hz).gap(gap_ns); n];
+        let m = std::rc::Rc::new(std::cell::RefCell::new(BissMaster::new(c, reqs, 500.0)));
+        self.ma = Some(Box::new(m.clone()));
+        self.biss = Some(m);
+        self.result.biss = Some(BissCheck {
+            ma_hz: ma_hz.round() as u64,
+            ..BissCheck::default()
+        });
+    }
+
+    /// Checks the BiSS-C master's frames finished since the last call against the
+    /// parallel bus's history.
+    fn check_biss_frames(&mut self) {
+        let (Some(m), Some(c)) = (&self.biss, self.result.biss.as_mut()) else {
+            return;
+        };
+        let m = m.borrow();
+        let p = &self.d.biss;
+        let (pw, pb) = (self.d.position_width, p.position_bits);
+        for f in m.frames().iter().skip(c.frames as usize) {
+            c.frames += 1;
+            let data = match &f.outcome {
+                crate::sim::biss_master::Outcome::Data(data) => data,
+                _ => {
+                    c.failed += 1;
+                    continue;
+                }
+            };
+            if !data.crc_ok() {
+                c.crc_errors += 1;
+                continue;
+            }
+            c.good += 1;
+            // The slave latches at its first MA edge, a line delay and the synchronizer
+            // after the master's.
+            let latch = ((f.t_start_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
+                as u64
+                + p.latch_latency() as u64;
+            let mut before = self.par_history.iter().rev().filter(|h| h.0 <= latch + 1);
+            let word = |h: &(u64, u64, u64)| {
+                let pos = if pb <= pw {
+                    h.1 >> (pw - pb)
+                } else {
+                    h.1 << (pb - pw)
+                };
+                (pos, h.2 & crate::blocks::mask(p.multiturn_bits))
+            };
+            let got = (data.position, data.turns);
+            let near: Vec<_> = before.by_ref().take(2).map(word).collect();
+            if !near.contains(&got) {
+                c.position_mismatches += 1;
+            }
+        }
     }
 
     /// Connects an SSI master model to `ssi_clk`/`ssi_data` (the clock idles high without
@@ -697,6 +799,7 @@ impl System {
             if let Some(m) = self.ma.as_mut() {
                 m.push_slo(self.top.get(O_SLO) != 0);
             }
+            self.check_biss_frames();
             if let Some(m) = self.ssi.as_mut() {
                 m.push_slo(self.top.get(O_SSI_DATA) != 0);
             }
@@ -739,6 +842,13 @@ impl System {
                 };
                 if let (Some(c), Some(p)) = (self.result.abz.as_mut(), &self.d.abz) {
                     c.compare(p, pos);
+                }
+                if self.biss.is_some() {
+                    if self.par_history.len() == PAR_HISTORY {
+                        self.par_history.pop_front();
+                    }
+                    self.par_history
+                        .push_back((self.cycle, pos, self.top.get(O_TURNS)));
                 }
                 self.result.decoded += 1;
                 match self.result.streamed.as_mut() {

@@ -73,6 +73,10 @@ fn top_trace(
     .map_err(|e| Error::io("VCD output", e))
 }
 
+/// MA frequency of the BiSS-C master `simulate` reads the top with (or the slave's limit,
+/// if lower): a common rate for a few metres of cable.
+pub const BISS_MA_HZ: f64 = 2.5e6;
+
 /// Settling time of the capacitive path (band-pass, demodulation and low-pass filters):
 /// positions before it are not measured, and a shorter `--duration` is refused.
 pub const CAP_SETTLE_S: f64 = 1.5e-3;
@@ -146,6 +150,7 @@ pub fn run_traced(
     if !o.keep_records {
         sys.stream_stats(o.skip);
     }
+    sys.monitor_biss(BISS_MA_HZ.min(d.biss.max_ma_hz()), o.duration_s);
     let engine = sys.engine();
     let engine_note = sys.engine_note().map(str::to_string);
     if let Some(out) = vcd {
@@ -241,6 +246,18 @@ impl SimReport {
             let _ = writeln!(o, "preamp gains read back      {gains}");
         }
         o.push_str(&self.velocity_summary(loaded));
+        if let Some(b) = &r.biss {
+            let _ = writeln!(
+                o,
+                "BiSS-C frames               {} read at {:.2} MHz MA: {} good, {} CRC errors, {} unreadable; {} positions unequal to par_position",
+                b.frames,
+                b.ma_hz as f64 / 1e6,
+                b.good,
+                b.crc_errors,
+                b.failed,
+                b.position_mismatches
+            );
+        }
         if let Some(c) = &r.abz {
             let _ = writeln!(
                 o,
