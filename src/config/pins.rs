@@ -112,7 +112,9 @@ pub fn adc_data_lines(c: &Config) -> u32 {
 /// ports `abz_*` of the `<name>_top` wrapper.
 pub const ABZ_PINS: &[&str] = &["abz_a", "abz_b", "abz_z"];
 
-pub use crate::blocks::top::hdl::{DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS};
+pub use crate::blocks::top::hdl::{
+    ADC_B_PINS, DESELECT_PINS, PREAMP_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS,
+};
 
 /// The section that makes `port` a port of `<name>_top`, for a port this configuration's
 /// top does not have; None for a name that is no port of either top.
@@ -121,6 +123,8 @@ fn section_of_port(c: &Config, port: &str) -> Option<&'static str> {
     let on = |pins: &[&str], section: &'static str| pins.contains(&port).then_some(section);
     if c.capacitive.is_some() {
         if TOP_PINS.contains(&port)
+            || PREAMP_PINS.contains(&port)
+            || ADC_B_PINS.contains(&port)
             || QEP_PINS.contains(&port)
             || SSI_PINS.contains(&port)
             || SPI_PINS.contains(&port)

@@ -98,6 +98,10 @@ board_top! {
 /// `[qep] enabled`, [`SSI_PINS`] / [`SPI_PINS`] when enabled and the pinned
 /// [`DESELECT_PINS`]; see `config::board_ports`).
 pub const TOP_PINS: &[&str] = pins!(SD_TOP_PORTS, Always);
+/// Pins of the pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit).
+pub const PREAMP_PINS: &[&str] = pins!(SD_TOP_PORTS, Preamp);
+/// The ADC's second data line (two-line ADCs).
+pub const ADC_B_PINS: &[&str] = pins!(SD_TOP_PORTS, AdcB);
 /// Pins of the optional SSI slave.
 pub const SSI_PINS: &[&str] = pins!(SD_TOP_PORTS, Ssi);
 /// Pins of the optional SPI slave.
