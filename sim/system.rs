@@ -65,18 +65,45 @@ pub struct AbzCount {
     pub illegal: u64,
     /// Rising edges of Z.
     pub index_pulses: u64,
-    /// The largest distance, in edges, between the counter and floor(position * E / P) at a
-    /// `par_valid` (the emulator's catch-up lag; E edges per turn, P positions per turn).
+    /// Samples checked: the counter against floor(position * E / P) of each sample (E edges
+    /// and P positions per turn) just before the next sample can move the outputs.
+    pub checked: u64,
+    /// The largest distance found, in edges (0 while the emulator keeps up).
     pub max_lag: i64,
-    /// That distance at the last `par_valid`.
+    /// The distance at the last check.
     pub last_lag: i64,
-    /// The counter (edges, signed, from 0 at reset).
-    count: i64,
-    /// (A, B, Z) at the previous clock.
-    prev: (bool, bool, bool),
 }
 
-impl AbzCount {
+/// The quadrature counter behind [`AbzCount`]: it starts at the first sample's count when
+/// the emulator shows it (the emulator's latency after that sample), then counts edges.
+struct AbzCounter {
+    p: crate::blocks::abz::AbzParams,
+    figures: AbzCount,
+    /// The counter, once started.
+    count: Option<i64>,
+    /// (A, B, Z) at the previous clock.
+    prev: (bool, bool, bool),
+    /// (cycle, count): start the counter at that cycle.
+    start: Option<(u64, i64)>,
+    /// The latest sample's count, to check at the cycle before the next sample's shows.
+    last: Option<i64>,
+    /// (cycle, count) checks due.
+    due: std::collections::VecDeque<(u64, i64)>,
+}
+
+impl AbzCounter {
+    fn new(p: &crate::blocks::abz::AbzParams) -> Self {
+        AbzCounter {
+            p: *p,
+            figures: AbzCount::default(),
+            count: None,
+            prev: (false, false, false),
+            start: None,
+            last: None,
+            due: Default::default(),
+        }
+    }
+
     /// Gray index of (A, B): 00 -> 0, 10 -> 1, 11 -> 2, 01 -> 3 (A leads B forward).
     fn gray(a: bool, b: bool) -> i64 {
         match (a, b) {
@@ -87,37 +114,62 @@ impl AbzCount {
         }
     }
 
-    /// One clock's levels.
-    fn step(&mut self, a: bool, b: bool, z: bool) {
+    /// Clock `cycle`'s levels; `sample` is the single-turn position when `par_valid` is high.
+    fn step(&mut self, cycle: u64, (a, b, z): (bool, bool, bool), sample: Option<u64>) {
+        let e = 4 * self.p.lines() as i64;
         let (pa, pb, pz) = self.prev;
-        match (Self::gray(a, b) - Self::gray(pa, pb)).rem_euclid(4) {
-            0 => {}
-            1 => {
-                self.count += 1;
-                self.edges += 1;
+        if let Some(c) = self.count.as_mut() {
+            match (Self::gray(a, b) - Self::gray(pa, pb)).rem_euclid(4) {
+                0 => {}
+                1 => {
+                    *c += 1;
+                    self.figures.edges += 1;
+                }
+                3 => {
+                    *c -= 1;
+                    self.figures.edges += 1;
+                }
+                _ => self.figures.illegal += 1,
             }
-            3 => {
-                self.count -= 1;
-                self.edges += 1;
-            }
-            _ => self.illegal += 1,
         }
         if z && !pz {
-            self.index_pulses += 1;
+            self.figures.index_pulses += 1;
         }
         self.prev = (a, b, z);
-    }
-
-    /// The counter against the single-turn `position` at a `par_valid`.
-    fn compare(&mut self, p: &crate::blocks::abz::AbzParams, position: u64) {
-        let e = 4 * p.lines() as i64;
-        let expected = ((position as u128 * e as u128) / p.positions() as u128) as i64;
-        let mut lag = (self.count - expected).rem_euclid(e);
-        if lag > e / 2 {
-            lag -= e;
+        if let Some((at, t0)) = self.start {
+            if cycle == at {
+                if Self::gray(a, b) != t0.rem_euclid(4) {
+                    self.figures.illegal += 1;
+                }
+                self.count = Some(t0);
+                self.start = None;
+            }
         }
-        self.last_lag = lag;
-        self.max_lag = self.max_lag.max(lag.abs());
+        while let Some(&(at, want)) = self.due.front() {
+            if at > cycle {
+                break;
+            }
+            self.due.pop_front();
+            if let Some(c) = self.count {
+                let mut lag = (c - want).rem_euclid(e);
+                if lag > e / 2 {
+                    lag -= e;
+                }
+                let f = &mut self.figures;
+                f.checked += 1;
+                f.last_lag = lag;
+                f.max_lag = f.max_lag.max(lag.abs());
+            }
+        }
+        if let Some(pos) = sample {
+            let want = ((pos as u128 * e as u128) / self.p.positions() as u128) as i64;
+            let lat = self.p.latency() as u64;
+            match self.last {
+                None => self.start = Some((cycle + lat, want)),
+                Some(prev) => self.due.push_back((cycle + lat - 1, prev)),
+            }
+            self.last = Some(want);
+        }
     }
 }
 
@@ -514,6 +566,8 @@ pub struct System {
     ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     spi: Option<std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>>,
     qep_b_stuck: Option<(f64, f64)>,
+    /// The quadrature counter on the ABZ outputs (`[abz] enabled`).
+    abz: Option<AbzCounter>,
     /// The BiSS-C master whose frames [`BissCheck`] checks.
     biss: Option<std::rc::Rc<std::cell::RefCell<crate::sim::biss_master::BissMaster>>>,
     /// (cycle, BiSS position word, turns) of the latest parallel-bus positions.
@@ -544,10 +598,8 @@ impl System {
             top,
             adc,
             amp: d.preamp.as_ref().map(|_| Ltc6912::new(d.clock_hz)),
-            result: SimResult {
-                abz: d.abz.as_ref().map(|_| AbzCount::default()),
-                ..SimResult::default()
-            },
+            result: SimResult::default(),
+            abz: d.abz.as_ref().map(AbzCounter::new),
             truth,
             conv_times: HashMap::new(),
             cycle: 0,
@@ -810,9 +862,15 @@ impl System {
                 self.result.outputs.push(self.top.sample());
             }
             self.cycle += 1;
-            if let Some(c) = self.result.abz.as_mut() {
+            if self.abz.is_some() {
                 let g = |k| self.top.get(k) != 0;
-                c.step(g(O_ABZ_A), g(O_ABZ_B), g(O_ABZ_Z));
+                let pins = (g(O_ABZ_A), g(O_ABZ_B), g(O_ABZ_Z));
+                let qmask = crate::blocks::mask(self.d.position_width - fine);
+                let sample = g(O_VALID)
+                    .then(|| ((self.top.get(O_QC) & qmask) << fine) | self.top.get(O_FINE));
+                if let Some(c) = self.abz.as_mut() {
+                    c.step(self.cycle, pins, sample);
+                }
             }
             if self.top.get(O_VALID) != 0 {
                 let qc = self.top.get(O_QC);
@@ -840,9 +898,6 @@ impl System {
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     truth: self.truth.electrical_angle(t) * lsb_per_rad,
                 };
-                if let (Some(c), Some(p)) = (self.result.abz.as_mut(), &self.d.abz) {
-                    c.compare(p, pos);
-                }
                 if self.biss.is_some() {
                     if self.par_history.len() == PAR_HISTORY {
                         self.par_history.pop_front();
@@ -881,6 +936,7 @@ impl System {
     /// Finishes the run and returns its result.
     pub fn finish(mut self) -> SimResult {
         self.result.adc_violations = self.adc.violations();
+        self.result.abz = self.abz.as_ref().map(|c| c.figures);
         if let Some(amp) = &self.amp {
             self.result.amp_violations =
                 amp.violations().iter().map(|v| format!("{v:?}")).collect();

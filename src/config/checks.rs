@@ -150,7 +150,7 @@ pub(super) fn check_target(c: &Config, err: &ErrFn) -> Result<()> {
         (Target::Cyclone3, false, AdcPreset::Ltc1407a1) => Err(err(
             "",
             "target",
-            "\"cyclone3\" with adc.preset = \"ltc1407a-1\": the LTC1407A-1 / LTC6912-1 board top (<name>_top, UCF) is the Spartan-3AN Starter Kit's, so nothing but the core would be written; set target = \"spartan3an\" for the board top, or use adc.preset = \"generic\" for the core alone".into(),
+            "\"cyclone3\" with adc.preset = \"ltc1407a-1\": the LTC1407A-1 / LTC6912-1 board top (<name>_top, UCF) is the Spartan-3AN Starter Kit's; set target = \"spartan3an\" for the kit, or another adc.preset (such as \"generic\") for a Cyclone III board of your own".into(),
         )),
         _ => Ok(()),
     }

@@ -147,8 +147,11 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
         ("par_turns".into(), d.turns_width),
         ("par_fine".into(), d.fine_bits),
         one("par_error"),
-        one("par_warning"),
     ]);
+    if d.abz.is_some() && d.capacitive.is_none() {
+        v.extend(crate::config::ABZ_PINS.iter().map(|p| one(p)));
+    }
+    v.push(one("par_warning"));
     if let (Some(p), false) = (&d.velocity, d.capacitive.is_some()) {
         v.extend([
             ("par_velocity".into(), p.spec.width),

@@ -261,8 +261,8 @@ impl SimReport {
         if let Some(c) = &r.abz {
             let _ = writeln!(
                 o,
-                "ABZ quadrature count        {} edges, {} index pulses, {} illegal transitions; lag behind the position max {} edges, {} at the end",
-                c.edges, c.index_pulses, c.illegal, c.max_lag, c.last_lag
+                "ABZ quadrature count        {} edges, {} index pulses, {} illegal transitions; against {} samples' positions: max {} edges off, {} at the end",
+                c.edges, c.index_pulses, c.illegal, c.checked, c.max_lag, c.last_lag
             );
         }
         let _ = writeln!(
