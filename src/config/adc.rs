@@ -162,6 +162,7 @@ fn generic_frame(c: &Config, err: &ErrFn) -> Result<(AdcFrame, AdcTiming)> {
     let frame = AdcFrame {
         frame_sck: f.frame_sck.unwrap_or(2 * a + 4),
         channels,
+        lines: f.lines.unwrap_or(1),
         offsets: match f.offsets.as_deref() {
             Some([x]) => [*x, 0],
             Some([x, y, ..]) => [*x, *y],
@@ -254,7 +255,9 @@ fn adc_err(c: &Config, text: &str, m: &str, fallback: Option<&str>, err: &ErrFn)
 /// The keys that set the value an ADC check found at fault, by the message's subject, most
 /// specific first (`adc.preset` when the preset's own limits are at fault).
 fn adc_keys(c: &Config, message: &str) -> Vec<(&'static str, &'static str)> {
-    let candidates: &[(&'static str, &'static str)] = if message.contains(" channels: ") {
+    let candidates: &[(&'static str, &'static str)] = if message.contains(" data lines with ") {
+        &[("adc.frame", "lines"), ("adc.frame", "channels")]
+    } else if message.contains(" channels: ") {
         &[("adc.frame", "channels")]
     } else if message.starts_with("sample width") {
         &[("adc", "width")]

@@ -87,7 +87,10 @@ pub struct AdcFrame {
     pub frame_sck: u32,
     /// Channels in the frame: 1 or 2.
     pub channels: u32,
-    /// Slot index (0-based SCK cycle) of each channel's MSB; MSB first.
+    /// Data lines: 1 (every channel on `adc_miso`) or 2 (two channels, channel 0 on
+    /// `adc_miso` = SDO-A, channel 1 on `adc_miso_b` = SDO-B, read at the same SCK edges).
+    pub lines: u32,
+    /// Slot index (0-based SCK cycle) of each channel's MSB on its line; MSB first.
     pub offsets: [u32; 2],
     /// Sample width W (10..=16).
     pub width: u32,
@@ -116,6 +119,7 @@ impl AdcFrame {
     pub const LTC1407A_1: AdcFrame = AdcFrame {
         frame_sck: 34,
         channels: 2,
+        lines: 1,
         offsets: [2, 18],
         width: 14,
         sign: SignFormat::TwosComplement,
@@ -443,7 +447,13 @@ impl AdcParams {
                 )));
             }
         }
-        if f.channels == 2 {
+        if !(1..=2).contains(&f.lines) || f.lines > f.channels {
+            return Err(invalid(format!(
+                "{} data lines with {} channels: 1 line, or 2 lines with 2 channels (one per channel) are supported",
+                f.lines, f.channels
+            )));
+        }
+        if f.channels == 2 && f.lines == 1 {
             let (a, b) = (f.offsets[0], f.offsets[1]);
             if a < b.saturating_add(f.width) && b < a.saturating_add(f.width) {
                 return Err(invalid(format!(

@@ -50,6 +50,9 @@ pub struct FrameConfig {
     pub frame_sck: Option<u32>,
     /// Channels: 1 or 2 (default 2).
     pub channels: Option<u32>,
+    /// Data lines: 1 (default: every channel on `adc_miso`) or 2 (channel 0 on
+    /// `adc_miso`, channel 1 on `adc_miso_b`, at the same SCK edges).
+    pub lines: Option<u32>,
     /// Slot of each channel's MSB (default [1, W + 2]); one entry per channel (a
     /// one-channel frame may keep an unused second one).
     pub offsets: Option<Vec<u32>>,
