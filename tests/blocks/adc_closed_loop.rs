@@ -100,6 +100,18 @@ fn generic_two_channels_cpha1_asymmetric_sck() {
 }
 
 #[test]
+fn generic_two_lines_cs_framed_mode3() {
+    let p = generic_two_lines();
+    // The Verilog of a one-line frame has no adc_miso_b; a two-line one has it.
+    assert_eq!(AdcController::new(&p).adc_miso_b.len(), 1);
+    assert!(AdcController::new(&generic_two_channels())
+        .adc_miso_b
+        .is_empty());
+    generic_closed_loop(&p, 30);
+    println!("{}", p.describe());
+}
+
+#[test]
 fn cosim_ltc1407a_fastest_divider_with_resets() {
     let p = AdcParams::ltc1407a_fastest(F133).expect("feasible");
     let per = p.period_clocks as usize;
@@ -137,6 +149,7 @@ fn cosim_generic_presets() {
     for (p, top) in [
         (generic_one_channel(), "adc_gen1"),
         (generic_two_channels(), "adc_gen2"),
+        (generic_two_lines(), "adc_gen2l"),
     ] {
         let run = generic_closed_loop(&p, 12);
         // Add a reset in the middle of a frame and random MISO afterwards.
@@ -148,7 +161,9 @@ fn cosim_generic_presets() {
                 row[0] = 1;
             }
             if k >= at {
-                row[2] = r.next_u64() & 1;
+                for bit in row.iter_mut().skip(2) {
+                    *bit = r.next_u64() & 1;
+                }
             }
         }
         let dir = common::workdir(top);

@@ -311,7 +311,9 @@ impl AdcController {
             rst: Default::default(),
             enable: Default::default(),
             adc_miso: Default::default(),
-            adc_miso_b: (1..f.lines.clamp(1, 2)).map(|_| Default::default()).collect(),
+            adc_miso_b: (1..f.lines.clamp(1, 2))
+                .map(|_| Default::default())
+                .collect(),
             adc_sck: Default::default(),
             adc_conv: Default::default(),
             out_valid: Default::default(),
@@ -330,7 +332,9 @@ impl AdcController {
             ch0_reg: Default::default(),
             ch1_reg: Default::default(),
             miso_d: Default::default(),
-            miso_b_d: (1..f.lines.clamp(1, 2)).map(|_| Default::default()).collect(),
+            miso_b_d: (1..f.lines.clamp(1, 2))
+                .map(|_| Default::default())
+                .collect(),
             rst_d: Default::default(),
             cap0_d: Default::default(),
             cap1_d: Default::default(),
