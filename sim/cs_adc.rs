@@ -52,7 +52,7 @@ pub struct CsAdcSpec {
     pub cs_min_high_ns: f64,
     /// Minimum CS falling edge to first SCLK edge.
     pub cs_to_sclk_ns: f64,
-    /// Minimum last SCLK edge to CS rising edge.
+    /// Minimum last SCLK read edge (the edge that does not launch data) to CS rising edge.
     pub sclk_to_cs_ns: f64,
     /// Conversion time from the CS falling edge.
     pub conversion_ns: f64,
@@ -117,7 +117,7 @@ pub struct CsAdc {
     cs_fall: Option<f64>,
     sclk_rise: Option<f64>,
     sclk_fall: Option<f64>,
-    /// Last SCLK edge (either) while CS was low, for the CS-rising check.
+    /// Last SCLK read edge (not a launch edge) while CS was low, for the CS-rising check.
     last_edge: Option<f64>,
     /// CS is low (a frame runs).
     framed: bool,
@@ -319,7 +319,7 @@ impl CsAdc {
                 self.violation(
                     CsViolationKind::SclkToCs,
                     format!(
-                        "last SCLK edge to CS rising {:.2} ns < {} ns",
+                        "last SCLK read edge to CS rising {:.2} ns < {} ns",
                         t - e,
                         s.sclk_to_cs_ns
                     ),
@@ -394,7 +394,9 @@ impl CsAdc {
             }
         }
         self.edges += 1;
-        self.last_edge = Some(t);
+        if rising != s.launch_on_rising {
+            self.last_edge = Some(t);
+        }
         if rising == s.launch_on_rising {
             self.launches += 1;
             let n = self.launches;

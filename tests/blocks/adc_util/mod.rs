@@ -300,7 +300,8 @@ pub fn generic_two_channels() -> AdcParams {
 
 /// Two channels on two data lines (SDO-A, SDO-B), 16-bit two's complement, MSB in slot 1
 /// of each line, SCK idle high, data on leading (falling) edges, active-low chip select
-/// framing the whole 18-SCK transfer, D = 3, lead 1.
+/// framing the whole 18-SCK transfer, D = 4 (30 ns: the 26 ns round trip with the 15 ns
+/// data-valid delay of `generic_timing`), lead 1.
 pub fn generic_two_lines() -> AdcParams {
     let mut f = AdcFrame {
         frame_sck: 18,
@@ -316,11 +317,11 @@ pub fn generic_two_lines() -> AdcParams {
         lead_clocks: 1,
         pipeline: 0,
     };
-    f.conv_clocks = f.lead_clocks + f.frame_sck * 3 + 1;
+    f.conv_clocks = f.lead_clocks + f.frame_sck * 4 + 1;
     let mut t = generic_timing();
     t.sck_min_period_ns = 20.0;
     t.sck_min_pulse_ns = 5.0;
-    AdcParams::generic(F133, f, t, 3, None)
+    AdcParams::generic(F133, f, t, 4, None)
 }
 
 pub fn generic_codes(w: u32, n: usize, seed: u64) -> Vec<[i32; 2]> {
@@ -464,4 +465,64 @@ pub fn generic_wrong_samples(
         })
         .count();
     (wrong, s.len())
+}
+
+// ---------------------------------------------------------------------------------------
+// CS-framed dual-SDO chips (ADS8354, AD7380).
+
+impl Slave for sinedec::sim::cs_adc::CsAdc {
+    fn step(&mut self, conv: bool, sck: bool) -> bool {
+        sinedec::sim::cs_adc::CsAdc::step(self, conv, sck)[0]
+    }
+    fn step_lines(&mut self, conv: bool, sck: bool) -> [bool; 2] {
+        sinedec::sim::cs_adc::CsAdc::step(self, conv, sck)
+    }
+}
+
+/// Every delivered sample equals the conversion whose CS falling edge lies exactly the
+/// predicted latency earlier; returns how many were checked.
+pub fn check_against_cs_chip(
+    p: &AdcParams,
+    run: &Run,
+    chip: &sinedec::sim::cs_adc::CsAdc,
+) -> usize {
+    let lat = p.conv_to_valid_clocks() as usize;
+    let s = run.samples(p.frame.width);
+    for &(row, a, b) in &s {
+        let c = chip
+            .conversions()
+            .iter()
+            .find(|c| c.clock as usize + lat == row)
+            .unwrap_or_else(|| {
+                panic!("no CS falling edge {lat} clocks before the sample at row {row}")
+            });
+        assert_eq!(
+            [a, b],
+            [c.codes[0] as i64, c.codes[1] as i64],
+            "sample at row {row}"
+        );
+    }
+    s.len()
+}
+
+/// The controller of `p` against `chip` for `n` samples after a reset; returns the run,
+/// the samples that differ from the codes the chip sampled, and the samples delivered.
+pub fn cs_closed_loop(
+    p: &AdcParams,
+    chip: &mut sinedec::sim::cs_adc::CsAdc,
+    n: usize,
+) -> (Run, usize, usize) {
+    let cycles = 3 + p.startup_clocks() as usize + (n - 1) * p.period_clocks as usize + 1;
+    let run = closed_loop(p, chip, &|k| (k < 3, true), cycles);
+    let lat = p.conv_to_valid_clocks() as usize;
+    let s = run.samples(p.frame.width);
+    let wrong = s
+        .iter()
+        .filter(|&&(row, a, b)| {
+            !chip.conversions().iter().any(|c| {
+                c.clock as usize + lat == row && [a, b] == [c.codes[0] as i64, c.codes[1] as i64]
+            })
+        })
+        .count();
+    (run, wrong, s.len())
 }
