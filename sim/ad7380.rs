@@ -53,7 +53,8 @@ mod tests {
     use super::*;
     use crate::sim::cs_adc::CsViolationKind;
 
-    /// Two frames by hand at 200 MHz: each CS low, 2 idle clocks, 16 SCLK cycles of
+    /// Two frames by hand at 200 MHz (the default board pins need 17.25 ns from launch to
+    /// read: half = 4 clocks gives 20 ns): each CS low, 2 idle clocks, 16 SCLK cycles of
     /// `half` clocks high then `half` low, CS high for `gap` clocks. Returns the bits read
     /// on both lines at the rising edges (the host's read edge) of each frame.
     fn frames(half: usize, gap: usize, codes: Vec<[i32; 2]>) -> (Vec<Vec<[bool; 2]>>, CsAdc) {
@@ -99,7 +100,7 @@ mod tests {
 
     #[test]
     fn the_second_frame_returns_the_first_conversion() {
-        let (f, chip) = frames(2, 40, vec![[-32768, 32767], [5, -6]]);
+        let (f, chip) = frames(4, 40, vec![[-32768, 32767], [5, -6]]);
         assert!(chip.violations().is_empty(), "{:?}", chip.violations());
         assert_eq!([word(&f[1], 0), word(&f[1], 1)], [-32768, 32767]);
         assert_eq!(chip.conversions()[0].codes, [-32768, 32767]);
@@ -107,13 +108,12 @@ mod tests {
 
     #[test]
     fn a_too_fast_sclk_and_a_too_early_frame_are_recorded() {
-        // SCLK of 2 x 5 ns = 10 ns < 12.5 ns; frames 1 + 2 + 32 + 3 + 2 = 40 clocks = 200 ns
-        // apart, below tCONVERT + nothing (190 ns is met) but below the 250 ns cycle.
-        let (f, chip) = frames(1, 2, vec![[1234, -4321]]);
+        // SCLK of 2 x 5 ns = 10 ns < 12.5 ns; CS falling edges 3 + 32 + 3 + 2 = 40 clocks
+        // = 200 ns apart: tCONVERT (190 ns) is met, the 250 ns cycle is not.
+        let (_, chip) = frames(1, 2, vec![[1234, -4321]]);
         let kinds: Vec<_> = chip.violations().iter().map(|v| v.kind).collect();
         assert!(kinds.contains(&CsViolationKind::SclkTooFast), "{kinds:?}");
         assert!(kinds.contains(&CsViolationKind::CycleTooShort), "{kinds:?}");
-        let _ = f;
         // A frame started before the previous conversion's 190 ns: its data are garbage.
         let mut chip = ad7380(200e6, 4).with_codes(|_, _| [1, 2]);
         chip.step(true, true);

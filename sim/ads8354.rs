@@ -51,7 +51,8 @@ mod tests {
     use super::*;
     use crate::sim::cs_adc::CsViolationKind;
 
-    /// Drives one frame by hand at 100 MHz: CS low, `pre` idle clocks, 32 SCLK cycles of
+    /// Drives one frame by hand at 100 MHz (the default board pins need 36 ns from launch
+    /// to read: half = 4 clocks gives 40 ns): CS low, 3 idle clocks, 32 SCLK cycles of
     /// `half` clocks low and `half` high, CS high; returns the bits read on both lines at
     /// each falling edge (the host's read edge) and the chip.
     fn frame(half: usize, codes: [i32; 2]) -> (Vec<[bool; 2]>, CsAdc) {
@@ -93,7 +94,7 @@ mod tests {
 
     #[test]
     fn a_frame_read_on_time_returns_the_codes() {
-        let (reads, chip) = frame(3, [-12345, 321]);
+        let (reads, chip) = frame(4, [-12345, 321]);
         assert!(chip.violations().is_empty(), "{:?}", chip.violations());
         // Straight binary on the pins: code + 32768.
         assert_eq!(word(&reads, 0), (-12345i32 + 32768) as u16);

@@ -20,23 +20,13 @@ pub(super) fn adc_params(
         AdcPreset::Ad7380 => fixed_frame(c, err, "ad7380", AdcFrame::AD7380, AdcTiming::AD7380)?,
         AdcPreset::Generic => generic_frame(c, err)?,
     };
-    // SCK divider: as configured, or the smallest that the chip's SCK limit and the ADC
-    // round trip (`crate::board::adc_round_trip`: the capture distance is D clocks) allow.
+    // SCK divider: as configured, or the smallest the chip's SCK limit allows (the ADC
+    // round trip is checked against it by `board_timing`, which names the key to change).
     let d = match c.adc.sck_period_clocks {
         Some(d) => d,
-        None => {
-            let (_, needed) =
-                crate::board::adc_round_trip(&io_budget(c), timing.data_valid_ns, 1, clock_hz);
-            let clocks = |ns: f64| ((ns * clock_hz / 1e9) - 1e-9).ceil();
-            let d = clocks(timing.sck_min_period_ns)
-                .max(clocks(needed))
-                .max(2.0);
-            if d.is_finite() && d < 1e6 {
-                d as u32
-            } else {
-                2
-            }
-        }
+        None => ((timing.sck_min_period_ns * clock_hz / 1e9) - 1e-9)
+            .ceil()
+            .max(2.0) as u32,
     };
     let build = |period: Option<u32>| match c.adc.preset {
         AdcPreset::Ltc1407a1 => AdcParams::ltc1407a(clock_hz, d, period),
@@ -77,24 +67,6 @@ pub(super) fn adc_params(
     }
     let preamp = preamp_params(c, text, err)?;
     Ok((params, preamp))
-}
-
-/// The FPGA's I/O budget of `[board]` (its keys, where given in range, over
-/// [`crate::board::IoTiming::DEFAULT`]; `board_timing` reports a key out of range).
-fn io_budget(c: &Config) -> crate::board::IoTiming {
-    let mut io = crate::board::IoTiming::DEFAULT;
-    if let Some(b) = &c.board {
-        for (v, slot) in [
-            (b.fpga_clock_to_out_ns, &mut io.clock_to_out_ns),
-            (b.fpga_input_setup_ns, &mut io.input_setup_ns),
-            (b.trace_delay_ns, &mut io.trace_ns),
-        ] {
-            if let Some(v) = v.filter(|v| (0.0..=100.0).contains(v)) {
-                *slot = v;
-            }
-        }
-    }
-    io
 }
 
 /// The LTC1407A-1's fixed frame and timing: 14-bit samples, no `[adc.frame]` or

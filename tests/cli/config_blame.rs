@@ -374,11 +374,15 @@ fn chip_presets_refuse_preamp_frame_and_timing() {
             at(&t, "max_sample_rate_hz = 1e6"),
             &["adc.max_sample_rate_hz", preset, "generic"],
         );
-        let t = with("\n[adc.timing]\ndata_valid_ns = 5.0\n\n[adc]");
+        let t = with("").replacen(
+            "\n[cordic]",
+            "\n[adc.timing]\ndata_valid_ns = 5.0\n\n[cordic]",
+            1,
+        );
         expect_bad(
             &t,
             Kind::Value("adc.timing"),
-            at(&t, "[adc.timing]"),
+            at(&t, "timing]"),
             &["[adc.timing]", preset, "generic"],
         );
         let t = default_with(&[

@@ -311,9 +311,10 @@ impl AdcParams {
         Ok(p)
     }
 
-    /// A CS-framed preset chip (ADS8354, AD7380): `frame` with CS active from the period
-    /// start to one clock past the last SCK cycle (so the last SCK edge is at least one
-    /// SCK high time plus a clock before CS rises).
+    /// A CS-framed preset chip (ADS8354, AD7380): `frame` with the lead clocks the chip's
+    /// CS-to-SCLK set-up needs at `clock_hz`, and CS active from the period start to one
+    /// clock past the last SCK cycle (so the last SCK edge is at least one SCK high time
+    /// plus a clock before CS rises).
     fn cs_framed(
         chip: AdcChip,
         mut frame: AdcFrame,
@@ -322,6 +323,10 @@ impl AdcParams {
         d: u32,
         period_clocks: Option<u32>,
     ) -> Self {
+        // Lead clocks: the fewest that give the chip's CS-to-first-SCLK set-up with the
+        // L = D - H idle-level clocks that precede the first SCK edge (see `validate`).
+        let idle = d.saturating_sub(d / 2);
+        frame.lead_clocks = ceil_clocks(timing.conv_to_sck_ns, clock_hz).saturating_sub(idle);
         frame.conv_clocks = frame
             .lead_clocks
             .saturating_add(frame.frame_sck.saturating_mul(d))
