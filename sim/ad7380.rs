@@ -14,9 +14,9 @@
 //!   recorded as aborted).
 //! * Limits checked: SCLK period >= 12.5 ns (80 MHz); SCLK high and low >= 5.625 ns
 //!   (not found: 0.45 tSCLK assumed); CS high >= 10 ns (the driver's `t_csh_ns`); CS
-//!   falling to the first SCLK edge and the last SCLK read (rising) edge to CS rising
-//!   >= 10 ns (not
-//!   found: assumed); CS falling edges >= 250 ns apart (4 Msps).
+//!   falling to the first SCLK edge, and the last SCLK read (rising) edge to CS rising,
+//!   at least 10 ns each (not found: assumed); CS falling edges 250 ns apart or more
+//!   (4 Msps).
 //! * Data valid 6.25 ns after the launching falling edge: not found; half the minimum
 //!   SCLK period (the longest delay with which the part's own mode-3 read works); no
 //!   hold assumed. Fully differential inputs, two's-complement codes.
