@@ -1,6 +1,6 @@
 //! The simulation side of sinedec: closed-loop systems stepped cycle by cycle (`system`,
 //! `cap_system`), the chip and encoder models they close the loop with (LTC1407A-1,
-//! LTC6912-1, a generic SPI ADC, the sine/cosine and capacitive encoders, the BiSS-C and
+//! ADS8354, AD7380, LTC6912-1, a generic SPI ADC, the sine/cosine and capacitive encoders, the BiSS-C and
 //! SSI masters on one master core, `serial_master`, and the SPI master, all three over the
 //! line model `serial_line`) and the VCD of the top's pins.
 //!
@@ -14,11 +14,15 @@
 //! models use the blocks' Params and rtl, so a separate crate would either depend on
 //! `sinedec` while `sinedec` depends on it (a cycle Cargo rejects) or force the `simulate`
 //! command out of the library. The one-way rule above is what keeps it separable.
+pub mod ad7380;
+pub mod adc_chip;
 pub mod adc_pins;
+pub mod ads8354;
 pub mod biss_control;
 pub mod biss_master;
 pub mod cap_system;
 pub mod capacitive;
+pub mod cs_adc;
 pub mod dut;
 pub mod encoder;
 pub mod ltc1407a;

@@ -3,7 +3,8 @@
 //! MSB-first channels at their slots, offset binary or two's complement. The conversion
 //! result is taken at the CONV (or chip-select) edge from a code source, so a caller can
 //! sample an analog model at that instant. Bits outside the channel slots and an idle line
-//! are random, so a controller that reads them is caught.
+//! are random, so a controller that reads them is caught. With two data lines
+//! (`AdcFrame::lines`) channel 0 leaves on SDO-A and channel 1 on SDO-B, each at its slot.
 //!
 //! The pins keep real time ([`super::adc_pins`]): an SCK or CONV / CS edge reaches the chip
 //! FPGA clock-to-out + one trace after the clock edge that launched it; the chip drives
@@ -27,8 +28,10 @@ pub struct SpiAdc {
     valid_ns: f64,
     /// SCK edge at the chip to the old bit no longer held, ns.
     hold_ns: f64,
-    /// SDO at the FPGA's pad.
+    /// SDO (SDO-A with two lines) at the FPGA's pad.
     line: DataLine,
+    /// SDO-B at the FPGA's pad (two-line frames: channel 1).
+    line_b: DataLine,
     source: CodeSource,
     taken: Vec<(usize, [i32; 2])>,
     clock: usize,
@@ -54,6 +57,7 @@ impl SpiAdc {
             valid_ns: p.timing.data_valid_ns,
             hold_ns: 0.0,
             line: DataLine::new(pins, 78),
+            line_b: DataLine::new(pins, 79),
             source,
             taken: Vec::new(),
             clock: 0,
@@ -100,11 +104,16 @@ impl SpiAdc {
         }
     }
 
-    fn bit(&self, slot: i64) -> Level {
+    /// The level of `line` (0: SDO / SDO-A, 1: SDO-B) at `slot`: with one line every
+    /// channel at its slot, with two lines channel `line` alone at its slot.
+    fn bit(&self, line: usize, slot: i64) -> Level {
         let w = self.f.width as i64;
         let cur = self.taken.last().map(|t| t.1).unwrap_or([0, 0]);
         let n = self.f.channels as usize;
-        for (&off, &code) in self.f.offsets.iter().zip(cur.iter()).take(n) {
+        for (c, (&off, &code)) in self.f.offsets.iter().zip(cur.iter()).enumerate().take(n) {
+            if self.f.lines >= 2 && c != line {
+                continue;
+            }
             let o = off as i64;
             if slot >= o && slot < o + w {
                 let mut v = code as i64 & ((1 << w) - 1);
@@ -117,11 +126,25 @@ impl SpiAdc {
         Level::Undefined
     }
 
+    /// Both lines change at a pin edge the FPGA launched at `t`.
+    fn change(&mut self, t: f64, slot: Option<i64>) {
+        let (valid, hold) = (self.valid_ns, self.hold_ns);
+        let a = slot.map_or(Level::Undefined, |k| self.bit(0, k));
+        let b = slot.map_or(Level::Undefined, |k| self.bit(1, k));
+        self.line.change(t, hold, valid, a);
+        self.line_b.change(t, hold, valid, b);
+    }
+
     /// One system clock: `conv` and `sck` are the levels the FPGA launches at this clock
     /// edge. Returns what the FPGA reads at `adc_miso` at the next clock edge.
     pub fn step(&mut self, conv: bool, sck: bool) -> bool {
+        self.step_lines(conv, sck)[0]
+    }
+
+    /// [`step`](Self::step) for both data lines: what the FPGA reads at `adc_miso` (SDO-A)
+    /// and `adc_miso_b` (SDO-B; random with a one-line frame) at the next clock edge.
+    pub fn step_lines(&mut self, conv: bool, sck: bool) -> [bool; 2] {
         let t = self.clock as f64 * self.period_ns;
-        let (valid, hold) = (self.valid_ns, self.hold_ns);
         let on = conv == self.f.conv_active_high;
         let was_on = self.prev_conv == self.f.conv_active_high;
         if on && !was_on {
@@ -129,34 +152,29 @@ impl SpiAdc {
             self.taken.push((self.clock, c));
             self.active = true;
             self.slot = 0;
-            let level = if self.f.cpha {
-                Level::Undefined
-            } else {
-                self.bit(0)
-            };
-            self.line.change(t, hold, valid, level);
+            self.change(t, (!self.f.cpha).then_some(0));
         }
         if !on && self.f.conv_clocks > 1 && self.active {
             // Chip select framing: deselected ends the frame.
             self.active = false;
-            self.line.change(t, hold, valid, Level::Undefined);
+            self.change(t, None);
         }
         let leading = sck != self.f.cpol && self.prev_sck == self.f.cpol;
         let trailing = sck == self.f.cpol && self.prev_sck != self.f.cpol;
         if self.active {
             if self.f.cpha && leading {
-                let level = self.bit(self.slot);
+                let k = self.slot;
                 self.slot += 1;
-                self.line.change(t, hold, valid, level);
+                self.change(t, Some(k));
             } else if !self.f.cpha && trailing {
                 self.slot += 1;
-                let level = self.bit(self.slot);
-                self.line.change(t, hold, valid, level);
+                self.change(t, Some(self.slot));
             }
         }
         self.prev_conv = conv;
         self.prev_sck = sck;
         self.clock += 1;
-        self.line.sample(self.clock as f64 * self.period_ns)
+        let at = self.clock as f64 * self.period_ns;
+        [self.line.sample(at), self.line_b.sample(at)]
     }
 }

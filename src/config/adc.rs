@@ -14,9 +14,14 @@ pub(super) fn adc_params(
     let clock_hz = c.clock.frequency_hz;
     let (frame, timing) = match c.adc.preset {
         AdcPreset::Ltc1407a1 => ltc1407a_frame(c, err)?,
+        AdcPreset::Ads8354 => {
+            fixed_frame(c, err, "ads8354", AdcFrame::ADS8354, AdcTiming::ADS8354)?
+        }
+        AdcPreset::Ad7380 => fixed_frame(c, err, "ad7380", AdcFrame::AD7380, AdcTiming::AD7380)?,
         AdcPreset::Generic => generic_frame(c, err)?,
     };
-    // SCK divider: as configured, or the smallest the chip's SCK limit allows.
+    // SCK divider: as configured, or the smallest the chip's SCK limit allows (the ADC
+    // round trip is checked against it by `board_timing`, which names the key to change).
     let d = match c.adc.sck_period_clocks {
         Some(d) => d,
         None => ((timing.sck_min_period_ns * clock_hz / 1e9) - 1e-9)
@@ -25,6 +30,8 @@ pub(super) fn adc_params(
     };
     let build = |period: Option<u32>| match c.adc.preset {
         AdcPreset::Ltc1407a1 => AdcParams::ltc1407a(clock_hz, d, period),
+        AdcPreset::Ads8354 => AdcParams::ads8354(clock_hz, d, period),
+        AdcPreset::Ad7380 => AdcParams::ad7380(clock_hz, d, period),
         AdcPreset::Generic => AdcParams::generic(clock_hz, frame, timing, d, period),
     };
     let fastest = build(None);
@@ -58,7 +65,7 @@ pub(super) fn adc_params(
             .validate()
             .map_err(|m| adc_err(c, text, &m.detail(), Some("sample_rate_hz"), err))?;
     }
-    let preamp = preamp_params(c, err)?;
+    let preamp = preamp_params(c, text, err)?;
     Ok((params, preamp))
 }
 
@@ -84,6 +91,47 @@ fn ltc1407a_frame(c: &Config, err: &ErrFn) -> Result<(AdcFrame, AdcTiming)> {
         ));
     }
     Ok((AdcFrame::LTC1407A_1, AdcTiming::LTC1407A_1))
+}
+
+/// A preset chip's fixed frame and timing (ADS8354, AD7380): 16-bit samples, no
+/// `[adc.frame]`, `[adc.timing]` or `max_sample_rate_hz` (the data sheet sets them).
+fn fixed_frame(
+    c: &Config,
+    err: &ErrFn,
+    preset: &str,
+    frame: AdcFrame,
+    timing: AdcTiming,
+) -> Result<(AdcFrame, AdcTiming)> {
+    let a = c.adc.width;
+    if a != frame.width {
+        return Err(err(
+            "adc",
+            "width",
+            format!(
+                "preset \"{preset}\" delivers {}-bit samples: allowed width = {} (or `adc.preset` = \"generic\" for another width)",
+                frame.width, frame.width
+            ),
+        ));
+    }
+    let fixed = [
+        (c.adc.frame.is_some(), "frame", "[adc.frame]"),
+        (c.adc.timing.is_some(), "timing", "[adc.timing]"),
+        (
+            c.adc.max_sample_rate_hz.is_some(),
+            "max_sample_rate_hz",
+            "adc.max_sample_rate_hz",
+        ),
+    ];
+    if let Some((_, key, what)) = fixed.iter().find(|f| f.0) {
+        return Err(err(
+            "adc",
+            key,
+            format!(
+                "{what} is fixed by preset \"{preset}\" (its data sheet's frame and timing); allowed only with preset \"generic\": remove it, or describe the chip with preset = \"generic\""
+            ),
+        ));
+    }
+    Ok((frame, timing))
 }
 
 /// A generic ADC's frame and timing from `[adc.frame]` and `[adc.timing]`, each key
@@ -162,6 +210,7 @@ fn generic_frame(c: &Config, err: &ErrFn) -> Result<(AdcFrame, AdcTiming)> {
     let frame = AdcFrame {
         frame_sck: f.frame_sck.unwrap_or(2 * a + 4),
         channels,
+        lines: f.lines.unwrap_or(1),
         offsets: match f.offsets.as_deref() {
             Some([x]) => [*x, 0],
             Some([x, y, ..]) => [*x, *y],
@@ -186,6 +235,7 @@ fn generic_frame(c: &Config, err: &ErrFn) -> Result<(AdcFrame, AdcTiming)> {
         conv_min_low_ns: t.conv_min_low_ns.unwrap_or(10.0),
         conv_to_sck_ns: t.conv_to_sck_ns.unwrap_or(5.0),
         acquisition_ns: t.acquisition_ns.unwrap_or(0.0),
+        conversion_ns: 0.0,
         conversion_edges: 0,
         max_sample_rate_hz: max,
     };
@@ -193,7 +243,7 @@ fn generic_frame(c: &Config, err: &ErrFn) -> Result<(AdcFrame, AdcTiming)> {
 }
 
 /// The LTC6912-1 pre-amplifier's parameters: with preset "ltc1407a-1" only.
-fn preamp_params(c: &Config, err: &ErrFn) -> Result<Option<PreampParams>> {
+fn preamp_params(c: &Config, text: &str, err: &ErrFn) -> Result<Option<PreampParams>> {
     let clock_hz = c.clock.frequency_hz;
     Ok(match c.adc.preset {
         AdcPreset::Ltc1407a1 => {
@@ -213,12 +263,16 @@ fn preamp_params(c: &Config, err: &ErrFn) -> Result<Option<PreampParams>> {
                 })?,
             )
         }
-        AdcPreset::Generic => {
+        AdcPreset::Generic | AdcPreset::Ads8354 | AdcPreset::Ad7380 => {
             if c.preamp.is_some() {
+                let key = ["gain_a", "gain_b"]
+                    .into_iter()
+                    .find(|k| written(text, "preamp", k))
+                    .unwrap_or("gain_a");
                 return Err(err(
                     "preamp",
-                    "gain_a",
-                    "the LTC6912-1 pre-amplifier belongs to preset \"ltc1407a-1\"".into(),
+                    key,
+                    "the LTC6912-1 pre-amplifier belongs to preset \"ltc1407a-1\": [preamp] is allowed only with adc.preset = \"ltc1407a-1\"; remove it".into(),
                 ));
             }
             None
@@ -254,7 +308,9 @@ fn adc_err(c: &Config, text: &str, m: &str, fallback: Option<&str>, err: &ErrFn)
 /// The keys that set the value an ADC check found at fault, by the message's subject, most
 /// specific first (`adc.preset` when the preset's own limits are at fault).
 fn adc_keys(c: &Config, message: &str) -> Vec<(&'static str, &'static str)> {
-    let candidates: &[(&'static str, &'static str)] = if message.contains(" channels: ") {
+    let candidates: &[(&'static str, &'static str)] = if message.contains(" data lines with ") {
+        &[("adc.frame", "lines"), ("adc.frame", "channels")]
+    } else if message.contains(" channels: ") {
         &[("adc.frame", "channels")]
     } else if message.starts_with("sample width") {
         &[("adc", "width")]
@@ -320,6 +376,7 @@ fn adc_keys(c: &Config, message: &str) -> Vec<(&'static str, &'static str)> {
         .iter()
         .copied()
         .filter(|(t, _)| c.adc.preset == AdcPreset::Generic || *t == "adc")
+        .filter(|k| c.adc.preset == AdcPreset::Generic || *k != ("adc", "max_sample_rate_hz"))
         .collect();
     // Times in clocks come from times in ns at the system clock.
     if ["SCK", "CONV", "conversion", "sample rate"]

@@ -24,6 +24,12 @@ impl Derived {
                 )),
             }
         }
+        s.push_str(&format!(
+            "ADC sample rate             {:.0} samples/s per channel ({}): {}\n",
+            self.adc.sample_rate_hz(),
+            self.adc.chip,
+            self.adc.rate_bound()
+        ));
         let io = &self.io_timing;
         let (available, needed) = crate::board::adc_round_trip(
             io,

@@ -389,3 +389,42 @@ fn the_decoder_is_exact_up_to_the_window_check_prints() {
         &|p, pins, v| generic_wrong_samples(p, pins, v, 6),
     );
 }
+
+/// The chip presets from a config: the fastest SCK the chip allows, and `check` states the rate reached and what binds it.
+#[test]
+fn chip_presets_from_a_config_state_what_binds_the_rate() {
+    use sinedec::config::{Loaded, DEFAULT_CONFIG};
+    for (preset, clock, want_d, bound) in [
+        ("ads8354", "100e6", 5, "the clock binds"),
+        ("ad7380", "100e6", 2, "the clock binds"),
+        // SCLK <= 20 MHz: 32 SCLK take 1.6 us > 1 / 700 ksps whatever the clock.
+        ("ads8354", "400e6", 20, "the clock binds"),
+    ] {
+        let i = DEFAULT_CONFIG.find("\n[preamp]\n").expect("preamp table");
+        let j = DEFAULT_CONFIG.find("\n[cordic]\n").expect("cordic table");
+        let text = format!("{}{}", &DEFAULT_CONFIG[..i], &DEFAULT_CONFIG[j..])
+            .replacen(
+                "preset = \"ltc1407a-1\"",
+                &format!("preset = \"{preset}\""),
+                1,
+            )
+            .replacen("width = 14", "width = 16", 1)
+            .replacen(
+                "frequency_hz = 133_330_000.0",
+                &format!("frequency_hz = {clock}"),
+                1,
+            );
+        let l = Loaded::parse(&text, "w.toml").unwrap_or_else(|e| panic!("{preset} {clock}: {e}"));
+        let p = &l.derived.adc;
+        assert_eq!(p.sck_period_clocks, want_d, "{preset} at {clock}");
+        assert!(l.derived.preamp.is_none());
+        let d = l.derived.describe();
+        let line = d
+            .lines()
+            .find(|x| x.starts_with("ADC sample rate"))
+            .expect("rate line");
+        println!("{preset} at {clock}: {line}");
+        assert!(line.contains(bound), "{line}");
+        assert!(p.sample_rate_hz() <= p.timing.max_sample_rate_hz);
+    }
+}

@@ -100,6 +100,18 @@ fn generic_two_channels_cpha1_asymmetric_sck() {
 }
 
 #[test]
+fn generic_two_lines_cs_framed_mode3() {
+    let p = generic_two_lines();
+    // The Verilog of a one-line frame has no adc_miso_b; a two-line one has it.
+    assert_eq!(AdcController::new(&p).adc_miso_b.len(), 1);
+    assert!(AdcController::new(&generic_two_channels())
+        .adc_miso_b
+        .is_empty());
+    generic_closed_loop(&p, 30);
+    println!("{}", p.describe());
+}
+
+#[test]
 fn cosim_ltc1407a_fastest_divider_with_resets() {
     let p = AdcParams::ltc1407a_fastest(F133).expect("feasible");
     let per = p.period_clocks as usize;
@@ -137,6 +149,7 @@ fn cosim_generic_presets() {
     for (p, top) in [
         (generic_one_channel(), "adc_gen1"),
         (generic_two_channels(), "adc_gen2"),
+        (generic_two_lines(), "adc_gen2l"),
     ] {
         let run = generic_closed_loop(&p, 12);
         // Add a reset in the middle of a frame and random MISO afterwards.
@@ -148,7 +161,9 @@ fn cosim_generic_presets() {
                 row[0] = 1;
             }
             if k >= at {
-                row[2] = r.next_u64() & 1;
+                for bit in row.iter_mut().skip(2) {
+                    *bit = r.next_u64() & 1;
+                }
             }
         }
         let dir = common::workdir(top);
@@ -170,4 +185,120 @@ fn cosim_generic_presets() {
             "{top}: restarts"
         );
     }
+}
+
+/// 16-bit codes for the CS-framed chips: the extremes first, then pseudo-random.
+fn codes16(seed: u64) -> impl FnMut(u64, f64) -> [i32; 2] {
+    let mut r = SplitMix64(seed);
+    move |k, _| match k {
+        0 => [-32768, 32767],
+        1 => [32767, -32768],
+        2 => [0, -1],
+        _ => [r.range(-32768, 32767) as i32, r.range(-32768, 32767) as i32],
+    }
+}
+
+/// The fastest SCK divider the chip allows at `clock_hz`.
+fn fastest(clock_hz: f64, min_period_ns: f64) -> u32 {
+    ((min_period_ns * clock_hz / 1e9) - 1e-9).ceil().max(2.0) as u32
+}
+
+#[test]
+fn ads8354_closed_loop_at_100mhz() {
+    use sinedec::sim::ads8354::ads8354;
+    let d = fastest(
+        100e6,
+        sinedec::blocks::adc::AdcTiming::ADS8354.sck_min_period_ns,
+    );
+    let p = AdcParams::ads8354(100e6, d, None);
+    p.validate().expect("feasible");
+    println!("{}", p.describe());
+    let mut chip = ads8354(100e6, 5).with_codes(codes16(31));
+    let (run, wrong, n) = cs_closed_loop(&p, &mut chip, 25);
+    assert!(
+        chip.violations().is_empty(),
+        "{:?}",
+        &chip.violations()[..1]
+    );
+    assert_eq!(n, 25);
+    assert_eq!(wrong, 0);
+    assert_eq!(check_against_cs_chip(&p, &run, &chip), 25);
+    // The extremes reach the outputs.
+    let s = run.samples(16);
+    assert!(s.iter().any(|x| (x.1, x.2) == (-32768, 32767)));
+    // The SCK one clock faster than the data sheet allows: the chip records it (and the
+    // conversion is not over when the MSB leaves), so the loop above would fail.
+    let p = AdcParams::ads8354(100e6, d - 1, None);
+    assert!(p.validate().is_err(), "validate refuses it too");
+    let mut chip = ads8354(100e6, 5).with_codes(codes16(31));
+    let (_, wrong, n) = cs_closed_loop(&p, &mut chip, 10);
+    let kinds: Vec<_> = chip.violations().iter().map(|v| v.kind).collect();
+    use sinedec::sim::cs_adc::CsViolationKind as K;
+    assert!(kinds.contains(&K::SclkTooFast), "{kinds:?}");
+    assert!(wrong * 2 >= n, "only {wrong} of {n} wrong");
+}
+
+#[test]
+fn ad7380_closed_loop_at_100mhz() {
+    use sinedec::sim::ad7380::ad7380;
+    let d = fastest(
+        100e6,
+        sinedec::blocks::adc::AdcTiming::AD7380.sck_min_period_ns,
+    );
+    let p = AdcParams::ad7380(100e6, d, None);
+    p.validate().expect("feasible");
+    println!("{}", p.describe());
+    let mut chip = ad7380(100e6, 6).with_codes(codes16(32));
+    let (run, wrong, n) = cs_closed_loop(&p, &mut chip, 25);
+    assert!(
+        chip.violations().is_empty(),
+        "{:?}",
+        &chip.violations()[..1]
+    );
+    assert_eq!(n, 25);
+    assert_eq!(wrong, 0);
+    assert_eq!(check_against_cs_chip(&p, &run, &chip), 25);
+    // The capture one system clock early (the chip's answers seen one clock later, so
+    // the controller samples D - 1 clocks after the shifting edge): wrong data.
+    struct Early(sinedec::sim::cs_adc::CsAdc, [bool; 2]);
+    impl Slave for Early {
+        fn step(&mut self, conv: bool, sck: bool) -> bool {
+            self.step_lines(conv, sck)[0]
+        }
+        fn step_lines(&mut self, conv: bool, sck: bool) -> [bool; 2] {
+            let now = self.0.step(conv, sck);
+            std::mem::replace(&mut self.1, now)
+        }
+    }
+    let mut early = Early(ad7380(100e6, 6).with_codes(codes16(32)), [false; 2]);
+    let cycles = 3 + p.startup_clocks() as usize + 24 * p.period_clocks as usize + 1;
+    let run = closed_loop(&p, &mut early, &|k| (k < 3, true), cycles);
+    let lat = p.conv_to_valid_clocks() as usize;
+    let s = run.samples(16);
+    let wrong = s
+        .iter()
+        .filter(|&&(row, a, b)| {
+            !early.0.conversions().iter().any(|c| {
+                c.clock as usize + 1 + lat == row
+                    || (c.clock as usize + lat == row
+                        && [a, b] == [c.codes[0] as i64, c.codes[1] as i64])
+            })
+        })
+        .count();
+    assert!(wrong * 2 >= s.len(), "only {wrong} of {} wrong", s.len());
+}
+
+#[test]
+fn cosim_ads8354_and_ad7380() {
+    use sinedec::sim::{ad7380::ad7380, ads8354::ads8354};
+    let p = AdcParams::ads8354(100e6, 5, None);
+    let mut chip = ads8354(100e6, 5).with_codes(codes16(41));
+    let (run, wrong, _) = cs_closed_loop(&p, &mut chip, 8);
+    assert_eq!(wrong, 0);
+    cosim(&p, &run, "adc_ads8354");
+    let p = AdcParams::ad7380(100e6, 2, None);
+    let mut chip = ad7380(100e6, 6).with_codes(codes16(42));
+    let (run, wrong, _) = cs_closed_loop(&p, &mut chip, 8);
+    assert_eq!(wrong, 0);
+    cosim(&p, &run, "adc_ad7380");
 }

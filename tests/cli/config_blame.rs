@@ -343,3 +343,58 @@ fn biss_multiturn_bits_says_the_word_is_too_long() {
         &["biss.multiturn_bits", "12 + 27 = 39", "32"],
     );
 }
+
+/// The chip presets fix their frame and timing and have no pre-amplifier: `[preamp]`,
+/// `[adc.frame]`, `[adc.timing]` and `max_sample_rate_hz` are refused at the key written.
+#[test]
+fn chip_presets_refuse_preamp_frame_and_timing() {
+    for preset in ["ads8354", "ad7380"] {
+        let p = format!("preset = \"{preset}\"");
+        let t = default_with(&[
+            ("preset = \"ltc1407a-1\"", &p),
+            ("width = 14", "width = 16"),
+        ]);
+        expect_bad(
+            &t,
+            Kind::Value("preamp.gain_a"),
+            at(&t, "gain_a = -1"),
+            &["preamp", "ltc1407a-1"],
+        );
+        let with = |extra: &str| {
+            default_with(&[
+                ("preset = \"ltc1407a-1\"", &format!("{p}\n{extra}")),
+                ("width = 14", "width = 16"),
+                NO_PREAMP,
+            ])
+        };
+        let t = with("max_sample_rate_hz = 1e6");
+        expect_bad(
+            &t,
+            Kind::Value("adc.max_sample_rate_hz"),
+            at(&t, "max_sample_rate_hz = 1e6"),
+            &["adc.max_sample_rate_hz", preset, "generic"],
+        );
+        let t = with("").replacen(
+            "\n[cordic]",
+            "\n[adc.timing]\ndata_valid_ns = 5.0\n\n[cordic]",
+            1,
+        );
+        expect_bad(
+            &t,
+            Kind::Value("adc.timing"),
+            at(&t, "timing]"),
+            &["[adc.timing]", preset, "generic"],
+        );
+        let t = default_with(&[
+            ("preset = \"ltc1407a-1\"", &p),
+            ("width = 14", "width = 12"),
+            NO_PREAMP,
+        ]);
+        expect_bad(
+            &t,
+            Kind::Value("adc.width"),
+            at(&t, "width = 12"),
+            &["adc.width", "16"],
+        );
+    }
+}

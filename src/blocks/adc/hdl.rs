@@ -77,8 +77,10 @@ pub struct AdcController {
     pub rst: Signal<In, Bit>,
     /// Run enable; low behaves like reset (hold low until the preamp set-up is done).
     pub enable: Signal<In, Bit>,
-    /// Serial data from the ADC.
+    /// Serial data from the ADC (line A: every channel with one line, channel 0 with two).
     pub adc_miso: Signal<In, Bit>,
+    /// Serial data line B (channel 1) of a two-line ADC; absent (length 0) with one line.
+    pub adc_miso_b: Vec<Signal<In, Bit>>,
     /// Serial clock to the ADC.
     pub adc_sck: Signal<Out, Bit>,
     /// Conversion start (or chip select) to the ADC.
@@ -107,6 +109,9 @@ pub struct AdcController {
     /// clock after S is entered (`MISO_SAMPLE_LAG_CLOCKS`), the edge that also moves the
     /// pins of S: D clocks after the pin edge that shifted the bit out.
     miso_d: DFF<Bit>,
+    /// adc_miso_b registered the same way (length 1 with two lines, else 0): channel 1's
+    /// bits, sampled at the same edge as line A's.
+    miso_b_d: Vec<DFF<Bit>>,
     /// rst one clock late: the data registers are cleared with the pins, one clock after
     /// the state (see the module docs).
     rst_d: DFF<Bit>,
@@ -306,6 +311,9 @@ impl AdcController {
             rst: Default::default(),
             enable: Default::default(),
             adc_miso: Default::default(),
+            adc_miso_b: (1..f.lines.clamp(1, 2))
+                .map(|_| Default::default())
+                .collect(),
             adc_sck: Default::default(),
             adc_conv: Default::default(),
             out_valid: Default::default(),
@@ -324,6 +332,9 @@ impl AdcController {
             ch0_reg: Default::default(),
             ch1_reg: Default::default(),
             miso_d: Default::default(),
+            miso_b_d: (1..f.lines.clamp(1, 2))
+                .map(|_| Default::default())
+                .collect(),
             rst_d: Default::default(),
             cap0_d: Default::default(),
             cap1_d: Default::default(),
@@ -446,11 +457,13 @@ impl crate::cosim::step::Clocked for AdcController {
 impl crate::cosim::CosimBlock for AdcController {
     fn input_ports(&self) -> Vec<crate::cosim::Port> {
         use crate::cosim::Port;
-        vec![
+        let mut v = vec![
             Port::new("rst", 1),
             Port::new("enable", 1),
             Port::new("adc_miso", 1),
-        ]
+        ];
+        v.extend((0..self.adc_miso_b.len()).map(|k| Port::new(&format!("adc_miso_b_{k}"), 1)));
+        v
     }
     fn output_ports(&self) -> Vec<crate::cosim::Port> {
         use crate::cosim::Port;
@@ -466,6 +479,9 @@ impl crate::cosim::CosimBlock for AdcController {
         self.rst.next = r.first().copied().unwrap_or(0) != 0;
         self.enable.next = r.get(1).copied().unwrap_or(0) != 0;
         self.adc_miso.next = r.get(2).copied().unwrap_or(0) != 0;
+        for (k, s) in self.adc_miso_b.iter_mut().enumerate() {
+            s.next = r.get(3 + k).copied().unwrap_or(0) != 0;
+        }
     }
     fn sample(&self) -> Vec<u64> {
         vec![

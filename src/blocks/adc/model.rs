@@ -10,8 +10,10 @@ pub struct AdcIn {
     pub rst: bool,
     /// Run enable.
     pub enable: bool,
-    /// Serial data from the ADC.
+    /// Serial data from the ADC (line A).
     pub miso: bool,
+    /// Serial data line B (channel 1 of a two-line frame; ignored with one line).
+    pub miso_b: bool,
 }
 
 /// Outputs after one clock.
@@ -131,10 +133,12 @@ impl AdcModel {
         pend[2] = cap && slot == p.data_slots().1 && warm_n == 0;
         // The bits of the capture state entered at the previous step: `i.miso` is the level
         // sampled at the edge that moved its pins.
+        // With two lines channel 1 reads line B at the same edge.
+        let bits = [i.miso, if f.lines >= 2 { i.miso_b } else { i.miso }];
         let mut sr_n = self.sr;
         for (c, (sr, old)) in sr_n.iter_mut().zip(self.sr).enumerate().take(chans) {
             if self.pend[c] {
-                *sr = ((old << 1) | i.miso as u16) & wmask;
+                *sr = ((old << 1) | bits[c] as u16) & wmask;
             }
         }
         let flip = match f.sign {

@@ -6,6 +6,10 @@
 pub enum AdcChip {
     /// Linear Technology LTC1407A-1 (Spartan-3A/3AN Starter Kit).
     Ltc1407a1,
+    /// Texas Instruments ADS8354 (dual 16-bit, 700 ksps, SDO-A / SDO-B).
+    Ads8354,
+    /// Analog Devices AD7380 (dual 16-bit, 4 Msps, SDOA / SDOB).
+    Ad7380,
     /// Any other SPI ADC.
     Generic,
 }
@@ -21,6 +25,8 @@ impl std::fmt::Display for AdcChip {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
             AdcChip::Ltc1407a1 => "LTC1407A-1",
+            AdcChip::Ads8354 => "ADS8354",
+            AdcChip::Ad7380 => "AD7380",
             AdcChip::Generic => "generic SPI ADC",
         })
     }
@@ -54,6 +60,10 @@ pub struct AdcTiming {
     pub conv_to_sck_ns: f64,
     /// Minimum time from the SCK edge that ends a conversion to the next CONV edge.
     pub acquisition_ns: f64,
+    /// Conversion time from the sampling CONV / CS edge (0 = none, or counted in SCK edges):
+    /// with `pipeline` = 0 no bit of the conversion leaves before it; with `pipeline` >= 1
+    /// the next conversion starts no earlier.
+    pub conversion_ns: f64,
     /// SCK rising edges a conversion needs (the acquisition is counted from the last one;
     /// 0 = no such constraint).
     pub conversion_edges: u32,
@@ -75,8 +85,69 @@ impl AdcTiming {
         conv_min_low_ns: 15.0,
         conv_to_sck_ns: 3.0,
         acquisition_ns: 45.0,
+        conversion_ns: 0.0,
         conversion_edges: 32,
         max_sample_rate_hz: 1.5e6,
+    };
+
+    /// TI ADS8354 in its 32-CLK, dual-SDO mode. The ADS8354 data sheet's own tables could
+    /// not be consulted; the interface figures are those of its pin- and
+    /// interface-compatible sibling ADS8353-Q1 (TI SBAS931B, 6.6 Timing Requirements,
+    /// 32-CLK dual-SDO mode), each the conservative side for the ADS8354:
+    /// * SCK period >= 50 ns: fCLK <= 20 MHz (SBAS931B 6.6; a slower SCLK is always
+    ///   allowed, so the ADS8354's own, possibly higher, limit is not exceeded).
+    /// * SCK high and low >= 20 ns: tPH_CK, tPL_CK >= 0.4 tCLK at 50 ns (SBAS931B 6.6).
+    /// * Data valid 25 ns after the launching SCLK rising edge: tD_CKDO not found; the
+    ///   figure is half the 50 ns minimum SCLK period, the longest delay with which the
+    ///   part's own read at the next falling edge works (conservative); hold: none assumed.
+    /// * CS high >= 40 ns (tPH_CS, SBAS931B 6.6); CS falling to the first SCLK falling
+    ///   edge >= 15 ns (tSU_CSCK, SBAS931B 6.6). The last SCLK falling edge to CS rising
+    ///   (tD_CKCS >= 15 ns) is met by the CS framing of [`AdcParams::ads8354`].
+    /// * Conversion 730 ns from the CS falling edge (tCONV, SBAS931B 6.6; "the conversion
+    ///   is completed during the first 16 periods of SCLK", SBAS931B 7.5.3.2): the MSB,
+    ///   shifted out on the 16th SCLK rising edge, leaves no earlier.
+    /// * 700 ksps per channel (ADS8354 product description).
+    pub const ADS8354: AdcTiming = AdcTiming {
+        sck_min_period_ns: 50.0,
+        sck_max_period_ns: 0.0,
+        sck_min_pulse_ns: 20.0,
+        data_valid_ns: 25.0,
+        conv_min_pulse_ns: 0.0,
+        conv_min_low_ns: 40.0,
+        conv_to_sck_ns: 15.0,
+        acquisition_ns: 0.0,
+        conversion_ns: 730.0,
+        conversion_edges: 0,
+        max_sample_rate_hz: 700e3,
+    };
+
+    /// ADI AD7380 (data sheet AD7380-7381, as cited by the Linux IIO driver
+    /// `drivers/iio/adc/ad7380.c`, whose figures are used where the data sheet's tables
+    /// could not be consulted):
+    /// * SCK period >= 12.5 ns: 80 MHz SCLK (the driver's binding example,
+    ///   `spi-max-frequency = <80000000>`, SPI mode 3: `spi-cpol`, `spi-cpha`).
+    /// * SCK high and low >= 5.625 ns: not found; 0.45 x 12.5 ns assumed (the usual
+    ///   45 % duty limit of ADI SAR interfaces).
+    /// * Data valid 6.25 ns after the launching SCLK falling edge: not found; half the
+    ///   12.5 ns minimum period, the longest delay with which the part's own mode-3 read at
+    ///   the next rising edge works (conservative); hold: none assumed.
+    /// * CS high >= 10 ns (tCSH: the driver's `t_csh_ns = 10` for the 2-channel parts).
+    /// * CS falling to the first SCLK edge >= 10 ns: not found; 10 ns assumed.
+    /// * Conversion 190 ns from the CS falling edge (tCONVERT: the driver's
+    ///   `T_CONVERT_NS = 190`); the frame of a CS low carries the previous conversion.
+    /// * 4 Msps per channel (AD7380 product description: tCYC = 250 ns).
+    pub const AD7380: AdcTiming = AdcTiming {
+        sck_min_period_ns: 12.5,
+        sck_max_period_ns: 0.0,
+        sck_min_pulse_ns: 5.625,
+        data_valid_ns: 6.25,
+        conv_min_pulse_ns: 0.0,
+        conv_min_low_ns: 10.0,
+        conv_to_sck_ns: 10.0,
+        acquisition_ns: 0.0,
+        conversion_ns: 190.0,
+        conversion_edges: 0,
+        max_sample_rate_hz: 4e6,
     };
 }
 
@@ -87,7 +158,10 @@ pub struct AdcFrame {
     pub frame_sck: u32,
     /// Channels in the frame: 1 or 2.
     pub channels: u32,
-    /// Slot index (0-based SCK cycle) of each channel's MSB; MSB first.
+    /// Data lines: 1 (every channel on `adc_miso`) or 2 (two channels, channel 0 on
+    /// `adc_miso` = SDO-A, channel 1 on `adc_miso_b` = SDO-B, read at the same SCK edges).
+    pub lines: u32,
+    /// Slot index (0-based SCK cycle) of each channel's MSB on its line; MSB first.
     pub offsets: [u32; 2],
     /// Sample width W (10..=16).
     pub width: u32,
@@ -116,12 +190,56 @@ impl AdcFrame {
     pub const LTC1407A_1: AdcFrame = AdcFrame {
         frame_sck: 34,
         channels: 2,
+        lines: 1,
         offsets: [2, 18],
         width: 14,
         sign: SignFormat::TwosComplement,
         cpol: false,
         cpha: true,
         conv_active_high: true,
+        conv_clocks: 0,
+        lead_clocks: 0,
+        pipeline: 1,
+    };
+
+    /// The ADS8354 in 32-CLK, dual-SDO mode (ADS8353-Q1 SBAS931B 7.5.3.2.1, the same
+    /// interface): an active-low CS frames 32 SCLK cycles; its falling edge samples both
+    /// inputs and the conversion runs during the first 16 SCLK periods; SCLK idles high,
+    /// the device launches data on SCLK rising (trailing) edges and the host reads on the
+    /// falling ones (CPOL = 1, CPHA = 0); SDO-A carries channel A and SDO-B channel B,
+    /// MSB first from the 16th rising edge (slot 16 of each line) to the 32nd, of *this*
+    /// conversion (pipeline 0). Unipolar inputs: straight binary (offset binary around
+    /// mid-scale). CS stays low one clock past the frame (`AdcParams::ads8354`).
+    pub const ADS8354: AdcFrame = AdcFrame {
+        frame_sck: 32,
+        channels: 2,
+        lines: 2,
+        offsets: [16, 16],
+        width: 16,
+        sign: SignFormat::OffsetBinary,
+        cpol: true,
+        cpha: false,
+        conv_active_high: false,
+        conv_clocks: 0,
+        lead_clocks: 0,
+        pipeline: 0,
+    };
+
+    /// The AD7380 in 2-wire serial mode: an active-low CS frames 16 SCLK cycles; its
+    /// falling edge samples both inputs and starts the conversion, and the frame carries
+    /// the previous conversion (pipeline 1); SPI mode 3 (SCLK idle high, data launched on
+    /// falling = leading edges, read on rising ones); SDOA carries channel A and SDOB
+    /// channel B, MSB first in slot 0; fully differential inputs: two's complement.
+    pub const AD7380: AdcFrame = AdcFrame {
+        frame_sck: 16,
+        channels: 2,
+        lines: 2,
+        offsets: [0, 0],
+        width: 16,
+        sign: SignFormat::TwosComplement,
+        cpol: true,
+        cpha: true,
+        conv_active_high: false,
         conv_clocks: 0,
         lead_clocks: 0,
         pipeline: 1,
@@ -191,6 +309,54 @@ impl AdcParams {
         let p = Self::ltc1407a(clock_hz, d, None);
         p.validate()?;
         Ok(p)
+    }
+
+    /// A CS-framed preset chip (ADS8354, AD7380): `frame` with the lead clocks the chip's
+    /// CS-to-SCLK set-up needs at `clock_hz`, and CS active from the period start to one
+    /// clock past the last SCK cycle (so the last SCK edge is at least one SCK high time
+    /// plus a clock before CS rises).
+    fn cs_framed(
+        chip: AdcChip,
+        mut frame: AdcFrame,
+        timing: AdcTiming,
+        clock_hz: f64,
+        d: u32,
+        period_clocks: Option<u32>,
+    ) -> Self {
+        // Lead clocks: the fewest that give the chip's CS-to-first-SCLK set-up with the
+        // L = D - H idle-level clocks that precede the first SCK edge (see `validate`).
+        let idle = d.saturating_sub(d / 2);
+        frame.lead_clocks = ceil_clocks(timing.conv_to_sck_ns, clock_hz).saturating_sub(idle);
+        frame.conv_clocks = frame
+            .lead_clocks
+            .saturating_add(frame.frame_sck.saturating_mul(d))
+            .saturating_add(1);
+        Self::build(chip, clock_hz, frame, timing, d, period_clocks)
+    }
+
+    /// TI ADS8354 ([`AdcFrame::ADS8354`], [`AdcTiming::ADS8354`]) at `clock_hz`, SCK of
+    /// `sck_period_clocks`, period `period_clocks` (None: the shortest allowed).
+    pub fn ads8354(clock_hz: f64, sck_period_clocks: u32, period_clocks: Option<u32>) -> Self {
+        Self::cs_framed(
+            AdcChip::Ads8354,
+            AdcFrame::ADS8354,
+            AdcTiming::ADS8354,
+            clock_hz,
+            sck_period_clocks,
+            period_clocks,
+        )
+    }
+
+    /// ADI AD7380 ([`AdcFrame::AD7380`], [`AdcTiming::AD7380`]), as [`Self::ads8354`].
+    pub fn ad7380(clock_hz: f64, sck_period_clocks: u32, period_clocks: Option<u32>) -> Self {
+        Self::cs_framed(
+            AdcChip::Ad7380,
+            AdcFrame::AD7380,
+            AdcTiming::AD7380,
+            clock_hz,
+            sck_period_clocks,
+            period_clocks,
+        )
     }
 
     /// Any SPI ADC: frame format, chip limits, SCK divider and conversion period (None: the
@@ -264,6 +430,9 @@ impl AdcParams {
                 end.saturating_add(ceil_clocks(self.timing.acquisition_ns, self.clock_hz).max(1)),
             );
         }
+        if self.frame.pipeline >= 1 {
+            p = p.max(ceil_clocks(self.timing.conversion_ns, self.clock_hz));
+        }
         if self.timing.max_sample_rate_hz > 0.0 {
             p = p.max(Self::period_for_rate(
                 self.clock_hz,
@@ -271,6 +440,44 @@ impl AdcParams {
             ));
         }
         p
+    }
+
+    /// Shortest period the frame and the chip's times allow at this divider, without the
+    /// chip's rate limit: what the clock (SCK divider, whole clocks) alone sets.
+    fn clock_bound_period_clocks(&self) -> u32 {
+        let mut q = self.clone();
+        q.timing.max_sample_rate_hz = 0.0;
+        q.min_period_clocks()
+    }
+
+    /// What sets the sample rate reached, for `check`: the configured target, the chip's
+    /// per-channel limit, or the clock (the frame's SCK cycles at the SCK divider and the
+    /// chip's times in whole system clocks).
+    pub fn rate_bound(&self) -> String {
+        let fastest = self.min_period_clocks();
+        let by_clock = self.clock_bound_period_clocks();
+        let limit = self.timing.max_sample_rate_hz;
+        if self.period_clocks > fastest {
+            format!(
+                "the configured adc.sample_rate_hz (the fastest is {:.0} samples/s)",
+                self.clock_hz / fastest.max(1) as f64
+            )
+        } else if limit > 0.0 && by_clock < fastest {
+            format!(
+                "the {}'s limit of {limit:.0} samples/s per channel binds (the clock alone would allow {:.0})",
+                self.chip,
+                self.clock_hz / by_clock.max(1) as f64
+            )
+        } else {
+            format!(
+                "the clock binds: {} clocks per frame ({} SCK x {} clocks at {:.3} MHz, with the chip's times in whole clocks), below the {}'s limit of {limit:.0} samples/s",
+                by_clock,
+                self.frame.frame_sck,
+                self.sck_period_clocks,
+                self.clock_hz / 1e6,
+                self.chip
+            )
+        }
     }
 
     /// SCK idle-level clocks L = D - H.
@@ -399,6 +606,8 @@ impl AdcParams {
         let t = &self.timing;
         let name = match self.chip {
             AdcChip::Ltc1407a1 => "LTC1407A-1",
+            AdcChip::Ads8354 => "ADS8354",
+            AdcChip::Ad7380 => "AD7380",
             AdcChip::Generic => "ADC",
         };
         if !(self.clock_hz.is_finite() && self.clock_hz > 0.0) {
@@ -443,7 +652,13 @@ impl AdcParams {
                 )));
             }
         }
-        if f.channels == 2 {
+        if !(1..=2).contains(&f.lines) || f.lines > f.channels {
+            return Err(invalid(format!(
+                "{} data lines with {} channels: 1 line, or 2 lines with 2 channels (one per channel) are supported",
+                f.lines, f.channels
+            )));
+        }
+        if f.channels == 2 && f.lines == 1 {
             let (a, b) = (f.offsets[0], f.offsets[1]);
             if a < b.saturating_add(f.width) && b < a.saturating_add(f.width) {
                 return Err(invalid(format!(
@@ -557,6 +772,36 @@ impl AdcParams {
                 )));
             }
         }
+        if t.conversion_ns > 0.0 {
+            if f.pipeline == 0 {
+                // The first data bit leaves at its shifting pin edge (slot 0 of CPHA = 0
+                // at the CS edge itself), both pins one clock after their states.
+                let first = f.offsets[..f.channels as usize]
+                    .iter()
+                    .copied()
+                    .min()
+                    .unwrap_or(0);
+                let at = if first == 0 && !f.cpha {
+                    0
+                } else {
+                    self.shift_clock(first)
+                };
+                if (at as f64 * ns) + 1e-9 < t.conversion_ns {
+                    return Err(invalid(format!(
+                        "SCK period of {d} clocks shifts the first data bit out {:.1} ns after CS, before the {name} conversion time of {} ns ends; use an SCK period of at least {} clocks",
+                        at as f64 * ns,
+                        t.conversion_ns,
+                        d + 1
+                    )));
+                }
+            } else if (p as f64 * ns) + 1e-9 < t.conversion_ns {
+                return Err(invalid(format!(
+                    "conversion period of {p} clocks is shorter than the {name} conversion time of {} ns; the shortest allowed is {}",
+                    t.conversion_ns,
+                    self.min_period_clocks()
+                )));
+            }
+        }
         if t.max_sample_rate_hz > 0.0
             && self.sample_rate_hz() > t.max_sample_rate_hz * (1.0 + 1e-12)
         {
@@ -577,7 +822,7 @@ impl AdcParams {
              system clock                {:.3} MHz\n\
              SCK                         {:.3} MHz ({} clocks: {} high, {} low)\n\
              conversion period           {} clocks ({:.1} ns)\n\
-             sample rate per channel     {:.0} samples/s\n\
+             sample rate per channel     {:.0} samples/s ({})\n\
              ADC latency CONV -> sample  {} clocks ({:.1} ns)\n\
              first sample after reset    {} clocks\n",
             self.chip,
@@ -589,6 +834,7 @@ impl AdcParams {
             self.period_clocks,
             self.period_clocks as f64 * 1e9 / self.clock_hz,
             self.sample_rate_hz(),
+            self.rate_bound(),
             self.conv_to_valid_clocks(),
             self.conv_to_valid_s() * 1e9,
             self.startup_clocks(),

@@ -1,5 +1,6 @@
 //! The ADC's tables: the chip preset, `[adc]`, `[adc.frame]` and `[adc.timing]` (preset
-//! `generic`), and `[preamp]` (preset `ltc1407a-1`).
+//! `generic`), and `[preamp]` (preset `ltc1407a-1`). `ads8354` and `ad7380` have fixed
+//! frames and timing (`crate::blocks::adc::AdcFrame`, `AdcTiming`) and no pre-amplifier.
 
 use super::*;
 
@@ -9,6 +10,12 @@ pub enum AdcPreset {
     /// LTC1407A-1: dual 14-bit, 3 Msps total (1.5 Msps per channel).
     #[serde(rename = "ltc1407a-1")]
     Ltc1407a1,
+    /// TI ADS8354: dual 16-bit, 700 ksps per channel, CS framing, SDO-A / SDO-B.
+    #[serde(rename = "ads8354")]
+    Ads8354,
+    /// ADI AD7380: dual 16-bit, 4 Msps per channel, CS framing, SDOA / SDOB.
+    #[serde(rename = "ad7380")]
+    Ad7380,
     /// Any other SPI ADC (limits come from `adc.max_sample_rate_hz`).
     #[serde(rename = "generic")]
     Generic,
@@ -50,6 +57,9 @@ pub struct FrameConfig {
     pub frame_sck: Option<u32>,
     /// Channels: 1 or 2 (default 2).
     pub channels: Option<u32>,
+    /// Data lines: 1 (default: every channel on `adc_miso`) or 2 (channel 0 on
+    /// `adc_miso`, channel 1 on `adc_miso_b`, at the same SCK edges).
+    pub lines: Option<u32>,
     /// Slot of each channel's MSB (default [1, W + 2]); one entry per channel (a
     /// one-channel frame may keep an unused second one).
     pub offsets: Option<Vec<u32>>,

@@ -19,6 +19,10 @@ pub const F50: f64 = 50e6;
 /// The pins a slave model sees each clock and answers with the MISO level of the next edge.
 pub trait Slave {
     fn step(&mut self, conv: bool, sck: bool) -> bool;
+    /// Both data lines (A, B) of a two-line chip; line B is low on a one-line chip.
+    fn step_lines(&mut self, conv: bool, sck: bool) -> [bool; 2] {
+        [self.step(conv, sck), false]
+    }
 }
 
 impl Slave for Ltc1407a {
@@ -65,7 +69,8 @@ pub fn closed_loop(
     let mut uut = AdcController::new(p);
     prepare(&mut uut).expect("settles");
     let mut model = AdcModel::new(p);
-    let mut miso = false;
+    let mut miso = [false; 2];
+    let two = p.frame.lines >= 2;
     let mut run = Run {
         rows: Vec::with_capacity(cycles),
         outs: Vec::with_capacity(cycles),
@@ -74,7 +79,10 @@ pub fn closed_loop(
         let (rst, en) = sched(k);
         uut.rst.next = rst;
         uut.enable.next = en;
-        uut.adc_miso.next = miso;
+        uut.adc_miso.next = miso[0];
+        for b in uut.adc_miso_b.iter_mut() {
+            b.next = miso[1];
+        }
         tick(&mut uut).expect("settles");
         let o = vec![
             uut.adc_sck.val() as u64,
@@ -86,11 +94,16 @@ pub fn closed_loop(
         let m = model.step(AdcIn {
             rst,
             enable: en,
-            miso,
+            miso: miso[0],
+            miso_b: miso[1],
         });
         assert_eq!(o, m.row(), "rust-hdl vs model at clock {k}");
-        run.rows.push(vec![rst as u64, en as u64, miso as u64]);
-        miso = chip.step(o[1] == 1, o[0] == 1);
+        let mut row = vec![rst as u64, en as u64, miso[0] as u64];
+        if two {
+            row.push(miso[1] as u64);
+        }
+        run.rows.push(row);
+        miso = chip.step_lines(o[1] == 1, o[0] == 1);
         run.outs.push(o);
     }
     run
@@ -220,6 +233,9 @@ impl Slave for SpiAdc {
     fn step(&mut self, conv: bool, sck: bool) -> bool {
         SpiAdc::step(self, conv, sck)
     }
+    fn step_lines(&mut self, conv: bool, sck: bool) -> [bool; 2] {
+        SpiAdc::step_lines(self, conv, sck)
+    }
 }
 
 pub fn generic_timing() -> AdcTiming {
@@ -232,6 +248,7 @@ pub fn generic_timing() -> AdcTiming {
         conv_min_low_ns: 30.0,
         conv_to_sck_ns: 10.0,
         acquisition_ns: 0.0,
+        conversion_ns: 0.0,
         conversion_edges: 0,
         max_sample_rate_hz: 1.0e6,
     }
@@ -243,6 +260,7 @@ pub fn generic_one_channel() -> AdcParams {
     let mut f = AdcFrame {
         frame_sck: 18,
         channels: 1,
+        lines: 1,
         offsets: [1, 0],
         width: 16,
         sign: SignFormat::OffsetBinary,
@@ -263,6 +281,7 @@ pub fn generic_two_channels() -> AdcParams {
     let f = AdcFrame {
         frame_sck: 30,
         channels: 2,
+        lines: 1,
         offsets: [3, 16],
         width: 12,
         sign: SignFormat::TwosComplement,
@@ -277,6 +296,32 @@ pub fn generic_two_channels() -> AdcParams {
     p.sck_high_clocks = 1;
     p.period_clocks = p.min_period_clocks() + 3;
     p
+}
+
+/// Two channels on two data lines (SDO-A, SDO-B), 16-bit two's complement, MSB in slot 1
+/// of each line, SCK idle high, data on leading (falling) edges, active-low chip select
+/// framing the whole 18-SCK transfer, D = 4 (30 ns: the 26 ns round trip with the 15 ns
+/// data-valid delay of `generic_timing`), lead 1.
+pub fn generic_two_lines() -> AdcParams {
+    let mut f = AdcFrame {
+        frame_sck: 18,
+        channels: 2,
+        lines: 2,
+        offsets: [1, 1],
+        width: 16,
+        sign: SignFormat::TwosComplement,
+        cpol: true,
+        cpha: true,
+        conv_active_high: false,
+        conv_clocks: 0,
+        lead_clocks: 1,
+        pipeline: 0,
+    };
+    f.conv_clocks = f.lead_clocks + f.frame_sck * 4 + 1;
+    let mut t = generic_timing();
+    t.sck_min_period_ns = 20.0;
+    t.sck_min_pulse_ns = 5.0;
+    AdcParams::generic(F133, f, t, 4, None)
 }
 
 pub fn generic_codes(w: u32, n: usize, seed: u64) -> Vec<[i32; 2]> {
@@ -420,4 +465,64 @@ pub fn generic_wrong_samples(
         })
         .count();
     (wrong, s.len())
+}
+
+// ---------------------------------------------------------------------------------------
+// CS-framed dual-SDO chips (ADS8354, AD7380).
+
+impl Slave for sinedec::sim::cs_adc::CsAdc {
+    fn step(&mut self, conv: bool, sck: bool) -> bool {
+        sinedec::sim::cs_adc::CsAdc::step(self, conv, sck)[0]
+    }
+    fn step_lines(&mut self, conv: bool, sck: bool) -> [bool; 2] {
+        sinedec::sim::cs_adc::CsAdc::step(self, conv, sck)
+    }
+}
+
+/// Every delivered sample equals the conversion whose CS falling edge lies exactly the
+/// predicted latency earlier; returns how many were checked.
+pub fn check_against_cs_chip(
+    p: &AdcParams,
+    run: &Run,
+    chip: &sinedec::sim::cs_adc::CsAdc,
+) -> usize {
+    let lat = p.conv_to_valid_clocks() as usize;
+    let s = run.samples(p.frame.width);
+    for &(row, a, b) in &s {
+        let c = chip
+            .conversions()
+            .iter()
+            .find(|c| c.clock as usize + lat == row)
+            .unwrap_or_else(|| {
+                panic!("no CS falling edge {lat} clocks before the sample at row {row}")
+            });
+        assert_eq!(
+            [a, b],
+            [c.codes[0] as i64, c.codes[1] as i64],
+            "sample at row {row}"
+        );
+    }
+    s.len()
+}
+
+/// The controller of `p` against `chip` for `n` samples after a reset; returns the run,
+/// the samples that differ from the codes the chip sampled, and the samples delivered.
+pub fn cs_closed_loop(
+    p: &AdcParams,
+    chip: &mut sinedec::sim::cs_adc::CsAdc,
+    n: usize,
+) -> (Run, usize, usize) {
+    let cycles = 3 + p.startup_clocks() as usize + (n - 1) * p.period_clocks as usize + 1;
+    let run = closed_loop(p, chip, &|k| (k < 3, true), cycles);
+    let lat = p.conv_to_valid_clocks() as usize;
+    let s = run.samples(p.frame.width);
+    let wrong = s
+        .iter()
+        .filter(|&&(row, a, b)| {
+            !chip.conversions().iter().any(|c| {
+                c.clock as usize + lat == row && [a, b] == [c.codes[0] as i64, c.codes[1] as i64]
+            })
+        })
+        .count();
+    (run, wrong, s.len())
 }

@@ -221,6 +221,17 @@ impl stages::PinsCapture for AdcController {
             self.shifted1.next =
                 ((self.sr1.q.val() << self.one16.val()) | self.one16.val()) & self.wmask.val();
         }
+        // Two data lines: channel 1 shifts line B's bit, sampled at the same edge as line
+        // A's (no loop body with one line).
+        for i in 0..self.miso_b_d.len() {
+            self.miso_b_d[i].clock.next = self.clk.val();
+            self.miso_b_d[i].d.next = self.adc_miso_b[i].val();
+            self.shifted1.next = (self.sr1.q.val() << self.one16.val()) & self.wmask.val();
+            if self.miso_b_d[i].q.val() {
+                self.shifted1.next =
+                    ((self.sr1.q.val() << self.one16.val()) | self.one16.val()) & self.wmask.val();
+            }
+        }
         self.sr0_n.next = self.sr0.q.val();
         if self.cap0_d.q.val() {
             self.sr0_n.next = self.shifted0.val();
