@@ -63,6 +63,18 @@ impl AdcChipModel {
         }
     }
 
+    /// The protocol violations recorded so far, as messages (none for the generic model,
+    /// which has no limits of its own).
+    pub fn violation_messages(&self) -> Vec<String> {
+        match self {
+            AdcChipModel::Ltc1407a(m) => m.violations().iter().map(|v| v.message.clone()).collect(),
+            AdcChipModel::Ads8354(m) | AdcChipModel::Ad7380(m) => {
+                m.violations().iter().map(|v| v.message.clone()).collect()
+            }
+            AdcChipModel::Generic(..) => Vec::new(),
+        }
+    }
+
     /// The number of protocol violations recorded so far (0 for the generic model, which
     /// has no limits of its own).
     pub fn violation_count(&self) -> usize {

@@ -16,11 +16,11 @@ use crate::blocks::sext;
 use crate::blocks::top::hdl::TopRtl;
 use crate::config::Derived;
 use crate::cosim::step::NoConvergence;
+use crate::sim::adc_chip::{adc_chip_model, AdcChipModel};
 use crate::sim::dut::{Dut, EngineKind, IN_PINS, OUT_PINS};
 use crate::sim::encoder::EncoderModel;
 use crate::sim::ltc1407a::Ltc1407a;
 use crate::sim::ltc6912::Ltc6912;
-use crate::sim::spi_adc::SpiAdc;
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 
@@ -467,73 +467,30 @@ impl SimResult {
     }
 }
 
-/// The ADC chip model of the configured preset, answering the top's frames.
-enum AdcChip {
-    /// The LTC1407A-1 of the Starter Kit (behind the LTC6912-1 pre-amplifier).
-    Ltc1407a(Box<Ltc1407a>),
-    /// A generic SPI ADC described by its frame (`[adc.frame]`).
-    Spi(Box<SpiAdc>),
-}
-
-impl AdcChip {
-    /// The chip for `d`'s preset, converting `encoder`'s voltages.
-    fn new(d: &Derived, encoder: EncoderModel) -> AdcChip {
-        let pins = crate::sim::adc_pins::PinTiming::from_io(&d.io_timing);
-        let mut enc = encoder;
-        match &d.preamp {
-            Some(pre) => {
-                let gains = [pre.gain_a as f64, pre.gain_b as f64];
-                AdcChip::Ltc1407a(Box::new(
-                    Ltc1407a::new(d.clock_hz, 7).with_pins(pins).with_voltages(
-                        gains,
-                        move |_k, t| {
-                            let (s, c) = enc.voltages(t);
-                            [s, c]
-                        },
-                    ),
-                ))
+/// The ADC chip model of the configured preset ([`crate::sim::adc_chip`]), converting the
+/// encoder's voltages: through the LTC6912-1's gains on the kit, else with the encoder's
+/// swing about 1.65 V at the ADC's full scale.
+fn adc_chip(d: &Derived, encoder: EncoderModel) -> AdcChipModel {
+    let mut enc = encoder;
+    let w = d.adc_width;
+    let gains = d
+        .preamp
+        .as_ref()
+        .map(|p| [p.gain_a as f64, p.gain_b as f64]);
+    adc_chip_model(
+        d,
+        7,
+        Box::new(move |_k, t| {
+            let (s, c) = enc.voltages(t);
+            match gains {
+                Some(g) => [
+                    Ltc1407a::code_from_voltage(s, g[0]) as i32,
+                    Ltc1407a::code_from_voltage(c, g[1]) as i32,
+                ],
+                None => [full_scale_code(s, w), full_scale_code(c, w)],
             }
-            None => {
-                let (w, clock_hz) = (d.adc_width, d.clock_hz);
-                AdcChip::Spi(Box::new(SpiAdc::new(
-                    &d.adc,
-                    pins,
-                    Box::new(move |k| {
-                        let (s, c) = enc.voltages(k as f64 / clock_hz);
-                        [full_scale_code(s, w), full_scale_code(c, w)]
-                    }),
-                )))
-            }
-        }
-    }
-
-    /// One system clock (see `Ltc1407a::step`): the levels at the data lines A and B the
-    /// FPGA reads at the next edge, and whether a conversion started.
-    fn step(&mut self, conv: bool, sck: bool) -> (bool, bool, bool) {
-        match self {
-            AdcChip::Ltc1407a(a) => {
-                let miso = a.step(conv, sck);
-                let started = !a.conversions().is_empty();
-                a.clear_conversions();
-                (miso, false, started)
-            }
-            AdcChip::Spi(a) => {
-                let n = a.taken().len();
-                let miso = a.step(conv, sck);
-                let started = a.taken().len() > n;
-                a.forget_old();
-                (miso, false, started)
-            }
-        }
-    }
-
-    /// The protocol violations the chip recorded.
-    fn violations(&self) -> Vec<String> {
-        match self {
-            AdcChip::Ltc1407a(a) => a.violations().iter().map(|v| v.message.clone()).collect(),
-            AdcChip::Spi(_) => Vec::new(),
-        }
-    }
+        }),
+    )
 }
 
 /// The code of a W-bit ADC for an encoder voltage `v`: the encoder's signals swing about
@@ -551,7 +508,7 @@ fn full_scale_code(v: f64, w: u32) -> i32 {
 pub struct System {
     d: Derived,
     top: Dut<TopRtl>,
-    adc: AdcChip,
+    adc: AdcChipModel,
     /// The LTC6912-1 pre-amplifier (with `[preamp]`).
     amp: Option<Ltc6912>,
     truth: EncoderModel,
@@ -592,7 +549,7 @@ impl System {
     ) -> crate::error::Result<System> {
         let top = Dut::new(d, engine, &IN_PINS, &OUT_PINS)?;
         let truth = encoder.clone();
-        let adc = AdcChip::new(d, encoder);
+        let adc = adc_chip(d, encoder);
         Ok(System {
             d: d.clone(),
             top,
@@ -783,8 +740,8 @@ impl System {
             let sck = self.top.get(O_SCK) != 0;
             // Conversions are counted here and forgotten: a long run keeps no per-sample
             // history.
-            let (miso, miso_b, started) = self.adc.step(conv, sck);
-            if started {
+            let [miso, miso_b] = self.adc.step(conv, sck);
+            if self.adc.take_conversion() {
                 self.conv_times
                     .insert(self.cycle, self.cycle as f64 / self.clock_hz);
             }
@@ -935,7 +892,7 @@ impl System {
 
     /// Finishes the run and returns its result.
     pub fn finish(mut self) -> SimResult {
-        self.result.adc_violations = self.adc.violations();
+        self.result.adc_violations = self.adc.violation_messages();
         self.result.abz = self.abz.as_ref().map(|c| c.figures);
         if let Some(amp) = &self.amp {
             self.result.amp_violations =

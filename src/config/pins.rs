@@ -104,8 +104,11 @@ impl BoardConfig {
 
 /// Data lines of the configured ADC: 2 when channel 1 has a line of its own (`adc_miso_b`).
 pub fn adc_data_lines(c: &Config) -> u32 {
-    let _ = c;
-    1
+    match c.adc.preset {
+        AdcPreset::Ads8354 | AdcPreset::Ad7380 => 2,
+        AdcPreset::Ltc1407a1 => 1,
+        AdcPreset::Generic => c.adc.frame.as_ref().and_then(|f| f.lines).unwrap_or(1),
+    }
 }
 
 /// The ABZ emulator's outputs (`[abz] enabled`): the rtl's optional outputs `abz_*_0`,

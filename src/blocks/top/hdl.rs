@@ -212,6 +212,10 @@ impl Logic for TopRtl {
             self.sf_ce0.next = self.preamp[i].sf_ce0.val();
         }
         self.adc.adc_miso.next = self.adc_miso.val();
+        // The second data line (channel 1) of a two-line ADC.
+        for i in 0..self.adc.adc_miso_b.len() {
+            self.adc.adc_miso_b[i].next = self.adc_miso_b.val();
+        }
         self.core.clk.next = self.clk.val();
         self.core.rst.next = self.rst.val();
         self.correction.clk.next = self.clk.val();
