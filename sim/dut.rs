@@ -19,13 +19,22 @@ use crate::engine::{Engine, Kind};
 use crate::error::{Error, Result};
 
 /// Inputs the sinewave loop drives, in index order ([`Dut::set`]).
-pub const IN_PINS: [&str; 9] = [
-    "rst", "adc_miso", "biss_ma", "qep_a", "qep_b", "qep_z", "ssi_clk", "enc_sck", "enc_cs_n",
+pub const IN_PINS: [&str; 10] = [
+    "rst",
+    "adc_miso",
+    "biss_ma",
+    "qep_a",
+    "qep_b",
+    "qep_z",
+    "ssi_clk",
+    "enc_sck",
+    "enc_cs_n",
+    "adc_miso_b",
 ];
 /// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
 /// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
-/// `[velocity] enabled`) and read 0 without them.
-pub const OUT_PINS: [&str; 16] = [
+/// `[velocity] enabled`, and the ABZ emulator's, with `[abz] enabled`) and read 0 without them.
+pub const OUT_PINS: [&str; 19] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -42,6 +51,9 @@ pub const OUT_PINS: [&str; 16] = [
     "enc_miso",
     "par_velocity_0",
     "par_velocity_valid_0",
+    "abz_a_0",
+    "abz_b_0",
+    "abz_z_0",
 ];
 /// Inputs the capacitive loop drives, in index order.
 pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
@@ -60,7 +72,7 @@ pub const CAP_OUT_PINS: [&str; 11] = [
     "par_warning",
 ];
 /// How many of the last [`OUT_PINS`] are optional (read 0 when the top lacks them).
-pub const OPTIONAL_OUT_PINS: usize = 2;
+pub const OPTIONAL_OUT_PINS: usize = 5;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -20,6 +20,7 @@ use crate::sim::dut::{Dut, EngineKind, IN_PINS, OUT_PINS};
 use crate::sim::encoder::EncoderModel;
 use crate::sim::ltc1407a::Ltc1407a;
 use crate::sim::ltc6912::Ltc6912;
+use crate::sim::spi_adc::SpiAdc;
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 
@@ -33,6 +34,7 @@ const I_QEP_Z: usize = 5;
 const I_SSI_CLK: usize = 6;
 const I_ENC_SCK: usize = 7;
 const I_ENC_CS_N: usize = 8;
+const I_MISO_B: usize = 9;
 const O_CONV: usize = 0;
 const O_SCK: usize = 1;
 const O_AMP_CS: usize = 2;
@@ -49,6 +51,98 @@ const O_WARNING: usize = 12;
 const O_ENC_MISO: usize = 13;
 const O_VELOCITY: usize = 14;
 const O_VELOCITY_VALID: usize = 15;
+const O_ABZ_A: usize = 16;
+const O_ABZ_B: usize = 17;
+const O_ABZ_Z: usize = 18;
+
+/// What a quadrature counter on `abz_a`/`abz_b` read over a run (`[abz] enabled`), against
+/// the position on the parallel bus.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AbzCount {
+    /// A/B edges seen.
+    pub edges: u64,
+    /// Transitions where A and B changed at once (a count lost).
+    pub illegal: u64,
+    /// Rising edges of Z.
+    pub index_pulses: u64,
+    /// The largest distance, in edges, between the counter and floor(position * E / P) at a
+    /// `par_valid` (the emulator's catch-up lag; E edges per turn, P positions per turn).
+    pub max_lag: i64,
+    /// That distance at the last `par_valid`.
+    pub last_lag: i64,
+    /// The counter (edges, signed, from 0 at reset).
+    count: i64,
+    /// (A, B, Z) at the previous clock.
+    prev: (bool, bool, bool),
+}
+
+impl AbzCount {
+    /// Gray index of (A, B): 00 -> 0, 10 -> 1, 11 -> 2, 01 -> 3 (A leads B forward).
+    fn gray(a: bool, b: bool) -> i64 {
+        match (a, b) {
+            (false, false) => 0,
+            (true, false) => 1,
+            (true, true) => 2,
+            (false, true) => 3,
+        }
+    }
+
+    /// One clock's levels.
+    fn step(&mut self, a: bool, b: bool, z: bool) {
+        let (pa, pb, pz) = self.prev;
+        match (Self::gray(a, b) - Self::gray(pa, pb)).rem_euclid(4) {
+            0 => {}
+            1 => {
+                self.count += 1;
+                self.edges += 1;
+            }
+            3 => {
+                self.count -= 1;
+                self.edges += 1;
+            }
+            _ => self.illegal += 1,
+        }
+        if z && !pz {
+            self.index_pulses += 1;
+        }
+        self.prev = (a, b, z);
+    }
+
+    /// The counter against the single-turn `position` at a `par_valid`.
+    fn compare(&mut self, p: &crate::blocks::abz::AbzParams, position: u64) {
+        let e = 4 * p.lines() as i64;
+        let expected = ((position as u128 * e as u128) / p.positions() as u128) as i64;
+        let mut lag = (self.count - expected).rem_euclid(e);
+        if lag > e / 2 {
+            lag -= e;
+        }
+        self.last_lag = lag;
+        self.max_lag = self.max_lag.max(lag.abs());
+    }
+}
+
+/// What the BiSS-C master model read over a run ([`System::monitor_biss`]), against the
+/// parallel bus.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BissCheck {
+    /// MA frequency, Hz.
+    pub ma_hz: u64,
+    /// Frames the master finished.
+    pub frames: u64,
+    /// Frames read completely with a good CRC.
+    pub good: u64,
+    /// Frames read completely whose CRC was wrong.
+    pub crc_errors: u64,
+    /// Frames the master could not read (no Ack or Start, the slave not ready).
+    pub failed: u64,
+    /// Good frames whose position and turn count equal neither of the parallel bus's two
+    /// latest positions when the slave latched (its first MA edge plus the synchronizer).
+    pub position_mismatches: u64,
+}
+
+/// Parallel-bus positions kept for [`BissCheck`]: a frame ends a few samples after its
+/// latch.
+const PAR_HISTORY: usize = 64;
 
 /// One decoded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,6 +186,10 @@ pub struct SimResult {
     pub records: Vec<Record>,
     /// Velocity updates in order (empty without `[velocity] enabled`).
     pub velocity: Vec<VelRecord>,
+    /// The quadrature counter on the ABZ outputs (with `[abz] enabled`).
+    pub abz: Option<AbzCount>,
+    /// The BiSS-C master's frames against the parallel bus ([`System::monitor_biss`]).
+    pub biss: Option<BissCheck>,
     /// Clock cycles simulated.
     pub cycles: u64,
     /// Decoded samples whose conversion could not be found at the expected latency.
@@ -182,7 +280,7 @@ pub struct ErrorStats {
 
 impl SimResult {
     /// The constant offset between the decoded and the true position, in fine LSB, fixed
-    /// by the first record: two quadrants (the inverting pre-amplifier turns the vector by
+    /// by the first record: two quadrants with the pre-amplifier (it inverts, turning the vector by
     /// two quadrants) plus the whole signal periods that make the first sample's error
     /// smallest (the first sample fixes which signal period counts as period 0).
     pub fn offset_lsb(&self, d: &Derived) -> f64 {
@@ -197,8 +295,11 @@ impl SimResult {
     fn offset_of(d: &Derived, first: &Record) -> f64 {
         let q = (1u64 << d.fine_bits) as f64;
         let period = 4.0 * q;
-        let raw = first.unwrapped as f64 - first.truth - 2.0 * q;
-        2.0 * q + period * (raw / period).round()
+        // The inverting pre-amplifier turns the vector by two quadrants; without it the
+        // ADC's codes follow the encoder's signals.
+        let turned = if d.preamp.is_some() { 2.0 * q } else { 0.0 };
+        let raw = first.unwrapped as f64 - first.truth - turned;
+        turned + period * (raw / period).round()
     }
 
     /// Error of record `r` in fine LSB: decoded - truth - [`offset_lsb`](Self::offset_lsb),
@@ -314,12 +415,93 @@ impl SimResult {
     }
 }
 
+/// The ADC chip model of the configured preset, answering the top's frames.
+enum AdcChip {
+    /// The LTC1407A-1 of the Starter Kit (behind the LTC6912-1 pre-amplifier).
+    Ltc1407a(Box<Ltc1407a>),
+    /// A generic SPI ADC described by its frame (`[adc.frame]`).
+    Spi(Box<SpiAdc>),
+}
+
+impl AdcChip {
+    /// The chip for `d`'s preset, converting `encoder`'s voltages.
+    fn new(d: &Derived, encoder: EncoderModel) -> AdcChip {
+        let pins = crate::sim::adc_pins::PinTiming::from_io(&d.io_timing);
+        let mut enc = encoder;
+        match &d.preamp {
+            Some(pre) => {
+                let gains = [pre.gain_a as f64, pre.gain_b as f64];
+                AdcChip::Ltc1407a(Box::new(
+                    Ltc1407a::new(d.clock_hz, 7).with_pins(pins).with_voltages(
+                        gains,
+                        move |_k, t| {
+                            let (s, c) = enc.voltages(t);
+                            [s, c]
+                        },
+                    ),
+                ))
+            }
+            None => {
+                let (w, clock_hz) = (d.adc_width, d.clock_hz);
+                AdcChip::Spi(Box::new(SpiAdc::new(
+                    &d.adc,
+                    pins,
+                    Box::new(move |k| {
+                        let (s, c) = enc.voltages(k as f64 / clock_hz);
+                        [full_scale_code(s, w), full_scale_code(c, w)]
+                    }),
+                )))
+            }
+        }
+    }
+
+    /// One system clock (see `Ltc1407a::step`): the levels at the data lines A and B the
+    /// FPGA reads at the next edge, and whether a conversion started.
+    fn step(&mut self, conv: bool, sck: bool) -> (bool, bool, bool) {
+        match self {
+            AdcChip::Ltc1407a(a) => {
+                let miso = a.step(conv, sck);
+                let started = !a.conversions().is_empty();
+                a.clear_conversions();
+                (miso, false, started)
+            }
+            AdcChip::Spi(a) => {
+                let n = a.taken().len();
+                let miso = a.step(conv, sck);
+                let started = a.taken().len() > n;
+                a.forget_old();
+                (miso, false, started)
+            }
+        }
+    }
+
+    /// The protocol violations the chip recorded.
+    fn violations(&self) -> Vec<String> {
+        match self {
+            AdcChip::Ltc1407a(a) => a.violations().iter().map(|v| v.message.clone()).collect(),
+            AdcChip::Spi(_) => Vec::new(),
+        }
+    }
+}
+
+/// The code of a W-bit ADC for an encoder voltage `v`: the encoder's signals swing about
+/// 1.65 V, and 1.25 V from there is the ADC's full scale (as on the kit at gain -1).
+fn full_scale_code(v: f64, w: u32) -> i32 {
+    let half = (1i64 << (w - 1)) as f64;
+    let d = ((v - 1.65) / 1.25 * half).round();
+    if d.is_nan() {
+        return 0;
+    }
+    d.clamp(-half, half - 1.0) as i32
+}
+
 /// The closed loop.
 pub struct System {
     d: Derived,
     top: Dut<TopRtl>,
-    adc: Ltc1407a,
-    amp: Ltc6912,
+    adc: AdcChip,
+    /// The LTC6912-1 pre-amplifier (with `[preamp]`).
+    amp: Option<Ltc6912>,
     truth: EncoderModel,
     conv_times: HashMap<u64, f64>,
     cycle: u64,
@@ -332,6 +514,10 @@ pub struct System {
     ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     spi: Option<std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>>,
     qep_b_stuck: Option<(f64, f64)>,
+    /// The BiSS-C master whose frames [`BissCheck`] checks.
+    biss: Option<std::rc::Rc<std::cell::RefCell<crate::sim::biss_master::BissMaster>>>,
+    /// (cycle, BiSS position word, turns) of the latest parallel-bus positions.
+    par_history: std::collections::VecDeque<(u64, u64, u64)>,
     trace: Option<crate::sim::vcd::TopTrace>,
     trace_error: Option<std::io::Error>,
 }
@@ -351,39 +537,30 @@ impl System {
         engine: EngineKind,
     ) -> crate::error::Result<System> {
         let top = Dut::new(d, engine, &IN_PINS, &OUT_PINS)?;
-        let pre = d
-            .preamp
-            .as_ref()
-            .ok_or_else(|| crate::error::Error::ModelParams {
-                model: "sinewave system".into(),
-                message: "needs the LTC1407A-1 preset".into(),
-            })?;
-        let gains = [pre.gain_a as f64, pre.gain_b as f64];
         let truth = encoder.clone();
-        let mut enc = encoder;
-        let adc = Ltc1407a::new(d.clock_hz, 7)
-            .with_pins(crate::sim::adc_pins::PinTiming::from_io(&d.io_timing))
-            .with_voltages(gains, move |_k, t| {
-                let (s, c) = enc.voltages(t);
-                [s, c]
-            });
+        let adc = AdcChip::new(d, encoder);
         Ok(System {
             d: d.clone(),
             top,
             adc,
-            amp: Ltc6912::new(d.clock_hz),
+            amp: d.preamp.as_ref().map(|_| Ltc6912::new(d.clock_hz)),
+            result: SimResult {
+                abz: d.abz.as_ref().map(|_| AbzCount::default()),
+                ..SimResult::default()
+            },
             truth,
             conv_times: HashMap::new(),
             cycle: 0,
             latency: crate::blocks::top::hdl::conv_to_position_cycles(d) as u64,
             clock_hz: d.clock_hz,
-            result: SimResult::default(),
             rst_cycles: 2,
             record_inputs: false,
             ma: None,
             ssi: None,
             spi: None,
             qep_b_stuck: None,
+            biss: None,
+            par_history: std::collections::VecDeque::new(),
             trace: None,
             trace_error: None,
         })
@@ -429,6 +606,77 @@ impl System {
     /// without one).
     pub fn attach_master(&mut self, m: Box<dyn crate::sim::serial_line::LineMaster>) {
         self.ma = Some(m);
+    }
+
+    /// Connects a BiSS-C master that reads frames back to back at `ma_hz` for `seconds`, and
+    /// checks each against the parallel bus ([`SimResult::biss`]).
+    pub fn monitor_biss(&mut self, ma_hz: f64, seconds: f64) {
+        use crate::sim::biss_master::{BissMaster, BissMasterConfig};
+        let p = &self.d.biss;
+        let t = crate::sim::serial_line::LineTiming {
+            clock_hz: self.clock_hz,
+            line_delay_ns: self.d.io_timing.trace_ns,
+        };
+        let mut c = BissMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
+        c.word.gray = p.gray;
+        c.word = c.word.with_velocity(p.velocity_bits);
+        let gap_ns = 1000.0;
+        let frame_s =
+            (p.frame_rising_edges() + 1) as f64 / ma_hz + p.timeout_us() * 1e-6 + gap_ns * 1e-9;
+        let n = (seconds / frame_s).ceil() as usize + 1;
+        let reqs = vec![crate::sim::serial_line::FrameRequest::new(ma_hz).gap(gap_ns); n];
+        let m = std::rc::Rc::new(std::cell::RefCell::new(BissMaster::new(c, reqs, 500.0)));
+        self.ma = Some(Box::new(m.clone()));
+        self.biss = Some(m);
+        self.result.biss = Some(BissCheck {
+            ma_hz: ma_hz.round() as u64,
+            ..BissCheck::default()
+        });
+    }
+
+    /// Checks the BiSS-C master's frames finished since the last call against the
+    /// parallel bus's history.
+    fn check_biss_frames(&mut self) {
+        let (Some(m), Some(c)) = (&self.biss, self.result.biss.as_mut()) else {
+            return;
+        };
+        let m = m.borrow();
+        let p = &self.d.biss;
+        let (pw, pb) = (self.d.position_width, p.position_bits);
+        for f in m.frames().iter().skip(c.frames as usize) {
+            c.frames += 1;
+            let data = match &f.outcome {
+                crate::sim::biss_master::Outcome::Data(data) => data,
+                _ => {
+                    c.failed += 1;
+                    continue;
+                }
+            };
+            if !data.crc_ok() {
+                c.crc_errors += 1;
+                continue;
+            }
+            c.good += 1;
+            // The slave latches at its first MA edge, a line delay and the synchronizer
+            // after the master's.
+            let latch = ((f.t_start_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
+                as u64
+                + p.latch_latency() as u64;
+            let mut before = self.par_history.iter().rev().filter(|h| h.0 <= latch + 1);
+            let word = |h: &(u64, u64, u64)| {
+                let pos = if pb <= pw {
+                    h.1 >> (pw - pb)
+                } else {
+                    h.1 << (pb - pw)
+                };
+                (pos, h.2 & crate::blocks::mask(p.multiturn_bits))
+            };
+            let got = (data.position, data.turns);
+            let near: Vec<_> = before.by_ref().take(2).map(word).collect();
+            if !near.contains(&got) {
+                c.position_mismatches += 1;
+            }
+        }
     }
 
     /// Connects an SSI master model to `ssi_clk`/`ssi_data` (the clock idles high without
@@ -481,22 +729,25 @@ impl System {
             // drove during the previous cycle, as real chips do.
             let conv = self.top.get(O_CONV) != 0;
             let sck = self.top.get(O_SCK) != 0;
-            let miso = self.adc.step(conv, sck);
-            if !self.adc.conversions().is_empty() {
-                // Counted here and forgotten: a long run keeps no per-sample history.
-                self.adc.clear_conversions();
+            // Conversions are counted here and forgotten: a long run keeps no per-sample
+            // history.
+            let (miso, miso_b, started) = self.adc.step(conv, sck);
+            if started {
                 self.conv_times
                     .insert(self.cycle, self.cycle as f64 / self.clock_hz);
             }
-            self.amp.step(
-                self.top.get(O_AMP_CS) != 0,
-                sck,
-                self.top.get(O_AMP_MOSI) != 0,
-                self.top.get(O_AMP_SHDN) != 0,
-            );
+            if let Some(amp) = self.amp.as_mut() {
+                amp.step(
+                    self.top.get(O_AMP_CS) != 0,
+                    sck,
+                    self.top.get(O_AMP_MOSI) != 0,
+                    self.top.get(O_AMP_SHDN) != 0,
+                );
+            }
             let rst = self.cycle < self.rst_cycles;
             self.top.set(I_RST, rst as u64);
             self.top.set(I_MISO, miso as u64);
+            self.top.set(I_MISO_B, miso_b as u64);
             let ma = match self.ma.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
@@ -548,6 +799,7 @@ impl System {
             if let Some(m) = self.ma.as_mut() {
                 m.push_slo(self.top.get(O_SLO) != 0);
             }
+            self.check_biss_frames();
             if let Some(m) = self.ssi.as_mut() {
                 m.push_slo(self.top.get(O_SSI_DATA) != 0);
             }
@@ -558,6 +810,10 @@ impl System {
                 self.result.outputs.push(self.top.sample());
             }
             self.cycle += 1;
+            if let Some(c) = self.result.abz.as_mut() {
+                let g = |k| self.top.get(k) != 0;
+                c.step(g(O_ABZ_A), g(O_ABZ_B), g(O_ABZ_Z));
+            }
             if self.top.get(O_VALID) != 0 {
                 let qc = self.top.get(O_QC);
                 let pos = (qc << fine) | self.top.get(O_FINE);
@@ -584,6 +840,16 @@ impl System {
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     truth: self.truth.electrical_angle(t) * lsb_per_rad,
                 };
+                if let (Some(c), Some(p)) = (self.result.abz.as_mut(), &self.d.abz) {
+                    c.compare(p, pos);
+                }
+                if self.biss.is_some() {
+                    if self.par_history.len() == PAR_HISTORY {
+                        self.par_history.pop_front();
+                    }
+                    self.par_history
+                        .push_back((self.cycle, pos, self.top.get(O_TURNS)));
+                }
                 self.result.decoded += 1;
                 match self.result.streamed.as_mut() {
                     Some(s) => s.add(&self.d, &rec),
@@ -614,19 +880,12 @@ impl System {
 
     /// Finishes the run and returns its result.
     pub fn finish(mut self) -> SimResult {
-        self.result.adc_violations = self
-            .adc
-            .violations()
-            .iter()
-            .map(|v| v.message.clone())
-            .collect();
-        self.result.amp_violations = self
-            .amp
-            .violations()
-            .iter()
-            .map(|v| format!("{v:?}"))
-            .collect();
-        self.result.amp_gains = self.amp.gains();
+        self.result.adc_violations = self.adc.violations();
+        if let Some(amp) = &self.amp {
+            self.result.amp_violations =
+                amp.violations().iter().map(|v| format!("{v:?}")).collect();
+            self.result.amp_gains = amp.gains();
+        }
         self.result
     }
 }

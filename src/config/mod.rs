@@ -137,30 +137,6 @@ impl Loaded {
         })
     }
 
-    /// Whether this configuration has a board top (`<name>_top`): the capacitive top, or
-    /// the sinewave top of the LTC1407A-1 preset on the Spartan-3AN.
-    pub fn has_board_top(&self) -> bool {
-        self.config.capacitive.is_some()
-            || (self.derived.preamp.is_some() && self.config.target == Target::Spartan3an)
-    }
-
-    /// The error for a command that needs the board top on a configuration without one
-    /// (`simulate` runs it), at `adc.preset`.
-    pub fn needs_board_top(&self, command: &str) -> Result<()> {
-        if self.has_board_top() {
-            return Ok(());
-        }
-        Err(Error::ConfigValue {
-            source_name: escape_controls(&self.source_name),
-            location: locate_or_table(&self.text, "adc", "preset"),
-            key: "adc.preset".into(),
-            message: format!(
-                "`{command}` runs the board top {}_top, and this configuration has none (only the core): the sinewave board top needs adc.preset = \"ltc1407a-1\" and target = \"spartan3an\"",
-                self.config.name
-            ),
-        })
-    }
-
     /// What `generate` writes as the board top and whether `simulate` runs, two lines that
     /// `check` prints before the derived parameters.
     pub fn scope(&self) -> String {
@@ -171,20 +147,24 @@ impl Loaded {
                 format!("{name}_top.v: the capacitive top (excitation NCO, filters, demodulation, CORDIC, BiSS-C){}", if c.board.is_some() { ", with its QSF and SDC" } else { "" }),
                 format!("available: runs {name}_top against the capacitive encoder and ADC models"),
             )
-        } else if self.has_board_top() {
-            (
-                format!("{name}_top.v: the sinewave board top (LTC1407A-1, LTC6912-1, correction, core, BiSS-C){}", if c.board.is_some() { ", with its UCF" } else { "" }),
-                format!("available: runs {name}_top against the encoder, LTC1407A-1 and LTC6912-1 models"),
-            )
         } else {
-            let at = locate(&self.text, "adc", "preset");
+            let d = &self.derived;
+            let chip = d.adc.chip.to_string();
+            let pre = if d.preamp.is_some() {
+                ", LTC6912-1"
+            } else {
+                ""
+            };
+            let constraints = match (&c.board, c.target) {
+                (Some(_), Target::Spartan3an) => ", with its UCF",
+                _ => "",
+            };
             (
-                format!(
-                    "none: {name}_core.v and its testbench only; the sinewave board top needs adc.preset = \"ltc1407a-1\"{} and target = \"spartan3an\"{}",
-                    if at.is_empty() { String::new() } else { format!(" (adc.preset at {})", at.trim_end_matches(": ")) },
-                    if c.board.is_some() { "; [board] is not used without it" } else { "" }
-                ),
-                format!("not available: it runs the board top; {name}_core_tb.v tests the core in a Verilog simulator"),
+                format!("{name}_top.v: the sinewave board top ({chip}{pre}, correction, core, BiSS-C){constraints}"),
+                match d.preamp {
+                    Some(_) => format!("available: runs {name}_top against the encoder, {chip} and LTC6912-1 models"),
+                    None => format!("available: runs {name}_top against the encoder and {chip} models"),
+                },
             )
         };
         format!(

@@ -62,13 +62,6 @@ pub(super) fn abz_params(
             "ABZ emulation is built into the sinewave board top only; remove [abz] or set enabled = false with [capacitive]".into(),
         ));
     }
-    if c.adc.preset != AdcPreset::Ltc1407a1 || c.target != Target::Spartan3an {
-        return Err(err(
-            "abz",
-            "enabled",
-            "ABZ emulation drives abz_a/abz_b/abz_z of <name>_top, the sinewave board top, which exists with adc.preset = \"ltc1407a-1\" and target = \"spartan3an\"; set enabled = false otherwise".into(),
-        ));
-    }
     // Spacing in clocks: the smallest S with clock / S <= max_edge_hz.
     let mut spacing = (clock / hz).ceil().max(2.0) as u32;
     if clock / ((spacing - 1) as f64) <= hz && spacing > 2 {

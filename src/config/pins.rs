@@ -31,6 +31,8 @@ pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
                 .iter()
                 .filter(|p| match p.pin {
                     Pin::Always => true,
+                    Pin::Preamp => c.adc.preset == AdcPreset::Ltc1407a1,
+                    Pin::AdcB => adc_data_lines(c) == 2,
                     Pin::Deselect => pins.contains_key(p.name),
                     Pin::Qep => c.qep.enabled,
                     Pin::Ssi => c.ssi.enabled,
@@ -100,11 +102,19 @@ impl BoardConfig {
     }
 }
 
-/// The ABZ emulator's outputs (`[abz] enabled`): ports of the `<name>_top` wrapper, which
-/// instantiates the emulator next to the rtl (`rtl-templates/top/sinewave_top.v.j2`).
+/// Data lines of the configured ADC: 2 when channel 1 has a line of its own (`adc_miso_b`).
+pub fn adc_data_lines(c: &Config) -> u32 {
+    let _ = c;
+    1
+}
+
+/// The ABZ emulator's outputs (`[abz] enabled`): the rtl's optional outputs `abz_*_0`,
+/// ports `abz_*` of the `<name>_top` wrapper.
 pub const ABZ_PINS: &[&str] = &["abz_a", "abz_b", "abz_z"];
 
-pub use crate::blocks::top::hdl::{DESELECT_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS};
+pub use crate::blocks::top::hdl::{
+    ADC_B_PINS, DESELECT_PINS, PREAMP_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS,
+};
 
 /// The section that makes `port` a port of `<name>_top`, for a port this configuration's
 /// top does not have; None for a name that is no port of either top.
@@ -113,6 +123,8 @@ fn section_of_port(c: &Config, port: &str) -> Option<&'static str> {
     let on = |pins: &[&str], section: &'static str| pins.contains(&port).then_some(section);
     if c.capacitive.is_some() {
         if TOP_PINS.contains(&port)
+            || PREAMP_PINS.contains(&port)
+            || ADC_B_PINS.contains(&port)
             || QEP_PINS.contains(&port)
             || SSI_PINS.contains(&port)
             || SPI_PINS.contains(&port)

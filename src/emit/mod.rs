@@ -134,7 +134,7 @@ pub fn core_output_ports(d: &Derived) -> Vec<Port> {
 }
 
 pub(crate) fn has_top(loaded: &Loaded) -> bool {
-    loaded.derived.preamp.is_some() && loaded.config.target == crate::config::Target::Spartan3an
+    loaded.config.capacitive.is_none()
 }
 
 /// Name of the board top module.
@@ -197,7 +197,8 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
     ];
     let top_text = top_verilog(loaded)?;
     let cap_text = cap_top_verilog(loaded)?;
-    if let (Some(b), true) = (&loaded.config.board, has_top(loaded)) {
+    let xilinx = loaded.config.target == crate::config::Target::Spartan3an;
+    if let (Some(b), true) = (&loaded.config.board, has_top(loaded) && xilinx) {
         files.extend(xilinx_files(loaded, command, b)?);
     }
     if let Some(top) = &top_text {
@@ -209,7 +210,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
                 header(
                     loaded,
                     command,
-                    "Board top: pre-amplifier set-up, ADC controller, decoder core (Verilog-2001).",
+                    "Board top: ADC controller, correction, decoder core and the enabled outputs (Verilog-2001).",
                     "//"
                 )
             ),

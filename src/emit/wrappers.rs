@@ -40,26 +40,6 @@ fn velocity_ctx(d: &crate::config::Derived, module: &str) -> minijinja::Value {
     }
 }
 
-/// The ABZ emulator of `<name>_top` as the Verilog module `module`, when `[abz] enabled`
-/// (`crate::blocks::abz`), and the template values: `abz` (present), `abz_rtl` (the
-/// module). It sits in the wrapper, on the rtl's parallel bus, so that configurations
-/// without it keep the rtl's bytes (and its place-and-route) unchanged.
-fn abz_module(
-    d: &crate::config::Derived,
-    module: &str,
-) -> Result<(Option<String>, minijinja::Value)> {
-    let Some(p) = &d.abz else {
-        return Ok((None, minijinja::context! { abz => false }));
-    };
-    let mut uut = crate::blocks::abz::hdl::AbzEmulator::new(p);
-    rust_hdl::prelude::Block::connect_all(&mut uut);
-    let body = verilog::export(&uut, "abz", module)?;
-    Ok((
-        Some(body),
-        minijinja::context! { abz => true, abz_rtl => module },
-    ))
-}
-
 /// The wrapper that gives `<name>_core` its exact port widths
 /// (`rtl-templates/core/core_wrapper.v.j2`).
 fn core_wrapper(loaded: &Loaded, rtl: &str, vel: minijinja::Value) -> Result<String> {
@@ -118,6 +98,9 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
         None => format!("{wrapper}\n{body}"),
     })
 }
+
+/// The wrapper's comment for its reset input, which it synchronizes before the rtl.
+const RST_COMMENT: &str = "reset, active high, asynchronous: asserts at once, released on the second clock edge after it falls";
 
 /// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
 fn turns_expr(d: &crate::config::Derived) -> String {
@@ -215,8 +198,8 @@ fn wrap_list(items: &[impl AsRef<str>], prefix: &str, end: &str) -> String {
     out
 }
 
-/// Verilog of `<name>_top` (sinewave path, LTC1407A-1 preset), without header; None when
-/// the configuration has no board top yet (other presets and targets).
+/// Verilog of `<name>_top` (sinewave path, every ADC preset), without header; None for the
+/// capacitive path (see [`cap_top_verilog`]).
 ///
 /// The wrapper declares only the ports the configuration uses (see
 /// [`crate::config::board_ports`]): `qep_a/b/z` with `[qep] enabled`, `ssi_*` and `enc_*`
@@ -226,7 +209,7 @@ fn wrap_list(items: &[impl AsRef<str>], prefix: &str, end: &str) -> String {
 /// outputs left unconnected, so no output without a LOC reaches a package pin.
 pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     let d = &loaded.derived;
-    if d.preamp.is_none() || loaded.config.target != crate::config::Target::Spartan3an {
+    if !has_top(loaded) {
         return Ok(None);
     }
     let name = top_name(loaded);
@@ -257,13 +240,18 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         let p = t.name;
         let input = t.dir != Dir::Out;
         if t.pin == Pin::Parallel {
-            // With the ABZ emulator the wrapper ORs its catch-up flag into the warning.
-            let net = if p == "par_warning" && d.abz.is_some() {
-                "rtl_warning"
-            } else {
-                t.net
-            };
-            conns.push(format!(".{p}({net})"));
+            conns.push(format!(".{p}({})", t.net));
+        } else if p == "rst" {
+            // The rtl's reset is the synchronizer's output (the wrapper's `rst` is
+            // asynchronous).
+            decl.push(wrapper_port(
+                &TopPort {
+                    comment: RST_COMMENT,
+                    ..*t
+                },
+                None,
+            ));
+            conns.push(".rst(rst_sync[1])".into());
         } else if used.contains(&p) {
             decl.push(wrapper_port(t, None));
             conns.push(format!(".{p}({})", t.net));
@@ -285,9 +273,16 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         conns.push(".par_velocity_0(velocity)".into());
         conns.push(".par_velocity_valid_0(par_velocity_valid)".into());
     }
+    // The rtl's optional ABZ outputs (its emulator, `[abz] enabled`).
+    if d.abz.is_some() {
+        conns.extend(
+            crate::config::ABZ_PINS
+                .iter()
+                .map(|p| format!(".{p}_0({p})")),
+        );
+    }
     let inst = wrap_list(&conns, "       ", "");
     let vel_ctx = velocity_ctx(d, &format!("{name}_vel"));
-    let (abz, abz_ctx) = abz_module(d, &format!("{name}_abz"))?;
     // The ports left out, as comment lines of at most 95 characters (empty: none).
     let left_out_lines = if left_out.is_empty() {
         String::new()
@@ -305,19 +300,17 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             turns => turns,
             f => f,
             rate => format!("{:.0}", d.sample_rate_hz),
+            chip => d.adc.chip.to_string(),
+            preamp => d.preamp.is_some(),
+            abz => d.abz.is_some(),
             pm => d.position_width - 1,
             tm => d.turns_width - 1,
             fm => f - 1,
             qb => d.quadrant_bits - 1,
-            ..minijinja::value::merge_maps([vel_ctx, abz_ctx])
+            ..vel_ctx
         },
     )?;
-    let mut text = format!("{wrapper}\n{body}");
-    if let Some(m) = abz {
-        text.push('\n');
-        text.push_str(&m);
-    }
-    Ok(Some(text))
+    Ok(Some(format!("{wrapper}\n{body}")))
 }
 
 /// Verilog of the capacitive `<name>_top` (with `[capacitive]`), without header.

@@ -73,6 +73,10 @@ fn top_trace(
     .map_err(|e| Error::io("VCD output", e))
 }
 
+/// MA frequency of the BiSS-C master `simulate` reads the top with (or the slave's limit,
+/// if lower): a common rate for a few metres of cable.
+pub const BISS_MA_HZ: f64 = 2.5e6;
+
 /// Settling time of the capacitive path (band-pass, demodulation and low-pass filters):
 /// positions before it are not measured, and a shorter `--duration` is refused.
 pub const CAP_SETTLE_S: f64 = 1.5e-3;
@@ -134,7 +138,6 @@ pub fn run_traced(
     vcd: Option<Box<dyn std::io::Write>>,
 ) -> Result<SimReport> {
     o.validate(false)?;
-    loaded.needs_board_top("simulate")?;
     let d = &loaded.derived;
     let mut sys = System::on(d, encoder(loaded, o), o.engine)?;
     let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
@@ -147,6 +150,7 @@ pub fn run_traced(
     if !o.keep_records {
         sys.stream_stats(o.skip);
     }
+    sys.monitor_biss(BISS_MA_HZ.min(d.biss.max_ma_hz()), o.duration_s);
     let engine = sys.engine();
     let engine_note = sys.engine_note().map(str::to_string);
     if let Some(out) = vcd {
@@ -234,12 +238,33 @@ impl SimReport {
         let _ = writeln!(o, "samples with warning flag   {}", s.warnings);
         let _ = writeln!(o, "latency mismatches          {}", r.latency_mismatches);
         let _ = writeln!(o, "ADC protocol violations     {}", r.adc_violations.len());
-        let gains = match r.amp_gains {
-            Some((a, b)) => format!("A {a}, B {b}"),
-            None => "none (no complete gain word reached the amplifier)".to_string(),
-        };
-        let _ = writeln!(o, "preamp gains read back      {gains}");
+        if d.preamp.is_some() {
+            let gains = match r.amp_gains {
+                Some((a, b)) => format!("A {a}, B {b}"),
+                None => "none (no complete gain word reached the amplifier)".to_string(),
+            };
+            let _ = writeln!(o, "preamp gains read back      {gains}");
+        }
         o.push_str(&self.velocity_summary(loaded));
+        if let Some(b) = &r.biss {
+            let _ = writeln!(
+                o,
+                "BiSS-C frames               {} read at {:.2} MHz MA: {} good, {} CRC errors, {} unreadable; {} positions unequal to par_position",
+                b.frames,
+                b.ma_hz as f64 / 1e6,
+                b.good,
+                b.crc_errors,
+                b.failed,
+                b.position_mismatches
+            );
+        }
+        if let Some(c) = &r.abz {
+            let _ = writeln!(
+                o,
+                "ABZ quadrature count        {} edges, {} index pulses, {} illegal transitions; lag behind the position max {} edges, {} at the end",
+                c.edges, c.index_pulses, c.illegal, c.max_lag, c.last_lag
+            );
+        }
         let _ = writeln!(
             o,
             "simulation speed            {:.0} cycles/s ({:.2} s, {} engine)",

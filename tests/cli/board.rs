@@ -7,7 +7,7 @@
 
 use crate::board_util;
 use board_util::*;
-use sinedec::config::{Loaded, DEFAULT_CONFIG, QEP_PINS, TOP_PINS};
+use sinedec::config::{Loaded, DEFAULT_CONFIG, QEP_PINS};
 
 #[test]
 fn ucf_lists_every_pin_and_the_clock() {
@@ -232,17 +232,18 @@ fn ports_follow_the_enabled_blocks() {
         }
         t
     };
-    let l = Loaded::parse(&board(&base, TOP_PINS), "b.toml").expect("no QEP pins needed");
+    let kit = kit_pins();
+    let l = Loaded::parse(&board(&base, &kit), "b.toml").expect("no QEP pins needed");
     let g = sinedec::emit::generate(&l, "test").expect("generates");
     let (top, ucf) = (file(&g, "sd_top.v"), file(&g, "sd_top.ucf"));
-    assert_eq!(pinned_ports(top), sorted(TOP_PINS));
+    assert_eq!(pinned_ports(top), sorted(&kit));
     for p in QEP_PINS {
         assert!(!ucf.contains(p), "{p} in the UCF:\n{ucf}");
         assert!(top.contains(&format!(".{p}(1'b0)")), "{p} not tied low");
     }
     assert_eq!(ucf_tigs(ucf), vec!["biss_ma".to_string()]);
     // A QEP pin is then not a port of the top.
-    let mut with_qep: Vec<&str> = TOP_PINS.to_vec();
+    let mut with_qep: Vec<&str> = kit.clone();
     with_qep.push("qep_a");
     let e = Loaded::parse(&board(&base, &with_qep), "b.toml").expect_err("qep_a not a port");
     assert!(e.to_string().contains("qep_a"), "{e}");
@@ -250,14 +251,14 @@ fn ports_follow_the_enabled_blocks() {
     // SSI and the SPI slave: their pins are required, named when missing, and present.
     let ssi = in_section(&base, "[ssi]", "enabled = false", "enabled = true");
     let both = in_section(&ssi, "[spi]", "enabled = false", "enabled = true");
-    let e = Loaded::parse(&board(&ssi, TOP_PINS), "b.toml").expect_err("ssi pins missing");
+    let e = Loaded::parse(&board(&ssi, &kit), "b.toml").expect_err("ssi pins missing");
     assert!(
         e.to_string()
             .contains("pins missing for the board: ssi_clk, ssi_data (every port"),
         "{e}"
     );
     let spi = ["enc_sck", "enc_cs_n", "enc_miso", "enc_miso_oe"];
-    let mut all: Vec<&str> = TOP_PINS.to_vec();
+    let mut all: Vec<&str> = kit.clone();
     all.extend(["ssi_clk", "ssi_data"]);
     let e = Loaded::parse(&board(&both, &all), "b.toml").expect_err("spi pins missing");
     assert!(

@@ -1,9 +1,7 @@
-//! ABZ emulation in `<name>_top` (`[abz] enabled`). The emulator sits in the emitted wrapper
-//! next to the rtl, on its parallel bus (`rtl-templates/top/sinewave_top.v.j2`), so the
-//! closed loop runs in two steps: the top rtl (its Verilog on the compiled engine) with the
-//! encoder and ADC models records its pins, and the emitted `<name>_top` replays them in
-//! Icarus, Verilator and the engine. All agree, the wrapper's parallel bus equals the loop
-//! top's, and an
+//! ABZ emulation in `<name>_top` (`[abz] enabled`). The emulator is a block of the rust-hdl
+//! top, on its parallel bus: the closed loop (the top rtl's Verilog on the compiled engine,
+//! with the encoder and ADC models) records its pins, and the emitted `<name>_top_rtl`
+//! replays them in Icarus, Verilator and the engine. All agree with the loop, and an
 //! independent quadrature counter on `abz_a`/`abz_b` follows the position through 0 both
 //! ways and a reversal, with Z in each zero crossing. The wrapper and the UCF get the three
 //! outputs only when enabled.
@@ -77,17 +75,10 @@ fn replay(l: &Loaded, enc: EncoderModel, seconds: f64, tag: &str) -> Vec<Row> {
     let rtl_out = rtl.output_ports();
     let verilog = top_verilog(l).expect("export").expect("a sinewave top");
     let top = top_name(l);
-    // The wrapper's inputs: the rtl's inputs that the wrapper declares (clk is the harness's).
-    let wrapper = &verilog[..verilog.find("endmodule").expect("wrapper")];
-    let declared = |n: &str| {
-        wrapper
-            .lines()
-            .any(|x| x.trim_start().starts_with("input") && x.contains(&format!(" {n},")))
-    };
+    // Every input of the rtl but the clock (the harness's), as the loop recorded them.
     let cols: Vec<usize> = (0..rtl_in.len())
-        .filter(|&i| rtl_in[i].name != "clk" && declared(&rtl_in[i].name))
+        .filter(|&i| rtl_in[i].name != "clk")
         .collect();
-    assert!(cols.len() >= 3, "wrapper inputs: {cols:?}");
     let ins: Vec<Port> = cols.iter().map(|&i| rtl_in[i].clone()).collect();
     let rows: Vec<Vec<u64>> = r
         .inputs
@@ -95,17 +86,29 @@ fn replay(l: &Loaded, enc: EncoderModel, seconds: f64, tag: &str) -> Vec<Row> {
         .map(|row| cols.iter().map(|&i| row[i]).collect())
         .collect();
     let f = d.fine_bits;
-    let outs = vec![
-        Port::new("par_valid", 1),
-        Port::new("par_position", d.position_width),
-        Port::new("abz_a", 1),
-        Port::new("abz_b", 1),
-        Port::new("abz_z", 1),
-        Port::new("par_warning", 1),
+    let names = [
+        "par_valid",
+        "par_qc",
+        "par_fine",
+        "abz_a_0",
+        "abz_b_0",
+        "abz_z_0",
+        "par_warning",
     ];
+    let outs: Vec<Port> = names
+        .iter()
+        .map(|n| {
+            rtl_out
+                .iter()
+                .find(|p| p.name == *n)
+                .unwrap_or_else(|| panic!("the rtl has no output {n}"))
+                .clone()
+        })
+        .collect();
+    let rtl_name = format!("{top}_rtl");
     let spec = CosimSpec {
         verilog: &verilog,
-        top: &top,
+        top: &rtl_name,
         clock: "clk",
         inputs: &ins,
         outputs: &outs,
@@ -124,18 +127,21 @@ fn replay(l: &Loaded, enc: EncoderModel, seconds: f64, tag: &str) -> Vec<Row> {
             panic!("{m}");
         }
     }
-    // The wrapper's parallel bus is the rust-hdl top's (par_valid, par_qc . par_fine).
+    // The simulators' outputs are the loop's (rust-hdl's netlist on the compiled engine).
     let col = |n: &str| rtl_out.iter().position(|p| p.name == n).expect("output");
-    let (cv, cq, cf) = (col("par_valid"), col("par_qc"), col("par_fine"));
+    let loop_cols: Vec<usize> = names.iter().map(|n| col(n)).collect();
     assert_eq!(icarus.len(), r.outputs.len(), "rows");
     for (k, (v, o)) in icarus.iter().zip(&r.outputs).enumerate() {
-        let qmask = (1u64 << (d.position_width - f)) - 1;
-        let p = ((o[cq] & qmask) << f) | (o[cf] & ((1 << f) - 1));
-        assert_eq!((v[0], v[1]), (o[cv], p), "parallel bus at clock {k}");
+        let want: Vec<u64> = loop_cols.iter().map(|&c| o[c]).collect();
+        assert_eq!(v, &want, "{names:?} at clock {k}");
     }
+    let qmask = (1u64 << (d.position_width - f)) - 1;
     icarus
         .iter()
-        .map(|v| (v[0] == 1, v[1], v[2] == 1, v[3] == 1, v[4] == 1, v[5] == 1))
+        .map(|v| {
+            let p = ((v[1] & qmask) << f) | (v[2] & ((1 << f) - 1));
+            (v[0] == 1, p, v[3] == 1, v[4] == 1, v[5] == 1, v[6] == 1)
+        })
         .collect()
 }
 

@@ -1,5 +1,6 @@
 //! rust-hdl description of the sinewave board top.
 use super::ports::{board_top, pins};
+use crate::blocks::abz::hdl::AbzEmulator;
 use crate::blocks::adc::hdl::AdcController;
 use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::c32;
@@ -22,12 +23,13 @@ board_top! {
         ports {
             clk: In Clock, Clock, 1, Always, 0, "system clock";
             rst: In Bit, In, 1, Always, 0, "synchronous reset, active high (restarts the set-up)";
-            adc_miso: In Bit, In, 1, Always, 0, "AD_DOUT: LTC1407A-1 serial data";
-            adc_sck: Out Bit, Out, 1, Always, 0, "SPI_SCK: shared SPI clock (amp set-up, then ADC)";
-            adc_conv: Out Bit, Out, 1, Always, 0, "AD_CONV: conversion start";
-            amp_cs: Out Bit, Out, 1, Always, 0, "AMP_CS: LTC6912-1 chip select, active low";
-            amp_mosi: Out Bit, Out, 1, Always, 0, "SPI_MOSI: LTC6912-1 gain word";
-            amp_shdn: Out Bit, Out, 1, Always, 0, "AMP_SHDN: 0 = amplifier on";
+            adc_miso: In Bit, In, 1, Always, 0, "ADC serial data (line A: channel 0, or both channels on one line)";
+            adc_miso_b: In Bit, In, 1, AdcB, 0, "ADC serial data, line B: channel 1 (ADCs with two data lines)";
+            adc_sck: Out Bit, Out, 1, Always, 0, "ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)";
+            adc_conv: Out Bit, Out, 1, Always, 0, "ADC conversion start (CONV pulse or chip select, as the preset frames)";
+            amp_cs: Out Bit, Out, 1, Preamp, 0, "AMP_CS: LTC6912-1 chip select, active low";
+            amp_mosi: Out Bit, Out, 1, Preamp, 0, "SPI_MOSI: LTC6912-1 gain word";
+            amp_shdn: Out Bit, Out, 1, Preamp, 0, "AMP_SHDN: 0 = amplifier on";
             dac_cs: Out Bit, Out, 1, Deselect, 0, "DAC_CS: 1 = DAC deselected";
             dac_clr: Out Bit, Out, 1, Deselect, 0, "DAC_CLR: 1 = DAC not cleared";
             spi_ss_b: Out Bit, Out, 1, Deselect, 0, "SPI_SS_B: 1 = SPI flash deselected";
@@ -53,8 +55,13 @@ board_top! {
         @optional_outputs {
             par_velocity: Bits<64>, 64, "velocity (`[velocity] enabled`): `width`-bit two's complement in the low bits, held between strobes";
             par_velocity_valid: Bit, 1, "velocity strobe (`[velocity] enabled`): one clock per update";
+            abz_a: Bit, 1, "ABZ emulation (`[abz] enabled`): channel A (leads B when the position increases)";
+            abz_b: Bit, 1, "ABZ emulation (`[abz] enabled`): channel B";
+            abz_z: Bit, 1, "ABZ emulation (`[abz] enabled`): index, one quarter A/B period at position 0";
         }
-        preamp: PreampSetup,
+        /// The pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit): one instance or none.
+        /// Without it the ADC converts from reset and owns `adc_sck`.
+        preamp: Vec<PreampSetup>,
         adc: AdcController,
         correction: Correction,
         core: CoreRtl,
@@ -82,6 +89,8 @@ board_top! {
         /// F, the shift of the quadrant count above the fine part in the estimator's
         /// position (it uses the low F + 2 bits): one per estimator.
         vel_fshl: Vec<Constant<Bits<32>>>,
+        /// The ABZ emulator on the parallel bus's position (`[abz] enabled`): one or none.
+        abz: Vec<AbzEmulator>,
     }
 }
 
@@ -89,6 +98,10 @@ board_top! {
 /// `[qep] enabled`, [`SSI_PINS`] / [`SPI_PINS`] when enabled and the pinned
 /// [`DESELECT_PINS`]; see `config::board_ports`).
 pub const TOP_PINS: &[&str] = pins!(SD_TOP_PORTS, Always);
+/// Pins of the pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit).
+pub const PREAMP_PINS: &[&str] = pins!(SD_TOP_PORTS, Preamp);
+/// The ADC's second data line (two-line ADCs).
+pub const ADC_B_PINS: &[&str] = pins!(SD_TOP_PORTS, AdcB);
 /// Pins of the optional SSI slave.
 pub const SSI_PINS: &[&str] = pins!(SD_TOP_PORTS, Ssi);
 /// Pins of the optional SPI slave.
@@ -121,26 +134,26 @@ pub fn biss_word_shifts(d: &Derived) -> [Constant<Bits<32>>; 3] {
 }
 
 impl TopRtl {
-    /// The top for the derived parameters (preset `ltc1407a-1`).
+    /// The top for the derived parameters: the blocks the configuration enables.
     pub fn new(d: &Derived) -> crate::error::Result<Self> {
-        let pre = d.preamp.as_ref().ok_or_else(|| {
-            crate::error::Error::block_params(
-                "top",
-                "the sinewave board top needs the LTC1407A-1 preset",
-            )
-        })?;
         let [qshl, qshr, fshr] = biss_word_shifts(d);
         let vel = match &d.velocity {
             Some(p) => vec![Velocity::new(p)?],
             None => vec![],
         };
         let nvel = vel.len();
+        let abz: Vec<AbzEmulator> = d.abz.iter().map(AbzEmulator::new).collect();
+        let nabz = abz.len();
         Ok(Self::from_parts(TopParts {
             par_velocity: nvel,
             par_velocity_valid: nvel,
+            abz_a: nabz,
+            abz_b: nabz,
+            abz_z: nabz,
+            abz,
             vel,
             vel_fshl: (0..nvel).map(|_| c32(d.fine_bits as u64)).collect(),
-            preamp: PreampSetup::new(pre),
+            preamp: d.preamp.iter().map(PreampSetup::new).collect(),
             adc: AdcController::new(&d.adc),
             correction: Correction::new(&d.correction),
             core: CoreRtl::new(d),
@@ -171,12 +184,33 @@ impl TopRtl {
 impl Logic for TopRtl {
     #[hdl_gen]
     fn update(&mut self) {
-        self.preamp.clk.next = self.clk.val();
-        self.preamp.rst.next = self.rst.val();
-        self.preamp.adc_sck.next = self.adc.adc_sck.val();
+        // The ADC converts from reset, or once the pre-amplifier set-up is done; it owns
+        // the serial clock, or shares it with the set-up.
         self.adc.clk.next = self.clk.val();
         self.adc.rst.next = self.rst.val();
-        self.adc.enable.next = self.preamp.done.val();
+        self.adc.enable.next = true;
+        self.adc_sck.next = self.adc.adc_sck.val();
+        self.amp_cs.next = true;
+        self.amp_mosi.next = false;
+        self.amp_shdn.next = false;
+        self.dac_cs.next = true;
+        self.dac_clr.next = true;
+        self.spi_ss_b.next = true;
+        self.sf_ce0.next = true;
+        for i in 0..self.preamp.len() {
+            self.preamp[i].clk.next = self.clk.val();
+            self.preamp[i].rst.next = self.rst.val();
+            self.preamp[i].adc_sck.next = self.adc.adc_sck.val();
+            self.adc.enable.next = self.preamp[i].done.val();
+            self.adc_sck.next = self.preamp[i].spi_sck.val();
+            self.amp_cs.next = self.preamp[i].amp_cs.val();
+            self.amp_mosi.next = self.preamp[i].spi_mosi.val();
+            self.amp_shdn.next = self.preamp[i].amp_shdn.val();
+            self.dac_cs.next = self.preamp[i].dac_cs.val();
+            self.dac_clr.next = self.preamp[i].dac_clr.val();
+            self.spi_ss_b.next = self.preamp[i].spi_ss_b.val();
+            self.sf_ce0.next = self.preamp[i].sf_ce0.val();
+        }
         self.adc.adc_miso.next = self.adc_miso.val();
         self.core.clk.next = self.clk.val();
         self.core.rst.next = self.rst.val();
@@ -269,21 +303,26 @@ impl Logic for TopRtl {
             self.enc_miso.next = self.spi_slave[i].miso.val();
             self.enc_miso_oe.next = self.spi_slave[i].miso_oe.val();
         }
-        self.adc_sck.next = self.preamp.spi_sck.val();
         self.adc_conv.next = self.adc.adc_conv.val();
-        self.amp_cs.next = self.preamp.amp_cs.val();
-        self.amp_mosi.next = self.preamp.spi_mosi.val();
-        self.amp_shdn.next = self.preamp.amp_shdn.val();
-        self.dac_cs.next = self.preamp.dac_cs.val();
-        self.dac_clr.next = self.preamp.dac_clr.val();
-        self.spi_ss_b.next = self.preamp.spi_ss_b.val();
-        self.sf_ce0.next = self.preamp.sf_ce0.val();
         self.par_valid.next = self.core.out_valid.val();
         self.par_qc.next = self.core.out_qc.val();
         self.par_fine.next = self.core.out_fine.val();
         self.par_turns.next = self.core.out_turns.val();
         self.par_error.next = self.error.val();
         self.par_warning.next = self.warning.val();
+        // The ABZ emulator of the parallel bus's position (`[abz] enabled`); its catch-up
+        // flag joins the parallel bus's warning.
+        for i in 0..self.abz.len() {
+            self.abz[i].clk.next = self.clk.val();
+            self.abz[i].rst.next = self.rst.val();
+            self.abz[i].in_valid.next = self.core.out_valid.val();
+            self.abz[i].in_qc.next = self.core.out_qc.val();
+            self.abz[i].in_fine.next = self.core.out_fine.val();
+            self.abz_a[i].next = self.abz[i].abz_a.val();
+            self.abz_b[i].next = self.abz[i].abz_b.val();
+            self.abz_z[i].next = self.abz[i].abz_z.val();
+            self.par_warning.next = self.warning.val() | self.abz[i].warning.val();
+        }
         // The velocity estimator on the position modulo 2^(F+2) (`[velocity] enabled`).
         for i in 0..self.vel.len() {
             self.vel[i].clk.next = self.clk.val();

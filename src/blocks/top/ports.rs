@@ -32,6 +32,11 @@ pub enum Pin {
     Always,
     /// A comparator input: a port with a pin only with `[qep] enabled`.
     Qep,
+    /// The ADC's second data line: only for an ADC with two (`adc.frame.data_lines = 2`,
+    /// presets `ads8354` and `ad7380`).
+    AdcB,
+    /// The pre-amplifier's lines: only with `[preamp]` (the LTC1407A-1 kit).
+    Preamp,
     /// The SSI slave's line: only with `[ssi] enabled`.
     Ssi,
     /// The SPI slave's lines: only with `[spi] enabled`.

@@ -2,12 +2,17 @@
 //! no test file is longer than about 600 lines).
 #![allow(dead_code)]
 use crate::common;
-use sinedec::config::{DEFAULT_CONFIG, QEP_PINS, TOP_PINS};
+use sinedec::config::{DEFAULT_CONFIG, PREAMP_PINS, QEP_PINS, TOP_PINS};
 use sinedec::emit::Generation;
 
 /// The pins of the default config's top (QEP enabled there, SSI and SPI off).
 pub fn default_pins() -> Vec<&'static str> {
-    TOP_PINS.iter().chain(QEP_PINS).copied().collect()
+    kit_pins().into_iter().chain(QEP_PINS.iter().copied()).collect()
+}
+
+/// The pins every top of the LTC1407A-1 kit has: the top's own and the pre-amplifier's.
+pub fn kit_pins() -> Vec<&'static str> {
+    TOP_PINS.iter().chain(PREAMP_PINS).copied().collect()
 }
 
 pub fn with_board(skip: Option<&str>) -> String {

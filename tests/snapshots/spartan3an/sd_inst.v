@@ -25,10 +25,10 @@ sd_core u_sd_core (
 // sd_top: board top (ADC controller, correction, core, outputs)
 sd_top u_sd_top (
     .clk         (clk),          // input 1 bit: system clock
-    .rst         (rst),          // input 1 bit: synchronous reset, active high (restarts the set-up)
-    .adc_miso    (adc_miso),     // input 1 bit: AD_DOUT: LTC1407A-1 serial data
-    .adc_sck     (adc_sck),      // output 1 bit: SPI_SCK: shared SPI clock (amp set-up, then ADC)
-    .adc_conv    (adc_conv),     // output 1 bit: AD_CONV: conversion start
+    .rst         (rst),          // input 1 bit: reset, active high, asynchronous: asserts at once, released on the second clock edge after it falls
+    .adc_miso    (adc_miso),     // input 1 bit: ADC serial data (line A: channel 0, or both channels on one line)
+    .adc_sck     (adc_sck),      // output 1 bit: ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)
+    .adc_conv    (adc_conv),     // output 1 bit: ADC conversion start (CONV pulse or chip select, as the preset frames)
     .amp_cs      (amp_cs),       // output 1 bit: AMP_CS: LTC6912-1 chip select, active low
     .amp_mosi    (amp_mosi),     // output 1 bit: SPI_MOSI: LTC6912-1 gain word
     .amp_shdn    (amp_shdn),     // output 1 bit: AMP_SHDN: 0 = amplifier on

@@ -10,10 +10,10 @@
 // Synthesis: sd_clock.v (vendor primitive); simulation: sd_clock_sim.v.
 module sd_board (
     input  wire        clk,          // board oscillator, 50.000 MHz
-    input  wire        rst,          // synchronous reset, active high (restarts the set-up)
-    input  wire        adc_miso,     // AD_DOUT: LTC1407A-1 serial data
-    output wire        adc_sck,      // SPI_SCK: shared SPI clock (amp set-up, then ADC)
-    output wire        adc_conv,     // AD_CONV: conversion start
+    input  wire        rst,          // reset, active high, asynchronous: asserts at once, released on the second clock edge after it falls
+    input  wire        adc_miso,     // ADC serial data (line A: channel 0, or both channels on one line)
+    output wire        adc_sck,      // ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)
+    output wire        adc_conv,     // ADC conversion start (CONV pulse or chip select, as the preset frames)
     output wire        amp_cs,       // AMP_CS: LTC6912-1 chip select, active low
     output wire        amp_mosi,     // SPI_MOSI: LTC6912-1 gain word
     output wire        amp_shdn,     // AMP_SHDN: 0 = amplifier on
