@@ -242,10 +242,10 @@ fn config_with(on: &[&str]) -> String {
     text
 }
 
-/// The configs without `[board]` that have a `<name>_top`: the default one, and one with
-/// every optional interface of the top.
+/// The configs without `[board]` that have a `<name>_top`: the default one, one with
+/// every optional interface of the top, and a generic 16-bit SPI ADC.
 fn configs() -> Vec<(&'static str, Loaded)> {
-    vec![
+    let mut v: Vec<(&'static str, Loaded)> = vec![
         ("default", DEFAULT_CONFIG.to_string()),
         ("all", config_with(&["ssi", "spi", "velocity", "abz"])),
     ]
@@ -254,7 +254,9 @@ fn configs() -> Vec<(&'static str, Loaded)> {
         assert!(!t.contains("\n[board]"), "{tag} has a [board]");
         (tag, Loaded::parse(&t, "io.toml").expect("config"))
     })
-    .collect()
+    .collect();
+    v.push(("generic", crate::common::cfg(14, 14, 16, 2048, 12)));
+    v
 }
 
 /// The files of `loaded` by name.
