@@ -263,8 +263,20 @@ pub fn adc_round_trip(
     clock_hz: f64,
 ) -> (f64, f64) {
     let available = capture_distance_clocks as f64 * 1e9 / clock_hz;
-    let needed = io.clock_to_out_ns + 2.0 * io.trace_ns + sdo_delay_ns + io.input_setup_ns;
+    let needed = adc_data_arrival(io, sdo_delay_ns).1 + io.input_setup_ns;
     (available, needed)
+}
+
+/// When an ADC data bit reaches the FPGA's input pin after the system clock edge that moves
+/// `adc_sck` to shift it out, ns: (earliest, latest). Latest t_co + 2 t_trace + t_sdo (the
+/// round trip of [`adc_round_trip`] without the pad set-up); earliest 2 t_trace, taking the
+/// FPGA's clock-to-out and the chip's data hold as at least 0. The SDC/XDC of a top without
+/// `[board]` give these as the data inputs' `set_input_delay -max` / `-min`.
+pub fn adc_data_arrival(io: &IoTiming, sdo_delay_ns: f64) -> (f64, f64) {
+    (
+        2.0 * io.trace_ns,
+        io.clock_to_out_ns + 2.0 * io.trace_ns + sdo_delay_ns,
+    )
 }
 
 /// Verilog port of a wrapper: (declaration text after the direction, name, comment).

@@ -461,6 +461,10 @@ fn run(cli: Cli) -> Result<()> {
                     p.done_clocks()
                 )?;
             }
+            let arg = config.as_ref().map(|c| c.display().to_string());
+            if let Some(line) = sinedec::report::top_resource_line(&loaded, arg.as_deref())? {
+                say!("{line}")?;
+            }
         }
         Command::Report {
             config,

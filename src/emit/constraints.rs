@@ -304,3 +304,285 @@ pub(super) fn board_files(loaded: &Loaded, command: &str, top: &str) -> Result<V
         },
     ])
 }
+
+/// How the SDC and XDC of a top without `[board]` constrain one of its ports (see
+/// [`port_timing`] and docs/interfaces.md, "I/O timing of a top without `[board]`").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PortTiming {
+    /// The system clock: `create_clock` with the configured period.
+    Clock,
+    /// An ADC data line: sampled C system clocks after the edge that moves the ADC's
+    /// clock ([`crate::blocks::adc::AdcParams::capture_distance_clocks`]), so an input
+    /// delay of the round trip ([`crate::board::adc_data_arrival`]) and a multicycle of C.
+    AdcData,
+    /// An output launched by `clk`: output delay that leaves the clock-to-out budget.
+    Out,
+    /// An input sampled by `clk` without a synchronizer: input delay that leaves the pad
+    /// set-up budget.
+    SyncIn,
+    /// An asynchronous input that enters through a synchronizer: a false path from it.
+    Synchronized,
+    /// An output held at a constant level: a false path to it.
+    Static,
+}
+
+/// One port of a top as its constraints see it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ConstrainedPort {
+    /// The port's name.
+    pub name: String,
+    /// A bus (`name[*]` in `get_ports`).
+    pub bus: bool,
+    /// An input (else an output).
+    pub input: bool,
+    /// How it is constrained.
+    pub timing: PortTiming,
+    /// The interface it belongs to (a comment heading of the files).
+    pub interface: &'static str,
+}
+
+/// The constraint of the port `name` of a sinewave top (`input`: its direction; `comment`:
+/// its one-line comment, which says whether `rst` is asynchronous), and the interface it
+/// belongs to; None for a port this table does not know (a port added to the top needs a
+/// line here: `tests/flow/flow.rs` checks every port of the port table).
+pub fn port_timing(name: &str, input: bool, comment: &str) -> Option<(PortTiming, &'static str)> {
+    use PortTiming::*;
+    let by_prefix = |p: &str| name.starts_with(p);
+    Some(match (name, input) {
+        ("clk", true) => (Clock, "System clock"),
+        ("rst", true) if comment.to_ascii_lowercase().contains("asynchronous") => {
+            (Synchronized, "Reset")
+        }
+        ("rst", true) => (SyncIn, "Reset"),
+        (_, true) if by_prefix("adc_") => (AdcData, "ADC data"),
+        (_, false) if by_prefix("adc_") => (Out, "ADC control"),
+        (_, false) if by_prefix("amp_") => (Out, "Pre-amplifier set-up"),
+        ("biss_ma", true) => (Synchronized, "BiSS-C"),
+        ("biss_slo", false) => (Out, "BiSS-C"),
+        ("ssi_clk", true) => (Synchronized, "SSI"),
+        ("ssi_data", false) => (Out, "SSI"),
+        ("enc_sck" | "enc_cs_n", true) => (Synchronized, "SPI slave"),
+        ("enc_miso" | "enc_miso_oe", false) => (Out, "SPI slave"),
+        (_, true) if by_prefix("qep_") => (Synchronized, "QEP comparator"),
+        (_, false) if by_prefix("abz_") => (Out, "ABZ"),
+        (_, false) if by_prefix("par_") => (Out, "Parallel bus"),
+        (_, false) if crate::config::DESELECT_PINS.contains(&name) => (Static, "Deselect lines"),
+        _ => return None,
+    })
+}
+
+/// The ports of the top Verilog `top` (as `generate` writes it) with their constraints;
+/// an error names a port [`port_timing`] does not know.
+pub fn constrained_ports(top: &str) -> Result<Vec<ConstrainedPort>> {
+    crate::board::wrapper_ports(top)
+        .into_iter()
+        .map(|p| {
+            let input = p.dir.trim() == "input";
+            let (timing, interface) = port_timing(&p.name, input, &p.comment).ok_or_else(|| {
+                crate::error::Error::block_params(
+                    "top",
+                    format!(
+                        "port `{}` has no I/O constraint (src/emit/constraints.rs, port_timing)",
+                        p.name
+                    ),
+                )
+            })?;
+            Ok(ConstrainedPort {
+                bus: !p.range.is_empty(),
+                name: p.name,
+                input,
+                timing,
+                interface,
+            })
+        })
+        .collect()
+}
+
+/// The numbers of the SDC/XDC of a top without `[board]`, ns (clock cycles for the
+/// capture distance), all from the one derivation `check` prints: [`crate::board::IoTiming`]
+/// and [`crate::board::adc_data_arrival`] with the capture distance of the ADC controller.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IoBudget {
+    /// The system clock period.
+    pub period_ns: f64,
+    /// `set_output_delay -max`: the period less the clock-to-out budget.
+    pub out_max_ns: f64,
+    /// `set_output_delay -min`.
+    pub out_min_ns: f64,
+    /// `set_input_delay -max` of a synchronous input: the period less the set-up budget.
+    pub in_max_ns: f64,
+    /// `set_input_delay -min` of a synchronous input.
+    pub in_min_ns: f64,
+    /// `set_input_delay -max` of an ADC data line: the latest arrival after the edge that
+    /// moved the ADC's clock.
+    pub adc_max_ns: f64,
+    /// `set_input_delay -min` of an ADC data line: the earliest arrival.
+    pub adc_min_ns: f64,
+    /// The multicycle of the ADC data lines: the capture distance C.
+    pub capture_clocks: u32,
+}
+
+/// The [`IoBudget`] of the configuration.
+pub fn io_budget(loaded: &Loaded) -> IoBudget {
+    let io = &loaded.derived.io_timing;
+    let adc = &loaded.derived.adc;
+    let period_ns = 1e9 / loaded.derived.clock_hz;
+    let (adc_min_ns, adc_max_ns) = crate::board::adc_data_arrival(io, adc.timing.data_valid_ns);
+    IoBudget {
+        period_ns,
+        out_max_ns: period_ns - io.clock_to_out_ns,
+        out_min_ns: 0.0,
+        in_max_ns: period_ns - io.input_setup_ns,
+        in_min_ns: 0.0,
+        adc_max_ns,
+        adc_min_ns,
+        capture_clocks: adc.capture_distance_clocks(),
+    }
+}
+
+/// `<name>_top.sdc` (Quartus, Synopsys) and `<name>_top.xdc` (Vivado) of a top without
+/// `[board]`: the clock and the I/O timing of every port of `top` (its Verilog).
+pub(super) fn io_files(loaded: &Loaded, command: &str, top: &str) -> Result<Vec<OutFile>> {
+    let name = &loaded.config.name;
+    let ports = constrained_ports(top)?;
+    let b = io_budget(loaded);
+    let io = &loaded.derived.io_timing;
+    let adc = &loaded.derived.adc;
+    let (available, needed) =
+        crate::board::adc_round_trip(io, adc.timing.data_valid_ns, b.capture_clocks, adc.clock_hz);
+    // Groups of ports with one constraint, in the order of the top's port list.
+    let mut groups: Vec<(PortTiming, &'static str, Vec<&ConstrainedPort>)> = Vec::new();
+    for p in ports.iter().filter(|p| p.timing != PortTiming::Clock) {
+        match groups
+            .iter_mut()
+            .find(|g| g.0 == p.timing && g.1 == p.interface)
+        {
+            Some(g) => g.2.push(p),
+            None => groups.push((p.timing, p.interface, vec![p])),
+        }
+    }
+    let why = |t: PortTiming, interface: &str| -> String {
+        match t {
+            PortTiming::AdcData => format!(
+                "Sampled {c} system clocks ({available:.2} ns) after the clock edge that moves the\n\
+                 # ADC's clock to shift the bit out (AdcParams::capture_distance_clocks): the bit arrives\n\
+                 # {min:.2}..{max:.2} ns after that edge (clock-to-out {tco:.2} + 2 x trace {tr:.2} + SCK-to-data\n\
+                 # {sdo:.2}), hence the multicycle of {c}; the round trip needs {needed:.2} ns with the\n\
+                 # set-up: slack {slack:.2} ns (`sinedec check`, \"ADC round trip\").",
+                c = b.capture_clocks,
+                min = b.adc_min_ns,
+                max = b.adc_max_ns,
+                tco = io.clock_to_out_ns,
+                tr = io.trace_ns,
+                sdo = adc.timing.data_valid_ns,
+                slack = available - needed,
+            ),
+            PortTiming::Out => format!(
+                "Launched by clk: the output delay leaves the clock-to-out budget of {:.2} ns.",
+                io.clock_to_out_ns
+            ),
+            PortTiming::SyncIn => format!(
+                "Sampled by clk without a synchronizer: the input delay leaves the set-up budget of {:.2} ns.",
+                io.input_setup_ns
+            ),
+            PortTiming::Synchronized if interface == "Reset" => {
+                "Asynchronous: asserts at once and releases through the reset synchronizer, so no\n\
+                 # path from the pin is timed."
+                    .to_string()
+            }
+            PortTiming::Synchronized => {
+                "Asynchronous to clk: it enters through a synchronizer (two flops), so no path from\n\
+                 # the pin is timed; `sinedec check` counts the synchronizer in the line timing."
+                    .to_string()
+            }
+            PortTiming::Static => "Held at a constant level: no path to the pin is timed.".into(),
+            PortTiming::Clock => String::new(),
+        }
+    };
+    let kind = |t: PortTiming| match t {
+        PortTiming::AdcData => "adc_data",
+        PortTiming::Out => "out",
+        PortTiming::SyncIn => "sync_in",
+        PortTiming::Synchronized => "synchronized",
+        PortTiming::Static => "static",
+        PortTiming::Clock => "clock",
+    };
+    let groups: Vec<_> = groups
+        .iter()
+        .map(|(t, interface, ps)| {
+            let names: Vec<String> = ps
+                .iter()
+                .map(|p| {
+                    if p.bus {
+                        format!("{}[*]", p.name)
+                    } else {
+                        p.name.clone()
+                    }
+                })
+                .collect();
+            // One Tcl word: braced (no command substitution of `[*]`) unless a plain name.
+            let list = match names.as_slice() {
+                [one] if !one.contains('[') => one.clone(),
+                _ => format!("{{{}}}", names.join(" ")),
+            };
+            let what = match t {
+                PortTiming::Out if *interface != "Parallel bus" => format!("{interface} outputs"),
+                PortTiming::Synchronized | PortTiming::SyncIn | PortTiming::AdcData
+                    if *interface != "Reset" =>
+                {
+                    format!("{interface} inputs")
+                }
+                _ => interface.to_string(),
+            };
+            minijinja::context! {
+                kind => kind(*t),
+                what => what,
+                why => why(*t, interface),
+                ports => ps.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
+                list => list,
+            }
+        })
+        .collect();
+    let clock = board_clock(loaded);
+    let mut files = Vec::new();
+    for (ext, tool, purpose) in [
+        (
+            "sdc",
+            "Quartus TimeQuest, Synopsys",
+            "SDC: clock and I/O timing of the top for a board of your own (Quartus, Synopsys).",
+        ),
+        (
+            "xdc",
+            "Vivado",
+            "XDC: clock and I/O timing of the top for a board of your own (Vivado).",
+        ),
+    ] {
+        let text = templates::render(
+            "constraints/top_io.j2",
+            minijinja::context! {
+                header => header(loaded, command, purpose, "#"),
+                top => top_name(loaded),
+                tool => tool,
+                sdc => ext == "sdc",
+                clock_comment => clock_comment(&clock, "#"),
+                period_ns => format!("{:.3}", b.period_ns),
+                tco_ns => format!("{:.2}", io.clock_to_out_ns),
+                tsu_ns => format!("{:.2}", io.input_setup_ns),
+                trace_ns => format!("{:.2}", io.trace_ns),
+                out_max_ns => format!("{:.3}", b.out_max_ns),
+                out_min_ns => format!("{:.3}", b.out_min_ns),
+                in_max_ns => format!("{:.3}", b.in_max_ns),
+                in_min_ns => format!("{:.3}", b.in_min_ns),
+                adc_max_ns => format!("{:.3}", b.adc_max_ns),
+                adc_min_ns => format!("{:.3}", b.adc_min_ns),
+                capture_clocks => b.capture_clocks,
+                groups => groups.clone(),
+            },
+        )?;
+        files.push(OutFile {
+            name: format!("{name}_top.{ext}"),
+            text,
+        });
+    }
+    Ok(files)
+}

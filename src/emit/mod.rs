@@ -20,7 +20,10 @@ pub use wrappers::{cap_top_verilog, core_verilog, top_ports, top_verilog};
 use crate::config::{Derived, Loaded};
 use crate::cosim::Port;
 use crate::error::Result;
-use constraints::{board_files, cap_constraints, synthesis_sources, xilinx_files};
+use constraints::{board_files, cap_constraints, io_files, synthesis_sources, xilinx_files};
+pub use constraints::{
+    constrained_ports, io_budget, port_timing, ConstrainedPort, IoBudget, PortTiming,
+};
 use std::path::Path;
 
 /// Tool version printed in headers.
@@ -212,6 +215,10 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
                 )
             ),
         });
+        if loaded.config.board.is_none() {
+            // No board: the clock and I/O timing for the user's own board.
+            files.extend(io_files(loaded, command, top)?);
+        }
     }
     if let Some(top) = &cap_text {
         files.extend(board_files(loaded, command, top)?);

@@ -80,6 +80,10 @@ const TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../rtl-templates/constraints/top.sdc.j2"),
     ),
     (
+        "constraints/top_io.j2",
+        include_str!("../../rtl-templates/constraints/top_io.j2"),
+    ),
+    (
         "board/board.v.j2",
         include_str!("../../rtl-templates/board/board.v.j2"),
     ),

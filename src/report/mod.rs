@@ -431,3 +431,57 @@ pub fn now_utc() -> String {
         rem % 60
     )
 }
+
+/// The Yosys cache directories `check` reads: the one `SINEDEC_SYNTH_CACHE` names, then
+/// `report`'s default ([`yosys::default_cache_dir`]).
+pub fn check_cache_dirs() -> Vec<PathBuf> {
+    let mut dirs: Vec<PathBuf> = std::env::var_os(crate::synth::SYNTH_CACHE_ENV)
+        .filter(|v| !v.is_empty())
+        .map(PathBuf::from)
+        .into_iter()
+        .collect();
+    dirs.push(yosys::default_cache_dir(Path::new("report")));
+    dirs
+}
+
+/// The FPGA family `report` synthesizes for the configured target.
+pub fn target_family(loaded: &Loaded) -> Family {
+    match loaded.config.target {
+        crate::config::Target::Spartan3an => Family::Xc3sa,
+        crate::config::Target::Cyclone3 => Family::CycloneIve,
+    }
+}
+
+/// `check`'s line on the resources of the whole configured top for the target family:
+/// the figures of the synthesis `sinedec report` cached for the current design (in one of
+/// [`check_cache_dirs`]), or how to get them (`config`: the config argument as the user
+/// wrote it, None for the embedded default). None without a top. Never runs Yosys.
+pub fn top_resource_line(loaded: &Loaded, config: Option<&str>) -> Result<Option<String>> {
+    let verilog = match crate::emit::top_verilog(loaded)? {
+        Some(v) => v,
+        None => match crate::emit::cap_top_verilog(loaded)? {
+            Some(v) => v,
+            None => return Ok(None),
+        },
+    };
+    let top = crate::emit::top_name(loaded);
+    let family = target_family(loaded);
+    let label = "resources (top)            ";
+    Ok(Some(
+        match yosys::cached_synthesis(&check_cache_dirs(), &verilog, &top, family) {
+            Some((s, version)) => format!(
+                "{label} {}: {} LUTs, {} FFs, {} block RAMs, {} multipliers (Yosys synthesis of {top} cached by `sinedec report`, {version})",
+                family.name(),
+                s.luts,
+                s.ffs,
+                s.brams,
+                s.multipliers
+            ),
+            None => format!(
+                "{label} not synthesized for this design yet: `sinedec report{}` synthesizes {top} ({}) and `check` then prints its LUTs, FFs, block RAMs and multipliers",
+                config.map(|c| format!(" {c}")).unwrap_or_default(),
+                family.name()
+            ),
+        },
+    ))
+}

@@ -349,7 +349,7 @@ fn run_jobs(
                 Job::Family(i, fam) => {
                     let u = &units[i];
                     let tag = format!("{}_{}", u.tag, fam.name());
-                    ys.family(&u.verilog, &u.top, fam, &tag)
+                    ys.family_indexed(&u.verilog, &u.top, fam, &tag)
                         .map(|(s, hit)| JobOut::Family(s, hit))
                 }
                 Job::Generic(i) => {

@@ -133,6 +133,40 @@ pub(crate) fn cache_store<T: Serialize>(dir: Option<&Path>, key: &str, value: &T
     Ok(())
 }
 
+/// The latest FPGA synthesis of a design in the cache, whatever the Yosys version: the
+/// entry `check` reads for its resource line ([`cached_synthesis`]), which cannot compute the
+/// key of [`synthesize_cached`] since that holds the version of Yosys, and `check` never
+/// runs Yosys.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct LatestSynth {
+    /// `yosys -V` of the run.
+    yosys: String,
+    /// Its figures.
+    stats: CachedSynth,
+}
+
+/// The key of a design's [`LatestSynth`] entry: the family, the top, the synthesis script
+/// and the Verilog, without the Yosys version.
+fn latest_key(verilog: &str, top: &str, family: Family) -> String {
+    let kind = format!("latest family {} top {top}", family.name());
+    cache_key(&kind, "", crate::synth::SYNTH_SOURCE, verilog)
+}
+
+/// The figures of the latest synthesis of `verilog` (top `top`) for `family` that `sinedec
+/// report` stored in one of the cache directories `dirs`, with the Yosys version that ran
+/// it; None when none holds it. Reads files only: no Yosys run.
+pub fn cached_synthesis(
+    dirs: &[PathBuf],
+    verilog: &str,
+    top: &str,
+    family: Family,
+) -> Option<(SynthStats, String)> {
+    let key = latest_key(verilog, top, family);
+    dirs.iter()
+        .find_map(|d| cache_load::<LatestSynth>(Some(d), &key))
+        .map(|e| (e.stats.into(), e.yosys))
+}
+
 /// The name of a cache entry: the SHA-256 of the entry layout's version, the run kind
 /// (family and top), the Yosys version, the script (for FPGA runs, the source of
 /// `src/synth.rs` and of the path analysis) and the Verilog, each framed by its length.
@@ -243,6 +277,30 @@ impl Yosys {
         );
         let _ = std::fs::remove_dir_all(&dir);
         s
+    }
+
+    /// [`family`](Self::family), and the design's [`LatestSynth`] entry written beside
+    /// the result (so that `check` finds it without asking Yosys for its version).
+    pub fn family_indexed(
+        &self,
+        verilog: &str,
+        top: &str,
+        family: Family,
+        tag: &str,
+    ) -> Result<(SynthStats, bool)> {
+        let r = self.family(verilog, top, family, tag)?;
+        let key = latest_key(verilog, top, family);
+        let entry = LatestSynth {
+            yosys: self.version.clone(),
+            stats: CachedSynth::from(&r.0),
+        };
+        let same = self
+            .load::<LatestSynth>(&key)
+            .is_some_and(|e| e.yosys == entry.yosys);
+        if !same {
+            self.store(&key, &entry)?;
+        }
+        Ok(r)
     }
 
     /// Generic gate count and logic depth ([`GENERIC_SCRIPT`]).

@@ -415,6 +415,92 @@ fn check_default_prints_derived_parameters() {
     );
 }
 
+/// Runs `sinedec check c.toml` in `dir` with the Yosys caches `synth` (SINEDEC_SYNTH_CACHE)
+/// and `xdg`/sinedec/yosys (report's default) and no Yosys on PATH: `check` must not need
+/// it. Returns its resource line.
+fn check_resource_line(dir: &Path, synth: &Path, xdg: &Path) -> String {
+    let o = Command::new(BIN)
+        .args(["check", "c.toml"])
+        .current_dir(dir)
+        .env("SINEDEC_SYNTH_CACHE", synth)
+        .env("XDG_CACHE_HOME", xdg)
+        .env("PATH", dir.join("no-tools"))
+        .output()
+        .expect("run sinedec");
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        o.status.success(),
+        "{out}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    line_of(&out, "resources (top)").to_string()
+}
+
+#[test]
+fn check_prints_the_tops_resources_from_the_report_cache_or_how_to_get_them() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("c.toml"), DEFAULT_CONFIG).unwrap();
+    let (empty, cache, xdg) = (dir.join("empty"), dir.join("cache"), dir.join("xdg"));
+    for d in [&empty, &cache, &xdg] {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    // Nothing cached: one line that says how to get the figures.
+    let line = check_resource_line(dir, &empty, &xdg);
+    assert!(
+        line.contains("not synthesized") && line.contains("`sinedec report c.toml`"),
+        "{line}"
+    );
+    // The top synthesized as `sinedec report` does (its Yosys runner, seeded from the
+    // suite's Yosys cache so that a known design does not run again): `check` prints the
+    // same figures.
+    if let Some(seed) = std::env::var_os("SINEDEC_SYNTH_CACHE").filter(|v| !v.is_empty()) {
+        for e in std::fs::read_dir(seed).into_iter().flatten().flatten() {
+            let _ = std::fs::copy(e.path(), cache.join(e.file_name()));
+        }
+    }
+    let l = sinedec::config::Loaded::parse(DEFAULT_CONFIG, "c.toml").unwrap();
+    let top = sinedec::emit::top_verilog(&l).unwrap().expect("a top");
+    let ys = sinedec::report::yosys::Yosys::new(Some(cache.clone()), dir.join("work"))
+        .expect("yosys (apt-get install -y yosys)");
+    let (s, _) = ys
+        .family_indexed(&top, "sd_top", sinedec::synth::Family::Xc3sa, "top")
+        .expect("synthesis");
+    // Keep a new run in the suite's cache, as `sinedec::synth::synthesize` does.
+    if let Some(seed) = std::env::var_os("SINEDEC_SYNTH_CACHE").filter(|v| !v.is_empty()) {
+        let seed = std::path::PathBuf::from(seed);
+        for e in std::fs::read_dir(&cache).unwrap().flatten() {
+            if !seed.join(e.file_name()).exists() {
+                let _ = std::fs::copy(e.path(), seed.join(e.file_name()));
+            }
+        }
+    }
+    let line = check_resource_line(dir, &cache, &xdg);
+    let want = format!(
+        "xc3sa: {} LUTs, {} FFs, {} block RAMs, {} multipliers",
+        s.luts, s.ffs, s.brams, s.multipliers
+    );
+    assert!(
+        line.contains(&want) && line.contains(ys.version()),
+        "{line}\nwant {want}"
+    );
+    assert!(s.luts > 0 && s.ffs > 0, "{s:?}");
+    // Report's default cache directory is read as well.
+    let home = xdg.join("sinedec/yosys");
+    std::fs::create_dir_all(&home).unwrap();
+    for e in std::fs::read_dir(&cache).unwrap().flatten() {
+        std::fs::copy(e.path(), home.join(e.file_name())).unwrap();
+    }
+    assert!(check_resource_line(dir, &empty, &xdg).contains(&want));
+    // Another design (one more CORDIC iteration) is not answered by the cached figures.
+    std::fs::write(
+        dir.join("c.toml"),
+        DEFAULT_CONFIG.replace("iterations = 14", "iterations = 15"),
+    )
+    .unwrap();
+    assert!(check_resource_line(dir, &cache, &xdg).contains("not synthesized"));
+}
+
 #[test]
 fn check_latency_follows_iterations() {
     let tmp = tempfile::tempdir().unwrap();

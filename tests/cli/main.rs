@@ -17,6 +17,7 @@ mod config_errors;
 mod config_ranges;
 mod config_scope;
 mod config_wording;
+mod io_constraints;
 mod no_panic;
 mod output_robustness;
 mod output_safety;
