@@ -67,10 +67,16 @@ impl AdcChipModel {
     /// which has no limits of its own).
     pub fn violation_messages(&self) -> Vec<String> {
         match self {
-            AdcChipModel::Ltc1407a(m) => m.violations().iter().map(|v| v.message.clone()).collect(),
-            AdcChipModel::Ads8354(m) | AdcChipModel::Ad7380(m) => {
-                m.violations().iter().map(|v| v.message.clone()).collect()
-            }
+            AdcChipModel::Ltc1407a(m) => m
+                .violations()
+                .iter()
+                .map(|v| format!("clock {}: {}", v.clock, v.message))
+                .collect(),
+            AdcChipModel::Ads8354(m) | AdcChipModel::Ad7380(m) => m
+                .violations()
+                .iter()
+                .map(|v| format!("clock {}: {}", v.clock, v.message))
+                .collect(),
             AdcChipModel::Generic(..) => Vec::new(),
         }
     }

@@ -192,9 +192,10 @@ pub struct BissCheck {
     pub position_mismatches: u64,
 }
 
-/// Parallel-bus positions kept for [`BissCheck`]: a frame ends a few samples after its
-/// latch.
-const PAR_HISTORY: usize = 64;
+/// Parallel-bus positions kept for [`BissCheck`]: a frame is checked when it ends, its
+/// timeout included (tens of microseconds after its latch: thousands of samples at the
+/// fastest ADCs).
+const PAR_HISTORY: usize = 8192;
 
 /// One decoded sample.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -72,6 +72,26 @@ impl Derived {
         let position_width = quadrant_bits + f;
         let clock_hz = c.clock.frequency_hz;
         let (adc, preamp) = adc_params(c, text, &err)?;
+        // The QEP fallback of the sinewave top compares its count in the clocks between a
+        // conversion start and the ADC's sample (src/blocks/fallback/hdl.rs): three at least.
+        let gap = adc.conv_to_valid_clocks() % adc.period_clocks.max(1);
+        if c.capacitive.is_none() && gap < 3 {
+            let key = if c.adc.sample_rate_hz.is_some() {
+                "sample_rate_hz"
+            } else {
+                "preset"
+            };
+            return Err(err(
+                "adc",
+                key,
+                format!(
+                    "the {} delivers each sample {gap} clock(s) after a conversion start ({} clocks after its own, {} per period); the top's QEP fallback needs at least 3: set a lower adc.sample_rate_hz",
+                    adc.chip,
+                    adc.conv_to_valid_clocks(),
+                    adc.period_clocks
+                ),
+            ));
+        }
         let rate = adc.sample_rate_hz();
         // Warn at 1.75 quadrants per sample: the fine-angle unwrap is exact below 2.
         let warn_step = 7u64 << (f - 2);

@@ -237,7 +237,14 @@ impl SimReport {
         let _ = writeln!(o, "samples with error flag     {}", s.errors);
         let _ = writeln!(o, "samples with warning flag   {}", s.warnings);
         let _ = writeln!(o, "latency mismatches          {}", r.latency_mismatches);
-        let _ = writeln!(o, "ADC protocol violations     {}", r.adc_violations.len());
+        let _ = match r.adc_violations.first() {
+            Some(first) => writeln!(
+                o,
+                "ADC protocol violations     {} (first: {first})",
+                r.adc_violations.len()
+            ),
+            None => writeln!(o, "ADC protocol violations     0"),
+        };
         if d.preamp.is_some() {
             let gains = match r.amp_gains {
                 Some((a, b)) => format!("A {a}, B {b}"),
