@@ -96,6 +96,22 @@ fn designs() -> Vec<Design> {
             clock_mhz: mhz(&def),
         },
     ];
+    // The shipped tops of the current dual SAR ADCs (no [board], 100 MHz).
+    for (label, file) in [
+        ("ADS8354 top", "configs/ads8354_100mhz.toml"),
+        ("AD7380 top", "configs/ad7380_100mhz.toml"),
+    ] {
+        let l = Loaded::from_file(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(file))
+            .unwrap_or_else(|e| panic!("{file}: {e}"));
+        v.push(Design {
+            label,
+            top: top_name(&l),
+            verilog: top_verilog(&l)
+                .expect("export")
+                .expect("a sinewave config has a top"),
+            clock_mhz: mhz(&l),
+        });
+    }
     for (label, text) in option_tops() {
         let l = Loaded::parse(&text, "option.toml").unwrap_or_else(|e| panic!("{label}: {e}"));
         v.push(Design {
