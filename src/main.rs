@@ -26,15 +26,25 @@ struct Cli {
 enum Command {
     /// Writes Verilog and the parameter report for a configuration.
     ///
-    /// Writes `<name>_core.v`, `<name>_core_tb.v` (self-checking testbench), `<name>_top.v`,
-    /// `<name>_params.md`, `<name>_params.json`, `<name>_inst.v`, `<name>_sinedec.core`
-    /// (FuseSoC) and `<name>_lint.vlt` (Verilator `-Wall` waivers with their reasons).
+    /// Writes `<name>_core.v`, `<name>_core_tb.v` (self-checking testbench),
+    /// `<name>_top.v`, `<name>_params.md`, `<name>_params.json`, `<name>_inst.v`,
+    /// `<name>_sinedec.core` (FuseSoC) and `<name>_lint.vlt` (Verilator `-Wall` waivers
+    /// with their reasons).
     ///
     /// With a `[board]` section it adds `<name>_top.ucf`, plus `<name>_board.v`,
-    /// `<name>_clock.v` and `<name>_clock_sim.v` when the board's oscillator is not the system
-    /// clock (see `[board] clock_hz`); with `preset = "spartan3an-starter-kit"` also
-    /// `<name>_top.ut`, BitGen options for `bitgen -f <name>_top.ut`: `-g UnusedPin:PullUp`.
-    /// A `[capacitive]` config gets `<name>_top.qsf` and `<name>_top.sdc` for Quartus.
+    /// `<name>_clock.v` and `<name>_clock_sim.v` when the board's oscillator is not the
+    /// system clock (see `[board] clock_hz`); with `preset = "spartan3an-starter-kit"` also
+    /// `<name>_top.ut`, BitGen options for `bitgen -f <name>_top.ut`: `-g
+    /// UnusedPin:PullUp`. A `[capacitive]` config gets `<name>_top.qsf` and
+    /// `<name>_top.sdc` for Quartus.
+    ///
+    /// A sinewave top without `[board]` gets `<name>_top.sdc` (Quartus TimeQuest, Synopsys)
+    /// and `<name>_top.xdc` (Vivado) for a board of your own: `create_clock` on `clk` with
+    /// the configured period, and for every other port of `<name>_top` an input or output
+    /// delay (`-max` and `-min`) from the I/O budget `check` prints, the ADC data window
+    /// with the capture distance as a multicycle, or a `set_false_path` for an input that
+    /// enters through a synchronizer (docs/interfaces.md, "I/O constraints of a top without
+    /// `[board]`"). Pin locations and I/O standards are left to you.
     ///
     /// Without CONFIG it uses the embedded `configs/spartan3an.toml`. DIR follows the
     /// output-directory rule: sinedec never overwrites or removes a file it did not write.
@@ -86,14 +96,58 @@ enum Command {
     /// Without `--csv` no decoded sample is kept (the statistics are gathered as they come),
     /// so memory stays bounded however long the run.
     #[command(allow_negative_numbers = true)]
+
+    ///
+    /// Cycle-accurate simulation of `<name>_top` against an encoder model (imperfections,
+    /// speed profile `constant:RPM`, `ramp:FROM:TO:S`, `reversal:RPM:AT:OVER`, `creep`) and
+    /// the configured ADC's chip model answering its frames (the LTC1407A-1 behind an
+    /// LTC6912-1 model on the kit preset; the generic SPI model from `[adc.frame]`). Its
+    /// outputs are read by their masters: a BiSS-C master reads frames back to back at 2.5
+    /// MHz MA (or the slave's limit) and each frame's CRC, position and turns are checked
+    /// against the parallel bus at the slave's latch; with `[abz]` a quadrature counter
+    /// follows the A/B edges against the position. Prints max/RMS error in LSB and
+    /// arc-seconds, sample rate, latency, flags, ADC protocol violations, the BiSS-C and
+    /// ABZ checks and simulation speed, with a progress bar.
+    ///
+    /// On a `[capacitive]` config it runs `cap_top` against the capacitive encoder and a
+    /// 16-bit SPI ADC model and prints the error in mechanical degrees and the per-sample
+    /// processing time; the track imperfections
+    /// (`--offset-sin/--offset-cos/--gain-mismatch/--phase-error/--harmonic3`) do not apply
+    /// there and are rejected.
+    ///
+    /// The compiled engine runs by default: built from the Verilog of the same rust-hdl top
+    /// by Yosys and rustc, cached under `$SINEDEC_ENGINE_CACHE`, else
+    /// `$XDG_CACHE_HOME/sinedec/engine`, else `~/.cache/sinedec/engine` (empty or relative
+    /// values ignored, as the XDG specification says). A cached library is loaded only when
+    /// its bytes match the SHA-256 stored beside it; a damaged entry is rebuilt, and a
+    /// cache that cannot be written is said in one stderr line naming its path and variable
+    /// while the model is built in a temporary directory.
+    ///
+    /// Options are checked before the run: speeds finite within ±1,000,000 rpm, ramp and
+    /// reversal times > 0, `--amplitude` in (0, 1], `--noise-lsb` 0..=10000, offsets and
+    /// `--gain-mismatch` -1..=1, `--phase-error` -45..=45 degrees, `--harmonic3`
+    /// -0.5..=0.5, `--duration` (0, 10] s. A run with no decoded sample past the settling
+    /// ones is an error, and on the capacitive path a `--duration` within the filters' 1.5
+    /// ms settling window is refused before the run. A profile faster than the decoder
+    /// follows (`check`'s max speed: the unwrap limit, on the capacitive path also the
+    /// low-pass corner) runs with a warning on stderr: its error figures measure a lost
+    /// track. Negative values may be written in scientific notation (`--offset-sin -1e-1`).
+    ///
+    /// Without `--csv` no decoded sample is kept (the statistics are gathered as they
+    /// come), so memory stays bounded however long the run.
     Simulate(SimulateArgs),
     /// Validates a configuration and prints its derived parameters.
     ///
-    /// Says first whether the config has a board top (`<name>_top.v`, beyond the core and its
-    /// testbench that `generate` always writes) and whether `simulate` can run (it runs the
-    /// board top: a `generic` sinewave config has none), then prints the derived parameters:
-    /// widths, guard bits, latency, ADC timing and its I/O budget, sample rate, resolution,
-    /// maximum speed at full resolution.
+    /// Says first which board top `generate` writes (`<name>_top.v`, beyond the core and
+    /// its testbench: every preset has one; the ADC chip and the enabled outputs are named)
+    /// and which chip models `simulate` runs it against, then prints the derived
+    /// parameters: widths, guard bits, latency, ADC timing and its I/O budget, sample rate,
+    /// resolution, maximum speed at full resolution. Its last line (`resources (top)`)
+    /// gives the LUTs, FFs, block RAMs and multipliers of the whole configured top for the
+    /// target family (xc3sa or cycloneive) from the Yosys synthesis `sinedec report` cached
+    /// for this exact design (in `$SINEDEC_SYNTH_CACHE` or report's default cache
+    /// directory), with the Yosys version; without one it says to run `sinedec report`.
+    /// `check` reads the cache only and never runs Yosys.
     Check {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,
