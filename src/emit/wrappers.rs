@@ -99,9 +99,6 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
     })
 }
 
-/// The wrapper's comment for its reset input, which it synchronizes before the rtl.
-const RST_COMMENT: &str = "reset, active high, asynchronous: asserts at once, released on the second clock edge after it falls";
-
 /// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
 fn turns_expr(d: &crate::config::Derived) -> String {
     if d.multiturn_bits == 0 {
@@ -244,17 +241,6 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         let input = t.dir != Dir::Out;
         if t.pin == Pin::Parallel {
             conns.push(format!(".{p}({})", t.net));
-        } else if p == "rst" {
-            // The rtl's reset is the synchronizer's output (the wrapper's `rst` is
-            // asynchronous).
-            decl.push(wrapper_port(
-                &TopPort {
-                    comment: RST_COMMENT,
-                    ..*t
-                },
-                None,
-            ));
-            conns.push(".rst(rst_sync[1])".into());
         } else if used.contains(&p) {
             decl.push(wrapper_port(t, None));
             conns.push(format!(".{p}({})", t.net));
