@@ -213,6 +213,20 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             ),
         });
     }
+    if let Some(tb) = testbench::top_testbench(loaded)? {
+        files.push(OutFile {
+            name: format!("{name}_top_tb.v"),
+            text: format!(
+                "{}`timescale 1ns / 1ps\n\n{tb}",
+                header(
+                    loaded,
+                    command,
+                    "Self-checking testbench of the top: encoder, timed ADC model, BiSS-C master (Verilog-2001).",
+                    "//"
+                )
+            ),
+        });
+    }
     if let Some(top) = &cap_text {
         files.extend(board_files(loaded, command, top)?);
         files.push(OutFile {
