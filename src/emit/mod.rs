@@ -213,7 +213,12 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             ),
         });
     }
-    if let Some(tb) = testbench::top_testbench(loaded)? {
+    if let Some(tb) = top_text
+        .as_ref()
+        .map(|t| testbench::top_testbench(loaded, t))
+        .transpose()?
+        .flatten()
+    {
         files.push(OutFile {
             name: format!("{name}_top_tb.v"),
             text: format!(
@@ -331,6 +336,7 @@ fn flow_files(
                     "#",
                 ),
                 &core_module,
+                has(&format!("{top_module}_tb.v")).then_some(top_module.as_str()),
                 synth,
             )?,
         },

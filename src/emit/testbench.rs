@@ -207,20 +207,20 @@ pub fn top_tb_max_error_lsb(loaded: &Loaded) -> u64 {
     ((4.0 / amp_codes + cordic) * lsb_per_rad + 4.0).ceil() as u64
 }
 
-/// Verilog text of `<name>_top_tb` (`rtl-templates/tb/top_tb.v.j2`): the encoder, the
-/// configured ADC as a timed model (the LTC6912-1 too with `[preamp]`), and a BiSS-C
-/// master, checking `<name>_top` in real time. None without a sinewave `<name>_top`.
-pub fn top_testbench(loaded: &Loaded) -> Result<Option<String>> {
+/// Verilog text of `<name>_top_tb` (`rtl-templates/tb/top_tb.v.j2`) for the top wrapper
+/// `top` (its ports are read from the text, [`crate::emit::flow::ports_of`]): the encoder,
+/// the configured ADC as a timed model (the LTC6912-1 too with `[preamp]`), and a BiSS-C
+/// master, checking `<name>_top` in real time. None for a capacitive top.
+pub fn top_testbench(loaded: &Loaded, top: &str) -> Result<Option<String>> {
     use crate::blocks::top::hdl::SD_TOP_PORTS;
-    use crate::blocks::top::ports::Dir;
     let d = &loaded.derived;
-    if d.capacitive.is_some() || !crate::emit::has_top(loaded) {
+    if d.capacitive.is_some() {
         return Ok(None);
     }
-    let ports = crate::emit::top_ports(loaded);
-    if ports.is_empty() {
-        return Ok(None);
-    }
+    let ports: Vec<(String, u32, bool)> = crate::emit::flow::ports_of(top)?
+        .into_iter()
+        .map(|p| (p.name, p.width, p.direction == "input"))
+        .collect();
     let clk_ns = 1e9 / d.clock_hz;
     let io = &d.io_timing;
     let fs = d.sample_rate_hz;
@@ -235,19 +235,20 @@ pub fn top_testbench(loaded: &Loaded) -> Result<Option<String>> {
         .preamp
         .as_ref()
         .map_or(0, |p| 20 * p.half_period_clocks as u64);
-    let startup_ns =
-        (10 + preamp_clocks + d.adc.startup_clocks() as u64 + lat) as f64 * clk_ns;
+    let startup_ns = (10 + preamp_clocks + d.adc.startup_clocks() as u64 + lat) as f64 * clk_ns;
     let sample_ns = 1e9 / fs;
     let room = ((TOP_TB_MAX_CLOCKS as f64 * clk_ns - startup_ns) / sample_ns)
         .floor()
         .max(0.0) as u64;
-    let checked = TOP_TB_SAMPLES.min(room.saturating_sub(TOP_TB_WARMUP)).max(20);
-    // At least three BiSS-C frames (MA edges, their timeout and the gap) after the warm-up.
+    let checked = TOP_TB_SAMPLES
+        .min(room.saturating_sub(TOP_TB_WARMUP))
+        .max(20);
+    // At least four BiSS-C frames (MA edges, their timeout and the gap) after the warm-up.
     let ma_half_ns = (8.0 * clk_ns).max(50.0);
     let frame_ns = (2 * d.biss.frame_rising_edges() + 6) as f64 * ma_half_ns
         + d.biss.timeout_clocks as f64 * clk_ns;
     let warm_ns = startup_ns + TOP_TB_WARMUP as f64 * sample_ns;
-    let run_ns = (warm_ns + (checked + 2) as f64 * sample_ns).max(warm_ns + 3.2 * frame_ns);
+    let run_ns = (warm_ns + (checked + 2) as f64 * sample_ns).max(warm_ns + 4.2 * frame_ns);
     let t_rev_ns = startup_ns + (TOP_TB_WARMUP + checked / 2) as f64 * sample_ns;
     let t_rev_len_ns = (checked / 8) as f64 * sample_ns;
     let f = d.fine_bits;
@@ -261,22 +262,24 @@ pub fn top_testbench(loaded: &Loaded) -> Result<Option<String>> {
     };
     let port_list: Vec<minijinja::Value> = ports
         .iter()
-        .filter(|(n, _)| n != "clk")
-        .map(|(n, w)| {
-            let t = SD_TOP_PORTS.iter().find(|t| t.name == n);
-            let input = t.is_some_and(|t| t.dir == Dir::In);
+        .filter(|(n, _, _)| n != "clk")
+        .map(|(n, w, input)| {
+            let idle = SD_TOP_PORTS
+                .iter()
+                .find(|t| t.name == n)
+                .map_or(0, |t| t.idle);
             minijinja::context! {
                 name => n,
                 width => w,
-                dir => if input { "in" } else { "out" },
-                idle => t.map_or(0, |t| t.idle),
+                dir => if *input { "in" } else { "out" },
+                idle => idle,
             }
         })
         .collect();
     let conns = ports
         .iter()
-        .filter(|(n, _)| n != "clk")
-        .map(|(n, _)| format!(".{n}({n})"))
+        .filter(|(n, _, _)| n != "clk")
+        .map(|(n, _, _)| format!(".{n}({n})"))
         .collect::<Vec<_>>()
         .join(", ");
     let bit = |v: bool| if v { "1" } else { "0" };

@@ -205,7 +205,10 @@ fn check_says_up_front_what_is_generated_and_simulated() {
         let files = sinedec::emit::generate(&l, "test").unwrap();
         assert!(files.files.iter().any(|f| f.name == top), "{top}");
         assert!(gen.contains(top) && gen.contains(chip), "{gen}");
-        assert!(sim.starts_with("simulate") && sim.contains("available: runs"), "{sim}");
+        assert!(
+            sim.starts_with("simulate") && sim.contains("available: runs"),
+            "{sim}"
+        );
         assert!(sim.contains(chip), "{sim}");
     }
 }

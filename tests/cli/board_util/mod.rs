@@ -7,7 +7,10 @@ use sinedec::emit::Generation;
 
 /// The pins of the default config's top (QEP enabled there, SSI and SPI off).
 pub fn default_pins() -> Vec<&'static str> {
-    kit_pins().into_iter().chain(QEP_PINS.iter().copied()).collect()
+    kit_pins()
+        .into_iter()
+        .chain(QEP_PINS.iter().copied())
+        .collect()
 }
 
 /// The pins every top of the LTC1407A-1 kit has: the top's own and the pre-amplifier's.
