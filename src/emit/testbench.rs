@@ -184,8 +184,9 @@ pub const TOP_TB_SAMPLES: u64 = 100;
 /// and the correction settle.
 pub const TOP_TB_WARMUP: u64 = 16;
 
-/// Longest run of the top testbench in system clocks, so that Icarus finishes it in well
-/// under a minute (docs/verification.md gives the run times).
+/// System clocks the checked samples of the top testbench fit in, so that Icarus finishes
+/// the run in well under a minute (the run also lasts four BiSS-C frames with their
+/// timeout; docs/verification.md gives the figures).
 pub const TOP_TB_MAX_CLOCKS: u64 = 20_000;
 
 /// Electrical periods of the encoder per conversion in the top testbench (before the
@@ -330,6 +331,8 @@ pub fn top_testbench(loaded: &Loaded, top: &str) -> Result<Option<String>> {
             cpol => bit(frame.cpol),
             cpha => bit(frame.cpha),
             conv_high => bit(frame.conv_active_high),
+            // A chip select held over the frame (more than one clock active) frames it, as
+            // `sim::spi_adc` reads the frame.
             cs_framing => bit(frame.conv_clocks > 1),
             pipeline => frame.pipeline,
             bn => b.data_bits(),
