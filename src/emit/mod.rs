@@ -220,6 +220,25 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             files.extend(io_files(loaded, command, top)?);
         }
     }
+    if let Some(tb) = top_text
+        .as_ref()
+        .map(|t| testbench::top_testbench(loaded, t))
+        .transpose()?
+        .flatten()
+    {
+        files.push(OutFile {
+            name: format!("{name}_top_tb.v"),
+            text: format!(
+                "{}`timescale 1ns / 1ps\n\n{tb}",
+                header(
+                    loaded,
+                    command,
+                    "Self-checking testbench of the top: encoder, timed ADC model, BiSS-C master (Verilog-2001).",
+                    "//"
+                )
+            ),
+        });
+    }
     if let Some(top) = &cap_text {
         files.extend(board_files(loaded, command, top)?);
         files.push(OutFile {
@@ -324,6 +343,7 @@ fn flow_files(
                     "#",
                 ),
                 &core_module,
+                has(&format!("{top_module}_tb.v")).then_some(top_module.as_str()),
                 synth,
             )?,
         },

@@ -44,6 +44,10 @@ const TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../rtl-templates/tb/core_tb.v.j2"),
     ),
     (
+        "tb/top_tb.v.j2",
+        include_str!("../../rtl-templates/tb/top_tb.v.j2"),
+    ),
+    (
         "top/sinewave_top.v.j2",
         include_str!("../../rtl-templates/top/sinewave_top.v.j2"),
     ),

@@ -175,3 +175,179 @@ fn bits(values: &[u64], ports: &[Port]) -> String {
         .collect::<Vec<_>>()
         .join("_")
 }
+
+/// Conversions of the top testbench checked against the encoder after the warm-up (fewer,
+/// but at least 20, when the run would last more than [`TOP_TB_MAX_CLOCKS`]).
+pub const TOP_TB_SAMPLES: u64 = 100;
+
+/// Samples the top testbench leaves unchecked after reset: the monitor's amplitude window
+/// and the correction settle.
+pub const TOP_TB_WARMUP: u64 = 16;
+
+/// System clocks the checked samples of the top testbench fit in, so that Icarus finishes
+/// the run in well under a minute (the run also lasts four BiSS-C frames with their
+/// timeout; docs/verification.md gives the figures).
+pub const TOP_TB_MAX_CLOCKS: u64 = 20_000;
+
+/// Electrical periods of the encoder per conversion in the top testbench (before the
+/// reversal; a quarter of the QEP-CORDIC's limit of one quadrant per sample is 1/16).
+pub const TOP_TB_PERIODS_PER_SAMPLE: f64 = 1.0 / 50.0;
+
+/// Signal amplitude of the top testbench at the ADC, fraction of full scale (the template's
+/// `AMPLITUDE`).
+pub const TOP_TB_AMPLITUDE: f64 = 0.75;
+
+/// The bound on |decoded - true position| of the top testbench, in LSB of 2^-F quadrant:
+/// four times the angle one ADC code spans at the test amplitude, plus the CORDIC's residual
+/// angle 2^-N rad, plus 4 LSB for the rounding in the correction and the core.
+pub fn top_tb_max_error_lsb(loaded: &Loaded) -> u64 {
+    let d = &loaded.derived;
+    let lsb_per_rad = (1u64 << d.fine_bits) as f64 / std::f64::consts::FRAC_PI_2;
+    let amp_codes = TOP_TB_AMPLITUDE * (1u64 << (d.adc_width - 1)) as f64;
+    let cordic = 2f64.powi(-(d.iterations as i32));
+    ((4.0 / amp_codes + cordic) * lsb_per_rad + 4.0).ceil() as u64
+}
+
+/// Verilog text of `<name>_top_tb` (`rtl-templates/tb/top_tb.v.j2`) for the top wrapper
+/// `top` (its ports are read from the text, [`crate::emit::flow::ports_of`]): the encoder,
+/// the configured ADC as a timed model (the LTC6912-1 too with `[preamp]`), and a BiSS-C
+/// master, checking `<name>_top` in real time. None for a capacitive top.
+pub fn top_testbench(loaded: &Loaded, top: &str) -> Result<Option<String>> {
+    use crate::blocks::top::hdl::SD_TOP_PORTS;
+    let d = &loaded.derived;
+    if d.capacitive.is_some() {
+        return Ok(None);
+    }
+    let ports: Vec<(String, u32, bool)> = crate::emit::flow::ports_of(top)?
+        .into_iter()
+        .map(|p| (p.name, p.width, p.direction == "input"))
+        .collect();
+    let clk_ns = 1e9 / d.clock_hz;
+    let io = &d.io_timing;
+    let fs = d.sample_rate_hz;
+    let ppr = loaded.config.encoder.ppr;
+    let w_rad_s = std::f64::consts::TAU * TOP_TB_PERIODS_PER_SAMPLE * fs;
+    let rpm = w_rad_s / (std::f64::consts::TAU * ppr as f64) * 60.0;
+    // From the clock edge that raises CONV to the one that raises par_valid: the top's
+    // CONV-to-position latency, counted from the first clock CONV is high, + 1 (`simulate`
+    // matches its records the same way).
+    let lat = crate::blocks::top::hdl::conv_to_position_cycles(d) as u64 + 1;
+    let preamp_clocks = d
+        .preamp
+        .as_ref()
+        .map_or(0, |p| 20 * p.half_period_clocks as u64);
+    let startup_ns = (10 + preamp_clocks + d.adc.startup_clocks() as u64 + lat) as f64 * clk_ns;
+    let sample_ns = 1e9 / fs;
+    let room = ((TOP_TB_MAX_CLOCKS as f64 * clk_ns - startup_ns) / sample_ns)
+        .floor()
+        .max(0.0) as u64;
+    let checked = TOP_TB_SAMPLES
+        .min(room.saturating_sub(TOP_TB_WARMUP))
+        .max(20);
+    // At least four BiSS-C frames (MA edges, their timeout and the gap) after the warm-up.
+    let ma_half_ns = (8.0 * clk_ns).max(50.0);
+    let frame_ns = (2 * d.biss.frame_rising_edges() + 6) as f64 * ma_half_ns
+        + d.biss.timeout_clocks as f64 * clk_ns;
+    let warm_ns = startup_ns + TOP_TB_WARMUP as f64 * sample_ns;
+    let run_ns = (warm_ns + (checked + 2) as f64 * sample_ns).max(warm_ns + 4.2 * frame_ns);
+    let t_rev_ns = startup_ns + (TOP_TB_WARMUP + checked / 2) as f64 * sample_ns;
+    let t_rev_len_ns = (checked / 8) as f64 * sample_ns;
+    let f = d.fine_bits;
+    let q = (1u64 << f) as f64;
+    let b = &d.biss;
+    let frame = &d.adc.frame;
+    let data_lines = if ports.iter().any(|p| p.0 == "adc_miso_b") {
+        2
+    } else {
+        1
+    };
+    let port_list: Vec<minijinja::Value> = ports
+        .iter()
+        .filter(|(n, _, _)| n != "clk")
+        .map(|(n, w, input)| {
+            let idle = SD_TOP_PORTS
+                .iter()
+                .find(|t| t.name == n)
+                .map_or(0, |t| t.idle);
+            minijinja::context! {
+                name => n,
+                width => w,
+                dir => if *input { "in" } else { "out" },
+                idle => idle,
+            }
+        })
+        .collect();
+    let conns = ports
+        .iter()
+        .filter(|(n, _, _)| n != "clk")
+        .map(|(n, _, _)| format!(".{n}({n})"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let bit = |v: bool| if v { "1" } else { "0" };
+    let (gain_a, gain_b) = d.preamp.as_ref().map_or((1, 1), |p| (p.gain_a, p.gain_b));
+    let text = render(
+        "tb/top_tb.v.j2",
+        minijinja::context! {
+            name => crate::emit::top_name(loaded),
+            chip => d.adc.chip.to_string(),
+            preamp => d.preamp.is_some(),
+            gain_a => gain_a,
+            gain_b => gain_b,
+            gain_scale_a => format!("{:.1}", (gain_a as f64).abs()),
+            gain_scale_b => format!("{:.1}", (gain_b as f64).abs()),
+            ports => port_list,
+            conns => conns,
+            qep => ports.iter().any(|p| p.0 == "qep_a"),
+            clk_ns => format!("{clk_ns:.4}"),
+            pin_ns => format!("{:.3}", io.clock_to_out_ns + io.trace_ns),
+            trace_ns => format!("{:.3}", io.trace_ns),
+            setup_ns => format!("{:.3}", io.input_setup_ns),
+            valid_ns => format!("{:.3}", d.adc.timing.data_valid_ns),
+            ppr => ppr,
+            rpm => format!("{rpm:.1}"),
+            w_rad_ns => format!("{:.9e}", w_rad_s * 1e-9),
+            t_rev_us => format!("{:.1}", t_rev_ns / 1e3),
+            t_rev_ns => format!("{t_rev_ns:.1}"),
+            t_rev_len_ns => format!("{t_rev_len_ns:.1}"),
+            off_sin => d.correction.offset()[0],
+            off_cos => d.correction.offset()[1],
+            run_ns => format!("{run_ns:.1}"),
+            ma_half_ns => format!("{ma_half_ns:.1}"),
+            max_err => top_tb_max_error_lsb(loaded),
+            min_checked => checked / 2,
+            width => d.adc_width,
+            f => f,
+            pw => d.position_width,
+            tw => d.turns_width,
+            mt => d.multiturn_bits,
+            lat => lat,
+            warmup => TOP_TB_WARMUP,
+            frame_sck => frame.frame_sck,
+            channels => frame.channels,
+            data_lines => data_lines,
+            off0 => frame.offsets[0],
+            off1 => frame.offsets[1],
+            offset_binary => bit(frame.sign == crate::blocks::adc::SignFormat::OffsetBinary),
+            cpol => bit(frame.cpol),
+            cpha => bit(frame.cpha),
+            conv_high => bit(frame.conv_active_high),
+            // A chip select held over the frame (more than one clock active) frames it, as
+            // `sim::spi_adc` reads the frame.
+            cs_framing => bit(frame.conv_clocks > 1),
+            pipeline => frame.pipeline,
+            bn => b.data_bits(),
+            bm => b.multiturn_bits,
+            bv => b.velocity_bits,
+            ba => b.ack_periods,
+            gray => bit(b.gray),
+            pbits => b.position_bits,
+            drop => d.position_width - b.position_bits,
+            timeout_clocks => b.timeout_clocks,
+            lsb_per_rad => format!("{:.6}", q / std::f64::consts::FRAC_PI_2),
+            turn_lsb => format!("{:.1}", d.quadrants_per_turn as f64 * q),
+            range_lsb => format!("{:.1}", d.quadrants_per_turn as f64 * q * (1u64 << d.multiturn_bits) as f64),
+            turned => format!("{:.1}", if d.preamp.is_some() { 2.0 * q } else { 0.0 }),
+        },
+    )?;
+    Ok(Some(text))
+}

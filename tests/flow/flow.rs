@@ -1,6 +1,7 @@
 //! The tool-flow files `generate` writes next to the Verilog (`src/emit/flow.rs`):
 //! - `<name>_sinedec.core`: FuseSoC runs its `sim` target with Icarus and passes, and fails
-//!   (non-zero exit) when one expected vector of the testbench is flipped; its `synth`
+//!   (non-zero exit) when one expected vector of the testbench is flipped; its `sim_top`
+//!   target runs the top's testbench in Icarus and passes; its `synth`
 //!   target sets up an ISE project for the kit (Spartan3A and Spartan3AN, xc3s700an,
 //!   fgg484, -4, the UCF) and a Quartus project for the capacitive board (the SDC, the QSF
 //!   sourced), checked in the project scripts edalize writes (`--setup`: no vendor tool
@@ -102,6 +103,12 @@ fn fusesoc_sim_passes_and_fails_on_a_mismatch() {
     let (ok, out) = run_fusesoc(&dir, &["run", "--target", "sim", "--tool", "icarus", VLNV]);
     assert!(!ok, "a mismatch must fail the run: {out}");
     assert!(out.contains("FAIL: 1 mismatching cycles"), "{out}");
+    // The top's testbench: its target runs it in Icarus (the default tool) and it passes.
+    let (ok, out) = run_fusesoc(&dir, &["run", "--target", "sim_top", VLNV]);
+    assert!(
+        ok && out.contains("PASS: ") && out.contains("BiSS-C frames"),
+        "{out}"
+    );
 }
 
 #[test]

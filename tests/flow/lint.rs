@@ -114,6 +114,15 @@ fn lint_generated(dir: &std::path::Path, files: &[String], tag: &str, name: &str
     assert_clean(r, &format!("{tag} {tb_file}, default warnings"));
     let r = verilator(&dir, &["--timing", "-Wall"], &[&vlt, &core, &tb_file], &tb);
     assert_clean(r, &format!("{tag} {tb_file}, -Wall with {vlt}"));
+    // The top's testbench with the top, when the config has a sinewave top.
+    let tb = format!("{name}_top_tb");
+    let (top, tb_file) = (format!("{name}_top.v"), format!("{tb}.v"));
+    if files.contains(&tb_file) {
+        let r = verilator(&dir, &["--timing"], &[&top, &tb_file], &tb);
+        assert_clean(r, &format!("{tag} {tb_file}, default warnings"));
+        let r = verilator(&dir, &["--timing", "-Wall"], &[&vlt, &top, &tb_file], &tb);
+        assert_clean(r, &format!("{tag} {tb_file}, -Wall with {vlt}"));
+    }
 }
 
 /// The check itself can fail: a width mismatch of the kind rust-hdl writes (a 32-bit

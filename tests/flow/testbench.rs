@@ -48,6 +48,11 @@ fn icarus(core: &str, tb: &str, dir: &Path, generation: &str) -> Run {
 /// `verilator --binary --timing --top-module sd_core_tb core.v tb.v &&
 /// obj_dir/Vsd_core_tb`; no warning may concern the testbench itself.
 fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
+    verilator_top(core, tb, dir, "sd_core_tb")
+}
+
+/// [`verilator`] with the testbench module `top`.
+fn verilator_top(core: &str, tb: &str, dir: &Path, top: &str) -> Run {
     sinedec::cosim::require_tool("verilator").expect("verilator installed");
     let _ = std::fs::remove_dir_all(dir.join("obj_dir"));
     std::fs::write(dir.join("core.v"), core).expect("write");
@@ -55,7 +60,7 @@ fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
     let c = tool(
         Command::new("verilator")
             .args(["--binary", "--timing", "-j", "1"])
-            .args(["--top-module", "sd_core_tb"])
+            .args(["--top-module", top])
             .arg("core.v")
             .arg("tb.v")
             .current_dir(dir),
@@ -72,10 +77,8 @@ fn verilator(core: &str, tb: &str, dir: &Path) -> Run {
             .any(|l| l.starts_with('%') && l.contains("tb.v:")),
         "warnings about the testbench:\n{log}"
     );
-    let r = tool(
-        &mut Command::new(dir.join("obj_dir/Vsd_core_tb")),
-        "Vsd_core_tb",
-    );
+    let bin = format!("V{top}");
+    let r = tool(&mut Command::new(dir.join("obj_dir").join(&bin)), &bin);
     Run {
         ok: r.status.success(),
         code: r.status.code(),
@@ -285,6 +288,138 @@ fn velocity_testbench_spans_several_updates_at_the_default_rate() {
     assert!(
         updates[peak + 1..].windows(2).all(|w| w[1] < w[0]),
         "{updates:?}"
+    );
+}
+
+/// The configs whose `sd_top_tb.v` runs: the default (LTC1407A-1 behind the LTC6912-1),
+/// the default with `[abz] enabled`, and a `generic` SPI ADC without the pre-amplifier
+/// (as `tests/cli/config_errors_util` makes one: `GENERIC`, `NO_PREAMP`).
+fn top_configs() -> Vec<(&'static str, String)> {
+    let d = sinedec::config::DEFAULT_CONFIG;
+    let preamp = "[preamp]\n# LTC6912-1 gains (inverting): -1, -2, -5, -10, -20, -50 or -100. A feeds sin, B cos.\ngain_a = -1\ngain_b = -1\n";
+    assert!(d.contains(preamp) && d.contains("preset = \"ltc1407a-1\""));
+    let generic = d
+        .replace(
+            "preset = \"ltc1407a-1\"",
+            "preset = \"generic\"\nmax_sample_rate_hz = 2e6",
+        )
+        .replace(preamp, "");
+    vec![
+        ("default", d.to_string()),
+        ("abz", format!("{d}\n[abz]\nenabled = true\n")),
+        ("generic", generic),
+    ]
+}
+
+/// `sd_top.v` and `sd_top_tb.v` of a config.
+fn top_files(text: &str) -> (String, String) {
+    let l = sinedec::config::Loaded::parse(text, "t.toml").expect("config");
+    let g = sinedec::emit::generate(&l, "test").expect("generate");
+    let get = |n: &str| {
+        g.files
+            .iter()
+            .find(|f| f.name == n)
+            .unwrap_or_else(|| panic!("{n} missing"))
+            .text
+            .clone()
+    };
+    (get("sd_top.v"), get("sd_top_tb.v"))
+}
+
+/// The PASS line of a run, asserted with exit status 0.
+fn passed(r: &Run, what: &str) {
+    assert!(
+        r.ok && r.code == Some(0) && r.stdout.contains("PASS:") && !r.stdout.contains("FAIL"),
+        "{what}: exit {:?}\n{}",
+        r.code,
+        r.stdout
+    );
+}
+
+/// `sd_top_tb.v` passes against `sd_top.v` in Icarus and Verilator, exit status 0, for the
+/// default config, with ABZ, and for a generic SPI ADC; its PASS line gives the figures.
+#[test]
+fn top_testbench_passes_in_icarus_and_verilator() {
+    for (what, text) in top_configs() {
+        let (top, tb) = top_files(&text);
+        assert!(tb.contains("module sd_top_tb;"), "{what}");
+        if what == "abz" {
+            assert!(tb.contains(".abz_a(abz_a)"), "abz_a not connected");
+        }
+        if what == "generic" {
+            assert!(!tb.contains("amp_cs") && tb.contains("generic SPI ADC"));
+        }
+        once(
+            &format!("top testbench {what}"),
+            &["iverilog", "verilator"],
+            &[&top, &tb],
+            || {
+                let dir = common::workdir(&format!("top_tb_{what}"));
+                passed(&icarus(&top, &tb, &dir, "2005"), what);
+                passed(&verilator_top(&top, &tb, &dir, "sd_top_tb"), what);
+            },
+        );
+    }
+}
+
+/// One-bit changes of the default `sd_top.v`: the BiSS slave's CRC taps 0x03 -> 0x01 (one
+/// bit of the polynomial), and the parallel bus's position LSB inverted.
+fn top_mutants(top: &str) -> Vec<(&'static str, String)> {
+    let mutate = |from: &str, to: &str| {
+        assert_eq!(top.matches(from).count(), 1, "{from}");
+        top.replacen(from, to, 1)
+    };
+    vec![
+        (
+            "crc",
+            mutate("localparam  taps = 32'h3;", "localparam  taps = 32'h1;"),
+        ),
+        (
+            "position",
+            mutate(
+                "assign par_position = {qc[12:0], fine[13:0]};",
+                "assign par_position = {qc[12:0], fine[13:0]} ^ 27'd1;",
+            ),
+        ),
+    ]
+}
+
+/// The failing run of a mutant: no PASS, `what_failed` reported, a non-zero exit.
+fn failed(r: &Run, what: &str, what_failed: &str) {
+    assert!(
+        !r.ok && !r.stdout.contains("PASS") && r.stdout.contains(what_failed),
+        "{what}: exit {:?}\n{}",
+        r.code,
+        r.stdout
+    );
+}
+
+/// The top testbench fails, exits non-zero and says why in Icarus and Verilator when one
+/// bit of the design changes: the BiSS CRC (a CRC6 mismatch) or par_position's LSB (the
+/// BiSS-C word differs from the parallel bus).
+#[test]
+fn top_testbench_fails_on_a_one_bit_change() {
+    let (top, tb) = top_files(sinedec::config::DEFAULT_CONFIG);
+    let mutants = top_mutants(&top);
+    let texts: Vec<&str> = [tb.as_str()]
+        .into_iter()
+        .chain(mutants.iter().map(|m| m.1.as_str()))
+        .collect();
+    once(
+        "top testbench mutants",
+        &["iverilog", "verilator"],
+        &texts,
+        || {
+            for (what, broken) in &mutants {
+                let expect = match *what {
+                    "crc" => "CRC6 mismatch",
+                    _ => "word differs from the parallel bus",
+                };
+                let dir = common::workdir(&format!("top_tb_{what}"));
+                failed(&icarus(broken, &tb, &dir, "2005"), what, expect);
+                failed(&verilator_top(broken, &tb, &dir, "sd_top_tb"), what, expect);
+            }
+        },
     );
 }
 
