@@ -12,7 +12,7 @@
 // enc_miso, enc_miso_oe.
 module sd_top (
     input  wire         clk,          // system clock
-    input  wire         rst,          // reset, active high, asynchronous: asserts at once, released on the second clock edge after it falls
+    input  wire         rst,          // synchronous reset, active high (restarts the set-up)
     input  wire         adc_miso,     // ADC serial data (line A: channel 0, or both channels on one line)
     output wire         adc_sck,      // ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)
     output wire         adc_conv,     // ADC conversion start (CONV pulse or chip select, as the preset frames)
@@ -34,21 +34,14 @@ module sd_top (
     wire [31:0] qc;    // coarse quadrant count
     wire [31:0] fine;  // fine part
     wire [31:0] turns; // turn count
-    // Reset synchronizer: `rst` asserts the rtl's reset at once and releases it on the
-    // second clock edge after it falls. Written here, not in the rtl, because rust-hdl has
-    // no asynchronous reset.
-    reg [1:0] rst_sync = 2'b11;
-    always @(posedge clk or posedge rst)
-        if (rst) rst_sync <= 2'b11;
-        else rst_sync <= {rst_sync[0], 1'b0};
     sd_top_rtl rtl (
-        .clk(clk), .rst(rst_sync[1]), .adc_miso(adc_miso), .adc_miso_b(1'b0),
-        .adc_sck(adc_sck), .adc_conv(adc_conv), .amp_cs(amp_cs), .amp_mosi(amp_mosi),
-        .amp_shdn(amp_shdn), .dac_cs(), .dac_clr(), .spi_ss_b(), .sf_ce0(), .qep_a(qep_a),
-        .qep_b(qep_b), .qep_z(qep_z), .biss_ma(biss_ma), .biss_slo(biss_slo), .ssi_clk(1'b1),
-        .ssi_data(), .enc_sck(1'b0), .enc_cs_n(1'b1), .enc_miso(), .enc_miso_oe(),
-        .par_valid(par_valid), .par_qc(qc), .par_fine(fine), .par_turns(turns),
-        .par_error(par_error), .par_warning(par_warning)
+        .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_miso_b(1'b0), .adc_sck(adc_sck),
+        .adc_conv(adc_conv), .amp_cs(amp_cs), .amp_mosi(amp_mosi), .amp_shdn(amp_shdn),
+        .dac_cs(), .dac_clr(), .spi_ss_b(), .sf_ce0(), .qep_a(qep_a), .qep_b(qep_b),
+        .qep_z(qep_z), .biss_ma(biss_ma), .biss_slo(biss_slo), .ssi_clk(1'b1), .ssi_data(),
+        .enc_sck(1'b0), .enc_cs_n(1'b1), .enc_miso(), .enc_miso_oe(), .par_valid(par_valid),
+        .par_qc(qc), .par_fine(fine), .par_turns(turns), .par_error(par_error),
+        .par_warning(par_warning)
     );
     assign par_position = {qc[12:0], fine[13:0]};
     assign par_turns = turns[11:0];
