@@ -304,16 +304,23 @@ fn top_configs() -> Vec<(&'static str, String)> {
             "preset = \"generic\"\nmax_sample_rate_hz = 2e6",
         )
         .replace(preamp, "");
+    let shipped = |file: &str| {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs").join(file);
+        std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{file}: {e}"))
+    };
     vec![
         ("default", d.to_string()),
         ("abz", format!("{d}\n[abz]\nenabled = true\n")),
         ("generic", generic),
+        ("ads8354", shipped("ads8354_100mhz.toml")),
+        ("ad7380", shipped("ad7380_100mhz.toml")),
     ]
 }
 
-/// `sd_top.v` and `sd_top_tb.v` of a config.
+/// `<name>_top.v` and `<name>_top_tb.v` of a config.
 fn top_files(text: &str) -> (String, String) {
     let l = sinedec::config::Loaded::parse(text, "t.toml").expect("config");
+    let name = l.config.name.clone();
     let g = sinedec::emit::generate(&l, "test").expect("generate");
     let get = |n: &str| {
         g.files
@@ -323,7 +330,7 @@ fn top_files(text: &str) -> (String, String) {
             .text
             .clone()
     };
-    (get("sd_top.v"), get("sd_top_tb.v"))
+    (get(&format!("{name}_top.v")), get(&format!("{name}_top_tb.v")))
 }
 
 /// The PASS line of a run, asserted with exit status 0.
@@ -342,7 +349,12 @@ fn passed(r: &Run, what: &str) {
 fn top_testbench_passes_in_icarus_and_verilator() {
     for (what, text) in top_configs() {
         let (top, tb) = top_files(&text);
-        assert!(tb.contains("module sd_top_tb;"), "{what}");
+        let module = tb
+            .lines()
+            .find_map(|l| l.strip_prefix("module ")?.strip_suffix(';'))
+            .unwrap_or_else(|| panic!("{what}: no testbench module"))
+            .to_string();
+        assert!(module.ends_with("_top_tb"), "{what}: {module}");
         if what == "abz" {
             assert!(tb.contains(".abz_a(abz_a)"), "abz_a not connected");
         }
@@ -356,7 +368,7 @@ fn top_testbench_passes_in_icarus_and_verilator() {
             || {
                 let dir = common::workdir(&format!("top_tb_{what}"));
                 passed(&icarus(&top, &tb, &dir, "2005"), what);
-                passed(&verilator_top(&top, &tb, &dir, "sd_top_tb"), what);
+                passed(&verilator_top(&top, &tb, &dir, &module), what);
             },
         );
     }
