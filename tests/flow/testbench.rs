@@ -305,7 +305,9 @@ fn top_configs() -> Vec<(&'static str, String)> {
         )
         .replace(preamp, "");
     let shipped = |file: &str| {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs").join(file);
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("configs")
+            .join(file);
         std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{file}: {e}"))
     };
     vec![
@@ -330,7 +332,10 @@ fn top_files(text: &str) -> (String, String) {
             .text
             .clone()
     };
-    (get(&format!("{name}_top.v")), get(&format!("{name}_top_tb.v")))
+    (
+        get(&format!("{name}_top.v")),
+        get(&format!("{name}_top_tb.v")),
+    )
 }
 
 /// The PASS line of a run, asserted with exit status 0.
