@@ -27,7 +27,8 @@ enum Command {
     /// Writes Verilog and the parameter report for a configuration.
     ///
     /// Writes `<name>_core.v`, `<name>_core_tb.v` (self-checking testbench),
-    /// `<name>_top.v`, `<name>_params.md`, `<name>_params.json`, `<name>_inst.v`,
+    /// `<name>_top.v` and, for a sinewave top, `<name>_top_tb.v` (its self-checking
+    /// testbench), `<name>_params.md`, `<name>_params.json`, `<name>_inst.v`,
     /// `<name>_sinedec.core` (FuseSoC) and `<name>_lint.vlt` (Verilator `-Wall` waivers
     /// with their reasons).
     ///

@@ -394,18 +394,14 @@ fn the_decoder_is_exact_up_to_the_window_check_prints() {
 #[test]
 fn chip_presets_from_a_config_state_what_binds_the_rate() {
     use sinedec::config::{Loaded, DEFAULT_CONFIG};
-    for (preset, clock, want_d, bound) in [
-        ("ads8354", "100e6", 5, "the clock binds"),
-        ("ad7380", "100e6", 2, "the clock binds"),
-        // SCLK <= 20 MHz: 32 SCLK take 1.6 us > 1 / 700 ksps whatever the clock.
-        ("ads8354", "400e6", 20, "the clock binds"),
-    ] {
+    let text = |preset: &str, clock: &str, rate: Option<&str>| {
         let i = DEFAULT_CONFIG.find("\n[preamp]\n").expect("preamp table");
         let j = DEFAULT_CONFIG.find("\n[cordic]\n").expect("cordic table");
-        let text = format!("{}{}", &DEFAULT_CONFIG[..i], &DEFAULT_CONFIG[j..])
+        let rate = rate.map(|r| format!("\nsample_rate_hz = {r}")).unwrap_or_default();
+        format!("{}{}", &DEFAULT_CONFIG[..i], &DEFAULT_CONFIG[j..])
             .replacen(
                 "preset = \"ltc1407a-1\"",
-                &format!("preset = \"{preset}\""),
+                &format!("preset = \"{preset}\"{rate}"),
                 1,
             )
             .replacen("width = 14", "width = 16", 1)
@@ -413,8 +409,26 @@ fn chip_presets_from_a_config_state_what_binds_the_rate() {
                 "frequency_hz = 133_330_000.0",
                 &format!("frequency_hz = {clock}"),
                 1,
-            );
-        let l = Loaded::parse(&text, "w.toml").unwrap_or_else(|e| panic!("{preset} {clock}: {e}"));
+            )
+    };
+    // At its fastest frame the AD7380's sample arrives with the next conversion start, too
+    // late for the QEP fallback (3 clocks): refused at the preset, with the way out.
+    let e = Loaded::parse(&text("ad7380", "100e6", None), "w.toml")
+        .err()
+        .expect("the fastest AD7380 frame at 100 MHz is refused")
+        .to_string();
+    assert!(
+        e.contains("key `adc.preset`") && e.contains("at least 3") && e.contains("adc.sample_rate_hz"),
+        "{e}"
+    );
+    for (preset, clock, rate, want_d, bound) in [
+        ("ads8354", "100e6", None, 5, "the clock binds"),
+        ("ad7380", "100e6", Some("2.5e6"), 2, "the configured adc.sample_rate_hz"),
+        // SCLK <= 20 MHz: 32 SCLK take 1.6 us > 1 / 700 ksps whatever the clock.
+        ("ads8354", "400e6", None, 20, "the clock binds"),
+    ] {
+        let l = Loaded::parse(&text(preset, clock, rate), "w.toml")
+            .unwrap_or_else(|e| panic!("{preset} {clock}: {e}"));
         let p = &l.derived.adc;
         assert_eq!(p.sck_period_clocks, want_d, "{preset} at {clock}");
         assert!(l.derived.preamp.is_none());

@@ -529,10 +529,25 @@ fn init_writes_a_config_that_check_accepts() {
     assert_eq!(listing(dir), vec!["my.toml"], "temporary file left behind");
     let out = ok(dir, &["check", "my.toml"]);
     assert!(out.starts_with("my.toml: ok"), "{out}");
-    // Same derived parameters as the embedded default.
+    // Same derived parameters as the embedded default; only the resources hint names
+    // the file the user passes to `report`.
     let default = ok(dir, &["check"]);
-    let body = |s: &str| s.lines().skip(1).collect::<Vec<_>>().join("\n");
+    let body = |s: &str| {
+        s.lines()
+            .skip(1)
+            .filter(|l| !l.starts_with("resources (top)"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
     assert_eq!(body(&out), body(&default));
+    assert!(
+        line_of(&out, "resources (top)").contains("`sinedec report my.toml`"),
+        "{out}"
+    );
+    assert!(
+        line_of(&default, "resources (top)").contains("`sinedec report` synthesizes"),
+        "{default}"
+    );
     // And it generates.
     ok(dir, &["generate", "my.toml", "-o", "out"]);
     assert_generated(&dir.join("out"), "sd");
