@@ -442,3 +442,40 @@ fn chip_presets_from_a_config_state_what_binds_the_rate() {
         assert!(p.sample_rate_hz() <= p.timing.max_sample_rate_hz);
     }
 }
+
+/// From power-up (before the first clock edge) and through reset, the ADC pins rest at
+/// their idle levels: SCK at CPOL and CONV/CS inactive. An active-low CS that powered up
+/// low would select a CS-framed chip (ADS8354, AD7380) for a clock and start a frame the
+/// controller never reads.
+#[test]
+fn adc_pins_rest_idle_from_power_up() {
+    use sinedec::blocks::adc::hdl::AdcController;
+    use sinedec::cosim::step::{prepare, tick};
+    for p in [
+        AdcParams::ltc1407a(F133, 3, None),
+        AdcParams::ads8354(100e6, 5, None),
+        AdcParams::ad7380(100e6, 2, None),
+    ] {
+        let f = p.frame;
+        let mut uut = AdcController::new(&p);
+        uut.rst.next = true;
+        uut.enable.next = true;
+        prepare(&mut uut).expect("settles");
+        let idle = (f.cpol, !f.conv_active_high);
+        assert_eq!(
+            (uut.adc_sck.val(), uut.adc_conv.val()),
+            idle,
+            "{}: (sck, conv) at power-up",
+            p.describe()
+        );
+        for k in 0..4 {
+            tick(&mut uut).expect("settles");
+            assert_eq!(
+                (uut.adc_sck.val(), uut.adc_conv.val()),
+                idle,
+                "{}: (sck, conv) after reset edge {k}",
+                p.describe()
+            );
+        }
+    }
+}

@@ -99,8 +99,12 @@ pub struct AdcController {
     warm: DFF<Bits<4>>,
     sr0: DFF<Bits<16>>,
     sr1: DFF<Bits<16>>,
-    sck_reg: DFF<Bit>,
-    conv_reg: DFF<Bit>,
+    /// The SCK pin's register; it powers up at the idle level (CPOL), so the pin does not
+    /// show an edge before the first frame.
+    sck_reg: DFFWithInit<Bit>,
+    /// The CONV/CS pin's register; it powers up inactive, so a CS-framed chip is not
+    /// selected during the first clock.
+    conv_reg: DFFWithInit<Bit>,
     valid_reg: DFF<Bit>,
     ch0_reg: DFF<Bits<16>>,
     ch1_reg: DFF<Bits<16>>,
@@ -326,8 +330,8 @@ impl AdcController {
             warm: Default::default(),
             sr0: Default::default(),
             sr1: Default::default(),
-            sck_reg: Default::default(),
-            conv_reg: Default::default(),
+            sck_reg: DFFWithInit::new(f.cpol),
+            conv_reg: DFFWithInit::new(!f.conv_active_high),
             valid_reg: Default::default(),
             ch0_reg: Default::default(),
             ch1_reg: Default::default(),
