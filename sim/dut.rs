@@ -367,3 +367,28 @@ impl<B: BoardTop> Dut<B> {
         }
     }
 }
+
+#[cfg(test)]
+mod registry_tests {
+    /// Every pinned port of a registered block is read by the closed loop as the rtl's
+    /// optional output `<name>_0` (`OUT_PINS`), and every optional output there is a
+    /// velocity output or a registered block's port.
+    #[test]
+    fn the_loop_reads_every_registered_block_port() {
+        use crate::blocks::registry::BLOCKS;
+        let optional = &super::OUT_PINS[super::OUT_PINS.len() - super::OPTIONAL_OUT_PINS..];
+        for b in BLOCKS {
+            for p in b.ports {
+                let rtl = format!("{}_0", p.name);
+                assert!(optional.contains(&rtl.as_str()), "{}: {rtl}", b.key);
+            }
+        }
+        for o in optional.iter().filter(|o| !o.starts_with("par_velocity")) {
+            let name = o.trim_end_matches("_0");
+            assert!(
+                crate::blocks::registry::port_owner(name).is_some(),
+                "{o} has no registered block"
+            );
+        }
+    }
+}

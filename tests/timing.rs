@@ -34,16 +34,20 @@ struct Design {
     clock_mhz: f64,
 }
 
-/// The default config with one optional block switched on: (label, config text).
+/// The default config with one optional block switched on: (label, config text). A block
+/// of the registry brings its own case (`BlockDef::timing_case`).
 fn option_tops() -> Vec<(&'static str, String)> {
     let d = DEFAULT_CONFIG;
     let replace_once = |from: &str, to: &str| {
         assert_eq!(d.matches(from).count(), 1, "{from:?} must be unique");
         d.replace(from, to)
     };
-    vec![
+    let registered = sinedec::blocks::registry::BLOCKS.iter().filter_map(|b| {
+        let label: &'static str = Box::leak(format!("{} top", b.key.to_uppercase()).into_boxed_str());
+        b.timing_case.map(|case| (label, format!("{d}\n{case}")))
+    });
+    let mut v = vec![
         ("velocity top", format!("{d}\n[velocity]\nenabled = true\n")),
-        ("ABZ top", format!("{d}\n[abz]\nenabled = true\n")),
         (
             "BiSS control top",
             replace_once("[biss]\n", "[biss]\ncontrol = true\n"),
@@ -57,7 +61,9 @@ fn option_tops() -> Vec<(&'static str, String)> {
             "auto-correction top",
             replace_once("mode = \"static\"", "mode = \"auto\""),
         ),
-    ]
+    ];
+    v.extend(registered);
+    v
 }
 
 fn designs() -> Vec<Design> {

@@ -27,6 +27,7 @@ pub mod monitor;
 pub mod nco;
 pub mod parallel;
 pub mod params;
+pub mod registry;
 pub mod preamp;
 pub mod qep;
 pub mod serial;

@@ -108,7 +108,7 @@ impl Derived {
         check_throughput(architecture, n, cycles_per_sample, clock_hz, rate)
             .map_err(|m| err("cordic", "architecture", m.detail()))?;
         let mut biss = biss_params(c, position_width, &err)?;
-        let abz = abz_params(c, quadrants_per_turn, f, &err)?;
+        let abz = crate::blocks::abz::block::params(c, quadrants_per_turn, f, &err)?;
         let velocity = velocity_params(c, text, f, rate, warn_step, &err)?;
         // `[velocity] in_frames`: the velocity word in every serial frame (BiSS, SSI, SPI).
         let vel_bits = velocity_frame_bits(c, velocity.as_ref(), &err)?;

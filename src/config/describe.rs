@@ -148,8 +148,11 @@ impl Derived {
             if let Some(v) = &self.velocity {
                 s.push_str(&describe_velocity(v, self.quadrants_per_turn));
             }
-            if let Some(a) = &self.abz {
-                s.push_str(&describe_abz(a, self.clock_hz));
+            // The optional blocks' lines (the block registry; velocity's are above).
+            for b in crate::blocks::registry::BLOCKS {
+                if let Some(lines) = (b.describe)(self) {
+                    s.push_str(&lines);
+                }
             }
             s.push_str(&describe_biss(&self.biss));
             s.push_str(&self.describe_lines());
@@ -323,7 +326,6 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
     )
 }
 
-/// The `[abz]` lines of `check`: resolution, rounding rule, maximum edge rate and speed.
 /// The `[biss]` lines of `check`: the data word and, with `control = true`, the control
 /// channel's register map as the master will read it.
 fn describe_biss(b: &crate::blocks::biss::BissParams) -> String {
@@ -359,20 +361,3 @@ fn ascii(b: &[u8]) -> String {
         .collect()
 }
 
-fn describe_abz(a: &AbzParams, clock_hz: f64) -> String {
-    let rate = clock_hz / a.spacing() as f64;
-    let (ea, eb) = a.ratio();
-    format!(
-        "abz lines                   {} A/B periods per turn = {} edges; count = floor(position x {ea} / {eb}) (exact, no drift over a turn)\n\
-         abz max edge rate           {:.3} M edges/s (edges at least {} clocks apart; A/B at most {:.3} MHz)\n\
-         abz max speed               {:.0} rpm at that rate (faster: the output lags, catches up and raises the warning)\n\
-         abz latency                 {} cycles from the position to its first edge\n",
-        a.lines(),
-        a.edges(),
-        rate / 1e6,
-        a.spacing(),
-        rate / 4e6,
-        rate / a.edges() as f64 * 60.0,
-        a.latency()
-    )
-}

@@ -32,7 +32,6 @@
 //! its description), `params` (each block's parameters built and checked from the config),
 //! `spans` (line and column of a key in the text, echoed values).
 
-use crate::blocks::abz::AbzParams;
 use crate::blocks::adc::{AdcFrame, AdcParams, AdcTiming, SignFormat};
 use crate::blocks::biss::BissParams;
 use crate::blocks::correction::{gain_code, phase_codes, CorrectionParams};

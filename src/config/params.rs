@@ -1,76 +1,10 @@
-//! Each block's parameters built from the config and checked against it: ABZ, correction, monitor, capacitive front end (the ADC and
+//! Each block's parameters built from the config and checked against it: correction, monitor, capacitive front end (the ADC and
 //! pre-amplifier are in `adc.rs`, the checks across blocks in `checks.rs`, BiSS-C in
 //! `biss.rs`). Errors name the config key to change.
 
 use super::*;
 
-pub(super) type ErrFn<'a> = dyn Fn(&str, &str, String) -> Error + 'a;
-
-/// Default `abz.max_edge_hz`: 12.5 M edges per second (or clock / 2 if that is lower).
-pub const ABZ_DEFAULT_EDGE_HZ: f64 = 12.5e6;
-
-/// `[abz]`: the emulator's parameters when enabled (None otherwise). `lines` defaults to
-/// 16 x PPR (at most a quarter of the positions per turn); `max_edge_hz` to
-/// [`ABZ_DEFAULT_EDGE_HZ`], at most clock / 2 and at least clock / 2^24; the edge spacing is
-/// ceil(clock / max_edge_hz) clocks. The keys are checked only when enabled.
-pub(super) fn abz_params(
-    c: &Config,
-    quadrants_per_turn: u64,
-    fine_bits: u32,
-    err: &ErrFn,
-) -> Result<Option<AbzParams>> {
-    let a = &c.abz;
-    // Off: the keys have no effect and are not checked (the rule for every section with an
-    // `enabled` key).
-    if !a.enabled {
-        return Ok(None);
-    }
-    let clock = c.clock.frequency_hz;
-    let positions = quadrants_per_turn << fine_bits;
-    let lines = a
-        .lines
-        .unwrap_or((4 * quadrants_per_turn).min(positions / 4));
-    if lines == 0 || 4 * lines > positions || 4 * lines > 1 << 30 {
-        return Err(err(
-            "abz",
-            "lines",
-            format!(
-                "{lines}: allowed 1..={} A/B periods per turn (4 edges each, at most one edge per position LSB: {positions} positions per turn{})",
-                (positions / 4).min(1 << 28),
-                if positions / 4 > 1 << 28 { "; at most 2^28" } else { "" }
-            ),
-        ));
-    }
-    let hz = a
-        .max_edge_hz
-        .unwrap_or(ABZ_DEFAULT_EDGE_HZ.min(clock / 2.0));
-    let lo = clock / (1u64 << 24) as f64;
-    if !hz.is_finite() || hz < lo || hz > clock / 2.0 {
-        return Err(err(
-            "abz",
-            "max_edge_hz",
-            format!(
-                "{hz} Hz: allowed {lo:.3}..={:.0} Hz (at {clock:.0} Hz the emulator needs 2 to 2^24 clocks between two edges)",
-                clock / 2.0
-            ),
-        ));
-    }
-    if c.capacitive.is_some() {
-        return Err(err(
-            "abz",
-            "enabled",
-            "ABZ emulation is built into the sinewave board top only; remove [abz] or set enabled = false with [capacitive]".into(),
-        ));
-    }
-    // Spacing in clocks: the smallest S with clock / S <= max_edge_hz.
-    let mut spacing = (clock / hz).ceil().max(2.0) as u32;
-    if clock / ((spacing - 1) as f64) <= hz && spacing > 2 {
-        spacing -= 1;
-    }
-    AbzParams::new(quadrants_per_turn, fine_bits, lines, spacing)
-        .map(Some)
-        .map_err(|m| err("abz", "lines", m.detail()))
-}
+pub type ErrFn<'a> = dyn Fn(&str, &str, String) -> Error + 'a;
 
 fn frac_of_fs(c: &Config, table: &str, key: &str, v: f64, err: &ErrFn) -> Result<u32> {
     let fs = (1u32 << (c.adc.width - 1)) - 1;

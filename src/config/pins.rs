@@ -9,8 +9,9 @@ pub use crate::blocks::captop::hdl::{CAP_TOP_BUSES, CAP_TOP_PINS};
 /// The board top's pinned ports for this configuration: (name, None) for a pin,
 /// (name, Some(width)) for a bus. These are exactly the ports of `<name>_top` but the
 /// parallel bus: on the sinewave top [`TOP_PINS`], the [`QEP_PINS`] with `[qep] enabled`,
-/// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled, the [`ABZ_PINS`] with `[abz]
-/// enabled` (after the rtl's ports: the wrapper declares them) and each of the
+/// [`SSI_PINS`] / [`SPI_PINS`] when those slaves are enabled, the ports of the enabled
+/// blocks of the registry (`crate::blocks::registry::enabled_ports`, e.g. `abz_*` with
+/// `[abz] enabled`; after the rtl's ports: the wrapper declares them) and each of the
 /// [`DESELECT_PINS`] that `[board.pins]` pins. Every one needs a pin.
 pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
     match &c.capacitive {
@@ -40,12 +41,7 @@ pub fn board_ports(c: &Config) -> Vec<(&'static str, Option<u32>)> {
                     Pin::DacBus | Pin::Parallel => false,
                 })
                 .map(|p| (p.name, None))
-                .chain(
-                    ABZ_PINS
-                        .iter()
-                        .filter(|_| c.abz.enabled)
-                        .map(|p| (*p, None)),
-                )
+                .chain(crate::blocks::registry::enabled_ports(c).map(|p| (p.name, None)))
                 .collect()
         }
     }
@@ -111,10 +107,6 @@ pub fn adc_data_lines(c: &Config) -> u32 {
     }
 }
 
-/// The ABZ emulator's outputs (`[abz] enabled`): the rtl's optional outputs `abz_*_0`,
-/// ports `abz_*` of the `<name>_top` wrapper.
-pub const ABZ_PINS: &[&str] = &["abz_a", "abz_b", "abz_z"];
-
 pub use crate::blocks::top::hdl::{
     ADC_B_PINS, DESELECT_PINS, PREAMP_PINS, QEP_PINS, SPI_PINS, SSI_PINS, TOP_PINS,
 };
@@ -131,7 +123,7 @@ fn section_of_port(c: &Config, port: &str) -> Option<&'static str> {
             || QEP_PINS.contains(&port)
             || SSI_PINS.contains(&port)
             || SPI_PINS.contains(&port)
-            || ABZ_PINS.contains(&port)
+            || crate::blocks::registry::port_owner(port).is_some()
             || DESELECT_PINS.contains(&port)
         {
             return Some(sine);
@@ -144,7 +136,7 @@ fn section_of_port(c: &Config, port: &str) -> Option<&'static str> {
     on(QEP_PINS, "[qep] enabled = true")
         .or_else(|| on(SSI_PINS, "[ssi] enabled = true"))
         .or_else(|| on(SPI_PINS, "[spi] enabled = true"))
-        .or_else(|| on(ABZ_PINS, "[abz] enabled = true"))
+        .or_else(|| crate::blocks::registry::port_owner(port).map(|b| b.section))
 }
 
 /// What is wrong with `[board.pins] key = value`, if anything, in one sentence: the port is

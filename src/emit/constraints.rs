@@ -364,10 +364,15 @@ pub fn port_timing(name: &str, input: bool, comment: &str) -> Option<(PortTiming
         ("enc_sck" | "enc_cs_n", true) => (Synchronized, "SPI slave"),
         ("enc_miso" | "enc_miso_oe", false) => (Out, "SPI slave"),
         (_, true) if by_prefix("qep_") => (Synchronized, "QEP comparator"),
-        (_, false) if by_prefix("abz_") => (Out, "ABZ"),
         (_, false) if by_prefix("par_") => (Out, "Parallel bus"),
         (_, false) if crate::config::DESELECT_PINS.contains(&name) => (Static, "Deselect lines"),
-        _ => return None,
+        // A registered block's port (`crate::blocks::registry`): its outputs are registered,
+        // its inputs enter through a synchronizer.
+        _ => match crate::blocks::registry::port_owner(name) {
+            Some(b) if input => (Synchronized, b.io_group),
+            Some(b) => (Out, b.io_group),
+            None => return None,
+        },
     })
 }
 

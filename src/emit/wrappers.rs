@@ -145,8 +145,8 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
         ("par_fine".into(), d.fine_bits),
         one("par_error"),
     ]);
-    if d.abz.is_some() && d.capacitive.is_none() {
-        v.extend(crate::config::ABZ_PINS.iter().map(|p| one(p)));
+    if d.capacitive.is_none() {
+        v.extend(crate::blocks::registry::enabled_ports(&loaded.config).map(|p| one(p.name)));
     }
     v.push(one("par_warning"));
     if let (Some(p), false) = (&d.velocity, d.capacitive.is_some()) {
@@ -162,7 +162,12 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
 /// `width` for a bus narrowed from the rtl's word), the name with its comma in 14 columns,
 /// and the comment.
 fn wrapper_port(t: &TopPort, width: Option<u32>) -> minijinja::Value {
-    let dir = if t.dir == Dir::Out {
+    port_line(t.dir, width, t.name, t.comment)
+}
+
+/// One port line of a wrapper: direction, range, name and comment.
+fn port_line(dir: Dir, width: Option<u32>, name: &str, comment: &str) -> minijinja::Value {
+    let dir = if dir == Dir::Out {
         "output"
     } else {
         "input "
@@ -174,8 +179,8 @@ fn wrapper_port(t: &TopPort, width: Option<u32>) -> minijinja::Value {
     minijinja::context! {
         dir => dir,
         range => range,
-        name => format!("{:<14}", format!("{},", t.name)),
-        comment => t.comment,
+        name => format!("{:<14}", format!("{name},")),
+        comment => comment,
     }
 }
 
@@ -224,7 +229,8 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         .map(|p| p.0)
         .collect();
     if let Some(p) = used.iter().find(|p| {
-        !SD_TOP_PORTS.iter().any(|t| t.name == **p) && !crate::config::ABZ_PINS.contains(p)
+        !SD_TOP_PORTS.iter().any(|t| t.name == **p)
+            && crate::blocks::registry::port_owner(p).is_none()
     }) {
         return Err(Error::Export(format!(
             "{name}: the pinned port {p} has no place in the wrapper"
@@ -262,14 +268,9 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         conns.push(".par_velocity_0(velocity)".into());
         conns.push(".par_velocity_valid_0(par_velocity_valid)".into());
     }
-    // The rtl's optional ABZ outputs (its emulator, `[abz] enabled`).
-    if d.abz.is_some() {
-        conns.extend(
-            crate::config::ABZ_PINS
-                .iter()
-                .map(|p| format!(".{p}_0({p})")),
-        );
-    }
+    // The rtl's optional outputs of the enabled blocks (`abz_a_0` ... with `[abz] enabled`).
+    let block_ports: Vec<_> = crate::blocks::registry::enabled_ports(&loaded.config).collect();
+    conns.extend(block_ports.iter().map(|p| format!(".{0}_0({0})", p.name)));
     let inst = wrap_list(&conns, "       ", "");
     let vel_ctx = velocity_ctx(d, &format!("{name}_vel"));
     // The ports left out, as comment lines of at most 95 characters (empty: none).
@@ -291,7 +292,10 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             rate => format!("{:.0}", d.sample_rate_hz),
             chip => d.adc.chip.to_string(),
             preamp => d.preamp.is_some(),
-            abz => d.abz.is_some(),
+            block_ports => block_ports
+                .iter()
+                .map(|p| port_line(p.dir, None, p.name, p.comment))
+                .collect::<Vec<_>>(),
             pm => d.position_width - 1,
             tm => d.turns_width - 1,
             fm => f - 1,

@@ -1,7 +1,8 @@
 //! Per-block rows of the report: every block of the sinewave top synthesized alone, and the
 //! whole `<name>_top`.
 //!
-//! Each row comes from a [`BlockDef`] in [`BLOCKS`]: a key, a label and a constructor that
+//! Each row comes from a [`BlockDef`] of the block registry ([`BLOCKS`],
+//! `crate::blocks::registry`): a key, a label and a constructor that
 //! builds the block's rust-hdl description from the configuration, exports it with
 //! [`crate::emit::verilog::export`] under the module name `<name>_blk_<key>` ([`export_block`])
 //! and states its timing ([`BlockTiming`]). The report synthesizes every [`BlockJob`] for
@@ -9,22 +10,21 @@
 //! turns the results into [`BlockRow`]s (Markdown table "Blocks of `<name>_top`", the `blocks`
 //! array of the JSON and `<name>_report_blocks.csv`).
 //!
-//! Adding a block (e.g. the biquad engine or the NCO) is one entry of [`BLOCKS`]:
+//! A block's row is its registry entry (`pub const BLOCK` in its folder, e.g.
+//! `blocks/abz/mod.rs`, listed in [`BLOCKS`] before the `top` row):
 //!
 //! ```text
-//! BlockDef { key: "nco", label: "NCO", build: |l| job(l, "nco", Nco::new(&l.derived.nco), BlockTiming::latency(2, "phase to output")) },
+//! BlockDef::report_only("nco", "NCO", |l| job(l, "nco", Nco::new(&l.derived.nco), BlockTiming::latency(2, "phase to output")))
 //! ```
 //!
 //! (a non-capturing closure is a [`BlockCtor`]; [`job`] exports the block as
-//! `<name>_blk_nco`; put the entry before the `top` row). A block whose constructor can fail
+//! `<name>_blk_nco`). A block whose constructor can fail
 //! maps its error into [`crate::error::Error`] (see `biss_job` in `jobs.rs`).
 //!
 //! A constructor that returns a job without Verilog ([`BlockJob::absent`]) gives a row with
 //! empty cells and its reason (e.g. the pre-amplifier of a config without the LTC1407A-1
 //! preset); blocks that exist but are disabled in the config are built with their
 //! parameters anyway and marked in their note.
-use super::jobs::*;
-use crate::blocks::counter::hdl::QuadrantCounter;
 use crate::config::Loaded;
 use crate::error::Result;
 use crate::synth::SynthStats;
@@ -99,19 +99,7 @@ impl BlockJob {
     }
 }
 
-/// Builds the job of one block from the configuration.
-pub type BlockCtor = fn(&Loaded) -> Result<BlockJob>;
-
-/// One entry of the block table.
-#[derive(Clone, Copy)]
-pub struct BlockDef {
-    /// Key (also the module suffix `<name>_blk_<key>`; lower case, digits and `_`).
-    pub key: &'static str,
-    /// Row label.
-    pub label: &'static str,
-    /// Constructor.
-    pub build: BlockCtor,
-}
+pub use crate::blocks::registry::{BlockCtor, BlockDef};
 
 /// Synthesis figures of one block.
 #[derive(Clone, Debug)]
@@ -158,103 +146,8 @@ pub fn job<B: Block>(loaded: &Loaded, key: &str, uut: B, timing: BlockTiming) ->
     })
 }
 
-/// The block table, in row order. The whole top comes last.
-pub const BLOCKS: &[BlockDef] = &[
-    BlockDef {
-        key: "adc",
-        label: "ADC controller",
-        build: adc_job,
-    },
-    BlockDef {
-        key: "preamp",
-        label: "pre-amp set-up",
-        build: preamp_job,
-    },
-    BlockDef {
-        key: "correction",
-        label: "correction",
-        build: correction_job,
-    },
-    BlockDef {
-        key: "monitor",
-        label: "monitor",
-        build: monitor_job,
-    },
-    BlockDef {
-        key: "core",
-        label: "core (mapper + CORDIC + combiner + counter)",
-        build: core_job,
-    },
-    BlockDef {
-        key: "counter",
-        label: "quadrant counter alone",
-        // A constructor can be a closure in place (non-capturing closures are fn pointers).
-        build: |l| {
-            let t = BlockTiming::latency(1, "one register stage");
-            job(l, "counter", QuadrantCounter::new(&l.derived), t)
-        },
-    },
-    BlockDef {
-        key: "qep",
-        label: "QEP decoder",
-        build: qep_job,
-    },
-    BlockDef {
-        key: "fallback",
-        label: "QEP fallback",
-        build: fallback_job,
-    },
-    BlockDef {
-        key: "biss",
-        label: "BiSS-C slave",
-        build: biss_job,
-    },
-    BlockDef {
-        key: "ssi",
-        label: "SSI slave",
-        build: ssi_job,
-    },
-    BlockDef {
-        key: "spi",
-        label: "SPI slave",
-        build: spi_job,
-    },
-    BlockDef {
-        key: "parallel",
-        label: "parallel bus",
-        build: parallel_job,
-    },
-    BlockDef {
-        key: "abz",
-        label: "ABZ emulation",
-        build: abz_job,
-    },
-    BlockDef {
-        key: "velocity",
-        label: "velocity estimator",
-        build: velocity_job,
-    },
-    BlockDef {
-        key: "nco",
-        label: "excitation NCO",
-        build: nco_job,
-    },
-    BlockDef {
-        key: "biquad",
-        label: "biquad engine (band-pass + low-pass)",
-        build: biquad_job,
-    },
-    BlockDef {
-        key: "capfront",
-        label: "capacitive front end (NCO + engine + demod)",
-        build: capfront_job,
-    },
-    BlockDef {
-        key: "top",
-        label: "whole top",
-        build: top_job,
-    },
-];
+/// The block table, in row order: the registry ([`crate::blocks::registry::BLOCKS`]).
+pub use crate::blocks::registry::BLOCKS;
 
 /// Builds every job of [`BLOCKS`] for the configuration (in order); the label of each is
 /// the table's, `whole top` becoming `<name>_top`.

@@ -46,7 +46,7 @@ fn spi_params(l: &Loaded) -> Result<(SpiSlaveParams, bool)> {
     Ok((p, false))
 }
 
-pub(super) fn adc_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn adc_job(l: &Loaded) -> Result<BlockJob> {
     let a = &l.derived.adc;
     let t = BlockTiming {
         latency_cycles: Some(a.conv_to_valid_clocks()),
@@ -58,7 +58,7 @@ pub(super) fn adc_job(l: &Loaded) -> Result<BlockJob> {
     job(l, "adc", AdcController::new(a), t)
 }
 
-pub(super) fn preamp_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn preamp_job(l: &Loaded) -> Result<BlockJob> {
     match &l.derived.preamp {
         Some(p) => job(
             l,
@@ -73,7 +73,7 @@ pub(super) fn preamp_job(l: &Loaded) -> Result<BlockJob> {
     }
 }
 
-pub(super) fn correction_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn correction_job(l: &Loaded) -> Result<BlockJob> {
     job(
         l,
         "correction",
@@ -85,7 +85,7 @@ pub(super) fn correction_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
-pub(super) fn monitor_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn monitor_job(l: &Loaded) -> Result<BlockJob> {
     job(
         l,
         "monitor",
@@ -94,7 +94,7 @@ pub(super) fn monitor_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
-pub(super) fn core_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn core_job(l: &Loaded) -> Result<BlockJob> {
     let d = &l.derived;
     let t = BlockTiming {
         latency_cycles: Some(d.latency_cycles),
@@ -111,7 +111,7 @@ pub(super) fn core_job(l: &Loaded) -> Result<BlockJob> {
     job(l, "core", CoreRtl::new(d), t)
 }
 
-pub(super) fn qep_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn qep_job(l: &Loaded) -> Result<BlockJob> {
     let p = &l.derived.qep;
     job(
         l,
@@ -124,7 +124,7 @@ pub(super) fn qep_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
-pub(super) fn fallback_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn fallback_job(l: &Loaded) -> Result<BlockJob> {
     let j = job(
         l,
         "fallback",
@@ -138,7 +138,7 @@ pub(super) fn fallback_job(l: &Loaded) -> Result<BlockJob> {
     })
 }
 
-pub(super) fn biss_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn biss_job(l: &Loaded) -> Result<BlockJob> {
     let uut = BissSlave::new(&l.derived.biss)?;
     let j = job(
         l,
@@ -154,7 +154,7 @@ pub(super) fn biss_job(l: &Loaded) -> Result<BlockJob> {
     })
 }
 
-pub(super) fn ssi_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn ssi_job(l: &Loaded) -> Result<BlockJob> {
     let (p, enabled) = ssi_params(l)?;
     let uut = SsiSlave::new(&p)?;
     let j = job(
@@ -166,7 +166,7 @@ pub(super) fn ssi_job(l: &Loaded) -> Result<BlockJob> {
     Ok(if enabled { j } else { j.with_note(DISABLED) })
 }
 
-pub(super) fn spi_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn spi_job(l: &Loaded) -> Result<BlockJob> {
     let (p, enabled) = spi_params(l)?;
     let uut = SpiSlave::new(&p)?;
     let j = job(
@@ -178,7 +178,7 @@ pub(super) fn spi_job(l: &Loaded) -> Result<BlockJob> {
     Ok(if enabled { j } else { j.with_note(DISABLED) })
 }
 
-pub(super) fn parallel_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn parallel_job(l: &Loaded) -> Result<BlockJob> {
     let d = &l.derived;
     let p = ParallelParams::new(d.position_width.min(32), d.multiturn_bits)?;
     let uut = ParallelBus::new(&p)?;
@@ -190,23 +190,7 @@ pub(super) fn parallel_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
-pub(super) fn abz_job(l: &Loaded) -> Result<BlockJob> {
-    let Some(p) = &l.derived.abz else {
-        return Ok(BlockJob::absent("abz", "needs [abz] enabled"));
-    };
-    let note = format!(
-        "position to first edge; edges at least {} clocks apart",
-        p.spacing()
-    );
-    job(
-        l,
-        "abz",
-        crate::blocks::abz::hdl::AbzEmulator::new(p),
-        BlockTiming::latency(p.latency(), &note),
-    )
-}
-
-pub(super) fn velocity_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn velocity_job(l: &Loaded) -> Result<BlockJob> {
     let Some(p) = &l.derived.velocity else {
         return Ok(BlockJob::absent("velocity", "needs [velocity] enabled"));
     };
@@ -227,7 +211,7 @@ pub(super) fn velocity_job(l: &Loaded) -> Result<BlockJob> {
 
 const CAP_ONLY: &str = "capacitive path only: needs [capacitive]";
 
-pub(super) fn nco_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn nco_job(l: &Loaded) -> Result<BlockJob> {
     if l.derived.capacitive.is_none() {
         return Ok(BlockJob::absent("nco", CAP_ONLY));
     }
@@ -240,7 +224,7 @@ pub(super) fn nco_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
-pub(super) fn biquad_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn biquad_job(l: &Loaded) -> Result<BlockJob> {
     if l.derived.capacitive.is_none() {
         return Ok(BlockJob::absent("biquad", CAP_ONLY));
     }
@@ -261,7 +245,7 @@ pub(super) fn biquad_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
-pub(super) fn capfront_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn capfront_job(l: &Loaded) -> Result<BlockJob> {
     if l.derived.capacitive.is_none() {
         return Ok(BlockJob::absent("capfront", CAP_ONLY));
     }
@@ -280,7 +264,7 @@ pub(super) fn capfront_job(l: &Loaded) -> Result<BlockJob> {
     )
 }
 
-pub(super) fn top_job(l: &Loaded) -> Result<BlockJob> {
+pub(crate) fn top_job(l: &Loaded) -> Result<BlockJob> {
     let d = &l.derived;
     if let Some(k) = &d.capacitive {
         let p = crate::blocks::capacitive::CapFrontParams::new(d)?;

@@ -51,7 +51,7 @@ use sweep::{ErrAcc, SweepPlan};
 use yosys::{GateStats, Yosys};
 
 mod columns;
-mod jobs;
+pub(crate) mod jobs;
 mod json;
 mod markdown;
 mod run;

@@ -86,8 +86,11 @@
 //!   (c = 0, c = E-1) and on pend (bits 31..1 all zero, all one) are the sign bits of one
 //!   subtraction each, carry chains from registers with at most one LUT after them, not
 //!   17- and 32-input LUT trees.
+pub mod block;
 pub mod hdl;
 pub mod model;
+
+pub use block::{AbzConfig, ABZ_DEFAULT_EDGE_HZ, BLOCK};
 
 /// [`crate::error::Error::BlockParams`] for this block.
 fn invalid(message: String) -> crate::error::Error {

@@ -94,3 +94,10 @@ pub mod model;
 mod params;
 
 pub use params::*;
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "adc",
+    "ADC controller",
+    crate::report::jobs::adc_job,
+);

@@ -428,3 +428,10 @@ impl BiquadParams {
 fn bits_for(n: u32) -> u32 {
     (32 - n.saturating_sub(1).leading_zeros()).max(1)
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "biquad",
+    "biquad engine (band-pass + low-pass)",
+    crate::report::jobs::biquad_job,
+);

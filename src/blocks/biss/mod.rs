@@ -244,3 +244,10 @@ impl BissParams {
         self.clock_hz / (2 * min_level_clocks(self.glitch_filter)) as f64
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "biss",
+    "BiSS-C slave",
+    crate::report::jobs::biss_job,
+);

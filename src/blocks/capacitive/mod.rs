@@ -158,3 +158,10 @@ impl CapFrontParams {
         self.engine.latency()
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "capfront",
+    "capacitive front end (NCO + engine + demod)",
+    crate::report::jobs::capfront_job,
+);

@@ -34,3 +34,10 @@
 //! concatenates `out_position` from the quadrant count and the fine part.
 pub mod hdl;
 pub mod model;
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "core",
+    "core (mapper + CORDIC + combiner + counter)",
+    crate::report::jobs::core_job,
+);

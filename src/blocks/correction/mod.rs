@@ -576,3 +576,10 @@ pub fn two_point(
     let b = y_l - x_l * ma;
     Ok((b.round() as i32, gain_code(gain_frac_bits, 1.0 / ma)?))
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "correction",
+    "correction",
+    crate::report::jobs::correction_job,
+);

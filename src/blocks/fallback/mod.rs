@@ -50,3 +50,10 @@
 //!   apart).
 //! * Widths: 32-bit words holding qq (< 4PPR <= 2^18) and qt (M bits).
 pub mod hdl;
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "fallback",
+    "QEP fallback",
+    crate::report::jobs::fallback_job,
+);

@@ -185,3 +185,10 @@ impl MonitorParams {
         self.hold
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "monitor",
+    "monitor",
+    crate::report::jobs::monitor_job,
+);

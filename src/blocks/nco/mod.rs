@@ -341,3 +341,10 @@ pub fn sine_table(table_bits: u32, width: u32, amplitude: f64) -> Vec<u64> {
         })
         .collect()
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "nco",
+    "excitation NCO",
+    crate::report::jobs::nco_job,
+);

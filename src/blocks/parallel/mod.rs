@@ -60,3 +60,10 @@ impl ParallelParams {
         Ok(())
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "parallel",
+    "parallel bus",
+    crate::report::jobs::parallel_job,
+);

@@ -203,3 +203,10 @@ impl PreampParams {
         hdl::STEP_DONE * self.half_period_clocks - 1
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "preamp",
+    "pre-amp set-up",
+    crate::report::jobs::preamp_job,
+);

@@ -172,3 +172,10 @@ impl CrossCheckParams {
         self.tolerance
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "qep",
+    "QEP decoder",
+    crate::report::jobs::qep_job,
+);

@@ -120,3 +120,10 @@ impl SpiSlaveParams {
         by_sync.min(by_response)
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "spi",
+    "SPI slave",
+    crate::report::jobs::spi_job,
+);

@@ -118,3 +118,10 @@ impl SsiParams {
         timeout_us(self.timeout_clocks, self.clock_hz)
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "ssi",
+    "SSI slave",
+    crate::report::jobs::ssi_job,
+);

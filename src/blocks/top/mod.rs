@@ -20,3 +20,10 @@
 //!   CONV-to-`out_valid` latency plus the core's N + 2 cycles.
 pub mod hdl;
 pub mod ports;
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "top",
+    "whole top",
+    crate::report::jobs::top_job,
+);

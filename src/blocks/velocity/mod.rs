@@ -521,3 +521,10 @@ impl VelocityParams {
         }
     }
 }
+
+/// The block's entry in the registry (`crate::blocks::registry`).
+pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
+    "velocity",
+    "velocity estimator",
+    crate::report::jobs::velocity_job,
+);

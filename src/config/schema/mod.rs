@@ -163,7 +163,7 @@ pub struct Config {
     pub capacitive: Option<CapacitiveConfig>,
     /// ABZ incremental encoder emulation (`crate::blocks::abz`).
     #[serde(default)]
-    pub abz: AbzConfig,
+    pub abz: crate::blocks::abz::AbzConfig,
     /// Velocity estimation (`crate::blocks::velocity`, docs/velocity.md).
     #[serde(default)]
     pub velocity: VelocityConfig,
@@ -220,20 +220,6 @@ impl Default for VelocityConfig {
             in_frames: false,
         }
     }
-}
-
-/// `[abz]`: A/B/Z incremental encoder emulation of the decoded position.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AbzConfig {
-    /// Include the emulator (default false: no logic).
-    #[serde(default)]
-    pub enabled: bool,
-    /// A/B periods per turn (default 16 x PPR, at most a quarter of the positions per turn).
-    pub lines: Option<u64>,
-    /// Highest edge rate on A and B together, edges per second (the minimum edge spacing;
-    /// default 12.5 MHz, at most clock / 2).
-    pub max_edge_hz: Option<f64>,
 }
 
 /// `[ssi]`: SSI slave sending the same data word as BiSS (biss.position_bits and

@@ -1033,6 +1033,37 @@ module cap_top_rtl_adc_conv_reg(d,q,clock);
     output reg  q;
     input wire  clock;
 
+    // Constant declarations
+    localparam  init = 1'b0;
+
+    // Stub signals
+    reg  dff_d;
+    wire  dff_q;
+    reg  dff_clock;
+
+    // Sub module instances
+    cap_top_rtl_adc_conv_reg_dff dff(
+        .d(dff_d),
+        .q(dff_q),
+        .clock(dff_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        dff_clock = clock;
+        q = dff_q ^ init;
+        dff_d = d ^ init;
+    end
+
+endmodule // cap_top_rtl_adc_conv_reg
+
+module cap_top_rtl_adc_conv_reg_dff(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
     // Update code (custom)
     initial begin
        q = 1'h0;
@@ -1042,7 +1073,7 @@ module cap_top_rtl_adc_conv_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // cap_top_rtl_adc_conv_reg
+endmodule // cap_top_rtl_adc_conv_reg_dff
 
 module cap_top_rtl_adc_cst(d,q,clock);
 
@@ -1393,6 +1424,37 @@ module cap_top_rtl_adc_sck_reg(d,q,clock);
     output reg  q;
     input wire  clock;
 
+    // Constant declarations
+    localparam  init = 1'b0;
+
+    // Stub signals
+    reg  dff_d;
+    wire  dff_q;
+    reg  dff_clock;
+
+    // Sub module instances
+    cap_top_rtl_adc_sck_reg_dff dff(
+        .d(dff_d),
+        .q(dff_q),
+        .clock(dff_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        dff_clock = clock;
+        q = dff_q ^ init;
+        dff_d = d ^ init;
+    end
+
+endmodule // cap_top_rtl_adc_sck_reg
+
+module cap_top_rtl_adc_sck_reg_dff(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
     // Update code (custom)
     initial begin
        q = 1'h0;
@@ -1402,7 +1464,7 @@ module cap_top_rtl_adc_sck_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // cap_top_rtl_adc_sck_reg
+endmodule // cap_top_rtl_adc_sck_reg_dff
 
 module cap_top_rtl_adc_sr0(d,q,clock);
 

@@ -1197,6 +1197,37 @@ module sd_top_rtl_adc_conv_reg(d,q,clock);
     output reg  q;
     input wire  clock;
 
+    // Constant declarations
+    localparam  init = 1'b0;
+
+    // Stub signals
+    reg  dff_d;
+    wire  dff_q;
+    reg  dff_clock;
+
+    // Sub module instances
+    sd_top_rtl_adc_conv_reg_dff dff(
+        .d(dff_d),
+        .q(dff_q),
+        .clock(dff_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        dff_clock = clock;
+        q = dff_q ^ init;
+        dff_d = d ^ init;
+    end
+
+endmodule // sd_top_rtl_adc_conv_reg
+
+module sd_top_rtl_adc_conv_reg_dff(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
     // Update code (custom)
     initial begin
        q = 1'h0;
@@ -1206,7 +1237,7 @@ module sd_top_rtl_adc_conv_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_adc_conv_reg
+endmodule // sd_top_rtl_adc_conv_reg_dff
 
 module sd_top_rtl_adc_cst(d,q,clock);
 
@@ -1557,6 +1588,37 @@ module sd_top_rtl_adc_sck_reg(d,q,clock);
     output reg  q;
     input wire  clock;
 
+    // Constant declarations
+    localparam  init = 1'b0;
+
+    // Stub signals
+    reg  dff_d;
+    wire  dff_q;
+    reg  dff_clock;
+
+    // Sub module instances
+    sd_top_rtl_adc_sck_reg_dff dff(
+        .d(dff_d),
+        .q(dff_q),
+        .clock(dff_clock)
+    );
+
+    // Update code
+    always @(*) begin
+        dff_clock = clock;
+        q = dff_q ^ init;
+        dff_d = d ^ init;
+    end
+
+endmodule // sd_top_rtl_adc_sck_reg
+
+module sd_top_rtl_adc_sck_reg_dff(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
     // Update code (custom)
     initial begin
        q = 1'h0;
@@ -1566,7 +1628,7 @@ module sd_top_rtl_adc_sck_reg(d,q,clock);
        q <= d;
     end
 
-endmodule // sd_top_rtl_adc_sck_reg
+endmodule // sd_top_rtl_adc_sck_reg_dff
 
 module sd_top_rtl_adc_sr0(d,q,clock);
 

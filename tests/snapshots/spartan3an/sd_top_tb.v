@@ -63,7 +63,7 @@ module sd_top_tb;
     localparam integer PIPELINE = 1; // conversions between a sample and its frame
     localparam integer BN = 27;            // BiSS data bits: 0 turns above 27 position bits
     localparam integer BM = 0;
-    localparam integer BV = 0;            // velocity bits after the data
+    localparam integer BV = 0;            // bits of the second data word (the speed; 0 without it)
     localparam integer BA = 1;            // Ack periods
     localparam BGRAY = 1'b0;
     localparam integer DROP = 0;        // par_position bits below the BiSS position
@@ -406,7 +406,7 @@ module sd_top_tb;
             end
             #(2.0 * MA_HALF_NS) ans[BEDGES] = biss_slo;
             frames = frames + 1;
-            // Ack (first 0 after R1), Start (next 1), CDS, data, velocity, nE, nW, CRC.
+            // Ack (first 0 after R1), Start (next 1), CDS, data, second word (BV), nE, nW, CRC.
             ack = 0;
             i = 2;
             while (i <= BEDGES && ans[i] == 1'b1) i = i + 1;
