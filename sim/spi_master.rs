@@ -124,6 +124,15 @@ impl SpiMaster {
         self.miso.push(miso);
     }
 
+    /// The bits read in transaction `i` (its sampling instants must be known).
+    pub fn word(&self, i: usize) -> Vec<bool> {
+        self.txns[i]
+            .samples
+            .iter()
+            .map(|&ts| self.miso.at(ts))
+            .collect()
+    }
+
     /// The bits read in each transaction (every sampling instant must be known).
     pub fn words(&self) -> Vec<Vec<bool>> {
         self.txns

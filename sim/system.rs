@@ -192,6 +192,49 @@ pub struct BissCheck {
     pub position_mismatches: u64,
 }
 
+/// What an SSI or SPI master model read over a run ([`System::monitor_ssi`],
+/// [`System::monitor_spi`]), against the parallel bus.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct WordCheck {
+    /// Clock (SSI) or SCK (SPI) frequency, Hz.
+    pub clock_hz: u64,
+    /// Frames (SSI) or transactions (SPI) the master finished.
+    pub frames: u64,
+    /// Frames read completely.
+    pub good: u64,
+    /// Frames the master could not read (SSI: aborted, or the line never returned high).
+    pub failed: u64,
+    /// Good frames whose position and turn count equal neither of the parallel bus's two
+    /// latest positions when the slave latched (its first clock edge, or chip select, plus
+    /// the synchronizer).
+    pub position_mismatches: u64,
+}
+
+/// Whether `got` (position word of `pb` bits, turns of `mt` bits) equals one of the two
+/// latest parallel-bus positions at or before `latch + 1` in `history` (cycle, position of
+/// `pw` bits, turns), or the reset value 0 when the slave latched before the first one.
+fn par_match(
+    history: &std::collections::VecDeque<(u64, u64, u64)>,
+    latch: u64,
+    (pw, pb, mt): (u32, u32, u32),
+    got: (u64, u64),
+) -> bool {
+    let word = |h: &(u64, u64, u64)| {
+        let pos = if pb <= pw {
+            h.1 >> (pw - pb)
+        } else {
+            h.1 << (pb - pw)
+        };
+        (pos, h.2 & crate::blocks::mask(mt))
+    };
+    let mut near = history.iter().rev().filter(|h| h.0 <= latch + 1).peekable();
+    if near.peek().is_none() && history.front().is_none_or(|h| h.0 > latch + 1) {
+        // Latched before the first position: the slave sends its reset value.
+        return got == (0, 0);
+    }
+    near.take(2).any(|h| word(h) == got)
+}
+
 /// Parallel-bus positions kept for [`BissCheck`]: a frame is checked when it ends, its
 /// timeout included (tens of microseconds after its latch: thousands of samples at the
 /// fastest ADCs).
@@ -243,6 +286,10 @@ pub struct SimResult {
     pub abz: Option<AbzCount>,
     /// The BiSS-C master's frames against the parallel bus ([`System::monitor_biss`]).
     pub biss: Option<BissCheck>,
+    /// The SSI master's frames against the parallel bus ([`System::monitor_ssi`]).
+    pub ssi: Option<WordCheck>,
+    /// The SPI master's words against the parallel bus ([`System::monitor_spi`]).
+    pub spi: Option<WordCheck>,
     /// Clock cycles simulated.
     pub cycles: u64,
     /// Decoded samples whose conversion could not be found at the expected latency.
@@ -528,6 +575,8 @@ pub struct System {
     abz: Option<AbzCounter>,
     /// The BiSS-C master whose frames [`BissCheck`] checks.
     biss: Option<std::rc::Rc<std::cell::RefCell<crate::sim::biss_master::BissMaster>>>,
+    /// The SSI master whose frames [`WordCheck`] checks.
+    ssi_mon: Option<std::rc::Rc<std::cell::RefCell<crate::sim::ssi_master::SsiMaster>>>,
     /// (cycle, BiSS position word, turns) of the latest parallel-bus positions.
     par_history: std::collections::VecDeque<(u64, u64, u64)>,
     trace: Option<crate::sim::vcd::TopTrace>,
@@ -570,6 +619,7 @@ impl System {
             spi: None,
             qep_b_stuck: None,
             biss: None,
+            ssi_mon: None,
             par_history: std::collections::VecDeque::new(),
             trace: None,
             trace_error: None,
@@ -672,18 +722,143 @@ impl System {
             let latch = ((f.t_start_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
                 as u64
                 + p.latch_latency() as u64;
-            let mut before = self.par_history.iter().rev().filter(|h| h.0 <= latch + 1);
-            let word = |h: &(u64, u64, u64)| {
-                let pos = if pb <= pw {
-                    h.1 >> (pw - pb)
-                } else {
-                    h.1 << (pb - pw)
-                };
-                (pos, h.2 & crate::blocks::mask(p.multiturn_bits))
+            let widths = (pw, pb, p.multiturn_bits);
+            if !par_match(
+                &self.par_history,
+                latch,
+                widths,
+                (data.position, data.turns),
+            ) {
+                c.position_mismatches += 1;
+            }
+        }
+    }
+
+    /// Connects an SSI master that reads frames back to back at `clock_hz` for `seconds`,
+    /// and checks each against the parallel bus ([`SimResult::ssi`]). Needs `[ssi] enabled`.
+    pub fn monitor_ssi(&mut self, clock_hz: f64, seconds: f64) {
+        use crate::sim::ssi_master::{SsiMaster, SsiMasterConfig};
+        let Some(p) = self.d.ssi.clone() else {
+            return;
+        };
+        let t = crate::sim::serial_line::LineTiming {
+            clock_hz: self.clock_hz,
+            line_delay_ns: self.d.io_timing.trace_ns,
+        };
+        let mut c = SsiMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
+        c.word.gray = p.gray;
+        c.word = c.word.with_velocity(p.velocity_bits);
+        c.error_bit = p.error_bit;
+        let gap_ns = 1000.0;
+        let frame_s =
+            (p.frame_bits() + 2) as f64 / clock_hz + p.timeout_us() * 1e-6 + gap_ns * 1e-9;
+        let n = (seconds / frame_s).ceil() as usize + 1;
+        let reqs = vec![crate::sim::serial_line::FrameRequest::new(clock_hz).gap(gap_ns); n];
+        let m = std::rc::Rc::new(std::cell::RefCell::new(SsiMaster::new(c, reqs, 500.0)));
+        self.ssi = Some(Box::new(m.clone()));
+        self.ssi_mon = Some(m);
+        self.result.ssi = Some(WordCheck {
+            clock_hz: clock_hz.round() as u64,
+            ..WordCheck::default()
+        });
+    }
+
+    /// Checks the SSI master's frames finished since the last call.
+    fn check_ssi_frames(&mut self) {
+        let (Some(m), Some(c), Some(p)) = (&self.ssi_mon, self.result.ssi.as_mut(), &self.d.ssi)
+        else {
+            return;
+        };
+        let m = m.borrow();
+        for f in m.frames().iter().skip(c.frames as usize) {
+            c.frames += 1;
+            let crate::sim::ssi_master::SsiOutcome::Data(data) = &f.outcome else {
+                c.failed += 1;
+                continue;
             };
-            let got = (data.position, data.turns);
-            let near: Vec<_> = before.by_ref().take(2).map(word).collect();
-            if !near.contains(&got) {
+            c.good += 1;
+            // The slave latches at its first clock edge, a line delay and the synchronizer
+            // after the master's.
+            let latch = ((f.t_start_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
+                as u64
+                + p.latch_latency() as u64;
+            let widths = (self.d.position_width, p.position_bits, p.multiturn_bits);
+            if !par_match(
+                &self.par_history,
+                latch,
+                widths,
+                (data.position, data.turns),
+            ) {
+                c.position_mismatches += 1;
+            }
+        }
+    }
+
+    /// Connects an SPI master (mode 0) that reads one word per transaction at `sck_hz` for
+    /// `seconds`, and checks each against the parallel bus ([`SimResult::spi`]). Needs
+    /// `[spi] enabled`.
+    pub fn monitor_spi(&mut self, sck_hz: f64, seconds: f64) {
+        use crate::sim::spi_master::{SpiMaster, SpiTxn};
+        let Some(p) = &self.d.spi else {
+            return;
+        };
+        let t = crate::sim::serial_line::LineTiming {
+            clock_hz: self.clock_hz,
+            line_delay_ns: self.d.io_timing.trace_ns,
+        };
+        let gap_ns = 1000.0;
+        let txn_s = (p.word_bits() + 2) as f64 / sck_hz + gap_ns * 1e-9;
+        let n = (seconds / txn_s).ceil() as usize + 1;
+        let txn = SpiTxn {
+            mode: 0,
+            sck_hz,
+            clocks: p.word_bits(),
+            gap_ns,
+        };
+        let m = std::rc::Rc::new(std::cell::RefCell::new(SpiMaster::new(
+            t,
+            &vec![txn; n],
+            500.0,
+        )));
+        self.spi = Some(m);
+        self.result.spi = Some(WordCheck {
+            clock_hz: sck_hz.round() as u64,
+            ..WordCheck::default()
+        });
+    }
+
+    /// Checks the SPI transactions whose last bit the master has read (its sampling
+    /// instant a round trip and a clock behind the simulated time).
+    fn check_spi_words(&mut self) {
+        let (Some(m), Some(c), Some(p)) = (&self.spi, self.result.spi.as_mut(), &self.d.spi) else {
+            return;
+        };
+        let m = m.borrow();
+        let now_ns = self.cycle as f64 * 1e9 / self.clock_hz;
+        let settled_ns = now_ns - 2.0 * self.d.io_timing.trace_ns - 2e9 / self.clock_hz;
+        let fmt = crate::sim::serial_line::WordFormat::new(p.data_bits(), p.multiturn_bits)
+            .with_velocity(p.velocity_bits);
+        let fmt = crate::sim::serial_line::WordFormat {
+            gray: p.gray,
+            ..fmt
+        };
+        while let Some(x) = m.txns().get(c.frames as usize) {
+            if x.samples.last().is_none_or(|&ts| ts > settled_ns) {
+                break;
+            }
+            let bits = m.word(c.frames as usize);
+            c.frames += 1;
+            let Some(w) = crate::sim::spi_master::decode_word(&bits, &fmt) else {
+                c.failed += 1;
+                continue;
+            };
+            c.good += 1;
+            // Chip select latches the word (cs_n reaches the slave a line delay later).
+            let latch = ((x.t_cs_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
+                as u64
+                + p.latch_latency() as u64;
+            let widths = (self.d.position_width, p.position_bits, p.multiturn_bits);
+            if !par_match(&self.par_history, latch, widths, (w.position, w.turns)) {
                 c.position_mismatches += 1;
             }
         }
@@ -813,9 +988,11 @@ impl System {
             if let Some(m) = self.ssi.as_mut() {
                 m.push_slo(self.top.get(O_SSI_DATA) != 0);
             }
+            self.check_ssi_frames();
             if let Some(m) = &self.spi {
                 m.borrow_mut().push_miso(self.top.get(O_ENC_MISO) != 0);
             }
+            self.check_spi_words();
             if self.record_inputs {
                 self.result.outputs.push(self.top.sample());
             }
@@ -856,7 +1033,7 @@ impl System {
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     truth: self.truth.electrical_angle(t) * lsb_per_rad,
                 };
-                if self.biss.is_some() {
+                if self.biss.is_some() || self.ssi_mon.is_some() || self.result.spi.is_some() {
                     if self.par_history.len() == PAR_HISTORY {
                         self.par_history.pop_front();
                     }
@@ -914,5 +1091,32 @@ impl<M: crate::sim::serial_line::LineMaster> crate::sim::serial_line::LineMaster
     }
     fn push_slo(&mut self, slo: bool) {
         self.borrow_mut().push_slo(slo)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::par_match;
+    use std::collections::VecDeque;
+
+    /// A word matches one of the two latest positions at or before the latch (+1 clock),
+    /// cut to the interface's bits, and the reset value before the first position; any
+    /// other word is a mismatch.
+    #[test]
+    fn par_match_takes_the_two_latest_positions_at_the_latch() {
+        // (cycle, 20-bit position, turns)
+        let h: VecDeque<(u64, u64, u64)> =
+            [(100, 0x12345, 3), (200, 0x23456, 3), (300, 0x34567, 4)].into();
+        let w = (20, 16, 4); // 16 position bits, 4 turn bits
+        assert!(par_match(&h, 250, w, (0x2345, 3)));
+        assert!(par_match(&h, 250, w, (0x1234, 3)));
+        assert!(par_match(&h, 299, w, (0x3456, 4)), "latch + 1");
+        assert!(!par_match(&h, 250, w, (0x3456, 4)), "after the latch");
+        assert!(!par_match(&h, 350, w, (0x1234, 3)), "three back");
+        assert!(!par_match(&h, 250, w, (0x2346, 3)), "one LSB off");
+        assert!(!par_match(&h, 250, w, (0x2345, 2)), "turns off");
+        assert!(par_match(&h, 50, w, (0, 0)), "reset value before the first");
+        assert!(!par_match(&h, 50, w, (0x1234, 3)));
+        assert!(par_match(&VecDeque::new(), 50, w, (0, 0)));
     }
 }

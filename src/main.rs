@@ -105,10 +105,13 @@ enum Command {
     /// LTC6912-1 model on the kit preset; the generic SPI model from `[adc.frame]`). Its
     /// outputs are read by their masters: a BiSS-C master reads frames back to back at 2.5
     /// MHz MA (or the slave's limit) and each frame's CRC, position and turns are checked
-    /// against the parallel bus at the slave's latch; with `[abz]` a quadrature counter
-    /// follows the A/B edges against the position. Prints max/RMS error in LSB and
-    /// arc-seconds, sample rate, latency, flags, ADC protocol violations, the BiSS-C and
-    /// ABZ checks and simulation speed, with a progress bar.
+    /// against the parallel bus at the slave's latch; with `[ssi]` an SSI master and with
+    /// `[spi]` an SPI master (mode 0) read at the same rate (slower where the slave's
+    /// synchronizer or the round trip needs it) and their positions and turns are checked
+    /// the same way; with `[abz]` a quadrature counter follows the A/B edges against the
+    /// position. Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags,
+    /// ADC protocol violations, the BiSS-C, SSI, SPI and ABZ checks and simulation speed,
+    /// with a progress bar.
     ///
     /// On a `[capacitive]` config it runs `cap_top` against the capacitive encoder and a
     /// 16-bit SPI ADC model and prints the error in mechanical degrees and the per-sample

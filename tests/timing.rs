@@ -43,7 +43,8 @@ fn option_tops() -> Vec<(&'static str, String)> {
         d.replace(from, to)
     };
     let registered = sinedec::blocks::registry::BLOCKS.iter().filter_map(|b| {
-        let label: &'static str = Box::leak(format!("{} top", b.key.to_uppercase()).into_boxed_str());
+        let label: &'static str =
+            Box::leak(format!("{} top", b.key.to_uppercase()).into_boxed_str());
         b.timing_case.map(|case| (label, format!("{d}\n{case}")))
     });
     let mut v = vec![

@@ -360,4 +360,3 @@ fn ascii(b: &[u8]) -> String {
         .map(|&c| c as char)
         .collect()
 }
-

@@ -167,11 +167,7 @@ fn wrapper_port(t: &TopPort, width: Option<u32>) -> minijinja::Value {
 
 /// One port line of a wrapper: direction, range, name and comment.
 fn port_line(dir: Dir, width: Option<u32>, name: &str, comment: &str) -> minijinja::Value {
-    let dir = if dir == Dir::Out {
-        "output"
-    } else {
-        "input "
-    };
+    let dir = if dir == Dir::Out { "output" } else { "input " };
     let range = match width {
         Some(w) => format!("[{}:0]  ", w - 1),
         None => " ".repeat(8),

@@ -151,6 +151,21 @@ pub fn run_traced(
         sys.stream_stats(o.skip);
     }
     sys.monitor_biss(BISS_MA_HZ.min(d.biss.max_ma_hz()), o.duration_s);
+    // SSI and SPI masters at the BiSS rate, slower where the slave's synchronizer or the
+    // round trip (the master reads at the next rising edge) needs it.
+    if let Some(x) = &d.ssi {
+        let a = crate::blocks::serial::answer_window(x.clock_hz, x.glitch_filter, &d.io_timing);
+        let by_line = 1e9 / (a.max_ns + 2.0 * d.io_timing.trace_ns);
+        let by_sync =
+            x.clock_hz / (2 * crate::blocks::serial::min_level_clocks(x.glitch_filter)) as f64;
+        sys.monitor_ssi(BISS_MA_HZ.min(by_line).min(by_sync), o.duration_s);
+    }
+    if let Some(x) = &d.spi {
+        sys.monitor_spi(
+            BISS_MA_HZ.min(x.max_sck_hz(d.io_timing.trace_ns)),
+            o.duration_s,
+        );
+    }
     let engine = sys.engine();
     let engine_note = sys.engine_note().map(str::to_string);
     if let Some(out) = vcd {
@@ -264,6 +279,19 @@ impl SimReport {
                 b.failed,
                 b.position_mismatches
             );
+        }
+        for (name, c) in [("SSI frames ", &r.ssi), ("SPI words  ", &r.spi)] {
+            if let Some(c) = c {
+                let _ = writeln!(
+                    o,
+                    "{name}                 {} read at {:.2} MHz: {} good, {} unreadable; {} positions unequal to par_position",
+                    c.frames,
+                    c.clock_hz as f64 / 1e6,
+                    c.good,
+                    c.failed,
+                    c.position_mismatches
+                );
+            }
         }
         if let Some(c) = &r.abz {
             let _ = writeln!(

@@ -397,7 +397,9 @@ fn chip_presets_from_a_config_state_what_binds_the_rate() {
     let text = |preset: &str, clock: &str, rate: Option<&str>| {
         let i = DEFAULT_CONFIG.find("\n[preamp]\n").expect("preamp table");
         let j = DEFAULT_CONFIG.find("\n[cordic]\n").expect("cordic table");
-        let rate = rate.map(|r| format!("\nsample_rate_hz = {r}")).unwrap_or_default();
+        let rate = rate
+            .map(|r| format!("\nsample_rate_hz = {r}"))
+            .unwrap_or_default();
         format!("{}{}", &DEFAULT_CONFIG[..i], &DEFAULT_CONFIG[j..])
             .replacen(
                 "preset = \"ltc1407a-1\"",
@@ -418,12 +420,20 @@ fn chip_presets_from_a_config_state_what_binds_the_rate() {
         .expect("the fastest AD7380 frame at 100 MHz is refused")
         .to_string();
     assert!(
-        e.contains("key `adc.preset`") && e.contains("at least 3") && e.contains("adc.sample_rate_hz"),
+        e.contains("key `adc.preset`")
+            && e.contains("at least 3")
+            && e.contains("adc.sample_rate_hz"),
         "{e}"
     );
     for (preset, clock, rate, want_d, bound) in [
         ("ads8354", "100e6", None, 5, "the clock binds"),
-        ("ad7380", "100e6", Some("2.5e6"), 2, "the configured adc.sample_rate_hz"),
+        (
+            "ad7380",
+            "100e6",
+            Some("2.5e6"),
+            2,
+            "the configured adc.sample_rate_hz",
+        ),
         // SCLK <= 20 MHz: 32 SCLK take 1.6 us > 1 / 700 ksps whatever the clock.
         ("ads8354", "400e6", None, 20, "the clock binds"),
     ] {

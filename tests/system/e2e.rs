@@ -284,7 +284,11 @@ fn shipped_dual_sar_adc_configs_decode_and_read_back_end_to_end() {
             );
             assert!(s.samples > 1500, "{file}: {s:?}");
             assert_eq!(res.latency_mismatches, 0, "{file}");
-            assert!(res.adc_violations.is_empty(), "{file}: {:?}", res.adc_violations);
+            assert!(
+                res.adc_violations.is_empty(),
+                "{file}: {:?}",
+                res.adc_violations
+            );
             assert_eq!(s.errors + s.warnings, 0, "{file}");
             assert!(
                 s.max_lsb <= max_b && s.rms_lsb <= rms_b,

@@ -175,11 +175,29 @@ fn interfaces_config(generic: bool) -> Loaded {
         let end = start + text[start..].find("\n[").expect("next section") + 1;
         text.replace_range(start..end, "");
     }
+    // The SSI (Gray-coded) and SPI slaves on too.
+    for (section, extra) in [("[ssi]\n", "\ngray = true"), ("[spi]\n", "")] {
+        let at = text.find(section).expect("section") + section.len();
+        let off = at + text[at..].find("enabled = false").expect("enabled key");
+        text.replace_range(off..off + "enabled = false".len(), "enabled = true");
+        if !extra.is_empty() {
+            let end = off + "enabled = true".len();
+            let line_end = end + text[end..].find('\n').expect("line");
+            let next = line_end + 1 + text[line_end + 1..].find('\n').expect("gray line");
+            // Drop the section's own `gray = false` line and set Gray.
+            assert!(
+                text[line_end + 1..next].starts_with("gray = "),
+                "gray key follows"
+            );
+            text.replace_range(line_end..next, extra);
+        }
+    }
     Loaded::parse(&text, "interfaces.toml").expect("config")
 }
 
 /// `simulate` reads every output it drives: its BiSS-C master's frames carry a good CRC and
-/// the parallel bus's position at the slave's latch, and a quadrature counter on ABZ equals
+/// the parallel bus's position at the slave's latch, so do the SSI master's frames (Gray)
+/// and the SPI master's words, and a quadrature counter on ABZ equals
 /// floor(position x E / P) of every sample before the next one shows, through a reversal at
 /// 3000 rpm, with no illegal A/B step. The same holds with a generic SPI ADC in place of the kit's LTC1407A-1: its top
 /// is the same composition without the pre-amplifier.
@@ -205,6 +223,15 @@ fn simulate_reads_biss_and_abz_against_the_parallel_bus() {
             (b.frames, 0, 0, 0),
             "{generic}: {b:?}"
         );
+        for (name, c) in [("SSI", res.ssi), ("SPI", res.spi)] {
+            let c = c.unwrap_or_else(|| panic!("{name} master attached"));
+            assert!(c.frames >= 50, "{generic} {name}: {c:?}");
+            assert_eq!(
+                (c.good, c.failed, c.position_mismatches),
+                (c.frames, 0, 0),
+                "{generic} {name}: {c:?}"
+            );
+        }
         let a = res.abz.expect("ABZ counter");
         assert_eq!(a.illegal, 0, "{generic}: {a:?}");
         assert!(a.edges > 1000, "{generic}: {a:?}");
@@ -219,6 +246,8 @@ fn simulate_reads_biss_and_abz_against_the_parallel_bus() {
         assert!(r.stats.max_lsb < 4.0, "{generic}: {:?}", r.stats);
         assert_eq!(res.amp_gains.is_some(), !generic, "{generic}");
         let summary = r.summary(&l);
-        assert!(summary.contains("BiSS-C frames") && summary.contains("ABZ quadrature"));
+        for line in ["BiSS-C frames", "SSI frames", "SPI words", "ABZ quadrature"] {
+            assert!(summary.contains(line), "{line}:\n{summary}");
+        }
     }
 }

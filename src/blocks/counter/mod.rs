@@ -98,11 +98,8 @@ pub mod model;
 
 /// The block's entry in the registry (`crate::blocks::registry`): the counter synthesized
 /// alone (it is part of the core's row too).
-pub const BLOCK: crate::blocks::registry::BlockDef = crate::blocks::registry::BlockDef::report_only(
-    "counter",
-    "quadrant counter alone",
-    |l| {
+pub const BLOCK: crate::blocks::registry::BlockDef =
+    crate::blocks::registry::BlockDef::report_only("counter", "quadrant counter alone", |l| {
         let t = crate::report::blocks::BlockTiming::latency(1, "one register stage");
         crate::report::blocks::job(l, "counter", hdl::QuadrantCounter::new(&l.derived), t)
-    },
-);
+    });
