@@ -20,20 +20,39 @@ pub(super) fn adc_params(
         AdcPreset::Ad7380 => fixed_frame(c, err, "ad7380", AdcFrame::AD7380, AdcTiming::AD7380)?,
         AdcPreset::Generic => generic_frame(c, err)?,
     };
-    // SCK divider: as configured, or the smallest the chip's SCK limit allows (the ADC
-    // round trip is checked against it by `board_timing`, which names the key to change).
-    let d = match c.adc.sck_period_clocks {
-        Some(d) => d,
-        None => ((timing.sck_min_period_ns * clock_hz / 1e9) - 1e-9)
-            .ceil()
-            .max(2.0) as u32,
-    };
-    let build = |period: Option<u32>| match c.adc.preset {
+    let build_with = |d: u32, period: Option<u32>| match c.adc.preset {
         AdcPreset::Ltc1407a1 => AdcParams::ltc1407a(clock_hz, d, period),
         AdcPreset::Ads8354 => AdcParams::ads8354(clock_hz, d, period),
         AdcPreset::Ad7380 => AdcParams::ad7380(clock_hz, d, period),
         AdcPreset::Generic => AdcParams::generic(clock_hz, frame, timing, d, period),
     };
+    // SCK divider: as configured, or the smallest that both the chip's SCK limit and the
+    // ADC round trip (the I/O budget, `board_timing`) allow. A configured divider, or one
+    // no divider up to 64 clocks past the chip's fixes, is checked by `board_timing`,
+    // which names the key to change.
+    let d = match c.adc.sck_period_clocks {
+        Some(d) => d,
+        None => {
+            let chip_min = ((timing.sck_min_period_ns * clock_hz / 1e9) - 1e-9)
+                .ceil()
+                .max(2.0) as u32;
+            let io = super::checks::io_timing(c);
+            let fits = |d: u32| {
+                let p = build_with(d, None);
+                let (available, needed) = crate::board::adc_round_trip(
+                    &io,
+                    p.timing.data_valid_ns,
+                    p.capture_distance_clocks(),
+                    clock_hz,
+                );
+                available + 1e-9 >= needed
+            };
+            (chip_min..chip_min + 64)
+                .find(|&d| fits(d))
+                .unwrap_or(chip_min)
+        }
+    };
+    let build = |period: Option<u32>| build_with(d, period);
     let fastest = build(None);
     // The shortest period that respects the chip's rate limit too.
     let limit_period = AdcParams::period_for_rate(clock_hz, timing.max_sample_rate_hz);

@@ -5,6 +5,19 @@
 use super::params::ErrFn;
 use super::*;
 
+/// The I/O timing budget as configured (`[board]` `fpga_clock_to_out_ns`,
+/// `fpga_input_setup_ns`, `trace_delay_ns`), the defaults for the keys not given; the
+/// ranges are checked by [`board_timing`].
+pub(super) fn io_timing(c: &Config) -> crate::board::IoTiming {
+    let mut io = crate::board::IoTiming::DEFAULT;
+    if let Some(b) = &c.board {
+        io.clock_to_out_ns = b.fpga_clock_to_out_ns.unwrap_or(io.clock_to_out_ns);
+        io.input_setup_ns = b.fpga_input_setup_ns.unwrap_or(io.input_setup_ns);
+        io.trace_ns = b.trace_delay_ns.unwrap_or(io.trace_ns);
+    }
+    io
+}
+
 /// The board clock and the ADC's I/O timing budget, checked: the synthesizer must reach
 /// `clock.frequency_hz` from `board.clock_hz`, and the SCK period must leave room for the
 /// ADC round trip (see `crate::board`).
@@ -13,22 +26,14 @@ pub(super) fn board_timing(
     adc: &AdcParams,
     err: &dyn Fn(&str, &str, String) -> Error,
 ) -> Result<(Option<crate::board::BoardClock>, crate::board::IoTiming)> {
-    use crate::board::{IoTiming, STARTER_KIT_CLOCK_HZ};
-    let mut io = IoTiming::DEFAULT;
+    use crate::board::STARTER_KIT_CLOCK_HZ;
+    let io = io_timing(c);
     let mut board_clock = None;
     if let Some(b) = &c.board {
-        for (key, v, slot) in [
-            (
-                "fpga_clock_to_out_ns",
-                b.fpga_clock_to_out_ns,
-                &mut io.clock_to_out_ns,
-            ),
-            (
-                "fpga_input_setup_ns",
-                b.fpga_input_setup_ns,
-                &mut io.input_setup_ns,
-            ),
-            ("trace_delay_ns", b.trace_delay_ns, &mut io.trace_ns),
+        for (key, v) in [
+            ("fpga_clock_to_out_ns", b.fpga_clock_to_out_ns),
+            ("fpga_input_setup_ns", b.fpga_input_setup_ns),
+            ("trace_delay_ns", b.trace_delay_ns),
         ] {
             if let Some(v) = v {
                 if !(0.0..=100.0).contains(&v) {
@@ -38,7 +43,6 @@ pub(super) fn board_timing(
                         format!("`{key}` = {v} is out of range: allowed 0..=100 ns"),
                     ));
                 }
-                *slot = v;
             }
         }
         let kit = b.preset.as_deref() == Some("spartan3an-starter-kit");

@@ -489,3 +489,40 @@ fn adc_pins_rest_idle_from_power_up() {
         }
     }
 }
+
+/// Without `adc.sck_period_clocks` the divider is the smallest that both the chip's SCK
+/// limit and the ADC round trip allow: a generic 16-bit ADC (SCK-to-data 10 ns) at 100 MHz
+/// gets 3 clocks (2 would capture 20 ns after the shifting edge, short of the 21 ns round
+/// trip), and `check` accepts it. Setting 2 clocks is refused at that key.
+#[test]
+fn the_default_sck_divider_covers_the_round_trip() {
+    use sinedec::config::{Loaded, DEFAULT_CONFIG};
+    let i = DEFAULT_CONFIG.find("\n[preamp]\n").expect("preamp table");
+    let j = DEFAULT_CONFIG.find("\n[cordic]\n").expect("cordic table");
+    let text = |extra: &str| {
+        format!("{}{}", &DEFAULT_CONFIG[..i], &DEFAULT_CONFIG[j..])
+            .replacen(
+                "preset = \"ltc1407a-1\"",
+                &format!("preset = \"generic\"\nmax_sample_rate_hz = 1e6{extra}"),
+                1,
+            )
+            .replacen("width = 14", "width = 16", 1)
+            .replacen("frequency_hz = 133_330_000.0", "frequency_hz = 100e6", 1)
+    };
+    let l = Loaded::parse(&text(""), "g.toml").unwrap_or_else(|e| panic!("{e}"));
+    let p = &l.derived.adc;
+    assert_eq!(
+        p.timing.data_valid_ns, 10.0,
+        "the generic default's SCK-to-data"
+    );
+    assert_eq!(p.sck_period_clocks, 3);
+    assert_eq!(p.capture_distance_clocks(), 3);
+    let e = Loaded::parse(&text("\nsck_period_clocks = 2"), "g.toml")
+        .err()
+        .expect("2 clocks are short of the round trip")
+        .to_string();
+    assert!(
+        e.contains("key `adc.sck_period_clocks`") && e.contains("at least 3 clocks"),
+        "{e}"
+    );
+}
