@@ -80,7 +80,8 @@ pub(super) fn board_timing(
     if available + 1e-9 < needed {
         let t = 1e9 / adc.clock_hz;
         let min_d = ((needed / t) - 1e-9).ceil() as u32;
-        // Blame the SCK period when the config sets it, else the board budget it sets.
+        // Blame the SCK period when the config sets it, else the board budget or the
+        // ADC's data-valid delay it sets (no divider up to 64 clocks past the chip's fits).
         let b = c.board.as_ref();
         let (table, key) = if c.adc.sck_period_clocks.is_some() {
             ("adc", "sck_period_clocks")
@@ -90,6 +91,13 @@ pub(super) fn board_timing(
             ("board", "fpga_clock_to_out_ns")
         } else if b.is_some_and(|b| b.fpga_input_setup_ns.is_some()) {
             ("board", "fpga_input_setup_ns")
+        } else if c
+            .adc
+            .timing
+            .as_ref()
+            .is_some_and(|t| t.data_valid_ns.is_some())
+        {
+            ("adc.timing", "data_valid_ns")
         } else {
             ("adc", "sck_period_clocks")
         };

@@ -223,20 +223,26 @@ fn the_adc_round_trip_is_checked_and_constrained() {
         ucf.contains("NET \"adc_miso\" OFFSET = IN 3.00 ns VALID 3.00 ns BEFORE \"clk\";"),
         "{ucf}"
     );
-    // ... 10 + 2 + 8 + 3 = 23 ns does not: at least 4 clocks (30 ns).
-    let bad = ok.replace("fpga_clock_to_out_ns = 9.0", "fpga_clock_to_out_ns = 10.0");
+    assert_eq!(l.derived.adc.sck_period_clocks, 3);
+    // ... 10 + 2 + 8 + 3 = 23 ns does not: without adc.sck_period_clocks the divider that
+    // covers it, 4 clocks (30 ns), is chosen; set to 3 clocks the config is refused there.
+    let slow = ok.replace("fpga_clock_to_out_ns = 9.0", "fpga_clock_to_out_ns = 10.0");
+    let l = Loaded::parse(&slow, "b.toml").expect("a 4-clock SCK fits");
+    assert_eq!(l.derived.adc.sck_period_clocks, 4);
+    let three = |t: &str| t.replacen("# sck_period_clocks = 3", "sck_period_clocks = 3", 1);
+    let bad = three(&slow);
     let e = Loaded::parse(&bad, "b.toml")
         .expect_err("too tight")
         .to_string();
-    assert!(e.contains("key `board.fpga_clock_to_out_ns`"), "{e}");
+    assert!(e.contains("key `adc.sck_period_clocks`"), "{e}");
     assert!(e.starts_with("b.toml:"), "no location: {e}");
     assert!(e.contains("22.50 ns") && e.contains("23.00 ns"), "{e}");
     assert!(e.contains("at least 4 clocks"), "{e}");
     // A longer trace fails the same way and is blamed with its numbers.
-    let bad = with_preset(WIRING).replace(
+    let bad = three(&with_preset(WIRING).replace(
         "[board]\npreset = \"spartan3an-starter-kit\"\n",
         "[board]\npreset = \"spartan3an-starter-kit\"\ntrace_delay_ns = 3.0\n",
-    );
+    ));
     let e = Loaded::parse(&bad, "b.toml")
         .expect_err("trace")
         .to_string();

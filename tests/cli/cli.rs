@@ -540,14 +540,17 @@ fn init_writes_a_config_that_check_accepts() {
             .join("\n")
     };
     assert_eq!(body(&out), body(&default));
-    assert!(
-        line_of(&out, "resources (top)").contains("`sinedec report my.toml`"),
-        "{out}"
+    // Before `report` has cached the top's synthesis, the hint names the file given.
+    let (mine, theirs) = (
+        line_of(&out, "resources (top)"),
+        line_of(&default, "resources (top)"),
     );
-    assert!(
-        line_of(&default, "resources (top)").contains("`sinedec report` synthesizes"),
-        "{default}"
-    );
+    if mine.contains("not synthesized") {
+        assert!(mine.contains("`sinedec report my.toml`"), "{out}");
+        assert!(theirs.contains("`sinedec report` synthesizes"), "{default}");
+    } else {
+        assert_eq!(mine, theirs);
+    }
     // And it generates.
     ok(dir, &["generate", "my.toml", "-o", "out"]);
     assert_generated(&dir.join("out"), "sd");

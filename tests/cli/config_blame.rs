@@ -267,9 +267,15 @@ fn adc_frame_and_timing_errors_are_blamed_on_their_keys() {
             "offsets = [1, 5]",
         ),
         (
-            "[adc.timing]\ndata_valid_ns = 200.0",
+            "[adc.timing]\ndata_valid_ns = 2e6",
             "adc.timing.data_valid_ns",
-            "data_valid_ns = 200.0",
+            "data_valid_ns = 2e6",
+        ),
+        (
+            // 0.9 ms: no SCK divider up to 64 clocks past the chip's covers the round trip.
+            "[adc.timing]\ndata_valid_ns = 9e5",
+            "adc.timing.data_valid_ns",
+            "data_valid_ns = 9e5",
         ),
         (
             "[adc.timing]\nsck_min_pulse_ns = 9.0",
