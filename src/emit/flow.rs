@@ -195,13 +195,16 @@ pub struct Synth {
 
 /// `<name>_sinedec.core`: FuseSoC CAPI2 core with `sim` (Icarus, Verilator), `sim_top`
 /// when `top_tb` names the top whose testbench `<top>_tb.v` is written, and, when there is
-/// a board top, `synth` (ISE or Quartus) targets.
+/// a board top, `synth` (ISE or Quartus) targets; `io_constraints` (the SDC and XDC of a
+/// top without `[board]`, with their FuseSoC file types) become the `top_constraints`
+/// fileset.
 pub fn fusesoc_core(
     loaded: &Loaded,
     header: String,
     core: &str,
     top_tb: Option<&str>,
     synth: Option<Synth>,
+    io_constraints: &[(String, &'static str)],
 ) -> Result<String> {
     let name = &loaded.config.name;
     let synth = synth.map(|s| {
@@ -228,6 +231,10 @@ pub fn fusesoc_core(
             core => core,
             top => top_tb,
             synth => synth,
+            io_constraints => io_constraints
+                .iter()
+                .map(|(n, k)| context! { name => n, kind => *k })
+                .collect::<Vec<Value>>(),
         },
     )
 }

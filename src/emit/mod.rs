@@ -331,6 +331,12 @@ fn flow_files(
     } else {
         None
     };
+    // A top without [board]: its SDC and XDC for the user's own project.
+    let io_constraints: Vec<(String, &'static str)> = [("sdc", "SDC"), ("xdc", "xdc")]
+        .into_iter()
+        .filter(|(ext, _)| synth.is_none() && has(&format!("{top_module}.{ext}")))
+        .map(|(ext, kind)| (format!("{top_module}.{ext}"), kind))
+        .collect();
     Ok(vec![
         OutFile {
             name: format!("{name}_sinedec.core"),
@@ -345,6 +351,7 @@ fn flow_files(
                 &core_module,
                 has(&format!("{top_module}_tb.v")).then_some(top_module.as_str()),
                 synth,
+                &io_constraints,
             )?,
         },
         OutFile {

@@ -111,6 +111,30 @@ fn fusesoc_sim_passes_and_fails_on_a_mismatch() {
     );
 }
 
+/// A top without `[board]`: the core lists its SDC and XDC (fileset `top_constraints`,
+/// FuseSoC file types SDC and xdc), and FuseSoC reads the core; a top with a board's
+/// synthesis target lists its constraints there instead.
+#[test]
+fn fusesoc_core_lists_the_io_constraints_of_a_top_without_board() {
+    let dir = common::workdir("flow_fusesoc_io");
+    write(DEFAULT_CONFIG, &dir);
+    let core = std::fs::read_to_string(dir.join("sd_sinedec.core")).expect("core");
+    for line in [
+        "  top_constraints:",
+        "      - sd_top.sdc: {file_type: SDC}",
+        "      - sd_top.xdc: {file_type: xdc}",
+    ] {
+        assert!(core.contains(line), "{line} missing:\n{core}");
+    }
+    assert!(dir.join("sd_top.sdc").is_file() && dir.join("sd_top.xdc").is_file());
+    let (ok, out) = run_fusesoc(&dir, &["core-info", VLNV]);
+    assert!(ok && out.contains("sim_top"), "{out}");
+    let dir = common::workdir("flow_fusesoc_io_kit");
+    write(&kit_config(), &dir);
+    let core = std::fs::read_to_string(dir.join("sd_sinedec.core")).expect("core");
+    assert!(!core.contains("top_constraints"), "{core}");
+}
+
 #[test]
 fn fusesoc_synth_targets_set_up_the_vendor_projects() {
     // ISE for the kit: edalize's project script names the part and adds the sources.
