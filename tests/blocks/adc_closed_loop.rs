@@ -203,6 +203,22 @@ fn fastest(clock_hz: f64, min_period_ns: f64) -> u32 {
     ((min_period_ns * clock_hz / 1e9) - 1e-9).ceil().max(2.0) as u32
 }
 
+/// 25 frames of a CS-framed chip read by the controller at `p` (validated): no timing
+/// violation, every frame read, every sample the chip's code at the derived latency.
+fn reads_on_time(p: &AdcParams, chip: &mut sinedec::sim::cs_adc::CsAdc) -> Run {
+    p.validate().expect("feasible");
+    println!("{}", p.describe());
+    let (run, wrong, n) = cs_closed_loop(p, chip, 25);
+    assert!(
+        chip.violations().is_empty(),
+        "{:?}",
+        &chip.violations()[..1]
+    );
+    assert_eq!((n, wrong), (25, 0));
+    assert_eq!(check_against_cs_chip(p, &run, chip), 25);
+    run
+}
+
 #[test]
 fn ads8354_closed_loop_at_100mhz() {
     use sinedec::sim::ads8354::ads8354;
@@ -211,18 +227,7 @@ fn ads8354_closed_loop_at_100mhz() {
         sinedec::blocks::adc::AdcTiming::ADS8354.sck_min_period_ns,
     );
     let p = AdcParams::ads8354(100e6, d, None);
-    p.validate().expect("feasible");
-    println!("{}", p.describe());
-    let mut chip = ads8354(100e6, 5).with_codes(codes16(31));
-    let (run, wrong, n) = cs_closed_loop(&p, &mut chip, 25);
-    assert!(
-        chip.violations().is_empty(),
-        "{:?}",
-        &chip.violations()[..1]
-    );
-    assert_eq!(n, 25);
-    assert_eq!(wrong, 0);
-    assert_eq!(check_against_cs_chip(&p, &run, &chip), 25);
+    let run = reads_on_time(&p, &mut ads8354(100e6, 5).with_codes(codes16(31)));
     // The extremes reach the outputs.
     let s = run.samples(16);
     assert!(s.iter().any(|x| (x.1, x.2) == (-32768, 32767)));
@@ -246,18 +251,7 @@ fn ad7380_closed_loop_at_100mhz() {
         sinedec::blocks::adc::AdcTiming::AD7380.sck_min_period_ns,
     );
     let p = AdcParams::ad7380(100e6, d, None);
-    p.validate().expect("feasible");
-    println!("{}", p.describe());
-    let mut chip = ad7380(100e6, 6).with_codes(codes16(32));
-    let (run, wrong, n) = cs_closed_loop(&p, &mut chip, 25);
-    assert!(
-        chip.violations().is_empty(),
-        "{:?}",
-        &chip.violations()[..1]
-    );
-    assert_eq!(n, 25);
-    assert_eq!(wrong, 0);
-    assert_eq!(check_against_cs_chip(&p, &run, &chip), 25);
+    reads_on_time(&p, &mut ad7380(100e6, 6).with_codes(codes16(32)));
     // The capture one system clock early (the chip's answers seen one clock later, so
     // the controller samples D - 1 clocks after the shifting edge): wrong data.
     struct Early(sinedec::sim::cs_adc::CsAdc, [bool; 2]);
