@@ -99,10 +99,13 @@ impl BoardConfig {
 }
 
 /// Data lines of the configured ADC: 2 when channel 1 has a line of its own (`adc_miso_b`).
+/// A chip preset's come from its frame (the one `adc_params` derives from); the board pins
+/// are checked before the derivation, so a generic frame's key is read here.
 pub fn adc_data_lines(c: &Config) -> u32 {
     match c.adc.preset {
-        AdcPreset::Ads8354 | AdcPreset::Ad7380 => 2,
-        AdcPreset::Ltc1407a1 => 1,
+        AdcPreset::Ads8354 => AdcFrame::ADS8354.lines,
+        AdcPreset::Ad7380 => AdcFrame::AD7380.lines,
+        AdcPreset::Ltc1407a1 => AdcFrame::LTC1407A_1.lines,
         AdcPreset::Generic => c.adc.frame.as_ref().and_then(|f| f.lines).unwrap_or(1),
     }
 }
