@@ -416,8 +416,7 @@ fn chip_presets_from_a_config_state_what_binds_the_rate() {
     // At its fastest frame the AD7380's sample arrives with the next conversion start, too
     // late for the QEP fallback (3 clocks): refused at the preset, with the way out.
     let e = Loaded::parse(&text("ad7380", "100e6", None), "w.toml")
-        .err()
-        .expect("the fastest AD7380 frame at 100 MHz is refused")
+        .expect_err("the fastest AD7380 frame at 100 MHz is refused")
         .to_string();
     assert!(
         e.contains("key `adc.preset`")
@@ -518,8 +517,7 @@ fn the_default_sck_divider_covers_the_round_trip() {
     assert_eq!(p.sck_period_clocks, 3);
     assert_eq!(p.capture_distance_clocks(), 3);
     let e = Loaded::parse(&text("\nsck_period_clocks = 2"), "g.toml")
-        .err()
-        .expect("2 clocks are short of the round trip")
+        .expect_err("2 clocks are short of the round trip")
         .to_string();
     assert!(
         e.contains("key `adc.sck_period_clocks`") && e.contains("at least 3 clocks"),
