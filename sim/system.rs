@@ -235,6 +235,13 @@ fn par_match(
     near.take(2).any(|h| word(h) == got)
 }
 
+/// The cycle at which a serial slave latches the word of a frame the master starts at
+/// `t_ns`: its first edge reaches the pin a trace delay later, and the slave's synchronizer
+/// acts `latency` clocks after the cycle that first sees it.
+fn latch_cycle(d: &Derived, t_ns: f64, latency: u32) -> u64 {
+    ((t_ns + d.io_timing.trace_ns) * d.clock_hz / 1e9).ceil() as u64 + latency as u64
+}
+
 /// Parallel-bus positions kept for [`BissCheck`]: a frame is checked when it ends, its
 /// timeout included (tens of microseconds after its latch: thousands of samples at the
 /// fastest ADCs).
@@ -668,15 +675,20 @@ impl System {
         self.ma = Some(m);
     }
 
+    /// The line every serial master model sees: the system clock and one board trace.
+    fn line_timing(&self) -> crate::sim::serial_line::LineTiming {
+        crate::sim::serial_line::LineTiming {
+            clock_hz: self.clock_hz,
+            line_delay_ns: self.d.io_timing.trace_ns,
+        }
+    }
+
     /// Connects a BiSS-C master that reads frames back to back at `ma_hz` for `seconds`, and
     /// checks each against the parallel bus ([`SimResult::biss`]).
     pub fn monitor_biss(&mut self, ma_hz: f64, seconds: f64) {
         use crate::sim::biss_master::{BissMaster, BissMasterConfig};
         let p = &self.d.biss;
-        let t = crate::sim::serial_line::LineTiming {
-            clock_hz: self.clock_hz,
-            line_delay_ns: self.d.io_timing.trace_ns,
-        };
+        let t = self.line_timing();
         let mut c = BissMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
         c.word.gray = p.gray;
         c.word = c.word.with_velocity(p.velocity_bits);
@@ -719,9 +731,7 @@ impl System {
             c.good += 1;
             // The slave latches at its first MA edge, a line delay and the synchronizer
             // after the master's.
-            let latch = ((f.t_start_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
-                as u64
-                + p.latch_latency() as u64;
+            let latch = latch_cycle(&self.d, f.t_start_ns, p.latch_latency());
             let widths = (pw, pb, p.multiturn_bits);
             if !par_match(
                 &self.par_history,
@@ -741,10 +751,7 @@ impl System {
         let Some(p) = self.d.ssi.clone() else {
             return;
         };
-        let t = crate::sim::serial_line::LineTiming {
-            clock_hz: self.clock_hz,
-            line_delay_ns: self.d.io_timing.trace_ns,
-        };
+        let t = self.line_timing();
         let mut c = SsiMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
         c.word.gray = p.gray;
         c.word = c.word.with_velocity(p.velocity_bits);
@@ -779,9 +786,7 @@ impl System {
             c.good += 1;
             // The slave latches at its first clock edge, a line delay and the synchronizer
             // after the master's.
-            let latch = ((f.t_start_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
-                as u64
-                + p.latch_latency() as u64;
+            let latch = latch_cycle(&self.d, f.t_start_ns, p.latch_latency());
             let widths = (self.d.position_width, p.position_bits, p.multiturn_bits);
             if !par_match(
                 &self.par_history,
@@ -802,10 +807,7 @@ impl System {
         let Some(p) = &self.d.spi else {
             return;
         };
-        let t = crate::sim::serial_line::LineTiming {
-            clock_hz: self.clock_hz,
-            line_delay_ns: self.d.io_timing.trace_ns,
-        };
+        let t = self.line_timing();
         let gap_ns = 1000.0;
         let txn_s = (p.word_bits() + 2) as f64 / sck_hz + gap_ns * 1e-9;
         let n = (seconds / txn_s).ceil() as usize + 1;
@@ -836,16 +838,15 @@ impl System {
         let m = m.borrow();
         let now_ns = self.cycle as f64 * 1e9 / self.clock_hz;
         let settled_ns = now_ns - 2.0 * self.d.io_timing.trace_ns - 2e9 / self.clock_hz;
-        let fmt = crate::sim::serial_line::WordFormat::new(p.data_bits(), p.multiturn_bits)
-            .with_velocity(p.velocity_bits);
-        let fmt = crate::sim::serial_line::WordFormat {
-            gray: p.gray,
-            ..fmt
-        };
         while let Some(x) = m.txns().get(c.frames as usize) {
             if x.samples.last().is_none_or(|&ts| ts > settled_ns) {
                 break;
             }
+            let fmt = crate::sim::serial_line::WordFormat {
+                gray: p.gray,
+                ..crate::sim::serial_line::WordFormat::new(p.data_bits(), p.multiturn_bits)
+                    .with_velocity(p.velocity_bits)
+            };
             let bits = m.word(c.frames as usize);
             c.frames += 1;
             let Some(w) = crate::sim::spi_master::decode_word(&bits, &fmt) else {
@@ -854,9 +855,7 @@ impl System {
             };
             c.good += 1;
             // Chip select latches the word (cs_n reaches the slave a line delay later).
-            let latch = ((x.t_cs_ns + self.d.io_timing.trace_ns) * self.clock_hz / 1e9).ceil()
-                as u64
-                + p.latch_latency() as u64;
+            let latch = latch_cycle(&self.d, x.t_cs_ns, p.latch_latency());
             let widths = (self.d.position_width, p.position_bits, p.multiturn_bits);
             if !par_match(&self.par_history, latch, widths, (w.position, w.turns)) {
                 c.position_mismatches += 1;
