@@ -23,6 +23,7 @@ pub mod core;
 pub mod correction;
 pub mod counter;
 pub mod fallback;
+pub mod init_bit;
 pub mod monitor;
 pub mod nco;
 pub mod parallel;

@@ -139,6 +139,13 @@ impl Derived {
                     self.latency_cycles
                 ));
             }
+            {
+                use crate::blocks::top::hdl::{BLOCK_RESET_CLOCKS, RESET_SYNC_CLOCKS};
+                s.push_str(&format!(
+                    "reset release               {} clock edges from the fall of <name>_top's rst to the blocks (synchronizer {RESET_SYNC_CLOCKS} + a register per block {BLOCK_RESET_CLOCKS}); it asserts at once\n",
+                    RESET_SYNC_CLOCKS + BLOCK_RESET_CLOCKS
+                ));
+            }
             s.push_str(&describe_correction(
                 &self.correction,
                 self.sample_rate_hz,

@@ -46,6 +46,10 @@ pub fn board_verilog(
             let sep = if i + 1 < ports.len() { "," } else { " " };
             let comment = if p.name == "clk" {
                 format!("board oscillator, {:.3} MHz", clock.osc_hz / 1e6)
+            } else if p.name == "rst" {
+                format!(
+                    "reset, active high, held while the clock is not locked; released through 2 flops here, then {top}'s reset synchronizer"
+                )
             } else {
                 p.comment.clone()
             };

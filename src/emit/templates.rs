@@ -52,6 +52,10 @@ const TEMPLATES: &[(&str, &str)] = &[
         include_str!("../../rtl-templates/top/sinewave_top.v.j2"),
     ),
     (
+        "top/rst_sync.v.j2",
+        include_str!("../../rtl-templates/top/rst_sync.v.j2"),
+    ),
+    (
         "top/capacitive_top.v.j2",
         include_str!("../../rtl-templates/top/capacitive_top.v.j2"),
     ),

@@ -236,7 +236,10 @@ pub fn top_testbench(loaded: &Loaded, top: &str) -> Result<Option<String>> {
         .preamp
         .as_ref()
         .map_or(0, |p| 20 * p.half_period_clocks as u64);
-    let startup_ns = (10 + preamp_clocks + d.adc.startup_clocks() as u64 + lat) as f64 * clk_ns;
+    // The blocks leave reset TOP_RESET_RELEASE_CLOCKS after the wrapper's `rst` falls.
+    let release = crate::blocks::top::hdl::TOP_RESET_RELEASE_CLOCKS as u64;
+    let startup_ns =
+        (10 + release + preamp_clocks + d.adc.startup_clocks() as u64 + lat) as f64 * clk_ns;
     let sample_ns = 1e9 / fs;
     let room = ((TOP_TB_MAX_CLOCKS as f64 * clk_ns - startup_ns) / sample_ns)
         .floor()

@@ -99,6 +99,15 @@ pub fn core_verilog(loaded: &Loaded) -> Result<String> {
     })
 }
 
+/// The wrapper's comment for its reset input, which it synchronizes before the rtl
+/// (`rtl-templates/top/rst_sync.v.j2`): the blocks leave reset `release` clock edges after
+/// it falls.
+fn rst_comment(release: u32) -> String {
+    format!(
+        "reset, active high, asynchronous: asserts at once; the blocks leave reset {release} clock edges after it falls"
+    )
+}
+
 /// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
 fn turns_expr(d: &crate::config::Derived) -> String {
     if d.multiturn_bits == 0 {
@@ -243,6 +252,16 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         let input = t.dir != Dir::Out;
         if t.pin == Pin::Parallel {
             conns.push(format!(".{p}({})", t.net));
+        } else if p == "rst" {
+            // The rtl's reset is the synchronizer's output (the wrapper's `rst` is
+            // asynchronous).
+            decl.push(port_line(
+                t.dir,
+                None,
+                p,
+                &rst_comment(crate::blocks::top::hdl::TOP_RESET_RELEASE_CLOCKS),
+            ));
+            conns.push(".rst(rst_sync[1])".into());
         } else if used.contains(&p) {
             decl.push(wrapper_port(t, None));
             conns.push(format!(".{p}({})", t.net));
@@ -320,11 +339,23 @@ pub fn cap_top_verilog(loaded: &Loaded) -> Result<Option<String>> {
     let decl: Vec<minijinja::Value> = table
         .iter()
         .filter(|t| t.pin != Pin::Parallel)
-        .map(|t| wrapper_port(t, (t.pin == Pin::DacBus).then_some(w)))
+        .map(|t| match t.name {
+            // The rtl's reset is the synchronizer's output; its blocks take it directly.
+            "rst" => port_line(
+                t.dir,
+                None,
+                t.name,
+                &rst_comment(crate::blocks::top::hdl::RESET_SYNC_CLOCKS),
+            ),
+            _ => wrapper_port(t, (t.pin == Pin::DacBus).then_some(w)),
+        })
         .collect();
     let conns: Vec<String> = table
         .iter()
-        .map(|t| format!(".{}({})", t.name, t.net))
+        .map(|t| match t.name {
+            "rst" => ".rst(rst_sync[1])".to_string(),
+            _ => format!(".{}({})", t.name, t.net),
+        })
         .collect();
     let wrapper = templates::render(
         "top/capacitive_top.v.j2",

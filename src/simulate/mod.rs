@@ -190,7 +190,7 @@ pub fn run_traced(
     if stats.samples == 0 {
         // The first position leaves the top at the ADC's start-up plus the latency; the
         // statistics start after `skip` more sample periods.
-        let need = (d.adc.startup_clocks() as f64
+        let need = ((d.adc.startup_clocks() + crate::blocks::top::hdl::BLOCK_RESET_CLOCKS) as f64
             + crate::blocks::top::hdl::conv_to_position_cycles(d) as f64
             + (o.skip as f64 + 1.0) * d.adc.period_clocks as f64)
             / d.clock_hz;
@@ -333,7 +333,8 @@ impl SimReport {
                 "velocity error              no update after the warm-up; run at least {:.6} s",
                 (v.warmup_updates() + 2) as f64 / rate
                     + crate::blocks::top::hdl::conv_to_position_cycles(d) as f64 / d.clock_hz
-                    + d.adc.startup_clocks() as f64 / d.clock_hz
+                    + (d.adc.startup_clocks() + crate::blocks::top::hdl::BLOCK_RESET_CLOCKS) as f64
+                        / d.clock_hz
             );
             return o;
         };

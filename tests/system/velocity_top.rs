@@ -8,7 +8,7 @@ use crate::common;
 
 use common::replay_top_in_simulators;
 use sinedec::blocks::mask;
-use sinedec::blocks::top::hdl::TopRtl;
+use sinedec::blocks::top::hdl::{TopRtl, BLOCK_RESET_CLOCKS};
 use sinedec::blocks::velocity::model::{VelIn, VelocityModel};
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::cosim::CosimBlock;
@@ -54,14 +54,18 @@ fn top_velocity_equals_the_model_in_rust_hdl_icarus_and_verilator() {
         .position(|p| p.name == "rst")
         .expect("rst");
     // The estimator takes the top's parallel bus (the core's registered outputs) at the next
-    // edge: the model steps on the previous row's bus with this row's reset.
+    // edge: the model steps on the previous row's bus. Its reset is the top's `rst`
+    // registered (`BLOCK_RESET_CLOCKS`), asserted from power-up.
     let mut model = VelocityModel::new(p);
     let f2 = mask(d.fine_bits + 2);
     let mut prev = (false, 0u64);
     let mut updates = 0;
-    for (k, (ins, outs)) in r.inputs.iter().zip(&r.outputs).enumerate() {
+    for (k, outs) in r.outputs.iter().enumerate() {
+        let rst = k
+            .checked_sub(BLOCK_RESET_CLOCKS as usize)
+            .is_none_or(|j| r.inputs[j][rst_col] != 0);
         let v = model.step(VelIn {
-            rst: ins[rst_col] != 0,
+            rst,
             valid: prev.0,
             p: prev.1 & f2,
         });

@@ -13,6 +13,7 @@
 //! is the outermost test of every register, so it is the flip-flops' synchronous reset or
 //! one LUT in front of their data inputs.
 use super::{AdcParams, SignFormat};
+use crate::blocks::init_bit::InitBit;
 use crate::blocks::mask;
 use rust_hdl::prelude::*;
 
@@ -101,10 +102,10 @@ pub struct AdcController {
     sr1: DFF<Bits<16>>,
     /// The SCK pin's register; it powers up at the idle level (CPOL), so the pin does not
     /// show an edge before the first frame.
-    sck_reg: DFFWithInit<Bit>,
+    sck_reg: InitBit,
     /// The CONV/CS pin's register; it powers up inactive, so a CS-framed chip is not
     /// selected during the first clock.
-    conv_reg: DFFWithInit<Bit>,
+    conv_reg: InitBit,
     valid_reg: DFF<Bit>,
     ch0_reg: DFF<Bits<16>>,
     ch1_reg: DFF<Bits<16>>,
@@ -330,8 +331,8 @@ impl AdcController {
             warm: Default::default(),
             sr0: Default::default(),
             sr1: Default::default(),
-            sck_reg: DFFWithInit::new(f.cpol),
-            conv_reg: DFFWithInit::new(!f.conv_active_high),
+            sck_reg: InitBit::new(f.cpol),
+            conv_reg: InitBit::new(!f.conv_active_high),
             valid_reg: Default::default(),
             ch0_reg: Default::default(),
             ch1_reg: Default::default(),

@@ -7,6 +7,7 @@ use crate::blocks::c32;
 use crate::blocks::core::hdl::CoreRtl;
 use crate::blocks::correction::hdl::Correction;
 use crate::blocks::fallback::hdl::Fallback;
+use crate::blocks::init_bit::InitBit;
 use crate::blocks::monitor::hdl::Monitor;
 use crate::blocks::params::Derived;
 use crate::blocks::preamp::hdl::PreampSetup;
@@ -22,7 +23,7 @@ board_top! {
     pub struct TopRtl / SD_TOP_PORTS / TopParts {
         ports {
             clk: In Clock, Clock, 1, Always, 0, "system clock";
-            rst: In Bit, In, 1, Always, 0, "synchronous reset, active high (restarts the set-up)";
+            rst: In Bit, In, 1, Always, 0, "synchronous reset, active high (restarts the set-up); the blocks take it one clock later";
             adc_miso: In Bit, In, 1, Always, 0, "ADC serial data (line A: channel 0, or both channels on one line)";
             adc_miso_b: In Bit, In, 1, AdcB, 0, "ADC serial data, line B: channel 1 (ADCs with two data lines)";
             adc_sck: Out Bit, Out, 1, Always, 0, "ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)";
@@ -91,6 +92,31 @@ board_top! {
         vel_fshl: Vec<Constant<Bits<32>>>,
         /// The ABZ emulator on the parallel bus's position (`[abz] enabled`): one or none.
         abz: Vec<AbzEmulator>,
+        /// The blocks' reset: `rst` one clock later, from a register per block (powered up
+        /// asserted; [`BLOCK_RESET_CLOCKS`]). Timing: one register driving every block's
+        /// reset flops was the auto-correction top's slowest net (`rst` -> `core`); a
+        /// register of its own per block (`InitBit::kept`) keeps each net local.
+        rst_adc: InitBit,
+        /// See `rst_adc`.
+        rst_correction: InitBit,
+        /// See `rst_adc`.
+        rst_core: InitBit,
+        /// See `rst_adc`.
+        rst_monitor: InitBit,
+        /// See `rst_adc`: the QEP decoder and the QEP fallback.
+        rst_qep: InitBit,
+        /// See `rst_adc`.
+        rst_biss: InitBit,
+        /// See `rst_adc`: one per pre-amplifier set-up.
+        rst_preamp: Vec<InitBit>,
+        /// See `rst_adc`: one per SSI slave.
+        rst_ssi: Vec<InitBit>,
+        /// See `rst_adc`: one per SPI slave.
+        rst_spi: Vec<InitBit>,
+        /// See `rst_adc`: one per ABZ emulator.
+        rst_abz: Vec<InitBit>,
+        /// See `rst_adc`: one per velocity estimator.
+        rst_vel: Vec<InitBit>,
     }
 }
 
@@ -115,6 +141,18 @@ pub const QEP_PINS: &[&str] = pins!(SD_TOP_PORTS, Qep);
 /// `[board.pins]` pins it; otherwise it stays unconnected inside the top.
 pub const DESELECT_PINS: &[&str] = pins!(SD_TOP_PORTS, Deselect);
 
+/// Clock cycles from the rtl's `rst` to the blocks' reset, both ways: each block's reset is
+/// `rst` registered once (`TopRtl::rst_adc` ...). `<name>_top`'s synchronizer adds
+/// [`RESET_SYNC_CLOCKS`] on release.
+pub const BLOCK_RESET_CLOCKS: u32 = 1;
+
+/// Clock edges from the fall of `<name>_top`'s asynchronous `rst` to the fall of the rtl's
+/// reset: the two flops of the wrapper's synchronizer (`rst_sync`); it asserts at once.
+pub const RESET_SYNC_CLOCKS: u32 = 2;
+
+/// Clock edges from the fall of `<name>_top`'s `rst` to the blocks' reset release.
+pub const TOP_RESET_RELEASE_CLOCKS: u32 = RESET_SYNC_CLOCKS + BLOCK_RESET_CLOCKS;
+
 /// Clock cycles from the CONV rise that samples the inputs to `par_valid` for that sample:
 /// ADC controller + correction + core.
 pub fn conv_to_position_cycles(d: &Derived) -> u32 {
@@ -131,6 +169,11 @@ pub fn biss_word_shifts(d: &Derived) -> [Constant<Bits<32>>; 3] {
         c32(drop.saturating_sub(f) as u64),
         c32(drop.min(32) as u64),
     ]
+}
+
+/// `n` reset registers of optional blocks (see `TopRtl::rst_adc`).
+fn resets(n: usize) -> Vec<InitBit> {
+    (0..n).map(|_| InitBit::kept(true)).collect()
 }
 
 impl TopRtl {
@@ -177,6 +220,17 @@ impl TopRtl {
             qshl,
             qshr,
             fshr,
+            rst_adc: InitBit::kept(true),
+            rst_correction: InitBit::kept(true),
+            rst_core: InitBit::kept(true),
+            rst_monitor: InitBit::kept(true),
+            rst_qep: InitBit::kept(true),
+            rst_biss: InitBit::kept(true),
+            rst_preamp: resets(d.preamp.iter().count()),
+            rst_ssi: resets(usize::from(d.ssi.is_some())),
+            rst_spi: resets(usize::from(d.spi.is_some())),
+            rst_abz: resets(nabz),
+            rst_vel: resets(nvel),
         }))
     }
 }
@@ -186,8 +240,21 @@ impl Logic for TopRtl {
     fn update(&mut self) {
         // The ADC converts from reset, or once the pre-amplifier set-up is done; it owns
         // the serial clock, or shares it with the set-up.
+        // The blocks' reset registers (see `rst_adc`).
+        self.rst_adc.clock.next = self.clk.val();
+        self.rst_adc.d.next = self.rst.val();
+        self.rst_correction.clock.next = self.clk.val();
+        self.rst_correction.d.next = self.rst.val();
+        self.rst_core.clock.next = self.clk.val();
+        self.rst_core.d.next = self.rst.val();
+        self.rst_monitor.clock.next = self.clk.val();
+        self.rst_monitor.d.next = self.rst.val();
+        self.rst_qep.clock.next = self.clk.val();
+        self.rst_qep.d.next = self.rst.val();
+        self.rst_biss.clock.next = self.clk.val();
+        self.rst_biss.d.next = self.rst.val();
         self.adc.clk.next = self.clk.val();
-        self.adc.rst.next = self.rst.val();
+        self.adc.rst.next = self.rst_adc.q.val();
         self.adc.enable.next = true;
         self.adc_sck.next = self.adc.adc_sck.val();
         self.amp_cs.next = true;
@@ -199,7 +266,9 @@ impl Logic for TopRtl {
         self.sf_ce0.next = true;
         for i in 0..self.preamp.len() {
             self.preamp[i].clk.next = self.clk.val();
-            self.preamp[i].rst.next = self.rst.val();
+            self.rst_preamp[i].clock.next = self.clk.val();
+            self.rst_preamp[i].d.next = self.rst.val();
+            self.preamp[i].rst.next = self.rst_preamp[i].q.val();
             self.preamp[i].adc_sck.next = self.adc.adc_sck.val();
             self.adc.enable.next = self.preamp[i].done.val();
             self.adc_sck.next = self.preamp[i].spi_sck.val();
@@ -217,9 +286,9 @@ impl Logic for TopRtl {
             self.adc.adc_miso_b[i].next = self.adc_miso_b.val();
         }
         self.core.clk.next = self.clk.val();
-        self.core.rst.next = self.rst.val();
+        self.core.rst.next = self.rst_core.q.val();
         self.correction.clk.next = self.clk.val();
-        self.correction.rst.next = self.rst.val();
+        self.correction.rst.next = self.rst_correction.q.val();
         self.correction.in_valid.next = self.adc.out_valid.val();
         self.correction.in_sin.next = self.adc.out_ch0.val();
         self.correction.in_cos.next = self.adc.out_ch1.val();
@@ -228,7 +297,7 @@ impl Logic for TopRtl {
         self.core.in_cos.next = self.correction.out_cos.val();
         // Monitor: raw samples (full scale), CORDIC magnitude (loss of signal, clipping).
         self.monitor.clk.next = self.clk.val();
-        self.monitor.rst.next = self.rst.val();
+        self.monitor.rst.next = self.rst_monitor.q.val();
         self.monitor.in_valid.next = self.adc.out_valid.val();
         self.monitor.in_sin.next = self.adc.out_ch0.val();
         self.monitor.in_cos.next = self.adc.out_ch1.val();
@@ -240,12 +309,12 @@ impl Logic for TopRtl {
         self.warning.next =
             self.core.out_warning.val() | self.monitor.warning.val() | self.fallback.active.val();
         self.qep_decoder.clk.next = self.clk.val();
-        self.qep_decoder.rst.next = self.rst.val();
+        self.qep_decoder.rst.next = self.rst_qep.q.val();
         self.qep_decoder.qep_a.next = self.qep_a.val();
         self.qep_decoder.qep_b.next = self.qep_b.val();
         self.qep_decoder.qep_z.next = self.qep_z.val();
         self.fallback.clk.next = self.clk.val();
-        self.fallback.rst.next = self.rst.val();
+        self.fallback.rst.next = self.rst_qep.q.val();
         self.fallback.enable.next = self.qep_enable.val();
         self.fallback.qep_up.next = self.qep_decoder.up.val();
         self.fallback.qep_down.next = self.qep_decoder.down.val();
@@ -263,7 +332,7 @@ impl Logic for TopRtl {
         self.word.next = ((self.core.out_qc.val() << self.qshl.val()) >> self.qshr.val())
             | (self.core.out_fine.val() >> self.fshr.val());
         self.biss_slave.clk.next = self.clk.val();
-        self.biss_slave.rst.next = self.rst.val();
+        self.biss_slave.rst.next = self.rst_biss.q.val();
         self.biss_slave.ma.next = self.biss_ma.val();
         self.biss_slave.pos.next = self.word.val();
         self.biss_slave.turns.next = self.core.out_turns.val();
@@ -275,7 +344,9 @@ impl Logic for TopRtl {
         self.ssi_data.next = true;
         for i in 0..self.ssi_slave.len() {
             self.ssi_slave[i].clk.next = self.clk.val();
-            self.ssi_slave[i].rst.next = self.rst.val();
+            self.rst_ssi[i].clock.next = self.clk.val();
+            self.rst_ssi[i].d.next = self.rst.val();
+            self.ssi_slave[i].rst.next = self.rst_ssi[i].q.val();
             self.ssi_slave[i].ma.next = self.ssi_clk.val();
             self.ssi_slave[i].pos.next = self.word.val();
             self.ssi_slave[i].turns.next = self.core.out_turns.val();
@@ -292,7 +363,9 @@ impl Logic for TopRtl {
         self.enc_miso_oe.next = false;
         for i in 0..self.spi_slave.len() {
             self.spi_slave[i].clk.next = self.clk.val();
-            self.spi_slave[i].rst.next = self.rst.val();
+            self.rst_spi[i].clock.next = self.clk.val();
+            self.rst_spi[i].d.next = self.rst.val();
+            self.spi_slave[i].rst.next = self.rst_spi[i].q.val();
             self.spi_slave[i].sck.next = self.enc_sck.val();
             self.spi_slave[i].cs_n.next = self.enc_cs_n.val();
             self.spi_slave[i].pos.next = self.word.val();
@@ -318,7 +391,9 @@ impl Logic for TopRtl {
         // flag joins the parallel bus's warning.
         for i in 0..self.abz.len() {
             self.abz[i].clk.next = self.clk.val();
-            self.abz[i].rst.next = self.rst.val();
+            self.rst_abz[i].clock.next = self.clk.val();
+            self.rst_abz[i].d.next = self.rst.val();
+            self.abz[i].rst.next = self.rst_abz[i].q.val();
             self.abz[i].in_valid.next = self.core.out_valid.val();
             self.abz[i].in_qc.next = self.core.out_qc.val();
             self.abz[i].in_fine.next = self.core.out_fine.val();
@@ -330,7 +405,9 @@ impl Logic for TopRtl {
         // The velocity estimator on the position modulo 2^(F+2) (`[velocity] enabled`).
         for i in 0..self.vel.len() {
             self.vel[i].clk.next = self.clk.val();
-            self.vel[i].rst.next = self.rst.val();
+            self.rst_vel[i].clock.next = self.clk.val();
+            self.rst_vel[i].d.next = self.rst.val();
+            self.vel[i].rst.next = self.rst_vel[i].q.val();
             self.vel[i].in_valid.next = self.core.out_valid.val();
             self.vel[i].in_p.next =
                 (self.core.out_qc.val() << self.vel_fshl[i].val()) | self.core.out_fine.val();

@@ -10,7 +10,7 @@
 // Synthesis: cap_clock.v (vendor primitive); simulation: cap_clock_sim.v.
 module cap_board (
     input  wire        clk,          // board oscillator, 25.000 MHz
-    input  wire        rst,          // synchronous reset, active high
+    input  wire        rst,          // reset, active high, held while the clock is not locked; released through 2 flops here, then cap_top's reset synchronizer
     input  wire        adc_miso,     // ADC serial data
     output wire        adc_sck,      // ADC serial clock
     output wire        adc_conv,     // ADC conversion start / chip select

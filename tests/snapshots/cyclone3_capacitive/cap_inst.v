@@ -25,7 +25,7 @@ cap_core u_cap_core (
 // cap_top: board top (ADC controller, correction, core, outputs)
 cap_top u_cap_top (
     .clk         (clk),          // input 1 bit: system clock
-    .rst         (rst),          // input 1 bit: synchronous reset, active high
+    .rst         (rst),          // input 1 bit: reset, active high, asynchronous: asserts at once; the blocks leave reset 2 clock edges after it falls
     .adc_miso    (adc_miso),     // input 1 bit: ADC serial data
     .adc_sck     (adc_sck),      // output 1 bit: ADC serial clock
     .adc_conv    (adc_conv),     // output 1 bit: ADC conversion start / chip select

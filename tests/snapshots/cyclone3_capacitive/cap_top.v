@@ -9,7 +9,7 @@
 // BiSS-C and parallel bus.
 module cap_top (
     input  wire         clk,          // system clock
-    input  wire         rst,          // synchronous reset, active high
+    input  wire         rst,          // reset, active high, asynchronous: asserts at once; the blocks leave reset 2 clock edges after it falls
     input  wire         adc_miso,     // ADC serial data
     output wire         adc_sck,      // ADC serial clock
     output wire         adc_conv,     // ADC conversion start / chip select
@@ -30,11 +30,18 @@ module cap_top (
     wire [31:0] turns; // turn count
     wire [31:0] es;    // excitation sin word
     wire [31:0] ec;    // excitation cos word
+    // Reset synchronizer: `rst` asserts the rtl's reset at once and releases it on the
+    // second clock edge after it falls. Written here, not in the rtl, because rust-hdl (and
+    // the compiled engine) has no asynchronous reset.
+    reg [1:0] rst_sync = 2'b11;
+    always @(posedge clk or posedge rst)
+        if (rst) rst_sync <= 2'b11;
+        else rst_sync <= {rst_sync[0], 1'b0};
     cap_top_rtl rtl (
-        .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_sck(adc_sck), .adc_conv(adc_conv),
-        .exc_sin(es), .exc_cos(ec), .exc_strobe(exc_strobe), .biss_ma(biss_ma),
-        .biss_slo(biss_slo), .par_valid(par_valid), .par_qc(qc), .par_fine(fine),
-        .par_turns(turns), .par_error(par_error), .par_warning(par_warning)
+        .clk(clk), .rst(rst_sync[1]), .adc_miso(adc_miso), .adc_sck(adc_sck),
+        .adc_conv(adc_conv), .exc_sin(es), .exc_cos(ec), .exc_strobe(exc_strobe),
+        .biss_ma(biss_ma), .biss_slo(biss_slo), .par_valid(par_valid), .par_qc(qc),
+        .par_fine(fine), .par_turns(turns), .par_error(par_error), .par_warning(par_warning)
     );
     assign exc_sin = es[15:0];
     assign exc_cos = ec[15:0];
@@ -1035,45 +1042,17 @@ module cap_top_rtl_adc_conv_reg(d,q,clock);
 
     // Constant declarations
     localparam  init = 1'b0;
-
-    // Stub signals
-    reg  dff_d;
-    wire  dff_q;
-    reg  dff_clock;
-
-    // Sub module instances
-    cap_top_rtl_adc_conv_reg_dff dff(
-        .d(dff_d),
-        .q(dff_q),
-        .clock(dff_clock)
-    );
-
-    // Update code
-    always @(*) begin
-        dff_clock = clock;
-        q = dff_q ^ init;
-        dff_d = d ^ init;
-    end
-
-endmodule // cap_top_rtl_adc_conv_reg
-
-module cap_top_rtl_adc_conv_reg_dff(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
+    localparam  kept = 1'b0;
 
     // Update code (custom)
     initial begin
-       q = 1'h0;
+       q = 1'b0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
-
-endmodule // cap_top_rtl_adc_conv_reg_dff
+endmodule // cap_top_rtl_adc_conv_reg
 
 module cap_top_rtl_adc_cst(d,q,clock);
 
@@ -1426,45 +1405,17 @@ module cap_top_rtl_adc_sck_reg(d,q,clock);
 
     // Constant declarations
     localparam  init = 1'b0;
-
-    // Stub signals
-    reg  dff_d;
-    wire  dff_q;
-    reg  dff_clock;
-
-    // Sub module instances
-    cap_top_rtl_adc_sck_reg_dff dff(
-        .d(dff_d),
-        .q(dff_q),
-        .clock(dff_clock)
-    );
-
-    // Update code
-    always @(*) begin
-        dff_clock = clock;
-        q = dff_q ^ init;
-        dff_d = d ^ init;
-    end
-
-endmodule // cap_top_rtl_adc_sck_reg
-
-module cap_top_rtl_adc_sck_reg_dff(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
+    localparam  kept = 1'b0;
 
     // Update code (custom)
     initial begin
-       q = 1'h0;
+       q = 1'b0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
-
-endmodule // cap_top_rtl_adc_sck_reg_dff
+endmodule // cap_top_rtl_adc_sck_reg
 
 module cap_top_rtl_adc_sr0(d,q,clock);
 

@@ -25,7 +25,7 @@ sd_core u_sd_core (
 // sd_top: board top (ADC controller, correction, core, outputs)
 sd_top u_sd_top (
     .clk         (clk),          // input 1 bit: system clock
-    .rst         (rst),          // input 1 bit: synchronous reset, active high (restarts the set-up)
+    .rst         (rst),          // input 1 bit: reset, active high, asynchronous: asserts at once; the blocks leave reset 3 clock edges after it falls
     .adc_miso    (adc_miso),     // input 1 bit: ADC serial data (line A: channel 0, or both channels on one line)
     .adc_sck     (adc_sck),      // output 1 bit: ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)
     .adc_conv    (adc_conv),     // output 1 bit: ADC conversion start (CONV pulse or chip select, as the preset frames)

@@ -12,7 +12,7 @@
 // enc_miso, enc_miso_oe.
 module sd_top (
     input  wire         clk,          // system clock
-    input  wire         rst,          // synchronous reset, active high (restarts the set-up)
+    input  wire         rst,          // reset, active high, asynchronous: asserts at once; the blocks leave reset 3 clock edges after it falls
     input  wire         adc_miso,     // ADC serial data (line A: channel 0, or both channels on one line)
     output wire         adc_sck,      // ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)
     output wire         adc_conv,     // ADC conversion start (CONV pulse or chip select, as the preset frames)
@@ -34,14 +34,21 @@ module sd_top (
     wire [31:0] qc;    // coarse quadrant count
     wire [31:0] fine;  // fine part
     wire [31:0] turns; // turn count
+    // Reset synchronizer: `rst` asserts the rtl's reset at once and releases it on the
+    // second clock edge after it falls. Written here, not in the rtl, because rust-hdl (and
+    // the compiled engine) has no asynchronous reset.
+    reg [1:0] rst_sync = 2'b11;
+    always @(posedge clk or posedge rst)
+        if (rst) rst_sync <= 2'b11;
+        else rst_sync <= {rst_sync[0], 1'b0};
     sd_top_rtl rtl (
-        .clk(clk), .rst(rst), .adc_miso(adc_miso), .adc_miso_b(1'b0), .adc_sck(adc_sck),
-        .adc_conv(adc_conv), .amp_cs(amp_cs), .amp_mosi(amp_mosi), .amp_shdn(amp_shdn),
-        .dac_cs(), .dac_clr(), .spi_ss_b(), .sf_ce0(), .qep_a(qep_a), .qep_b(qep_b),
-        .qep_z(qep_z), .biss_ma(biss_ma), .biss_slo(biss_slo), .ssi_clk(1'b1), .ssi_data(),
-        .enc_sck(1'b0), .enc_cs_n(1'b1), .enc_miso(), .enc_miso_oe(), .par_valid(par_valid),
-        .par_qc(qc), .par_fine(fine), .par_turns(turns), .par_error(par_error),
-        .par_warning(par_warning)
+        .clk(clk), .rst(rst_sync[1]), .adc_miso(adc_miso), .adc_miso_b(1'b0),
+        .adc_sck(adc_sck), .adc_conv(adc_conv), .amp_cs(amp_cs), .amp_mosi(amp_mosi),
+        .amp_shdn(amp_shdn), .dac_cs(), .dac_clr(), .spi_ss_b(), .sf_ce0(), .qep_a(qep_a),
+        .qep_b(qep_b), .qep_z(qep_z), .biss_ma(biss_ma), .biss_slo(biss_slo), .ssi_clk(1'b1),
+        .ssi_data(), .enc_sck(1'b0), .enc_cs_n(1'b1), .enc_miso(), .enc_miso_oe(),
+        .par_valid(par_valid), .par_qc(qc), .par_fine(fine), .par_turns(turns),
+        .par_error(par_error), .par_warning(par_warning)
     );
     assign par_position = {qc[12:0], fine[13:0]};
     assign par_turns = turns[11:0];
@@ -198,6 +205,27 @@ module sd_top_rtl(clk,rst,adc_miso,adc_miso_b,adc_sck,adc_conv,amp_cs,amp_mosi,a
     reg  biss_slave_error;
     reg  biss_slave_warning;
     wire  biss_slave_slo;
+    reg  rst_adc_d;
+    wire  rst_adc_q;
+    reg  rst_adc_clock;
+    reg  rst_correction_d;
+    wire  rst_correction_q;
+    reg  rst_correction_clock;
+    reg  rst_core_d;
+    wire  rst_core_q;
+    reg  rst_core_clock;
+    reg  rst_monitor_d;
+    wire  rst_monitor_q;
+    reg  rst_monitor_clock;
+    reg  rst_qep_d;
+    wire  rst_qep_q;
+    reg  rst_qep_clock;
+    reg  rst_biss_d;
+    wire  rst_biss_q;
+    reg  rst_biss_clock;
+    reg  rst_preamp_0_d;
+    wire  rst_preamp_0_q;
+    reg  rst_preamp_0_clock;
 
     // Local signals
     reg  error;
@@ -328,11 +356,58 @@ module sd_top_rtl(clk,rst,adc_miso,adc_miso_b,adc_sck,adc_conv,amp_cs,amp_mosi,a
         .warning(biss_slave_warning),
         .slo(biss_slave_slo)
     );
+    sd_top_rtl_rst_adc rst_adc(
+        .d(rst_adc_d),
+        .q(rst_adc_q),
+        .clock(rst_adc_clock)
+    );
+    sd_top_rtl_rst_correction rst_correction(
+        .d(rst_correction_d),
+        .q(rst_correction_q),
+        .clock(rst_correction_clock)
+    );
+    sd_top_rtl_rst_core rst_core(
+        .d(rst_core_d),
+        .q(rst_core_q),
+        .clock(rst_core_clock)
+    );
+    sd_top_rtl_rst_monitor rst_monitor(
+        .d(rst_monitor_d),
+        .q(rst_monitor_q),
+        .clock(rst_monitor_clock)
+    );
+    sd_top_rtl_rst_qep rst_qep(
+        .d(rst_qep_d),
+        .q(rst_qep_q),
+        .clock(rst_qep_clock)
+    );
+    sd_top_rtl_rst_biss rst_biss(
+        .d(rst_biss_d),
+        .q(rst_biss_q),
+        .clock(rst_biss_clock)
+    );
+    sd_top_rtl_rst_preamp_0 rst_preamp_0(
+        .d(rst_preamp_0_d),
+        .q(rst_preamp_0_q),
+        .clock(rst_preamp_0_clock)
+    );
 
     // Update code
     always @(*) begin
+        rst_adc_clock = clk;
+        rst_adc_d = rst;
+        rst_correction_clock = clk;
+        rst_correction_d = rst;
+        rst_core_clock = clk;
+        rst_core_d = rst;
+        rst_monitor_clock = clk;
+        rst_monitor_d = rst;
+        rst_qep_clock = clk;
+        rst_qep_d = rst;
+        rst_biss_clock = clk;
+        rst_biss_d = rst;
         adc_clk = clk;
-        adc_rst = rst;
+        adc_rst = rst_adc_q;
         adc_enable = 1'b1;
         adc_sck = adc_adc_sck;
         amp_cs = 1'b1;
@@ -343,7 +418,9 @@ module sd_top_rtl(clk,rst,adc_miso,adc_miso_b,adc_sck,adc_conv,amp_cs,amp_mosi,a
         spi_ss_b = 1'b1;
         sf_ce0 = 1'b1;
         preamp_0_clk = clk;
-        preamp_0_rst = rst;
+        rst_preamp_0_clock = clk;
+        rst_preamp_0_d = rst;
+        preamp_0_rst = rst_preamp_0_q;
         preamp_0_adc_sck = adc_adc_sck;
         adc_enable = preamp_0_done;
         adc_sck = preamp_0_spi_sck;
@@ -356,9 +433,9 @@ module sd_top_rtl(clk,rst,adc_miso,adc_miso_b,adc_sck,adc_conv,amp_cs,amp_mosi,a
         sf_ce0 = preamp_0_sf_ce0;
         adc_adc_miso = adc_miso;
         core_clk = clk;
-        core_rst = rst;
+        core_rst = rst_core_q;
         correction_clk = clk;
-        correction_rst = rst;
+        correction_rst = rst_correction_q;
         correction_in_valid = adc_out_valid;
         correction_in_sin = adc_out_ch0;
         correction_in_cos = adc_out_ch1;
@@ -366,7 +443,7 @@ module sd_top_rtl(clk,rst,adc_miso,adc_miso_b,adc_sck,adc_conv,amp_cs,amp_mosi,a
         core_in_sin = correction_out_sin;
         core_in_cos = correction_out_cos;
         monitor_clk = clk;
-        monitor_rst = rst;
+        monitor_rst = rst_monitor_q;
         monitor_in_valid = adc_out_valid;
         monitor_in_sin = adc_out_ch0;
         monitor_in_cos = adc_out_ch1;
@@ -377,12 +454,12 @@ module sd_top_rtl(clk,rst,adc_miso,adc_miso_b,adc_sck,adc_conv,amp_cs,amp_mosi,a
         error = core_out_error | monitor_error;
         warning = core_out_warning | monitor_warning | fallback_active;
         qep_decoder_clk = clk;
-        qep_decoder_rst = rst;
+        qep_decoder_rst = rst_qep_q;
         qep_decoder_qep_a = qep_a;
         qep_decoder_qep_b = qep_b;
         qep_decoder_qep_z = qep_z;
         fallback_clk = clk;
-        fallback_rst = rst;
+        fallback_rst = rst_qep_q;
         fallback_enable = qep_enable;
         fallback_qep_up = qep_decoder_up;
         fallback_qep_down = qep_decoder_down;
@@ -398,7 +475,7 @@ module sd_top_rtl(clk,rst,adc_miso,adc_miso_b,adc_sck,adc_conv,amp_cs,amp_mosi,a
         core_load_turns = fallback_load_turns;
         word = ((core_out_qc << qshl) >> qshr) | (core_out_fine >> fshr);
         biss_slave_clk = clk;
-        biss_slave_rst = rst;
+        biss_slave_rst = rst_biss_q;
         biss_slave_ma = biss_ma;
         biss_slave_pos = word;
         biss_slave_turns = core_out_turns;
@@ -1199,45 +1276,17 @@ module sd_top_rtl_adc_conv_reg(d,q,clock);
 
     // Constant declarations
     localparam  init = 1'b0;
-
-    // Stub signals
-    reg  dff_d;
-    wire  dff_q;
-    reg  dff_clock;
-
-    // Sub module instances
-    sd_top_rtl_adc_conv_reg_dff dff(
-        .d(dff_d),
-        .q(dff_q),
-        .clock(dff_clock)
-    );
-
-    // Update code
-    always @(*) begin
-        dff_clock = clock;
-        q = dff_q ^ init;
-        dff_d = d ^ init;
-    end
-
-endmodule // sd_top_rtl_adc_conv_reg
-
-module sd_top_rtl_adc_conv_reg_dff(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
+    localparam  kept = 1'b0;
 
     // Update code (custom)
     initial begin
-       q = 1'h0;
+       q = 1'b0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
-
-endmodule // sd_top_rtl_adc_conv_reg_dff
+endmodule // sd_top_rtl_adc_conv_reg
 
 module sd_top_rtl_adc_cst(d,q,clock);
 
@@ -1590,45 +1639,17 @@ module sd_top_rtl_adc_sck_reg(d,q,clock);
 
     // Constant declarations
     localparam  init = 1'b0;
-
-    // Stub signals
-    reg  dff_d;
-    wire  dff_q;
-    reg  dff_clock;
-
-    // Sub module instances
-    sd_top_rtl_adc_sck_reg_dff dff(
-        .d(dff_d),
-        .q(dff_q),
-        .clock(dff_clock)
-    );
-
-    // Update code
-    always @(*) begin
-        dff_clock = clock;
-        q = dff_q ^ init;
-        dff_d = d ^ init;
-    end
-
-endmodule // sd_top_rtl_adc_sck_reg
-
-module sd_top_rtl_adc_sck_reg_dff(d,q,clock);
-
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
+    localparam  kept = 1'b0;
 
     // Update code (custom)
     initial begin
-       q = 1'h0;
+       q = 1'b0;
     end
 
     always @(posedge clock) begin
        q <= d;
     end
-
-endmodule // sd_top_rtl_adc_sck_reg_dff
+endmodule // sd_top_rtl_adc_sck_reg
 
 module sd_top_rtl_adc_sr0(d,q,clock);
 
@@ -13200,3 +13221,150 @@ module sd_top_rtl_qep_decoder_zf(d,q,clock);
     end
 
 endmodule // sd_top_rtl_qep_decoder_zf
+
+module sd_top_rtl_rst_adc(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+    localparam  kept = 1'b1;
+
+    // Update code (custom)
+    initial begin
+       q = 1'b1;
+    end
+
+    (* keep *) always @(posedge clock) begin
+       q <= d;
+    end
+endmodule // sd_top_rtl_rst_adc
+
+module sd_top_rtl_rst_biss(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+    localparam  kept = 1'b1;
+
+    // Update code (custom)
+    initial begin
+       q = 1'b1;
+    end
+
+    (* keep *) always @(posedge clock) begin
+       q <= d;
+    end
+endmodule // sd_top_rtl_rst_biss
+
+module sd_top_rtl_rst_core(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+    localparam  kept = 1'b1;
+
+    // Update code (custom)
+    initial begin
+       q = 1'b1;
+    end
+
+    (* keep *) always @(posedge clock) begin
+       q <= d;
+    end
+endmodule // sd_top_rtl_rst_core
+
+module sd_top_rtl_rst_correction(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+    localparam  kept = 1'b1;
+
+    // Update code (custom)
+    initial begin
+       q = 1'b1;
+    end
+
+    (* keep *) always @(posedge clock) begin
+       q <= d;
+    end
+endmodule // sd_top_rtl_rst_correction
+
+module sd_top_rtl_rst_monitor(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+    localparam  kept = 1'b1;
+
+    // Update code (custom)
+    initial begin
+       q = 1'b1;
+    end
+
+    (* keep *) always @(posedge clock) begin
+       q <= d;
+    end
+endmodule // sd_top_rtl_rst_monitor
+
+module sd_top_rtl_rst_preamp_0(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+    localparam  kept = 1'b1;
+
+    // Update code (custom)
+    initial begin
+       q = 1'b1;
+    end
+
+    (* keep *) always @(posedge clock) begin
+       q <= d;
+    end
+endmodule // sd_top_rtl_rst_preamp_0
+
+module sd_top_rtl_rst_qep(d,q,clock);
+
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+
+    // Constant declarations
+    localparam  init = 1'b1;
+    localparam  kept = 1'b1;
+
+    // Update code (custom)
+    initial begin
+       q = 1'b1;
+    end
+
+    (* keep *) always @(posedge clock) begin
+       q <= d;
+    end
+endmodule // sd_top_rtl_rst_qep

@@ -10,7 +10,7 @@
 // Synthesis: sd_clock.v (vendor primitive); simulation: sd_clock_sim.v.
 module sd_board (
     input  wire        clk,          // board oscillator, 50.000 MHz
-    input  wire        rst,          // synchronous reset, active high (restarts the set-up)
+    input  wire        rst,          // reset, active high, held while the clock is not locked; released through 2 flops here, then sd_top's reset synchronizer
     input  wire        adc_miso,     // ADC serial data (line A: channel 0, or both channels on one line)
     output wire        adc_sck,      // ADC serial clock (with the pre-amplifier: the shared SPI clock, set-up then ADC)
     output wire        adc_conv,     // ADC conversion start (CONV pulse or chip select, as the preset frames)
