@@ -89,9 +89,11 @@
 //! out_ch0   out  Bits<16>: channel 0, W-bit two's complement in the low bits, upper 0
 //! out_ch1   out  Bits<16>: channel 1 (0 with one channel)
 //! ```
+mod chips;
 pub mod hdl;
 pub mod model;
 mod params;
+mod validate;
 
 pub use params::*;
 
