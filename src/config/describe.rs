@@ -245,7 +245,8 @@ fn describe_velocity(v: &VelocityParams, quadrants_per_turn: u64) -> String {
     format!(
         "velocity                    method {}, one update every {} clocks ({:.1} Hz), latency {} clocks after the update's tick\n\
          velocity LSB                {:.6e} rpm (2^-{} position LSB per update period)\n\
-         velocity range              +-{:.0} rpm representable in {} bits; the decoder's maximum speed gives at most {} LSB\n",
+         velocity range              +-{:.0} rpm representable in {} bits; the decoder's maximum speed gives at most {} LSB\n\
+         velocity lag                {}\n",
         v.spec.method,
         v.period_clocks,
         v.spec.clock_hz / v.period_clocks as f64,
@@ -254,7 +255,45 @@ fn describe_velocity(v: &VelocityParams, quadrants_per_turn: u64) -> String {
         v.spec.frac_bits,
         top,
         v.spec.width,
-        v.max_output
+        v.max_output,
+        velocity_lags(v)
+    )
+}
+
+/// The `velocity lag` line: how far `out_velocity` trails the speed on a ramp
+/// (`VelocityParams::lag_s`: the estimator's group delay plus the output latency), for the
+/// configured method and, at the same rate and settings, for each other method.
+fn velocity_lags(v: &VelocityParams) -> String {
+    use crate::blocks::velocity::Method;
+    let one = |p: &VelocityParams| {
+        format!(
+            "{} {:.3} ms ({:.2} updates + {} clocks)",
+            p.spec.method,
+            p.lag_s() * 1e3,
+            p.lag_periods(),
+            p.latency()
+        )
+    };
+    let others: Vec<String> = [
+        Method::Tracking,
+        Method::Kalman,
+        Method::Lsq,
+        Method::DiffLpf,
+    ]
+    .into_iter()
+    .filter(|m| *m != v.spec.method)
+    .filter_map(|m| {
+        let spec = crate::blocks::velocity::VelocitySpec {
+            method: m,
+            ..v.spec.clone()
+        };
+        VelocityParams::new(&spec).ok().map(|p| one(&p))
+    })
+    .collect();
+    format!(
+        "{} behind a speed ramp (the position's own age, CONV -> position, comes first); other methods: {}",
+        one(v),
+        others.join(", ")
     )
 }
 

@@ -18,5 +18,6 @@ mod ssi;
 mod velocity;
 mod velocity_config;
 mod velocity_core;
+mod velocity_lag;
 mod velocity_synth;
 mod velocity_table;

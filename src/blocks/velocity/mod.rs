@@ -509,6 +509,47 @@ impl VelocityParams {
         }
     }
 
+    /// The estimator's lag behind a speed ramp (constant acceleration), in update periods,
+    /// once its start transient has gone: the output at the update of tick k equals the true
+    /// speed at k - lag (`theta(k)` is the position register at the tick; the output leaves
+    /// [`latency`](Self::latency) clocks later). From the quantized constants:
+    /// * diff_lpf, kalman: the difference is the mean speed over the last period (1/2),
+    ///   and the first-order filter X += a (U - X) delays a ramp by (1 - a) / a (its group
+    ///   delay at DC); kalman with its steady-state gain K_inf.
+    /// * lsq: v = sum h_i x_i with sum h_i = 0 and sum h_i t_i = 1 gives, on x = A t^2 / 2,
+    ///   A sum h_i t_i^2 / 2: the speed at t* = sum n_i t_i^2 / (2 sum n_i t_i); the lag is
+    ///   M - t* ((M - 1) / 2 for a line; -1 for order >= 2, which is exact on a parabola
+    ///   and evaluated one period ahead).
+    /// * tracking: with a constant acceleration A the error settles at e = A / beta, and
+    ///   Theta's step A (k + 1/2) = W + alpha e gives W = A (k + 1/2 - alpha / beta): a lag
+    ///   of alpha / beta - 1/2 (2 zeta / w_n - T / 2 in time).
+    pub fn lag_periods(&self) -> f64 {
+        let c = (1u64 << COEF_FRAC) as f64;
+        let first_order = |a: i64| {
+            let a = a as f64 / c;
+            0.5 + (1.0 - a) / a
+        };
+        match &self.consts {
+            MethodConsts::DiffLpf { a } => first_order(*a),
+            MethodConsts::Kalman { gains } => first_order(gains.last().copied().unwrap_or(1)),
+            MethodConsts::Lsq { n, .. } => {
+                let (s1, s2) = n.iter().enumerate().fold((0.0, 0.0), |(s1, s2), (i, &ni)| {
+                    let t = (i + 1) as f64;
+                    (s1 + ni as f64 * t, s2 + ni as f64 * t * t)
+                });
+                n.len() as f64 - s2 / (2.0 * s1)
+            }
+            MethodConsts::Tracking { alpha, beta } => *alpha as f64 / *beta as f64 - 0.5,
+        }
+    }
+
+    /// [`lag_periods`](Self::lag_periods) plus the output latency, in seconds: how far
+    /// `out_velocity` trails the speed of the position it is given on a ramp.
+    pub fn lag_s(&self) -> f64 {
+        (self.lag_periods() * self.period_clocks as f64 + self.latency() as f64)
+            / self.spec.clock_hz
+    }
+
     /// Updates after a speed step until the tracking loop's velocity stays within 2 % of
     /// the step (from 4 / (zeta w_n)); 0 for the other methods.
     pub fn settle_updates(&self) -> u64 {
