@@ -16,4 +16,5 @@ mod simulate_engine;
 mod simulate_outputs;
 mod simulate_truth;
 mod system;
+mod top_reset;
 mod velocity_top;
