@@ -35,11 +35,11 @@ module sd_top_tb;
     parameter real AMPLITUDE = 0.75;             // signal amplitude at the ADC, fraction of full scale
     parameter real PHI0 = 0.3;                   // electrical angle at t = 0, rad
     parameter real W_RAD_NS = 1.642621759e-4;    // electrical speed, rad/ns (765.9 rpm)
-    parameter real T_REV_NS = 55553.9;    // the reversal starts (speed falls linearly ...)
+    parameter real T_REV_NS = 55576.4;    // the reversal starts (speed falls linearly ...)
     parameter real T_REV_LEN_NS = 9180.2; // ... to the opposite speed in this time
     parameter integer OFFSET_SIN = 0; // encoder offsets, ADC codes (the static correction's)
     parameter integer OFFSET_COS = 0;
-    parameter real RUN_NS = 122988.1;        // simulated time
+    parameter real RUN_NS = 123010.6;        // simulated time
     parameter real MA_HALF_NS = 60.0; // BiSS-C MA half period
     parameter integer MAX_ERR_LSB = 12; // bound on |decoded - true| position
     // ---- The design's figures (derived by sinedec) ----
