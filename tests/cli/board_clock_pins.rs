@@ -93,30 +93,11 @@ module tb;
 endmodule
 "#;
     std::fs::write(dir.join("tb.v"), tb).expect("write tb");
-    let out = std::process::Command::new("iverilog")
-        .args([
-            "-g2005",
-            "-o",
-            "tb.vvp",
-            "tb.v",
-            "sd_board.v",
-            "sd_clock_sim.v",
-            "sd_top.v",
-        ])
-        .current_dir(&dir)
-        .output()
-        .expect("iverilog runs");
-    assert!(
-        out.status.success(),
-        "iverilog: {}",
-        String::from_utf8_lossy(&out.stderr)
+    let log = common::icarus_output(
+        &dir,
+        "tb",
+        &["tb.v", "sd_board.v", "sd_clock_sim.v", "sd_top.v"],
     );
-    let out = std::process::Command::new("vvp")
-        .arg("tb.vvp")
-        .current_dir(&dir)
-        .output()
-        .expect("vvp runs");
-    let log = String::from_utf8_lossy(&out.stdout);
     assert!(log.contains("PASS") && !log.contains("FAIL"), "{log}");
 }
 

@@ -131,6 +131,28 @@ pub fn sources(paths: &[&str]) -> Vec<String> {
     out
 }
 
+/// Compiles `files` in `dir` with Icarus (`iverilog -g2005`, top module `top`), runs the
+/// result with `vvp` and returns what it prints; a compile error fails with its message.
+pub fn icarus_output(dir: &std::path::Path, top: &str, files: &[&str]) -> String {
+    let out = std::process::Command::new("iverilog")
+        .args(["-g2005", "-o", "tb.vvp", "-s", top])
+        .args(files)
+        .current_dir(dir)
+        .output()
+        .expect("iverilog runs");
+    assert!(
+        out.status.success(),
+        "iverilog: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = std::process::Command::new("vvp")
+        .args(["-n", "tb.vvp"])
+        .current_dir(dir)
+        .output()
+        .expect("vvp runs");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
 /// A fresh work directory for tool runs (kept under target/ for inspection).
 pub fn workdir(tag: &str) -> std::path::PathBuf {
     let p = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(tag);

@@ -6,7 +6,6 @@
 use crate::common;
 use sinedec::blocks::top::hdl::{RESET_SYNC_CLOCKS, TOP_RESET_RELEASE_CLOCKS};
 use sinedec::config::Loaded;
-use std::process::Command;
 
 #[test]
 fn the_top_reset_asserts_at_once_and_releases_on_the_derived_edge() {
@@ -64,22 +63,7 @@ endmodule
         release = TOP_RESET_RELEASE_CLOCKS
     );
     std::fs::write(dir.join("tb.v"), tb).expect("write tb");
-    let out = Command::new("iverilog")
-        .args(["-g2005", "-o", "tb.vvp", "-s", "tb", "tb.v", "sd_top.v"])
-        .current_dir(&dir)
-        .output()
-        .expect("iverilog runs");
-    assert!(
-        out.status.success(),
-        "iverilog: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let out = Command::new("vvp")
-        .args(["-n", "tb.vvp"])
-        .current_dir(&dir)
-        .output()
-        .expect("vvp runs");
-    let log = String::from_utf8_lossy(&out.stdout);
+    let log = common::icarus_output(&dir, "tb", &["tb.v", "sd_top.v"]);
     assert!(log.contains("PASS") && !log.contains("FAIL"), "{log}");
     assert!(
         log.contains(&format!(

@@ -234,13 +234,11 @@ impl AdcParams {
         Ok(())
     }
 
-    /// The chip's name in the limit messages.
-    fn limit_name(&self) -> &'static str {
+    /// The chip's name in the limit messages: a preset's data-sheet name, or "ADC".
+    fn limit_name(&self) -> String {
         match self.chip {
-            AdcChip::Ltc1407a1 => "LTC1407A-1",
-            AdcChip::Ads8354 => "ADS8354",
-            AdcChip::Ad7380 => "AD7380",
-            AdcChip::Generic => "ADC",
+            AdcChip::Generic => "ADC".to_string(),
+            chip => chip.to_string(),
         }
     }
 }
