@@ -19,7 +19,7 @@ use crate::engine::{Engine, Kind};
 use crate::error::{Error, Result};
 
 /// Inputs the sinewave loop drives, in index order ([`Dut::set`]).
-pub const IN_PINS: [&str; 10] = [
+pub const IN_PINS: [&str; 11] = [
     "rst",
     "adc_miso",
     "biss_ma",
@@ -30,11 +30,16 @@ pub const IN_PINS: [&str; 10] = [
     "enc_sck",
     "enc_cs_n",
     "adc_miso_b",
+    "preset_0",
 ];
+/// How many of the last [`IN_PINS`] are optional (the position reference's `preset`, with
+/// `[reference] enabled`; driving a missing one does nothing).
+pub const OPTIONAL_IN_PINS: usize = 1;
 /// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
 /// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
-/// `[velocity] enabled`, and the ABZ emulator's, with `[abz] enabled`) and read 0 without them.
-pub const OUT_PINS: [&str; 19] = [
+/// `[velocity] enabled`, the ABZ emulator's, with `[abz] enabled`, and the position
+/// reference's, with `[reference] enabled`) and read 0 without them.
+pub const OUT_PINS: [&str; 20] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -54,6 +59,7 @@ pub const OUT_PINS: [&str; 19] = [
     "abz_a_0",
     "abz_b_0",
     "abz_z_0",
+    "referenced_0",
 ];
 /// Inputs the capacitive loop drives, in index order.
 pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
@@ -72,7 +78,7 @@ pub const CAP_OUT_PINS: [&str; 11] = [
     "par_warning",
 ];
 /// How many of the last [`OUT_PINS`] are optional (read 0 when the top lacks them).
-pub const OPTIONAL_OUT_PINS: usize = 5;
+pub const OPTIONAL_OUT_PINS: usize = 6;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -139,8 +145,9 @@ board_top_impl!(CapTopRtl, "sinedec_cap_top_rtl");
 /// The engine's model of the top and the index maps of its ports.
 pub struct EngineTop {
     e: Box<Engine>,
-    /// Engine input index of each loop input pin.
-    ins: Vec<usize>,
+    /// Engine input index of each loop input pin (None: an optional pin the configuration
+    /// lacks).
+    ins: Vec<Option<usize>>,
     /// Engine output index of each loop output pin (None: an optional pin the
     /// configuration lacks).
     outs: Vec<Option<usize>>,
@@ -241,9 +248,13 @@ impl<B: BoardTop> Dut<B> {
         let missing = |what: &str, p: &str| {
             Error::Simulation(format!("the engine's top has no {what} `{p}`"))
         };
+        let optional_in = &IN_PINS[IN_PINS.len() - OPTIONAL_IN_PINS..];
         let ins = in_pins
             .iter()
-            .map(|p| e.input_index(p).ok_or_else(|| missing("input", p)))
+            .map(|p| match e.input_index(p) {
+                None if !optional_in.contains(p) => Err(missing("input", p)),
+                i => Ok(i),
+            })
             .collect::<Result<Vec<_>>>()?;
         let optional = &OUT_PINS[OUT_PINS.len() - OPTIONAL_OUT_PINS..];
         let outs = out_pins
@@ -308,9 +319,10 @@ impl<B: BoardTop> Dut<B> {
         match &mut self.imp {
             Imp::Rtl(t) => t.set_pin(self.in_pins[k], v),
             Imp::Engine(c) => {
-                let i = c.ins[k];
-                c.shadow[i] = v;
-                c.e.set(i, v);
+                if let Some(i) = c.ins[k] {
+                    c.shadow[i] = v;
+                    c.e.set(i, v);
+                }
             }
         }
     }

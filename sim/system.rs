@@ -35,6 +35,7 @@ const I_SSI_CLK: usize = 6;
 const I_ENC_SCK: usize = 7;
 const I_ENC_CS_N: usize = 8;
 const I_MISO_B: usize = 9;
+const I_PRESET: usize = 10;
 const O_CONV: usize = 0;
 const O_SCK: usize = 1;
 const O_AMP_CS: usize = 2;
@@ -54,6 +55,7 @@ const O_VELOCITY_VALID: usize = 15;
 const O_ABZ_A: usize = 16;
 const O_ABZ_B: usize = 17;
 const O_ABZ_Z: usize = 18;
+const O_REFERENCED: usize = 19;
 
 /// What a quadrature counter on `abz_a`/`abz_b` read over a run (`[abz] enabled`), against
 /// the position on the parallel bus.
@@ -262,6 +264,8 @@ pub struct Record {
     pub error: bool,
     /// Warning flag.
     pub warning: bool,
+    /// The position is referenced (`[reference] enabled`; false without it).
+    pub referenced: bool,
     /// Unwrapped decoded position in fine LSB: turns * 4PPR * 2^F + position.
     pub unwrapped: i64,
     /// The encoder's true electrical angle at the conversion, in fine LSB (unwrapped).
@@ -578,6 +582,8 @@ pub struct System {
     ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     spi: Option<std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>>,
     qep_b_stuck: Option<(f64, f64)>,
+    /// `preset` high from `.0` to `.1` seconds (`[reference] enabled`).
+    preset: Option<(f64, f64)>,
     /// The quadrature counter on the ABZ outputs (`[abz] enabled`).
     abz: Option<AbzCounter>,
     /// The BiSS-C master whose frames [`BissCheck`] checks.
@@ -625,6 +631,7 @@ impl System {
             ssi: None,
             spi: None,
             qep_b_stuck: None,
+            preset: None,
             biss: None,
             ssi_mon: None,
             par_history: std::collections::VecDeque::new(),
@@ -652,6 +659,11 @@ impl System {
     /// A comparator fault: QEP B held low from `from` to `to` seconds.
     pub fn qep_b_stuck_low(&mut self, from: f64, to: f64) {
         self.qep_b_stuck = Some((from, to));
+    }
+
+    /// Drives `preset` (`[reference] enabled`) high from `from` to `to` seconds.
+    pub fn preset_pulse(&mut self, from: f64, to: f64) {
+        self.preset = Some((from, to));
     }
 
     /// Keeps no records: the statistics are gathered as the samples come, leaving out the
@@ -954,6 +966,8 @@ impl System {
             self.top.set(I_QEP_A, qa as u64);
             self.top.set(I_QEP_B, qb as u64);
             self.top.set(I_QEP_Z, qz as u64);
+            let preset = self.preset.is_some_and(|(a, b)| now >= a && now < b);
+            self.top.set(I_PRESET, preset as u64);
             let ssi_clk = match self.ssi.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
@@ -1029,6 +1043,7 @@ impl System {
                     turns,
                     error: self.top.get(O_ERROR) != 0,
                     warning: self.top.get(O_WARNING) != 0,
+                    referenced: self.top.get(O_REFERENCED) != 0,
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     truth: self.truth.electrical_angle(t) * lsb_per_rad,
                 };

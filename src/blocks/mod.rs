@@ -30,6 +30,7 @@ pub mod parallel;
 pub mod params;
 pub mod preamp;
 pub mod qep;
+pub mod reference;
 pub mod registry;
 pub mod serial;
 pub mod spi_slave;

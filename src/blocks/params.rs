@@ -68,6 +68,10 @@ pub struct Derived {
     /// file when disabled, like `abz`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub velocity: Option<crate::blocks::velocity::VelocityParams>,
+    /// Position reference of the board top, when `[reference] enabled` (left out of the
+    /// parameter file when disabled, like `abz`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<crate::blocks::reference::ReferenceParams>,
     /// ADC sample width A.
     pub adc_width: u32,
     /// Capacitive path, when `[capacitive]` is present.

@@ -103,6 +103,7 @@ pub const BLOCKS: &[&BlockDef] = &[
     &crate::blocks::parallel::BLOCK,
     &crate::blocks::abz::BLOCK,
     &crate::blocks::velocity::BLOCK,
+    &crate::blocks::reference::BLOCK,
     &crate::blocks::nco::BLOCK,
     &crate::blocks::biquad::BLOCK,
     &crate::blocks::capacitive::BLOCK,

@@ -120,6 +120,11 @@ impl Derived {
             None => None,
         };
         let correction = correction_params(c, rate, &err)?;
+        // Clocks from a conversion start to the core's out_valid of its sample (the top's
+        // `conv_to_position_cycles` without the reference's own stage).
+        let to_core = adc.conv_to_valid_clocks() + correction.latency_cycles() + latency_cycles;
+        let reference =
+            crate::blocks::reference::block::params(c, &adc, to_core, preamp.is_some(), &err)?;
         let ssi = ssi_params(c, &biss, vel_bits, &err)?;
         let spi = spi_params(c, &biss, vel_bits, &err)?;
         let monitor = monitor_params(c, n, xy_guard, xy_width, &err)?;
@@ -141,6 +146,7 @@ impl Derived {
             qep_enabled: c.qep.enabled,
             abz,
             velocity,
+            reference,
             adc_width: a,
             capacitive,
             iterations: n,

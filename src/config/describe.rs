@@ -132,11 +132,15 @@ impl Derived {
                 // The same quantity, under the same name, as `simulate` prints.
                 let c = crate::blocks::top::hdl::conv_to_position_cycles(self);
                 s.push_str(&format!(
-                    "latency CONV -> position    {c} cycles = {:.0} ns (ADC {} + correction {} + core {})\n",
+                    "latency CONV -> position    {c} cycles = {:.0} ns (ADC {} + correction {} + core {}{})\n",
                     c as f64 * 1e9 / self.clock_hz,
                     self.adc.conv_to_valid_clocks(),
                     self.correction.latency_cycles(),
-                    self.latency_cycles
+                    self.latency_cycles,
+                    match crate::blocks::top::hdl::reference_cycles(self) {
+                        0 => String::new(),
+                        r => format!(" + reference {r}"),
+                    }
                 ));
             }
             {

@@ -30,4 +30,5 @@ mod iterative;
 mod monitor;
 mod preamp;
 mod qep;
+mod reference;
 mod rtl_vs_model;

@@ -12,6 +12,7 @@ mod e2e;
 mod engine;
 mod engine_loop;
 mod outputs_top;
+mod reference_top;
 mod simulate_engine;
 mod simulate_outputs;
 mod simulate_truth;

@@ -12,6 +12,7 @@ use crate::blocks::monitor::hdl::Monitor;
 use crate::blocks::params::Derived;
 use crate::blocks::preamp::hdl::PreampSetup;
 use crate::blocks::qep::hdl::QepDecoder;
+use crate::blocks::reference::hdl::PositionReference;
 use crate::blocks::spi_slave::hdl::SpiSlave;
 use crate::blocks::ssi::hdl::SsiSlave;
 use crate::blocks::velocity::hdl::Velocity;
@@ -53,12 +54,16 @@ board_top! {
             par_error: Out Bit, Out, 1, Parallel, 0, "parallel bus: error flag";
             par_warning: Out Bit, Out, 1, Parallel, 0, "parallel bus: warning flag";
         }
+        @optional_inputs {
+            preset: Bit, 1, "position preset (`[reference] enabled`): a rising edge loads the preset count at the next sample";
+        }
         @optional_outputs {
             par_velocity: Bits<64>, 64, "velocity (`[velocity] enabled`): `width`-bit two's complement in the low bits, held between strobes";
             par_velocity_valid: Bit, 1, "velocity strobe (`[velocity] enabled`): one clock per update";
             abz_a: Bit, 1, "ABZ emulation (`[abz] enabled`): channel A (leads B when the position increases)";
             abz_b: Bit, 1, "ABZ emulation (`[abz] enabled`): channel B";
             abz_z: Bit, 1, "ABZ emulation (`[abz] enabled`): index, one quarter A/B period at position 0";
+            referenced: Bit, 1, "position referenced (`[reference] enabled`): 1 once homed on Z or preset";
         }
         /// The pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit): one instance or none.
         /// Without it the ADC converts from reset and owns `adc_sck`.
@@ -92,6 +97,12 @@ board_top! {
         vel_fshl: Vec<Constant<Bits<32>>>,
         /// The ABZ emulator on the parallel bus's position (`[abz] enabled`): one or none.
         abz: Vec<AbzEmulator>,
+        /// The position reference between the core and every position output
+        /// (`[reference] enabled`): one or none. The velocity estimator and the QEP
+        /// fallback keep the core's count.
+        reference: Vec<PositionReference>,
+        /// See `rst_adc`: one per position reference.
+        rst_ref: Vec<InitBit>,
         /// The blocks' reset: `rst` one clock later, from a register per block (powered up
         /// asserted; [`BLOCK_RESET_CLOCKS`]). Timing: one register driving every block's
         /// reset flops was the auto-correction top's slowest net (`rst` -> `core`); a
@@ -154,9 +165,20 @@ pub const RESET_SYNC_CLOCKS: u32 = 2;
 pub const TOP_RESET_RELEASE_CLOCKS: u32 = RESET_SYNC_CLOCKS + BLOCK_RESET_CLOCKS;
 
 /// Clock cycles from the CONV rise that samples the inputs to `par_valid` for that sample:
-/// ADC controller + correction + core.
+/// ADC controller + correction + core (+ the position reference's stage with
+/// `[reference]`, [`reference_cycles`]).
 pub fn conv_to_position_cycles(d: &Derived) -> u32 {
-    d.adc.conv_to_valid_clocks() + d.correction.latency_cycles() + d.latency_cycles
+    d.adc.conv_to_valid_clocks()
+        + d.correction.latency_cycles()
+        + d.latency_cycles
+        + reference_cycles(d)
+}
+
+/// Clock cycles the position reference adds between the core and every position output
+/// (0 without `[reference]`).
+pub fn reference_cycles(d: &Derived) -> u32 {
+    d.reference
+        .map_or(0, |_| crate::blocks::reference::ReferenceParams::LATENCY)
 }
 
 /// Shifts of the BiSS data word ((qc << qshl) >> qshr) | (fine >> fshr): the top
@@ -187,7 +209,14 @@ impl TopRtl {
         let nvel = vel.len();
         let abz: Vec<AbzEmulator> = d.abz.iter().map(AbzEmulator::new).collect();
         let nabz = abz.len();
+        let reference: Vec<PositionReference> =
+            d.reference.iter().map(PositionReference::new).collect();
+        let nref = reference.len();
         Ok(Self::from_parts(TopParts {
+            preset: nref,
+            referenced: nref,
+            reference,
+            rst_ref: resets(nref),
             par_velocity: nvel,
             par_velocity_valid: nvel,
             abz_a: nabz,
@@ -308,6 +337,13 @@ impl Logic for TopRtl {
         self.error.next = self.core.out_error.val() | self.monitor.error.val();
         self.warning.next =
             self.core.out_warning.val() | self.monitor.warning.val() | self.fallback.active.val();
+        // The position reference (`[reference] enabled`): "not referenced" joins the warning.
+        for i in 0..self.reference.len() {
+            self.warning.next = self.core.out_warning.val()
+                | self.monitor.warning.val()
+                | self.fallback.active.val()
+                | self.reference[i].warning.val();
+        }
         self.qep_decoder.clk.next = self.clk.val();
         self.qep_decoder.rst.next = self.rst_qep.q.val();
         self.qep_decoder.qep_a.next = self.qep_a.val();
@@ -331,6 +367,25 @@ impl Logic for TopRtl {
         // BiSS data: the top position_bits of the position (qc and fine side by side).
         self.word.next = ((self.core.out_qc.val() << self.qshl.val()) >> self.qshr.val())
             | (self.core.out_fine.val() >> self.fshr.val());
+        // With the position reference every position output takes its position, one clock
+        // after the core's; here the data word, below the others.
+        for i in 0..self.reference.len() {
+            self.reference[i].clk.next = self.clk.val();
+            self.rst_ref[i].clock.next = self.clk.val();
+            self.rst_ref[i].d.next = self.rst.val();
+            self.reference[i].rst.next = self.rst_ref[i].q.val();
+            self.reference[i].conv.next = self.adc.adc_conv.val();
+            self.reference[i].z.next = self.qep_decoder.z_filt.val();
+            self.reference[i].preset.next = self.preset[i].val();
+            self.reference[i].in_valid.next = self.core.out_valid.val();
+            self.reference[i].in_qc.next = self.core.out_qc.val();
+            self.reference[i].in_fine.next = self.core.out_fine.val();
+            self.reference[i].in_turns.next = self.core.out_turns.val();
+            self.referenced[i].next = self.reference[i].referenced.val();
+            self.word.next = ((self.reference[i].out_qc.val() << self.qshl.val())
+                >> self.qshr.val())
+                | (self.reference[i].out_fine.val() >> self.fshr.val());
+        }
         self.biss_slave.clk.next = self.clk.val();
         self.biss_slave.rst.next = self.rst_biss.q.val();
         self.biss_slave.ma.next = self.biss_ma.val();
@@ -339,6 +394,10 @@ impl Logic for TopRtl {
         self.biss_slave.pos_valid.next = self.core.out_valid.val();
         self.biss_slave.error.next = self.error.val();
         self.biss_slave.warning.next = self.warning.val();
+        for i in 0..self.reference.len() {
+            self.biss_slave.turns.next = self.reference[i].out_turns.val();
+            self.biss_slave.pos_valid.next = self.reference[i].out_valid.val();
+        }
         self.biss_slo.next = self.biss_slave.slo.val();
         // Optional SSI and SPI slaves (a Vec of length 0 or 1), same data word as BiSS.
         self.ssi_data.next = true;
@@ -352,6 +411,10 @@ impl Logic for TopRtl {
             self.ssi_slave[i].turns.next = self.core.out_turns.val();
             self.ssi_slave[i].pos_valid.next = self.core.out_valid.val();
             self.ssi_slave[i].error.next = self.error.val();
+            for k in 0..self.reference.len() {
+                self.ssi_slave[i].turns.next = self.reference[k].out_turns.val();
+                self.ssi_slave[i].pos_valid.next = self.reference[k].out_valid.val();
+            }
             // The velocity word (sent only with `[velocity] in_frames`).
             self.ssi_slave[i].vel.next = bit_cast::<64, 32>(self.zero.val());
             for k in 0..self.vel.len() {
@@ -373,6 +436,10 @@ impl Logic for TopRtl {
             self.spi_slave[i].pos_valid.next = self.core.out_valid.val();
             self.spi_slave[i].error.next = self.error.val();
             self.spi_slave[i].warning.next = self.warning.val();
+            for k in 0..self.reference.len() {
+                self.spi_slave[i].turns.next = self.reference[k].out_turns.val();
+                self.spi_slave[i].pos_valid.next = self.reference[k].out_valid.val();
+            }
             self.spi_slave[i].vel.next = bit_cast::<64, 32>(self.zero.val());
             for k in 0..self.vel.len() {
                 self.spi_slave[i].vel.next = self.vel[k].out_velocity.val();
@@ -387,6 +454,12 @@ impl Logic for TopRtl {
         self.par_turns.next = self.core.out_turns.val();
         self.par_error.next = self.error.val();
         self.par_warning.next = self.warning.val();
+        for i in 0..self.reference.len() {
+            self.par_valid.next = self.reference[i].out_valid.val();
+            self.par_qc.next = self.reference[i].out_qc.val();
+            self.par_fine.next = self.reference[i].out_fine.val();
+            self.par_turns.next = self.reference[i].out_turns.val();
+        }
         // The ABZ emulator of the parallel bus's position (`[abz] enabled`); its catch-up
         // flag joins the parallel bus's warning.
         for i in 0..self.abz.len() {
@@ -397,6 +470,11 @@ impl Logic for TopRtl {
             self.abz[i].in_valid.next = self.core.out_valid.val();
             self.abz[i].in_qc.next = self.core.out_qc.val();
             self.abz[i].in_fine.next = self.core.out_fine.val();
+            for k in 0..self.reference.len() {
+                self.abz[i].in_valid.next = self.reference[k].out_valid.val();
+                self.abz[i].in_qc.next = self.reference[k].out_qc.val();
+                self.abz[i].in_fine.next = self.reference[k].out_fine.val();
+            }
             self.abz_a[i].next = self.abz[i].abz_a.val();
             self.abz_b[i].next = self.abz[i].abz_b.val();
             self.abz_z[i].next = self.abz[i].abz_z.val();

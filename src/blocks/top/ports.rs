@@ -157,7 +157,9 @@ impl<const N: usize> PortWord for rust_hdl::prelude::Bits<N> {
 /// An optional `@optional_outputs { name: Type, width, "comment"; }` section declares outputs
 /// that exist only in some configurations: `Vec<Signal<Out, Type>>` fields of length 0 or 1
 /// (set in `Parts`), so a configuration without them exports no port and no logic for
-/// them; element 0 is the rtl port `name_0`, the co-simulation port of the same name.
+/// them; element 0 is the rtl port `name_0`, the co-simulation port of the same name. An
+/// `@optional_inputs { ... }` section before it declares inputs the same way (`Vec<Signal<In,
+/// Type>>`); a co-simulation row holds them after the table's inputs.
 macro_rules! board_top {
     (
         $(#[$meta:meta])*
@@ -166,6 +168,9 @@ macro_rules! board_top {
                 $( $port:ident : $io:ident $ty:ty, $dir:ident, $w:literal, $pin:ident,
                    $idle:literal, $doc:literal $(=> $net:ident)?; )*
             }
+            $( @optional_inputs {
+                $( $iport:ident : $ity:ty, $iw:literal, $idoc:literal; )*
+            } )?
             $( @optional_outputs {
                 $( $oport:ident : $oty:ty, $ow:literal, $odoc:literal; )*
             } )?
@@ -176,13 +181,15 @@ macro_rules! board_top {
         #[derive(LogicBlock)]
         pub struct $name {
             $( #[doc = $doc] pub $port: Signal<$io, $ty>, )*
+            $( $( #[doc = $idoc] pub $iport: Vec<Signal<In, $ity>>, )* )?
             $( $( #[doc = $odoc] pub $oport: Vec<Signal<Out, $oty>>, )* )?
             $( $(#[$fmeta])* $f: $fty, )*
         }
 
         /// The fields of the top besides its ports, and the length (0 or 1) of its optional
-        /// outputs.
+        /// inputs and outputs.
         struct $parts {
+            $( $( $iport: usize, )* )?
             $( $( $oport: usize, )* )?
             $( $(#[$fmeta])* $f: $fty, )*
         }
@@ -205,6 +212,7 @@ macro_rules! board_top {
             fn from_parts(p: $parts) -> Self {
                 Self {
                     $( $port: Default::default(), )*
+                    $( $( $iport: (0..p.$iport).map(|_| Default::default()).collect(), )* )?
                     $( $( $oport: (0..p.$oport).map(|_| Default::default()).collect(), )* )?
                     $( $f: p.$f, )*
                 }
@@ -225,12 +233,32 @@ macro_rules! board_top {
                 v
             }
 
+            /// The optional inputs present in this instance as co-simulation ports and
+            /// their present values (named like the optional outputs).
+            fn optional_inputs(&self) -> Vec<($crate::cosim::Port, u64)> {
+                #[allow(unused_mut)]
+                let mut v = Vec::new();
+                $( $( for (i, s) in self.$iport.iter().enumerate() {
+                    v.push((
+                        $crate::cosim::Port::new(&format!("{}_{i}", stringify!($iport)), $iw),
+                        $crate::blocks::top::ports::PortWord::to_word(&s.val()),
+                    ));
+                } )* )?
+                v
+            }
+
             /// Drives the input `name` (its `.next`) with the low bits of `v`; false when
             /// the top has no input of that name.
             pub fn set_input(&mut self, name: &str, v: u64) -> bool {
                 $( if name == stringify!($port) {
                     return $crate::blocks::top::ports::board_top!(@set $dir, self.$port, v);
                 } )*
+                $( $( for (i, s) in self.$iport.iter_mut().enumerate() {
+                    if name == format!("{}_{i}", stringify!($iport)) {
+                        s.next = $crate::blocks::top::ports::PortWord::from_word(v);
+                        return true;
+                    }
+                } )* )?
                 false
             }
 
@@ -241,6 +269,7 @@ macro_rules! board_top {
                 } )*
                 self.optional_outputs()
                     .into_iter()
+                    .chain(self.optional_inputs())
                     .find(|(p, _)| p.name == name)
                     .map(|(_, v)| v)
             }
@@ -252,6 +281,7 @@ macro_rules! board_top {
                     .iter()
                     .filter(|p| p.dir == $crate::blocks::top::ports::Dir::In)
                     .map(|p| self.output(p.name).unwrap_or(p.idle))
+                    .chain(self.optional_inputs().into_iter().map(|(_, v)| v))
                     .collect()
             }
         }
@@ -264,10 +294,12 @@ macro_rules! board_top {
 
         impl $crate::cosim::CosimBlock for $name {
             fn input_ports(&self) -> Vec<$crate::cosim::Port> {
-                $crate::blocks::top::ports::cosim_ports(
+                let mut v = $crate::blocks::top::ports::cosim_ports(
                     $table,
                     $crate::blocks::top::ports::Dir::In,
-                )
+                );
+                v.extend(self.optional_inputs().into_iter().map(|(p, _)| p));
+                v
             }
             fn output_ports(&self) -> Vec<$crate::cosim::Port> {
                 let mut v = $crate::blocks::top::ports::cosim_ports(
@@ -281,8 +313,13 @@ macro_rules! board_top {
                 let inputs = $table
                     .iter()
                     .filter(|p| p.dir == $crate::blocks::top::ports::Dir::In);
+                let mut n = 0;
                 for (i, p) in inputs.enumerate() {
                     self.set_input(p.name, row.get(i).copied().unwrap_or(p.idle));
+                    n = i + 1;
+                }
+                for (k, (p, _)) in self.optional_inputs().into_iter().enumerate() {
+                    self.set_input(&p.name, row.get(n + k).copied().unwrap_or(0));
                 }
             }
             fn sample(&self) -> Vec<u64> {

@@ -167,6 +167,10 @@ pub struct Config {
     /// Velocity estimation (`crate::blocks::velocity`, docs/velocity.md).
     #[serde(default)]
     pub velocity: VelocityConfig,
+    /// Position reference: homing on Z, the index latch and the preset
+    /// (`crate::blocks::reference`).
+    #[serde(default)]
+    pub reference: crate::blocks::reference::ReferenceConfig,
 }
 
 /// `[velocity]`: velocity estimation from the decoded position (docs/velocity.md). Every key

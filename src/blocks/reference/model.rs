@@ -1,0 +1,228 @@
+//! Bit-accurate model of the position reference: the same registers as the RTL, updated
+//! once per clock edge; `step` returns what the outputs show after the edge.
+use super::ReferenceParams;
+use crate::blocks::mask;
+
+/// Inputs of one clock cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReferenceIn {
+    /// Synchronous reset.
+    pub rst: bool,
+    /// The ADC's CONV (chip select) level.
+    pub conv: bool,
+    /// Filtered index Z.
+    pub z: bool,
+    /// Preset request (before the synchronizer).
+    pub preset: bool,
+    /// A position sample is present.
+    pub valid: bool,
+    /// Quadrant count 0..Q-1.
+    pub qc: u64,
+    /// Fine part (passed through).
+    pub fine: u64,
+    /// Turn word (M bits).
+    pub turns: u64,
+}
+
+impl ReferenceIn {
+    /// Stimulus row in [`crate::cosim::CosimBlock::input_ports`] order.
+    pub fn row(&self) -> Vec<u64> {
+        vec![
+            self.rst as u64,
+            self.conv as u64,
+            self.z as u64,
+            self.preset as u64,
+            self.valid as u64,
+            self.qc & mask(32),
+            self.fine & mask(32),
+            self.turns & mask(32),
+        ]
+    }
+}
+
+/// Outputs after one clock edge.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReferenceOut {
+    /// Output strobe.
+    pub valid: bool,
+    /// Referenced quadrant count.
+    pub qc: u64,
+    /// Fine part.
+    pub fine: u64,
+    /// Referenced turn word.
+    pub turns: u64,
+    /// The output sample is referenced.
+    pub referenced: bool,
+    /// Not referenced, with `warn_until_referenced`.
+    pub warning: bool,
+    /// One clock: an index was latched.
+    pub index_valid: bool,
+    /// Referenced quadrant count of the last index.
+    pub index_qc: u64,
+    /// Referenced turn word of the last index.
+    pub index_turns: u64,
+}
+
+impl ReferenceOut {
+    /// Trace row in output-port order.
+    pub fn row(&self) -> Vec<u64> {
+        vec![
+            self.valid as u64,
+            self.qc,
+            self.fine,
+            self.turns,
+            self.referenced as u64,
+            self.warning as u64,
+            self.index_valid as u64,
+            self.index_qc,
+            self.index_turns,
+        ]
+    }
+}
+
+/// The registers (names as in the RTL).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Regs {
+    conv_prev: bool,
+    zt: u64,
+    p1: bool,
+    p2: bool,
+    pp: bool,
+    ppend: bool,
+    pqual: bool,
+    oq: u64,
+    oqm: u64,
+    ot: u64,
+    otp: u64,
+    refd: bool,
+    ilatch: bool,
+    out: ReferenceOut,
+}
+
+/// The position reference, clock by clock.
+#[derive(Clone, Debug)]
+pub struct ReferenceModel {
+    p: ReferenceParams,
+    r: Regs,
+}
+
+impl ReferenceModel {
+    /// The block after power-up (every register 0 but the offset's `oqm` and `otp`, which
+    /// a reset also sets).
+    pub fn new(p: &ReferenceParams) -> Self {
+        let mut m = Self {
+            p: *p,
+            r: Regs::default(),
+        };
+        m.reset_offset();
+        m.r.out.warning = p.warn_until_referenced();
+        m
+    }
+
+    /// Bits of the quadrant count and of the signed sums s2, d (qb + 1).
+    fn widths(&self) -> (u32, u32) {
+        let qb = 64 - (self.p.quadrants_per_turn() - 1).leading_zeros();
+        (qb, qb + 1)
+    }
+
+    fn reset_offset(&mut self) {
+        let (_, qw) = self.widths();
+        let q = self.p.quadrants_per_turn();
+        self.r.oq = 0;
+        self.r.oqm = q.wrapping_neg() & mask(qw);
+        self.r.ot = 0;
+        self.r.otp = 1 & mask(self.p.turns_bits());
+    }
+
+    /// One clock edge with inputs `i`; returns the outputs after it.
+    pub fn step(&mut self, i: ReferenceIn) -> ReferenceOut {
+        let p = self.p;
+        let (qb, qw) = self.widths();
+        let (tm, qm, wm) = (mask(p.turns_bits()), mask(qb), mask(qw));
+        let sign = 1u64 << (qw - 1);
+        let q = p.quadrants_per_turn();
+        let o = self.r;
+        let mut n = o;
+        // Synchronizers and edge registers run through the reset.
+        n.conv_prev = i.conv;
+        n.p1 = i.preset;
+        n.p2 = o.p1;
+        n.pp = o.p2;
+        if i.rst {
+            n.zt = 0;
+            n.ppend = false;
+            n.pqual = false;
+            n.refd = false;
+            n.ilatch = false;
+            n.out = ReferenceOut {
+                warning: p.warn_until_referenced(),
+                ..Default::default()
+            };
+            self.r = n;
+            self.reset_offset();
+            return self.r.out;
+        }
+        let act = p.conv_active_high();
+        if i.conv == act && o.conv_prev != act {
+            n.zt = ((o.zt << 1) | i.z as u64) & mask(p.tag_shift() + 1);
+        }
+        let zs = (o.zt >> p.tag_shift()) & 1 == 1;
+        let pnow = o.ppend | (o.p2 & !o.pp);
+        n.out.valid = i.valid;
+        n.out.index_valid = false;
+        n.ilatch = false;
+        if o.ilatch {
+            n.out.index_valid = true;
+            n.out.index_qc = o.out.qc;
+            n.out.index_turns = o.out.turns;
+        }
+        if !i.valid {
+            n.ppend = pnow;
+            self.r = n;
+            return n.out;
+        }
+        let (bq, bt) = (i.qc & qm, i.turns & tm);
+        let qual = zs && bq & 3 == p.gate() as u64;
+        let event = qual && !o.pqual;
+        n.pqual = qual;
+        n.ppend = false;
+        // The output: the sample moved by the offset held before it.
+        let s = (bq + o.oq) & wm;
+        let s2 = (bq + o.oqm) & wm;
+        let carry = s2 & sign == 0;
+        n.out.qc = if carry { s2 } else { s };
+        n.out.turns = (bt + if carry { o.otp } else { o.ot }) & tm;
+        n.out.fine = i.fine & mask(32);
+        n.out.referenced = o.refd;
+        n.out.warning = !o.refd && p.warn_until_referenced();
+        let home = event && !o.refd && !pnow;
+        if pnow || home {
+            let (tq, tt) = if pnow { p.preset() } else { p.index() };
+            let d1 = tq.wrapping_sub(bq) & wm;
+            let d0 = tq.wrapping_sub(q).wrapping_sub(bq) & wm;
+            let d2 = (tq + q).wrapping_sub(bq) & wm;
+            let tmin = tt.wrapping_sub(bt);
+            if d1 & sign != 0 {
+                n.oq = d2;
+                n.oqm = d1;
+                n.ot = tmin.wrapping_sub(1) & tm;
+                n.otp = tmin & tm;
+            } else {
+                n.oq = d1;
+                n.oqm = d0;
+                n.ot = tmin & tm;
+                n.otp = tmin.wrapping_add(1) & tm;
+            }
+            n.refd = true;
+        }
+        if home {
+            n.out.index_valid = true;
+            n.out.index_qc = p.index().0;
+            n.out.index_turns = p.index().1;
+        } else if event && o.refd && !pnow {
+            n.ilatch = true;
+        }
+        self.r = n;
+        n.out
+    }
+}
