@@ -13,6 +13,7 @@ mod biss;
 mod biss_control;
 mod biss_corners;
 mod parallel;
+mod reference_config;
 mod spi_slave;
 mod ssi;
 mod velocity;

@@ -60,6 +60,16 @@ pub struct PositionReference {
     /// ot + 1 (M bits): the turns after a wrap from a register, beside ot.
     otp: DFF<Bits<32>>,
     refd: DFF<Bit>,
+    /// A sample asked for a new offset (homing or preset): it is computed in the next clock
+    /// from `ubq`, `ubt` and `usel`. Timing: the subtractions start at registers, not at the
+    /// core's count (`core.counter.turns` -> `otp` was the top's slowest path).
+    upd: DFF<Bit>,
+    /// The request is a preset (else homing).
+    usel: DFF<Bit>,
+    /// The requesting sample's quadrant count.
+    ubq: DFF<Bits<32>>,
+    /// The requesting sample's turn word.
+    ubt: DFF<Bits<32>>,
     ilatch: DFF<Bit>,
     ov: DFF<Bit>,
     oqc: DFF<Bits<32>>,
@@ -82,8 +92,9 @@ pub struct PositionReference {
     tqm: Signal<Local, Bits<32>>,
     tqp: Signal<Local, Bits<32>>,
     tt: Signal<Local, Bits<32>>,
+    ttm: Signal<Local, Bits<32>>,
+    ttp: Signal<Local, Bits<32>>,
     d1: Signal<Local, Bits<32>>,
-    tmin: Signal<Local, Bits<32>>,
     /// The CONV level that samples.
     act: Constant<Bit>,
     /// `warn_until_referenced`.
@@ -110,16 +121,21 @@ pub struct PositionReference {
     oqm0: Constant<Bits<32>>,
     /// 1 (M bits): `otp` after reset.
     otp0: Constant<Bits<32>>,
-    /// Index count: quadrant, quadrant - Q, quadrant + Q (qb + 1 bits), turn.
+    /// Index count: quadrant, quadrant - Q, quadrant + Q (qb + 1 bits), turn, turn - 1,
+    /// turn + 1.
     iq: Constant<Bits<32>>,
     iqm: Constant<Bits<32>>,
     iqp: Constant<Bits<32>>,
     it: Constant<Bits<32>>,
-    /// Preset count, the same four.
+    itm: Constant<Bits<32>>,
+    itp: Constant<Bits<32>>,
+    /// Preset count, the same six.
     pq: Constant<Bits<32>>,
     pqm: Constant<Bits<32>>,
     pqp: Constant<Bits<32>>,
     pt: Constant<Bits<32>>,
+    ptm: Constant<Bits<32>>,
+    ptp: Constant<Bits<32>>,
 }
 
 impl PositionReference {
@@ -162,6 +178,10 @@ impl PositionReference {
             ot: Default::default(),
             otp: Default::default(),
             refd: Default::default(),
+            upd: Default::default(),
+            usel: Default::default(),
+            ubq: Default::default(),
+            ubt: Default::default(),
             ilatch: Default::default(),
             ov: Default::default(),
             oqc: Default::default(),
@@ -184,8 +204,9 @@ impl PositionReference {
             tqm: Default::default(),
             tqp: Default::default(),
             tt: Default::default(),
+            ttm: Default::default(),
+            ttp: Default::default(),
             d1: Default::default(),
-            tmin: Default::default(),
             act: Constant::new(p.conv_active_high()),
             warn: Constant::new(p.warn_until_referenced()),
             kbit: c32(1 << p.tag_shift()),
@@ -204,10 +225,14 @@ impl PositionReference {
             iqm: c32(iq.wrapping_sub(q) & wm),
             iqp: c32(iq + q),
             it: c32(it),
+            itm: c32(it.wrapping_sub(1)),
+            itp: c32(it + 1),
             pq: c32(pq),
             pqm: c32(pq.wrapping_sub(q) & wm),
             pqp: c32(pq + q),
             pt: c32(pt),
+            ptm: c32(pt.wrapping_sub(1)),
+            ptp: c32(pt + 1),
         }
     }
 }
@@ -216,8 +241,8 @@ impl Logic for PositionReference {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, conv_prev, zt, p1, p2, pp, ppend, pqual, oq, oqm, ot, otp, refd, ilatch, ov,
-            oqc, ofine, oturns, oref, iv, iqc, iturns
+            self, clk, conv_prev, zt, p1, p2, pp, ppend, pqual, oq, oqm, ot, otp, refd, upd, usel,
+            ubq, ubt, ilatch, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
         );
         // Synchronizers and edge registers (no reset).
         self.conv_prev.d.next = self.conv.val();
@@ -242,20 +267,38 @@ impl Logic for PositionReference {
         self.idx_event.next = self.qual.val() & !self.pqual.q.val();
         self.s.next = (self.bq.val() + self.oq.q.val()) & self.wmask.val();
         self.s2.next = (self.bq.val() + self.oqm.q.val()) & self.wmask.val();
-        // The target of an offset: the preset, else the index count.
-        if self.pnow.val() {
+        // The offset asked for in the clock before: T - B, T the preset or the index count.
+        if self.usel.q.val() {
             self.tq.next = self.pq.val();
             self.tqm.next = self.pqm.val();
             self.tqp.next = self.pqp.val();
             self.tt.next = self.pt.val();
+            self.ttm.next = self.ptm.val();
+            self.ttp.next = self.ptp.val();
         } else {
             self.tq.next = self.iq.val();
             self.tqm.next = self.iqm.val();
             self.tqp.next = self.iqp.val();
             self.tt.next = self.it.val();
+            self.ttm.next = self.itm.val();
+            self.ttp.next = self.itp.val();
         }
-        self.d1.next = (self.tq.val() - self.bq.val()) & self.wmask.val();
-        self.tmin.next = self.tt.val() - self.bt.val();
+        self.d1.next = (self.tq.val() - self.ubq.q.val()) & self.wmask.val();
+        self.upd.d.next = false;
+        if self.upd.q.val() {
+            if (self.d1.val() & self.wsign.val()).any() {
+                self.oq.d.next = (self.tqp.val() - self.ubq.q.val()) & self.wmask.val();
+                self.oqm.d.next = self.d1.val();
+                self.ot.d.next = (self.ttm.val() - self.ubt.q.val()) & self.tmask.val();
+                self.otp.d.next = (self.tt.val() - self.ubt.q.val()) & self.tmask.val();
+            } else {
+                self.oq.d.next = self.d1.val();
+                self.oqm.d.next = (self.tqm.val() - self.ubq.q.val()) & self.wmask.val();
+                self.ot.d.next = (self.tt.val() - self.ubt.q.val()) & self.tmask.val();
+                self.otp.d.next = (self.ttp.val() - self.ubt.q.val()) & self.tmask.val();
+            }
+            self.refd.d.next = true;
+        }
         self.ov.d.next = self.in_valid.val();
         self.iv.d.next = false;
         self.ilatch.d.next = false;
@@ -276,25 +319,22 @@ impl Logic for PositionReference {
             }
             self.ofine.d.next = self.in_fine.val();
             self.oref.d.next = self.refd.q.val();
-            if self.pnow.val() | (self.idx_event.val() & !self.refd.q.val()) {
-                if (self.d1.val() & self.wsign.val()).any() {
-                    self.oq.d.next = (self.tqp.val() - self.bq.val()) & self.wmask.val();
-                    self.oqm.d.next = self.d1.val();
-                    self.ot.d.next = (self.tmin.val() - self.one.val()) & self.tmask.val();
-                    self.otp.d.next = self.tmin.val() & self.tmask.val();
-                } else {
-                    self.oq.d.next = self.d1.val();
-                    self.oqm.d.next = (self.tqm.val() - self.bq.val()) & self.wmask.val();
-                    self.ot.d.next = self.tmin.val() & self.tmask.val();
-                    self.otp.d.next = (self.tmin.val() + self.one.val()) & self.tmask.val();
-                }
-                self.refd.d.next = true;
+            // Homing (the first index, not referenced) or a preset: the offset follows.
+            if self.pnow.val() | (self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val()) {
+                self.upd.d.next = true;
+                self.usel.d.next = self.pnow.val();
+                self.ubq.d.next = self.bq.val();
+                self.ubt.d.next = self.bt.val();
             }
-            if self.idx_event.val() & !self.refd.q.val() & !self.pnow.val() {
+            if self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val() & !self.pnow.val() {
                 self.iv.d.next = true;
                 self.iqc.d.next = self.iq.val();
                 self.iturns.d.next = self.it.val();
-            } else if self.idx_event.val() & self.refd.q.val() & !self.pnow.val() {
+            } else if self.idx_event.val()
+                & self.refd.q.val()
+                & !self.upd.q.val()
+                & !self.pnow.val()
+            {
                 self.ilatch.d.next = true;
             }
         } else {
@@ -305,6 +345,7 @@ impl Logic for PositionReference {
             self.ppend.d.next = false;
             self.pqual.d.next = false;
             self.refd.d.next = false;
+            self.upd.d.next = false;
             self.ilatch.d.next = false;
             self.oq.d.next = 0.into();
             self.oqm.d.next = self.oqm0.val();

@@ -39,7 +39,10 @@
 //! * An *index event* is the first qualified sample after an unqualified one. The first
 //!   event after reset (with no preset) *homes*: the offset becomes T - B with T the
 //!   configured index count (`[reference] quadrant` and `turn`), so that the reference
-//!   quadrant reads T from the next sample on. Each later event latches the position of
+//!   quadrant reads T from the next sample on. The sample registers its request (`upd`,
+//!   `ubq`, `ubt`, `usel`) and the offset is computed from those registers in the next
+//!   clock, so the subtractions start at registers (the top's samples are an ADC period
+//!   apart; a sample in that very next clock still takes the old offset). Each later event latches the position of
 //!   its sample's quadrant (`index_qc`, `index_turns`, strobe `index_valid`): B + offset,
 //!   which is T again while no count is lost. The homing event latches T itself.
 //! * A rising edge of the synchronized `preset` input (2 flops, then an edge register)

@@ -95,6 +95,10 @@ struct Regs {
     ot: u64,
     otp: u64,
     refd: bool,
+    upd: bool,
+    usel: bool,
+    ubq: u64,
+    ubt: u64,
     ilatch: bool,
     out: ReferenceOut,
 }
@@ -153,6 +157,7 @@ impl ReferenceModel {
             n.ppend = false;
             n.pqual = false;
             n.refd = false;
+            n.upd = false;
             n.ilatch = false;
             n.out = ReferenceOut {
                 warning: p.warn_until_referenced(),
@@ -176,6 +181,28 @@ impl ReferenceModel {
             n.out.index_qc = o.out.qc;
             n.out.index_turns = o.out.turns;
         }
+        // The offset taken from a sample in the clock before: T - B from registers.
+        n.upd = false;
+        if o.upd {
+            let (tq, tt) = if o.usel { p.preset() } else { p.index() };
+            let (bq, bt) = (o.ubq, o.ubt);
+            let d1 = tq.wrapping_sub(bq) & wm;
+            let d0 = tq.wrapping_sub(q).wrapping_sub(bq) & wm;
+            let d2 = (tq + q).wrapping_sub(bq) & wm;
+            let tmin = tt.wrapping_sub(bt);
+            if d1 & sign != 0 {
+                n.oq = d2;
+                n.oqm = d1;
+                n.ot = tmin.wrapping_sub(1) & tm;
+                n.otp = tmin & tm;
+            } else {
+                n.oq = d1;
+                n.oqm = d0;
+                n.ot = tmin & tm;
+                n.otp = tmin.wrapping_add(1) & tm;
+            }
+            n.refd = true;
+        }
         if !i.valid {
             n.ppend = pnow;
             self.r = n;
@@ -195,31 +222,18 @@ impl ReferenceModel {
         n.out.fine = i.fine & mask(32);
         n.out.referenced = o.refd;
         n.out.warning = !o.refd && p.warn_until_referenced();
-        let home = event && !o.refd && !pnow;
+        let home = event && !o.refd && !o.upd && !pnow;
         if pnow || home {
-            let (tq, tt) = if pnow { p.preset() } else { p.index() };
-            let d1 = tq.wrapping_sub(bq) & wm;
-            let d0 = tq.wrapping_sub(q).wrapping_sub(bq) & wm;
-            let d2 = (tq + q).wrapping_sub(bq) & wm;
-            let tmin = tt.wrapping_sub(bt);
-            if d1 & sign != 0 {
-                n.oq = d2;
-                n.oqm = d1;
-                n.ot = tmin.wrapping_sub(1) & tm;
-                n.otp = tmin & tm;
-            } else {
-                n.oq = d1;
-                n.oqm = d0;
-                n.ot = tmin & tm;
-                n.otp = tmin.wrapping_add(1) & tm;
-            }
-            n.refd = true;
+            n.upd = true;
+            n.usel = pnow;
+            n.ubq = bq;
+            n.ubt = bt;
         }
         if home {
             n.out.index_valid = true;
             n.out.index_qc = p.index().0;
             n.out.index_turns = p.index().1;
-        } else if event && o.refd && !pnow {
+        } else if event && o.refd && !o.upd && !pnow {
             n.ilatch = true;
         }
         self.r = n;
