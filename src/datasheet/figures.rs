@@ -58,25 +58,40 @@ pub fn figures(plan: &Plan, an: &Analysis, sheet: &Sheet) -> Result<Vec<Figure>>
         range: Some((0.0, 360.0)),
         ..axis("electrical angle (deg)", true)
     };
-    for (i, (a, &rpm)) in an.accuracy.iter().zip(&plan.accuracy_rpm).enumerate() {
-        let (blo, bhi) = envelope(&a.before);
-        let (alo, ahi) = envelope(&a.after);
-        out.push(fig(
-            &format!("fig-angle-{i}"),
-            format!("Error against electrical angle at {rpm} rpm, with imperfections: min and max per degree, before and after correction"),
-            Plot {
-                x: deg(),
-                y: Axis::new(LSB),
-                traces: vec![
-                    Trace::new("before correction: max", Kind::Dashed, 1, bhi),
-                    Trace::new("before correction: min", Kind::Dashed, 1, blo),
-                    Trace::new("decoder output: max", Kind::Line, 0, ahi),
-                    Trace::new("decoder output: min", Kind::Line, 0, alo),
-                ],
-                size: WIDE,
-            },
-        )?);
+    // The decoder's output at each speed (one colour each), and the raw codes' error at the
+    // middle speed (the raw error does not depend on the speed).
+    let mut traces = vec![];
+    if let Some(a) = an.accuracy.get(1) {
+        let (lo, hi) = envelope(&a.before);
+        traces.push(Trace::new(
+            "before correction (raw codes)",
+            Kind::Dashed,
+            1,
+            hi,
+        ));
+        traces.push(Trace::new("", Kind::Dashed, 1, lo));
     }
+    for (i, (a, &rpm)) in an.accuracy.iter().zip(&plan.accuracy_rpm).enumerate() {
+        let (lo, hi) = envelope(&a.after);
+        let color = [0, 2, 4][i % 3];
+        traces.push(Trace::new(
+            format!("decoder output, {rpm} rpm"),
+            Kind::Line,
+            color,
+            hi,
+        ));
+        traces.push(Trace::new("", Kind::Line, color, lo));
+    }
+    out.push(fig(
+        "fig-angle",
+        "Error against electrical angle with imperfections, before and after correction: the band between the min and max per degree".into(),
+        Plot {
+            x: deg(),
+            y: Axis::new(LSB),
+            traces,
+            size: WIDE,
+        },
+    )?);
     out.push(histogram(an)?);
     out.push(speed(plan, sheet)?);
     out.push(lissajous(an)?);
@@ -97,32 +112,28 @@ pub fn figures(plan: &Plan, an: &Analysis, sheet: &Sheet) -> Result<Vec<Figure>>
             }
             v
         };
-        out.push(fig(
-            "fig-convergence-offset",
-            "Automatic correction: offsets in use against time (middle accuracy speed)".into(),
-            Plot {
-                x: Axis::new("time (ms)"),
-                y: axis("offset (ADC LSB)", true),
-                traces: vec![
-                    Trace::new("sin offset", Kind::Line, 0, t(&|c| c.offset[0] as f64)),
-                    Trace::new("cos offset", Kind::Line, 4, t(&|c| c.offset[1] as f64)),
-                ],
-                size: WIDE,
-            },
-        )?);
-        out.push(fig(
-            "fig-convergence-gain",
-            "Automatic correction: gain codes in use against time (middle accuracy speed)".into(),
-            Plot {
-                x: Axis::new("time (ms)"),
-                y: axis("gain code", true),
-                traces: vec![
-                    Trace::new("sin gain code", Kind::Line, 0, t(&|c| c.gain[0] as f64)),
-                    Trace::new("cos gain code", Kind::Line, 4, t(&|c| c.gain[1] as f64)),
-                ],
-                size: WIDE,
-            },
-        )?);
+        type Pick = fn(&super::samples::CoefPoint, usize) -> f64;
+        let quantities: [(&str, &str, &str, Pick); 2] = [
+            ("offset", "offsets", "offset (ADC LSB)", |c, i| {
+                c.offset[i] as f64
+            }),
+            ("gain", "gain codes", "gain code", |c, i| c.gain[i] as f64),
+        ];
+        for (id, what, unit, pick) in quantities {
+            out.push(fig(
+                &format!("fig-convergence-{id}"),
+                format!("Automatic correction: {what} in use against time (middle accuracy speed)"),
+                Plot {
+                    x: Axis::new("time (ms)"),
+                    y: axis(unit, true),
+                    traces: vec![
+                        Trace::new(format!("sin {id}"), Kind::Line, 0, t(&|c| pick(c, 0))),
+                        Trace::new(format!("cos {id}"), Kind::Line, 4, t(&|c| pick(c, 1))),
+                    ],
+                    size: WIDE,
+                },
+            )?);
+        }
     }
     if sheet.velocity.is_some() {
         out.extend(velocity(an, sheet)?);
@@ -148,7 +159,10 @@ fn histogram(an: &Analysis) -> Result<Figure> {
         "Error histogram of the decoder output at the three accuracy speeds, with imperfections"
             .into(),
         Plot {
-            x: Axis::new(LSB),
+            x: Axis {
+                range: Some((-m, m)),
+                ..Axis::new(LSB)
+            },
             y: axis("samples", true),
             traces: vec![Trace::new(
                 "decoder output, all three speeds",

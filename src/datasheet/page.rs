@@ -45,6 +45,19 @@ impl Cells {
     }
 }
 
+/// The rows of the JSON array `section` (`n` entries): one number cell per (field,
+/// decimals).
+fn keyed_rows(c: &Cells, section: &str, n: usize, fields: &[(&str, usize)]) -> Vec<String> {
+    (0..n)
+        .map(|i| {
+            fields
+                .iter()
+                .map(|(f, d)| c.num(&format!("/{section}/{i}/{f}"), *d))
+                .collect()
+        })
+        .collect()
+}
+
 /// A `<table>` with a header row.
 fn table(head: &[&str], rows: &[String]) -> String {
     let mut t = String::from("<table><thead><tr>");
@@ -102,22 +115,21 @@ pub fn html(loaded: &Loaded, ds: &Datasheet) -> String {
     );
     b.push_str(&overview(&c, s));
     // 1. Accuracy.
-    b.push_str("<h2>1. Accuracy</h2>\n<p>With the imperfections below (<code>sinedec simulate</code>'s options). Error = decoded position - true position at the sampling CONV, less its constant offset, in LSB of the position (2<sup>-F</sup> quadrant). Before correction: the angle of the raw ADC codes (atan2) against the true angle, less its mean.</p>\n");
+    b.push_str("<h2>1. Accuracy</h2>\n<p>With the imperfections below (<code>sinedec simulate</code>'s options). Error = decoded position - true position at the sampling CONV, less its constant offset, in LSB of the position (2<sup>-F</sup> quadrant). Before correction: the angle of the raw ADC codes (atan2) against the true angle.</p>\n");
     b.push_str(&conditions(&c));
-    let rows: Vec<String> = (0..s.accuracy.len())
-        .map(|i| {
-            let k = |f: &str| format!("/accuracy/{i}/{f}");
-            format!(
-                "{}{}{}{}{}{}",
-                c.num(&k("rpm"), 0),
-                c.num(&k("samples"), 0),
-                c.num(&k("raw_max_lsb"), 2),
-                c.num(&k("raw_rms_lsb"), 2),
-                c.num(&k("max_lsb"), 2),
-                c.num(&k("rms_lsb"), 2)
-            )
-        })
-        .collect();
+    let rows = keyed_rows(
+        &c,
+        "accuracy",
+        s.accuracy.len(),
+        &[
+            ("rpm", 0),
+            ("samples", 0),
+            ("raw_max_lsb", 2),
+            ("raw_rms_lsb", 2),
+            ("max_lsb", 2),
+            ("rms_lsb", 2),
+        ],
+    );
     b.push_str(&table(
         &[
             "speed (rpm)",
@@ -134,28 +146,33 @@ pub fn html(loaded: &Loaded, ds: &Datasheet) -> String {
     // 2. Speed.
     b.push_str("<h2>2. Error against speed</h2>\n");
     b.push_str(&figs_html("fig-speed", &mut n));
-    let rows: Vec<String> = (0..s.sweep.len())
-        .map(|i| {
-            let k = |f: &str| format!("/sweep/{i}/{f}");
-            format!(
-                "{}<td>{}</td>{}{}{}{}",
-                c.num(&k("rpm"), 0),
-                if s.sweep[i].above_limit { "above" } else { "" },
-                c.num(&k("ideal_max_lsb"), 2),
-                c.num(&k("ideal_rms_lsb"), 2),
-                c.num(&k("max_lsb"), 2),
-                c.num(&k("rms_lsb"), 2)
-            )
-        })
-        .collect();
+    let mut rows = keyed_rows(
+        &c,
+        "sweep",
+        s.sweep.len(),
+        &[
+            ("rpm", 0),
+            ("ideal_max_lsb", 2),
+            ("ideal_rms_lsb", 2),
+            ("max_lsb", 2),
+            ("rms_lsb", 2),
+        ],
+    );
+    for (r, x) in rows.iter_mut().zip(&s.sweep) {
+        r.push_str(if x.above_limit {
+            "<td>above</td>"
+        } else {
+            "<td></td>"
+        });
+    }
     b.push_str(&table(
         &[
             "speed (rpm)",
-            "unwrap limit",
             "ideal: max (LSB)",
             "ideal: RMS (LSB)",
             "imperfect: max (LSB)",
             "imperfect: RMS (LSB)",
+            "unwrap limit",
         ],
         &rows,
     ));

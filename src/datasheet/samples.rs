@@ -146,20 +146,18 @@ pub fn samples(loaded: &Loaded, o: &SimOptions, n: usize) -> (Vec<Sample>, Vec<C
     (out, coefs)
 }
 
-/// Error of the angle of `codes` (atan2) against the true angle, in fine LSB (2^-F quadrant),
-/// less its mean (the decoder's constant offset is left out the same way).
-pub fn angle_errors(loaded: &Loaded, s: &[Sample], pick: fn(&Sample) -> [i64; 2]) -> Vec<f64> {
+/// Error of the angle of the raw codes (atan2) against the true angle, in fine LSB (2^-F
+/// quadrant), wrapped to half a period; with the kit's inverting pre-amplifier the vector
+/// is turned by two quadrants, which is taken out (as `SimResult::offset_lsb` does).
+pub fn raw_angle_errors(loaded: &Loaded, s: &[Sample]) -> Vec<f64> {
     let lsb_per_rad = 4.0 * (1u64 << loaded.derived.fine_bits) as f64 / TAU;
+    let turned = if loaded.derived.preamp.is_some() {
+        TAU / 2.0
+    } else {
+        0.0
+    };
     let wrap = |x: f64| x - TAU * (x / TAU).round();
-    let Some(first) = s.first() else {
-        return vec![];
-    };
-    let angle = |x: &Sample| {
-        let c = pick(x);
-        (c[0] as f64).atan2(c[1] as f64) - x.theta
-    };
-    let r = angle(first);
-    let e: Vec<f64> = s.iter().map(|x| wrap(angle(x) - r)).collect();
-    let mean = e.iter().sum::<f64>() / e.len() as f64;
-    e.iter().map(|x| (x - mean) * lsb_per_rad).collect()
+    s.iter()
+        .map(|x| wrap((x.raw[0] as f64).atan2(x.raw[1] as f64) - x.theta - turned) * lsb_per_rad)
+        .collect()
 }

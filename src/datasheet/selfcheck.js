@@ -1,6 +1,6 @@
 // sinedec datasheet self-check (inline in index.html): collects every script, resource and
 // console error, and once the page has loaded, the size of every figure's <svg> or <img>;
-// writes both as JSON into <pre id="selfcheck"> for the browser test (tests/report/datasheet.rs).
+// writes both as JSON into the element #selfcheck for the browser test (tests/report/datasheet.rs).
 (function () {
   var errors = [];
   window.addEventListener("error", function (e) {

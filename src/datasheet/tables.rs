@@ -4,7 +4,7 @@
 //! velocity lag come from the derivations `sinedec check` prints (the top's
 //! `conv_to_position_cycles`, each block's latency, `VelocityParams::lag_s`).
 use super::grid::{imperfect_options, Out, Plan, Runs};
-use super::samples::{angle_errors, samples, CoefPoint, Sample};
+use super::samples::{raw_angle_errors, samples, CoefPoint, Sample};
 use super::{Options, Sheet};
 use crate::blocks::top::hdl::conv_to_position_cycles;
 use crate::config::Loaded;
@@ -210,7 +210,7 @@ pub fn analyse(loaded: &Loaded, plan: &Plan, runs: &Runs) -> Analysis {
                 coefs = c;
             }
             let lsb = (1u64 << d.fine_bits) as f64;
-            let before = angle_errors(loaded, &s, |x| x.raw)
+            let before = raw_angle_errors(loaded, &s)
                 .into_iter()
                 .zip(&s)
                 .map(|(e, x)| {

@@ -25,7 +25,7 @@ pub enum Kind {
 /// One named set of points.
 #[derive(Clone, Debug)]
 pub struct Trace {
-    /// Legend text.
+    /// Legend text (empty: not in the legend, e.g. the second line of a band).
     pub label: String,
     /// Points (non-finite ones, and non-positive y on a log axis, are left out).
     pub points: Vec<(f64, f64)>,
@@ -117,7 +117,12 @@ fn tick_text(v: f64, extent: f64, integer: bool) -> String {
 fn legend_layout(f: &Figure, width: u32, measure: &dyn Fn(&str) -> u32) -> Vec<Vec<(usize, u32)>> {
     let mut rows: Vec<Vec<(usize, u32)>> = vec![vec![]];
     let mut x = 12;
-    for (i, t) in f.traces.iter().enumerate() {
+    for (i, t) in f
+        .traces
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| !t.label.is_empty())
+    {
         let w = 34 + measure(&t.label) + 24;
         if x + w > width && x > 12 {
             rows.push(vec![]);
