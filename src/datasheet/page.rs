@@ -105,9 +105,9 @@ pub fn html(loaded: &Loaded, ds: &Datasheet) -> String {
         b,
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>{top}: data sheet</title>\n<script>{SELFCHECK}</script>\n<style>{CSS}</style></head><body>\n"
     );
-    let _ = write!(
+    let _ = writeln!(
         b,
-        "<header><h1>{top}</h1><p class=\"sub\">Sine/cosine encoder decoder, characterized in its closed loop. Config {} (hash {}); {}{}.</p></header>\n",
+        "<header><h1>{top}</h1><p class=\"sub\">Sine/cosine encoder decoder, characterized in its closed loop. Config {} (hash {}); {}{}.</p></header>",
         esc(&s.config_name),
         esc(&s.config_hash),
         esc(&s.generator),
