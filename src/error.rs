@@ -146,6 +146,9 @@ pub enum Error {
         /// What is wrong and what is allowed.
         message: String,
     },
+    /// `sinedec datasheet` cannot characterize this config (the capacitive path).
+    #[error("datasheet: {0}")]
+    Datasheet(String),
 }
 
 /// `value` as echoed in a message: at most `max` characters; a longer value keeps its start

@@ -5,6 +5,7 @@ pub mod cleanup;
 pub mod config;
 pub mod cosim;
 pub mod csv_out;
+pub mod datasheet;
 pub mod emit;
 pub mod engine;
 pub mod error;

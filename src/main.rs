@@ -216,6 +216,38 @@ fn simulate(args: SimulateArgs) -> Result<()> {
     Ok(())
 }
 
+/// `sinedec datasheet`: checks the config and the output directory, runs the grid with a
+/// progress bar, then writes the page through the output-directory rule.
+fn datasheet(config: Option<PathBuf>, output: PathBuf, force: bool, quick: bool) -> Result<()> {
+    let mut opts = OutputOptions::new("datasheet");
+    opts.force = force;
+    let loaded = load(&config)?;
+    sinedec::datasheet::refuse_capacitive(&loaded)?;
+    check_output_dir(&output, &opts)?;
+    let o = sinedec::datasheet::Options {
+        quick,
+        command: command_line(),
+        config_arg: config.as_ref().map(|c| c.display().to_string()),
+    };
+    let total = sinedec::datasheet::Plan::new(&loaded, quick).total_cycles(&loaded);
+    let bar = indicatif::ProgressBar::new(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let ds = sinedec::datasheet::build(&loaded, &o, &|n| bar.inc(n))?;
+    bar.finish_and_clear();
+    if let Some(n) = &ds.engine_note {
+        let _ = writeln!(std::io::stderr(), "{n}");
+    }
+    let generation = ds.render(&loaded)?;
+    sinedec::emit::write_output_with(&generation, &output, &opts)?;
+    for f in &generation.files {
+        say!("wrote {}", output.join(&f.name).display())?;
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Generate {
@@ -295,6 +327,12 @@ fn run(cli: Cli) -> Result<()> {
                 say!("wrote {}", output.join(&f.name).display())?;
             }
         }
+        Command::Datasheet {
+            config,
+            output,
+            force,
+            quick,
+        } => datasheet(config, output, force, quick)?,
         Command::Init { path, force } => {
             if path.is_dir() {
                 bail!(

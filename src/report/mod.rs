@@ -29,6 +29,7 @@
 //! points; `run` the synthesis, routing and sweep runs; `columns` the table's columns, cells
 //! and CSV; `markdown` the Markdown document; `json` the JSON document; `svg` the plots.
 pub mod blocks;
+pub mod figure;
 pub mod levels;
 pub mod nextpnr;
 pub mod plot;
@@ -457,6 +458,44 @@ pub fn target_family(loaded: &Loaded) -> Family {
 /// [`check_cache_dirs`]), or how to get them (`config`: the config argument as the user
 /// wrote it, None for the embedded default). None without a top. Never runs Yosys.
 pub fn top_resource_line(loaded: &Loaded, config: Option<&str>) -> Result<Option<String>> {
+    let Some(t) = top_synthesis(loaded)? else {
+        return Ok(None);
+    };
+    let (top, family) = (&t.top, t.family);
+    let label = "resources (top)            ";
+    Ok(Some(match t.cached {
+        Some((s, version)) => format!(
+            "{label} {}: {} LUTs, {} FFs, {} block RAMs, {} multipliers (Yosys synthesis of {top} cached by `sinedec report`, {version})",
+            family.name(),
+            s.luts,
+            s.ffs,
+            s.brams,
+            s.multipliers
+        ),
+        None => format!(
+            "{label} not synthesized for this design yet: `sinedec report{}` synthesizes {top} ({}) and `check` then prints its LUTs, FFs, block RAMs and multipliers",
+            config.map(|c| format!(" {c}")).unwrap_or_default(),
+            family.name()
+        ),
+    }))
+}
+
+/// The whole configured top as `sinedec report` synthesizes it, and that synthesis's
+/// figures if one of [`check_cache_dirs`] holds them.
+pub struct TopSynthesis {
+    /// Its Verilog.
+    pub verilog: String,
+    /// Its module name.
+    pub top: String,
+    /// The target family.
+    pub family: Family,
+    /// The cached figures and the Yosys version that made them; None: not synthesized.
+    pub cached: Option<(SynthStats, String)>,
+}
+
+/// [`TopSynthesis`] of the configured top (None: the config has no top). Reads the caches
+/// only: no Yosys run.
+pub fn top_synthesis(loaded: &Loaded) -> Result<Option<TopSynthesis>> {
     let verilog = match crate::emit::top_verilog(loaded)? {
         Some(v) => v,
         None => match crate::emit::cap_top_verilog(loaded)? {
@@ -466,22 +505,11 @@ pub fn top_resource_line(loaded: &Loaded, config: Option<&str>) -> Result<Option
     };
     let top = crate::emit::top_name(loaded);
     let family = target_family(loaded);
-    let label = "resources (top)            ";
-    Ok(Some(
-        match yosys::cached_synthesis(&check_cache_dirs(), &verilog, &top, family) {
-            Some((s, version)) => format!(
-                "{label} {}: {} LUTs, {} FFs, {} block RAMs, {} multipliers (Yosys synthesis of {top} cached by `sinedec report`, {version})",
-                family.name(),
-                s.luts,
-                s.ffs,
-                s.brams,
-                s.multipliers
-            ),
-            None => format!(
-                "{label} not synthesized for this design yet: `sinedec report{}` synthesizes {top} ({}) and `check` then prints its LUTs, FFs, block RAMs and multipliers",
-                config.map(|c| format!(" {c}")).unwrap_or_default(),
-                family.name()
-            ),
-        },
-    ))
+    let cached = yosys::cached_synthesis(&check_cache_dirs(), &verilog, &top, family);
+    Ok(Some(TopSynthesis {
+        verilog,
+        top,
+        family,
+        cached,
+    }))
 }

@@ -3,7 +3,7 @@
 use crate::error::{Error, Result};
 use plotters::prelude::*;
 
-fn err<E: std::fmt::Display>(what: &str) -> impl Fn(E) -> Error + '_ {
+pub(crate) fn err<E: std::fmt::Display>(what: &str) -> impl Fn(E) -> Error + '_ {
     move |e| Error::Plot {
         what: what.to_string(),
         message: e.to_string(),
@@ -20,7 +20,7 @@ pub struct Series {
     pub markers_only: bool,
 }
 
-const COLORS: [RGBColor; 8] = [
+pub(crate) const COLORS: [RGBColor; 8] = [
     RGBColor(0x1f, 0x77, 0xb4),
     RGBColor(0xd6, 0x27, 0x28),
     RGBColor(0x2c, 0xa0, 0x2c),

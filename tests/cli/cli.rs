@@ -667,7 +667,14 @@ fn words(s: &str) -> String {
 fn long_help_carries_the_command_reference() {
     let doc = include_str!("../../docs/cli.md");
     let dir = tempfile::tempdir().expect("tempdir");
-    for cmd in ["generate", "check", "simulate", "report", "init"] {
+    for cmd in [
+        "generate",
+        "check",
+        "simulate",
+        "report",
+        "datasheet",
+        "init",
+    ] {
         let help = words(&ok(dir.path(), &[cmd, "--help"]));
         let row = doc
             .lines()

@@ -6,5 +6,6 @@
 mod common;
 mod report_util;
 
+mod datasheet;
 mod report;
 mod report_blocks;

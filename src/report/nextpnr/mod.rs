@@ -325,17 +325,14 @@ impl Ecp5 {
         h.finalize().iter().map(|b| format!("{b:02x}")).collect()
     }
 
-    /// Synthesizes `verilog` (top module `top`) once and places and routes it at every seed
-    /// of [`SEEDS`] for a clock of `freq_mhz`; `tag` names the scratch directory. Returns the
-    /// run of the median seed with `seeds_mhz` filled in, and whether every seed came from
-    /// the cache.
-    pub fn run(
+    /// The synthesis script and every seed's cache key and nextpnr arguments for `verilog`
+    /// (top module `top`) at `freq_mhz`.
+    fn plan(
         &self,
         verilog: &str,
         top: &str,
         freq_mhz: f64,
-        tag: &str,
-    ) -> Result<(PnrTiming, bool)> {
+    ) -> (String, Vec<(String, Vec<String>)>) {
         let freq = format!("{freq_mhz:.3}");
         let synth = format!("read_verilog -sv {top}.v; synth_ecp5 -top {top} -json {top}.json");
         let json = format!("{top}.json");
@@ -355,15 +352,54 @@ impl Ecp5 {
             }
             pnr
         };
-        let mut runs: Vec<Option<PnrTiming>> = Vec::new();
-        let mut keys = Vec::new();
-        for seed in SEEDS {
-            let pnr = args(&seed.to_string());
-            let flow = format!("{synth}\n{}", pnr.join(" "));
-            let key = self.key(top, &flow, verilog);
-            runs.push(cache_load::<PnrTiming>(self.cache.as_deref(), &key));
-            keys.push((key, pnr));
-        }
+        let keys = SEEDS
+            .iter()
+            .map(|seed| {
+                let pnr = args(&seed.to_string());
+                let flow = format!("{synth}\n{}", pnr.join(" "));
+                (self.key(top, &flow, verilog), pnr)
+            })
+            .collect();
+        (synth, keys)
+    }
+
+    /// The runs of every seed of [`run`](Self::run) for these arguments from the cache
+    /// directories `dirs` (the first that holds a seed's entry), with `seeds_mhz` filled in
+    /// as `run` does; None unless every seed is cached. Runs no tool.
+    pub fn cached(
+        &self,
+        dirs: &[PathBuf],
+        verilog: &str,
+        top: &str,
+        freq_mhz: f64,
+    ) -> Option<PnrTiming> {
+        let (_, keys) = self.plan(verilog, top, freq_mhz);
+        let runs: Option<Vec<PnrTiming>> = keys
+            .iter()
+            .map(|(k, _)| {
+                dirs.iter()
+                    .find_map(|d| cache_load::<PnrTiming>(Some(d), k))
+            })
+            .collect();
+        Some(median_run(runs?))
+    }
+
+    /// Synthesizes `verilog` (top module `top`) once and places and routes it at every seed
+    /// of [`SEEDS`] for a clock of `freq_mhz`; `tag` names the scratch directory. Returns the
+    /// run of the median seed with `seeds_mhz` filled in, and whether every seed came from
+    /// the cache.
+    pub fn run(
+        &self,
+        verilog: &str,
+        top: &str,
+        freq_mhz: f64,
+        tag: &str,
+    ) -> Result<(PnrTiming, bool)> {
+        let (synth, keys) = self.plan(verilog, top, freq_mhz);
+        let mut runs: Vec<Option<PnrTiming>> = keys
+            .iter()
+            .map(|(k, _)| cache_load::<PnrTiming>(self.cache.as_deref(), k))
+            .collect();
         if let Some(log) = std::env::var_os(KEY_LOG_ENV).filter(|v| !v.is_empty()) {
             use std::io::Write;
             let lines: String = keys.iter().map(|(k, _)| format!("{k}\n")).collect();
@@ -407,19 +443,23 @@ impl Ecp5 {
             }
             let _ = std::fs::remove_dir_all(&dir);
         }
-        let runs: Vec<PnrTiming> = runs.into_iter().flatten().collect();
-        let seeds: Vec<Option<f64>> = runs.iter().map(|t| t.fmax_mhz).collect();
-        // The run whose Fmax is the median names the critical path.
-        let median = median_mhz(&seeds);
-        let mut t = runs
-            .iter()
-            .find(|t| t.fmax_mhz == median)
-            .or(runs.first())
-            .cloned()
-            .unwrap_or_default();
-        t.seeds_mhz = seeds;
+        let t = median_run(runs.into_iter().flatten().collect());
         Ok((t, all_cached))
     }
+}
+
+/// The run whose Fmax is the median (it names the critical path), with every seed's Fmax.
+fn median_run(runs: Vec<PnrTiming>) -> PnrTiming {
+    let seeds: Vec<Option<f64>> = runs.iter().map(|t| t.fmax_mhz).collect();
+    let median = median_mhz(&seeds);
+    let mut t = runs
+        .iter()
+        .find(|t| t.fmax_mhz == median)
+        .or(runs.first())
+        .cloned()
+        .unwrap_or_default();
+    t.seeds_mhz = seeds;
+    t
 }
 
 #[cfg(test)]
