@@ -382,20 +382,24 @@ impl<B: BoardTop> Dut<B> {
 
 #[cfg(test)]
 mod registry_tests {
-    /// Every pinned port of a registered block is read by the closed loop as the rtl's
-    /// optional output `<name>_0` (`OUT_PINS`), and every optional output there is a
-    /// velocity output or a registered block's port.
+    /// Every pinned port of a registered block is driven or read by the closed loop as the
+    /// rtl's optional input or output `<name>_0` (`IN_PINS`, `OUT_PINS`, by its direction),
+    /// and every optional pin there is a velocity output or a registered block's port.
     #[test]
     fn the_loop_reads_every_registered_block_port() {
         use crate::blocks::registry::BLOCKS;
+        use crate::blocks::top::ports::Dir;
         let optional = &super::OUT_PINS[super::OUT_PINS.len() - super::OPTIONAL_OUT_PINS..];
+        let optional_in = &super::IN_PINS[super::IN_PINS.len() - super::OPTIONAL_IN_PINS..];
         for b in BLOCKS {
             for p in b.ports {
                 let rtl = format!("{}_0", p.name);
-                assert!(optional.contains(&rtl.as_str()), "{}: {rtl}", b.key);
+                let list = if p.dir == Dir::In { optional_in } else { optional };
+                assert!(list.contains(&rtl.as_str()), "{}: {rtl}", b.key);
             }
         }
-        for o in optional.iter().filter(|o| !o.starts_with("par_velocity")) {
+        let pins = optional.iter().chain(optional_in);
+        for o in pins.filter(|o| !o.starts_with("par_velocity")) {
             let name = o.trim_end_matches("_0");
             assert!(
                 crate::blocks::registry::port_owner(name).is_some(),
