@@ -394,7 +394,11 @@ mod registry_tests {
         for b in BLOCKS {
             for p in b.ports {
                 let rtl = format!("{}_0", p.name);
-                let list = if p.dir == Dir::In { optional_in } else { optional };
+                let list = if p.dir == Dir::In {
+                    optional_in
+                } else {
+                    optional
+                };
                 assert!(list.contains(&rtl.as_str()), "{}: {rtl}", b.key);
             }
         }
