@@ -224,55 +224,60 @@ pub fn html(loaded: &Loaded, ds: &Datasheet) -> String {
     b
 }
 
+/// Table rows "label | number" of the JSON values under `prefix`: (label, key, decimals).
+fn number_rows(c: &Cells, prefix: &str, rows: &[(&str, &str, usize)]) -> Vec<String> {
+    rows.iter()
+        .map(|(l, k, d)| format!("<td>{l}</td>{}", c.num(&format!("{prefix}/{k}"), *d)))
+        .collect()
+}
+
 fn overview(c: &Cells, s: &Sheet) -> String {
-    let o = &s.overview;
-    let rows = [
-        format!(
-            "<td>system clock (MHz)</td>{}",
-            c.num("/overview/clock_mhz", 3)
-        ),
-        format!(
-            "<td>sample rate (samples/s per channel)</td>{}",
-            c.num("/overview/sample_rate_sps", 0)
-        ),
-        format!(
-            "<td>resolution (bits per turn)</td>{}",
-            c.num("/overview/resolution_bits", 2)
-        ),
-        format!(
-            "<td>1 LSB (mechanical arc-seconds)</td>{}",
-            c.num("/overview/lsb_arcsec", 4)
-        ),
-        format!(
-            "<td>unwrap limit (rpm; {})</td>{}",
-            if o.qep_fallback {
-                "QEP fallback above"
-            } else {
-                "no QEP fallback"
-            },
-            c.num("/overview/unwrap_limit_rpm", 0)
-        ),
-    ];
+    let unwrap = if s.overview.qep_fallback {
+        "unwrap limit (rpm; QEP fallback above)"
+    } else {
+        "unwrap limit (rpm; no QEP fallback)"
+    };
+    let rows = number_rows(
+        c,
+        "/overview",
+        &[
+            ("system clock (MHz)", "clock_mhz", 3),
+            ("sample rate (samples/s per channel)", "sample_rate_sps", 0),
+            ("resolution (bits per turn)", "resolution_bits", 2),
+            ("1 LSB (mechanical arc-seconds)", "lsb_arcsec", 4),
+            (unwrap, "unwrap_limit_rpm", 0),
+        ],
+    );
     table(&["key figure", "value"], &rows)
 }
 
 fn conditions(c: &Cells) -> String {
-    let rows = [
-        ("--amplitude (fraction of the ADC range)", "amplitude", 3),
-        ("--noise-lsb (RMS ADC LSB)", "noise_lsb", 2),
-        ("--offset-sin (fraction of the amplitude)", "offset_sin", 3),
-        ("--offset-cos (fraction of the amplitude)", "offset_cos", 3),
-        ("--gain-mismatch", "gain_mismatch", 3),
-        ("--phase-error (deg)", "phase_error_deg", 2),
-        ("--harmonic3", "harmonic3", 3),
-        ("--seed", "seed", 0),
-    ]
-    .map(|(l, k, d)| {
-        format!(
-            "<td><code>{l}</code></td>{}",
-            c.num(&format!("/conditions/{k}"), d)
-        )
-    });
+    let rows = number_rows(
+        c,
+        "/conditions",
+        &[
+            (
+                "<code>--amplitude (fraction of the ADC range)</code>",
+                "amplitude",
+                3,
+            ),
+            ("<code>--noise-lsb (RMS ADC LSB)</code>", "noise_lsb", 2),
+            (
+                "<code>--offset-sin (fraction of the amplitude)</code>",
+                "offset_sin",
+                3,
+            ),
+            (
+                "<code>--offset-cos (fraction of the amplitude)</code>",
+                "offset_cos",
+                3,
+            ),
+            ("<code>--gain-mismatch</code>", "gain_mismatch", 3),
+            ("<code>--phase-error (deg)</code>", "phase_error_deg", 2),
+            ("<code>--harmonic3</code>", "harmonic3", 3),
+            ("<code>--seed</code>", "seed", 0),
+        ],
+    );
     table(&["imperfection", "value"], &rows)
 }
 
@@ -299,27 +304,27 @@ fn velocity(c: &Cells, s: &Sheet) -> String {
     let Some(v) = &s.velocity else {
         return "<p>The velocity estimator is off in this config (<code>[velocity] enabled = false</code>).</p>\n".into();
     };
-    let rows = [
-        format!("<td>method</td><td>{}</td>", esc(&v.method)),
-        format!("<td>update rate (Hz)</td>{}", c.num("/velocity/rate_hz", 1)),
-        format!("<td>1 LSB (rpm)</td>{}", c.num("/velocity/lsb_rpm", 8)),
-        format!(
-            "<td>latency, tick to par_velocity_valid (cycles)</td>{}",
-            c.num("/velocity/latency_cycles", 0)
-        ),
-        format!(
-            "<td>lag behind a ramp (update periods)</td>{}",
-            c.num("/velocity/lag_periods", 2)
-        ),
-        format!(
-            "<td>lag behind a ramp with the latency (ms)</td>{}",
-            c.num("/velocity/lag_ms", 3)
-        ),
-        format!(
-            "<td>measured lag on the ramp, against the encoder's speed at the strobe (ms)</td>{}",
-            c.num("/velocity/measured_lag_ms", 3)
-        ),
-    ];
+    let mut rows = vec![format!("<td>method</td><td>{}</td>", esc(&v.method))];
+    rows.extend(number_rows(
+        c,
+        "/velocity",
+        &[
+            ("update rate (Hz)", "rate_hz", 1),
+            ("1 LSB (rpm)", "lsb_rpm", 8),
+            (
+                "latency, tick to par_velocity_valid (cycles)",
+                "latency_cycles",
+                0,
+            ),
+            ("lag behind a ramp (update periods)", "lag_periods", 2),
+            ("lag behind a ramp with the latency (ms)", "lag_ms", 3),
+            (
+                "measured lag on the ramp, against the encoder's speed at the strobe (ms)",
+                "measured_lag_ms",
+                3,
+            ),
+        ],
+    ));
     table(&["velocity", "value"], &rows)
 }
 

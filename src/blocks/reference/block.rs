@@ -178,6 +178,7 @@ pub fn params(
 
 /// The `[reference]` lines of `check`.
 fn describe(r: &ReferenceParams, sample_rate_hz: f64) -> String {
+    // A turn word of M bits as a signed count (M = 0: the word is 0).
     let signed = |t: u64| crate::blocks::sext(t, r.turns_bits().max(1));
     format!(
         "reference index             Z in the quadrant with A/B = {} (decoded quadrant {} of its period) reads quadrant count {}, turn {}; latched at every index\n\
@@ -187,11 +188,11 @@ fn describe(r: &ReferenceParams, sample_rate_hz: f64) -> String {
         r.gate_levels(),
         r.gate(),
         r.index().0,
-        if r.turns_bits() == 0 { 0 } else { signed(r.index().1) },
+        signed(r.index().1),
         r.homing_rpm(sample_rate_hz),
         if r.warn_until_referenced() { "yes" } else { "no" },
         r.preset().0,
-        if r.turns_bits() == 0 { 0 } else { signed(r.preset().1) },
+        signed(r.preset().1),
         ReferenceParams::LATENCY,
     )
 }
