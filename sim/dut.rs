@@ -19,7 +19,7 @@ use crate::engine::{Engine, Kind};
 use crate::error::{Error, Result};
 
 /// Inputs the sinewave loop drives, in index order ([`Dut::set`]).
-pub const IN_PINS: [&str; 11] = [
+pub const IN_PINS: [&str; 12] = [
     "rst",
     "adc_miso",
     "biss_ma",
@@ -31,15 +31,18 @@ pub const IN_PINS: [&str; 11] = [
     "enc_cs_n",
     "adc_miso_b",
     "preset_0",
+    "capture_0",
 ];
 /// How many of the last [`IN_PINS`] are optional (the position reference's `preset`, with
-/// `[reference] enabled`; driving a missing one does nothing).
-pub const OPTIONAL_IN_PINS: usize = 1;
+/// `[reference] enabled`, and the capture's `capture`, with `[capture] enabled`; driving a
+/// missing one does nothing).
+pub const OPTIONAL_IN_PINS: usize = 2;
 /// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
 /// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
 /// `[velocity] enabled`, the ABZ emulator's, with `[abz] enabled`, and the position
-/// reference's, with `[reference] enabled`) and read 0 without them.
-pub const OUT_PINS: [&str; 20] = [
+/// reference's, with `[reference] enabled`, and the capture's, with `[capture] enabled`)
+/// and read 0 without them.
+pub const OUT_PINS: [&str; 26] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -60,6 +63,12 @@ pub const OUT_PINS: [&str; 20] = [
     "abz_b_0",
     "abz_z_0",
     "referenced_0",
+    "cap_valid_0",
+    "cap_qc_0",
+    "cap_fine_0",
+    "cap_turns_0",
+    "cap_age_0",
+    "cap_velocity_0",
 ];
 /// Inputs the capacitive loop drives, in index order.
 pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
@@ -78,7 +87,7 @@ pub const CAP_OUT_PINS: [&str; 11] = [
     "par_warning",
 ];
 /// How many of the last [`OUT_PINS`] are optional (read 0 when the top lacks them).
-pub const OPTIONAL_OUT_PINS: usize = 6;
+pub const OPTIONAL_OUT_PINS: usize = 12;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -384,7 +393,8 @@ impl<B: BoardTop> Dut<B> {
 mod registry_tests {
     /// Every pinned port of a registered block is driven or read by the closed loop as the
     /// rtl's optional input or output `<name>_0` (`IN_PINS`, `OUT_PINS`, by its direction),
-    /// and every optional pin there is a velocity output or a registered block's port.
+    /// and every optional pin there is a velocity output, a capture output (wide fabric
+    /// ports, not pins) or a registered block's port.
     #[test]
     fn the_loop_reads_every_registered_block_port() {
         use crate::blocks::registry::BLOCKS;
@@ -403,7 +413,7 @@ mod registry_tests {
             }
         }
         let pins = optional.iter().chain(optional_in);
-        for o in pins.filter(|o| !o.starts_with("par_velocity")) {
+        for o in pins.filter(|o| !o.starts_with("par_velocity") && !o.starts_with("cap_")) {
             let name = o.trim_end_matches("_0");
             assert!(
                 crate::blocks::registry::port_owner(name).is_some(),

@@ -36,6 +36,7 @@ const I_ENC_SCK: usize = 7;
 const I_ENC_CS_N: usize = 8;
 const I_MISO_B: usize = 9;
 const I_PRESET: usize = 10;
+const I_CAPTURE: usize = 11;
 const O_CONV: usize = 0;
 const O_SCK: usize = 1;
 const O_AMP_CS: usize = 2;
@@ -56,6 +57,12 @@ const O_ABZ_A: usize = 16;
 const O_ABZ_B: usize = 17;
 const O_ABZ_Z: usize = 18;
 const O_REFERENCED: usize = 19;
+const O_CAP_VALID: usize = 20;
+const O_CAP_QC: usize = 21;
+const O_CAP_FINE: usize = 22;
+const O_CAP_TURNS: usize = 23;
+const O_CAP_AGE: usize = 24;
+const O_CAP_VELOCITY: usize = 25;
 
 /// What a quadrature counter on `abz_a`/`abz_b` read over a run (`[abz] enabled`), against
 /// the position on the parallel bus.
@@ -286,6 +293,27 @@ pub struct VelRecord {
     pub truth: f64,
 }
 
+/// One capture (`[capture] enabled`): what `cap_*` showed with `cap_valid`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CaptureRecord {
+    /// Clock cycle of `cap_valid`.
+    pub cycle: u64,
+    /// The cycle whose input first had `capture` high (the pin rose in the clock before).
+    pub pin_cycle: u64,
+    /// Captured single-turn position (2^-F quadrant units).
+    pub position: u64,
+    /// Captured signed turn count.
+    pub turns: i64,
+    /// Unwrapped captured position in fine LSB: turns * 4PPR * 2^F + position.
+    pub unwrapped: i64,
+    /// `cap_age`: clocks from the sample's CONV edge to the capture.
+    pub age: u64,
+    /// `cap_velocity` as a signed number (0 without `[velocity]`).
+    pub velocity: i64,
+    /// The encoder's true electrical angle at `pin_cycle`, in fine LSB (unwrapped).
+    pub truth: f64,
+}
+
 /// Result of a closed-loop run.
 #[derive(Clone, Debug, Default)]
 pub struct SimResult {
@@ -293,6 +321,8 @@ pub struct SimResult {
     pub records: Vec<Record>,
     /// Velocity updates in order (empty without `[velocity] enabled`).
     pub velocity: Vec<VelRecord>,
+    /// Captures in order (empty without `[capture] enabled`).
+    pub captures: Vec<CaptureRecord>,
     /// The quadrature counter on the ABZ outputs (with `[abz] enabled`).
     pub abz: Option<AbzCount>,
     /// The BiSS-C master's frames against the parallel bus ([`System::monitor_biss`]).
@@ -584,6 +614,12 @@ pub struct System {
     qep_b_stuck: Option<(f64, f64)>,
     /// `preset` high from `.0` to `.1` seconds (`[reference] enabled`).
     preset: Option<(f64, f64)>,
+    /// `capture` high in each of these (from, to) seconds (`[capture] enabled`).
+    capture: Vec<(f64, f64)>,
+    /// The capture pin was high in the last cycle.
+    capture_high: bool,
+    /// Cycles at which `capture` rose, not yet answered by `cap_valid`.
+    capture_pending: std::collections::VecDeque<u64>,
     /// The quadrature counter on the ABZ outputs (`[abz] enabled`).
     abz: Option<AbzCounter>,
     /// The BiSS-C master whose frames [`BissCheck`] checks.
@@ -632,6 +668,9 @@ impl System {
             spi: None,
             qep_b_stuck: None,
             preset: None,
+            capture: Vec::new(),
+            capture_high: false,
+            capture_pending: std::collections::VecDeque::new(),
             biss: None,
             ssi_mon: None,
             par_history: std::collections::VecDeque::new(),
@@ -664,6 +703,11 @@ impl System {
     /// Drives `preset` (`[reference] enabled`) high from `from` to `to` seconds.
     pub fn preset_pulse(&mut self, from: f64, to: f64) {
         self.preset = Some((from, to));
+    }
+
+    /// Drives `capture` (`[capture] enabled`) high in each (from, to) interval, in seconds.
+    pub fn capture_pulses(&mut self, pulses: &[(f64, f64)]) {
+        self.capture = pulses.to_vec();
     }
 
     /// Keeps no records: the statistics are gathered as the samples come, leaving out the
@@ -968,6 +1012,12 @@ impl System {
             self.top.set(I_QEP_Z, qz as u64);
             let preset = self.preset.is_some_and(|(a, b)| now >= a && now < b);
             self.top.set(I_PRESET, preset as u64);
+            let capture = self.capture.iter().any(|&(a, b)| now >= a && now < b);
+            if capture && !self.capture_high {
+                self.capture_pending.push_back(self.cycle);
+            }
+            self.capture_high = capture;
+            self.top.set(I_CAPTURE, capture as u64);
             let ssi_clk = match self.ssi.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
@@ -1059,6 +1109,33 @@ impl System {
                     Some(s) => s.add(&self.d, &rec),
                     None => self.result.records.push(rec),
                 }
+            }
+            if self.top.get(O_CAP_VALID) != 0 {
+                let pin_cycle = self.capture_pending.pop_front().unwrap_or(0);
+                let qc = self.top.get(O_CAP_QC);
+                let pos = (qc << fine) | self.top.get(O_CAP_FINE);
+                let turns = if self.d.multiturn_bits == 0 {
+                    0
+                } else {
+                    sext(self.top.get(O_CAP_TURNS), self.d.multiturn_bits)
+                };
+                let velocity = match &self.d.velocity {
+                    Some(v) => sext(self.top.get(O_CAP_VELOCITY), v.spec.width),
+                    None => 0,
+                };
+                self.result.captures.push(CaptureRecord {
+                    cycle: self.cycle,
+                    pin_cycle,
+                    position: pos,
+                    turns,
+                    unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
+                    age: self.top.get(O_CAP_AGE),
+                    velocity,
+                    truth: self
+                        .truth
+                        .electrical_angle(pin_cycle as f64 / self.clock_hz)
+                        * lsb_per_rad,
+                });
             }
             if let Some(v) = &self.d.velocity {
                 if self.top.get(O_VELOCITY_VALID) != 0 {

@@ -18,6 +18,7 @@ pub mod biquad;
 pub mod biss;
 pub mod capacitive;
 pub mod captop;
+pub mod capture;
 pub mod cordic;
 pub mod core;
 pub mod correction;

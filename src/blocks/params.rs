@@ -72,6 +72,10 @@ pub struct Derived {
     /// parameter file when disabled, like `abz`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<crate::blocks::reference::ReferenceParams>,
+    /// Synchronous capture of the board top, when `[capture] enabled` (left out of the
+    /// parameter file when disabled, like `abz`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub capture: Option<crate::blocks::capture::CaptureParams>,
     /// ADC sample width A.
     pub adc_width: u32,
     /// Capacitive path, when `[capacitive]` is present.

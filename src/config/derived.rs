@@ -132,7 +132,7 @@ impl Derived {
         let (board_clock, io_timing) = board_timing(c, &adc, &err)?;
         let qep = QepParams::new(c.qep.filter_clocks, 32)
             .map_err(|m| err("qep", "filter_clocks", m.detail()))?;
-        let derived = Derived {
+        let mut derived = Derived {
             board_clock,
             io_timing,
             adc,
@@ -147,6 +147,7 @@ impl Derived {
             abz,
             velocity,
             reference,
+            capture: None,
             adc_width: a,
             capacitive,
             iterations: n,
@@ -173,6 +174,15 @@ impl Derived {
             resolution_bits: (quadrants_per_turn as f64).log2() + f as f64,
         };
         check_capacitive_front(&derived, &err)?;
+        // The capture ages the position every output takes: from the one CONV-to-position
+        // derivation of the top.
+        derived.capture = crate::blocks::capture::block::params(
+            c,
+            &derived.adc,
+            crate::blocks::top::hdl::conv_to_position_cycles(&derived),
+            derived.velocity.as_ref(),
+            &err,
+        )?;
         Ok(derived)
     }
 

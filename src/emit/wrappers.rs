@@ -157,6 +157,18 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
     if d.capacitive.is_none() {
         v.extend(crate::blocks::registry::enabled_ports(&loaded.config).map(|p| one(p.name)));
     }
+    if let (Some(_), false) = (&d.capture, d.capacitive.is_some()) {
+        v.extend([
+            one("cap_valid"),
+            ("cap_position".into(), d.position_width),
+            ("cap_turns".into(), d.turns_width),
+            ("cap_fine".into(), d.fine_bits),
+            ("cap_age".into(), crate::blocks::capture::AGE_BITS),
+        ]);
+        if let Some(p) = &d.velocity {
+            v.push(("cap_velocity".into(), p.spec.width));
+        }
+    }
     v.push(one("par_warning"));
     if let (Some(p), false) = (&d.velocity, d.capacitive.is_some()) {
         v.extend([
@@ -283,6 +295,22 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         conns.push(".par_velocity_0(velocity)".into());
         conns.push(".par_velocity_valid_0(par_velocity_valid)".into());
     }
+    // The capture's outputs (`[capture] enabled`) to the wrapper's full-width wires.
+    if d.capture.is_some() {
+        conns.extend(
+            [
+                ".cap_valid_0(cap_valid)",
+                ".cap_qc_0(cap_qc_w)",
+                ".cap_fine_0(cap_fine_w)",
+                ".cap_turns_0(cap_turns_w)",
+                ".cap_age_0(cap_age_w)",
+            ]
+            .map(String::from),
+        );
+        if d.velocity.is_some() {
+            conns.push(".cap_velocity_0(cap_vel_w)".into());
+        }
+    }
     // The rtl's optional outputs of the enabled blocks (`abz_a_0` ... with `[abz] enabled`).
     let block_ports: Vec<_> = crate::blocks::registry::enabled_ports(&loaded.config).collect();
     conns.extend(block_ports.iter().map(|p| format!(".{0}_0({0})", p.name)));
@@ -315,6 +343,14 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             tm => d.turns_width - 1,
             fm => f - 1,
             qb => d.quadrant_bits - 1,
+            cap => d.capture.is_some(),
+            cap_extra => if d.capture.is_some_and(|c| c.extrapolation().is_some()) {
+                " (extrapolated to the capture)"
+            } else {
+                ""
+            },
+            cap_turns => turns_expr(d).replace("turns", "cap_turns_w"),
+            cap_am => crate::blocks::capture::AGE_BITS - 1,
             ..vel_ctx
         },
     )?;

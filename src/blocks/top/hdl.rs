@@ -4,6 +4,7 @@ use crate::blocks::abz::hdl::AbzEmulator;
 use crate::blocks::adc::hdl::AdcController;
 use crate::blocks::biss::hdl::BissSlave;
 use crate::blocks::c32;
+use crate::blocks::capture::hdl::Capture;
 use crate::blocks::core::hdl::CoreRtl;
 use crate::blocks::correction::hdl::Correction;
 use crate::blocks::fallback::hdl::Fallback;
@@ -56,6 +57,7 @@ board_top! {
         }
         @optional_inputs {
             preset: Bit, 1, "position preset (`[reference] enabled`): a rising edge loads the preset count at the next sample";
+            capture: Bit, 1, "capture (`[capture] enabled`): a rising edge latches the position, the velocity and their age on cap_*";
         }
         @optional_outputs {
             par_velocity: Bits<64>, 64, "velocity (`[velocity] enabled`): `width`-bit two's complement in the low bits, held between strobes";
@@ -64,6 +66,12 @@ board_top! {
             abz_b: Bit, 1, "ABZ emulation (`[abz] enabled`): channel B";
             abz_z: Bit, 1, "ABZ emulation (`[abz] enabled`): index, one quarter A/B period at position 0";
             referenced: Bit, 1, "position referenced (`[reference] enabled`): 1 once homed on Z or preset";
+            cap_valid: Bit, 1, "capture strobe (`[capture] enabled`): one clock per capture taken";
+            cap_qc: Bits<32>, 32, "captured quadrant count (`[capture] enabled`), extrapolated with `extrapolate`";
+            cap_fine: Bits<32>, 32, "captured fine part (`[capture] enabled`)";
+            cap_turns: Bits<32>, 32, "captured turn count (`[capture] enabled`, M bits)";
+            cap_age: Bits<32>, 32, "captured age (`[capture] enabled`): clocks from the sample's CONV edge to the capture";
+            cap_velocity: Bits<64>, 64, "captured velocity (`[capture]` with `[velocity]`), as par_velocity";
         }
         /// The pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit): one instance or none.
         /// Without it the ADC converts from reset and owns `adc_sck`.
@@ -103,6 +111,11 @@ board_top! {
         reference: Vec<PositionReference>,
         /// See `rst_adc`: one per position reference.
         rst_ref: Vec<InitBit>,
+        /// The synchronous capture of the position every output takes (`[capture]
+        /// enabled`): one or none.
+        cap: Vec<Capture>,
+        /// See `rst_adc`: one per capture block.
+        rst_cap: Vec<InitBit>,
         /// The blocks' reset: `rst` one clock later, from a register per block (powered up
         /// asserted; [`BLOCK_RESET_CLOCKS`]). Timing: one register driving every block's
         /// reset flops was the auto-correction top's slowest net (`rst` -> `core`); a
@@ -212,7 +225,18 @@ impl TopRtl {
         let reference: Vec<PositionReference> =
             d.reference.iter().map(PositionReference::new).collect();
         let nref = reference.len();
+        let cap: Vec<Capture> = d.capture.iter().map(Capture::new).collect();
+        let ncap = cap.len();
         Ok(Self::from_parts(TopParts {
+            capture: ncap,
+            cap_valid: ncap,
+            cap_qc: ncap,
+            cap_fine: ncap,
+            cap_turns: ncap,
+            cap_age: ncap,
+            cap_velocity: ncap.min(nvel),
+            cap,
+            rst_cap: resets(ncap),
             preset: nref,
             referenced: nref,
             reference,
@@ -495,6 +519,37 @@ impl Logic for TopRtl {
             for j in 0..self.biss_slave.vel.len() {
                 self.biss_slave.vel[j].next = self.vel[i].out_velocity.val();
             }
+        }
+        // The synchronous capture (`[capture] enabled`) of the position every output takes
+        // and of the velocity estimate.
+        for i in 0..self.cap.len() {
+            self.cap[i].clk.next = self.clk.val();
+            self.rst_cap[i].clock.next = self.clk.val();
+            self.rst_cap[i].d.next = self.rst.val();
+            self.cap[i].rst.next = self.rst_cap[i].q.val();
+            self.cap[i].capture.next = self.capture[i].val();
+            self.cap[i].in_valid.next = self.core.out_valid.val();
+            self.cap[i].in_qc.next = self.core.out_qc.val();
+            self.cap[i].in_fine.next = self.core.out_fine.val();
+            self.cap[i].in_turns.next = self.core.out_turns.val();
+            for k in 0..self.reference.len() {
+                self.cap[i].in_valid.next = self.reference[k].out_valid.val();
+                self.cap[i].in_qc.next = self.reference[k].out_qc.val();
+                self.cap[i].in_fine.next = self.reference[k].out_fine.val();
+                self.cap[i].in_turns.next = self.reference[k].out_turns.val();
+            }
+            self.cap[i].in_velocity.next = bit_cast::<64, 32>(self.zero.val());
+            for k in 0..self.vel.len() {
+                self.cap[i].in_velocity.next = self.vel[k].out_velocity.val();
+            }
+            self.cap_valid[i].next = self.cap[i].out_valid.val();
+            self.cap_qc[i].next = self.cap[i].out_qc.val();
+            self.cap_fine[i].next = self.cap[i].out_fine.val();
+            self.cap_turns[i].next = self.cap[i].out_turns.val();
+            self.cap_age[i].next = self.cap[i].out_age.val();
+        }
+        for i in 0..self.cap_velocity.len() {
+            self.cap_velocity[i].next = self.cap[i].out_velocity.val();
         }
     }
 }

@@ -104,6 +104,7 @@ mod parts;
 
 use design::*;
 pub use design::{kalman_gains, lsq_coefficients, tracking_gains};
+pub use parts::VelMul;
 
 use crate::error::{Error, Result};
 

@@ -171,6 +171,10 @@ pub struct Config {
     /// (`crate::blocks::reference`).
     #[serde(default)]
     pub reference: crate::blocks::reference::ReferenceConfig,
+    /// Synchronous capture of the position, the velocity and their age
+    /// (`crate::blocks::capture`).
+    #[serde(default)]
+    pub capture: crate::blocks::capture::CaptureConfig,
 }
 
 /// `[velocity]`: velocity estimation from the decoded position (docs/velocity.md). Every key

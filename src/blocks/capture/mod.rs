@@ -1,0 +1,295 @@
+//! Synchronous capture: a rising edge of the `capture` input (a drive's PWM centre, say)
+//! latches the position every output takes, the velocity estimate, and the age of that
+//! position in clocks, from the CONV edge that sampled it to the capture. With
+//! `extrapolate` the position is carried forward to the capture instant by velocity x age.
+//!
+//! ```text
+//!  capture ─►[c1]─►[c2]─►[c3]   edge = c2 & !c3 (two synchronizer flops, edge register)
+//!                          │
+//!  in_valid ─┬─► held (hq, hf, ht) ───────────┐
+//!  in_qc/fine/turns ─┘                        │  latch at the edge
+//!  in_valid ──► since := L + 1 - 2, else +1 ──┤  (saturating, A bits): the held sample's
+//!               (ager := R since, up to H)    │   age at the synchronizer's input
+//!  in_velocity (held between strobes) ────────┤
+//!                                             ▼
+//!   without extrapolate:  out_* := held, age, velocity; out_valid one clock later
+//!   with extrapolate:     Start ─► Wait (n + 1) ─► Add ─► Wrap ─► out_*, out_valid
+//!                         VelMul: d = q(v ager / 2^(S + B))   (Booth, adds only)
+//!                         s = (hq 2^F + hf) + d, wrapped into [0, Q 2^F) with the turns
+//! ```
+//!
+//! # The age
+//! * In-valid comes L clocks after the CONV (chip-select) assertion edge that sampled its
+//!   sample: L = [`crate::blocks::top::hdl::conv_to_position_cycles`], the one derivation
+//!   `check`, `simulate` and the reference's Z tag use. With `in_valid` in clock v the
+//!   sample's CONV edge begins clock v - L.
+//! * `since` counts the clocks from that edge, less the synchronizer's
+//!   [`SYNC_CLOCKS`]: loaded with L + 1 - 2 after `in_valid`, incremented every clock,
+//!   saturating at 2^[`AGE_BITS`] - 1 (also its value from reset until the first sample).
+//! * A capture pin that rises in clock x is in `c1` from clock x + 1 and in `c2` from
+//!   x + 2, where the edge register `c3` still holds 0: the latch happens in clock x + 2
+//!   and reads since = (x + 2) - (v - L) - 2 = x - (v - L). So `age` is the number of clock
+//!   edges from the sampling CONV edge to the capture, and the capture instant lies in
+//!   [age, age + 1) clock periods after the sampling edge (plus the pins' own delays).
+//! * A sample that arrives in the two synchronizer clocks is the one latched, with its own
+//!   (smaller) age: it is always older than the capture, since L > 2.
+//! * An edge while an extrapolation is running ([`CaptureParams::busy_clocks`]) is ignored;
+//!   `out_valid` marks every capture taken.
+//!
+//! # Extrapolation (bit growth)
+//! The velocity v (`out_velocity` of `crate::blocks::velocity`) is in 2^-S position LSB per
+//! update period of D clocks, so the position moves by v age / (2^S D) LSB in `age` clocks.
+//! * R = round(2^B / D), |R / 2^B - 1 / D| <= 2^-(B+1); `ager` = R min(since, H) is kept
+//!   beside `since` (+R per clock, one adder), H = L + P the horizon (the oldest a sample
+//!   gets while the ADC runs, P its period): beyond it the position is carried H clocks.
+//! * d = q(v ager / 2^(S+B)) (round half up) by [`crate::blocks::velocity::VelMul`], the
+//!   estimator's own sequential multiplier (n + 1 clocks for n = ceil(Wb / 2) Booth digits).
+//! * Error against v age / (2^S D): the reciprocal's |v| 2^-S H 2^-(B+1) plus the rounding's
+//!   1/2. B = ceil(log2(2 Vmax H)) with Vmax = `max_output` / 2^S (LSB per period) keeps
+//!   the first below 1/4 LSB: |error| <= 3/4 LSB, bit-exact in the model and the RTL.
+//! * Widths: |v| < 2^(W-1) (W = the velocity's width, operand a); ager <= H R (operand b,
+//!   bits(H R) + 1); |d| <= Dmax = ceil(Vmax H / D) + 1 in bits(Dmax) + 2. Dmax must stay
+//!   below one turn, Q 2^F LSB, so that one wrap step suffices: s = p + d lies in
+//!   (-Q 2^F, 2 Q 2^F) in max(pw, bits(Dmax) + 2) + 2 bits (pw = position bits), then
+//!   s < 0 takes s + Q 2^F and turns - 1, s >= Q 2^F takes s - Q 2^F and turns + 1 (both
+//!   from the registered s, one adder each, then a select).
+//!
+//! # Latency
+//! `out_valid` comes [`CaptureParams::capture_latency`] clocks after the clock in which the
+//! pin rises: the two synchronizer clocks, then [`CaptureParams::busy_clocks`] (1 without
+//! extrapolation: the latch; n + 5 with it).
+//!
+//! # Ports
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clk`, `rst` | in | 1 | system clock; synchronous reset, active high |
+//! | `capture` | in | 1 | capture request (asynchronous: synchronized here) |
+//! | `in_valid`, `in_qc`, `in_fine`, `in_turns` | in | 1, 32 | the position every output takes |
+//! | `in_velocity` | in | 64 | the velocity estimate, held between strobes (0 without `[velocity]`) |
+//! | `out_valid` | out | 1 | one clock: a capture's values are on `out_*` |
+//! | `out_qc`, `out_fine`, `out_turns` | out | 32 | the captured (extrapolated) position |
+//! | `out_velocity` | out | 64 | the captured velocity |
+//! | `out_age` | out | 32 | clocks from the sample's CONV edge to the capture ([`AGE_BITS`] bits, saturating) |
+pub mod block;
+pub mod hdl;
+pub mod model;
+
+pub use block::{CaptureConfig, BLOCK};
+
+/// Synchronizer clocks of the `capture` input (two flops; the edge register follows).
+pub const SYNC_CLOCKS: u32 = 2;
+/// Bits of the age counter: it saturates at 2^24 - 1 clocks.
+pub const AGE_BITS: u32 = 24;
+
+/// [`crate::error::Error::BlockParams`] for this block.
+fn invalid(message: String) -> crate::error::Error {
+    crate::error::Error::block_params("capture", message)
+}
+
+/// Bits of the unsigned magnitude `v`.
+fn bits(v: u128) -> u32 {
+    128 - v.leading_zeros()
+}
+
+/// The extrapolation's constants (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Extrapolation {
+    /// H: the horizon in clocks.
+    pub horizon: u32,
+    /// R = round(2^B / D).
+    pub recip: u64,
+    /// B.
+    pub recip_bits: u32,
+    /// S + B: the multiplier's rounding shift.
+    pub shift: u32,
+    /// Width of operand a (the velocity's width W).
+    pub a_width: u32,
+    /// Width of operand b (ager, non-negative, with a sign bit).
+    pub b_width: u32,
+    /// Width of the product d (two's complement).
+    pub out_width: u32,
+    /// Dmax: the largest |d| at the decoder's maximum speed, LSB.
+    pub max_step: u64,
+}
+
+/// Parameters of [`hdl::Capture`] and [`model::CaptureModel`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct CaptureParams {
+    latency: u32,
+    period: u32,
+    quadrants_per_turn: u64,
+    fine_bits: u32,
+    turns_bits: u32,
+    velocity_width: u32,
+    extrapolation: Option<Extrapolation>,
+}
+
+impl CaptureParams {
+    /// `latency`: L, clocks from a CONV assertion edge to `in_valid` of its sample;
+    /// `period`: P, clocks between conversions; `quadrants_per_turn`: Q = 4 PPR (a multiple
+    /// of 4, at most 2^18); `fine_bits`: F (1..=16); `turns_bits`: M (0..=31); `velocity`:
+    /// the estimator's parameters when there is one; `extrapolate`: carry the position to
+    /// the capture (needs `velocity`).
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        latency: u32,
+        period: u32,
+        quadrants_per_turn: u64,
+        fine_bits: u32,
+        turns_bits: u32,
+        velocity: Option<&crate::blocks::velocity::VelocityParams>,
+        extrapolate: bool,
+    ) -> crate::error::Result<Self> {
+        if !(4..=1 << 18).contains(&quadrants_per_turn) || !quadrants_per_turn.is_multiple_of(4) {
+            return Err(invalid(format!(
+                "quadrants per turn {quadrants_per_turn} must be 4 * PPR in 4..=2^18"
+            )));
+        }
+        if !(1..=16).contains(&fine_bits) || turns_bits > 31 {
+            return Err(invalid(format!(
+                "fine bits {fine_bits} (allowed 1..=16) or turn bits {turns_bits} (allowed 0..=31)"
+            )));
+        }
+        if latency <= SYNC_CLOCKS || period == 0 || latency + period >= 1 << AGE_BITS {
+            return Err(invalid(format!(
+                "latency {latency} and period {period} clocks: the latency must exceed {SYNC_CLOCKS} and both fit the {AGE_BITS}-bit age"
+            )));
+        }
+        let extrapolation = match (velocity, extrapolate) {
+            (_, false) => None,
+            (None, true) => {
+                return Err(invalid(
+                    "extrapolation needs the velocity estimator ([velocity] enabled)".into(),
+                ))
+            }
+            (Some(v), true) => Some(Self::derive_extrapolation(
+                latency,
+                period,
+                quadrants_per_turn,
+                fine_bits,
+                v,
+            )?),
+        };
+        Ok(Self {
+            latency,
+            period,
+            quadrants_per_turn,
+            fine_bits,
+            turns_bits,
+            velocity_width: velocity.map_or(0, |v| v.spec.width),
+            extrapolation,
+        })
+    }
+
+    /// The extrapolation's constants for the estimator `v` (module docs).
+    fn derive_extrapolation(
+        latency: u32,
+        period: u32,
+        quadrants_per_turn: u64,
+        fine_bits: u32,
+        v: &crate::blocks::velocity::VelocityParams,
+    ) -> crate::error::Result<Extrapolation> {
+        let horizon = latency + period;
+        let d = v.period_clocks;
+        let s = v.spec.frac_bits;
+        // Vmax in LSB per update period (at least 1).
+        let vmax = (v.max_output as f64 / (1u64 << s) as f64).max(1.0);
+        let need = (2.0 * vmax * horizon as f64).log2().ceil() as u32;
+        let recip_bits = need.max(bits(d as u128) + 2);
+        if recip_bits > 62 {
+            return Err(invalid(format!(
+                "the reciprocal of the {d}-clock update period needs {recip_bits} bits: at most 62"
+            )));
+        }
+        let recip = ((1u128 << recip_bits) as f64 / d as f64).round() as u64;
+        let max_step = (vmax * horizon as f64 / d as f64).ceil() as u64 + 1;
+        let turn = quadrants_per_turn << fine_bits;
+        if max_step >= turn {
+            return Err(invalid(format!(
+                "at the maximum speed the position moves {max_step} LSB in the {horizon}-clock horizon: more than a turn ({turn} LSB)"
+            )));
+        }
+        let shift = s + recip_bits;
+        let b_width = bits(horizon as u128 * recip as u128) + 1;
+        let a_width = v.spec.width.max(shift + 1 - b_width.min(shift));
+        if a_width > 64 || b_width > 64 {
+            return Err(invalid(format!(
+                "multiplier operands of {a_width} and {b_width} bits: at most 64"
+            )));
+        }
+        Ok(Extrapolation {
+            horizon,
+            recip,
+            recip_bits,
+            shift,
+            a_width,
+            b_width,
+            out_width: bits(max_step as u128) + 2,
+            max_step,
+        })
+    }
+
+    /// L: clocks from a CONV assertion edge to `in_valid` of its sample.
+    pub fn latency(&self) -> u32 {
+        self.latency
+    }
+    /// P: clocks between conversions.
+    pub fn adc_period(&self) -> u32 {
+        self.period
+    }
+    /// Q = 4 PPR.
+    pub fn quadrants_per_turn(&self) -> u64 {
+        self.quadrants_per_turn
+    }
+    /// F: fine bits.
+    pub fn fine_bits(&self) -> u32 {
+        self.fine_bits
+    }
+    /// M: bits of the turn count.
+    pub fn turns_bits(&self) -> u32 {
+        self.turns_bits
+    }
+    /// Bits of the quadrant count.
+    pub fn quadrant_bits(&self) -> u32 {
+        64 - (self.quadrants_per_turn - 1).leading_zeros()
+    }
+    /// The block latches a velocity (the top has an estimator).
+    pub fn velocity(&self) -> bool {
+        self.velocity_width > 0
+    }
+    /// Width of the velocity word (0 without an estimator): the latch keeps these bits.
+    pub fn velocity_width(&self) -> u32 {
+        self.velocity_width
+    }
+    /// The extrapolation's constants, with `extrapolate`.
+    pub fn extrapolation(&self) -> Option<&Extrapolation> {
+        self.extrapolation.as_ref()
+    }
+    /// `since` after `in_valid`: L + 1 - [`SYNC_CLOCKS`].
+    pub fn since_load(&self) -> u64 {
+        (self.latency + 1 - SYNC_CLOCKS) as u64
+    }
+    /// Booth digits of the extrapolation's multiply (0 without).
+    pub fn mul_steps(&self) -> u32 {
+        self.extrapolation
+            .map_or(0, |e| crate::blocks::velocity::VelMul::steps(e.b_width))
+    }
+    /// Clocks from the latch to `out_valid`: 1 without extrapolation; with it the start,
+    /// n + 1 multiplier clocks, the add and the wrap (n + 5).
+    pub fn busy_clocks(&self) -> u32 {
+        match self.extrapolation {
+            None => 1,
+            Some(_) => self.mul_steps() + 5,
+        }
+    }
+    /// Clocks from the clock in which the pin rises to `out_valid`.
+    pub fn capture_latency(&self) -> u32 {
+        SYNC_CLOCKS + self.busy_clocks()
+    }
+    /// Bits of the sum s = p + d (module docs).
+    pub fn sum_bits(&self) -> u32 {
+        let pw = self.quadrant_bits() + self.fine_bits;
+        let ow = self.extrapolation.map_or(0, |e| e.out_width);
+        pw.max(ow) + 2
+    }
+}
