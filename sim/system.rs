@@ -310,7 +310,8 @@ pub struct CaptureRecord {
     pub age: u64,
     /// `cap_velocity` as a signed number (0 without `[velocity]`).
     pub velocity: i64,
-    /// The encoder's true electrical angle at `pin_cycle`, in fine LSB (unwrapped).
+    /// The encoder's true electrical angle when the pin rose (the pulse's start, in the
+    /// clock before `pin_cycle`), in fine LSB (unwrapped).
     pub truth: f64,
 }
 
@@ -618,8 +619,9 @@ pub struct System {
     capture: Vec<(f64, f64)>,
     /// The capture pin was high in the last cycle.
     capture_high: bool,
-    /// Cycles at which `capture` rose, not yet answered by `cap_valid`.
-    capture_pending: std::collections::VecDeque<u64>,
+    /// (cycle, seconds) at which `capture` rose, not yet answered by `cap_valid`: the first
+    /// cycle whose input has it high, and the pulse's own start.
+    capture_pending: std::collections::VecDeque<(u64, f64)>,
     /// The quadrature counter on the ABZ outputs (`[abz] enabled`).
     abz: Option<AbzCounter>,
     /// The BiSS-C master whose frames [`BissCheck`] checks.
@@ -1012,9 +1014,10 @@ impl System {
             self.top.set(I_QEP_Z, qz as u64);
             let preset = self.preset.is_some_and(|(a, b)| now >= a && now < b);
             self.top.set(I_PRESET, preset as u64);
-            let capture = self.capture.iter().any(|&(a, b)| now >= a && now < b);
-            if capture && !self.capture_high {
-                self.capture_pending.push_back(self.cycle);
+            let pulse = self.capture.iter().find(|&&(a, b)| now >= a && now < b);
+            let capture = pulse.is_some();
+            if let (Some(&(a, _)), false) = (pulse, self.capture_high) {
+                self.capture_pending.push_back((self.cycle, a));
             }
             self.capture_high = capture;
             self.top.set(I_CAPTURE, capture as u64);
@@ -1111,7 +1114,7 @@ impl System {
                 }
             }
             if self.top.get(O_CAP_VALID) != 0 {
-                let pin_cycle = self.capture_pending.pop_front().unwrap_or(0);
+                let (pin_cycle, rise) = self.capture_pending.pop_front().unwrap_or_default();
                 let qc = self.top.get(O_CAP_QC);
                 let pos = (qc << fine) | self.top.get(O_CAP_FINE);
                 let turns = if self.d.multiturn_bits == 0 {
@@ -1131,10 +1134,7 @@ impl System {
                     unwrapped: turns * qturn * (1i64 << fine) + pos as i64,
                     age: self.top.get(O_CAP_AGE),
                     velocity,
-                    truth: self
-                        .truth
-                        .electrical_angle(pin_cycle as f64 / self.clock_hz)
-                        * lsb_per_rad,
+                    truth: self.truth.electrical_angle(rise) * lsb_per_rad,
                 });
             }
             if let Some(v) = &self.d.velocity {

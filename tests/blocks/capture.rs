@@ -1,7 +1,7 @@
 //! Capture block: rust-hdl == model cycle for cycle, rust-hdl == Icarus == Verilator ==
 //! engine, and its behaviour against expectations written from the spec (the age from the
 //! sampling CONV to the capture, the held sample, the extrapolation within 3/4 LSB of
-//! velocity x age, its wrap into the turns, a capture while one runs being ignored).
+//! velocity x (age + 1/2), its wrap into the turns, a capture while one runs being ignored).
 use crate::common;
 use sinedec::blocks::capture::hdl::Capture;
 use sinedec::blocks::capture::model::{CaptureIn, CaptureModel, CaptureOut};
@@ -169,7 +169,8 @@ fn extrapolation_is_velocity_times_age_within_three_quarters_of_an_lsb() {
             };
             let base = unwrap(ins[h].qc, ins[h].fine, ins[h].turns);
             let got = unwrap(o.qc, o.fine, o.turns);
-            let want = base as f64 + vel as f64 / (1u64 << s) as f64 * age / d;
+            // Carried to the middle of the pin's clock: age + 1/2.
+            let want = base as f64 + vel as f64 / (1u64 << s) as f64 * (age + 0.5) / d;
             assert!(
                 (got as f64 - want).abs() <= 0.75,
                 "{tag} pin {x}: {got} vs {want:.3} (age {age})"

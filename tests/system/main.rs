@@ -7,6 +7,7 @@
 mod common;
 
 mod abz_top;
+mod capture_top;
 mod correction_fit_loop;
 mod e2e;
 mod engine;

@@ -109,7 +109,7 @@ fn describe(p: &CaptureParams, clock_hz: f64) -> String {
     );
     if let Some(e) = p.extrapolation() {
         s.push_str(&format!(
-            "capture extrapolation       position + velocity x age, within 3/4 LSB of the estimate's own motion up to {} clocks (R = {}, B = {}); at most {} LSB\n",
+            "capture extrapolation       position + velocity x (age + 1/2 clock), within 3/4 LSB of the estimate's own motion up to {} clocks (R = {}, B = {}); at most {} LSB\n",
             e.horizon, e.recip, e.recip_bits, e.max_step
         ));
     }

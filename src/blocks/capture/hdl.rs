@@ -78,7 +78,7 @@ pub struct Capture {
     ht: DFF<Bits<32>>,
     /// Clocks since the held sample's CONV edge, less the synchronizer's (saturating).
     since: DFF<Bits<32>>,
-    /// R min(since, H): the multiplier's operand b, counted beside `since`.
+    /// R min(since, H) + floor(R / 2): the multiplier's operand b, counted beside `since`.
     ager: DFF<Bits<64>>,
     state: DFF<CapState>,
     /// Multiplier clocks in `Multiply`, 0..n.
@@ -118,16 +118,17 @@ pub struct Capture {
     horizon: Constant<Bits<32>>,
     /// R.
     recip: Constant<Bits<64>>,
-    /// R (L + 1 - 2): `ager` after a sample.
+    /// R (L + 1 - 2) + floor(R / 2): `ager` after a sample.
     ager_load: Constant<Bits<64>>,
-    /// R H: `ager` after reset.
+    /// R H + floor(R / 2): `ager` after reset.
     ager_max: Constant<Bits<64>>,
     /// n: the multiplier's last clock in `Multiply`.
     steps: Constant<Bits<32>>,
     one: Constant<Bits<32>>,
-    one64: Constant<Bits<64>>,
     /// F.
     fshift: Constant<Bits<64>>,
+    /// t: the velocity's shift before the multiply.
+    vshift: Constant<Bits<64>>,
     /// Masks of the quadrant count, the fine part and the turn word.
     qmask: Constant<Bits<32>>,
     fmask: Constant<Bits<32>>,
@@ -209,12 +210,12 @@ impl Capture {
             load: c32(p.since_load()),
             horizon: c32(horizon),
             recip: c64(recip),
-            ager_load: c64(recip * p.since_load()),
-            ager_max: c64(recip * horizon),
+            ager_load: c64(p.ager_for(p.since_load())),
+            ager_max: c64(p.ager_for(u64::MAX)),
             steps: c32(p.mul_steps() as u64),
             one: c32(1),
-            one64: c64(1),
             fshift: c64(f as u64),
+            vshift: c64(e.map_or(0, |e| e.vshift as u64)),
             qmask: c32(mask(p.quadrant_bits())),
             fmask: c32(mask(f)),
             fmask64: c64(mask(f)),
@@ -242,12 +243,13 @@ impl Logic for Capture {
         self.c3.d.next = self.c2.q.val();
         self.cap_edge.next = self.c2.q.val() & !self.c3.q.val();
         self.vel.next = self.in_velocity.val() & self.vmask.val();
-        // The multiplier (with `extrapolate`): a = cv, b = cb, started in `Start`.
+        // The multiplier (with `extrapolate`): a = ager (cb), b = v' = cv >> t (its low bits
+        // are v' in two's complement), started in `Start`.
         self.prod.next = 0.into();
         for i in 0..self.mul.len() {
             self.mul[i].clk.next = self.clk.val();
-            self.mul[i].a.next = self.cv.q.val();
-            self.mul[i].b.next = self.cb.q.val();
+            self.mul[i].a.next = self.cb.q.val();
+            self.mul[i].b.next = self.cv.q.val() >> self.vshift.val();
             self.mul[i].start.next = self.state.q.val() == CapState::Start;
             self.prod.next = self.mul[i].p.val();
         }

@@ -39,16 +39,26 @@
 //! # Extrapolation (bit growth)
 //! The velocity v (`out_velocity` of `crate::blocks::velocity`) is in 2^-S position LSB per
 //! update period of D clocks, so the position moves by v age / (2^S D) LSB in `age` clocks.
-//! * R = round(2^B / D), |R / 2^B - 1 / D| <= 2^-(B+1); `ager` = R min(since, H) is kept
-//!   beside `since` (+R per clock, one adder), H = L + P the horizon (the oldest a sample
-//!   gets while the ADC runs, P its period): beyond it the position is carried H clocks.
-//! * d = q(v ager / 2^(S+B)) (round half up) by [`crate::blocks::velocity::VelMul`], the
-//!   estimator's own sequential multiplier (n + 1 clocks for n = ceil(Wb / 2) Booth digits).
-//! * Error against v age / (2^S D): the reciprocal's |v| 2^-S H 2^-(B+1) plus the rounding's
-//!   1/2. B = ceil(log2(2 Vmax H)) with Vmax = `max_output` / 2^S (LSB per period) keeps
-//!   the first below 1/4 LSB: |error| <= 3/4 LSB, bit-exact in the model and the RTL.
-//! * Widths: |v| < 2^(W-1) (W = the velocity's width, operand a); ager <= H R (operand b,
-//!   bits(H R) + 1); |d| <= Dmax = ceil(Vmax H / D) + 1 in bits(Dmax) + 2. Dmax must stay
+//! * The pin rose within the clock after `age` clock edges: the position is carried to
+//!   the middle of that clock, age + 1/2 clocks after the sampling edge, so that it is at
+//!   most half a clock's motion from the pin's instant.
+//! * R = round(2^B / D), |R / 2^B - 1 / D| <= 2^-(B+1); `ager` = R min(since, H) +
+//!   floor(R / 2) is kept beside `since` (+R per clock, one adder), H = L + P the horizon
+//!   (the oldest a sample gets while the ADC runs, P its period): beyond it the position is
+//!   carried H + 1/2 clocks.
+//! * v' = floor(v / 2^t), an arithmetic shift (wiring), and d = q(ager v' / 2^(S+B-t))
+//!   (round half up) by [`crate::blocks::velocity::VelMul`], the estimator's own
+//!   sequential multiplier (n + 1 clocks for n = ceil(Wb / 2) Booth digits of v').
+//! * Error against v (age + 1/2) / (2^S D), three parts: the rounding's 1/2; the shift's
+//!   floor, below 2^(t-S) (H + 1) / D <= 1/8 LSB with t = floor(log2(2^S D / (8 (H + 1))));
+//!   the reciprocal's, |ager - (age + 1/2) 2^B / D| <= (H + 2) / 2 gives |v| 2^-S (H + 2)
+//!   2^-(B+1) <= 1/8 LSB with B = ceil(log2(4 Vmax (H + 2))), Vmax = `max_output` / 2^S
+//!   (LSB per period). So |error| <= 3/4 LSB, bit-exact in the model and the RTL.
+//! * Widths: ager <= H R + R / 2 (operand a, bits(H R + R / 2) + 1); |v| <= `max_output`,
+//!   so v' fits min(bits(max_output) + 2, W) - t bits (operand b; W the velocity's width); |d| <= Dmax = ceil(Vmax (H + 1) / D)
+//!   + 1 in bits(Dmax) + 2. The multiplier's register, max(Wa, k + 1) + 3 + 2n bits
+//!   ([`crate::blocks::velocity::VelMul::register_bits`]), must fit the compiled engine's 64
+//!   (57 on the kit with the default velocity). Dmax must stay
 //!   below one turn, Q 2^F LSB, so that one wrap step suffices: s = p + d lies in
 //!   (-Q 2^F, 2 Q 2^F) in max(pw, bits(Dmax) + 2) + 2 bits (pw = position bits), then
 //!   s < 0 takes s + Q 2^F and turns - 1, s >= Q 2^F takes s - Q 2^F and turns + 1 (both
@@ -100,11 +110,13 @@ pub struct Extrapolation {
     pub recip: u64,
     /// B.
     pub recip_bits: u32,
-    /// S + B: the multiplier's rounding shift.
+    /// t: the velocity's arithmetic right shift before the multiply.
+    pub vshift: u32,
+    /// S + B - t: the multiplier's rounding shift.
     pub shift: u32,
-    /// Width of operand a (the velocity's width W).
+    /// Width of operand a (ager, non-negative, with a sign bit).
     pub a_width: u32,
-    /// Width of operand b (ager, non-negative, with a sign bit).
+    /// Width of operand b (the shifted velocity, two's complement).
     pub b_width: u32,
     /// Width of the product d (two's complement).
     pub out_width: u32,
@@ -194,7 +206,17 @@ impl CaptureParams {
         let s = v.spec.frac_bits;
         // Vmax in LSB per update period (at least 1).
         let vmax = (v.max_output as f64 / (1u64 << s) as f64).max(1.0);
-        let need = (2.0 * vmax * horizon as f64).log2().ceil() as u32;
+        // The velocity's pre-shift t: 2^(t-S) (H + 1) / D <= 1/8 LSB.
+        let room = (1u64 << s) as f64 * d as f64 / (8.0 * (horizon + 1) as f64);
+        let vshift = if room >= 1.0 {
+            room.log2().floor() as u32
+        } else {
+            0
+        };
+        let vbits = (bits(v.max_output as u128) + 2).min(v.spec.width);
+        let vshift = vshift.min(vbits.saturating_sub(2));
+        // The reciprocal's bits B: Vmax (H + 2) 2^-(B+1) <= 1/8 LSB.
+        let need = (4.0 * vmax * (horizon + 2) as f64).log2().ceil() as u32;
         let recip_bits = need.max(bits(d as u128) + 2);
         if recip_bits > 62 {
             return Err(invalid(format!(
@@ -202,25 +224,27 @@ impl CaptureParams {
             )));
         }
         let recip = ((1u128 << recip_bits) as f64 / d as f64).round() as u64;
-        let max_step = (vmax * horizon as f64 / d as f64).ceil() as u64 + 1;
+        let max_step = (vmax * (horizon + 1) as f64 / d as f64).ceil() as u64 + 1;
         let turn = quadrants_per_turn << fine_bits;
         if max_step >= turn {
             return Err(invalid(format!(
                 "at the maximum speed the position moves {max_step} LSB in the {horizon}-clock horizon: more than a turn ({turn} LSB)"
             )));
         }
-        let shift = s + recip_bits;
-        let b_width = bits(horizon as u128 * recip as u128) + 1;
-        let a_width = v.spec.width.max(shift + 1 - b_width.min(shift));
-        if a_width > 64 || b_width > 64 {
+        let shift = s + recip_bits - vshift;
+        let a_width = bits(horizon as u128 * recip as u128 + recip as u128 / 2) + 1;
+        let b_width = vbits - vshift;
+        let reg = crate::blocks::velocity::VelMul::register_bits(a_width, b_width, shift);
+        if reg > 64 {
             return Err(invalid(format!(
-                "multiplier operands of {a_width} and {b_width} bits: at most 64"
+                "the extrapolation's multiplier needs a {reg}-bit register (operands of {a_width} and {b_width} bits, shift {shift}); the compiled engine handles 64: use fewer velocity.frac_bits or extrapolate = false"
             )));
         }
         Ok(Extrapolation {
             horizon,
             recip,
             recip_bits,
+            vshift,
             shift,
             a_width,
             b_width,
@@ -268,6 +292,12 @@ impl CaptureParams {
     /// `since` after `in_valid`: L + 1 - [`SYNC_CLOCKS`].
     pub fn since_load(&self) -> u64 {
         (self.latency + 1 - SYNC_CLOCKS) as u64
+    }
+    /// `ager` for a `since` of `since`: R min(since, H) + floor(R / 2) (0 without
+    /// extrapolation).
+    pub fn ager_for(&self, since: u64) -> u64 {
+        self.extrapolation
+            .map_or(0, |e| e.recip * since.min(e.horizon as u64) + e.recip / 2)
     }
     /// Booth digits of the extrapolation's multiply (0 without).
     pub fn mul_steps(&self) -> u32 {

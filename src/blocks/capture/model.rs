@@ -124,11 +124,9 @@ impl CaptureModel {
         m
     }
 
-    /// R H: `ager` at the horizon (0 without extrapolation).
+    /// `ager` at the horizon (0 without extrapolation).
     fn ager_max(&self) -> u64 {
-        self.p
-            .extrapolation()
-            .map_or(0, |e| e.recip * e.horizon as u64)
+        self.p.ager_for(u64::MAX)
     }
 
     /// One clock edge with inputs `i`; returns the outputs after it.
@@ -161,7 +159,7 @@ impl CaptureModel {
             n.hf = i.fine & fm;
             n.ht = i.turns & tm;
             n.since = p.since_load();
-            n.ager = p.since_load() * p.extrapolation().map_or(0, |e| e.recip);
+            n.ager = p.ager_for(p.since_load());
         } else {
             if o.since != amax {
                 n.since = o.since + 1;
@@ -196,9 +194,10 @@ impl CaptureModel {
                 n.state = State::Start;
             }
             (State::Start, Some(e)) => {
-                // The multiply of (cv, cb), ready when the state reaches Add.
-                let a = sext(o.cv, e.a_width) as i128;
-                let b = sext(o.cb, e.b_width) as i128;
+                // The multiply of (ager, v'), ready when the state reaches Add.
+                let a = sext(o.cb, e.a_width) as i128;
+                let vs = (sext(o.cv, p.velocity_width()) >> e.vshift) as u64;
+                let b = sext(vs & mask(e.b_width), e.b_width) as i128;
                 let prod = crate::blocks::velocity::qround(a * b, e.shift);
                 n.prod = prod as u64 & mask(e.out_width);
                 n.mw = 0;

@@ -91,6 +91,12 @@ impl VelMul {
         }
     }
 
+    /// Bits of the register R = {hi, lo} for these operand widths and shift: H + 2n with
+    /// H = max(a_width, shift + 1) + 3 (the widest register of the multiplier).
+    pub fn register_bits(a_width: u32, b_width: u32, shift: u32) -> u32 {
+        a_width.max(2).max(shift + 1) + 3 + 2 * Self::steps(b_width)
+    }
+
     /// Booth digits n = ceil(b_width / 2): p is valid after edge start + n + 1.
     pub fn steps(b_width: u32) -> u32 {
         b_width.max(2).div_ceil(2)
