@@ -100,10 +100,19 @@ impl CapPlan {
     pub fn new(loaded: &Loaded, quick: bool) -> CapPlan {
         let limit = crate::simulate::followable_rpm(loaded);
         let n = if quick { 9 } else { 31 };
+        let accuracy_rpm = vec![nice(0.05 * limit), nice(0.3 * limit), nice(0.9 * limit)];
+        // The slow run covers one signal period (four on the full grid), within bounds.
+        let ppr = (loaded.derived.quadrants_per_turn as f64 / 4.0).max(1.0);
+        let period_s = 60.0 / (accuracy_rpm[0] * ppr).max(1e-9);
+        let measure_s = if quick {
+            period_s.clamp(1e-3, 10e-3)
+        } else {
+            (4.0 * period_s).clamp(5e-3, 40e-3)
+        };
         CapPlan {
             limit_rpm: limit,
-            accuracy_rpm: vec![nice(0.05 * limit), nice(0.3 * limit), nice(0.9 * limit)],
-            accuracy_s: CAP_SETTLE_S + if quick { 2.0e-3 } else { 20.0e-3 },
+            accuracy_rpm,
+            accuracy_s: CAP_SETTLE_S + measure_s,
             sweep_rpm: (0..n)
                 .map(|i| (limit * i as f64 / (n - 1) as f64).round())
                 .collect(),
@@ -569,10 +578,11 @@ fn figures(plan: &CapPlan, angles: &AngleErrors, sheet: &CapSheet) -> Result<Vec
                 ..Axis::new(MECH)
             },
             traces: vec![
-                Trace::new("max, with noise", Kind::Line, 0, pts(&|r| r.max_deg)),
-                Trace::new("RMS, with noise", Kind::Dashed, 0, pts(&|r| r.rms_deg)),
+                // The ideal encoder first: where the two agree, the noisy run is on top.
                 Trace::new("max, ideal encoder", Kind::Line, 2, pts(&|r| r.ideal_max_deg)),
                 Trace::new("RMS, ideal encoder", Kind::Dashed, 2, pts(&|r| r.ideal_rms_deg)),
+                Trace::new("max, with noise", Kind::Line, 0, pts(&|r| r.max_deg)),
+                Trace::new("RMS, with noise", Kind::Dashed, 0, pts(&|r| r.rms_deg)),
                 Trace::new(
                     "speed limit",
                     Kind::Dashed,

@@ -1,8 +1,10 @@
-//! The data sheet's HTML page: one file, its CSS (`page.css`, with print rules: A4, no
-//! figure split across pages) and a small self-check script (`selfcheck.js`: the size of
-//! every figure and every script or resource error, written into `#selfcheck` for the
-//! browser test) inline, the figures as inline SVG. Every number of a table carries
-//! `data-key`, the JSON pointer of the same number in `datasheet.json`.
+//! The data sheet's HTML page ([`html`] for the sinewave path, [`cap_html`] for the
+//! capacitive one, sharing the head, tables and resources section): one file, its CSS
+//! (`page.css`, with print rules: A4, no figure split across pages) and a small self-check
+//! script (`selfcheck.js`: the size of every figure and every script or resource error,
+//! written into `#selfcheck` for the browser test) inline, the figures as inline SVG. Every
+//! number of a table carries `data-key`, the JSON pointer of the same number in
+//! `datasheet.json`.
 use super::capacitive::CapSheet;
 use super::{Datasheet, Figure, Sheet};
 use crate::config::Loaded;
@@ -264,7 +266,11 @@ pub fn cap_html(loaded: &Loaded, ds: &Datasheet, s: &CapSheet) -> String {
             ("signal periods per turn", "periods_per_turn", 0),
             ("resolution (bits per turn)", "resolution_bits", 2),
             ("1 LSB (mechanical arc-seconds)", "lsb_arcsec", 4),
-            ("speed limit (rpm; the low-pass corner)", "speed_limit_rpm", 0),
+            (
+                "speed limit (rpm; the low-pass corner)",
+                "speed_limit_rpm",
+                0,
+            ),
             ("low-pass corner (Hz)", "lowpass_corner_hz", 0),
         ],
     );
