@@ -4,7 +4,7 @@
 //! number of the tables equals the one `datasheet.json` holds; the latency (and, for the
 //! capacitive path, the speed limit and sample rate) equal those `sinedec check` prints,
 //! and the measured errors sit where the decoder's design puts them. The capacitive page
-//! leaves out what its path lacks and says so.
+//! leaves out what its path lacks and says so, and a second run rewrites the same bytes.
 //!
 //! Chromium is a tool like Yosys: the test fails with the install command when it is
 //! missing (`scripts/test.sh` installs it).
@@ -107,12 +107,14 @@ fn check_number(config: Option<&Path>, label: &str) -> f64 {
 /// work directory, renders the page in headless Chromium and checks what every page
 /// must hold: no external asset, no error in the page, each of `want` among the figures,
 /// every figure drawn with a non-empty box, at least `min_cells` numbers in the tables and
-/// each equal to the JSON's to the digits printed. Returns the JSON, the cells and the HTML.
+/// each equal to the JSON's to the digits printed; with `same_bytes`, a second run of the
+/// same command rewrites the same bytes. Returns the JSON, the cells and the HTML.
 fn render_and_check(
     name: &str,
     config: Option<&Path>,
     want: &[&str],
     min_cells: usize,
+    same_bytes: bool,
 ) -> (Value, Vec<(String, String)>, String) {
     let browser = chromium();
     let dir = common::workdir(name);
@@ -128,6 +130,19 @@ fn render_and_check(
         "sinedec datasheet failed: {}",
         String::from_utf8_lossy(&run.stderr)
     );
+    if same_bytes {
+        // The same command again over its own files: the same bytes.
+        let first: Vec<Vec<u8>> = ["index.html", "datasheet.json"]
+            .iter()
+            .map(|f| std::fs::read(out.join(f)).expect("written"))
+            .collect();
+        let again = cmd.output().expect("sinedec datasheet runs again");
+        assert!(again.status.success());
+        for (f, want) in ["index.html", "datasheet.json"].iter().zip(&first) {
+            let got = std::fs::read(out.join(f)).expect("rewritten");
+            assert!(got == *want, "{f} differs between two runs of one command");
+        }
+    }
     let json: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("datasheet.json")).expect("JSON"))
             .expect("valid JSON");
@@ -197,6 +212,7 @@ fn the_default_page_renders_in_chromium_and_matches_its_json() {
         None,
         &["fig-angle", "fig-histogram", "fig-speed", "fig-lissajous"],
         40,
+        false,
     );
     let sweep = json["sweep"].as_array().expect("sweep");
     for i in 0..json["accuracy"].as_array().map_or(0, Vec::len) {
@@ -250,6 +266,7 @@ fn the_capacitive_page_renders_in_chromium_and_matches_its_json_and_check() {
             "fig-speed",
         ],
         40,
+        true,
     );
     assert_eq!(json["path"], "capacitive");
     // What does not apply is left out, and the page says so in one line.
@@ -258,9 +275,15 @@ fn the_capacitive_page_renders_in_chromium_and_matches_its_json_and_check() {
     }
     let na = json["not_applicable"].as_str().expect("not_applicable");
     for word in ["correction", "Lissajous", "QEP fallback", "velocity"] {
-        assert!(na.contains(word), "the page does not say {word} is left out");
+        assert!(
+            na.contains(word),
+            "the page does not say {word} is left out"
+        );
     }
-    assert!(html.contains(na), "the page does not carry the line of what it leaves out");
+    assert!(
+        html.contains(na),
+        "the page does not carry the line of what it leaves out"
+    );
     // Every row of every table is on the page.
     for (section, field) in [
         ("accuracy", "max_deg"),
@@ -288,7 +311,10 @@ fn the_capacitive_page_renders_in_chromium_and_matches_its_json_and_check() {
             .and_then(|r| r["cycles"].as_f64())
             .unwrap_or_else(|| panic!("no stage {name}"))
     };
-    assert_eq!(stage("CORDIC core"), check_number(c, "core latency in -> out"));
+    assert_eq!(
+        stage("CORDIC core"),
+        check_number(c, "core latency in -> out")
+    );
     assert_eq!(
         stage("CONV to par_valid"),
         stage("ADC, CONV to sample") + stage("filters and demodulation") + stage("CORDIC core")
@@ -297,11 +323,23 @@ fn the_capacitive_page_renders_in_chromium_and_matches_its_json_and_check() {
     // The sweep runs from standstill to the limit.
     let sweep = json["sweep"].as_array().expect("sweep");
     assert_eq!(sweep.first().and_then(|r| r["rpm"].as_f64()), Some(0.0));
-    assert_eq!(sweep.last().and_then(|r| r["rpm"].as_f64()), Some(limit.round()));
+    assert_eq!(
+        sweep.last().and_then(|r| r["rpm"].as_f64()),
+        Some(limit.round())
+    );
     // Every statistic is measured on a few hundred positions or more, and is finite.
-    for r in json["accuracy"].as_array().expect("accuracy").iter().chain(sweep) {
+    for r in json["accuracy"]
+        .as_array()
+        .expect("accuracy")
+        .iter()
+        .chain(sweep)
+    {
         let max = r["max_deg"].as_f64().expect("max");
-        assert!(max > 0.0 && max < 360.0, "max error at {}: {max} deg", r["rpm"]);
+        assert!(
+            max > 0.0 && max < 360.0,
+            "max error at {}: {max} deg",
+            r["rpm"]
+        );
     }
     for r in json["accuracy"].as_array().expect("accuracy") {
         assert!(r["samples"].as_f64().is_some_and(|n| n >= 400.0), "{r}");
