@@ -206,23 +206,31 @@ pub(crate) enum Command {
     },
     /// Characterizes the configured top in its closed loop and writes a data sheet page.
     ///
-    /// Runs `<name>_top` as `simulate` does (compiled engine, encoder and ADC chip models)
-    /// over a grid of operating points, in parallel on every core, with a progress bar:
-    /// error against electrical angle at three speeds before and after correction and its
-    /// histogram; max/RMS error against speed from standstill to 1.5 x the unwrap limit
-    /// (QEP fallback above it), ideal and with imperfections; the Lissajous figure of the
-    /// raw and corrected samples and, with `correction.mode = "auto"` or `"peak"`, the
-    /// coefficients against time; latency from CONV to each output and the sample rate
-    /// (the derivations `check` prints); the velocity estimator's noise against speed, step
-    /// and ramp response and lag; resources and post-route Fmax under the timing rule from
-    /// the caches `sinedec report` fills (or how to get them); the config, command and
-    /// version.
+    /// Runs `<name>_top` as `simulate` does (compiled engine, encoder and ADC chip models) over
+    /// a grid of operating points, in parallel on every core, with a progress bar: error
+    /// against electrical angle at three speeds before and after correction and its histogram;
+    /// max/RMS error against speed from standstill to 1.5 x the unwrap limit (QEP fallback
+    /// above it), ideal and with imperfections; the Lissajous figure of the raw and corrected
+    /// samples and, with `correction.mode = "auto"` or `"peak"`, the coefficients against time;
+    /// latency from CONV to each output and the sample rate (the derivations `check` prints);
+    /// the velocity estimator's noise against speed, step and ramp response and lag; resources
+    /// and post-route Fmax under the timing rule from the caches `sinedec report` fills (or how
+    /// to get them); the config, command and version.
     ///
-    /// Writes `DIR/index.html` (one file: inline SVG figures, inline CSS with print rules,
-    /// no external asset) and `DIR/datasheet.json` (every number of the page's tables).
-    /// DIR follows the output-directory rule of `generate`. Same config and command give
-    /// the same bytes. A `[capacitive]` config is refused before anything runs (the page
-    /// characterizes the sinewave decoder; `simulate` measures the capacitive path).
+    /// A `[capacitive]` config gets the capacitive path's page: the capacitive `<name>_top`
+    /// against the capacitive-encoder model, as `simulate` runs it, over a grid of speeds in
+    /// parallel: error in mechanical degrees and arc-seconds against the angle within the
+    /// signal period at three speeds and its histogram (with ADC noise); max/RMS error against
+    /// speed from standstill to the speed limit `check` prints (the low-pass corner), ideal and
+    /// with noise; the per-sample processing time and the sample rate (the derivation `check`
+    /// and `simulate` print); resources and Fmax as above; the config, command and version.
+    /// Correction, the Lissajous figure, the QEP fallback and velocity do not apply to that
+    /// path, and the page says so in one line.
+    ///
+    /// Writes `DIR/index.html` (one file: inline SVG figures, inline CSS with print rules, no
+    /// external asset) and `DIR/datasheet.json` (every number of the page's tables). DIR
+    /// follows the output-directory rule of `generate`. Same config and command give the same
+    /// bytes.
     Datasheet {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,

@@ -222,14 +222,13 @@ fn datasheet(config: Option<PathBuf>, output: PathBuf, force: bool, quick: bool)
     let mut opts = OutputOptions::new("datasheet");
     opts.force = force;
     let loaded = load(&config)?;
-    sinedec::datasheet::refuse_capacitive(&loaded)?;
     check_output_dir(&output, &opts)?;
     let o = sinedec::datasheet::Options {
         quick,
         command: command_line(),
         config_arg: config.as_ref().map(|c| c.display().to_string()),
     };
-    let total = sinedec::datasheet::Plan::new(&loaded, quick).total_cycles(&loaded);
+    let total = sinedec::datasheet::total_cycles(&loaded, quick);
     let bar = indicatif::ProgressBar::new(total);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cycles {eta}")

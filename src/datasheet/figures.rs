@@ -10,11 +10,12 @@ use crate::report::figure::{render, Axis, Figure as Plot, Kind, Trace};
 /// Points of a line.
 type Points = Vec<(f64, f64)>;
 
-const WIDE: (u32, u32) = (760, 380);
+pub(super) const WIDE: (u32, u32) = (760, 380);
 const SQUARE: (u32, u32) = (520, 480);
 const LSB: &str = "error (LSB = 2^-F quadrant)";
 
-fn fig(id: &str, caption: String, plot: Plot) -> Result<Figure> {
+/// A figure of the page: `plot` rendered under `id` and `caption`.
+pub(super) fn fig(id: &str, caption: String, plot: Plot) -> Result<Figure> {
     Ok(Figure {
         id: id.into(),
         caption,
@@ -23,7 +24,7 @@ fn fig(id: &str, caption: String, plot: Plot) -> Result<Figure> {
 }
 
 /// Min and max of `points` per 1-degree bin of x in 0..360: the envelope lines.
-fn envelope(points: &[(f64, f64)]) -> (Points, Points) {
+pub(super) fn envelope(points: &[(f64, f64)]) -> (Points, Points) {
     let mut lo = [f64::INFINITY; 360];
     let mut hi = [f64::NEG_INFINITY; 360];
     for &(x, y) in points {

@@ -5,15 +5,23 @@
 //! `generate` (`crate::emit::output`). Same config and command, same bytes: no time or
 //! path enters the page.
 //!
-//! The sinewave path only: a `[capacitive]` config is refused before anything runs (its
-//! closed loop measures mechanical degrees through filters, with none of the sinewave
-//! imperfections, correction, unwrap limit or outputs this page characterizes; `sinedec
-//! simulate` gives its figures).
+//! Two pages, by the config's path:
+//!
+//! ```text
+//!   sinewave    grid.rs, tables.rs, samples.rs, figures.rs -> page::html
+//!   capacitive  capacitive.rs (grid, tables, figures)      -> page::cap_html
+//! ```
+//!
+//! A `[capacitive]` config gets its own page ([`capacitive`]): error in mechanical degrees
+//! against angle and speed through the filters, processing time, resources; the sinewave
+//! page's correction, Lissajous figure, QEP fallback and velocity do not apply there, and
+//! the page says so in one line.
 use crate::config::Loaded;
 use crate::emit::{Generation, OutFile};
 use crate::error::{Error, Result};
 use serde::Serialize;
 
+pub mod capacitive;
 mod figures;
 pub mod grid;
 mod page;
@@ -47,46 +55,59 @@ pub struct Figure {
     pub svg: String,
 }
 
+/// The tables of either page (`datasheet.json` is the inner value as it is: no tag).
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum AnySheet {
+    /// The sinewave path's page.
+    Sinewave(Box<Sheet>),
+    /// The capacitive path's page.
+    Capacitive(Box<capacitive::CapSheet>),
+}
+
 /// A characterized decoder: the tables (also the JSON) and the figures.
 #[derive(Clone, Debug)]
 pub struct Datasheet {
     /// Every number of the page's tables.
-    pub sheet: Sheet,
+    pub sheet: AnySheet,
     /// The figures, in page order.
     pub figures: Vec<Figure>,
     /// The engine's fallback, if the compiled engine did not run (for stderr).
     pub engine_note: Option<String>,
 }
 
-/// The error for a `[capacitive]` config (see the module documentation).
-pub fn refuse_capacitive(loaded: &Loaded) -> Result<()> {
+/// Clock cycles of every run of the grid of `loaded` (the progress bar's length).
+pub fn total_cycles(loaded: &Loaded, quick: bool) -> u64 {
     if loaded.derived.capacitive.is_some() {
-        return Err(Error::Datasheet(format!(
-            "{}: a [capacitive] config; the data sheet characterizes the sinewave decoder (sin/cos \
-             imperfections, correction, unwrap limit and QEP fallback, BiSS-C/ABZ outputs), which \
-             this path does not have. Nothing was written. `sinedec simulate` measures the \
-             capacitive path (error in mechanical degrees, processing time)",
-            loaded.source_name
-        )));
+        capacitive::CapPlan::new(loaded, quick).total_cycles(loaded)
+    } else {
+        Plan::new(loaded, quick).total_cycles(loaded)
     }
-    Ok(())
 }
 
 /// Runs the grid of `opts` (`progress(cycles)` as the runs advance, from any thread) and
-/// builds the page's tables and figures.
+/// builds the page's tables and figures: the capacitive page for a `[capacitive]` config,
+/// else the sinewave page.
 pub fn build(
     loaded: &Loaded,
     opts: &Options,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Datasheet> {
-    refuse_capacitive(loaded)?;
+    if loaded.derived.capacitive.is_some() {
+        let (sheet, figures, engine_note) = capacitive::build(loaded, opts, progress)?;
+        return Ok(Datasheet {
+            sheet: AnySheet::Capacitive(Box::new(sheet)),
+            figures,
+            engine_note,
+        });
+    }
     let plan = Plan::new(loaded, opts.quick);
     let runs = plan.run(loaded, progress)?;
     let analysis = tables::analyse(loaded, &plan, &runs);
     let sheet = tables::sheet(loaded, opts, &plan, &runs, &analysis)?;
     let figures = figures::figures(&plan, &analysis, &sheet)?;
     Ok(Datasheet {
-        sheet,
+        sheet: AnySheet::Sinewave(Box::new(sheet)),
         figures,
         engine_note: runs.engine_note,
     })
@@ -103,7 +124,10 @@ impl Datasheet {
             files: vec![
                 OutFile {
                     name: "index.html".into(),
-                    text: page::html(loaded, self),
+                    text: match &self.sheet {
+                        AnySheet::Sinewave(s) => page::html(loaded, self, s),
+                        AnySheet::Capacitive(s) => page::cap_html(loaded, self, s),
+                    },
                 },
                 OutFile {
                     name: "datasheet.json".into(),

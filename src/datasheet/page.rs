@@ -1,8 +1,11 @@
-//! The data sheet's HTML page: one file, its CSS (`page.css`, with print rules: A4, no
-//! figure split across pages) and a small self-check script (`selfcheck.js`: the size of
-//! every figure and every script or resource error, written into `#selfcheck` for the
-//! browser test) inline, the figures as inline SVG. Every number of a table carries
-//! `data-key`, the JSON pointer of the same number in `datasheet.json`.
+//! The data sheet's HTML page ([`html`] for the sinewave path, [`cap_html`] for the
+//! capacitive one, sharing the head, tables and resources section): one file, its CSS
+//! (`page.css`, with print rules: A4, no figure split across pages) and a small self-check
+//! script (`selfcheck.js`: the size of every figure and every script or resource error,
+//! written into `#selfcheck` for the browser test) inline, the figures as inline SVG. Every
+//! number of a table carries `data-key`, the JSON pointer of the same number in
+//! `datasheet.json`.
+use super::capacitive::CapSheet;
 use super::{Datasheet, Figure, Sheet};
 use crate::config::Loaded;
 use serde_json::Value;
@@ -83,28 +86,43 @@ fn figure(n: &mut usize, f: &Figure) -> String {
     )
 }
 
-/// The page.
-pub fn html(loaded: &Loaded, ds: &Datasheet) -> String {
-    let s = &ds.sheet;
+/// The figures of `ds` whose id starts with `prefix`, numbered on from `n`.
+fn figs_html(ds: &Datasheet, prefix: &str, n: &mut usize) -> String {
+    ds.figures
+        .iter()
+        .filter(|f| f.id.starts_with(prefix))
+        .map(|f| figure(n, f))
+        .collect()
+}
+
+/// The document's head (title, self-check script, CSS) and the opening body tag.
+fn head(top: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>{top}: data sheet</title>\n<script>{SELFCHECK}</script>\n<style>{CSS}</style></head><body>\n"
+    )
+}
+
+/// The reproduce section and the end of the document.
+fn tail(command: &str, generator: &str, name: &str, hash: &str, text: &str, h: usize) -> String {
+    format!(
+        "<h2>{h}. Reproduce</h2>\n<p>Command: <code>{}</code>. Generator: {}. Config {} (hash {}):</p>\n<pre class=\"config\">{}</pre>\n<pre id=\"selfcheck\"></pre>\n</body></html>\n",
+        esc(command),
+        esc(generator),
+        esc(name),
+        esc(hash),
+        esc(text)
+    )
+}
+
+/// The sinewave page of `ds`, whose tables are `s`.
+pub fn html(loaded: &Loaded, ds: &Datasheet, s: &Sheet) -> String {
     let c = Cells {
         json: serde_json::to_value(s).unwrap_or(Value::Null),
     };
     let top = esc(&crate::emit::top_name(loaded));
     let mut n = 0;
-    let figs = |prefix: &str| -> Vec<&Figure> {
-        ds.figures
-            .iter()
-            .filter(|f| f.id.starts_with(prefix))
-            .collect()
-    };
-    let figs_html = |prefix: &str, n: &mut usize| -> String {
-        figs(prefix).iter().map(|f| figure(n, f)).collect()
-    };
-    let mut b = String::new();
-    let _ = write!(
-        b,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>{top}: data sheet</title>\n<script>{SELFCHECK}</script>\n<style>{CSS}</style></head><body>\n"
-    );
+    let figs_html = |prefix: &str, n: &mut usize| figs_html(ds, prefix, n);
+    let mut b = head(&top);
     let _ = writeln!(
         b,
         "<header><h1>{top}</h1><p class=\"sub\">Sine/cosine encoder decoder, characterized in its closed loop. Config {} (hash {}); {}{}.</p></header>",
@@ -209,18 +227,160 @@ pub fn html(loaded: &Loaded, ds: &Datasheet) -> String {
     b.push_str(&figs_html("fig-velocity", &mut n));
     // 6. Resources.
     b.push_str("<h2>6. Resources and timing</h2>\n");
-    b.push_str(&resources(&c, s));
+    b.push_str(&resources(&c, &s.resources));
     // 7. Reproduce.
-    let _ = write!(
+    b.push_str(&tail(
+        &s.command,
+        &s.generator,
+        &s.config_name,
+        &s.config_hash,
+        &s.config_text,
+        7,
+    ));
+    b
+}
+
+/// The capacitive page of `ds`, whose tables are `s` (`super::capacitive`).
+pub fn cap_html(loaded: &Loaded, ds: &Datasheet, s: &CapSheet) -> String {
+    let c = Cells {
+        json: serde_json::to_value(s).unwrap_or(Value::Null),
+    };
+    let top = esc(&crate::emit::top_name(loaded));
+    let mut n = 0;
+    let mut b = head(&top);
+    let _ = writeln!(
         b,
-        "<h2>7. Reproduce</h2>\n<p>Command: <code>{}</code>. Generator: {}. Config {} (hash {}):</p>\n<pre class=\"config\">{}</pre>\n",
-        esc(&s.command),
-        esc(&s.generator),
+        "<header><h1>{top}</h1><p class=\"sub\">Capacitive encoder decoder, characterized in its closed loop against the capacitive-encoder model. Config {} (hash {}); {}{}.</p></header>",
         esc(&s.config_name),
         esc(&s.config_hash),
-        esc(&s.config_text)
+        esc(&s.generator),
+        if s.quick { "; reduced grid (--quick)" } else { "" }
     );
-    b.push_str("<pre id=\"selfcheck\"></pre>\n</body></html>\n");
+    let rows = number_rows(
+        &c,
+        "/overview",
+        &[
+            ("system clock (MHz)", "clock_mhz", 3),
+            ("sample rate (samples/s, receiver)", "sample_rate_sps", 0),
+            ("carrier (Hz)", "carrier_hz", 0),
+            ("signal periods per turn", "periods_per_turn", 0),
+            ("resolution (bits per turn)", "resolution_bits", 2),
+            ("1 LSB (mechanical arc-seconds)", "lsb_arcsec", 4),
+            (
+                "speed limit (rpm; the low-pass corner)",
+                "speed_limit_rpm",
+                0,
+            ),
+            ("low-pass corner (Hz)", "lowpass_corner_hz", 0),
+        ],
+    );
+    b.push_str(&table(&["key figure", "value"], &rows));
+    let _ = writeln!(b, "<p class=\"note\">{}</p>", esc(&s.not_applicable));
+    // 1. Accuracy.
+    b.push_str("<h2>1. Accuracy</h2>\n<p>Error = decoded position - true mechanical position at par_valid, less its mean over the run (the filters' group delay is a constant lag at constant speed), in mechanical degrees and arc-seconds, as <code>sinedec simulate</code> prints it. Positions within the filters' settling window are not measured. Flagged: positions with <code>par_error</code> or <code>par_warning</code> set (the core's flags, or the filters' overflow and dropped-sample flags); they stay in the statistics. The runs with noise:</p>\n");
+    let rows = number_rows(
+        &c,
+        "/conditions",
+        &[
+            (
+                "<code>--amplitude (received, fraction of the ADC range)</code>",
+                "amplitude",
+                3,
+            ),
+            ("<code>--noise-lsb (RMS ADC LSB)</code>", "noise_lsb", 2),
+            ("<code>--seed</code>", "seed", 0),
+            ("settling window, not measured (ms)", "settle_ms", 2),
+        ],
+    );
+    b.push_str(&table(&["condition", "value"], &rows));
+    let rows = keyed_rows(
+        &c,
+        "accuracy",
+        s.accuracy.len(),
+        &[
+            ("rpm", 0),
+            ("samples", 0),
+            ("max_deg", 5),
+            ("rms_deg", 5),
+            ("max_arcsec", 2),
+            ("rms_arcsec", 2),
+            ("flagged", 0),
+        ],
+    );
+    b.push_str(&table(
+        &[
+            "speed (rpm)",
+            "positions",
+            "max (deg)",
+            "RMS (deg)",
+            "max (arc-s)",
+            "RMS (arc-s)",
+            "flagged",
+        ],
+        &rows,
+    ));
+    b.push_str(&figs_html(ds, "fig-angle", &mut n));
+    b.push_str(&figs_html(ds, "fig-histogram", &mut n));
+    // 2. Speed.
+    b.push_str("<h2>2. Error against speed</h2>\n");
+    b.push_str(&figs_html(ds, "fig-speed", &mut n));
+    let rows = keyed_rows(
+        &c,
+        "sweep",
+        s.sweep.len(),
+        &[
+            ("rpm", 0),
+            ("ideal_max_deg", 5),
+            ("ideal_rms_deg", 5),
+            ("max_deg", 5),
+            ("rms_deg", 5),
+            ("flagged", 0),
+        ],
+    );
+    b.push_str(&table(
+        &[
+            "speed (rpm)",
+            "ideal: max (deg)",
+            "ideal: RMS (deg)",
+            "noise: max (deg)",
+            "noise: RMS (deg)",
+            "flagged",
+        ],
+        &rows,
+    ));
+    // 3. Processing.
+    b.push_str("<h2>3. Processing time and sample rate</h2>\n<p>Per sample, from the derivation <code>sinedec check</code> and <code>sinedec simulate</code> print for this path.</p>\n");
+    let rows: Vec<String> = s
+        .processing
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            format!(
+                "<td>{}</td>{}{}<td class=\"note\">{}</td>",
+                esc(&r.stage),
+                c.num(&format!("/processing/{i}/cycles"), 0),
+                c.num(&format!("/processing/{i}/us"), 2),
+                esc(&r.note)
+            )
+        })
+        .collect();
+    b.push_str(&table(&["stage", "cycles", "us", "counted"], &rows));
+    let _ = writeln!(
+        b,
+        "<p>Sample rate {} samples/s (one receiver channel).</p>",
+        c.span("/overview/sample_rate_sps", 0)
+    );
+    // 4. Resources.
+    b.push_str("<h2>4. Resources and timing</h2>\n");
+    b.push_str(&resources(&c, &s.resources));
+    b.push_str(&tail(
+        &s.command,
+        &s.generator,
+        &s.config_name,
+        &s.config_hash,
+        &s.config_text,
+        5,
+    ));
     b
 }
 
@@ -328,8 +488,7 @@ fn velocity(c: &Cells, s: &Sheet) -> String {
     table(&["velocity", "value"], &rows)
 }
 
-fn resources(c: &Cells, s: &Sheet) -> String {
-    let r = &s.resources;
+fn resources(c: &Cells, r: &super::resources::Resources) -> String {
     let mut o = String::new();
     if r.luts.is_some() {
         let rows = [format!(

@@ -38,6 +38,10 @@ pub struct CapReport {
     pub engine: crate::sim::dut::EngineKind,
     /// Why that is not the engine asked for, if it is not (one line).
     pub engine_note: Option<String>,
+    /// The error statistics after the settling window (what the summary prints).
+    pub stats: crate::sim::cap_system::CapStats,
+    /// Every decoded position (empty when [`SimOptions::keep_records`] is off).
+    pub records: Vec<crate::sim::cap_system::CapRecord>,
 }
 
 /// [`run_capacitive_traced`] with the engine that ran.
@@ -167,5 +171,7 @@ pub fn run_capacitive_report(
         csv,
         engine,
         engine_note,
+        stats: s,
+        records: std::mem::take(&mut sys.records),
     })
 }
