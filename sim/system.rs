@@ -403,6 +403,23 @@ impl StreamStats {
     }
 }
 
+/// The captures of a run (`[capture] enabled`) against the encoder's angle at each pin.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CaptureStats {
+    /// Captures taken.
+    pub captures: usize,
+    /// Captures in the error figures: after the first sample of the statistics and, with
+    /// extrapolation, after the velocity estimator's warm-up.
+    pub counted: usize,
+    /// Smallest and largest age, clocks, over the captures after the first sample of the
+    /// statistics ((0, 0) when there is none).
+    pub age: (u64, u64),
+    /// Largest |captured - true angle at the pin|, fine LSB.
+    pub max_lsb: f64,
+    /// RMS of the same.
+    pub rms_lsb: f64,
+}
+
 /// Error statistics of a run, after a settling time.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ErrorStats {
@@ -431,6 +448,65 @@ impl SimResult {
             (None, Some(s)) => s.offset,
             (None, None) => 0.0,
         }
+    }
+
+    /// The captures against the encoder's angle at their pins (None without a capture):
+    /// the error of each is its unwrapped position less the true angle when the pin rose
+    /// and [`offset_lsb`](Self::offset_lsb), taken modulo the position's range as
+    /// [`error_lsb`](Self::error_lsb) does.
+    pub fn capture_stats(&self, d: &Derived) -> Option<CaptureStats> {
+        let c = d.capture.as_ref()?;
+        let start = match (self.records.first(), &self.streamed) {
+            (Some(r), _) => Some(r.cycle),
+            (None, Some(s)) => s.first.map(|r| r.cycle),
+            (None, None) => None,
+        };
+        // With extrapolation, the captures after the velocity's warm-up (as the velocity
+        // figures count it).
+        let warm = match (&d.velocity, c.extrapolation()) {
+            (Some(v), Some(_)) => {
+                let before = self
+                    .velocity
+                    .iter()
+                    .take_while(|r| start.is_some_and(|s| r.cycle <= s))
+                    .count();
+                self.velocity
+                    .get(before + v.warmup_updates() as usize)
+                    .map_or(u64::MAX, |r| r.cycle)
+            }
+            _ => 0,
+        };
+        let from = start.map_or(u64::MAX, |s| s.max(warm));
+        let offset = self.offset_lsb(d);
+        let range = d.quadrants_per_turn as f64
+            * (1u64 << d.fine_bits) as f64
+            * (1u64 << d.multiturn_bits) as f64;
+        let mut s = CaptureStats {
+            captures: self.captures.len(),
+            age: (u64::MAX, 0),
+            ..Default::default()
+        };
+        let mut sum2 = 0.0;
+        for k in &self.captures {
+            if start.is_some_and(|st| k.cycle >= st) {
+                s.age = (s.age.0.min(k.age), s.age.1.max(k.age));
+            }
+            if k.cycle < from {
+                continue;
+            }
+            let e = k.unwrapped as f64 - k.truth - offset;
+            let e = e - range * (e / range).round();
+            s.counted += 1;
+            s.max_lsb = s.max_lsb.max(e.abs());
+            sum2 += e * e;
+        }
+        if s.counted > 0 {
+            s.rms_lsb = (sum2 / s.counted as f64).sqrt();
+        }
+        if s.age.0 > s.age.1 {
+            s.age = (0, 0);
+        }
+        Some(s)
     }
 
     /// [`offset_lsb`](Self::offset_lsb) fixed by the record `first`.
@@ -615,8 +691,10 @@ pub struct System {
     qep_b_stuck: Option<(f64, f64)>,
     /// `preset` high from `.0` to `.1` seconds (`[reference] enabled`).
     preset: Option<(f64, f64)>,
-    /// `capture` high in each of these (from, to) seconds (`[capture] enabled`).
+    /// `capture` high in each of these (from, to) seconds (`[capture] enabled`), in order.
     capture: Vec<(f64, f64)>,
+    /// The first of `capture` that has not ended yet.
+    capture_next: usize,
     /// The capture pin was high in the last cycle.
     capture_high: bool,
     /// (cycle, seconds) at which `capture` rose, not yet answered by `cap_valid`: the first
@@ -671,6 +749,7 @@ impl System {
             qep_b_stuck: None,
             preset: None,
             capture: Vec::new(),
+            capture_next: 0,
             capture_high: false,
             capture_pending: std::collections::VecDeque::new(),
             biss: None,
@@ -707,9 +786,12 @@ impl System {
         self.preset = Some((from, to));
     }
 
-    /// Drives `capture` (`[capture] enabled`) high in each (from, to) interval, in seconds.
+    /// Drives `capture` (`[capture] enabled`) high in each (from, to) interval, in seconds
+    /// (sorted here by their start).
     pub fn capture_pulses(&mut self, pulses: &[(f64, f64)]) {
         self.capture = pulses.to_vec();
+        self.capture.sort_by(|a, b| a.0.total_cmp(&b.0));
+        self.capture_next = 0;
     }
 
     /// Keeps no records: the statistics are gathered as the samples come, leaving out the
@@ -1014,7 +1096,17 @@ impl System {
             self.top.set(I_QEP_Z, qz as u64);
             let preset = self.preset.is_some_and(|(a, b)| now >= a && now < b);
             self.top.set(I_PRESET, preset as u64);
-            let pulse = self.capture.iter().find(|&&(a, b)| now >= a && now < b);
+            while self
+                .capture
+                .get(self.capture_next)
+                .is_some_and(|&(_, b)| now >= b)
+            {
+                self.capture_next += 1;
+            }
+            let pulse = self
+                .capture
+                .get(self.capture_next)
+                .filter(|&&(a, b)| now >= a && now < b);
             let capture = pulse.is_some();
             if let (Some(&(a, _)), false) = (pulse, self.capture_high) {
                 self.capture_pending.push_back((self.cycle, a));

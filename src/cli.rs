@@ -55,41 +55,7 @@ pub(crate) enum Command {
         force: bool,
     },
     /// Simulates the board top cycle by cycle against encoder, ADC and amplifier models.
-    ///
-    /// Cycle-accurate simulation of `<name>_top` against an encoder model (imperfections,
-    /// speed profile `constant:RPM`, `ramp:FROM:TO:S`, `reversal:RPM:AT:OVER`, `creep`), an
-    /// LTC1407A-1 model answering the SPI frames and an LTC6912-1 model. Prints max/RMS error
-    /// in LSB and arc-seconds, sample rate, latency, flags, ADC protocol violations and
-    /// simulation speed, with a progress bar.
-    ///
-    /// On a `[capacitive]` config it runs `cap_top` against the capacitive encoder and a
-    /// 16-bit SPI ADC model and prints the error in mechanical degrees and the per-sample
-    /// processing time; the track imperfections
-    /// (`--offset-sin/--offset-cos/--gain-mismatch/--phase-error/--harmonic3`) do not apply
-    /// there and are rejected.
-    ///
-    /// The compiled engine runs by default: built from the Verilog of the same rust-hdl top
-    /// by Yosys and rustc, cached under `$SINEDEC_ENGINE_CACHE`, else
-    /// `$XDG_CACHE_HOME/sinedec/engine`, else `~/.cache/sinedec/engine` (empty or relative
-    /// values ignored, as the XDG specification says). A cached library is loaded only when
-    /// its bytes match the SHA-256 stored beside it; a damaged entry is rebuilt, and a cache
-    /// that cannot be written is said in one stderr line naming its path and variable while
-    /// the model is built in a temporary directory.
-    ///
-    /// Options are checked before the run: speeds finite within ±1,000,000 rpm, ramp and
-    /// reversal times > 0, `--amplitude` in (0, 1], `--noise-lsb` 0..=10000, offsets and
-    /// `--gain-mismatch` -1..=1, `--phase-error` -45..=45 degrees, `--harmonic3` -0.5..=0.5,
-    /// `--duration` (0, 10] s. A run with no decoded sample past the settling ones is an
-    /// error, and on the capacitive path a `--duration` within the filters' 1.5 ms settling
-    /// window is refused before the run. A profile faster than the decoder follows
-    /// (`check`'s max speed: the unwrap limit, on the capacitive path also the low-pass
-    /// corner) runs with a warning on stderr: its error figures measure a lost track.
-    /// Negative values may be written in scientific notation (`--offset-sin -1e-1`).
-    ///
-    /// Without `--csv` no decoded sample is kept (the statistics are gathered as they come),
-    /// so memory stays bounded however long the run.
     #[command(allow_negative_numbers = true)]
-
     ///
     /// Cycle-accurate simulation of `<name>_top` against an encoder model (imperfections,
     /// speed profile `constant:RPM`, `ramp:FROM:TO:S`, `reversal:RPM:AT:OVER`, `creep`) and
@@ -101,9 +67,11 @@ pub(crate) enum Command {
     /// `[spi]` an SPI master (mode 0) read at the same rate (slower where the slave's
     /// synchronizer or the round trip needs it) and their positions and turns are checked
     /// the same way; with `[abz]` a quadrature counter follows the A/B edges against the
-    /// position. Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags,
-    /// ADC protocol violations, the BiSS-C, SSI, SPI and ABZ checks and simulation speed,
-    /// with a progress bar.
+    /// position; with `[capture]` 1 us pulses on `capture` at `--capture-hz` (default 20
+    /// kHz) and each capture's age and position against the encoder's angle at the pin.
+    /// Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags, ADC
+    /// protocol violations, the BiSS-C, SSI, SPI, ABZ and capture checks and simulation
+    /// speed, with a progress bar.
     ///
     /// On a `[capacitive]` config it runs `cap_top` against the capacitive encoder and a
     /// 16-bit SPI ADC model and prints the error in mechanical degrees and the per-sample
@@ -122,7 +90,8 @@ pub(crate) enum Command {
     /// Options are checked before the run: speeds finite within ±1,000,000 rpm, ramp and
     /// reversal times > 0, `--amplitude` in (0, 1], `--noise-lsb` 0..=10000, offsets and
     /// `--gain-mismatch` -1..=1, `--phase-error` -45..=45 degrees, `--harmonic3`
-    /// -0.5..=0.5, `--duration` (0, 10] s. A run with no decoded sample past the settling
+    /// -0.5..=0.5, `--duration` (0, 10] s, `--capture-hz` (0, 100000] (with `[capture]`
+    /// only). A run with no decoded sample past the settling
     /// ones is an error, and on the capacitive path a `--duration` within the filters' 1.5
     /// ms settling window is refused before the run. A profile faster than the decoder
     /// follows (`check`'s max speed: the unwrap limit, on the capacitive path also the
@@ -281,6 +250,10 @@ pub(crate) struct SimulateArgs {
     /// Noise seed.
     #[arg(long, default_value_t = 1)]
     pub(crate) seed: u64,
+    /// With `[capture] enabled`: 1 us pulses on `capture` at this rate (default 20000, a
+    /// PWM frequency), the first one period after the start; rejected without `[capture]`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) capture_hz: Option<f64>,
     /// Write every decoded sample as CSV (checked before the simulation; the directory
     /// must exist; an existing file is replaced).
     #[arg(long)]

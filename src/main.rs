@@ -123,6 +123,7 @@ fn simulate(args: SimulateArgs) -> Result<()> {
         phase_error,
         harmonic3,
         seed,
+        capture_hz,
         csv,
         vcd,
         engine,
@@ -154,6 +155,7 @@ fn simulate(args: SimulateArgs) -> Result<()> {
         },
         // Without --csv no sample is kept: memory stays bounded on long runs.
         keep_records: csv.is_some(),
+        capture_hz,
         ..Default::default()
     };
     if let Some(w) = sinedec::simulate::speed_warning(&loaded, &o) {

@@ -365,6 +365,8 @@ pub fn port_timing(name: &str, input: bool, comment: &str) -> Option<(PortTiming
         ("enc_miso" | "enc_miso_oe", false) => (Out, "SPI slave"),
         (_, true) if by_prefix("qep_") => (Synchronized, "QEP comparator"),
         (_, false) if by_prefix("par_") => (Out, "Parallel bus"),
+        // The capture's results (`[capture] enabled`), registered in the block.
+        (_, false) if by_prefix("cap_") => (Out, "Synchronous capture"),
         (_, false) if crate::config::DESELECT_PINS.contains(&name) => (Static, "Deselect lines"),
         // A registered block's port (`crate::blocks::registry`): its outputs are registered,
         // its inputs enter through a synchronizer.

@@ -166,6 +166,24 @@ pub fn run_traced(
             o.duration_s,
         );
     }
+    match (&d.capture, o.capture_hz) {
+        (None, Some(hz)) => {
+            return Err(Error::option(
+                "--capture-hz",
+                format!("{hz}: this config has no capture input; set [capture] enabled = true"),
+            ))
+        }
+        (None, None) => {}
+        (Some(_), hz) => {
+            let hz = hz.unwrap_or(DEFAULT_CAPTURE_HZ);
+            let n = (o.duration_s * hz).floor() as usize;
+            let pulses: Vec<(f64, f64)> = (1..=n)
+                .map(|k| k as f64 / hz)
+                .map(|t| (t, t + CAPTURE_PULSE_S))
+                .collect();
+            sys.capture_pulses(&pulses);
+        }
+    }
     let engine = sys.engine();
     let engine_note = sys.engine_note().map(str::to_string);
     if let Some(out) = vcd {
@@ -268,6 +286,7 @@ impl SimReport {
             let _ = writeln!(o, "preamp gains read back      {gains}");
         }
         o.push_str(&self.velocity_summary(loaded));
+        o.push_str(&self.capture_summary(loaded));
         if let Some(b) = &r.biss {
             let _ = writeln!(
                 o,
@@ -307,6 +326,43 @@ impl SimReport {
             self.wall_s,
             self.engine.name()
         );
+        o
+    }
+
+    /// The capture lines of the summary (`[capture] enabled`; empty otherwise): the ages
+    /// and the captured positions against the encoder's angle at each pin.
+    fn capture_summary(&self, loaded: &Loaded) -> String {
+        let d = &loaded.derived;
+        let (Some(c), Some(s)) = (&d.capture, self.result.capture_stats(d)) else {
+            return String::new();
+        };
+        let ns = |a: u64| a as f64 * 1e9 / d.clock_hz;
+        let mut o = String::new();
+        let _ = writeln!(
+            o,
+            "captures                    {}: age {}..{} clocks = {:.0}..{:.0} ns from the sampling CONV edge",
+            s.captures,
+            s.age.0,
+            s.age.1,
+            ns(s.age.0),
+            ns(s.age.1)
+        );
+        let how = if c.extrapolation().is_some() {
+            "extrapolated by velocity x (age + 1/2 clock); after the velocity's warm-up"
+        } else {
+            "not extrapolated: the position trails by the motion during its age"
+        };
+        let _ = match s.counted {
+            0 => writeln!(
+                o,
+                "capture error at the pin    no capture counted yet ({how}); run longer"
+            ),
+            n => writeln!(
+                o,
+                "capture error at the pin    max {:.2} LSB, RMS {:.2} LSB over {n} captures ({how})",
+                s.max_lsb, s.rms_lsb
+            ),
+        };
         o
     }
 

@@ -35,7 +35,21 @@ pub struct SimOptions {
     /// Decoded samples skipped before the statistics (settling: the monitor reports a
     /// loss of signal until its window of good samples has passed after reset).
     pub skip: usize,
+    /// Rate of the pulses on `capture` (`[capture] enabled`; [`CAPTURE_PULSE_S`] wide,
+    /// the first one period after the start); None: [`DEFAULT_CAPTURE_HZ`] with
+    /// `[capture]`, none without.
+    pub capture_hz: Option<f64>,
 }
+
+/// `--capture-hz` when not given: a common PWM frequency.
+pub const DEFAULT_CAPTURE_HZ: f64 = 20_000.0;
+
+/// Width of each `capture` pulse of `simulate`, seconds.
+pub const CAPTURE_PULSE_S: f64 = 1e-6;
+
+/// Highest `--capture-hz`: 100 kHz, far above PWM rates (the pulses are listed up front:
+/// 10 s at 100 kHz is a million).
+pub const MAX_CAPTURE_HZ: f64 = 100_000.0;
 
 impl Default for SimOptions {
     fn default() -> Self {
@@ -53,6 +67,7 @@ impl Default for SimOptions {
             engine: Default::default(),
             keep_records: true,
             skip: 12,
+            capture_hz: None,
         }
     }
 }
@@ -153,6 +168,15 @@ impl SimOptions {
                 "-0.5..=0.5 (ratio)",
             ),
         ];
+        if let Some(hz) = self.capture_hz {
+            if !(hz.is_finite() && hz > 0.0 && hz <= MAX_CAPTURE_HZ) {
+                return bad(
+                    "--capture-hz",
+                    hz,
+                    &format!("0 < Hz <= {MAX_CAPTURE_HZ:.0} (1 us pulses)"),
+                );
+            }
+        }
         for (opt, v, lim, allowed) in track {
             if v.is_nan() || v.abs() > lim {
                 return bad(opt, v, allowed);

@@ -202,15 +202,17 @@ fn an_edge_while_an_extrapolation_runs_is_ignored() {
 
 #[test]
 fn four_way_cosimulation() {
+    // A 10-bit age (saturating at 1023) so that the sample gaps reach the saturation.
     for (extrapolate, tag, seed) in [(false, "cap_cosim_a", 5u64), (true, "cap_cosim_b", 6)] {
-        let p = params(extrapolate);
+        let p = params(extrapolate).with_age_bits(10).expect("age bits");
         let mut r = SplitMix64(seed);
         let mut ins = vec![];
         let mut pos: i64 = 8000 << F;
         let mut vel: i64 = 0;
         let mut cap = false;
         for k in 0..6000 {
-            let valid = r.unit() < 0.02;
+            // Samples every 50 clocks on average, none in 2000..3500 (the age saturates).
+            let valid = r.unit() < 0.02 && !(2000..3500).contains(&k);
             if valid {
                 pos += r.range(-3000, 3001);
             }
@@ -236,6 +238,10 @@ fn four_way_cosimulation() {
         }
         let out = run(&p, &ins, tag, Simulators::ALL);
         assert!(out.iter().filter(|o| o.valid).count() > 20, "{tag}");
+        assert!(
+            out.iter().any(|o| o.valid && o.age == mask(10)),
+            "{tag}: a capture saw the saturated age"
+        );
     }
 }
 

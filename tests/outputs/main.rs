@@ -12,6 +12,7 @@ mod abz_config;
 mod biss;
 mod biss_control;
 mod biss_corners;
+mod capture_config;
 mod parallel;
 mod reference_config;
 mod spi_slave;

@@ -95,15 +95,25 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
             "abz",
             "velocity",
             "reference",
+            "capture",
             "nco",
             "biquad",
             "capfront",
             "top"
         ]
     );
-    // The capacitive path's blocks, the ABZ emulator, the velocity estimator and the position
-    // reference while disabled, are absent from this sinewave config (no counts).
-    let cap = ["abz", "velocity", "reference", "nco", "biquad", "capfront"];
+    // The capacitive path's blocks, the ABZ emulator, the velocity estimator, the position
+    // reference and the capture while disabled, are absent from this sinewave config (no
+    // counts).
+    let cap = [
+        "abz",
+        "velocity",
+        "reference",
+        "capture",
+        "nco",
+        "biquad",
+        "capfront",
+    ];
     for b in blocks
         .iter()
         .filter(|b| cap.contains(&b["key"].as_str().unwrap()))

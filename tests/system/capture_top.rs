@@ -203,3 +203,56 @@ fn top_with_the_capture_replays_in_icarus_verilator_and_the_engine() {
     assert_eq!(t.rust_hdl.iter().filter(|row| row[v] == 1).count(), 3);
     assert!(outs.iter().any(|p| p.name == "cap_velocity_0"));
 }
+
+#[test]
+fn simulate_pulses_the_capture_and_reports_age_and_error() {
+    use sinedec::simulate::{run, SimOptions};
+    let l = config(DEFAULT_CONFIG, "[capture]\nenabled = true\n");
+    let d = &l.derived;
+    let o = SimOptions {
+        profile: Profile::Constant { rpm: 3000.0 },
+        duration_s: 200e-6,
+        capture_hz: Some(50_000.0),
+        engine: sinedec::sim::dut::EngineKind::RustHdl,
+        ..Default::default()
+    };
+    let r = run(&l, &o, |_, _| {}).expect("runs");
+    let s = r.result.capture_stats(d).expect("captures");
+    // Pulses at 20, 40, .. 200 us: 9 complete within the run (the 10th answers after it).
+    assert_eq!(s.captures, 9);
+    let lat = d.capture.expect("capture").latency() as u64;
+    let per = d.adc.period_clocks as u64;
+    assert!(s.age.0 >= lat - 1 && s.age.1 <= lat + per - 2, "{s:?}");
+    // Not extrapolated: each capture trails the pin by the motion during its age, at
+    // 3000 rpm 50.3 LSB per clock, so between (L - 1) and (L + P - 1) clocks of it, within
+    // the decoder's few LSB.
+    let per_clock =
+        3000.0 / 60.0 * d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64 / d.clock_hz;
+    assert!(
+        s.max_lsb > per_clock * (lat - 1) as f64 - 10.0
+            && s.max_lsb < per_clock * (lat + per) as f64 + 10.0,
+        "{s:?}"
+    );
+    let text = r.summary(&l);
+    assert!(
+        text.contains("captures                    9: age"),
+        "{text}"
+    );
+    assert!(text.contains("not extrapolated"), "{text}");
+    // Without [capture], --capture-hz is an error naming the option.
+    let plain = config(DEFAULT_CONFIG, "");
+    let e = run(&plain, &o, |_, _| {})
+        .err()
+        .expect("rejected")
+        .to_string();
+    assert!(e.contains("--capture-hz") && e.contains("[capture]"), "{e}");
+    let bad = SimOptions {
+        capture_hz: Some(0.0),
+        ..o
+    };
+    let e = run(&l, &bad, |_, _| {})
+        .err()
+        .expect("rejected")
+        .to_string();
+    assert!(e.contains("--capture-hz") && e.contains("100000"), "{e}");
+}

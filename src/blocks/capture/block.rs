@@ -1,6 +1,6 @@
 //! The capture block of the top: its config section `[capture]`, the parameters derived
 //! from it, its `check` lines, its report job and its registry entry ([`super::BLOCK`]).
-use super::{CaptureParams, AGE_BITS};
+use super::CaptureParams;
 use crate::blocks::registry::{BlockDef, BlockPort};
 use crate::blocks::top::ports::Dir;
 use crate::config::{Config, ErrFn, Loaded};
@@ -99,13 +99,14 @@ fn describe(p: &CaptureParams, clock_hz: f64) -> String {
     };
     let mut s = format!(
         "capture                     a rising edge of `capture` latches the {what} on cap_* ({} clocks = {:.0} ns later, cap_valid)\n\
-         capture age                 clocks from the sample's CONV edge to the capture: {} to {} while the ADC runs ({:.0} to {:.0} ns); saturates at 2^{AGE_BITS} - 1\n",
+         capture age                 clocks from the sample's CONV edge to the capture: {} to {} while the ADC runs ({:.0} to {:.0} ns); saturates at 2^{} - 1\n",
         p.capture_latency(),
         ns(p.capture_latency()),
         p.latency() - 1,
         p.latency() + p.adc_period() - 2,
         ns(p.latency() - 1),
         ns(p.latency() + p.adc_period() - 2),
+        p.age_bits(),
     );
     if let Some(e) = p.extrapolation() {
         s.push_str(&format!(

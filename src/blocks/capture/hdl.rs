@@ -8,7 +8,7 @@
 //! most: `since` and `ager` count from registers; the multiplier adds registers only; the
 //! sum adds two registers; the wrap's two adders start at the registered sum and a select
 //! follows them.
-use super::{CaptureParams, AGE_BITS};
+use super::CaptureParams;
 use crate::blocks::velocity::VelMul;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
@@ -78,7 +78,14 @@ pub struct Capture {
     ht: DFF<Bits<32>>,
     /// Clocks since the held sample's CONV edge, less the synchronizer's (saturating).
     since: DFF<Bits<32>>,
-    /// R min(since, H) + floor(R / 2): the multiplier's operand b, counted beside `since`.
+    /// `since` is saturated (since = 2^A - 1), registered beside it. Timing: keeps the
+    /// 24-bit compare off the since -> since path.
+    sat: DFF<Bit>,
+    /// since < H, registered beside it with `hleft` = H - since while it holds. Timing:
+    /// keeps the 24-bit compare off the since -> ager path (the capture top's slowest).
+    young: DFF<Bit>,
+    hleft: DFF<Bits<32>>,
+    /// R min(since, H) + floor(R / 2): the multiplier's operand a, counted beside `since`.
     ager: DFF<Bits<64>>,
     state: DFF<CapState>,
     /// Multiplier clocks in `Multiply`, 0..n.
@@ -99,8 +106,6 @@ pub struct Capture {
     ovel: DFF<Bits<64>>,
     oage: DFF<Bits<32>>,
     cap_edge: Signal<Local, Bit>,
-    /// since < H: `ager` still counts.
-    young: Signal<Local, Bit>,
     vel: Signal<Local, Bits<64>>,
     prod: Signal<Local, Bits<64>>,
     dext: Signal<Local, Bits<64>>,
@@ -114,8 +119,12 @@ pub struct Capture {
     amax: Constant<Bits<32>>,
     /// `since` after a sample: L + 1 - 2.
     load: Constant<Bits<32>>,
-    /// H.
-    horizon: Constant<Bits<32>>,
+    /// 2^A - 2: `since` saturates in the next clock.
+    amax1: Constant<Bits<32>>,
+    /// `hleft` after a sample: H - (L + 1 - 2).
+    hload: Constant<Bits<32>>,
+    /// Mask of `hleft` (bits(H - L + 1) bits), so its decrement and compare are narrow.
+    hmask: Constant<Bits<32>>,
     /// R.
     recip: Constant<Bits<64>>,
     /// R (L + 1 - 2) + floor(R / 2): `ager` after a sample.
@@ -197,7 +206,9 @@ impl Capture {
             ovel: Default::default(),
             oage: Default::default(),
             cap_edge: Default::default(),
+            sat: Default::default(),
             young: Default::default(),
+            hleft: Default::default(),
             vel: Default::default(),
             prod: Default::default(),
             dext: Default::default(),
@@ -206,9 +217,13 @@ impl Capture {
             sp: Default::default(),
             sel: Default::default(),
             extra: Constant::new(e.is_some()),
-            amax: c32(mask(AGE_BITS)),
+            amax: c32(mask(p.age_bits())),
             load: c32(p.since_load()),
-            horizon: c32(horizon),
+            amax1: c32(mask(p.age_bits()) - 1),
+            hload: c32(horizon.saturating_sub(p.since_load())),
+            hmask: c32(mask(
+                64 - horizon.saturating_sub(p.since_load()).leading_zeros(),
+            )),
             recip: c64(recip),
             ager_load: c64(p.ager_for(p.since_load())),
             ager_max: c64(p.ager_for(u64::MAX)),
@@ -234,8 +249,8 @@ impl Logic for Capture {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, c1, c2, c3, hq, hf, ht, since, ager, state, mw, cq, cf, ct, cage, cv, cb, s,
-            ov, oq, ofine, ot, ovel, oage
+            self, clk, c1, c2, c3, hq, hf, ht, since, sat, young, hleft, ager, state, mw, cq, cf,
+            ct, cage, cv, cb, s, ov, oq, ofine, ot, ovel, oage
         );
         // Synchronizer and edge register (no reset).
         self.c1.d.next = self.capture.val();
@@ -253,20 +268,26 @@ impl Logic for Capture {
             self.mul[i].start.next = self.state.q.val() == CapState::Start;
             self.prod.next = self.mul[i].p.val();
         }
-        // The held sample and its age.
-        self.young.next = self.since.q.val() < self.horizon.val();
+        // The held sample and its age; `sat` is since = 2^A - 1 and `young` since < H, each
+        // kept a clock ahead.
         if self.in_valid.val() {
             self.hq.d.next = self.in_qc.val() & self.qmask.val();
             self.hf.d.next = self.in_fine.val() & self.fmask.val();
             self.ht.d.next = self.in_turns.val() & self.tmask.val();
             self.since.d.next = self.load.val();
+            self.sat.d.next = false;
             self.ager.d.next = self.ager_load.val();
+            self.young.d.next = true;
+            self.hleft.d.next = self.hload.val();
         } else {
-            if self.since.q.val() != self.amax.val() {
+            if !self.sat.q.val() {
                 self.since.d.next = self.since.q.val() + self.one.val();
+                self.sat.d.next = self.since.q.val() == self.amax1.val();
             }
-            if self.young.val() {
+            if self.young.q.val() {
                 self.ager.d.next = self.ager.q.val() + self.recip.val();
+                self.hleft.d.next = (self.hleft.q.val() - self.one.val()) & self.hmask.val();
+                self.young.d.next = self.hleft.q.val() != self.one.val();
             }
         }
         // The sum p + sext(d) and its wrap into one turn.
@@ -338,6 +359,9 @@ impl Logic for Capture {
             self.hf.d.next = 0.into();
             self.ht.d.next = 0.into();
             self.since.d.next = self.amax.val();
+            self.sat.d.next = true;
+            self.young.d.next = false;
+            self.hleft.d.next = 0.into();
             self.ager.d.next = self.ager_max.val();
             self.state.d.next = CapState::Idle;
             self.mw.d.next = 0.into();

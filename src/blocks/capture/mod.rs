@@ -127,6 +127,7 @@ pub struct Extrapolation {
 /// Parameters of [`hdl::Capture`] and [`model::CaptureModel`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct CaptureParams {
+    age_bits: u32,
     latency: u32,
     period: u32,
     quadrants_per_turn: u64,
@@ -183,6 +184,7 @@ impl CaptureParams {
             )?),
         };
         Ok(Self {
+            age_bits: AGE_BITS,
             latency,
             period,
             quadrants_per_turn,
@@ -253,6 +255,22 @@ impl CaptureParams {
         })
     }
 
+    /// With an age counter of `bits` bits instead of [`AGE_BITS`] (tests reach its
+    /// saturation this way): it must hold L + P, and at most 31 bits.
+    pub fn with_age_bits(mut self, bits: u32) -> crate::error::Result<Self> {
+        if bits > 31 || (self.latency + self.period) as u64 >= 1u64 << bits {
+            return Err(invalid(format!(
+                "a {bits}-bit age cannot hold {} clocks (at most 31 bits)",
+                self.latency + self.period
+            )));
+        }
+        self.age_bits = bits;
+        Ok(self)
+    }
+    /// Bits of the age counter ([`AGE_BITS`] unless set by `with_age_bits`).
+    pub fn age_bits(&self) -> u32 {
+        self.age_bits
+    }
     /// L: clocks from a CONV assertion edge to `in_valid` of its sample.
     pub fn latency(&self) -> u32 {
         self.latency

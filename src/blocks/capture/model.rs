@@ -1,7 +1,7 @@
 //! Bit-accurate model of the capture block: the same registers as the RTL, updated once
 //! per clock edge; `step` returns what the outputs show after the edge. The multiplier is
 //! its result: q(v ager / 2^(S+B)) in the clock the RTL's Booth multiplier has it.
-use super::{CaptureParams, AGE_BITS};
+use super::CaptureParams;
 use crate::blocks::{mask, sext};
 
 /// Inputs of one clock cycle.
@@ -119,7 +119,7 @@ impl CaptureModel {
             p: *p,
             r: Regs::default(),
         };
-        m.r.since = mask(AGE_BITS);
+        m.r.since = mask(p.age_bits());
         m.r.ager = m.ager_max();
         m
     }
@@ -145,14 +145,14 @@ impl CaptureModel {
                 c1: n.c1,
                 c2: n.c2,
                 c3: n.c3,
-                since: mask(AGE_BITS),
+                since: mask(p.age_bits()),
                 ager: self.ager_max(),
                 ..Regs::default()
             };
             self.r = n;
             return n.out;
         }
-        let amax = mask(AGE_BITS);
+        let amax = mask(p.age_bits());
         // The held sample and its age.
         if i.valid {
             n.hq = i.qc & qm;
