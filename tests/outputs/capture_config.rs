@@ -118,10 +118,14 @@ fn bad_values_name_the_key_the_position_and_the_range() {
         "extrapolate = true",
         &["`capture.extrapolate`", "[velocity] enabled = true"],
     );
-    common::assert_config_error(
-        &with_capture("enabled = true\nextrapolate = 1"),
-        "extrapolate = 1",
-        &["`capture.extrapolate`"],
+    // A wrong type points at the value.
+    let text = with_capture("enabled = true\nextrapolate = 1");
+    let (line, col) = common::line_col(&text, "extrapolate = 1");
+    let e = Loaded::parse(&text, "bad.toml").unwrap_err().to_string();
+    let at = format!("bad.toml:{line}:{}: ", col + "extrapolate = ".len());
+    assert!(
+        e.starts_with(&at) && e.contains("`capture.extrapolate`"),
+        "{e}"
     );
     let e = Loaded::parse(&with_capture("enable = true"), "bad.toml")
         .unwrap_err()
