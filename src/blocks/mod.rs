@@ -33,6 +33,7 @@ pub mod preamp;
 pub mod qep;
 pub mod reference;
 pub mod registry;
+pub mod regmap;
 pub mod serial;
 pub mod spi_slave;
 pub mod ssi;

@@ -76,6 +76,10 @@ pub struct Derived {
     /// parameter file when disabled, like `abz`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub capture: Option<crate::blocks::capture::CaptureParams>,
+    /// Register map of the board top, when `[registers] enabled` (left out of the
+    /// parameter file when disabled, like `abz`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub registers: Option<crate::blocks::regmap::RegmapParams>,
     /// ADC sample width A.
     pub adc_width: u32,
     /// Capacitive path, when `[capacitive]` is present.

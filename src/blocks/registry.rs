@@ -105,6 +105,7 @@ pub const BLOCKS: &[&BlockDef] = &[
     &crate::blocks::velocity::BLOCK,
     &crate::blocks::reference::BLOCK,
     &crate::blocks::capture::BLOCK,
+    &crate::blocks::regmap::BLOCK,
     &crate::blocks::nco::BLOCK,
     &crate::blocks::biquad::BLOCK,
     &crate::blocks::capacitive::BLOCK,

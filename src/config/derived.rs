@@ -148,6 +148,7 @@ impl Derived {
             velocity,
             reference,
             capture: None,
+            registers: None,
             adc_width: a,
             capacitive,
             iterations: n,
@@ -183,6 +184,7 @@ impl Derived {
             derived.velocity.as_ref(),
             &err,
         )?;
+        derived.registers = crate::blocks::regmap::block::params(c, &derived, &err)?;
         Ok(derived)
     }
 

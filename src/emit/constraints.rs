@@ -367,6 +367,10 @@ pub fn port_timing(name: &str, input: bool, comment: &str) -> Option<(PortTiming
         (_, false) if by_prefix("par_") => (Out, "Parallel bus"),
         // The capture's results (`[capture] enabled`), registered in the block.
         (_, false) if by_prefix("cap_") => (Out, "Synchronous capture"),
+        // The register map's AXI4-Lite slave (`[registers] enabled`): synchronous to `clk`,
+        // its outputs registered.
+        (_, true) if by_prefix("s_axi_") => (SyncIn, "AXI4-Lite register map"),
+        (_, false) if by_prefix("s_axi_") => (Out, "AXI4-Lite register map"),
         (_, false) if crate::config::DESELECT_PINS.contains(&name) => (Static, "Deselect lines"),
         // A registered block's port (`crate::blocks::registry`): its outputs are registered,
         // its inputs enter through a synchronizer.

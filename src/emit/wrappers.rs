@@ -108,6 +108,28 @@ fn rst_comment(release: u32) -> String {
     )
 }
 
+/// The register map's AXI4-Lite ports of `<name>_top` (`[registers] enabled`): name,
+/// width, input.
+pub const REG_PORTS: [(&str, u32, bool); 17] = [
+    ("s_axi_awaddr", 8, true),
+    ("s_axi_awvalid", 1, true),
+    ("s_axi_awready", 1, false),
+    ("s_axi_wdata", 32, true),
+    ("s_axi_wstrb", 4, true),
+    ("s_axi_wvalid", 1, true),
+    ("s_axi_wready", 1, false),
+    ("s_axi_bresp", 2, false),
+    ("s_axi_bvalid", 1, false),
+    ("s_axi_bready", 1, true),
+    ("s_axi_araddr", 8, true),
+    ("s_axi_arvalid", 1, true),
+    ("s_axi_arready", 1, false),
+    ("s_axi_rdata", 32, false),
+    ("s_axi_rresp", 2, false),
+    ("s_axi_rvalid", 1, false),
+    ("s_axi_rready", 1, true),
+];
+
 /// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
 fn turns_expr(d: &crate::config::Derived) -> String {
     if d.multiturn_bits == 0 {
@@ -156,6 +178,9 @@ pub fn top_ports(loaded: &Loaded) -> Vec<(String, u32)> {
     ]);
     if d.capacitive.is_none() {
         v.extend(crate::blocks::registry::enabled_ports(&loaded.config).map(|p| one(p.name)));
+    }
+    if let (Some(_), false) = (&d.registers, d.capacitive.is_some()) {
+        v.extend(REG_PORTS.iter().map(|&(n, w, _)| (n.to_string(), w)));
     }
     if let (Some(_), false) = (&d.capture, d.capacitive.is_some()) {
         v.extend([
@@ -295,6 +320,32 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
         conns.push(".par_velocity_0(velocity)".into());
         conns.push(".par_velocity_valid_0(par_velocity_valid)".into());
     }
+    // The register map's AXI4-Lite ports (`[registers] enabled`): the rtl's words to the
+    // wrapper's narrower ports.
+    if d.registers.is_some() {
+        conns.extend(
+            [
+                ".s_axi_awaddr_0({24'd0, s_axi_awaddr})",
+                ".s_axi_awvalid_0(s_axi_awvalid)",
+                ".s_axi_wdata_0(s_axi_wdata)",
+                ".s_axi_wstrb_0({28'd0, s_axi_wstrb})",
+                ".s_axi_wvalid_0(s_axi_wvalid)",
+                ".s_axi_bready_0(s_axi_bready)",
+                ".s_axi_araddr_0({24'd0, s_axi_araddr})",
+                ".s_axi_arvalid_0(s_axi_arvalid)",
+                ".s_axi_rready_0(s_axi_rready)",
+                ".s_axi_awready_0(s_axi_awready)",
+                ".s_axi_wready_0(s_axi_wready)",
+                ".s_axi_bresp_0(axi_bresp_w)",
+                ".s_axi_bvalid_0(s_axi_bvalid)",
+                ".s_axi_arready_0(s_axi_arready)",
+                ".s_axi_rdata_0(s_axi_rdata)",
+                ".s_axi_rresp_0(axi_rresp_w)",
+                ".s_axi_rvalid_0(s_axi_rvalid)",
+            ]
+            .map(String::from),
+        );
+    }
     // The capture's outputs (`[capture] enabled`) to the wrapper's full-width wires.
     if d.capture.is_some() {
         conns.extend(
@@ -344,6 +395,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             fm => f - 1,
             qb => d.quadrant_bits - 1,
             cap => d.capture.is_some(),
+            regs => d.registers.is_some(),
             cap_extra => if d.capture.is_some_and(|c| c.extrapolation().is_some()) {
                 " (extrapolated to the capture)"
             } else {

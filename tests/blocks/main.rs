@@ -32,4 +32,5 @@ mod monitor;
 mod preamp;
 mod qep;
 mod reference;
+mod regmap;
 mod rtl_vs_model;

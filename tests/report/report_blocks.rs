@@ -96,6 +96,7 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
             "velocity",
             "reference",
             "capture",
+            "registers",
             "nco",
             "biquad",
             "capfront",
@@ -103,13 +104,14 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
         ]
     );
     // The capacitive path's blocks, the ABZ emulator, the velocity estimator, the position
-    // reference and the capture while disabled, are absent from this sinewave config (no
+    // reference, the capture and the register map while disabled, are absent from this sinewave config (no
     // counts).
     let cap = [
         "abz",
         "velocity",
         "reference",
         "capture",
+        "registers",
         "nco",
         "biquad",
         "capfront",

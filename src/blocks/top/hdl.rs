@@ -14,6 +14,7 @@ use crate::blocks::params::Derived;
 use crate::blocks::preamp::hdl::PreampSetup;
 use crate::blocks::qep::hdl::QepDecoder;
 use crate::blocks::reference::hdl::PositionReference;
+use crate::blocks::regmap::hdl::RegisterMap;
 use crate::blocks::spi_slave::hdl::SpiSlave;
 use crate::blocks::ssi::hdl::SsiSlave;
 use crate::blocks::velocity::hdl::Velocity;
@@ -58,6 +59,15 @@ board_top! {
         @optional_inputs {
             preset: Bit, 1, "position preset (`[reference] enabled`): a rising edge loads the preset count at the next sample";
             capture: Bit, 1, "capture (`[capture] enabled`): a rising edge latches the position, the velocity and their age on cap_*";
+            s_axi_awaddr: Bits<32>, 32, "AXI4-Lite write address (`[registers] enabled`), byte address";
+            s_axi_awvalid: Bit, 1, "AXI4-Lite write address valid";
+            s_axi_wdata: Bits<32>, 32, "AXI4-Lite write data";
+            s_axi_wstrb: Bits<32>, 32, "AXI4-Lite write byte strobes (4 bits)";
+            s_axi_wvalid: Bit, 1, "AXI4-Lite write data valid";
+            s_axi_bready: Bit, 1, "AXI4-Lite write response ready";
+            s_axi_araddr: Bits<32>, 32, "AXI4-Lite read address, byte address";
+            s_axi_arvalid: Bit, 1, "AXI4-Lite read address valid";
+            s_axi_rready: Bit, 1, "AXI4-Lite read data ready";
         }
         @optional_outputs {
             par_velocity: Bits<64>, 64, "velocity (`[velocity] enabled`): `width`-bit two's complement in the low bits, held between strobes";
@@ -72,6 +82,14 @@ board_top! {
             cap_turns: Bits<32>, 32, "captured turn count (`[capture] enabled`, M bits)";
             cap_age: Bits<32>, 32, "captured age (`[capture] enabled`): clocks from the sample's CONV edge to the capture";
             cap_velocity: Bits<64>, 64, "captured velocity (`[capture]` with `[velocity]`), as par_velocity";
+            s_axi_awready: Bit, 1, "AXI4-Lite write address ready (`[registers] enabled`)";
+            s_axi_wready: Bit, 1, "AXI4-Lite write data ready";
+            s_axi_bresp: Bits<32>, 32, "AXI4-Lite write response (always OKAY)";
+            s_axi_bvalid: Bit, 1, "AXI4-Lite write response valid";
+            s_axi_arready: Bit, 1, "AXI4-Lite read address ready";
+            s_axi_rdata: Bits<32>, 32, "AXI4-Lite read data";
+            s_axi_rresp: Bits<32>, 32, "AXI4-Lite read response (always OKAY)";
+            s_axi_rvalid: Bit, 1, "AXI4-Lite read data valid";
         }
         /// The pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit): one instance or none.
         /// Without it the ADC converts from reset and owns `adc_sck`.
@@ -116,6 +134,16 @@ board_top! {
         cap: Vec<Capture>,
         /// See `rst_adc`: one per capture block.
         rst_cap: Vec<InitBit>,
+        /// The AXI4-Lite register map (`[registers] enabled`): one or none.
+        regs: Vec<RegisterMap>,
+        /// See `rst_adc`: one per register map.
+        rst_regs: Vec<InitBit>,
+        /// The live flags the register map reads (FLAGS's bits): one per register map (a
+        /// Vec, so a top without one declares nothing).
+        rflags: Vec<Signal<Local, Bits<32>>>,
+        /// FLAGS's bits: LOS, CLIP, FULL_SCALE, OVERSPEED, QEP_MISMATCH, FALLBACK,
+        /// REFERENCED, ERROR, WARNING (none without a register map).
+        fl_bits: Vec<Constant<Bits<32>>>,
         /// The blocks' reset: `rst` one clock later, from a register per block (powered up
         /// asserted; [`BLOCK_RESET_CLOCKS`]). Timing: one register driving every block's
         /// reset flops was the auto-correction top's slowest net (`rst` -> `core`); a
@@ -227,7 +255,30 @@ impl TopRtl {
         let nref = reference.len();
         let cap: Vec<Capture> = d.capture.iter().map(Capture::new).collect();
         let ncap = cap.len();
+        let regs: Vec<RegisterMap> = d.registers.iter().map(RegisterMap::new).collect();
+        let nreg = regs.len();
         Ok(Self::from_parts(TopParts {
+            s_axi_awaddr: nreg,
+            s_axi_awvalid: nreg,
+            s_axi_wdata: nreg,
+            s_axi_wstrb: nreg,
+            s_axi_wvalid: nreg,
+            s_axi_bready: nreg,
+            s_axi_araddr: nreg,
+            s_axi_arvalid: nreg,
+            s_axi_rready: nreg,
+            s_axi_awready: nreg,
+            s_axi_wready: nreg,
+            s_axi_bresp: nreg,
+            s_axi_bvalid: nreg,
+            s_axi_arready: nreg,
+            s_axi_rdata: nreg,
+            s_axi_rresp: nreg,
+            s_axi_rvalid: nreg,
+            regs,
+            rst_regs: resets(nreg),
+            rflags: (0..nreg).map(|_| Default::default()).collect(),
+            fl_bits: (0..9 * nreg).map(|k| c32(1 << (k % 9))).collect(),
             capture: ncap,
             cap_valid: ncap,
             cap_qc: ncap,
@@ -401,6 +452,10 @@ impl Logic for TopRtl {
             self.reference[i].conv.next = self.adc.adc_conv.val();
             self.reference[i].z.next = self.qep_decoder.z_filt.val();
             self.reference[i].preset.next = self.preset[i].val();
+            // A PRESET write of the register map acts as the pin does.
+            for k in 0..self.regs.len() {
+                self.reference[i].preset.next = self.preset[i].val() | self.regs[k].preset.val();
+            }
             self.reference[i].in_valid.next = self.core.out_valid.val();
             self.reference[i].in_qc.next = self.core.out_qc.val();
             self.reference[i].in_fine.next = self.core.out_fine.val();
@@ -550,6 +605,92 @@ impl Logic for TopRtl {
         }
         for i in 0..self.cap_velocity.len() {
             self.cap_velocity[i].next = self.cap[i].out_velocity.val();
+        }
+        // The AXI4-Lite register map (`[registers] enabled`): the live flags, the position
+        // every output takes, the velocity, the index and the capture.
+        for i in 0..self.regs.len() {
+            self.regs[i].clk.next = self.clk.val();
+            self.rst_regs[i].clock.next = self.clk.val();
+            self.rst_regs[i].d.next = self.rst.val();
+            self.regs[i].rst.next = self.rst_regs[i].q.val();
+            self.regs[i].s_axi_awaddr.next = self.s_axi_awaddr[i].val();
+            self.regs[i].s_axi_awvalid.next = self.s_axi_awvalid[i].val();
+            self.regs[i].s_axi_wdata.next = self.s_axi_wdata[i].val();
+            self.regs[i].s_axi_wstrb.next = self.s_axi_wstrb[i].val();
+            self.regs[i].s_axi_wvalid.next = self.s_axi_wvalid[i].val();
+            self.regs[i].s_axi_bready.next = self.s_axi_bready[i].val();
+            self.regs[i].s_axi_araddr.next = self.s_axi_araddr[i].val();
+            self.regs[i].s_axi_arvalid.next = self.s_axi_arvalid[i].val();
+            self.regs[i].s_axi_rready.next = self.s_axi_rready[i].val();
+            self.s_axi_awready[i].next = self.regs[i].s_axi_awready.val();
+            self.s_axi_wready[i].next = self.regs[i].s_axi_wready.val();
+            self.s_axi_bresp[i].next = self.regs[i].s_axi_bresp.val();
+            self.s_axi_bvalid[i].next = self.regs[i].s_axi_bvalid.val();
+            self.s_axi_arready[i].next = self.regs[i].s_axi_arready.val();
+            self.s_axi_rdata[i].next = self.regs[i].s_axi_rdata.val();
+            self.s_axi_rresp[i].next = self.regs[i].s_axi_rresp.val();
+            self.s_axi_rvalid[i].next = self.regs[i].s_axi_rvalid.val();
+            self.rflags[i].next = self.zero.val();
+            if self.monitor.los.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[0].val();
+            }
+            if self.monitor.clip.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[1].val();
+            }
+            if self.monitor.full_scale.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[2].val();
+            }
+            if self.core.out_warning.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[3].val();
+            }
+            if self.fallback.mismatch.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[4].val();
+            }
+            if self.fallback.active.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[5].val();
+            }
+            for k in 0..self.reference.len() {
+                if self.reference[k].referenced.val() {
+                    self.rflags[i].next = self.rflags[i].val() | self.fl_bits[6].val();
+                }
+            }
+            if self.error.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[7].val();
+            }
+            if self.warning.val() {
+                self.rflags[i].next = self.rflags[i].val() | self.fl_bits[8].val();
+            }
+            self.regs[i].flags.next = self.rflags[i].val();
+            self.regs[i].amp_valid.next = self.core.out_mag_valid.val();
+            self.regs[i].amplitude.next = self.core.out_mag.val();
+            self.regs[i].qc.next = self.core.out_qc.val();
+            self.regs[i].fine.next = self.core.out_fine.val();
+            self.regs[i].turns.next = self.core.out_turns.val();
+            self.regs[i].index_qc.next = self.zero.val();
+            self.regs[i].index_turns.next = self.zero.val();
+            for k in 0..self.reference.len() {
+                self.regs[i].qc.next = self.reference[k].out_qc.val();
+                self.regs[i].fine.next = self.reference[k].out_fine.val();
+                self.regs[i].turns.next = self.reference[k].out_turns.val();
+                self.regs[i].index_qc.next = self.reference[k].index_qc.val();
+                self.regs[i].index_turns.next = self.reference[k].index_turns.val();
+            }
+            self.regs[i].velocity.next = bit_cast::<64, 32>(self.zero.val());
+            for k in 0..self.vel.len() {
+                self.regs[i].velocity.next = self.vel[k].out_velocity.val();
+            }
+            self.regs[i].cap_qc.next = self.zero.val();
+            self.regs[i].cap_fine.next = self.zero.val();
+            self.regs[i].cap_turns.next = self.zero.val();
+            self.regs[i].cap_velocity.next = bit_cast::<64, 32>(self.zero.val());
+            self.regs[i].cap_age.next = self.zero.val();
+            for k in 0..self.cap.len() {
+                self.regs[i].cap_qc.next = self.cap[k].out_qc.val();
+                self.regs[i].cap_fine.next = self.cap[k].out_fine.val();
+                self.regs[i].cap_turns.next = self.cap[k].out_turns.val();
+                self.regs[i].cap_velocity.next = self.cap[k].out_velocity.val();
+                self.regs[i].cap_age.next = self.cap[k].out_age.val();
+            }
         }
     }
 }

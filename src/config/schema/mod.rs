@@ -175,6 +175,9 @@ pub struct Config {
     /// (`crate::blocks::capture`).
     #[serde(default)]
     pub capture: crate::blocks::capture::CaptureConfig,
+    /// AXI4-Lite register map (`crate::blocks::regmap`).
+    #[serde(default)]
+    pub registers: crate::blocks::regmap::RegistersConfig,
 }
 
 /// `[velocity]`: velocity estimation from the decoded position (docs/velocity.md). Every key

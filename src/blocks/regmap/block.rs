@@ -1,0 +1,81 @@
+//! The register map as a block of the top: its config section `[registers]`, the
+//! parameters derived from it, its `check` lines, its report job and its registry entry
+//! ([`super::BLOCK`]).
+use super::{RegmapParams, ADDR_BITS, REGISTERS};
+use crate::blocks::registry::BlockDef;
+use crate::config::{Config, ErrFn, Loaded};
+use crate::error::Result;
+use crate::report::blocks::{job, BlockJob, BlockTiming};
+use serde::Deserialize;
+
+/// `[registers]`: an AXI4-Lite slave with the register map on `<name>_top`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegistersConfig {
+    /// Include the slave (default false: no logic, no ports).
+    #[serde(default)]
+    pub enabled: bool,
+}
+
+/// The registry entry: `[registers] enabled = true` adds the `s_axi_*` ports (fabric ports,
+/// like the parallel bus: no pins).
+pub const BLOCK: BlockDef = BlockDef {
+    key: "registers",
+    label: "register map (AXI4-Lite)",
+    section: "[registers] enabled = true",
+    enabled: |c| c.registers.enabled && c.capacitive.is_none(),
+    ports: &[],
+    io_group: "register map",
+    describe: |d| d.registers.as_ref().map(|_| describe()),
+    build: report_job,
+    timing_case: Some(
+        "[velocity]\nenabled = true\n\n[reference]\nenabled = true\n\n[capture]\nenabled = true\n\n[registers]\nenabled = true\n",
+    ),
+};
+
+/// `[registers]`: the block's parameters when enabled (None otherwise).
+pub fn params(c: &Config, d: &crate::config::Derived, err: &ErrFn) -> Result<Option<RegmapParams>> {
+    if !c.registers.enabled {
+        return Ok(None);
+    }
+    if c.capacitive.is_some() {
+        return Err(err(
+            "registers",
+            "enabled",
+            "the register map is built into the sinewave board top only; remove [registers] or set enabled = false with [capacitive]".into(),
+        ));
+    }
+    RegmapParams::new(
+        d.position_width,
+        d.fine_bits,
+        d.multiturn_bits,
+        d.velocity.as_ref().map_or(0, |v| v.spec.width),
+        d.reference.is_none(),
+    )
+    .map(Some)
+    .map_err(|e| err("registers", "enabled", e.detail()))
+}
+
+/// The `[registers]` lines of `check`.
+fn describe() -> String {
+    let names: Vec<&str> = REGISTERS.iter().map(|r| r.name).collect();
+    format!(
+        "registers                   AXI4-Lite slave s_axi_* ({ADDR_BITS}-bit byte addresses, 32-bit data): {} registers from 0x00 to 0x{:02x}: {}\n",
+        REGISTERS.len(),
+        REGISTERS.last().map_or(0, |r| r.address),
+        names.join(", ")
+    )
+}
+
+/// The report's row: the block synthesized alone.
+fn report_job(l: &Loaded) -> Result<BlockJob> {
+    let Some(p) = &l.derived.registers else {
+        return Ok(BlockJob::absent("registers", "needs [registers] enabled"));
+    };
+    job(
+        l,
+        "registers",
+        super::hdl::RegisterMap::new(p),
+        BlockTiming::latency(2, "address held, then read data"),
+    )
+}

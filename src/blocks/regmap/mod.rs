@@ -1,0 +1,421 @@
+//! Register map: an AXI4-Lite slave on `<name>_top` (`[registers] enabled = true`) with the
+//! decoder's status, latched faults, position, velocity, index, capture and preset, in one
+//! table ([`REGISTERS`]) from which the RTL's decode, the model, the SystemRDL, the JSON and
+//! the Markdown table all come.
+//!
+//! ```text
+//!  AW ─► [aw_full, aw_addr] ─┐                       ┌─► B: bvalid until bready
+//!  W ──► [w_full, w_data,   ─┴─ both held, no B ────►│   write: STATUS w1c, PRESET pulse
+//!         w_strb]                 pending: write     └──────────────────────────────
+//!  AR ─► [ar_full, ar_addr] ──► next clock: rdata := reg(ar_addr), rvalid until rready
+//!                                   reading POSITION latches TURNS, VELOCITY (shadows)
+//!  live flags ─► status |= faults (set wins over a clear in the same clock)
+//! ```
+//!
+//! # Protocol (AXI4-Lite, 32-bit data, byte addresses, [`ADDR_BITS`] bits)
+//! * Write: `s_axi_awready` = the address holder is empty, `s_axi_wready` = the data holder
+//!   is empty: either channel may come first, or both in the same clock. When both are held
+//!   and no response is pending, the write happens (byte strobes honoured on RW registers;
+//!   a W1C or WO register acts on the bits written with their strobe), both holders empty,
+//!   and `s_axi_bvalid` rises and stays until `s_axi_bready`. Every response is OKAY.
+//! * Read: `s_axi_arready` = no address held and no data pending. The address is held for a
+//!   clock, then `s_axi_rdata` is loaded and `s_axi_rvalid` stays until `s_axi_rready`.
+//!   Every response is OKAY; an address with no register reads 0.
+//! * Reads and writes are independent: a write and a read in the same clock both proceed.
+//! * Every output is a register (the ready signals are the holders' empty flags).
+//!
+//! # Registers
+//! See [`REGISTERS`] (and `docs/registers.md`). POSITION is the single-turn position every
+//! output takes, (quadrant count << F) | fine, at most 32 bits; reading it latches TURNS
+//! and VELOCITY in the same clock, so the three belong to one instant (read POSITION
+//! first). STATUS holds the faults latched since they were last cleared: a fault that is
+//! still present when it is cleared is set again in the next clock. Writing 1 to PRESET bit
+//! 0 gives the position reference's `preset` a one-clock pulse (as a rising edge of the
+//! `preset` pin).
+//!
+//! # Widths
+//! Turn counts are M-bit words sign-extended to 32 bits; velocities are the estimator's
+//! `width`-bit words sign-extended to 32 bits (or their low 32 bits when wider); the age is
+//! the capture's 24-bit count.
+pub mod block;
+pub mod hdl;
+pub mod model;
+
+pub use block::{RegistersConfig, BLOCK};
+
+/// Bits of the byte address (`s_axi_awaddr`, `s_axi_araddr`): 64 words.
+pub const ADDR_BITS: u32 = 8;
+
+/// `ID`: "SDEC" in ASCII.
+pub const ID: u32 = 0x5344_4543;
+
+/// How software may access a register.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Access {
+    /// Read only.
+    Ro,
+    /// Read and write.
+    Rw,
+    /// Read; writing 1 clears a bit.
+    W1c,
+    /// Write only (reads 0): a write acts at once.
+    Wo,
+}
+
+impl Access {
+    /// The JSON spelling.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Access::Ro => "ro",
+            Access::Rw => "rw",
+            Access::W1c => "w1c",
+            Access::Wo => "wo",
+        }
+    }
+}
+
+/// One field of a register (SystemRDL field; a register has at least one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Field {
+    /// Upper-case name.
+    pub name: &'static str,
+    /// Lowest bit.
+    pub lsb: u32,
+    /// Width in bits.
+    pub width: u32,
+    /// One line.
+    pub description: &'static str,
+}
+
+/// One register of the map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct RegDef {
+    /// Upper-case name.
+    pub name: &'static str,
+    /// Byte address.
+    pub address: u32,
+    /// Width in bits (32 for every register here).
+    pub width: u32,
+    /// Software access.
+    pub access: Access,
+    /// Value of the register's flip-flops after reset (0 for a live value: its source's).
+    pub reset: u32,
+    /// One line.
+    pub description: &'static str,
+    /// Its fields.
+    pub fields: &'static [Field],
+}
+
+const fn whole(name: &'static str, description: &'static str) -> [Field; 1] {
+    [Field {
+        name,
+        lsb: 0,
+        width: 32,
+        description,
+    }]
+}
+
+/// Bits of STATUS (latched faults) and their FLAGS twins (live), in bit order.
+pub const FAULTS: [Field; 5] = [
+    Field {
+        name: "LOS",
+        lsb: 0,
+        width: 1,
+        description: "loss of signal: the CORDIC magnitude stayed below monitor.min_amplitude for the monitor's window",
+    },
+    Field {
+        name: "CLIP",
+        lsb: 1,
+        width: 1,
+        description: "clipping: the CORDIC magnitude above the monitor's clip threshold",
+    },
+    Field {
+        name: "FULL_SCALE",
+        lsb: 2,
+        width: 1,
+        description: "an ADC code at full scale",
+    },
+    Field {
+        name: "OVERSPEED",
+        lsb: 3,
+        width: 1,
+        description: "a step of 1.75 quadrants or more between samples (the unwrap limit)",
+    },
+    Field {
+        name: "QEP_MISMATCH",
+        lsb: 4,
+        width: 1,
+        description: "the QEP fallback's count and the CORDIC's disagree",
+    },
+];
+
+/// FLAGS: the live flags (the faults of [`FAULTS`] at the same bits, then these).
+pub const FLAGS: [Field; 9] = [
+    FAULTS[0],
+    FAULTS[1],
+    FAULTS[2],
+    FAULTS[3],
+    FAULTS[4],
+    Field {
+        name: "FALLBACK",
+        lsb: 5,
+        width: 1,
+        description: "the position follows the QEP fallback",
+    },
+    Field {
+        name: "REFERENCED",
+        lsb: 6,
+        width: 1,
+        description: "the position is referenced (homed or preset); 1 without [reference]",
+    },
+    Field {
+        name: "ERROR",
+        lsb: 7,
+        width: 1,
+        description: "the error flag of the outputs",
+    },
+    Field {
+        name: "WARNING",
+        lsb: 8,
+        width: 1,
+        description: "the warning flag of the outputs",
+    },
+];
+
+/// Word index of POSITION (its read latches TURNS and VELOCITY).
+pub const POSITION_WORD: u32 = 5;
+/// Word index of STATUS.
+pub const STATUS_WORD: u32 = 2;
+/// Word index of PRESET.
+pub const PRESET_WORD: u32 = 10;
+
+/// The register map, in address order.
+pub const REGISTERS: &[RegDef] = &[
+    RegDef {
+        name: "ID",
+        address: 0x00,
+        width: 32,
+        access: Access::Ro,
+        reset: ID,
+        description: "identification: 0x53444543, \"SDEC\"",
+        fields: &whole("ID", "0x53444543"),
+    },
+    RegDef {
+        name: "VERSION",
+        address: 0x04,
+        width: 32,
+        access: Access::Ro,
+        reset: VERSION,
+        description: "sinedec version that generated the design: major << 16 | minor << 8 | patch",
+        fields: &whole("VERSION", "major << 16 | minor << 8 | patch"),
+    },
+    RegDef {
+        name: "STATUS",
+        address: 0x08,
+        width: 32,
+        access: Access::W1c,
+        reset: 0,
+        description: "faults latched since they were last cleared (write 1 to clear; a fault still present sets again)",
+        fields: &FAULTS,
+    },
+    RegDef {
+        name: "FLAGS",
+        address: 0x0c,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "live flags (not registered here: their values now)",
+        fields: &FLAGS,
+    },
+    RegDef {
+        name: "AMPLITUDE",
+        address: 0x10,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "the latest CORDIC magnitude (the monitor's units: |v| K_N 2^G)",
+        fields: &whole("AMPLITUDE", "CORDIC magnitude"),
+    },
+    RegDef {
+        name: "POSITION",
+        address: 0x14,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "single-turn position, 2^-F quadrant units; reading it latches TURNS and VELOCITY",
+        fields: &whole("POSITION", "(quadrant count << F) | fine"),
+    },
+    RegDef {
+        name: "TURNS",
+        address: 0x18,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "turn count latched by the last POSITION read, sign-extended",
+        fields: &whole("TURNS", "signed turn count"),
+    },
+    RegDef {
+        name: "VELOCITY",
+        address: 0x1c,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "velocity latched by the last POSITION read, as par_velocity, sign-extended (0 without [velocity])",
+        fields: &whole("VELOCITY", "2^-(F + frac_bits) quadrant per update period"),
+    },
+    RegDef {
+        name: "INDEX_POSITION",
+        address: 0x20,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "position of the last index (0 without [reference])",
+        fields: &whole("INDEX_POSITION", "(quadrant count << F), fine part 0"),
+    },
+    RegDef {
+        name: "INDEX_TURNS",
+        address: 0x24,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "turn count of the last index, sign-extended (0 without [reference])",
+        fields: &whole("INDEX_TURNS", "signed turn count"),
+    },
+    RegDef {
+        name: "PRESET",
+        address: 0x28,
+        width: 32,
+        access: Access::Wo,
+        reset: 0,
+        description: "write 1 to bit 0: the position reference loads its preset count at the next sample (no effect without [reference])",
+        fields: &[Field {
+            name: "PRESET",
+            lsb: 0,
+            width: 1,
+            description: "1: preset",
+        }],
+    },
+    RegDef {
+        name: "CAPTURE_POSITION",
+        address: 0x2c,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "position of the last capture (0 without [capture])",
+        fields: &whole("CAPTURE_POSITION", "(quadrant count << F) | fine"),
+    },
+    RegDef {
+        name: "CAPTURE_TURNS",
+        address: 0x30,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "turn count of the last capture, sign-extended (0 without [capture])",
+        fields: &whole("CAPTURE_TURNS", "signed turn count"),
+    },
+    RegDef {
+        name: "CAPTURE_VELOCITY",
+        address: 0x34,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "velocity at the last capture, sign-extended (0 without [capture] and [velocity])",
+        fields: &whole("CAPTURE_VELOCITY", "as VELOCITY"),
+    },
+    RegDef {
+        name: "CAPTURE_AGE",
+        address: 0x38,
+        width: 32,
+        access: Access::Ro,
+        reset: 0,
+        description: "clocks from the captured sample's CONV edge to the capture (0 without [capture])",
+        fields: &whole("CAPTURE_AGE", "clocks"),
+    },
+];
+
+/// The sinedec version as VERSION holds it: major << 16 | minor << 8 | patch (each part
+/// modulo 256), from the package version at compile time.
+pub const VERSION: u32 = {
+    let v = env!("CARGO_PKG_VERSION").as_bytes();
+    let mut parts = [0u32; 3];
+    let (mut i, mut k) = (0, 0);
+    while i < v.len() && k < 3 {
+        match v[i] {
+            b'.' => k += 1,
+            c @ b'0'..=b'9' => parts[k] = (parts[k] * 10 + (c - b'0') as u32) & 0xff,
+            _ => k = 3,
+        }
+        i += 1;
+    }
+    parts[0] << 16 | parts[1] << 8 | parts[2]
+};
+
+/// Parameters of [`hdl::RegisterMap`] and [`model::RegisterModel`]: the widths of the
+/// words it reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct RegmapParams {
+    fine_bits: u32,
+    turns_bits: u32,
+    velocity_width: u32,
+    referenced_always: bool,
+}
+
+impl RegmapParams {
+    /// F (1..=16), M (0..=31), the velocity's width (0 without one, else 8..=62), and
+    /// whether the position counts as referenced always (no position reference).
+    pub fn new(
+        position_bits: u32,
+        fine_bits: u32,
+        turns_bits: u32,
+        velocity_width: u32,
+        referenced_always: bool,
+    ) -> crate::error::Result<Self> {
+        if position_bits > 32 || !(1..=16).contains(&fine_bits) || turns_bits > 31 {
+            return Err(crate::error::Error::block_params(
+                "registers",
+                format!(
+                    "a {position_bits}-bit position (F = {fine_bits}, {turns_bits} turn bits): POSITION holds at most 32 bits"
+                ),
+            ));
+        }
+        Ok(Self {
+            fine_bits,
+            turns_bits,
+            velocity_width,
+            referenced_always,
+        })
+    }
+    /// F.
+    pub fn fine_bits(&self) -> u32 {
+        self.fine_bits
+    }
+    /// M.
+    pub fn turns_bits(&self) -> u32 {
+        self.turns_bits
+    }
+    /// The velocity's width (0: none).
+    pub fn velocity_width(&self) -> u32 {
+        self.velocity_width
+    }
+    /// FLAGS.REFERENCED is 1 always (no position reference).
+    pub fn referenced_always(&self) -> bool {
+        self.referenced_always
+    }
+    /// A turn word (M bits) sign-extended to 32 bits.
+    pub fn turns32(&self, t: u64) -> u32 {
+        if self.turns_bits == 0 {
+            0
+        } else {
+            crate::blocks::sext(t, self.turns_bits) as u32
+        }
+    }
+    /// A velocity word sign-extended to 32 bits (its low 32 bits when wider).
+    pub fn velocity32(&self, v: u64) -> u32 {
+        match self.velocity_width {
+            0 => 0,
+            w if w >= 32 => v as u32,
+            w => crate::blocks::sext(v, w) as u32,
+        }
+    }
+}

@@ -1,0 +1,438 @@
+//! Register map: an AXI4-Lite master with back-pressure drives the slave through every
+//! register; a protocol checker watches every clock (valid held until its handshake, the
+//! data stable meanwhile, OKAY responses, one response per request, in order); the values
+//! read are the ones the register table defines (written here from the table, not from the
+//! model); STATUS is write-1-to-clear with a present fault setting again, PRESET pulses,
+//! POSITION latches TURNS and VELOCITY. rust-hdl == model, and rust-hdl == Icarus ==
+//! Verilator == engine on the same traffic.
+use crate::common;
+use sinedec::blocks::mask;
+use sinedec::blocks::regmap::hdl::RegisterMap;
+use sinedec::blocks::regmap::model::{RegIn, RegOut, RegisterModel};
+use sinedec::blocks::regmap::{Access, RegmapParams, ID, REGISTERS, VERSION};
+use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::verify::{block_traces, Simulators};
+use std::collections::VecDeque;
+
+/// F = 14, M = 12, a 32-bit velocity, with a position reference.
+fn params() -> RegmapParams {
+    RegmapParams::new(27, 14, 12, 32, false).expect("params")
+}
+
+/// One AXI4-Lite request.
+#[derive(Clone, Copy, Debug)]
+enum Op {
+    /// Write (byte address, data, strobes).
+    Write(u64, u64, u64),
+    /// Read (byte address).
+    Read(u64),
+}
+
+/// The master and the checker: issues the requests with random gaps and random
+/// back-pressure on B and R, records each response, and checks the protocol.
+struct Master {
+    rng: SplitMix64,
+    aw: VecDeque<(u64, u64)>,
+    w: VecDeque<(u64, u64)>,
+    ar: VecDeque<u64>,
+    /// Requests started (for the order of responses).
+    writes: usize,
+    reads: usize,
+    /// Responses: B count, R data in order.
+    bs: usize,
+    rs: Vec<u64>,
+    /// The last clock's outputs (what the master sees before the next edge).
+    seen: RegOut,
+    /// The last clock's inputs, for the stability rules.
+    last: RegIn,
+    /// Probability of holding back a valid or a ready this clock.
+    stall: f64,
+}
+
+impl Master {
+    fn new(seed: u64, stall: f64) -> Self {
+        Self {
+            rng: SplitMix64(seed),
+            aw: VecDeque::new(),
+            w: VecDeque::new(),
+            ar: VecDeque::new(),
+            writes: 0,
+            reads: 0,
+            bs: 0,
+            rs: vec![],
+            seen: RegOut {
+                awready: true,
+                wready: true,
+                arready: true,
+                ..Default::default()
+            },
+            last: RegIn::default(),
+            stall,
+        }
+    }
+
+    fn push(&mut self, op: Op) {
+        match op {
+            Op::Write(a, d, s) => {
+                self.aw.push_back((a, 0));
+                self.w.push_back((d, s));
+                self.writes += 1;
+            }
+            Op::Read(a) => {
+                self.ar.push_back(a);
+                self.reads += 1;
+            }
+        }
+    }
+
+    fn idle(&self) -> bool {
+        self.aw.is_empty()
+            && self.w.is_empty()
+            && self.ar.is_empty()
+            && self.bs == self.writes
+            && self.rs.len() == self.reads
+    }
+
+    /// The master's signals for the next clock on top of the decoder's values in `base`.
+    fn drive(&mut self, base: RegIn) -> RegIn {
+        let mut i = base;
+        // A valid stays up until its handshake (AXI): once raised it is not withdrawn.
+        let go = |m: &mut Self, was: bool| was || m.rng.unit() >= m.stall;
+        if let Some(&(a, _)) = self.aw.front() {
+            i.awvalid = go(self, self.last.awvalid);
+            i.awaddr = a;
+        }
+        if let Some(&(d, s)) = self.w.front() {
+            i.wvalid = go(self, self.last.wvalid);
+            i.wdata = d;
+            i.wstrb = s;
+        }
+        if let Some(&a) = self.ar.front() {
+            i.arvalid = go(self, self.last.arvalid);
+            i.araddr = a;
+        }
+        i.bready = self.rng.unit() >= self.stall;
+        i.rready = self.rng.unit() >= self.stall;
+        i
+    }
+
+    /// After the edge: the handshakes of `i` (with the outputs seen before it), the new
+    /// outputs `o`, and the protocol rules.
+    fn observe(&mut self, i: &RegIn, o: &RegOut, clock: usize) {
+        let s = self.seen;
+        if i.awvalid && s.awready {
+            self.aw.pop_front();
+        }
+        if i.wvalid && s.wready {
+            self.w.pop_front();
+        }
+        if i.arvalid && s.arready {
+            self.ar.pop_front();
+        }
+        if s.bvalid && i.bready {
+            self.bs += 1;
+            assert!(self.bs <= self.writes, "clock {clock}: a B with no write");
+        }
+        if s.rvalid && i.rready {
+            self.rs.push(s.rdata);
+            assert!(
+                self.rs.len() <= self.reads,
+                "clock {clock}: an R with no read"
+            );
+        }
+        // A response stays valid, and its data stable, until its handshake.
+        if s.bvalid && !i.bready {
+            assert!(o.bvalid, "clock {clock}: bvalid dropped before bready");
+        }
+        if s.rvalid && !i.rready {
+            assert!(
+                o.rvalid && o.rdata == s.rdata,
+                "clock {clock}: rvalid or rdata changed before rready"
+            );
+        }
+        self.seen = *o;
+        self.last = *i;
+    }
+}
+
+/// Runs `ops` on the model over the decoder values `values(clock)` until every response is
+/// in: all issued at once (`concurrent`: writes and reads then overlap), or each once the
+/// one before has its response. Returns the inputs, the outputs and the read data in
+/// order.
+fn drive(
+    p: &RegmapParams,
+    ops: &[Op],
+    stall: f64,
+    seed: u64,
+    concurrent: bool,
+    values: impl Fn(usize) -> RegIn,
+) -> (Vec<RegIn>, Vec<RegOut>, Vec<u64>) {
+    let mut m = RegisterModel::new(p);
+    let mut master = Master::new(seed, stall);
+    let (mut ins, mut outs) = (vec![], vec![]);
+    // Reset for two clocks.
+    for k in 0..2 {
+        let i = RegIn {
+            rst: true,
+            ..values(k)
+        };
+        let o = m.step(i);
+        master.observe(&i, &o, k);
+        ins.push(i);
+        outs.push(o);
+    }
+    let mut todo: VecDeque<Op> = ops.iter().copied().collect();
+    let mut k = 2;
+    loop {
+        if concurrent {
+            while let Some(op) = todo.pop_front() {
+                master.push(op);
+            }
+        } else if master.idle() {
+            if let Some(op) = todo.pop_front() {
+                master.push(op);
+            }
+        }
+        if master.idle() && todo.is_empty() {
+            break;
+        }
+        assert!(k < 100_000, "the slave stopped answering");
+        let i = master.drive(values(k));
+        let o = m.step(i);
+        master.observe(&i, &o, k);
+        ins.push(i);
+        outs.push(o);
+        k += 1;
+    }
+    (ins, outs, master.rs)
+}
+
+/// The decoder's values: position (qc 1234, fine 567, turns -3), velocity -1000, index
+/// (qc 77, turns 5), capture (qc 8000, fine 16000, turns -1, velocity 2_000_000, age 250),
+/// amplitude 9999, live flags `flags`.
+fn values(flags: u64) -> RegIn {
+    RegIn {
+        flags,
+        amplitude: 9999,
+        qc: 1234,
+        fine: 567,
+        turns: (-3i64 as u64) & mask(12),
+        velocity: (-1000i64 as u64) & mask(32),
+        index_qc: 77,
+        index_turns: 5,
+        cap_qc: 8000,
+        cap_fine: 16000,
+        cap_turns: mask(12),
+        cap_velocity: 2_000_000,
+        cap_age: 250,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn every_register_reads_what_the_table_defines() {
+    let p = params();
+    // Read every register (and one address with none) with heavy back-pressure.
+    let mut ops: Vec<Op> = REGISTERS
+        .iter()
+        .map(|r| Op::Read(r.address as u64))
+        .collect();
+    ops.push(Op::Read(0xfc));
+    let live = 0b1_0100_0000; // WARNING, REFERENCED
+    let (_, _, rs) = drive(&p, &ops, 0.5, 1, true, |k| RegIn {
+        amp_valid: k == 2,
+        ..values(live)
+    });
+    let want = |name: &str| -> u32 {
+        let f = 14;
+        match name {
+            "ID" => ID,
+            "VERSION" => VERSION,
+            "STATUS" => 0,
+            "FLAGS" => live as u32,
+            "AMPLITUDE" => 9999,
+            "POSITION" => (1234 << f) | 567,
+            // TURNS and VELOCITY were latched by the POSITION read just before.
+            "TURNS" => -3i32 as u32,
+            "VELOCITY" => -1000i32 as u32,
+            "INDEX_POSITION" => 77 << f,
+            "INDEX_TURNS" => 5,
+            "PRESET" => 0,
+            "CAPTURE_POSITION" => (8000 << f) | 16000,
+            "CAPTURE_TURNS" => -1i32 as u32,
+            "CAPTURE_VELOCITY" => 2_000_000,
+            "CAPTURE_AGE" => 250,
+            other => panic!("no expectation for {other}"),
+        }
+    };
+    for (r, got) in REGISTERS.iter().zip(&rs) {
+        assert_eq!(
+            *got as u32,
+            want(r.name),
+            "{} at 0x{:02x}",
+            r.name,
+            r.address
+        );
+    }
+    assert_eq!(rs.last(), Some(&0), "an address with no register reads 0");
+    assert_eq!(VERSION, 0x000100, "0.1.0");
+}
+
+#[test]
+fn status_is_write_one_to_clear_and_a_present_fault_sets_again() {
+    let p = params();
+    let status = REGISTERS
+        .iter()
+        .find(|r| r.name == "STATUS")
+        .expect("STATUS");
+    assert_eq!(status.access, Access::W1c);
+    let a = status.address as u64;
+    // LOS (bit 0) and OVERSPEED (bit 3) pulse in clocks 0..4 (the first two in reset);
+    // QEP_MISMATCH (bit 4) stays.
+    let flags = |k: usize| {
+        let pulse = if k < 4 { 0b1001 } else { 0 };
+        pulse | 0b1_0000
+    };
+    let ops = [
+        Op::Read(a),
+        // Clear LOS only (byte 0, bit 0), then everything: QEP_MISMATCH sets again.
+        Op::Write(a, 0b0001, 0b0001),
+        Op::Read(a),
+        Op::Write(a, 0xffff_ffff, 0b1111),
+        Op::Read(a),
+        // A strobe that leaves byte 0 out clears nothing.
+        Op::Write(a, 0xffff_ffff, 0b1110),
+        Op::Read(a),
+    ];
+    let (_, _, rs) = drive(&p, &ops, 0.0, 2, false, |k| values(flags(k)));
+    // Each request after the one before: every read sees QEP_MISMATCH; LOS and OVERSPEED
+    // stay latched until cleared.
+    assert_eq!(rs[0] & 0x1f, 0b1_1001, "latched: {:#b}", rs[0]);
+    assert_eq!(rs[1] & 0x1f, 0b1_1000, "LOS cleared: {:#b}", rs[1]);
+    assert_eq!(
+        rs[2] & 0x1f,
+        0b1_0000,
+        "all cleared, QEP_MISMATCH set again"
+    );
+    assert_eq!(rs[3] & 0x1f, 0b1_0000);
+}
+
+#[test]
+fn preset_pulses_once_per_write_and_position_latches_turns_and_velocity() {
+    let p = params();
+    let ops = [
+        Op::Write(0x28, 1, 0b1111),
+        Op::Write(0x28, 0, 0b1111),
+        Op::Write(0x28, 1, 0b1111),
+    ];
+    let (_, outs, _) = drive(&p, &ops, 0.3, 3, false, |_| values(0));
+    assert_eq!(outs.iter().filter(|o| o.preset).count(), 2);
+    // POSITION read at turns -3 (its data loads in clock 3); the turns change to 9 from
+    // clock 4 on, before TURNS is read: it still reads -3.
+    let ops = [
+        Op::Read(0x14),
+        Op::Read(0x18),
+        Op::Read(0x14),
+        Op::Read(0x18),
+    ];
+    let (ins, _, rs) = drive(&p, &ops, 0.0, 4, false, |k| RegIn {
+        turns: if k < 4 { (-3i64 as u64) & mask(12) } else { 9 },
+        ..values(0)
+    });
+    let first_turns_read = ins
+        .iter()
+        .position(|i| i.arvalid && i.araddr == 0x18)
+        .expect("TURNS read");
+    assert!(first_turns_read >= 4, "TURNS is read after the change");
+    assert_eq!(rs[1] as u32, -3i32 as u32, "TURNS as of the POSITION read");
+    assert_eq!(rs[3], 9, "TURNS as of the second POSITION read");
+}
+
+#[test]
+fn a_write_and_a_read_in_the_same_clock_both_proceed() {
+    let p = params();
+    let ops = [Op::Write(0x08, 0x1f, 0xf), Op::Read(0x00)];
+    let (ins, _, rs) = drive(&p, &ops, 0.0, 5, true, |_| values(0));
+    let both = ins.iter().any(|i| i.awvalid && i.wvalid && i.arvalid);
+    assert!(both, "write address, data and read address in one clock");
+    assert_eq!(rs, vec![ID as u64]);
+    // Two writes back to back: the second's address may come while the first's B waits.
+    let ops = [Op::Write(0x28, 1, 1), Op::Write(0x28, 1, 1), Op::Read(0x04)];
+    let (_, outs, rs) = drive(&p, &ops, 0.6, 6, true, |_| values(0));
+    assert_eq!(outs.iter().filter(|o| o.preset).count(), 2);
+    assert_eq!(rs, vec![VERSION as u64]);
+}
+
+#[test]
+fn four_way_cosimulation() {
+    let p = params();
+    let mut r = SplitMix64(9);
+    let mut ops = vec![];
+    for _ in 0..300 {
+        let a = (r.range(0, 17) * 4) as u64;
+        if r.unit() < 0.5 {
+            ops.push(Op::Read(a));
+        } else {
+            ops.push(Op::Write(
+                a,
+                r.range(0, 1 << 31) as u64,
+                r.range(0, 16) as u64,
+            ));
+        }
+    }
+    let vals: Vec<RegIn> = (0..20_000)
+        .map(|k| {
+            let mut x = SplitMix64(k as u64 * 7 + 1);
+            RegIn {
+                rst: false,
+                flags: if x.unit() < 0.02 {
+                    x.range(0, 512) as u64
+                } else {
+                    0
+                },
+                amp_valid: x.unit() < 0.1,
+                amplitude: x.range(0, 1 << 30) as u64,
+                qc: (k as u64 / 37) & mask(13),
+                fine: (k as u64 * 13) & mask(14),
+                turns: (k as u64 / 500) & mask(12),
+                velocity: (x.range(-100_000, 100_000) as u64) & mask(32),
+                index_qc: (k as u64 / 300) & mask(13),
+                index_turns: 4095,
+                cap_qc: 5,
+                cap_fine: 6,
+                cap_turns: 4090,
+                cap_velocity: (-77i64 as u64) & mask(32),
+                cap_age: 300,
+                ..Default::default()
+            }
+        })
+        .collect();
+    let (ins, model, _) = drive(&p, &ops, 0.4, 10, true, |k| vals[k % vals.len()]);
+    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row()).collect();
+    let dir = common::workdir("regmap_cosim");
+    let t = block_traces(
+        RegisterMap::new(&p),
+        "regmap_cosim",
+        "clk",
+        &rows,
+        Simulators::ALL,
+        &dir,
+    )
+    .expect("simulators ran");
+    for (k, (r, m)) in t.rust_hdl.iter().zip(&model).enumerate() {
+        assert_eq!(r, &m.row(), "row {k}: rust-hdl vs model");
+    }
+    if let Some(m) = t.mismatch() {
+        panic!("{m}");
+    }
+}
+
+#[test]
+fn the_table_is_in_address_order_without_gaps_in_the_words() {
+    for (k, r) in REGISTERS.iter().enumerate() {
+        assert_eq!(r.address, 4 * k as u32, "{}", r.name);
+        assert_eq!(r.width, 32);
+        let bits: u32 = r.fields.iter().map(|f| f.width).sum();
+        assert!(bits <= 32 && r.fields.iter().all(|f| f.lsb + f.width <= 32));
+    }
+}
