@@ -6,7 +6,8 @@ use super::*;
 // tracker and its mode, then the registers' commit, reset and the outputs.
 crate::blocks::logic_stages!(Fallback: Capture, Compare, Track, Commit);
 
-/// The capture at the CONV rise, the tracker's motion between conversions and the load.
+/// The capture at each conversion start (the sampling edge), the tracker's motion between
+/// conversions and the load.
 impl stages::Capture for Fallback {
     #[hdl_gen]
     fn update(&mut self) {
