@@ -308,3 +308,64 @@ fn shipped_dual_sar_adc_configs_decode_and_read_back_end_to_end() {
         }
     }
 }
+
+/// The chip-select ADCs above the unwrap limit, where the QEP fallback loads the core's
+/// counter at every sample: the QEP count it loads must be the one at the sample's own
+/// conversion start, the chip select's fall (src/blocks/fallback/hdl.rs, `capture_depth`
+/// and `conv_inverted`). It used to be captured at the CONV pin's rise with one frame of
+/// pipeline (the LTC1407A-1's timing); for these chips that rise ends the frame, a period
+/// and 4 clocks before the ADS8354's sample (no pipeline) and 33 clocks after the AD7380's,
+/// and the position lost whole periods (65,536 LSB and more) at 20,000, 21,000 and
+/// 60,000 rpm (ADS8354) and from 73,697 rpm on (AD7380). Noise-free constant speeds and a
+/// ramp from rest through the limit: within a few LSB, with the warning raised.
+#[test]
+fn chip_select_adcs_keep_the_count_in_the_qep_fallback() {
+    for (file, rpms, ramp_to) in [
+        (
+            "ads8354_100mhz.toml",
+            [20_000.0, 21_000.0, 60_000.0],
+            70_000.0,
+        ),
+        (
+            "ad7380_100mhz.toml",
+            [73_697.0, 80_000.0, 90_000.0],
+            160_000.0,
+        ),
+    ] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("configs")
+            .join(file);
+        let l = Loaded::from_file(&path).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let limit = l.derived.max_speed_rpm_full_res;
+        let mut profiles: Vec<(Profile, f64)> = rpms
+            .iter()
+            .map(|&rpm| (Profile::Constant { rpm }, 3e-4))
+            .collect();
+        profiles.push((
+            Profile::Ramp {
+                from: 0.0,
+                to: ramp_to,
+                over: 2e-3,
+            },
+            2e-3,
+        ));
+        for (profile, duration_s) in profiles {
+            let o = SimOptions {
+                profile: profile.clone(),
+                duration_s,
+                ..compiled()
+            };
+            let s = run(&l, &o, |_, _| {})
+                .unwrap_or_else(|e| panic!("{file}: {e}"))
+                .stats;
+            eprintln!("{file} {profile:?}: {s:?} (limit {limit:.0} rpm)");
+            assert!(s.samples > 150, "{file} {profile:?}: {s:?}");
+            // The run is in the fallback: the warning flags its samples above the limit.
+            assert!(s.warnings > 0, "{file} {profile:?}: {s:?}");
+            assert!(
+                s.max_lsb < 4.0,
+                "{file} {profile:?}: {s:?} (one period = 65,536 LSB)"
+            );
+        }
+    }
+}

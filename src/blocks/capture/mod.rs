@@ -55,8 +55,8 @@
 //!   2^-(B+1) <= 1/8 LSB with B = ceil(log2(4 Vmax (H + 2))), Vmax = `max_output` / 2^S
 //!   (LSB per period). So |error| <= 3/4 LSB, bit-exact in the model and the RTL.
 //! * Widths: ager <= H R + R / 2 (operand a, bits(H R + R / 2) + 1); |v| <= `max_output`,
-//!   so v' fits min(bits(max_output) + 2, W) - t bits (operand b; W the velocity's width); |d| <= Dmax = ceil(Vmax (H + 1) / D)
-//!   + 1 in bits(Dmax) + 2. The multiplier's register, max(Wa, k + 1) + 3 + 2n bits
+//!   so v' fits min(bits(max_output) + 2, W) - t bits (operand b; W the velocity's width);
+//!   |d| <= Dmax = ceil(Vmax (H + 1) / D) + 1 in bits(Dmax) + 2. The multiplier's register, max(Wa, k + 1) + 3 + 2n bits
 //!   ([`crate::blocks::velocity::VelMul::register_bits`]), must fit the compiled engine's 64
 //!   (57 on the kit with the default velocity). Dmax must stay
 //!   below one turn, Q 2^F LSB, so that one wrap step suffices: s = p + d lies in

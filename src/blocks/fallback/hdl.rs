@@ -18,7 +18,9 @@ pub struct Fallback {
     pub qep_up: Signal<In, Bit>,
     /// The QEP decoder's count stepped -1 at the last clock edge (its registered `down`).
     pub qep_down: Signal<In, Bit>,
-    /// ADC CONV pin level.
+    /// The ADC's conversion start, high from its sampling edge on: the CONV pin, or the
+    /// inverse of an active-low chip select (the top inverts it: [`conv_inverted`]). Its
+    /// rising edge is the sampling instant.
     pub conv: Signal<In, Bit>,
     /// ADC sample strobe.
     pub adc_valid: Signal<In, Bit>,
@@ -53,6 +55,12 @@ pub struct Fallback {
     c1t: DFF<Bits<32>>,
     c2q: DFF<Bits<32>>,
     c2t: DFF<Bits<32>>,
+    /// Capture depth K = 2 ([`capture_depth`]): one more capture before c1 (one entry),
+    /// else none.
+    c0q: Vec<DFF<Bits<32>>>,
+    c0t: Vec<DFF<Bits<32>>>,
+    /// Capture depth K = 0: one entry (the capture goes straight to c2), else none.
+    direct: Vec<Constant<Bit>>,
     prevq: DFF<Bits<32>>,
     sq: DFF<Bits<32>>,
     st: DFF<Bits<32>>,
@@ -109,7 +117,7 @@ pub struct Fallback {
     /// The tracker's motion mv = c2q - prevq tested against -1, 0, 1 (`mvn1`) and -2, 2
     /// (`mvn2`) modulo 4PPR, chunk compares registered from the subtraction, and the tests
     /// registered after them: read at the ADC's out_valid, at least three clocks after c2q
-    /// and prevq last changed (a CONV rise, the previous out_valid).
+    /// and prevq last changed (a conversion start, the previous out_valid).
     mvn1: NearSet,
     mvn2: NearSet,
     fast_n: DFF<Bit>,
@@ -185,6 +193,22 @@ pub fn deep(d: &Derived) -> bool {
     d.correction.latency_cycles() + d.latency_cycles > d.adc.period_clocks
 }
 
+/// Capture depth K = floor((V - 1) / P): the conversion starts that come after a sample's
+/// own and before the ADC's `out_valid` of it, V clocks after its own
+/// ([`crate::blocks::adc::AdcParams::conv_to_valid_clocks`]) with starts P clocks apart (the
+/// same count as the position reference's Z tag, `crate::blocks::reference`). It is the
+/// ADC's `pipeline` (0..=2): each frame is read within its period.
+pub fn capture_depth(d: &Derived) -> u32 {
+    d.adc.conv_to_valid_clocks().saturating_sub(1) / d.adc.period_clocks.max(1)
+}
+
+/// The ADC's conversion start is an active-low chip select (`adc.frame.conv_active_high`
+/// false: ADS8354, AD7380): the top gives the fallback its inverse, so that the fallback's
+/// `conv` rises at the sampling edge, the chip select's fall.
+pub fn conv_inverted(d: &Derived) -> bool {
+    !d.adc.frame.conv_active_high
+}
+
 impl Fallback {
     /// Fallback for the derived parameters.
     pub fn new(d: &Derived) -> Self {
@@ -195,8 +219,10 @@ impl Fallback {
         let near1 = [0, 1, dm, (q - 1) & dm, 1u64.wrapping_sub(q) & dm];
         let near2 = [2, dm - 1, q.wrapping_sub(2) & dm, 2u64.wrapping_sub(q) & dm];
         // The motion's chunk compares and its tests take two clocks: the ADC's out_valid must come at least three
-        // clocks after a CONV rise (it comes in the frame's last SCK cycles).
+        // clocks after a conversion start (it comes in the frame's last SCK cycles).
         debug_assert!(d.adc.conv_to_valid_clocks() % d.adc.period_clocks >= 3);
+        let depth = capture_depth(d);
+        debug_assert!(depth <= 2);
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -224,6 +250,15 @@ impl Fallback {
             c1t: Default::default(),
             c2q: Default::default(),
             c2t: Default::default(),
+            c0q: (0..usize::from(depth >= 2))
+                .map(|_| Default::default())
+                .collect(),
+            c0t: (0..usize::from(depth >= 2))
+                .map(|_| Default::default())
+                .collect(),
+            direct: (0..usize::from(depth == 0))
+                .map(|_| Constant::new(true))
+                .collect(),
             prevq: Default::default(),
             sq: Default::default(),
             st: Default::default(),

@@ -2,9 +2,10 @@
 //! aligned with the CORDIC counter at low speed and used to resynchronise it at high speed.
 //!
 //! ```text
-//!  qep count ──step──► tracker (qq 0..4PPR-1, qt turns) ──┬─ captured at every CONV rise
-//!   offset (oq, ot) = core - capture (normal mode)        │  (c1 -> c2: the conversion whose
-//!                                                         │   data the ADC delivers next)
+//!  qep count ──step──► tracker (qq 0..4PPR-1, qt turns) ──┬─ captured at every conversion
+//!   offset (oq, ot) = core - capture (normal mode)        │  start (c1 -> c2, K = 1; the
+//!                                                         │  sample the ADC delivers next
+//!  conv: CONV, or the inverse of a chip select ───────────┘  is in c2 at its out_valid)
 //!                                                         ▼
 //!  ADC out_valid ── (sq, st) = c2 ──► at core out_valid: dd = qc - sq (mod 4PPR, signed)
 //!                                       active: load core with (sq, st) at every sample
@@ -12,10 +13,19 @@
 //!
 //! * Tracker: every clock qq += step (the QEP decoder's registered `up` / `down`: its count's
 //!   step at the last edge, -1/0/+1), wrapped into 0..4PPR-1 with the turn count qt.
-//! * Each sample is matched to the tracker value at its conversion: (qq, qt) is captured at
-//!   every CONV rise into c1, c1 moves to c2, and the ADC delivers the data of the
-//!   conversion before the last CONV (LTC1407A-1: one frame of pipeline), so at the ADC's
-//!   `out_valid` the sample's capture is c2. It waits in (sq, st) for the sample to leave the
+//! * Each sample is matched to the tracker value at its conversion start, the edge at which
+//!   the ADC samples: the rise of the `conv` input, which is the CONV pin (LTC1407A-1,
+//!   `adc.frame.conv_active_high`) or the inverse of an active-low chip select (ADS8354,
+//!   AD7380: the top inverts it, [`hdl::conv_inverted`], so the capture is at the chip
+//!   select's fall, not at its rise, which ends the frame). The ADC's `out_valid` of a
+//!   sample comes V clocks after its start ([`crate::blocks::adc::AdcParams::conv_to_valid_clocks`])
+//!   and starts come every P clocks, so K = floor((V - 1) / P) later starts have come by
+//!   then ([`hdl::capture_depth`]: the ADC's `pipeline`, as the position reference counts its
+//!   Z tag, `crate::blocks::reference`). The captures shift through a chain that ends in c2,
+//!   K + 1 long: K = 1 (LTC1407A-1, AD7380: one frame of pipeline), (qq, qt) into c1 and c1
+//!   into c2 at every start; K = 0 (ADS8354: no pipeline), straight into c2 (c1 is unused
+//!   and removed by synthesis); K = 2, through one more register (c0) in front of c1. So
+//!   at the ADC's `out_valid` the sample's capture is c2. It waits in (sq, st) for the sample to leave the
 //!   core (correction + core latency: 3 + N + 2 clocks unrolled, far shorter than a sample
 //!   period). Deep mode (the digit-serial iterative core, whose latency exceeds one ADC
 //!   period): the next sample's out_valid comes first, so the capture moves on to
@@ -48,7 +58,14 @@
 //!   mismatch's gate kv2 & aligned == 3 & !act is the register gk beside kv2 (aligned and act
 //!   change only at a kv2 pulse or the reset, and the core's out_valid pulses are a sample
 //!   apart).
-//! * Widths: 32-bit words holding qq (< 4PPR <= 2^18) and qt (M bits).
+//! * Timing of the capture: c2 changes one clock after a conversion start (the edge is
+//!   `conv` against the registered `conv_prev`), and the motion test below has its result
+//!   two clocks after that, so the ADC's `out_valid` must come at least three clocks after
+//!   a start: V mod P >= 3, refused otherwise by the configuration
+//!   (`src/config/derived.rs`). K = 0 puts a 2:1 select (qq or c1) in front of c2; the
+//!   chip select's inversion is an inverter in front of `conv_prev` and the edge test.
+//! * Widths: 32-bit words holding qq (< 4PPR <= 2^18) and qt (M bits); the captures
+//!   (c0, c1, c2) hold the same.
 pub mod hdl;
 
 /// The block's entry in the registry (`crate::blocks::registry`).

@@ -7,7 +7,7 @@ use crate::blocks::c32;
 use crate::blocks::capture::hdl::Capture;
 use crate::blocks::core::hdl::CoreRtl;
 use crate::blocks::correction::hdl::Correction;
-use crate::blocks::fallback::hdl::Fallback;
+use crate::blocks::fallback::hdl::{conv_inverted, Fallback};
 use crate::blocks::init_bit::InitBit;
 use crate::blocks::monitor::hdl::Monitor;
 use crate::blocks::params::Derived;
@@ -100,6 +100,10 @@ board_top! {
         monitor: Monitor,
         qep_decoder: QepDecoder,
         fallback: Fallback,
+        /// One entry (1) when the ADC's conversion start is an active-low chip select: the
+        /// fallback takes its inverse, so that it rises at the sampling edge
+        /// ([`crate::blocks::fallback::hdl::conv_inverted`]); none for an active-high CONV.
+        fb_conv_inv: Vec<Constant<Bit>>,
         /// 1 when the QEP fallback is enabled in the config.
         qep_enable: Constant<Bit>,
         biss_slave: BissSlave,
@@ -307,6 +311,9 @@ impl TopRtl {
             monitor: Monitor::new(&d.monitor),
             qep_decoder: QepDecoder::new(&d.qep),
             fallback: Fallback::new(d),
+            fb_conv_inv: (0..usize::from(conv_inverted(d)))
+                .map(|_| Constant::new(true))
+                .collect(),
             qep_enable: Constant::new(d.qep_enabled),
             error: Default::default(),
             warning: Default::default(),
@@ -430,6 +437,9 @@ impl Logic for TopRtl {
         self.fallback.qep_up.next = self.qep_decoder.up.val();
         self.fallback.qep_down.next = self.qep_decoder.down.val();
         self.fallback.conv.next = self.adc.adc_conv.val();
+        for i in 0..self.fb_conv_inv.len() {
+            self.fallback.conv.next = self.adc.adc_conv.val() ^ self.fb_conv_inv[i].val();
+        }
         self.fallback.adc_valid.next = self.adc.out_valid.val();
         self.fallback.core_valid.next = self.core.out_valid.val();
         self.fallback.core_error.next = self.core.out_error.val();

@@ -6,7 +6,8 @@ use super::*;
 // tracker and its mode, then the registers' commit, reset and the outputs.
 crate::blocks::logic_stages!(Fallback: Capture, Compare, Track, Commit);
 
-/// The capture at the CONV rise, the tracker's motion between conversions and the load.
+/// The capture at each conversion start (the sampling edge), the tracker's motion between
+/// conversions and the load.
 impl stages::Capture for Fallback {
     #[hdl_gen]
     fn update(&mut self) {
@@ -20,12 +21,34 @@ impl stages::Capture for Fallback {
         // no decode of the count precedes the tracker's logic).
         self.inc.next = self.qep_up.val();
         self.dec.next = self.qep_down.val();
-        // Capture at the CONV rise.
+        // Capture at the conversion start's rise (the sampling edge): K = 1, c1 takes the
+        // tracker and c2 the capture before, so c2 holds the capture of the sample the ADC
+        // delivers next (see `capture_depth`).
         if self.conv.val() & !self.conv_prev.q.val() {
             self.c1q.d.next = self.qq.q.val();
             self.c1t.d.next = self.qt.q.val();
             self.c2q.d.next = self.c1q.q.val();
             self.c2t.d.next = self.c1t.q.val();
+        }
+        // K = 2: one more capture in front of c1.
+        for i in 0..self.c0q.len() {
+            self.c0q[i].clock.next = self.clk.val();
+            self.c0t[i].clock.next = self.clk.val();
+            self.c0q[i].d.next = self.c0q[i].q.val();
+            self.c0t[i].d.next = self.c0t[i].q.val();
+            if self.conv.val() & !self.conv_prev.q.val() {
+                self.c0q[i].d.next = self.qq.q.val();
+                self.c0t[i].d.next = self.qt.q.val();
+                self.c1q.d.next = self.c0q[i].q.val();
+                self.c1t.d.next = self.c0t[i].q.val();
+            }
+        }
+        // K = 0 (no pipeline): the sample's own capture goes straight to c2.
+        for i in 0..self.direct.len() {
+            if self.conv.val() & !self.conv_prev.q.val() & self.direct[i].val() {
+                self.c2q.d.next = self.qq.q.val();
+                self.c2t.d.next = self.qt.q.val();
+            }
         }
         // The tracker's motion between two conversions, mv = c2q - prevq in -4PPR+1..4PPR-1;
         // modulo 4PPR it is within -2..2 (-1..1) exactly when mv is one of the values
