@@ -24,7 +24,7 @@ fn field_props(r: &RegDef) -> &'static str {
 
 /// Whether a register's fields carry a reset value in SystemRDL (not the live ones).
 fn has_reset(r: &RegDef) -> bool {
-    !(r.access == Access::Ro && !matches!(r.name, "ID" | "VERSION"))
+    r.access != Access::Ro || matches!(r.name, "ID" | "VERSION")
 }
 
 /// `<name>_regs.rdl`: one `addrmap` named `<name>_regs`, after the comment `header`.
