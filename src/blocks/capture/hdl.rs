@@ -88,8 +88,11 @@ pub struct Capture {
     /// R min(since, H) + floor(R / 2): the multiplier's operand a, counted beside `since`.
     ager: DFF<Bits<64>>,
     state: DFF<CapState>,
-    /// Multiplier clocks in `Multiply`, 0..n.
+    /// Multiplier clocks in `Multiply`, 0..n (bits(n) bits).
     mw: DFF<Bits<32>>,
+    /// mw = n (the multiplier's last clock), registered a clock ahead. Timing: keeps the
+    /// `mw` compare off the mw -> state path (the register-map top's slowest).
+    mlast: DFF<Bit>,
     /// The latched sample, age, velocity and `ager` (extrapolation).
     cq: DFF<Bits<32>>,
     cf: DFF<Bits<32>>,
@@ -131,8 +134,10 @@ pub struct Capture {
     ager_load: Constant<Bits<64>>,
     /// R H + floor(R / 2): `ager` after reset.
     ager_max: Constant<Bits<64>>,
-    /// n: the multiplier's last clock in `Multiply`.
-    steps: Constant<Bits<32>>,
+    /// n - 1: `mlast` rises after the clock with this `mw`.
+    steps1: Constant<Bits<32>>,
+    /// Mask of `mw` (bits(n) bits).
+    mwmask: Constant<Bits<32>>,
     one: Constant<Bits<32>>,
     /// F.
     fshift: Constant<Bits<64>>,
@@ -192,6 +197,7 @@ impl Capture {
             ager: Default::default(),
             state: Default::default(),
             mw: Default::default(),
+            mlast: Default::default(),
             cq: Default::default(),
             cf: Default::default(),
             ct: Default::default(),
@@ -227,7 +233,8 @@ impl Capture {
             recip: c64(recip),
             ager_load: c64(p.ager_for(p.since_load())),
             ager_max: c64(p.ager_for(u64::MAX)),
-            steps: c32(p.mul_steps() as u64),
+            steps1: c32((p.mul_steps() as u64).saturating_sub(1)),
+            mwmask: c32(mask(32 - p.mul_steps().leading_zeros())),
             one: c32(1),
             fshift: c64(f as u64),
             vshift: c64(e.map_or(0, |e| e.vshift as u64)),
@@ -249,8 +256,8 @@ impl Logic for Capture {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, c1, c2, c3, hq, hf, ht, since, sat, young, hleft, ager, state, mw, cq, cf,
-            ct, cage, cv, cb, s, ov, oq, ofine, ot, ovel, oage
+            self, clk, c1, c2, c3, hq, hf, ht, since, sat, young, hleft, ager, state, mw, mlast,
+            cq, cf, ct, cage, cv, cb, s, ov, oq, ofine, ot, ovel, oage
         );
         // Synchronizer and edge register (no reset).
         self.c1.d.next = self.capture.val();
@@ -327,11 +334,13 @@ impl Logic for Capture {
             }
             CapState::Start => {
                 self.mw.d.next = 0.into();
+                self.mlast.d.next = false;
                 self.state.d.next = CapState::Multiply;
             }
             CapState::Multiply => {
-                self.mw.d.next = self.mw.q.val() + self.one.val();
-                if self.mw.q.val() == self.steps.val() {
+                self.mw.d.next = (self.mw.q.val() + self.one.val()) & self.mwmask.val();
+                self.mlast.d.next = self.mw.q.val() == self.steps1.val();
+                if self.mlast.q.val() {
                     self.state.d.next = CapState::Add;
                 }
             }
@@ -365,6 +374,7 @@ impl Logic for Capture {
             self.ager.d.next = self.ager_max.val();
             self.state.d.next = CapState::Idle;
             self.mw.d.next = 0.into();
+            self.mlast.d.next = false;
             self.cq.d.next = 0.into();
             self.cf.d.next = 0.into();
             self.ct.d.next = 0.into();

@@ -2,8 +2,8 @@
 //! docs of [`crate::blocks::regmap`]). [`RegisterModel`](super::model::RegisterModel) is its
 //! cycle reference.
 //!
-//! Timing: the read data is loaded from a held address (`ar_addr`), so the decode starts
-//! at registers; the write acts from the holders, also registers; every AXI output is a
+//! Timing: the read address is held as a one-hot select (`ar_sel`), so the read data is
+//! an AND-OR of the words from registers; the write acts from the holders, also registers; every AXI output is a
 //! register or one gate of registers.
 use super::{RegmapParams, ADDR_BITS, ID, POSITION_WORD, PRESET_WORD, STATUS_WORD, VERSION};
 use crate::blocks::{c32, mask};
@@ -92,7 +92,9 @@ pub struct RegisterMap {
     w_strb: DFF<Bits<32>>,
     bvalid: DFF<Bit>,
     ar_full: DFF<Bit>,
-    ar_addr: DFF<Bits<32>>,
+    /// The held read address as a one-hot word select (bit k: word k, k < 16). Timing: the
+    /// read data is an AND-OR of the words, no compare chain before `rdata`.
+    ar_sel: DFF<Bits<32>>,
     rvalid: DFF<Bit>,
     rdata: DFF<Bits<32>>,
     /// Latched faults.
@@ -103,7 +105,7 @@ pub struct RegisterMap {
     sh_vel: DFF<Bits<32>>,
     pre: DFF<Bit>,
     wword: Signal<Local, Bits<32>>,
-    rword: Signal<Local, Bits<32>>,
+    rmux: Signal<Local, Bits<32>>,
     bits: Signal<Local, Bits<32>>,
     smask: Signal<Local, Bits<32>>,
     clear: Signal<Local, Bits<32>>,
@@ -118,6 +120,8 @@ pub struct RegisterMap {
     cvel: Signal<Local, Bits<32>>,
     /// Mask of the byte address.
     amask: Constant<Bits<32>>,
+    /// Mask of the one-hot select (the 16 words).
+    selmask: Constant<Bits<32>>,
     two: Constant<Bits<32>>,
     /// Word indices of the registers with an action.
     w_status: Constant<Bits<32>>,
@@ -228,7 +232,7 @@ impl RegisterMap {
             w_strb: Default::default(),
             bvalid: Default::default(),
             ar_full: Default::default(),
-            ar_addr: Default::default(),
+            ar_sel: Default::default(),
             rvalid: Default::default(),
             rdata: Default::default(),
             status: Default::default(),
@@ -237,7 +241,7 @@ impl RegisterMap {
             sh_vel: Default::default(),
             pre: Default::default(),
             wword: Default::default(),
-            rword: Default::default(),
+            rmux: Default::default(),
             bits: Default::default(),
             smask: Default::default(),
             clear: Default::default(),
@@ -251,6 +255,7 @@ impl RegisterMap {
             vel: Default::default(),
             cvel: Default::default(),
             amask: c32(mask(ADDR_BITS)),
+            selmask: c32(0xffff),
             two: c32(2),
             w_status: wc(STATUS_WORD),
             w_preset: wc(PRESET_WORD),
@@ -299,7 +304,7 @@ impl Logic for RegisterMap {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, aw_full, aw_addr, w_full, w_data, w_strb, bvalid, ar_full, ar_addr, rvalid,
+            self, clk, aw_full, aw_addr, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
             rdata, status, amp, sh_turns, sh_vel, pre
         );
         // The words each register reads, from the live inputs.
@@ -381,57 +386,62 @@ impl Logic for RegisterMap {
         // Read: the address held a clock, then the data.
         if self.s_axi_arvalid.val() & !self.ar_full.q.val() & !self.rvalid.q.val() {
             self.ar_full.d.next = true;
-            self.ar_addr.d.next = self.s_axi_araddr.val() & self.amask.val();
+            self.ar_sel.d.next = (self.one.val()
+                << ((self.s_axi_araddr.val() & self.amask.val()) >> self.two.val()))
+                & self.selmask.val();
         }
         if self.rvalid.q.val() & self.s_axi_rready.val() {
             self.rvalid.d.next = false;
         }
-        self.rword.next = self.ar_addr.q.val() >> self.two.val();
+        // The read data: an AND-OR of the words by the one-hot select.
+        self.rmux.next = self.zero.val();
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_id.val())).any() {
+            self.rmux.next = self.rmux.val() | self.id.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_version.val())).any() {
+            self.rmux.next = self.rmux.val() | self.version.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_status.val())).any() {
+            self.rmux.next = self.rmux.val() | self.status.q.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_flags.val())).any() {
+            self.rmux.next = self.rmux.val() | self.live.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_amp.val())).any() {
+            self.rmux.next = self.rmux.val() | self.amp.q.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_position.val())).any() {
+            self.rmux.next = self.rmux.val() | self.pos.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_turns.val())).any() {
+            self.rmux.next = self.rmux.val() | self.sh_turns.q.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_vel.val())).any() {
+            self.rmux.next = self.rmux.val() | self.sh_vel.q.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_ipos.val())).any() {
+            self.rmux.next = self.rmux.val() | self.ipos.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_itur.val())).any() {
+            self.rmux.next = self.rmux.val() | self.itur.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_cpos.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cpos.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_ctur.val())).any() {
+            self.rmux.next = self.rmux.val() | self.ctur.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_cvel.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cvel.val();
+        }
+        if (self.ar_sel.q.val() & (self.one.val() << self.w_cage.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cap_age.val();
+        }
         if self.ar_full.q.val() {
-            self.rdata.d.next = self.zero.val();
-            if self.rword.val() == self.w_id.val() {
-                self.rdata.d.next = self.id.val();
-            }
-            if self.rword.val() == self.w_version.val() {
-                self.rdata.d.next = self.version.val();
-            }
-            if self.rword.val() == self.w_status.val() {
-                self.rdata.d.next = self.status.q.val();
-            }
-            if self.rword.val() == self.w_flags.val() {
-                self.rdata.d.next = self.live.val();
-            }
-            if self.rword.val() == self.w_amp.val() {
-                self.rdata.d.next = self.amp.q.val();
-            }
-            if self.rword.val() == self.w_position.val() {
-                self.rdata.d.next = self.pos.val();
+            self.rdata.d.next = self.rmux.val();
+            if (self.ar_sel.q.val() & (self.one.val() << self.w_position.val())).any() {
                 self.sh_turns.d.next = self.tur.val();
                 self.sh_vel.d.next = self.vel.val();
-            }
-            if self.rword.val() == self.w_turns.val() {
-                self.rdata.d.next = self.sh_turns.q.val();
-            }
-            if self.rword.val() == self.w_vel.val() {
-                self.rdata.d.next = self.sh_vel.q.val();
-            }
-            if self.rword.val() == self.w_ipos.val() {
-                self.rdata.d.next = self.ipos.val();
-            }
-            if self.rword.val() == self.w_itur.val() {
-                self.rdata.d.next = self.itur.val();
-            }
-            if self.rword.val() == self.w_cpos.val() {
-                self.rdata.d.next = self.cpos.val();
-            }
-            if self.rword.val() == self.w_ctur.val() {
-                self.rdata.d.next = self.ctur.val();
-            }
-            if self.rword.val() == self.w_cvel.val() {
-                self.rdata.d.next = self.cvel.val();
-            }
-            if self.rword.val() == self.w_cage.val() {
-                self.rdata.d.next = self.cap_age.val();
             }
             self.ar_full.d.next = false;
             self.rvalid.d.next = true;
@@ -445,7 +455,7 @@ impl Logic for RegisterMap {
             self.aw_addr.d.next = 0.into();
             self.w_data.d.next = 0.into();
             self.w_strb.d.next = 0.into();
-            self.ar_addr.d.next = 0.into();
+            self.ar_sel.d.next = 0.into();
             self.rdata.d.next = 0.into();
             self.status.d.next = 0.into();
             self.amp.d.next = 0.into();
