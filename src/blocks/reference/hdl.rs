@@ -71,6 +71,10 @@ pub struct PositionReference {
     /// The requesting sample's turn word.
     ubt: DFF<Bits<32>>,
     ilatch: DFF<Bit>,
+    /// The homing event, registered: the index latch takes T a clock later. Timing: keeps
+    /// the sample's qualification off the index registers' enable (core.counter ->
+    /// iturns was the register-map top's slowest path).
+    ihome: DFF<Bit>,
     ov: DFF<Bit>,
     oqc: DFF<Bits<32>>,
     ofine: DFF<Bits<32>>,
@@ -183,6 +187,7 @@ impl PositionReference {
             ubq: Default::default(),
             ubt: Default::default(),
             ilatch: Default::default(),
+            ihome: Default::default(),
             ov: Default::default(),
             oqc: Default::default(),
             ofine: Default::default(),
@@ -242,7 +247,7 @@ impl Logic for PositionReference {
     fn update(&mut self) {
         dff_setup!(
             self, clk, conv_prev, zt, p1, p2, pp, ppend, pqual, oq, oqm, ot, otp, refd, upd, usel,
-            ubq, ubt, ilatch, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
+            ubq, ubt, ilatch, ihome, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
         );
         // Synchronizers and edge registers (no reset).
         self.conv_prev.d.next = self.conv.val();
@@ -302,10 +307,16 @@ impl Logic for PositionReference {
         self.ov.d.next = self.in_valid.val();
         self.iv.d.next = false;
         self.ilatch.d.next = false;
+        self.ihome.d.next = false;
         if self.ilatch.q.val() {
             self.iv.d.next = true;
             self.iqc.d.next = self.oqc.q.val();
             self.iturns.d.next = self.oturns.q.val();
+        }
+        if self.ihome.q.val() {
+            self.iv.d.next = true;
+            self.iqc.d.next = self.iq.val();
+            self.iturns.d.next = self.it.val();
         }
         if self.in_valid.val() {
             self.pqual.d.next = self.qual.val();
@@ -327,9 +338,7 @@ impl Logic for PositionReference {
                 self.ubt.d.next = self.bt.val();
             }
             if self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val() & !self.pnow.val() {
-                self.iv.d.next = true;
-                self.iqc.d.next = self.iq.val();
-                self.iturns.d.next = self.it.val();
+                self.ihome.d.next = true;
             } else if self.idx_event.val()
                 & self.refd.q.val()
                 & !self.upd.q.val()
@@ -347,6 +356,7 @@ impl Logic for PositionReference {
             self.refd.d.next = false;
             self.upd.d.next = false;
             self.ilatch.d.next = false;
+            self.ihome.d.next = false;
             self.oq.d.next = 0.into();
             self.oqm.d.next = self.oqm0.val();
             self.ot.d.next = 0.into();

@@ -44,7 +44,8 @@
 //!   clock, so the subtractions start at registers (the top's samples are an ADC period
 //!   apart; a sample in that very next clock still takes the old offset). Each later event latches the position of
 //!   its sample's quadrant (`index_qc`, `index_turns`, strobe `index_valid`): B + offset,
-//!   which is T again while no count is lost. The homing event latches T itself.
+//!   which is T again while no count is lost. The homing event latches T itself, a clock
+//!   later (`ihome`, registered for timing).
 //! * A rising edge of the synchronized `preset` input (2 flops, then an edge register)
 //!   is pending until the next sample, which takes the offset T - B with T the preset value
 //!   (`preset_quadrant`, `preset_turn`) and B that sample's count: the position at the

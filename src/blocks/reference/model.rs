@@ -100,6 +100,7 @@ struct Regs {
     ubq: u64,
     ubt: u64,
     ilatch: bool,
+    ihome: bool,
     out: ReferenceOut,
 }
 
@@ -159,6 +160,7 @@ impl ReferenceModel {
             n.refd = false;
             n.upd = false;
             n.ilatch = false;
+            n.ihome = false;
             n.out = ReferenceOut {
                 warning: p.warn_until_referenced(),
                 ..Default::default()
@@ -176,10 +178,16 @@ impl ReferenceModel {
         n.out.valid = i.valid;
         n.out.index_valid = false;
         n.ilatch = false;
+        n.ihome = false;
         if o.ilatch {
             n.out.index_valid = true;
             n.out.index_qc = o.out.qc;
             n.out.index_turns = o.out.turns;
+        }
+        if o.ihome {
+            n.out.index_valid = true;
+            n.out.index_qc = p.index().0;
+            n.out.index_turns = p.index().1;
         }
         // The offset taken from a sample in the clock before: T - B from registers.
         n.upd = false;
@@ -230,9 +238,7 @@ impl ReferenceModel {
             n.ubt = bt;
         }
         if home {
-            n.out.index_valid = true;
-            n.out.index_qc = p.index().0;
-            n.out.index_turns = p.index().1;
+            n.ihome = true;
         } else if event && o.refd && !o.upd && !pnow {
             n.ilatch = true;
         }
