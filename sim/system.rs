@@ -261,7 +261,7 @@ const PAR_HISTORY: usize = 8192;
 pub struct Record {
     /// Clock cycle of `par_valid`.
     pub cycle: u64,
-    /// Clock cycle of the CONV rise that sampled it.
+    /// Clock cycle of the conversion start (CONV rise or chip-select fall) that sampled it.
     pub conv_cycle: u64,
     /// Single-turn position (2^-F quadrant units).
     pub position: u64,

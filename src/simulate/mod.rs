@@ -483,8 +483,9 @@ impl SimReport {
 pub const VELOCITY_CSV_COLUMNS: [&str; 2] = ["velocity_lsb", "velocity_truth_lsb"];
 
 /// Columns of `simulate --csv`, the same on both paths (documented in the README):
-/// `truth_cycle` is the cycle at which the true angle `truth_lsb` is taken (the CONV rise
-/// that sampled the inputs on the sinewave path; `par_valid` on the capacitive path).
+/// `truth_cycle` is the cycle at which the true angle `truth_lsb` is taken (the conversion
+/// start that sampled the inputs on the sinewave path, a CONV rise or a chip-select fall;
+/// `par_valid` on the capacitive path).
 pub const CSV_COLUMNS: [&str; 10] = [
     "cycle",
     "truth_cycle",

@@ -209,7 +209,8 @@ pub const RESET_SYNC_CLOCKS: u32 = 2;
 /// Clock edges from the fall of `<name>_top`'s `rst` to the blocks' reset release.
 pub const TOP_RESET_RELEASE_CLOCKS: u32 = RESET_SYNC_CLOCKS + BLOCK_RESET_CLOCKS;
 
-/// Clock cycles from the CONV rise that samples the inputs to `par_valid` for that sample:
+/// Clock cycles from the conversion start that samples the inputs (a CONV rise, or a chip
+/// select's fall on the chip-select ADCs) to `par_valid` for that sample:
 /// ADC controller + correction + core (+ the position reference's stage with
 /// `[reference]`, [`reference_cycles`]).
 pub fn conv_to_position_cycles(d: &Derived) -> u32 {
