@@ -19,7 +19,7 @@ use crate::engine::{Engine, Kind};
 use crate::error::{Error, Result};
 
 /// Inputs the sinewave loop drives, in index order ([`Dut::set`]).
-pub const IN_PINS: [&str; 12] = [
+pub const IN_PINS: [&str; 21] = [
     "rst",
     "adc_miso",
     "biss_ma",
@@ -32,17 +32,27 @@ pub const IN_PINS: [&str; 12] = [
     "adc_miso_b",
     "preset_0",
     "capture_0",
+    "s_axi_awaddr_0",
+    "s_axi_awvalid_0",
+    "s_axi_wdata_0",
+    "s_axi_wstrb_0",
+    "s_axi_wvalid_0",
+    "s_axi_bready_0",
+    "s_axi_araddr_0",
+    "s_axi_arvalid_0",
+    "s_axi_rready_0",
 ];
 /// How many of the last [`IN_PINS`] are optional (the position reference's `preset`, with
-/// `[reference] enabled`, and the capture's `capture`, with `[capture] enabled`; driving a
-/// missing one does nothing).
-pub const OPTIONAL_IN_PINS: usize = 2;
+/// `[reference] enabled`, the capture's `capture`, with `[capture] enabled`, and the
+/// register map's AXI4-Lite inputs, with `[registers] enabled`; driving a missing one does
+/// nothing).
+pub const OPTIONAL_IN_PINS: usize = 11;
 /// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
 /// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
 /// `[velocity] enabled`, the ABZ emulator's, with `[abz] enabled`, and the position
-/// reference's, with `[reference] enabled`, and the capture's, with `[capture] enabled`)
-/// and read 0 without them.
-pub const OUT_PINS: [&str; 26] = [
+/// reference's, with `[reference] enabled`, the capture's, with `[capture] enabled`, and
+/// the register map's, with `[registers] enabled`) and read 0 without them.
+pub const OUT_PINS: [&str; 32] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -69,6 +79,12 @@ pub const OUT_PINS: [&str; 26] = [
     "cap_turns_0",
     "cap_age_0",
     "cap_velocity_0",
+    "s_axi_awready_0",
+    "s_axi_wready_0",
+    "s_axi_bvalid_0",
+    "s_axi_arready_0",
+    "s_axi_rdata_0",
+    "s_axi_rvalid_0",
 ];
 /// Inputs the capacitive loop drives, in index order.
 pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
@@ -87,7 +103,7 @@ pub const CAP_OUT_PINS: [&str; 11] = [
     "par_warning",
 ];
 /// How many of the last [`OUT_PINS`] are optional (read 0 when the top lacks them).
-pub const OPTIONAL_OUT_PINS: usize = 12;
+pub const OPTIONAL_OUT_PINS: usize = 18;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -393,8 +409,8 @@ impl<B: BoardTop> Dut<B> {
 mod registry_tests {
     /// Every pinned port of a registered block is driven or read by the closed loop as the
     /// rtl's optional input or output `<name>_0` (`IN_PINS`, `OUT_PINS`, by its direction),
-    /// and every optional pin there is a velocity output, a capture output (wide fabric
-    /// ports, not pins) or a registered block's port.
+    /// and every optional pin there is a velocity output, a capture or register-map port
+    /// (wide fabric ports, not pins) or a registered block's port.
     #[test]
     fn the_loop_reads_every_registered_block_port() {
         use crate::blocks::registry::BLOCKS;
@@ -413,7 +429,12 @@ mod registry_tests {
             }
         }
         let pins = optional.iter().chain(optional_in);
-        for o in pins.filter(|o| !o.starts_with("par_velocity") && !o.starts_with("cap_")) {
+        let fabric = |o: &str| {
+            ["par_velocity", "cap_", "s_axi_"]
+                .iter()
+                .any(|p| o.starts_with(p))
+        };
+        for o in pins.filter(|o| !fabric(o)) {
             let name = o.trim_end_matches("_0");
             assert!(
                 crate::blocks::registry::port_owner(name).is_some(),

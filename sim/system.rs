@@ -37,6 +37,15 @@ const I_ENC_CS_N: usize = 8;
 const I_MISO_B: usize = 9;
 const I_PRESET: usize = 10;
 const I_CAPTURE: usize = 11;
+const I_AWADDR: usize = 12;
+const I_AWVALID: usize = 13;
+const I_WDATA: usize = 14;
+const I_WSTRB: usize = 15;
+const I_WVALID: usize = 16;
+const I_BREADY: usize = 17;
+const I_ARADDR: usize = 18;
+const I_ARVALID: usize = 19;
+const I_RREADY: usize = 20;
 const O_CONV: usize = 0;
 const O_SCK: usize = 1;
 const O_AMP_CS: usize = 2;
@@ -63,6 +72,8 @@ const O_CAP_FINE: usize = 22;
 const O_CAP_TURNS: usize = 23;
 const O_CAP_AGE: usize = 24;
 const O_CAP_VELOCITY: usize = 25;
+const O_RDATA: usize = 30;
+const O_RVALID: usize = 31;
 
 /// What a quadrature counter on `abz_a`/`abz_b` read over a run (`[abz] enabled`), against
 /// the position on the parallel bus.
@@ -315,6 +326,20 @@ pub struct CaptureRecord {
     pub truth: f64,
 }
 
+/// A fault STATUS latched (`[registers] enabled`, [`System::poll_status`]): the loop reads
+/// STATUS through the AXI4-Lite slave every poll period and clears what it read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FaultRecord {
+    /// The field's name (`crate::blocks::regmap::FAULTS`).
+    pub name: &'static str,
+    /// The fault was raised after this cycle (the poll before the first that found it)...
+    pub after: u64,
+    /// ... and by this one (the read's data cycle).
+    pub by: u64,
+    /// Polls that found it set (each clears it).
+    pub polls: u64,
+}
+
 /// Result of a closed-loop run.
 #[derive(Clone, Debug, Default)]
 pub struct SimResult {
@@ -324,6 +349,10 @@ pub struct SimResult {
     pub velocity: Vec<VelRecord>,
     /// Captures in order (empty without `[capture] enabled`).
     pub captures: Vec<CaptureRecord>,
+    /// Faults STATUS latched, in the order first found ([`System::poll_status`]).
+    pub faults: Vec<FaultRecord>,
+    /// STATUS polls done (0 without [`System::poll_status`]).
+    pub status_polls: u64,
     /// The quadrature counter on the ABZ outputs (with `[abz] enabled`).
     pub abz: Option<AbzCount>,
     /// The BiSS-C master's frames against the parallel bus ([`System::monitor_biss`]).
@@ -695,6 +724,11 @@ pub struct System {
     capture: Vec<(f64, f64)>,
     /// The first of `capture` that has not ended yet.
     capture_next: usize,
+    /// STATUS poll period in cycles ([`System::poll_status`]), the last poll's cycle, and
+    /// the bits to clear in the next cycle.
+    status_poll: Option<u64>,
+    last_poll: u64,
+    status_clear: u64,
     /// The capture pin was high in the last cycle.
     capture_high: bool,
     /// (cycle, seconds) at which `capture` rose, not yet answered by `cap_valid`: the first
@@ -750,6 +784,9 @@ impl System {
             preset: None,
             capture: Vec::new(),
             capture_next: 0,
+            status_poll: None,
+            last_poll: 0,
+            status_clear: 0,
             capture_high: false,
             capture_pending: std::collections::VecDeque::new(),
             biss: None,
@@ -792,6 +829,12 @@ impl System {
         self.capture = pulses.to_vec();
         self.capture.sort_by(|a, b| a.0.total_cmp(&b.0));
         self.capture_next = 0;
+    }
+
+    /// Reads STATUS (`[registers] enabled`) through the AXI4-Lite slave every `period`
+    /// cycles and clears the faults it found, recording each in [`SimResult::faults`].
+    pub fn poll_status(&mut self, period: u64) {
+        self.status_poll = Some(period.max(8));
     }
 
     /// Keeps no records: the statistics are gathered as the samples come, leaving out the
@@ -1113,6 +1156,24 @@ impl System {
             }
             self.capture_high = capture;
             self.top.set(I_CAPTURE, capture as u64);
+            // The STATUS poll: a one-clock read request every period (the slave is idle then:
+            // nothing else drives it), the data taken at once, and a one-clock write of the
+            // bits found (write 1 to clear) in the clock after.
+            if let Some(period) = self.status_poll {
+                let status = crate::blocks::regmap::STATUS_WORD as u64 * 4;
+                let read = self.cycle > 0 && self.cycle.is_multiple_of(period);
+                let clear = self.status_clear != 0;
+                self.top.set(I_ARADDR, status);
+                self.top.set(I_ARVALID, read as u64);
+                self.top.set(I_RREADY, 1);
+                self.top.set(I_BREADY, 1);
+                self.top.set(I_AWADDR, status);
+                self.top.set(I_WDATA, self.status_clear);
+                self.top.set(I_WSTRB, 0xf);
+                self.top.set(I_AWVALID, clear as u64);
+                self.top.set(I_WVALID, clear as u64);
+                self.status_clear = 0;
+            }
             let ssi_clk = match self.ssi.as_mut() {
                 Some(m) => m.ma_for_cycle(self.cycle as usize),
                 None => true,
@@ -1204,6 +1265,26 @@ impl System {
                     Some(s) => s.add(&self.d, &rec),
                     None => self.result.records.push(rec),
                 }
+            }
+            if self.status_poll.is_some() && self.top.get(O_RVALID) != 0 {
+                let bits = self.top.get(O_RDATA) & 0x1f;
+                self.result.status_polls += 1;
+                for f in crate::blocks::regmap::FAULTS {
+                    if bits >> f.lsb & 1 == 0 {
+                        continue;
+                    }
+                    match self.result.faults.iter_mut().find(|r| r.name == f.name) {
+                        Some(r) => r.polls += 1,
+                        None => self.result.faults.push(FaultRecord {
+                            name: f.name,
+                            after: self.last_poll,
+                            by: self.cycle,
+                            polls: 1,
+                        }),
+                    }
+                }
+                self.last_poll = self.cycle;
+                self.status_clear = bits;
             }
             if self.top.get(O_CAP_VALID) != 0 {
                 let (pin_cycle, rise) = self.capture_pending.pop_front().unwrap_or_default();

@@ -68,7 +68,9 @@ pub(crate) enum Command {
     /// synchronizer or the round trip needs it) and their positions and turns are checked
     /// the same way; with `[abz]` a quadrature counter follows the A/B edges against the
     /// position; with `[capture]` 1 us pulses on `capture` at `--capture-hz` (default 20
-    /// kHz) and each capture's age and position against the encoder's angle at the pin.
+    /// kHz) and each capture's age and position against the encoder's angle at the pin;
+    /// with `[registers]` the loop reads STATUS through AXI4-Lite every 10 us, clearing
+    /// what it read, and prints each latched fault with the poll window it was raised in.
     /// Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags, ADC
     /// protocol violations, the BiSS-C, SSI, SPI, ABZ and capture checks and simulation
     /// speed, with a progress bar.

@@ -119,6 +119,11 @@ pub fn speed_warning(loaded: &Loaded, o: &SimOptions) -> Option<String> {
     })
 }
 
+/// How often `simulate` reads STATUS (`[registers] enabled`): every 10 us, in cycles.
+pub fn status_poll_cycles(d: &crate::config::Derived) -> u64 {
+    (d.clock_hz * 10e-6).round() as u64
+}
+
 /// The error for a run that decoded no sample past the settling ones.
 fn no_sample(duration_s: f64, decoded: usize, skip: String, need_s: f64) -> Error {
     Error::option(
@@ -183,6 +188,10 @@ pub fn run_traced(
                 .collect();
             sys.capture_pulses(&pulses);
         }
+    }
+    // With the register map the loop reads STATUS's latched faults as a drive would.
+    if d.registers.is_some() {
+        sys.poll_status(status_poll_cycles(d));
     }
     let engine = sys.engine();
     let engine_note = sys.engine_note().map(str::to_string);
@@ -287,6 +296,7 @@ impl SimReport {
         }
         o.push_str(&self.velocity_summary(loaded));
         o.push_str(&self.capture_summary(loaded));
+        o.push_str(&self.fault_summary(loaded));
         if let Some(b) = &r.biss {
             let _ = writeln!(
                 o,
@@ -326,6 +336,39 @@ impl SimReport {
             self.wall_s,
             self.engine.name()
         );
+        o
+    }
+
+    /// The latched-fault lines of the summary (`[registers] enabled`; empty otherwise): each
+    /// fault STATUS latched, with the poll window it was raised in.
+    fn fault_summary(&self, loaded: &Loaded) -> String {
+        let d = &loaded.derived;
+        if d.registers.is_none() {
+            return String::new();
+        }
+        let r = &self.result;
+        let us = |c: u64| c as f64 * 1e6 / d.clock_hz;
+        let mut o = String::new();
+        let _ = writeln!(
+            o,
+            "STATUS polls                {} (every {} cycles through AXI4-Lite, each clearing what it read): {}",
+            r.status_polls,
+            status_poll_cycles(d),
+            if r.faults.is_empty() { "no fault latched" } else { "faults below" }
+        );
+        for f in &r.faults {
+            let _ = writeln!(
+                o,
+                "latched fault {:<14} raised in cycles {}..{} ({:.1}..{:.1} us); found by {} poll{}",
+                f.name,
+                f.after,
+                f.by,
+                us(f.after),
+                us(f.by),
+                f.polls,
+                if f.polls == 1 { "" } else { "s" }
+            );
+        }
         o
     }
 

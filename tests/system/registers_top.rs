@@ -121,3 +121,36 @@ fn registers_read_the_decoder_and_preset_it_in_four_simulators() {
     assert!(tr[..2500].iter().all(|r| r[refd] == 0));
     assert!(tr[3000..].iter().all(|r| r[refd] == 1));
 }
+
+/// `simulate`'s STATUS poll: the loop reads STATUS through the slave every 10 us and
+/// clears it. A comparator fault (B stuck low from 150 to 350 us at 1000 rpm) makes the QEP
+/// fallback disagree with the CORDIC: QEP_MISMATCH is found in a poll window that starts
+/// after the fault does. The loss of signal of the start (the monitor's window after reset)
+/// is found by the first poll; nothing else is latched at this speed.
+#[test]
+fn simulate_polls_status_and_reports_each_latched_fault() {
+    use sinedec::simulate::status_poll_cycles;
+    let text = format!("{DEFAULT_CONFIG}\n[registers]\nenabled = true\n");
+    let l = Loaded::parse(&text, "registers_top.toml").expect("config");
+    let d = &l.derived;
+    let mut enc = EncoderModel::ideal(2048, 1.0, 0.0);
+    enc.profile = Profile::Constant { rpm: 1000.0 };
+    let mut s = System::new(d, enc).expect("system");
+    let period = status_poll_cycles(d);
+    s.poll_status(period);
+    s.qep_b_stuck_low(150e-6, 350e-6);
+    s.start().expect("settles");
+    s.run((500e-6 * d.clock_hz) as u64).expect("runs");
+    let r = s.finish();
+    let cycle = |t: f64| (t * d.clock_hz) as u64;
+    assert!(r.status_polls >= 45, "{} polls", r.status_polls);
+    let names: Vec<&str> = r.faults.iter().map(|f| f.name).collect();
+    assert_eq!(names, ["LOS", "QEP_MISMATCH"], "{:?}", r.faults);
+    let los = &r.faults[0];
+    assert!(los.after == 0 && los.by <= period + 3, "{los:?}");
+    let qep = &r.faults[1];
+    assert!(
+        qep.by > cycle(150e-6) && qep.after < cycle(350e-6) && qep.by - qep.after <= period + 1,
+        "{qep:?}"
+    );
+}
