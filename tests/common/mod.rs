@@ -316,3 +316,26 @@ pub fn core_on_engine(
         })
         .collect()
 }
+
+/// The executable `tool` of the Python tools' venv (scripts/test.sh installs it there):
+/// in `$SINEDEC_YOWASP_BIN`, then `~/.cache/sinedec/venv/bin`, then PATH; fails with
+/// `pip_spec`'s install line when none has it.
+pub fn venv_tool(tool: &str, pip_spec: &str) -> std::path::PathBuf {
+    use std::path::{Path, PathBuf};
+    let mut dirs: Vec<PathBuf> = vec![];
+    if let Ok(d) = std::env::var("SINEDEC_YOWASP_BIN") {
+        dirs.push(d.into());
+    }
+    if let Ok(h) = std::env::var("HOME") {
+        dirs.push(Path::new(&h).join(".cache/sinedec/venv/bin"));
+    }
+    if let Some(p) = dirs.iter().map(|d| d.join(tool)).find(|p| p.is_file()) {
+        return p;
+    }
+    let on_path = std::process::Command::new(tool).arg("--version").output();
+    assert!(
+        on_path.is_ok_and(|o| o.status.success()),
+        "{tool} not found; install it: python3 -m venv ~/.cache/sinedec/venv && ~/.cache/sinedec/venv/bin/pip install {pip_spec} (scripts/test.sh does this)"
+    );
+    PathBuf::from(tool)
+}

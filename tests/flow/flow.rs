@@ -20,29 +20,9 @@ use sinedec::emit::{core_input_ports, core_output_ports, generate};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const INSTALL: &str = "python3 -m venv ~/.cache/sinedec/venv && ~/.cache/sinedec/venv/bin/pip install fusesoc==2.4.7 (scripts/test.sh does this)";
-
-/// The `fusesoc` executable: in `$SINEDEC_YOWASP_BIN` (the tools' venv), then
-/// `~/.cache/sinedec/venv/bin`, then PATH.
+/// The `fusesoc` executable of the tools' venv (`common::venv_tool`).
 fn fusesoc() -> PathBuf {
-    let mut dirs: Vec<PathBuf> = vec![];
-    if let Ok(d) = std::env::var("SINEDEC_YOWASP_BIN") {
-        dirs.push(d.into());
-    }
-    if let Ok(h) = std::env::var("HOME") {
-        dirs.push(Path::new(&h).join(".cache/sinedec/venv/bin"));
-    }
-    for d in dirs {
-        if d.join("fusesoc").is_file() {
-            return d.join("fusesoc");
-        }
-    }
-    let on_path = Command::new("fusesoc").arg("--version").output();
-    assert!(
-        on_path.is_ok_and(|o| o.status.success()),
-        "fusesoc not found; install it: {INSTALL}"
-    );
-    PathBuf::from("fusesoc")
+    common::venv_tool("fusesoc", "fusesoc==2.4.7")
 }
 
 /// Writes the generated files of `text` into a fresh `dir` and returns the generation.

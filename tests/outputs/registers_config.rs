@@ -9,29 +9,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_sinedec");
-const INSTALL: &str = "python3 -m venv ~/.cache/sinedec/venv && ~/.cache/sinedec/venv/bin/pip install peakrdl==1.5.0 (scripts/test.sh does this)";
-
-/// The `peakrdl` executable: in `$SINEDEC_YOWASP_BIN` (the tools' venv), then
-/// `~/.cache/sinedec/venv/bin`, then PATH.
+/// The `peakrdl` executable of the tools' venv (`common::venv_tool`).
 fn peakrdl() -> PathBuf {
-    let mut dirs: Vec<PathBuf> = vec![];
-    if let Ok(d) = std::env::var("SINEDEC_YOWASP_BIN") {
-        dirs.push(d.into());
-    }
-    if let Ok(h) = std::env::var("HOME") {
-        dirs.push(Path::new(&h).join(".cache/sinedec/venv/bin"));
-    }
-    for d in dirs {
-        if d.join("peakrdl").is_file() {
-            return d.join("peakrdl");
-        }
-    }
-    let on_path = Command::new("peakrdl").arg("--version").output();
-    assert!(
-        on_path.is_ok_and(|o| o.status.success()),
-        "peakrdl not found; install it: {INSTALL}"
-    );
-    PathBuf::from("peakrdl")
+    common::venv_tool("peakrdl", "peakrdl==1.5.0")
 }
 
 fn with_registers() -> String {
