@@ -185,6 +185,11 @@ impl Derived {
             &err,
         )?;
         derived.registers = crate::blocks::regmap::block::params(c, &derived, &err)?;
+        // The BiSS control channel's user area becomes the register map's banks.
+        if let (Some(r), Some(_)) = (derived.registers.as_mut(), derived.biss.control.as_ref()) {
+            *r = r.with_biss_port();
+            derived.biss.user_map = true;
+        }
         Ok(derived)
     }
 

@@ -229,6 +229,30 @@ fn values(flags: u64) -> RegIn {
     }
 }
 
+/// What register `name` reads with the decoder's [`values`] and live flags `live`, written
+/// from the table (TURNS and VELOCITY as latched by a POSITION read of those values).
+fn want(name: &str, live: u64) -> u32 {
+    let f = 14;
+    match name {
+        "ID" => ID,
+        "VERSION" => VERSION,
+        "STATUS" => 0,
+        "FLAGS" => live as u32,
+        "AMPLITUDE" => 9999,
+        "POSITION" => (1234 << f) | 567,
+        "TURNS" => -3i32 as u32,
+        "VELOCITY" => -1000i32 as u32,
+        "INDEX_POSITION" => 77 << f,
+        "INDEX_TURNS" => 5,
+        "PRESET" => 0,
+        "CAPTURE_POSITION" => (8000 << f) | 16000,
+        "CAPTURE_TURNS" => -1i32 as u32,
+        "CAPTURE_VELOCITY" => 2_000_000,
+        "CAPTURE_AGE" => 250,
+        other => panic!("no expectation for {other}"),
+    }
+}
+
 #[test]
 fn every_register_reads_what_the_table_defines() {
     let p = params();
@@ -243,28 +267,7 @@ fn every_register_reads_what_the_table_defines() {
         amp_valid: k == 2,
         ..values(live)
     });
-    let want = |name: &str| -> u32 {
-        let f = 14;
-        match name {
-            "ID" => ID,
-            "VERSION" => VERSION,
-            "STATUS" => 0,
-            "FLAGS" => live as u32,
-            "AMPLITUDE" => 9999,
-            "POSITION" => (1234 << f) | 567,
-            // TURNS and VELOCITY were latched by the POSITION read just before.
-            "TURNS" => -3i32 as u32,
-            "VELOCITY" => -1000i32 as u32,
-            "INDEX_POSITION" => 77 << f,
-            "INDEX_TURNS" => 5,
-            "PRESET" => 0,
-            "CAPTURE_POSITION" => (8000 << f) | 16000,
-            "CAPTURE_TURNS" => -1i32 as u32,
-            "CAPTURE_VELOCITY" => 2_000_000,
-            "CAPTURE_AGE" => 250,
-            other => panic!("no expectation for {other}"),
-        }
-    };
+    let want = |name: &str| want(name, live);
     for (r, got) in REGISTERS.iter().zip(&rs) {
         assert_eq!(
             *got as u32,
@@ -421,6 +424,114 @@ fn four_way_cosimulation() {
     .expect("simulators ran");
     for (k, (r, m)) in t.rust_hdl.iter().zip(&model).enumerate() {
         assert_eq!(r, &m.row(), "row {k}: rust-hdl vs model");
+    }
+    if let Some(m) = t.mismatch() {
+        panic!("{m}");
+    }
+}
+
+/// The BiSS control channel's byte port ([`RegmapParams::with_biss_port`]), driven clock by
+/// clock while an AXI master reads at random: each byte of every register reads what the
+/// table defines, low byte first; POSITION, TURNS and VELOCITY come from the snapshot the
+/// read start at POSITION's byte 0 took (the position moves after it); bytes of banks 1..3
+/// with no register and of bank 4 read 0; a byte write to STATUS clears the bits of its
+/// lane, one to PRESET's byte 0 pulses `preset` and one to its byte 1 does not. Then
+/// rust-hdl == Icarus == Verilator == engine on the same clocks.
+#[test]
+fn biss_byte_port_reads_and_writes_the_map_four_ways() {
+    let p = params().with_biss_port();
+    let live = 0b1_0100_0000;
+    // The schedule: (byte address, hold clocks, snapshot pulse, byte write).
+    let mut plan: Vec<(u64, usize, bool, Option<u64>)> = vec![(0x14, 8, true, None)];
+    for r in REGISTERS {
+        for lane in 0..4 {
+            plan.push((r.address as u64 + lane, 8, false, None));
+        }
+    }
+    for a in [0x40u64, 0x7c, 0xfc, 0x100, 0x103] {
+        plan.push((a, 8, false, None));
+    }
+    // STATUS has LOS and OVERSPEED from the faults of clocks 2..6: clear LOS by byte 0.
+    plan.push((0x08, 8, false, Some(0x01)));
+    plan.push((0x08, 8, false, None));
+    plan.push((0x28, 8, false, Some(0x01)));
+    plan.push((0x29, 8, false, Some(0x01)));
+    let mut at = vec![];
+    let mut k = 2;
+    for &(a, hold, _, _) in &plan {
+        at.push(k);
+        k += hold;
+        let _ = a;
+    }
+    let total = k;
+    let schedule = |k: usize| -> (u64, bool, Option<u64>) {
+        let j = at.iter().rposition(|&s| s <= k).unwrap_or(0);
+        let (a, _, snap, w) = plan[j];
+        // The snapshot pulse and the write strobe one clock after the address is set.
+        let first = k == at[j] + 1;
+        (a, snap && first, if first { w } else { None })
+    };
+    let values_at = |k: usize| {
+        let (bus_addr, bus_snap, w) = schedule(k.min(total - 1));
+        RegIn {
+            bus_addr,
+            bus_snap,
+            bus_we: w.is_some(),
+            bus_wdata: w.unwrap_or(0),
+            // The position moves once the snapshot is taken.
+            qc: if k > at[0] + 3 { 999 } else { 1234 },
+            flags: live | if (2..6).contains(&k) { 0b1001 } else { 0 },
+            amp_valid: k == 2,
+            ..values(live)
+        }
+    };
+    let ops: Vec<Op> = (0..300).map(|j| Op::Read((j % 16) * 4)).collect();
+    let (ins, outs, _) = drive(&p, &ops, 0.3, 11, false, values_at);
+    assert!(
+        ins.len() >= total,
+        "the AXI traffic lasts {} clocks",
+        ins.len()
+    );
+    // The byte of the address of step j, seen at its last clock.
+    let got = |j: usize| outs[at[j] + plan[j].1 - 1].bus_rdata;
+    for (n, r) in REGISTERS.iter().enumerate() {
+        let v = match r.name {
+            // After a clear by byte 0: OVERSPEED remains (read further down).
+            "STATUS" => 0b1001,
+            "FLAGS" => live as u32,
+            name => want(name, live),
+        };
+        for lane in 0..4 {
+            let j = 1 + 4 * n + lane;
+            assert_eq!(
+                got(j),
+                (v >> (8 * lane) & 0xff) as u64,
+                "{} byte {lane} over the BiSS port",
+                r.name
+            );
+        }
+    }
+    let base = 1 + 4 * REGISTERS.len();
+    for j in base..base + 5 {
+        assert_eq!(got(j), 0, "0x{:x} has no register", plan[j].0);
+    }
+    assert_eq!(got(base + 6), 0b1000, "STATUS after clearing LOS by byte 0");
+    let pulses: Vec<usize> = (0..outs.len()).filter(|&k| outs[k].preset).collect();
+    assert_eq!(pulses.len(), 1, "PRESET: byte 0 pulses, byte 1 does not");
+    assert!(pulses[0] > at[base + 7] && pulses[0] < at[base + 8]);
+    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_with_bus()).collect();
+    let dir = common::workdir("regmap_biss_port");
+    let t = block_traces(
+        RegisterMap::new(&p),
+        "regmap_biss_port",
+        "clk",
+        &rows,
+        Simulators::ALL,
+        &dir,
+    )
+    .expect("simulators ran");
+    for (k, (r, m)) in t.rust_hdl.iter().zip(&outs).enumerate() {
+        assert_eq!(r, &m.row_with_bus(), "row {k}: rust-hdl vs model");
     }
     if let Some(m) = t.mismatch() {
         panic!("{m}");

@@ -89,6 +89,25 @@ pub struct BissControl {
     pub expire: Signal<In, Bit>,
     /// The CDS bit for the next frame (registered).
     pub cds: Signal<Out, Bit>,
+    /// With the register map (`user_map`; one each, none without): the map's byte that
+    /// addresses 0x00..0x3F read and write, bank * 64 + address (bank = the byte at 0x40).
+    pub ext_addr: Vec<Signal<Out, Bits<32>>>,
+    /// One clock: a write of `ext_wdata` to the map's byte at `ext_addr`.
+    pub ext_we: Vec<Signal<Out, Bit>>,
+    /// The byte written (low 8 bits).
+    pub ext_wdata: Vec<Signal<Out, Bits<8>>>,
+    /// One clock: a read begins at `ext_addr` (the map's POSITION snapshot).
+    pub ext_snap: Vec<Signal<Out, Bit>>,
+    /// The map's byte at `ext_addr` (low 8 bits), a few clocks behind the address.
+    pub ext_rdata: Vec<Signal<In, Bits<8>>>,
+    /// The bank select's byte (written with 0x40; kept by the reset, as the file is).
+    bank: Vec<DFF<Bits<32>>>,
+    /// `ldq` a clock before: its rise is the snapshot pulse.
+    snp: Vec<DFF<Bit>>,
+    /// 0x40 (the user area's end and the bank select) at 7 bits, 0x3f and 6 at 32 bits.
+    k40: Vec<Constant<Bits<7>>>,
+    k3f: Vec<Constant<Bits<32>>>,
+    k6: Vec<Constant<Bits<32>>>,
     regs: RegFile,
     armed: DFF<Bit>,
     stp: DFF<Bit>,
@@ -220,8 +239,11 @@ pub struct BissControl {
 }
 
 impl BissControl {
-    /// Control channel with the register file's power-up contents from `ident`.
-    pub fn new(ident: &BissIdent) -> Self {
+    /// Control channel with the register file's power-up contents from `ident`; with
+    /// `user_map`, addresses 0x00..0x3F are the register map's bytes (the `ext_*` ports).
+    pub fn new(ident: &BissIdent, user_map: bool) -> Self {
+        let n = usize::from(user_map);
+        let many = |f: &dyn Fn() -> Constant<Bits<7>>| (0..n).map(|_| f()).collect::<Vec<_>>();
         let image = ident.image();
         let init: BTreeMap<Bits<7>, Bits<8>> = (0..128usize)
             .map(|a| (Bits::<7>::from(a as u64), Bits::<8>::from(image[a] as u64)))
@@ -234,6 +256,20 @@ impl BissControl {
             done: Default::default(),
             expire: Default::default(),
             cds: Default::default(),
+            ext_addr: (0..n).map(|_| Default::default()).collect(),
+            ext_we: (0..n).map(|_| Default::default()).collect(),
+            ext_wdata: (0..n).map(|_| Default::default()).collect(),
+            ext_snap: (0..n).map(|_| Default::default()).collect(),
+            ext_rdata: (0..n).map(|_| Default::default()).collect(),
+            bank: (0..n).map(|_| Default::default()).collect(),
+            snp: (0..n).map(|_| Default::default()).collect(),
+            k40: many(&|| Constant::new(Bits::<7>::from(0x40u64))),
+            k3f: (0..n)
+                .map(|_| Constant::new(Bits::<32>::from(0x3fu64)))
+                .collect(),
+            k6: (0..n)
+                .map(|_| Constant::new(Bits::<32>::from(6u64)))
+                .collect(),
             regs: RegFile::new(init),
             armed: Default::default(),
             stp: Default::default(),

@@ -33,6 +33,17 @@ pub enum Phase {
     Next,
 }
 
+/// The register map behind addresses 0x00..0x3F (`[registers]` with the control channel):
+/// the channel reads and writes the map's byte bank * 64 + address, bank being the byte at
+/// 0x40 (docs/registers.md).
+pub trait UserBus {
+    /// A read of the map's byte `addr` begins (at POSITION's byte 0 the channel's
+    /// POSITION / TURNS / VELOCITY snapshot is taken); returns the byte sent.
+    fn read(&mut self, addr: u32) -> u8;
+    /// A byte write to the map's byte `addr`.
+    fn write(&mut self, addr: u32, value: u8);
+}
+
 /// The slave's control channel and its register file.
 #[derive(Clone, Debug)]
 pub struct ControlModel {
@@ -82,6 +93,16 @@ impl ControlModel {
 
     /// Takes one CDM bit; returns the CDS bit of the next frame.
     pub fn step(&mut self, cdm: bool) -> bool {
+        self.step_with(cdm, None)
+    }
+
+    /// The map's byte behind address `addr` (0x00..0x3F) in the selected bank.
+    fn user_addr(&self, addr: u8) -> u32 {
+        self.regs[0x40] as u32 * crate::blocks::regmap::BISS_BANK_BYTES + (addr & 0x3f) as u32
+    }
+
+    /// [`Self::step`] with the register map behind 0x00..0x3F when `bus` is given.
+    pub fn step_with(&mut self, cdm: bool, mut bus: Option<&mut dyn UserBus>) -> bool {
         let b = cdm;
         let mut cds = false;
         use Phase::*;
@@ -140,7 +161,8 @@ impl ControlModel {
             Start => {
                 if b {
                     cds = true;
-                    self.begin_byte();
+                    let ext = self.ext_read(&mut bus);
+                    self.begin_byte(ext);
                 } else {
                     self.phase = Idle;
                 }
@@ -159,6 +181,9 @@ impl ControlModel {
                 } else {
                     if self.write && !self.bad {
                         self.regs[self.addr as usize] = self.byte;
+                        if let (Some(b), true) = (bus.as_mut(), self.addr < 0x40) {
+                            b.write(self.user_addr(self.addr), self.byte);
+                        }
                     }
                     self.phase = Next;
                 }
@@ -170,7 +195,8 @@ impl ControlModel {
                         self.phase = Idle;
                     } else {
                         cds = true;
-                        self.begin_byte();
+                        let ext = self.ext_read(&mut bus);
+                        self.begin_byte(ext);
                     }
                 } else {
                     self.phase = Idle;
@@ -186,12 +212,20 @@ impl ControlModel {
         cds
     }
 
-    /// Start of a data byte after a start bit.
-    fn begin_byte(&mut self) {
+    /// A read's byte from the register map (`bus`, user area), else None.
+    fn ext_read(&self, bus: &mut Option<&mut dyn UserBus>) -> Option<u8> {
+        match bus {
+            Some(b) if self.addr < 0x40 && !self.write => Some(b.read(self.user_addr(self.addr))),
+            _ => None,
+        }
+    }
+
+    /// Start of a data byte after a start bit (`ext`: a read's byte from the register map).
+    fn begin_byte(&mut self, ext: Option<u8>) {
         self.n = 0;
         self.crc = 0;
         self.bad = false;
-        self.byte = self.regs[self.addr as usize];
+        self.byte = ext.unwrap_or(self.regs[self.addr as usize]);
         self.phase = if self.write {
             Phase::Write
         } else {

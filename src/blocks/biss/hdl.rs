@@ -75,6 +75,17 @@ pub struct BissSlave {
     posw: PosWord,
     /// The control channel: one instance with `control`, none without (no Verilog).
     ctl: Vec<BissControl>,
+    /// The register map's byte port (`user_map`: one each, none without), the control
+    /// channel's `ext_*`: byte address, write strobe, written byte, read start, read byte.
+    pub reg_addr: Vec<Signal<Out, Bits<32>>>,
+    /// See `reg_addr`.
+    pub reg_we: Vec<Signal<Out, Bit>>,
+    /// See `reg_addr`.
+    pub reg_wdata: Vec<Signal<Out, Bits<8>>>,
+    /// See `reg_addr`.
+    pub reg_snap: Vec<Signal<Out, Bit>>,
+    /// See `reg_addr`.
+    pub reg_rdata: Vec<Signal<In, Bits<8>>>,
     /// Where the slave is in its frame; power-up Timeout (the enum's first variant is the
     /// register's initial value), like the reset.
     state: DFF<BissState>,
@@ -197,7 +208,16 @@ impl BissSlave {
             vmsb: (0..nv).map(|_| c64(1 << (v.max(1) - 1))).collect(),
             sync: LineSync::new(p.glitch_filter),
             posw: PosWord::new(p.position_bits, p.multiturn_bits, p.gray),
-            ctl: p.control.iter().map(BissControl::new).collect(),
+            ctl: p
+                .control
+                .iter()
+                .map(|id| BissControl::new(id, p.user_map))
+                .collect(),
+            reg_addr: user(p),
+            reg_we: user(p),
+            reg_wdata: user(p),
+            reg_snap: user(p),
+            reg_rdata: user(p),
             state: Default::default(),
             pact: Default::default(),
             pfb: Default::default(),
@@ -280,6 +300,13 @@ impl stages::Timeout for BissSlave {
             self.ctl[i].ma.next = self.sync.level.val();
             self.ctl[i].done.next = false;
             self.ctl[i].expire.next = false;
+            for j in 0..self.reg_rdata.len() {
+                self.ctl[i].ext_rdata[j].next = self.reg_rdata[j].val();
+                self.reg_addr[j].next = self.ctl[i].ext_addr[j].val();
+                self.reg_we[j].next = self.ctl[i].ext_we[j].val();
+                self.reg_wdata[j].next = self.ctl[i].ext_wdata[j].val();
+                self.reg_snap[j].next = self.ctl[i].ext_snap[j].val();
+            }
         }
         self.mae.next = self.sync.rise.val() | self.sync.fall.val();
         // The timeout ends every state but Idle: MA quiet for timeout_clocks -> idle, SLO high.
@@ -559,6 +586,14 @@ impl stages::Shift for BissSlave {
         }
         self.slo.next = self.slo_reg.q.val();
     }
+}
+
+/// One port of the register map's byte bus with `user_map` (and the control channel), none
+/// without.
+fn user<D: Default>(p: &BissParams) -> Vec<D> {
+    (0..usize::from(p.user_map && p.control.is_some()))
+        .map(|_| D::default())
+        .collect()
 }
 
 crate::cosim::cosim_block!(BissSlave {

@@ -165,6 +165,10 @@ pub struct BissParams {
     /// in_frames`): two's complement, MSB first, covered by the CRC.
     #[serde(skip_serializing_if = "crate::blocks::serial::is_zero")]
     pub velocity_bits: u32,
+    /// With the control channel and `[registers]`: the channel's addresses 0x00..0x3F are the
+    /// register map's bytes in banks of 64 (bank select 0x40), not the scratchpad.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub user_map: bool,
 }
 
 impl BissParams {
@@ -185,6 +189,7 @@ impl BissParams {
             clock_hz,
             control: None,
             velocity_bits: 0,
+            user_map: false,
         };
         p.validate()?;
         Ok(p)

@@ -14,6 +14,13 @@ fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
 }
 
+/// One signal with the BiSS byte port, none without.
+fn port<D: Default>(p: &RegmapParams) -> Vec<D> {
+    (0..usize::from(p.biss_port()))
+        .map(|_| D::default())
+        .collect()
+}
+
 /// The AXI4-Lite slave and its registers (ports in the module docs of `regmap`).
 #[derive(LogicBlock)]
 pub struct RegisterMap {
@@ -85,6 +92,17 @@ pub struct RegisterMap {
     pub cap_age: Signal<In, Bits<32>>,
     /// One clock: PRESET written with bit 0 set.
     pub preset: Signal<Out, Bit>,
+    /// The BiSS control channel's byte port (one each with [`RegmapParams::biss_port`],
+    /// none without): the byte address in the map (bank * 64 + channel address).
+    pub bus_addr: Vec<Signal<In, Bits<32>>>,
+    /// One clock: write `bus_wdata` to the byte at `bus_addr`.
+    pub bus_we: Vec<Signal<In, Bit>>,
+    /// The byte written.
+    pub bus_wdata: Vec<Signal<In, Bits<8>>>,
+    /// One clock: a read begins; at POSITION's byte 0 it latches the channel's snapshot.
+    pub bus_snap: Vec<Signal<In, Bit>>,
+    /// The byte at the address of two clocks before.
+    pub bus_rdata: Vec<Signal<Out, Bits<8>>>,
     aw_full: DFF<Bit>,
     aw_addr: DFF<Bits<32>>,
     w_full: DFF<Bit>,
@@ -104,6 +122,27 @@ pub struct RegisterMap {
     sh_turns: DFF<Bits<32>>,
     sh_vel: DFF<Bits<32>>,
     pre: DFF<Bit>,
+    /// The BiSS byte port: the address as a one-hot word select and a byte lane, the read
+    /// byte, the channel's POSITION / TURNS / VELOCITY snapshot, and a byte write waiting
+    /// for a clock without an AXI write (unused without the port).
+    bsel: DFF<Bits<32>>,
+    blane: DFF<Bits<32>>,
+    b_rdata: DFF<Bits<32>>,
+    bpos: DFF<Bits<32>>,
+    btur: DFF<Bits<32>>,
+    bvel: DFF<Bits<32>>,
+    bw_full: DFF<Bit>,
+    bw_addr: DFF<Bits<32>>,
+    bw_data: DFF<Bits<8>>,
+    /// The write of this clock (AXI's, else the BiSS byte's): word index and bits.
+    wen: Signal<Local, Bit>,
+    wbits: Signal<Local, Bits<32>>,
+    /// The read select of this clock (AXI's while it holds an address, else the BiSS
+    /// port's) and the words whose value depends on the port.
+    rsel: Signal<Local, Bits<32>>,
+    w5: Signal<Local, Bits<32>>,
+    w6: Signal<Local, Bits<32>>,
+    w7: Signal<Local, Bits<32>>,
     wword: Signal<Local, Bits<32>>,
     rmux: Signal<Local, Bits<32>>,
     bits: Signal<Local, Bits<32>>,
@@ -120,6 +159,10 @@ pub struct RegisterMap {
     cvel: Signal<Local, Bits<32>>,
     /// Mask of the byte address.
     amask: Constant<Bits<32>>,
+    /// Bytes 0..255 of the BiSS port's address (above: no register); a byte's mask.
+    bhigh: Constant<Bits<32>>,
+    bmask8: Constant<Bits<32>>,
+    three: Constant<Bits<32>>,
     /// Mask of the one-hot select (the 16 words).
     selmask: Constant<Bits<32>>,
     two: Constant<Bits<32>>,
@@ -225,6 +268,26 @@ impl RegisterMap {
             cap_velocity: Default::default(),
             cap_age: Default::default(),
             preset: Default::default(),
+            bus_addr: port(p),
+            bus_we: port(p),
+            bus_wdata: port(p),
+            bus_snap: port(p),
+            bus_rdata: port(p),
+            bsel: Default::default(),
+            blane: Default::default(),
+            b_rdata: Default::default(),
+            bpos: Default::default(),
+            btur: Default::default(),
+            bvel: Default::default(),
+            bw_full: Default::default(),
+            bw_addr: Default::default(),
+            bw_data: Default::default(),
+            wen: Default::default(),
+            wbits: Default::default(),
+            rsel: Default::default(),
+            w5: Default::default(),
+            w6: Default::default(),
+            w7: Default::default(),
             aw_full: Default::default(),
             aw_addr: Default::default(),
             w_full: Default::default(),
@@ -255,6 +318,9 @@ impl RegisterMap {
             vel: Default::default(),
             cvel: Default::default(),
             amask: c32(mask(ADDR_BITS)),
+            bhigh: c32(mask(32) & !mask(ADDR_BITS)),
+            bmask8: c32(0xff),
+            three: c32(3),
             selmask: c32(0xffff),
             two: c32(2),
             w_status: wc(STATUS_WORD),
@@ -305,7 +371,8 @@ impl Logic for RegisterMap {
     fn update(&mut self) {
         dff_setup!(
             self, clk, aw_full, aw_addr, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
-            rdata, status, amp, sh_turns, sh_vel, pre
+            rdata, status, amp, sh_turns, sh_vel, pre, bsel, blane, b_rdata, bpos, btur, bvel,
+            bw_full, bw_addr, bw_data
         );
         // The words each register reads, from the live inputs.
         self.live.next = (self.flags.val() & self.flmask.val()) | self.refd.val();
@@ -363,19 +430,39 @@ impl Logic for RegisterMap {
             self.smask.next = self.smask.val() | self.s3.val();
         }
         self.bits.next = self.w_data.q.val() & self.smask.val();
+        // The write of this clock: AXI's when both holders are full and no response is
+        // pending, else a BiSS byte write waiting (taken the next clock AXI leaves free).
+        self.wen.next = false;
         self.wword.next = self.aw_addr.q.val() >> self.two.val();
-        self.clear.next = self.zero.val();
-        self.pre.d.next = false;
+        self.wbits.next = self.bits.val();
         if self.aw_full.q.val() & self.w_full.q.val() & !self.bvalid.q.val() {
-            if self.wword.val() == self.w_status.val() {
-                self.clear.next = self.bits.val();
-            }
-            if self.wword.val() == self.w_preset.val() {
-                self.pre.d.next = (self.bits.val() & self.one.val()).any();
-            }
+            self.wen.next = true;
             self.aw_full.d.next = false;
             self.w_full.d.next = false;
             self.bvalid.d.next = true;
+        } else if self.bw_full.q.val() {
+            self.wen.next = true;
+            self.wword.next = self.bw_addr.q.val() >> self.two.val();
+            self.wbits.next = bit_cast::<32, 8>(self.bw_data.q.val())
+                << ((self.bw_addr.q.val() & self.three.val()) << self.three.val());
+            self.bw_full.d.next = false;
+        }
+        for i in 0..self.bus_we.len() {
+            if self.bus_we[i].val() {
+                self.bw_full.d.next = true;
+                self.bw_addr.d.next = self.bus_addr[i].val();
+                self.bw_data.d.next = self.bus_wdata[i].val();
+            }
+        }
+        self.clear.next = self.zero.val();
+        self.pre.d.next = false;
+        if self.wen.val() {
+            if self.wword.val() == self.w_status.val() {
+                self.clear.next = self.wbits.val();
+            }
+            if self.wword.val() == self.w_preset.val() {
+                self.pre.d.next = (self.wbits.val() & self.one.val()).any();
+            }
         }
         // Faults: set wins over a clear in the same clock.
         self.status.d.next = (self.status.q.val() & !self.clear.val() & self.fmask.val())
@@ -393,48 +480,62 @@ impl Logic for RegisterMap {
         if self.rvalid.q.val() & self.s_axi_rready.val() {
             self.rvalid.d.next = false;
         }
+        // The read select: AXI's held address, else (with the BiSS port) the port's, whose
+        // POSITION, TURNS and VELOCITY are its own snapshot.
+        self.rsel.next = self.ar_sel.q.val();
+        self.w5.next = self.pos.val();
+        self.w6.next = self.sh_turns.q.val();
+        self.w7.next = self.sh_vel.q.val();
+        for _i in 0..self.bus_addr.len() {
+            if !self.ar_full.q.val() {
+                self.rsel.next = self.bsel.q.val();
+                self.w5.next = self.bpos.q.val();
+                self.w6.next = self.btur.q.val();
+                self.w7.next = self.bvel.q.val();
+            }
+        }
         // The read data: an AND-OR of the words by the one-hot select.
         self.rmux.next = self.zero.val();
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_id.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_id.val())).any() {
             self.rmux.next = self.rmux.val() | self.id.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_version.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_version.val())).any() {
             self.rmux.next = self.rmux.val() | self.version.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_status.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_status.val())).any() {
             self.rmux.next = self.rmux.val() | self.status.q.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_flags.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_flags.val())).any() {
             self.rmux.next = self.rmux.val() | self.live.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_amp.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_amp.val())).any() {
             self.rmux.next = self.rmux.val() | self.amp.q.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_position.val())).any() {
-            self.rmux.next = self.rmux.val() | self.pos.val();
+        if (self.rsel.val() & (self.one.val() << self.w_position.val())).any() {
+            self.rmux.next = self.rmux.val() | self.w5.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_turns.val())).any() {
-            self.rmux.next = self.rmux.val() | self.sh_turns.q.val();
+        if (self.rsel.val() & (self.one.val() << self.w_turns.val())).any() {
+            self.rmux.next = self.rmux.val() | self.w6.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_vel.val())).any() {
-            self.rmux.next = self.rmux.val() | self.sh_vel.q.val();
+        if (self.rsel.val() & (self.one.val() << self.w_vel.val())).any() {
+            self.rmux.next = self.rmux.val() | self.w7.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_ipos.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_ipos.val())).any() {
             self.rmux.next = self.rmux.val() | self.ipos.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_itur.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_itur.val())).any() {
             self.rmux.next = self.rmux.val() | self.itur.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_cpos.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_cpos.val())).any() {
             self.rmux.next = self.rmux.val() | self.cpos.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_ctur.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_ctur.val())).any() {
             self.rmux.next = self.rmux.val() | self.ctur.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_cvel.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_cvel.val())).any() {
             self.rmux.next = self.rmux.val() | self.cvel.val();
         }
-        if (self.ar_sel.q.val() & (self.one.val() << self.w_cage.val())).any() {
+        if (self.rsel.val() & (self.one.val() << self.w_cage.val())).any() {
             self.rmux.next = self.rmux.val() | self.cap_age.val();
         }
         if self.ar_full.q.val() {
@@ -445,6 +546,30 @@ impl Logic for RegisterMap {
             }
             self.ar_full.d.next = false;
             self.rvalid.d.next = true;
+        }
+        // The BiSS byte port: the address registered as a word select and a lane (bytes
+        // 256 and above select nothing), the byte read while AXI leaves the select free,
+        // the snapshot when a read begins at POSITION's byte 0.
+        for i in 0..self.bus_addr.len() {
+            self.bsel.d.next = self.zero.val();
+            if !(self.bus_addr[i].val() & self.bhigh.val()).any() {
+                self.bsel.d.next = (self.one.val() << (self.bus_addr[i].val() >> self.two.val()))
+                    & self.selmask.val();
+            }
+            self.blane.d.next = self.bus_addr[i].val() & self.three.val();
+            if !self.ar_full.q.val() {
+                self.b_rdata.d.next = (self.rmux.val() >> (self.blane.q.val() << self.three.val()))
+                    & self.bmask8.val();
+            }
+            if self.bus_snap[i].val()
+                & (self.bsel.q.val() & (self.one.val() << self.w_position.val())).any()
+                & (self.blane.q.val() == self.zero.val())
+            {
+                self.bpos.d.next = self.pos.val();
+                self.btur.d.next = self.tur.val();
+                self.bvel.d.next = self.vel.val();
+            }
+            self.bus_rdata[i].next = bit_cast::<8, 32>(self.b_rdata.q.val());
         }
         if self.rst.val() {
             self.aw_full.d.next = false;
@@ -462,6 +587,15 @@ impl Logic for RegisterMap {
             self.sh_turns.d.next = 0.into();
             self.sh_vel.d.next = 0.into();
             self.pre.d.next = false;
+            self.bsel.d.next = 0.into();
+            self.blane.d.next = 0.into();
+            self.b_rdata.d.next = 0.into();
+            self.bpos.d.next = 0.into();
+            self.btur.d.next = 0.into();
+            self.bvel.d.next = 0.into();
+            self.bw_full.d.next = false;
+            self.bw_addr.d.next = 0.into();
+            self.bw_data.d.next = 0.into();
         }
         self.s_axi_awready.next = !self.aw_full.q.val();
         self.s_axi_wready.next = !self.w_full.q.val();
@@ -503,6 +637,16 @@ impl crate::cosim::CosimBlock for RegisterMap {
             Port::new("cap_velocity", 64),
             Port::new("cap_age", 32),
         ]
+        .into_iter()
+        .chain(self.bus_addr.iter().flat_map(|_| {
+            [
+                Port::new("bus_addr_0", 32),
+                Port::new("bus_we_0", 1),
+                Port::new("bus_wdata_0", 8),
+                Port::new("bus_snap_0", 1),
+            ]
+        }))
+        .collect()
     }
     fn output_ports(&self) -> Vec<Port> {
         vec![
@@ -516,6 +660,9 @@ impl crate::cosim::CosimBlock for RegisterMap {
             Port::new("s_axi_rvalid", 1),
             Port::new("preset", 1),
         ]
+        .into_iter()
+        .chain(self.bus_rdata.iter().map(|_| Port::new("bus_rdata_0", 8)))
+        .collect()
     }
     fn apply(&mut self, r: &[u64]) {
         let b32 = |v: u64| Bits::<32>::from(v & mask(32));
@@ -543,6 +690,12 @@ impl crate::cosim::CosimBlock for RegisterMap {
         self.cap_turns.next = b32(r[21]);
         self.cap_velocity.next = Bits::<64>::from(r[22]);
         self.cap_age.next = b32(r[23]);
+        for i in 0..self.bus_addr.len() {
+            self.bus_addr[i].next = b32(r[24]);
+            self.bus_we[i].next = r[25] != 0;
+            self.bus_wdata[i].next = Bits::<8>::from(r[26] & 0xff);
+            self.bus_snap[i].next = r[27] != 0;
+        }
     }
     fn sample(&self) -> Vec<u64> {
         vec![
@@ -556,6 +709,9 @@ impl crate::cosim::CosimBlock for RegisterMap {
             self.s_axi_rvalid.val() as u64,
             self.preset.val() as u64,
         ]
+        .into_iter()
+        .chain(self.bus_rdata.iter().map(|s| s.val().to_u64()))
+        .collect()
     }
 }
 

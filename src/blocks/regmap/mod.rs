@@ -46,6 +46,11 @@ pub use block::{RegistersConfig, BLOCK};
 /// Bits of the byte address (`s_axi_awaddr`, `s_axi_araddr`): 64 words.
 pub const ADDR_BITS: u32 = 8;
 
+/// Bytes of the map behind one bank of the BiSS control channel (its addresses 0x00..0x3F;
+/// the bank select at 0x40 picks bank n = map bytes 64 n .. 64 n + 63, so banks 0..=3 cover
+/// the map's 256 bytes and higher banks read 0).
+pub const BISS_BANK_BYTES: u32 = 64;
+
 /// `ID`: "SDEC" in ASCII.
 pub const ID: u32 = 0x5344_4543;
 
@@ -359,6 +364,7 @@ pub struct RegmapParams {
     turns_bits: u32,
     velocity_width: u32,
     referenced_always: bool,
+    biss_port: bool,
 }
 
 impl RegmapParams {
@@ -384,7 +390,18 @@ impl RegmapParams {
             turns_bits,
             velocity_width,
             referenced_always,
+            biss_port: false,
         })
+    }
+    /// With the BiSS control channel's byte port ([`BISS_BANK_BYTES`]-byte banks of the
+    /// map behind the channel's addresses 0x00..0x3F).
+    pub fn with_biss_port(mut self) -> Self {
+        self.biss_port = true;
+        self
+    }
+    /// The map has the BiSS control channel's byte port.
+    pub fn biss_port(&self) -> bool {
+        self.biss_port
     }
     /// F.
     pub fn fine_bits(&self) -> u32 {

@@ -54,6 +54,16 @@ pub struct RegIn {
     pub cap_velocity: u64,
     /// See `cap_qc`.
     pub cap_age: u64,
+    /// The BiSS control channel's byte port (with [`RegmapParams::biss_port`]): the byte
+    /// address in the map (bank * 64 + the channel's address; 256 and above: no register).
+    pub bus_addr: u64,
+    /// One clock: write `bus_wdata` to the byte at `bus_addr`.
+    pub bus_we: bool,
+    /// The byte written.
+    pub bus_wdata: u64,
+    /// One clock: a read of the byte at `bus_addr` begins; at POSITION's byte 0 it
+    /// latches the channel's own POSITION, TURNS and VELOCITY.
+    pub bus_snap: bool,
 }
 
 impl RegIn {
@@ -86,6 +96,18 @@ impl RegIn {
             self.cap_age & mask(32),
         ]
     }
+    /// [`Self::row`] with the BiSS byte port's inputs after it (the port order of a map
+    /// with [`RegmapParams::biss_port`]).
+    pub fn row_with_bus(&self) -> Vec<u64> {
+        let mut r = self.row();
+        r.extend([
+            self.bus_addr & mask(32),
+            self.bus_we as u64,
+            self.bus_wdata & 0xff,
+            self.bus_snap as u64,
+        ]);
+        r
+    }
 }
 
 /// Outputs after one clock edge.
@@ -105,6 +127,9 @@ pub struct RegOut {
     pub rvalid: bool,
     /// One clock: PRESET was written with bit 0 set.
     pub preset: bool,
+    /// The BiSS byte port's read data: the byte at the `bus_addr` of two clocks before
+    /// (one clock later while an AXI read holds the shared read select).
+    pub bus_rdata: u64,
 }
 
 impl RegOut {
@@ -121,6 +146,12 @@ impl RegOut {
             self.rvalid as u64,
             self.preset as u64,
         ]
+    }
+    /// [`Self::row`] with the BiSS byte port's output after it.
+    pub fn row_with_bus(&self) -> Vec<u64> {
+        let mut r = self.row();
+        r.push(self.bus_rdata);
+        r
     }
 }
 
@@ -142,6 +173,19 @@ struct Regs {
     sh_turns: u64,
     sh_vel: u64,
     preset: bool,
+    /// The BiSS byte port: its address (registered), read data, own POSITION / TURNS /
+    /// VELOCITY latched at a snapshot, and a byte write waiting for a clock without an
+    /// AXI write.
+    b_addr: u64,
+    /// `b_addr` holds an address (the reset leaves the select empty).
+    b_held: bool,
+    b_rdata: u64,
+    bpos: u64,
+    btur: u64,
+    bvel: u64,
+    bw_full: bool,
+    bw_addr: u64,
+    bw_data: u64,
 }
 
 /// The register map, clock by clock.
@@ -176,8 +220,14 @@ impl RegisterModel {
         f
     }
 
-    /// The value a read of word `w` loads (before its side effects).
+    /// The value an AXI read of word `w` loads (before its side effects).
     fn word(&self, w: u64, i: &RegIn) -> u64 {
+        self.word_from(w, i, false)
+    }
+
+    /// The value word `w` reads on the AXI port, or on the BiSS byte port (`biss`: POSITION,
+    /// TURNS and VELOCITY from the channel's own snapshot).
+    fn word_from(&self, w: u64, i: &RegIn, biss: bool) -> u64 {
         let p = &self.p;
         let f = p.fine_bits();
         let pos = |qc: u64, fine: u64| ((qc << f) | (fine & mask(f))) & mask(32);
@@ -187,6 +237,9 @@ impl RegisterModel {
             2 => self.r.status,
             3 => self.flags(i),
             4 => self.r.amp,
+            5 if biss => self.r.bpos,
+            6 if biss => self.r.btur,
+            7 if biss => self.r.bvel,
             5 => pos(i.qc, i.fine),
             6 => self.r.sh_turns,
             7 => self.r.sh_vel,
@@ -225,16 +278,29 @@ impl RegisterModel {
         }
         let mut clear = 0;
         n.preset = false;
+        // The write of this clock: AXI's, else a BiSS byte write waiting (as (word, bits)).
+        let mut write = None;
         if o.aw_full && o.w_full && !o.bvalid {
-            let bits = o.w_data & strobe_mask(o.w_strb);
-            match word(o.aw_addr) as u32 {
-                STATUS_WORD => clear = bits,
-                PRESET_WORD => n.preset = bits & 1 == 1,
-                _ => {}
-            }
+            write = Some((word(o.aw_addr), o.w_data & strobe_mask(o.w_strb)));
             n.aw_full = false;
             n.w_full = false;
             n.bvalid = true;
+        } else if o.bw_full {
+            let lane = 8 * (o.bw_addr & 3);
+            write = Some((o.bw_addr >> 2, (o.bw_data & 0xff) << lane));
+            n.bw_full = false;
+        }
+        if self.p.biss_port() && i.bus_we {
+            n.bw_full = true;
+            n.bw_addr = i.bus_addr & mask(32);
+            n.bw_data = i.bus_wdata & 0xff;
+        }
+        if let Some((w, bits)) = write {
+            match w {
+                w if w == STATUS_WORD as u64 => clear = bits,
+                w if w == PRESET_WORD as u64 => n.preset = bits & 1 == 1,
+                _ => {}
+            }
         }
         // Faults: set wins over a clear in the same clock.
         n.status = (o.status & !clear & 0x1f) | (i.flags & 0x1f);
@@ -248,6 +314,26 @@ impl RegisterModel {
         }
         if o.rvalid && i.rready {
             n.rvalid = false;
+        }
+        if self.p.biss_port() {
+            // The BiSS byte port: the address registered, the byte read while AXI does not
+            // hold the read select, the snapshot at POSITION's byte 0.
+            n.b_addr = i.bus_addr & mask(32);
+            n.b_held = true;
+            if !o.ar_full {
+                let w = o.b_addr >> 2;
+                let v = if w < 16 && o.b_held {
+                    self.word_from(w, &i, true)
+                } else {
+                    0
+                };
+                n.b_rdata = v >> (8 * (o.b_addr & 3)) & 0xff;
+            }
+            if i.bus_snap && o.b_held && o.b_addr == 4 * POSITION_WORD as u64 {
+                n.bpos = self.word(POSITION_WORD as u64, &i);
+                n.btur = self.p.turns32(i.turns) as u64;
+                n.bvel = self.p.velocity32(i.velocity) as u64;
+            }
         }
         if o.ar_full {
             let w = word(o.ar_addr);
@@ -273,6 +359,7 @@ impl RegisterModel {
             rdata: r.rdata,
             rvalid: r.rvalid,
             preset: r.preset,
+            bus_rdata: r.b_rdata,
         }
     }
 }

@@ -672,6 +672,14 @@ impl Logic for TopRtl {
                 self.rflags[i].next = self.rflags[i].val() | self.fl_bits[8].val();
             }
             self.regs[i].flags.next = self.rflags[i].val();
+            // The BiSS control channel's user area is the map's banks (docs/registers.md).
+            for j in 0..self.biss_slave.reg_addr.len() {
+                self.regs[i].bus_addr[j].next = self.biss_slave.reg_addr[j].val();
+                self.regs[i].bus_we[j].next = self.biss_slave.reg_we[j].val();
+                self.regs[i].bus_wdata[j].next = self.biss_slave.reg_wdata[j].val();
+                self.regs[i].bus_snap[j].next = self.biss_slave.reg_snap[j].val();
+                self.biss_slave.reg_rdata[j].next = self.regs[i].bus_rdata[j].val();
+            }
             self.regs[i].amp_valid.next = self.core.out_mag_valid.val();
             self.regs[i].amplitude.next = self.core.out_mag.val();
             self.regs[i].qc.next = self.core.out_qc.val();

@@ -259,6 +259,24 @@ impl stages::Crc4 for BissControl {
             self.crc.d.next = self.zero4.val();
         }
         self.regs.write_enable.next = self.we.val();
+        // The register map behind 0x00..0x3F: its byte replaces the file's in the read, a
+        // write there goes to it too, and a read's start (ldq rising) is the snapshot pulse.
+        for i in 0..self.ext_rdata.len() {
+            self.bank[i].clock.next = self.clk.val();
+            self.snp[i].clock.next = self.clk.val();
+            self.snp[i].d.next = self.ldq.q.val();
+            if self.we.val() & (self.addr.q.val() == self.k40[i].val()) {
+                self.bank[i].d.next = bit_cast::<32, 8>(self.sh.q.val());
+            }
+            if !(self.addr.q.val() & self.k40[i].val()).any() {
+                self.rdq.d.next = self.ext_rdata[i].val();
+            }
+            self.ext_addr[i].next = (self.bank[i].q.val() << self.k6[i].val())
+                | (bit_cast::<32, 7>(self.addr.q.val()) & self.k3f[i].val());
+            self.ext_we[i].next = self.we.val() & !(self.addr.q.val() & self.k40[i].val()).any();
+            self.ext_wdata[i].next = self.sh.q.val();
+            self.ext_snap[i].next = self.ldq.q.val() & !self.snp[i].q.val();
+        }
         if self.rst.val() {
             self.armed.d.next = false;
             self.stp.d.next = false;
