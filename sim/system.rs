@@ -869,24 +869,52 @@ impl System {
     /// Connects a BiSS-C master that reads frames back to back at `ma_hz` for `seconds`, and
     /// checks each against the parallel bus ([`SimResult::biss`]).
     pub fn monitor_biss(&mut self, ma_hz: f64, seconds: f64) {
-        use crate::sim::biss_master::{BissMaster, BissMasterConfig};
         let p = &self.d.biss;
-        let t = self.line_timing();
-        let mut c = BissMasterConfig::new(t, p.data_bits(), p.multiturn_bits);
-        c.word.gray = p.gray;
-        c.word = c.word.with_velocity(p.velocity_bits);
         let gap_ns = 1000.0;
         let frame_s =
             (p.frame_rising_edges() + 1) as f64 / ma_hz + p.timeout_us() * 1e-6 + gap_ns * 1e-9;
         let n = (seconds / frame_s).ceil() as usize + 1;
         let reqs = vec![crate::sim::serial_line::FrameRequest::new(ma_hz).gap(gap_ns); n];
-        let m = std::rc::Rc::new(std::cell::RefCell::new(BissMaster::new(c, reqs, 500.0)));
-        self.ma = Some(Box::new(m.clone()));
+        let m = self.biss_master(reqs);
         self.biss = Some(m);
         self.result.biss = Some(BissCheck {
             ma_hz: ma_hz.round() as u64,
             ..BissCheck::default()
         });
+    }
+
+    /// A BiSS-C master for this design's frames, connected to `biss_ma`/`biss_slo`, that
+    /// clocks the frames `reqs` (1 us apart after the slave is ready).
+    fn biss_master(
+        &mut self,
+        reqs: Vec<crate::sim::serial_line::FrameRequest>,
+    ) -> std::rc::Rc<std::cell::RefCell<crate::sim::biss_master::BissMaster>> {
+        use crate::sim::biss_master::{BissMaster, BissMasterConfig};
+        let p = &self.d.biss;
+        let mut c = BissMasterConfig::new(self.line_timing(), p.data_bits(), p.multiturn_bits);
+        c.word.gray = p.gray;
+        c.word = c.word.with_velocity(p.velocity_bits);
+        let m = std::rc::Rc::new(std::cell::RefCell::new(BissMaster::new(c, reqs, 500.0)));
+        self.ma = Some(Box::new(m.clone()));
+        m
+    }
+
+    /// Connects a BiSS-C master that clocks one frame per CDM bit of `cdm` at `ma_hz` (a
+    /// control session, `crate::sim::biss_control::Session`); its frames carry the CDS
+    /// answers.
+    pub fn biss_session(
+        &mut self,
+        ma_hz: f64,
+        cdm: &[bool],
+    ) -> std::rc::Rc<std::cell::RefCell<crate::sim::biss_master::BissMaster>> {
+        let reqs = cdm
+            .iter()
+            .map(|&cdm| crate::sim::serial_line::FrameRequest {
+                cdm,
+                ..crate::sim::serial_line::FrameRequest::new(ma_hz).gap(1000.0)
+            })
+            .collect();
+        self.biss_master(reqs)
     }
 
     /// Checks the BiSS-C master's frames finished since the last call against the

@@ -54,6 +54,13 @@ fn option_tops() -> Vec<(&'static str, String)> {
             replace_once("[biss]\n", "[biss]\ncontrol = true\n"),
         ),
         (
+            "BiSS control top with the register map's banks",
+            format!(
+                "{}\n[registers]\nenabled = true\n",
+                replace_once("[biss]\n", "[biss]\ncontrol = true\n")
+            ),
+        ),
+        (
             "static top with a 1 deg phase",
             replace_once("gain_sin = 1.0\n", "gain_sin = 1.02\n")
                 .replace("gain_cos = 1.0\n", "gain_cos = 0.97\nphase_deg = 1.0\n"),

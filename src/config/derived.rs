@@ -185,6 +185,10 @@ impl Derived {
             &err,
         )?;
         derived.registers = crate::blocks::regmap::block::params(c, &derived, &err)?;
+        // The map holds the monitor's thresholds.
+        if derived.registers.is_some() {
+            derived.monitor = derived.monitor.with_run_time_thresholds();
+        }
         // The BiSS control channel's user area becomes the register map's banks.
         if let (Some(r), Some(_)) = (derived.registers.as_mut(), derived.biss.control.as_ref()) {
             *r = r.with_biss_port();

@@ -174,7 +174,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
     )?;
     // The register map's table joins the parameters (`[registers] enabled`).
     let report = match &loaded.derived.registers {
-        Some(_) => report + &regmap::markdown(),
+        Some(p) => report + &regmap::markdown(p),
         None => report,
     };
     let tb = format!(
@@ -201,10 +201,11 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
             text: report,
         },
     ];
-    if loaded.derived.registers.is_some() {
+    if let Some(p) = &loaded.derived.registers {
         files.push(OutFile {
             name: format!("{name}_regs.rdl"),
             text: regmap::rdl(
+                p,
                 name,
                 &header(
                     loaded,
@@ -216,7 +217,7 @@ pub fn generate(loaded: &Loaded, command: &str) -> Result<Generation> {
         });
         files.push(OutFile {
             name: format!("{name}_regs.json"),
-            text: regmap::json()?,
+            text: regmap::json(p)?,
         });
     }
     let top_text = top_verilog(loaded)?;

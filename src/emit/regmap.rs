@@ -2,7 +2,7 @@
 //! [`crate::blocks::regmap::REGISTERS`] the RTL's decode comes from: `<name>_regs.rdl`
 //! (SystemRDL, for PeakRDL and the field's other tools), `<name>_regs.json` and the Markdown
 //! table appended to `<name>_params.md`. Written here because no crate writes SystemRDL.
-use crate::blocks::regmap::{Access, RegDef, ADDR_BITS, REGISTERS};
+use crate::blocks::regmap::{Access, RegDef, RegmapParams, ADDR_BITS, REGISTERS};
 use std::fmt::Write as _;
 
 /// A SystemRDL string literal of `s` (quotes and backslashes escaped).
@@ -27,8 +27,8 @@ fn has_reset(r: &RegDef) -> bool {
     r.access != Access::Ro || matches!(r.name, "ID" | "VERSION")
 }
 
-/// `<name>_regs.rdl`: one `addrmap` named `<name>_regs`, after the comment `header`.
-pub fn rdl(name: &str, header: &str) -> String {
+/// `<name>_regs.rdl` for the map `p` (its configured resets): one `addrmap` named `<name>_regs`, after the comment `header`.
+pub fn rdl(p: &RegmapParams, name: &str, header: &str) -> String {
     let mut o = String::from(header);
     let _ = writeln!(o, "addrmap {name}_regs {{");
     let _ = writeln!(
@@ -50,7 +50,7 @@ pub fn rdl(name: &str, header: &str) -> String {
         let _ = writeln!(o, "        desc = {};", rdl_str(r.description));
         for f in r.fields {
             let reset = if has_reset(r) {
-                let v = (r.reset as u64 >> f.lsb) & crate::blocks::mask(f.width);
+                let v = (p.reset(r) as u64 >> f.lsb) & crate::blocks::mask(f.width);
                 format!(" = 0x{v:x}")
             } else {
                 String::new()
@@ -84,7 +84,7 @@ struct JsonReg {
 
 /// `<name>_regs.json`: the registers in address order, each with `name`, `address`,
 /// `width`, `access` (`ro`, `rw`, `w1c`, `wo`), `reset` and `description`.
-pub fn json() -> crate::error::Result<String> {
+pub fn json(p: &RegmapParams) -> crate::error::Result<String> {
     let v: Vec<JsonReg> = REGISTERS
         .iter()
         .map(|r| JsonReg {
@@ -92,7 +92,7 @@ pub fn json() -> crate::error::Result<String> {
             address: r.address,
             width: r.width,
             access: r.access.as_str(),
-            reset: r.reset,
+            reset: p.reset(r),
             description: r.description,
         })
         .collect();
@@ -102,7 +102,7 @@ pub fn json() -> crate::error::Result<String> {
 }
 
 /// The Markdown table of the registers (appended to `<name>_params.md`).
-pub fn markdown() -> String {
+pub fn markdown(p: &RegmapParams) -> String {
     let mut o = String::from(
         "\n## Register map (AXI4-Lite, docs/registers.md)\n\n| address | name | access | reset | description |\n|---|---|---|---|---|\n",
     );
@@ -113,7 +113,7 @@ pub fn markdown() -> String {
             r.address,
             r.name,
             r.access.as_str(),
-            r.reset,
+            p.reset(r),
             r.description.replace('|', "\\|")
         );
     }

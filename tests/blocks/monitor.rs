@@ -59,6 +59,7 @@ fn signal(amps: &[f64], gap: usize, seed: u64) -> (Vec<MonitorIn>, Vec<usize>) {
             magnitude: (10000.0 * (amp + n)).round() as u64,
             overspeed: false,
             qep_mismatch: false,
+            thresholds: [0; 3],
         });
     }
     (ins, sample_rows)
@@ -191,6 +192,7 @@ fn random(p: &MonitorParams, n: usize, seed: u64) -> Vec<MonitorIn> {
                 magnitude,
                 overspeed: r.unit() < 0.05,
                 qep_mismatch: r.unit() < 0.05,
+                thresholds: [0; 3],
             }
         })
         .collect()
@@ -281,4 +283,94 @@ fn synthesizes_for_both_families() {
     assert!(x.ffs >= 15 && x.ffs <= 21, "{} FF", x.ffs);
     assert_eq!(c.ffs, x.ffs);
     assert_eq!(x.multipliers, 0);
+}
+
+/// Run-time thresholds (`[registers]`: the map's LOS_THRESHOLD, LOS_RELEASE and
+/// CLIP_THRESHOLD on ports): at a steady magnitude of 10000, raising the loss-of-signal
+/// threshold to 10001 sets `los` on the N-th sample after it and lowering it again clears
+/// it N good samples later; a clipping threshold of 9999 clips at once. Then random
+/// traffic with the thresholds changing: rust-hdl == model == Icarus == Verilator == engine.
+#[test]
+fn run_time_thresholds_act_at_once_and_match_four_ways() {
+    let n = 4;
+    let p = params(n, 3).with_run_time_thresholds();
+    let cfg = [2500, 3000, 12000];
+    // Sample k every 2 clocks; the thresholds change at samples 20 (LOS up), 40 (back),
+    // 60 (clip down), 70 (back).
+    let set = |k: usize| match k {
+        20..=39 => [10001, 10001, 12000],
+        60..=69 => [2500, 3000, 9999],
+        _ => cfg,
+    };
+    let mut ins = vec![
+        MonitorIn {
+            rst: true,
+            thresholds: cfg,
+            ..MonitorIn::default()
+        };
+        2
+    ];
+    let mut at = vec![];
+    for k in 0..90 {
+        ins.push(MonitorIn {
+            thresholds: set(k),
+            ..MonitorIn::default()
+        });
+        at.push(ins.len());
+        ins.push(MonitorIn {
+            mag_valid: true,
+            magnitude: 10000,
+            thresholds: set(k),
+            ..MonitorIn::default()
+        });
+    }
+    let mut m = MonitorModel::new(&p);
+    let outs: Vec<_> = ins.iter().map(|i| m.step(*i)).collect();
+    let los = |k: usize| outs[at[k]].los;
+    let clip = |k: usize| outs[at[k]].clip;
+    // After reset los = 1 until N good samples.
+    assert!(los(n as usize - 2) && !los(n as usize - 1));
+    assert!(
+        !los(20 + n as usize - 2) && los(20 + n as usize - 1),
+        "set on the N-th low"
+    );
+    assert!(
+        los(40 + n as usize - 2) && !los(40 + n as usize - 1),
+        "clear on the N-th good"
+    );
+    assert!(!clip(59) && clip(60), "clips at the first sample over 9999");
+    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_with_thresholds()).collect();
+    let model: Vec<Vec<u64>> = outs.iter().map(|o| o.row()).collect();
+    check(
+        Monitor::new(&p),
+        "mon_runtime",
+        &rows,
+        &model,
+        Simulators::ALL,
+    );
+    // Random traffic, the thresholds changing every 300 clocks (around the magnitudes).
+    let mut r = SplitMix64(21);
+    let mut ins = random(&p, 6000, 13);
+    let mut t = cfg;
+    for (k, i) in ins.iter_mut().enumerate() {
+        if k % 300 == 0 {
+            let lo = r.range(500, 12000) as u64;
+            t = [
+                lo,
+                lo + r.range(0, 3000) as u64,
+                lo + r.range(3000, 9000) as u64,
+            ];
+        }
+        i.thresholds = t;
+    }
+    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_with_thresholds()).collect();
+    let mut m = MonitorModel::new(&p);
+    let model: Vec<Vec<u64>> = ins.iter().map(|i| m.step(*i).row()).collect();
+    check(
+        Monitor::new(&p),
+        "mon_runtime_rand",
+        &rows,
+        &model,
+        Simulators::ALL,
+    );
 }

@@ -14,9 +14,14 @@ use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::verify::{block_traces, Simulators};
 use std::collections::VecDeque;
 
-/// F = 14, M = 12, a 32-bit velocity, with a position reference.
+/// The monitor thresholds the map resets to (LOS_THRESHOLD, LOS_RELEASE, CLIP_THRESHOLD).
+const THRESHOLDS: [u32; 3] = [1500, 1800, 70_000];
+
+/// F = 14, M = 12, a 32-bit velocity, with a position reference, [`THRESHOLDS`].
 fn params() -> RegmapParams {
-    RegmapParams::new(27, 14, 12, 32, false).expect("params")
+    RegmapParams::new(27, 14, 12, 32, false)
+        .expect("params")
+        .with_thresholds(THRESHOLDS)
 }
 
 /// One AXI4-Lite request.
@@ -249,6 +254,9 @@ fn want(name: &str, live: u64) -> u32 {
         "CAPTURE_TURNS" => -1i32 as u32,
         "CAPTURE_VELOCITY" => 2_000_000,
         "CAPTURE_AGE" => 250,
+        "LOS_THRESHOLD" => THRESHOLDS[0],
+        "LOS_RELEASE" => THRESHOLDS[1],
+        "CLIP_THRESHOLD" => THRESHOLDS[2],
         other => panic!("no expectation for {other}"),
     }
 }
@@ -448,7 +456,7 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
             plan.push((r.address as u64 + lane, 8, false, None));
         }
     }
-    for a in [0x40u64, 0x7c, 0xfc, 0x100, 0x103] {
+    for a in [0x48u64, 0x7c, 0xfc, 0x100, 0x103] {
         plan.push((a, 8, false, None));
     }
     // STATUS has LOS and OVERSPEED from the faults of clocks 2..6: clear LOS by byte 0.
@@ -456,6 +464,9 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
     plan.push((0x08, 8, false, None));
     plan.push((0x28, 8, false, Some(0x01)));
     plan.push((0x29, 8, false, Some(0x01)));
+    // LOS_THRESHOLD's byte 1 written alone, then read back.
+    plan.push((0x3d, 8, false, Some(0x12)));
+    plan.push((0x3d, 8, false, None));
     let mut at = vec![];
     let mut k = 2;
     for &(a, hold, _, _) in &plan {
@@ -512,13 +523,20 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
         }
     }
     let base = 1 + 4 * REGISTERS.len();
-    for j in base..base + 5 {
-        assert_eq!(got(j), 0, "0x{:x} has no register", plan[j].0);
+    for (j, step) in plan.iter().enumerate().skip(base).take(5) {
+        assert_eq!(got(j), 0, "0x{:x} has no register", step.0);
     }
     assert_eq!(got(base + 6), 0b1000, "STATUS after clearing LOS by byte 0");
     let pulses: Vec<usize> = (0..outs.len()).filter(|&k| outs[k].preset).collect();
     assert_eq!(pulses.len(), 1, "PRESET: byte 0 pulses, byte 1 does not");
     assert!(pulses[0] > at[base + 7] && pulses[0] < at[base + 8]);
+    assert_eq!(got(base + 10), 0x12, "LOS_THRESHOLD byte 1 after its write");
+    let t = (THRESHOLDS[0] & !0xff00) | 0x1200;
+    assert_eq!(
+        outs[at[base + 10]].thresholds[0],
+        t as u64,
+        "the other bytes kept"
+    );
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_with_bus()).collect();
     let dir = common::workdir("regmap_biss_port");
     let t = block_traces(
@@ -563,10 +581,10 @@ fn synthesizes_for_both_families() {
         "{name}: xc3sa {} LUT, {} FF; cycloneive {} LE, {} FF",
         x.luts, x.ffs, c.luts, c.ffs
     );
-    // Registers Yosys keeps: the write holders (6 address bits; of the data only the 5
-    // bits STATUS and PRESET act on, of the strobes byte 0's), the channel flags, the
-    // one-hot read select (15 of 16), the read data (32), STATUS (5), the amplitude (32),
-    // the TURNS shadow (12: its sign extension is one flip-flop) and the VELOCITY shadow
-    // (32), the preset pulse: about 147.
-    assert!(x.ffs > 120 && x.ffs < 200, "{} FF", x.ffs);
+    // Registers Yosys keeps: the write holders (6 address bits, the 32 data bits the
+    // thresholds take, 4 strobes), the channel flags, the one-hot read select (18), the
+    // read data (32), STATUS, the amplitude (32), the TURNS shadow (12: its sign extension
+    // is one flip-flop), the VELOCITY shadow (32), the preset pulse and the three
+    // thresholds (96): about 275.
+    assert!(x.ffs > 240 && x.ffs < 320, "{} FF", x.ffs);
 }

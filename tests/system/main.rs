@@ -14,6 +14,7 @@ mod engine;
 mod engine_loop;
 mod outputs_top;
 mod reference_top;
+mod registers_biss;
 mod registers_top;
 mod simulate_engine;
 mod simulate_outputs;

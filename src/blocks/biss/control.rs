@@ -89,17 +89,18 @@ pub struct BissControl {
     pub expire: Signal<In, Bit>,
     /// The CDS bit for the next frame (registered).
     pub cds: Signal<Out, Bit>,
-    /// With the register map (`user_map`; one each, none without): the map's byte that
+    /// With the register map (`user_map`; 0 and unused without): the map's byte that
     /// addresses 0x00..0x3F read and write, bank * 64 + address (bank = the byte at 0x40).
-    pub ext_addr: Vec<Signal<Out, Bits<32>>>,
+    /// Plain ports, not `Vec`s: rust-hdl names a port of a `Vec` element of a `Vec` wrongly.
+    pub ext_addr: Signal<Out, Bits<32>>,
     /// One clock: a write of `ext_wdata` to the map's byte at `ext_addr`.
-    pub ext_we: Vec<Signal<Out, Bit>>,
-    /// The byte written (low 8 bits).
-    pub ext_wdata: Vec<Signal<Out, Bits<8>>>,
+    pub ext_we: Signal<Out, Bit>,
+    /// The byte written.
+    pub ext_wdata: Signal<Out, Bits<8>>,
     /// One clock: a read begins at `ext_addr` (the map's POSITION snapshot).
-    pub ext_snap: Vec<Signal<Out, Bit>>,
-    /// The map's byte at `ext_addr` (low 8 bits), a few clocks behind the address.
-    pub ext_rdata: Vec<Signal<In, Bits<8>>>,
+    pub ext_snap: Signal<Out, Bit>,
+    /// The map's byte at `ext_addr`, a few clocks behind the address.
+    pub ext_rdata: Signal<In, Bits<8>>,
     /// The bank select's byte (written with 0x40; kept by the reset, as the file is).
     bank: Vec<DFF<Bits<32>>>,
     /// `ldq` a clock before: its rise is the snapshot pulse.
@@ -256,11 +257,11 @@ impl BissControl {
             done: Default::default(),
             expire: Default::default(),
             cds: Default::default(),
-            ext_addr: (0..n).map(|_| Default::default()).collect(),
-            ext_we: (0..n).map(|_| Default::default()).collect(),
-            ext_wdata: (0..n).map(|_| Default::default()).collect(),
-            ext_snap: (0..n).map(|_| Default::default()).collect(),
-            ext_rdata: (0..n).map(|_| Default::default()).collect(),
+            ext_addr: Default::default(),
+            ext_we: Default::default(),
+            ext_wdata: Default::default(),
+            ext_snap: Default::default(),
+            ext_rdata: Default::default(),
             bank: (0..n).map(|_| Default::default()).collect(),
             snp: (0..n).map(|_| Default::default()).collect(),
             k40: many(&|| Constant::new(Bits::<7>::from(0x40u64))),

@@ -300,12 +300,13 @@ impl stages::Timeout for BissSlave {
             self.ctl[i].ma.next = self.sync.level.val();
             self.ctl[i].done.next = false;
             self.ctl[i].expire.next = false;
+            self.ctl[i].ext_rdata.next = bit_cast::<8, 32>(self.sh.q.val());
             for j in 0..self.reg_rdata.len() {
-                self.ctl[i].ext_rdata[j].next = self.reg_rdata[j].val();
-                self.reg_addr[j].next = self.ctl[i].ext_addr[j].val();
-                self.reg_we[j].next = self.ctl[i].ext_we[j].val();
-                self.reg_wdata[j].next = self.ctl[i].ext_wdata[j].val();
-                self.reg_snap[j].next = self.ctl[i].ext_snap[j].val();
+                self.ctl[i].ext_rdata.next = self.reg_rdata[j].val();
+                self.reg_addr[j].next = self.ctl[i].ext_addr.val();
+                self.reg_we[j].next = self.ctl[i].ext_we.val();
+                self.reg_wdata[j].next = self.ctl[i].ext_wdata.val();
+                self.reg_snap[j].next = self.ctl[i].ext_snap.val();
             }
         }
         self.mae.next = self.sync.rise.val() | self.sync.fall.val();

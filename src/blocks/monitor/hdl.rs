@@ -35,6 +35,13 @@ pub struct Monitor {
     pub clip: Signal<Out, Bit>,
     /// ADC at a full-scale code (held H samples).
     pub full_scale: Signal<Out, Bit>,
+    /// Run-time loss-of-signal threshold (one with `run_time_thresholds`, none without:
+    /// the configured constant), magnitude units, low W bits used.
+    pub thr_los: Vec<Signal<In, Bits<32>>>,
+    /// Run-time loss-of-signal release level, as `thr_los`.
+    pub thr_rel: Vec<Signal<In, Bits<32>>>,
+    /// Run-time clipping threshold, as `thr_los`.
+    pub thr_clip: Vec<Signal<In, Bits<32>>>,
     los_reg: DFF<Bit>,
     los_cnt: DFF<Bits<32>>,
     /// The last magnitude sample was over the clipping threshold (clip = clip_reg | clip_b:
@@ -188,6 +195,15 @@ impl Monitor {
             los: Default::default(),
             clip: Default::default(),
             full_scale: Default::default(),
+            thr_los: (0..usize::from(p.run_time_thresholds()))
+                .map(|_| Default::default())
+                .collect(),
+            thr_rel: (0..usize::from(p.run_time_thresholds()))
+                .map(|_| Default::default())
+                .collect(),
+            thr_clip: (0..usize::from(p.run_time_thresholds()))
+                .map(|_| Default::default())
+                .collect(),
             los_reg: Default::default(),
             los_cnt: Default::default(),
             clip_reg: Default::default(),
@@ -297,6 +313,28 @@ impl Logic for Monitor {
             self.low.next = self.mag.val() < self.los_thr.val();
             self.good.next = self.mag.val() >= self.los_rel.val();
             self.over.next = self.mag.val() > self.clip_thr.val();
+        }
+        // Run-time thresholds (`[registers]`): the same tests on the ports' W bits.
+        for i in 0..self.thr_los.len() {
+            if self.narrow.val() {
+                self.low.next = !(((self.mag.val() | self.wbit.val())
+                    - (self.thr_los[i].val() & self.wmask.val()))
+                    & self.wbit.val())
+                .any();
+                self.good.next = (((self.mag.val() | self.wbit.val())
+                    - (self.thr_rel[i].val() & self.wmask.val()))
+                    & self.wbit.val())
+                .any();
+                self.over.next = !((((self.thr_clip[i].val() & self.wmask.val())
+                    | self.wbit.val())
+                    - self.mag.val())
+                    & self.wbit.val())
+                .any();
+            } else {
+                self.low.next = self.mag.val() < self.thr_los[i].val();
+                self.good.next = self.mag.val() >= self.thr_rel[i].val();
+                self.over.next = self.mag.val() > self.thr_clip[i].val();
+            }
         }
         // Each counter's "at its last value" flag is a register kept with the counter:
         // cleared with it, and on a step to cnt + 1 set from cnt == last - 1 (the value
@@ -463,6 +501,15 @@ impl crate::cosim::CosimBlock for Monitor {
             Port::new("overspeed", 1),
             Port::new("qep_mismatch", 1),
         ]
+        .into_iter()
+        .chain(self.thr_los.iter().flat_map(|_| {
+            [
+                Port::new("thr_los_0", 32),
+                Port::new("thr_rel_0", 32),
+                Port::new("thr_clip_0", 32),
+            ]
+        }))
+        .collect()
     }
     fn output_ports(&self) -> Vec<Port> {
         vec![
@@ -482,6 +529,11 @@ impl crate::cosim::CosimBlock for Monitor {
         self.magnitude.next = Bits::<32>::from(r[5] & 0xffff_ffff);
         self.overspeed.next = r[6] != 0;
         self.qep_mismatch.next = r[7] != 0;
+        for i in 0..self.thr_los.len() {
+            self.thr_los[i].next = Bits::<32>::from(r[8] & 0xffff_ffff);
+            self.thr_rel[i].next = Bits::<32>::from(r[9] & 0xffff_ffff);
+            self.thr_clip[i].next = Bits::<32>::from(r[10] & 0xffff_ffff);
+        }
     }
     fn sample(&self) -> Vec<u64> {
         vec![

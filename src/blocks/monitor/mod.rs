@@ -33,6 +33,11 @@
 //!   sample k0+N-1 (the window's end), never earlier; when it returns at sample k1, `error`
 //!   falls at the edge of sample k1+N-1 (if no other flag is set).
 //! * After reset `los = 1` (no signal confirmed yet): the first N good samples clear it.
+//! * Run-time thresholds (`[registers]`, [`MonitorParams::with_run_time_thresholds`]): the
+//!   three thresholds come in on `thr_los`, `thr_rel` and `thr_clip` (the register map's
+//!   LOS_THRESHOLD, LOS_RELEASE, CLIP_THRESHOLD, reset to the configured values) and each
+//!   magnitude sample is tested against their low W bits in its own clock; the same carry
+//!   chains, with a register instead of a constant operand.
 //! * Clipping (`clip`): a magnitude sample with `mag > clip_threshold` sets it at once; it
 //!   clears on the H-th consecutive magnitude sample at or below the threshold
 //!   (H = `hold`).
@@ -80,6 +85,10 @@ pub struct MonitorParams {
     window: u32,
     clip_threshold: u64,
     hold: u32,
+    /// The three thresholds come in on ports at run time (`[registers]`), the configured
+    /// values being their reset values.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    run_time: bool,
 }
 
 /// Bits needed for a counter holding 0..n-1 (at least 1).
@@ -154,7 +163,18 @@ impl MonitorParams {
             window,
             clip_threshold,
             hold,
+            run_time: false,
         })
+    }
+    /// With the thresholds on the ports `thr_los`, `thr_rel`, `thr_clip` (the register
+    /// map's LOS_THRESHOLD, LOS_RELEASE and CLIP_THRESHOLD).
+    pub fn with_run_time_thresholds(mut self) -> Self {
+        self.run_time = true;
+        self
+    }
+    /// The thresholds come in at run time.
+    pub fn run_time_thresholds(&self) -> bool {
+        self.run_time
     }
     /// ADC width A.
     pub fn adc_width(&self) -> u32 {

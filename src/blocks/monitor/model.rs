@@ -21,6 +21,9 @@ pub struct MonitorIn {
     pub overspeed: bool,
     /// QEP mismatch warning input.
     pub qep_mismatch: bool,
+    /// Run-time thresholds (with `run_time_thresholds`): loss-of-signal threshold, release
+    /// level, clipping threshold (low W bits used).
+    pub thresholds: [u64; 3],
 }
 
 impl MonitorIn {
@@ -36,6 +39,12 @@ impl MonitorIn {
             self.overspeed as u64,
             self.qep_mismatch as u64,
         ]
+    }
+    /// [`Self::row`] with the run-time thresholds after it.
+    pub fn row_with_thresholds(&self) -> Vec<u64> {
+        let mut r = self.row();
+        r.extend(self.thresholds.map(|t| t & 0xffff_ffff));
+        r
     }
 }
 
@@ -124,9 +133,19 @@ impl MonitorModel {
             return self.outputs();
         }
         if i.mag_valid {
-            let mag = i.magnitude & mask(p.mag_width());
+            let w = mask(p.mag_width());
+            let mag = i.magnitude & w;
+            let (thr, rel, clip) = if p.run_time_thresholds() {
+                (
+                    i.thresholds[0] & w,
+                    i.thresholds[1] & w,
+                    i.thresholds[2] & w,
+                )
+            } else {
+                (p.los_threshold(), p.los_release(), p.clip_threshold())
+            };
             if !self.los {
-                if mag < p.los_threshold() {
+                if mag < thr {
                     if self.los_cnt == nlast {
                         self.los = true;
                         self.los_cnt = 0;
@@ -136,7 +155,7 @@ impl MonitorModel {
                 } else {
                     self.los_cnt = 0;
                 }
-            } else if mag >= p.los_release() {
+            } else if mag >= rel {
                 if self.los_cnt == nlast {
                     self.los = false;
                     self.los_cnt = 0;
@@ -146,7 +165,7 @@ impl MonitorModel {
             } else {
                 self.los_cnt = 0;
             }
-            if mag > p.clip_threshold() {
+            if mag > clip {
                 self.clip = true;
                 self.clip_cnt = 0;
             } else if self.clip {

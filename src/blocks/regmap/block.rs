@@ -52,7 +52,16 @@ pub fn params(c: &Config, d: &crate::config::Derived, err: &ErrFn) -> Result<Opt
         d.velocity.as_ref().map_or(0, |v| v.spec.width),
         d.reference.is_none(),
     )
-    .map(Some)
+    .map(|p| {
+        let m = &d.monitor;
+        // Each fits the magnitude's W <= 32 bits (MonitorParams checks it).
+        let t = |v: u64| v.min(u32::MAX as u64) as u32;
+        Some(p.with_thresholds([
+            t(m.los_threshold()),
+            t(m.los_release()),
+            t(m.clip_threshold()),
+        ]))
+    })
     .map_err(|e| err("registers", "enabled", e.detail()))
 }
 

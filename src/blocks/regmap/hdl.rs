@@ -5,20 +5,16 @@
 //! Timing: the read address is held as a one-hot select (`ar_sel`), so the read data is
 //! an AND-OR of the words from registers; the write acts from the holders, also registers; every AXI output is a
 //! register or one gate of registers.
-use super::{RegmapParams, ADDR_BITS, ID, POSITION_WORD, PRESET_WORD, STATUS_WORD, VERSION};
+use super::{
+    RegmapParams, ADDR_BITS, ID, POSITION_WORD, PRESET_WORD, REGISTERS, STATUS_WORD,
+    THRESHOLD_WORDS, VERSION,
+};
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
-}
-
-/// One signal with the BiSS byte port, none without.
-fn port<D: Default>(p: &RegmapParams) -> Vec<D> {
-    (0..usize::from(p.biss_port()))
-        .map(|_| D::default())
-        .collect()
 }
 
 /// The AXI4-Lite slave and its registers (ports in the module docs of `regmap`).
@@ -92,17 +88,26 @@ pub struct RegisterMap {
     pub cap_age: Signal<In, Bits<32>>,
     /// One clock: PRESET written with bit 0 set.
     pub preset: Signal<Out, Bit>,
-    /// The BiSS control channel's byte port (one each with [`RegmapParams::biss_port`],
-    /// none without): the byte address in the map (bank * 64 + channel address).
-    pub bus_addr: Vec<Signal<In, Bits<32>>>,
+    /// LOS_THRESHOLD, LOS_RELEASE and CLIP_THRESHOLD: the monitor's run-time thresholds.
+    pub los_threshold: Signal<Out, Bits<32>>,
+    /// See `los_threshold`.
+    pub los_release: Signal<Out, Bits<32>>,
+    /// See `los_threshold`.
+    pub clip_threshold: Signal<Out, Bits<32>>,
+    /// The BiSS control channel's byte port (used with [`RegmapParams::biss_port`], else
+    /// ignored and 0): the byte address in the map (bank * 64 + channel address). Plain
+    /// ports, not `Vec`s: rust-hdl names a port of a `Vec` element of a `Vec` wrongly.
+    pub bus_addr: Signal<In, Bits<32>>,
     /// One clock: write `bus_wdata` to the byte at `bus_addr`.
-    pub bus_we: Vec<Signal<In, Bit>>,
+    pub bus_we: Signal<In, Bit>,
     /// The byte written.
-    pub bus_wdata: Vec<Signal<In, Bits<8>>>,
+    pub bus_wdata: Signal<In, Bits<8>>,
     /// One clock: a read begins; at POSITION's byte 0 it latches the channel's snapshot.
-    pub bus_snap: Vec<Signal<In, Bit>>,
+    pub bus_snap: Signal<In, Bit>,
     /// The byte at the address of two clocks before.
-    pub bus_rdata: Vec<Signal<Out, Bits<8>>>,
+    pub bus_rdata: Signal<Out, Bits<8>>,
+    /// One element with the port, none without: the port's logic is built in its loops.
+    bus: Vec<Constant<Bit>>,
     aw_full: DFF<Bit>,
     aw_addr: DFF<Bits<32>>,
     w_full: DFF<Bit>,
@@ -134,9 +139,15 @@ pub struct RegisterMap {
     bw_full: DFF<Bit>,
     bw_addr: DFF<Bits<32>>,
     bw_data: DFF<Bits<8>>,
-    /// The write of this clock (AXI's, else the BiSS byte's): word index and bits.
+    /// The thresholds (RW; reset: the configured values).
+    thr_los: DFF<Bits<32>>,
+    thr_rel: DFF<Bits<32>>,
+    thr_clip: DFF<Bits<32>>,
+    /// The write of this clock (AXI's, else the BiSS byte's): word index, bits and the
+    /// mask of the bytes written.
     wen: Signal<Local, Bit>,
     wbits: Signal<Local, Bits<32>>,
+    wmsk: Signal<Local, Bits<32>>,
     /// The read select of this clock (AXI's while it holds an address, else the BiSS
     /// port's) and the words whose value depends on the port.
     rsel: Signal<Local, Bits<32>>,
@@ -183,6 +194,13 @@ pub struct RegisterMap {
     w_ctur: Constant<Bits<32>>,
     w_cvel: Constant<Bits<32>>,
     w_cage: Constant<Bits<32>>,
+    w_tlos: Constant<Bits<32>>,
+    w_trel: Constant<Bits<32>>,
+    w_tclip: Constant<Bits<32>>,
+    /// The thresholds' reset values (the config's).
+    t0_los: Constant<Bits<32>>,
+    t0_rel: Constant<Bits<32>>,
+    t0_clip: Constant<Bits<32>>,
     id: Constant<Bits<32>>,
     version: Constant<Bits<32>>,
     one: Constant<Bits<32>>,
@@ -268,11 +286,21 @@ impl RegisterMap {
             cap_velocity: Default::default(),
             cap_age: Default::default(),
             preset: Default::default(),
-            bus_addr: port(p),
-            bus_we: port(p),
-            bus_wdata: port(p),
-            bus_snap: port(p),
-            bus_rdata: port(p),
+            los_threshold: Default::default(),
+            los_release: Default::default(),
+            clip_threshold: Default::default(),
+            thr_los: Default::default(),
+            thr_rel: Default::default(),
+            thr_clip: Default::default(),
+            wmsk: Default::default(),
+            bus_addr: Default::default(),
+            bus_we: Default::default(),
+            bus_wdata: Default::default(),
+            bus_snap: Default::default(),
+            bus_rdata: Default::default(),
+            bus: (0..usize::from(p.biss_port()))
+                .map(|_| Constant::new(true))
+                .collect(),
             bsel: Default::default(),
             blane: Default::default(),
             b_rdata: Default::default(),
@@ -321,7 +349,7 @@ impl RegisterMap {
             bhigh: c32(mask(32) & !mask(ADDR_BITS)),
             bmask8: c32(0xff),
             three: c32(3),
-            selmask: c32(0xffff),
+            selmask: c32(mask(REGISTERS.len() as u32)),
             two: c32(2),
             w_status: wc(STATUS_WORD),
             w_preset: wc(PRESET_WORD),
@@ -338,6 +366,12 @@ impl RegisterMap {
             w_ctur: wc(12),
             w_cvel: wc(13),
             w_cage: wc(14),
+            w_tlos: wc(THRESHOLD_WORDS[0]),
+            w_trel: wc(THRESHOLD_WORDS[1]),
+            w_tclip: wc(THRESHOLD_WORDS[2]),
+            t0_los: c32(p.thresholds()[0] as u64),
+            t0_rel: c32(p.thresholds()[1] as u64),
+            t0_clip: c32(p.thresholds()[2] as u64),
             id: c32(ID as u64),
             version: c32(VERSION as u64),
             one: c32(1),
@@ -372,7 +406,7 @@ impl Logic for RegisterMap {
         dff_setup!(
             self, clk, aw_full, aw_addr, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
             rdata, status, amp, sh_turns, sh_vel, pre, bsel, blane, b_rdata, bpos, btur, bvel,
-            bw_full, bw_addr, bw_data
+            bw_full, bw_addr, bw_data, thr_los, thr_rel, thr_clip
         );
         // The words each register reads, from the live inputs.
         self.live.next = (self.flags.val() & self.flmask.val()) | self.refd.val();
@@ -435,6 +469,7 @@ impl Logic for RegisterMap {
         self.wen.next = false;
         self.wword.next = self.aw_addr.q.val() >> self.two.val();
         self.wbits.next = self.bits.val();
+        self.wmsk.next = self.smask.val();
         if self.aw_full.q.val() & self.w_full.q.val() & !self.bvalid.q.val() {
             self.wen.next = true;
             self.aw_full.d.next = false;
@@ -445,13 +480,15 @@ impl Logic for RegisterMap {
             self.wword.next = self.bw_addr.q.val() >> self.two.val();
             self.wbits.next = bit_cast::<32, 8>(self.bw_data.q.val())
                 << ((self.bw_addr.q.val() & self.three.val()) << self.three.val());
+            self.wmsk.next = self.bmask8.val()
+                << ((self.bw_addr.q.val() & self.three.val()) << self.three.val());
             self.bw_full.d.next = false;
         }
-        for i in 0..self.bus_we.len() {
-            if self.bus_we[i].val() {
+        for _i in 0..self.bus.len() {
+            if self.bus_we.val() {
                 self.bw_full.d.next = true;
-                self.bw_addr.d.next = self.bus_addr[i].val();
-                self.bw_data.d.next = self.bus_wdata[i].val();
+                self.bw_addr.d.next = self.bus_addr.val();
+                self.bw_data.d.next = self.bus_wdata.val();
             }
         }
         self.clear.next = self.zero.val();
@@ -462,6 +499,16 @@ impl Logic for RegisterMap {
             }
             if self.wword.val() == self.w_preset.val() {
                 self.pre.d.next = (self.wbits.val() & self.one.val()).any();
+            }
+            if self.wword.val() == self.w_tlos.val() {
+                self.thr_los.d.next = (self.thr_los.q.val() & !self.wmsk.val()) | self.wbits.val();
+            }
+            if self.wword.val() == self.w_trel.val() {
+                self.thr_rel.d.next = (self.thr_rel.q.val() & !self.wmsk.val()) | self.wbits.val();
+            }
+            if self.wword.val() == self.w_tclip.val() {
+                self.thr_clip.d.next =
+                    (self.thr_clip.q.val() & !self.wmsk.val()) | self.wbits.val();
             }
         }
         // Faults: set wins over a clear in the same clock.
@@ -486,7 +533,7 @@ impl Logic for RegisterMap {
         self.w5.next = self.pos.val();
         self.w6.next = self.sh_turns.q.val();
         self.w7.next = self.sh_vel.q.val();
-        for _i in 0..self.bus_addr.len() {
+        for _i in 0..self.bus.len() {
             if !self.ar_full.q.val() {
                 self.rsel.next = self.bsel.q.val();
                 self.w5.next = self.bpos.q.val();
@@ -538,6 +585,15 @@ impl Logic for RegisterMap {
         if (self.rsel.val() & (self.one.val() << self.w_cage.val())).any() {
             self.rmux.next = self.rmux.val() | self.cap_age.val();
         }
+        if (self.rsel.val() & (self.one.val() << self.w_tlos.val())).any() {
+            self.rmux.next = self.rmux.val() | self.thr_los.q.val();
+        }
+        if (self.rsel.val() & (self.one.val() << self.w_trel.val())).any() {
+            self.rmux.next = self.rmux.val() | self.thr_rel.q.val();
+        }
+        if (self.rsel.val() & (self.one.val() << self.w_tclip.val())).any() {
+            self.rmux.next = self.rmux.val() | self.thr_clip.q.val();
+        }
         if self.ar_full.q.val() {
             self.rdata.d.next = self.rmux.val();
             if (self.ar_sel.q.val() & (self.one.val() << self.w_position.val())).any() {
@@ -550,18 +606,19 @@ impl Logic for RegisterMap {
         // The BiSS byte port: the address registered as a word select and a lane (bytes
         // 256 and above select nothing), the byte read while AXI leaves the select free,
         // the snapshot when a read begins at POSITION's byte 0.
-        for i in 0..self.bus_addr.len() {
+        self.bus_rdata.next = bit_cast::<8, 32>(self.zero.val());
+        for _i in 0..self.bus.len() {
             self.bsel.d.next = self.zero.val();
-            if !(self.bus_addr[i].val() & self.bhigh.val()).any() {
-                self.bsel.d.next = (self.one.val() << (self.bus_addr[i].val() >> self.two.val()))
+            if !(self.bus_addr.val() & self.bhigh.val()).any() {
+                self.bsel.d.next = (self.one.val() << (self.bus_addr.val() >> self.two.val()))
                     & self.selmask.val();
             }
-            self.blane.d.next = self.bus_addr[i].val() & self.three.val();
+            self.blane.d.next = self.bus_addr.val() & self.three.val();
             if !self.ar_full.q.val() {
                 self.b_rdata.d.next = (self.rmux.val() >> (self.blane.q.val() << self.three.val()))
                     & self.bmask8.val();
             }
-            if self.bus_snap[i].val()
+            if self.bus_snap.val()
                 & (self.bsel.q.val() & (self.one.val() << self.w_position.val())).any()
                 & (self.blane.q.val() == self.zero.val())
             {
@@ -569,7 +626,7 @@ impl Logic for RegisterMap {
                 self.btur.d.next = self.tur.val();
                 self.bvel.d.next = self.vel.val();
             }
-            self.bus_rdata[i].next = bit_cast::<8, 32>(self.b_rdata.q.val());
+            self.bus_rdata.next = bit_cast::<8, 32>(self.b_rdata.q.val());
         }
         if self.rst.val() {
             self.aw_full.d.next = false;
@@ -596,7 +653,13 @@ impl Logic for RegisterMap {
             self.bw_full.d.next = false;
             self.bw_addr.d.next = 0.into();
             self.bw_data.d.next = 0.into();
+            self.thr_los.d.next = self.t0_los.val();
+            self.thr_rel.d.next = self.t0_rel.val();
+            self.thr_clip.d.next = self.t0_clip.val();
         }
+        self.los_threshold.next = self.thr_los.q.val();
+        self.los_release.next = self.thr_rel.q.val();
+        self.clip_threshold.next = self.thr_clip.q.val();
         self.s_axi_awready.next = !self.aw_full.q.val();
         self.s_axi_wready.next = !self.w_full.q.val();
         self.s_axi_bresp.next = self.zero.val();
@@ -638,12 +701,12 @@ impl crate::cosim::CosimBlock for RegisterMap {
             Port::new("cap_age", 32),
         ]
         .into_iter()
-        .chain(self.bus_addr.iter().flat_map(|_| {
+        .chain(self.bus.iter().flat_map(|_| {
             [
-                Port::new("bus_addr_0", 32),
-                Port::new("bus_we_0", 1),
-                Port::new("bus_wdata_0", 8),
-                Port::new("bus_snap_0", 1),
+                Port::new("bus_addr", 32),
+                Port::new("bus_we", 1),
+                Port::new("bus_wdata", 8),
+                Port::new("bus_snap", 1),
             ]
         }))
         .collect()
@@ -659,9 +722,12 @@ impl crate::cosim::CosimBlock for RegisterMap {
             Port::new("s_axi_rresp", 32),
             Port::new("s_axi_rvalid", 1),
             Port::new("preset", 1),
+            Port::new("los_threshold", 32),
+            Port::new("los_release", 32),
+            Port::new("clip_threshold", 32),
         ]
         .into_iter()
-        .chain(self.bus_rdata.iter().map(|_| Port::new("bus_rdata_0", 8)))
+        .chain(self.bus.iter().map(|_| Port::new("bus_rdata", 8)))
         .collect()
     }
     fn apply(&mut self, r: &[u64]) {
@@ -690,11 +756,11 @@ impl crate::cosim::CosimBlock for RegisterMap {
         self.cap_turns.next = b32(r[21]);
         self.cap_velocity.next = Bits::<64>::from(r[22]);
         self.cap_age.next = b32(r[23]);
-        for i in 0..self.bus_addr.len() {
-            self.bus_addr[i].next = b32(r[24]);
-            self.bus_we[i].next = r[25] != 0;
-            self.bus_wdata[i].next = Bits::<8>::from(r[26] & 0xff);
-            self.bus_snap[i].next = r[27] != 0;
+        if !self.bus.is_empty() {
+            self.bus_addr.next = b32(r[24]);
+            self.bus_we.next = r[25] != 0;
+            self.bus_wdata.next = Bits::<8>::from(r[26] & 0xff);
+            self.bus_snap.next = r[27] != 0;
         }
     }
     fn sample(&self) -> Vec<u64> {
@@ -708,9 +774,12 @@ impl crate::cosim::CosimBlock for RegisterMap {
             self.s_axi_rresp.val().to_u64(),
             self.s_axi_rvalid.val() as u64,
             self.preset.val() as u64,
+            self.los_threshold.val().to_u64(),
+            self.los_release.val().to_u64(),
+            self.clip_threshold.val().to_u64(),
         ]
         .into_iter()
-        .chain(self.bus_rdata.iter().map(|s| s.val().to_u64()))
+        .chain(self.bus.iter().map(|_| self.bus_rdata.val().to_u64()))
         .collect()
     }
 }

@@ -337,7 +337,38 @@ pub const REGISTERS: &[RegDef] = &[
         description: "clocks from the captured sample's CONV edge to the capture (0 without [capture])",
         fields: &whole("CAPTURE_AGE", "clocks"),
     },
+    RegDef {
+        name: "LOS_THRESHOLD",
+        address: 0x3c,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "loss of signal: a CORDIC magnitude below it is low (reset: the configured monitor threshold)",
+        fields: &whole("LOS_THRESHOLD", "magnitude units, the low W bits used"),
+    },
+    RegDef {
+        name: "LOS_RELEASE",
+        address: 0x40,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "loss of signal: a magnitude at or above it is good (reset: the configured release level)",
+        fields: &whole("LOS_RELEASE", "magnitude units, the low W bits used"),
+    },
+    RegDef {
+        name: "CLIP_THRESHOLD",
+        address: 0x44,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "clipping: a magnitude above it clips (reset: the configured clipping threshold)",
+        fields: &whole("CLIP_THRESHOLD", "magnitude units, the low W bits used"),
+    },
 ];
+
+/// Word indices of the run-time monitor thresholds (LOS_THRESHOLD, LOS_RELEASE,
+/// CLIP_THRESHOLD), whose reset values are the config's ([`RegmapParams::reset`]).
+pub const THRESHOLD_WORDS: [u32; 3] = [15, 16, 17];
 
 /// The sinedec version as VERSION holds it: major << 16 | minor << 8 | patch (each part
 /// modulo 256), from the package version at compile time.
@@ -365,6 +396,7 @@ pub struct RegmapParams {
     velocity_width: u32,
     referenced_always: bool,
     biss_port: bool,
+    thresholds: [u32; 3],
 }
 
 impl RegmapParams {
@@ -391,7 +423,25 @@ impl RegmapParams {
             velocity_width,
             referenced_always,
             biss_port: false,
+            thresholds: [0; 3],
         })
+    }
+    /// With the monitor's configured loss-of-signal threshold, release level and clipping
+    /// threshold: the reset values of LOS_THRESHOLD, LOS_RELEASE and CLIP_THRESHOLD.
+    pub fn with_thresholds(mut self, thresholds: [u32; 3]) -> Self {
+        self.thresholds = thresholds;
+        self
+    }
+    /// The configured thresholds (see [`Self::with_thresholds`]).
+    pub fn thresholds(&self) -> [u32; 3] {
+        self.thresholds
+    }
+    /// The value register `r` holds after reset: the table's, or a configured threshold.
+    pub fn reset(&self, r: &RegDef) -> u32 {
+        match THRESHOLD_WORDS.iter().position(|&w| w * 4 == r.address) {
+            Some(k) => self.thresholds[k],
+            None => r.reset,
+        }
     }
     /// With the BiSS control channel's byte port ([`BISS_BANK_BYTES`]-byte banks of the
     /// map behind the channel's addresses 0x00..0x3F).

@@ -1,6 +1,8 @@
 //! Bit-accurate model of the register map: the same registers as the RTL, updated once per
 //! clock edge; `step` returns what the outputs show after the edge.
-use super::{RegmapParams, ADDR_BITS, ID, POSITION_WORD, PRESET_WORD, STATUS_WORD, VERSION};
+use super::{
+    RegmapParams, ADDR_BITS, ID, POSITION_WORD, PRESET_WORD, STATUS_WORD, THRESHOLD_WORDS, VERSION,
+};
 use crate::blocks::mask;
 
 /// Inputs of one clock cycle: the AXI4-Lite master's signals and the decoder's values.
@@ -127,6 +129,8 @@ pub struct RegOut {
     pub rvalid: bool,
     /// One clock: PRESET was written with bit 0 set.
     pub preset: bool,
+    /// LOS_THRESHOLD, LOS_RELEASE, CLIP_THRESHOLD (to the monitor).
+    pub thresholds: [u64; 3],
     /// The BiSS byte port's read data: the byte at the `bus_addr` of two clocks before
     /// (one clock later while an AXI read holds the shared read select).
     pub bus_rdata: u64,
@@ -145,6 +149,9 @@ impl RegOut {
             0,
             self.rvalid as u64,
             self.preset as u64,
+            self.thresholds[0],
+            self.thresholds[1],
+            self.thresholds[2],
         ]
     }
     /// [`Self::row`] with the BiSS byte port's output after it.
@@ -186,6 +193,8 @@ struct Regs {
     bw_full: bool,
     bw_addr: u64,
     bw_data: u64,
+    /// LOS_THRESHOLD, LOS_RELEASE, CLIP_THRESHOLD.
+    thr: [u64; 3],
 }
 
 /// The register map, clock by clock.
@@ -207,7 +216,15 @@ impl RegisterModel {
     pub fn new(p: &RegmapParams) -> Self {
         Self {
             p: *p,
-            r: Regs::default(),
+            r: Self::reset(p),
+        }
+    }
+
+    /// The registers after a reset: 0, the thresholds the configured values.
+    fn reset(p: &RegmapParams) -> Regs {
+        Regs {
+            thr: p.thresholds().map(u64::from),
+            ..Regs::default()
         }
     }
 
@@ -249,6 +266,10 @@ impl RegisterModel {
             12 => p.turns32(i.cap_turns) as u64,
             13 => p.velocity32(i.cap_velocity) as u64,
             14 => i.cap_age & mask(32),
+            w if THRESHOLD_WORDS.contains(&w) => {
+                let k = THRESHOLD_WORDS.iter().position(|&t| t == w).unwrap_or(0);
+                self.r.thr[k]
+            }
             _ => 0,
         };
         v & mask(32)
@@ -259,7 +280,7 @@ impl RegisterModel {
         let o = self.r;
         let mut n = o;
         if i.rst {
-            self.r = Regs::default();
+            self.r = Self::reset(&self.p);
             return self.out();
         }
         let word = |a: u64| (a & mask(ADDR_BITS)) >> 2;
@@ -281,13 +302,14 @@ impl RegisterModel {
         // The write of this clock: AXI's, else a BiSS byte write waiting (as (word, bits)).
         let mut write = None;
         if o.aw_full && o.w_full && !o.bvalid {
-            write = Some((word(o.aw_addr), o.w_data & strobe_mask(o.w_strb)));
+            let m = strobe_mask(o.w_strb);
+            write = Some((word(o.aw_addr), o.w_data & m, m));
             n.aw_full = false;
             n.w_full = false;
             n.bvalid = true;
         } else if o.bw_full {
             let lane = 8 * (o.bw_addr & 3);
-            write = Some((o.bw_addr >> 2, (o.bw_data & 0xff) << lane));
+            write = Some((o.bw_addr >> 2, (o.bw_data & 0xff) << lane, 0xff << lane));
             n.bw_full = false;
         }
         if self.p.biss_port() && i.bus_we {
@@ -295,11 +317,15 @@ impl RegisterModel {
             n.bw_addr = i.bus_addr & mask(32);
             n.bw_data = i.bus_wdata & 0xff;
         }
-        if let Some((w, bits)) = write {
+        if let Some((w, bits, m)) = write {
             match w {
                 w if w == STATUS_WORD as u64 => clear = bits,
                 w if w == PRESET_WORD as u64 => n.preset = bits & 1 == 1,
-                _ => {}
+                w => {
+                    if let Some(k) = THRESHOLD_WORDS.iter().position(|&t| t as u64 == w) {
+                        n.thr[k] = (o.thr[k] & !m) | bits;
+                    }
+                }
             }
         }
         // Faults: set wins over a clear in the same clock.
@@ -322,7 +348,7 @@ impl RegisterModel {
             n.b_held = true;
             if !o.ar_full {
                 let w = o.b_addr >> 2;
-                let v = if w < 16 && o.b_held {
+                let v = if w < super::REGISTERS.len() as u64 && o.b_held {
                     self.word_from(w, &i, true)
                 } else {
                     0
@@ -359,6 +385,7 @@ impl RegisterModel {
             rdata: r.rdata,
             rvalid: r.rvalid,
             preset: r.preset,
+            thresholds: r.thr,
             bus_rdata: r.b_rdata,
         }
     }

@@ -673,13 +673,20 @@ impl Logic for TopRtl {
             }
             self.regs[i].flags.next = self.rflags[i].val();
             // The BiSS control channel's user area is the map's banks (docs/registers.md).
+            self.regs[i].bus_addr.next = self.zero.val();
+            self.regs[i].bus_we.next = false;
+            self.regs[i].bus_wdata.next = bit_cast::<8, 32>(self.zero.val());
+            self.regs[i].bus_snap.next = false;
             for j in 0..self.biss_slave.reg_addr.len() {
-                self.regs[i].bus_addr[j].next = self.biss_slave.reg_addr[j].val();
-                self.regs[i].bus_we[j].next = self.biss_slave.reg_we[j].val();
-                self.regs[i].bus_wdata[j].next = self.biss_slave.reg_wdata[j].val();
-                self.regs[i].bus_snap[j].next = self.biss_slave.reg_snap[j].val();
-                self.biss_slave.reg_rdata[j].next = self.regs[i].bus_rdata[j].val();
+                self.regs[i].bus_addr.next = self.biss_slave.reg_addr[j].val();
+                self.regs[i].bus_we.next = self.biss_slave.reg_we[j].val();
+                self.regs[i].bus_wdata.next = self.biss_slave.reg_wdata[j].val();
+                self.regs[i].bus_snap.next = self.biss_slave.reg_snap[j].val();
+                self.biss_slave.reg_rdata[j].next = self.regs[i].bus_rdata.val();
             }
+            self.monitor.thr_los[i].next = self.regs[i].los_threshold.val();
+            self.monitor.thr_rel[i].next = self.regs[i].los_release.val();
+            self.monitor.thr_clip[i].next = self.regs[i].clip_threshold.val();
             self.regs[i].amp_valid.next = self.core.out_mag_valid.val();
             self.regs[i].amplitude.next = self.core.out_mag.val();
             self.regs[i].qc.next = self.core.out_qc.val();

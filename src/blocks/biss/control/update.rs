@@ -155,6 +155,12 @@ impl stages::ReadWrite for BissControl {
         // bank output from the clock after that, and steps are a frame apart, so sh holds
         // mem[addr] long before that bit's step).
         self.rdq.d.next = self.regs.read_data.val();
+        // With the register map, 0x00..0x3F read its byte instead.
+        for i in 0..self.k40.len() {
+            if !(self.addr.q.val() & self.k40[i].val()).any() {
+                self.rdq.d.next = self.ext_rdata.val();
+            }
+        }
         self.ldq.d.next =
             self.q_read.q.val() & (self.n.q.val() == self.zero4.val()) & !self.stp.q.val();
         if self.ldq.q.val() & !self.stp.q.val() {
@@ -261,21 +267,22 @@ impl stages::Crc4 for BissControl {
         self.regs.write_enable.next = self.we.val();
         // The register map behind 0x00..0x3F: its byte replaces the file's in the read, a
         // write there goes to it too, and a read's start (ldq rising) is the snapshot pulse.
-        for i in 0..self.ext_rdata.len() {
+        self.ext_addr.next = bit_cast::<32, 7>(self.addr.q.val());
+        self.ext_we.next = false;
+        self.ext_wdata.next = self.sh.q.val();
+        self.ext_snap.next = false;
+        for i in 0..self.bank.len() {
             self.bank[i].clock.next = self.clk.val();
             self.snp[i].clock.next = self.clk.val();
             self.snp[i].d.next = self.ldq.q.val();
+            self.bank[i].d.next = self.bank[i].q.val();
             if self.we.val() & (self.addr.q.val() == self.k40[i].val()) {
                 self.bank[i].d.next = bit_cast::<32, 8>(self.sh.q.val());
             }
-            if !(self.addr.q.val() & self.k40[i].val()).any() {
-                self.rdq.d.next = self.ext_rdata[i].val();
-            }
-            self.ext_addr[i].next = (self.bank[i].q.val() << self.k6[i].val())
+            self.ext_addr.next = (self.bank[i].q.val() << self.k6[i].val())
                 | (bit_cast::<32, 7>(self.addr.q.val()) & self.k3f[i].val());
-            self.ext_we[i].next = self.we.val() & !(self.addr.q.val() & self.k40[i].val()).any();
-            self.ext_wdata[i].next = self.sh.q.val();
-            self.ext_snap[i].next = self.ldq.q.val() & !self.snp[i].q.val();
+            self.ext_we.next = self.we.val() & !(self.addr.q.val() & self.k40[i].val()).any();
+            self.ext_snap.next = self.ldq.q.val() & !self.snp[i].q.val();
         }
         if self.rst.val() {
             self.armed.d.next = false;
