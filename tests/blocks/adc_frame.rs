@@ -23,7 +23,10 @@ trait Chip {
 
 impl Chip for sinedec::sim::ltc1407a::Ltc1407a {
     fn step(&mut self, conv: bool, sck: bool) -> [bool; 2] {
-        [sinedec::sim::ltc1407a::Ltc1407a::step(self, conv, sck), false]
+        [
+            sinedec::sim::ltc1407a::Ltc1407a::step(self, conv, sck),
+            false,
+        ]
     }
     fn stick(&mut self, level: Option<bool>) {
         self.set_sdo_stuck(level);
@@ -115,7 +118,10 @@ fn run(p: &AdcParams, chip: &mut dyn Chip, cycles: usize, stuck: (usize, usize, 
 fn check(r: &Run, what: &str) {
     let stuck = r.frames.iter().filter(|f| f.2).count();
     let clean = r.frames.iter().filter(|f| !f.2).count();
-    assert!(stuck >= 3 && clean >= 6, "{what}: {stuck} stuck, {clean} clean frames");
+    assert!(
+        stuck >= 3 && clean >= 6,
+        "{what}: {stuck} stuck, {clean} clean frames"
+    );
     for &(row, err, inside) in &r.frames {
         assert_eq!(err, inside, "{what}: frame at row {row}");
     }
@@ -138,7 +144,10 @@ fn the_rule_is_every_line_at_one_level() {
     assert!(FrameCheck::stuck(&[&a1]));
     assert!(FrameCheck::stuck(&[&a0, &a1]));
     assert!(!FrameCheck::stuck(&[&mix]));
-    assert!(!FrameCheck::stuck(&[&a1, &mix]), "one stuck line of two is not");
+    assert!(
+        !FrameCheck::stuck(&[&a1, &mix]),
+        "one stuck line of two is not"
+    );
     let p = AdcParams::ltc1407a_fastest(F133).expect("feasible");
     assert_eq!(
         p.frame_check(),
@@ -193,8 +202,8 @@ fn cs_chips_with_both_lines_stuck_raise_frame_errors() {
         } else {
             sinedec::sim::ad7380::AD7380
         };
-        let mut chip = sinedec::sim::cs_adc::CsAdc::new(spec, F100, 5)
-            .with_codes(move |k, _| codes(k, 16));
+        let mut chip =
+            sinedec::sim::cs_adc::CsAdc::new(spec, F100, 5).with_codes(move |k, _| codes(k, 16));
         let start = p.startup_clocks() as usize + 6 * per;
         let r = run(
             &p,
@@ -203,7 +212,11 @@ fn cs_chips_with_both_lines_stuck_raise_frame_errors() {
             (start, start + 6 * per, name == "ad7380"),
         );
         check(&r, name);
-        assert!(chip.violations().is_empty(), "{name}: {:?}", chip.violations());
+        assert!(
+            chip.violations().is_empty(),
+            "{name}: {:?}",
+            chip.violations()
+        );
         replay(&p, &r, &format!("adc_frame_{name}"));
     }
 }
