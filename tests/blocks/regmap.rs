@@ -465,10 +465,10 @@ fn synthesizes_for_both_families() {
         "{name}: xc3sa {} LUT, {} FF; cycloneive {} LE, {} FF",
         x.luts, x.ffs, c.luts, c.ffs
     );
-    // Registers Yosys keeps: the write holders (6 address bits; of the data only the 5
-    // bits STATUS and PRESET act on, of the strobes byte 0's), the channel flags, the
-    // one-hot read select (15 of 16), the read data (32), STATUS (5), the amplitude (32),
+    // Registers Yosys keeps: the write holders (6 address bits; of the data only the 7
+    // bits STATUS and PRESET act on, of the strobes bytes 0 and 1), the channel flags, the
+    // one-hot read select (15 of 16), the read data (32), STATUS (7), the amplitude (32),
     // the TURNS shadow (12: its sign extension is one flip-flop) and the VELOCITY shadow
-    // (32), the preset pulse: about 147.
+    // (32), the preset pulse: about 150.
     assert!(x.ffs > 120 && x.ffs < 200, "{} FF", x.ffs);
 }

@@ -340,3 +340,105 @@ fn adc_frame_replays_in_four_simulators() {
         }
     }
 }
+
+/// Bad `--fault` values are rejected before the run, naming `--fault` and what is allowed,
+/// by the library and by the command line (no panic); a good one is listed in the summary
+/// with each latched fault's cycle.
+#[test]
+fn bad_faults_are_rejected_and_good_ones_reported() {
+    let err = |s: &str| parse_fault(s).expect_err(s).to_string();
+    for (s, says) in [
+        ("melt", "unknown fault `melt`"),
+        ("clip@soon", "start `soon`"),
+        ("clip@1e-4..later", "end `later`"),
+    ] {
+        let e = err(s);
+        assert!(e.contains("--fault") && e.contains(says), "{e}");
+        assert!(e.contains("broken-wire") || e.contains("seconds"), "{e}");
+    }
+    let l = loaded();
+    for (faults, says) in [
+        (vec!["clip@-1e-4"], "allowed a start of 0 <= seconds"),
+        (vec!["clip@1"], "allowed a start of 0 <= seconds"),
+        (vec!["clip@2e-4..1e-4"], "an end after the start"),
+        (vec!["clip@1e-4", "clip@2e-4"], "clip given twice"),
+    ] {
+        let o = SimOptions {
+            duration_s: RUN,
+            faults: faults
+                .iter()
+                .map(|f| parse_fault(f).expect("parses"))
+                .collect(),
+            ..Default::default()
+        };
+        let e = match sinedec::simulate::run(&l, &o, |_, _| {}) {
+            Ok(_) => panic!("{faults:?} accepted"),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains("--fault") && e.contains(says), "{e}");
+    }
+    let cap = Loaded::parse(
+        include_str!("../../configs/cyclone3_capacitive.toml"),
+        "cap.toml",
+    )
+    .expect("config");
+    let o = SimOptions {
+        duration_s: 3e-3,
+        faults: vec![parse_fault("los").expect("parses")],
+        ..Default::default()
+    };
+    let e = match sinedec::simulate::run_capacitive(&cap, &o, |_, _| {}) {
+        Ok(_) => panic!("accepted on the capacitive path"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("--fault") && e.contains("capacitive"), "{e}");
+    // The command line.
+    let bin = env!("CARGO_BIN_EXE_sinedec");
+    let out = std::process::Command::new(bin)
+        .args(["simulate", "--duration", "1e-4", "--fault", "melt@1e-5"])
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("--fault") && stderr.contains("no-index") && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+    let dir = tempfile::tempdir().expect("dir");
+    let cfg = dir.path().join("regs.toml");
+    std::fs::write(
+        &cfg,
+        format!("{DEFAULT_CONFIG}\n[reference]\nenabled = true\n\n[registers]\nenabled = true\n"),
+    )
+    .expect("write");
+    let out = std::process::Command::new(bin)
+        .arg("simulate")
+        .arg(&cfg)
+        .args(["--duration", "2e-4", "--fault", "adc-frame@100e-6..150e-6"])
+        .output()
+        .expect("runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("faults injected             adc-frame from 100.0 us to 150.0 us"),
+        "{stdout}"
+    );
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("latched fault ADC_FRAME"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    // Raised at the first frame read wholly while stuck: 100 us plus at most a period and
+    // the frame's latency, in cycles and microseconds.
+    let c: u64 = line
+        .split("raised at cycle ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{line}"));
+    assert!(c > cycle(&l, 100e-6) && c < cycle(&l, 103e-6), "{line}");
+    assert!(line.contains(" us), live last at ") && line.contains("cleared"), "{line}");
+}
