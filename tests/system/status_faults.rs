@@ -440,5 +440,8 @@ fn bad_faults_are_rejected_and_good_ones_reported() {
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("{line}"));
     assert!(c > cycle(&l, 100e-6) && c < cycle(&l, 103e-6), "{line}");
-    assert!(line.contains(" us), live last at ") && line.contains("cleared"), "{line}");
+    assert!(
+        line.contains(" us), live last at ") && line.contains("cleared"),
+        "{line}"
+    );
 }

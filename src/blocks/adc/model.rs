@@ -197,7 +197,9 @@ impl AdcModel {
             let hi_b = c.hi_b || (eb && i.miso_b);
             let lo_b = c.lo_b || (eb && !i.miso_b);
             if self.pend[2] {
-                c.err = !(hi_a && lo_a) && !(hi_b && lo_b);
+                // Stuck: no line showed both levels.
+                let toggled = (hi_a && lo_a) || (hi_b && lo_b);
+                c.err = !toggled;
             }
             (c.hi_a, c.lo_a, c.hi_b, c.lo_b) = if self.pend_last {
                 (false, false, false, false)
