@@ -39,6 +39,17 @@ impl AdcChipModel {
         }
     }
 
+    /// A fault of the data lines at the FPGA's pads from now on (None: none): every line
+    /// reads `level` (`sim::adc_pins::DataLine::stick`: SDO shorted, or broken with the
+    /// input's pull resistor; on the two-line chips both lines, a connector fault).
+    pub fn set_sdo_stuck(&mut self, level: Option<bool>) {
+        match self {
+            AdcChipModel::Ltc1407a(m) => m.set_sdo_stuck(level),
+            AdcChipModel::Ads8354(m) | AdcChipModel::Ad7380(m) => m.set_sdo_stuck(level),
+            AdcChipModel::Generic(m, _) => m.set_sdo_stuck(level),
+        }
+    }
+
     /// Whether a conversion started since the last call (then forgotten: a long run keeps
     /// no history).
     pub fn take_conversion(&mut self) -> bool {

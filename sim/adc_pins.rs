@@ -81,6 +81,9 @@ pub struct DataLine {
     initial: Level,
     changes: VecDeque<Change>,
     rng: SplitMix64,
+    /// A fault of the line ([`DataLine::stick`]): the pad reads this level whatever the
+    /// chip drives.
+    stuck: Option<bool>,
 }
 
 impl DataLine {
@@ -91,7 +94,16 @@ impl DataLine {
             initial: Level::Undefined,
             changes: VecDeque::new(),
             rng: SplitMix64(seed),
+            stuck: None,
         }
+    }
+
+    /// A fault of the line (None: none): from now on the FPGA's pad reads `level` whatever
+    /// the chip drives. Stuck at 1 is SDO shorted to the supply, or the trace broken with a
+    /// pull-up at the FPGA's input; stuck at 0 a short to ground or a pull-down. The chip
+    /// itself goes on (its conversions, its checks); only what reaches the pad changes.
+    pub fn stick(&mut self, level: Option<bool>) {
+        self.stuck = level;
     }
 
     /// The pin timing.
@@ -136,6 +148,9 @@ impl DataLine {
             self.initial = self.changes[i].level;
             self.changes.drain(..i);
             // Keep the one read (index 0 now) as the reference for the next samples.
+        }
+        if let Some(v) = self.stuck {
+            return v;
         }
         match (stable, level) {
             (true, Level::Bit(v)) => v,

@@ -184,6 +184,14 @@ impl CsAdc {
         self
     }
 
+    /// A fault of both data lines at the FPGA's pads (None: none; see `DataLine::stick`):
+    /// a common connector or supply fault.
+    pub fn set_sdo_stuck(&mut self, level: Option<bool>) {
+        for l in self.lines.iter_mut() {
+            l.stick(level);
+        }
+    }
+
     /// Codes for each conversion from `f(conversion index, time of CS falling in s)`.
     pub fn with_codes(mut self, f: impl FnMut(u64, f64) -> [i32; 2] + 'static) -> Self {
         self.source = Some(Box::new(f));

@@ -52,7 +52,7 @@ pub const OPTIONAL_IN_PINS: usize = 11;
 /// `[velocity] enabled`, the ABZ emulator's, with `[abz] enabled`, and the position
 /// reference's, with `[reference] enabled`, the capture's, with `[capture] enabled`, and
 /// the register map's, with `[registers] enabled`) and read 0 without them.
-pub const OUT_PINS: [&str; 32] = [
+pub const OUT_PINS: [&str; 33] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -85,6 +85,7 @@ pub const OUT_PINS: [&str; 32] = [
     "s_axi_arready_0",
     "s_axi_rdata_0",
     "s_axi_rvalid_0",
+    "flags_0",
 ];
 /// Inputs the capacitive loop drives, in index order.
 pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
@@ -103,7 +104,7 @@ pub const CAP_OUT_PINS: [&str; 11] = [
     "par_warning",
 ];
 /// How many of the last [`OUT_PINS`] are optional (read 0 when the top lacks them).
-pub const OPTIONAL_OUT_PINS: usize = 18;
+pub const OPTIONAL_OUT_PINS: usize = 19;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -430,7 +431,7 @@ mod registry_tests {
         }
         let pins = optional.iter().chain(optional_in);
         let fabric = |o: &str| {
-            ["par_velocity", "cap_", "s_axi_"]
+            ["par_velocity", "cap_", "s_axi_", "flags"]
                 .iter()
                 .any(|p| o.starts_with(p))
         };

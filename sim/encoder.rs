@@ -99,6 +99,29 @@ impl Profile {
     }
 }
 
+/// A fault of the analog tracks, from `from` to `to` seconds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TrackFault {
+    /// The amplitude multiplied by `factor` (below 1: a dirty scale, loss of signal; above
+    /// the ADC's range: clipping).
+    Amplitude {
+        /// Start, seconds.
+        from: f64,
+        /// End, seconds.
+        to: f64,
+        /// Amplitude factor.
+        factor: f64,
+    },
+    /// The sin track's wire broken: the ADC's input reads 0 V (pulled to ground), the cos
+    /// track unchanged.
+    SinAtZero {
+        /// Start, seconds.
+        from: f64,
+        /// End, seconds.
+        to: f64,
+    },
+}
+
 /// Encoder parameters.
 #[derive(Clone, Debug)]
 pub struct EncoderModel {
@@ -127,6 +150,11 @@ pub struct EncoderModel {
     /// Amplitude fault: from `.0` to `.1` seconds the amplitude is multiplied by `.2`
     /// (loss of signal, e.g. a dirty scale).
     pub fault: Option<(f64, f64, f64)>,
+    /// More faults of the tracks (`simulate --fault`), each in its time window.
+    pub track_faults: Vec<TrackFault>,
+    /// A speed excursion: from `.0` to `.1` seconds the encoder turns at `.2` rpm instead of
+    /// its profile's speed, the angle continuous (e.g. above the decoder's unwrap limit).
+    pub excursion: Option<(f64, f64, f64)>,
     rng: SplitMix64,
 }
 
@@ -146,6 +174,8 @@ impl EncoderModel {
             start_turns: 0.0,
             profile: Profile::Constant { rpm },
             fault: None,
+            track_faults: Vec::new(),
+            excursion: None,
             rng: SplitMix64(1),
         }
     }
@@ -156,9 +186,18 @@ impl EncoderModel {
         self
     }
 
-    /// Mechanical angle in turns at time t.
+    /// Mechanical angle in turns at time t (the profile's, with the speed excursion).
     pub fn turns(&self, t: f64) -> f64 {
-        self.start_turns + self.profile.turns(t)
+        let p = &self.profile;
+        let base = match self.excursion {
+            Some((a, b, rpm)) if t > a => {
+                let tb = t.min(b);
+                let after = if t > b { p.turns(t) - p.turns(b) } else { 0.0 };
+                p.turns(a) + rpm / 60.0 * (tb - a) + after
+            }
+            _ => p.turns(t),
+        };
+        self.start_turns + base
     }
 
     /// True electrical angle (rad, unwrapped) at time t.
@@ -176,10 +215,18 @@ impl EncoderModel {
     /// (v_sin, v_cos) in volts at time t, noise drawn fresh on each call.
     pub fn voltages(&mut self, t: f64) -> (f64, f64) {
         let th = self.electrical_angle(t);
-        let a = match self.fault {
+        let mut a = match self.fault {
             Some((t0, t1, k)) if t >= t0 && t < t1 => self.amplitude * k,
             _ => self.amplitude,
         };
+        let mut sin_broken = false;
+        for f in &self.track_faults {
+            match *f {
+                TrackFault::Amplitude { from, to, factor } if t >= from && t < to => a *= factor,
+                TrackFault::SinAtZero { from, to } if t >= from && t < to => sin_broken = true,
+                _ => {}
+            }
+        }
         let g = self.gain_mismatch;
         let h = self.third_harmonic;
         let ns = self.noise_rms * self.gauss();
@@ -192,7 +239,7 @@ impl EncoderModel {
             + self.offset_cos
             + a * (1.0 - g / 2.0) * ((th + self.phase_error).cos() + h * (3.0 * th).cos())
             + nc;
-        (s, c)
+        (if sin_broken { 0.0 } else { s }, c)
     }
 }
 
@@ -227,6 +274,33 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn an_excursion_keeps_the_angle_continuous() {
+        let mut e = EncoderModel::ideal(2048, 0.5, 600.0);
+        e.excursion = Some((1e-3, 2e-3, 6000.0));
+        let base = EncoderModel::ideal(2048, 0.5, 600.0);
+        assert_eq!(e.turns(0.5e-3), base.turns(0.5e-3));
+        // 1 ms at 6000 rpm: 0.1 turn instead of 0.01, then the profile's speed again.
+        let extra = (6000.0 - 600.0) / 60.0 * 1e-3;
+        for t in [1.5e-3, 2e-3, 3e-3] {
+            let want = base.turns(t) + extra * ((t.min(2e-3) - 1e-3) / 1e-3);
+            assert!((e.turns(t) - want).abs() < 1e-12, "{t}");
+        }
+    }
+
+    #[test]
+    fn a_broken_sin_wire_reads_zero_volts() {
+        let mut e = EncoderModel::ideal(2048, 0.5, 60.0);
+        e.track_faults.push(TrackFault::SinAtZero {
+            from: 1e-3,
+            to: 2e-3,
+        });
+        assert!(e.voltages(0.5e-3).0 > 1.0);
+        let (s, c) = e.voltages(1.5e-3);
+        assert_eq!(s, 0.0);
+        assert!(c > 1.0 && c < 2.2);
     }
 
     #[test]

@@ -214,6 +214,11 @@ impl Ltc1407a {
         self
     }
 
+    /// A fault of SDO at the FPGA's pad (None: none; see `DataLine::stick`).
+    pub fn set_sdo_stuck(&mut self, level: Option<bool>) {
+        self.line.stick(level);
+    }
+
     /// The chip timing in use.
     pub fn timing(&self) -> Ltc1407aTiming {
         self.timing

@@ -90,6 +90,12 @@ impl SpiAdc {
         )
     }
 
+    /// A fault of both data lines at the FPGA's pads (None: none; see `DataLine::stick`).
+    pub fn set_sdo_stuck(&mut self, level: Option<bool>) {
+        self.line.stick(level);
+        self.line_b.stick(level);
+    }
+
     /// Conversions so far: (clock of the conversion start, codes).
     pub fn taken(&self) -> &[(usize, [i32; 2])] {
         &self.taken

@@ -74,6 +74,7 @@ const O_CAP_AGE: usize = 24;
 const O_CAP_VELOCITY: usize = 25;
 const O_RDATA: usize = 30;
 const O_RVALID: usize = 31;
+const O_FLAGS: usize = 32;
 
 /// What a quadrature counter on `abz_a`/`abz_b` read over a run (`[abz] enabled`), against
 /// the position on the parallel bus.
@@ -326,18 +327,47 @@ pub struct CaptureRecord {
     pub truth: f64,
 }
 
-/// A fault STATUS latched (`[registers] enabled`, [`System::poll_status`]): the loop reads
-/// STATUS through the AXI4-Lite slave every poll period and clears what it read.
+/// A fault STATUS latched (`[registers] enabled`, [`System::poll_status`]), by its field
+/// of `crate::blocks::regmap::FAULTS`. The exact clocks come from the top's live `flags`
+/// port, read every cycle; the loop also reads STATUS through the AXI4-Lite slave every poll
+/// period and clears (write 1) what it read, as a drive would.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FaultRecord {
     /// The field's name (`crate::blocks::regmap::FAULTS`).
     pub name: &'static str,
-    /// The fault was raised after this cycle (the poll before the first that found it)...
+    /// The first cycle (counted as [`Record::cycle`]) at whose end the live flag was high:
+    /// STATUS latches it at the next clock edge. None when no cycle showed it (a fault
+    /// only a poll found).
+    pub raised: Option<u64>,
+    /// The last cycle the live flag was high (0 if none).
+    pub last: u64,
+    /// Rises of the live flag (the first included).
+    pub rises: u64,
+    /// The first poll that found STATUS's bit set: the fault was raised after this cycle
+    /// (the poll before)...
     pub after: u64,
-    /// ... and by this one (the read's data cycle).
+    /// ... and by this one (the read's data cycle); both 0 while no poll found it.
     pub by: u64,
-    /// Polls that found it set (each clears it).
+    /// Polls that found it set (each clears it; a fault still present sets it again).
     pub polls: u64,
+    /// The last poll found STATUS's bit clear after it had been found set: the write of 1
+    /// cleared it and the fault did not come back.
+    pub cleared: bool,
+}
+
+impl FaultRecord {
+    fn new(name: &'static str) -> Self {
+        FaultRecord {
+            name,
+            raised: None,
+            last: 0,
+            rises: 0,
+            after: 0,
+            by: 0,
+            polls: 0,
+            cleared: false,
+        }
+    }
 }
 
 /// Result of a closed-loop run.
@@ -349,7 +379,7 @@ pub struct SimResult {
     pub velocity: Vec<VelRecord>,
     /// Captures in order (empty without `[capture] enabled`).
     pub captures: Vec<CaptureRecord>,
-    /// Faults STATUS latched, in the order first found ([`System::poll_status`]).
+    /// Faults STATUS latched, in the order first raised ([`System::poll_status`]).
     pub faults: Vec<FaultRecord>,
     /// STATUS polls done (0 without [`System::poll_status`]).
     pub status_polls: u64,
@@ -718,6 +748,14 @@ pub struct System {
     ssi: Option<Box<dyn crate::sim::serial_line::LineMaster>>,
     spi: Option<std::rc::Rc<std::cell::RefCell<crate::sim::spi_master::SpiMaster>>>,
     qep_b_stuck: Option<(f64, f64)>,
+    /// A missing index: `qep_z` held low from `.0` to `.1` seconds.
+    no_index: Option<(f64, f64)>,
+    /// A stuck ADC data line: the pads read `.2` from `.0` to `.1` seconds.
+    sdo_stuck: Option<(f64, f64, bool)>,
+    /// The stuck level now applied to the chip model's pads.
+    sdo_now: Option<bool>,
+    /// The live flags of the previous cycle (`flags`, with the register map).
+    flags_prev: u64,
     /// `preset` high from `.0` to `.1` seconds (`[reference] enabled`).
     preset: Option<(f64, f64)>,
     /// `capture` high in each of these (from, to) seconds (`[capture] enabled`), in order.
@@ -781,6 +819,10 @@ impl System {
             ssi: None,
             spi: None,
             qep_b_stuck: None,
+            no_index: None,
+            sdo_stuck: None,
+            sdo_now: None,
+            flags_prev: 0,
             preset: None,
             capture: Vec::new(),
             capture_next: 0,
@@ -816,6 +858,18 @@ impl System {
     /// A comparator fault: QEP B held low from `from` to `to` seconds.
     pub fn qep_b_stuck_low(&mut self, from: f64, to: f64) {
         self.qep_b_stuck = Some((from, to));
+    }
+
+    /// A missing index: `qep_z` held low from `from` to `to` seconds (the index track lost,
+    /// or its comparator dead).
+    pub fn no_index(&mut self, from: f64, to: f64) {
+        self.no_index = Some((from, to));
+    }
+
+    /// A stuck ADC data line: from `from` to `to` seconds every data line of the chip model
+    /// reads `level` at the FPGA's pad (`crate::sim::adc_chip::AdcChipModel::set_sdo_stuck`).
+    pub fn sdo_stuck(&mut self, from: f64, to: f64, level: bool) {
+        self.sdo_stuck = Some((from, to, level));
     }
 
     /// Drives `preset` (`[reference] enabled`) high from `from` to `to` seconds.
@@ -1124,6 +1178,14 @@ impl System {
             // drove during the previous cycle, as real chips do.
             let conv = self.top.get(O_CONV) != 0;
             let sck = self.top.get(O_SCK) != 0;
+            let now = self.cycle as f64 / self.clock_hz;
+            if let Some((a, b, level)) = self.sdo_stuck {
+                let stuck = (now >= a && now < b).then_some(level);
+                if stuck != self.sdo_now {
+                    self.adc.set_sdo_stuck(stuck);
+                    self.sdo_now = stuck;
+                }
+            }
             // Conversions are counted here and forgotten: a long run keeps no per-sample
             // history.
             let [miso, miso_b] = self.adc.step(conv, sck);
@@ -1154,14 +1216,14 @@ impl System {
                 .truth
                 .electrical_angle(self.cycle as f64 / self.clock_hz);
             let (qa, mut qb) = (th.cos() >= 0.0, th.sin() >= 0.0);
-            let now = self.cycle as f64 / self.clock_hz;
             if let Some((a, b)) = self.qep_b_stuck {
                 if now >= a && now < b {
                     qb = false;
                 }
             }
             let turn = std::f64::consts::TAU * self.d.quadrants_per_turn as f64 / 4.0;
-            let qz = th.rem_euclid(turn) < std::f64::consts::FRAC_PI_2;
+            let qz = th.rem_euclid(turn) < std::f64::consts::FRAC_PI_2
+                && !self.no_index.is_some_and(|(a, b)| now >= a && now < b);
             self.top.set(I_QEP_A, qa as u64);
             self.top.set(I_QEP_B, qb as u64);
             self.top.set(I_QEP_Z, qz as u64);
@@ -1294,25 +1356,8 @@ impl System {
                     None => self.result.records.push(rec),
                 }
             }
-            if self.status_poll.is_some() && self.top.get(O_RVALID) != 0 {
-                let bits = self.top.get(O_RDATA) & 0x1f;
-                self.result.status_polls += 1;
-                for f in crate::blocks::regmap::FAULTS {
-                    if bits >> f.lsb & 1 == 0 {
-                        continue;
-                    }
-                    match self.result.faults.iter_mut().find(|r| r.name == f.name) {
-                        Some(r) => r.polls += 1,
-                        None => self.result.faults.push(FaultRecord {
-                            name: f.name,
-                            after: self.last_poll,
-                            by: self.cycle,
-                            polls: 1,
-                        }),
-                    }
-                }
-                self.last_poll = self.cycle;
-                self.status_clear = bits;
+            if self.status_poll.is_some() {
+                self.watch_faults();
             }
             if self.top.get(O_CAP_VALID) != 0 {
                 let (pin_cycle, rise) = self.capture_pending.pop_front().unwrap_or_default();
@@ -1358,6 +1403,62 @@ impl System {
         }
         self.result.cycles = self.cycle;
         Ok(())
+    }
+
+    /// The faults of this cycle (with the register map): the live `flags` port every cycle
+    /// (the exact clock a fault is raised), and the data of a STATUS read, whose bits the
+    /// next cycle clears (write 1).
+    fn watch_faults(&mut self) {
+        use crate::blocks::regmap::{FAULTS, STATUS_MASK};
+        let record = |faults: &mut Vec<FaultRecord>, name: &'static str| -> usize {
+            match faults.iter().position(|r| r.name == name) {
+                Some(k) => k,
+                None => {
+                    faults.push(FaultRecord::new(name));
+                    faults.len() - 1
+                }
+            }
+        };
+        let flags = self.top.get(O_FLAGS);
+        for f in FAULTS {
+            if flags >> f.lsb & 1 == 0 {
+                continue;
+            }
+            let k = record(&mut self.result.faults, f.name);
+            let r = &mut self.result.faults[k];
+            r.raised.get_or_insert(self.cycle);
+            r.last = self.cycle;
+            if self.flags_prev >> f.lsb & 1 == 0 {
+                r.rises += 1;
+            }
+        }
+        self.flags_prev = flags;
+        if self.top.get(O_RVALID) == 0 {
+            return;
+        }
+        let bits = self.top.get(O_RDATA) & STATUS_MASK as u64;
+        self.result.status_polls += 1;
+        for f in FAULTS {
+            let set = bits >> f.lsb & 1 == 1;
+            let found = self.result.faults.iter().position(|r| r.name == f.name);
+            if !set {
+                if let Some(k) = found {
+                    let r = &mut self.result.faults[k];
+                    r.cleared = r.polls > 0;
+                }
+                continue;
+            }
+            let k = record(&mut self.result.faults, f.name);
+            let r = &mut self.result.faults[k];
+            if r.polls == 0 {
+                r.after = self.last_poll;
+                r.by = self.cycle;
+            }
+            r.polls += 1;
+            r.cleared = false;
+        }
+        self.last_poll = self.cycle;
+        self.status_clear = bits;
     }
 
     /// Finishes the run and returns its result.

@@ -70,7 +70,10 @@ pub(crate) enum Command {
     /// position; with `[capture]` 1 us pulses on `capture` at `--capture-hz` (default 20
     /// kHz) and each capture's age and position against the encoder's angle at the pin;
     /// with `[registers]` the loop reads STATUS through AXI4-Lite every 10 us, clearing
-    /// what it read, and prints each latched fault with the poll window it was raised in.
+    /// what it read, and prints each latched fault with the exact cycle it was raised (the
+    /// top's live `flags`) and the polls that found it. `--fault KIND[@FROM[..TO]]`
+    /// (repeatable) injects a fault: los, clip, broken-wire, overspeed, qep-b-stuck,
+    /// adc-frame, no-index (docs/cli.md says which STATUS bits each raises).
     /// Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags, ADC
     /// protocol violations, the BiSS-C, SSI, SPI, ABZ and capture checks and simulation
     /// speed, with a progress bar.
@@ -93,7 +96,8 @@ pub(crate) enum Command {
     /// reversal times > 0, `--amplitude` in (0, 1], `--noise-lsb` 0..=10000, offsets and
     /// `--gain-mismatch` -1..=1, `--phase-error` -45..=45 degrees, `--harmonic3`
     /// -0.5..=0.5, `--duration` (0, 10] s, `--capture-hz` (0, 100000] (with `[capture]`
-    /// only). A run with no decoded sample past the settling
+    /// only), each `--fault` a known kind, once, starting within the run and ending after
+    /// it starts (sinewave path only). A run with no decoded sample past the settling
     /// ones is an error, and on the capacitive path a `--duration` within the filters' 1.5
     /// ms settling window is refused before the run. A profile faster than the decoder
     /// follows (`check`'s max speed: the unwrap limit, on the capacitive path also the
@@ -256,6 +260,14 @@ pub(crate) struct SimulateArgs {
     /// PWM frequency), the first one period after the start; rejected without `[capture]`.
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) capture_hz: Option<f64>,
+    /// Injects a fault, repeatable (each kind once): KIND[@FROM[..TO]] in seconds (from 0,
+    /// to the end of the run when left out). KIND: los (tracks at 5 %), clip (tracks at 1.5
+    /// ADC full scales), broken-wire (the sin track at 0 V), overspeed (1.1 x the unwrap
+    /// limit), qep-b-stuck (comparator B low), adc-frame (the ADC's data lines stuck
+    /// high), no-index (qep_z low). With `[registers]` the summary lists each fault STATUS
+    /// latched with the exact cycle it was raised (docs/cli.md).
+    #[arg(long = "fault", value_name = "KIND[@FROM[..TO]]")]
+    pub(crate) fault: Vec<String>,
     /// Write every decoded sample as CSV (checked before the simulation; the directory
     /// must exist; an existing file is replaced).
     #[arg(long)]

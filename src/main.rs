@@ -124,6 +124,7 @@ fn simulate(args: SimulateArgs) -> Result<()> {
         harmonic3,
         seed,
         capture_hz,
+        fault,
         csv,
         vcd,
         engine,
@@ -156,6 +157,10 @@ fn simulate(args: SimulateArgs) -> Result<()> {
         // Without --csv no sample is kept: memory stays bounded on long runs.
         keep_records: csv.is_some(),
         capture_hz,
+        faults: fault
+            .iter()
+            .map(|f| sinedec::simulate::parse_fault(f))
+            .collect::<std::result::Result<Vec<_>, _>>()?,
         ..Default::default()
     };
     if let Some(w) = sinedec::simulate::speed_warning(&loaded, &o) {

@@ -371,6 +371,8 @@ pub fn port_timing(name: &str, input: bool, comment: &str) -> Option<(PortTiming
         // its outputs registered.
         (_, true) if by_prefix("s_axi_") => (SyncIn, "AXI4-Lite register map"),
         (_, false) if by_prefix("s_axi_") => (Out, "AXI4-Lite register map"),
+        // Its live flags (an OR of the blocks' flag registers, as FLAGS reads them).
+        ("flags", false) => (Out, "AXI4-Lite register map"),
         (_, false) if crate::config::DESELECT_PINS.contains(&name) => (Static, "Deselect lines"),
         // A registered block's port (`crate::blocks::registry`): its outputs are registered,
         // its inputs enter through a synchronizer.

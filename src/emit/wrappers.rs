@@ -108,9 +108,9 @@ fn rst_comment(release: u32) -> String {
     )
 }
 
-/// The register map's AXI4-Lite ports of `<name>_top` (`[registers] enabled`): name,
-/// width, input.
-pub const REG_PORTS: [(&str, u32, bool); 17] = [
+/// The register map's AXI4-Lite ports of `<name>_top` (`[registers] enabled`), then its
+/// live flags: name, width, input.
+pub const REG_PORTS: [(&str, u32, bool); 18] = [
     ("s_axi_awaddr", 8, true),
     ("s_axi_awvalid", 1, true),
     ("s_axi_awready", 1, false),
@@ -128,6 +128,7 @@ pub const REG_PORTS: [(&str, u32, bool); 17] = [
     ("s_axi_rresp", 2, false),
     ("s_axi_rvalid", 1, false),
     ("s_axi_rready", 1, true),
+    ("flags", crate::blocks::regmap::FLAGS_WIDTH, false),
 ];
 
 /// Verilog expression of the turn count from the 32-bit `turns` word (M bits, or 0).
@@ -342,6 +343,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
                 ".s_axi_rdata_0(s_axi_rdata)",
                 ".s_axi_rresp_0(axi_rresp_w)",
                 ".s_axi_rvalid_0(s_axi_rvalid)",
+                ".flags_0(flags_w)",
             ]
             .map(String::from),
         );
@@ -396,6 +398,7 @@ pub fn top_verilog(loaded: &Loaded) -> Result<Option<String>> {
             qb => d.quadrant_bits - 1,
             cap => d.capture.is_some(),
             regs => d.registers.is_some(),
+            flm => crate::blocks::regmap::FLAGS_WIDTH - 1,
             cap_extra => if d.capture.is_some_and(|c| c.extrapolation().is_some()) {
                 " (extrapolated to the capture)"
             } else {

@@ -8,12 +8,15 @@ use crate::sim::system::{ErrorStats, SimResult, System};
 use std::fmt::Write as _;
 
 mod capacitive;
+mod faults;
 mod options;
 
 pub use capacitive::*;
+pub use faults::*;
 pub use options::*;
 
-/// The encoder model for the options (2048 PPR etc. from the config).
+/// The encoder model for the options (2048 PPR etc. from the config), with the options'
+/// track and speed faults (`--fault`).
 pub fn encoder(loaded: &Loaded, o: &SimOptions) -> EncoderModel {
     let d = &loaded.derived;
     let gain = d
@@ -32,6 +35,7 @@ pub fn encoder(loaded: &Loaded, o: &SimOptions) -> EncoderModel {
     e.gain_mismatch = o.gain_mismatch;
     e.phase_error = o.phase_error_deg.to_radians();
     e.third_harmonic = o.third_harmonic;
+    apply_to_encoder(loaded, o, &mut e);
     e
 }
 
@@ -47,6 +51,8 @@ pub struct SimReport {
     pub engine: crate::sim::dut::EngineKind,
     /// Why that is not the engine asked for, if it is not (one line).
     pub engine_note: Option<String>,
+    /// The faults injected (`--fault`).
+    pub faults: Vec<FaultSpec>,
 }
 
 /// Runs the simulation; `progress(done, total)` is called every 2^14 cycles.
@@ -145,6 +151,7 @@ pub fn run_traced(
     o.validate(false)?;
     let d = &loaded.derived;
     let mut sys = System::on(d, encoder(loaded, o), o.engine)?;
+    apply_to_system(o, &mut sys);
     let settle = |e: crate::cosim::step::NoConvergence| Error::HdlCheck {
         block: "top".into(),
         message: e.to_string(),
@@ -234,6 +241,7 @@ pub fn run_traced(
         wall_s,
         engine,
         engine_note,
+        faults: o.faults.clone(),
     })
 }
 
@@ -339,37 +347,64 @@ impl SimReport {
         o
     }
 
-    /// The latched-fault lines of the summary (`[registers] enabled`; empty otherwise): each
-    /// fault STATUS latched, with the poll window it was raised in.
+    /// The fault lines of the summary: the faults injected (`--fault`), and with
+    /// `[registers] enabled` each fault STATUS latched, with the exact cycle its live flag
+    /// rose (the top's `flags` port) and the polls that read it through AXI4-Lite.
     fn fault_summary(&self, loaded: &Loaded) -> String {
         let d = &loaded.derived;
+        let mut out = String::new();
+        let injected = &self.faults;
+        if !injected.is_empty() {
+            let list: Vec<String> = injected.iter().map(FaultSpec::describe).collect();
+            let _ = writeln!(out, "faults injected             {}", list.join("; "));
+        }
         if d.registers.is_none() {
-            return String::new();
+            if !injected.is_empty() {
+                let _ = writeln!(
+                    out,
+                    "latched faults              not read: no register map ([registers] enabled = true adds STATUS)"
+                );
+            }
+            return out;
         }
         let r = &self.result;
         let us = |c: u64| c as f64 * 1e6 / d.clock_hz;
-        let mut o = String::new();
         let _ = writeln!(
-            o,
-            "STATUS polls                {} (every {} cycles through AXI4-Lite, each clearing what it read): {}",
+            out,
+            "STATUS polls                {} (every {} cycles = 10 us through AXI4-Lite, each clearing what it read): {}",
             r.status_polls,
             status_poll_cycles(d),
-            if r.faults.is_empty() { "no fault latched" } else { "faults below" }
+            if r.faults.is_empty() { "no fault latched" } else { "faults below (cycles exact, from the live flags)" }
         );
         for f in &r.faults {
-            let _ = writeln!(
-                o,
-                "latched fault {:<14} raised in cycles {}..{} ({:.1}..{:.1} us); found by {} poll{}",
-                f.name,
-                f.after,
-                f.by,
-                us(f.after),
-                us(f.by),
-                f.polls,
-                if f.polls == 1 { "" } else { "s" }
-            );
+            let raised = match f.raised {
+                Some(c) => format!(
+                    "raised at cycle {c} ({:.3} us), live last at {} ({:.3} us), {} rise{}",
+                    us(c),
+                    f.last,
+                    us(f.last),
+                    f.rises,
+                    if f.rises == 1 { "" } else { "s" }
+                ),
+                None => "raised (no cycle showed its live flag)".to_string(),
+            };
+            let polled = match f.polls {
+                0 => "not polled yet".to_string(),
+                n => format!(
+                    "found by {n} poll{} (first in cycles {}..{}), {}",
+                    if n == 1 { "" } else { "s" },
+                    f.after,
+                    f.by,
+                    if f.cleared {
+                        "cleared"
+                    } else {
+                        "still set at the last poll"
+                    }
+                ),
+            };
+            let _ = writeln!(out, "latched fault {:<14} {raised}; {polled}", f.name);
         }
-        o
+        out
     }
 
     /// The capture lines of the summary (`[capture] enabled`; empty otherwise): the ages

@@ -39,6 +39,8 @@ pub struct SimOptions {
     /// the first one period after the start); None: [`DEFAULT_CAPTURE_HZ`] with
     /// `[capture]`, none without.
     pub capture_hz: Option<f64>,
+    /// Faults injected (`--fault`, [`FaultSpec`]), each kind at most once.
+    pub faults: Vec<FaultSpec>,
 }
 
 /// `--capture-hz` when not given: a common PWM frequency.
@@ -68,6 +70,7 @@ impl Default for SimOptions {
             keep_records: true,
             skip: 12,
             capture_hz: None,
+            faults: Vec::new(),
         }
     }
 }
@@ -176,6 +179,13 @@ impl SimOptions {
                     &format!("0 < Hz <= {MAX_CAPTURE_HZ:.0} (1 us pulses)"),
                 );
             }
+        }
+        validate_faults(&self.faults, self.duration_s)?;
+        if capacitive && !self.faults.is_empty() {
+            return Err(Error::option(
+                "--fault",
+                "does not apply to the capacitive path (its faults are the sinewave path's: tracks, comparators, index, SPI ADC frame); remove it",
+            ));
         }
         for (opt, v, lim, allowed) in track {
             if v.is_nan() || v.abs() > lim {

@@ -13,6 +13,7 @@ mod correction_util;
 mod accuracy;
 mod adc;
 mod adc_closed_loop;
+mod adc_frame;
 mod capture;
 mod core_behaviour;
 mod core_sweep;

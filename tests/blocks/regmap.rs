@@ -9,7 +9,9 @@ use crate::common;
 use sinedec::blocks::mask;
 use sinedec::blocks::regmap::hdl::RegisterMap;
 use sinedec::blocks::regmap::model::{RegIn, RegOut, RegisterModel};
-use sinedec::blocks::regmap::{Access, RegmapParams, ID, REGISTERS, VERSION};
+use sinedec::blocks::regmap::{
+    Access, RegmapParams, FLAGS_WIDTH, ID, REGISTERS, STATUS_MASK, VERSION,
+};
 use sinedec::cosim::stimulus::SplitMix64;
 use sinedec::verify::{block_traces, Simulators};
 use std::collections::VecDeque;
@@ -298,34 +300,45 @@ fn status_is_write_one_to_clear_and_a_present_fault_sets_again() {
         .expect("STATUS");
     assert_eq!(status.access, Access::W1c);
     let a = status.address as u64;
-    // LOS (bit 0) and OVERSPEED (bit 3) pulse in clocks 0..4 (the first two in reset);
-    // QEP_MISMATCH (bit 4) stays.
+    // LOS (bit 0), OVERSPEED (bit 3) and ADC_FRAME (bit 9) pulse in clocks 0..4 (the
+    // first two in reset); QEP_MISMATCH (bit 4) and NOT_REFERENCED (bit 10) stay.
     let flags = |k: usize| {
-        let pulse = if k < 4 { 0b1001 } else { 0 };
-        pulse | 0b1_0000
+        let pulse = if k < 4 { 0b10_0000_1001 } else { 0 };
+        pulse | 0b100_0001_0000
     };
     let ops = [
         Op::Read(a),
-        // Clear LOS only (byte 0, bit 0), then everything: QEP_MISMATCH sets again.
+        // Clear LOS only (byte 0, bit 0), then ADC_FRAME (byte 1, bit 9), then everything:
+        // QEP_MISMATCH and NOT_REFERENCED set again.
         Op::Write(a, 0b0001, 0b0001),
+        Op::Read(a),
+        Op::Write(a, 1 << 9, 0b0010),
         Op::Read(a),
         Op::Write(a, 0xffff_ffff, 0b1111),
         Op::Read(a),
-        // A strobe that leaves byte 0 out clears nothing.
+        // A strobe that leaves byte 0 out clears nothing there.
         Op::Write(a, 0xffff_ffff, 0b1110),
         Op::Read(a),
     ];
     let (_, _, rs) = drive(&p, &ops, 0.0, 2, false, |k| values(flags(k)));
-    // Each request after the one before: every read sees QEP_MISMATCH; LOS and OVERSPEED
-    // stay latched until cleared.
-    assert_eq!(rs[0] & 0x1f, 0b1_1001, "latched: {:#b}", rs[0]);
-    assert_eq!(rs[1] & 0x1f, 0b1_1000, "LOS cleared: {:#b}", rs[1]);
+    // Each request after the one before: every read sees QEP_MISMATCH and NOT_REFERENCED;
+    // LOS, OVERSPEED and ADC_FRAME stay latched until cleared.
+    let m = STATUS_MASK as u64;
+    assert_eq!(m, 0b110_0001_1111, "STATUS's bits");
+    assert_eq!(rs[0] & m, 0b110_0001_1001, "latched: {:#b}", rs[0]);
+    assert_eq!(rs[1] & m, 0b110_0001_1000, "LOS cleared: {:#b}", rs[1]);
     assert_eq!(
-        rs[2] & 0x1f,
-        0b1_0000,
-        "all cleared, QEP_MISMATCH set again"
+        rs[2] & m,
+        0b100_0001_1000,
+        "ADC_FRAME cleared: {:#b}",
+        rs[2]
     );
-    assert_eq!(rs[3] & 0x1f, 0b1_0000);
+    assert_eq!(
+        rs[3] & m,
+        0b100_0001_0000,
+        "all cleared, QEP_MISMATCH and NOT_REFERENCED set again"
+    );
+    assert_eq!(rs[4] & m, 0b100_0001_0000);
 }
 
 #[test]
@@ -397,7 +410,7 @@ fn four_way_cosimulation() {
             RegIn {
                 rst: false,
                 flags: if x.unit() < 0.02 {
-                    x.range(0, 512) as u64
+                    x.range(0, 1 << FLAGS_WIDTH) as u64
                 } else {
                     0
                 },
@@ -583,7 +596,7 @@ fn synthesizes_for_both_families() {
     );
     // Registers Yosys keeps: the write holders (6 address bits, the 32 data bits the
     // thresholds take, 4 strobes), the channel flags, the one-hot read select (18), the
-    // read data (32), STATUS, the amplitude (32), the TURNS shadow (12: its sign extension
+    // read data (32), STATUS (7), the amplitude (32), the TURNS shadow (12: its sign extension
     // is one flip-flop), the VELOCITY shadow (32), the preset pulse and the three
     // thresholds (96): about 275.
     assert!(x.ffs > 240 && x.ffs < 320, "{} FF", x.ffs);

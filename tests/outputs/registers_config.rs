@@ -175,6 +175,11 @@ fn check_lists_the_map_and_bad_values_are_rejected() {
             && out.contains(&format!("{} registers", REGISTERS.len())),
         "{out}"
     );
+    // The kit's one data line carries both 14-bit words.
+    assert!(
+        out.contains("adc frame check             every data line stuck over a frame (1 line, 28 data bits each) -> STATUS.ADC_FRAME"),
+        "{out}"
+    );
     // A wrong type points at the value.
     let text = common::with_section("registers", "enabled = 2");
     let (line, col) = common::line_col(&text, "enabled = 2");

@@ -19,6 +19,7 @@ mod registers_top;
 mod simulate_engine;
 mod simulate_outputs;
 mod simulate_truth;
+mod status_faults;
 mod system;
 mod top_reset;
 mod velocity_top;

@@ -187,9 +187,10 @@ fn every_register_reads_and_writes_through_the_biss_control_channel() {
     assert_eq!(bytes(&out[6]), b"SINDECSD".to_vec());
     // STATUS cleared by a byte write (the loss of signal is gone); PRESET references.
     assert_eq!(out[7], Outcome::Written(1));
+    // Only NOT_REFERENCED (bit 10, byte 1) remains: still present before the preset.
     assert_eq!(
         le(&bytes(&out[8]), 0),
-        0,
+        1 << 10,
         "STATUS after writing 0xff to its byte 0"
     );
     assert_eq!(out[9], Outcome::Written(1));

@@ -3,7 +3,7 @@
 //! (all equal), and the registers' effect on the decoder is read off the replay: POSITION
 //! equals the parallel bus, STATUS latched the loss of signal of the start and clears,
 //! a PRESET write references the position as the `preset` pin does.
-use sinedec::blocks::regmap::{ID, REGISTERS};
+use sinedec::blocks::regmap::{flag_bit, ID, REGISTERS, STATUS_MASK};
 use sinedec::blocks::top::hdl::TopRtl;
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::cosim::CosimBlock;
@@ -69,7 +69,7 @@ fn registers_read_the_decoder_and_preset_it_in_four_simulators() {
     for k in 0..10 {
         read(&mut rows, 1500 + 211 * k, "POSITION");
     }
-    write(&mut rows, 2000, "STATUS", 0x1f);
+    write(&mut rows, 2000, "STATUS", STATUS_MASK as u64);
     read(&mut rows, 2020, "STATUS");
     read(&mut rows, 2030, "FLAGS");
     write(&mut rows, 2500, "PRESET", 1);
@@ -114,12 +114,28 @@ fn registers_read_the_decoder_and_preset_it_in_four_simulators() {
     let by = |at: usize| data(at);
     // Loss of signal until the monitor's window of good samples passed: latched at 120.
     assert_eq!(by(120) & 1, 1, "STATUS.LOS latched at the start");
-    assert_eq!(by(2020) & 0x1f, 0, "STATUS cleared, no fault since");
-    assert_eq!(by(2030) >> 6 & 1, 0, "not referenced before the preset");
-    assert_eq!(by(3500) >> 6 & 1, 1, "referenced after the PRESET write");
-    let refd = o("referenced_0");
-    assert!(tr[..2500].iter().all(|r| r[refd] == 0));
-    assert!(tr[3000..].iter().all(|r| r[refd] == 1));
+    let not_ref = flag_bit("NOT_REFERENCED") as u64;
+    assert_eq!(
+        by(2020) & STATUS_MASK as u64,
+        not_ref,
+        "STATUS cleared, no fault since but NOT_REFERENCED, set again (not homed)"
+    );
+    let refd = flag_bit("REFERENCED") as u64;
+    assert_eq!(by(2030) & refd, 0, "not referenced before the preset");
+    assert_eq!(
+        by(2030) & not_ref,
+        not_ref,
+        "FLAGS.NOT_REFERENCED before it"
+    );
+    assert_eq!(by(3500) & refd, refd, "referenced after the PRESET write");
+    assert_eq!(by(3500) & not_ref, 0, "FLAGS.NOT_REFERENCED clear");
+    let pin = o("referenced_0");
+    assert!(tr[..2500].iter().all(|r| r[pin] == 0));
+    assert!(tr[3000..].iter().all(|r| r[pin] == 1));
+    // The live flags port is FLAGS.
+    let fl = o("flags_0");
+    assert!(tr[..2500].iter().all(|r| r[fl] & refd == 0));
+    assert!(tr[3000..].iter().all(|r| r[fl] & (refd | not_ref) == refd));
 }
 
 /// `simulate`'s STATUS poll: the loop reads STATUS through the slave every 10 us and

@@ -17,7 +17,10 @@ use crate::blocks::init_bit::InitBit;
 use crate::blocks::mask;
 use rust_hdl::prelude::*;
 
+mod frame_check;
 mod update;
+
+pub use frame_check::FrameChecker;
 
 fn c16(v: u64) -> Constant<Bits<16>> {
     Constant::new(Bits::<16>::from(v & 0xffff))
@@ -92,6 +95,11 @@ pub struct AdcController {
     pub out_ch0: Signal<Out, Bits<16>>,
     /// Channel 1 sample (zero with one channel).
     pub out_ch1: Signal<Out, Bits<16>>,
+    /// The last delivered frame had every data line stuck (`frame_check`): one output with
+    /// [`AdcController::with_frame_check`], none otherwise.
+    pub frame_error: Vec<Signal<Out, Bit>>,
+    /// The frame check (`[registers] enabled`): one or none.
+    fcheck: Vec<FrameChecker>,
     // State.
     live: DFF<Bit>,
     pc: DFF<Bits<16>>,
@@ -324,6 +332,8 @@ impl AdcController {
             out_valid: Default::default(),
             out_ch0: Default::default(),
             out_ch1: Default::default(),
+            frame_error: Vec::new(),
+            fcheck: Vec::new(),
             live: Default::default(),
             pc: Default::default(),
             ph: Default::default(),
@@ -453,6 +463,17 @@ impl AdcController {
     }
 }
 
+impl AdcController {
+    /// [`new`](Self::new) with the frame check of `p` ([`AdcParams::frame_check`]) and its
+    /// `frame_error` output (the register map's STATUS.ADC_FRAME).
+    pub fn with_frame_check(p: &AdcParams) -> Self {
+        let mut c = Self::new(p);
+        c.frame_error = vec![Default::default()];
+        c.fcheck = vec![FrameChecker::new(&p.frame_check())];
+        c
+    }
+}
+
 impl crate::cosim::step::Clocked for AdcController {
     fn set_clock(&mut self, high: bool) {
         self.clk.next = Clock::from(high);
@@ -472,13 +493,15 @@ impl crate::cosim::CosimBlock for AdcController {
     }
     fn output_ports(&self) -> Vec<crate::cosim::Port> {
         use crate::cosim::Port;
-        vec![
+        let mut v = vec![
             Port::new("adc_sck", 1),
             Port::new("adc_conv", 1),
             Port::new("out_valid", 1),
             Port::new("out_ch0", 16),
             Port::new("out_ch1", 16),
-        ]
+        ];
+        v.extend((0..self.frame_error.len()).map(|k| Port::new(&format!("frame_error_{k}"), 1)));
+        v
     }
     fn apply(&mut self, r: &[u64]) {
         self.rst.next = r.first().copied().unwrap_or(0) != 0;
@@ -489,12 +512,14 @@ impl crate::cosim::CosimBlock for AdcController {
         }
     }
     fn sample(&self) -> Vec<u64> {
-        vec![
+        let mut v = vec![
             self.adc_sck.val() as u64,
             self.adc_conv.val() as u64,
             self.out_valid.val() as u64,
             self.out_ch0.val().to_u64(),
             self.out_ch1.val().to_u64(),
-        ]
+        ];
+        v.extend(self.frame_error.iter().map(|s| s.val() as u64));
+        v
     }
 }

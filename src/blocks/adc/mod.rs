@@ -88,13 +88,23 @@
 //! out_valid out  one-clock strobe: out_ch0/out_ch1 hold a new sample pair
 //! out_ch0   out  Bits<16>: channel 0, W-bit two's complement in the low bits, upper 0
 //! out_ch1   out  Bits<16>: channel 1 (0 with one channel)
+//! frame_error_0 out  frame check (`with_frame_check` only, `[registers] enabled`): the last
+//!           delivered frame had every data line stuck ([`frame_check`]), with out_valid
 //! ```
+//!
+//! # Frame check
+//! With the register map the controller also checks every delivered frame for a stuck data
+//! line (STATUS.ADC_FRAME); the rule, per chip, is in [`frame_check`]. It is a separate
+//! sub-block ([`hdl::FrameChecker`]) that exists only then, so a design without the
+//! register map has none of its logic.
 mod chips;
+pub mod frame_check;
 pub mod hdl;
 pub mod model;
 mod params;
 mod validate;
 
+pub use frame_check::FrameCheck;
 pub use params::*;
 
 /// The block's entry in the registry (`crate::blocks::registry`).

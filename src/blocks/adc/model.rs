@@ -29,10 +29,13 @@ pub struct AdcOut {
     pub ch0: u16,
     /// Channel 1.
     pub ch1: u16,
+    /// The frame check's verdict on the last delivered frame (None without the check).
+    pub frame_error: Option<bool>,
 }
 
 impl AdcOut {
-    /// Trace row in `AdcController` output-port order.
+    /// Trace row in `AdcController` output-port order (with `frame_error_0` when the
+    /// check is on).
     pub fn row(&self) -> Vec<u64> {
         vec![
             self.sck as u64,
@@ -41,12 +44,25 @@ impl AdcOut {
             self.ch0 as u64,
             self.ch1 as u64,
         ]
+        .into_iter()
+        .chain(self.frame_error.map(u64::from))
+        .collect()
     }
     /// Channel `c` sign-extended from W bits.
     pub fn signed(&self, c: usize, width: u32) -> i32 {
         let v = if c == 0 { self.ch0 } else { self.ch1 } as u64;
         crate::blocks::sext(v, width) as i32
     }
+}
+
+/// The frame check's registers (names as in `hdl::FrameChecker`).
+#[derive(Clone, Copy, Debug, Default)]
+struct CheckRegs {
+    hi_a: bool,
+    lo_a: bool,
+    hi_b: bool,
+    lo_b: bool,
+    err: bool,
 }
 
 /// The controller's state.
@@ -63,6 +79,11 @@ pub struct AdcModel {
     /// deliver): the bit is the `miso` of the next step, the level the input register takes
     /// at the edge that moves the capture state's pins (`MISO_SAMPLE_LAG_CLOCKS`).
     pend: [bool; 3],
+    /// The capture state of a frame's last data slot (delivered or not) was entered at the
+    /// previous step.
+    pend_last: bool,
+    /// The frame check (`with_frame_check`): the registers of `hdl::FrameChecker`.
+    check: Option<CheckRegs>,
     out: AdcOut,
     /// The registered pins and data: `out` of the previous clock (the hardware decodes
     /// them from the state one clock after it is entered).
@@ -81,6 +102,8 @@ impl AdcModel {
             warm: 0,
             sr: [0; 2],
             pend: [false; 3],
+            pend_last: false,
+            check: None,
             out: AdcOut::default(),
             pins: AdcOut {
                 sck: p.frame.cpol,
@@ -88,6 +111,15 @@ impl AdcModel {
                 ..AdcOut::default()
             },
         }
+    }
+
+    /// [`new`](Self::new) with the frame check (`AdcController::with_frame_check`).
+    pub fn with_frame_check(p: &AdcParams) -> Self {
+        let mut m = Self::new(p);
+        m.check = Some(CheckRegs::default());
+        m.out.frame_error = Some(false);
+        m.pins.frame_error = Some(false);
+        m
     }
 
     /// One clock. The state and `out` follow the controller's timing maths (module docs);
@@ -130,7 +162,8 @@ impl AdcModel {
         for (c, e) in pend.iter_mut().enumerate().take(chans) {
             *e = cap && slot >= f.offsets[c] && slot < f.offsets[c] + f.width;
         }
-        pend[2] = cap && slot == p.data_slots().1 && warm_n == 0;
+        let pend_last = cap && slot == p.data_slots().1;
+        pend[2] = pend_last && warm_n == 0;
         // The bits of the capture state entered at the previous step: `i.miso` is the level
         // sampled at the edge that moved its pins.
         // With two lines channel 1 reads line B at the same edge.
@@ -151,7 +184,33 @@ impl AdcModel {
             valid: false,
             ch0: self.out.ch0,
             ch1: self.out.ch1,
+            frame_error: self.out.frame_error,
         };
+        // The frame check: the bits shifted in now, by line; the verdict with a delivered
+        // frame's last bit; the seen flags cleared after any frame's last bit.
+        if let Some(c) = self.check.as_mut() {
+            let two = f.lines >= 2;
+            let ea = self.pend[0] || (self.pend[1] && !two);
+            let eb = self.pend[1] && two;
+            let hi_a = c.hi_a || (ea && bits[0]);
+            let lo_a = c.lo_a || (ea && !bits[0]);
+            let hi_b = c.hi_b || (eb && i.miso_b);
+            let lo_b = c.lo_b || (eb && !i.miso_b);
+            if self.pend[2] {
+                // Stuck: no line showed both levels.
+                let toggled = (hi_a && lo_a) || (hi_b && lo_b);
+                c.err = !toggled;
+            }
+            (c.hi_a, c.lo_a, c.hi_b, c.lo_b) = if self.pend_last {
+                (false, false, false, false)
+            } else {
+                (hi_a, lo_a, hi_b, lo_b)
+            };
+            if i.rst {
+                *c = CheckRegs::default();
+            }
+            out.frame_error = Some(c.err);
+        }
         if self.pend[2] {
             out.valid = true;
             out.ch0 = (sr_n[0] ^ flip) & wmask;
@@ -168,6 +227,7 @@ impl AdcModel {
             out.ch1 = 0;
         }
         self.pend = pend;
+        self.pend_last = pend_last;
         self.live = run;
         self.pc = pc_n;
         self.ph = ph_n;

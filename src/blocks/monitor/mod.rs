@@ -68,6 +68,13 @@
 //!   The hold counter applies each raw sample's step one clock later, as the window
 //!   counter does.
 //!
+//! # In the register map (`[registers] enabled`, docs/registers.md)
+//! `los`, `clip` and `full_scale` are the live flags LOS, CLIP and FULL_SCALE that STATUS
+//! latches (bits 0, 1, 2); the core's overspeed warning and the fallback's disagreement are
+//! OVERSPEED and QEP_MISMATCH (bits 3, 4). The ADC frame error is not the monitor's: it is
+//! the ADC controller's frame check (`crate::blocks::adc::frame_check`, bit 9), which the
+//! top ORs into the outputs' error beside this block's `error`.
+//!
 //! # Widths
 //! Magnitude and thresholds are W-bit unsigned (compared in 32-bit words whose upper bits
 //! are masked to 0); the three counters hold 0..N-1, 0..H-1 and 0..H-1 (ceil(log2) bits,

@@ -64,11 +64,11 @@ pub struct PositionReference {
     /// from `ubq`, `ubt` and `usel`. Timing: the subtractions start at registers, not at the
     /// core's count (`core.counter.turns` -> `otp` was the top's slowest path).
     upd: DFF<Bit>,
-    /// The request is a preset (else homing).
+    /// The request is a preset (else homing); loaded with every sample, used with `upd`.
     usel: DFF<Bit>,
-    /// The requesting sample's quadrant count.
+    /// The last sample's quadrant count (the requesting sample's while `upd` is high).
     ubq: DFF<Bits<32>>,
-    /// The requesting sample's turn word.
+    /// The last sample's turn word (likewise).
     ubt: DFF<Bits<32>>,
     ilatch: DFF<Bit>,
     /// The homing event, registered: the index latch takes T a clock later. Timing: keeps
@@ -330,12 +330,15 @@ impl Logic for PositionReference {
             }
             self.ofine.d.next = self.in_fine.val();
             self.oref.d.next = self.refd.q.val();
-            // Homing (the first index, not referenced) or a preset: the offset follows.
+            // Homing (the first index, not referenced) or a preset: the offset follows, from
+            // this sample's count. Every sample loads the count (`upd` alone says whether it
+            // asked): timing, the index event no longer enables those 60-odd flip-flops
+            // (core.counter -> qual -> ubt's enable was the register-map top's slowest path).
+            self.usel.d.next = self.pnow.val();
+            self.ubq.d.next = self.bq.val();
+            self.ubt.d.next = self.bt.val();
             if self.pnow.val() | (self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val()) {
                 self.upd.d.next = true;
-                self.usel.d.next = self.pnow.val();
-                self.ubq.d.next = self.bq.val();
-                self.ubt.d.next = self.bt.val();
             }
             if self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val() & !self.pnow.val() {
                 self.ihome.d.next = true;

@@ -39,8 +39,9 @@
 //! * An *index event* is the first qualified sample after an unqualified one. The first
 //!   event after reset (with no preset) *homes*: the offset becomes T - B with T the
 //!   configured index count (`[reference] quadrant` and `turn`), so that the reference
-//!   quadrant reads T from the next sample on. The sample registers its request (`upd`,
-//!   `ubq`, `ubt`, `usel`) and the offset is computed from those registers in the next
+//!   quadrant reads T from the next sample on. The sample registers its request (`upd`;
+//!   every sample loads its count and kind into `ubq`, `ubt`, `usel`, so the event enables
+//!   no more than `upd`) and the offset is computed from those registers in the next
 //!   clock, so the subtractions start at registers (the top's samples are an ADC period
 //!   apart; a sample in that very next clock still takes the old offset). Each later event latches the position of
 //!   its sample's quadrant (`index_qc`, `index_turns`, strobe `index_valid`): B + offset,

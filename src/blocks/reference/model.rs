@@ -231,11 +231,12 @@ impl ReferenceModel {
         n.out.referenced = o.refd;
         n.out.warning = !o.refd && p.warn_until_referenced();
         let home = event && !o.refd && !o.upd && !pnow;
+        // Every sample loads its count; `upd` says whether it asked (as the RTL).
+        n.usel = pnow;
+        n.ubq = bq;
+        n.ubt = bt;
         if pnow || home {
             n.upd = true;
-            n.usel = pnow;
-            n.ubq = bq;
-            n.ubt = bt;
         }
         if home {
             n.ihome = true;

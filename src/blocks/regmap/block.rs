@@ -26,7 +26,11 @@ pub const BLOCK: BlockDef = BlockDef {
     enabled: |c| c.registers.enabled && c.capacitive.is_none(),
     ports: &[],
     io_group: "register map",
-    describe: |d| d.registers.as_ref().map(|_| describe()),
+    describe: |d| {
+        d.registers
+            .as_ref()
+            .map(|_| describe() + &d.adc.frame_check().describe())
+    },
     build: report_job,
     timing_case: Some(
         "[velocity]\nenabled = true\n\n[reference]\nenabled = true\n\n[capture]\nenabled = true\n\n[registers]\nenabled = true\n",

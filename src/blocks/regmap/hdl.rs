@@ -6,8 +6,8 @@
 //! an AND-OR of the words from registers; the write acts from the holders, also registers; every AXI output is a
 //! register or one gate of registers.
 use super::{
-    RegmapParams, ADDR_BITS, ID, POSITION_WORD, PRESET_WORD, REGISTERS, STATUS_WORD,
-    THRESHOLD_WORDS, VERSION,
+    flag_bit, RegmapParams, ADDR_BITS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD, REGISTERS,
+    STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
@@ -58,7 +58,7 @@ pub struct RegisterMap {
     pub s_axi_rvalid: Signal<Out, Bit>,
     /// Read data ready.
     pub s_axi_rready: Signal<In, Bit>,
-    /// Live flags: FLAGS's bits 0..=8.
+    /// Live flags: FLAGS's bits (`FLAGS`).
     pub flags: Signal<In, Bits<32>>,
     /// A new CORDIC magnitude.
     pub amp_valid: Signal<In, Bit>,
@@ -385,9 +385,13 @@ impl RegisterMap {
             s2: c32(0xff_0000),
             s3: c32(0xff00_0000),
             strb4: c32(0xf),
-            fmask: c32(0x1f),
-            flmask: c32(0x1ff),
-            refd: c32(if p.referenced_always() { 1 << 6 } else { 0 }),
+            fmask: c32(STATUS_MASK as u64),
+            flmask: c32(FLAGS_MASK as u64),
+            refd: c32(if p.referenced_always() {
+                flag_bit("REFERENCED") as u64
+            } else {
+                0
+            }),
             fshift: c32(p.fine_bits() as u64),
             fmask_fine: c32(mask(p.fine_bits())),
             tmask: c32(tmask),

@@ -121,8 +121,10 @@ const fn whole(name: &'static str, description: &'static str) -> [Field; 1] {
     }]
 }
 
-/// Bits of STATUS (latched faults) and their FLAGS twins (live), in bit order.
-pub const FAULTS: [Field; 5] = [
+/// Bits of STATUS (latched faults), in bit order: STATUS bit k latches FLAGS bit k, so
+/// each fault sits at the bit of its live twin in [`FLAGS`]. Bits 5..=8 are FLAGS's
+/// non-fault flags, reserved (0) in STATUS; later faults are appended above them.
+pub const FAULTS: [Field; 7] = [
     Field {
         name: "LOS",
         lsb: 0,
@@ -153,10 +155,22 @@ pub const FAULTS: [Field; 5] = [
         width: 1,
         description: "the QEP fallback's count and the CORDIC's disagree",
     },
+    Field {
+        name: "ADC_FRAME",
+        lsb: 9,
+        width: 1,
+        description: "ADC frame error: every data line held one level over a whole frame (a stuck or broken SDO; docs/registers.md)",
+    },
+    Field {
+        name: "NOT_REFERENCED",
+        lsb: 10,
+        width: 1,
+        description: "the position is not referenced (not yet homed on the index or preset); never without [reference]",
+    },
 ];
 
-/// FLAGS: the live flags (the faults of [`FAULTS`] at the same bits, then these).
-pub const FLAGS: [Field; 9] = [
+/// FLAGS: the live flags (the faults of [`FAULTS`] at the same bits, and these).
+pub const FLAGS: [Field; 11] = [
     FAULTS[0],
     FAULTS[1],
     FAULTS[2],
@@ -186,7 +200,57 @@ pub const FLAGS: [Field; 9] = [
         width: 1,
         description: "the warning flag of the outputs",
     },
+    FAULTS[5],
+    FAULTS[6],
 ];
+
+/// The bits of `fields` (one-bit fields) as a mask.
+pub const fn fields_mask(fields: &[Field]) -> u32 {
+    let mut m = 0;
+    let mut i = 0;
+    while i < fields.len() {
+        m |= (((1u64 << fields[i].width) - 1) as u32) << fields[i].lsb;
+        i += 1;
+    }
+    m
+}
+
+/// STATUS's fault bits.
+pub const STATUS_MASK: u32 = fields_mask(&FAULTS);
+
+/// FLAGS's bits.
+pub const FLAGS_MASK: u32 = fields_mask(&FLAGS);
+
+/// Bits up to FLAGS's highest (the width of `<name>_top`'s `flags` port).
+pub const FLAGS_WIDTH: u32 = 32 - FLAGS_MASK.leading_zeros();
+
+/// The bit of FLAGS named `name` (a field of [`FLAGS`]), at compile time; panics (a
+/// compile error in a const) for a name that is not one.
+pub const fn flag_bit(name: &str) -> u32 {
+    let mut i = 0;
+    while i < FLAGS.len() {
+        if str_eq(FLAGS[i].name, name) {
+            return 1 << FLAGS[i].lsb;
+        }
+        i += 1;
+    }
+    panic!("no such FLAGS field")
+}
+
+const fn str_eq(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
 
 /// Word index of POSITION (its read latches TURNS and VELOCITY).
 pub const POSITION_WORD: u32 = 5;

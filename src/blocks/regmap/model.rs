@@ -1,7 +1,8 @@
 //! Bit-accurate model of the register map: the same registers as the RTL, updated once per
 //! clock edge; `step` returns what the outputs show after the edge.
 use super::{
-    RegmapParams, ADDR_BITS, ID, POSITION_WORD, PRESET_WORD, STATUS_WORD, THRESHOLD_WORDS, VERSION,
+    flag_bit, RegmapParams, ADDR_BITS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD, STATUS_MASK,
+    STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
 use crate::blocks::mask;
 
@@ -28,7 +29,7 @@ pub struct RegIn {
     pub arvalid: bool,
     /// Read data channel: the master takes it.
     pub rready: bool,
-    /// Live flags, FLAGS's bits 0..=8 (bit 6, REFERENCED, as the block gets it).
+    /// Live flags, FLAGS's bits (REFERENCED as the block gets it).
     pub flags: u64,
     /// A new CORDIC magnitude.
     pub amp_valid: bool,
@@ -82,7 +83,7 @@ impl RegIn {
             self.araddr & mask(ADDR_BITS),
             self.arvalid as u64,
             self.rready as u64,
-            self.flags & 0x1ff,
+            self.flags & FLAGS_MASK as u64,
             self.amp_valid as u64,
             self.amplitude & mask(32),
             self.qc & mask(32),
@@ -230,9 +231,9 @@ impl RegisterModel {
 
     /// The live flags as FLAGS reads them.
     fn flags(&self, i: &RegIn) -> u64 {
-        let mut f = i.flags & 0x1ff;
+        let mut f = i.flags & FLAGS_MASK as u64;
         if self.p.referenced_always() {
-            f |= 1 << 6;
+            f |= flag_bit("REFERENCED") as u64;
         }
         f
     }
@@ -329,7 +330,8 @@ impl RegisterModel {
             }
         }
         // Faults: set wins over a clear in the same clock.
-        n.status = (o.status & !clear & 0x1f) | (i.flags & 0x1f);
+        let fmask = STATUS_MASK as u64;
+        n.status = (o.status & !clear & fmask) | (i.flags & fmask);
         if i.amp_valid {
             n.amp = i.amplitude & mask(32);
         }

@@ -15,6 +15,7 @@ use crate::blocks::preamp::hdl::PreampSetup;
 use crate::blocks::qep::hdl::QepDecoder;
 use crate::blocks::reference::hdl::PositionReference;
 use crate::blocks::regmap::hdl::RegisterMap;
+use crate::blocks::regmap::{flag_bit, FLAGS};
 use crate::blocks::spi_slave::hdl::SpiSlave;
 use crate::blocks::ssi::hdl::SsiSlave;
 use crate::blocks::velocity::hdl::Velocity;
@@ -90,6 +91,7 @@ board_top! {
             s_axi_rdata: Bits<32>, 32, "AXI4-Lite read data";
             s_axi_rresp: Bits<32>, 32, "AXI4-Lite read response (always OKAY)";
             s_axi_rvalid: Bit, 1, "AXI4-Lite read data valid";
+            flags: Bits<32>, 32, "live flags (`[registers] enabled`): FLAGS's bits, as the register map reads them";
         }
         /// The pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit): one instance or none.
         /// Without it the ADC converts from reset and owns `adc_sck`.
@@ -145,9 +147,13 @@ board_top! {
         /// The live flags the register map reads (FLAGS's bits): one per register map (a
         /// Vec, so a top without one declares nothing).
         rflags: Vec<Signal<Local, Bits<32>>>,
-        /// FLAGS's bits: LOS, CLIP, FULL_SCALE, OVERSPEED, QEP_MISMATCH, FALLBACK,
-        /// REFERENCED, ERROR, WARNING (none without a register map).
+        /// FLAGS's bits in the order of `regmap::FLAGS`: LOS, CLIP, FULL_SCALE, OVERSPEED,
+        /// QEP_MISMATCH, FALLBACK, REFERENCED, ERROR, WARNING, ADC_FRAME, NOT_REFERENCED
+        /// (none without a register map).
         fl_bits: Vec<Constant<Bits<32>>>,
+        /// The live flags' value before any flag is set: REFERENCED without a position
+        /// reference (as FLAGS reads it), else 0; one per register map.
+        fl_init: Vec<Constant<Bits<32>>>,
         /// The blocks' reset: `rst` one clock later, from a register per block (powered up
         /// asserted; [`BLOCK_RESET_CLOCKS`]). Timing: one register driving every block's
         /// reset flops was the auto-correction top's slowest net (`rst` -> `core`); a
@@ -283,7 +289,19 @@ impl TopRtl {
             regs,
             rst_regs: resets(nreg),
             rflags: (0..nreg).map(|_| Default::default()).collect(),
-            fl_bits: (0..9 * nreg).map(|k| c32(1 << (k % 9))).collect(),
+            fl_bits: (0..nreg)
+                .flat_map(|_| FLAGS.iter().map(|f| c32(1 << f.lsb)))
+                .collect(),
+            fl_init: (0..nreg)
+                .map(|_| {
+                    c32(if d.reference.is_none() {
+                        flag_bit("REFERENCED") as u64
+                    } else {
+                        0
+                    })
+                })
+                .collect(),
+            flags: nreg,
             capture: ncap,
             cap_valid: ncap,
             cap_qc: ncap,
@@ -306,7 +324,12 @@ impl TopRtl {
             vel,
             vel_fshl: (0..nvel).map(|_| c32(d.fine_bits as u64)).collect(),
             preamp: d.preamp.iter().map(PreampSetup::new).collect(),
-            adc: AdcController::new(&d.adc),
+            // With the register map the controller checks every frame (STATUS.ADC_FRAME).
+            adc: if nreg > 0 {
+                AdcController::with_frame_check(&d.adc)
+            } else {
+                AdcController::new(&d.adc)
+            },
             correction: Correction::new(&d.correction),
             core: CoreRtl::new(d),
             monitor: Monitor::new(&d.monitor),
@@ -418,6 +441,13 @@ impl Logic for TopRtl {
         self.monitor.overspeed.next = false;
         self.monitor.qep_mismatch.next = self.fallback.mismatch.val();
         self.error.next = self.core.out_error.val() | self.monitor.error.val();
+        // An ADC frame error (the frame check, with the register map) joins the error: the
+        // sample is not the chip's.
+        for i in 0..self.adc.frame_error.len() {
+            self.error.next = self.core.out_error.val()
+                | self.monitor.error.val()
+                | self.adc.frame_error[i].val();
+        }
         self.warning.next =
             self.core.out_warning.val() | self.monitor.warning.val() | self.fallback.active.val();
         // The position reference (`[reference] enabled`): "not referenced" joins the warning.
@@ -641,7 +671,7 @@ impl Logic for TopRtl {
             self.s_axi_rdata[i].next = self.regs[i].s_axi_rdata.val();
             self.s_axi_rresp[i].next = self.regs[i].s_axi_rresp.val();
             self.s_axi_rvalid[i].next = self.regs[i].s_axi_rvalid.val();
-            self.rflags[i].next = self.zero.val();
+            self.rflags[i].next = self.fl_init[i].val();
             if self.monitor.los.val() {
                 self.rflags[i].next = self.rflags[i].val() | self.fl_bits[0].val();
             }
@@ -671,7 +701,18 @@ impl Logic for TopRtl {
             if self.warning.val() {
                 self.rflags[i].next = self.rflags[i].val() | self.fl_bits[8].val();
             }
+            for k in 0..self.adc.frame_error.len() {
+                if self.adc.frame_error[k].val() {
+                    self.rflags[i].next = self.rflags[i].val() | self.fl_bits[9].val();
+                }
+            }
+            for k in 0..self.reference.len() {
+                if !self.reference[k].referenced.val() {
+                    self.rflags[i].next = self.rflags[i].val() | self.fl_bits[10].val();
+                }
+            }
             self.regs[i].flags.next = self.rflags[i].val();
+            self.flags[i].next = self.rflags[i].val();
             // The BiSS control channel's user area is the map's banks (docs/registers.md).
             self.regs[i].bus_addr.next = self.zero.val();
             self.regs[i].bus_we.next = false;

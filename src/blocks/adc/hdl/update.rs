@@ -263,6 +263,22 @@ impl stages::PinsCapture for AdcController {
             self.ch1_reg.d.next = self.zero16.val();
             self.valid_reg.d.next = false;
         }
+        // The frame check (`with_frame_check`): the data bits shifted in at this edge, and
+        // the verdict with the frame's last one, registered with out_valid.
+        for i in 0..self.fcheck.len() {
+            self.fcheck[i].clk.next = self.clk.val();
+            self.fcheck[i].rst.next = self.rst_d.q.val();
+            self.fcheck[i].en0.next = self.cap0_d.q.val();
+            self.fcheck[i].en1.next = self.cap1_d.q.val();
+            self.fcheck[i].bit_a.next = self.miso_d.q.val();
+            self.fcheck[i].bit_b.next = false;
+            for k in 0..self.miso_b_d.len() {
+                self.fcheck[i].bit_b.next = self.miso_b_d[k].q.val();
+            }
+            self.fcheck[i].last.next = self.cap.val() & self.pl.val();
+            self.fcheck[i].deliver.next = self.capv_d.q.val();
+            self.frame_error[i].next = self.fcheck[i].frame_error.val();
+        }
         self.adc_sck.next = self.sck_reg.q.val();
         self.adc_conv.next = self.conv_reg.q.val();
         self.out_valid.next = self.valid_reg.q.val();
