@@ -175,6 +175,22 @@ fn check_lists_the_map_and_bad_values_are_rejected() {
             && out.contains(&format!("{} registers", REGISTERS.len())),
         "{out}"
     );
+    // The thresholds' reset values are the monitor's, as the check prints them itself.
+    let l = Loaded::parse(&with_registers(), "c.toml").expect("config");
+    let m = &l.derived.monitor;
+    assert!(
+        out.contains(&format!(
+            "LOS_THRESHOLD {}, LOS_RELEASE {}, CLIP_THRESHOLD {}",
+            m.los_threshold(),
+            m.los_release(),
+            m.clip_threshold()
+        )),
+        "{out}"
+    );
+    assert!(
+        !out.contains("register map over BiSS C"),
+        "no control channel"
+    );
     // The kit's one data line carries both 14-bit words.
     assert!(
         out.contains("adc frame check             every data line stuck over a frame (1 line, 28 data bits each) -> STATUS.ADC_FRAME"),

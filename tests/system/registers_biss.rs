@@ -112,6 +112,12 @@ fn every_register_reads_and_writes_through_the_biss_control_channel() {
         .command(Command::write(0x3c, &[0xff, 0xff, 0xff, 0x7f]))
         .command(Command::write(0x08, &[0xff]))
         .command(Command::read(0x08, 1));
+    assert!(
+        d.describe().contains(
+            "control channel 0x00..0x3F = the map's bytes 64 x bank (bank select 0x40; banks 0..=3)"
+        ),
+        "check prints the banks"
+    );
     let first_read = s.commands[0].0;
     let (out, starts, res) = run(&l, &mut s, false);
     println!("{out:?}");

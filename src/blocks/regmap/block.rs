@@ -29,7 +29,7 @@ pub const BLOCK: BlockDef = BlockDef {
     describe: |d| {
         d.registers
             .as_ref()
-            .map(|_| describe() + &d.adc.frame_check().describe())
+            .map(|p| describe(p) + &d.adc.frame_check().describe())
     },
     build: report_job,
     timing_case: Some(
@@ -70,14 +70,23 @@ pub fn params(c: &Config, d: &crate::config::Derived, err: &ErrFn) -> Result<Opt
 }
 
 /// The `[registers]` lines of `check`.
-fn describe() -> String {
+fn describe(p: &RegmapParams) -> String {
     let names: Vec<&str> = REGISTERS.iter().map(|r| r.name).collect();
-    format!(
-        "registers                   AXI4-Lite slave s_axi_* ({ADDR_BITS}-bit byte addresses, 32-bit data): {} registers from 0x00 to 0x{:02x}: {}\n",
+    let [los, rel, clip] = p.thresholds();
+    let mut s = format!(
+        "registers                   AXI4-Lite slave s_axi_* ({ADDR_BITS}-bit byte addresses, 32-bit data): {} registers from 0x00 to 0x{:02x}: {}\n\
+         register thresholds         LOS_THRESHOLD {los}, LOS_RELEASE {rel}, CLIP_THRESHOLD {clip} after reset (monitor units)\n",
         REGISTERS.len(),
         REGISTERS.last().map_or(0, |r| r.address),
         names.join(", ")
-    )
+    );
+    if p.biss_port() {
+        s.push_str(&format!(
+            "register map over BiSS C    control channel 0x00..0x3F = the map's bytes 64 x bank (bank select 0x40; banks 0..={}), low byte first\n",
+            (1u32 << ADDR_BITS) / super::BISS_BANK_BYTES - 1
+        ));
+    }
+    s
 }
 
 /// The report's row: the block synthesized alone.
