@@ -104,12 +104,14 @@ pub struct RegisterMap {
     pub bus_wdata: Signal<In, Bits<8>>,
     /// One clock: a read begins; at POSITION's byte 0 it latches the channel's snapshot.
     pub bus_snap: Signal<In, Bit>,
-    /// The byte at the address of two clocks before.
+    /// The byte at the address of three clocks before (one more while AXI holds the read select).
     pub bus_rdata: Signal<Out, Bits<8>>,
     /// One element with the port, none without: the port's logic is built in its loops.
     bus: Vec<Constant<Bit>>,
     aw_full: DFF<Bit>,
-    aw_addr: DFF<Bits<32>>,
+    /// The held write address as a one-hot word select (as `ar_sel`). Timing: the write
+    /// decode is an AND of registers, no compare after the AXI/BiSS choice.
+    aw_sel: DFF<Bits<32>>,
     w_full: DFF<Bit>,
     w_data: DFF<Bits<32>>,
     w_strb: DFF<Bits<32>>,
@@ -132,12 +134,19 @@ pub struct RegisterMap {
     /// for a clock without an AXI write (unused without the port).
     bsel: DFF<Bits<32>>,
     blane: DFF<Bits<32>>,
+    /// The selected word (loaded while AXI leaves the select free) and its lane; the byte
+    /// is taken from it a clock later. Timing: the AND-OR ends in `b_word`, the lane select
+    /// starts from registers.
+    b_word: DFF<Bits<32>>,
+    b_wlane: DFF<Bits<32>>,
     b_rdata: DFF<Bits<32>>,
     bpos: DFF<Bits<32>>,
     btur: DFF<Bits<32>>,
     bvel: DFF<Bits<32>>,
     bw_full: DFF<Bit>,
     bw_addr: DFF<Bits<32>>,
+    /// The waiting byte write's word as a one-hot select.
+    bw_sel: DFF<Bits<32>>,
     bw_data: DFF<Bits<8>>,
     /// The thresholds (RW; reset: the configured values).
     thr_los: DFF<Bits<32>>,
@@ -154,7 +163,7 @@ pub struct RegisterMap {
     w5: Signal<Local, Bits<32>>,
     w6: Signal<Local, Bits<32>>,
     w7: Signal<Local, Bits<32>>,
-    wword: Signal<Local, Bits<32>>,
+    wsel: Signal<Local, Bits<32>>,
     rmux: Signal<Local, Bits<32>>,
     bits: Signal<Local, Bits<32>>,
     smask: Signal<Local, Bits<32>>,
@@ -303,12 +312,15 @@ impl RegisterMap {
                 .collect(),
             bsel: Default::default(),
             blane: Default::default(),
+            b_word: Default::default(),
+            b_wlane: Default::default(),
             b_rdata: Default::default(),
             bpos: Default::default(),
             btur: Default::default(),
             bvel: Default::default(),
             bw_full: Default::default(),
             bw_addr: Default::default(),
+            bw_sel: Default::default(),
             bw_data: Default::default(),
             wen: Default::default(),
             wbits: Default::default(),
@@ -317,7 +329,7 @@ impl RegisterMap {
             w6: Default::default(),
             w7: Default::default(),
             aw_full: Default::default(),
-            aw_addr: Default::default(),
+            aw_sel: Default::default(),
             w_full: Default::default(),
             w_data: Default::default(),
             w_strb: Default::default(),
@@ -331,7 +343,7 @@ impl RegisterMap {
             sh_turns: Default::default(),
             sh_vel: Default::default(),
             pre: Default::default(),
-            wword: Default::default(),
+            wsel: Default::default(),
             rmux: Default::default(),
             bits: Default::default(),
             smask: Default::default(),
@@ -408,9 +420,9 @@ impl Logic for RegisterMap {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, aw_full, aw_addr, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
-            rdata, status, amp, sh_turns, sh_vel, pre, bsel, blane, b_rdata, bpos, btur, bvel,
-            bw_full, bw_addr, bw_data, thr_los, thr_rel, thr_clip
+            self, clk, aw_full, aw_sel, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
+            rdata, status, amp, sh_turns, sh_vel, pre, bsel, blane, b_word, b_wlane, b_rdata, bpos,
+            btur, bvel, bw_full, bw_addr, bw_sel, bw_data, thr_los, thr_rel, thr_clip
         );
         // The words each register reads, from the live inputs.
         self.live.next = (self.flags.val() & self.flmask.val()) | self.refd.val();
@@ -444,7 +456,9 @@ impl Logic for RegisterMap {
         // Write: the holders, then the write when both are held and no response pending.
         if self.s_axi_awvalid.val() & !self.aw_full.q.val() {
             self.aw_full.d.next = true;
-            self.aw_addr.d.next = self.s_axi_awaddr.val() & self.amask.val();
+            self.aw_sel.d.next = (self.one.val()
+                << ((self.s_axi_awaddr.val() & self.amask.val()) >> self.two.val()))
+                & self.selmask.val();
         }
         if self.s_axi_wvalid.val() & !self.w_full.q.val() {
             self.w_full.d.next = true;
@@ -471,7 +485,7 @@ impl Logic for RegisterMap {
         // The write of this clock: AXI's when both holders are full and no response is
         // pending, else a BiSS byte write waiting (taken the next clock AXI leaves free).
         self.wen.next = false;
-        self.wword.next = self.aw_addr.q.val() >> self.two.val();
+        self.wsel.next = self.aw_sel.q.val();
         self.wbits.next = self.bits.val();
         self.wmsk.next = self.smask.val();
         if self.aw_full.q.val() & self.w_full.q.val() & !self.bvalid.q.val() {
@@ -481,7 +495,7 @@ impl Logic for RegisterMap {
             self.bvalid.d.next = true;
         } else if self.bw_full.q.val() {
             self.wen.next = true;
-            self.wword.next = self.bw_addr.q.val() >> self.two.val();
+            self.wsel.next = self.bw_sel.q.val();
             self.wbits.next = bit_cast::<32, 8>(self.bw_data.q.val())
                 << ((self.bw_addr.q.val() & self.three.val()) << self.three.val());
             self.wmsk.next = self.bmask8.val()
@@ -492,25 +506,31 @@ impl Logic for RegisterMap {
             if self.bus_we.val() {
                 self.bw_full.d.next = true;
                 self.bw_addr.d.next = self.bus_addr.val();
+                self.bw_sel.d.next = self.zero.val();
+                if !(self.bus_addr.val() & self.bhigh.val()).any() {
+                    self.bw_sel.d.next = (self.one.val()
+                        << (self.bus_addr.val() >> self.two.val()))
+                        & self.selmask.val();
+                }
                 self.bw_data.d.next = self.bus_wdata.val();
             }
         }
         self.clear.next = self.zero.val();
         self.pre.d.next = false;
         if self.wen.val() {
-            if self.wword.val() == self.w_status.val() {
+            if (self.wsel.val() & (self.one.val() << self.w_status.val())).any() {
                 self.clear.next = self.wbits.val();
             }
-            if self.wword.val() == self.w_preset.val() {
+            if (self.wsel.val() & (self.one.val() << self.w_preset.val())).any() {
                 self.pre.d.next = (self.wbits.val() & self.one.val()).any();
             }
-            if self.wword.val() == self.w_tlos.val() {
+            if (self.wsel.val() & (self.one.val() << self.w_tlos.val())).any() {
                 self.thr_los.d.next = (self.thr_los.q.val() & !self.wmsk.val()) | self.wbits.val();
             }
-            if self.wword.val() == self.w_trel.val() {
+            if (self.wsel.val() & (self.one.val() << self.w_trel.val())).any() {
                 self.thr_rel.d.next = (self.thr_rel.q.val() & !self.wmsk.val()) | self.wbits.val();
             }
-            if self.wword.val() == self.w_tclip.val() {
+            if (self.wsel.val() & (self.one.val() << self.w_tclip.val())).any() {
                 self.thr_clip.d.next =
                     (self.thr_clip.q.val() & !self.wmsk.val()) | self.wbits.val();
             }
@@ -619,9 +639,12 @@ impl Logic for RegisterMap {
             }
             self.blane.d.next = self.bus_addr.val() & self.three.val();
             if !self.ar_full.q.val() {
-                self.b_rdata.d.next = (self.rmux.val() >> (self.blane.q.val() << self.three.val()))
-                    & self.bmask8.val();
+                self.b_word.d.next = self.rmux.val();
+                self.b_wlane.d.next = self.blane.q.val();
             }
+            self.b_rdata.d.next = (self.b_word.q.val()
+                >> (self.b_wlane.q.val() << self.three.val()))
+                & self.bmask8.val();
             if self.bus_snap.val()
                 & (self.bsel.q.val() & (self.one.val() << self.w_position.val())).any()
                 & (self.blane.q.val() == self.zero.val())
@@ -638,7 +661,7 @@ impl Logic for RegisterMap {
             self.bvalid.d.next = false;
             self.ar_full.d.next = false;
             self.rvalid.d.next = false;
-            self.aw_addr.d.next = 0.into();
+            self.aw_sel.d.next = 0.into();
             self.w_data.d.next = 0.into();
             self.w_strb.d.next = 0.into();
             self.ar_sel.d.next = 0.into();
@@ -650,12 +673,15 @@ impl Logic for RegisterMap {
             self.pre.d.next = false;
             self.bsel.d.next = 0.into();
             self.blane.d.next = 0.into();
+            self.b_word.d.next = 0.into();
+            self.b_wlane.d.next = 0.into();
             self.b_rdata.d.next = 0.into();
             self.bpos.d.next = 0.into();
             self.btur.d.next = 0.into();
             self.bvel.d.next = 0.into();
             self.bw_full.d.next = false;
             self.bw_addr.d.next = 0.into();
+            self.bw_sel.d.next = 0.into();
             self.bw_data.d.next = 0.into();
             self.thr_los.d.next = self.t0_los.val();
             self.thr_rel.d.next = self.t0_rel.val();

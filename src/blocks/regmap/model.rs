@@ -132,7 +132,7 @@ pub struct RegOut {
     pub preset: bool,
     /// LOS_THRESHOLD, LOS_RELEASE, CLIP_THRESHOLD (to the monitor).
     pub thresholds: [u64; 3],
-    /// The BiSS byte port's read data: the byte at the `bus_addr` of two clocks before
+    /// The BiSS byte port's read data: the byte at the `bus_addr` of three clocks before
     /// (one clock later while an AXI read holds the shared read select).
     pub bus_rdata: u64,
 }
@@ -187,6 +187,8 @@ struct Regs {
     b_addr: u64,
     /// `b_addr` holds an address (the reset leaves the select empty).
     b_held: bool,
+    b_word: u64,
+    b_wlane: u64,
     b_rdata: u64,
     bpos: u64,
     btur: u64,
@@ -348,6 +350,7 @@ impl RegisterModel {
             // hold the read select, the snapshot at POSITION's byte 0.
             n.b_addr = i.bus_addr & mask(32);
             n.b_held = true;
+            n.b_rdata = o.b_word >> (8 * o.b_wlane) & 0xff;
             if !o.ar_full {
                 let w = o.b_addr >> 2;
                 let v = if w < super::REGISTERS.len() as u64 && o.b_held {
@@ -355,7 +358,8 @@ impl RegisterModel {
                 } else {
                     0
                 };
-                n.b_rdata = v >> (8 * (o.b_addr & 3)) & 0xff;
+                n.b_word = v;
+                n.b_wlane = o.b_addr & 3;
             }
             if i.bus_snap && o.b_held && o.b_addr == 4 * POSITION_WORD as u64 {
                 n.bpos = self.word(POSITION_WORD as u64, &i);
