@@ -164,6 +164,13 @@ pub struct RegisterMap {
     w6: Signal<Local, Bits<32>>,
     w7: Signal<Local, Bits<32>>,
     wsel: Signal<Local, Bits<32>>,
+    /// The write of the clock before, registered (enable, one-hot word, bits, byte mask):
+    /// it acts a clock after its handshake. Timing: the AXI/BiSS choice ends in these
+    /// flip-flops, so each register's enable and data are one LUT of registers.
+    wq_en: DFF<Bit>,
+    wq_sel: DFF<Bits<32>>,
+    wq_bits: DFF<Bits<32>>,
+    wq_msk: DFF<Bits<32>>,
     rmux: Signal<Local, Bits<32>>,
     bits: Signal<Local, Bits<32>>,
     smask: Signal<Local, Bits<32>>,
@@ -344,6 +351,10 @@ impl RegisterMap {
             sh_vel: Default::default(),
             pre: Default::default(),
             wsel: Default::default(),
+            wq_en: Default::default(),
+            wq_sel: Default::default(),
+            wq_bits: Default::default(),
+            wq_msk: Default::default(),
             rmux: Default::default(),
             bits: Default::default(),
             smask: Default::default(),
@@ -422,7 +433,8 @@ impl Logic for RegisterMap {
         dff_setup!(
             self, clk, aw_full, aw_sel, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
             rdata, status, amp, sh_turns, sh_vel, pre, bsel, blane, b_word, b_wlane, b_rdata, bpos,
-            btur, bvel, bw_full, bw_addr, bw_sel, bw_data, thr_los, thr_rel, thr_clip
+            btur, bvel, bw_full, bw_addr, bw_sel, bw_data, thr_los, thr_rel, thr_clip, wq_en,
+            wq_sel, wq_bits, wq_msk
         );
         // The words each register reads, from the live inputs.
         self.live.next = (self.flags.val() & self.flmask.val()) | self.refd.val();
@@ -515,24 +527,30 @@ impl Logic for RegisterMap {
                 self.bw_data.d.next = self.bus_wdata.val();
             }
         }
+        self.wq_en.d.next = self.wen.val();
+        self.wq_sel.d.next = self.wsel.val();
+        self.wq_bits.d.next = self.wbits.val();
+        self.wq_msk.d.next = self.wmsk.val();
         self.clear.next = self.zero.val();
         self.pre.d.next = false;
-        if self.wen.val() {
-            if (self.wsel.val() & (self.one.val() << self.w_status.val())).any() {
-                self.clear.next = self.wbits.val();
+        if self.wq_en.q.val() {
+            if (self.wq_sel.q.val() & (self.one.val() << self.w_status.val())).any() {
+                self.clear.next = self.wq_bits.q.val();
             }
-            if (self.wsel.val() & (self.one.val() << self.w_preset.val())).any() {
-                self.pre.d.next = (self.wbits.val() & self.one.val()).any();
+            if (self.wq_sel.q.val() & (self.one.val() << self.w_preset.val())).any() {
+                self.pre.d.next = (self.wq_bits.q.val() & self.one.val()).any();
             }
-            if (self.wsel.val() & (self.one.val() << self.w_tlos.val())).any() {
-                self.thr_los.d.next = (self.thr_los.q.val() & !self.wmsk.val()) | self.wbits.val();
+            if (self.wq_sel.q.val() & (self.one.val() << self.w_tlos.val())).any() {
+                self.thr_los.d.next =
+                    (self.thr_los.q.val() & !self.wq_msk.q.val()) | self.wq_bits.q.val();
             }
-            if (self.wsel.val() & (self.one.val() << self.w_trel.val())).any() {
-                self.thr_rel.d.next = (self.thr_rel.q.val() & !self.wmsk.val()) | self.wbits.val();
+            if (self.wq_sel.q.val() & (self.one.val() << self.w_trel.val())).any() {
+                self.thr_rel.d.next =
+                    (self.thr_rel.q.val() & !self.wq_msk.q.val()) | self.wq_bits.q.val();
             }
-            if (self.wsel.val() & (self.one.val() << self.w_tclip.val())).any() {
+            if (self.wq_sel.q.val() & (self.one.val() << self.w_tclip.val())).any() {
                 self.thr_clip.d.next =
-                    (self.thr_clip.q.val() & !self.wmsk.val()) | self.wbits.val();
+                    (self.thr_clip.q.val() & !self.wq_msk.q.val()) | self.wq_bits.q.val();
             }
         }
         // Faults: set wins over a clear in the same clock.
@@ -683,6 +701,7 @@ impl Logic for RegisterMap {
             self.bw_addr.d.next = 0.into();
             self.bw_sel.d.next = 0.into();
             self.bw_data.d.next = 0.into();
+            self.wq_en.d.next = false;
             self.thr_los.d.next = self.t0_los.val();
             self.thr_rel.d.next = self.t0_rel.val();
             self.thr_clip.d.next = self.t0_clip.val();

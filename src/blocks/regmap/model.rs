@@ -198,6 +198,8 @@ struct Regs {
     bw_data: u64,
     /// LOS_THRESHOLD, LOS_RELEASE, CLIP_THRESHOLD.
     thr: [u64; 3],
+    /// The write of the clock before (word, bits, byte mask): it acts now.
+    wq: Option<(u64, u64, u64)>,
 }
 
 /// The register map, clock by clock.
@@ -320,7 +322,8 @@ impl RegisterModel {
             n.bw_addr = i.bus_addr & mask(32);
             n.bw_data = i.bus_wdata & 0xff;
         }
-        if let Some((w, bits, m)) = write {
+        n.wq = write;
+        if let Some((w, bits, m)) = o.wq {
             match w {
                 w if w == STATUS_WORD as u64 => clear = bits,
                 w if w == PRESET_WORD as u64 => n.preset = bits & 1 == 1,
