@@ -45,6 +45,26 @@ pub struct PositionReference {
     pub index_qc: Signal<Out, Bits<32>>,
     /// Referenced turn word of the last index.
     pub index_turns: Signal<Out, Bits<32>>,
+    /// The absolute start's request (`[reference] absolute`; one input, or none): one
+    /// clock, never with `in_valid`, to take the target `abs_t*` for the count `abs_b*` of
+    /// an earlier sample (the one the encoder's word belongs to).
+    pub abs_req: Vec<Signal<In, Bit>>,
+    /// The absolute target's quadrant count T_q.
+    pub abs_tq: Vec<Signal<In, Bits<32>>>,
+    /// T_q - Q (qb + 1 bits two's complement).
+    pub abs_tqm: Vec<Signal<In, Bits<32>>>,
+    /// T_q + Q.
+    pub abs_tqp: Vec<Signal<In, Bits<32>>>,
+    /// The absolute target's turn word T_t.
+    pub abs_tt: Vec<Signal<In, Bits<32>>>,
+    /// T_t - 1 (M bits).
+    pub abs_ttm: Vec<Signal<In, Bits<32>>>,
+    /// T_t + 1 (M bits).
+    pub abs_ttp: Vec<Signal<In, Bits<32>>>,
+    /// The quadrant count B_q of the word's sample.
+    pub abs_bq: Vec<Signal<In, Bits<32>>>,
+    /// The turn word B_t of the word's sample.
+    pub abs_bt: Vec<Signal<In, Bits<32>>>,
     conv_prev: DFF<Bit>,
     /// Z at each conversion, newest in bit 0.
     zt: DFF<Bits<32>>,
@@ -70,6 +90,9 @@ pub struct PositionReference {
     ubq: DFF<Bits<32>>,
     /// The requesting sample's turn word.
     ubt: DFF<Bits<32>>,
+    /// The request is the absolute start's (T from `abs_t*`): one with the absolute start,
+    /// none without.
+    uabs: Vec<DFF<Bit>>,
     ilatch: DFF<Bit>,
     /// The homing event, registered: the index latch takes T a clock later. Timing: keeps
     /// the sample's qualification off the index registers' enable (core.counter ->
@@ -170,6 +193,15 @@ impl PositionReference {
             index_valid: Default::default(),
             index_qc: Default::default(),
             index_turns: Default::default(),
+            abs_req: abs_ports(p),
+            abs_tq: abs_ports(p),
+            abs_tqm: abs_ports(p),
+            abs_tqp: abs_ports(p),
+            abs_tt: abs_ports(p),
+            abs_ttm: abs_ports(p),
+            abs_ttp: abs_ports(p),
+            abs_bq: abs_ports(p),
+            abs_bt: abs_ports(p),
             conv_prev: Default::default(),
             zt: Default::default(),
             p1: Default::default(),
@@ -186,6 +218,7 @@ impl PositionReference {
             usel: Default::default(),
             ubq: Default::default(),
             ubt: Default::default(),
+            uabs: abs_ports(p),
             ilatch: Default::default(),
             ihome: Default::default(),
             ov: Default::default(),
@@ -242,6 +275,13 @@ impl PositionReference {
     }
 }
 
+/// One default element with the absolute start (`[reference] absolute`), none without.
+fn abs_ports<T: Default>(p: &ReferenceParams) -> Vec<T> {
+    (0..usize::from(p.absolute()))
+        .map(|_| T::default())
+        .collect()
+}
+
 impl Logic for PositionReference {
     #[hdl_gen]
     fn update(&mut self) {
@@ -249,6 +289,10 @@ impl Logic for PositionReference {
             self, clk, conv_prev, zt, p1, p2, pp, ppend, pqual, oq, oqm, ot, otp, refd, upd, usel,
             ubq, ubt, ilatch, ihome, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
         );
+        for i in 0..self.uabs.len() {
+            self.uabs[i].clock.next = self.clk.val();
+            self.uabs[i].d.next = self.uabs[i].q.val();
+        }
         // Synchronizers and edge registers (no reset).
         self.conv_prev.d.next = self.conv.val();
         self.p1.d.next = self.preset.val();
@@ -287,6 +331,17 @@ impl Logic for PositionReference {
             self.tt.next = self.it.val();
             self.ttm.next = self.itm.val();
             self.ttp.next = self.itp.val();
+        }
+        // The absolute start's request: T from the absolute block's registers.
+        for i in 0..self.uabs.len() {
+            if self.uabs[i].q.val() {
+                self.tq.next = self.abs_tq[i].val();
+                self.tqm.next = self.abs_tqm[i].val();
+                self.tqp.next = self.abs_tqp[i].val();
+                self.tt.next = self.abs_tt[i].val();
+                self.ttm.next = self.abs_ttm[i].val();
+                self.ttp.next = self.abs_ttp[i].val();
+            }
         }
         self.d1.next = (self.tq.val() - self.ubq.q.val()) & self.wmask.val();
         self.upd.d.next = false;
@@ -336,6 +391,9 @@ impl Logic for PositionReference {
                 self.usel.d.next = self.pnow.val();
                 self.ubq.d.next = self.bq.val();
                 self.ubt.d.next = self.bt.val();
+                for i in 0..self.uabs.len() {
+                    self.uabs[i].d.next = false;
+                }
             }
             if self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val() & !self.pnow.val() {
                 self.ihome.d.next = true;
@@ -348,6 +406,15 @@ impl Logic for PositionReference {
             }
         } else {
             self.ppend.d.next = self.pnow.val();
+        }
+        // The absolute start: its B and T, in a clock without a sample.
+        for i in 0..self.abs_req.len() {
+            if self.abs_req[i].val() {
+                self.upd.d.next = true;
+                self.uabs[i].d.next = true;
+                self.ubq.d.next = self.abs_bq[i].val() & self.qmask.val();
+                self.ubt.d.next = self.abs_bt[i].val() & self.tmask.val();
+            }
         }
         if self.rst.val() {
             self.zt.d.next = 0.into();
@@ -369,6 +436,9 @@ impl Logic for PositionReference {
             self.iv.d.next = false;
             self.iqc.d.next = 0.into();
             self.iturns.d.next = 0.into();
+            for i in 0..self.uabs.len() {
+                self.uabs[i].d.next = false;
+            }
         }
         self.out_valid.next = self.ov.q.val();
         self.out_qc.next = self.oqc.q.val();
@@ -382,6 +452,20 @@ impl Logic for PositionReference {
     }
 }
 
+/// The absolute start's inputs as the exported module names them (`abs_req_0`, ...), in
+/// row order after the eight others.
+const ABS_INPUTS: [(&str, u32); 9] = [
+    ("abs_req_0", 1),
+    ("abs_tq_0", 32),
+    ("abs_tqm_0", 32),
+    ("abs_tqp_0", 32),
+    ("abs_tt_0", 32),
+    ("abs_ttm_0", 32),
+    ("abs_ttp_0", 32),
+    ("abs_bq_0", 32),
+    ("abs_bt_0", 32),
+];
+
 impl crate::cosim::CosimBlock for PositionReference {
     fn input_ports(&self) -> Vec<Port> {
         vec![
@@ -394,6 +478,13 @@ impl crate::cosim::CosimBlock for PositionReference {
             Port::new("in_fine", 32),
             Port::new("in_turns", 32),
         ]
+        .into_iter()
+        .chain(
+            self.abs_req
+                .iter()
+                .flat_map(|_| ABS_INPUTS.iter().map(|(n, w)| Port::new(n, *w))),
+        )
+        .collect()
     }
     fn output_ports(&self) -> Vec<Port> {
         vec![
@@ -417,6 +508,17 @@ impl crate::cosim::CosimBlock for PositionReference {
         self.in_qc.next = Bits::<32>::from(r[5]);
         self.in_fine.next = Bits::<32>::from(r[6]);
         self.in_turns.next = Bits::<32>::from(r[7]);
+        for i in 0..self.abs_req.len() {
+            self.abs_req[i].next = r[8] != 0;
+            self.abs_tq[i].next = Bits::<32>::from(r[9]);
+            self.abs_tqm[i].next = Bits::<32>::from(r[10]);
+            self.abs_tqp[i].next = Bits::<32>::from(r[11]);
+            self.abs_tt[i].next = Bits::<32>::from(r[12]);
+            self.abs_ttm[i].next = Bits::<32>::from(r[13]);
+            self.abs_ttp[i].next = Bits::<32>::from(r[14]);
+            self.abs_bq[i].next = Bits::<32>::from(r[15]);
+            self.abs_bt[i].next = Bits::<32>::from(r[16]);
+        }
     }
     fn sample(&self) -> Vec<u64> {
         vec![

@@ -111,6 +111,10 @@ pub struct ReferenceParams {
     tag_shift: u32,
     conv_active_high: bool,
     warn_until_referenced: bool,
+    /// The absolute start is a source of T (`crate::blocks::absolute`); left out of the
+    /// parameter file when false, so configurations without it keep their bytes.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    absolute: bool,
 }
 
 impl ReferenceParams {
@@ -170,7 +174,18 @@ impl ReferenceParams {
             tag_shift,
             conv_active_high,
             warn_until_referenced,
+            absolute: false,
         })
+    }
+
+    /// With the absolute start's target as a third source of T (its ports `abs_*`).
+    pub fn with_absolute(mut self, on: bool) -> Self {
+        self.absolute = on;
+        self
+    }
+    /// The absolute start is a source of T.
+    pub fn absolute(&self) -> bool {
+        self.absolute
     }
 
     /// Q = 4 PPR.

@@ -22,6 +22,12 @@ pub struct ReferenceIn {
     pub fine: u64,
     /// Turn word (M bits).
     pub turns: u64,
+    /// The absolute start's request (with `[reference] absolute`).
+    pub abs_req: bool,
+    /// Its target: T_q, T_q - Q, T_q + Q, T_t, T_t - 1, T_t + 1.
+    pub abs_t: [u64; 6],
+    /// The count (B_q, B_t) the target is for.
+    pub abs_b: (u64, u64),
 }
 
 impl ReferenceIn {
@@ -37,6 +43,19 @@ impl ReferenceIn {
             self.fine & mask(32),
             self.turns & mask(32),
         ]
+    }
+
+    /// [`row`](Self::row) for the block of `p`: with the absolute start's inputs after the
+    /// others when it has them.
+    pub fn row_for(&self, p: &ReferenceParams) -> Vec<u64> {
+        let mut r = self.row();
+        if p.absolute() {
+            r.push(self.abs_req as u64);
+            r.extend(self.abs_t.iter().map(|v| v & mask(32)));
+            r.push(self.abs_b.0 & mask(32));
+            r.push(self.abs_b.1 & mask(32));
+        }
+        r
     }
 }
 
@@ -99,6 +118,7 @@ struct Regs {
     usel: bool,
     ubq: u64,
     ubt: u64,
+    uabs: bool,
     ilatch: bool,
     ihome: bool,
     out: ReferenceOut,
@@ -161,6 +181,7 @@ impl ReferenceModel {
             n.upd = false;
             n.ilatch = false;
             n.ihome = false;
+            n.uabs = false;
             n.out = ReferenceOut {
                 warning: p.warn_until_referenced(),
                 ..Default::default()
@@ -192,27 +213,39 @@ impl ReferenceModel {
         // The offset taken from a sample in the clock before: T - B from registers.
         n.upd = false;
         if o.upd {
-            let (tq, tt) = if o.usel { p.preset() } else { p.index() };
+            // T and its neighbours: the absolute start's words, or the constants of the
+            // preset or the index count.
+            let [tq, tqm, tqp, tt, ttm, ttp] = if o.uabs {
+                i.abs_t.map(|v| v & mask(32))
+            } else {
+                let (tq, tt) = if o.usel { p.preset() } else { p.index() };
+                [
+                    tq,
+                    tq.wrapping_sub(q) & wm,
+                    tq + q,
+                    tt,
+                    tt.wrapping_sub(1),
+                    tt + 1,
+                ]
+            };
             let (bq, bt) = (o.ubq, o.ubt);
             let d1 = tq.wrapping_sub(bq) & wm;
-            let d0 = tq.wrapping_sub(q).wrapping_sub(bq) & wm;
-            let d2 = (tq + q).wrapping_sub(bq) & wm;
-            let tmin = tt.wrapping_sub(bt);
             if d1 & sign != 0 {
-                n.oq = d2;
+                n.oq = tqp.wrapping_sub(bq) & wm;
                 n.oqm = d1;
-                n.ot = tmin.wrapping_sub(1) & tm;
-                n.otp = tmin & tm;
+                n.ot = ttm.wrapping_sub(bt) & tm;
+                n.otp = tt.wrapping_sub(bt) & tm;
             } else {
                 n.oq = d1;
-                n.oqm = d0;
-                n.ot = tmin & tm;
-                n.otp = tmin.wrapping_add(1) & tm;
+                n.oqm = tqm.wrapping_sub(bq) & wm;
+                n.ot = tt.wrapping_sub(bt) & tm;
+                n.otp = ttp.wrapping_sub(bt) & tm;
             }
             n.refd = true;
         }
         if !i.valid {
             n.ppend = pnow;
+            self.absolute_request(&mut n, &i);
             self.r = n;
             return n.out;
         }
@@ -237,12 +270,27 @@ impl ReferenceModel {
             n.ubq = bq;
             n.ubt = bt;
         }
+        if pnow || home {
+            n.uabs = false;
+        }
         if home {
             n.ihome = true;
         } else if event && o.refd && !o.upd && !pnow {
             n.ilatch = true;
         }
+        self.absolute_request(&mut n, &i);
         self.r = n;
         n.out
+    }
+
+    /// The absolute start's request (`[reference] absolute`): its B, and T from its words.
+    fn absolute_request(&self, n: &mut Regs, i: &ReferenceIn) {
+        if self.p.absolute() && i.abs_req {
+            let qb = self.widths().0;
+            n.upd = true;
+            n.uabs = true;
+            n.ubq = i.abs_b.0 & mask(qb);
+            n.ubt = i.abs_b.1 & mask(self.p.turns_bits());
+        }
     }
 }
