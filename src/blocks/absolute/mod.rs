@@ -330,16 +330,16 @@ impl AbsoluteParams {
                 1u64 << quadrant_bits
             )));
         }
+        if s > 29 {
+            return Err(invalid(format!(
+                "{s} single-turn bits: at most 29 (the merge's sum has S + 3 bits)"
+            )));
+        }
         let k = s - quadrant_bits;
         if k + 1 > fine_bits {
             return Err(invalid(format!(
                 "{s} single-turn bits resolve 2^-{k} quadrant: the merge compares k + 1 = {} fine bits, more than the {fine_bits} the core has",
                 k + 1
-            )));
-        }
-        if s > 29 {
-            return Err(invalid(format!(
-                "{s} single-turn bits: at most 29 (the merge's sum has S + 3 bits)"
             )));
         }
         if word.bits() > 32 || word.multiturn_bits > 24 {
