@@ -36,7 +36,7 @@ fn params(gate: u32) -> ReferenceParams {
 /// Runs the block on `ins` in the chosen simulators; asserts rust-hdl == model row by row
 /// and the Verilog simulators == rust-hdl; returns the model's outputs.
 fn run(p: &ReferenceParams, ins: &[ReferenceIn], tag: &str, sims: Simulators) -> Vec<ReferenceOut> {
-    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_for(p)).collect();
+    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row()).collect();
     let mut m = ReferenceModel::new(p);
     let model: Vec<ReferenceOut> = ins.iter().map(|i| m.step(*i)).collect();
     let dir = common::workdir(tag);

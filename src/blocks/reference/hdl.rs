@@ -45,26 +45,26 @@ pub struct PositionReference {
     pub index_qc: Signal<Out, Bits<32>>,
     /// Referenced turn word of the last index.
     pub index_turns: Signal<Out, Bits<32>>,
-    /// The absolute start's request (`[reference] absolute`; one input, or none): one
-    /// clock, never with `in_valid`, to take the target `abs_t*` for the count `abs_b*` of
-    /// an earlier sample (the one the encoder's word belongs to).
-    pub abs_req: Vec<Signal<In, Bit>>,
+    /// The absolute start's request (`[reference] absolute`; 0 without it): one clock,
+    /// never with `in_valid`, to take the target `abs_t*` for the count `abs_b*` of an
+    /// earlier sample (the one the encoder's word belongs to).
+    pub abs_req: Signal<In, Bit>,
     /// The absolute target's quadrant count T_q.
-    pub abs_tq: Vec<Signal<In, Bits<32>>>,
+    pub abs_tq: Signal<In, Bits<32>>,
     /// T_q - Q (qb + 1 bits two's complement).
-    pub abs_tqm: Vec<Signal<In, Bits<32>>>,
+    pub abs_tqm: Signal<In, Bits<32>>,
     /// T_q + Q.
-    pub abs_tqp: Vec<Signal<In, Bits<32>>>,
+    pub abs_tqp: Signal<In, Bits<32>>,
     /// The absolute target's turn word T_t.
-    pub abs_tt: Vec<Signal<In, Bits<32>>>,
+    pub abs_tt: Signal<In, Bits<32>>,
     /// T_t - 1 (M bits).
-    pub abs_ttm: Vec<Signal<In, Bits<32>>>,
+    pub abs_ttm: Signal<In, Bits<32>>,
     /// T_t + 1 (M bits).
-    pub abs_ttp: Vec<Signal<In, Bits<32>>>,
+    pub abs_ttp: Signal<In, Bits<32>>,
     /// The quadrant count B_q of the word's sample.
-    pub abs_bq: Vec<Signal<In, Bits<32>>>,
+    pub abs_bq: Signal<In, Bits<32>>,
     /// The turn word B_t of the word's sample.
-    pub abs_bt: Vec<Signal<In, Bits<32>>>,
+    pub abs_bt: Signal<In, Bits<32>>,
     conv_prev: DFF<Bit>,
     /// Z at each conversion, newest in bit 0.
     zt: DFF<Bits<32>>,
@@ -90,9 +90,8 @@ pub struct PositionReference {
     ubq: DFF<Bits<32>>,
     /// The requesting sample's turn word.
     ubt: DFF<Bits<32>>,
-    /// The request is the absolute start's (T from `abs_t*`): one with the absolute start,
-    /// none without.
-    uabs: Vec<DFF<Bit>>,
+    /// The request is the absolute start's (T from `abs_t*`).
+    uabs: DFF<Bit>,
     ilatch: DFF<Bit>,
     /// The homing event, registered: the index latch takes T a clock later. Timing: keeps
     /// the sample's qualification off the index registers' enable (core.counter ->
@@ -126,6 +125,8 @@ pub struct PositionReference {
     act: Constant<Bit>,
     /// `warn_until_referenced`.
     warn: Constant<Bit>,
+    /// The absolute start is a source of T: an index never homes.
+    absolute: Constant<Bit>,
     /// 2^K: the tag of the sample leaving the core.
     kbit: Constant<Bits<32>>,
     /// Mask of `zt` (K + 1 bits).
@@ -193,15 +194,15 @@ impl PositionReference {
             index_valid: Default::default(),
             index_qc: Default::default(),
             index_turns: Default::default(),
-            abs_req: abs_ports(p),
-            abs_tq: abs_ports(p),
-            abs_tqm: abs_ports(p),
-            abs_tqp: abs_ports(p),
-            abs_tt: abs_ports(p),
-            abs_ttm: abs_ports(p),
-            abs_ttp: abs_ports(p),
-            abs_bq: abs_ports(p),
-            abs_bt: abs_ports(p),
+            abs_req: Default::default(),
+            abs_tq: Default::default(),
+            abs_tqm: Default::default(),
+            abs_tqp: Default::default(),
+            abs_tt: Default::default(),
+            abs_ttm: Default::default(),
+            abs_ttp: Default::default(),
+            abs_bq: Default::default(),
+            abs_bt: Default::default(),
             conv_prev: Default::default(),
             zt: Default::default(),
             p1: Default::default(),
@@ -218,7 +219,7 @@ impl PositionReference {
             usel: Default::default(),
             ubq: Default::default(),
             ubt: Default::default(),
-            uabs: abs_ports(p),
+            uabs: Default::default(),
             ilatch: Default::default(),
             ihome: Default::default(),
             ov: Default::default(),
@@ -247,6 +248,7 @@ impl PositionReference {
             d1: Default::default(),
             act: Constant::new(p.conv_active_high()),
             warn: Constant::new(p.warn_until_referenced()),
+            absolute: Constant::new(p.absolute()),
             kbit: c32(1 << p.tag_shift()),
             zmask: c32(mask(p.tag_shift() + 1)),
             one: c32(1),
@@ -275,24 +277,13 @@ impl PositionReference {
     }
 }
 
-/// One default element with the absolute start (`[reference] absolute`), none without.
-fn abs_ports<T: Default>(p: &ReferenceParams) -> Vec<T> {
-    (0..usize::from(p.absolute()))
-        .map(|_| T::default())
-        .collect()
-}
-
 impl Logic for PositionReference {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
             self, clk, conv_prev, zt, p1, p2, pp, ppend, pqual, oq, oqm, ot, otp, refd, upd, usel,
-            ubq, ubt, ilatch, ihome, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
+            ubq, ubt, uabs, ilatch, ihome, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
         );
-        for i in 0..self.uabs.len() {
-            self.uabs[i].clock.next = self.clk.val();
-            self.uabs[i].d.next = self.uabs[i].q.val();
-        }
         // Synchronizers and edge registers (no reset).
         self.conv_prev.d.next = self.conv.val();
         self.p1.d.next = self.preset.val();
@@ -314,6 +305,11 @@ impl Logic for PositionReference {
         self.bt.next = self.in_turns.val() & self.tmask.val();
         self.qual.next = self.zs.val() & ((self.bq.val() & self.three.val()) == self.gate.val());
         self.idx_event.next = self.qual.val() & !self.pqual.q.val();
+        // With the absolute start an index never homes (the word references): it only
+        // latches, once referenced.
+        if self.absolute.val() & !self.refd.q.val() {
+            self.idx_event.next = false;
+        }
         self.s.next = (self.bq.val() + self.oq.q.val()) & self.wmask.val();
         self.s2.next = (self.bq.val() + self.oqm.q.val()) & self.wmask.val();
         // The offset asked for in the clock before: T - B, T the preset or the index count.
@@ -333,15 +329,13 @@ impl Logic for PositionReference {
             self.ttp.next = self.itp.val();
         }
         // The absolute start's request: T from the absolute block's registers.
-        for i in 0..self.uabs.len() {
-            if self.uabs[i].q.val() {
-                self.tq.next = self.abs_tq[i].val();
-                self.tqm.next = self.abs_tqm[i].val();
-                self.tqp.next = self.abs_tqp[i].val();
-                self.tt.next = self.abs_tt[i].val();
-                self.ttm.next = self.abs_ttm[i].val();
-                self.ttp.next = self.abs_ttp[i].val();
-            }
+        if self.uabs.q.val() {
+            self.tq.next = self.abs_tq.val();
+            self.tqm.next = self.abs_tqm.val();
+            self.tqp.next = self.abs_tqp.val();
+            self.tt.next = self.abs_tt.val();
+            self.ttm.next = self.abs_ttm.val();
+            self.ttp.next = self.abs_ttp.val();
         }
         self.d1.next = (self.tq.val() - self.ubq.q.val()) & self.wmask.val();
         self.upd.d.next = false;
@@ -391,9 +385,7 @@ impl Logic for PositionReference {
                 self.usel.d.next = self.pnow.val();
                 self.ubq.d.next = self.bq.val();
                 self.ubt.d.next = self.bt.val();
-                for i in 0..self.uabs.len() {
-                    self.uabs[i].d.next = false;
-                }
+                self.uabs.d.next = false;
             }
             if self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val() & !self.pnow.val() {
                 self.ihome.d.next = true;
@@ -408,13 +400,11 @@ impl Logic for PositionReference {
             self.ppend.d.next = self.pnow.val();
         }
         // The absolute start: its B and T, in a clock without a sample.
-        for i in 0..self.abs_req.len() {
-            if self.abs_req[i].val() {
-                self.upd.d.next = true;
-                self.uabs[i].d.next = true;
-                self.ubq.d.next = self.abs_bq[i].val() & self.qmask.val();
-                self.ubt.d.next = self.abs_bt[i].val() & self.tmask.val();
-            }
+        if self.abs_req.val() {
+            self.upd.d.next = true;
+            self.uabs.d.next = true;
+            self.ubq.d.next = self.abs_bq.val() & self.qmask.val();
+            self.ubt.d.next = self.abs_bt.val() & self.tmask.val();
         }
         if self.rst.val() {
             self.zt.d.next = 0.into();
@@ -436,9 +426,7 @@ impl Logic for PositionReference {
             self.iv.d.next = false;
             self.iqc.d.next = 0.into();
             self.iturns.d.next = 0.into();
-            for i in 0..self.uabs.len() {
-                self.uabs[i].d.next = false;
-            }
+            self.uabs.d.next = false;
         }
         self.out_valid.next = self.ov.q.val();
         self.out_qc.next = self.oqc.q.val();
@@ -452,20 +440,6 @@ impl Logic for PositionReference {
     }
 }
 
-/// The absolute start's inputs as the exported module names them (`abs_req_0`, ...), in
-/// row order after the eight others.
-const ABS_INPUTS: [(&str, u32); 9] = [
-    ("abs_req_0", 1),
-    ("abs_tq_0", 32),
-    ("abs_tqm_0", 32),
-    ("abs_tqp_0", 32),
-    ("abs_tt_0", 32),
-    ("abs_ttm_0", 32),
-    ("abs_ttp_0", 32),
-    ("abs_bq_0", 32),
-    ("abs_bt_0", 32),
-];
-
 impl crate::cosim::CosimBlock for PositionReference {
     fn input_ports(&self) -> Vec<Port> {
         vec![
@@ -477,14 +451,16 @@ impl crate::cosim::CosimBlock for PositionReference {
             Port::new("in_qc", 32),
             Port::new("in_fine", 32),
             Port::new("in_turns", 32),
+            Port::new("abs_req", 1),
+            Port::new("abs_tq", 32),
+            Port::new("abs_tqm", 32),
+            Port::new("abs_tqp", 32),
+            Port::new("abs_tt", 32),
+            Port::new("abs_ttm", 32),
+            Port::new("abs_ttp", 32),
+            Port::new("abs_bq", 32),
+            Port::new("abs_bt", 32),
         ]
-        .into_iter()
-        .chain(
-            self.abs_req
-                .iter()
-                .flat_map(|_| ABS_INPUTS.iter().map(|(n, w)| Port::new(n, *w))),
-        )
-        .collect()
     }
     fn output_ports(&self) -> Vec<Port> {
         vec![
@@ -508,17 +484,15 @@ impl crate::cosim::CosimBlock for PositionReference {
         self.in_qc.next = Bits::<32>::from(r[5]);
         self.in_fine.next = Bits::<32>::from(r[6]);
         self.in_turns.next = Bits::<32>::from(r[7]);
-        for i in 0..self.abs_req.len() {
-            self.abs_req[i].next = r[8] != 0;
-            self.abs_tq[i].next = Bits::<32>::from(r[9]);
-            self.abs_tqm[i].next = Bits::<32>::from(r[10]);
-            self.abs_tqp[i].next = Bits::<32>::from(r[11]);
-            self.abs_tt[i].next = Bits::<32>::from(r[12]);
-            self.abs_ttm[i].next = Bits::<32>::from(r[13]);
-            self.abs_ttp[i].next = Bits::<32>::from(r[14]);
-            self.abs_bq[i].next = Bits::<32>::from(r[15]);
-            self.abs_bt[i].next = Bits::<32>::from(r[16]);
-        }
+        self.abs_req.next = r[8] != 0;
+        self.abs_tq.next = Bits::<32>::from(r[9]);
+        self.abs_tqm.next = Bits::<32>::from(r[10]);
+        self.abs_tqp.next = Bits::<32>::from(r[11]);
+        self.abs_tt.next = Bits::<32>::from(r[12]);
+        self.abs_ttm.next = Bits::<32>::from(r[13]);
+        self.abs_ttp.next = Bits::<32>::from(r[14]);
+        self.abs_bq.next = Bits::<32>::from(r[15]);
+        self.abs_bt.next = Bits::<32>::from(r[16]);
     }
     fn sample(&self) -> Vec<u64> {
         vec![

@@ -42,20 +42,16 @@ impl ReferenceIn {
             self.qc & mask(32),
             self.fine & mask(32),
             self.turns & mask(32),
+            self.abs_req as u64,
+            self.abs_t[0] & mask(32),
+            self.abs_t[1] & mask(32),
+            self.abs_t[2] & mask(32),
+            self.abs_t[3] & mask(32),
+            self.abs_t[4] & mask(32),
+            self.abs_t[5] & mask(32),
+            self.abs_b.0 & mask(32),
+            self.abs_b.1 & mask(32),
         ]
-    }
-
-    /// [`row`](Self::row) for the block of `p`: with the absolute start's inputs after the
-    /// others when it has them.
-    pub fn row_for(&self, p: &ReferenceParams) -> Vec<u64> {
-        let mut r = self.row();
-        if p.absolute() {
-            r.push(self.abs_req as u64);
-            r.extend(self.abs_t.iter().map(|v| v & mask(32)));
-            r.push(self.abs_b.0 & mask(32));
-            r.push(self.abs_b.1 & mask(32));
-        }
-        r
     }
 }
 
@@ -251,7 +247,8 @@ impl ReferenceModel {
         }
         let (bq, bt) = (i.qc & qm, i.turns & tm);
         let qual = zs && bq & 3 == p.gate() as u64;
-        let event = qual && !o.pqual;
+        // With the absolute start an index only latches, once referenced: it never homes.
+        let event = qual && !o.pqual && (!p.absolute() || o.refd);
         n.pqual = qual;
         n.ppend = false;
         // The output: the sample moved by the offset held before it.
@@ -285,7 +282,7 @@ impl ReferenceModel {
 
     /// The absolute start's request (`[reference] absolute`): its B, and T from its words.
     fn absolute_request(&self, n: &mut Regs, i: &ReferenceIn) {
-        if self.p.absolute() && i.abs_req {
+        if i.abs_req {
             let qb = self.widths().0;
             n.upd = true;
             n.uabs = true;

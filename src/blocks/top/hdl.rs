@@ -487,17 +487,26 @@ impl Logic for TopRtl {
             self.reference[i].in_fine.next = self.core.out_fine.val();
             self.reference[i].in_turns.next = self.core.out_turns.val();
             self.referenced[i].next = self.reference[i].referenced.val();
-            // The absolute start's target (`[reference] absolute`).
+            // The absolute start's target (`[reference] absolute`; none: never asked).
+            self.reference[i].abs_req.next = false;
+            self.reference[i].abs_tq.next = self.zero.val();
+            self.reference[i].abs_tqm.next = self.zero.val();
+            self.reference[i].abs_tqp.next = self.zero.val();
+            self.reference[i].abs_tt.next = self.zero.val();
+            self.reference[i].abs_ttm.next = self.zero.val();
+            self.reference[i].abs_ttp.next = self.zero.val();
+            self.reference[i].abs_bq.next = self.zero.val();
+            self.reference[i].abs_bt.next = self.zero.val();
             for k in 0..self.absolute.len() {
-                self.reference[i].abs_req[k].next = self.absolute[k].req.val();
-                self.reference[i].abs_tq[k].next = self.absolute[k].tq.val();
-                self.reference[i].abs_tqm[k].next = self.absolute[k].tqm.val();
-                self.reference[i].abs_tqp[k].next = self.absolute[k].tqp.val();
-                self.reference[i].abs_tt[k].next = self.absolute[k].tt.val();
-                self.reference[i].abs_ttm[k].next = self.absolute[k].ttm.val();
-                self.reference[i].abs_ttp[k].next = self.absolute[k].ttp.val();
-                self.reference[i].abs_bq[k].next = self.absolute[k].bq.val();
-                self.reference[i].abs_bt[k].next = self.absolute[k].bt.val();
+                self.reference[i].abs_req.next = self.absolute[k].req.val();
+                self.reference[i].abs_tq.next = self.absolute[k].tq.val();
+                self.reference[i].abs_tqm.next = self.absolute[k].tqm.val();
+                self.reference[i].abs_tqp.next = self.absolute[k].tqp.val();
+                self.reference[i].abs_tt.next = self.absolute[k].tt.val();
+                self.reference[i].abs_ttm.next = self.absolute[k].ttm.val();
+                self.reference[i].abs_ttp.next = self.absolute[k].ttp.val();
+                self.reference[i].abs_bq.next = self.absolute[k].bq.val();
+                self.reference[i].abs_bt.next = self.absolute[k].bt.val();
             }
             self.word.next = ((self.reference[i].out_qc.val() << self.qshl.val())
                 >> self.qshr.val())
