@@ -70,8 +70,11 @@ pub(crate) enum Command {
     /// position; with `[capture]` 1 us pulses on `capture` at `--capture-hz` (default 20
     /// kHz) and each capture's age and position against the encoder's angle at the pin;
     /// with `[registers]` the loop reads STATUS through AXI4-Lite every 10 us, clearing
-    /// what it read, and prints each latched fault with the poll window it was raised in.
-    /// Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags, ADC
+    /// what it read, and prints each latched fault with the poll window it was raised in;
+    /// with `[reference] absolute` the encoder's SSI channel (`sim/ssi_encoder.rs`) answers
+    /// the absolute start, the summary says what it stored and when the position became
+    /// absolute, and the error figures count the referenced samples against the absolute
+    /// position. Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags, ADC
     /// protocol violations, the BiSS-C, SSI, SPI, ABZ and capture checks and simulation
     /// speed, with a progress bar.
     ///

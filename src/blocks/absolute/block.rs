@@ -226,7 +226,7 @@ fn describe(a: &AbsoluteParams, sample_rate_hz: f64) -> String {
         + t.frame_clocks(w.bits()) as f64
         + MERGE_CLOCKS as f64;
     format!(
-        "absolute start              SSI master on abs_clk/abs_data reads the encoder's {}-bit {} word ({} multi-turn + {} single-turn bits: 2^-{} quadrant) once after reset; within {:.1} us\n\
+        "absolute start              SSI master on abs_clk/abs_data reads the encoder's {}-bit {} word ({} multi-turn + {} single-turn bits: {} code(s) per quadrant) once after reset; within {:.1} us\n\
          absolute SSI clock          {:.3} kHz ({} clocks per half period); {} pulses per read = {:.1} us; the clock stays high {:.1} us (monoflop t_m) after reset and before a retry\n\
          absolute line timing        each bit read 2H = {} clocks after the rising edge it answers: {}; round trip (cable + transceivers, both ways) up to {:.1} ns ({:.0} m at 6 ns/m)\n\
          absolute latch              the first falling edge leaves {} clock ({:.1} ns) after the ADC's sampling edge: the sample of that conversion takes the word\n\
@@ -235,7 +235,7 @@ fn describe(a: &AbsoluteParams, sample_rate_hz: f64) -> String {
         if w.gray { "Gray" } else { "binary" },
         w.multiturn_bits,
         w.single_turn_bits,
-        a.sub_quadrant_bits(),
+        1u32 << a.sub_quadrant_bits(),
         us(read),
         t.rate_hz() / 1e3,
         t.half_clocks,

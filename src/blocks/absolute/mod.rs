@@ -92,9 +92,10 @@
 //! * Counters: `cnt` counts to max(W - 1, H + 2) (bits of that), `n` to N + 1 (6 bits).
 //!
 //! # Latency
-//! The read takes W + (up to P) + (N + 1) 2H + H + 2 clocks, the merge five more: 61 us at
-//! the defaults (20 us monoflop, 13 bits at 500 kHz). `referenced` rises with the first
-//! output sample after the reference takes the target (its one-clock offset stage).
+//! The read takes W + (up to P) + (N + 1) 2H + H + 2 clocks, the merge five more: 50 us at
+//! the defaults (20 us monoflop, 13 bits at 500 kHz, 133.33 MHz; `check` prints it).
+//! `referenced` rises with the first output sample after the reference takes the target
+//! (its one-clock offset stage).
 //!
 //! # Ports
 //! | port | dir | width | meaning |
