@@ -45,9 +45,9 @@ pub struct PositionReference {
     pub index_qc: Signal<Out, Bits<32>>,
     /// Referenced turn word of the last index.
     pub index_turns: Signal<Out, Bits<32>>,
-    /// The absolute start's request (`[reference] absolute`; 0 without it): one clock,
-    /// never with `in_valid`, to take the target `abs_t*` for the count `abs_b*` of an
-    /// earlier sample (the one the encoder's word belongs to).
+    /// The absolute start's request (`[reference] absolute`; unused without it): one
+    /// clock, never with `in_valid`, to take the target `abs_t*` for the count `abs_b*` of
+    /// an earlier sample (the one the encoder's word belongs to).
     pub abs_req: Signal<In, Bit>,
     /// The absolute target's quadrant count T_q.
     pub abs_tq: Signal<In, Bits<32>>,
@@ -90,8 +90,17 @@ pub struct PositionReference {
     ubq: DFF<Bits<32>>,
     /// The requesting sample's turn word.
     ubt: DFF<Bits<32>>,
-    /// The request is the absolute start's (T from `abs_t*`).
-    uabs: DFF<Bit>,
+    /// With the absolute start (one each, or none): the requested target T and its
+    /// neighbours (T_q, T_q - Q, T_q + Q, T_t, T_t - 1, T_t + 1), held from the request to
+    /// the offset's clock, whichever source asked. Timing: the offset's subtractions start
+    /// at registers, not at a select of three sources (the absolute block's `tq` ->
+    /// `reference.otp` was the absolute top's slowest path).
+    htq: Vec<DFF<Bits<32>>>,
+    htqm: Vec<DFF<Bits<32>>>,
+    htqp: Vec<DFF<Bits<32>>>,
+    htt: Vec<DFF<Bits<32>>>,
+    httm: Vec<DFF<Bits<32>>>,
+    http: Vec<DFF<Bits<32>>>,
     ilatch: DFF<Bit>,
     /// The homing event, registered: the index latch takes T a clock later. Timing: keeps
     /// the sample's qualification off the index registers' enable (core.counter ->
@@ -125,8 +134,6 @@ pub struct PositionReference {
     act: Constant<Bit>,
     /// `warn_until_referenced`.
     warn: Constant<Bit>,
-    /// The absolute start is a source of T: an index never homes.
-    absolute: Constant<Bit>,
     /// 2^K: the tag of the sample leaving the core.
     kbit: Constant<Bits<32>>,
     /// Mask of `zt` (K + 1 bits).
@@ -219,7 +226,12 @@ impl PositionReference {
             usel: Default::default(),
             ubq: Default::default(),
             ubt: Default::default(),
-            uabs: Default::default(),
+            htq: held(p),
+            htqm: held(p),
+            htqp: held(p),
+            htt: held(p),
+            httm: held(p),
+            http: held(p),
             ilatch: Default::default(),
             ihome: Default::default(),
             ov: Default::default(),
@@ -248,7 +260,6 @@ impl PositionReference {
             d1: Default::default(),
             act: Constant::new(p.conv_active_high()),
             warn: Constant::new(p.warn_until_referenced()),
-            absolute: Constant::new(p.absolute()),
             kbit: c32(1 << p.tag_shift()),
             zmask: c32(mask(p.tag_shift() + 1)),
             one: c32(1),
@@ -277,13 +288,34 @@ impl PositionReference {
     }
 }
 
+/// One target register with the absolute start (`[reference] absolute`), none without.
+fn held(p: &ReferenceParams) -> Vec<DFF<Bits<32>>> {
+    (0..usize::from(p.absolute()))
+        .map(|_| Default::default())
+        .collect()
+}
+
 impl Logic for PositionReference {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
             self, clk, conv_prev, zt, p1, p2, pp, ppend, pqual, oq, oqm, ot, otp, refd, upd, usel,
-            ubq, ubt, uabs, ilatch, ihome, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
+            ubq, ubt, ilatch, ihome, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
         );
+        for i in 0..self.htq.len() {
+            self.htq[i].clock.next = self.clk.val();
+            self.htqm[i].clock.next = self.clk.val();
+            self.htqp[i].clock.next = self.clk.val();
+            self.htt[i].clock.next = self.clk.val();
+            self.httm[i].clock.next = self.clk.val();
+            self.http[i].clock.next = self.clk.val();
+            self.htq[i].d.next = self.htq[i].q.val();
+            self.htqm[i].d.next = self.htqm[i].q.val();
+            self.htqp[i].d.next = self.htqp[i].q.val();
+            self.htt[i].d.next = self.htt[i].q.val();
+            self.httm[i].d.next = self.httm[i].q.val();
+            self.http[i].d.next = self.http[i].q.val();
+        }
         // Synchronizers and edge registers (no reset).
         self.conv_prev.d.next = self.conv.val();
         self.p1.d.next = self.preset.val();
@@ -307,8 +339,10 @@ impl Logic for PositionReference {
         self.idx_event.next = self.qual.val() & !self.pqual.q.val();
         // With the absolute start an index never homes (the word references): it only
         // latches, once referenced.
-        if self.absolute.val() & !self.refd.q.val() {
-            self.idx_event.next = false;
+        for _i in 0..self.htq.len() {
+            if !self.refd.q.val() {
+                self.idx_event.next = false;
+            }
         }
         self.s.next = (self.bq.val() + self.oq.q.val()) & self.wmask.val();
         self.s2.next = (self.bq.val() + self.oqm.q.val()) & self.wmask.val();
@@ -329,13 +363,13 @@ impl Logic for PositionReference {
             self.ttp.next = self.itp.val();
         }
         // The absolute start's request: T from the absolute block's registers.
-        if self.uabs.q.val() {
-            self.tq.next = self.abs_tq.val();
-            self.tqm.next = self.abs_tqm.val();
-            self.tqp.next = self.abs_tqp.val();
-            self.tt.next = self.abs_tt.val();
-            self.ttm.next = self.abs_ttm.val();
-            self.ttp.next = self.abs_ttp.val();
+        for i in 0..self.htq.len() {
+            self.tq.next = self.htq[i].q.val();
+            self.tqm.next = self.htqm[i].q.val();
+            self.tqp.next = self.htqp[i].q.val();
+            self.tt.next = self.htt[i].q.val();
+            self.ttm.next = self.httm[i].q.val();
+            self.ttp.next = self.http[i].q.val();
         }
         self.d1.next = (self.tq.val() - self.ubq.q.val()) & self.wmask.val();
         self.upd.d.next = false;
@@ -385,7 +419,24 @@ impl Logic for PositionReference {
                 self.usel.d.next = self.pnow.val();
                 self.ubq.d.next = self.bq.val();
                 self.ubt.d.next = self.bt.val();
-                self.uabs.d.next = false;
+                // With the absolute start T is held: the preset's or the index's.
+                for i in 0..self.htq.len() {
+                    if self.pnow.val() {
+                        self.htq[i].d.next = self.pq.val();
+                        self.htqm[i].d.next = self.pqm.val();
+                        self.htqp[i].d.next = self.pqp.val();
+                        self.htt[i].d.next = self.pt.val();
+                        self.httm[i].d.next = self.ptm.val();
+                        self.http[i].d.next = self.ptp.val();
+                    } else {
+                        self.htq[i].d.next = self.iq.val();
+                        self.htqm[i].d.next = self.iqm.val();
+                        self.htqp[i].d.next = self.iqp.val();
+                        self.htt[i].d.next = self.it.val();
+                        self.httm[i].d.next = self.itm.val();
+                        self.http[i].d.next = self.itp.val();
+                    }
+                }
             }
             if self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val() & !self.pnow.val() {
                 self.ihome.d.next = true;
@@ -400,11 +451,18 @@ impl Logic for PositionReference {
             self.ppend.d.next = self.pnow.val();
         }
         // The absolute start: its B and T, in a clock without a sample.
-        if self.abs_req.val() {
-            self.upd.d.next = true;
-            self.uabs.d.next = true;
-            self.ubq.d.next = self.abs_bq.val() & self.qmask.val();
-            self.ubt.d.next = self.abs_bt.val() & self.tmask.val();
+        for i in 0..self.htq.len() {
+            if self.abs_req.val() {
+                self.upd.d.next = true;
+                self.ubq.d.next = self.abs_bq.val() & self.qmask.val();
+                self.ubt.d.next = self.abs_bt.val() & self.tmask.val();
+                self.htq[i].d.next = self.abs_tq.val();
+                self.htqm[i].d.next = self.abs_tqm.val();
+                self.htqp[i].d.next = self.abs_tqp.val();
+                self.htt[i].d.next = self.abs_tt.val();
+                self.httm[i].d.next = self.abs_ttm.val();
+                self.http[i].d.next = self.abs_ttp.val();
+            }
         }
         if self.rst.val() {
             self.zt.d.next = 0.into();
@@ -426,7 +484,6 @@ impl Logic for PositionReference {
             self.iv.d.next = false;
             self.iqc.d.next = 0.into();
             self.iturns.d.next = 0.into();
-            self.uabs.d.next = false;
         }
         self.out_valid.next = self.ov.q.val();
         self.out_qc.next = self.oqc.q.val();

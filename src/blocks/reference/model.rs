@@ -114,7 +114,8 @@ struct Regs {
     usel: bool,
     ubq: u64,
     ubt: u64,
-    uabs: bool,
+    /// The held target (with the absolute start).
+    ht: [u64; 6],
     ilatch: bool,
     ihome: bool,
     out: ReferenceOut,
@@ -177,7 +178,6 @@ impl ReferenceModel {
             n.upd = false;
             n.ilatch = false;
             n.ihome = false;
-            n.uabs = false;
             n.out = ReferenceOut {
                 warning: p.warn_until_referenced(),
                 ..Default::default()
@@ -209,10 +209,10 @@ impl ReferenceModel {
         // The offset taken from a sample in the clock before: T - B from registers.
         n.upd = false;
         if o.upd {
-            // T and its neighbours: the absolute start's words, or the constants of the
-            // preset or the index count.
-            let [tq, tqm, tqp, tt, ttm, ttp] = if o.uabs {
-                i.abs_t.map(|v| v & mask(32))
+            // T and its neighbours: held since the request (with the absolute start), or
+            // the constants of the preset or the index count.
+            let [tq, tqm, tqp, tt, ttm, ttp] = if p.absolute() {
+                o.ht
             } else {
                 let (tq, tt) = if o.usel { p.preset() } else { p.index() };
                 [
@@ -267,8 +267,8 @@ impl ReferenceModel {
             n.ubq = bq;
             n.ubt = bt;
         }
-        if pnow || home {
-            n.uabs = false;
+        if (pnow || home) && p.absolute() {
+            n.ht = Self::constants(&p, if pnow { p.preset() } else { p.index() });
         }
         if home {
             n.ihome = true;
@@ -280,12 +280,28 @@ impl ReferenceModel {
         n.out
     }
 
+    /// T = (quadrant count, turn word) with its neighbours, as the RTL's constants hold
+    /// them.
+    fn constants(p: &ReferenceParams, t: (u64, u64)) -> [u64; 6] {
+        let q = p.quadrants_per_turn();
+        let wm = mask(64 - (q - 1).leading_zeros() + 1);
+        let m32 = |v: u64| v & mask(32);
+        [
+            t.0,
+            t.0.wrapping_sub(q) & wm,
+            t.0 + q,
+            t.1,
+            m32(t.1.wrapping_sub(1)),
+            m32(t.1 + 1),
+        ]
+    }
+
     /// The absolute start's request (`[reference] absolute`): its B, and T from its words.
     fn absolute_request(&self, n: &mut Regs, i: &ReferenceIn) {
-        if i.abs_req {
+        if self.p.absolute() && i.abs_req {
             let qb = self.widths().0;
             n.upd = true;
-            n.uabs = true;
+            n.ht = i.abs_t.map(|v| v & mask(32));
             n.ubq = i.abs_b.0 & mask(qb);
             n.ubt = i.abs_b.1 & mask(self.p.turns_bits());
         }
