@@ -796,13 +796,13 @@ impl System {
         let top = Dut::new(d, engine, &IN_PINS, &OUT_PINS)?;
         let truth = encoder.clone();
         // The encoder's digital channel, as its data sheet and the config's word give it,
-        // behind the board's pins and a 5 m cable.
+        // behind the pins of the line timing's one derivation (`SsiTiming`) and a 5 m cable.
         let abs_enc = d.absolute.as_ref().map(|a| {
             crate::sim::ssi_encoder::SsiEncoder::new(
                 a.word(),
                 encoder.clone(),
                 d.clock_hz,
-                crate::sim::adc_pins::PinTiming::from_io(&d.io_timing),
+                crate::sim::adc_pins::PinTiming::from_io(&a.timing().io),
                 5.0 * crate::sim::ssi_encoder::CABLE_NS_PER_M,
                 11,
             )
