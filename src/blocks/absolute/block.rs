@@ -262,10 +262,7 @@ pub const MERGE_CLOCKS: u32 = 5;
 /// The report's row: the block synthesized alone.
 fn report_job(l: &Loaded) -> Result<BlockJob> {
     let Some(p) = &l.derived.absolute else {
-        return Ok(BlockJob::absent(
-            "absolute",
-            "needs [reference] absolute = \"ssi\"",
-        ));
+        return Ok(BlockJob::absent("absolute", "needs [reference] absolute"));
     };
     job(
         l,
