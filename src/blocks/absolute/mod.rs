@@ -18,7 +18,7 @@
 //!  in_fine ──┤                                                   conversion)          │
 //!  in_turns ─┘                                                                        │
 //!  abs_data ─►[s1]─►[s2]─► bit n at the launch of rising edge n+1 ─► Gray -> binary ─► w │
-//!  abs_clk ◄─[ck]  idle high; F1 latches; N + 1 pulses of 2H clocks; the tail reads 0    │
+//!  abs_clk ◄─[ckn] idle high; F1 latches; N + 1 pulses of 2H clocks; the tail reads 0    │
 //!            ┌────────────────────────────────────────────────────────────────────────┘
 //!            └► Sync: δ = (o - c) mod 2^(k+3), c = 2 st + 1 ─► Place: p = c + sext(δ)
 //!               ─► Split: tq = p >> (k+1), tt = turns ± 1 ─► Target: tq ∓ Q, tt ∓ 1
@@ -47,8 +47,9 @@
 //! # Tying the word to a sample (the latch instant)
 //! * The first falling edge leaves the FPGA one clock after the CONV assertion edge that
 //!   samples the ADC ([`SsiTiming::LATCH_LAG_CLOCKS`]: the edge register), so the encoder
-//!   stores its position one clock plus the cable's one-way delay after the ADC samples:
-//!   at 133.33 MHz and 3000 rpm with 2048 lines that is 0.003 quadrants.
+//!   stores its position one clock plus the cable's one-way delay after the ADC samples
+//!   (7.5 ns + 30 ns for 5 m at 133.33 MHz: 0.015 quadrants at 3000 rpm with 2048 lines, a
+//!   part of the alignment error the merge tolerates).
 //! * As the reference tags Z, `lt` shifts in, at each CONV assertion, whether the frame
 //!   started there. The core's `out_valid` for a sample comes L clocks after its assertion
 //!   and assertions come every P clocks, so the sample of the latch's conversion is the one
