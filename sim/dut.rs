@@ -19,7 +19,7 @@ use crate::engine::{Engine, Kind};
 use crate::error::{Error, Result};
 
 /// Inputs the sinewave loop drives, in index order ([`Dut::set`]).
-pub const IN_PINS: [&str; 21] = [
+pub const IN_PINS: [&str; 22] = [
     "rst",
     "adc_miso",
     "biss_ma",
@@ -41,18 +41,20 @@ pub const IN_PINS: [&str; 21] = [
     "s_axi_araddr_0",
     "s_axi_arvalid_0",
     "s_axi_rready_0",
+    "abs_data_0",
 ];
 /// How many of the last [`IN_PINS`] are optional (the position reference's `preset`, with
-/// `[reference] enabled`, the capture's `capture`, with `[capture] enabled`, and the
-/// register map's AXI4-Lite inputs, with `[registers] enabled`; driving a missing one does
-/// nothing).
-pub const OPTIONAL_IN_PINS: usize = 11;
+/// `[reference] enabled`, the capture's `capture`, with `[capture] enabled`, the
+/// register map's AXI4-Lite inputs, with `[registers] enabled`, and the absolute start's
+/// `abs_data`, with `[reference] absolute`; driving a missing one does nothing).
+pub const OPTIONAL_IN_PINS: usize = 12;
 /// Outputs the closed loop reads, in index order ([`Dut::get`]); the last
 /// [`OPTIONAL_OUT_PINS`] exist only in some configurations (the velocity estimator's, with
 /// `[velocity] enabled`, the ABZ emulator's, with `[abz] enabled`, and the position
-/// reference's, with `[reference] enabled`, the capture's, with `[capture] enabled`, and
-/// the register map's, with `[registers] enabled`) and read 0 without them.
-pub const OUT_PINS: [&str; 33] = [
+/// reference's, with `[reference] enabled`, the capture's, with `[capture] enabled`, the
+/// register map's, with `[registers] enabled`, and the absolute start's, with `[reference]
+/// absolute`) and read 0 without them.
+pub const OUT_PINS: [&str; 34] = [
     "adc_conv",
     "adc_sck",
     "amp_cs",
@@ -86,6 +88,7 @@ pub const OUT_PINS: [&str; 33] = [
     "s_axi_rdata_0",
     "s_axi_rvalid_0",
     "flags_0",
+    "abs_clk_0",
 ];
 /// Inputs the capacitive loop drives, in index order.
 pub const CAP_IN_PINS: [&str; 3] = ["rst", "adc_miso", "biss_ma"];
@@ -104,7 +107,7 @@ pub const CAP_OUT_PINS: [&str; 11] = [
     "par_warning",
 ];
 /// How many of the last [`OUT_PINS`] are optional (read 0 when the top lacks them).
-pub const OPTIONAL_OUT_PINS: usize = 19;
+pub const OPTIONAL_OUT_PINS: usize = 20;
 
 /// Which engine simulates the top (`simulate --engine`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

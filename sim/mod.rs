@@ -1,6 +1,6 @@
 //! The simulation side of sinedec: closed-loop systems stepped cycle by cycle (`system`,
 //! `cap_system`), the chip and encoder models they close the loop with (LTC1407A-1,
-//! ADS8354, AD7380, LTC6912-1, a generic SPI ADC, the sine/cosine and capacitive encoders, the BiSS-C and
+//! ADS8354, AD7380, LTC6912-1, a generic SPI ADC, the sine/cosine and capacitive encoders and the encoder's SSI digital channel, the BiSS-C and
 //! SSI masters on one master core, `serial_master`, and the SPI master, all three over the
 //! line model `serial_line`) and the VCD of the top's pins.
 //!
@@ -31,6 +31,7 @@ pub mod serial_line;
 pub mod serial_master;
 pub mod spi_adc;
 pub mod spi_master;
+pub mod ssi_encoder;
 pub mod ssi_master;
 pub mod system;
 pub mod vcd;

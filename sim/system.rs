@@ -46,6 +46,7 @@ const I_BREADY: usize = 17;
 const I_ARADDR: usize = 18;
 const I_ARVALID: usize = 19;
 const I_RREADY: usize = 20;
+const I_ABS_DATA: usize = 21;
 const O_CONV: usize = 0;
 const O_SCK: usize = 1;
 const O_AMP_CS: usize = 2;
@@ -75,6 +76,7 @@ const O_CAP_VELOCITY: usize = 25;
 const O_RDATA: usize = 30;
 const O_RVALID: usize = 31;
 const O_FLAGS: usize = 32;
+const O_ABS_CLK: usize = 33;
 
 /// What a quadrature counter on `abz_a`/`abz_b` read over a run (`[abz] enabled`), against
 /// the position on the parallel bus.
@@ -327,6 +329,20 @@ pub struct CaptureRecord {
     pub truth: f64,
 }
 
+/// The absolute start over a run (`[reference] absolute`): what the encoder's digital
+/// channel stored and sent, and when the position became absolute.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AbsoluteCheck {
+    /// Every position the channel stored (one per read), with its instant and word.
+    pub latches: Vec<crate::sim::ssi_encoder::SsiLatch>,
+    /// The channel's timing violations (messages).
+    pub violations: Vec<String>,
+    /// The cycle of the first referenced sample on the parallel bus.
+    pub referenced_cycle: Option<u64>,
+    /// The cable's one-way delay the channel was given, ns.
+    pub line_delay_ns: f64,
+}
+
 /// A fault STATUS latched (`[registers] enabled`, [`System::poll_status`]), by its field
 /// of `crate::blocks::regmap::FAULTS`. The exact clocks come from the top's live `flags`
 /// port, read every cycle; the loop also reads STATUS through the AXI4-Lite slave every poll
@@ -391,6 +407,8 @@ pub struct SimResult {
     pub ssi: Option<WordCheck>,
     /// The SPI master's words against the parallel bus ([`System::monitor_spi`]).
     pub spi: Option<WordCheck>,
+    /// The absolute start's read (with `[reference] absolute`).
+    pub absolute: Option<AbsoluteCheck>,
     /// Clock cycles simulated.
     pub cycles: u64,
     /// Decoded samples whose conversion could not be found at the expected latency.
@@ -433,6 +451,11 @@ pub struct StreamStats {
 
 impl StreamStats {
     fn add(&mut self, d: &Derived, r: &Record) {
+        if d.absolute.is_some() && !r.referenced {
+            // Before the absolute start the position is the decoder's own: not counted.
+            self.seen += 1;
+            return;
+        }
         if self.first.is_none() {
             self.first = Some(*r);
             self.offset = SimResult::offset_of(d, r);
@@ -568,8 +591,12 @@ impl SimResult {
         Some(s)
     }
 
-    /// [`offset_lsb`](Self::offset_lsb) fixed by the record `first`.
+    /// [`offset_lsb`](Self::offset_lsb) fixed by the record `first`: 0 with the absolute
+    /// start (`[reference] absolute`), whose referenced position is the encoder's own.
     fn offset_of(d: &Derived, first: &Record) -> f64 {
+        if d.absolute.is_some() {
+            return 0.0;
+        }
         let q = (1u64 << d.fine_bits) as f64;
         let period = 4.0 * q;
         // The inverting pre-amplifier turns the vector by two quadrants; without it the
@@ -604,7 +631,9 @@ impl SimResult {
         let offset = self.offset_lsb(d);
         let mut s = ErrorStats::default();
         let (mut sum, mut sum2) = (0.0, 0.0);
-        for r in self.records.iter().skip(skip) {
+        // With the absolute start only the referenced samples are the encoder's position.
+        let counted = |r: &&Record| d.absolute.is_none() || r.referenced;
+        for r in self.records.iter().skip(skip).filter(counted) {
             let e = Self::error_lsb(d, r, offset);
             s.samples += 1;
             s.max_lsb = s.max_lsb.max(e.abs());
@@ -778,6 +807,10 @@ pub struct System {
     biss: Option<std::rc::Rc<std::cell::RefCell<crate::sim::biss_master::BissMaster>>>,
     /// The SSI master whose frames [`WordCheck`] checks.
     ssi_mon: Option<std::rc::Rc<std::cell::RefCell<crate::sim::ssi_master::SsiMaster>>>,
+    /// The encoder's SSI digital channel on `abs_clk`/`abs_data` (`[reference] absolute`).
+    abs_enc: Option<crate::sim::ssi_encoder::SsiEncoder>,
+    /// The cycle of the first referenced sample.
+    first_referenced: Option<u64>,
     /// (cycle, BiSS position word, turns) of the latest parallel-bus positions.
     par_history: std::collections::VecDeque<(u64, u64, u64)>,
     trace: Option<crate::sim::vcd::TopTrace>,
@@ -800,6 +833,18 @@ impl System {
     ) -> crate::error::Result<System> {
         let top = Dut::new(d, engine, &IN_PINS, &OUT_PINS)?;
         let truth = encoder.clone();
+        // The encoder's digital channel, as its data sheet and the config's word give it,
+        // behind the pins of the line timing's one derivation (`SsiTiming`) and a 5 m cable.
+        let abs_enc = d.absolute.as_ref().map(|a| {
+            crate::sim::ssi_encoder::SsiEncoder::new(
+                a.word(),
+                encoder.clone(),
+                d.clock_hz,
+                crate::sim::adc_pins::PinTiming::from_io(&a.timing().io),
+                5.0 * crate::sim::ssi_encoder::CABLE_NS_PER_M,
+                11,
+            )
+        });
         let adc = adc_chip(d, encoder);
         Ok(System {
             d: d.clone(),
@@ -833,6 +878,8 @@ impl System {
             capture_pending: std::collections::VecDeque::new(),
             biss: None,
             ssi_mon: None,
+            abs_enc,
+            first_referenced: None,
             par_history: std::collections::VecDeque::new(),
             trace: None,
             trace_error: None,
@@ -875,6 +922,12 @@ impl System {
     /// Drives `preset` (`[reference] enabled`) high from `from` to `to` seconds.
     pub fn preset_pulse(&mut self, from: f64, to: f64) {
         self.preset = Some((from, to));
+    }
+
+    /// The encoder's SSI digital channel (`[reference] absolute`), to set its alignment
+    /// error, cable or timing before the run; None without the absolute start.
+    pub fn absolute_encoder_mut(&mut self) -> Option<&mut crate::sim::ssi_encoder::SsiEncoder> {
+        self.abs_enc.as_mut()
     }
 
     /// Drives `capture` (`[capture] enabled`) high in each (from, to) interval, in seconds
@@ -1246,6 +1299,11 @@ impl System {
             }
             self.capture_high = capture;
             self.top.set(I_CAPTURE, capture as u64);
+            // The encoder's digital channel answers the SSI clock the design drove.
+            if let Some(e) = self.abs_enc.as_mut() {
+                let data = e.step(self.top.get(O_ABS_CLK) != 0);
+                self.top.set(I_ABS_DATA, data as u64);
+            }
             // The STATUS poll: a one-clock read request every period (the slave is idle then:
             // nothing else drives it), the data taken at once, and a one-clock write of the
             // bits found (write 1 to clear) in the clock after.
@@ -1349,6 +1407,9 @@ impl System {
                     }
                     self.par_history
                         .push_back((self.cycle, pos, self.top.get(O_TURNS)));
+                }
+                if rec.referenced && self.first_referenced.is_none() {
+                    self.first_referenced = Some(self.cycle);
                 }
                 self.result.decoded += 1;
                 match self.result.streamed.as_mut() {
@@ -1464,6 +1525,12 @@ impl System {
     /// Finishes the run and returns its result.
     pub fn finish(mut self) -> SimResult {
         self.result.adc_violations = self.adc.violation_messages();
+        self.result.absolute = self.abs_enc.as_ref().map(|e| AbsoluteCheck {
+            latches: e.latches().to_vec(),
+            violations: e.violations().to_vec(),
+            referenced_cycle: self.first_referenced,
+            line_delay_ns: e.line_delay_ns(),
+        });
         self.result.abz = self.abz.as_ref().map(|c| c.figures);
         if let Some(amp) = &self.amp {
             self.result.amp_violations =

@@ -73,8 +73,11 @@ pub(crate) enum Command {
     /// what it read, and prints each latched fault with the exact cycle it was raised (the
     /// top's live `flags`) and the polls that found it. `--fault KIND[@FROM[..TO]]`
     /// (repeatable) injects a fault: los, clip, broken-wire, overspeed, qep-b-stuck,
-    /// adc-frame, no-index (docs/cli.md says which STATUS bits each raises).
-    /// Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags, ADC
+    /// adc-frame, no-index (docs/cli.md says which STATUS bits each raises). With
+    /// `[reference] absolute` the encoder's SSI channel (`sim/ssi_encoder.rs`) answers
+    /// the absolute start, the summary says what it stored and when the position became
+    /// absolute, and the error figures count the referenced samples against the absolute
+    /// position. Prints max/RMS error in LSB and arc-seconds, sample rate, latency, flags, ADC
     /// protocol violations, the BiSS-C, SSI, SPI, ABZ and capture checks and simulation
     /// speed, with a progress bar.
     ///

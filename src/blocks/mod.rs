@@ -12,6 +12,7 @@
 //! No unsized literal takes part in any expression: rust-hdl writes a Rust integer literal
 //! as a 32-bit Verilog literal, which widens the expression around it; every constant is a
 //! sized `Constant`.
+pub mod absolute;
 pub mod abz;
 pub mod adc;
 pub mod biquad;

@@ -72,6 +72,10 @@ pub struct Derived {
     /// parameter file when disabled, like `abz`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<crate::blocks::reference::ReferenceParams>,
+    /// Absolute start of the board top, when `[reference] absolute = "ssi"` (left out of the
+    /// parameter file otherwise, like `abz`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub absolute: Option<crate::blocks::absolute::AbsoluteParams>,
     /// Synchronous capture of the board top, when `[capture] enabled` (left out of the
     /// parameter file when disabled, like `abz`).
     #[serde(skip_serializing_if = "Option::is_none")]

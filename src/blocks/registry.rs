@@ -104,6 +104,7 @@ pub const BLOCKS: &[&BlockDef] = &[
     &crate::blocks::abz::BLOCK,
     &crate::blocks::velocity::BLOCK,
     &crate::blocks::reference::BLOCK,
+    &crate::blocks::absolute::BLOCK,
     &crate::blocks::capture::BLOCK,
     &crate::blocks::regmap::BLOCK,
     &crate::blocks::nco::BLOCK,

@@ -147,6 +147,7 @@ impl Derived {
             abz,
             velocity,
             reference,
+            absolute: None,
             capture: None,
             registers: None,
             adc_width: a,
@@ -175,6 +176,9 @@ impl Derived {
             resolution_bits: (quadrants_per_turn as f64).log2() + f as f64,
         };
         check_capacitive_front(&derived, &err)?;
+        // The absolute start ties its word to the core's sample of the latch's conversion,
+        // and its line timing to the board's I/O budget.
+        derived.absolute = crate::blocks::absolute::block::params(c, &derived, to_core, &err)?;
         // The capture ages the position every output takes: from the one CONV-to-position
         // derivation of the top.
         derived.capture = crate::blocks::capture::block::params(

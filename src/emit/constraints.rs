@@ -503,11 +503,27 @@ pub(super) fn io_files(loaded: &Loaded, command: &str, top: &str) -> Result<Vec<
                  # path from the pin is timed."
                     .to_string()
             }
-            PortTiming::Synchronized => {
-                "Asynchronous to clk: it enters through a synchronizer (two flops), so no path from\n\
-                 # the pin is timed; `sinedec check` counts the synchronizer in the line timing."
-                    .to_string()
-            }
+            PortTiming::Synchronized => match (&loaded.derived.absolute, interface) {
+                // The absolute start's data line: sampled at a fixed distance after the
+                // clock edge it answers (the one derivation, `SsiTiming`).
+                (Some(a), crate::blocks::absolute::block::IO_GROUP) => {
+                    let t = a.timing();
+                    format!(
+                        "Asynchronous to clk (the encoder answers over its cable): it enters through a\n\
+                         # synchronizer (two flops), so no path from the pin is timed. Each bit is sampled\n\
+                         # 2H = {} clocks after the abs_clk edge it answers, which needs\n\
+                         # {}:\n\
+                         # the line's round trip (cable + transceivers, both ways) may take up to {:.1} ns\n\
+                         # (`sinedec check`, \"absolute line timing\").",
+                        t.capture_clocks(),
+                        t.budget_text(),
+                        t.max_round_trip_ns()
+                    )
+                }
+                _ => "Asynchronous to clk: it enters through a synchronizer (two flops), so no path from\n\
+                      # the pin is timed; `sinedec check` counts the synchronizer in the line timing."
+                    .to_string(),
+            },
             PortTiming::Static => "Held at a constant level: no path to the pin is timed.".into(),
             PortTiming::Clock => String::new(),
         }

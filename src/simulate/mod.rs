@@ -304,6 +304,7 @@ impl SimReport {
         }
         o.push_str(&self.velocity_summary(loaded));
         o.push_str(&self.capture_summary(loaded));
+        o.push_str(&self.absolute_summary(loaded));
         o.push_str(&self.fault_summary(loaded));
         if let Some(b) = &r.biss {
             let _ = writeln!(
@@ -343,6 +344,45 @@ impl SimReport {
             r.cycles as f64 / self.wall_s.max(1e-9),
             self.wall_s,
             self.engine.name()
+        );
+        o
+    }
+
+    /// The absolute start's lines of the summary (`[reference] absolute`; empty otherwise):
+    /// what the encoder's SSI channel stored and when the position became absolute; the
+    /// error figures above count the referenced samples only, against the absolute truth.
+    fn absolute_summary(&self, loaded: &Loaded) -> String {
+        let d = &loaded.derived;
+        let (Some(p), Some(a)) = (&d.absolute, &self.result.absolute) else {
+            return String::new();
+        };
+        let us = |c: u64| c as f64 * 1e6 / d.clock_hz;
+        let q = d.quadrants_per_turn as f64;
+        let mut o = String::new();
+        let w = p.word();
+        let stored = match a.latches.first() {
+            Some(l) => {
+                let x = l.turns * q;
+                format!(
+                    "{} word(s) of {} bits stored, the first at {:.2} us: turn {}, quadrant {:.3}",
+                    a.latches.len(),
+                    w.bits(),
+                    l.at_ns * 1e-3,
+                    (x / q).floor(),
+                    x.rem_euclid(q)
+                )
+            }
+            None => "no word stored".to_string(),
+        };
+        let refd = match a.referenced_cycle {
+            Some(c) => format!("absolute from cycle {c} ({:.1} us)", us(c)),
+            None => "never referenced".to_string(),
+        };
+        let _ = writeln!(
+            o,
+            "absolute start              {stored}; {refd}; {} timing violations of the channel ({:.0} ns cable); the error figures count the referenced samples against the absolute position",
+            a.violations.len(),
+            a.line_delay_ns
         );
         o
     }

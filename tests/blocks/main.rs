@@ -10,6 +10,7 @@ mod adc_util;
 mod common;
 mod correction_util;
 
+mod absolute;
 mod accuracy;
 mod adc;
 mod adc_closed_loop;

@@ -93,6 +93,7 @@ fn stimulus(
             qc,
             fine: (a.unwrap_or(0.0).fract() * 16384.0) as u64,
             turns,
+            ..Default::default()
         });
         truth.push(a);
     }
@@ -206,12 +207,90 @@ fn four_way_cosimulation() {
                 qc: qf.rem_euclid(8192) as u64,
                 fine: r.range(0, 16384) as u64,
                 turns: (qf.div_euclid(8192) as u64) & mask(12),
+                ..Default::default()
             });
         }
         let out = run(&p, &ins, tag, Simulators::ALL);
         assert!(out.iter().any(|o| o.index_valid));
         assert!(out.iter().any(|o| o.referenced));
     }
+}
+
+/// The target words of T = (tq, tt) as the absolute start gives them (Q = 8192, M = 12).
+fn abs_target(tq: u64, tt: u64) -> [u64; 6] {
+    [
+        tq,
+        tq.wrapping_sub(8192) & mask(14),
+        tq + 8192,
+        tt,
+        tt.wrapping_sub(1) & mask(12),
+        (tt + 1) & mask(12),
+    ]
+}
+
+#[test]
+fn an_absolute_request_makes_its_sample_read_the_target() {
+    // Away from the index; at row 1500 (no sample there) the absolute start asks for
+    // T = (5000, turn 7) for the count B of the sample that left at row 1000.
+    let p = params(0).with_absolute(true);
+    let (mut ins, _) = stimulus(3000, 50.2, 0.2, |_| false, None);
+    let b_row = (1000..).find(|&c| ins[c].valid).expect("a sample");
+    let b = (ins[b_row].qc, ins[b_row].turns);
+    assert!(!ins[1500].valid);
+    ins[1500].abs_req = true;
+    for i in ins.iter_mut().skip(1500) {
+        i.abs_t = abs_target(5000, 7);
+        i.abs_b = b;
+    }
+    let out = run(&p, &ins, "ref_abs", RUST_ONLY);
+    let o = p.offset((5000, 7), b);
+    // The offset is taken in the clock after the request; every later sample reads in + T - B.
+    let mut seen = 0;
+    for k in 1502..out.len() {
+        if ins[k].valid {
+            seen += 1;
+            assert_eq!(
+                (out[k].qc, out[k].turns),
+                p.apply((ins[k].qc, ins[k].turns), o)
+            );
+            assert!(out[k].referenced && !out[k].warning);
+        }
+    }
+    assert!(seen > 10);
+    assert!(out[..1501].iter().all(|o| !o.referenced));
+    // B itself would read T.
+    assert_eq!(p.apply(b, o), (5000, 7));
+}
+
+#[test]
+fn four_way_cosimulation_with_the_absolute_start() {
+    let p = params(1).with_absolute(true);
+    let mut r = SplitMix64(9);
+    let mut ins = vec![];
+    let mut pos = 40.0;
+    for k in 0..5000 {
+        let valid = r.unit() < 0.1;
+        if valid {
+            pos += r.range(-40, 41) as f64 / 64.0;
+        }
+        let qf = pos.floor() as i64;
+        ins.push(ReferenceIn {
+            rst: k < 2 || r.unit() < 0.0005,
+            conv: r.unit() < 0.05,
+            z: qf.rem_euclid(64) < 6,
+            preset: r.unit() < 0.001,
+            valid,
+            qc: qf.rem_euclid(8192) as u64,
+            fine: r.range(0, 16384) as u64,
+            turns: (qf.div_euclid(8192) as u64) & mask(12),
+            // Requests in any row (with samples too), random words in every port.
+            abs_req: r.unit() < 0.003,
+            abs_t: [0; 6].map(|_| r.next_u64() & mask(16)),
+            abs_b: (r.range(0, 8191) as u64, r.range(0, 4095) as u64),
+        });
+    }
+    let out = run(&p, &ins, "ref_cosim_abs", Simulators::ALL);
+    assert!(out.iter().any(|o| o.referenced));
 }
 
 #[test]

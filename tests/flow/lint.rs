@@ -201,8 +201,9 @@ fn the_board_wrapper_is_lint_clean_with_the_clock_model() {
 
 /// The option combinations the shipped tests use, as (tag, config text): the velocity
 /// estimator, ABZ output, the BiSS control channel, auto correction, static phase
-/// correction, and all of velocity, ABZ, control and auto together. Each on the Starter
-/// Kit preset, so that `<name>_board.v` (the DCM wrapper) is written as well.
+/// correction, the position reference with its absolute start, and all of velocity, ABZ,
+/// control and auto together. Each on the Starter Kit preset, so that `<name>_board.v` (the
+/// DCM wrapper) is written as well.
 fn option_combinations() -> Vec<(&'static str, String)> {
     let set = |from: &str, to: &str, text: &str| {
         assert_eq!(
@@ -214,6 +215,7 @@ fn option_combinations() -> Vec<(&'static str, String)> {
     };
     let velocity = "\n[velocity]\nenabled = true\nrate_hz = 200e3\nbandwidth_hz = 20000.0\n";
     let abz = "\n[abz]\nenabled = true\n";
+    let absolute = "\n[reference]\nenabled = true\nabsolute = \"ssi\"\n";
     let control = |t: &str| set("[biss]\n", "[biss]\ncontrol = true\n", t);
     let auto = |t: &str| set("\nmode = \"static\"\n", "\nmode = \"auto\"\n", t);
     let phase = |t: &str| {
@@ -230,6 +232,7 @@ fn option_combinations() -> Vec<(&'static str, String)> {
         ("control", control(d)),
         ("auto", auto(d)),
         ("phase", phase(d)),
+        ("absolute", format!("{d}{absolute}")),
         ("all", format!("{}{velocity}{abz}", auto(&control(d)))),
     ];
     combos
@@ -237,6 +240,8 @@ fn option_combinations() -> Vec<(&'static str, String)> {
         .map(|(tag, t)| {
             let abz_pins = if t.contains("\n[abz]\n") {
                 "abz_a = \"J1\"\nabz_b = \"J2\"\nabz_z = \"J3\"\n"
+            } else if t.contains("\n[reference]\n") {
+                "preset = \"K1\"\nreferenced = \"K2\"\nabs_clk = \"K3\"\nabs_data = \"K4\"\n"
             } else {
                 ""
             };

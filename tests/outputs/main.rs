@@ -7,6 +7,7 @@ mod biss_loop;
 #[path = "../common/mod.rs"]
 mod common;
 
+mod absolute_config;
 mod abz;
 mod abz_config;
 mod biss;

@@ -95,6 +95,7 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
             "abz",
             "velocity",
             "reference",
+            "absolute",
             "capture",
             "registers",
             "nco",
@@ -104,12 +105,13 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
         ]
     );
     // The capacitive path's blocks, the ABZ emulator, the velocity estimator, the position
-    // reference, the capture and the register map while disabled, are absent from this sinewave config (no
-    // counts).
+    // reference, the absolute start, the capture and the register map while disabled, are
+    // absent from this sinewave config (no counts).
     let cap = [
         "abz",
         "velocity",
         "reference",
+        "absolute",
         "capture",
         "registers",
         "nco",

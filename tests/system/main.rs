@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod absolute_top;
 mod abz_top;
 mod capture_top;
 mod correction_fit_loop;

@@ -37,6 +37,13 @@ pub struct ReferenceConfig {
     /// referenced (default true).
     #[serde(default = "default_true")]
     pub warn_until_referenced: bool,
+    /// Absolute start from the encoder's digital channel: "none" (default) or "ssi" (an SSI
+    /// master reads the absolute word once after reset; `crate::blocks::absolute`).
+    #[serde(default = "default_absolute")]
+    pub absolute: String,
+    /// `[reference.ssi]`: the encoder's SSI channel, with `absolute = "ssi"`.
+    #[serde(default)]
+    pub ssi: crate::blocks::absolute::AbsoluteSsiConfig,
 }
 
 impl Default for ReferenceConfig {
@@ -49,8 +56,14 @@ impl Default for ReferenceConfig {
             preset_quadrant: 0,
             preset_turn: 0,
             warn_until_referenced: true,
+            absolute: default_absolute(),
+            ssi: Default::default(),
         }
     }
+}
+
+fn default_absolute() -> String {
+    "none".into()
 }
 
 fn default_gate() -> String {
@@ -112,11 +125,13 @@ pub fn params(
             "the position reference is built into the sinewave board top only; remove [reference] or set enabled = false with [capacitive]".into(),
         ));
     }
-    if !c.qep.enabled {
+    // Homing needs the index; an absolute start references without it (no Z: no homing).
+    let absolute = r.absolute == "ssi";
+    if !c.qep.enabled && !absolute {
         return Err(err(
             "reference",
             "enabled",
-            "homing needs the index Z, a comparator input: set [qep] enabled = true".into(),
+            "homing needs the index Z, a comparator input: set [qep] enabled = true, or take the position from the encoder's digital channel (absolute = \"ssi\")".into(),
         ));
     }
     let gate = GATES.iter().position(|g| *g == r.gate).ok_or_else(|| {
@@ -172,7 +187,7 @@ pub fn params(
         adc.frame.conv_active_high,
         r.warn_until_referenced,
     )
-    .map(|p| Some(p.with_gate_levels(GATES[gate])))
+    .map(|p| Some(p.with_gate_levels(GATES[gate]).with_absolute(absolute)))
     .map_err(|e| err("reference", "enabled", e.detail()))
 }
 

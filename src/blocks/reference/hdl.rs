@@ -45,6 +45,26 @@ pub struct PositionReference {
     pub index_qc: Signal<Out, Bits<32>>,
     /// Referenced turn word of the last index.
     pub index_turns: Signal<Out, Bits<32>>,
+    /// The absolute start's request (`[reference] absolute`; unused without it): one
+    /// clock, never with `in_valid`, to take the target `abs_t*` for the count `abs_b*` of
+    /// an earlier sample (the one the encoder's word belongs to).
+    pub abs_req: Signal<In, Bit>,
+    /// The absolute target's quadrant count T_q.
+    pub abs_tq: Signal<In, Bits<32>>,
+    /// T_q - Q (qb + 1 bits two's complement).
+    pub abs_tqm: Signal<In, Bits<32>>,
+    /// T_q + Q.
+    pub abs_tqp: Signal<In, Bits<32>>,
+    /// The absolute target's turn word T_t.
+    pub abs_tt: Signal<In, Bits<32>>,
+    /// T_t - 1 (M bits).
+    pub abs_ttm: Signal<In, Bits<32>>,
+    /// T_t + 1 (M bits).
+    pub abs_ttp: Signal<In, Bits<32>>,
+    /// The quadrant count B_q of the word's sample.
+    pub abs_bq: Signal<In, Bits<32>>,
+    /// The turn word B_t of the word's sample.
+    pub abs_bt: Signal<In, Bits<32>>,
     conv_prev: DFF<Bit>,
     /// Z at each conversion, newest in bit 0.
     zt: DFF<Bits<32>>,
@@ -70,6 +90,17 @@ pub struct PositionReference {
     ubq: DFF<Bits<32>>,
     /// The last sample's turn word (likewise).
     ubt: DFF<Bits<32>>,
+    /// With the absolute start (one each, or none): the requested target T and its
+    /// neighbours (T_q, T_q - Q, T_q + Q, T_t, T_t - 1, T_t + 1), held from the request to
+    /// the offset's clock, whichever source asked. Timing: the offset's subtractions start
+    /// at registers, not at a select of three sources (the absolute block's `tq` ->
+    /// `reference.otp` was the absolute top's slowest path).
+    htq: Vec<DFF<Bits<32>>>,
+    htqm: Vec<DFF<Bits<32>>>,
+    htqp: Vec<DFF<Bits<32>>>,
+    htt: Vec<DFF<Bits<32>>>,
+    httm: Vec<DFF<Bits<32>>>,
+    http: Vec<DFF<Bits<32>>>,
     ilatch: DFF<Bit>,
     /// The homing event, registered: the index latch takes T a clock later. Timing: keeps
     /// the sample's qualification off the index registers' enable (core.counter ->
@@ -170,6 +201,15 @@ impl PositionReference {
             index_valid: Default::default(),
             index_qc: Default::default(),
             index_turns: Default::default(),
+            abs_req: Default::default(),
+            abs_tq: Default::default(),
+            abs_tqm: Default::default(),
+            abs_tqp: Default::default(),
+            abs_tt: Default::default(),
+            abs_ttm: Default::default(),
+            abs_ttp: Default::default(),
+            abs_bq: Default::default(),
+            abs_bt: Default::default(),
             conv_prev: Default::default(),
             zt: Default::default(),
             p1: Default::default(),
@@ -186,6 +226,12 @@ impl PositionReference {
             usel: Default::default(),
             ubq: Default::default(),
             ubt: Default::default(),
+            htq: held(p),
+            htqm: held(p),
+            htqp: held(p),
+            htt: held(p),
+            httm: held(p),
+            http: held(p),
             ilatch: Default::default(),
             ihome: Default::default(),
             ov: Default::default(),
@@ -242,6 +288,13 @@ impl PositionReference {
     }
 }
 
+/// One target register with the absolute start (`[reference] absolute`), none without.
+fn held(p: &ReferenceParams) -> Vec<DFF<Bits<32>>> {
+    (0..usize::from(p.absolute()))
+        .map(|_| Default::default())
+        .collect()
+}
+
 impl Logic for PositionReference {
     #[hdl_gen]
     fn update(&mut self) {
@@ -249,6 +302,20 @@ impl Logic for PositionReference {
             self, clk, conv_prev, zt, p1, p2, pp, ppend, pqual, oq, oqm, ot, otp, refd, upd, usel,
             ubq, ubt, ilatch, ihome, ov, oqc, ofine, oturns, oref, iv, iqc, iturns
         );
+        for i in 0..self.htq.len() {
+            self.htq[i].clock.next = self.clk.val();
+            self.htqm[i].clock.next = self.clk.val();
+            self.htqp[i].clock.next = self.clk.val();
+            self.htt[i].clock.next = self.clk.val();
+            self.httm[i].clock.next = self.clk.val();
+            self.http[i].clock.next = self.clk.val();
+            self.htq[i].d.next = self.htq[i].q.val();
+            self.htqm[i].d.next = self.htqm[i].q.val();
+            self.htqp[i].d.next = self.htqp[i].q.val();
+            self.htt[i].d.next = self.htt[i].q.val();
+            self.httm[i].d.next = self.httm[i].q.val();
+            self.http[i].d.next = self.http[i].q.val();
+        }
         // Synchronizers and edge registers (no reset).
         self.conv_prev.d.next = self.conv.val();
         self.p1.d.next = self.preset.val();
@@ -270,6 +337,13 @@ impl Logic for PositionReference {
         self.bt.next = self.in_turns.val() & self.tmask.val();
         self.qual.next = self.zs.val() & ((self.bq.val() & self.three.val()) == self.gate.val());
         self.idx_event.next = self.qual.val() & !self.pqual.q.val();
+        // With the absolute start an index never homes (the word references): it only
+        // latches, once referenced.
+        for _i in 0..self.htq.len() {
+            if !self.refd.q.val() {
+                self.idx_event.next = false;
+            }
+        }
         self.s.next = (self.bq.val() + self.oq.q.val()) & self.wmask.val();
         self.s2.next = (self.bq.val() + self.oqm.q.val()) & self.wmask.val();
         // The offset asked for in the clock before: T - B, T the preset or the index count.
@@ -287,6 +361,15 @@ impl Logic for PositionReference {
             self.tt.next = self.it.val();
             self.ttm.next = self.itm.val();
             self.ttp.next = self.itp.val();
+        }
+        // The absolute start's request: T from the absolute block's registers.
+        for i in 0..self.htq.len() {
+            self.tq.next = self.htq[i].q.val();
+            self.tqm.next = self.htqm[i].q.val();
+            self.tqp.next = self.htqp[i].q.val();
+            self.tt.next = self.htt[i].q.val();
+            self.ttm.next = self.httm[i].q.val();
+            self.ttp.next = self.http[i].q.val();
         }
         self.d1.next = (self.tq.val() - self.ubq.q.val()) & self.wmask.val();
         self.upd.d.next = false;
@@ -339,6 +422,24 @@ impl Logic for PositionReference {
             self.ubt.d.next = self.bt.val();
             if self.pnow.val() | (self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val()) {
                 self.upd.d.next = true;
+                // With the absolute start T is held: the preset's or the index's.
+                for i in 0..self.htq.len() {
+                    if self.pnow.val() {
+                        self.htq[i].d.next = self.pq.val();
+                        self.htqm[i].d.next = self.pqm.val();
+                        self.htqp[i].d.next = self.pqp.val();
+                        self.htt[i].d.next = self.pt.val();
+                        self.httm[i].d.next = self.ptm.val();
+                        self.http[i].d.next = self.ptp.val();
+                    } else {
+                        self.htq[i].d.next = self.iq.val();
+                        self.htqm[i].d.next = self.iqm.val();
+                        self.htqp[i].d.next = self.iqp.val();
+                        self.htt[i].d.next = self.it.val();
+                        self.httm[i].d.next = self.itm.val();
+                        self.http[i].d.next = self.itp.val();
+                    }
+                }
             }
             if self.idx_event.val() & !self.refd.q.val() & !self.upd.q.val() & !self.pnow.val() {
                 self.ihome.d.next = true;
@@ -351,6 +452,20 @@ impl Logic for PositionReference {
             }
         } else {
             self.ppend.d.next = self.pnow.val();
+        }
+        // The absolute start: its B and T, in a clock without a sample.
+        for i in 0..self.htq.len() {
+            if self.abs_req.val() {
+                self.upd.d.next = true;
+                self.ubq.d.next = self.abs_bq.val() & self.qmask.val();
+                self.ubt.d.next = self.abs_bt.val() & self.tmask.val();
+                self.htq[i].d.next = self.abs_tq.val();
+                self.htqm[i].d.next = self.abs_tqm.val();
+                self.htqp[i].d.next = self.abs_tqp.val();
+                self.htt[i].d.next = self.abs_tt.val();
+                self.httm[i].d.next = self.abs_ttm.val();
+                self.http[i].d.next = self.abs_ttp.val();
+            }
         }
         if self.rst.val() {
             self.zt.d.next = 0.into();
@@ -396,6 +511,15 @@ impl crate::cosim::CosimBlock for PositionReference {
             Port::new("in_qc", 32),
             Port::new("in_fine", 32),
             Port::new("in_turns", 32),
+            Port::new("abs_req", 1),
+            Port::new("abs_tq", 32),
+            Port::new("abs_tqm", 32),
+            Port::new("abs_tqp", 32),
+            Port::new("abs_tt", 32),
+            Port::new("abs_ttm", 32),
+            Port::new("abs_ttp", 32),
+            Port::new("abs_bq", 32),
+            Port::new("abs_bt", 32),
         ]
     }
     fn output_ports(&self) -> Vec<Port> {
@@ -420,6 +544,15 @@ impl crate::cosim::CosimBlock for PositionReference {
         self.in_qc.next = Bits::<32>::from(r[5]);
         self.in_fine.next = Bits::<32>::from(r[6]);
         self.in_turns.next = Bits::<32>::from(r[7]);
+        self.abs_req.next = r[8] != 0;
+        self.abs_tq.next = Bits::<32>::from(r[9]);
+        self.abs_tqm.next = Bits::<32>::from(r[10]);
+        self.abs_tqp.next = Bits::<32>::from(r[11]);
+        self.abs_tt.next = Bits::<32>::from(r[12]);
+        self.abs_ttm.next = Bits::<32>::from(r[13]);
+        self.abs_ttp.next = Bits::<32>::from(r[14]);
+        self.abs_bq.next = Bits::<32>::from(r[15]);
+        self.abs_bt.next = Bits::<32>::from(r[16]);
     }
     fn sample(&self) -> Vec<u64> {
         vec![

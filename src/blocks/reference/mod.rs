@@ -53,6 +53,13 @@
 //!   preset becomes the preset value with its fine part, so the fine part never jumps.
 //!   A preset also counts as referenced; in its sample an index event neither homes nor
 //!   latches.
+//! * The absolute start (`[reference] absolute`, [`crate::blocks::absolute`]) is a third
+//!   source of T: in a clock without a sample it asks (`abs_req`) with its target T
+//!   (`abs_tq`, `abs_tt` and their neighbours) and the count B of the sample its word belongs
+//!   to (`abs_bq`, `abs_bt`); the offset becomes T - B in the next clock, as for a preset.
+//!   With it the requested target is held in registers (`htq` ...) from the request on,
+//!   whichever source asked, and an index never homes: it latches once referenced. Without
+//!   it those inputs are unused and the block has no logic for them.
 //! * `referenced` is 1 from the first sample after the homing (or preset) on: it flags the
 //!   output sample's frame, and the top ORs its inverse into the warning
 //!   (`warn_until_referenced`).
@@ -87,6 +94,9 @@
 //! | `warning` | out | 1 | not referenced, with `warn_until_referenced` |
 //! | `index_valid` | out | 1 | one clock: `index_qc`/`index_turns` latched an index |
 //! | `index_qc`, `index_turns` | out | 32 | the referenced count of the last index |
+//! | `abs_req` | in | 1 | the absolute start's request (one clock, no sample in it) |
+//! | `abs_tq`, `abs_tqm`, `abs_tqp`, `abs_tt`, `abs_ttm`, `abs_ttp` | in | 32 | its target T_q, T_q - Q, T_q + Q, T_t, T_t - 1, T_t + 1 |
+//! | `abs_bq`, `abs_bt` | in | 32 | the count B the target is for |
 pub mod block;
 pub mod hdl;
 pub mod model;
@@ -112,6 +122,10 @@ pub struct ReferenceParams {
     tag_shift: u32,
     conv_active_high: bool,
     warn_until_referenced: bool,
+    /// The absolute start is a source of T (`crate::blocks::absolute`); left out of the
+    /// parameter file when false, so configurations without it keep their bytes.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    absolute: bool,
 }
 
 impl ReferenceParams {
@@ -171,7 +185,18 @@ impl ReferenceParams {
             tag_shift,
             conv_active_high,
             warn_until_referenced,
+            absolute: false,
         })
+    }
+
+    /// With the absolute start's target as a third source of T (its ports `abs_*`).
+    pub fn with_absolute(mut self, on: bool) -> Self {
+        self.absolute = on;
+        self
+    }
+    /// The absolute start is a source of T.
+    pub fn absolute(&self) -> bool {
+        self.absolute
     }
 
     /// Q = 4 PPR.

@@ -22,6 +22,12 @@ pub struct ReferenceIn {
     pub fine: u64,
     /// Turn word (M bits).
     pub turns: u64,
+    /// The absolute start's request (with `[reference] absolute`).
+    pub abs_req: bool,
+    /// Its target: T_q, T_q - Q, T_q + Q, T_t, T_t - 1, T_t + 1.
+    pub abs_t: [u64; 6],
+    /// The count (B_q, B_t) the target is for.
+    pub abs_b: (u64, u64),
 }
 
 impl ReferenceIn {
@@ -36,6 +42,15 @@ impl ReferenceIn {
             self.qc & mask(32),
             self.fine & mask(32),
             self.turns & mask(32),
+            self.abs_req as u64,
+            self.abs_t[0] & mask(32),
+            self.abs_t[1] & mask(32),
+            self.abs_t[2] & mask(32),
+            self.abs_t[3] & mask(32),
+            self.abs_t[4] & mask(32),
+            self.abs_t[5] & mask(32),
+            self.abs_b.0 & mask(32),
+            self.abs_b.1 & mask(32),
         ]
     }
 }
@@ -99,6 +114,8 @@ struct Regs {
     usel: bool,
     ubq: u64,
     ubt: u64,
+    /// The held target (with the absolute start).
+    ht: [u64; 6],
     ilatch: bool,
     ihome: bool,
     out: ReferenceOut,
@@ -192,33 +209,46 @@ impl ReferenceModel {
         // The offset taken from a sample in the clock before: T - B from registers.
         n.upd = false;
         if o.upd {
-            let (tq, tt) = if o.usel { p.preset() } else { p.index() };
+            // T and its neighbours: held since the request (with the absolute start), or
+            // the constants of the preset or the index count.
+            let [tq, tqm, tqp, tt, ttm, ttp] = if p.absolute() {
+                o.ht
+            } else {
+                let (tq, tt) = if o.usel { p.preset() } else { p.index() };
+                [
+                    tq,
+                    tq.wrapping_sub(q) & wm,
+                    tq + q,
+                    tt,
+                    tt.wrapping_sub(1),
+                    tt + 1,
+                ]
+            };
             let (bq, bt) = (o.ubq, o.ubt);
             let d1 = tq.wrapping_sub(bq) & wm;
-            let d0 = tq.wrapping_sub(q).wrapping_sub(bq) & wm;
-            let d2 = (tq + q).wrapping_sub(bq) & wm;
-            let tmin = tt.wrapping_sub(bt);
             if d1 & sign != 0 {
-                n.oq = d2;
+                n.oq = tqp.wrapping_sub(bq) & wm;
                 n.oqm = d1;
-                n.ot = tmin.wrapping_sub(1) & tm;
-                n.otp = tmin & tm;
+                n.ot = ttm.wrapping_sub(bt) & tm;
+                n.otp = tt.wrapping_sub(bt) & tm;
             } else {
                 n.oq = d1;
-                n.oqm = d0;
-                n.ot = tmin & tm;
-                n.otp = tmin.wrapping_add(1) & tm;
+                n.oqm = tqm.wrapping_sub(bq) & wm;
+                n.ot = tt.wrapping_sub(bt) & tm;
+                n.otp = ttp.wrapping_sub(bt) & tm;
             }
             n.refd = true;
         }
         if !i.valid {
             n.ppend = pnow;
+            self.absolute_request(&mut n, &i);
             self.r = n;
             return n.out;
         }
         let (bq, bt) = (i.qc & qm, i.turns & tm);
         let qual = zs && bq & 3 == p.gate() as u64;
-        let event = qual && !o.pqual;
+        // With the absolute start an index only latches, once referenced: it never homes.
+        let event = qual && !o.pqual && (!p.absolute() || o.refd);
         n.pqual = qual;
         n.ppend = false;
         // The output: the sample moved by the offset held before it.
@@ -238,12 +268,43 @@ impl ReferenceModel {
         if pnow || home {
             n.upd = true;
         }
+        if (pnow || home) && p.absolute() {
+            n.ht = Self::constants(&p, if pnow { p.preset() } else { p.index() });
+        }
         if home {
             n.ihome = true;
         } else if event && o.refd && !o.upd && !pnow {
             n.ilatch = true;
         }
+        self.absolute_request(&mut n, &i);
         self.r = n;
         n.out
+    }
+
+    /// T = (quadrant count, turn word) with its neighbours, as the RTL's constants hold
+    /// them.
+    fn constants(p: &ReferenceParams, t: (u64, u64)) -> [u64; 6] {
+        let q = p.quadrants_per_turn();
+        let wm = mask(64 - (q - 1).leading_zeros() + 1);
+        let m32 = |v: u64| v & mask(32);
+        [
+            t.0,
+            t.0.wrapping_sub(q) & wm,
+            t.0 + q,
+            t.1,
+            m32(t.1.wrapping_sub(1)),
+            m32(t.1 + 1),
+        ]
+    }
+
+    /// The absolute start's request (`[reference] absolute`): its B, and T from its words.
+    fn absolute_request(&self, n: &mut Regs, i: &ReferenceIn) {
+        if self.p.absolute() && i.abs_req {
+            let qb = self.widths().0;
+            n.upd = true;
+            n.ht = i.abs_t.map(|v| v & mask(32));
+            n.ubq = i.abs_b.0 & mask(qb);
+            n.ubt = i.abs_b.1 & mask(self.p.turns_bits());
+        }
     }
 }

@@ -1,5 +1,6 @@
 //! rust-hdl description of the sinewave board top.
 use super::ports::{board_top, pins};
+use crate::blocks::absolute::hdl::AbsoluteStart;
 use crate::blocks::abz::hdl::AbzEmulator;
 use crate::blocks::adc::hdl::AdcController;
 use crate::blocks::biss::hdl::BissSlave;
@@ -69,6 +70,7 @@ board_top! {
             s_axi_araddr: Bits<32>, 32, "AXI4-Lite read address, byte address";
             s_axi_arvalid: Bit, 1, "AXI4-Lite read address valid";
             s_axi_rready: Bit, 1, "AXI4-Lite read data ready";
+            abs_data: Bit, 1, "SSI data from the encoder's digital channel (`[reference] absolute`)";
         }
         @optional_outputs {
             par_velocity: Bits<64>, 64, "velocity (`[velocity] enabled`): `width`-bit two's complement in the low bits, held between strobes";
@@ -92,6 +94,7 @@ board_top! {
             s_axi_rresp: Bits<32>, 32, "AXI4-Lite read response (always OKAY)";
             s_axi_rvalid: Bit, 1, "AXI4-Lite read data valid";
             flags: Bits<32>, 32, "live flags (`[registers] enabled`): FLAGS's bits, as the register map reads them";
+            abs_clk: Bit, 1, "SSI clock to the encoder's digital channel (`[reference] absolute`): idle high";
         }
         /// The pre-amplifier set-up (`[preamp]`, the LTC1407A-1 kit): one instance or none.
         /// Without it the ADC converts from reset and owns `adc_sck`.
@@ -135,6 +138,12 @@ board_top! {
         reference: Vec<PositionReference>,
         /// See `rst_adc`: one per position reference.
         rst_ref: Vec<InitBit>,
+        /// The absolute start (`[reference] absolute = "ssi"`): an SSI master reading the
+        /// encoder's digital channel once after reset, its target taken by the position
+        /// reference; one or none.
+        absolute: Vec<AbsoluteStart>,
+        /// See `rst_adc`: one per absolute start.
+        rst_abs: Vec<InitBit>,
         /// The synchronous capture of the position every output takes (`[capture]
         /// enabled`): one or none.
         cap: Vec<Capture>,
@@ -264,6 +273,8 @@ impl TopRtl {
         let reference: Vec<PositionReference> =
             d.reference.iter().map(PositionReference::new).collect();
         let nref = reference.len();
+        let absolute: Vec<AbsoluteStart> = d.absolute.iter().map(AbsoluteStart::new).collect();
+        let nabs = absolute.len();
         let cap: Vec<Capture> = d.capture.iter().map(Capture::new).collect();
         let ncap = cap.len();
         let regs: Vec<RegisterMap> = d.registers.iter().map(RegisterMap::new).collect();
@@ -315,6 +326,10 @@ impl TopRtl {
             referenced: nref,
             reference,
             rst_ref: resets(nref),
+            abs_data: nabs,
+            abs_clk: nabs,
+            absolute,
+            rst_abs: resets(nabs),
             par_velocity: nvel,
             par_velocity_valid: nvel,
             abz_a: nabz,
@@ -502,9 +517,45 @@ impl Logic for TopRtl {
             self.reference[i].in_fine.next = self.core.out_fine.val();
             self.reference[i].in_turns.next = self.core.out_turns.val();
             self.referenced[i].next = self.reference[i].referenced.val();
+            // The absolute start's target (`[reference] absolute`; none: never asked).
+            self.reference[i].abs_req.next = false;
+            self.reference[i].abs_tq.next = self.zero.val();
+            self.reference[i].abs_tqm.next = self.zero.val();
+            self.reference[i].abs_tqp.next = self.zero.val();
+            self.reference[i].abs_tt.next = self.zero.val();
+            self.reference[i].abs_ttm.next = self.zero.val();
+            self.reference[i].abs_ttp.next = self.zero.val();
+            self.reference[i].abs_bq.next = self.zero.val();
+            self.reference[i].abs_bt.next = self.zero.val();
+            for k in 0..self.absolute.len() {
+                self.reference[i].abs_req.next = self.absolute[k].req.val();
+                self.reference[i].abs_tq.next = self.absolute[k].tq.val();
+                self.reference[i].abs_tqm.next = self.absolute[k].tqm.val();
+                self.reference[i].abs_tqp.next = self.absolute[k].tqp.val();
+                self.reference[i].abs_tt.next = self.absolute[k].tt.val();
+                self.reference[i].abs_ttm.next = self.absolute[k].ttm.val();
+                self.reference[i].abs_ttp.next = self.absolute[k].ttp.val();
+                self.reference[i].abs_bq.next = self.absolute[k].bq.val();
+                self.reference[i].abs_bt.next = self.absolute[k].bt.val();
+            }
             self.word.next = ((self.reference[i].out_qc.val() << self.qshl.val())
                 >> self.qshr.val())
                 | (self.reference[i].out_fine.val() >> self.fshr.val());
+        }
+        // The absolute start (`[reference] absolute`): the SSI master on abs_clk/abs_data,
+        // tied to the ADC's conversions and the core's samples.
+        for i in 0..self.absolute.len() {
+            self.absolute[i].clk.next = self.clk.val();
+            self.rst_abs[i].clock.next = self.clk.val();
+            self.rst_abs[i].d.next = self.rst.val();
+            self.absolute[i].rst.next = self.rst_abs[i].q.val();
+            self.absolute[i].conv.next = self.adc.adc_conv.val();
+            self.absolute[i].in_valid.next = self.core.out_valid.val();
+            self.absolute[i].in_qc.next = self.core.out_qc.val();
+            self.absolute[i].in_fine.next = self.core.out_fine.val();
+            self.absolute[i].in_turns.next = self.core.out_turns.val();
+            self.absolute[i].abs_data.next = self.abs_data[i].val();
+            self.abs_clk[i].next = self.absolute[i].abs_clk.val();
         }
         self.biss_slave.clk.next = self.clk.val();
         self.biss_slave.rst.next = self.rst_biss.q.val();
