@@ -257,26 +257,30 @@ fn finer_words_take_a_larger_error() {
     }
 }
 
+/// The data-valid boundary sits where `check` puts it: a cable whose round trip is two
+/// system clocks inside `check`'s longest round trip (594 ns at 1 MHz) reads the position,
+/// one two clocks beyond it samples the bits before they arrive and reads garbage.
 #[test]
-fn a_cable_too_long_for_the_clock_reads_garbage() {
-    // 1 MHz leaves a 594 ns round trip (check): a 60 m cable (720 ns) samples the bits
-    // before they arrive, the word is not the position; 40 m (480 ns) still reads it.
+fn the_cable_boundary_is_where_check_puts_it() {
     let l = config("");
+    let d = &l.derived;
+    let t = d.absolute.as_ref().expect("absolute").timing();
+    let rt = t.max_round_trip_ns();
+    assert!(d.describe().contains(&format!("{rt:.0}")), "check prints {rt:.0} ns");
     let x = at(4.0 * 777.0 + 1.3);
-    for (m, ok) in [(40.0, true), (60.0, false)] {
-        let d = &l.derived;
+    for (round_trip, ok) in [(rt - 2.0 * t.tclk_ns(), true), (rt + 2.0 * t.tclk_ns(), false)] {
         let mut enc = EncoderModel::ideal(2048, 1.0, 0.0);
         enc.start_turns = x;
         let mut s = System::new(d, enc).expect("system");
         s.absolute_encoder_mut()
             .expect("channel")
-            .set_line_delay_ns(m * sinedec::sim::ssi_encoder::CABLE_NS_PER_M);
+            .set_line_delay_ns(round_trip / 2.0);
         s.start().expect("settles");
         s.run((62e-6 * d.clock_hz) as u64).expect("runs");
         let r = s.finish();
         let k = r.records.iter().position(|x| x.referenced);
         let good = k.is_some_and(|k| r.records[k..].iter().all(|x| error_lsb(&l, x) <= 8.0));
-        assert_eq!(good, ok, "{m} m");
+        assert_eq!(good, ok, "a {round_trip:.1} ns round trip against check's {rt:.1} ns");
     }
 }
 

@@ -15,7 +15,8 @@
 //! # Protocol (AXI4-Lite, 32-bit data, byte addresses, [`ADDR_BITS`] bits)
 //! * Write: `s_axi_awready` = the address holder is empty, `s_axi_wready` = the data holder
 //!   is empty: either channel may come first, or both in the same clock. When both are held
-//!   and no response is pending, the write happens (byte strobes honoured on RW registers;
+//!   and no response is pending, the write is taken and acts a clock later from registers
+//!   (`wq_*`; byte strobes honoured on RW registers;
 //!   a W1C or WO register acts on the bits written with their strobe), both holders empty,
 //!   and `s_axi_bvalid` rises and stays until `s_axi_bready`. Every response is OKAY.
 //! * Read: `s_axi_arready` = no address held and no data pending. The address is held for a
