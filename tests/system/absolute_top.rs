@@ -266,9 +266,15 @@ fn the_cable_boundary_is_where_check_puts_it() {
     let d = &l.derived;
     let t = d.absolute.as_ref().expect("absolute").timing();
     let rt = t.max_round_trip_ns();
-    assert!(d.describe().contains(&format!("{rt:.0}")), "check prints {rt:.0} ns");
+    assert!(
+        d.describe().contains(&format!("{rt:.0}")),
+        "check prints {rt:.0} ns"
+    );
     let x = at(4.0 * 777.0 + 1.3);
-    for (round_trip, ok) in [(rt - 2.0 * t.tclk_ns(), true), (rt + 2.0 * t.tclk_ns(), false)] {
+    for (round_trip, ok) in [
+        (rt - 2.0 * t.tclk_ns(), true),
+        (rt + 2.0 * t.tclk_ns(), false),
+    ] {
         let mut enc = EncoderModel::ideal(2048, 1.0, 0.0);
         enc.start_turns = x;
         let mut s = System::new(d, enc).expect("system");
@@ -280,7 +286,10 @@ fn the_cable_boundary_is_where_check_puts_it() {
         let r = s.finish();
         let k = r.records.iter().position(|x| x.referenced);
         let good = k.is_some_and(|k| r.records[k..].iter().all(|x| error_lsb(&l, x) <= 8.0));
-        assert_eq!(good, ok, "a {round_trip:.1} ns round trip against check's {rt:.1} ns");
+        assert_eq!(
+            good, ok,
+            "a {round_trip:.1} ns round trip against check's {rt:.1} ns"
+        );
     }
 }
 
