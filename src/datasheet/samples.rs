@@ -118,6 +118,7 @@ pub fn samples(loaded: &Loaded, o: &SimOptions, n: usize) -> (Vec<Sample>, Vec<C
                     valid: true,
                     sin: raw[0] as i32,
                     cos: raw[1] as i32,
+                    ..CorrectionIn::default()
                 });
                 for _ in 1..d.adc.period_clocks.max(8) {
                     if o.valid && got.is_none() {

@@ -19,6 +19,7 @@ mod capture;
 mod core_behaviour;
 mod core_sweep;
 mod correction;
+mod correction_codes;
 mod correction_auto;
 mod correction_fit;
 mod correction_fit_config;

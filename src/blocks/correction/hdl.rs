@@ -1,6 +1,7 @@
 //! rust-hdl description of the front-end correction and its automatic calibration (maths,
 //! timing and rules in [`crate::blocks::correction`]).
 use super::autocal::{c16, AutoCal};
+use super::codes::CodeRegs;
 use super::fit_hdl::{FitCal, FitConsts};
 use super::multree::MulTree;
 use super::phase::PhaseCos;
@@ -40,6 +41,25 @@ pub struct Correction {
     pub gain_cos: Signal<Out, Bits<16>>,
     /// One clock when the calibration has just applied new b and g (always 0 when static).
     pub cal_update: Signal<Out, Bit>,
+    /// Writable codes only (one element, else none): one clock, bit w loads word w of
+    /// [`super::codes::WORDS`] from the register map.
+    pub ld: Vec<Signal<In, Bits<8>>>,
+    /// Writable codes only: the written bits, masked by `ld_msk`.
+    pub ld_bits: Vec<Signal<In, Bits<32>>>,
+    /// Writable codes only: the bits written (the byte strobes as a mask).
+    pub ld_msk: Vec<Signal<In, Bits<32>>>,
+    /// Writable codes only: OFFSET_SIN in use (sign-extended LSB).
+    pub w_off_s: Vec<Signal<Out, Bits<32>>>,
+    /// Writable codes only: OFFSET_COS in use.
+    pub w_off_c: Vec<Signal<Out, Bits<32>>>,
+    /// Writable codes only: GAIN_SIN in use.
+    pub w_gain_s: Vec<Signal<Out, Bits<32>>>,
+    /// Writable codes only: GAIN_COS in use.
+    pub w_gain_c: Vec<Signal<Out, Bits<32>>>,
+    /// Writable codes only: PHASE in use (|k| in bits 15..0, k < 0 in bit 16).
+    pub w_phase: Vec<Signal<Out, Bits<32>>>,
+    /// The writable codes: one instance with `p.writable()`, none otherwise.
+    codes: Vec<CodeRegs>,
     /// The automatic calibration: one instance in auto mode, none in static mode.
     cal: Vec<AutoCal>,
     /// The ellipse-fit calibration: one instance in auto (fit) mode, none otherwise.
@@ -145,6 +165,7 @@ impl Correction {
         } else {
             vec![]
         };
+        let wr = usize::from(p.writable());
         Self {
             clk: Default::default(),
             rst: Default::default(),
@@ -159,6 +180,19 @@ impl Correction {
             gain_sin: Default::default(),
             gain_cos: Default::default(),
             cal_update: Default::default(),
+            ld: ports(wr),
+            ld_bits: ports(wr),
+            ld_msk: ports(wr),
+            w_off_s: ports(wr),
+            w_off_c: ports(wr),
+            w_gain_s: ports(wr),
+            w_gain_c: ports(wr),
+            w_phase: ports(wr),
+            codes: if p.writable() {
+                vec![CodeRegs::new(p)]
+            } else {
+                vec![]
+            },
             cal,
             fit,
             ph,
@@ -260,6 +294,47 @@ impl Logic for Correction {
             self.g_s.next = self.fit[i].g_sin.val();
             self.g_c.next = self.fit[i].g_cos.val();
             self.upd.next = self.fit[i].update.val();
+        }
+        // Writable codes: the registers between the calibration (or the configured values)
+        // and stage 1, loaded by the register map.
+        for i in 0..self.codes.len() {
+            self.codes[i].clk.next = self.clk.val();
+            self.codes[i].rst.next = self.rst.val();
+            self.codes[i].ld.next = self.ld[i].val();
+            self.codes[i].ld_bits.next = self.ld_bits[i].val();
+            self.codes[i].ld_msk.next = self.ld_msk[i].val();
+            self.codes[i].cal_upd.next = false;
+            self.codes[i].cal_b_s.next = self.b0_s.val();
+            self.codes[i].cal_b_c.next = self.b0_c.val();
+            self.codes[i].cal_g_s.next = self.g0_s.val();
+            self.codes[i].cal_g_c.next = self.g0_c.val();
+            self.codes[i].cal_k_mag.next = self.g0_s.val();
+            self.codes[i].cal_k_neg.next = false;
+            for j in 0..self.cal.len() {
+                self.codes[i].cal_upd.next = self.cal[j].update.val();
+                self.codes[i].cal_b_s.next = self.cal[j].b_sin.val();
+                self.codes[i].cal_b_c.next = self.cal[j].b_cos.val();
+                self.codes[i].cal_g_s.next = self.cal[j].g_sin.val();
+                self.codes[i].cal_g_c.next = self.cal[j].g_cos.val();
+            }
+            for j in 0..self.fit.len() {
+                self.codes[i].cal_upd.next = self.fit[j].update.val();
+                self.codes[i].cal_b_s.next = self.fit[j].b_sin.val();
+                self.codes[i].cal_b_c.next = self.fit[j].b_cos.val();
+                self.codes[i].cal_g_s.next = self.fit[j].g_sin.val();
+                self.codes[i].cal_g_c.next = self.fit[j].g_cos.val();
+                self.codes[i].cal_k_mag.next = self.fit[j].k_mag.val();
+                self.codes[i].cal_k_neg.next = self.fit[j].k_neg.val();
+            }
+            self.b_s.next = self.codes[i].b_s.val();
+            self.b_c.next = self.codes[i].b_c.val();
+            self.g_s.next = self.codes[i].g_s.val();
+            self.g_c.next = self.codes[i].g_c.val();
+            self.w_off_s[i].next = self.codes[i].w_off_s.val();
+            self.w_off_c[i].next = self.codes[i].w_off_c.val();
+            self.w_gain_s[i].next = self.codes[i].w_gain_s.val();
+            self.w_gain_c[i].next = self.codes[i].w_gain_c.val();
+            self.w_phase[i].next = self.codes[i].w_phase.val();
         }
         // Stage 1: sign-extend, subtract the offset, split into sign and magnitude.
         self.xs_s.next = bit_cast::<32, 16>(self.in_sin.val()) & self.amask.val();
@@ -405,6 +480,10 @@ impl Logic for Correction {
                 self.ph[i].k_mag.next = self.fit[j].k_mag_d.val();
                 self.ph[i].k_neg.next = self.fit[j].k_neg_d.val();
             }
+            for j in 0..self.codes.len() {
+                self.ph[i].k_mag.next = self.codes[j].k_mag_d.val();
+                self.ph[i].k_neg.next = self.codes[j].k_neg_d.val();
+            }
             self.out_valid.next = self.ph[i].out_valid.val();
             self.out_sin.next = self.ph[i].out_sin.val();
             self.out_cos.next = self.ph[i].out_cos.val();
@@ -420,15 +499,23 @@ impl crate::cosim::step::Clocked for Correction {
 
 impl crate::cosim::CosimBlock for Correction {
     fn input_ports(&self) -> Vec<Port> {
-        vec![
+        let mut v = vec![
             Port::new("rst", 1),
             Port::new("in_valid", 1),
             Port::new("in_sin", 16),
             Port::new("in_cos", 16),
-        ]
+        ];
+        if !self.codes.is_empty() {
+            v.extend([
+                Port::new("ld_0", 8),
+                Port::new("ld_bits_0", 32),
+                Port::new("ld_msk_0", 32),
+            ]);
+        }
+        v
     }
     fn output_ports(&self) -> Vec<Port> {
-        vec![
+        let mut v = vec![
             Port::new("out_valid", 1),
             Port::new("out_sin", 16),
             Port::new("out_cos", 16),
@@ -437,16 +524,31 @@ impl crate::cosim::CosimBlock for Correction {
             Port::new("gain_sin", 16),
             Port::new("gain_cos", 16),
             Port::new("cal_update", 1),
-        ]
+        ];
+        if !self.codes.is_empty() {
+            v.extend([
+                Port::new("w_off_s_0", 32),
+                Port::new("w_off_c_0", 32),
+                Port::new("w_gain_s_0", 32),
+                Port::new("w_gain_c_0", 32),
+                Port::new("w_phase_0", 32),
+            ]);
+        }
+        v
     }
     fn apply(&mut self, r: &[u64]) {
         self.rst.next = r[0] != 0;
         self.in_valid.next = r[1] != 0;
         self.in_sin.next = Bits::<16>::from(r[2] & 0xffff);
         self.in_cos.next = Bits::<16>::from(r[3] & 0xffff);
+        for i in 0..self.ld.len() {
+            self.ld[i].next = Bits::<8>::from(r[4] & 0xff);
+            self.ld_bits[i].next = Bits::<32>::from(r[5] & 0xffff_ffff);
+            self.ld_msk[i].next = Bits::<32>::from(r[6] & 0xffff_ffff);
+        }
     }
     fn sample(&self) -> Vec<u64> {
-        vec![
+        let mut v = vec![
             self.out_valid.val() as u64,
             self.out_sin.val().to_u64(),
             self.out_cos.val().to_u64(),
@@ -455,6 +557,21 @@ impl crate::cosim::CosimBlock for Correction {
             self.gain_sin.val().to_u64(),
             self.gain_cos.val().to_u64(),
             self.cal_update.val() as u64,
-        ]
+        ];
+        for i in 0..self.w_off_s.len() {
+            v.extend([
+                self.w_off_s[i].val().to_u64(),
+                self.w_off_c[i].val().to_u64(),
+                self.w_gain_s[i].val().to_u64(),
+                self.w_gain_c[i].val().to_u64(),
+                self.w_phase[i].val().to_u64(),
+            ]);
+        }
+        v
     }
+}
+
+/// `n` default signals (the ports of optional logic: one element or none).
+fn ports<T: Default>(n: usize) -> Vec<T> {
+    (0..n).map(|_| T::default()).collect()
 }

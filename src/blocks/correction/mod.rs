@@ -167,6 +167,7 @@
 //! * Reset (synchronous, active high) restores the configured offsets and gains (they are
 //!   also the power-up values) and restarts the tracker; it aborts a division.
 pub mod autocal;
+pub mod codes;
 pub mod fit;
 pub mod fit_hdl;
 pub mod fit_solve;
@@ -247,6 +248,10 @@ pub struct CorrectionParams {
     /// no phase correction and no phase hardware (omitted from the parameter listing).
     #[serde(skip_serializing_if = "is_zero")]
     cross: i32,
+    /// Offsets, gains and the cross code are run-time registers the register map reads and
+    /// writes ([`codes`]); omitted from the listing when off.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    writable: bool,
 }
 
 fn is_zero(v: &i32) -> bool {
@@ -322,6 +327,7 @@ impl CorrectionParams {
             auto: None,
             fit: None,
             cross: 0,
+            writable: false,
         })
     }
 
@@ -432,16 +438,54 @@ impl CorrectionParams {
         self.cross
     }
 
-    /// The phase stage is built (k != 0, or the ellipse fit, whose k changes).
+    /// Makes the offsets, gains and cross code run-time registers ([`codes::CodeRegs`]) that
+    /// the register map reads and writes: written values in static mode, start values in
+    /// modes `auto` and `peak` (the calibration's next update replaces them). Static mode
+    /// then builds the phase stage with a run-time k (whatever `phase_deg` is), so k can be
+    /// written; mode `peak` has no phase stage and keeps k = 0.
+    pub fn with_writable(self) -> Self {
+        Self {
+            writable: true,
+            ..self
+        }
+    }
+
+    /// The codes are registers of [`codes::CodeRegs`] (see [`Self::with_writable`]).
+    pub fn writable(&self) -> bool {
+        self.writable
+    }
+
+    /// The cross code k is a run-time value (the fit's, or a writable register), not a
+    /// constant of the phase stage.
+    pub fn dynamic_cross(&self) -> bool {
+        self.fit.is_some() || (self.writable && self.auto.is_none())
+    }
+
+    /// The phase stage is built (k != 0, or a run-time k: the ellipse fit's, or a
+    /// writable one).
     pub fn has_phase(&self) -> bool {
-        self.cross != 0 || self.fit.is_some()
+        self.cross != 0 || self.dynamic_cross()
     }
 
     /// The codes are run-time values: the calibration (modes `auto` and `peak`) loads the
-    /// gains and the fit also the cross code, so every product is a run-time tree
+    /// gains and the fit also the cross code, or the register map writes them
+    /// ([`Self::with_writable`]), so every product is a run-time tree
     /// ([`multree::MulTree::run_time`]).
     pub fn run_time_codes(&self) -> bool {
-        self.auto.is_some() || self.fit.is_some()
+        self.auto.is_some() || self.fit.is_some() || self.writable
+    }
+
+    /// The five words of the writable codes after reset, in [`codes::WORDS`] order: the
+    /// configured offsets (sign-extended), gains and cross code (sign and magnitude).
+    pub fn reset_words(&self) -> [u32; codes::WORDS.len()] {
+        let k = if self.auto.is_some() { 0 } else { self.cross };
+        [
+            self.offset[SIN] as u32,
+            self.offset[COS] as u32,
+            self.gain[SIN],
+            self.gain[COS],
+            codes::phase_word(k),
+        ]
     }
 
     /// The products are shift-add trees ([`multree::MulTree`]) instead of multipliers: in

@@ -1,5 +1,6 @@
 //! Bit-accurate model of the front-end correction and its automatic calibration: the RTL's
 //! registers, all next values computed from the current ones, then committed.
+use super::codes::CodesModel;
 use super::{CorrectionParams, COS, SIN};
 use crate::blocks::{mask, sext};
 
@@ -14,6 +15,12 @@ pub struct CorrectionIn {
     pub sin: i32,
     /// Cosine word.
     pub cos: i32,
+    /// Writable codes: one-hot load of the words of [`super::codes::WORDS`].
+    pub ld: u8,
+    /// Writable codes: the written bits (masked).
+    pub ld_bits: u32,
+    /// Writable codes: the bits written.
+    pub ld_msk: u32,
 }
 
 impl CorrectionIn {
@@ -25,6 +32,12 @@ impl CorrectionIn {
             self.sin as u64 & 0xffff,
             self.cos as u64 & 0xffff,
         ]
+    }
+    /// [`Self::row`] with the load port after it (a block with writable codes).
+    pub fn row_writable(&self) -> Vec<u64> {
+        let mut r = self.row();
+        r.extend([self.ld as u64, self.ld_bits as u64, self.ld_msk as u64]);
+        r
     }
 }
 
@@ -43,13 +56,15 @@ pub struct CorrectionOut {
     pub gain: [u64; 2],
     /// New calibration values applied this clock.
     pub cal_update: bool,
+    /// Writable codes: the words the register map reads ([`super::codes::WORDS`]).
+    pub words: Option<[u32; 5]>,
 }
 
 impl CorrectionOut {
     /// Trace row in output-port order, for A-bit samples.
     pub fn row(&self, a: u32) -> Vec<u64> {
         let m = mask(a);
-        vec![
+        let mut r = vec![
             self.valid as u64,
             self.sin as u64 & m,
             self.cos as u64 & m,
@@ -58,7 +73,11 @@ impl CorrectionOut {
             self.gain[SIN],
             self.gain[COS],
             self.cal_update as u64,
-        ]
+        ];
+        if let Some(w) = self.words {
+            r.extend(w.map(u64::from));
+        }
+        r
     }
 }
 
@@ -145,6 +164,11 @@ struct Pipe {
     sg1: [bool; 2],
     m1: [u64; 2],
     g1: [u64; 2],
+    /// The cross code in use with the stage-1 sample (a run-time k: [`CodeRegs`]'s delayed
+    /// copy).
+    ///
+    /// [`CodeRegs`]: super::codes::CodeRegs
+    k1: i64,
     u1: [u64; 2],
     v2: bool,
     sg2: [bool; 2],
@@ -184,6 +208,7 @@ struct S1 {
     sg: [bool; 2],
     m: [u64; 2],
     g: [u64; 2],
+    k: i64,
 }
 
 /// Model of [`super::hdl::Correction`].
@@ -192,6 +217,8 @@ pub struct CorrectionModel {
     p: CorrectionParams,
     pipe: Pipe,
     cal: Option<Cal>,
+    /// The writable codes ([`super::codes::CodeRegs`]), if any.
+    codes: Option<CodesModel>,
 }
 
 impl CorrectionModel {
@@ -227,12 +254,21 @@ impl CorrectionModel {
             p: *p,
             pipe: Pipe::default(),
             cal,
+            codes: p.writable().then(|| CodesModel::new(p)),
         }
     }
 
     /// Offsets (A-bit raw) and gains in use now.
     fn in_use(&self) -> ([u64; 2], [u64; 2], bool) {
         let a = self.p.adc_width();
+        if let Some(c) = &self.codes {
+            let upd = self.cal.as_ref().is_some_and(|c| c.upd);
+            return (
+                c.b.map(|b| b as u64 & mask(a)),
+                c.g.map(u64::from),
+                upd,
+            );
+        }
         match &self.cal {
             Some(c) => (c.b, c.g, c.upd),
             None => (
@@ -261,6 +297,7 @@ impl CorrectionModel {
             offset: [sext(b[SIN], a), sext(b[COS], a)],
             gain: g,
             cal_update: upd,
+            words: self.codes.map(|c| c.words()),
         }
     }
 
@@ -282,6 +319,7 @@ impl CorrectionModel {
             n.sg1[c] = neg;
             n.m1[c] = md & am;
             n.g1[c] = g[c];
+            n.k1 = self.codes.map_or(self.p.cross(), |c| c.k) as i64;
             n.u1[c] = raw[c] ^ (1 << (a - 1));
         }
         n.v1 = i.valid && !i.rst;
@@ -292,6 +330,7 @@ impl CorrectionModel {
             sg: old.sg1,
             m: old.m1,
             g: old.g1,
+            k: old.k1,
         };
         let s1 = if self.p.shift_add() {
             n.tree[0] = S1 {
@@ -331,7 +370,7 @@ impl CorrectionModel {
             n.o3[c] = o & 0xffff;
         }
         // Phase stage (built only when k != 0; computed always, it is not observed otherwise).
-        let k = self.p.cross();
+        let k = s1.k;
         let sh = self.p.phase_shift();
         n.pc2 = (s1.m[COS] * s1.g[COS]) >> sh;
         n.q2 = (s1.m[SIN] * k.unsigned_abs() as u64) >> sh;
@@ -360,9 +399,18 @@ impl CorrectionModel {
         n.o5[SIN] = old.o4[SIN];
         n.v5 = old.v4 && !i.rst;
         n.v4 = old.v3 && !i.rst;
-        // Calibration (sees the old stage-1 registers).
+        // Calibration (sees the old stage-1 registers), then the writable codes (see the
+        // calibration's outputs before this edge).
+        let cal_out = self
+            .cal
+            .as_ref()
+            .filter(|c| c.upd)
+            .map(|c| (c.b, c.g, 0));
         if let Some(cal) = self.cal.as_mut() {
             cal_step(cal, &self.p, &old, i.rst);
+        }
+        if let Some(c) = self.codes.as_mut() {
+            c.step(&self.p, i.rst, i.ld, i.ld_bits, i.ld_msk, cal_out);
         }
         self.pipe = n;
         self.outputs()

@@ -189,7 +189,7 @@ impl PhaseCos {
             o: Default::default(),
             kmag0: Constant::new(Bits::<16>::from(p.cross().unsigned_abs() as u64 & 0xffff)),
             kneg0: Constant::new(p.cross() < 0),
-            kdyn: Constant::new(p.fit().is_some()),
+            kdyn: Constant::new(p.dynamic_cross()),
             km: Default::default(),
             kn: Default::default(),
             pshift: c32(s as u64),

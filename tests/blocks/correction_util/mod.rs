@@ -23,7 +23,16 @@ pub fn run(
     ins: &[CorrectionIn],
     sims: Simulators,
 ) -> Vec<Vec<u64>> {
-    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row()).collect();
+    let rows: Vec<Vec<u64>> = ins
+        .iter()
+        .map(|i| {
+            if p.writable() {
+                i.row_writable()
+            } else {
+                i.row()
+            }
+        })
+        .collect();
     let mut m = CorrectionModel::new(p);
     let model: Vec<Vec<u64>> = ins.iter().map(|i| m.step(*i).row(p.adc_width())).collect();
     check(Correction::new(p), tag, &rows, &model, sims)
@@ -35,6 +44,7 @@ pub fn sample(sin: i64, cos: i64) -> CorrectionIn {
         valid: true,
         sin: sin as i32,
         cos: cos as i32,
+        ..CorrectionIn::default()
     }
 }
 
