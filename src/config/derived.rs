@@ -119,7 +119,12 @@ impl Derived {
             Some(k) => Some(cap_params(c, k, rate, &err)?),
             None => None,
         };
-        let correction = correction_params(c, rate, &err)?;
+        let mut correction = correction_params(c, rate, &err)?;
+        // The register map reads and writes the correction's codes: they become run-time
+        // registers, which sets the correction's latency (so before anything derives it).
+        if c.registers.enabled {
+            correction = correction.with_writable();
+        }
         // Clocks from a conversion start to the core's out_valid of its sample (the top's
         // `conv_to_position_cycles` without the reference's own stage).
         let to_core = adc.conv_to_valid_clocks() + correction.latency_cycles() + latency_cycles;

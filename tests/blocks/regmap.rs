@@ -232,9 +232,13 @@ fn values(flags: u64) -> RegIn {
         cap_turns: mask(12),
         cap_velocity: 2_000_000,
         cap_age: 250,
+        cor: COR.map(u64::from),
         ..Default::default()
     }
 }
+
+/// The correction's codes the map reads: offsets -5 and 12, gains 0x4000 and 0x4100, k = -77.
+const COR: [u32; 5] = [-5i32 as u32, 12, 0x4000, 0x4100, 77 | 1 << 16];
 
 /// What register `name` reads with the decoder's [`values`] and live flags `live`, written
 /// from the table (TURNS and VELOCITY as latched by a POSITION read of those values).
@@ -259,6 +263,11 @@ fn want(name: &str, live: u64) -> u32 {
         "LOS_THRESHOLD" => THRESHOLDS[0],
         "LOS_RELEASE" => THRESHOLDS[1],
         "CLIP_THRESHOLD" => THRESHOLDS[2],
+        "OFFSET_SIN" => -5i32 as u32,
+        "OFFSET_COS" => 12,
+        "GAIN_SIN" => 0x4000,
+        "GAIN_COS" => 0x4100,
+        "PHASE" => 77 | 1 << 16,
         other => panic!("no expectation for {other}"),
     }
 }
@@ -372,6 +381,34 @@ fn preset_pulses_once_per_write_and_position_latches_turns_and_velocity() {
     assert_eq!(rs[3], 9, "TURNS as of the second POSITION read");
 }
 
+/// A write to a correction code leaves on the load port once, two clocks after its
+/// handshake: the code's bit, the bits under the strobes and the strobes as a mask; other
+/// writes load no code.
+#[test]
+fn code_writes_go_to_the_correction_load_port() {
+    let p = params();
+    let ops = [
+        Op::Write(0x48, 0xdead_beef, 0b1111),
+        Op::Write(0x54, 0x1234_5678, 0b0010),
+        Op::Write(0x58, 0x0001_0042, 0b0101),
+        Op::Write(0x3c, 77, 0b1111),
+    ];
+    let (_, outs, _) = drive(&p, &ops, 0.3, 12, false, |_| values(0));
+    let loads: Vec<(u64, u64, u64)> = outs
+        .iter()
+        .filter(|o| o.cor_ld != 0)
+        .map(|o| (o.cor_ld, o.cor_bits, o.cor_msk))
+        .collect();
+    assert_eq!(
+        loads,
+        vec![
+            (0b00001, 0xdead_beef, 0xffff_ffff),
+            (0b01000, 0x0000_5600, 0x0000_ff00),
+            (0b10000, 0x0001_0042, 0x00ff_00ff),
+        ]
+    );
+}
+
 #[test]
 fn a_write_and_a_read_in_the_same_clock_both_proceed() {
     let p = params();
@@ -393,7 +430,7 @@ fn four_way_cosimulation() {
     let mut r = SplitMix64(9);
     let mut ops = vec![];
     for _ in 0..300 {
-        let a = (r.range(0, 17) * 4) as u64;
+        let a = (r.range(0, REGISTERS.len() as i64) * 4) as u64;
         if r.unit() < 0.5 {
             ops.push(Op::Read(a));
         } else {
@@ -469,7 +506,7 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
             plan.push((r.address as u64 + lane, 8, false, None));
         }
     }
-    for a in [0x48u64, 0x7c, 0xfc, 0x100, 0x103] {
+    for a in [0x5cu64, 0x7c, 0xfc, 0x100, 0x103] {
         plan.push((a, 8, false, None));
     }
     // STATUS has LOS and OVERSPEED from the faults of clocks 2..6: clear LOS by byte 0.
@@ -480,6 +517,8 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
     // LOS_THRESHOLD's byte 1 written alone, then read back.
     plan.push((0x3d, 8, false, Some(0x12)));
     plan.push((0x3d, 8, false, None));
+    // GAIN_SIN's byte 1: a load of the correction's code.
+    plan.push((0x51, 8, false, Some(0x7f)));
     let mut at = vec![];
     let mut k = 2;
     for &(a, hold, _, _) in &plan {
@@ -550,6 +589,12 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
         t as u64,
         "the other bytes kept"
     );
+    let loads: Vec<(u64, u64, u64)> = outs
+        .iter()
+        .filter(|o| o.cor_ld != 0)
+        .map(|o| (o.cor_ld, o.cor_bits, o.cor_msk))
+        .collect();
+    assert_eq!(loads, vec![(0b100, 0x7f00, 0xff00)], "GAIN_SIN byte 1 loads");
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_with_bus()).collect();
     let dir = common::workdir("regmap_biss_port");
     let t = block_traces(
@@ -595,9 +640,11 @@ fn synthesizes_for_both_families() {
         x.luts, x.ffs, c.luts, c.ffs
     );
     // Registers Yosys keeps: the write holders (6 address bits, the 32 data bits the
-    // thresholds take, 4 strobes), the channel flags, the one-hot read select (18), the
+    // thresholds take, 4 strobes), the channel flags, the one-hot read select (18; 23 with
+    // the codes), the
     // read data (32), STATUS (7), the amplitude (32), the TURNS shadow (12: its sign extension
     // is one flip-flop), the VELOCITY shadow (32), the preset pulse and the three
-    // thresholds (96): about 275.
-    assert!(x.ffs > 240 && x.ffs < 320, "{} FF", x.ffs);
+    // thresholds (96): about 275; with the correction codes' write on its way (5 load bits,
+    // 32 data and 32 mask bits) and 5 more select bits: about 355.
+    assert!(x.ffs > 320 && x.ffs < 400, "{} FF", x.ffs);
 }

@@ -60,11 +60,14 @@ pub fn params(c: &Config, d: &crate::config::Derived, err: &ErrFn) -> Result<Opt
         let m = &d.monitor;
         // Each fits the magnitude's W <= 32 bits (MonitorParams checks it).
         let t = |v: u64| v.min(u32::MAX as u64) as u32;
-        Some(p.with_thresholds([
-            t(m.los_threshold()),
-            t(m.los_release()),
-            t(m.clip_threshold()),
-        ]))
+        Some(
+            p.with_thresholds([
+                t(m.los_threshold()),
+                t(m.los_release()),
+                t(m.clip_threshold()),
+            ])
+            .with_codes(d.correction.reset_words()),
+        )
     })
     .map_err(|e| err("registers", "enabled", e.detail()))
 }
@@ -73,12 +76,19 @@ pub fn params(c: &Config, d: &crate::config::Derived, err: &ErrFn) -> Result<Opt
 fn describe(p: &RegmapParams) -> String {
     let names: Vec<&str> = REGISTERS.iter().map(|r| r.name).collect();
     let [los, rel, clip] = p.thresholds();
+    let c = p.codes();
     let mut s = format!(
         "registers                   AXI4-Lite slave s_axi_* ({ADDR_BITS}-bit byte addresses, 32-bit data): {} registers from 0x00 to 0x{:02x}: {}\n\
-         register thresholds         LOS_THRESHOLD {los}, LOS_RELEASE {rel}, CLIP_THRESHOLD {clip} after reset (monitor units)\n",
+         register thresholds         LOS_THRESHOLD {los}, LOS_RELEASE {rel}, CLIP_THRESHOLD {clip} after reset (monitor units)\n\
+         register correction codes   OFFSET_SIN {}, OFFSET_COS {}, GAIN_SIN {}, GAIN_COS {}, PHASE k = {} after reset (run-time codes: written in static mode, start values in auto and peak)\n",
         REGISTERS.len(),
         REGISTERS.last().map_or(0, |r| r.address),
-        names.join(", ")
+        names.join(", "),
+        c[0] as i32,
+        c[1] as i32,
+        c[2],
+        c[3],
+        crate::blocks::correction::codes::phase_of(c[4]),
     );
     if p.biss_port() {
         s.push_str(&format!(

@@ -7,7 +7,7 @@
 //! register or one gate of registers.
 use super::{
     flag_bit, RegmapParams, ADDR_BITS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD, REGISTERS,
-    STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
+    STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION, CODE_WORDS,
 };
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
@@ -94,6 +94,24 @@ pub struct RegisterMap {
     pub los_release: Signal<Out, Bits<32>>,
     /// See `los_threshold`.
     pub clip_threshold: Signal<Out, Bits<32>>,
+    /// The correction's codes in use (OFFSET_SIN, OFFSET_COS, GAIN_SIN, GAIN_COS, PHASE as
+    /// they read).
+    pub cor_off_s: Signal<In, Bits<32>>,
+    /// See `cor_off_s`.
+    pub cor_off_c: Signal<In, Bits<32>>,
+    /// See `cor_off_s`.
+    pub cor_gain_s: Signal<In, Bits<32>>,
+    /// See `cor_off_s`.
+    pub cor_gain_c: Signal<In, Bits<32>>,
+    /// See `cor_off_s`.
+    pub cor_phase: Signal<In, Bits<32>>,
+    /// One clock: bit w loads the correction's code w (`CODE_WORDS` order), a clock after
+    /// the write acted here.
+    pub cor_ld: Signal<Out, Bits<8>>,
+    /// The written bits, with `cor_ld`.
+    pub cor_bits: Signal<Out, Bits<32>>,
+    /// The bits written (byte strobes as a mask), with `cor_ld`.
+    pub cor_msk: Signal<Out, Bits<32>>,
     /// The BiSS control channel's byte port (used with [`RegmapParams::biss_port`], else
     /// ignored and 0): the byte address in the map (bank * 64 + channel address). Plain
     /// ports, not `Vec`s: rust-hdl names a port of a `Vec` element of a `Vec` wrongly.
@@ -171,6 +189,21 @@ pub struct RegisterMap {
     wq_sel: DFF<Bits<32>>,
     wq_bits: DFF<Bits<32>>,
     wq_msk: DFF<Bits<32>>,
+    /// A write to a correction code, registered on its way to the correction (the path from
+    /// the write registers to the correction's code registers).
+    cq_ld: DFF<Bits<8>>,
+    cq_bits: DFF<Bits<32>>,
+    cq_msk: DFF<Bits<32>>,
+    /// Word index of OFFSET_SIN, the first code (their load bits are `wq_sel`'s from it).
+    w_code0: Constant<Bits<32>>,
+    /// The five codes' load bits.
+    codes5: Constant<Bits<32>>,
+    /// Word indices of the codes, for the read select.
+    w_cbs: Constant<Bits<32>>,
+    w_cbc: Constant<Bits<32>>,
+    w_cgs: Constant<Bits<32>>,
+    w_cgc: Constant<Bits<32>>,
+    w_ck: Constant<Bits<32>>,
     rmux: Signal<Local, Bits<32>>,
     bits: Signal<Local, Bits<32>>,
     smask: Signal<Local, Bits<32>>,
@@ -392,6 +425,24 @@ impl RegisterMap {
             w_tlos: wc(THRESHOLD_WORDS[0]),
             w_trel: wc(THRESHOLD_WORDS[1]),
             w_tclip: wc(THRESHOLD_WORDS[2]),
+            w_code0: wc(CODE_WORDS[0]),
+            codes5: c32(0x1f),
+            w_cbs: wc(CODE_WORDS[0]),
+            w_cbc: wc(CODE_WORDS[1]),
+            w_cgs: wc(CODE_WORDS[2]),
+            w_cgc: wc(CODE_WORDS[3]),
+            w_ck: wc(CODE_WORDS[4]),
+            cor_off_s: Default::default(),
+            cor_off_c: Default::default(),
+            cor_gain_s: Default::default(),
+            cor_gain_c: Default::default(),
+            cor_phase: Default::default(),
+            cor_ld: Default::default(),
+            cor_bits: Default::default(),
+            cor_msk: Default::default(),
+            cq_ld: Default::default(),
+            cq_bits: Default::default(),
+            cq_msk: Default::default(),
             t0_los: c32(p.thresholds()[0] as u64),
             t0_rel: c32(p.thresholds()[1] as u64),
             t0_clip: c32(p.thresholds()[2] as u64),
@@ -434,7 +485,7 @@ impl Logic for RegisterMap {
             self, clk, aw_full, aw_sel, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
             rdata, status, amp, sh_turns, sh_vel, pre, bsel, blane, b_word, b_wlane, b_rdata, bpos,
             btur, bvel, bw_full, bw_addr, bw_sel, bw_data, thr_los, thr_rel, thr_clip, wq_en,
-            wq_sel, wq_bits, wq_msk
+            wq_sel, wq_bits, wq_msk, cq_ld, cq_bits, cq_msk
         );
         // The words each register reads, from the live inputs.
         self.live.next = (self.flags.val() & self.flmask.val()) | self.refd.val();
@@ -533,7 +584,17 @@ impl Logic for RegisterMap {
         self.wq_msk.d.next = self.wmsk.val();
         self.clear.next = self.zero.val();
         self.pre.d.next = false;
+        self.cq_ld.d.next = bit_cast::<8, 32>(self.zero.val());
+        self.cq_bits.d.next = self.zero.val();
+        self.cq_msk.d.next = self.zero.val();
         if self.wq_en.q.val() {
+            // The correction's codes live in the correction: a write goes there (its bits
+            // and mask pass for every write; the load bits select a code).
+            self.cq_ld.d.next = bit_cast::<8, 32>(
+                (self.wq_sel.q.val() >> self.w_code0.val()) & self.codes5.val(),
+            );
+            self.cq_bits.d.next = self.wq_bits.q.val();
+            self.cq_msk.d.next = self.wq_msk.q.val();
             if (self.wq_sel.q.val() & (self.one.val() << self.w_status.val())).any() {
                 self.clear.next = self.wq_bits.q.val();
             }
@@ -636,6 +697,21 @@ impl Logic for RegisterMap {
         if (self.rsel.val() & (self.one.val() << self.w_tclip.val())).any() {
             self.rmux.next = self.rmux.val() | self.thr_clip.q.val();
         }
+        if (self.rsel.val() & (self.one.val() << self.w_cbs.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cor_off_s.val();
+        }
+        if (self.rsel.val() & (self.one.val() << self.w_cbc.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cor_off_c.val();
+        }
+        if (self.rsel.val() & (self.one.val() << self.w_cgs.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cor_gain_s.val();
+        }
+        if (self.rsel.val() & (self.one.val() << self.w_cgc.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cor_gain_c.val();
+        }
+        if (self.rsel.val() & (self.one.val() << self.w_ck.val())).any() {
+            self.rmux.next = self.rmux.val() | self.cor_phase.val();
+        }
         if self.ar_full.q.val() {
             self.rdata.d.next = self.rmux.val();
             if (self.ar_sel.q.val() & (self.one.val() << self.w_position.val())).any() {
@@ -702,6 +778,9 @@ impl Logic for RegisterMap {
             self.bw_sel.d.next = 0.into();
             self.bw_data.d.next = 0.into();
             self.wq_en.d.next = false;
+            self.cq_ld.d.next = 0.into();
+            self.cq_bits.d.next = 0.into();
+            self.cq_msk.d.next = 0.into();
             self.thr_los.d.next = self.t0_los.val();
             self.thr_rel.d.next = self.t0_rel.val();
             self.thr_clip.d.next = self.t0_clip.val();
@@ -718,6 +797,9 @@ impl Logic for RegisterMap {
         self.s_axi_rresp.next = self.zero.val();
         self.s_axi_rvalid.next = self.rvalid.q.val();
         self.preset.next = self.pre.q.val();
+        self.cor_ld.next = self.cq_ld.q.val();
+        self.cor_bits.next = self.cq_bits.q.val();
+        self.cor_msk.next = self.cq_msk.q.val();
     }
 }
 
@@ -748,6 +830,11 @@ impl crate::cosim::CosimBlock for RegisterMap {
             Port::new("cap_turns", 32),
             Port::new("cap_velocity", 64),
             Port::new("cap_age", 32),
+            Port::new("cor_off_s", 32),
+            Port::new("cor_off_c", 32),
+            Port::new("cor_gain_s", 32),
+            Port::new("cor_gain_c", 32),
+            Port::new("cor_phase", 32),
         ]
         .into_iter()
         .chain(self.bus.iter().flat_map(|_| {
@@ -774,6 +861,9 @@ impl crate::cosim::CosimBlock for RegisterMap {
             Port::new("los_threshold", 32),
             Port::new("los_release", 32),
             Port::new("clip_threshold", 32),
+            Port::new("cor_ld", 8),
+            Port::new("cor_bits", 32),
+            Port::new("cor_msk", 32),
         ]
         .into_iter()
         .chain(self.bus.iter().map(|_| Port::new("bus_rdata", 8)))
@@ -805,11 +895,16 @@ impl crate::cosim::CosimBlock for RegisterMap {
         self.cap_turns.next = b32(r[21]);
         self.cap_velocity.next = Bits::<64>::from(r[22]);
         self.cap_age.next = b32(r[23]);
+        self.cor_off_s.next = b32(r[24]);
+        self.cor_off_c.next = b32(r[25]);
+        self.cor_gain_s.next = b32(r[26]);
+        self.cor_gain_c.next = b32(r[27]);
+        self.cor_phase.next = b32(r[28]);
         if !self.bus.is_empty() {
-            self.bus_addr.next = b32(r[24]);
-            self.bus_we.next = r[25] != 0;
-            self.bus_wdata.next = Bits::<8>::from(r[26] & 0xff);
-            self.bus_snap.next = r[27] != 0;
+            self.bus_addr.next = b32(r[29]);
+            self.bus_we.next = r[30] != 0;
+            self.bus_wdata.next = Bits::<8>::from(r[31] & 0xff);
+            self.bus_snap.next = r[32] != 0;
         }
     }
     fn sample(&self) -> Vec<u64> {
@@ -826,6 +921,9 @@ impl crate::cosim::CosimBlock for RegisterMap {
             self.los_threshold.val().to_u64(),
             self.los_release.val().to_u64(),
             self.clip_threshold.val().to_u64(),
+            self.cor_ld.val().to_u64(),
+            self.cor_bits.val().to_u64(),
+            self.cor_msk.val().to_u64(),
         ]
         .into_iter()
         .chain(self.bus.iter().map(|_| self.bus_rdata.val().to_u64()))

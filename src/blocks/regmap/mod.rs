@@ -429,7 +429,81 @@ pub const REGISTERS: &[RegDef] = &[
         description: "clipping: a magnitude above it clips (reset: the configured clipping threshold)",
         fields: &whole("CLIP_THRESHOLD", "magnitude units, the low W bits used"),
     },
+    RegDef {
+        name: "OFFSET_SIN",
+        address: 0x48,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "sine offset b in use, LSB, sign-extended: written in static mode, a start value in modes auto and peak (the calibration's next update replaces it); reset: the configured offset",
+        fields: &whole("OFFSET_SIN", "signed LSB; a write keeps the low A bits as an A-bit signed number"),
+    },
+    RegDef {
+        name: "OFFSET_COS",
+        address: 0x4c,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "cosine offset b in use, as OFFSET_SIN",
+        fields: &whole("OFFSET_COS", "signed LSB; a write keeps the low A bits as an A-bit signed number"),
+    },
+    RegDef {
+        name: "GAIN_SIN",
+        address: 0x50,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "sine gain code g in use: x' = g (x - b) / 2^GF; written, start value and reset as OFFSET_SIN",
+        fields: &[Field {
+            name: "GAIN_SIN",
+            lsb: 0,
+            width: 16,
+            description: "UQ(16-GF).GF",
+        }],
+    },
+    RegDef {
+        name: "GAIN_COS",
+        address: 0x54,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "cosine gain code g_c in use (with phase correction it carries 1 / cos(phase)); as GAIN_SIN",
+        fields: &[Field {
+            name: "GAIN_COS",
+            lsb: 0,
+            width: 16,
+            description: "UQ(16-GF).GF",
+        }],
+    },
+    RegDef {
+        name: "PHASE",
+        address: 0x58,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "cross code k in use: x_c' = (g_c d_c + k d_s) / 2^GF, k = 2^GF g_s tan(phase), sign and magnitude; the fit's in mode auto; 0 in mode peak (writes ignored)",
+        fields: &[
+            Field {
+                name: "K_MAG",
+                lsb: 0,
+                width: 16,
+                description: "|k|, UQ(16-GF).GF",
+            },
+            Field {
+                name: "K_NEG",
+                lsb: 16,
+                width: 1,
+                description: "k < 0",
+            },
+        ],
+    },
 ];
+
+/// Word indices of the correction's codes (OFFSET_SIN, OFFSET_COS, GAIN_SIN, GAIN_COS,
+/// PHASE, in [`crate::blocks::correction::codes::WORDS`] order): live values of the
+/// correction, written through its load port; their reset values are the config's
+/// ([`RegmapParams::reset`]).
+pub const CODE_WORDS: [u32; 5] = [18, 19, 20, 21, 22];
 
 /// Word indices of the run-time monitor thresholds (LOS_THRESHOLD, LOS_RELEASE,
 /// CLIP_THRESHOLD), whose reset values are the config's ([`RegmapParams::reset`]).
@@ -462,6 +536,7 @@ pub struct RegmapParams {
     referenced_always: bool,
     biss_port: bool,
     thresholds: [u32; 3],
+    codes: [u32; 5],
 }
 
 impl RegmapParams {
@@ -489,6 +564,7 @@ impl RegmapParams {
             referenced_always,
             biss_port: false,
             thresholds: [0; 3],
+            codes: [0; 5],
         })
     }
     /// With the monitor's configured loss-of-signal threshold, release level and clipping
@@ -501,11 +577,24 @@ impl RegmapParams {
     pub fn thresholds(&self) -> [u32; 3] {
         self.thresholds
     }
-    /// The value register `r` holds after reset: the table's, or a configured threshold.
+    /// With the correction's configured codes (`CorrectionParams::reset_words`): the reset
+    /// values of OFFSET_SIN, OFFSET_COS, GAIN_SIN, GAIN_COS and PHASE.
+    pub fn with_codes(mut self, codes: [u32; 5]) -> Self {
+        self.codes = codes;
+        self
+    }
+    /// The configured codes (see [`Self::with_codes`]).
+    pub fn codes(&self) -> [u32; 5] {
+        self.codes
+    }
+    /// The value register `r` holds after reset: the table's, or a configured threshold
+    /// or code.
     pub fn reset(&self, r: &RegDef) -> u32 {
-        match THRESHOLD_WORDS.iter().position(|&w| w * 4 == r.address) {
-            Some(k) => self.thresholds[k],
-            None => r.reset,
+        let at = |words: &[u32]| words.iter().position(|&w| w * 4 == r.address);
+        match (at(&THRESHOLD_WORDS), at(&CODE_WORDS)) {
+            (Some(k), _) => self.thresholds[k],
+            (_, Some(k)) => self.codes[k],
+            _ => r.reset,
         }
     }
     /// With the BiSS control channel's byte port ([`BISS_BANK_BYTES`]-byte banks of the

@@ -2,7 +2,7 @@
 //! clock edge; `step` returns what the outputs show after the edge.
 use super::{
     flag_bit, RegmapParams, ADDR_BITS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD, STATUS_MASK,
-    STATUS_WORD, THRESHOLD_WORDS, VERSION,
+    STATUS_WORD, THRESHOLD_WORDS, VERSION, CODE_WORDS,
 };
 use crate::blocks::mask;
 
@@ -57,6 +57,9 @@ pub struct RegIn {
     pub cap_velocity: u64,
     /// See `cap_qc`.
     pub cap_age: u64,
+    /// The correction's codes in use, as OFFSET_SIN, OFFSET_COS, GAIN_SIN, GAIN_COS and
+    /// PHASE read.
+    pub cor: [u64; 5],
     /// The BiSS control channel's byte port (with [`RegmapParams::biss_port`]): the byte
     /// address in the map (bank * 64 + the channel's address; 256 and above: no register).
     pub bus_addr: u64,
@@ -97,6 +100,11 @@ impl RegIn {
             self.cap_turns & mask(32),
             self.cap_velocity,
             self.cap_age & mask(32),
+            self.cor[0] & mask(32),
+            self.cor[1] & mask(32),
+            self.cor[2] & mask(32),
+            self.cor[3] & mask(32),
+            self.cor[4] & mask(32),
         ]
     }
     /// [`Self::row`] with the BiSS byte port's inputs after it (the port order of a map
@@ -132,6 +140,12 @@ pub struct RegOut {
     pub preset: bool,
     /// LOS_THRESHOLD, LOS_RELEASE, CLIP_THRESHOLD (to the monitor).
     pub thresholds: [u64; 3],
+    /// One clock: bit w loads the correction's code w, with the bits and mask written.
+    pub cor_ld: u64,
+    /// See `cor_ld`.
+    pub cor_bits: u64,
+    /// See `cor_ld`.
+    pub cor_msk: u64,
     /// The BiSS byte port's read data: the byte at the `bus_addr` of three clocks before
     /// (one clock later while an AXI read holds the shared read select).
     pub bus_rdata: u64,
@@ -153,6 +167,9 @@ impl RegOut {
             self.thresholds[0],
             self.thresholds[1],
             self.thresholds[2],
+            self.cor_ld,
+            self.cor_bits,
+            self.cor_msk,
         ]
     }
     /// [`Self::row`] with the BiSS byte port's output after it.
@@ -200,6 +217,8 @@ struct Regs {
     thr: [u64; 3],
     /// The write of the clock before (word, bits, byte mask): it acts now.
     wq: Option<(u64, u64, u64)>,
+    /// A write on its way to the correction: load bits (a code's word only), bits, mask.
+    cq: (u64, u64, u64),
 }
 
 /// The register map, clock by clock.
@@ -275,6 +294,10 @@ impl RegisterModel {
                 let k = THRESHOLD_WORDS.iter().position(|&t| t == w).unwrap_or(0);
                 self.r.thr[k]
             }
+            w if CODE_WORDS.contains(&w) => {
+                let k = CODE_WORDS.iter().position(|&t| t == w).unwrap_or(0);
+                i.cor[k]
+            }
             _ => 0,
         };
         v & mask(32)
@@ -323,7 +346,12 @@ impl RegisterModel {
             n.bw_data = i.bus_wdata & 0xff;
         }
         n.wq = write;
+        // Every write's bits and mask go on to the correction; the load bits select a code.
+        n.cq = o.wq.map_or((0, 0, 0), |(_, bits, m)| (0, bits, m));
         if let Some((w, bits, m)) = o.wq {
+            if let Some(k) = CODE_WORDS.iter().position(|&t| t as u64 == w) {
+                n.cq.0 = 1 << k;
+            }
             match w {
                 w if w == STATUS_WORD as u64 => clear = bits,
                 w if w == PRESET_WORD as u64 => n.preset = bits & 1 == 1,
@@ -395,6 +423,9 @@ impl RegisterModel {
             rvalid: r.rvalid,
             preset: r.preset,
             thresholds: r.thr,
+            cor_ld: r.cq.0,
+            cor_bits: r.cq.1,
+            cor_msk: r.cq.2,
             bus_rdata: r.b_rdata,
         }
     }

@@ -779,6 +779,15 @@ impl Logic for TopRtl {
             self.monitor.thr_los[i].next = self.regs[i].los_threshold.val();
             self.monitor.thr_rel[i].next = self.regs[i].los_release.val();
             self.monitor.thr_clip[i].next = self.regs[i].clip_threshold.val();
+            // The correction's codes: read live, written through its load port.
+            self.regs[i].cor_off_s.next = self.correction.w_off_s[i].val();
+            self.regs[i].cor_off_c.next = self.correction.w_off_c[i].val();
+            self.regs[i].cor_gain_s.next = self.correction.w_gain_s[i].val();
+            self.regs[i].cor_gain_c.next = self.correction.w_gain_c[i].val();
+            self.regs[i].cor_phase.next = self.correction.w_phase[i].val();
+            self.correction.ld[i].next = self.regs[i].cor_ld.val();
+            self.correction.ld_bits[i].next = self.regs[i].cor_bits.val();
+            self.correction.ld_msk[i].next = self.regs[i].cor_msk.val();
             self.regs[i].amp_valid.next = self.core.out_mag_valid.val();
             self.regs[i].amplitude.next = self.core.out_mag.val();
             self.regs[i].qc.next = self.core.out_qc.val();
