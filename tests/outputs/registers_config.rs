@@ -92,14 +92,17 @@ fn the_systemrdl_compiles_and_agrees_with_the_json_and_the_table() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("sd_regs.json")).expect("json"))
             .expect("JSON parses");
-    // Every reset is the table's, but the monitor thresholds' are the config's.
+    // Every reset is the table's, but the monitor thresholds' and the correction codes' are
+    // the config's: the default's offsets 0, gains 1.0 (2^GF) and no phase error.
     let l = sinedec::config::Loaded::parse(&with_registers(), "r.toml").expect("config");
     let m = &l.derived.monitor;
+    let one = 1u64 << l.derived.correction.gain_frac_bits();
     let want_reset = |r: &sinedec::blocks::regmap::RegDef| -> u64 {
         match r.name {
             "LOS_THRESHOLD" => m.los_threshold(),
             "LOS_RELEASE" => m.los_release(),
             "CLIP_THRESHOLD" => m.clip_threshold(),
+            "GAIN_SIN" | "GAIN_COS" => one,
             _ => r.reset as u64,
         }
     };

@@ -5,7 +5,8 @@
 //! sample at the read, nothing indexed or captured, the configured threshold), reads
 //! LOS_RELEASE from bank 1 and 0 from bank 4, finds the standard registers 0x40..0x7F
 //! unchanged, clears STATUS, presets the position and raises the loss-of-signal threshold
-//! by byte writes. A one-byte read is then replayed in rust-hdl, Verilator and the engine
+//! by byte writes, reads the correction's codes from bank 1 and halves both gains (the
+//! amplitude halves). A one-byte read is then replayed in rust-hdl, Verilator and the engine
 //! (all equal).
 use sinedec::blocks::regmap::{ID, REGISTERS, VERSION};
 use sinedec::blocks::top::hdl::TopRtl;
@@ -96,6 +97,10 @@ fn le(b: &[u8], w: usize) -> u32 {
 fn every_register_reads_and_writes_through_the_biss_control_channel() {
     let l = config();
     let d = &l.derived;
+    // The default config's gains are 1.0: code 2^GF; half of it as GAIN_SIN's two low bytes.
+    let gf = d.correction.gain_frac_bits();
+    let half = (1u16 << (gf - 1)).to_le_bytes();
+    let half = u16::from_le_bytes(half);
     let mut s = Session::new();
     s.command(Command::read(0x00, 64))
         .command(Command::write(0x40, &[1]))
@@ -111,7 +116,14 @@ fn every_register_reads_and_writes_through_the_biss_control_channel() {
         // LOS_THRESHOLD far above the amplitude: the monitor reports a loss of signal.
         .command(Command::write(0x3c, &[0xff, 0xff, 0xff, 0x7f]))
         .command(Command::write(0x08, &[0xff]))
-        .command(Command::read(0x08, 1));
+        .command(Command::read(0x08, 1))
+        // Bank 1: the correction's codes (map 0x48..0x5B), then both gains halved.
+        .command(Command::write(0x40, &[1]))
+        .command(Command::read(0x08, 20))
+        .command(Command::write(0x10, &half.to_le_bytes()))
+        .command(Command::write(0x14, &half.to_le_bytes()))
+        .command(Command::write(0x40, &[0]))
+        .command(Command::read(0x10, 4));
     assert!(
         d.describe().contains(
             "control channel 0x00..0x3F = the map's bytes 64 x bank (bank select 0x40; banks 0..=3)"
@@ -205,6 +217,19 @@ fn every_register_reads_and_writes_through_the_biss_control_channel() {
         bytes(&out[13])[0] & 1,
         1,
         "LOS after LOS_THRESHOLD was raised (and STATUS cleared)"
+    );
+    // The correction's codes: the configured offsets 0, gains 2^GF, phase 0; halving both
+    // gains halves the CORDIC magnitude.
+    let codes = bytes(&out[15]);
+    assert_eq!(
+        (0..5).map(|w| le(&codes, w)).collect::<Vec<_>>(),
+        vec![0, 0, 1 << gf, 1 << gf, 0],
+        "OFFSET_SIN, OFFSET_COS, GAIN_SIN, GAIN_COS, PHASE through bank 1"
+    );
+    let (before, after) = (reg("AMPLITUDE") as f64, le(&bytes(&out[19]), 0) as f64);
+    assert!(
+        (0.47..0.53).contains(&(after / before)),
+        "AMPLITUDE {before} -> {after} with both gains halved"
     );
     let flags = le(&bytes(&out[10]), 0);
     assert_eq!(
