@@ -2,7 +2,8 @@
 //! with AXI4-Lite requests added are replayed in rust-hdl, Icarus, Verilator and the engine
 //! (all equal), and the registers' effect on the decoder is read off the replay: POSITION
 //! equals the parallel bus, STATUS latched the loss of signal of the start and clears,
-//! a PRESET write references the position as the `preset` pin does.
+//! a PRESET write references the position as the `preset` pin does, GAIN_SIN and GAIN_COS
+//! read the configured gain and, halved, halve AMPLITUDE.
 use sinedec::blocks::regmap::{flag_bit, ID, REGISTERS, STATUS_MASK};
 use sinedec::blocks::top::hdl::TopRtl;
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
@@ -73,7 +74,15 @@ fn registers_read_the_decoder_and_preset_it_in_four_simulators() {
     read(&mut rows, 2020, "STATUS");
     read(&mut rows, 2030, "FLAGS");
     write(&mut rows, 2500, "PRESET", 1);
+    // The correction's gains: the configured 1.0 (2^GF), then both halved.
+    let one = 1u64 << d.correction.gain_frac_bits();
+    read(&mut rows, 2800, "AMPLITUDE");
+    read(&mut rows, 2810, "GAIN_SIN");
+    write(&mut rows, 2900, "GAIN_SIN", one / 2);
+    write(&mut rows, 2910, "GAIN_COS", one / 2);
+    read(&mut rows, 2920, "GAIN_COS");
     read(&mut rows, 3500, "FLAGS");
+    read(&mut rows, 3900, "AMPLITUDE");
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("registers_top");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("dir");
@@ -128,6 +137,13 @@ fn registers_read_the_decoder_and_preset_it_in_four_simulators() {
         "FLAGS.NOT_REFERENCED before it"
     );
     assert_eq!(by(3500) & refd, refd, "referenced after the PRESET write");
+    assert_eq!(by(2810), one, "GAIN_SIN: the configured gain 1.0");
+    assert_eq!(by(2920), one / 2, "GAIN_COS as written");
+    let ratio = by(3900) as f64 / by(2800) as f64;
+    assert!(
+        (0.47..0.53).contains(&ratio),
+        "AMPLITUDE x {ratio} after halving both gains"
+    );
     assert_eq!(by(3500) & not_ref, 0, "FLAGS.NOT_REFERENCED clear");
     let pin = o("referenced_0");
     assert!(tr[..2500].iter().all(|r| r[pin] == 0));
