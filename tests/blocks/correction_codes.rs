@@ -215,3 +215,63 @@ fn in_peak_mode_a_written_code_is_a_start_value() {
     assert_ne!(w[3], 0x6000, "gain replaced");
     assert_eq!(w[4], 0, "PHASE stays 0");
 }
+
+/// Mode auto (the ellipse fit): a written offset and gain are used until the fit's next
+/// update, after which the codes are the fit's (offsets near the stimulus's); the cross
+/// code follows the fit too. rust-hdl == Icarus == Verilator == engine (the fit's own
+/// model is `tests/blocks/correction_fit_rtl.rs`'s subject).
+#[test]
+fn in_auto_mode_a_written_code_is_replaced_by_the_fit() {
+    let full = (1u32 << (A - 1)) - 1;
+    let p = CorrectionParams::identity(A, GF)
+        .and_then(|p| p.with_fit(full * 3 / 4, 1, full / 10, 16))
+        .expect("params")
+        .with_writable();
+    let mut ins = vec![reset(), reset()];
+    ins.push(load("OFFSET_SIN", 321, 0xf));
+    ins.push(load("GAIN_COS", 0x6000, 0xf));
+    ins.push(load("PHASE", phase_word(-99), 0xf));
+    ins.extend([idle(); 4]);
+    let written = ins.len();
+    ins.extend(correction_util::sinusoid(
+        A,
+        [4000.0, 4400.0],
+        [150.0, -90.0],
+        40.0,
+        3,
+        2000,
+        1.0,
+        12,
+    ));
+    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_writable()).collect();
+    let t = crate::common::simulators_agree(
+        sinedec::blocks::correction::hdl::Correction::new(&p),
+        "codes_fit",
+        "codes_fit",
+        &rows,
+        Simulators::ALL,
+    );
+    let words = |row: &Vec<u64>| -> Vec<u64> { row[8..13].to_vec() };
+    assert_eq!(
+        words(&t[written]),
+        vec![321, 0, 1 << GF, 0x6000, phase_word(-99) as u64],
+        "written values in use"
+    );
+    let upd = t[written..]
+        .iter()
+        .position(|row| row[7] == 1)
+        .expect("the fit updates")
+        + written;
+    let w = words(&t[upd + 1]);
+    let b = [
+        sinedec::blocks::sext(w[0], 32),
+        sinedec::blocks::sext(w[1], 32),
+    ];
+    assert!(
+        (140..=160).contains(&b[0]) && (-100..=-80).contains(&b[1]),
+        "offsets after the update {b:?}"
+    );
+    assert_ne!(w[3], 0x6000, "gain replaced");
+    assert_ne!(w[4], phase_word(-99) as u64, "cross code replaced");
+    assert_eq!(words(&t[upd]), words(&t[written]), "until the update");
+}
