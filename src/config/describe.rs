@@ -308,9 +308,16 @@ fn velocity_lags(v: &VelocityParams) -> String {
 /// The printed speed is where that deficit reaches one LSB of the A-bit half range,
 /// 2^-(A-1); the deficit is also given at 3000 rpm and at the decoder's speed limit.
 fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) -> String {
-    let phase = if c.has_phase() {
+    let extra = crate::blocks::correction::PHASE_EXTRA_CYCLES;
+    let phase = if c.has_phase() && c.dynamic_cross() {
         format!(
-            "static phase correction, cross code {} (2^-{}) and one more clock",
+            "phase correction with a run-time cross code (PHASE register; {} after reset; products >> {}) and {extra} more clocks",
+            c.cross(),
+            c.phase_shift()
+        )
+    } else if c.has_phase() {
+        format!(
+            "static phase correction, cross code {} (products >> {}) and {extra} more clocks",
             c.cross(),
             c.phase_shift()
         )
@@ -343,8 +350,14 @@ fn describe_correction(c: &CorrectionParams, fs: f64, ppr: u64, max_rpm: f64) ->
         );
     }
     let Some(_) = c.auto() else {
-        // Codes that are not powers of two: constant products as shift-add trees.
-        let products = if c.shift_add() {
+        // Codes that are not powers of two: constant products as shift-add trees; writable
+        // codes: run-time trees.
+        let products = if c.writable() {
+            format!(
+                "; run-time codes (registers OFFSET_SIN .. PHASE, the values above after reset): gain and cross products as run-time shift-add trees ({} more clocks)",
+                crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES
+            )
+        } else if c.shift_add() {
             format!(
                 "; gain and cross products as shift-add trees, no hard multiplier ({} more clocks)",
                 crate::blocks::correction::SHIFT_ADD_EXTRA_CYCLES
