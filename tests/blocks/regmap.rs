@@ -594,7 +594,11 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
         .filter(|o| o.cor_ld != 0)
         .map(|o| (o.cor_ld, o.cor_bits, o.cor_msk))
         .collect();
-    assert_eq!(loads, vec![(0b100, 0x7f00, 0xff00)], "GAIN_SIN byte 1 loads");
+    assert_eq!(
+        loads,
+        vec![(0b100, 0x7f00, 0xff00)],
+        "GAIN_SIN byte 1 loads"
+    );
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_with_bus()).collect();
     let dir = common::workdir("regmap_biss_port");
     let t = block_traces(

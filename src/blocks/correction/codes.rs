@@ -254,10 +254,10 @@ impl Logic for CodeRegs {
         } else {
             self.mb_c.next = self.mb_c.val() & self.amask.val();
         }
-        self.mg_s.next = (bit_cast::<32, 16>(self.og_s.q.val()) & !self.ld_msk.val())
-            | self.ld_bits.val();
-        self.mg_c.next = (bit_cast::<32, 16>(self.og_c.q.val()) & !self.ld_msk.val())
-            | self.ld_bits.val();
+        self.mg_s.next =
+            (bit_cast::<32, 16>(self.og_s.q.val()) & !self.ld_msk.val()) | self.ld_bits.val();
+        self.mg_c.next =
+            (bit_cast::<32, 16>(self.og_c.q.val()) & !self.ld_msk.val()) | self.ld_bits.val();
         self.mk.next = (self.wk.val() & !self.ld_msk.val()) | self.ld_bits.val();
         self.cb_s.next = self.cal_b_s.val() & self.amask.val();
         if (self.cal_b_s.val() & self.asign.val()).any() {
@@ -342,7 +342,13 @@ impl CodesModel {
 
     /// The five words the map reads ([`WORDS`] order).
     pub fn words(&self) -> [u32; 5] {
-        [self.b[SIN], self.b[COS], self.g[SIN], self.g[COS], phase_word(self.k)]
+        [
+            self.b[SIN],
+            self.b[COS],
+            self.g[SIN],
+            self.g[COS],
+            phase_word(self.k),
+        ]
     }
 
     /// One edge: `ld` one-hot over [`WORDS`] with `bits` under `msk`; `cal` the

@@ -263,11 +263,7 @@ impl CorrectionModel {
         let a = self.p.adc_width();
         if let Some(c) = &self.codes {
             let upd = self.cal.as_ref().is_some_and(|c| c.upd);
-            return (
-                c.b.map(|b| b as u64 & mask(a)),
-                c.g.map(u64::from),
-                upd,
-            );
+            return (c.b.map(|b| b as u64 & mask(a)), c.g.map(u64::from), upd);
         }
         match &self.cal {
             Some(c) => (c.b, c.g, c.upd),
@@ -373,7 +369,7 @@ impl CorrectionModel {
         let k = s1.k;
         let sh = self.p.phase_shift();
         n.pc2 = (s1.m[COS] * s1.g[COS]) >> sh;
-        n.q2 = (s1.m[SIN] * k.unsigned_abs() as u64) >> sh;
+        n.q2 = (s1.m[SIN] * k.unsigned_abs()) >> sh;
         n.na2 = s1.sg[COS];
         n.nb2 = s1.sg[SIN] ^ (k < 0);
         let ma = if old.na2 { m32 } else { 0 };
@@ -401,11 +397,7 @@ impl CorrectionModel {
         n.v4 = old.v3 && !i.rst;
         // Calibration (sees the old stage-1 registers), then the writable codes (see the
         // calibration's outputs before this edge).
-        let cal_out = self
-            .cal
-            .as_ref()
-            .filter(|c| c.upd)
-            .map(|c| (c.b, c.g, 0));
+        let cal_out = self.cal.as_ref().filter(|c| c.upd).map(|c| (c.b, c.g, 0));
         if let Some(cal) = self.cal.as_mut() {
             cal_step(cal, &self.p, &old, i.rst);
         }

@@ -6,8 +6,8 @@
 //! an AND-OR of the words from registers; the write acts from the holders, also registers; every AXI output is a
 //! register or one gate of registers.
 use super::{
-    flag_bit, RegmapParams, ADDR_BITS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD, REGISTERS,
-    STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION, CODE_WORDS,
+    flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD,
+    REGISTERS, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
@@ -590,9 +590,8 @@ impl Logic for RegisterMap {
         if self.wq_en.q.val() {
             // The correction's codes live in the correction: a write goes there (its bits
             // and mask pass for every write; the load bits select a code).
-            self.cq_ld.d.next = bit_cast::<8, 32>(
-                (self.wq_sel.q.val() >> self.w_code0.val()) & self.codes5.val(),
-            );
+            self.cq_ld.d.next =
+                bit_cast::<8, 32>((self.wq_sel.q.val() >> self.w_code0.val()) & self.codes5.val());
             self.cq_bits.d.next = self.wq_bits.q.val();
             self.cq_msk.d.next = self.wq_msk.q.val();
             if (self.wq_sel.q.val() & (self.one.val() << self.w_status.val())).any() {

@@ -1,8 +1,8 @@
 //! Bit-accurate model of the register map: the same registers as the RTL, updated once per
 //! clock edge; `step` returns what the outputs show after the edge.
 use super::{
-    flag_bit, RegmapParams, ADDR_BITS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD, STATUS_MASK,
-    STATUS_WORD, THRESHOLD_WORDS, VERSION, CODE_WORDS,
+    flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD,
+    STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
 use crate::blocks::mask;
 
