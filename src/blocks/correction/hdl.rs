@@ -60,6 +60,9 @@ pub struct Correction {
     pub w_phase: Vec<Signal<Out, Bits<32>>>,
     /// The writable codes: one instance with `p.writable()`, none otherwise.
     codes: Vec<CodeRegs>,
+    /// With writable codes: a copy of `m1_s` for the phase stage (the path from |d_s| to the
+    /// first levels of the sine's and the phase stage's run-time trees, which share it).
+    m1p_s: Vec<DFF<Bits<16>>>,
     /// The automatic calibration: one instance in auto mode, none in static mode.
     cal: Vec<AutoCal>,
     /// The ellipse-fit calibration: one instance in auto (fit) mode, none otherwise.
@@ -193,6 +196,7 @@ impl Correction {
             } else {
                 vec![]
             },
+            m1p_s: ports(usize::from(p.writable() && p.has_phase())),
             cal,
             fit,
             ph,
@@ -483,6 +487,11 @@ impl Logic for Correction {
             for j in 0..self.codes.len() {
                 self.ph[i].k_mag.next = self.codes[j].k_mag_d.val();
                 self.ph[i].k_neg.next = self.codes[j].k_neg_d.val();
+            }
+            for j in 0..self.m1p_s.len() {
+                self.m1p_s[j].clock.next = self.clk.val();
+                self.m1p_s[j].d.next = bit_cast::<16, 32>(self.md_s.val() & self.amask.val());
+                self.ph[i].m_s.next = self.m1p_s[j].q.val();
             }
             self.out_valid.next = self.ph[i].out_valid.val();
             self.out_sin.next = self.ph[i].out_sin.val();

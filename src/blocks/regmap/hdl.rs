@@ -178,6 +178,16 @@ pub struct RegisterMap {
     /// The read select of this clock (AXI's while it holds an address, else the BiSS
     /// port's) and the words whose value depends on the port.
     rsel: Signal<Local, Bits<32>>,
+    /// With the BiSS port: the read select a clock ahead, registered (the path from the
+    /// select's mux through the read AND-OR to `rdata` and `b_word`): `rs_sel` is
+    /// `ar_full ? ar_sel : bsel` of the clock it is in, `rs_axi` is `ar_full`.
+    rs_sel: DFF<Bits<32>>,
+    rs_axi: DFF<Bit>,
+    /// An AXI read address is taken this clock.
+    take: Signal<Local, Bit>,
+    /// The one-hot word of `s_axi_araddr`, and of `bus_addr` (none from byte 256 up).
+    asel_n: Signal<Local, Bits<32>>,
+    bsel_n: Signal<Local, Bits<32>>,
     w5: Signal<Local, Bits<32>>,
     w6: Signal<Local, Bits<32>>,
     w7: Signal<Local, Bits<32>>,
@@ -365,6 +375,11 @@ impl RegisterMap {
             wen: Default::default(),
             wbits: Default::default(),
             rsel: Default::default(),
+            rs_sel: Default::default(),
+            rs_axi: Default::default(),
+            take: Default::default(),
+            asel_n: Default::default(),
+            bsel_n: Default::default(),
             w5: Default::default(),
             w6: Default::default(),
             w7: Default::default(),
@@ -485,7 +500,7 @@ impl Logic for RegisterMap {
             self, clk, aw_full, aw_sel, w_full, w_data, w_strb, bvalid, ar_full, ar_sel, rvalid,
             rdata, status, amp, sh_turns, sh_vel, pre, bsel, blane, b_word, b_wlane, b_rdata, bpos,
             btur, bvel, bw_full, bw_addr, bw_sel, bw_data, thr_los, thr_rel, thr_clip, wq_en,
-            wq_sel, wq_bits, wq_msk, cq_ld, cq_bits, cq_msk
+            wq_sel, wq_bits, wq_msk, cq_ld, cq_bits, cq_msk, rs_sel, rs_axi
         );
         // The words each register reads, from the live inputs.
         self.live.next = (self.flags.val() & self.flmask.val()) | self.refd.val();
@@ -620,11 +635,13 @@ impl Logic for RegisterMap {
             self.amp.d.next = self.amplitude.val();
         }
         // Read: the address held a clock, then the data.
-        if self.s_axi_arvalid.val() & !self.ar_full.q.val() & !self.rvalid.q.val() {
+        self.take.next = self.s_axi_arvalid.val() & !self.ar_full.q.val() & !self.rvalid.q.val();
+        self.asel_n.next = (self.one.val()
+            << ((self.s_axi_araddr.val() & self.amask.val()) >> self.two.val()))
+            & self.selmask.val();
+        if self.take.val() {
             self.ar_full.d.next = true;
-            self.ar_sel.d.next = (self.one.val()
-                << ((self.s_axi_araddr.val() & self.amask.val()) >> self.two.val()))
-                & self.selmask.val();
+            self.ar_sel.d.next = self.asel_n.val();
         }
         if self.rvalid.q.val() & self.s_axi_rready.val() {
             self.rvalid.d.next = false;
@@ -635,9 +652,20 @@ impl Logic for RegisterMap {
         self.w5.next = self.pos.val();
         self.w6.next = self.sh_turns.q.val();
         self.w7.next = self.sh_vel.q.val();
+        self.bsel_n.next = self.zero.val();
+        if !(self.bus_addr.val() & self.bhigh.val()).any() {
+            self.bsel_n.next =
+                (self.one.val() << (self.bus_addr.val() >> self.two.val())) & self.selmask.val();
+        }
         for _i in 0..self.bus.len() {
-            if !self.ar_full.q.val() {
-                self.rsel.next = self.bsel.q.val();
+            // Next clock's select: the address AXI takes now, else the port's.
+            self.rs_axi.d.next = self.take.val();
+            self.rs_sel.d.next = self.bsel_n.val();
+            if self.take.val() {
+                self.rs_sel.d.next = self.asel_n.val();
+            }
+            self.rsel.next = self.rs_sel.q.val();
+            if !self.rs_axi.q.val() {
                 self.w5.next = self.bpos.q.val();
                 self.w6.next = self.btur.q.val();
                 self.w7.next = self.bvel.q.val();
@@ -725,11 +753,7 @@ impl Logic for RegisterMap {
         // the snapshot when a read begins at POSITION's byte 0.
         self.bus_rdata.next = bit_cast::<8, 32>(self.zero.val());
         for _i in 0..self.bus.len() {
-            self.bsel.d.next = self.zero.val();
-            if !(self.bus_addr.val() & self.bhigh.val()).any() {
-                self.bsel.d.next = (self.one.val() << (self.bus_addr.val() >> self.two.val()))
-                    & self.selmask.val();
-            }
+            self.bsel.d.next = self.bsel_n.val();
             self.blane.d.next = self.bus_addr.val() & self.three.val();
             if !self.ar_full.q.val() {
                 self.b_word.d.next = self.rmux.val();
@@ -778,6 +802,8 @@ impl Logic for RegisterMap {
             self.bw_data.d.next = 0.into();
             self.wq_en.d.next = false;
             self.cq_ld.d.next = 0.into();
+            self.rs_sel.d.next = 0.into();
+            self.rs_axi.d.next = false;
             self.cq_bits.d.next = 0.into();
             self.cq_msk.d.next = 0.into();
             self.thr_los.d.next = self.t0_los.val();
