@@ -275,3 +275,21 @@ fn in_auto_mode_a_written_code_is_replaced_by_the_fit() {
     assert_ne!(w[4], phase_word(-99) as u64, "cross code replaced");
     assert_eq!(words(&t[upd]), words(&t[written]), "until the update");
 }
+
+/// Static mode with writable codes synthesizes with no hard multiplier and at most one
+/// carry chain on its worst register-to-register path (the timing rule's premise, as for
+/// mode auto in `tests/blocks/correction_fit_rtl.rs`).
+#[test]
+fn writable_static_mode_synthesizes_without_multipliers_and_one_carry_chain_per_path() {
+    use sinedec::blocks::correction::hdl::Correction;
+    let p = static_params();
+    let (x, c) = correction_util::synth(Correction::new(&p), "corr_synth_codes");
+    let path = x.path.expect("a register-to-register path");
+    eprintln!(
+        "corr_synth_codes: xc3sa {} LUT, {} FF, {} MULT18X18; cycloneive {} LE, {} FF; worst path {} -> {}: {} carry chains, {} LUT levels",
+        x.luts, x.ffs, x.multipliers, c.luts, c.ffs, path.from, path.to, path.carry_chains, path.lut_levels
+    );
+    assert_eq!(x.multipliers, 0);
+    assert_eq!(c.multipliers, 0);
+    assert!(path.carry_chains <= 1, "{path:?}");
+}
