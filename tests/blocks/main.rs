@@ -29,6 +29,7 @@ mod cosim_core;
 mod cosim_harness;
 mod cosim_stage;
 mod counter_load;
+mod harmonics;
 mod iterative;
 mod monitor;
 mod preamp;
