@@ -188,3 +188,55 @@ fn tables_outside_the_limits_are_refused() {
     let e = HarmonicParams::new(26, 6, 18, &[0.0; 16]).unwrap_err();
     assert!(e.contains("F + Gz + 2 <= 24"), "{e}");
 }
+
+/// `<name>_core` with the held 64-point table (`HELD_CASE`) in Icarus, Verilator and the
+/// engine == rust-hdl == the core's model, on the directed, random and rotating stimulus of
+/// the core's own co-simulation; and the table does move the positions.
+#[test]
+fn the_core_with_a_table_equals_its_model_four_ways() {
+    use sinedec::blocks::harmonics::block::HELD_CASE;
+    use sinedec::config::{Loaded, DEFAULT_CONFIG};
+    use sinedec::cosim::stimulus;
+    use sinedec::verify::core_traces;
+    let on = Loaded::parse(&format!("{DEFAULT_CONFIG}\n{HELD_CASE}"), "h.toml").expect("on");
+    let a = on.derived.adc_width;
+    let mut s = stimulus::directed(a);
+    s.extend(stimulus::random(a, 1500, 0.25, 46));
+    let step = std::f64::consts::FRAC_PI_2 * 0.3;
+    s.extend(stimulus::rotation(a, 0.7, 0.0, step, 400));
+    s.extend(stimulus::rotation(a, 0.7, 0.0, -step, 400));
+    let dir = common::workdir("cosim_core_harmonics");
+    let t = core_traces(&on, &s, Simulators::ALL, &dir).expect("all simulators ran");
+    if let Some(m) = t.mismatch(&on) {
+        panic!("core with [harmonics]: {m}");
+    }
+    let valid = |rows: &[Vec<u64>]| -> Vec<u64> {
+        rows.iter().filter(|r| r[0] == 1).map(|r| r[1]).collect()
+    };
+    let off = Loaded::default_config().expect("off");
+    let plain = core_traces(
+        &off,
+        &s,
+        Simulators {
+            icarus: false,
+            verilator: false,
+        },
+        &dir,
+    )
+    .expect("rust-hdl ran");
+    let (p_on, p_off) = (valid(&t.rust_hdl), valid(&plain.rust_hdl));
+    // The last samples of the stimulus leave the longer pipeline after it ends.
+    assert!(
+        p_off.len() - p_on.len() <= 5 * 2,
+        "{} {}",
+        p_on.len(),
+        p_off.len()
+    );
+    assert!(p_on.len() > 1000);
+    let moved = p_on.iter().zip(&p_off).filter(|(a, b)| a != b).count();
+    assert!(
+        moved > p_on.len() / 2,
+        "{moved} of {} positions moved",
+        p_on.len()
+    );
+}

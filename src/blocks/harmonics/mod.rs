@@ -59,10 +59,13 @@
 //! | `z_out` | out | ZW | the corrected angle, 5 clocks later |
 //! | `x_out` | out | W | `x_in` 5 clocks later |
 //! | `v_out` | out | 1 | `v_in` 5 clocks later (0 after `rst`) |
+pub mod block;
 pub mod hdl;
 pub mod model;
 
 use crate::blocks::mask;
+
+pub use block::BLOCK;
 
 /// Bits of the place within a segment (the interpolation's fraction).
 pub const INTERP_BITS: u32 = 8;
@@ -71,7 +74,7 @@ pub const INTERP_BITS: u32 = 8;
 pub const POINTS_RANGE: std::ops::RangeInclusive<u32> = 16..=256;
 
 /// The table and the widths of one harmonic-correction block.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct HarmonicParams {
     /// ZW: bits of the angle word (F + Gz + 2).
     pub z_width: u32,

@@ -21,6 +21,22 @@ pub fn correct(p: &HarmonicParams, z: u64) -> u64 {
     ((y.wrapping_sub(sum) & w) >> r) & mask(zw)
 }
 
+/// The combiner's output for the CORDIC's result `c` with the table between them: the
+/// RTL's angle word (the quadrant and the rounding half in it, as the CORDIC starts its
+/// angle), corrected, then p = z' >> Gz as the combiner takes it.
+pub fn combine_corrected(
+    d: &crate::blocks::params::Derived,
+    p: &HarmonicParams,
+    c: &crate::blocks::cordic::model::CordicOut,
+) -> crate::blocks::counter::model::Combined {
+    let f = d.fine_bits;
+    let z = (c.z + (1 << (d.z_guard - 1)) + ((c.q as u64) << (f + d.z_guard))) & mask(d.z_width);
+    crate::blocks::counter::model::Combined {
+        p: (correct(p, z) >> d.z_guard) & mask(f + 2),
+        mag_ok: c.x >= d.min_magnitude,
+    }
+}
+
 /// Inputs of one clock.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct HarmonicIn {
