@@ -134,7 +134,8 @@ pub(crate) enum Command {
     /// target family (xc3sa or cycloneive) from the Yosys synthesis `sinedec report` cached
     /// for this exact design (in `$SINEDEC_SYNTH_CACHE` or report's default cache
     /// directory), with the Yosys version; without one it says to run `sinedec report`.
-    /// `check` reads the cache only and never runs Yosys.
+    /// With `[harmonics]` the line before it (`resources (harmonics)`) gives the harmonic
+    /// table's own figures the same way. `check` reads the cache only and never runs Yosys.
     Check {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,

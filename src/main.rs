@@ -306,6 +306,12 @@ fn run(cli: Cli) -> Result<()> {
                 )?;
             }
             let arg = config.as_ref().map(|c| c.display().to_string());
+            // The harmonic table's own figures (`[harmonics]`), then the whole top's.
+            if let Some(line) =
+                sinedec::report::block_resource_line(&loaded, "harmonics", arg.as_deref())?
+            {
+                say!("{line}")?;
+            }
             if let Some(line) = sinedec::report::top_resource_line(&loaded, arg.as_deref())? {
                 say!("{line}")?;
             }

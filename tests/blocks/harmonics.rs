@@ -240,3 +240,34 @@ fn the_core_with_a_table_equals_its_model_four_ways() {
         p_on.len()
     );
 }
+
+/// The held 64-point block alone in Yosys: no hard multiplier (the interpolation is a
+/// shift-add tree) and at most one carry chain on every register-to-register path of the
+/// xc3sa mapping (the timing rule, docs/timing.md); the figures are printed for
+/// docs/correction.md.
+#[test]
+fn the_block_synthesizes_with_one_carry_chain_per_path_and_no_multiplier() {
+    use sinedec::blocks::harmonics::block::HELD_CASE;
+    use sinedec::config::{Loaded, DEFAULT_CONFIG};
+    let on = Loaded::parse(&format!("{DEFAULT_CONFIG}\n{HELD_CASE}"), "h.toml").expect("on");
+    let p = on.derived.harmonics.clone().expect("enabled");
+    let (x, c) = crate::correction_util::synth(HarmonicCorrection::new(&p), "harmonics_synth");
+    let path = x.path.expect("a register-to-register path");
+    eprintln!(
+        "harmonics_synth: xc3sa {} LUT, {} FF, {} MULT18X18, {} BRAM; cycloneive {} LE, {} FF, {} multipliers; worst path {} -> {}: {} carry chains, {} LUT levels",
+        x.luts, x.ffs, x.multipliers, x.brams, c.luts, c.ffs, c.multipliers, path.from, path.to, path.carry_chains, path.lut_levels
+    );
+    assert_eq!(x.multipliers + c.multipliers, 0);
+    assert!(path.carry_chains <= 1, "{path:?}");
+    // `check`'s line for the block: present with [harmonics], absent without.
+    let line = sinedec::report::block_resource_line(&on, "harmonics", Some("h.toml"))
+        .expect("line")
+        .expect("the block is in this design");
+    assert!(line.starts_with("resources (harmonics)"), "{line}");
+    let off = Loaded::default_config().expect("default");
+    assert!(
+        sinedec::report::block_resource_line(&off, "harmonics", None)
+            .expect("line")
+            .is_none()
+    );
+}

@@ -24,10 +24,22 @@ pub struct HarmonicCorrection {
     pub x_out: Signal<Out, Bits<32>>,
     /// `v_in` five clocks later.
     pub v_out: Signal<Out, Bit>,
-    /// ROM_T: c_i 2^R - 2^(R-1) mod 2^W at segment i.
-    rom_t: ROM<Bits<32>, 8>,
-    /// ROM_D: D_i = c_(i+1) - c_i mod 2^W at segment i.
-    rom_d: ROM<Bits<32>, 8>,
+    /// ROM_T XOR i: c_i 2^R - 2^(R-1) mod 2^W at segment i, stored XOR-ed with i and
+    /// read back XOR-ed with the index. A compare per entry rather than a `case`, so that
+    /// no synthesizer maps it to a block RAM (Yosys 0.23's M9K mapping of a ROM fails on
+    /// Cyclone); the XOR keeps Yosys from reading the constants as resets of t1 (one
+    /// P-bit reset condition, wider than the engine's 64-bit words).
+    rom_t: Vec<Constant<Bits<32>>>,
+    /// ROM_D XOR i: D_i = c_(i+1) - c_i mod 2^W at segment i, XOR-ed with i.
+    rom_d: Vec<Constant<Bits<32>>>,
+    /// The entry of the segment, still XOR-ed with its index.
+    tx: Signal<Local, Bits<32>>,
+    /// The slope of the segment, still XOR-ed with its index.
+    dx: Signal<Local, Bits<32>>,
+    /// The segment numbers 0..P the index is compared with.
+    seg: Vec<Constant<Bits<32>>>,
+    /// The segment of `z_in`: its top p bits.
+    idx: Signal<Local, Bits<32>>,
     /// Stage 1: the angle, the entry and the slope of its segment.
     z1: DFF<Bits<32>>,
     t1: DFF<Bits<32>>,
@@ -95,9 +107,13 @@ pub struct HarmonicCorrection {
     k7: Constant<Bits<32>>,
 }
 
-/// A ROM of 32-bit words at addresses 0.. (8 address bits; the rest read 0).
-fn rom(words: &[u64]) -> ROM<Bits<32>, 8> {
-    ROM::from(words.iter().map(|&w| Bits::<32>::from(w & mask(32))))
+/// The words as constants, word i XOR-ed with i.
+fn rom(words: &[u64]) -> Vec<Constant<Bits<32>>> {
+    words
+        .iter()
+        .enumerate()
+        .map(|(i, &w)| c32(w ^ i as u64))
+        .collect()
 }
 
 impl HarmonicCorrection {
@@ -115,6 +131,10 @@ impl HarmonicCorrection {
             v_out: Default::default(),
             rom_t: rom(&p.rom_t()),
             rom_d: rom(&p.rom_d()),
+            tx: Default::default(),
+            dx: Default::default(),
+            seg: (0..p.points() as u64).map(c32).collect(),
+            idx: Default::default(),
             z1: Default::default(),
             t1: Default::default(),
             d1: Default::default(),
@@ -175,13 +195,18 @@ impl Logic for HarmonicCorrection {
             y4, s4, x4, v4, z5, x5, v5
         );
         // Stage 1: the segment's entry and slope, looked up from the CORDIC's register.
-        self.rom_t.address.next =
-            bit_cast::<8, 32>((self.z_in.val() >> self.ishift.val()) & self.imask.val());
-        self.rom_d.address.next =
-            bit_cast::<8, 32>((self.z_in.val() >> self.ishift.val()) & self.imask.val());
+        self.idx.next = (self.z_in.val() >> self.ishift.val()) & self.imask.val();
         self.z1.d.next = self.z_in.val();
-        self.t1.d.next = self.rom_t.data.val();
-        self.d1.d.next = self.rom_d.data.val();
+        self.tx.next = self.zero.val();
+        self.dx.next = self.zero.val();
+        for i in 0..self.seg.len() {
+            if self.idx.val() == self.seg[i].val() {
+                self.tx.next = self.rom_t[i].val();
+                self.dx.next = self.rom_d[i].val();
+            }
+        }
+        self.t1.d.next = self.tx.val() ^ self.idx.val();
+        self.d1.d.next = self.dx.val() ^ self.idx.val();
         self.x1.d.next = self.x_in.val();
         self.v1.d.next = self.v_in.val() & !self.rst.val();
         // Stage 2: y and the partial products of D f added in pairs.
