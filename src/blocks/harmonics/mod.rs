@@ -61,6 +61,7 @@
 //! | `v_out` | out | 1 | `v_in` 5 clocks later (0 after `rst`) |
 pub mod block;
 pub mod hdl;
+pub mod learn;
 pub mod model;
 
 use crate::blocks::mask;
