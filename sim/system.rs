@@ -437,6 +437,8 @@ pub struct SimResult {
 pub struct StreamStats {
     /// Decoded samples left out at the start.
     pub skip: usize,
+    /// Samples that leave the top before this cycle are left out too (`--settle`).
+    pub from_cycle: u64,
     /// The first decoded sample (it fixes the offset).
     pub first: Option<Record>,
     /// The offset it fixed, fine LSB.
@@ -461,7 +463,7 @@ impl StreamStats {
             self.offset = SimResult::offset_of(d, r);
         }
         self.seen += 1;
-        if self.seen <= self.skip {
+        if self.seen <= self.skip || r.cycle < self.from_cycle {
             return;
         }
         let e = SimResult::error_lsb(d, r, self.offset);
@@ -474,7 +476,7 @@ impl StreamStats {
         s.warnings += r.warning as usize;
     }
 
-    /// The statistics of the samples after the first `skip`.
+    /// The statistics of the samples after the first `skip` and from `from_cycle` on.
     pub fn stats(&self) -> ErrorStats {
         let mut s = self.acc;
         if s.samples > 0 {
@@ -622,6 +624,13 @@ impl SimResult {
     /// [`error_lsb`](Self::error_lsb)); when the records were not kept, the streamed
     /// statistics (their `skip` was fixed before the run).
     pub fn stats(&self, d: &Derived, skip: usize) -> ErrorStats {
+        self.stats_from(d, skip, 0)
+    }
+
+    /// [`stats`](Self::stats) over the records from index `skip` on that left the top at
+    /// cycle `from_cycle` or later (`simulate --settle`); streamed statistics have both
+    /// fixed before the run.
+    pub fn stats_from(&self, d: &Derived, skip: usize, from_cycle: u64) -> ErrorStats {
         if let (true, Some(s)) = (self.records.is_empty(), &self.streamed) {
             return s.stats();
         }
@@ -632,7 +641,7 @@ impl SimResult {
         let mut s = ErrorStats::default();
         let (mut sum, mut sum2) = (0.0, 0.0);
         // With the absolute start only the referenced samples are the encoder's position.
-        let counted = |r: &&Record| d.absolute.is_none() || r.referenced;
+        let counted = |r: &&Record| (d.absolute.is_none() || r.referenced) && r.cycle >= from_cycle;
         for r in self.records.iter().skip(skip).filter(counted) {
             let e = Self::error_lsb(d, r, offset);
             s.samples += 1;
@@ -948,8 +957,15 @@ impl System {
     /// first `skip` (memory stays bounded however long the run; [`SimResult::records`]
     /// stays empty).
     pub fn stream_stats(&mut self, skip: usize) {
+        self.stream_stats_from(skip, 0);
+    }
+
+    /// [`stream_stats`](Self::stream_stats), also leaving out the samples that leave the
+    /// top before cycle `from_cycle` (`simulate --settle`).
+    pub fn stream_stats_from(&mut self, skip: usize, from_cycle: u64) {
         self.result.streamed = Some(StreamStats {
             skip,
+            from_cycle,
             ..Default::default()
         });
     }
@@ -1264,10 +1280,9 @@ impl System {
             };
             self.top.set(I_MA, ma as u64);
             // Comparators on the noise-free tracks: A = cos > 0, B = sin > 0 (forward = the
-            // angle increasing), Z = index in the first quadrant of every turn.
-            let th = self
-                .truth
-                .electrical_angle(self.cycle as f64 / self.clock_hz);
+            // angle increasing), Z = index in the first quadrant of every turn; on the
+            // scale's angle, as the tracks (the eccentricity moves them alike).
+            let th = self.truth.scale_angle(self.cycle as f64 / self.clock_hz);
             let (qa, mut qb) = (th.cos() >= 0.0, th.sin() >= 0.0);
             if let Some((a, b)) = self.qep_b_stuck {
                 if now >= a && now < b {

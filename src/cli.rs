@@ -83,9 +83,20 @@ pub(crate) enum Command {
     ///
     /// On a `[capacitive]` config it runs `cap_top` against the capacitive encoder and a
     /// 16-bit SPI ADC model and prints the error in mechanical degrees and the per-sample
-    /// processing time; the track imperfections
-    /// (`--offset-sin/--offset-cos/--gain-mismatch/--phase-error/--harmonic3`) do not apply
-    /// there and are rejected.
+    /// processing time; the track imperfections (`--offset-sin`, `--offset-cos`,
+    /// `--gain-mismatch`, `--phase-error`, `--harmonic2`, `--harmonic3`, `--harmonic5`, their
+    /// `-phase` options and `--eccentricity`) do not apply there and are rejected.
+    ///
+    /// The encoder model (`sim/encoder.rs`) gives both tracks the same waveform, the cos
+    /// track a quarter period later: sin(x) + h2 sin(2x + p2) + h3 sin(3x + p3) + h5 sin(5x +
+    /// p5), with `--harmonicK` the ratio hk and `--harmonicK-phase` the phase pk in degrees.
+    /// A 3rd or 5th harmonic of ratio h moves the decoded angle by about h rad electrical,
+    /// four times per signal period; the 2nd once and three times. `--eccentricity` (in
+    /// arc-seconds) turns the scale's angle against the shaft's by that much once per turn:
+    /// the error is the shaft's, which no per-period correction can remove, and the summary
+    /// says so. `--settle S` starts the statistics S seconds into the run (samples that leave
+    /// the top earlier are not counted, and the CSV's `warmup` column marks them), for a
+    /// correction to converge first.
     ///
     /// The compiled engine runs by default: built from the Verilog of the same rust-hdl top
     /// by Yosys and rustc, cached under `$SINEDEC_ENGINE_CACHE`, else
@@ -97,12 +108,14 @@ pub(crate) enum Command {
     ///
     /// Options are checked before the run: speeds finite within ±1,000,000 rpm, ramp and
     /// reversal times > 0, `--amplitude` in (0, 1], `--noise-lsb` 0..=10000, offsets and
-    /// `--gain-mismatch` -1..=1, `--phase-error` -45..=45 degrees, `--harmonic3`
-    /// -0.5..=0.5, `--duration` (0, 10] s, `--capture-hz` (0, 100000] (with `[capture]`
-    /// only), each `--fault` a known kind, once, starting within the run and ending after
-    /// it starts (sinewave path only). A run with no decoded sample past the settling
-    /// ones is an error, and on the capacitive path a `--duration` within the filters' 1.5
-    /// ms settling window is refused before the run. A profile faster than the decoder
+    /// `--gain-mismatch` -1..=1, `--phase-error` -45..=45 degrees, `--harmonic2`,
+    /// `--harmonic3` and `--harmonic5` -0.5..=0.5, their phases -360..=360 degrees,
+    /// `--eccentricity` -3600..=3600 arc-seconds, `--duration` (0, 10] s, `--settle` 0 <= S
+    /// < `--duration`, `--capture-hz` (0, 100000] (with `[capture]` only), each `--fault` a
+    /// known kind, once, starting within the run and ending after it starts (sinewave path
+    /// only). A run with no decoded sample past the settling ones is an error (naming
+    /// `--settle` when it is the settle time that leaves none), and on the capacitive path a
+    /// `--duration` within the filters' 1.5 ms settling window is refused before the run. A profile faster than the decoder
     /// follows (`check`'s max speed: the unwrap limit, on the capacitive path also the
     /// low-pass corner) runs with a warning on stderr: its error figures measure a lost
     /// track. Negative values may be written in scientific notation (`--offset-sin -1e-1`).
@@ -121,7 +134,8 @@ pub(crate) enum Command {
     /// target family (xc3sa or cycloneive) from the Yosys synthesis `sinedec report` cached
     /// for this exact design (in `$SINEDEC_SYNTH_CACHE` or report's default cache
     /// directory), with the Yosys version; without one it says to run `sinedec report`.
-    /// `check` reads the cache only and never runs Yosys.
+    /// With `[harmonics]` the line before it (`resources (harmonics)`) gives the harmonic
+    /// table's own figures the same way. `check` reads the cache only and never runs Yosys.
     Check {
         /// Configuration file (TOML); the embedded default when omitted.
         config: Option<PathBuf>,
@@ -253,9 +267,30 @@ pub(crate) struct SimulateArgs {
     /// Quadrature phase error in degrees.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub(crate) phase_error: f64,
+    /// Second-harmonic ratio of both tracks' waveform.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) harmonic2: f64,
+    /// Phase of the second harmonic in degrees.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) harmonic2_phase: f64,
     /// Third-harmonic ratio.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub(crate) harmonic3: f64,
+    /// Phase of the third harmonic in degrees.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) harmonic3_phase: f64,
+    /// Fifth-harmonic ratio.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) harmonic5: f64,
+    /// Phase of the fifth harmonic in degrees.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) harmonic5_phase: f64,
+    /// Eccentricity of the scale in arc-seconds: a once-per-turn angle error.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) eccentricity: f64,
+    /// Seconds of simulated time before the statistics start.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub(crate) settle: f64,
     /// Noise seed.
     #[arg(long, default_value_t = 1)]
     pub(crate) seed: u64,

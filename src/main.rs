@@ -121,7 +121,14 @@ fn simulate(args: SimulateArgs) -> Result<()> {
         offset_cos,
         gain_mismatch,
         phase_error,
+        harmonic2,
+        harmonic2_phase,
         harmonic3,
+        harmonic3_phase,
+        harmonic5,
+        harmonic5_phase,
+        eccentricity,
+        settle,
         seed,
         capture_hz,
         fault,
@@ -146,7 +153,12 @@ fn simulate(args: SimulateArgs) -> Result<()> {
         offset: (offset_sin, offset_cos),
         gain_mismatch,
         phase_error_deg: phase_error,
+        second_harmonic: harmonic2,
         third_harmonic: harmonic3,
+        fifth_harmonic: harmonic5,
+        harmonic_phase_deg: [harmonic2_phase, harmonic3_phase, harmonic5_phase],
+        eccentricity_arcsec: eccentricity,
+        settle_s: settle,
         seed,
         engine: match engine {
             None => sinedec::sim::dut::EngineKind::Auto,
@@ -294,6 +306,12 @@ fn run(cli: Cli) -> Result<()> {
                 )?;
             }
             let arg = config.as_ref().map(|c| c.display().to_string());
+            // The harmonic table's own figures (`[harmonics]`), then the whole top's.
+            if let Some(line) =
+                sinedec::report::block_resource_line(&loaded, "harmonics", arg.as_deref())?
+            {
+                say!("{line}")?;
+            }
             if let Some(line) = sinedec::report::top_resource_line(&loaded, arg.as_deref())? {
                 say!("{line}")?;
             }

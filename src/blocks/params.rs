@@ -80,6 +80,10 @@ pub struct Derived {
     /// parameter file when disabled, like `abz`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub capture: Option<crate::blocks::capture::CaptureParams>,
+    /// Harmonic-correction table of the core, when `[harmonics] enabled` (left out of the
+    /// parameter file when disabled, like `abz`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub harmonics: Option<crate::blocks::harmonics::HarmonicParams>,
     /// Register map of the board top, when `[registers] enabled` (left out of the
     /// parameter file when disabled, like `abz`).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -93,6 +93,7 @@ pub const BLOCKS: &[&BlockDef] = &[
     &crate::blocks::preamp::BLOCK,
     &crate::blocks::correction::BLOCK,
     &crate::blocks::monitor::BLOCK,
+    &crate::blocks::harmonics::BLOCK,
     &crate::blocks::core::BLOCK,
     &crate::blocks::counter::BLOCK,
     &crate::blocks::qep::BLOCK,

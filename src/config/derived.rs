@@ -105,6 +105,10 @@ impl Derived {
                 (s, s + 2)
             }
         };
+        // The harmonic table sits in the core, between the CORDIC and the combiner.
+        let harmonics = crate::blocks::harmonics::block::params(c, z_width, z_guard, f, &err)?;
+        let latency_cycles =
+            latency_cycles + crate::blocks::harmonics::block::latency_cycles(harmonics.as_ref());
         check_throughput(architecture, n, cycles_per_sample, clock_hz, rate)
             .map_err(|m| err("cordic", "architecture", m.detail()))?;
         let mut biss = biss_params(c, position_width, &err)?;
@@ -154,6 +158,7 @@ impl Derived {
             reference,
             absolute: None,
             capture: None,
+            harmonics,
             registers: None,
             adc_width: a,
             capacitive,

@@ -480,6 +480,47 @@ pub fn top_resource_line(loaded: &Loaded, config: Option<&str>) -> Result<Option
     }))
 }
 
+/// `check`'s line on the resources of the block `key` of the registry alone (as the report's
+/// block table synthesizes it) for the target family, from the cache as
+/// [`top_resource_line`] reads it; None when this config has no such block. Never runs
+/// Yosys.
+pub fn block_resource_line(
+    loaded: &Loaded,
+    key: &str,
+    config: Option<&str>,
+) -> Result<Option<String>> {
+    let Some(b) = crate::blocks::registry::BLOCKS
+        .iter()
+        .find(|b| b.key == key)
+    else {
+        return Ok(None);
+    };
+    let job = (b.build)(loaded)?;
+    let Some(verilog) = &job.verilog else {
+        return Ok(None);
+    };
+    let family = target_family(loaded);
+    let label = format!("resources ({key})");
+    let cached = yosys::cached_synthesis(&check_cache_dirs(), verilog, &job.module, family);
+    Ok(Some(match cached {
+        Some((s, version)) => format!(
+            "{label:<27} {}: {} LUTs, {} FFs, {} block RAMs, {} multipliers (Yosys synthesis of {} cached by `sinedec report`, {version})",
+            family.name(),
+            s.luts,
+            s.ffs,
+            s.brams,
+            s.multipliers,
+            job.module
+        ),
+        None => format!(
+            "{label:<27} not synthesized for this design yet: `sinedec report{}` synthesizes {} ({}) and `check` then prints its LUTs, FFs, block RAMs and multipliers",
+            config.map(|c| format!(" {c}")).unwrap_or_default(),
+            job.module,
+            family.name()
+        ),
+    }))
+}
+
 /// The whole configured top as `sinedec report` synthesizes it, and that synthesis's
 /// figures if one of [`check_cache_dirs`] holds them.
 pub struct TopSynthesis {

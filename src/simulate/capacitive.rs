@@ -58,8 +58,9 @@ pub fn run_capacitive_report(
     let k = d.capacitive.as_ref().ok_or_else(|| {
         Error::Simulation("run_capacitive needs a configuration with [capacitive]".into())
     })?;
-    // The settling window is fixed: a shorter run would measure the filters' transient.
-    let skip = CAP_SETTLE_S;
+    // The settling window is fixed (a shorter run would measure the filters' transient);
+    // `--settle` may lengthen it.
+    let skip = CAP_SETTLE_S.max(o.settle_s);
     // Ten decoded positions past the settling window at least.
     let need = CAP_SETTLE_S + 10.0 / k.sample_rate_hz;
     if o.duration_s < need {
@@ -104,6 +105,17 @@ pub fn run_capacitive_report(
     let wall = t0.elapsed().as_secs_f64();
     sys.finish_trace().map_err(|e| Error::io("VCD output", e))?;
     let s = sys.stats(skip);
+    if s.samples == 0 && o.settle_s > CAP_SETTLE_S {
+        return Err(Error::option(
+            "--settle",
+            format!(
+                "{} s: leaves no sample: the {} positions decoded in the {} s run all came before it; use a shorter --settle or a longer --duration",
+                o.settle_s,
+                sys.decoded(),
+                o.duration_s
+            ),
+        ));
+    }
     if s.samples == 0 {
         return Err(no_sample(
             o.duration_s,

@@ -34,7 +34,11 @@ pub fn encoder(loaded: &Loaded, o: &SimOptions) -> EncoderModel {
     e.offset_cos = o.offset.1 * amp_v;
     e.gain_mismatch = o.gain_mismatch;
     e.phase_error = o.phase_error_deg.to_radians();
+    e.second_harmonic = o.second_harmonic;
     e.third_harmonic = o.third_harmonic;
+    e.fifth_harmonic = o.fifth_harmonic;
+    e.harmonic_phase = o.harmonic_phase_deg.map(f64::to_radians);
+    e.eccentricity = (o.eccentricity_arcsec / 3600.0).to_radians();
     apply_to_encoder(loaded, o, &mut e);
     e
 }
@@ -53,6 +57,15 @@ pub struct SimReport {
     pub engine_note: Option<String>,
     /// The faults injected (`--fault`).
     pub faults: Vec<FaultSpec>,
+    /// The first cycle whose decoded samples count (`--settle`; 0 without it).
+    pub settle_cycle: u64,
+    /// The encoder's eccentricity, arc-seconds (`--eccentricity`).
+    pub eccentricity_arcsec: f64,
+}
+
+/// The first cycle whose decoded samples count in the statistics: `--settle` in cycles.
+pub fn settle_cycle(d: &crate::config::Derived, o: &SimOptions) -> u64 {
+    (o.settle_s * d.clock_hz).ceil() as u64
 }
 
 /// Runs the simulation; `progress(done, total)` is called every 2^14 cycles.
@@ -159,8 +172,9 @@ pub fn run_traced(
     if o.record {
         sys.record_inputs();
     }
+    let from_cycle = settle_cycle(d, o);
     if !o.keep_records {
-        sys.stream_stats(o.skip);
+        sys.stream_stats_from(o.skip, from_cycle);
     }
     sys.monitor_biss(BISS_MA_HZ.min(d.biss.max_ma_hz()), o.duration_s);
     // SSI and SPI masters at the BiSS rate, slower where the slave's synchronizer or the
@@ -220,7 +234,17 @@ pub fn run_traced(
     let wall_s = t0.elapsed().as_secs_f64();
     sys.finish_trace().map_err(|e| Error::io("VCD output", e))?;
     let result = sys.finish();
-    let stats = result.stats(d, o.skip);
+    let stats = result.stats_from(d, o.skip, from_cycle);
+    if stats.samples == 0 && o.settle_s > 0.0 && result.decoded > o.skip {
+        // Samples were decoded past the settling ones, all before `--settle`.
+        return Err(Error::option(
+            "--settle",
+            format!(
+                "{} s: leaves no sample: the {} samples decoded in the {} s run all left the top before it; use a shorter --settle or a longer --duration",
+                o.settle_s, result.decoded, o.duration_s
+            ),
+        ));
+    }
     if stats.samples == 0 {
         // The first position leaves the top at the ADC's start-up plus the latency; the
         // statistics start after `skip` more sample periods.
@@ -238,6 +262,8 @@ pub fn run_traced(
     Ok(SimReport {
         result,
         stats,
+        settle_cycle: from_cycle,
+        eccentricity_arcsec: o.eccentricity_arcsec,
         wall_s,
         engine,
         engine_note,
@@ -284,6 +310,22 @@ impl SimReport {
             s.rms_lsb * arcsec
         );
         let _ = writeln!(o, "mean error                  {:.2} LSB", s.mean_lsb);
+        if self.settle_cycle > 0 {
+            let _ = writeln!(
+                o,
+                "statistics from             {:.6} s (--settle; cycle {})",
+                self.settle_cycle as f64 / d.clock_hz,
+                self.settle_cycle
+            );
+        }
+        if self.eccentricity_arcsec != 0.0 {
+            let _ = writeln!(
+                o,
+                "eccentricity                {:.2} arc-seconds = {:.2} LSB once per turn, in the figures above: an error of the shaft's angle, which no per-period correction (offset, gain, phase, harmonic table) can remove",
+                self.eccentricity_arcsec.abs(),
+                self.eccentricity_arcsec.abs() / arcsec
+            );
+        }
         let _ = writeln!(o, "samples with error flag     {}", s.errors);
         let _ = writeln!(o, "samples with warning flag   {}", s.warnings);
         let _ = writeln!(o, "latency mismatches          {}", r.latency_mismatches);
@@ -582,7 +624,7 @@ impl SimReport {
                 &format_args!("{:.3}", SimResult::error_lsb(d, r, offset)),
                 &(r.error as u8),
                 &(r.warning as u8),
-                &((i < skip) as u8),
+                &((i < skip || r.cycle < self.settle_cycle) as u8),
             ];
             if vel.is_some() {
                 let mut row = base.to_vec();

@@ -20,8 +20,19 @@ pub struct SimOptions {
     pub gain_mismatch: f64,
     /// Quadrature phase error in degrees.
     pub phase_error_deg: f64,
+    /// Second-harmonic ratio of both tracks' waveform (`sim::encoder`'s signal model).
+    pub second_harmonic: f64,
     /// Third-harmonic ratio.
     pub third_harmonic: f64,
+    /// Fifth-harmonic ratio.
+    pub fifth_harmonic: f64,
+    /// Phases of the 2nd, 3rd and 5th harmonics, degrees.
+    pub harmonic_phase_deg: [f64; 3],
+    /// Eccentricity of the scale, arc-seconds: a once-per-turn angle error.
+    pub eccentricity_arcsec: f64,
+    /// Simulated seconds before the statistics start (`--settle`): the decoded samples
+    /// that leave the top earlier are not counted.
+    pub settle_s: f64,
     /// Noise seed.
     pub seed: u64,
     /// Record every cycle's pins (for a VCD).
@@ -63,7 +74,12 @@ impl Default for SimOptions {
             offset: (0.0, 0.0),
             gain_mismatch: 0.0,
             phase_error_deg: 0.0,
+            second_harmonic: 0.0,
             third_harmonic: 0.0,
+            fifth_harmonic: 0.0,
+            harmonic_phase_deg: [0.0; 3],
+            eccentricity_arcsec: 0.0,
+            settle_s: 0.0,
             seed: 1,
             record: false,
             engine: Default::default(),
@@ -81,6 +97,10 @@ pub const MAX_RPM: f64 = 1.0e6;
 
 /// Largest simulated time, seconds.
 pub const MAX_DURATION_S: f64 = 10.0;
+
+/// Largest |`--eccentricity`|, arc-seconds (one degree: far beyond a mounted scale's
+/// tens of arc-seconds).
+pub const MAX_ECCENTRICITY_ARCSEC: f64 = 3600.0;
 
 impl SimOptions {
     /// Rejects meaningless options before anything runs; errors name the command-line
@@ -165,12 +185,60 @@ impl SimOptions {
                 "-45..=45 degrees",
             ),
             (
+                "--harmonic2",
+                self.second_harmonic,
+                0.5,
+                "-0.5..=0.5 (ratio)",
+            ),
+            (
                 "--harmonic3",
                 self.third_harmonic,
                 0.5,
                 "-0.5..=0.5 (ratio)",
             ),
+            (
+                "--harmonic5",
+                self.fifth_harmonic,
+                0.5,
+                "-0.5..=0.5 (ratio)",
+            ),
+            (
+                "--harmonic2-phase",
+                self.harmonic_phase_deg[0],
+                360.0,
+                "-360..=360 degrees",
+            ),
+            (
+                "--harmonic3-phase",
+                self.harmonic_phase_deg[1],
+                360.0,
+                "-360..=360 degrees",
+            ),
+            (
+                "--harmonic5-phase",
+                self.harmonic_phase_deg[2],
+                360.0,
+                "-360..=360 degrees",
+            ),
+            (
+                "--eccentricity",
+                self.eccentricity_arcsec,
+                MAX_ECCENTRICITY_ARCSEC,
+                "-3600..=3600 arc-seconds",
+            ),
         ];
+        if !(self.settle_s.is_finite() && self.settle_s >= 0.0) {
+            return bad("--settle", self.settle_s, "0 <= seconds < --duration");
+        }
+        if self.settle_s >= self.duration_s {
+            return Err(Error::option(
+                "--settle",
+                format!(
+                    "{} s: leaves no sample of the {} s run; allowed 0 <= seconds < --duration",
+                    self.settle_s, self.duration_s
+                ),
+            ));
+        }
         if let Some(hz) = self.capture_hz {
             if !(hz.is_finite() && hz > 0.0 && hz <= MAX_CAPTURE_HZ) {
                 return bad(

@@ -30,6 +30,8 @@ mod cosim_core;
 mod cosim_harness;
 mod cosim_stage;
 mod counter_load;
+mod harmonics;
+mod harmonics_config;
 mod iterative;
 mod monitor;
 mod preamp;

@@ -22,4 +22,5 @@ mod no_panic;
 mod output_robustness;
 mod output_safety;
 mod signals;
+mod simulate_options;
 mod snapshots;

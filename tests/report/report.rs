@@ -348,7 +348,7 @@ fn report_is_deterministic_and_formats_agree() {
         .collect();
     let mdb = markdown_block_rows(md);
     assert_eq!(mdb.len(), jblocks.len(), "Markdown and JSON block rows");
-    assert_eq!(jblocks.len(), 22);
+    assert_eq!(jblocks.len(), 23);
     let bcsv = &a["sd_report_blocks.csv"];
     let mut blines = bcsv.lines();
     let bkeys: Vec<&str> = blines

@@ -84,6 +84,7 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
             "preamp",
             "correction",
             "monitor",
+            "harmonics",
             "core",
             "counter",
             "qep",
@@ -104,10 +105,11 @@ fn every_block_synthesizes_and_the_top_is_the_largest() {
             "top"
         ]
     );
-    // The capacitive path's blocks, the ABZ emulator, the velocity estimator, the position
-    // reference, the absolute start, the capture and the register map while disabled, are
-    // absent from this sinewave config (no counts).
+    // The capacitive path's blocks, the harmonic table, the ABZ emulator, the velocity
+    // estimator, the position reference, the absolute start, the capture and the register
+    // map while disabled, are absent from this sinewave config (no counts).
     let cap = [
+        "harmonics",
         "abz",
         "velocity",
         "reference",

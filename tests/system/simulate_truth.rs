@@ -196,6 +196,54 @@ fn meaningless_options_are_rejected_by_name() {
             "--duration",
             "0 < seconds <= 10",
         ),
+        (
+            SimOptions {
+                second_harmonic: -0.6,
+                ..base.clone()
+            },
+            "--harmonic2",
+            "-0.5..=0.5",
+        ),
+        (
+            SimOptions {
+                fifth_harmonic: f64::NAN,
+                ..base.clone()
+            },
+            "--harmonic5",
+            "-0.5..=0.5",
+        ),
+        (
+            SimOptions {
+                harmonic_phase_deg: [0.0, 361.0, 0.0],
+                ..base.clone()
+            },
+            "--harmonic3-phase",
+            "-360..=360 degrees",
+        ),
+        (
+            SimOptions {
+                eccentricity_arcsec: 3601.0,
+                ..base.clone()
+            },
+            "--eccentricity",
+            "-3600..=3600 arc-seconds",
+        ),
+        (
+            SimOptions {
+                settle_s: -1e-3,
+                ..base.clone()
+            },
+            "--settle",
+            "0 <= seconds < --duration",
+        ),
+        (
+            SimOptions {
+                settle_s: 1e-3,
+                ..base.clone()
+            },
+            "--settle",
+            "leaves no sample",
+        ),
     ];
     for (o, opt, allowed) in cases {
         let t0 = std::time::Instant::now();
@@ -228,6 +276,141 @@ fn a_run_without_a_decoded_sample_is_an_error() {
     assert!(
         e.contains("`--duration`") && e.contains("settle") && e.contains("use at least"),
         "{e}"
+    );
+}
+
+/// `--settle` within the run but after its last decoded sample is an error naming it,
+/// on both paths, not "max |error| 0.00 LSB".
+#[test]
+fn a_settle_time_that_leaves_no_sample_is_an_error() {
+    // The statistics would start within the run's last clock cycle: no sample leaves then.
+    let l = default();
+    let o = SimOptions {
+        duration_s: 0.3e-3,
+        settle_s: 0.3e-3 - 3e-9,
+        ..Default::default()
+    };
+    let e = err_of(run(&l, &o, |_, _| {}));
+    assert!(
+        e.contains("`--settle`") && e.contains("leaves no sample"),
+        "{e}"
+    );
+    let c = cap();
+    let o = SimOptions {
+        duration_s: 1.6e-3,
+        settle_s: 1.6e-3 - 3e-9,
+        ..Default::default()
+    };
+    let e = err_of(run_capacitive(&c, &o, |_, _| {}));
+    assert!(
+        e.contains("`--settle`") && e.contains("leaves no sample"),
+        "{e}"
+    );
+}
+
+/// `--settle S` counts exactly the samples that leave the top at S or later (past the
+/// first 12): the streamed statistics (no CSV) equal the ones computed from the kept
+/// records by that rule.
+#[test]
+fn settle_drops_the_samples_before_it() {
+    let l = default();
+    let d = &l.derived;
+    let base = SimOptions {
+        duration_s: 1e-3,
+        profile: Profile::Constant { rpm: 3000.0 },
+        third_harmonic: 0.02,
+        ..Default::default()
+    };
+    let all = run(&l, &base, |_, _| {}).expect("run");
+    let settle = 0.6e-3;
+    let o = SimOptions {
+        settle_s: settle,
+        keep_records: false,
+        ..base.clone()
+    };
+    let late = run(&l, &o, |_, _| {}).expect("settled run");
+    let first = (settle * d.clock_hz).ceil() as u64;
+    let kept: Vec<_> = all.result.records.iter().skip(base.skip).collect();
+    let want = kept.iter().filter(|r| r.cycle >= first).count();
+    assert!(
+        want > 100 && want < kept.len() - 100,
+        "{want} of {}",
+        kept.len()
+    );
+    assert_eq!(late.stats.samples, want);
+    let offset = all.result.offset_lsb(d);
+    let max = kept
+        .iter()
+        .filter(|r| r.cycle >= first)
+        .map(|r| sinedec::sim::system::SimResult::error_lsb(d, r, offset).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        (late.stats.max_lsb - max).abs() < 1e-9,
+        "{} {max}",
+        late.stats.max_lsb
+    );
+    assert!(late.summary(&l).contains("statistics from"));
+}
+
+/// The closed loop shows the encoder's distortion as its formulas give it: a 2 % third
+/// harmonic as about 0.02 rad electrical (asin(h), 2^F / (pi / 2) LSB per rad), and 20
+/// arc-seconds of eccentricity as a once-per-turn error of 20 arc-seconds, which the
+/// summary names as one no per-period correction removes.
+#[test]
+fn the_closed_loop_shows_harmonics_and_eccentricity_at_their_size() {
+    let l = default();
+    let d = &l.derived;
+    let lsb_per_rad = (1u64 << d.fine_bits) as f64 / std::f64::consts::FRAC_PI_2;
+    let base = SimOptions {
+        profile: Profile::Constant { rpm: 3000.0 },
+        duration_s: 2e-3,
+        keep_records: false,
+        ..Default::default()
+    };
+    let clean = run(&l, &base, |_, _| {}).expect("clean").stats;
+    let h3 = run(
+        &l,
+        &SimOptions {
+            third_harmonic: 0.02,
+            ..base.clone()
+        },
+        |_, _| {},
+    )
+    .expect("h3")
+    .stats;
+    let want = 0.02f64.asin() * lsb_per_rad;
+    assert!(
+        (h3.max_lsb - want).abs() < clean.max_lsb + 1.0,
+        "h3 0.02: {} LSB, formula {want}, clean {}",
+        h3.max_lsb,
+        clean.max_lsb
+    );
+    // One whole turn at 3000 rpm: 20 ms.
+    let arcsec = 20.0;
+    let o = SimOptions {
+        duration_s: 20e-3,
+        eccentricity_arcsec: arcsec,
+        ..base.clone()
+    };
+    let r = run(&l, &o, |_, _| {}).expect("eccentric");
+    let per_lsb = 360.0 * 3600.0 / (d.quadrants_per_turn as f64 * (1u64 << d.fine_bits) as f64);
+    let want = arcsec / per_lsb;
+    assert!(
+        (r.stats.max_lsb - want).abs() < clean.max_lsb + 1.0,
+        "eccentricity {arcsec}\": {} LSB, formula {want}",
+        r.stats.max_lsb
+    );
+    // A sine over whole turns: RMS = amplitude / sqrt 2.
+    assert!(
+        (r.stats.rms_lsb - want / 2f64.sqrt()).abs() < 0.01 * want,
+        "{} against {}",
+        r.stats.rms_lsb,
+        want / 2f64.sqrt()
+    );
+    let s = r.summary(&l);
+    assert!(
+        s.contains("eccentricity") && s.contains("no per-period correction"),
+        "{s}"
     );
 }
 
@@ -305,6 +488,20 @@ fn capacitive_path_rejects_track_imperfections() {
                 ..base.clone()
             },
             "--phase-error",
+        ),
+        (
+            SimOptions {
+                fifth_harmonic: 0.01,
+                ..base.clone()
+            },
+            "--harmonic5",
+        ),
+        (
+            SimOptions {
+                eccentricity_arcsec: 10.0,
+                ..base.clone()
+            },
+            "--eccentricity",
         ),
         (
             SimOptions {

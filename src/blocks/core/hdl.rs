@@ -3,6 +3,7 @@ use crate::blocks::c32;
 use crate::blocks::cordic::hdl::{CordicStage, QuadrantMapper};
 use crate::blocks::cordic::iterative::IterativeCordic;
 use crate::blocks::counter::hdl::{z_start, Combiner, QuadrantCounter};
+use crate::blocks::harmonics::hdl::HarmonicCorrection;
 use crate::blocks::params::{Architecture, Derived};
 use rust_hdl::prelude::*;
 
@@ -49,6 +50,9 @@ pub struct CoreRtl {
     stages: Vec<CordicStage>,
     /// The iterative engine (one for the iterative architecture, else none).
     iter: Vec<IterativeCordic>,
+    /// The harmonic table between the last stage and the combiner (`[harmonics]`: one,
+    /// else none).
+    harm: Vec<HarmonicCorrection>,
     combiner: Combiner,
     counter: QuadrantCounter,
     /// 2^(Gz-1): the rounding half in the initial angle.
@@ -90,6 +94,7 @@ impl CoreRtl {
             } else {
                 Vec::new()
             },
+            harm: d.harmonics.iter().map(HarmonicCorrection::new).collect(),
             combiner: Combiner::new(d),
             counter: QuadrantCounter::new(d),
             zhalf: c32(zs.0),
@@ -148,6 +153,22 @@ impl Logic for CoreRtl {
             self.combiner.v_in.next = self.stages[i].v_out.val();
             self.out_mag.next = self.stages[i].x_out.val();
             self.out_mag_valid.next = self.stages[i].v_out.val();
+        }
+        // With `[harmonics]` the table takes the last stage's output and the combiner (and
+        // the magnitude, which keeps its two clocks ahead of out_valid) the table's.
+        for j in 0..self.harm.len() {
+            self.harm[j].clk.next = self.clk.val();
+            self.harm[j].rst.next = self.rst.val();
+            for i in 0..self.stages.len() {
+                self.harm[j].z_in.next = self.stages[i].z_out.val();
+                self.harm[j].x_in.next = self.stages[i].x_out.val();
+                self.harm[j].v_in.next = self.stages[i].v_out.val();
+            }
+            self.combiner.z_in.next = self.harm[j].z_out.val();
+            self.combiner.x_in.next = self.harm[j].x_out.val();
+            self.combiner.v_in.next = self.harm[j].v_out.val();
+            self.out_mag.next = self.harm[j].x_out.val();
+            self.out_mag_valid.next = self.harm[j].v_out.val();
         }
         for i in 0..self.iter.len() {
             self.combiner.z_in.next = self.iter[i].z_out.val();

@@ -64,7 +64,11 @@ impl CoreOut {
 /// The sample-level function of the datapath (no timing): what the combiner registers.
 #[inline]
 pub fn sample(d: &Derived, sin: i32, cos: i32) -> Combined {
-    combine(d, &cordic(d, sin, cos))
+    let c = cordic(d, sin, cos);
+    match &d.harmonics {
+        None => combine(d, &c),
+        Some(h) => crate::blocks::harmonics::model::combine_corrected(d, h, &c),
+    }
 }
 
 /// Cycle-level model: the pipeline as a delay line of N + 2 stages, then the counter
@@ -83,7 +87,7 @@ impl CoreModel {
     pub fn new(d: &Derived) -> Self {
         CoreModel {
             d: d.clone(),
-            line: (0..d.iterations + 2).map(|_| None).collect(),
+            line: (0..d.latency_cycles).map(|_| None).collect(),
             counter: Counter::default(),
             iter: (d.architecture == Architecture::Iterative).then(IterTiming::new),
         }

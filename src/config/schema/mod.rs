@@ -178,6 +178,10 @@ pub struct Config {
     /// AXI4-Lite register map (`crate::blocks::regmap`).
     #[serde(default)]
     pub registers: crate::blocks::regmap::RegistersConfig,
+    /// Harmonic-correction table between the CORDIC and the combiner
+    /// (`crate::blocks::harmonics`).
+    #[serde(default)]
+    pub harmonics: crate::blocks::harmonics::block::HarmonicsConfig,
 }
 
 /// `[velocity]`: velocity estimation from the decoded position (docs/velocity.md). Every key

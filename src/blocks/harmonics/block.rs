@@ -1,0 +1,155 @@
+//! The harmonic-correction block in the core: its config section `[harmonics]`, the
+//! parameters derived from it, its `check` lines, its report job and its registry entry
+//! ([`super::BLOCK`]).
+use super::{HarmonicParams, POINTS_RANGE};
+use crate::blocks::params::Architecture;
+use crate::blocks::registry::BlockDef;
+use crate::config::{Config, ErrFn, Loaded};
+use crate::error::Result;
+use crate::report::blocks::{job, BlockJob, BlockTiming};
+use serde::Deserialize;
+
+/// `[harmonics]`: a table of angle corrections against the angle within the signal period,
+/// between the CORDIC and the combiner (docs/correction.md, "Harmonic distortion").
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HarmonicsConfig {
+    /// Include the block (default false: no logic).
+    pub enabled: bool,
+    /// Entries over one signal period: a power of two, 16..=256 (default 64).
+    pub points: u32,
+    /// The corrections, position LSB (2^-F quadrant), `points` of them from angle 0 in
+    /// steps of one period / points: the decoded angle's error there, subtracted.
+    pub table: Option<Vec<f64>>,
+}
+
+impl Default for HarmonicsConfig {
+    fn default() -> Self {
+        HarmonicsConfig {
+            enabled: false,
+            points: 64,
+            table: None,
+        }
+    }
+}
+
+/// The registry entry: no pins (the block sits inside the core).
+pub const BLOCK: BlockDef = BlockDef {
+    key: "harmonics",
+    label: "harmonic correction (table)",
+    section: "[harmonics] enabled = true",
+    enabled: |c| c.harmonics.enabled && c.capacitive.is_none(),
+    ports: &[],
+    io_group: "",
+    describe: |d| d.harmonics.as_ref().map(describe),
+    build: report_job,
+    timing_case: Some(HELD_CASE),
+};
+
+/// The held design of the timing rule: the default config with a 64-point table of a
+/// 2 % third harmonic's error (208.6 sin 4x LSB, the peak asin 0.02 at F = 14).
+pub const HELD_CASE: &str = "[harmonics]\nenabled = true\npoints = 64\ntable = [0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8]\n";
+
+/// `[harmonics]`: the block's parameters when enabled (None otherwise), for the angle word
+/// of `z_width` bits with `z_guard` guard bits below the `fine_bits` LSB.
+pub fn params(
+    c: &Config,
+    z_width: u32,
+    z_guard: u32,
+    fine_bits: u32,
+    err: &ErrFn,
+) -> Result<Option<HarmonicParams>> {
+    let h = &c.harmonics;
+    // A section that is off is not checked beyond its types (docs/cli.md).
+    if !h.enabled {
+        return Ok(None);
+    }
+    if !(POINTS_RANGE.contains(&h.points) && h.points.is_power_of_two()) {
+        return Err(err(
+            "harmonics",
+            "points",
+            format!(
+                "{}: allowed a power of two from {} to {}",
+                h.points,
+                POINTS_RANGE.start(),
+                POINTS_RANGE.end()
+            ),
+        ));
+    }
+    if c.capacitive.is_some() {
+        return Err(err(
+            "harmonics",
+            "enabled",
+            "the harmonic table is built into the sinewave core only; remove [harmonics] or set enabled = false with [capacitive]".into(),
+        ));
+    }
+    if c.cordic.architecture != Architecture::Unrolled {
+        return Err(err(
+            "harmonics",
+            "enabled",
+            "the harmonic table is built for the unrolled CORDIC only; set cordic.architecture = \"unrolled\" or enabled = false".into(),
+        ));
+    }
+    let Some(table) = &h.table else {
+        return Err(err(
+            "harmonics",
+            "enabled",
+            format!(
+                "the table is not learned online yet: give `table`, {} corrections in position LSB (docs/correction.md, \"Harmonic distortion\")",
+                h.points
+            ),
+        ));
+    };
+    if table.len() != h.points as usize {
+        return Err(err(
+            "harmonics",
+            "table",
+            format!(
+                "{} entries: allowed exactly `points` = {} (one per 1/{} of the signal period, from angle 0)",
+                table.len(),
+                h.points,
+                h.points
+            ),
+        ));
+    }
+    HarmonicParams::new(z_width, z_guard, fine_bits, table)
+        .map(Some)
+        .map_err(|m| err("harmonics", "table", m))
+}
+
+/// Clocks the block adds to the core (0 without it).
+pub fn latency_cycles(p: Option<&HarmonicParams>) -> u32 {
+    p.map_or(0, |_| HarmonicParams::LATENCY)
+}
+
+/// The `[harmonics]` lines of `check`.
+fn describe(p: &HarmonicParams) -> String {
+    let max = p.table.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0) as f64
+        / (1u64 << p.z_guard) as f64;
+    format!(
+        "harmonic correction         {} points over the signal period, linear interpolation ({} fraction bits), entries in 2^-{} LSB, largest {:.2} LSB; within {:.3} LSB of the table's line\n\
+         harmonic correction latency {} clocks (in the core's latency: table lookup, partial products, two adder levels, subtract)\n",
+        p.points(),
+        super::INTERP_BITS,
+        p.z_guard,
+        max,
+        p.bound_lsb(),
+        HarmonicParams::LATENCY
+    )
+}
+
+/// The report's row: the block synthesized alone.
+fn report_job(l: &Loaded) -> Result<BlockJob> {
+    let Some(p) = &l.derived.harmonics else {
+        return Ok(BlockJob::absent("harmonics", "needs [harmonics] enabled"));
+    };
+    job(
+        l,
+        "harmonics",
+        super::hdl::HarmonicCorrection::new(p),
+        BlockTiming::latency(
+            HarmonicParams::LATENCY,
+            "table lookup, partial products, two adder levels, subtract",
+        ),
+    )
+}

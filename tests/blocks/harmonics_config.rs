@@ -1,0 +1,115 @@
+//! `[harmonics]` in the config: bad values name the key, its line and column and what is
+//! allowed; `check` prints the table's lines and the core's latency with its five clocks;
+//! off (the default) nothing changes.
+use crate::common;
+use sinedec::blocks::harmonics::block::HELD_CASE;
+use sinedec::blocks::harmonics::HarmonicParams;
+use sinedec::config::{Loaded, DEFAULT_CONFIG};
+
+fn with(body: &str) -> String {
+    common::with_section("harmonics", body)
+}
+
+/// A table of `n` entries, each `v`, as TOML.
+fn table(n: usize, v: f64) -> String {
+    let e: Vec<String> = (0..n).map(|_| format!("{v:.1}")).collect();
+    format!("table = [{}]", e.join(", "))
+}
+
+#[test]
+fn bad_values_name_the_key_the_position_and_what_is_allowed() {
+    let long = table(32, 0.0);
+    let big = table(16, 1100.0);
+    let cases: Vec<(String, &str, Vec<&str>)> = vec![
+        (
+            "enabled = true\npoints = 48".into(),
+            "points = 48",
+            vec!["`harmonics.points`", "48", "power of two from 16 to 256"],
+        ),
+        (
+            "enabled = true\npoints = 512".into(),
+            "points = 512",
+            vec!["`harmonics.points`", "power of two"],
+        ),
+        (
+            "enabled = true # the table".into(),
+            "enabled = true # the table",
+            vec!["`harmonics.enabled`", "not learned online yet", "`table`"],
+        ),
+        (
+            format!("enabled = true\npoints = 16\n{long}"),
+            "table = [",
+            vec!["`harmonics.table`", "32 entries", "exactly `points` = 16"],
+        ),
+        (
+            format!("enabled = true\npoints = 16\n{big}"),
+            "table = [",
+            vec!["`harmonics.table`", "entry 0", "-1024..=1024 LSB"],
+        ),
+    ];
+    for (body, needle, mentions) in &cases {
+        common::assert_config_error(&with(body), needle, mentions);
+    }
+    // The iterative CORDIC has no table.
+    let text = with(&format!(
+        "enabled = true # it\npoints = 16\n{}",
+        table(16, 0.0)
+    ))
+    .replace(
+        "architecture = \"unrolled\"",
+        "architecture = \"iterative\"",
+    );
+    common::assert_config_error(
+        &text,
+        "enabled = true # it",
+        &["`harmonics.enabled`", "unrolled"],
+    );
+    // An unknown key is refused by the schema.
+    let e = Loaded::parse(&with("point = 64"), "bad.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("point"), "{e}");
+}
+
+#[test]
+fn check_prints_the_table_and_the_latency() {
+    let on = Loaded::parse(&format!("{DEFAULT_CONFIG}\n{HELD_CASE}"), "h.toml").expect("on");
+    let off = Loaded::default_config().expect("off");
+    let (d, d0) = (&on.derived, &off.derived);
+    // The one derivation: the core's latency grows by the block's, and CONV -> position
+    // with it.
+    assert_eq!(
+        d.latency_cycles,
+        d0.latency_cycles + HarmonicParams::LATENCY
+    );
+    assert_eq!(
+        sinedec::blocks::top::hdl::conv_to_position_cycles(d),
+        sinedec::blocks::top::hdl::conv_to_position_cycles(d0) + HarmonicParams::LATENCY
+    );
+    let s = d.describe();
+    let line = |k: &str| {
+        s.lines()
+            .find(|l| l.starts_with(k))
+            .unwrap_or_else(|| panic!("no {k:?} in\n{s}"))
+            .to_string()
+    };
+    assert!(line("harmonic correction ").contains("64 points"), "{s}");
+    assert!(
+        line("harmonic correction latency").contains("5 clocks"),
+        "{s}"
+    );
+    assert!(
+        line("core latency in -> out").contains(&format!("{} cycles", d0.latency_cycles + 5)),
+        "{s}"
+    );
+    // The held table's largest entry, 208.6 LSB, in 2^-6 LSB units.
+    assert!(
+        line("harmonic correction ").contains("largest 208.59 LSB"),
+        "{s}"
+    );
+    assert!(!d0.describe().contains("harmonic"));
+    // Off, the section's keys are not checked beyond their types (docs/cli.md) and the
+    // design has no table.
+    let quiet = Loaded::parse(&with("enabled = false\npoints = 100"), "q.toml").expect("off");
+    assert!(quiet.derived.harmonics.is_none());
+}
