@@ -143,6 +143,27 @@ fn the_integer_learner_follows_the_float_model() {
     }
 }
 
+/// The solve's clocks, counted by hand from the formats in docs/correction.md: Line 39
+/// quotient bits + a load + 23 product bits, Residual 1 + 23 + 1 + (20 + 1) + 1 per bin,
+/// Mean 21, Update 128, Apply 1.
+#[test]
+fn the_solve_takes_the_documented_clocks() {
+    let p = params();
+    assert_eq!(p.line_clocks(), 39 + 1 + 23);
+    assert_eq!(p.residual_clocks(), 47);
+    assert_eq!(p.solve_clocks(), 63 + 47 * 128 + 21 + 128 + 1);
+    assert_eq!(
+        (
+            p.entry_width(),
+            p.q_width(),
+            p.sum_p_width(),
+            p.sum_kp_width()
+        ),
+        (19, 37, 49, 60)
+    );
+    assert_eq!((p.b_width(), p.a_width()), (40, 54));
+}
+
 #[test]
 fn no_entry_moves_by_more_than_the_step_and_reset_clears() {
     // 8 % H3: residuals of 1300 LSB, so the first updates clip.
@@ -408,7 +429,10 @@ fn the_learned_table_meets_the_bound_at_three_speeds_both_ways() {
             "| {rpm} | {:.2} | {} ({:.1}) | {:.3} | {:.2} | {:.2} | {bound:.2} |",
             clean.max_lsb,
             changes.0,
-            changes.0 as f64 * 4096.0 / off.derived.sample_rate_hz * 1e3,
+            changes.0 as f64
+                * (4096.0 / off.derived.sample_rate_hz
+                    + f64::from(params().solve_clocks()) / off.derived.clock_hz)
+                * 1e3,
             changes.1 as f64 / f64::from(1u32 << TABLE_FRAC),
             maxes[0].max_lsb,
             maxes[1].max_lsb,
