@@ -82,12 +82,12 @@
 //!
 //! Conditions (docs/correction.md): the speed at most the counter's unwrap limit (|delta| <
 //! 2^(F+1) LSB per sample) and at least one period per window (|b| N >= 2^(F+2) LSB: at
-//! 1.307 Msps, N = 4096 and the default 2048 lines, 9.3 rpm), else the window writes every entry back
-//! unchanged (at zero speed all samples fall in one or two bins, whose residuals are noise);
-//! a steady speed: an acceleration of alpha LSB per sample^2 bends the window's positions
-//! from their line by up to alpha N^2 / 8 LSB, which must stay below 1 LSB (alpha <
-//! 8 / N^2 = 4.8e-7 LSB per sample^2 at N = 4096); an unsteady window still moves no entry by
-//! more than `step`.
+//! 1.307 Msps, N = 4096 and the default 2048 lines, 9.3 rpm), else the window writes every
+//! entry back unchanged (at zero speed all samples fall in one or two bins, whose residuals
+//! are noise); a steady speed: an acceleration of alpha LSB per sample^2 bends the window's
+//! positions from their line by up to alpha N^2 / 8 LSB, which must stay below 1 LSB
+//! (alpha < 8 / N^2 = 4.8e-7 LSB per sample^2 at N = 4096); an unsteady window still moves
+//! no entry by more than `step`.
 
 /// Fraction bits T of a table entry and of the corrected position below the LSB.
 pub const TABLE_FRAC: u32 = 8;
