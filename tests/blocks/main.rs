@@ -32,6 +32,7 @@ mod cosim_stage;
 mod counter_load;
 mod harmonics;
 mod harmonics_config;
+mod harmonics_learn;
 mod iterative;
 mod monitor;
 mod preamp;

@@ -1,7 +1,7 @@
 //! Model of learning the table online (docs/correction.md, "Learning the table online"):
 //! the method in floating point, sample by sample, for proving its conditions and its
 //! convergence on the closed loop's positions before the hardware exists. Not bit-accurate:
-//! the RTL (a sequencer of table steps) is not built.
+//! the integer model the RTL will follow is [`super::sequencer`].
 //!
 //! Per decoded sample k of a window of N: the corrected position p_k (unwrapped, LSB) and
 //! its angle within the signal period give bin i = round(angle P / period) mod P (bin i is

@@ -63,6 +63,7 @@ pub mod block;
 pub mod hdl;
 pub mod learn;
 pub mod model;
+pub mod sequencer;
 
 use crate::blocks::mask;
 
