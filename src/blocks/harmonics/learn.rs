@@ -11,7 +11,8 @@
 //! and entry i moves by clip(gain (r_i - r), +-step).
 //!
 //! The learned table is loaded as `[harmonics] table` ([`toml`]) to measure it in the
-//! closed loop (`tests/system/harmonics_top.rs`).
+//! closed loop; the integer model (`super::sequencer`) is checked against this one and
+//! measured that way (`tests/blocks/harmonics_learn.rs`).
 /// The learner's settings and state.
 #[derive(Clone, Debug)]
 pub struct Learner {
