@@ -470,22 +470,8 @@ fn four_way_cosimulation() {
         .collect();
     let (ins, model, _) = drive(&p, &ops, 0.4, 10, true, |k| vals[k % vals.len()]);
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row()).collect();
-    let dir = common::workdir("regmap_cosim");
-    let t = block_traces(
-        RegisterMap::new(&p),
-        "regmap_cosim",
-        "clk",
-        &rows,
-        Simulators::ALL,
-        &dir,
-    )
-    .expect("simulators ran");
-    for (k, (r, m)) in t.rust_hdl.iter().zip(&model).enumerate() {
-        assert_eq!(r, &m.row(), "row {k}: rust-hdl vs model");
-    }
-    if let Some(m) = t.mismatch() {
-        panic!("{m}");
-    }
+    let model: Vec<Vec<u64>> = model.iter().map(|o| o.row()).collect();
+    four_ways(&p, "regmap_cosim", &rows, &model);
 }
 
 /// The BiSS control channel's byte port ([`RegmapParams::with_biss_port`]), driven clock by
@@ -600,19 +586,20 @@ fn biss_byte_port_reads_and_writes_the_map_four_ways() {
         "GAIN_SIN byte 1 loads"
     );
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_with_bus()).collect();
-    let dir = common::workdir("regmap_biss_port");
-    let t = block_traces(
-        RegisterMap::new(&p),
-        "regmap_biss_port",
-        "clk",
-        &rows,
-        Simulators::ALL,
-        &dir,
-    )
-    .expect("simulators ran");
-    for (k, (r, m)) in t.rust_hdl.iter().zip(&outs).enumerate() {
-        assert_eq!(r, &m.row_with_bus(), "row {k}: rust-hdl vs model");
+    let model: Vec<Vec<u64>> = outs.iter().map(|o| o.row_with_bus()).collect();
+    four_ways(&p, "regmap_biss_port", &rows, &model);
+}
+
+/// The map on `rows` in rust-hdl (equal to the `model` rows), Icarus, Verilator and the
+/// engine (equal to rust-hdl), work directory `tag`.
+fn four_ways(p: &RegmapParams, tag: &str, rows: &[Vec<u64>], model: &[Vec<u64>]) {
+    let dir = common::workdir(tag);
+    let t = block_traces(RegisterMap::new(p), tag, "clk", rows, Simulators::ALL, &dir)
+        .expect("simulators ran");
+    for (k, (r, m)) in t.rust_hdl.iter().zip(model).enumerate() {
+        assert_eq!(r, m, "row {k}: rust-hdl vs model");
     }
+    assert_eq!(t.rust_hdl.len(), model.len());
     if let Some(m) = t.mismatch() {
         panic!("{m}");
     }
