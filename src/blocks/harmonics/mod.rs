@@ -61,6 +61,7 @@
 //! | `v_out` | out | 1 | `v_in` 5 clocks later (0 after `rst`) |
 pub mod block;
 pub mod hdl;
+pub mod hdl_ram;
 pub mod learn;
 pub mod model;
 pub mod sequencer;
@@ -93,6 +94,10 @@ pub struct HarmonicParams {
 impl HarmonicParams {
     /// Clocks from `z_in` to `z_out` (the one place the latency is stated).
     pub const LATENCY: u32 = 5;
+
+    /// Clocks from `z_in` to `z_out` with the table in RAM (the learned table): the RAM's
+    /// read register, then the slope's subtract before the partial products.
+    pub const LATENCY_RAM: u32 = 6;
 
     /// The block for a ZW-bit angle with Gz guard bits and F fine bits, and the table
     /// `table_lsb` (position LSB, one entry per point of the period from angle 0); the

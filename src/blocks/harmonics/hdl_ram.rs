@@ -1,0 +1,383 @@
+//! rust-hdl description of the harmonic-correction block with its table in RAM, for the
+//! learned table (`[harmonics] mode = "learn"`; maths in the module doc of
+//! `crate::blocks::harmonics`, "The table in RAM").
+//!
+//! ```text
+//!  tw, tw_addr, tw_data ──► (q - m ^ m + half) >> s ──reg──► RAM_A[bank,i], RAM_B[bank,i]
+//!  (the learner's writes,     (q units to z units)           (one copy each)
+//!   q units)
+//!            ┌──────────────┐ a=c_i  ┌──────────────┐ y, D  ┌────────────┐ s0..s3 ┌─────┐ ┌─────┐ ┌───────────┐
+//!  z_in ────►│ RAM_A[b,idx] ├───────►│ y=(z-a)<<R|h ├──────►│ 8 partial  ├───────►│ add ├►│ add ├►│ y - sum   ├─► z_out
+//!  (ZW b)    │ RAM_B[b,idx+1]│ b=c_j │ D=b-a (sext) │ f     │ products,  │        │pairs│ │pair │ │ >> R      │
+//!            └──reg─────────┘        └──reg─────────┘       │ pairs      │        └─reg─┘ └─reg─┘ └──reg──────┘
+//!  cycle:        1                       2                  └──reg───────┘3          4       5        6
+//! ```
+use super::{HarmonicParams, INTERP_BITS};
+use crate::blocks::{c32, mask};
+use crate::cosim::Port;
+use rust_hdl::prelude::*;
+use std::collections::BTreeMap;
+
+/// Address bits of a table RAM: the bank in bit 8, the entry in bits 7..0 (P <= 256).
+pub const RAM_ADDR_BITS: usize = 9;
+
+/// Bits of a RAM word: the entry in z units modulo 2^ZW (ZW <= 24).
+pub const RAM_WORD_BITS: usize = 24;
+
+/// The table lookup from RAM, the interpolation and the subtraction, six register stages.
+#[derive(LogicBlock)]
+pub struct HarmonicCorrectionRam {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset: clears the valid bits in flight.
+    pub rst: Signal<In, Bit>,
+    /// The CORDIC's angle word (ZW bits, z units).
+    pub z_in: Signal<In, Bits<32>>,
+    /// The CORDIC's magnitude, carried along.
+    pub x_in: Signal<In, Bits<32>>,
+    /// The sample is valid.
+    pub v_in: Signal<In, Bit>,
+    /// The bank of the table the lookup reads.
+    pub bank: Signal<In, Bit>,
+    /// Write an entry this clock.
+    pub tw: Signal<In, Bit>,
+    /// The entry written: bank * P + i.
+    pub tw_addr: Signal<In, Bits<32>>,
+    /// Its value, q units (2^-T LSB), two's complement in the learner's entry width.
+    pub tw_data: Signal<In, Bits<32>>,
+    /// The corrected angle (ZW bits), six clocks after `z_in`.
+    pub z_out: Signal<Out, Bits<32>>,
+    /// `x_in` six clocks later.
+    pub x_out: Signal<Out, Bits<32>>,
+    /// `v_in` six clocks later.
+    pub v_out: Signal<Out, Bit>,
+    /// c_i (z units mod 2^ZW) at {bank, i}, read at the segment.
+    ram_a: RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    /// The same table, read at the next segment (i + 1 mod P).
+    ram_b: RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    /// The write stage: the entry converted to z units, its RAM address, the enable.
+    wd: DFF<Bits<32>>,
+    wa: DFF<Bits<32>>,
+    we: DFF<Bit>,
+    /// The segment of `z_in` (its top p bits) and the next one, with the bank.
+    idx: Signal<Local, Bits<32>>,
+    nxt: Signal<Local, Bits<32>>,
+    /// The bank's offset in a RAM address (0 or 256).
+    boff: Signal<Local, Bits<32>>,
+    /// Stage 1: the angle (the RAMs' read data are c_i and c_(i+1)).
+    z1: DFF<Bits<32>>,
+    x1: DFF<Bits<32>>,
+    v1: DFF<Bit>,
+    /// The slope c_(i+1) - c_i modulo 2^ZW, before its sign fill.
+    dz: Signal<Local, Bits<32>>,
+    /// Stage 2: y = (z - c_i) 2^R + 2^(R-1), the slope D sign-filled to W bits, f.
+    y2: DFF<Bits<32>>,
+    d2: DFF<Bits<32>>,
+    f2: DFF<Bits<32>>,
+    x2: DFF<Bits<32>>,
+    v2: DFF<Bit>,
+    /// Stage 3: y and the partial products in pairs (k = 0+1, 2+3, 4+5, 6+7).
+    y3: DFF<Bits<32>>,
+    s3a: DFF<Bits<32>>,
+    s3b: DFF<Bits<32>>,
+    s3c: DFF<Bits<32>>,
+    s3d: DFF<Bits<32>>,
+    x3: DFF<Bits<32>>,
+    v3: DFF<Bit>,
+    /// Stage 4: the pairs of pairs.
+    y4: DFF<Bits<32>>,
+    s4a: DFF<Bits<32>>,
+    s4b: DFF<Bits<32>>,
+    x4: DFF<Bits<32>>,
+    v4: DFF<Bit>,
+    /// Stage 5: D f.
+    y5: DFF<Bits<32>>,
+    s5: DFF<Bits<32>>,
+    x5: DFF<Bits<32>>,
+    v5: DFF<Bit>,
+    /// Stage 6: the corrected angle.
+    z6: DFF<Bits<32>>,
+    x6: DFF<Bits<32>>,
+    v6: DFF<Bit>,
+    /// The partial products D 2^k where bit k of f is set, else 0.
+    pp: Vec<Signal<Local, Bits<32>>>,
+    /// The shifts 0..=7 of the partial products.
+    kk: Vec<Constant<Bits<32>>>,
+    /// m = 2^(E-1), E the learner's entry width: (q ^ m) - m sign-fills q.
+    emask: Constant<Bits<32>>,
+    /// 2^(s-1) - m modulo 2^32 (s = T - Gz): the sign fill and the rounding half at once.
+    ekadd: Constant<Bits<32>>,
+    /// s = T - Gz: q units to z units.
+    eshift: Constant<Bits<32>>,
+    /// p: the bank's place in `tw_addr`.
+    pbits: Constant<Bits<32>>,
+    /// 8: the bank's place in a RAM address.
+    bankpos: Constant<Bits<32>>,
+    /// 256: bank 1's offset in a RAM address.
+    bankbit: Constant<Bits<32>>,
+    /// ZW - p: the shift of the segment index out of z.
+    ishift: Constant<Bits<32>>,
+    /// Mask of p bits (the index).
+    imask: Constant<Bits<32>>,
+    /// ZW - p - R: the shift of f out of z.
+    fshift: Constant<Bits<32>>,
+    /// Mask of R bits (f).
+    fmask: Constant<Bits<32>>,
+    /// R: the interpolation's fraction bits.
+    rbits: Constant<Bits<32>>,
+    /// 2^(R-1): the rounding half.
+    rhalf: Constant<Bits<32>>,
+    /// Mask of W = ZW + R bits (the sums).
+    wmask: Constant<Bits<32>>,
+    /// Mask of ZW bits (the angle).
+    zmask: Constant<Bits<32>>,
+    /// The bits W-1..ZW, set to fill the sign of a ZW-bit slope.
+    dfill: Constant<Bits<32>>,
+    /// 2^(ZW-1): the sign bit of a ZW-bit slope.
+    dsign: Constant<Bits<32>>,
+    /// Zero and one.
+    zero: Constant<Bits<32>>,
+    one: Constant<Bits<32>>,
+}
+
+/// A RAM holding `table` (z units) in both banks.
+fn ram(p: &HarmonicParams, table: &[i64]) -> RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS> {
+    let mut init = BTreeMap::new();
+    for bank in 0..2u64 {
+        for (i, &c) in table.iter().enumerate() {
+            let addr = (bank << 8) | i as u64;
+            init.insert(
+                Bits::<RAM_ADDR_BITS>::from(addr),
+                Bits::<RAM_WORD_BITS>::from(c as u64 & mask(p.z_width)),
+            );
+        }
+    }
+    RAM::new(init)
+}
+
+impl HarmonicCorrectionRam {
+    /// The block for `p`, its table's start in both banks; `entry_width` E is the width of
+    /// the learner's entries on `tw_data`.
+    pub fn new(p: &HarmonicParams, entry_width: u32) -> Self {
+        let (zw, pb, r) = (p.z_width, p.points_log2, INTERP_BITS);
+        let s = super::sequencer::TABLE_FRAC - p.z_guard;
+        let m = 1u64 << (entry_width - 1);
+        let half = if s == 0 { 0 } else { 1u64 << (s - 1) };
+        Self {
+            clk: Default::default(),
+            rst: Default::default(),
+            z_in: Default::default(),
+            x_in: Default::default(),
+            v_in: Default::default(),
+            bank: Default::default(),
+            tw: Default::default(),
+            tw_addr: Default::default(),
+            tw_data: Default::default(),
+            z_out: Default::default(),
+            x_out: Default::default(),
+            v_out: Default::default(),
+            ram_a: ram(p, &p.table),
+            ram_b: ram(p, &p.table),
+            wd: Default::default(),
+            wa: Default::default(),
+            we: Default::default(),
+            idx: Default::default(),
+            nxt: Default::default(),
+            boff: Default::default(),
+            z1: Default::default(),
+            x1: Default::default(),
+            v1: Default::default(),
+            dz: Default::default(),
+            y2: Default::default(),
+            d2: Default::default(),
+            f2: Default::default(),
+            x2: Default::default(),
+            v2: Default::default(),
+            y3: Default::default(),
+            s3a: Default::default(),
+            s3b: Default::default(),
+            s3c: Default::default(),
+            s3d: Default::default(),
+            x3: Default::default(),
+            v3: Default::default(),
+            y4: Default::default(),
+            s4a: Default::default(),
+            s4b: Default::default(),
+            x4: Default::default(),
+            v4: Default::default(),
+            y5: Default::default(),
+            s5: Default::default(),
+            x5: Default::default(),
+            v5: Default::default(),
+            z6: Default::default(),
+            x6: Default::default(),
+            v6: Default::default(),
+            pp: (0..r).map(|_| Default::default()).collect(),
+            kk: (0..u64::from(r)).map(c32).collect(),
+            emask: c32(m),
+            ekadd: c32(half.wrapping_sub(m)),
+            eshift: c32(u64::from(s)),
+            pbits: c32(u64::from(pb)),
+            bankpos: c32(8),
+            bankbit: c32(256),
+            ishift: c32(u64::from(zw - pb)),
+            imask: c32(mask(pb)),
+            fshift: c32(u64::from(zw - pb - r)),
+            fmask: c32(mask(r)),
+            rbits: c32(u64::from(r)),
+            rhalf: c32(1 << (r - 1)),
+            wmask: c32(mask(zw + r)),
+            zmask: c32(mask(zw)),
+            dfill: c32(mask(zw + r) & !mask(zw)),
+            dsign: c32(1 << (zw - 1)),
+            zero: c32(0),
+            one: c32(1),
+        }
+    }
+}
+
+impl Logic for HarmonicCorrectionRam {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clk, wd, wa, we, z1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d, x3, v3,
+            y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
+        );
+        // The write stage: the learner's entry in z units, rounded half up (a sign fill
+        // and the half in one adder), at {bank, i}.
+        self.wd.d.next = (((self.tw_data.val() ^ self.emask.val()) + self.ekadd.val())
+            >> self.eshift.val())
+            & self.zmask.val();
+        self.wa.d.next = ((self.tw_addr.val() >> self.pbits.val()) << self.bankpos.val())
+            | (self.tw_addr.val() & self.imask.val());
+        self.we.d.next = self.tw.val();
+        self.ram_a.write_clock.next = self.clk.val();
+        self.ram_b.write_clock.next = self.clk.val();
+        self.ram_a.write_enable.next = self.we.q.val();
+        self.ram_b.write_enable.next = self.we.q.val();
+        self.ram_a.write_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.wa.q.val());
+        self.ram_b.write_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.wa.q.val());
+        self.ram_a.write_data.next = bit_cast::<RAM_WORD_BITS, 32>(self.wd.q.val());
+        self.ram_b.write_data.next = bit_cast::<RAM_WORD_BITS, 32>(self.wd.q.val());
+        // Stage 1: c_i and c_(i+1 mod P) of the bank, read from the CORDIC's register.
+        self.idx.next = (self.z_in.val() >> self.ishift.val()) & self.imask.val();
+        self.nxt.next = (self.idx.val() + self.one.val()) & self.imask.val();
+        self.boff.next = self.zero.val();
+        if self.bank.val() {
+            self.boff.next = self.bankbit.val();
+        }
+        self.ram_a.read_clock.next = self.clk.val();
+        self.ram_b.read_clock.next = self.clk.val();
+        self.ram_a.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(
+            self.boff.val() | self.idx.val(),
+        );
+        self.ram_b.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(
+            self.boff.val() | self.nxt.val(),
+        );
+        self.z1.d.next = self.z_in.val();
+        self.x1.d.next = self.x_in.val();
+        self.v1.d.next = self.v_in.val() & !self.rst.val();
+        // Stage 2: y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i, sign-filled to W bits.
+        self.y2.d.next = ((((self.z1.q.val()
+            - bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val()))
+            & self.zmask.val())
+            << self.rbits.val())
+            | self.rhalf.val())
+            & self.wmask.val();
+        self.dz.next = (bit_cast::<32, RAM_WORD_BITS>(self.ram_b.read_data.val())
+            - bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val()))
+            & self.zmask.val();
+        self.d2.d.next = self.dz.val();
+        if (self.dz.val() & self.dsign.val()) != self.zero.val() {
+            self.d2.d.next = self.dz.val() | self.dfill.val();
+        }
+        // No sample: zeros, so that the RAMs' read registers, unknown in Verilog until
+        // their first read, never reach z_out.
+        if !self.v1.q.val() {
+            self.y2.d.next = self.zero.val();
+            self.d2.d.next = self.zero.val();
+        }
+        self.f2.d.next = (self.z1.q.val() >> self.fshift.val()) & self.fmask.val();
+        self.x2.d.next = self.x1.q.val();
+        self.v2.d.next = self.v1.q.val() & !self.rst.val();
+        // Stage 3: the partial products of D f added in pairs.
+        for k in 0..self.pp.len() {
+            self.pp[k].next = self.zero.val();
+            if self.f2.q.val().get_bit(k) {
+                self.pp[k].next = self.d2.q.val() << self.kk[k].val();
+            }
+        }
+        self.y3.d.next = self.y2.q.val();
+        self.s3a.d.next = (self.pp[0].val() + self.pp[1].val()) & self.wmask.val();
+        self.s3b.d.next = (self.pp[2].val() + self.pp[3].val()) & self.wmask.val();
+        self.s3c.d.next = (self.pp[4].val() + self.pp[5].val()) & self.wmask.val();
+        self.s3d.d.next = (self.pp[6].val() + self.pp[7].val()) & self.wmask.val();
+        self.x3.d.next = self.x2.q.val();
+        self.v3.d.next = self.v2.q.val() & !self.rst.val();
+        // Stage 4: pairs of pairs.
+        self.y4.d.next = self.y3.q.val();
+        self.s4a.d.next = (self.s3a.q.val() + self.s3b.q.val()) & self.wmask.val();
+        self.s4b.d.next = (self.s3c.q.val() + self.s3d.q.val()) & self.wmask.val();
+        self.x4.d.next = self.x3.q.val();
+        self.v4.d.next = self.v3.q.val() & !self.rst.val();
+        // Stage 5: D f.
+        self.y5.d.next = self.y4.q.val();
+        self.s5.d.next = (self.s4a.q.val() + self.s4b.q.val()) & self.wmask.val();
+        self.x5.d.next = self.x4.q.val();
+        self.v5.d.next = self.v4.q.val() & !self.rst.val();
+        // Stage 6: z' = (y - D f) >> R modulo 2^ZW.
+        self.z6.d.next = (((self.y5.q.val() - self.s5.q.val()) & self.wmask.val())
+            >> self.rbits.val())
+            & self.zmask.val();
+        self.x6.d.next = self.x5.q.val();
+        self.v6.d.next = self.v5.q.val() & !self.rst.val();
+        self.z_out.next = self.z6.q.val();
+        self.x_out.next = self.x6.q.val();
+        self.v_out.next = self.v6.q.val();
+    }
+}
+
+impl crate::cosim::step::Clocked for HarmonicCorrectionRam {
+    fn set_clock(&mut self, high: bool) {
+        self.clk.next = Clock::from(high);
+    }
+}
+
+impl crate::cosim::CosimBlock for HarmonicCorrectionRam {
+    fn input_ports(&self) -> Vec<Port> {
+        vec![
+            Port::new("rst", 1),
+            Port::new("z_in", 32),
+            Port::new("x_in", 32),
+            Port::new("v_in", 1),
+            Port::new("bank", 1),
+            Port::new("tw", 1),
+            Port::new("tw_addr", 32),
+            Port::new("tw_data", 32),
+        ]
+    }
+    fn output_ports(&self) -> Vec<Port> {
+        vec![
+            Port::new("z_out", 32),
+            Port::new("x_out", 32),
+            Port::new("v_out", 1),
+        ]
+    }
+    fn apply(&mut self, r: &[u64]) {
+        self.rst.next = r[0] != 0;
+        self.z_in.next = Bits::<32>::from(r[1]);
+        self.x_in.next = Bits::<32>::from(r[2]);
+        self.v_in.next = r[3] != 0;
+        self.bank.next = r[4] != 0;
+        self.tw.next = r[5] != 0;
+        self.tw_addr.next = Bits::<32>::from(r[6]);
+        self.tw_data.next = Bits::<32>::from(r[7]);
+    }
+    fn sample(&self) -> Vec<u64> {
+        vec![
+            self.z_out.val().to_u64(),
+            self.x_out.val().to_u64(),
+            self.v_out.val() as u64,
+        ]
+    }
+}
