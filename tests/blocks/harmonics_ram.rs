@@ -64,25 +64,50 @@ fn the_write_port_rounds_q_units_to_z_units() {
     }
 }
 
+/// The Clear's writes of `p`'s table (z units, as q units 2^(T-Gz) times larger, which the
+/// write port takes back exactly): bank 0's entries, then bank 1's, one per clock.
+fn clear_writes(p: &HarmonicParams) -> Vec<(u64, u64)> {
+    let pts = u64::from(p.points());
+    (0..2 * pts)
+        .map(|a| {
+            let c = p.table[(a % pts) as usize] << (TABLE_FRAC - GZ);
+            (a, c as u64 & mask(E))
+        })
+        .collect()
+}
+
 fn run_four_ways(n: usize, seed: u64, tag: &str) {
     let p = HarmonicParams::new(ZW, GZ, F, &random_table(n, 200.0, seed)).expect("params");
     let pts = n as u64;
     let lim = 1u64 << (F - 4 + TABLE_FRAC);
     let mut r = SplitMix64(seed);
-    let cycles = 4000;
+    let clear = clear_writes(&p);
+    let cycles = 4000 + clear.len();
     let mut bank = false;
     let ins: Vec<HarmonicRamIn> = (0..cycles)
         .map(|c| {
-            // Flip the bank now and then; write bursts of entries of either bank, among
-            // them the one being read.
-            if c % 500 == 250 {
+            // The Clear first (samples pass uncorrected); then flip the bank now and then
+            // and write bursts of entries of either bank, among them the one being read.
+            let clearing = c < clear.len() + 1;
+            if c % 500 == 250 && !clearing {
                 bank = !bank;
             }
-            let tw = c % 9 < 4;
             let z = match c % 7 {
                 0 => (r.next_u64() % pts) << (ZW - p.points_log2),
                 1 => mask(ZW) - (r.next_u64() & 3),
                 _ => r.next_u64() & mask(ZW),
+            };
+            let (tw, tw_addr, tw_data) = if let Some(&(a, d)) = clear.get(c) {
+                (true, a, d)
+            } else if clearing {
+                (false, 0, 0)
+            } else {
+                let a = if c % 5 == 0 {
+                    (u64::from(bank) * pts) + (z >> (ZW - p.points_log2))
+                } else {
+                    r.next_u64() % (2 * pts)
+                };
+                (c % 9 < 4, a, (r.next_u64() % (2 * lim + 1)).wrapping_sub(lim) & mask(E))
             };
             HarmonicRamIn {
                 core: HarmonicIn {
@@ -92,13 +117,10 @@ fn run_four_ways(n: usize, seed: u64, tag: &str) {
                     v: r.next_u64() & 3 != 0,
                 },
                 bank,
+                clearing,
                 tw,
-                tw_addr: if c % 5 == 0 {
-                    (u64::from(bank) * pts) + (z >> (ZW - p.points_log2))
-                } else {
-                    r.next_u64() % (2 * pts)
-                },
-                tw_data: (r.next_u64() % (2 * lim + 1)).wrapping_sub(lim) & mask(E),
+                tw_addr,
+                tw_data,
             }
         })
         .collect();
@@ -118,17 +140,63 @@ fn run_four_ways(n: usize, seed: u64, tag: &str) {
 fn rtl_equals_the_model_four_ways_under_writes_and_bank_flips() {
     run_four_ways(16, 21, "harmonics_ram_16");
     run_four_ways(64, 22, "harmonics_ram_64");
-    run_four_ways(256, 23, "harmonics_ram_256");
+    run_four_ways(128, 23, "harmonics_ram_128");
 }
 
-/// The start table sits in both banks at power-up: the first samples of either bank read
-/// it as the static block does.
+/// After the Clear has written a table into both banks, the block gives the static
+/// block's corrected angle (`correct`) for that table, reading either bank; during the
+/// Clear it gives the angle uncorrected (rounded to the z unit: the half is in y).
 #[test]
-fn the_start_table_is_in_both_banks() {
+fn after_the_clear_either_bank_gives_the_static_blocks_angle() {
     let p = HarmonicParams::new(ZW, GZ, F, &random_table(64, 300.0, 31)).expect("params");
-    let m = HarmonicRamModel::new(&p, E);
+    let zero = HarmonicParams::new(ZW, GZ, F, &[0.0; 64]).expect("zeros");
+    let mut m = HarmonicRamModel::new(&p, E);
+    let mut r = SplitMix64(31);
+    let lat = sinedec::blocks::harmonics::HarmonicParams::LATENCY_RAM as usize;
+    let clear = clear_writes(&p);
+    let mut zs = Vec::new();
+    let mut outs = Vec::new();
+    for c in 0..clear.len() + 2000 {
+        let z = r.next_u64() & mask(ZW);
+        let (tw, tw_addr, tw_data) = clear.get(c).map_or((false, 0, 0), |&(a, d)| (true, a, d));
+        let clearing = c < clear.len() + 1;
+        outs.push(m.step(HarmonicRamIn {
+            core: HarmonicIn {
+                rst: false,
+                z,
+                x: 0,
+                v: true,
+            },
+            bank: c % 3 == 0,
+            clearing,
+            tw,
+            tw_addr,
+            tw_data,
+        }));
+        zs.push((z, clearing));
+    }
+    for (k, &(z, clearing)) in zs.iter().enumerate().take(zs.len() - lat) {
+        let want = correct(if clearing { &zero } else { &p }, z);
+        assert_eq!(outs[k + lat - 1].z, want, "clock {k}, clearing {clearing}");
+    }
     for i in 0..64 {
         let c = p.table[i] as u64 & mask(ZW);
-        assert_eq!((m.entry(0, i), m.entry(1, i)), (c, c));
+        assert_eq!((m.entry(0, i), m.entry(1, i)), (Some(c), Some(c)));
     }
+}
+
+/// The block alone in Yosys with a 128-point table: no hard multiplier, at most one carry
+/// chain on every register-to-register path of the xc3sa mapping; the figures are printed
+/// for docs/correction.md.
+#[test]
+fn the_ram_block_synthesizes_with_one_carry_chain_per_path_and_no_multiplier() {
+    let p = HarmonicParams::new(ZW, GZ, F, &random_table(128, 300.0, 41)).expect("params");
+    let (x, c) = crate::correction_util::synth(HarmonicCorrectionRam::new(&p, E), "harmonics_ram_synth");
+    let path = x.path.expect("a register-to-register path");
+    eprintln!(
+        "harmonics_ram_synth: xc3sa {} LUT, {} FF, {} MULT18X18, {} BRAM; cycloneive {} LE, {} FF, {} multipliers, {} BRAM; worst path {} -> {}: {} carry chains, {} LUT levels",
+        x.luts, x.ffs, x.multipliers, x.brams, c.luts, c.ffs, c.multipliers, c.brams, path.from, path.to, path.carry_chains, path.lut_levels
+    );
+    assert_eq!(x.multipliers + c.multipliers, 0);
+    assert!(path.carry_chains <= 1, "{path:?}");
 }

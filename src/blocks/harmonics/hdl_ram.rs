@@ -3,7 +3,7 @@
 //! `crate::blocks::harmonics`, "The table in RAM").
 //!
 //! ```text
-//!  tw, tw_addr, tw_data ──► (q - m ^ m + half) >> s ──reg──► RAM_A[bank,i], RAM_B[bank,i]
+//!  tw, tw_addr, tw_data ──► (q ^ m) + half - m >> s ──reg──► RAM_A[bank P + i], RAM_B[...]
 //!  (the learner's writes,     (q units to z units)           (one copy each)
 //!   q units)
 //!            ┌──────────────┐ a=c_i  ┌──────────────┐ y, D  ┌────────────┐ s0..s3 ┌─────┐ ┌─────┐ ┌───────────┐
@@ -16,13 +16,17 @@ use super::{HarmonicParams, INTERP_BITS};
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
-use std::collections::BTreeMap;
 
-/// Address bits of a table RAM: the bank in bit 8, the entry in bits 7..0 (P <= 256).
-pub const RAM_ADDR_BITS: usize = 9;
+/// Address bits of a table RAM: the bank in bit p, the entry in bits p-1..0 (P <= 128).
+pub const RAM_ADDR_BITS: usize = 8;
 
-/// Bits of a RAM word: the entry in z units modulo 2^ZW (ZW <= 24).
-pub const RAM_WORD_BITS: usize = 24;
+/// Bits of a RAM word: the entry in z units modulo 2^ZW (ZW <= 24) in the low bits. 256 x
+/// 36 is one Cyclone M9K in its widest mode, which Yosys 0.23 maps without resizing a port
+/// (a warning the synthesis flow counts as a failure).
+pub const RAM_WORD_BITS: usize = 36;
+
+/// The most entries a learned table has: two banks of P in the RAM's 256 words.
+pub const MAX_POINTS: u32 = 128;
 
 /// The table lookup from RAM, the interpolation and the subtraction, six register stages.
 #[derive(LogicBlock)]
@@ -39,6 +43,9 @@ pub struct HarmonicCorrectionRam {
     pub v_in: Signal<In, Bit>,
     /// The bank of the table the lookup reads.
     pub bank: Signal<In, Bit>,
+    /// The learner is writing the start table after a reset (its Clear): the lookup uses
+    /// zeros, since the RAMs hold nothing known before (they have no initial contents).
+    pub clearing: Signal<In, Bit>,
     /// Write an entry this clock.
     pub tw: Signal<In, Bit>,
     /// The entry written: bank * P + i.
@@ -62,12 +69,17 @@ pub struct HarmonicCorrectionRam {
     /// The segment of `z_in` (its top p bits) and the next one, with the bank.
     idx: Signal<Local, Bits<32>>,
     nxt: Signal<Local, Bits<32>>,
-    /// The bank's offset in a RAM address (0 or 256).
+    /// The bank's offset in a RAM address (0 or P).
     boff: Signal<Local, Bits<32>>,
-    /// Stage 1: the angle (the RAMs' read data are c_i and c_(i+1)).
+    /// Stage 1: the angle (the RAMs' read data are c_i and c_(i+1)), and whether they
+    /// were read during the Clear.
     z1: DFF<Bits<32>>,
+    c1: DFF<Bit>,
     x1: DFF<Bits<32>>,
     v1: DFF<Bit>,
+    /// c_i and c_(i+1) of stage 1: the RAMs' read data, or zeros during the Clear.
+    ca: Signal<Local, Bits<32>>,
+    cb: Signal<Local, Bits<32>>,
     /// The slope c_(i+1) - c_i modulo 2^ZW, before its sign fill.
     dz: Signal<Local, Bits<32>>,
     /// Stage 2: y = (z - c_i) 2^R + 2^(R-1), the slope D sign-filled to W bits, f.
@@ -109,12 +121,10 @@ pub struct HarmonicCorrectionRam {
     ekadd: Constant<Bits<32>>,
     /// s = T - Gz: q units to z units.
     eshift: Constant<Bits<32>>,
-    /// p: the bank's place in `tw_addr`.
-    pbits: Constant<Bits<32>>,
-    /// 8: the bank's place in a RAM address.
-    bankpos: Constant<Bits<32>>,
-    /// 256: bank 1's offset in a RAM address.
+    /// P: bank 1's offset in a RAM address.
     bankbit: Constant<Bits<32>>,
+    /// Mask of p + 1 bits (a RAM address: the bank and the entry).
+    amask: Constant<Bits<32>>,
     /// ZW - p: the shift of the segment index out of z.
     ishift: Constant<Bits<32>>,
     /// Mask of p bits (the index).
@@ -140,24 +150,10 @@ pub struct HarmonicCorrectionRam {
     one: Constant<Bits<32>>,
 }
 
-/// A RAM holding `table` (z units) in both banks.
-fn ram(p: &HarmonicParams, table: &[i64]) -> RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS> {
-    let mut init = BTreeMap::new();
-    for bank in 0..2u64 {
-        for (i, &c) in table.iter().enumerate() {
-            let addr = (bank << 8) | i as u64;
-            init.insert(
-                Bits::<RAM_ADDR_BITS>::from(addr),
-                Bits::<RAM_WORD_BITS>::from(c as u64 & mask(p.z_width)),
-            );
-        }
-    }
-    RAM::new(init)
-}
-
 impl HarmonicCorrectionRam {
-    /// The block for `p`, its table's start in both banks; `entry_width` E is the width of
-    /// the learner's entries on `tw_data`.
+    /// The block for `p`; `entry_width` E is the width of the learner's entries on
+    /// `tw_data`. The RAMs start empty: the learner's Clear writes the start table (Yosys
+    /// 0.23 cannot map a RAM with initial contents to Cyclone's M9K).
     pub fn new(p: &HarmonicParams, entry_width: u32) -> Self {
         let (zw, pb, r) = (p.z_width, p.points_log2, INTERP_BITS);
         let s = super::sequencer::TABLE_FRAC - p.z_guard;
@@ -170,14 +166,15 @@ impl HarmonicCorrectionRam {
             x_in: Default::default(),
             v_in: Default::default(),
             bank: Default::default(),
+            clearing: Default::default(),
             tw: Default::default(),
             tw_addr: Default::default(),
             tw_data: Default::default(),
             z_out: Default::default(),
             x_out: Default::default(),
             v_out: Default::default(),
-            ram_a: ram(p, &p.table),
-            ram_b: ram(p, &p.table),
+            ram_a: Default::default(),
+            ram_b: Default::default(),
             wd: Default::default(),
             wa: Default::default(),
             we: Default::default(),
@@ -185,8 +182,11 @@ impl HarmonicCorrectionRam {
             nxt: Default::default(),
             boff: Default::default(),
             z1: Default::default(),
+            c1: Default::default(),
             x1: Default::default(),
             v1: Default::default(),
+            ca: Default::default(),
+            cb: Default::default(),
             dz: Default::default(),
             y2: Default::default(),
             d2: Default::default(),
@@ -217,9 +217,8 @@ impl HarmonicCorrectionRam {
             emask: c32(m),
             ekadd: c32(half.wrapping_sub(m)),
             eshift: c32(u64::from(s)),
-            pbits: c32(u64::from(pb)),
-            bankpos: c32(8),
-            bankbit: c32(256),
+            bankbit: c32(1 << pb),
+            amask: c32(mask(pb + 1)),
             ishift: c32(u64::from(zw - pb)),
             imask: c32(mask(pb)),
             fshift: c32(u64::from(zw - pb - r)),
@@ -240,16 +239,15 @@ impl Logic for HarmonicCorrectionRam {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, wd, wa, we, z1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d, x3, v3,
+            self, clk, wd, wa, we, z1, c1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d, x3, v3,
             y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
         );
         // The write stage: the learner's entry in z units, rounded half up (a sign fill
-        // and the half in one adder), at {bank, i}.
+        // and the half in one adder), at {bank, i} = bank P + i, as `tw_addr` holds it.
         self.wd.d.next = (((self.tw_data.val() ^ self.emask.val()) + self.ekadd.val())
             >> self.eshift.val())
             & self.zmask.val();
-        self.wa.d.next = ((self.tw_addr.val() >> self.pbits.val()) << self.bankpos.val())
-            | (self.tw_addr.val() & self.imask.val());
+        self.wa.d.next = self.tw_addr.val() & self.amask.val();
         self.we.d.next = self.tw.val();
         self.ram_a.write_clock.next = self.clk.val();
         self.ram_b.write_clock.next = self.clk.val();
@@ -275,24 +273,27 @@ impl Logic for HarmonicCorrectionRam {
             self.boff.val() | self.nxt.val(),
         );
         self.z1.d.next = self.z_in.val();
+        self.c1.d.next = self.clearing.val();
         self.x1.d.next = self.x_in.val();
         self.v1.d.next = self.v_in.val() & !self.rst.val();
         // Stage 2: y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i, sign-filled to W bits.
-        self.y2.d.next = ((((self.z1.q.val()
-            - bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val()))
-            & self.zmask.val())
+        self.ca.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val());
+        self.cb.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_b.read_data.val());
+        if self.c1.q.val() {
+            self.ca.next = self.zero.val();
+            self.cb.next = self.zero.val();
+        }
+        self.y2.d.next = ((((self.z1.q.val() - self.ca.val()) & self.zmask.val())
             << self.rbits.val())
             | self.rhalf.val())
             & self.wmask.val();
-        self.dz.next = (bit_cast::<32, RAM_WORD_BITS>(self.ram_b.read_data.val())
-            - bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val()))
-            & self.zmask.val();
+        self.dz.next = (self.cb.val() - self.ca.val()) & self.zmask.val();
         self.d2.d.next = self.dz.val();
         if (self.dz.val() & self.dsign.val()) != self.zero.val() {
             self.d2.d.next = self.dz.val() | self.dfill.val();
         }
-        // No sample: zeros, so that the RAMs' read registers, unknown in Verilog until
-        // their first read, never reach z_out.
+        // No sample: zeros, so that the RAMs' read registers (unknown in Verilog until
+        // their first read) never reach z_out.
         if !self.v1.q.val() {
             self.y2.d.next = self.zero.val();
             self.d2.d.next = self.zero.val();
@@ -351,6 +352,7 @@ impl crate::cosim::CosimBlock for HarmonicCorrectionRam {
             Port::new("x_in", 32),
             Port::new("v_in", 1),
             Port::new("bank", 1),
+            Port::new("clearing", 1),
             Port::new("tw", 1),
             Port::new("tw_addr", 32),
             Port::new("tw_data", 32),
@@ -369,9 +371,10 @@ impl crate::cosim::CosimBlock for HarmonicCorrectionRam {
         self.x_in.next = Bits::<32>::from(r[2]);
         self.v_in.next = r[3] != 0;
         self.bank.next = r[4] != 0;
-        self.tw.next = r[5] != 0;
-        self.tw_addr.next = Bits::<32>::from(r[6]);
-        self.tw_data.next = Bits::<32>::from(r[7]);
+        self.clearing.next = r[5] != 0;
+        self.tw.next = r[6] != 0;
+        self.tw_addr.next = Bits::<32>::from(r[7]);
+        self.tw_data.next = Bits::<32>::from(r[8]);
     }
     fn sample(&self) -> Vec<u64> {
         vec![

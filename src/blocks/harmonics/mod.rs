@@ -46,6 +46,22 @@
 //! subtract; one carry chain per register stage. One sample per clock; x and v travel with
 //! z, v cleared by `rst`.
 //!
+//! The table in RAM (`mode = "learn"`, [`hdl_ram::HarmonicCorrectionRam`]). The learned
+//! table lives in two copies of a RAM of two banks (bank b, entry i at address b P + i;
+//! 256 words of 36 bits, one Cyclone M9K, so P <= [`hdl_ram::MAX_POINTS`] = 128),
+//! one read at the segment i, one at i + 1 mod P, so that one clock gives c_i and
+//! c_(i+1) of the bank the learner names. They hold c_i modulo 2^ZW (z units): the
+//! learner's writes arrive in q units (2^-T LSB, T = [`sequencer::TABLE_FRAC`]) and the
+//! write stage rounds them, c = floor(q 2^(Gz-T) + 1/2), a sign fill and the half in one
+//! adder. Then y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i (a ZW-bit difference,
+//! sign-filled to W bits since |D| < 2^(F+Gz-3)) are the static block's y and D modulo
+//! 2^W, and the same partial products follow: [`HarmonicParams::LATENCY_RAM`] = 6 clocks
+//! (the RAM's read register, then the slope's subtract in a stage of its own). A bank the
+//! lookup reads changes only when the learner flips `bank` (at its Apply). The RAMs have no
+//! initial contents (Yosys 0.23 cannot map a RAM with them to an M9K): after a reset the
+//! learner's Clear writes the start table into both banks, and while it does (`clearing`)
+//! the lookup uses zeros, so that no simulator ever reads an unwritten word.
+//!
 //! Ports (rust-hdl block [`hdl::HarmonicCorrection`], 32-bit words with the widths above in
 //! their low bits):
 //!
@@ -87,8 +103,16 @@ pub struct HarmonicParams {
     pub fine_bits: u32,
     /// log2 of the number of entries P.
     pub points_log2: u32,
-    /// The entries c_i, z units (2^-Gz position LSB).
+    /// The entries c_i, z units (2^-Gz position LSB): the table, or with `learn` the
+    /// learning's start (its q-unit start converted as the RAM's write port does).
     pub table: Vec<i64>,
+    /// The learner's formats when the table is learned online (`mode = "learn"`: the
+    /// table in RAM, [`hdl_ram`]), else none (a fixed table in logic, [`hdl`]).
+    #[serde(skip)]
+    pub learn: Option<sequencer::LearnParams>,
+    /// With `learn`: the start table in the learner's q units (2^-T LSB).
+    #[serde(skip)]
+    pub start_q: Vec<i64>,
 }
 
 impl HarmonicParams {
@@ -138,7 +162,53 @@ impl HarmonicParams {
             fine_bits,
             points_log2: n.trailing_zeros(),
             table,
+            learn: None,
+            start_q: Vec::new(),
         })
+    }
+
+    /// The learned block: the table starts at `start_lsb` (position LSB, rounded to the
+    /// learner's q units 2^-T, then to z units as the RAM's write port rounds) and is
+    /// learned by `learn`'s learner; the message says what is allowed when something is not.
+    pub fn learned(
+        z_width: u32,
+        z_guard: u32,
+        fine_bits: u32,
+        start_lsb: &[f64],
+        learn: sequencer::LearnParams,
+    ) -> Result<Self, String> {
+        let mut p = Self::new(z_width, z_guard, fine_bits, start_lsb)?;
+        if z_guard > sequencer::TABLE_FRAC {
+            return Err(format!(
+                "{z_guard} guard bits below the LSB: the learned table needs at most {}",
+                sequencer::TABLE_FRAC
+            ));
+        }
+        let unit = f64::from(1u32 << sequencer::TABLE_FRAC);
+        p.start_q = start_lsb.iter().map(|v| (v * unit).round() as i64).collect();
+        let ew = learn.entry_width();
+        p.table = p
+            .start_q
+            .iter()
+            .map(|&q| {
+                let z = model::q_to_z(&p, ew, q as u64 & mask(ew));
+                // Back from ZW-bit two's complement.
+                let half = 1u64 << (z_width - 1);
+                (z ^ half) as i64 - half as i64
+            })
+            .collect();
+        p.learn = Some(learn);
+        Ok(p)
+    }
+
+    /// Clocks from `z_in` to `z_out`: [`Self::LATENCY`], or [`Self::LATENCY_RAM`] with the
+    /// learned table.
+    pub fn latency(&self) -> u32 {
+        if self.learn.is_some() {
+            Self::LATENCY_RAM
+        } else {
+            Self::LATENCY
+        }
     }
 
     /// The largest |entry|, position LSB: 2^(F-4).

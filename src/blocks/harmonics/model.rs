@@ -148,6 +148,8 @@ pub struct HarmonicRamIn {
     pub core: HarmonicIn,
     /// The bank the lookup reads.
     pub bank: bool,
+    /// The learner's Clear: the lookup uses zeros.
+    pub clearing: bool,
     /// Write an entry.
     pub tw: bool,
     /// bank * P + i.
@@ -162,6 +164,7 @@ impl HarmonicRamIn {
         let mut r = self.core.row();
         r.extend([
             self.bank as u64,
+            self.clearing as u64,
             self.tw as u64,
             self.tw_addr,
             self.tw_data,
@@ -170,23 +173,24 @@ impl HarmonicRamIn {
     }
 }
 
-/// The block with its table in RAM, cycle by cycle: two banks of the table (z units), the
-/// write stage (one clock), the read at the edge before the write it holds, and a delay
-/// line of [`HarmonicParams::LATENCY_RAM`] stages.
+/// The block with its table in RAM, cycle by cycle: two banks of the table (z units; an
+/// entry is unknown until written, and reading one outside the Clear panics), the write
+/// stage (one clock), the read at the edge before the write it holds, and a delay line of
+/// [`HarmonicParams::LATENCY_RAM`] stages.
 #[derive(Clone, Debug)]
 pub struct HarmonicRamModel {
     p: HarmonicParams,
     entry_width: u32,
-    banks: [Vec<u64>; 2],
+    banks: [Vec<Option<u64>>; 2],
     /// The write stage: the RAM address's bank and entry, the value in z units.
     write: Option<(usize, usize, u64)>,
     line: VecDeque<HarmonicOut>,
 }
 
 impl HarmonicRamModel {
-    /// The block at power-up: the start table in both banks.
+    /// The block at power-up: both banks unknown.
     pub fn new(p: &HarmonicParams, entry_width: u32) -> Self {
-        let t: Vec<u64> = p.table.iter().map(|&c| c as u64 & mask(p.z_width)).collect();
+        let t = vec![None; p.points() as usize];
         HarmonicRamModel {
             p: p.clone(),
             entry_width,
@@ -198,8 +202,8 @@ impl HarmonicRamModel {
         }
     }
 
-    /// Entry `i` of `bank`, z units modulo 2^ZW.
-    pub fn entry(&self, bank: usize, i: usize) -> u64 {
+    /// Entry `i` of `bank`, z units modulo 2^ZW (None before its first write).
+    pub fn entry(&self, bank: usize, i: usize) -> Option<u64> {
         self.banks[bank][i]
     }
 
@@ -210,12 +214,23 @@ impl HarmonicRamModel {
         let z = i.core.z & mask(zw);
         let idx = (z >> (zw - pb)) & (n - 1);
         let bank = &self.banks[i.bank as usize];
-        let (a, b) = (bank[idx as usize], bank[((idx + 1) % n) as usize]);
+        let v = i.core.v && !i.core.rst;
+        let (a, b) = if i.clearing {
+            (0, 0)
+        } else {
+            let at = |k: u64| {
+                bank[k as usize].unwrap_or_else(|| {
+                    assert!(!v, "a sample reads entry {k} of bank {} before any write", i.bank as u8);
+                    0
+                })
+            };
+            (at(idx), at((idx + 1) % n))
+        };
         if let Some((bk, e, v)) = self.write.take() {
-            self.banks[bk][e] = v;
+            self.banks[bk][e] = Some(v);
         }
         if i.tw {
-            // The RAM address keeps bit p of tw_addr (the bank) and its low p bits.
+            // The RAM address is tw_addr's low p + 1 bits: the bank and the entry.
             let bk = ((i.tw_addr & mask(32)) >> pb) & 1;
             let e = i.tw_addr & (n - 1);
             let v = q_to_z(&self.p, self.entry_width, i.tw_data);
@@ -225,7 +240,6 @@ impl HarmonicRamModel {
         if i.core.rst {
             self.line.iter_mut().for_each(|s| s.v = false);
         }
-        let v = i.core.v && !i.core.rst;
         self.line.push_front(HarmonicOut {
             // Stage 2 zeroes an invalid sample's words: its z' is 0.
             z: if v { correct_ab(zw, pb, z, a, b) } else { 0 },
