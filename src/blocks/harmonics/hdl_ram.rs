@@ -71,8 +71,11 @@ pub struct HarmonicCorrectionRam {
     nxt: Signal<Local, Bits<32>>,
     /// The bank's offset in a RAM address (0 or P).
     boff: Signal<Local, Bits<32>>,
+    /// `clearing` a clock late: the Clear's last write reaches the RAMs a clock after it
+    /// (the write stage), and a read in that clock still sees the word before it.
+    cl: DFF<Bit>,
     /// Stage 1: the angle (the RAMs' read data are c_i and c_(i+1)), and whether they
-    /// were read during the Clear.
+    /// were read during the Clear or the clock after it.
     z1: DFF<Bits<32>>,
     c1: DFF<Bit>,
     x1: DFF<Bits<32>>,
@@ -182,6 +185,7 @@ impl HarmonicCorrectionRam {
             nxt: Default::default(),
             boff: Default::default(),
             z1: Default::default(),
+            cl: Default::default(),
             c1: Default::default(),
             x1: Default::default(),
             v1: Default::default(),
@@ -239,8 +243,8 @@ impl Logic for HarmonicCorrectionRam {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, wd, wa, we, z1, c1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d, x3, v3,
-            y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
+            self, clk, wd, wa, we, cl, z1, c1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d, x3,
+            v3, y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
         );
         // The write stage: the learner's entry in z units, rounded half up (a sign fill
         // and the half in one adder), at {bank, i} = bank P + i, as `tw_addr` holds it.
@@ -266,14 +270,13 @@ impl Logic for HarmonicCorrectionRam {
         }
         self.ram_a.read_clock.next = self.clk.val();
         self.ram_b.read_clock.next = self.clk.val();
-        self.ram_a.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(
-            self.boff.val() | self.idx.val(),
-        );
-        self.ram_b.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(
-            self.boff.val() | self.nxt.val(),
-        );
+        self.ram_a.read_address.next =
+            bit_cast::<RAM_ADDR_BITS, 32>(self.boff.val() | self.idx.val());
+        self.ram_b.read_address.next =
+            bit_cast::<RAM_ADDR_BITS, 32>(self.boff.val() | self.nxt.val());
         self.z1.d.next = self.z_in.val();
-        self.c1.d.next = self.clearing.val();
+        self.cl.d.next = self.clearing.val();
+        self.c1.d.next = self.clearing.val() | self.cl.q.val();
         self.x1.d.next = self.x_in.val();
         self.v1.d.next = self.v_in.val() & !self.rst.val();
         // Stage 2: y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i, sign-filled to W bits.

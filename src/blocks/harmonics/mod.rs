@@ -59,8 +59,9 @@
 //! (the RAM's read register, then the slope's subtract in a stage of its own). A bank the
 //! lookup reads changes only when the learner flips `bank` (at its Apply). The RAMs have no
 //! initial contents (Yosys 0.23 cannot map a RAM with them to an M9K): after a reset the
-//! learner's Clear writes the start table into both banks, and while it does (`clearing`)
-//! the lookup uses zeros, so that no simulator ever reads an unwritten word.
+//! learner's Clear writes the start table into both banks, and while it does (`clearing`,
+//! and one clock more for the write stage) the lookup uses zeros, so that no simulator ever
+//! reads an unwritten word.
 //!
 //! Ports (rust-hdl block [`hdl::HarmonicCorrection`], 32-bit words with the widths above in
 //! their low bits):
@@ -103,16 +104,13 @@ pub struct HarmonicParams {
     pub fine_bits: u32,
     /// log2 of the number of entries P.
     pub points_log2: u32,
-    /// The entries c_i, z units (2^-Gz position LSB): the table, or with `learn` the
-    /// learning's start (its q-unit start converted as the RAM's write port does).
+    /// The entries c_i, z units (2^-Gz position LSB); zeros with `learn` (the learning's
+    /// start).
     pub table: Vec<i64>,
     /// The learner's formats when the table is learned online (`mode = "learn"`: the
     /// table in RAM, [`hdl_ram`]), else none (a fixed table in logic, [`hdl`]).
     #[serde(skip)]
     pub learn: Option<sequencer::LearnParams>,
-    /// With `learn`: the start table in the learner's q units (2^-T LSB).
-    #[serde(skip)]
-    pub start_q: Vec<i64>,
 }
 
 impl HarmonicParams {
@@ -163,40 +161,25 @@ impl HarmonicParams {
             points_log2: n.trailing_zeros(),
             table,
             learn: None,
-            start_q: Vec::new(),
         })
     }
 
-    /// The learned block: the table starts at `start_lsb` (position LSB, rounded to the
-    /// learner's q units 2^-T, then to z units as the RAM's write port rounds) and is
-    /// learned by `learn`'s learner; the message says what is allowed when something is not.
+    /// The learned block of `points` entries, learned by `learn`'s learner from a zero
+    /// table; the message says what is allowed when something is not.
     pub fn learned(
         z_width: u32,
         z_guard: u32,
         fine_bits: u32,
-        start_lsb: &[f64],
+        points: u32,
         learn: sequencer::LearnParams,
     ) -> Result<Self, String> {
-        let mut p = Self::new(z_width, z_guard, fine_bits, start_lsb)?;
+        let mut p = Self::new(z_width, z_guard, fine_bits, &vec![0.0; points as usize])?;
         if z_guard > sequencer::TABLE_FRAC {
             return Err(format!(
                 "{z_guard} guard bits below the LSB: the learned table needs at most {}",
                 sequencer::TABLE_FRAC
             ));
         }
-        let unit = f64::from(1u32 << sequencer::TABLE_FRAC);
-        p.start_q = start_lsb.iter().map(|v| (v * unit).round() as i64).collect();
-        let ew = learn.entry_width();
-        p.table = p
-            .start_q
-            .iter()
-            .map(|&q| {
-                let z = model::q_to_z(&p, ew, q as u64 & mask(ew));
-                // Back from ZW-bit two's complement.
-                let half = 1u64 << (z_width - 1);
-                (z ^ half) as i64 - half as i64
-            })
-            .collect();
         p.learn = Some(learn);
         Ok(p)
     }

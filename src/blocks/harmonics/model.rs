@@ -184,6 +184,8 @@ pub struct HarmonicRamModel {
     banks: [Vec<Option<u64>>; 2],
     /// The write stage: the RAM address's bank and entry, the value in z units.
     write: Option<(usize, usize, u64)>,
+    /// `clearing` a clock ago.
+    cleared_late: bool,
     line: VecDeque<HarmonicOut>,
 }
 
@@ -196,6 +198,7 @@ impl HarmonicRamModel {
             entry_width,
             banks: [t.clone(), t],
             write: None,
+            cleared_late: false,
             line: (0..HarmonicParams::LATENCY_RAM)
                 .map(|_| HarmonicOut::default())
                 .collect(),
@@ -215,12 +218,20 @@ impl HarmonicRamModel {
         let idx = (z >> (zw - pb)) & (n - 1);
         let bank = &self.banks[i.bank as usize];
         let v = i.core.v && !i.core.rst;
-        let (a, b) = if i.clearing {
+        // The Clear and the clock after it: the Clear's last write is still in the write
+        // stage.
+        let clearing = i.clearing || self.cleared_late;
+        self.cleared_late = i.clearing;
+        let (a, b) = if clearing {
             (0, 0)
         } else {
             let at = |k: u64| {
                 bank[k as usize].unwrap_or_else(|| {
-                    assert!(!v, "a sample reads entry {k} of bank {} before any write", i.bank as u8);
+                    assert!(
+                        !v,
+                        "a sample reads entry {k} of bank {} before any write",
+                        i.bank as u8
+                    );
                     0
                 })
             };
