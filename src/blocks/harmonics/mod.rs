@@ -62,6 +62,7 @@
 pub mod block;
 pub mod hdl;
 pub mod learn;
+pub mod learner;
 pub mod model;
 pub mod sequencer;
 

@@ -222,6 +222,11 @@ impl LearnParams {
         self.window_log2 + self.fine_bits + TABLE_FRAC + self.line_frac() + 4
     }
 
+    /// One period per window in b's units: |b| >= 2^(F + 2 + T + B - w) moves the table.
+    pub fn one_period(&self) -> i64 {
+        1 << (self.fine_bits + 2 + TABLE_FRAC + LINE_GUARD)
+    }
+
     /// D = (N^2 - 1) / 3, b's divisor (b = round(32 U / D)).
     pub fn line_divisor(&self) -> u64 {
         ((1u64 << (2 * self.window_log2)) - 1) / 3
@@ -262,9 +267,10 @@ impl LearnParams {
         self.collect_clocks() + 2
     }
 
-    /// Clocks of Line: U, the load, b's quotient bits, b, a.
+    /// Clocks of Line: (N + 1) Sp, U, the load, b's quotient bits, the rounding, the sign,
+    /// a in two subtractions.
     pub fn line_clocks(&self) -> u32 {
-        self.line_div_bits() + 4
+        self.line_div_bits() + 7
     }
 
     /// Clocks of Residual per bin: the read, the latch, the products (2w - 1 clocks, sk_i's
@@ -325,16 +331,22 @@ pub enum State {
     Acc,
     /// PS += Sp, k += 1.
     Sum,
+    /// (N + 1) Sp.
+    LineN1,
     /// U = (N + 1) Sp - 2 PS.
     LineU,
     /// b's division loaded with |U|.
     LineLoad,
     /// b's quotient bits.
     LineDiv,
-    /// b rounded, its sign.
+    /// b's magnitude rounded.
+    LineRnd,
+    /// b signed.
     LineB,
-    /// a and the one-period test.
-    LineA,
+    /// Sp 2^5 + b, and the one-period test.
+    LineA1,
+    /// a = (Sp 2^5 + b - b 2^w) >> 1.
+    LineA2,
     /// Bin `idx`'s sums read.
     ResRead,
     /// Latched, the products set up.
@@ -824,11 +836,12 @@ impl Sequencer {
                 self.sum_ps = wrap(self.sum_ps + self.sum_p, pr.ps_width());
                 self.k += 1;
                 next = if self.k == pr.window() {
-                    State::LineU
+                    State::LineN1
                 } else {
                     State::Wait
                 };
             }
+            State::LineN1 => next = State::LineU,
             State::LineU => {
                 let n = i128::from(pr.window() as u32);
                 self.u = wrap((n + 1) * self.sum_p - 2 * self.sum_ps, pr.ps_width());
@@ -842,23 +855,26 @@ impl Sequencer {
                 self.cnt += 1;
                 if self.cnt == pr.line_div_bits() {
                     self.cnt = 0;
-                    next = State::LineB;
+                    next = State::LineRnd;
                 }
             }
+            State::LineRnd => next = State::LineB,
             State::LineB => {
                 self.b = line_b(&pr, self.u);
-                next = State::LineA;
+                next = State::LineA1;
             }
-            State::LineA => {
+            State::LineA1 => {
+                // One period per window: |b| 2^w >= 2^(F+2+T+B), a compare of |b| with a
+                // constant.
+                self.moving = self.b.abs() >= i128::from(pr.one_period());
+                next = State::LineA2;
+            }
+            State::LineA2 => {
                 let w = pr.window_log2;
                 self.a = wrap(
                     ((self.sum_p << 5) - (self.b << w) + self.b) >> 1,
                     pr.a_width(),
                 );
-                // One period per window: |b| 2^w >= 2^(F+2+T+B), a compare of |b| with a
-                // constant.
-                let one_period = 1i128 << (pr.fine_bits + 2 + TABLE_FRAC + LINE_GUARD);
-                self.moving = self.b.abs() >= one_period;
                 self.idx = 0;
                 next = State::ResRead;
             }
