@@ -1,18 +1,47 @@
-//! The table's online learner as the RTL will run it (docs/correction.md, "Learning the
-//! table online"): the method of [`super::learn`] in integers, as a sequencer of table steps
-//! with one [`Sequencer::step`] per clock, for the RTL to follow register for register. No
-//! RTL yet; no float in the state or the arithmetic.
+//! The table's online learner in integers (docs/correction.md, "Learning the table
+//! online"): the method of [`super::learn`] as a sequencer of table steps with one
+//! [`Sequencer::step`] per clock, the specification that the RTL,
+//! [`super::learner::HarmonicLearner`], follows register for register and state for state
+//! (rust-hdl == this model == Icarus == Verilator == engine, tests/blocks/harmonics_learner.rs).
+//! No float in the state or the arithmetic.
 //!
 //! ```text
-//!  strobe, angle m, delta ──► Collect ──(N samples)──► Line ──► Residual[0..P) ──► Mean
-//!         (one sample per strobe:          (b by a      (per bin: products, one    (sum r /
-//!          bin RAM read-modify-write)       division,    division, r_i into the     bins with
-//!               ▲                           a by shift)  bin's word)                samples)
-//!               │                                                                     │
+//!  rst / power-up ─► Clear: the start table into both banks (2P writes), the bins' sums 0
+//!                      │
+//!  strobe, angle m ──► Collect ──(N samples)──► Line ──► Residual[0..P) ──► Mean
+//!   (delta = m - m_prev,  Wait ─► ReadI, ReadJ,  (U, b by a      (per bin: four      (sum r /
+//!    F+2 bits, moves      Diff, Mult x s, Corr,  division, a by  products, one       bins with
+//!    pos on every         Bin, ReadBin, Acc, Sum shifts and      division, r_i into  samples)
+//!    strobe)              Wait ─► LoadA, LoadB   adds)           the bin's word)        │
+//!               ▲          (ld: both banks)                                             │
 //!             Apply ◄──────────── Update[0..P): c'_i = c_i + clip(2^-g (r_i - r), ±step) ◄┘
-//!   (flip the bank: the new        into the other bank, one table write per clock;
+//!   (flip the bank: the new        into the other bank, one table write per entry;
 //!    table from the next sample)   bin i's sums cleared
 //! ```
+//!
+//! Ports ([`LearnIn`], [`LearnOut`]): `rst`, `strobe` (a sample), `angle` (its raw fine
+//! angle m within the period, F + 2 bits), `update` (0: every entry written back
+//! unchanged), `ld`, `ld_addr`, `ld_data` (set an entry); out `tw`, `tw_addr`, `tw_data`
+//! (every table write, a clock after it: address bank P + i, the entry in q units in
+//! [`LearnParams::entry_width`] bits), `bank` (the bank the correction reads) and `ld_busy`.
+//!
+//! - delta = (m - m_prev) wrapped to F + 2 bits (two's complement): the raw position's
+//!   increment while |delta| < 2^(F+1) (the counter's unwrap limit, a condition anyway).
+//!   Every strobe moves `pos` by it; the first sample a window collects sets `pos` = 0.
+//! - Clear ([`LearnParams::clear_clocks`]) writes the start table (the config's `[harmonics]
+//!   table` in q units, or zeros; [`Sequencer::with_table`]) into bank 0 and bank 1 through
+//!   the write port, one entry a clock, and clears the bins; power-up is Clear, as after
+//!   `rst`.
+//! - A load (`ld`) is held (`ld_busy`) until a clock of Wait without a strobe, then written
+//!   into entry `ld_addr` of both banks (LoadA, LoadB: two writes) so that the next Update
+//!   starts from it; an `ld` while one is pending is dropped. `ld_data` is saturated to
+//!   +-2^(F-4) LSB. A strobe during LoadA or LoadB is latched and processed after them.
+//! - A sample takes [`LearnParams::collect_clocks`] (s + 9: 18 at F = 14, p = 7) from its
+//!   strobe in Wait; with a load's two writes [`LearnParams::min_sample_clocks`] (20) is the
+//!   shortest sample spacing at which no sample of a window is lost, and the core refuses a
+//!   config whose sample period is shorter. A strobe that comes while a sample is in
+//!   process (or in Line .. Apply, or Clear) moves `pos` but is not collected; inside a
+//!   window that would bend its line, hence the refusal.
 //!
 //! Units and formats. F fine bits: the period is 2^(F+2) LSB. P = 2^p entries, a window of
 //! N = 2^w samples, T = [`TABLE_FRAC`] fraction bits (the "q unit", 2^-T LSB), the line's
@@ -20,44 +49,74 @@
 //! the stated width (two's complement when signed) and the model wraps it there
 //! ([`wrap`]), as the RTL does; the widths are large enough that nothing wraps for an input
 //! within the conditions (|delta| < 2^(F+1) LSB per sample, the counter's unwrap limit).
+//! No word of the RTL is wider than 64 bits ([`WORD_MAX`], the compiled engine's limit):
+//! [`LearnParams::new`] refuses 3w + F + T + 3 > 64 (at F = 14: N <= 8192).
 //!
 //! | register | meaning | units | bits (signed) | F = 14, p = 7, w = 12, T = 8 |
 //! |---|---|---|---|---|
-//! | c_i (two banks of P) | table entry, \|c_i\| <= 2^(F-4) LSB (saturated) | q | F - 4 + T + 1 | 19 |
+//! | c_i (two banks of P) | table entry, \|c_i\| <= 2^(F-4) LSB (saturated) | q | F - 4 + T + 2 | 20 |
 //! | pos | raw position since the window's first sample, \|pos\| < 2^(w+F+1) | LSB | w + F + 2 | 28 |
 //! | q | pos 2^T - c(m): the corrected position | q | w + F + T + 3 | 37 |
 //! | k | sample of the window, 0..N | 1 | w + 1 (unsigned) | 13 |
 //! | n_i | samples of bin i, <= N | 1 | w + 1 (unsigned) | 13 |
 //! | sk_i | sum of k in bin i, < N^2 / 2 | 1 | 2w - 1 (unsigned) | 23 |
 //! | sp_i | sum of q in bin i, < N 2^(w+F+T+2) | q | 2w + F + T + 3 | 49 |
-//! | Sp, Skp | sum of q, sum of k q (the window's) | q | 2w + F + T + 3, 3w + F + T + 2 | 49, 60 |
+//! | Sp | sum of q (the window's) | q | 2w + F + T + 3 | 49 |
+//! | PS | sum over the window of Sp's running value, < N^2 2^(w+F+T+2) | q | 3w + F + T + 3 | 61 |
+//! | U | (N + 1) Sp - 2 PS = sum (2k - N + 1) q, \|U\| < N^2 2^(w+F+T+2) | q | 3w + F + T + 3 | 61 |
 //! | b | the line's slope, \|b\| < 2^(F+1) LSB per sample | 2^-B q | F + T + B + 2 | 40 |
 //! | a | the line's value at k = 0, \|a\| < max\|q\| + \|b\| N / 2 | 2^-B q | w + F + T + B + 4 | 54 |
 //! | r_i (in sp_i's word) | bin i's mean residual, saturated to \|r\| < 2^(F-2) LSB | q | F - 2 + T + 1 | 21 |
 //! | sum r, r | the residuals' sum over <= P bins, their mean | q | F - 2 + T + 1 + p, F - 2 + T + 1 | 28, 21 |
 //!
-//! Bit growth: a sum of N = 2^w terms grows by w bits (sp_i, Sp), a sum of k q by 2w (k < 2^w),
-//! a product by the sum of the factors' widths. The window's S0 = N, S1 = N (N - 1) / 2 and
-//! S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the window falls in a bin), so
-//! the line needs only Sp and Skp:
+//! Bit growth: a sum of N = 2^w terms grows by w bits (sp_i, Sp), a sum of N running sums
+//! by 2w (PS), a product by the sum of the factors' widths. The window's S0 = N, S1 = N (N -
+//! 1) / 2 and S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the window falls
+//! in a bin). The line of the least-squares fit, b = round((N Skp - S1 Sp) 2^B / det) with
+//! det = N S2 - S1^2 = N^2 (N^2 - 1) / 12, needs an 89-bit numerator and Skp = sum k q a
+//! product per sample; neither is built. Instead, with PS = sum_j (sum_(k<=j) q_k) = sum_k
+//! (N - k) q_k, Skp = N Sp - PS, and N Skp - S1 Sp = (N / 2) U with U = 2 Skp - (N - 1) Sp =
+//! (N + 1) Sp - 2 PS (one adder per sample, no product):
 //!
 //! ```text
-//! det = N S2 - S1^2 = N^2 (N^2 - 1) / 12                       (constant, 4w bits)
-//! b   = round((N Skp - S1 Sp) 2^B / det)                       (numerator 4w + F + T + B + 3 bits)
-//! a   = (Sp 2^B - b S1) >> w                                   (floor)
-//! r_i = sat(round((sp_i 2^B - a n_i - b sk_i) / (n_i 2^B)))    (numerator 3w + F + T + B + 4 bits)
-//! r   = round(sum_i r_i / bins with samples)
-//! c'_i = sat(c_i + clip(round((r_i - r) 2^-g), ±step))         (only bins with samples)
+//! D    = (N^2 - 1) / 3                                       (constant, 2w - 1 bits)
+//! b    = round((N/2) U 2^B / det) = round(U 2^5 / D)         (= the formula above exactly)
+//!      = ±((floor(|U| 2^6 / D) + 1) >> 1)                    (Kb = 3w+F+T+10-2w quotient bits)
+//! a    = (Sp 2^B - b S1) >> w = (Sp 2^5 + b - b 2^w) >> 1    (floor; no product)
+//! r_i  = sat(round((sp_i 2^B - a n_i - b sk_i) / (n_i 2^B)))  (numerator 3w + F + T + B + 4 bits)
+//! r    = round(sum_i r_i / bins with samples)
+//! c'_i = sat(c_i + clip(round((r_i - r) 2^-g), ±step))        (only bins with samples)
 //! ```
 //!
-//! round(x / d) is a restoring division of |x| + d/2 by d (one quotient bit per clock) with
-//! x's sign; the products are shift-add (one multiplier bit per clock). The model computes
-//! each result whole at its step's last clock, which is what the bit-serial unit holds
-//! then, and counts the clocks: [`LearnParams::line_clocks`], [`LearnParams::residual_clocks`]
-//! per bin, [`LearnParams::mean_clocks`], P clocks of Update and one of Apply
-//! ([`LearnParams::solve_clocks`]: 6229 at F = 14, p = 7, w = 12, T = 8, i.e. 61 samples at
-//! 102 clocks per sample). Samples that arrive outside Collect still move `pos` but are not
-//! collected: the next window starts at the first sample after Apply.
+//! round(x / d), d > 0, is |x| / d rounded half up with x's sign ([`div_round`]); the RTL
+//! takes it as (floor(2 |x| / d) + 1) >> 1: one quotient bit more instead of adding d/2 to
+//! a wide dividend. Its restoring division ([`restoring`]: t = 2 rem + next dividend bit;
+//! t >= d ? (rem = t - d, bit 1) : (rem = t, bit 0)) starts with rem = dividend >> K and
+//! shifts the dividend's low bits, then its low zero bits, into the remainder, one quotient
+//! bit a clock, so the dividend's appended zeros (2^6 for b) need no wider word; rem < 2d.
+//! b's division never overflows: |U| 2^6 / D < 2^(3w+F+T+9) / 2^(2w-2) = 2^Kb.
+//!
+//! r_i in 64-bit words ([`residual_serial`], checked against the i128 formula
+//! [`residual`]): a = a_h 2^B + a_l and b = b_h 2^B + b_l (arithmetic shift; 0 <= a_l, b_l <
+//! 2^B); Z1 = sp_i - a_h n_i - b_h sk_i (exact: < 2^(2w+F+T+4)), Z2 = a_l n_i + b_l sk_i (0
+//! <= Z2 < 2^B (n_i + sk_i)), so x = sp_i 2^B - a n_i - b sk_i = Z1 2^B - Z2. With H =
+//! 2^(62-B): if |Z1| < H, |x| < 2^62 + 2^(B+2w) < 2^63 fits and r_i = ±((floor((|x| >>
+//! (B-1)) / n_i) + 1) >> 1), saturated (floor(floor(y / 2^(B-1)) / n) = floor(y / (n
+//! 2^(B-1))); Kr = F - 1 + T quotient bits, an overflow of them saturates); if Z1 >= H, x /
+//! (n_i 2^B) > H / n_i - 1 - sk_i / n_i >= 2^(58-2w) - 2^w > 2^(F-2+T), so r_i saturates
+//! (likewise Z1 <= -H), which holds whenever 3w + F + T + 3 <= 64. The four products a_h
+//! n_i, b_h sk_i, a_l n_i, b_l sk_i are shift-add side by side, 2w - 1 clocks (sk_i's
+//! bits); c(m)'s (c_j - c_i) f likewise, s clocks (f's bits).
+//!
+//! Clocks (the model counts them state by state, the RTL's named states): Collect
+//! [`LearnParams::collect_clocks`] per sample; [`LearnParams::line_clocks`] (Kb + 7 = 51),
+//! [`LearnParams::residual_clocks`] per bin (2w - 1 + Kr + 10 = 54),
+//! [`LearnParams::mean_clocks`] (Kr + 4 = 25), [`LearnParams::update_clocks`] per bin (6),
+//! Apply 1: [`LearnParams::solve_clocks`] = 7757 at F = 14, p = 7, w = 12, T = 8, i.e. 77
+//! samples at 102 clocks per sample. Every register-to-register path of the RTL holds at
+//! most one carry chain, so three-operand sums take two states. Samples that arrive
+//! outside Collect still move `pos` but are not collected: the next window starts at the
+//! first sample after Apply.
 //!
 //! The table's correction at the raw fine angle m (LSB, 0..2^(F+2)), s = F + 2 - p:
 //! i = m >> s, f = m mod 2^s, c(m) = (c_i 2^s + (c_(i+1 mod P) - c_i) f) >> s (floor, q
