@@ -64,21 +64,18 @@ impl Stream {
 fn follow(seq: &mut Sequencer, fl: &mut Learner, raw: &[i64]) -> f64 {
     let mut worst: f64 = 0.0;
     let mut compared = 0;
-    let mut prev = raw[0];
     for &p in raw {
-        let taken = seq.state == State::Collect;
+        let taken = seq.takes_sample();
         let before = seq.windows;
         for c in 0..CLOCKS {
             let strobe = c == 0;
             seq.step(LearnIn {
                 strobe,
                 angle: p.rem_euclid(PERIOD) as u32,
-                delta: (p - prev) as i32,
                 update: true,
-                rst: false,
+                ..LearnIn::default()
             });
         }
-        prev = p;
         if taken {
             fl.sample(p as f64);
         }
@@ -143,25 +140,28 @@ fn the_integer_learner_follows_the_float_model() {
     }
 }
 
-/// The solve's clocks, counted by hand from the formats in docs/correction.md: Line 39
-/// quotient bits + a load + 23 product bits, Residual 1 + 23 + 1 + (20 + 1) + 1 per bin,
-/// Mean 21, Update 128, Apply 1.
+/// The solve's clocks, counted by hand from the formats in docs/correction.md (F = 14, p =
+/// 7, w = 12, T = 8): Line 7 + 44 quotient bits (|U| < 2^60, D > 2^22: floor(2^6 |U| / D) <
+/// 2^44), Residual 23 product bits + 21 quotient bits + 10 per bin, Mean 21 + 4, Update 6
+/// per bin, Apply 1; a sample's Collect 9 + s = 18 clocks, 20 with a load's two writes.
 #[test]
 fn the_solve_takes_the_documented_clocks() {
     let p = params();
-    assert_eq!(p.line_clocks(), 39 + 1 + 23);
-    assert_eq!(p.residual_clocks(), 47);
-    assert_eq!(p.solve_clocks(), 63 + 47 * 128 + 21 + 128 + 1);
+    assert_eq!(p.line_clocks(), 7 + 44);
+    assert_eq!(p.residual_clocks(), 23 + 21 + 10);
+    assert_eq!(p.mean_clocks(), 25);
+    assert_eq!(p.solve_clocks(), 51 + 54 * 128 + 25 + 6 * 128 + 1);
+    assert_eq!((p.collect_clocks(), p.min_sample_clocks()), (18, 20));
+    assert_eq!(p.clear_clocks(), 257);
     assert_eq!(
-        (
-            p.entry_width(),
-            p.q_width(),
-            p.sum_p_width(),
-            p.sum_kp_width()
-        ),
-        (19, 37, 49, 60)
+        (p.entry_width(), p.q_width(), p.sum_p_width(), p.ps_width()),
+        (20, 37, 49, 61)
     );
     assert_eq!((p.b_width(), p.a_width()), (40, 54));
+    // The widest word fits the engine's 64 bits: a larger window at F = 14 is refused.
+    assert!(LearnParams::new(F, 128, 8192, STEP_LSB).is_ok());
+    let e = LearnParams::new(F, 128, 16384, STEP_LSB).unwrap_err();
+    assert!(e.contains("64") && e.contains("8192"), "{e}");
 }
 
 #[test]
@@ -176,7 +176,6 @@ fn no_entry_moves_by_more_than_the_step_and_reset_clears() {
     let raw = s.positions(0.0, 2100.0, 0.0, 12 * 4096);
     let mut seq = Sequencer::new(params());
     let step = seq.params.step;
-    let mut prev = raw[0];
     let mut table = seq.table().to_vec();
     let mut jumps = 0;
     for &p in &raw {
@@ -185,9 +184,8 @@ fn no_entry_moves_by_more_than_the_step_and_reset_clears() {
             seq.step(LearnIn {
                 strobe: c == 0,
                 angle: p.rem_euclid(PERIOD) as u32,
-                delta: (p - prev) as i32,
                 update: true,
-                rst: false,
+                ..LearnIn::default()
             });
             if seq.table() != before.as_slice() {
                 // The table changes only at Apply, and the correction at any angle by at
@@ -209,7 +207,6 @@ fn no_entry_moves_by_more_than_the_step_and_reset_clears() {
                 assert!(worst <= step, "the correction moved by {worst} > {step}");
             }
         }
-        prev = p;
         table = seq.table().to_vec();
     }
     assert!(jumps >= 10, "{jumps} updates");
@@ -219,26 +216,29 @@ fn no_entry_moves_by_more_than_the_step_and_reset_clears() {
         rst: true,
         ..LearnIn::default()
     });
-    assert!(seq.table().iter().all(|&c| c == 0));
-    assert_eq!(seq.state, State::Collect);
+    assert_eq!(seq.state, State::Clear);
     assert_eq!((seq.windows, seq.max_change), (0, 0));
+    // Clear writes the start table back into both banks, one entry a clock, then Collect.
+    for _ in 0..seq.params.clear_clocks() {
+        assert_eq!(seq.state, State::Clear);
+        seq.step(LearnIn::default());
+    }
+    assert!(seq.table().iter().all(|&c| c == 0));
+    assert_eq!(seq.state, State::Wait);
 }
 
 /// Runs `raw` through a fresh learner; returns it.
 fn learn(raw: &[i64]) -> Sequencer {
     let mut seq = Sequencer::new(params());
-    let mut prev = raw[0];
     for &p in raw {
         for c in 0..CLOCKS {
             seq.step(LearnIn {
                 strobe: c == 0,
                 angle: p.rem_euclid(PERIOD) as u32,
-                delta: (p - prev) as i32,
                 update: true,
-                rst: false,
+                ..LearnIn::default()
             });
         }
-        prev = p;
     }
     seq
 }
@@ -403,9 +403,8 @@ fn the_learned_table_meets_the_bound_at_three_speeds_both_ways() {
                 seq.step(LearnIn {
                     strobe: true,
                     angle: r.unwrapped.rem_euclid(PERIOD) as u32,
-                    delta: (r.unwrapped - prev.unwrapped) as i32,
                     update,
-                    rst: false,
+                    ..LearnIn::default()
                 });
                 prev = r;
             }

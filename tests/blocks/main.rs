@@ -33,6 +33,7 @@ mod counter_load;
 mod harmonics;
 mod harmonics_config;
 mod harmonics_learn;
+mod harmonics_learner;
 mod harmonics_ram;
 mod iterative;
 mod monitor;

@@ -1,18 +1,47 @@
-//! The table's online learner as the RTL will run it (docs/correction.md, "Learning the
-//! table online"): the method of [`super::learn`] in integers, as a sequencer of table steps
-//! with one [`Sequencer::step`] per clock, for the RTL to follow register for register. No
-//! RTL yet; no float in the state or the arithmetic.
+//! The table's online learner in integers (docs/correction.md, "Learning the table
+//! online"): the method of [`super::learn`] as a sequencer of table steps with one
+//! [`Sequencer::step`] per clock, the specification that the RTL,
+//! [`super::learner::HarmonicLearner`], follows register for register and state for state
+//! (rust-hdl == this model == Icarus == Verilator == engine, tests/blocks/harmonics_learner.rs).
+//! No float in the state or the arithmetic.
 //!
 //! ```text
-//!  strobe, angle m, delta ──► Collect ──(N samples)──► Line ──► Residual[0..P) ──► Mean
-//!         (one sample per strobe:          (b by a      (per bin: products, one    (sum r /
-//!          bin RAM read-modify-write)       division,    division, r_i into the     bins with
-//!               ▲                           a by shift)  bin's word)                samples)
-//!               │                                                                     │
+//!  rst / power-up ─► Clear: the start table into both banks (2P writes), the bins' sums 0
+//!                      │
+//!  strobe, angle m ──► Collect ──(N samples)──► Line ──► Residual[0..P) ──► Mean
+//!   (delta = m - m_prev,  Wait ─► ReadI, ReadJ,  (U, b by a      (per bin: four      (sum r /
+//!    F+2 bits, moves      Diff, Mult x s, Corr,  division, a by  products, one       bins with
+//!    pos on every         Bin, ReadBin, Acc, Sum shifts and      division, r_i into  samples)
+//!    strobe)              Wait ─► LoadA, LoadB   adds)           the bin's word)        │
+//!               ▲          (ld: both banks)                                             │
 //!             Apply ◄──────────── Update[0..P): c'_i = c_i + clip(2^-g (r_i - r), ±step) ◄┘
-//!   (flip the bank: the new        into the other bank, one table write per clock;
+//!   (flip the bank: the new        into the other bank, one table write per entry;
 //!    table from the next sample)   bin i's sums cleared
 //! ```
+//!
+//! Ports ([`LearnIn`], [`LearnOut`]): `rst`, `strobe` (a sample), `angle` (its raw fine
+//! angle m within the period, F + 2 bits), `update` (0: every entry written back
+//! unchanged), `ld`, `ld_addr`, `ld_data` (set an entry); out `tw`, `tw_addr`, `tw_data`
+//! (every table write, a clock after it: address bank P + i, the entry in q units in
+//! [`LearnParams::entry_width`] bits), `bank` (the bank the correction reads) and `ld_busy`.
+//!
+//! - delta = (m - m_prev) wrapped to F + 2 bits (two's complement): the raw position's
+//!   increment while |delta| < 2^(F+1) (the counter's unwrap limit, a condition anyway).
+//!   Every strobe moves `pos` by it; the first sample a window collects sets `pos` = 0.
+//! - Clear ([`LearnParams::clear_clocks`]) writes the start table (the config's `[harmonics]
+//!   table` in q units, or zeros; [`Sequencer::with_table`]) into bank 0 and bank 1 through
+//!   the write port, one entry a clock, and clears the bins; power-up is Clear, as after
+//!   `rst`.
+//! - A load (`ld`) is held (`ld_busy`) until a clock of Wait without a strobe, then written
+//!   into entry `ld_addr` of both banks (LoadA, LoadB: two writes) so that the next Update
+//!   starts from it; an `ld` while one is pending is dropped. `ld_data` is saturated to
+//!   +-2^(F-4) LSB. A strobe during LoadA or LoadB is latched and processed after them.
+//! - A sample takes [`LearnParams::collect_clocks`] (s + 9: 18 at F = 14, p = 7) from its
+//!   strobe in Wait; with a load's two writes [`LearnParams::min_sample_clocks`] (20) is the
+//!   shortest sample spacing at which no sample of a window is lost, and the core refuses a
+//!   config whose sample period is shorter. A strobe that comes while a sample is in
+//!   process (or in Line .. Apply, or Clear) moves `pos` but is not collected; inside a
+//!   window that would bend its line, hence the refusal.
 //!
 //! Units and formats. F fine bits: the period is 2^(F+2) LSB. P = 2^p entries, a window of
 //! N = 2^w samples, T = [`TABLE_FRAC`] fraction bits (the "q unit", 2^-T LSB), the line's
@@ -20,44 +49,74 @@
 //! the stated width (two's complement when signed) and the model wraps it there
 //! ([`wrap`]), as the RTL does; the widths are large enough that nothing wraps for an input
 //! within the conditions (|delta| < 2^(F+1) LSB per sample, the counter's unwrap limit).
+//! No word of the RTL is wider than 64 bits ([`WORD_MAX`], the compiled engine's limit):
+//! [`LearnParams::new`] refuses 3w + F + T + 3 > 64 (at F = 14: N <= 8192).
 //!
 //! | register | meaning | units | bits (signed) | F = 14, p = 7, w = 12, T = 8 |
 //! |---|---|---|---|---|
-//! | c_i (two banks of P) | table entry, \|c_i\| <= 2^(F-4) LSB (saturated) | q | F - 4 + T + 1 | 19 |
+//! | c_i (two banks of P) | table entry, \|c_i\| <= 2^(F-4) LSB (saturated) | q | F - 4 + T + 2 | 20 |
 //! | pos | raw position since the window's first sample, \|pos\| < 2^(w+F+1) | LSB | w + F + 2 | 28 |
 //! | q | pos 2^T - c(m): the corrected position | q | w + F + T + 3 | 37 |
 //! | k | sample of the window, 0..N | 1 | w + 1 (unsigned) | 13 |
 //! | n_i | samples of bin i, <= N | 1 | w + 1 (unsigned) | 13 |
 //! | sk_i | sum of k in bin i, < N^2 / 2 | 1 | 2w - 1 (unsigned) | 23 |
 //! | sp_i | sum of q in bin i, < N 2^(w+F+T+2) | q | 2w + F + T + 3 | 49 |
-//! | Sp, Skp | sum of q, sum of k q (the window's) | q | 2w + F + T + 3, 3w + F + T + 2 | 49, 60 |
+//! | Sp | sum of q (the window's) | q | 2w + F + T + 3 | 49 |
+//! | PS | sum over the window of Sp's running value, < N^2 2^(w+F+T+2) | q | 3w + F + T + 3 | 61 |
+//! | U | (N + 1) Sp - 2 PS = sum (2k - N + 1) q, \|U\| < N^2 2^(w+F+T+2) | q | 3w + F + T + 3 | 61 |
 //! | b | the line's slope, \|b\| < 2^(F+1) LSB per sample | 2^-B q | F + T + B + 2 | 40 |
 //! | a | the line's value at k = 0, \|a\| < max\|q\| + \|b\| N / 2 | 2^-B q | w + F + T + B + 4 | 54 |
 //! | r_i (in sp_i's word) | bin i's mean residual, saturated to \|r\| < 2^(F-2) LSB | q | F - 2 + T + 1 | 21 |
 //! | sum r, r | the residuals' sum over <= P bins, their mean | q | F - 2 + T + 1 + p, F - 2 + T + 1 | 28, 21 |
 //!
-//! Bit growth: a sum of N = 2^w terms grows by w bits (sp_i, Sp), a sum of k q by 2w (k < 2^w),
-//! a product by the sum of the factors' widths. The window's S0 = N, S1 = N (N - 1) / 2 and
-//! S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the window falls in a bin), so
-//! the line needs only Sp and Skp:
+//! Bit growth: a sum of N = 2^w terms grows by w bits (sp_i, Sp), a sum of N running sums
+//! by 2w (PS), a product by the sum of the factors' widths. The window's S0 = N, S1 = N (N -
+//! 1) / 2 and S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the window falls
+//! in a bin). The line of the least-squares fit, b = round((N Skp - S1 Sp) 2^B / det) with
+//! det = N S2 - S1^2 = N^2 (N^2 - 1) / 12, needs an 89-bit numerator and Skp = sum k q a
+//! product per sample; neither is built. Instead, with PS = sum_j (sum_(k<=j) q_k) = sum_k
+//! (N - k) q_k, Skp = N Sp - PS, and N Skp - S1 Sp = (N / 2) U with U = 2 Skp - (N - 1) Sp =
+//! (N + 1) Sp - 2 PS (one adder per sample, no product):
 //!
 //! ```text
-//! det = N S2 - S1^2 = N^2 (N^2 - 1) / 12                       (constant, 4w bits)
-//! b   = round((N Skp - S1 Sp) 2^B / det)                       (numerator 4w + F + T + B + 3 bits)
-//! a   = (Sp 2^B - b S1) >> w                                   (floor)
-//! r_i = sat(round((sp_i 2^B - a n_i - b sk_i) / (n_i 2^B)))    (numerator 3w + F + T + B + 4 bits)
-//! r   = round(sum_i r_i / bins with samples)
-//! c'_i = sat(c_i + clip(round((r_i - r) 2^-g), ±step))         (only bins with samples)
+//! D    = (N^2 - 1) / 3                                       (constant, 2w - 1 bits)
+//! b    = round((N/2) U 2^B / det) = round(U 2^5 / D)         (= the formula above exactly)
+//!      = ±((floor(|U| 2^6 / D) + 1) >> 1)                    (Kb = 3w+F+T+10-2w quotient bits)
+//! a    = (Sp 2^B - b S1) >> w = (Sp 2^5 + b - b 2^w) >> 1    (floor; no product)
+//! r_i  = sat(round((sp_i 2^B - a n_i - b sk_i) / (n_i 2^B)))  (numerator 3w + F + T + B + 4 bits)
+//! r    = round(sum_i r_i / bins with samples)
+//! c'_i = sat(c_i + clip(round((r_i - r) 2^-g), ±step))        (only bins with samples)
 //! ```
 //!
-//! round(x / d) is a restoring division of |x| + d/2 by d (one quotient bit per clock) with
-//! x's sign; the products are shift-add (one multiplier bit per clock). The model computes
-//! each result whole at its step's last clock, which is what the bit-serial unit holds
-//! then, and counts the clocks: [`LearnParams::line_clocks`], [`LearnParams::residual_clocks`]
-//! per bin, [`LearnParams::mean_clocks`], P clocks of Update and one of Apply
-//! ([`LearnParams::solve_clocks`]: 6229 at F = 14, p = 7, w = 12, T = 8, i.e. 61 samples at
-//! 102 clocks per sample). Samples that arrive outside Collect still move `pos` but are not
-//! collected: the next window starts at the first sample after Apply.
+//! round(x / d), d > 0, is |x| / d rounded half up with x's sign ([`div_round`]); the RTL
+//! takes it as (floor(2 |x| / d) + 1) >> 1: one quotient bit more instead of adding d/2 to
+//! a wide dividend. Its restoring division ([`restoring`]: t = 2 rem + next dividend bit;
+//! t >= d ? (rem = t - d, bit 1) : (rem = t, bit 0)) starts with rem = dividend >> K and
+//! shifts the dividend's low bits, then its low zero bits, into the remainder, one quotient
+//! bit a clock, so the dividend's appended zeros (2^6 for b) need no wider word; rem < 2d.
+//! b's division never overflows: |U| 2^6 / D < 2^(3w+F+T+9) / 2^(2w-2) = 2^Kb.
+//!
+//! r_i in 64-bit words ([`residual_serial`], checked against the i128 formula
+//! [`residual`]): a = a_h 2^B + a_l and b = b_h 2^B + b_l (arithmetic shift; 0 <= a_l, b_l <
+//! 2^B); Z1 = sp_i - a_h n_i - b_h sk_i (exact: < 2^(2w+F+T+4)), Z2 = a_l n_i + b_l sk_i (0
+//! <= Z2 < 2^B (n_i + sk_i)), so x = sp_i 2^B - a n_i - b sk_i = Z1 2^B - Z2. With H =
+//! 2^(62-B): if |Z1| < H, |x| < 2^62 + 2^(B+2w) < 2^63 fits and r_i = ±((floor((|x| >>
+//! (B-1)) / n_i) + 1) >> 1), saturated (floor(floor(y / 2^(B-1)) / n) = floor(y / (n
+//! 2^(B-1))); Kr = F - 1 + T quotient bits, an overflow of them saturates); if Z1 >= H, x /
+//! (n_i 2^B) > H / n_i - 1 - sk_i / n_i >= 2^(58-2w) - 2^w > 2^(F-2+T), so r_i saturates
+//! (likewise Z1 <= -H), which holds whenever 3w + F + T + 3 <= 64. The four products a_h
+//! n_i, b_h sk_i, a_l n_i, b_l sk_i are shift-add side by side, 2w - 1 clocks (sk_i's
+//! bits); c(m)'s (c_j - c_i) f likewise, s clocks (f's bits).
+//!
+//! Clocks (the model counts them state by state, the RTL's named states): Collect
+//! [`LearnParams::collect_clocks`] per sample; [`LearnParams::line_clocks`] (Kb + 7 = 51),
+//! [`LearnParams::residual_clocks`] per bin (2w - 1 + Kr + 10 = 54),
+//! [`LearnParams::mean_clocks`] (Kr + 4 = 25), [`LearnParams::update_clocks`] per bin (6),
+//! Apply 1: [`LearnParams::solve_clocks`] = 7757 at F = 14, p = 7, w = 12, T = 8, i.e. 77
+//! samples at 102 clocks per sample. Every register-to-register path of the RTL holds at
+//! most one carry chain, so three-operand sums take two states. Samples that arrive
+//! outside Collect still move `pos` but are not collected: the next window starts at the
+//! first sample after Apply.
 //!
 //! The table's correction at the raw fine angle m (LSB, 0..2^(F+2)), s = F + 2 - p:
 //! i = m >> s, f = m mod 2^s, c(m) = (c_i 2^s + (c_(i+1 mod P) - c_i) f) >> s (floor, q
@@ -94,6 +153,9 @@ pub const TABLE_FRAC: u32 = 8;
 
 /// Fraction bits of the line's a and b beyond the window's w (B = w + LINE_GUARD).
 pub const LINE_GUARD: u32 = 4;
+
+/// The widest word the RTL may hold (the compiled engine's limit, src/engine).
+pub const WORD_MAX: u32 = 64;
 
 /// The learner's formats and settings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -136,6 +198,14 @@ impl LearnParams {
             gain_shift: 1,
             step: i64::from(step_lsb) << TABLE_FRAC,
         };
+        if p.ps_width() > WORD_MAX {
+            let w_max = (WORD_MAX - fine_bits - TABLE_FRAC - 3) / 3;
+            return Err(format!(
+                "a window of {window} samples at F = {fine_bits}: the learner's widest word, 3 log2(window) + F + {} bits, must fit in {WORD_MAX}; allowed up to {} samples",
+                TABLE_FRAC + 3,
+                1u64 << w_max
+            ));
+        }
         if p.step > p.entry_max() {
             return Err(format!(
                 "a step of {step_lsb} LSB: allowed up to the largest entry, 2^(F-4) = {} LSB",
@@ -155,6 +225,11 @@ impl LearnParams {
         1 << self.window_log2
     }
 
+    /// s = F + 2 - p: bits of the place f within a segment of the table.
+    pub fn seg_bits(&self) -> u32 {
+        self.fine_bits + 2 - self.points_log2
+    }
+
     /// B: fraction bits of a and b below the q unit.
     pub fn line_frac(&self) -> u32 {
         self.window_log2 + LINE_GUARD
@@ -170,9 +245,9 @@ impl LearnParams {
         (1 << (self.fine_bits - 2 + TABLE_FRAC)) - 1
     }
 
-    /// Bits of an entry (signed).
+    /// Bits of an entry (signed; +-2^(F-4) LSB both fit).
     pub fn entry_width(&self) -> u32 {
-        self.fine_bits - 4 + TABLE_FRAC + 1
+        self.fine_bits - 4 + TABLE_FRAC + 2
     }
 
     /// Bits of `pos` (signed).
@@ -190,9 +265,10 @@ impl LearnParams {
         2 * self.window_log2 + self.fine_bits + TABLE_FRAC + 3
     }
 
-    /// Bits of Skp (signed).
-    pub fn sum_kp_width(&self) -> u32 {
-        3 * self.window_log2 + self.fine_bits + TABLE_FRAC + 2
+    /// Bits of PS (the sum of Sp's running values) and of U = (N + 1) Sp - 2 PS (signed):
+    /// the learner's widest word.
+    pub fn ps_width(&self) -> u32 {
+        3 * self.window_log2 + self.fine_bits + TABLE_FRAC + 3
     }
 
     /// Bits of b (signed).
@@ -205,106 +281,294 @@ impl LearnParams {
         self.window_log2 + self.fine_bits + TABLE_FRAC + self.line_frac() + 4
     }
 
-    /// Clocks of Line: b's division (one clock per quotient bit and one to load), then a's
-    /// product b S1 (one per bit of S1, 2w - 1 bits).
+    /// One period per window in b's units: |b| >= 2^(F + 2 + T + B - w) moves the table.
+    pub fn one_period(&self) -> i64 {
+        1 << (self.fine_bits + 2 + TABLE_FRAC + LINE_GUARD)
+    }
+
+    /// D = (N^2 - 1) / 3, b's divisor (b = round(32 U / D)).
+    pub fn line_divisor(&self) -> u64 {
+        ((1u64 << (2 * self.window_log2)) - 1) / 3
+    }
+
+    /// Quotient bits of b's division, floor(2 |U| 2^5 / D) < 2^(ps_width + 7 - 2w): never
+    /// overflows.
+    pub fn line_div_bits(&self) -> u32 {
+        self.ps_width() + 7 - 2 * self.window_log2
+    }
+
+    /// Quotient bits of r_i's and r's divisions: floor(2 |x| / d) < 2^(F - 1 + T) unless
+    /// the result saturates.
+    pub fn res_div_bits(&self) -> u32 {
+        self.fine_bits - 1 + TABLE_FRAC
+    }
+
+    /// H = 2^(62 - B): |Z1| >= H saturates r_i (module doc), else |x| < 2^63.
+    pub fn big_limit(&self) -> i64 {
+        1 << (62 - self.line_frac())
+    }
+
+    /// Clocks of Clear: P + P table writes, each a clock after its start entry's read.
+    pub fn clear_clocks(&self) -> u32 {
+        2 * self.points() as u32 + 1
+    }
+
+    /// Clocks of one sample in Collect, from its strobe to the next clock that takes one:
+    /// Wait, ReadI, ReadJ, Diff, s of Mult, Corr, Bin, ReadBin, Acc, Sum.
+    pub fn collect_clocks(&self) -> u32 {
+        self.seg_bits() + 9
+    }
+
+    /// The shortest sample spacing, clocks, at which every sample of a window is collected:
+    /// a sample's clocks and a load's two writes (a strobe during LoadA or LoadB waits for
+    /// them). The core refuses a config whose sample period is shorter.
+    pub fn min_sample_clocks(&self) -> u32 {
+        self.collect_clocks() + 2
+    }
+
+    /// Clocks of Line: (N + 1) Sp, U, the load, b's quotient bits, the rounding, the sign,
+    /// a in two subtractions.
     pub fn line_clocks(&self) -> u32 {
-        (self.b_width() - 1 + 1) + (2 * self.window_log2 - 1)
+        self.line_div_bits() + 7
     }
 
-    /// Clocks of Residual per bin: the read, the products a n_i and b sk_i side by side (2w -
-    /// 1 clocks, sk_i's bits), the subtract, r_i's division (F - 2 + T quotient bits and one
-    /// to load) and the write.
+    /// Clocks of Residual per bin: the read, the latch, the products (2w - 1 clocks, sk_i's
+    /// bits), Z1 in two subtractions, x, |x|, the load, r_i's quotient bits, the rounding,
+    /// the write, the sum.
     pub fn residual_clocks(&self) -> u32 {
-        1 + (2 * self.window_log2 - 1) + 1 + (self.fine_bits - 2 + TABLE_FRAC + 1) + 1
+        (2 * self.window_log2 - 1) + self.res_div_bits() + 10
     }
 
-    /// Clocks of Mean: the division of sum r by the bins with samples.
+    /// Clocks of Mean: |sum r|, the load, the quotient bits, the rounding, the sign.
     pub fn mean_clocks(&self) -> u32 {
-        self.fine_bits - 2 + TABLE_FRAC + 1
+        self.res_div_bits() + 4
     }
 
-    /// Clocks from the window's last sample to the first clock of the next Collect.
+    /// Clocks of Update per bin: the read, r_i - r, its magnitude, the step, the sum, the
+    /// write.
+    pub fn update_clocks(&self) -> u32 {
+        6
+    }
+
+    /// Clocks from the window's last sample's Sum to the first clock of the next Collect.
     pub fn solve_clocks(&self) -> u32 {
         self.line_clocks()
             + self.residual_clocks() * self.points() as u32
             + self.mean_clocks()
-            + self.points() as u32
+            + self.update_clocks() * self.points() as u32
             + 1
     }
 }
 
-/// The sequencer's states (the RTL's state enum).
+/// The sequencer's states (the RTL's state enum, [`super::learner::LearnState`], in the same
+/// order).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum State {
-    /// Take one sample per strobe into its bin's sums and the window's.
-    Collect,
-    /// The line's b and a; `left` clocks to go.
-    Line {
-        /// Clocks left.
-        left: u32,
-    },
-    /// Bin `bin`'s mean residual; `left` clocks to go.
-    Residual {
-        /// The bin.
-        bin: usize,
-        /// Clocks left.
-        left: u32,
-    },
-    /// The residuals' mean; `left` clocks to go.
-    Mean {
-        /// Clocks left.
-        left: u32,
-    },
-    /// Entry `bin` of the other bank (one table write), bin `bin`'s sums cleared.
-    Update {
-        /// The bin.
-        bin: usize,
-    },
+    /// The start table into both banks, the bins' sums cleared (power-up and reset).
+    Clear,
+    /// Collect: waiting for a sample (or a pending load).
+    Wait,
+    /// The load's write into bank 0.
+    LoadA,
+    /// The load's write into bank 1.
+    LoadB,
+    /// The sample's entry c_i read.
+    ReadI,
+    /// c_(i+1) read.
+    ReadJ,
+    /// D = c_(i+1) - c_i.
+    Diff,
+    /// D f, one bit of f a clock (s clocks).
+    Mult,
+    /// c(m) = (c_i 2^s + D f) >> s.
+    Corr,
+    /// The sample's bin and q.
+    Bin,
+    /// The bin's sums read.
+    ReadBin,
+    /// n_i, sk_i, sp_i and Sp updated.
+    Acc,
+    /// PS += Sp, k += 1.
+    Sum,
+    /// (N + 1) Sp.
+    LineN1,
+    /// U = (N + 1) Sp - 2 PS.
+    LineU,
+    /// b's division loaded with |U|.
+    LineLoad,
+    /// b's quotient bits.
+    LineDiv,
+    /// b's magnitude rounded.
+    LineRnd,
+    /// b signed.
+    LineB,
+    /// Sp 2^5 + b, and the one-period test.
+    LineA1,
+    /// a = (Sp 2^5 + b - b 2^w) >> 1.
+    LineA2,
+    /// Bin `idx`'s sums read.
+    ResRead,
+    /// Latched, the products set up.
+    ResLatch,
+    /// a_h n_i, b_h sk_i, a_l n_i, b_l sk_i, one bit a clock (2w - 1 clocks).
+    ResMul,
+    /// Z1 = sp_i - a_h n_i, Z2 = a_l n_i + b_l sk_i.
+    ResZa,
+    /// Z1 -= b_h sk_i.
+    ResZb,
+    /// x = Z1 2^B - Z2, and |Z1| >= H.
+    ResX,
+    /// |x|.
+    ResAbs,
+    /// r_i's division loaded.
+    ResLoad,
+    /// r_i's quotient bits.
+    ResDiv,
+    /// r_i's magnitude rounded and saturated.
+    ResEnd,
+    /// r_i signed, into sp_i's word.
+    ResWrite,
+    /// sum r, bins.
+    ResSum,
+    /// |sum r|.
+    MeanAbs,
+    /// r's division loaded.
+    MeanLoad,
+    /// r's quotient bits.
+    MeanDiv,
+    /// r's magnitude rounded.
+    MeanEnd,
+    /// r signed.
+    MeanSign,
+    /// Entry `idx` and bin `idx`'s n_i and r_i read.
+    UpdRead,
+    /// r_i - r.
+    UpdDiff,
+    /// |r_i - r|.
+    UpdAbs,
+    /// The step, 2^-g of it rounded, clipped.
+    UpdStep,
+    /// c_i + the step.
+    UpdAdd,
+    /// The new entry, saturated, into the other bank; bin `idx`'s sums cleared.
+    UpdWrite,
     /// Take the other bank as the table.
     Apply,
 }
 
-/// One clock's inputs (what the RTL's ports will carry).
+/// One clock's inputs (the RTL's input ports).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LearnIn {
-    /// Synchronous reset: zero table, empty sums, Collect.
+    /// Synchronous reset: the start table back (Clear), empty sums, no load pending.
     pub rst: bool,
     /// A decoded sample this clock.
     pub strobe: bool,
     /// Its raw fine angle within the period (before the table), LSB, 0..2^(F+2).
     pub angle: u32,
-    /// Its raw position less the previous sample's, LSB (|delta| < 2^(F+1)).
-    pub delta: i32,
     /// Update the table (0: the learner collects and solves but writes each entry back
     /// unchanged).
     pub update: bool,
+    /// A request to set entry `ld_addr` to `ld_data` (dropped while one is pending).
+    pub ld: bool,
+    /// The entry (low p bits).
+    pub ld_addr: u32,
+    /// Its value, q units, two's complement in [`LearnParams::entry_width`] bits
+    /// (saturated to +-2^(F-4) LSB).
+    pub ld_data: u32,
 }
 
-/// The integer learner: registers and RAMs of the RTL to come.
+impl LearnIn {
+    /// The row of input port values (rst, strobe, angle, update, ld, ld_addr, ld_data).
+    pub fn row(&self) -> Vec<u64> {
+        vec![
+            self.rst as u64,
+            self.strobe as u64,
+            u64::from(self.angle),
+            self.update as u64,
+            self.ld as u64,
+            u64::from(self.ld_addr),
+            u64::from(self.ld_data),
+        ]
+    }
+}
+
+/// One clock's outputs, after the edge (the RTL's output ports).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LearnOut {
+    /// A table write was made at the edge.
+    pub tw: bool,
+    /// Its address, bank * P + i.
+    pub tw_addr: u32,
+    /// Its entry, q units, two's complement in [`LearnParams::entry_width`] bits.
+    pub tw_data: u32,
+    /// The bank the correction reads.
+    pub bank: bool,
+    /// A load is pending.
+    pub ld_busy: bool,
+}
+
+impl LearnOut {
+    /// The row of output port values (tw, tw_addr, tw_data, bank, ld_busy).
+    pub fn row(&self) -> Vec<u64> {
+        vec![
+            self.tw as u64,
+            u64::from(self.tw_addr),
+            u64::from(self.tw_data),
+            self.bank as u64,
+            self.ld_busy as u64,
+        ]
+    }
+}
+
+/// The integer learner: registers and RAMs of the RTL ([`super::learner::HarmonicLearner`]).
 #[derive(Clone, Debug)]
 pub struct Sequencer {
     /// Formats and settings.
     pub params: LearnParams,
     /// The state.
     pub state: State,
+    /// The clock of a multi-clock state (Clear, Mult, the divisions).
+    cnt: u32,
+    /// The bin of Residual and Update.
+    idx: usize,
+    /// The start table, q units.
+    start: Vec<i64>,
     /// The two banks of the table, q units.
     banks: [Vec<i64>; 2],
     /// The bank the block reads.
     active: usize,
+    /// The load: pending, its entry and value.
+    pend: bool,
+    ld_i: usize,
+    ld_v: i64,
+    /// A sample latched during a load's writes.
+    got: bool,
+    /// The sample in process: its angle and raw position.
+    m_s: u32,
+    ps: i64,
+    /// The previous sample's angle, the raw position since the window's first sample.
+    prev: u32,
+    pos: i64,
+    /// The sample's correction c(m), bin and q.
+    c: i64,
+    bin: usize,
+    q: i64,
     /// Per bin: n_i, sk_i, sp_i (r_i after Residual).
     n: Vec<i64>,
     sk: Vec<i64>,
     sp: Vec<i64>,
-    /// The window's sample count k, raw position, Sp, Skp.
+    /// The window's sample count k, Sp, PS, U.
     k: u64,
-    pos: i64,
     sum_p: i128,
-    sum_kp: i128,
+    sum_ps: i128,
+    u: i128,
     /// The line (2^-B q units).
     a: i128,
     b: i128,
     /// The window travelled at least one period (|b| N >= 2^(F+2) LSB): else no update.
     moving: bool,
+    /// The residual of the bin in Residual.
+    r: i64,
     /// The residuals' sum, the bins with samples, their mean.
     sum_r: i64,
     bins: i64,
@@ -329,8 +593,9 @@ pub fn wrap(x: i128, bits: u32) -> i128 {
     }
 }
 
-/// round(x / d), halves away from zero, d > 0: a restoring division of |x| + d/2 by d.
-fn div_round(x: i128, d: i128) -> i128 {
+/// round(x / d), halves away from zero, d > 0: the rational |x| / d rounded half up, with
+/// x's sign. The RTL takes it as (floor(2 |x| / d) + 1) >> 1, one quotient bit more.
+pub fn div_round(x: i128, d: i128) -> i128 {
     let q = (x.abs() + d / 2) / d;
     if x < 0 {
         -q
@@ -339,25 +604,134 @@ fn div_round(x: i128, d: i128) -> i128 {
     }
 }
 
+/// b of the window's U = (N + 1) Sp - 2 PS: round(32 U / D) in b's width (the model's
+/// i128 arithmetic; the RTL's division is [`line_b_serial`]).
+pub fn line_b(p: &LearnParams, u: i128) -> i128 {
+    wrap(div_round(u << 5, i128::from(p.line_divisor())), p.b_width())
+}
+
+/// b as the RTL computes it: a restoring division of |U| 2^6 by D, [`LearnParams::line_div_bits`]
+/// quotient bits, the dividend's low zeros shifted into the remainder, 64-bit words.
+pub fn line_b_serial(p: &LearnParams, u: i64) -> i64 {
+    let d = p.line_divisor();
+    let kb = p.line_div_bits();
+    let mag = u.unsigned_abs();
+    let q = restoring(mag, kb - 6, kb, d);
+    let r = ((q + 1) >> 1) as i64;
+    wrap(i128::from(if u < 0 { -r } else { r }), p.b_width()) as i64
+}
+
+/// floor(x 2^(k - lead) / d) over `k` quotient bits: the remainder starts at x >> lead,
+/// then x's `lead` low bits and k - lead zeros enter it, one a clock (64-bit words).
+pub fn restoring(x: u64, lead: u32, k: u32, d: u64) -> u64 {
+    let mut rem = x >> lead;
+    let mut dvd = if lead == 0 { 0 } else { x << (64 - lead) };
+    let mut q = 0u64;
+    for _ in 0..k {
+        let t = (rem << 1) | (dvd >> 63);
+        dvd <<= 1;
+        if t >= d {
+            rem = t.wrapping_sub(d);
+            q = (q << 1) | 1;
+        } else {
+            rem = t;
+            q <<= 1;
+        }
+    }
+    q
+}
+
+/// r_i = sat(round((sp_i 2^B - a n_i - b sk_i) / (n_i 2^B))), n_i > 0 (the model's i128
+/// arithmetic).
+pub fn residual(p: &LearnParams, sp: i64, n: i64, sk: i64, a: i128, b: i128) -> i64 {
+    let bf = p.line_frac();
+    let ni = i128::from(n);
+    let num = (i128::from(sp) << bf) - a * ni - b * i128::from(sk);
+    let lim = i128::from(p.residual_max());
+    div_round(num, ni << bf).clamp(-lim, lim) as i64
+}
+
+/// r_i as the RTL computes it in 64-bit words: a = a_h 2^B + a_l, b = b_h 2^B + b_l (0 <=
+/// a_l, b_l < 2^B), Z1 = sp_i - a_h n_i - b_h sk_i, Z2 = a_l n_i + b_l sk_i, x = Z1 2^B - Z2;
+/// |Z1| >= H saturates, else x fits 64 bits and r_i = (floor((|x| >> (B - 1)) / n_i) + 1)
+/// >> 1 with x's sign, saturated.
+pub fn residual_serial(p: &LearnParams, sp: i64, n: i64, sk: i64, a: i64, b: i64) -> i64 {
+    let bf = p.line_frac();
+    let lo = (1i64 << bf) - 1;
+    let (ah, al, bh, bl) = (a >> bf, a & lo, b >> bf, b & lo);
+    let z1 = sp
+        .wrapping_sub(ah.wrapping_mul(n))
+        .wrapping_sub(bh.wrapping_mul(sk));
+    let z2 = al.wrapping_mul(n).wrapping_add(bl.wrapping_mul(sk));
+    let lim = p.residual_max();
+    let h = p.big_limit();
+    if z1 >= h || z1 <= -h {
+        return if z1 < 0 { -lim } else { lim };
+    }
+    let x = (z1 << bf).wrapping_sub(z2);
+    let mag = x.unsigned_abs();
+    let kr = p.res_div_bits();
+    let lead = kr + bf - 1;
+    let ovf = (mag >> lead) >= n as u64;
+    let q = restoring(mag, lead, kr, n as u64);
+    let over = ovf || q > 2 * lim as u64;
+    let r = if over { lim } else { ((q + 1) >> 1) as i64 };
+    if x < 0 {
+        -r
+    } else {
+        r
+    }
+}
+
 impl Sequencer {
-    /// Out of reset: a zero table, Collect.
+    /// At power-up: a zero start table, Clear.
     pub fn new(params: LearnParams) -> Self {
+        Self::with_table(params, &vec![0; params.points()]).expect("a zero table")
+    }
+
+    /// At power-up with the start table `start` (q units, P entries within +-2^(F-4) LSB),
+    /// Clear; the message says what is allowed.
+    pub fn with_table(params: LearnParams, start: &[i64]) -> Result<Self, String> {
         let pp = params.points();
-        Sequencer {
+        if start.len() != pp {
+            return Err(format!("{} entries: allowed exactly {pp}", start.len()));
+        }
+        let max = params.entry_max();
+        if let Some((i, c)) = start.iter().enumerate().find(|(_, c)| c.abs() > max) {
+            return Err(format!(
+                "entry {i} = {c} q units: allowed -{max}..={max} (2^(F-4) LSB)"
+            ));
+        }
+        Ok(Sequencer {
             params,
-            state: State::Collect,
-            banks: [vec![0; pp], vec![0; pp]],
+            state: State::Clear,
+            cnt: 0,
+            idx: 0,
+            start: start.to_vec(),
+            banks: [start.to_vec(), start.to_vec()],
             active: 0,
+            pend: false,
+            ld_i: 0,
+            ld_v: 0,
+            got: false,
+            m_s: 0,
+            ps: 0,
+            prev: 0,
+            pos: 0,
+            c: 0,
+            bin: 0,
+            q: 0,
             n: vec![0; pp],
             sk: vec![0; pp],
             sp: vec![0; pp],
             k: 0,
-            pos: 0,
             sum_p: 0,
-            sum_kp: 0,
+            sum_ps: 0,
+            u: 0,
             a: 0,
             b: 0,
             moving: false,
+            r: 0,
             sum_r: 0,
             bins: 0,
             mean: 0,
@@ -365,7 +739,7 @@ impl Sequencer {
             last_change: 0,
             max_change: 0,
             change: 0,
-        }
+        })
     }
 
     /// The table the block reads, q units.
@@ -379,9 +753,14 @@ impl Sequencer {
         self.table().iter().map(|&c| c as f64 / unit).collect()
     }
 
+    /// A strobe this clock would be collected: Collect with no sample in process.
+    pub fn takes_sample(&self) -> bool {
+        matches!(self.state, State::Wait | State::LoadA | State::LoadB)
+    }
+
     /// The table's correction at the raw fine angle `m` (LSB), q units.
     pub fn correction(&self, m: u32) -> i64 {
-        let s = self.params.fine_bits + 2 - self.params.points_log2;
+        let s = self.params.seg_bits();
         let t = self.table();
         let i = (m >> s) as usize % t.len();
         let j = (i + 1) % t.len();
@@ -389,77 +768,272 @@ impl Sequencer {
         ((t[i] << s) + (t[j] - t[i]) * f) >> s
     }
 
-    /// One clock.
-    pub fn step(&mut self, x: LearnIn) {
+    /// One clock: inputs before the edge, outputs after it.
+    pub fn step(&mut self, x: LearnIn) -> LearnOut {
+        let mut out = LearnOut::default();
         if x.rst {
-            *self = Sequencer::new(self.params);
-            return;
+            let mut fresh = Sequencer::with_table(self.params, &self.start).expect("checked");
+            fresh.banks = std::mem::take(&mut self.banks);
+            *self = fresh;
+            return self.out(out);
         }
         let pr = self.params;
         let pp = pr.points();
+        let ew = pr.entry_width();
+        // The load request, held while one is pending.
+        let load = x.ld && !self.pend;
+        if load {
+            let v = wrap(i128::from(x.ld_data), ew) as i64;
+            self.ld_v = v.clamp(-pr.entry_max(), pr.entry_max());
+            self.ld_i = x.ld_addr as usize & (pp - 1);
+        }
+        // Every strobe moves the raw position (delta: the angle's change, F + 2 bits); a
+        // strobe Collect takes at k = 0 starts the window's.
+        let accept = x.strobe && self.takes_sample();
         if x.strobe {
-            // The raw position since the window's first sample; restarted by it.
-            let start = self.state == State::Collect && self.k == 0;
-            let pos = if start {
+            let delta = wrap(
+                i128::from(x.angle) - i128::from(self.prev),
+                pr.fine_bits + 2,
+            );
+            self.prev = x.angle;
+            self.pos = if accept && self.k == 0 {
                 0
             } else {
-                i128::from(self.pos) + i128::from(x.delta)
+                wrap(i128::from(self.pos) + delta, pr.pos_width()) as i64
             };
-            self.pos = wrap(pos, pr.pos_width()) as i64;
+            if accept {
+                self.m_s = x.angle;
+                self.ps = self.pos;
+            }
         }
+        let write = |out: &mut LearnOut, banks: &mut [Vec<i64>; 2], bank: usize, i, v| {
+            banks[bank][i] = v;
+            out.tw = true;
+            out.tw_addr = (bank * pp + i) as u32;
+            out.tw_data = (v as u64 & crate::blocks::mask(ew)) as u32;
+        };
+        let mut next = self.state;
         match self.state {
-            State::Collect => {
+            State::Clear => {
+                let c = self.cnt as usize;
+                if c >= 1 {
+                    let a = c - 1;
+                    let v = self.start[a % pp];
+                    write(&mut out, &mut self.banks, a / pp, a % pp, v);
+                }
+                let i = c % pp;
+                self.n[i] = 0;
+                self.sk[i] = 0;
+                self.sp[i] = 0;
+                self.cnt += 1;
+                if c == 2 * pp {
+                    self.cnt = 0;
+                    next = State::Wait;
+                }
+            }
+            State::Wait => {
                 if x.strobe {
-                    self.collect(x.angle);
-                    if self.k == pr.window() {
-                        self.state = State::Line {
-                            left: pr.line_clocks() - 1,
-                        };
-                    }
+                    next = State::ReadI;
+                } else if self.pend {
+                    next = State::LoadA;
                 }
             }
-            State::Line { left: 0 } => {
-                self.line();
-                self.state = State::Residual {
-                    bin: 0,
-                    left: pr.residual_clocks() - 1,
-                };
+            State::LoadA => {
+                let (i, v) = (self.ld_i, self.ld_v);
+                write(&mut out, &mut self.banks, 0, i, v);
+                self.got |= x.strobe;
+                next = State::LoadB;
             }
-            State::Line { left } => self.state = State::Line { left: left - 1 },
-            State::Residual { bin, left: 0 } => {
-                self.residual(bin);
-                self.state = if bin + 1 < pp {
-                    State::Residual {
-                        bin: bin + 1,
-                        left: pr.residual_clocks() - 1,
-                    }
+            State::LoadB => {
+                let (i, v) = (self.ld_i, self.ld_v);
+                write(&mut out, &mut self.banks, 1, i, v);
+                self.pend = false;
+                next = if self.got || x.strobe {
+                    State::ReadI
                 } else {
-                    State::Mean {
-                        left: pr.mean_clocks() - 1,
-                    }
+                    State::Wait
                 };
+                self.got = false;
             }
-            State::Residual { bin, left } => {
-                self.state = State::Residual {
-                    bin,
-                    left: left - 1,
+            State::ReadI => next = State::ReadJ,
+            State::ReadJ => next = State::Diff,
+            State::Diff => {
+                self.cnt = 0;
+                next = State::Mult;
+            }
+            State::Mult => {
+                self.cnt += 1;
+                if self.cnt == pr.seg_bits() {
+                    self.cnt = 0;
+                    next = State::Corr;
                 }
             }
-            State::Mean { left: 0 } => {
+            State::Corr => {
+                self.c = self.correction(self.m_s);
+                next = State::Bin;
+            }
+            State::Bin => {
+                let s = pr.seg_bits() + TABLE_FRAC;
+                let mc = (i64::from(self.m_s) << TABLE_FRAC) - self.c;
+                self.bin = (((mc + (1 << (s - 1))) >> s) & (pp as i64 - 1)) as usize;
+                self.q = wrap(
+                    (i128::from(self.ps) << TABLE_FRAC) - i128::from(self.c),
+                    pr.q_width(),
+                ) as i64;
+                next = State::ReadBin;
+            }
+            State::ReadBin => next = State::Acc,
+            State::Acc => {
+                let (i, q) = (self.bin, i128::from(self.q));
+                self.n[i] += 1;
+                self.sk[i] += self.k as i64;
+                self.sp[i] = wrap(i128::from(self.sp[i]) + q, pr.sum_p_width()) as i64;
+                self.sum_p = wrap(self.sum_p + q, pr.sum_p_width());
+                next = State::Sum;
+            }
+            State::Sum => {
+                self.sum_ps = wrap(self.sum_ps + self.sum_p, pr.ps_width());
+                self.k += 1;
+                next = if self.k == pr.window() {
+                    State::LineN1
+                } else {
+                    State::Wait
+                };
+            }
+            State::LineN1 => next = State::LineU,
+            State::LineU => {
+                let n = i128::from(pr.window() as u32);
+                self.u = wrap((n + 1) * self.sum_p - 2 * self.sum_ps, pr.ps_width());
+                next = State::LineLoad;
+            }
+            State::LineLoad => {
+                self.cnt = 0;
+                next = State::LineDiv;
+            }
+            State::LineDiv => {
+                self.cnt += 1;
+                if self.cnt == pr.line_div_bits() {
+                    self.cnt = 0;
+                    next = State::LineRnd;
+                }
+            }
+            State::LineRnd => next = State::LineB,
+            State::LineB => {
+                self.b = line_b(&pr, self.u);
+                next = State::LineA1;
+            }
+            State::LineA1 => {
+                // One period per window: |b| 2^w >= 2^(F+2+T+B), a compare of |b| with a
+                // constant.
+                self.moving = self.b.abs() >= i128::from(pr.one_period());
+                next = State::LineA2;
+            }
+            State::LineA2 => {
+                let w = pr.window_log2;
+                self.a = wrap(
+                    ((self.sum_p << 5) - (self.b << w) + self.b) >> 1,
+                    pr.a_width(),
+                );
+                self.idx = 0;
+                next = State::ResRead;
+            }
+            State::ResRead => next = State::ResLatch,
+            State::ResLatch => {
+                self.cnt = 0;
+                next = State::ResMul;
+            }
+            State::ResMul => {
+                self.cnt += 1;
+                if self.cnt == 2 * pr.window_log2 - 1 {
+                    self.cnt = 0;
+                    next = State::ResZa;
+                }
+            }
+            State::ResZa => next = State::ResZb,
+            State::ResZb => next = State::ResX,
+            State::ResX => next = State::ResAbs,
+            State::ResAbs => next = State::ResLoad,
+            State::ResLoad => next = State::ResDiv,
+            State::ResDiv => {
+                self.cnt += 1;
+                if self.cnt == pr.res_div_bits() {
+                    self.cnt = 0;
+                    next = State::ResEnd;
+                }
+            }
+            State::ResEnd => next = State::ResWrite,
+            State::ResWrite => {
+                let i = self.idx;
+                if self.n[i] > 0 {
+                    self.r = residual(&pr, self.sp[i], self.n[i], self.sk[i], self.a, self.b);
+                    self.sp[i] = self.r;
+                }
+                next = State::ResSum;
+            }
+            State::ResSum => {
+                if self.n[self.idx] > 0 {
+                    self.sum_r += self.r;
+                    self.bins += 1;
+                }
+                self.idx += 1;
+                next = if self.idx < pp {
+                    State::ResRead
+                } else {
+                    self.idx = 0;
+                    State::MeanAbs
+                };
+            }
+            State::MeanAbs => next = State::MeanLoad,
+            State::MeanLoad => {
+                self.cnt = 0;
+                next = State::MeanDiv;
+            }
+            State::MeanDiv => {
+                self.cnt += 1;
+                if self.cnt == pr.res_div_bits() {
+                    self.cnt = 0;
+                    next = State::MeanEnd;
+                }
+            }
+            State::MeanEnd => next = State::MeanSign,
+            State::MeanSign => {
                 self.mean = if self.bins > 0 {
                     div_round(i128::from(self.sum_r), i128::from(self.bins)) as i64
                 } else {
                     0
                 };
                 self.change = 0;
-                self.state = State::Update { bin: 0 };
+                next = State::UpdRead;
             }
-            State::Mean { left } => self.state = State::Mean { left: left - 1 },
-            State::Update { bin } => {
-                self.update(bin, x.update);
-                self.state = if bin + 1 < pp {
-                    State::Update { bin: bin + 1 }
+            State::UpdRead => next = State::UpdDiff,
+            State::UpdDiff => next = State::UpdAbs,
+            State::UpdAbs => next = State::UpdStep,
+            State::UpdStep => next = State::UpdAdd,
+            State::UpdAdd => next = State::UpdWrite,
+            State::UpdWrite => {
+                let i = self.idx;
+                let old = self.banks[self.active][i];
+                let new = if x.update && self.moving && self.n[i] > 0 {
+                    let g = pr.gain_shift;
+                    // 2^-g (r_i - r) rounded, halves away from zero (no bias to the table's
+                    // mean).
+                    let d = self.sp[i] - self.mean;
+                    let d = d.signum() * ((d.abs() + (1 << (g - 1))) >> g);
+                    let d = d.clamp(-pr.step, pr.step);
+                    (old + d).clamp(-pr.entry_max(), pr.entry_max())
                 } else {
+                    old
+                };
+                self.change = self.change.max((new - old).abs());
+                write(&mut out, &mut self.banks, self.active ^ 1, i, new);
+                self.n[i] = 0;
+                self.sk[i] = 0;
+                self.sp[i] = 0;
+                self.idx += 1;
+                next = if self.idx < pp {
+                    State::UpdRead
+                } else {
+                    self.idx = 0;
                     State::Apply
                 };
             }
@@ -470,86 +1044,25 @@ impl Sequencer {
                 self.max_change = self.max_change.max(self.change);
                 self.k = 0;
                 self.sum_p = 0;
-                self.sum_kp = 0;
+                self.sum_ps = 0;
                 self.sum_r = 0;
                 self.bins = 0;
-                self.state = State::Collect;
+                next = State::Wait;
             }
         }
-    }
-
-    /// Collect: the sample's bin and sums (one read-modify-write of the bin RAM).
-    fn collect(&mut self, m: u32) {
-        let pr = self.params;
-        let c = self.correction(m);
-        let s = pr.fine_bits + 2 - pr.points_log2 + TABLE_FRAC;
-        let mc = (i64::from(m) << TABLE_FRAC) - c;
-        let bin = (((mc + (1 << (s - 1))) >> s) & (pr.points() as i64 - 1)) as usize;
-        let q = wrap(
-            (i128::from(self.pos) << TABLE_FRAC) - i128::from(c),
-            pr.q_width(),
-        );
-        let k = self.k as i128;
-        self.n[bin] += 1;
-        self.sk[bin] += k as i64;
-        self.sp[bin] = wrap(i128::from(self.sp[bin]) + q, pr.sum_p_width()) as i64;
-        self.sum_p = wrap(self.sum_p + q, pr.sum_p_width());
-        self.sum_kp = wrap(self.sum_kp + k * q, pr.sum_kp_width());
-        self.k += 1;
-    }
-
-    /// Line: b by a division, a by b S1 and a shift.
-    fn line(&mut self) {
-        let pr = self.params;
-        let n = i128::from(pr.window() as u32);
-        let s1 = n * (n - 1) / 2;
-        let det = n * n * (n * n - 1) / 12;
-        let bf = pr.line_frac();
-        let num = n * self.sum_kp - s1 * self.sum_p;
-        self.b = wrap(div_round(num << bf, det), pr.b_width());
-        self.a = wrap(
-            ((self.sum_p << bf) - self.b * s1) >> pr.window_log2,
-            pr.a_width(),
-        );
-        // One period per window: |b| 2^w >= 2^(F+2+T+B), a compare of |b| with a constant.
-        let one_period = 1i128 << (pr.fine_bits + 2 + TABLE_FRAC + bf - pr.window_log2);
-        self.moving = self.b.abs() >= one_period;
-    }
-
-    /// Residual: bin i's mean residual into its sp word, summed for the mean.
-    fn residual(&mut self, i: usize) {
-        let pr = self.params;
-        if self.n[i] == 0 {
-            return;
+        self.state = next;
+        if load {
+            self.pend = true;
         }
-        let bf = pr.line_frac();
-        let ni = i128::from(self.n[i]);
-        let num = (i128::from(self.sp[i]) << bf) - self.a * ni - self.b * i128::from(self.sk[i]);
-        let lim = i128::from(pr.residual_max());
-        let r = div_round(num, ni << bf).clamp(-lim, lim) as i64;
-        self.sp[i] = r;
-        self.sum_r += r;
-        self.bins += 1;
+        self.out(out)
     }
 
-    /// Update: entry i of the other bank (one table write); bin i's sums cleared.
-    fn update(&mut self, i: usize, enable: bool) {
-        let pr = self.params;
-        let old = self.banks[self.active][i];
-        let new = if enable && self.moving && self.n[i] > 0 {
-            let g = pr.gain_shift;
-            // 2^-g (r_i - r) rounded, halves away from zero (no bias to the table's mean).
-            let x = self.sp[i] - self.mean;
-            let d = x.signum() * ((x.abs() + (1 << (g - 1))) >> g);
-            let d = d.clamp(-pr.step, pr.step);
-            (old + d).clamp(-pr.entry_max(), pr.entry_max())
-        } else {
-            old
-        };
-        self.change = self.change.max((new - old).abs());
-        self.banks[self.active ^ 1][i] = new;
-        self.n[i] = 0;
-        self.sk[i] = 0;
-        self.sp[i] = 0;
+    /// The outputs after the edge: the write `w` made, the bank, the load pending.
+    fn out(&self, w: LearnOut) -> LearnOut {
+        LearnOut {
+            bank: self.active == 1,
+            ld_busy: self.pend,
+            ..w
+        }
     }
 }

@@ -1,0 +1,1248 @@
+//! rust-hdl description of the table's online learner: [`super::sequencer::Sequencer`]
+//! register for register, one state of [`LearnState`] per state of the model's
+//! [`super::sequencer::State`] (formats, bit growth and clocks in the module doc of
+//! [`super::sequencer`]; docs/correction.md, "Learning the table online").
+//!
+//! ```text
+//!   strobe, angle ──► delta = angle - prev (F+2 bits) ──► pos (w+F+2 bits)
+//!        │
+//!        ▼  Collect, one sample (s + 9 clocks):
+//!   Wait ─► ReadI ─► ReadJ ─► Diff ─► Mult x s ─► Corr ─► Bin ─► ReadBin ─► Acc ─► Sum ─┐
+//!    ▲ │    c_i      c_(i+1)  D       D f, one    c(m)     bin, q  n,sk,sp   +q, Sp    PS, k
+//!    │ └► LoadA ─► LoadB (ld: entry into both banks)  bit of f                         │
+//!    └──────────────────────────────────────────────────────────────── k < N ◄────────┘
+//!   k = N: LineN1 ─► LineU ─► LineLoad ─► LineDiv x Kb ─► LineRnd ─► LineB ─► LineA1 ─► LineA2
+//!          (N+1)Sp   U        |U|           b's bits       (q+1)>>1    ±      moving     a
+//!   per bin: ResRead ─► ResLatch ─► ResMul x (2w-1) ─► ResZa ─► ResZb ─► ResX ─► ResAbs ─►
+//!            ResLoad ─► ResDiv x Kr ─► ResEnd ─► ResWrite ─► ResSum
+//!   MeanAbs ─► MeanLoad ─► MeanDiv x Kr ─► MeanEnd ─► MeanSign
+//!   per bin: UpdRead ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
+//!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
+//!
+//!   RAMs: table (bank 0 at 0..P, bank 1 at P..2P, the start table at 2P..3P), n_i, sk_i,
+//!   sp_i (r_i after Residual); one synchronous read port each (data a clock after the
+//!   address), one write port. Divider: rem, dvd (the dividend's bits, MSB first), quo,
+//!   dsr; t = 2 rem + msb(dvd): t >= dsr ? (rem = t - dsr, quo = 2 quo + 1) : (rem = t,
+//!   quo = 2 quo).
+//! ```
+//!
+//! Words: signed values are 64-bit two's complement (`Bits<64>`, sign-extended from the
+//! model's width at each register, so a register wraps as the model's does); unsigned
+//! counts are `Bits<32>`. No word is wider than 64 bits ([`super::sequencer::WORD_MAX`]).
+//! Every register-to-register path holds at most one carry chain (a compare beside it):
+//! the three-operand sums of the model are split over two states (LineN1/LineU,
+//! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd).
+//!
+//! Ports:
+//!
+//! | port | dir | width | meaning |
+//! |---|---|---|---|
+//! | `clk` | in | 1 | system clock |
+//! | `rst` | in | 1 | synchronous reset: Clear, empty sums, no load pending, bank 0 |
+//! | `strobe` | in | 1 | a sample this clock (the CORDIC's valid) |
+//! | `angle` | in | F+2 | its raw fine angle within the period, LSB |
+//! | `update` | in | 1 | 1: entries move; 0: every entry written back unchanged |
+//! | `ld` | in | 1 | a one-clock request to set entry `ld_addr` to `ld_data` |
+//! | `ld_addr` | in | p | the entry |
+//! | `ld_data` | in | entry width | its value, q units, two's complement |
+//! | `tw` | out | 1 | a table write was made (registered: the clock after the RAM's) |
+//! | `tw_addr` | out | p+1 | its address, bank * P + i |
+//! | `tw_data` | out | entry width | its entry, q units, two's complement |
+//! | `bank` | out | 1 | the bank the correction reads (flips at Apply) |
+//! | `ld_busy` | out | 1 | a load is pending (a new `ld` is dropped) |
+use super::sequencer::{LearnParams, TABLE_FRAC};
+use crate::blocks::{c32, mask};
+use crate::cosim::Port;
+use rust_hdl::prelude::*;
+use std::collections::BTreeMap;
+
+fn c64(v: u64) -> Constant<Bits<64>> {
+    Constant::new(Bits::<64>::from(v))
+}
+
+/// The learner's states, in the order of the model's [`super::sequencer::State`].
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum LearnState {
+    /// The start table into both banks, the bins cleared (power-up and reset).
+    Clear,
+    /// Collect: waiting for a sample or a pending load.
+    Wait,
+    /// The load into bank 0.
+    LoadA,
+    /// The load into bank 1.
+    LoadB,
+    /// c_i read.
+    ReadI,
+    /// c_(i+1) read.
+    ReadJ,
+    /// D = c_(i+1) - c_i.
+    Diff,
+    /// D f, one bit of f a clock.
+    Mult,
+    /// c(m).
+    Corr,
+    /// The bin and q.
+    Bin,
+    /// The bin's sums read.
+    ReadBin,
+    /// The bin's sums and Sp.
+    Acc,
+    /// PS and k.
+    Sum,
+    /// (N + 1) Sp.
+    LineN1,
+    /// U.
+    LineU,
+    /// b's division loaded.
+    LineLoad,
+    /// b's quotient bits.
+    LineDiv,
+    /// b's magnitude rounded.
+    LineRnd,
+    /// b signed.
+    LineB,
+    /// Sp 2^5 + b, the one-period test.
+    LineA1,
+    /// a.
+    LineA2,
+    /// Bin idx's sums read.
+    ResRead,
+    /// Latched; the products set up.
+    ResLatch,
+    /// The four products, one multiplier bit a clock.
+    ResMul,
+    /// Z1 = sp - a_h n, Z2.
+    ResZa,
+    /// Z1 -= b_h sk.
+    ResZb,
+    /// x, |Z1| >= H.
+    ResX,
+    /// |x|.
+    ResAbs,
+    /// r_i's division loaded.
+    ResLoad,
+    /// r_i's quotient bits.
+    ResDiv,
+    /// r_i's magnitude.
+    ResEnd,
+    /// r_i into sp_i's word.
+    ResWrite,
+    /// sum r, bins.
+    ResSum,
+    /// |sum r|.
+    MeanAbs,
+    /// r's division loaded.
+    MeanLoad,
+    /// r's quotient bits.
+    MeanDiv,
+    /// r's magnitude.
+    MeanEnd,
+    /// r signed.
+    MeanSign,
+    /// Entry idx, n_i, r_i read.
+    UpdRead,
+    /// r_i - r.
+    UpdDiff,
+    /// |r_i - r|.
+    UpdAbs,
+    /// The step.
+    UpdStep,
+    /// c_i + the step.
+    UpdAdd,
+    /// The new entry into the other bank; the bin cleared.
+    UpdWrite,
+    /// The bank flips.
+    Apply,
+}
+
+/// The table learner (ports in the module doc).
+#[derive(LogicBlock)]
+pub struct HarmonicLearner {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Synchronous reset: Clear, empty sums, no load pending, bank 0.
+    pub rst: Signal<In, Bit>,
+    /// A sample this clock.
+    pub strobe: Signal<In, Bit>,
+    /// Its raw fine angle within the period (F + 2 bits), LSB.
+    pub angle: Signal<In, Bits<32>>,
+    /// 1: entries move at Update; 0: written back unchanged.
+    pub update: Signal<In, Bit>,
+    /// A request to set entry `ld_addr` to `ld_data`.
+    pub ld: Signal<In, Bit>,
+    /// The entry of the request (low p bits).
+    pub ld_addr: Signal<In, Bits<32>>,
+    /// Its value, q units, two's complement in the entry width.
+    pub ld_data: Signal<In, Bits<32>>,
+    /// A table write was made (the clock after the RAM's).
+    pub tw: Signal<Out, Bit>,
+    /// Its address, bank * P + i.
+    pub tw_addr: Signal<Out, Bits<32>>,
+    /// Its entry, two's complement in the entry width.
+    pub tw_data: Signal<Out, Bits<32>>,
+    /// The bank the correction reads.
+    pub bank: Signal<Out, Bit>,
+    /// A load is pending.
+    pub ld_busy: Signal<Out, Bit>,
+    /// The table: bank 0, bank 1, the start table (entries masked to the entry width).
+    tab: RAM<Bits<32>, 10>,
+    /// Per bin: n_i.
+    rn: RAM<Bits<32>, 8>,
+    /// Per bin: sk_i.
+    rsk: RAM<Bits<32>, 8>,
+    /// Per bin: sp_i, then r_i (64-bit two's complement).
+    rsp: RAM<Bits<64>, 8>,
+    /// The state.
+    state: DFF<LearnState>,
+    /// The clock of Clear, Mult and the divisions.
+    cnt: DFF<Bits<32>>,
+    /// The bin of Residual and Update.
+    idx: DFF<Bits<32>>,
+    /// The bank the correction reads.
+    active: DFF<Bit>,
+    /// The load: pending, its entry, its value (entry width).
+    pend: DFF<Bit>,
+    ld_i: DFF<Bits<32>>,
+    ld_v: DFF<Bits<32>>,
+    /// A sample latched during LoadA or LoadB.
+    got: DFF<Bit>,
+    /// The sample in process: angle, raw position.
+    m_s: DFF<Bits<32>>,
+    ps: DFF<Bits<64>>,
+    /// The previous sample's angle; the raw position since the window's first sample.
+    prev: DFF<Bits<32>>,
+    pos: DFF<Bits<64>>,
+    /// c_i; D shifted left a bit a clock; f shifted right; D f.
+    ci: DFF<Bits<64>>,
+    dd: DFF<Bits<64>>,
+    fsh: DFF<Bits<32>>,
+    acc: DFF<Bits<64>>,
+    /// The sample's c(m), bin, q.
+    c: DFF<Bits<64>>,
+    sbin: DFF<Bits<32>>,
+    q: DFF<Bits<64>>,
+    /// The window's samples k, Sp, PS, U.
+    k: DFF<Bits<32>>,
+    sum_p: DFF<Bits<64>>,
+    sum_ps: DFF<Bits<64>>,
+    u: DFF<Bits<64>>,
+    /// The divider: the dividend's sign, its magnitude, remainder, dividend bits,
+    /// quotient, divisor.
+    neg: DFF<Bit>,
+    mag: DFF<Bits<64>>,
+    rem: DFF<Bits<64>>,
+    dvd: DFF<Bits<64>>,
+    quo: DFF<Bits<64>>,
+    dsr: DFF<Bits<64>>,
+    /// A rounded magnitude (b, r_i, r).
+    rm: DFF<Bits<64>>,
+    /// The line; the window moved at least one period.
+    b: DFF<Bits<64>>,
+    a: DFF<Bits<64>>,
+    moving: DFF<Bit>,
+    /// Residual: n_i; n_i and sk_i shifted right; sp_i; a_h, a_l, b_h, b_l shifted left.
+    nn: DFF<Bits<32>>,
+    nsh: DFF<Bits<32>>,
+    sksh: DFF<Bits<32>>,
+    spv: DFF<Bits<64>>,
+    ahs: DFF<Bits<64>>,
+    als: DFF<Bits<64>>,
+    bhs: DFF<Bits<64>>,
+    bls: DFF<Bits<64>>,
+    /// The products a_h n_i, b_h sk_i, a_l n_i, b_l sk_i.
+    pa: DFF<Bits<64>>,
+    pb: DFF<Bits<64>>,
+    la: DFF<Bits<64>>,
+    lb: DFF<Bits<64>>,
+    /// Z1, Z2, x = Z1 2^B - Z2; |Z1| >= H and Z1's sign; the division overflowed.
+    z1: DFF<Bits<64>>,
+    z2: DFF<Bits<64>>,
+    x: DFF<Bits<64>>,
+    big: DFF<Bit>,
+    zneg: DFF<Bit>,
+    ovf: DFF<Bit>,
+    /// r_i's sign; r_i.
+    rneg: DFF<Bit>,
+    r: DFF<Bits<64>>,
+    /// sum r, the bins with samples, r.
+    sum_r: DFF<Bits<64>>,
+    nbins: DFF<Bits<32>>,
+    mean: DFF<Bits<64>>,
+    /// Update: c_i, n_i != 0, r_i - r, its sign and magnitude, the step, c_i + step.
+    ucur: DFF<Bits<64>>,
+    unz: DFF<Bit>,
+    ux: DFF<Bits<64>>,
+    uneg: DFF<Bit>,
+    uax: DFF<Bits<64>>,
+    udm: DFF<Bits<64>>,
+    unw: DFF<Bits<64>>,
+    /// The write port's copy, a clock after the RAM write.
+    twr: DFF<Bit>,
+    twa: DFF<Bits<32>>,
+    twd: DFF<Bits<32>>,
+    /// Combinational: the table write this clock; a strobe Collect takes; delta; pos + delta;
+    /// the new pos; the segment i and i + 1 of the sample; the bank offsets; the
+    /// divider's step; sign-extended reads; an absolute value; a sum.
+    we: Signal<Local, Bit>,
+    wa: Signal<Local, Bits<32>>,
+    wd: Signal<Local, Bits<32>>,
+    accept: Signal<Local, Bit>,
+    delta: Signal<Local, Bits<64>>,
+    psum: Signal<Local, Bits<64>>,
+    pnew: Signal<Local, Bits<64>>,
+    seg_i: Signal<Local, Bits<32>>,
+    seg_j: Signal<Local, Bits<32>>,
+    off_a: Signal<Local, Bits<32>>,
+    off_o: Signal<Local, Bits<32>>,
+    dt: Signal<Local, Bits<64>>,
+    tab_s: Signal<Local, Bits<64>>,
+    sp_s: Signal<Local, Bits<64>>,
+    t64: Signal<Local, Bits<64>>,
+    abs: Signal<Local, Bits<64>>,
+    ldm: Signal<Local, Bits<32>>,
+    /// Constants (64-bit unless marked).
+    /// Zero, one.
+    z64: Constant<Bits<64>>,
+    one64: Constant<Bits<64>>,
+    /// Zero, one (32-bit).
+    z32: Constant<Bits<32>>,
+    one32: Constant<Bits<32>>,
+    /// P - 1, P, 2P, 2P (read offset of the start table) (32-bit).
+    pmask: Constant<Bits<32>>,
+    pp: Constant<Bits<32>>,
+    p2: Constant<Bits<32>>,
+    /// Entry width: mask, sign bit (32-bit); the sign fill (64-bit).
+    ew_mask: Constant<Bits<32>>,
+    ew_sign: Constant<Bits<32>>,
+    ew_fill: Constant<Bits<64>>,
+    /// +entry_max, -entry_max as an entry-width code (32-bit).
+    emax32: Constant<Bits<32>>,
+    emin32: Constant<Bits<32>>,
+    /// +entry_max, -entry_max (64-bit).
+    emax: Constant<Bits<64>>,
+    emin: Constant<Bits<64>>,
+    /// The angle's F + 2 bits: mask, sign bit, fill.
+    am_mask: Constant<Bits<64>>,
+    am_sign: Constant<Bits<64>>,
+    /// pos's width: mask, sign bit.
+    pw_mask: Constant<Bits<64>>,
+    pw_sign: Constant<Bits<64>>,
+    /// q's width; sp's and Sp's width; PS's and U's width; b's; a's: mask, sign bit.
+    qw_mask: Constant<Bits<64>>,
+    qw_sign: Constant<Bits<64>>,
+    sw_mask: Constant<Bits<64>>,
+    sw_sign: Constant<Bits<64>>,
+    uw_mask: Constant<Bits<64>>,
+    uw_sign: Constant<Bits<64>>,
+    bw_mask: Constant<Bits<64>>,
+    bw_sign: Constant<Bits<64>>,
+    aw_mask: Constant<Bits<64>>,
+    aw_sign: Constant<Bits<64>>,
+    /// Bit 63.
+    sign63: Constant<Bits<64>>,
+    /// s (32-bit and 64-bit shift), the mask of f (32-bit), s - 1 (the Mult's last clock),
+    /// the sign fill of >> s.
+    s32: Constant<Bits<32>>,
+    s64: Constant<Bits<64>>,
+    fmask: Constant<Bits<32>>,
+    s_last: Constant<Bits<32>>,
+    s_fill: Constant<Bits<64>>,
+    /// T; s + T; 2^(s + T - 1) (the bin's rounding half).
+    tf: Constant<Bits<64>>,
+    st: Constant<Bits<64>>,
+    st_half: Constant<Bits<64>>,
+    /// w; N - 1 (32-bit); 5; 1; 63.
+    w64: Constant<Bits<64>>,
+    n_last: Constant<Bits<32>>,
+    k5: Constant<Bits<64>>,
+    k63: Constant<Bits<64>>,
+    /// b's division: D, lead Kb - 6 and 64 - lead, the last quotient clock Kb - 1.
+    dline: Constant<Bits<64>>,
+    lb_lead: Constant<Bits<64>>,
+    lb_up: Constant<Bits<64>>,
+    lb_last: Constant<Bits<32>>,
+    /// One period of |b|: b >= it, b <= its negative.
+    op_pos: Constant<Bits<64>>,
+    op_neg: Constant<Bits<64>>,
+    /// B; the mask of B bits; the sign fill of >> B; 2w - 2 (ResMul's last clock).
+    bf: Constant<Bits<64>>,
+    bf_mask: Constant<Bits<64>>,
+    bf_fill: Constant<Bits<64>>,
+    mul_last: Constant<Bits<32>>,
+    /// H and -H.
+    h_pos: Constant<Bits<64>>,
+    h_neg: Constant<Bits<64>>,
+    /// r_i's division: lead Kr + B - 1 and 64 - lead, the last quotient clock; 2 lim + 1;
+    /// lim.
+    lr_lead: Constant<Bits<64>>,
+    lr_up: Constant<Bits<64>>,
+    lr_last: Constant<Bits<32>>,
+    q_over: Constant<Bits<64>>,
+    lim: Constant<Bits<64>>,
+    /// r's division: lead Kr - 1 and 64 - lead.
+    lm_lead: Constant<Bits<64>>,
+    lm_up: Constant<Bits<64>>,
+    /// The update: g, 2^(g-1), the step, the magnitude that clips.
+    g: Constant<Bits<64>>,
+    g_half: Constant<Bits<64>>,
+    stepc: Constant<Bits<64>>,
+    clip_at: Constant<Bits<64>>,
+}
+
+impl HarmonicLearner {
+    /// The learner for `p` with the start table `start` (q units, P entries within
+    /// +-2^(F-4) LSB, [`super::sequencer::Sequencer::with_table`] checks them).
+    pub fn new(p: &LearnParams, start: &[i64]) -> Self {
+        let pp = p.points() as u64;
+        let ew = p.entry_width();
+        let s = p.seg_bits();
+        let bfr = p.line_frac();
+        let kb = p.line_div_bits();
+        let kr = p.res_div_bits();
+        let em = p.entry_max() as u64;
+        let sign = |w: u32| 1u64 << (w - 1);
+        let neg = |v: u64| v.wrapping_neg();
+        let fill = |n: u32| !(u64::MAX >> n);
+        let g = p.gain_shift;
+        let mut tab = BTreeMap::new();
+        for a in 0..1024u64 {
+            let v = if a < 3 * pp {
+                start[(a % pp) as usize] as u64 & mask(ew)
+            } else {
+                0
+            };
+            tab.insert(Bits::<10>::from(a), Bits::<32>::from(v));
+        }
+        let zeros32: BTreeMap<Bits<8>, Bits<32>> = (0..256u64)
+            .map(|a| (Bits::<8>::from(a), Bits::<32>::from(0u64)))
+            .collect();
+        let zeros64: BTreeMap<Bits<8>, Bits<64>> = (0..256u64)
+            .map(|a| (Bits::<8>::from(a), Bits::<64>::from(0u64)))
+            .collect();
+        HarmonicLearner {
+            clk: Default::default(),
+            rst: Default::default(),
+            strobe: Default::default(),
+            angle: Default::default(),
+            update: Default::default(),
+            ld: Default::default(),
+            ld_addr: Default::default(),
+            ld_data: Default::default(),
+            tw: Default::default(),
+            tw_addr: Default::default(),
+            tw_data: Default::default(),
+            bank: Default::default(),
+            ld_busy: Default::default(),
+            tab: RAM::new(tab),
+            rn: RAM::new(zeros32.clone()),
+            rsk: RAM::new(zeros32),
+            rsp: RAM::new(zeros64),
+            state: Default::default(),
+            cnt: Default::default(),
+            idx: Default::default(),
+            active: Default::default(),
+            pend: Default::default(),
+            ld_i: Default::default(),
+            ld_v: Default::default(),
+            got: Default::default(),
+            m_s: Default::default(),
+            ps: Default::default(),
+            prev: Default::default(),
+            pos: Default::default(),
+            ci: Default::default(),
+            dd: Default::default(),
+            fsh: Default::default(),
+            acc: Default::default(),
+            c: Default::default(),
+            sbin: Default::default(),
+            q: Default::default(),
+            k: Default::default(),
+            sum_p: Default::default(),
+            sum_ps: Default::default(),
+            u: Default::default(),
+            neg: Default::default(),
+            mag: Default::default(),
+            rem: Default::default(),
+            dvd: Default::default(),
+            quo: Default::default(),
+            dsr: Default::default(),
+            rm: Default::default(),
+            b: Default::default(),
+            a: Default::default(),
+            moving: Default::default(),
+            nn: Default::default(),
+            nsh: Default::default(),
+            sksh: Default::default(),
+            spv: Default::default(),
+            ahs: Default::default(),
+            als: Default::default(),
+            bhs: Default::default(),
+            bls: Default::default(),
+            pa: Default::default(),
+            pb: Default::default(),
+            la: Default::default(),
+            lb: Default::default(),
+            z1: Default::default(),
+            z2: Default::default(),
+            x: Default::default(),
+            big: Default::default(),
+            zneg: Default::default(),
+            ovf: Default::default(),
+            rneg: Default::default(),
+            r: Default::default(),
+            sum_r: Default::default(),
+            nbins: Default::default(),
+            mean: Default::default(),
+            ucur: Default::default(),
+            unz: Default::default(),
+            ux: Default::default(),
+            uneg: Default::default(),
+            uax: Default::default(),
+            udm: Default::default(),
+            unw: Default::default(),
+            twr: Default::default(),
+            twa: Default::default(),
+            twd: Default::default(),
+            we: Default::default(),
+            wa: Default::default(),
+            wd: Default::default(),
+            accept: Default::default(),
+            delta: Default::default(),
+            psum: Default::default(),
+            pnew: Default::default(),
+            seg_i: Default::default(),
+            seg_j: Default::default(),
+            off_a: Default::default(),
+            off_o: Default::default(),
+            dt: Default::default(),
+            tab_s: Default::default(),
+            sp_s: Default::default(),
+            t64: Default::default(),
+            abs: Default::default(),
+            ldm: Default::default(),
+            z64: c64(0),
+            one64: c64(1),
+            z32: c32(0),
+            one32: c32(1),
+            pmask: c32(pp - 1),
+            pp: c32(pp),
+            p2: c32(2 * pp),
+            ew_mask: c32(mask(ew)),
+            ew_sign: c32(sign(ew)),
+            ew_fill: c64(!mask(ew)),
+            emax32: c32(em),
+            emin32: c32(neg(em) & mask(ew)),
+            emax: c64(em),
+            emin: c64(neg(em)),
+            am_mask: c64(mask(p.fine_bits + 2)),
+            am_sign: c64(sign(p.fine_bits + 2)),
+            pw_mask: c64(mask(p.pos_width())),
+            pw_sign: c64(sign(p.pos_width())),
+            qw_mask: c64(mask(p.q_width())),
+            qw_sign: c64(sign(p.q_width())),
+            sw_mask: c64(mask(p.sum_p_width())),
+            sw_sign: c64(sign(p.sum_p_width())),
+            uw_mask: c64(mask(p.ps_width())),
+            uw_sign: c64(sign(p.ps_width())),
+            bw_mask: c64(mask(p.b_width())),
+            bw_sign: c64(sign(p.b_width())),
+            aw_mask: c64(mask(p.a_width())),
+            aw_sign: c64(sign(p.a_width())),
+            sign63: c64(1 << 63),
+            s32: c32(u64::from(s)),
+            s64: c64(u64::from(s)),
+            fmask: c32(mask(s)),
+            s_last: c32(u64::from(s - 1)),
+            s_fill: c64(fill(s)),
+            tf: c64(u64::from(TABLE_FRAC)),
+            st: c64(u64::from(s + TABLE_FRAC)),
+            st_half: c64(1 << (s + TABLE_FRAC - 1)),
+            w64: c64(u64::from(p.window_log2)),
+            n_last: c32(p.window() - 1),
+            k5: c64(5),
+            k63: c64(63),
+            dline: c64(p.line_divisor()),
+            lb_lead: c64(u64::from(kb - 6)),
+            lb_up: c64(u64::from(64 - (kb - 6))),
+            lb_last: c32(u64::from(kb - 1)),
+            op_pos: c64(p.one_period() as u64),
+            op_neg: c64(neg(p.one_period() as u64)),
+            bf: c64(u64::from(bfr)),
+            bf_mask: c64(mask(bfr)),
+            bf_fill: c64(fill(bfr)),
+            mul_last: c32(u64::from(2 * p.window_log2 - 2)),
+            h_pos: c64(p.big_limit() as u64),
+            h_neg: c64(neg(p.big_limit() as u64)),
+            lr_lead: c64(u64::from(kr + bfr - 1)),
+            lr_up: c64(u64::from(64 - (kr + bfr - 1))),
+            lr_last: c32(u64::from(kr - 1)),
+            q_over: c64(2 * p.residual_max() as u64 + 1),
+            lim: c64(p.residual_max() as u64),
+            lm_lead: c64(u64::from(kr - 1)),
+            lm_up: c64(u64::from(64 - (kr - 1))),
+            g: c64(u64::from(g)),
+            g_half: c64(1 << (g - 1)),
+            stepc: c64(p.step as u64),
+            clip_at: c64((((p.step + 1) << g) - (1 << (g - 1))) as u64),
+        }
+    }
+}
+
+impl Logic for HarmonicLearner {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clk, state, cnt, idx, active, pend, ld_i, ld_v, got, m_s, ps, prev, pos, ci, dd,
+            fsh, acc, c, sbin, q, k, sum_p, sum_ps, u, neg, mag, rem, dvd, quo, dsr, rm, b, a,
+            moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb, la, lb, z1, z2, x, big, zneg,
+            ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, twr, twa, twd
+        );
+        self.tab.read_clock.next = self.clk.val();
+        self.tab.write_clock.next = self.clk.val();
+        self.rn.read_clock.next = self.clk.val();
+        self.rn.write_clock.next = self.clk.val();
+        self.rsk.read_clock.next = self.clk.val();
+        self.rsk.write_clock.next = self.clk.val();
+        self.rsp.read_clock.next = self.clk.val();
+        self.rsp.write_clock.next = self.clk.val();
+        // Defaults: no writes, reads at 0.
+        self.we.next = false;
+        self.wa.next = self.z32.val();
+        self.wd.next = self.z32.val();
+        self.tab.read_address.next = bit_cast::<10, 32>(self.z32.val());
+        self.rn.read_address.next = bit_cast::<8, 32>(self.z32.val());
+        self.rsk.read_address.next = bit_cast::<8, 32>(self.z32.val());
+        self.rsp.read_address.next = bit_cast::<8, 32>(self.z32.val());
+        self.rn.write_address.next = bit_cast::<8, 32>(self.z32.val());
+        self.rsk.write_address.next = bit_cast::<8, 32>(self.z32.val());
+        self.rsp.write_address.next = bit_cast::<8, 32>(self.z32.val());
+        self.rn.write_data.next = self.z32.val();
+        self.rsk.write_data.next = self.z32.val();
+        self.rsp.write_data.next = self.z64.val();
+        self.rn.write_enable.next = false;
+        self.rsk.write_enable.next = false;
+        self.rsp.write_enable.next = false;
+        // Sign-extended reads of the table and of sp_i.
+        self.tab_s.next = bit_cast::<64, 32>(self.tab.read_data.val());
+        if (self.tab.read_data.val() & self.ew_sign.val()).any() {
+            self.tab_s.next = bit_cast::<64, 32>(self.tab.read_data.val()) | self.ew_fill.val();
+        }
+        self.sp_s.next = self.rsp.read_data.val();
+        // The sample's segment and the banks' offsets.
+        self.seg_i.next = (self.m_s.q.val() >> self.s32.val()) & self.pmask.val();
+        self.seg_j.next = (self.seg_i.val() + self.one32.val()) & self.pmask.val();
+        self.off_a.next = self.z32.val();
+        self.off_o.next = self.pp.val();
+        if self.active.q.val() {
+            self.off_a.next = self.pp.val();
+            self.off_o.next = self.z32.val();
+        }
+        // The load request, held while one is pending: the entry width's value, saturated.
+        self.ldm.next = self.ld_data.val() & self.ew_mask.val();
+        if self.ld.val() & !self.pend.q.val() {
+            self.ld_i.d.next = self.ld_addr.val() & self.pmask.val();
+            self.ld_v.d.next = self.ldm.val();
+            if (self.ldm.val() & self.ew_sign.val()).any() {
+                if self.ldm.val() < self.emin32.val() {
+                    self.ld_v.d.next = self.emin32.val();
+                }
+            } else if self.ldm.val() > self.emax32.val() {
+                self.ld_v.d.next = self.emax32.val();
+            }
+        }
+        // Every strobe moves pos by the angle's change; one Collect takes at k = 0 starts
+        // the window's.
+        self.accept.next = self.strobe.val()
+            & ((self.state.q.val() == LearnState::Wait)
+                | (self.state.q.val() == LearnState::LoadA)
+                | (self.state.q.val() == LearnState::LoadB));
+        self.delta.next = (bit_cast::<64, 32>(self.angle.val())
+            - bit_cast::<64, 32>(self.prev.q.val()))
+            & self.am_mask.val();
+        if (self.delta.val() & self.am_sign.val()).any() {
+            self.delta.next = self.delta.val() | !self.am_mask.val();
+        }
+        self.psum.next = self.pos.q.val() + self.delta.val();
+        self.pnew.next = self.psum.val() & self.pw_mask.val();
+        if (self.psum.val() & self.pw_sign.val()).any() {
+            self.pnew.next = self.psum.val() | !self.pw_mask.val();
+        }
+        if self.accept.val() & (self.k.q.val() == self.z32.val()) {
+            self.pnew.next = self.z64.val();
+        }
+        if self.strobe.val() {
+            self.prev.d.next = self.angle.val();
+            self.pos.d.next = self.pnew.val();
+        }
+        if self.accept.val() {
+            self.m_s.d.next = self.angle.val();
+            self.ps.d.next = self.pnew.val();
+        }
+        // The divider's step (LineDiv, ResDiv, MeanDiv).
+        self.dt.next =
+            (self.rem.q.val() << self.one64.val()) | (self.dvd.q.val() >> self.k63.val());
+        self.t64.next = self.z64.val();
+        self.abs.next = self.z64.val();
+        match self.state.q.val() {
+            LearnState::Clear => {
+                self.tab.read_address.next =
+                    bit_cast::<10, 32>(self.p2.val() + (self.cnt.q.val() & self.pmask.val()));
+                if self.cnt.q.val() != self.z32.val() {
+                    self.we.next = true;
+                    self.wa.next = self.cnt.q.val() - self.one32.val();
+                    self.wd.next = self.tab.read_data.val();
+                }
+                self.rn.write_address.next = bit_cast::<8, 32>(self.cnt.q.val() & self.pmask.val());
+                self.rsk.write_address.next =
+                    bit_cast::<8, 32>(self.cnt.q.val() & self.pmask.val());
+                self.rsp.write_address.next =
+                    bit_cast::<8, 32>(self.cnt.q.val() & self.pmask.val());
+                self.rn.write_enable.next = true;
+                self.rsk.write_enable.next = true;
+                self.rsp.write_enable.next = true;
+                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                if self.cnt.q.val() == self.p2.val() {
+                    self.cnt.d.next = self.z32.val();
+                    self.state.d.next = LearnState::Wait;
+                }
+            }
+            LearnState::Wait => {
+                if self.strobe.val() {
+                    self.state.d.next = LearnState::ReadI;
+                } else if self.pend.q.val() {
+                    self.state.d.next = LearnState::LoadA;
+                }
+            }
+            LearnState::LoadA => {
+                self.we.next = true;
+                self.wa.next = self.ld_i.q.val();
+                self.wd.next = self.ld_v.q.val();
+                if self.strobe.val() {
+                    self.got.d.next = true;
+                }
+                self.state.d.next = LearnState::LoadB;
+            }
+            LearnState::LoadB => {
+                self.we.next = true;
+                self.wa.next = self.ld_i.q.val() | self.pp.val();
+                self.wd.next = self.ld_v.q.val();
+                self.pend.d.next = false;
+                self.got.d.next = false;
+                if self.got.q.val() | self.strobe.val() {
+                    self.state.d.next = LearnState::ReadI;
+                } else {
+                    self.state.d.next = LearnState::Wait;
+                }
+            }
+            LearnState::ReadI => {
+                self.tab.read_address.next =
+                    bit_cast::<10, 32>(self.off_a.val() | self.seg_i.val());
+                self.state.d.next = LearnState::ReadJ;
+            }
+            LearnState::ReadJ => {
+                self.tab.read_address.next =
+                    bit_cast::<10, 32>(self.off_a.val() | self.seg_j.val());
+                self.ci.d.next = self.tab_s.val();
+                self.state.d.next = LearnState::Diff;
+            }
+            LearnState::Diff => {
+                self.dd.d.next = self.tab_s.val() - self.ci.q.val();
+                self.fsh.d.next = self.m_s.q.val() & self.fmask.val();
+                self.acc.d.next = self.z64.val();
+                self.cnt.d.next = self.z32.val();
+                self.state.d.next = LearnState::Mult;
+            }
+            LearnState::Mult => {
+                if self.fsh.q.val().get_bit(0) {
+                    self.acc.d.next = self.acc.q.val() + self.dd.q.val();
+                }
+                self.fsh.d.next = self.fsh.q.val() >> self.one32.val();
+                self.dd.d.next = self.dd.q.val() << self.one64.val();
+                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                if self.cnt.q.val() == self.s_last.val() {
+                    self.cnt.d.next = self.z32.val();
+                    self.state.d.next = LearnState::Corr;
+                }
+            }
+            LearnState::Corr => {
+                // c = (c_i 2^s + D f) >> s, arithmetic.
+                self.t64.next = (self.ci.q.val() << self.s64.val()) + self.acc.q.val();
+                self.c.d.next = self.t64.val() >> self.s64.val();
+                if (self.t64.val() & self.sign63.val()).any() {
+                    self.c.d.next = (self.t64.val() >> self.s64.val()) | self.s_fill.val();
+                }
+                self.state.d.next = LearnState::Bin;
+            }
+            LearnState::Bin => {
+                // The bin: round((m 2^T - c) / 2^(s+T)) mod P; q = pos 2^T - c.
+                self.t64.next = (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val())
+                    - self.c.q.val()
+                    + self.st_half.val();
+                self.sbin.d.next =
+                    bit_cast::<32, 64>(self.t64.val() >> self.st.val()) & self.pmask.val();
+                self.abs.next = (self.ps.q.val() << self.tf.val()) - self.c.q.val();
+                self.q.d.next = self.abs.val() & self.qw_mask.val();
+                if (self.abs.val() & self.qw_sign.val()).any() {
+                    self.q.d.next = self.abs.val() | !self.qw_mask.val();
+                }
+                self.state.d.next = LearnState::ReadBin;
+            }
+            LearnState::ReadBin => {
+                self.rn.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.rsk.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.rsp.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.state.d.next = LearnState::Acc;
+            }
+            LearnState::Acc => {
+                self.rn.write_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.rsk.write_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.rsp.write_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.rn.write_enable.next = true;
+                self.rsk.write_enable.next = true;
+                self.rsp.write_enable.next = true;
+                self.rn.write_data.next = self.rn.read_data.val() + self.one32.val();
+                self.rsk.write_data.next = self.rsk.read_data.val() + self.k.q.val();
+                self.t64.next = self.sp_s.val() + self.q.q.val();
+                self.rsp.write_data.next = self.t64.val() & self.sw_mask.val();
+                if (self.t64.val() & self.sw_sign.val()).any() {
+                    self.rsp.write_data.next = self.t64.val() | !self.sw_mask.val();
+                }
+                self.abs.next = self.sum_p.q.val() + self.q.q.val();
+                self.sum_p.d.next = self.abs.val() & self.sw_mask.val();
+                if (self.abs.val() & self.sw_sign.val()).any() {
+                    self.sum_p.d.next = self.abs.val() | !self.sw_mask.val();
+                }
+                self.state.d.next = LearnState::Sum;
+            }
+            LearnState::Sum => {
+                self.t64.next = self.sum_ps.q.val() + self.sum_p.q.val();
+                self.sum_ps.d.next = self.t64.val() & self.uw_mask.val();
+                if (self.t64.val() & self.uw_sign.val()).any() {
+                    self.sum_ps.d.next = self.t64.val() | !self.uw_mask.val();
+                }
+                self.k.d.next = self.k.q.val() + self.one32.val();
+                if self.k.q.val() == self.n_last.val() {
+                    self.state.d.next = LearnState::LineN1;
+                } else {
+                    self.state.d.next = LearnState::Wait;
+                }
+            }
+            LearnState::LineN1 => {
+                self.u.d.next = (self.sum_p.q.val() << self.w64.val()) + self.sum_p.q.val();
+                self.state.d.next = LearnState::LineU;
+            }
+            LearnState::LineU => {
+                self.t64.next = self.u.q.val() - (self.sum_ps.q.val() << self.one64.val());
+                self.u.d.next = self.t64.val() & self.uw_mask.val();
+                if (self.t64.val() & self.uw_sign.val()).any() {
+                    self.u.d.next = self.t64.val() | !self.uw_mask.val();
+                }
+                self.state.d.next = LearnState::LineLoad;
+            }
+            LearnState::LineLoad => {
+                self.abs.next = self.u.q.val();
+                if (self.u.q.val() & self.sign63.val()).any() {
+                    self.abs.next = self.z64.val() - self.u.q.val();
+                }
+                self.neg.d.next = (self.u.q.val() & self.sign63.val()).any();
+                self.rem.d.next = self.abs.val() >> self.lb_lead.val();
+                self.dvd.d.next = self.abs.val() << self.lb_up.val();
+                self.dsr.d.next = self.dline.val();
+                self.quo.d.next = self.z64.val();
+                self.cnt.d.next = self.z32.val();
+                self.state.d.next = LearnState::LineDiv;
+            }
+            LearnState::LineDiv => {
+                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                if self.cnt.q.val() == self.lb_last.val() {
+                    self.cnt.d.next = self.z32.val();
+                    self.state.d.next = LearnState::LineRnd;
+                }
+            }
+            LearnState::LineRnd => {
+                self.rm.d.next = (self.quo.q.val() + self.one64.val()) >> self.one64.val();
+                self.state.d.next = LearnState::LineB;
+            }
+            LearnState::LineB => {
+                self.t64.next = self.rm.q.val();
+                if self.neg.q.val() {
+                    self.t64.next = self.z64.val() - self.rm.q.val();
+                }
+                self.b.d.next = self.t64.val() & self.bw_mask.val();
+                if (self.t64.val() & self.bw_sign.val()).any() {
+                    self.b.d.next = self.t64.val() | !self.bw_mask.val();
+                }
+                self.state.d.next = LearnState::LineA1;
+            }
+            LearnState::LineA1 => {
+                // One period per window: |b| >= 2^(F+2+T+B-w), two compares.
+                if (self.b.q.val() & self.sign63.val()).any() {
+                    self.moving.d.next = self.b.q.val() <= self.op_neg.val();
+                } else {
+                    self.moving.d.next = self.b.q.val() >= self.op_pos.val();
+                }
+                self.a.d.next = (self.sum_p.q.val() << self.k5.val()) + self.b.q.val();
+                self.state.d.next = LearnState::LineA2;
+            }
+            LearnState::LineA2 => {
+                // a = (Sp 2^5 + b - b 2^w) >> 1 (arithmetic), in a's width.
+                self.t64.next = self.a.q.val() - (self.b.q.val() << self.w64.val());
+                self.abs.next = self.t64.val() >> self.one64.val();
+                if (self.t64.val() & self.sign63.val()).any() {
+                    self.abs.next = (self.t64.val() >> self.one64.val()) | self.sign63.val();
+                }
+                self.a.d.next = self.abs.val() & self.aw_mask.val();
+                if (self.abs.val() & self.aw_sign.val()).any() {
+                    self.a.d.next = self.abs.val() | !self.aw_mask.val();
+                }
+                self.idx.d.next = self.z32.val();
+                self.state.d.next = LearnState::ResRead;
+            }
+            LearnState::ResRead => {
+                self.rn.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rsk.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rsp.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.state.d.next = LearnState::ResLatch;
+            }
+            LearnState::ResLatch => {
+                self.nn.d.next = self.rn.read_data.val();
+                self.nsh.d.next = self.rn.read_data.val();
+                self.sksh.d.next = self.rsk.read_data.val();
+                self.spv.d.next = self.sp_s.val();
+                self.pa.d.next = self.z64.val();
+                self.pb.d.next = self.z64.val();
+                self.la.d.next = self.z64.val();
+                self.lb.d.next = self.z64.val();
+                // a = a_h 2^B + a_l, b = b_h 2^B + b_l (arithmetic >> B).
+                self.ahs.d.next = self.a.q.val() >> self.bf.val();
+                if (self.a.q.val() & self.sign63.val()).any() {
+                    self.ahs.d.next = (self.a.q.val() >> self.bf.val()) | self.bf_fill.val();
+                }
+                self.bhs.d.next = self.b.q.val() >> self.bf.val();
+                if (self.b.q.val() & self.sign63.val()).any() {
+                    self.bhs.d.next = (self.b.q.val() >> self.bf.val()) | self.bf_fill.val();
+                }
+                self.als.d.next = self.a.q.val() & self.bf_mask.val();
+                self.bls.d.next = self.b.q.val() & self.bf_mask.val();
+                self.cnt.d.next = self.z32.val();
+                self.state.d.next = LearnState::ResMul;
+            }
+            LearnState::ResMul => {
+                if self.nsh.q.val().get_bit(0) {
+                    self.pa.d.next = self.pa.q.val() + self.ahs.q.val();
+                    self.la.d.next = self.la.q.val() + self.als.q.val();
+                }
+                if self.sksh.q.val().get_bit(0) {
+                    self.pb.d.next = self.pb.q.val() + self.bhs.q.val();
+                    self.lb.d.next = self.lb.q.val() + self.bls.q.val();
+                }
+                self.nsh.d.next = self.nsh.q.val() >> self.one32.val();
+                self.sksh.d.next = self.sksh.q.val() >> self.one32.val();
+                self.ahs.d.next = self.ahs.q.val() << self.one64.val();
+                self.als.d.next = self.als.q.val() << self.one64.val();
+                self.bhs.d.next = self.bhs.q.val() << self.one64.val();
+                self.bls.d.next = self.bls.q.val() << self.one64.val();
+                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                if self.cnt.q.val() == self.mul_last.val() {
+                    self.cnt.d.next = self.z32.val();
+                    self.state.d.next = LearnState::ResZa;
+                }
+            }
+            LearnState::ResZa => {
+                self.z1.d.next = self.spv.q.val() - self.pa.q.val();
+                self.z2.d.next = self.la.q.val() + self.lb.q.val();
+                self.state.d.next = LearnState::ResZb;
+            }
+            LearnState::ResZb => {
+                self.z1.d.next = self.z1.q.val() - self.pb.q.val();
+                self.state.d.next = LearnState::ResX;
+            }
+            LearnState::ResX => {
+                // |Z1| >= H saturates r_i; else x = Z1 2^B - Z2 fits 64 bits.
+                self.zneg.d.next = (self.z1.q.val() & self.sign63.val()).any();
+                if (self.z1.q.val() & self.sign63.val()).any() {
+                    self.big.d.next = self.z1.q.val() <= self.h_neg.val();
+                } else {
+                    self.big.d.next = self.z1.q.val() >= self.h_pos.val();
+                }
+                self.x.d.next = (self.z1.q.val() << self.bf.val()) - self.z2.q.val();
+                self.state.d.next = LearnState::ResAbs;
+            }
+            LearnState::ResAbs => {
+                self.neg.d.next = (self.x.q.val() & self.sign63.val()).any();
+                self.mag.d.next = self.x.q.val();
+                if (self.x.q.val() & self.sign63.val()).any() {
+                    self.mag.d.next = self.z64.val() - self.x.q.val();
+                }
+                self.state.d.next = LearnState::ResLoad;
+            }
+            LearnState::ResLoad => {
+                self.rem.d.next = self.mag.q.val() >> self.lr_lead.val();
+                self.dvd.d.next = self.mag.q.val() << self.lr_up.val();
+                self.ovf.d.next =
+                    (self.mag.q.val() >> self.lr_lead.val()) >= bit_cast::<64, 32>(self.nn.q.val());
+                self.dsr.d.next = bit_cast::<64, 32>(self.nn.q.val());
+                self.quo.d.next = self.z64.val();
+                self.cnt.d.next = self.z32.val();
+                self.state.d.next = LearnState::ResDiv;
+            }
+            LearnState::ResDiv => {
+                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                if self.cnt.q.val() == self.lr_last.val() {
+                    self.cnt.d.next = self.z32.val();
+                    self.state.d.next = LearnState::ResEnd;
+                }
+            }
+            LearnState::ResEnd => {
+                self.rm.d.next = (self.quo.q.val() + self.one64.val()) >> self.one64.val();
+                if self.big.q.val() | self.ovf.q.val() | (self.quo.q.val() >= self.q_over.val()) {
+                    self.rm.d.next = self.lim.val();
+                }
+                self.rneg.d.next = self.neg.q.val();
+                if self.big.q.val() {
+                    self.rneg.d.next = self.zneg.q.val();
+                }
+                self.state.d.next = LearnState::ResWrite;
+            }
+            LearnState::ResWrite => {
+                self.t64.next = self.rm.q.val();
+                if self.rneg.q.val() {
+                    self.t64.next = self.z64.val() - self.rm.q.val();
+                }
+                self.r.d.next = self.t64.val();
+                self.rsp.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rsp.write_data.next = self.t64.val();
+                self.rsp.write_enable.next = self.nn.q.val() != self.z32.val();
+                self.state.d.next = LearnState::ResSum;
+            }
+            LearnState::ResSum => {
+                if self.nn.q.val() != self.z32.val() {
+                    self.sum_r.d.next = self.sum_r.q.val() + self.r.q.val();
+                    self.nbins.d.next = self.nbins.q.val() + self.one32.val();
+                }
+                self.idx.d.next = self.idx.q.val() + self.one32.val();
+                if self.idx.q.val() == self.pmask.val() {
+                    self.idx.d.next = self.z32.val();
+                    self.state.d.next = LearnState::MeanAbs;
+                } else {
+                    self.state.d.next = LearnState::ResRead;
+                }
+            }
+            LearnState::MeanAbs => {
+                self.neg.d.next = (self.sum_r.q.val() & self.sign63.val()).any();
+                self.mag.d.next = self.sum_r.q.val();
+                if (self.sum_r.q.val() & self.sign63.val()).any() {
+                    self.mag.d.next = self.z64.val() - self.sum_r.q.val();
+                }
+                self.state.d.next = LearnState::MeanLoad;
+            }
+            LearnState::MeanLoad => {
+                self.rem.d.next = self.mag.q.val() >> self.lm_lead.val();
+                self.dvd.d.next = self.mag.q.val() << self.lm_up.val();
+                self.dsr.d.next = bit_cast::<64, 32>(self.nbins.q.val());
+                self.quo.d.next = self.z64.val();
+                self.cnt.d.next = self.z32.val();
+                self.state.d.next = LearnState::MeanDiv;
+            }
+            LearnState::MeanDiv => {
+                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                if self.cnt.q.val() == self.lr_last.val() {
+                    self.cnt.d.next = self.z32.val();
+                    self.state.d.next = LearnState::MeanEnd;
+                }
+            }
+            LearnState::MeanEnd => {
+                self.rm.d.next = (self.quo.q.val() + self.one64.val()) >> self.one64.val();
+                self.state.d.next = LearnState::MeanSign;
+            }
+            LearnState::MeanSign => {
+                self.mean.d.next = self.rm.q.val();
+                if self.neg.q.val() {
+                    self.mean.d.next = self.z64.val() - self.rm.q.val();
+                }
+                if self.nbins.q.val() == self.z32.val() {
+                    self.mean.d.next = self.z64.val();
+                }
+                self.idx.d.next = self.z32.val();
+                self.state.d.next = LearnState::UpdRead;
+            }
+            LearnState::UpdRead => {
+                self.tab.read_address.next =
+                    bit_cast::<10, 32>(self.off_a.val() | self.idx.q.val());
+                self.rn.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rsp.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.state.d.next = LearnState::UpdDiff;
+            }
+            LearnState::UpdDiff => {
+                self.ucur.d.next = self.tab_s.val();
+                self.unz.d.next = self.rn.read_data.val() != self.z32.val();
+                self.ux.d.next = self.sp_s.val() - self.mean.q.val();
+                self.state.d.next = LearnState::UpdAbs;
+            }
+            LearnState::UpdAbs => {
+                self.uneg.d.next = (self.ux.q.val() & self.sign63.val()).any();
+                self.uax.d.next = self.ux.q.val();
+                if (self.ux.q.val() & self.sign63.val()).any() {
+                    self.uax.d.next = self.z64.val() - self.ux.q.val();
+                }
+                self.state.d.next = LearnState::UpdStep;
+            }
+            LearnState::UpdStep => {
+                // 2^-g |r_i - r| rounded half up, clipped at the step.
+                self.udm.d.next = (self.uax.q.val() + self.g_half.val()) >> self.g.val();
+                if self.uax.q.val() >= self.clip_at.val() {
+                    self.udm.d.next = self.stepc.val();
+                }
+                self.state.d.next = LearnState::UpdAdd;
+            }
+            LearnState::UpdAdd => {
+                self.unw.d.next = self.ucur.q.val() + self.udm.q.val();
+                if self.uneg.q.val() {
+                    self.unw.d.next = self.ucur.q.val() - self.udm.q.val();
+                }
+                self.state.d.next = LearnState::UpdWrite;
+            }
+            LearnState::UpdWrite => {
+                // The new entry saturated at +-2^(F-4) LSB, or the old one.
+                self.t64.next = self.unw.q.val();
+                if (self.unw.q.val() & self.sign63.val()).any() {
+                    if self.unw.q.val() < self.emin.val() {
+                        self.t64.next = self.emin.val();
+                    }
+                } else if self.unw.q.val() > self.emax.val() {
+                    self.t64.next = self.emax.val();
+                }
+                if !(self.update.val() & self.moving.q.val() & self.unz.q.val()) {
+                    self.t64.next = self.ucur.q.val();
+                }
+                self.we.next = true;
+                self.wa.next = self.off_o.val() | self.idx.q.val();
+                self.wd.next = bit_cast::<32, 64>(self.t64.val()) & self.ew_mask.val();
+                self.rn.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rsk.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rsp.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rn.write_enable.next = true;
+                self.rsk.write_enable.next = true;
+                self.rsp.write_enable.next = true;
+                self.idx.d.next = self.idx.q.val() + self.one32.val();
+                if self.idx.q.val() == self.pmask.val() {
+                    self.idx.d.next = self.z32.val();
+                    self.state.d.next = LearnState::Apply;
+                } else {
+                    self.state.d.next = LearnState::UpdRead;
+                }
+            }
+            LearnState::Apply => {
+                self.active.d.next = !self.active.q.val();
+                self.k.d.next = self.z32.val();
+                self.sum_p.d.next = self.z64.val();
+                self.sum_ps.d.next = self.z64.val();
+                self.sum_r.d.next = self.z64.val();
+                self.nbins.d.next = self.z32.val();
+                self.state.d.next = LearnState::Wait;
+            }
+        }
+        // The divider steps in its three states.
+        if (self.state.q.val() == LearnState::LineDiv)
+            | (self.state.q.val() == LearnState::ResDiv)
+            | (self.state.q.val() == LearnState::MeanDiv)
+        {
+            self.dvd.d.next = self.dvd.q.val() << self.one64.val();
+            if self.dt.val() >= self.dsr.q.val() {
+                self.rem.d.next = self.dt.val() - self.dsr.q.val();
+                self.quo.d.next = (self.quo.q.val() << self.one64.val()) | self.one64.val();
+            } else {
+                self.rem.d.next = self.dt.val();
+                self.quo.d.next = self.quo.q.val() << self.one64.val();
+            }
+        }
+        if self.ld.val() & !self.pend.q.val() {
+            self.pend.d.next = true;
+        }
+        // The table's write port and its copy on tw.
+        self.tab.write_enable.next = self.we.val();
+        self.tab.write_address.next = bit_cast::<10, 32>(self.wa.val());
+        self.tab.write_data.next = self.wd.val();
+        self.twr.d.next = self.we.val();
+        self.twa.d.next = self.z32.val();
+        self.twd.d.next = self.z32.val();
+        if self.we.val() {
+            self.twa.d.next = self.wa.val();
+            self.twd.d.next = self.wd.val();
+        }
+        if self.rst.val() {
+            self.state.d.next = LearnState::Clear;
+            self.cnt.d.next = self.z32.val();
+            self.idx.d.next = self.z32.val();
+            self.active.d.next = false;
+            self.pend.d.next = false;
+            self.got.d.next = false;
+            self.prev.d.next = self.z32.val();
+            self.pos.d.next = self.z64.val();
+            self.k.d.next = self.z32.val();
+            self.sum_p.d.next = self.z64.val();
+            self.sum_ps.d.next = self.z64.val();
+            self.sum_r.d.next = self.z64.val();
+            self.nbins.d.next = self.z32.val();
+            self.twr.d.next = false;
+            self.twa.d.next = self.z32.val();
+            self.twd.d.next = self.z32.val();
+            self.tab.write_enable.next = false;
+            self.rn.write_enable.next = false;
+            self.rsk.write_enable.next = false;
+            self.rsp.write_enable.next = false;
+        }
+        self.tw.next = self.twr.q.val();
+        self.tw_addr.next = self.twa.q.val();
+        self.tw_data.next = self.twd.q.val();
+        self.bank.next = self.active.q.val();
+        self.ld_busy.next = self.pend.q.val();
+    }
+}
+
+impl crate::cosim::step::Clocked for HarmonicLearner {
+    fn set_clock(&mut self, high: bool) {
+        self.clk.next = Clock::from(high);
+    }
+}
+
+impl crate::cosim::CosimBlock for HarmonicLearner {
+    fn input_ports(&self) -> Vec<Port> {
+        vec![
+            Port::new("rst", 1),
+            Port::new("strobe", 1),
+            Port::new("angle", 32),
+            Port::new("update", 1),
+            Port::new("ld", 1),
+            Port::new("ld_addr", 32),
+            Port::new("ld_data", 32),
+        ]
+    }
+    fn output_ports(&self) -> Vec<Port> {
+        vec![
+            Port::new("tw", 1),
+            Port::new("tw_addr", 32),
+            Port::new("tw_data", 32),
+            Port::new("bank", 1),
+            Port::new("ld_busy", 1),
+        ]
+    }
+    fn apply(&mut self, r: &[u64]) {
+        self.rst.next = r[0] != 0;
+        self.strobe.next = r[1] != 0;
+        self.angle.next = Bits::<32>::from(r[2]);
+        self.update.next = r[3] != 0;
+        self.ld.next = r[4] != 0;
+        self.ld_addr.next = Bits::<32>::from(r[5]);
+        self.ld_data.next = Bits::<32>::from(r[6]);
+    }
+    fn sample(&self) -> Vec<u64> {
+        vec![
+            self.tw.val() as u64,
+            self.tw_addr.val().to_u64(),
+            self.tw_data.val().to_u64(),
+            self.bank.val() as u64,
+            self.ld_busy.val() as u64,
+        ]
+    }
+}
