@@ -27,6 +27,7 @@ pub mod counter;
 pub mod fallback;
 pub mod harmonics;
 pub mod init_bit;
+pub mod lutram;
 pub mod monitor;
 pub mod nco;
 pub mod parallel;

@@ -80,6 +80,7 @@ fn core_wrapper(loaded: &Loaded, rtl: &str, vel: minijinja::Value) -> Result<Str
             qb => d.quadrant_bits - 1,
             sin => pad("in_sin"),
             cos => pad("in_cos"),
+            learn => d.harmonics.as_ref().is_some_and(|h| h.learn.is_some()),
             ..vel
         },
     )

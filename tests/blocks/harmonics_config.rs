@@ -32,17 +32,59 @@ fn bad_values_name_the_key_the_position_and_what_is_allowed() {
             vec!["`harmonics.points`", "power of two"],
         ),
         (
-            "enabled = true # the table".into(),
-            "enabled = true # the table",
-            vec!["`harmonics.enabled`", "not learned online yet", "`table`"],
+            "enabled = true\nmode = \"static\" # the table".into(),
+            "mode = \"static\" # the table",
+            vec!["`harmonics.mode`", "needs `table`", "\"learn\""],
         ),
         (
-            format!("enabled = true\npoints = 16\n{long}"),
+            "enabled = true\npoints = 16\ntable = [0.0]".into(),
+            "table = [0.0]",
+            vec![
+                "`harmonics.table`",
+                "starts from zeros",
+                "mode = \"static\"",
+            ],
+        ),
+        (
+            "enabled = true\npoints = 256".into(),
+            "points = 256",
+            vec![
+                "`harmonics.points`",
+                "at most 128 points",
+                "mode = \"static\"",
+            ],
+        ),
+        (
+            "enabled = true\nwindow = 1000".into(),
+            "window = 1000",
+            vec![
+                "`harmonics.window`",
+                "1000",
+                "power of two from 256 to 65536",
+            ],
+        ),
+        (
+            "enabled = true\nwindow = 128".into(),
+            "window = 128",
+            vec!["`harmonics.window`", "power of two from 256"],
+        ),
+        (
+            "enabled = true\nstep = 0".into(),
+            "step = 0",
+            vec!["`harmonics.step`", "allowed 1 to 2^(F-4) = 1024 LSB"],
+        ),
+        (
+            "enabled = true\nstep = 1025".into(),
+            "step = 1025",
+            vec!["`harmonics.step`", "1025 LSB"],
+        ),
+        (
+            format!("enabled = true\nmode = \"static\"\npoints = 16\n{long}"),
             "table = [",
             vec!["`harmonics.table`", "32 entries", "exactly `points` = 16"],
         ),
         (
-            format!("enabled = true\npoints = 16\n{big}"),
+            format!("enabled = true\nmode = \"static\"\npoints = 16\n{big}"),
             "table = [",
             vec!["`harmonics.table`", "entry 0", "-1024..=1024 LSB"],
         ),
@@ -52,7 +94,7 @@ fn bad_values_name_the_key_the_position_and_what_is_allowed() {
     }
     // The iterative CORDIC has no table.
     let text = with(&format!(
-        "enabled = true # it\npoints = 16\n{}",
+        "enabled = true # it\nmode = \"static\"\npoints = 16\n{}",
         table(16, 0.0)
     ))
     .replace(
@@ -69,6 +111,10 @@ fn bad_values_name_the_key_the_position_and_what_is_allowed() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("point"), "{e}");
+    let e = Loaded::parse(&with("enabled = true\nmode = \"learned\""), "bad.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("learned") && e.contains("static"), "{e}");
 }
 
 #[test]

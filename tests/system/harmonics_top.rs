@@ -43,7 +43,7 @@ fn table(h3: f64, h5: f64, n: usize, fine_bits: u32) -> String {
         })
         .collect();
     format!(
-        "[harmonics]\nenabled = true\npoints = {n}\ntable = [{}]\n",
+        "[harmonics]\nenabled = true\nmode = \"static\"\npoints = {n}\ntable = [{}]\n",
         entries.join(", ")
     )
 }

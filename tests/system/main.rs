@@ -13,6 +13,7 @@ mod correction_fit_loop;
 mod e2e;
 mod engine;
 mod engine_loop;
+mod harmonics_learn_top;
 mod harmonics_top;
 mod outputs_top;
 mod reference_top;

@@ -4,6 +4,7 @@ use crate::blocks::cordic::hdl::{CordicStage, QuadrantMapper};
 use crate::blocks::cordic::iterative::IterativeCordic;
 use crate::blocks::counter::hdl::{z_start, Combiner, QuadrantCounter};
 use crate::blocks::harmonics::hdl::HarmonicCorrection;
+use crate::blocks::harmonics::learned::LearnedHarmonics;
 use crate::blocks::params::{Architecture, Derived};
 use rust_hdl::prelude::*;
 
@@ -45,6 +46,25 @@ pub struct CoreRtl {
     /// A sample offered in this cycle is accepted (always high for the unrolled CORDIC;
     /// see `crate::blocks::cordic::iterative` for the iterative one).
     pub in_ready: Signal<Out, Bit>,
+    /// The learned harmonic table (`[harmonics] mode = "learn"`; one each, else none): 1
+    /// freezes the table (the register map's LEARN cleared).
+    pub h_freeze: Vec<Signal<In, Bit>>,
+    /// A request to set entry `h_ld_addr` of the learned table to `h_ld_data` (q units).
+    pub h_ld: Vec<Signal<In, Bit>>,
+    /// The entry of the request.
+    pub h_ld_addr: Vec<Signal<In, Bits<32>>>,
+    /// Its value, q units (2^-8 LSB), two's complement in the learner's entry width.
+    pub h_ld_data: Vec<Signal<In, Bits<32>>>,
+    /// The learner writes an entry this clock (for the register map's copy).
+    pub h_tw: Vec<Signal<Out, Bit>>,
+    /// Its address: bank P + i.
+    pub h_tw_addr: Vec<Signal<Out, Bits<32>>>,
+    /// Its value, q units.
+    pub h_tw_data: Vec<Signal<Out, Bits<32>>>,
+    /// The bank of the table in use.
+    pub h_bank: Vec<Signal<Out, Bit>>,
+    /// A load request is pending.
+    pub h_ld_busy: Vec<Signal<Out, Bit>>,
     mapper: QuadrantMapper,
     /// The N unrolled stages (empty for the iterative architecture).
     stages: Vec<CordicStage>,
@@ -53,12 +73,21 @@ pub struct CoreRtl {
     /// The harmonic table between the last stage and the combiner (`[harmonics]`: one,
     /// else none).
     harm: Vec<HarmonicCorrection>,
+    /// The learned table between the last stage and the combiner (`[harmonics] mode =
+    /// "learn"`: one, else none).
+    harm_l: Vec<LearnedHarmonics>,
     combiner: Combiner,
     counter: QuadrantCounter,
     /// 2^(Gz-1): the rounding half in the initial angle.
     zhalf: Constant<Bits<32>>,
     /// F + Gz: the shift of the quadrant in the initial angle.
     zqshift: Constant<Bits<32>>,
+}
+
+/// One port with a learned harmonic table, none without.
+fn learned_ports<T: Default>(d: &Derived) -> Vec<T> {
+    let n = d.harmonics.iter().filter(|h| h.learn.is_some()).count();
+    (0..n).map(|_| T::default()).collect()
 }
 
 impl CoreRtl {
@@ -83,6 +112,15 @@ impl CoreRtl {
             out_mag: Default::default(),
             out_mag_valid: Default::default(),
             in_ready: Default::default(),
+            h_freeze: learned_ports(d),
+            h_ld: learned_ports(d),
+            h_ld_addr: learned_ports(d),
+            h_ld_data: learned_ports(d),
+            h_tw: learned_ports(d),
+            h_tw_addr: learned_ports(d),
+            h_tw_data: learned_ports(d),
+            h_bank: learned_ports(d),
+            h_ld_busy: learned_ports(d),
             mapper: QuadrantMapper::new(d),
             stages: if d.architecture == Architecture::Unrolled {
                 (0..d.iterations).map(|i| CordicStage::new(d, i)).collect()
@@ -94,7 +132,18 @@ impl CoreRtl {
             } else {
                 Vec::new()
             },
-            harm: d.harmonics.iter().map(HarmonicCorrection::new).collect(),
+            harm: d
+                .harmonics
+                .iter()
+                .filter(|h| h.learn.is_none())
+                .map(HarmonicCorrection::new)
+                .collect(),
+            harm_l: d
+                .harmonics
+                .iter()
+                .filter(|h| h.learn.is_some())
+                .map(LearnedHarmonics::new)
+                .collect(),
             combiner: Combiner::new(d),
             counter: QuadrantCounter::new(d),
             zhalf: c32(zs.0),
@@ -169,6 +218,29 @@ impl Logic for CoreRtl {
             self.combiner.v_in.next = self.harm[j].v_out.val();
             self.out_mag.next = self.harm[j].x_out.val();
             self.out_mag_valid.next = self.harm[j].v_out.val();
+        }
+        for j in 0..self.harm_l.len() {
+            self.harm_l[j].clk.next = self.clk.val();
+            self.harm_l[j].rst.next = self.rst.val();
+            for i in 0..self.stages.len() {
+                self.harm_l[j].z_in.next = self.stages[i].z_out.val();
+                self.harm_l[j].x_in.next = self.stages[i].x_out.val();
+                self.harm_l[j].v_in.next = self.stages[i].v_out.val();
+            }
+            self.harm_l[j].update.next = !self.h_freeze[j].val();
+            self.harm_l[j].ld.next = self.h_ld[j].val();
+            self.harm_l[j].ld_addr.next = self.h_ld_addr[j].val();
+            self.harm_l[j].ld_data.next = self.h_ld_data[j].val();
+            self.h_tw[j].next = self.harm_l[j].tw.val();
+            self.h_tw_addr[j].next = self.harm_l[j].tw_addr.val();
+            self.h_tw_data[j].next = self.harm_l[j].tw_data.val();
+            self.h_bank[j].next = self.harm_l[j].bank.val();
+            self.h_ld_busy[j].next = self.harm_l[j].ld_busy.val();
+            self.combiner.z_in.next = self.harm_l[j].z_out.val();
+            self.combiner.x_in.next = self.harm_l[j].x_out.val();
+            self.combiner.v_in.next = self.harm_l[j].v_out.val();
+            self.out_mag.next = self.harm_l[j].x_out.val();
+            self.out_mag_valid.next = self.harm_l[j].v_out.val();
         }
         for i in 0..self.iter.len() {
             self.combiner.z_in.next = self.iter[i].z_out.val();

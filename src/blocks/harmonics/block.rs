@@ -1,6 +1,7 @@
 //! The harmonic-correction block in the core: its config section `[harmonics]`, the
 //! parameters derived from it, its `check` lines, its report job and its registry entry
 //! ([`super::BLOCK`]).
+use super::sequencer::LearnParams;
 use super::{HarmonicParams, POINTS_RANGE};
 use crate::blocks::params::Architecture;
 use crate::blocks::registry::BlockDef;
@@ -9,6 +10,17 @@ use crate::error::Result;
 use crate::report::blocks::{job, BlockJob, BlockTiming};
 use serde::Deserialize;
 
+/// How the table is had (`[harmonics] mode`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum HarmonicsMode {
+    /// Learned online from the signal (the learner of `super::sequencer`), from zeros.
+    #[default]
+    Learn,
+    /// The config's `table`, fixed.
+    Static,
+}
+
 /// `[harmonics]`: a table of angle corrections against the angle within the signal period,
 /// between the CORDIC and the combiner (docs/correction.md, "Harmonic distortion").
 #[derive(Clone, Debug, Deserialize)]
@@ -16,19 +28,31 @@ use serde::Deserialize;
 pub struct HarmonicsConfig {
     /// Include the block (default false: no logic).
     pub enabled: bool,
+    /// `"learn"` (default): the table is learned online from zeros; `"static"`: `table`,
+    /// fixed.
+    pub mode: HarmonicsMode,
     /// Entries over one signal period: a power of two, 16..=256 (default 64).
     pub points: u32,
-    /// The corrections, position LSB (2^-F quadrant), `points` of them from angle 0 in
-    /// steps of one period / points: the decoded angle's error there, subtracted.
+    /// `mode = "static"`: the corrections, position LSB (2^-F quadrant), `points` of them
+    /// from angle 0 in steps of one period / points: the decoded angle's error there,
+    /// subtracted. A learned table starts from zeros.
     pub table: Option<Vec<f64>>,
+    /// `mode = "learn"`: samples per learning window, a power of two 256..=65536 (default
+    /// 4096).
+    pub window: u32,
+    /// `mode = "learn"`: the largest change of an entry per window, LSB (default 32).
+    pub step: u32,
 }
 
 impl Default for HarmonicsConfig {
     fn default() -> Self {
         HarmonicsConfig {
             enabled: false,
+            mode: HarmonicsMode::Learn,
             points: 64,
             table: None,
+            window: 4096,
+            step: 32,
         }
     }
 }
@@ -48,7 +72,7 @@ pub const BLOCK: BlockDef = BlockDef {
 
 /// The held design of the timing rule: the default config with a 64-point table of a
 /// 2 % third harmonic's error (208.6 sin 4x LSB, the peak asin 0.02 at F = 14).
-pub const HELD_CASE: &str = "[harmonics]\nenabled = true\npoints = 64\ntable = [0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8]\n";
+pub const HELD_CASE: &str = "[harmonics]\nenabled = true\nmode = \"static\"\npoints = 64\ntable = [0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8, 0.0, 79.8, 147.5, 192.7, 208.6, 192.7, 147.5, 79.8, 0.0, -79.8, -147.5, -192.7, -208.6, -192.7, -147.5, -79.8]\n";
 
 /// `[harmonics]`: the block's parameters when enabled (None otherwise), for the angle word
 /// of `z_width` bits with `z_guard` guard bits below the `fine_bits` LSB.
@@ -90,15 +114,26 @@ pub fn params(
             "the harmonic table is built for the unrolled CORDIC only; set cordic.architecture = \"unrolled\" or enabled = false".into(),
         ));
     }
-    let Some(table) = &h.table else {
-        return Err(err(
-            "harmonics",
-            "enabled",
-            format!(
-                "the table is not learned online yet: give `table`, {} corrections in position LSB (docs/correction.md, \"Harmonic distortion\")",
-                h.points
-            ),
-        ));
+    let table = match (&h.table, h.mode) {
+        (Some(t), HarmonicsMode::Static) => t.clone(),
+        (None, HarmonicsMode::Learn) => vec![0.0; h.points as usize],
+        (Some(_), HarmonicsMode::Learn) => {
+            return Err(err(
+                "harmonics",
+                "table",
+                "a learned table starts from zeros: remove `table`, or set mode = \"static\" to use it fixed".into(),
+            ))
+        }
+        (None, HarmonicsMode::Static) => {
+            return Err(err(
+                "harmonics",
+                "mode",
+                format!(
+                    "\"static\" needs `table`, {} corrections in position LSB (docs/correction.md, \"Harmonic distortion\"); or mode = \"learn\" to learn it online",
+                    h.points
+                ),
+            ))
+        }
     };
     if table.len() != h.points as usize {
         return Err(err(
@@ -112,29 +147,93 @@ pub fn params(
             ),
         ));
     }
-    HarmonicParams::new(z_width, z_guard, fine_bits, table)
-        .map(Some)
-        .map_err(|m| err("harmonics", "table", m))
+    match h.mode {
+        HarmonicsMode::Static => HarmonicParams::new(z_width, z_guard, fine_bits, &table)
+            .map(Some)
+            .map_err(|m| err("harmonics", "table", m)),
+        HarmonicsMode::Learn => {
+            if h.points > super::hdl_ram::MAX_POINTS {
+                return Err(err(
+                    "harmonics",
+                    "points",
+                    format!(
+                        "{}: a learned table has at most {} points (its two banks share one 256-word block RAM); use mode = \"static\" for 256",
+                        h.points,
+                        super::hdl_ram::MAX_POINTS
+                    ),
+                ));
+            }
+            if !((256..=65536).contains(&h.window) && h.window.is_power_of_two()) {
+                return Err(err(
+                    "harmonics",
+                    "window",
+                    format!(
+                        "{}: allowed a power of two from 256 to 65536 samples",
+                        h.window
+                    ),
+                ));
+            }
+            if !(1..=1u32 << fine_bits.saturating_sub(4)).contains(&h.step) {
+                return Err(err(
+                    "harmonics",
+                    "step",
+                    format!(
+                        "{} LSB: allowed 1 to 2^(F-4) = {} LSB",
+                        h.step,
+                        1u32 << fine_bits.saturating_sub(4)
+                    ),
+                ));
+            }
+            let lp = LearnParams::new(fine_bits, h.points, h.window, h.step)
+                .map_err(|m| err("harmonics", "enabled", m))?;
+            HarmonicParams::learned(z_width, z_guard, fine_bits, h.points, lp)
+                .map(Some)
+                .map_err(|m| err("harmonics", "enabled", m))
+        }
+    }
 }
 
 /// Clocks the block adds to the core (0 without it).
 pub fn latency_cycles(p: Option<&HarmonicParams>) -> u32 {
-    p.map_or(0, |_| HarmonicParams::LATENCY)
+    p.map_or(0, HarmonicParams::latency)
+}
+
+/// What the block's clocks do, for `check` and the report.
+fn stages(p: &HarmonicParams) -> &'static str {
+    if p.learn.is_some() {
+        "table RAM read, slope, partial products, two adder levels, subtract"
+    } else {
+        "table lookup, partial products, two adder levels, subtract"
+    }
 }
 
 /// The `[harmonics]` lines of `check`.
 fn describe(p: &HarmonicParams) -> String {
     let max = p.table.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0) as f64
         / (1u64 << p.z_guard) as f64;
+    let how = match &p.learn {
+        None => format!(
+            "{} points over the signal period, fixed, linear interpolation ({} fraction bits), entries in 2^-{} LSB, largest {:.2} LSB; within {:.3} LSB of the table's line",
+            p.points(),
+            super::INTERP_BITS,
+            p.z_guard,
+            max,
+            p.bound_lsb()
+        ),
+        Some(l) => format!(
+            "{} points over the signal period, learned online from zeros (windows of {} samples, at most {} LSB per entry per window; docs/correction.md), linear interpolation ({} fraction bits), entries in 2^-{} LSB",
+            p.points(),
+            l.window(),
+            l.step >> super::sequencer::TABLE_FRAC,
+            super::INTERP_BITS,
+            p.z_guard
+        ),
+    };
     format!(
-        "harmonic correction         {} points over the signal period, linear interpolation ({} fraction bits), entries in 2^-{} LSB, largest {:.2} LSB; within {:.3} LSB of the table's line\n\
-         harmonic correction latency {} clocks (in the core's latency: table lookup, partial products, two adder levels, subtract)\n",
-        p.points(),
-        super::INTERP_BITS,
-        p.z_guard,
-        max,
-        p.bound_lsb(),
-        HarmonicParams::LATENCY
+        "harmonic correction         {how}\n\
+         harmonic correction latency {} clocks (in the core's latency: {})\n",
+        p.latency(),
+        stages(p)
     )
 }
 
@@ -143,13 +242,19 @@ fn report_job(l: &Loaded) -> Result<BlockJob> {
     let Some(p) = &l.derived.harmonics else {
         return Ok(BlockJob::absent("harmonics", "needs [harmonics] enabled"));
     };
-    job(
-        l,
-        "harmonics",
-        super::hdl::HarmonicCorrection::new(p),
-        BlockTiming::latency(
-            HarmonicParams::LATENCY,
-            "table lookup, partial products, two adder levels, subtract",
+    let timing = BlockTiming::latency(p.latency(), stages(p));
+    match &p.learn {
+        None => job(
+            l,
+            "harmonics",
+            super::hdl::HarmonicCorrection::new(p),
+            timing,
         ),
-    )
+        Some(lp) => job(
+            l,
+            "harmonics",
+            super::hdl_ram::HarmonicCorrectionRam::new(p, lp.entry_width()),
+            timing,
+        ),
+    }
 }

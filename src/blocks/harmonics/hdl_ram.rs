@@ -13,6 +13,7 @@
 //!  cycle:        1                       2                  └──reg───────┘3          4       5        6
 //! ```
 use super::{HarmonicParams, INTERP_BITS};
+use crate::blocks::lutram::LutRam;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
@@ -59,9 +60,9 @@ pub struct HarmonicCorrectionRam {
     /// `v_in` six clocks later.
     pub v_out: Signal<Out, Bit>,
     /// c_i (z units mod 2^ZW) at {bank, i}, read at the segment.
-    ram_a: RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    ram_a: LutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
     /// The same table, read at the next segment (i + 1 mod P).
-    ram_b: RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    ram_b: LutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
     /// The write stage: the entry converted to z units, its RAM address, the enable.
     wd: DFF<Bits<32>>,
     wa: DFF<Bits<32>>,
@@ -243,8 +244,8 @@ impl Logic for HarmonicCorrectionRam {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, wd, wa, we, cl, z1, c1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d, x3,
-            v3, y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
+            self, clk, wd, wa, we, cl, z1, c1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d,
+            x3, v3, y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
         );
         // The write stage: the learner's entry in z units, rounded half up (a sign fill
         // and the half in one adder), at {bank, i} = bank P + i, as `tw_addr` holds it.

@@ -142,7 +142,7 @@ impl Learner {
 pub fn toml(table: &[f64]) -> String {
     let e: Vec<String> = table.iter().map(|v| format!("{v:.3}")).collect();
     format!(
-        "[harmonics]\nenabled = true\npoints = {}\ntable = [{}]\n",
+        "[harmonics]\nenabled = true\nmode = \"static\"\npoints = {}\ntable = [{}]\n",
         table.len(),
         e.join(", ")
     )

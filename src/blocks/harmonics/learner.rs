@@ -50,6 +50,7 @@
 //! | `tw_data` | out | entry width | its entry, q units, two's complement |
 //! | `bank` | out | 1 | the bank the correction reads (flips at Apply) |
 //! | `ld_busy` | out | 1 | a load is pending (a new `ld` is dropped) |
+//! | `clearing` | out | 1 | the state was Clear a clock ago: with `tw`, the Clear's writes (registered) |
 use super::sequencer::{LearnParams, TABLE_FRAC};
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
@@ -184,6 +185,10 @@ pub struct HarmonicLearner {
     pub bank: Signal<Out, Bit>,
     /// A load is pending.
     pub ld_busy: Signal<Out, Bit>,
+    /// The state was Clear a clock ago (aligned with `tw`): the correction reads zeros.
+    pub clearing: Signal<Out, Bit>,
+    /// See `clearing`.
+    clr: DFF<Bit>,
     /// The table: bank 0, bank 1, the start table (entries masked to the entry width).
     tab: RAM<Bits<32>, 10>,
     /// Per bin: n_i.
@@ -225,7 +230,7 @@ pub struct HarmonicLearner {
     k: DFF<Bits<32>>,
     sum_p: DFF<Bits<64>>,
     sum_ps: DFF<Bits<64>>,
-    u: DFF<Bits<64>>,
+    unum: DFF<Bits<64>>,
     /// The divider: the dividend's sign, its magnitude, remainder, dividend bits,
     /// quotient, divisor.
     neg: DFF<Bit>,
@@ -257,7 +262,7 @@ pub struct HarmonicLearner {
     /// Z1, Z2, x = Z1 2^B - Z2; |Z1| >= H and Z1's sign; the division overflowed.
     z1: DFF<Bits<64>>,
     z2: DFF<Bits<64>>,
-    x: DFF<Bits<64>>,
+    xres: DFF<Bits<64>>,
     big: DFF<Bit>,
     zneg: DFF<Bit>,
     ovf: DFF<Bit>,
@@ -433,6 +438,8 @@ impl HarmonicLearner {
             tw_data: Default::default(),
             bank: Default::default(),
             ld_busy: Default::default(),
+            clearing: Default::default(),
+            clr: Default::default(),
             tab: RAM::new(tab),
             rn: RAM::new(zeros32.clone()),
             rsk: RAM::new(zeros32),
@@ -459,7 +466,7 @@ impl HarmonicLearner {
             k: Default::default(),
             sum_p: Default::default(),
             sum_ps: Default::default(),
-            u: Default::default(),
+            unum: Default::default(),
             neg: Default::default(),
             mag: Default::default(),
             rem: Default::default(),
@@ -484,7 +491,7 @@ impl HarmonicLearner {
             lb: Default::default(),
             z1: Default::default(),
             z2: Default::default(),
-            x: Default::default(),
+            xres: Default::default(),
             big: Default::default(),
             zneg: Default::default(),
             ovf: Default::default(),
@@ -593,9 +600,10 @@ impl Logic for HarmonicLearner {
     fn update(&mut self) {
         dff_setup!(
             self, clk, state, cnt, idx, active, pend, ld_i, ld_v, got, m_s, ps, prev, pos, ci, dd,
-            fsh, acc, c, sbin, q, k, sum_p, sum_ps, u, neg, mag, rem, dvd, quo, dsr, rm, b, a,
-            moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb, la, lb, z1, z2, x, big, zneg,
-            ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, twr, twa, twd
+            fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag, rem, dvd, quo, dsr, rm, b, a,
+            moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb, la, lb, z1, z2, xres, big,
+            zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, twr, twa,
+            twd, clr
         );
         self.tab.read_clock.next = self.clk.val();
         self.tab.write_clock.next = self.clk.val();
@@ -828,23 +836,23 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::LineN1 => {
-                self.u.d.next = (self.sum_p.q.val() << self.w64.val()) + self.sum_p.q.val();
+                self.unum.d.next = (self.sum_p.q.val() << self.w64.val()) + self.sum_p.q.val();
                 self.state.d.next = LearnState::LineU;
             }
             LearnState::LineU => {
-                self.t64.next = self.u.q.val() - (self.sum_ps.q.val() << self.one64.val());
-                self.u.d.next = self.t64.val() & self.uw_mask.val();
+                self.t64.next = self.unum.q.val() - (self.sum_ps.q.val() << self.one64.val());
+                self.unum.d.next = self.t64.val() & self.uw_mask.val();
                 if (self.t64.val() & self.uw_sign.val()).any() {
-                    self.u.d.next = self.t64.val() | !self.uw_mask.val();
+                    self.unum.d.next = self.t64.val() | !self.uw_mask.val();
                 }
                 self.state.d.next = LearnState::LineLoad;
             }
             LearnState::LineLoad => {
-                self.abs.next = self.u.q.val();
-                if (self.u.q.val() & self.sign63.val()).any() {
-                    self.abs.next = self.z64.val() - self.u.q.val();
+                self.abs.next = self.unum.q.val();
+                if (self.unum.q.val() & self.sign63.val()).any() {
+                    self.abs.next = self.z64.val() - self.unum.q.val();
                 }
-                self.neg.d.next = (self.u.q.val() & self.sign63.val()).any();
+                self.neg.d.next = (self.unum.q.val() & self.sign63.val()).any();
                 self.rem.d.next = self.abs.val() >> self.lb_lead.val();
                 self.dvd.d.next = self.abs.val() << self.lb_up.val();
                 self.dsr.d.next = self.dline.val();
@@ -965,14 +973,14 @@ impl Logic for HarmonicLearner {
                 } else {
                     self.big.d.next = self.z1.q.val() >= self.h_pos.val();
                 }
-                self.x.d.next = (self.z1.q.val() << self.bf.val()) - self.z2.q.val();
+                self.xres.d.next = (self.z1.q.val() << self.bf.val()) - self.z2.q.val();
                 self.state.d.next = LearnState::ResAbs;
             }
             LearnState::ResAbs => {
-                self.neg.d.next = (self.x.q.val() & self.sign63.val()).any();
-                self.mag.d.next = self.x.q.val();
-                if (self.x.q.val() & self.sign63.val()).any() {
-                    self.mag.d.next = self.z64.val() - self.x.q.val();
+                self.neg.d.next = (self.xres.q.val() & self.sign63.val()).any();
+                self.mag.d.next = self.xres.q.val();
+                if (self.xres.q.val() & self.sign63.val()).any() {
+                    self.mag.d.next = self.z64.val() - self.xres.q.val();
                 }
                 self.state.d.next = LearnState::ResLoad;
             }
@@ -1197,6 +1205,8 @@ impl Logic for HarmonicLearner {
         self.tw_data.next = self.twd.q.val();
         self.bank.next = self.active.q.val();
         self.ld_busy.next = self.pend.q.val();
+        self.clr.d.next = self.state.q.val() == LearnState::Clear;
+        self.clearing.next = self.clr.q.val();
     }
 }
 
@@ -1225,6 +1235,7 @@ impl crate::cosim::CosimBlock for HarmonicLearner {
             Port::new("tw_data", 32),
             Port::new("bank", 1),
             Port::new("ld_busy", 1),
+            Port::new("clearing", 1),
         ]
     }
     fn apply(&mut self, r: &[u64]) {
@@ -1243,6 +1254,7 @@ impl crate::cosim::CosimBlock for HarmonicLearner {
             self.tw_data.val().to_u64(),
             self.bank.val() as u64,
             self.ld_busy.val() as u64,
+            self.clearing.val() as u64,
         ]
     }
 }

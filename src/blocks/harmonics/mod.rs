@@ -80,6 +80,7 @@ pub mod block;
 pub mod hdl;
 pub mod hdl_ram;
 pub mod learn;
+pub mod learned;
 pub mod learner;
 pub mod model;
 pub mod sequencer;

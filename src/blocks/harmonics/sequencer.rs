@@ -505,10 +505,13 @@ pub struct LearnOut {
     pub bank: bool,
     /// A load is pending.
     pub ld_busy: bool,
+    /// The state was Clear in the clock before the edge: with `tw`, it marks the Clear's
+    /// writes (the correction reads zeros meanwhile).
+    pub clearing: bool,
 }
 
 impl LearnOut {
-    /// The row of output port values (tw, tw_addr, tw_data, bank, ld_busy).
+    /// The row of output port values (tw, tw_addr, tw_data, bank, ld_busy, clearing).
     pub fn row(&self) -> Vec<u64> {
         vec![
             self.tw as u64,
@@ -516,6 +519,7 @@ impl LearnOut {
             u64::from(self.tw_data),
             self.bank as u64,
             self.ld_busy as u64,
+            self.clearing as u64,
         ]
     }
 }
@@ -527,6 +531,8 @@ pub struct Sequencer {
     pub params: LearnParams,
     /// The state.
     pub state: State,
+    /// The state was Clear before the last edge ([`LearnOut::clearing`]).
+    was_clear: bool,
     /// The clock of a multi-clock state (Clear, Mult, the divisions).
     cnt: u32,
     /// The bin of Residual and Update.
@@ -705,6 +711,7 @@ impl Sequencer {
         Ok(Sequencer {
             params,
             state: State::Clear,
+            was_clear: false,
             cnt: 0,
             idx: 0,
             start: start.to_vec(),
@@ -771,10 +778,13 @@ impl Sequencer {
     /// One clock: inputs before the edge, outputs after it.
     pub fn step(&mut self, x: LearnIn) -> LearnOut {
         let mut out = LearnOut::default();
+        let was_clear = self.state == State::Clear;
+        self.was_clear = was_clear;
         if x.rst {
             let mut fresh = Sequencer::with_table(self.params, &self.start).expect("checked");
             fresh.banks = std::mem::take(&mut self.banks);
             *self = fresh;
+            self.was_clear = was_clear;
             return self.out(out);
         }
         let pr = self.params;
@@ -1062,6 +1072,7 @@ impl Sequencer {
         LearnOut {
             bank: self.active == 1,
             ld_busy: self.pend,
+            clearing: self.was_clear,
             ..w
         }
     }

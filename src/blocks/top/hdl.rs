@@ -445,6 +445,14 @@ impl Logic for TopRtl {
         self.core.in_valid.next = self.correction.out_valid.val();
         self.core.in_sin.next = self.correction.out_sin.val();
         self.core.in_cos.next = self.correction.out_cos.val();
+        // The learned harmonic table learns from reset unless the register map says
+        // otherwise (below).
+        for j in 0..self.core.h_freeze.len() {
+            self.core.h_freeze[j].next = false;
+            self.core.h_ld[j].next = false;
+            self.core.h_ld_addr[j].next = self.zero.val();
+            self.core.h_ld_data[j].next = self.zero.val();
+        }
         // Monitor: raw samples (full scale), CORDIC magnitude (loss of signal, clipping).
         self.monitor.clk.next = self.clk.val();
         self.monitor.rst.next = self.rst_monitor.q.val();
