@@ -268,12 +268,10 @@ impl Logic for HarmonicCorrectionRam {
         }
         self.ram_a.read_clock.next = self.clk.val();
         self.ram_b.read_clock.next = self.clk.val();
-        self.ram_a.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(
-            self.boff.val() | self.idx.val(),
-        );
-        self.ram_b.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(
-            self.boff.val() | self.nxt.val(),
-        );
+        self.ram_a.read_address.next =
+            bit_cast::<RAM_ADDR_BITS, 32>(self.boff.val() | self.idx.val());
+        self.ram_b.read_address.next =
+            bit_cast::<RAM_ADDR_BITS, 32>(self.boff.val() | self.nxt.val());
         self.z1.d.next = self.z_in.val();
         self.x1.d.next = self.x_in.val();
         self.v1.d.next = self.v_in.val() & !self.rst.val();

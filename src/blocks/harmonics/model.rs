@@ -160,12 +160,7 @@ impl HarmonicRamIn {
     /// The row of input port values (`HarmonicCorrectionRam`'s port order).
     pub fn row(&self) -> Vec<u64> {
         let mut r = self.core.row();
-        r.extend([
-            self.bank as u64,
-            self.tw as u64,
-            self.tw_addr,
-            self.tw_data,
-        ]);
+        r.extend([self.bank as u64, self.tw as u64, self.tw_addr, self.tw_data]);
         r
     }
 }
@@ -186,7 +181,11 @@ pub struct HarmonicRamModel {
 impl HarmonicRamModel {
     /// The block at power-up: the start table in both banks.
     pub fn new(p: &HarmonicParams, entry_width: u32) -> Self {
-        let t: Vec<u64> = p.table.iter().map(|&c| c as u64 & mask(p.z_width)).collect();
+        let t: Vec<u64> = p
+            .table
+            .iter()
+            .map(|&c| c as u64 & mask(p.z_width))
+            .collect();
         HarmonicRamModel {
             p: p.clone(),
             entry_width,
