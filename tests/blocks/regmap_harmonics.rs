@@ -455,3 +455,61 @@ fn bad_table_parameters_are_rejected() {
         assert!(err.contains("16") && err.contains("256"), "{err}");
     }
 }
+
+/// The most eager master: it raises the HARM_ENTRY read in the very clock the HARM_INDEX
+/// write's response first shows (with `bready`). The read still returns the new index's
+/// entry, since the RAM is read at the index's next value (docs/registers.md); then four
+/// ways.
+#[test]
+fn an_entry_read_in_the_clock_of_the_index_writes_response_is_not_stale() {
+    let p = harm_params();
+    let e = 20;
+    let entry = |n: u64| (n as i64 * 4099 - 200_000) as u64 & mask(e);
+    let mut m = RegisterModel::new(&p);
+    let (mut ins, mut outs) = (vec![], vec![]);
+    let mut step = |i: RegIn, ins: &mut Vec<RegIn>, outs: &mut Vec<RegOut>| {
+        let o = m.step(i);
+        ins.push(i);
+        outs.push(o);
+        o
+    };
+    // Reset, then the learner writes the 64 entries of bank 0.
+    for k in 0..66u64 {
+        let mut i = values(0);
+        i.rst = k < 2;
+        if k >= 2 {
+            (i.h_tw, i.h_tw_addr, i.h_tw_data) = (true, k - 2, entry(k - 2));
+        }
+        step(i, &mut ins, &mut outs);
+    }
+    let mut got = vec![];
+    for target in [33u64, 34, 0, 63] {
+        // The write: address and data in one clock (both holders empty).
+        let mut i = values(0);
+        (i.awvalid, i.awaddr, i.wvalid, i.wdata, i.wstrb) = (true, INDEX, true, target, 0xf);
+        let mut o = step(i, &mut ins, &mut outs);
+        while !o.bvalid {
+            o = step(values(0), &mut ins, &mut outs);
+        }
+        // The clock the response first shows: take it and ask for the entry at once.
+        let mut i = values(0);
+        (i.bready, i.arvalid, i.araddr) = (true, true, ENTRY);
+        assert!(o.arready);
+        o = step(i, &mut ins, &mut outs);
+        while !o.rvalid {
+            o = step(values(0), &mut ins, &mut outs);
+        }
+        got.push(o.rdata);
+        let mut i = values(0);
+        i.rready = true;
+        step(i, &mut ins, &mut outs);
+    }
+    let want: Vec<u64> = [33u64, 34, 0, 63]
+        .iter()
+        .map(|&n| sinedec::blocks::sext(entry(n), e) as u64 & mask(32))
+        .collect();
+    assert_eq!(got, want);
+    let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_for(&p)).collect();
+    let model: Vec<Vec<u64>> = outs.iter().map(|o| o.row_for(&p)).collect();
+    four_ways(&p, "regmap_harmonics_eager", &rows, &model);
+}
