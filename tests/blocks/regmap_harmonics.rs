@@ -22,10 +22,11 @@ const ENTRY: u64 = 0x64;
 const BUSY: usize = 40;
 
 /// The learner as its interface describes it (not the RTL): two banks of P entries of E
-/// bits; while `update` it writes an entry every third clock (alternating the banks) and
-/// flips its bank every `window` clocks; a load request waits [`BUSY`] clocks, then lands
-/// in bank 0 and bank 1 on two clocks (each write published), a request while busy is
-/// dropped.
+/// bits, zero after reset, and no write in the 2P + 2 clocks after it (the map clears its
+/// mirror then; docs/registers.md); while `update` it writes an entry every third clock
+/// (alternating the banks) and flips its bank every `window` clocks; a load request waits
+/// [`BUSY`] clocks, then lands in bank 0 and bank 1 on two clocks (each write published),
+/// a request while busy is dropped.
 struct Learner {
     p: usize,
     e: u32,
@@ -72,13 +73,13 @@ impl Learner {
             if k == at + 1 {
                 self.pending = None;
             }
-        } else if self.seen.h_update {
-            if k % 3 == 0 {
+        } else if self.seen.h_update && k >= 2 * self.p + 4 {
+            if k.is_multiple_of(3) {
                 let half = 1i64 << (self.e - 1);
                 let v = self.rng.range(-half, half);
                 write = Some(((k / 3) % 2, (k / 6) % self.p, v));
             }
-            if k % self.window == 0 {
+            if k.is_multiple_of(self.window) {
                 self.bank ^= 1;
             }
         }
@@ -191,9 +192,10 @@ fn the_entries_read_loaded_and_learn_switched_over_axi_four_ways() {
     let p = harm_params();
     let e = 20;
     let pad = |n: usize| (0..n).map(|_| Op::Read(0x00)).collect::<Vec<_>>();
-    // Learning long enough to write every entry of both banks (one every third clock).
+    // Learning long enough to write every entry of both banks (one every third clock, from
+    // clock 2P + 4).
     let mut ops = vec![Op::Read(CONTROL), Op::Read(ENTRY)];
-    ops.extend(pad(140));
+    ops.extend(pad(200));
     // Frozen: each index written, read back, its entry read.
     ops.push(Op::Write(CONTROL, 0, 0b0001));
     for i in [0u64, 1, 17, 63, 64 + 5] {
@@ -381,21 +383,21 @@ fn biss_bytes_load_on_byte_3_and_read_the_entry_four_ways() {
 fn random_traffic_with_a_learning_table_four_ways() {
     let p = params().with_harmonics(256, 22).expect("harmonics");
     let mut r = SplitMix64(41);
-    let ops: Vec<Op> = (0..400)
-        .map(|_| {
-            let a = (r.range(0, REGISTERS.len() as i64) * 4) as u64;
-            let a = if r.unit() < 0.5 {
-                ENTRY - 8 + 4 * (a % 3)
-            } else {
-                a
-            };
-            if r.unit() < 0.5 {
-                Op::Read(a)
-            } else {
-                Op::Write(a, r.range(0, 1 << 31) as u64, r.range(0, 16) as u64)
-            }
-        })
-        .collect();
+    // The mirror's 512 words are cleared first (ID read meanwhile).
+    let mut ops: Vec<Op> = (0..180).map(|_| Op::Read(0x00)).collect();
+    ops.extend((0..400).map(|_| {
+        let a = (r.range(0, REGISTERS.len() as i64) * 4) as u64;
+        let a = if r.unit() < 0.5 {
+            ENTRY - 8 + 4 * (a % 3)
+        } else {
+            a
+        };
+        if r.unit() < 0.5 {
+            Op::Read(a)
+        } else {
+            Op::Write(a, r.range(0, 1 << 31) as u64, r.range(0, 16) as u64)
+        }
+    }));
     let (ins, outs, _, _) = run(&p, &ops, 0.3, 43, 97, 0, |_, i| i);
     assert!(outs.iter().filter(|o| o.h_ld).count() > 5, "loads happened");
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_for(&p)).collect();
@@ -473,12 +475,13 @@ fn an_entry_read_in_the_clock_of_the_index_writes_response_is_not_stale() {
         outs.push(o);
         o
     };
-    // Reset, then the learner writes the 64 entries of bank 0.
-    for k in 0..66u64 {
+    // Reset, the mirror's clear (2P clocks), then the learner writes the 64 entries of
+    // bank 0.
+    for k in 0..200u64 {
         let mut i = values(0);
         i.rst = k < 2;
-        if k >= 2 {
-            (i.h_tw, i.h_tw_addr, i.h_tw_data) = (true, k - 2, entry(k - 2));
+        if k >= 136 {
+            (i.h_tw, i.h_tw_addr, i.h_tw_data) = (true, k - 136, entry(k - 136));
         }
         step(i, &mut ins, &mut outs);
     }
@@ -512,4 +515,41 @@ fn an_entry_read_in_the_clock_of_the_index_writes_response_is_not_stale() {
     let rows: Vec<Vec<u64>> = ins.iter().map(|i| i.row_for(&p)).collect();
     let model: Vec<Vec<u64>> = outs.iter().map(|o| o.row_for(&p)).collect();
     four_ways(&p, "regmap_harmonics_eager", &rows, &model);
+}
+
+/// The map with a 64-entry table of 20-bit entries synthesizes on both families, its mirror
+/// in one block RAM; the figures against the map without it (docs/registers.md).
+#[test]
+fn synthesizes_for_both_families_with_the_mirror_in_block_ram() {
+    use sinedec::synth::{synthesize, Family};
+    let mut figures = vec![];
+    for (p, name) in [
+        (params(), "regmap_plain_synth"),
+        (harm_params(), "regmap_harm_synth"),
+    ] {
+        let mut uut = sinedec::blocks::regmap::hdl::RegisterMap::new(&p);
+        rust_hdl::prelude::Block::connect_all(&mut uut);
+        let v = sinedec::emit::verilog::export(&uut, name, name).expect("export");
+        let dir = crate::common::workdir(name);
+        let x = synthesize(&v, name, Family::Xc3sa, &dir).expect("xc3sa synthesis");
+        let c = synthesize(&v, name, Family::CycloneIve, &dir).expect("cycloneive synthesis");
+        eprintln!(
+            "{name}: xc3sa {} LUT, {} FF, {} BRAM; cycloneive {} LE, {} FF, {} BRAM",
+            x.luts, x.ffs, x.brams, c.luts, c.ffs, c.brams
+        );
+        figures.push((x, c));
+    }
+    let (x0, c0) = &figures[0];
+    let (x1, c1) = &figures[1];
+    assert_eq!(
+        (x0.brams, c0.brams),
+        (0, 0),
+        "no RAM without a learned table"
+    );
+    assert!(x1.brams >= 1 && c1.brams >= 1, "the mirror is a block RAM");
+    // LEARN, the index (6), the staged word (the 20 bits a load takes), the load on its
+    // way (1 + 6 + 20), the clear's counter (32) and flag, three more bits in each one-hot
+    // select: about 100 flip-flops more.
+    let more = x1.ffs as i64 - x0.ffs as i64;
+    assert!((40..=110).contains(&more), "{more} FF more");
 }

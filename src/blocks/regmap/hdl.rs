@@ -156,6 +156,11 @@ pub struct RegisterMap {
     h_learn: Vec<DFF<Bit>>,
     h_index: Vec<DFF<Bits<32>>>,
     h_stage: Vec<DFF<Bits<32>>>,
+    /// The mirror's clear after reset: the address cleared next, and the clear running.
+    /// (Yosys 0.23's `synth_intel` cannot give an M9K initial contents, so the RAM has
+    /// none: the clear makes its words 0, as the learner's table is after reset.)
+    h_clr: Vec<DFF<Bits<32>>>,
+    h_clring: Vec<DFF<Bit>>,
     /// A load on its way to the learner (as `cq_*`: the path from the write registers to
     /// the learner's load request).
     h_ldq: Vec<DFF<Bit>>,
@@ -369,7 +374,7 @@ impl RegisterMap {
         let hc = |v: u64| (0..h).map(|_| c32(v)).collect::<Vec<_>>();
         // The mirror starts as the learner's table does: zero (every word read, 2P, set,
         // so that no read is unknown in Verilog).
-        let ram = || TableMirror::new(2 * points as u64);
+        let ram = TableMirror::default;
         Self {
             h_tw: Default::default(),
             h_tw_addr: Default::default(),
@@ -385,6 +390,8 @@ impl RegisterMap {
             h_index: (0..h).map(|_| DFF::default()).collect(),
             h_stage: (0..h).map(|_| DFF::default()).collect(),
             h_ldq: (0..h).map(|_| DFF::default()).collect(),
+            h_clr: (0..h).map(|_| DFF::default()).collect(),
+            h_clring: (0..h).map(|_| DFF::default()).collect(),
             h_lda: (0..h).map(|_| DFF::default()).collect(),
             h_ldd: (0..h).map(|_| DFF::default()).collect(),
             h_inext: (0..h).map(|_| Default::default()).collect(),
@@ -727,6 +734,17 @@ impl Logic for RegisterMap {
             self.h_ldq[i].clock.next = self.clk.val();
             self.h_lda[i].clock.next = self.clk.val();
             self.h_ldd[i].clock.next = self.clk.val();
+            self.h_clr[i].clock.next = self.clk.val();
+            self.h_clring[i].clock.next = self.clk.val();
+            // The clear: one word a clock from 0 to 2P - 1, pausing while the learner writes.
+            self.h_clr[i].d.next = self.h_clr[i].q.val();
+            self.h_clring[i].d.next = self.h_clring[i].q.val();
+            if self.h_clring[i].q.val() & !self.h_tw.val() {
+                self.h_clr[i].d.next = self.h_clr[i].q.val() + self.one.val();
+                if self.h_clr[i].q.val() == self.h_amask[i].val() {
+                    self.h_clring[i].d.next = false;
+                }
+            }
             self.h_learn[i].d.next = self.h_learn[i].q.val();
             self.h_stage[i].d.next = self.h_stage[i].q.val();
             self.h_ldq[i].d.next = false;
@@ -971,6 +989,8 @@ impl Logic for RegisterMap {
                 self.h_lda[i].d.next = self.zero.val();
                 self.h_ldd[i].d.next = self.zero.val();
                 self.h_inext[i].next = self.zero.val();
+                self.h_clr[i].d.next = self.zero.val();
+                self.h_clring[i].d.next = true;
             }
         }
         // The mirror RAM: written by the learner, read at {bank, index} with the index's
@@ -987,9 +1007,13 @@ impl Logic for RegisterMap {
             }
             self.h_ram[i].clk.next = self.clk.val();
             self.h_ram[i].raddr.next = self.h_raddr[i].val();
-            self.h_ram[i].we.next = self.h_tw.val();
-            self.h_ram[i].waddr.next = self.h_tw_addr.val() & self.h_amask[i].val();
-            self.h_ram[i].wdata.next = self.h_tw_data.val();
+            self.h_ram[i].we.next = self.h_tw.val() | self.h_clring[i].q.val();
+            self.h_ram[i].waddr.next = self.h_clr[i].q.val();
+            self.h_ram[i].wdata.next = self.zero.val();
+            if self.h_tw.val() {
+                self.h_ram[i].waddr.next = self.h_tw_addr.val() & self.h_amask[i].val();
+                self.h_ram[i].wdata.next = self.h_tw_data.val();
+            }
             self.h_update.next = self.h_learn[i].q.val();
             self.h_ld.next = self.h_ldq[i].q.val();
             self.h_ld_addr.next = self.h_lda[i].q.val();
@@ -1014,10 +1038,10 @@ impl Logic for RegisterMap {
 }
 
 /// The mirror of the learner's table: a RAM of 2^[`RAM_ADDR_BITS`] words of
-/// [`RAM_WORD_BITS`] bits (the entries' E <= 24 bits), its first `words` set to 0, with
+/// [`RAM_WORD_BITS`] bits (the entries' E <= 24 bits), without initial contents, with
 /// 32-bit ports (one clock of read latency: `rdata` is the word at the `raddr` of the clock
 /// before, before that clock's write).
-#[derive(LogicBlock)]
+#[derive(LogicBlock, Default)]
 pub struct TableMirror {
     /// System clock.
     pub clk: Signal<In, Clock>,
@@ -1032,31 +1056,6 @@ pub struct TableMirror {
     /// Write data (its low [`RAM_WORD_BITS`] bits).
     pub wdata: Signal<In, Bits<32>>,
     ram: RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
-}
-
-impl TableMirror {
-    /// The RAM with its first `words` words 0 (every word read is set, so that no read is
-    /// unknown in Verilog).
-    pub fn new(words: u64) -> Self {
-        Self {
-            clk: Default::default(),
-            raddr: Default::default(),
-            rdata: Default::default(),
-            we: Default::default(),
-            waddr: Default::default(),
-            wdata: Default::default(),
-            ram: RAM::new(
-                (0..words)
-                    .map(|a| {
-                        (
-                            Bits::<RAM_ADDR_BITS>::from(a),
-                            Bits::<RAM_WORD_BITS>::from(0u64),
-                        )
-                    })
-                    .collect(),
-            ),
-        }
-    }
 }
 
 impl Logic for TableMirror {

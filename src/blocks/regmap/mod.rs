@@ -634,9 +634,8 @@ impl RegmapParams {
     /// HARM_INDEX and HARM_ENTRY decoded, the mirror RAM and the learner's ports used.
     pub fn with_harmonics(mut self, points: u32, entry_width: u32) -> crate::error::Result<Self> {
         let range = crate::blocks::harmonics::POINTS_RANGE;
-        if !(range.contains(&points) && points.is_power_of_two())
-            || !(2..=24).contains(&entry_width)
-        {
+        let ok = range.contains(&points) && points.is_power_of_two();
+        if !(ok && (2..=24).contains(&entry_width)) {
             return Err(crate::error::Error::block_params(
                 "registers",
                 format!(

@@ -284,6 +284,9 @@ struct Regs {
     h_lda: u64,
     h_ldd: u64,
     h_rd: u64,
+    /// The mirror's clear after reset: the next address, running.
+    h_clr: u64,
+    h_clring: bool,
 }
 
 /// The register map, clock by clock.
@@ -318,6 +321,7 @@ impl RegisterModel {
         Regs {
             thr: p.thresholds().map(u64::from),
             h_learn: p.harmonics().is_some(),
+            h_clring: p.harmonics().is_some(),
             ..Regs::default()
         }
     }
@@ -386,8 +390,9 @@ impl RegisterModel {
         let o = self.r;
         let mut n = o;
         if i.rst {
+            let clear = self.r.h_clring.then_some(self.r.h_clr);
             self.r = Self::reset(&self.p);
-            self.table_ram(&i, 0);
+            self.table_ram(&i, 0, clear);
             return self.out();
         }
         let word = |a: u64| (a & mask(ADDR_BITS)) >> 2;
@@ -507,14 +512,22 @@ impl RegisterModel {
             n.rvalid = true;
         }
         n.h_index = inext;
+        if let Some((points, _)) = self.p.harmonics() {
+            // The clear: one word a clock, pausing while the learner writes.
+            if o.h_clring && !i.h_tw {
+                n.h_clr = (o.h_clr + 1) & mask(32);
+                n.h_clring = o.h_clr != 2 * points as u64 - 1;
+            }
+        }
         self.r = n;
-        self.table_ram(&i, inext);
+        self.table_ram(&i, inext, o.h_clring.then_some(o.h_clr));
         self.out()
     }
 
     /// The mirror RAM's clock edge: its read register takes the word at {bank, `index`}
-    /// (before this clock's write), then the learner's write lands.
-    fn table_ram(&mut self, i: &RegIn, index: u64) {
+    /// (before this clock's write), then the learner's write lands, else the clear's at
+    /// `clear`.
+    fn table_ram(&mut self, i: &RegIn, index: u64, clear: Option<u64>) {
         let Some((points, _)) = self.p.harmonics() else {
             return;
         };
@@ -523,6 +536,11 @@ impl RegisterModel {
         if i.h_tw {
             self.ram[(i.h_tw_addr & (2 * p - 1)) as usize] =
                 i.h_tw_data & mask(RAM_WORD_BITS as u32);
+        } else if let Some(a) = clear {
+            // Words beyond 2P are not read: the RTL's clear stops at 2P - 1.
+            if let Some(w) = self.ram.get_mut(a as usize) {
+                *w = 0;
+            }
         }
     }
 
