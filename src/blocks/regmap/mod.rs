@@ -10,6 +10,8 @@
 //!  AR ─► [ar_full, ar_addr] ──► next clock: rdata := reg(ar_addr), rvalid until rready
 //!                                   reading POSITION latches TURNS, VELOCITY (shadows)
 //!  live flags ─► status |= faults (set wins over a clear in the same clock)
+//!  learner's writes (h_tw) ─► mirror RAM [2P] ─► HARM_ENTRY (read at {h_bank, index'})
+//!  HARM_ENTRY write of byte 3 ─► h_ld, h_ld_addr, h_ld_data (two clocks after handshake)
 //! ```
 //!
 //! # Protocol (AXI4-Lite, 32-bit data, byte addresses, [`ADDR_BITS`] bits)
@@ -34,10 +36,22 @@
 //! 0 gives the position reference's `preset` a one-clock pulse (as a rising edge of the
 //! `preset` pin).
 //!
+//! With a learned harmonic table ([`RegmapParams::with_harmonics`]; docs/registers.md, "The
+//! harmonic table") HARM_CONTROL, HARM_INDEX and HARM_ENTRY read and load it: a mirror RAM
+//! of the learner's 2P entries, written by each write the learner publishes, cleared over
+//! 2P clocks after reset, and read at {bank in use, index'} where index' is HARM_INDEX's next
+//! value. The RAM's read register is one clock, so its output in any clock is the entry at
+//! the index in force then: a read taken in the clock the index write's response shows is
+//! fresh. A HARM_ENTRY write stages its bytes; one that takes byte 3 sends the staged word's
+//! low E bits and the index to the learner's load port, two clocks after its handshake.
+//! Without a learned table the three words read 0, writes do nothing, and none of this
+//! logic exists (its registers are `Vec`s of length 0).
+//!
 //! # Widths
 //! Turn counts are M-bit words sign-extended to 32 bits; velocities are the estimator's
 //! `width`-bit words sign-extended to 32 bits (or their low 32 bits when wider); the age is
-//! the capture's 24-bit count.
+//! the capture's 24-bit count. Table entries are E-bit two's complement (2^-8 LSB)
+//! sign-extended to 32 bits; a load keeps the written word's low E bits.
 pub mod block;
 pub mod hdl;
 pub mod model;
