@@ -86,9 +86,28 @@ const HARMLESS: &[&str] = &[
 ];
 
 /// Block-RAM ports Yosys's `memory_bram` mapping may resize (the RAM primitive's data and
-/// parity ports are wider than the inferred memory; the extra bits are unused).
+/// parity ports are wider than the inferred memory; the extra bits are unused). Cyclone's
+/// M9K (`altsyncram`) also has its address cut to the tile's depth when a deeper memory is
+/// split into tiles (the tile select decodes the bits above it).
 const BRAM_PORTS: &[&str] = &[
-    "DI", "DO", "DIP", "DOP", "DIA", "DIB", "DOA", "DOB", "DIPA", "DIPB", "DOPA", "DOPB",
+    "DI",
+    "DO",
+    "DIP",
+    "DOP",
+    "DIA",
+    "DIB",
+    "DOA",
+    "DOB",
+    "DIPA",
+    "DIPB",
+    "DOPA",
+    "DOPB",
+    "data_a",
+    "data_b",
+    "q_a",
+    "q_b",
+    "address_a",
+    "address_b",
 ];
 
 /// A warning that does not change results: one of [`HARMLESS`], or the resizing of a data
@@ -137,7 +156,7 @@ fn classify(cells: &BTreeMap<String, u64>, family: Family) -> SynthStats {
                     s.ffs += n;
                 } else if is("cycloneive_mac_mult") {
                     s.multipliers += n;
-                } else if is("cycloneive_ram_block") {
+                } else if is("cycloneive_ram_block") || name == "altsyncram" {
                     s.brams += n;
                 }
             }

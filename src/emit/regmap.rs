@@ -2,7 +2,7 @@
 //! [`crate::blocks::regmap::REGISTERS`] the RTL's decode comes from: `<name>_regs.rdl`
 //! (SystemRDL, for PeakRDL and the field's other tools), `<name>_regs.json` and the Markdown
 //! table appended to `<name>_params.md`. Written here because no crate writes SystemRDL.
-use crate::blocks::regmap::{Access, RegDef, RegmapParams, ADDR_BITS, REGISTERS};
+use crate::blocks::regmap::{Access, Field, RegDef, RegmapParams, ADDR_BITS, REGISTERS, RO_FIELDS};
 use std::fmt::Write as _;
 
 /// A SystemRDL string literal of `s` (quotes and backslashes escaped).
@@ -10,9 +10,18 @@ fn rdl_str(s: &str) -> String {
     format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
 }
 
+/// Whether field `f` of `r` is read-only inside a read-write register ([`RO_FIELDS`]).
+fn ro_field(r: &RegDef, f: &Field) -> bool {
+    RO_FIELDS.contains(&(r.name, f.name))
+}
+
 /// The SystemRDL field properties of a register's access: constant read-only (ID,
-/// VERSION), live read-only, write-1-to-clear latched by hardware, a write pulse.
-fn field_props(r: &RegDef) -> &'static str {
+/// VERSION), live read-only (also a read-only field of a read-write register),
+/// write-1-to-clear latched by hardware, a write pulse.
+fn field_props(r: &RegDef, f: &Field) -> &'static str {
+    if ro_field(r, f) {
+        return "sw = r; hw = w;";
+    }
     match (r.access, r.name) {
         (Access::Ro, "ID" | "VERSION") => "sw = r; hw = na;",
         (Access::Ro, _) => "sw = r; hw = w;",
@@ -49,7 +58,7 @@ pub fn rdl(p: &RegmapParams, name: &str, header: &str) -> String {
         let _ = writeln!(o, "        name = {};", rdl_str(r.name));
         let _ = writeln!(o, "        desc = {};", rdl_str(r.description));
         for f in r.fields {
-            let reset = if has_reset(r) {
+            let reset = if has_reset(r) && !ro_field(r, f) {
                 let v = (p.reset(r) as u64 >> f.lsb) & crate::blocks::mask(f.width);
                 format!(" = 0x{v:x}")
             } else {
@@ -58,7 +67,7 @@ pub fn rdl(p: &RegmapParams, name: &str, header: &str) -> String {
             let _ = writeln!(
                 o,
                 "        field {{ {} desc = {}; }} {}[{}:{}]{reset};",
-                field_props(r),
+                field_props(r, f),
                 rdl_str(f.description),
                 f.name,
                 f.lsb + f.width - 1,

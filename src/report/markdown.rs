@@ -26,7 +26,7 @@ impl Report {
             ),
             (
                 "fpga",
-                "FPGA resources: Yosys `synth_xilinx -family xc3sa -flatten` and `synth_intel -family cycloneive` through `sinedec::synth` (the project's design rules: no latch, `check -assert`, no unexpected warning). xc3sa LUT4 counts LUT1..LUT4 and INV; MUXCY are carry cells; cycloneive LE counts cycloneive_lcell_comb (its carry chain is inside the LE, so the carry column is 0). Multipliers: MULT18X18*, cycloneive_mac_mult*; block RAM: RAMB16*, cycloneive_ram_block*.".into(),
+                "FPGA resources: Yosys `synth_xilinx -family xc3sa -flatten` and `synth_intel -family cycloneive` through `sinedec::synth` (the project's design rules: no latch, `check -assert`, no unexpected warning). xc3sa LUT4 counts LUT1..LUT4 and INV; MUXCY are carry cells; cycloneive LE counts cycloneive_lcell_comb (its carry chain is inside the LE, so the carry column is 0). Multipliers: MULT18X18*, cycloneive_mac_mult*; block RAM: RAMB16*, cycloneive_ram_block* and altsyncram (M9K).".into(),
             ),
             (
                 "gates",

@@ -41,4 +41,5 @@ mod preamp;
 mod qep;
 mod reference;
 mod regmap;
+mod regmap_harmonics;
 mod rtl_vs_model;

@@ -103,6 +103,8 @@ fn the_systemrdl_compiles_and_agrees_with_the_json_and_the_table() {
             "LOS_RELEASE" => m.los_release(),
             "CLIP_THRESHOLD" => m.clip_threshold(),
             "GAIN_SIN" | "GAIN_COS" => one,
+            // No learned harmonic table here: its words are not decoded.
+            "HARM_CONTROL" => 0,
             _ => r.reset as u64,
         }
     };
@@ -139,6 +141,7 @@ fn the_systemrdl_compiles_and_agrees_with_the_json_and_the_table() {
         "{header}"
     );
     assert!(header.contains("SD_REGS__STATUS__LOS_reset 0x0"));
+    assert!(header.contains("SD_REGS__HARM_CONTROL__LEARN_reset 0x0"));
     // The Markdown table in the parameters.
     let md = std::fs::read_to_string(out.join("sd_params.md")).expect("md");
     for r in REGISTERS {
@@ -215,4 +218,60 @@ fn check_lists_the_map_and_bad_values_are_rejected() {
     .unwrap_err()
     .to_string();
     assert!(e.contains("enable") && e.contains("enabled"), "{e}");
+}
+
+/// With a learned harmonic table (`RegmapParams::with_harmonics`): the SystemRDL compiles
+/// with PeakRDL, HARM_CONTROL.LEARN resets to 1 there and in the JSON and the Markdown,
+/// LOAD_BUSY is a read-only field (no reset) of the read-write HARM_CONTROL.
+#[test]
+fn a_learned_table_resets_learn_to_one_in_every_output() {
+    let l = Loaded::parse(&with_registers(), "r.toml").expect("config");
+    let p = l
+        .derived
+        .registers
+        .expect("registers")
+        .with_harmonics(64, 20)
+        .expect("harmonics");
+    let dir = tempfile::tempdir().expect("dir");
+    let rdl = sinedec::emit::regmap::rdl(&p, "sd", "// test\n");
+    assert!(rdl.contains("sw = r; hw = w; desc = "), "{rdl}");
+    assert!(rdl.contains("LOAD_BUSY[1:1];"), "{rdl}");
+    std::fs::write(dir.path().join("sd_regs.rdl"), &rdl).expect("write");
+    let o = Command::new(peakrdl())
+        .args(["c-header", "sd_regs.rdl", "-o", "sd_regs.h"])
+        .current_dir(dir.path())
+        .output()
+        .expect("peakrdl runs");
+    assert!(
+        o.status.success(),
+        "peakrdl: {}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let header = std::fs::read_to_string(dir.path().join("sd_regs.h")).expect("header");
+    assert!(
+        header.contains("SD_REGS__HARM_CONTROL__LEARN_reset 0x1"),
+        "{header}"
+    );
+    assert!(!header.contains("SD_REGS__HARM_CONTROL__LOAD_BUSY_reset"));
+    assert!(header.contains("SD_REGS__HARM_ENTRY__HARM_ENTRY_reset 0x0"));
+    let json: serde_json::Value =
+        serde_json::from_str(&sinedec::emit::regmap::json(&p).expect("json")).expect("parses");
+    let ctl = json
+        .as_array()
+        .expect("a list")
+        .iter()
+        .find(|r| r["name"] == "HARM_CONTROL")
+        .expect("HARM_CONTROL");
+    assert_eq!(ctl["address"].as_u64(), Some(0x5c));
+    assert_eq!(ctl["reset"].as_u64(), Some(1));
+    let md = sinedec::emit::regmap::markdown(&p);
+    assert!(
+        md.contains("| 0x5c | HARM_CONTROL | rw | 0x00000001 |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| 0x64 | HARM_ENTRY | rw | 0x00000000 |"),
+        "{md}"
+    );
 }

@@ -90,6 +90,11 @@ fn describe(p: &RegmapParams) -> String {
         c[3],
         crate::blocks::correction::codes::phase_of(c[4]),
     );
+    if let Some((points, e)) = p.harmonics() {
+        s.push_str(&format!(
+            "register harmonic table     HARM_CONTROL, HARM_INDEX, HARM_ENTRY: the learned table's {points} entries ({e}-bit, 2^-8 LSB) of the bank in use, LEARN 1 after reset; a HARM_ENTRY write of byte 3 loads entry HARM_INDEX of both banks\n"
+        ));
+    }
     if p.biss_port() {
         s.push_str(&format!(
             "register map over BiSS C    control channel 0x00..0x3F = the map's bytes 64 x bank (bank select 0x40; banks 0..={}), low byte first\n",

@@ -6,9 +6,10 @@
 //! an AND-OR of the words from registers; the write acts from the holders, also registers; every AXI output is a
 //! register or one gate of registers.
 use super::{
-    flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD,
-    REGISTERS, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
+    flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, HARM_WORDS, ID, POSITION_WORD,
+    PRESET_WORD, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
+use crate::blocks::harmonics::hdl_ram::{RAM_ADDR_BITS, RAM_WORD_BITS};
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
@@ -124,8 +125,66 @@ pub struct RegisterMap {
     pub bus_snap: Signal<In, Bit>,
     /// The byte at the address of three clocks before (one more while AXI holds the read select).
     pub bus_rdata: Signal<Out, Bits<8>>,
+    /// The learned harmonic table's learner (used with [`RegmapParams::with_harmonics`],
+    /// else ignored; plain ports as the `bus_*` ones): one clock, the learner writes entry
+    /// `h_tw_addr` = bank * P + i of its table with `h_tw_data`.
+    pub h_tw: Signal<In, Bit>,
+    /// See `h_tw`.
+    pub h_tw_addr: Signal<In, Bits<32>>,
+    /// The entry written, 2^-8 LSB, E-bit two's complement in the low bits.
+    pub h_tw_data: Signal<In, Bits<32>>,
+    /// The learner's bank in use (HARM_ENTRY reads entry i of it).
+    pub h_bank: Signal<In, Bit>,
+    /// The learner has a load pending (HARM_CONTROL.LOAD_BUSY).
+    pub h_ld_busy: Signal<In, Bit>,
+    /// HARM_CONTROL.LEARN: 1, learning moves the entries (0 without a learned table).
+    pub h_update: Signal<Out, Bit>,
+    /// One clock, two clocks after the handshake of a HARM_ENTRY write of byte 3: load
+    /// entry `h_ld_addr` of both banks with `h_ld_data`.
+    pub h_ld: Signal<Out, Bit>,
+    /// The entry i (HARM_INDEX at the write), with `h_ld`.
+    pub h_ld_addr: Signal<Out, Bits<32>>,
+    /// The value, the written word's low E bits, with `h_ld`.
+    pub h_ld_data: Signal<Out, Bits<32>>,
     /// One element with the port, none without: the port's logic is built in its loops.
     bus: Vec<Constant<Bit>>,
+    /// The learned table's logic: one element with [`RegmapParams::with_harmonics`], none
+    /// without (so a map without it has none of it). The mirror of the learner's table,
+    /// written by `h_tw`, read at {bank, HARM_INDEX's next value} (2P words used).
+    h_ram: Vec<TableMirror>,
+    /// HARM_CONTROL.LEARN (reset 1), HARM_INDEX, HARM_ENTRY's staged bytes.
+    h_learn: Vec<DFF<Bit>>,
+    h_index: Vec<DFF<Bits<32>>>,
+    h_stage: Vec<DFF<Bits<32>>>,
+    /// The mirror's clear after reset: the address cleared next, and the clear running.
+    /// (Yosys 0.23's `synth_intel` cannot give an M9K initial contents, so the RAM has
+    /// none: the clear makes its words 0, as the learner's table is after reset.)
+    h_clr: Vec<DFF<Bits<32>>>,
+    h_clring: Vec<DFF<Bit>>,
+    /// A load on its way to the learner (as `cq_*`: the path from the write registers to
+    /// the learner's load request).
+    h_ldq: Vec<DFF<Bit>>,
+    h_lda: Vec<DFF<Bits<32>>>,
+    h_ldd: Vec<DFF<Bits<32>>>,
+    /// HARM_INDEX after this clock's write, the RAM's read address, the staged word with
+    /// this clock's bytes, HARM_ENTRY (the RAM's word sign-extended) and HARM_CONTROL.
+    h_inext: Vec<Signal<Local, Bits<32>>>,
+    h_raddr: Vec<Signal<Local, Bits<32>>>,
+    h_val: Vec<Signal<Local, Bits<32>>>,
+    h_entry: Vec<Signal<Local, Bits<32>>>,
+    h_ctl: Vec<Signal<Local, Bits<32>>>,
+    /// Word indices of HARM_CONTROL, HARM_INDEX, HARM_ENTRY.
+    h_wctl: Vec<Constant<Bits<32>>>,
+    h_widx: Vec<Constant<Bits<32>>>,
+    h_went: Vec<Constant<Bits<32>>>,
+    /// P - 1 (an index's mask), P (bank 1's offset), 2P - 1 (a write address's mask).
+    h_imask: Vec<Constant<Bits<32>>>,
+    h_pone: Vec<Constant<Bits<32>>>,
+    h_amask: Vec<Constant<Bits<32>>>,
+    /// An entry's E bits, its sign bit and the fill above it.
+    h_emask: Vec<Constant<Bits<32>>>,
+    h_esign: Vec<Constant<Bits<32>>>,
+    h_efill: Vec<Constant<Bits<32>>>,
     aw_full: DFF<Bit>,
     /// The held write address as a one-hot word select (as `ar_sel`). Timing: the write
     /// decode is an AND of registers, no compare after the AXI/BiSS choice.
@@ -310,7 +369,45 @@ impl RegisterMap {
             w => (mask(w), 1u64 << (w - 1)),
         };
         let wc = |k: u32| c32(k as u64);
+        let (points, ew) = p.harmonics().unwrap_or((0, 0));
+        let h = usize::from(p.harmonics().is_some());
+        let hc = |v: u64| (0..h).map(|_| c32(v)).collect::<Vec<_>>();
+        // The mirror starts as the learner's table does: zero (every word read, 2P, set,
+        // so that no read is unknown in Verilog).
+        let ram = TableMirror::default;
         Self {
+            h_tw: Default::default(),
+            h_tw_addr: Default::default(),
+            h_tw_data: Default::default(),
+            h_bank: Default::default(),
+            h_ld_busy: Default::default(),
+            h_update: Default::default(),
+            h_ld: Default::default(),
+            h_ld_addr: Default::default(),
+            h_ld_data: Default::default(),
+            h_ram: (0..h).map(|_| ram()).collect(),
+            h_learn: (0..h).map(|_| DFF::default()).collect(),
+            h_index: (0..h).map(|_| DFF::default()).collect(),
+            h_stage: (0..h).map(|_| DFF::default()).collect(),
+            h_ldq: (0..h).map(|_| DFF::default()).collect(),
+            h_clr: (0..h).map(|_| DFF::default()).collect(),
+            h_clring: (0..h).map(|_| DFF::default()).collect(),
+            h_lda: (0..h).map(|_| DFF::default()).collect(),
+            h_ldd: (0..h).map(|_| DFF::default()).collect(),
+            h_inext: (0..h).map(|_| Default::default()).collect(),
+            h_raddr: (0..h).map(|_| Default::default()).collect(),
+            h_val: (0..h).map(|_| Default::default()).collect(),
+            h_entry: (0..h).map(|_| Default::default()).collect(),
+            h_ctl: (0..h).map(|_| Default::default()).collect(),
+            h_wctl: hc(HARM_WORDS[0] as u64),
+            h_widx: hc(HARM_WORDS[1] as u64),
+            h_went: hc(HARM_WORDS[2] as u64),
+            h_imask: hc(points.saturating_sub(1) as u64),
+            h_pone: hc(points as u64),
+            h_amask: hc((2 * points as u64).saturating_sub(1)),
+            h_emask: hc(mask(ew)),
+            h_esign: hc(if ew == 0 { 0 } else { 1u64 << (ew - 1) }),
+            h_efill: hc(mask(32) & !mask(ew)),
             clk: Default::default(),
             rst: Default::default(),
             s_axi_awaddr: Default::default(),
@@ -420,7 +517,7 @@ impl RegisterMap {
             bhigh: c32(mask(32) & !mask(ADDR_BITS)),
             bmask8: c32(0xff),
             three: c32(3),
-            selmask: c32(mask(REGISTERS.len() as u32)),
+            selmask: c32(mask(p.words())),
             two: c32(2),
             w_status: wc(STATUS_WORD),
             w_preset: wc(PRESET_WORD),
@@ -628,6 +725,55 @@ impl Logic for RegisterMap {
                     (self.thr_clip.q.val() & !self.wq_msk.q.val()) | self.wq_bits.q.val();
             }
         }
+        // The learned table's registers: LEARN, the index, HARM_ENTRY's bytes staged; a
+        // write that takes byte 3 sends the whole staged word to the learner.
+        for i in 0..self.h_ram.len() {
+            self.h_learn[i].clock.next = self.clk.val();
+            self.h_index[i].clock.next = self.clk.val();
+            self.h_stage[i].clock.next = self.clk.val();
+            self.h_ldq[i].clock.next = self.clk.val();
+            self.h_lda[i].clock.next = self.clk.val();
+            self.h_ldd[i].clock.next = self.clk.val();
+            self.h_clr[i].clock.next = self.clk.val();
+            self.h_clring[i].clock.next = self.clk.val();
+            // The clear: one word a clock from 0 to 2P - 1, pausing while the learner writes.
+            self.h_clr[i].d.next = self.h_clr[i].q.val();
+            self.h_clring[i].d.next = self.h_clring[i].q.val();
+            if self.h_clring[i].q.val() & !self.h_tw.val() {
+                self.h_clr[i].d.next = self.h_clr[i].q.val() + self.one.val();
+                if self.h_clr[i].q.val() == self.h_amask[i].val() {
+                    self.h_clring[i].d.next = false;
+                }
+            }
+            self.h_learn[i].d.next = self.h_learn[i].q.val();
+            self.h_stage[i].d.next = self.h_stage[i].q.val();
+            self.h_ldq[i].d.next = false;
+            self.h_lda[i].d.next = self.h_lda[i].q.val();
+            self.h_ldd[i].d.next = self.h_ldd[i].q.val();
+            self.h_inext[i].next = self.h_index[i].q.val();
+            self.h_val[i].next =
+                (self.h_stage[i].q.val() & !self.wq_msk.q.val()) | self.wq_bits.q.val();
+            if self.wq_en.q.val() {
+                if (self.wq_sel.q.val() & (self.one.val() << self.h_wctl[i].val())).any()
+                    & (self.wq_msk.q.val() & self.one.val()).any()
+                {
+                    self.h_learn[i].d.next = (self.wq_bits.q.val() & self.one.val()).any();
+                }
+                if (self.wq_sel.q.val() & (self.one.val() << self.h_widx[i].val())).any() {
+                    self.h_inext[i].next = ((self.h_index[i].q.val() & !self.wq_msk.q.val())
+                        | self.wq_bits.q.val())
+                        & self.h_imask[i].val();
+                }
+                if (self.wq_sel.q.val() & (self.one.val() << self.h_went[i].val())).any() {
+                    self.h_stage[i].d.next = self.h_val[i].val();
+                    if (self.wq_msk.q.val() & self.s3.val()).any() {
+                        self.h_ldq[i].d.next = true;
+                        self.h_lda[i].d.next = self.h_index[i].q.val();
+                        self.h_ldd[i].d.next = self.h_val[i].val() & self.h_emask[i].val();
+                    }
+                }
+            }
+        }
         // Faults: set wins over a clear in the same clock.
         self.status.d.next = (self.status.q.val() & !self.clear.val() & self.fmask.val())
             | (self.flags.val() & self.fmask.val());
@@ -669,6 +815,21 @@ impl Logic for RegisterMap {
                 self.w5.next = self.bpos.q.val();
                 self.w6.next = self.btur.q.val();
                 self.w7.next = self.bvel.q.val();
+            }
+        }
+        // The learned table's words: HARM_CONTROL, and HARM_ENTRY from the mirror RAM's
+        // read register (the entry at the address of the clock before).
+        for i in 0..self.h_ram.len() {
+            self.h_ctl[i].next = self.zero.val();
+            if self.h_learn[i].q.val() {
+                self.h_ctl[i].next = self.one.val();
+            }
+            if self.h_ld_busy.val() {
+                self.h_ctl[i].next = self.h_ctl[i].val() | self.two.val();
+            }
+            self.h_entry[i].next = self.h_ram[i].rdata.val() & self.h_emask[i].val();
+            if (self.h_ram[i].rdata.val() & self.h_esign[i].val()).any() {
+                self.h_entry[i].next = self.h_entry[i].val() | self.h_efill[i].val();
             }
         }
         // The read data: an AND-OR of the words by the one-hot select.
@@ -738,6 +899,17 @@ impl Logic for RegisterMap {
         }
         if (self.rsel.val() & (self.one.val() << self.w_ck.val())).any() {
             self.rmux.next = self.rmux.val() | self.cor_phase.val();
+        }
+        for i in 0..self.h_ram.len() {
+            if (self.rsel.val() & (self.one.val() << self.h_wctl[i].val())).any() {
+                self.rmux.next = self.rmux.val() | self.h_ctl[i].val();
+            }
+            if (self.rsel.val() & (self.one.val() << self.h_widx[i].val())).any() {
+                self.rmux.next = self.rmux.val() | self.h_index[i].q.val();
+            }
+            if (self.rsel.val() & (self.one.val() << self.h_went[i].val())).any() {
+                self.rmux.next = self.rmux.val() | self.h_entry[i].val();
+            }
         }
         if self.ar_full.q.val() {
             self.rdata.d.next = self.rmux.val();
@@ -809,6 +981,43 @@ impl Logic for RegisterMap {
             self.thr_los.d.next = self.t0_los.val();
             self.thr_rel.d.next = self.t0_rel.val();
             self.thr_clip.d.next = self.t0_clip.val();
+            for i in 0..self.h_ram.len() {
+                self.h_learn[i].d.next = true;
+                self.h_index[i].d.next = self.zero.val();
+                self.h_stage[i].d.next = self.zero.val();
+                self.h_ldq[i].d.next = false;
+                self.h_lda[i].d.next = self.zero.val();
+                self.h_ldd[i].d.next = self.zero.val();
+                self.h_inext[i].next = self.zero.val();
+                self.h_clr[i].d.next = self.zero.val();
+                self.h_clring[i].d.next = true;
+            }
+        }
+        // The mirror RAM: written by the learner, read at {bank, index} with the index's
+        // next value, so that its read register holds the entry of the index now in force.
+        self.h_update.next = false;
+        self.h_ld.next = false;
+        self.h_ld_addr.next = self.zero.val();
+        self.h_ld_data.next = self.zero.val();
+        for i in 0..self.h_ram.len() {
+            self.h_index[i].d.next = self.h_inext[i].val();
+            self.h_raddr[i].next = self.h_inext[i].val();
+            if self.h_bank.val() {
+                self.h_raddr[i].next = self.h_inext[i].val() | self.h_pone[i].val();
+            }
+            self.h_ram[i].clk.next = self.clk.val();
+            self.h_ram[i].raddr.next = self.h_raddr[i].val();
+            self.h_ram[i].we.next = self.h_tw.val() | self.h_clring[i].q.val();
+            self.h_ram[i].waddr.next = self.h_clr[i].q.val();
+            self.h_ram[i].wdata.next = self.zero.val();
+            if self.h_tw.val() {
+                self.h_ram[i].waddr.next = self.h_tw_addr.val() & self.h_amask[i].val();
+                self.h_ram[i].wdata.next = self.h_tw_data.val();
+            }
+            self.h_update.next = self.h_learn[i].q.val();
+            self.h_ld.next = self.h_ldq[i].q.val();
+            self.h_ld_addr.next = self.h_lda[i].q.val();
+            self.h_ld_data.next = self.h_ldd[i].q.val();
         }
         self.los_threshold.next = self.thr_los.q.val();
         self.los_release.next = self.thr_rel.q.val();
@@ -825,6 +1034,40 @@ impl Logic for RegisterMap {
         self.cor_ld.next = self.cq_ld.q.val();
         self.cor_bits.next = self.cq_bits.q.val();
         self.cor_msk.next = self.cq_msk.q.val();
+    }
+}
+
+/// The mirror of the learner's table: a RAM of 2^[`RAM_ADDR_BITS`] words of
+/// [`RAM_WORD_BITS`] bits (the entries' E <= 24 bits), without initial contents, with
+/// 32-bit ports (one clock of read latency: `rdata` is the word at the `raddr` of the clock
+/// before, before that clock's write).
+#[derive(LogicBlock, Default)]
+pub struct TableMirror {
+    /// System clock.
+    pub clk: Signal<In, Clock>,
+    /// Read address (its low [`RAM_ADDR_BITS`] bits).
+    pub raddr: Signal<In, Bits<32>>,
+    /// The word at the read address of the clock before, zero-extended.
+    pub rdata: Signal<Out, Bits<32>>,
+    /// Write `wdata` at `waddr` this clock.
+    pub we: Signal<In, Bit>,
+    /// Write address (its low [`RAM_ADDR_BITS`] bits).
+    pub waddr: Signal<In, Bits<32>>,
+    /// Write data (its low [`RAM_WORD_BITS`] bits).
+    pub wdata: Signal<In, Bits<32>>,
+    ram: RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+}
+
+impl Logic for TableMirror {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.ram.read_clock.next = self.clk.val();
+        self.ram.write_clock.next = self.clk.val();
+        self.ram.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.raddr.val());
+        self.ram.write_enable.next = self.we.val();
+        self.ram.write_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.waddr.val());
+        self.ram.write_data.next = bit_cast::<RAM_WORD_BITS, 32>(self.wdata.val());
+        self.rdata.next = bit_cast::<32, RAM_WORD_BITS>(self.ram.read_data.val());
     }
 }
 
@@ -870,6 +1113,15 @@ impl crate::cosim::CosimBlock for RegisterMap {
                 Port::new("bus_snap", 1),
             ]
         }))
+        .chain(self.h_ram.iter().flat_map(|_| {
+            [
+                Port::new("h_tw", 1),
+                Port::new("h_tw_addr", 32),
+                Port::new("h_tw_data", 32),
+                Port::new("h_bank", 1),
+                Port::new("h_ld_busy", 1),
+            ]
+        }))
         .collect()
     }
     fn output_ports(&self) -> Vec<Port> {
@@ -892,6 +1144,14 @@ impl crate::cosim::CosimBlock for RegisterMap {
         ]
         .into_iter()
         .chain(self.bus.iter().map(|_| Port::new("bus_rdata", 8)))
+        .chain(self.h_ram.iter().flat_map(|_| {
+            [
+                Port::new("h_update", 1),
+                Port::new("h_ld", 1),
+                Port::new("h_ld_addr", 32),
+                Port::new("h_ld_data", 32),
+            ]
+        }))
         .collect()
     }
     fn apply(&mut self, r: &[u64]) {
@@ -925,11 +1185,20 @@ impl crate::cosim::CosimBlock for RegisterMap {
         self.cor_gain_s.next = b32(r[26]);
         self.cor_gain_c.next = b32(r[27]);
         self.cor_phase.next = b32(r[28]);
+        let mut k = 29;
         if !self.bus.is_empty() {
-            self.bus_addr.next = b32(r[29]);
-            self.bus_we.next = r[30] != 0;
-            self.bus_wdata.next = Bits::<8>::from(r[31] & 0xff);
-            self.bus_snap.next = r[32] != 0;
+            self.bus_addr.next = b32(r[k]);
+            self.bus_we.next = r[k + 1] != 0;
+            self.bus_wdata.next = Bits::<8>::from(r[k + 2] & 0xff);
+            self.bus_snap.next = r[k + 3] != 0;
+            k += 4;
+        }
+        if !self.h_ram.is_empty() {
+            self.h_tw.next = r[k] != 0;
+            self.h_tw_addr.next = b32(r[k + 1]);
+            self.h_tw_data.next = b32(r[k + 2]);
+            self.h_bank.next = r[k + 3] != 0;
+            self.h_ld_busy.next = r[k + 4] != 0;
         }
     }
     fn sample(&self) -> Vec<u64> {
@@ -952,6 +1221,14 @@ impl crate::cosim::CosimBlock for RegisterMap {
         ]
         .into_iter()
         .chain(self.bus.iter().map(|_| self.bus_rdata.val().to_u64()))
+        .chain(self.h_ram.iter().flat_map(|_| {
+            [
+                self.h_update.val() as u64,
+                self.h_ld.val() as u64,
+                self.h_ld_addr.val().to_u64(),
+                self.h_ld_data.val().to_u64(),
+            ]
+        }))
         .collect()
     }
 }

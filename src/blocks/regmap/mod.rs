@@ -10,6 +10,8 @@
 //!  AR ─► [ar_full, ar_addr] ──► next clock: rdata := reg(ar_addr), rvalid until rready
 //!                                   reading POSITION latches TURNS, VELOCITY (shadows)
 //!  live flags ─► status |= faults (set wins over a clear in the same clock)
+//!  learner's writes (h_tw) ─► mirror RAM [2P] ─► HARM_ENTRY (read at {h_bank, index'})
+//!  HARM_ENTRY write of byte 3 ─► h_ld, h_ld_addr, h_ld_data (two clocks after handshake)
 //! ```
 //!
 //! # Protocol (AXI4-Lite, 32-bit data, byte addresses, [`ADDR_BITS`] bits)
@@ -34,10 +36,22 @@
 //! 0 gives the position reference's `preset` a one-clock pulse (as a rising edge of the
 //! `preset` pin).
 //!
+//! With a learned harmonic table ([`RegmapParams::with_harmonics`]; docs/registers.md, "The
+//! harmonic table") HARM_CONTROL, HARM_INDEX and HARM_ENTRY read and load it: a mirror RAM
+//! of the learner's 2P entries, written by each write the learner publishes, cleared over
+//! 2P clocks after reset, and read at {bank in use, index'} where index' is HARM_INDEX's next
+//! value. The RAM's read register is one clock, so its output in any clock is the entry at
+//! the index in force then: a read taken in the clock the index write's response shows is
+//! fresh. A HARM_ENTRY write stages its bytes; one that takes byte 3 sends the staged word's
+//! low E bits and the index to the learner's load port, two clocks after its handshake.
+//! Without a learned table the three words read 0, writes do nothing, and none of this
+//! logic exists (its registers are `Vec`s of length 0).
+//!
 //! # Widths
 //! Turn counts are M-bit words sign-extended to 32 bits; velocities are the estimator's
 //! `width`-bit words sign-extended to 32 bits (or their low 32 bits when wider); the age is
-//! the capture's 24-bit count.
+//! the capture's 24-bit count. Table entries are E-bit two's complement (2^-8 LSB)
+//! sign-extended to 32 bits; a load keeps the written word's low E bits.
 pub mod block;
 pub mod hdl;
 pub mod model;
@@ -497,7 +511,59 @@ pub const REGISTERS: &[RegDef] = &[
             },
         ],
     },
+    RegDef {
+        name: "HARM_CONTROL",
+        address: 0x5c,
+        width: 32,
+        access: Access::Rw,
+        reset: 1,
+        description: "learned harmonic table: LEARN lets learning move the entries, LOAD_BUSY a load pending (reads 0, writes ignored without a learned table)",
+        fields: &[
+            Field {
+                name: "LEARN",
+                lsb: 0,
+                width: 1,
+                description: "1: learning moves the entries (reset); 0: the table is frozen",
+            },
+            Field {
+                name: "LOAD_BUSY",
+                lsb: 1,
+                width: 1,
+                description: "read only: 1 while a load of HARM_ENTRY is pending (a write to HARM_ENTRY meanwhile is dropped)",
+            },
+        ],
+    },
+    RegDef {
+        name: "HARM_INDEX",
+        address: 0x60,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "learned harmonic table: the entry i that HARM_ENTRY reads and loads (reads 0, writes ignored without a learned table)",
+        fields: &[Field {
+            name: "INDEX",
+            lsb: 0,
+            width: 8,
+            description: "entry i, 0..P-1 (the low p = log2 P bits kept)",
+        }],
+    },
+    RegDef {
+        name: "HARM_ENTRY",
+        address: 0x64,
+        width: 32,
+        access: Access::Rw,
+        reset: 0,
+        description: "learned harmonic table: entry HARM_INDEX of the bank in use, 2^-8 LSB, sign-extended; writing byte 3 loads the word's low E bits into that entry of both banks (docs/registers.md, \"The harmonic table\")",
+        fields: &whole(
+            "HARM_ENTRY",
+            "signed, 2^-8 LSB; a write of byte 3 (with the bytes staged before it) keeps the low E bits as an E-bit signed number",
+        ),
+    },
 ];
+
+/// Read-only fields inside a read-write register (register, field): their value is the
+/// hardware's, a write leaves them.
+pub const RO_FIELDS: &[(&str, &str)] = &[("HARM_CONTROL", "LOAD_BUSY")];
 
 /// Word indices of the correction's codes (OFFSET_SIN, OFFSET_COS, GAIN_SIN, GAIN_COS,
 /// PHASE, in [`crate::blocks::correction::codes::WORDS`] order): live values of the
@@ -508,6 +574,11 @@ pub const CODE_WORDS: [u32; 5] = [18, 19, 20, 21, 22];
 /// Word indices of the run-time monitor thresholds (LOS_THRESHOLD, LOS_RELEASE,
 /// CLIP_THRESHOLD), whose reset values are the config's ([`RegmapParams::reset`]).
 pub const THRESHOLD_WORDS: [u32; 3] = [15, 16, 17];
+
+/// Word indices of the learned harmonic table's registers (HARM_CONTROL, HARM_INDEX,
+/// HARM_ENTRY): decoded only with [`RegmapParams::with_harmonics`], else they read 0 and
+/// writes do nothing.
+pub const HARM_WORDS: [u32; 3] = [23, 24, 25];
 
 /// The sinedec version as VERSION holds it: major << 16 | minor << 8 | patch (each part
 /// modulo 256), from the package version at compile time.
@@ -537,6 +608,9 @@ pub struct RegmapParams {
     biss_port: bool,
     thresholds: [u32; 3],
     codes: [u32; 5],
+    /// log2 P of the learned table (0: no learned table) and its entries' width E.
+    harm_points_log2: u32,
+    harm_entry_width: u32,
 }
 
 impl RegmapParams {
@@ -565,7 +639,42 @@ impl RegmapParams {
             biss_port: false,
             thresholds: [0; 3],
             codes: [0; 5],
+            harm_points_log2: 0,
+            harm_entry_width: 0,
         })
+    }
+    /// With the learned harmonic table of `points` entries (a power of two, 16..=256) of
+    /// `entry_width` bits (E, two's complement in 2^-8 LSB, 2..=24): HARM_CONTROL,
+    /// HARM_INDEX and HARM_ENTRY decoded, the mirror RAM and the learner's ports used.
+    pub fn with_harmonics(mut self, points: u32, entry_width: u32) -> crate::error::Result<Self> {
+        let range = crate::blocks::harmonics::POINTS_RANGE;
+        let ok = range.contains(&points) && points.is_power_of_two();
+        if !(ok && (2..=24).contains(&entry_width)) {
+            return Err(crate::error::Error::block_params(
+                "registers",
+                format!(
+                    "a learned table of {points} entries of {entry_width} bits: allowed a power of two from {} to {} entries of 2 to 24 bits",
+                    range.start(),
+                    range.end()
+                ),
+            ));
+        }
+        self.harm_points_log2 = points.trailing_zeros();
+        self.harm_entry_width = entry_width;
+        Ok(self)
+    }
+    /// The learned table's (P, E), or None without one.
+    pub fn harmonics(&self) -> Option<(u32, u32)> {
+        (self.harm_points_log2 > 0).then(|| (1 << self.harm_points_log2, self.harm_entry_width))
+    }
+    /// The words the map decodes: every register of [`REGISTERS`] with a learned table, all
+    /// but HARM_CONTROL, HARM_INDEX and HARM_ENTRY without one.
+    pub fn words(&self) -> u32 {
+        if self.harmonics().is_some() {
+            REGISTERS.len() as u32
+        } else {
+            HARM_WORDS[0]
+        }
     }
     /// With the monitor's configured loss-of-signal threshold, release level and clipping
     /// threshold: the reset values of LOS_THRESHOLD, LOS_RELEASE and CLIP_THRESHOLD.
@@ -588,12 +697,13 @@ impl RegmapParams {
         self.codes
     }
     /// The value register `r` holds after reset: the table's, or a configured threshold
-    /// or code.
+    /// or code; 0 for a word the map does not decode (the harmonic table's without one).
     pub fn reset(&self, r: &RegDef) -> u32 {
         let at = |words: &[u32]| words.iter().position(|&w| w * 4 == r.address);
         match (at(&THRESHOLD_WORDS), at(&CODE_WORDS)) {
             (Some(k), _) => self.thresholds[k],
             (_, Some(k)) => self.codes[k],
+            _ if r.address / 4 >= self.words() => 0,
             _ => r.reset,
         }
     }

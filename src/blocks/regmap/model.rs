@@ -1,9 +1,10 @@
 //! Bit-accurate model of the register map: the same registers as the RTL, updated once per
 //! clock edge; `step` returns what the outputs show after the edge.
 use super::{
-    flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, ID, POSITION_WORD, PRESET_WORD,
-    STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
+    flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, HARM_WORDS, ID, POSITION_WORD,
+    PRESET_WORD, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
+use crate::blocks::harmonics::hdl_ram::RAM_WORD_BITS;
 use crate::blocks::mask;
 
 /// Inputs of one clock cycle: the AXI4-Lite master's signals and the decoder's values.
@@ -70,6 +71,17 @@ pub struct RegIn {
     /// One clock: a read of the byte at `bus_addr` begins; at POSITION's byte 0 it
     /// latches the channel's own POSITION, TURNS and VELOCITY.
     pub bus_snap: bool,
+    /// The learner (with [`RegmapParams::with_harmonics`]): one clock, it writes entry
+    /// `h_tw_addr` = bank * P + i of its table with `h_tw_data` (E bits, 2^-8 LSB).
+    pub h_tw: bool,
+    /// See `h_tw`.
+    pub h_tw_addr: u64,
+    /// See `h_tw`.
+    pub h_tw_data: u64,
+    /// The learner's bank in use.
+    pub h_bank: bool,
+    /// The learner has a load pending.
+    pub h_ld_busy: bool,
 }
 
 impl RegIn {
@@ -119,6 +131,25 @@ impl RegIn {
         ]);
         r
     }
+    /// The stimulus row of the map `p`: [`Self::row`], the BiSS port's inputs with
+    /// [`RegmapParams::biss_port`], the learner's with [`RegmapParams::with_harmonics`].
+    pub fn row_for(&self, p: &RegmapParams) -> Vec<u64> {
+        let mut r = if p.biss_port() {
+            self.row_with_bus()
+        } else {
+            self.row()
+        };
+        if p.harmonics().is_some() {
+            r.extend([
+                self.h_tw as u64,
+                self.h_tw_addr & mask(32),
+                self.h_tw_data & mask(32),
+                self.h_bank as u64,
+                self.h_ld_busy as u64,
+            ]);
+        }
+        r
+    }
 }
 
 /// Outputs after one clock edge.
@@ -149,6 +180,14 @@ pub struct RegOut {
     /// The BiSS byte port's read data: the byte at the `bus_addr` of three clocks before
     /// (one clock later while an AXI read holds the shared read select).
     pub bus_rdata: u64,
+    /// HARM_CONTROL.LEARN (to the learner's `update`).
+    pub h_update: bool,
+    /// One clock: load entry `h_ld_addr` with `h_ld_data` (E bits).
+    pub h_ld: bool,
+    /// See `h_ld`.
+    pub h_ld_addr: u64,
+    /// See `h_ld`.
+    pub h_ld_data: u64,
 }
 
 impl RegOut {
@@ -176,6 +215,23 @@ impl RegOut {
     pub fn row_with_bus(&self) -> Vec<u64> {
         let mut r = self.row();
         r.push(self.bus_rdata);
+        r
+    }
+    /// The trace row of the map `p` (as [`RegIn::row_for`]).
+    pub fn row_for(&self, p: &RegmapParams) -> Vec<u64> {
+        let mut r = if p.biss_port() {
+            self.row_with_bus()
+        } else {
+            self.row()
+        };
+        if p.harmonics().is_some() {
+            r.extend([
+                self.h_update as u64,
+                self.h_ld as u64,
+                self.h_ld_addr,
+                self.h_ld_data,
+            ]);
+        }
         r
     }
 }
@@ -219,6 +275,18 @@ struct Regs {
     wq: Option<(u64, u64, u64)>,
     /// A write on its way to the correction: load bits (a code's word only), bits, mask.
     cq: (u64, u64, u64),
+    /// The learned table: HARM_CONTROL.LEARN, HARM_INDEX, HARM_ENTRY's staged bytes, a
+    /// load on its way (request, entry, value) and the mirror RAM's read register.
+    h_learn: bool,
+    h_index: u64,
+    h_stage: u64,
+    h_ld: bool,
+    h_lda: u64,
+    h_ldd: u64,
+    h_rd: u64,
+    /// The mirror's clear after reset: the next address, running.
+    h_clr: u64,
+    h_clring: bool,
 }
 
 /// The register map, clock by clock.
@@ -226,6 +294,8 @@ struct Regs {
 pub struct RegisterModel {
     p: RegmapParams,
     r: Regs,
+    /// The mirror of the learner's table (2P words, both banks; not touched by reset).
+    ram: Vec<u64>,
 }
 
 /// The byte strobes as a bit mask of the 32-bit word.
@@ -238,9 +308,11 @@ fn strobe_mask(strb: u64) -> u64 {
 impl RegisterModel {
     /// The block after power-up (every register 0).
     pub fn new(p: &RegmapParams) -> Self {
+        let words = p.harmonics().map_or(0, |(points, _)| 2 * points as usize);
         Self {
             p: *p,
             r: Self::reset(p),
+            ram: vec![0; words],
         }
     }
 
@@ -248,6 +320,8 @@ impl RegisterModel {
     fn reset(p: &RegmapParams) -> Regs {
         Regs {
             thr: p.thresholds().map(u64::from),
+            h_learn: p.harmonics().is_some(),
+            h_clring: p.harmonics().is_some(),
             ..Regs::default()
         }
     }
@@ -298,6 +372,14 @@ impl RegisterModel {
                 let k = CODE_WORDS.iter().position(|&t| t == w).unwrap_or(0);
                 i.cor[k]
             }
+            w if w == HARM_WORDS[0] && p.harmonics().is_some() => {
+                self.r.h_learn as u64 | (i.h_ld_busy as u64) << 1
+            }
+            w if w == HARM_WORDS[1] && p.harmonics().is_some() => self.r.h_index,
+            w if w == HARM_WORDS[2] => match p.harmonics() {
+                Some((_, e)) => crate::blocks::sext(self.r.h_rd, e) as u64,
+                None => 0,
+            },
             _ => 0,
         };
         v & mask(32)
@@ -308,7 +390,9 @@ impl RegisterModel {
         let o = self.r;
         let mut n = o;
         if i.rst {
+            let clear = self.r.h_clring.then_some(self.r.h_clr);
             self.r = Self::reset(&self.p);
+            self.table_ram(&i, 0, clear);
             return self.out();
         }
         let word = |a: u64| (a & mask(ADDR_BITS)) >> 2;
@@ -346,11 +430,30 @@ impl RegisterModel {
             n.bw_data = i.bus_wdata & 0xff;
         }
         n.wq = write;
+        n.h_ld = false;
+        let mut inext = o.h_index;
         // Every write's bits and mask go on to the correction; the load bits select a code.
         n.cq = o.wq.map_or((0, 0, 0), |(_, bits, m)| (0, bits, m));
         if let Some((w, bits, m)) = o.wq {
             if let Some(k) = CODE_WORDS.iter().position(|&t| t as u64 == w) {
                 n.cq.0 = 1 << k;
+            }
+            if let Some((points, e)) = self.p.harmonics() {
+                match w {
+                    w if w == HARM_WORDS[0] as u64 && m & 1 == 1 => n.h_learn = bits & 1 == 1,
+                    w if w == HARM_WORDS[1] as u64 => {
+                        inext = ((o.h_index & !m) | bits) & (points as u64 - 1);
+                    }
+                    w if w == HARM_WORDS[2] as u64 => {
+                        // The bytes staged; byte 3 sends the whole word to the learner.
+                        let v = (o.h_stage & !m) | bits;
+                        n.h_stage = v;
+                        if m >> 24 & 0xff != 0 {
+                            (n.h_ld, n.h_lda, n.h_ldd) = (true, o.h_index, v & mask(e));
+                        }
+                    }
+                    _ => {}
+                }
             }
             match w {
                 w if w == STATUS_WORD as u64 => clear = bits,
@@ -408,8 +511,37 @@ impl RegisterModel {
             n.ar_full = false;
             n.rvalid = true;
         }
+        n.h_index = inext;
+        if let Some((points, _)) = self.p.harmonics() {
+            // The clear: one word a clock, pausing while the learner writes.
+            if o.h_clring && !i.h_tw {
+                n.h_clr = (o.h_clr + 1) & mask(32);
+                n.h_clring = o.h_clr != 2 * points as u64 - 1;
+            }
+        }
         self.r = n;
+        self.table_ram(&i, inext, o.h_clring.then_some(o.h_clr));
         self.out()
+    }
+
+    /// The mirror RAM's clock edge: its read register takes the word at {bank, `index`}
+    /// (before this clock's write), then the learner's write lands, else the clear's at
+    /// `clear`.
+    fn table_ram(&mut self, i: &RegIn, index: u64, clear: Option<u64>) {
+        let Some((points, _)) = self.p.harmonics() else {
+            return;
+        };
+        let p = points as u64;
+        self.r.h_rd = self.ram[(i.h_bank as u64 * p + index) as usize];
+        if i.h_tw {
+            self.ram[(i.h_tw_addr & (2 * p - 1)) as usize] =
+                i.h_tw_data & mask(RAM_WORD_BITS as u32);
+        } else if let Some(a) = clear {
+            // Words beyond 2P are not read: the RTL's clear stops at 2P - 1.
+            if let Some(w) = self.ram.get_mut(a as usize) {
+                *w = 0;
+            }
+        }
     }
 
     fn out(&self) -> RegOut {
@@ -427,6 +559,10 @@ impl RegisterModel {
             cor_bits: r.cq.1,
             cor_msk: r.cq.2,
             bus_rdata: r.b_rdata,
+            h_update: r.h_learn,
+            h_ld: r.h_ld,
+            h_ld_addr: r.h_lda,
+            h_ld_data: r.h_ldd,
         }
     }
 }

@@ -777,6 +777,12 @@ impl Logic for TopRtl {
             self.regs[i].bus_we.next = false;
             self.regs[i].bus_wdata.next = bit_cast::<8, 32>(self.zero.val());
             self.regs[i].bus_snap.next = false;
+            // The learned harmonic table's learner (none yet: no table writes, no load busy).
+            self.regs[i].h_tw.next = false;
+            self.regs[i].h_tw_addr.next = self.zero.val();
+            self.regs[i].h_tw_data.next = self.zero.val();
+            self.regs[i].h_bank.next = false;
+            self.regs[i].h_ld_busy.next = false;
             for j in 0..self.biss_slave.reg_addr.len() {
                 self.regs[i].bus_addr.next = self.biss_slave.reg_addr[j].val();
                 self.regs[i].bus_we.next = self.biss_slave.reg_we[j].val();
