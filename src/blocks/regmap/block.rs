@@ -56,18 +56,23 @@ pub fn params(c: &Config, d: &crate::config::Derived, err: &ErrFn) -> Result<Opt
         d.velocity.as_ref().map_or(0, |v| v.spec.width),
         d.reference.is_none(),
     )
-    .map(|p| {
+    .and_then(|p| {
         let m = &d.monitor;
         // Each fits the magnitude's W <= 32 bits (MonitorParams checks it).
         let t = |v: u64| v.min(u32::MAX as u64) as u32;
-        Some(
-            p.with_thresholds([
+        let p = p
+            .with_thresholds([
                 t(m.los_threshold()),
                 t(m.los_release()),
                 t(m.clip_threshold()),
             ])
-            .with_codes(d.correction.reset_words()),
-        )
+            .with_codes(d.correction.reset_words());
+        // The learned harmonic table: HARM_CONTROL, HARM_INDEX, HARM_ENTRY.
+        match d.harmonics.as_ref().and_then(|h| h.learn) {
+            Some(l) => p.with_harmonics(l.points() as u32, l.entry_width()),
+            None => Ok(p),
+        }
+        .map(Some)
     })
     .map_err(|e| err("registers", "enabled", e.detail()))
 }

@@ -777,12 +777,24 @@ impl Logic for TopRtl {
             self.regs[i].bus_we.next = false;
             self.regs[i].bus_wdata.next = bit_cast::<8, 32>(self.zero.val());
             self.regs[i].bus_snap.next = false;
-            // The learned harmonic table's learner (none yet: no table writes, no load busy).
+            // The learned harmonic table's learner (`[harmonics] mode = "learn"`): its
+            // writes feed the map's copy; HARM_CONTROL and HARM_ENTRY steer it.
             self.regs[i].h_tw.next = false;
             self.regs[i].h_tw_addr.next = self.zero.val();
             self.regs[i].h_tw_data.next = self.zero.val();
             self.regs[i].h_bank.next = false;
             self.regs[i].h_ld_busy.next = false;
+            for j in 0..self.core.h_tw.len() {
+                self.regs[i].h_tw.next = self.core.h_tw[j].val();
+                self.regs[i].h_tw_addr.next = self.core.h_tw_addr[j].val();
+                self.regs[i].h_tw_data.next = self.core.h_tw_data[j].val();
+                self.regs[i].h_bank.next = self.core.h_bank[j].val();
+                self.regs[i].h_ld_busy.next = self.core.h_ld_busy[j].val();
+                self.core.h_freeze[j].next = !self.regs[i].h_update.val();
+                self.core.h_ld[j].next = self.regs[i].h_ld.val();
+                self.core.h_ld_addr[j].next = self.regs[i].h_ld_addr.val();
+                self.core.h_ld_data[j].next = self.regs[i].h_ld_data.val();
+            }
             for j in 0..self.biss_slave.reg_addr.len() {
                 self.regs[i].bus_addr.next = self.biss_slave.reg_addr[j].val();
                 self.regs[i].bus_we.next = self.biss_slave.reg_we[j].val();
