@@ -86,9 +86,11 @@ const HARMLESS: &[&str] = &[
 ];
 
 /// Block-RAM ports Yosys's `memory_bram` mapping may resize (the RAM primitive's data and
-/// parity ports are wider than the inferred memory; the extra bits are unused).
+/// parity ports are wider than the inferred memory; the extra bits are unused): Spartan-3A
+/// RAMB16 and Cyclone M9K (`data_a` .. `q_b`, 36 bits wide in its 256-word mode).
 const BRAM_PORTS: &[&str] = &[
-    "DI", "DO", "DIP", "DOP", "DIA", "DIB", "DOA", "DOB", "DIPA", "DIPB", "DOPA", "DOPB",
+    "DI", "DO", "DIP", "DOP", "DIA", "DIB", "DOA", "DOB", "DIPA", "DIPB", "DOPA", "DOPB", "data_a",
+    "data_b", "q_a", "q_b",
 ];
 
 /// A warning that does not change results: one of [`HARMLESS`], or the resizing of a data
@@ -355,6 +357,12 @@ mod tests {
         ));
         assert!(harmless_warning(
             "Warning: Resizing cell port top.m.1.0.DOP from 8 bits to 4 bits."
+        ));
+        assert!(harmless_warning(
+            "Warning: Resizing cell port top.rn.mem.0.0.0.data_a from 32 bits to 36 bits."
+        ));
+        assert!(!harmless_warning(
+            "Warning: Resizing cell port top.tab.mem.0.0.0.address_a from 9 bits to 8 bits."
         ));
         // A width mismatch on an ordinary instance stays an error.
         assert!(!harmless_warning(

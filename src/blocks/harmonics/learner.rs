@@ -19,9 +19,11 @@
 //!   per bin: UpdRead ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
 //!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
 //!
-//!   RAMs: table (bank 0 at 0..P, bank 1 at P..2P, the start table at 2P..3P), n_i, sk_i,
-//!   sp_i (r_i after Residual); one synchronous read port each (data a clock after the
-//!   address), one write port. Divider: rem, dvd (the dividend's bits, MSB first), quo,
+//!   RAMs (P words each): the table's bank 0 and bank 1 (read both at entry i, take the
+//!   active one's word), n_i, sk_i, sp_i (r_i after Residual); one synchronous read port
+//!   each (data a clock after the address), one write port; none initialised (Clear writes
+//!   them first). The start table: a ROM of compares,
+//!   registered (romq), none for a zero table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
 //!   dsr; t = 2 rem + msb(dvd): t >= dsr ? (rem = t - dsr, quo = 2 quo + 1) : (rem = t,
 //!   quo = 2 quo).
 //! ```
@@ -54,7 +56,6 @@ use super::sequencer::{LearnParams, TABLE_FRAC};
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
-use std::collections::BTreeMap;
 
 fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
@@ -184,14 +185,29 @@ pub struct HarmonicLearner {
     pub bank: Signal<Out, Bit>,
     /// A load is pending.
     pub ld_busy: Signal<Out, Bit>,
-    /// The table: bank 0, bank 1, the start table (entries masked to the entry width).
-    tab: RAM<Bits<32>, 10>,
+    /// The table's bank 0 and bank 1 (entries masked to the entry width; addresses bank P +
+    /// i on the tw port).
+    tab0: RAM<Bits<32>, 8>,
+    tab1: RAM<Bits<32>, 8>,
     /// Per bin: n_i.
     rn: RAM<Bits<32>, 8>,
     /// Per bin: sk_i.
     rsk: RAM<Bits<32>, 8>,
     /// Per bin: sp_i, then r_i (64-bit two's complement).
     rsp: RAM<Bits<64>, 8>,
+    /// The start table, entry i XOR-ed with i (the correction block's ROM, super::hdl: a
+    /// compare per entry, so that no synthesizer maps it to an initialised block RAM, which
+    /// Yosys 0.23 fails to map on Cyclone); none for a zero start table.
+    rom: Vec<Constant<Bits<32>>>,
+    /// The entry numbers 0..P the start table's index is compared with (none without it).
+    seg: Vec<Constant<Bits<32>>>,
+    /// All ones with a start table, zero without (undoes the XOR).
+    rom_x: Constant<Bits<32>>,
+    /// Clear's start entry, read a clock before its write (the pipeline of a RAM read).
+    romq: DFF<Bits<32>>,
+    /// The start table's index this clock; its entry, still XOR-ed.
+    cidx: Signal<Local, Bits<32>>,
+    tx: Signal<Local, Bits<32>>,
     /// The state.
     state: DFF<LearnState>,
     /// The clock of Clear, Mult and the divisions.
@@ -292,10 +308,12 @@ pub struct HarmonicLearner {
     pnew: Signal<Local, Bits<64>>,
     seg_i: Signal<Local, Bits<32>>,
     seg_j: Signal<Local, Bits<32>>,
-    off_a: Signal<Local, Bits<32>>,
     off_o: Signal<Local, Bits<32>>,
     dt: Signal<Local, Bits<64>>,
     tab_s: Signal<Local, Bits<64>>,
+    /// The table's read address (the entry, both banks) and the active bank's data.
+    traddr: Signal<Local, Bits<32>>,
+    trd: Signal<Local, Bits<32>>,
     sp_s: Signal<Local, Bits<64>>,
     t64: Signal<Local, Bits<64>>,
     abs: Signal<Local, Bits<64>>,
@@ -307,7 +325,7 @@ pub struct HarmonicLearner {
     /// Zero, one (32-bit).
     z32: Constant<Bits<32>>,
     one32: Constant<Bits<32>>,
-    /// P - 1, P, 2P, 2P (read offset of the start table) (32-bit).
+    /// P - 1, P, 2P (32-bit).
     pmask: Constant<Bits<32>>,
     pp: Constant<Bits<32>>,
     p2: Constant<Bits<32>>,
@@ -404,21 +422,21 @@ impl HarmonicLearner {
         let neg = |v: u64| v.wrapping_neg();
         let fill = |n: u32| !(u64::MAX >> n);
         let g = p.gain_shift;
-        let mut tab = BTreeMap::new();
-        for a in 0..1024u64 {
-            let v = if a < 3 * pp {
-                start[(a % pp) as usize] as u64 & mask(ew)
-            } else {
-                0
-            };
-            tab.insert(Bits::<10>::from(a), Bits::<32>::from(v));
-        }
-        let zeros32: BTreeMap<Bits<8>, Bits<32>> = (0..256u64)
-            .map(|a| (Bits::<8>::from(a), Bits::<32>::from(0u64)))
-            .collect();
-        let zeros64: BTreeMap<Bits<8>, Bits<64>> = (0..256u64)
-            .map(|a| (Bits::<8>::from(a), Bits::<64>::from(0u64)))
-            .collect();
+        let zero = start.iter().all(|&c| c == 0);
+        let rom: Vec<Constant<Bits<32>>> = if zero {
+            Vec::new()
+        } else {
+            start
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| c32((c as u64 & mask(ew)) ^ i as u64))
+                .collect()
+        };
+        let seg = if zero {
+            Vec::new()
+        } else {
+            (0..pp).map(c32).collect()
+        };
         HarmonicLearner {
             clk: Default::default(),
             rst: Default::default(),
@@ -433,10 +451,17 @@ impl HarmonicLearner {
             tw_data: Default::default(),
             bank: Default::default(),
             ld_busy: Default::default(),
-            tab: RAM::new(tab),
-            rn: RAM::new(zeros32.clone()),
-            rsk: RAM::new(zeros32),
-            rsp: RAM::new(zeros64),
+            tab0: Default::default(),
+            tab1: Default::default(),
+            rn: Default::default(),
+            rsk: Default::default(),
+            rsp: Default::default(),
+            rom,
+            seg,
+            rom_x: c32(if zero { 0 } else { u64::MAX }),
+            romq: Default::default(),
+            cidx: Default::default(),
+            tx: Default::default(),
             state: Default::default(),
             cnt: Default::default(),
             idx: Default::default(),
@@ -512,10 +537,11 @@ impl HarmonicLearner {
             pnew: Default::default(),
             seg_i: Default::default(),
             seg_j: Default::default(),
-            off_a: Default::default(),
             off_o: Default::default(),
             dt: Default::default(),
             tab_s: Default::default(),
+            traddr: Default::default(),
+            trd: Default::default(),
             sp_s: Default::default(),
             t64: Default::default(),
             abs: Default::default(),
@@ -592,13 +618,16 @@ impl Logic for HarmonicLearner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, cnt, idx, active, pend, ld_i, ld_v, got, m_s, ps, prev, pos, ci, dd,
-            fsh, acc, c, sbin, q, k, sum_p, sum_ps, u, neg, mag, rem, dvd, quo, dsr, rm, b, a,
-            moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb, la, lb, z1, z2, x, big, zneg,
-            ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, twr, twa, twd
+            self, clk, romq, state, cnt, idx, active, pend, ld_i, ld_v, got, m_s, ps, prev, pos,
+            ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, u, neg, mag, rem, dvd, quo, dsr, rm, b,
+            a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb, la, lb, z1, z2, x, big,
+            zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, twr, twa,
+            twd
         );
-        self.tab.read_clock.next = self.clk.val();
-        self.tab.write_clock.next = self.clk.val();
+        self.tab0.read_clock.next = self.clk.val();
+        self.tab0.write_clock.next = self.clk.val();
+        self.tab1.read_clock.next = self.clk.val();
+        self.tab1.write_clock.next = self.clk.val();
         self.rn.read_clock.next = self.clk.val();
         self.rn.write_clock.next = self.clk.val();
         self.rsk.read_clock.next = self.clk.val();
@@ -609,7 +638,7 @@ impl Logic for HarmonicLearner {
         self.we.next = false;
         self.wa.next = self.z32.val();
         self.wd.next = self.z32.val();
-        self.tab.read_address.next = bit_cast::<10, 32>(self.z32.val());
+        self.traddr.next = self.z32.val();
         self.rn.read_address.next = bit_cast::<8, 32>(self.z32.val());
         self.rsk.read_address.next = bit_cast::<8, 32>(self.z32.val());
         self.rsp.read_address.next = bit_cast::<8, 32>(self.z32.val());
@@ -623,18 +652,20 @@ impl Logic for HarmonicLearner {
         self.rsk.write_enable.next = false;
         self.rsp.write_enable.next = false;
         // Sign-extended reads of the table and of sp_i.
-        self.tab_s.next = bit_cast::<64, 32>(self.tab.read_data.val());
-        if (self.tab.read_data.val() & self.ew_sign.val()).any() {
-            self.tab_s.next = bit_cast::<64, 32>(self.tab.read_data.val()) | self.ew_fill.val();
+        self.trd.next = self.tab0.read_data.val();
+        if self.active.q.val() {
+            self.trd.next = self.tab1.read_data.val();
+        }
+        self.tab_s.next = bit_cast::<64, 32>(self.trd.val());
+        if (self.trd.val() & self.ew_sign.val()).any() {
+            self.tab_s.next = bit_cast::<64, 32>(self.trd.val()) | self.ew_fill.val();
         }
         self.sp_s.next = self.rsp.read_data.val();
         // The sample's segment and the banks' offsets.
         self.seg_i.next = (self.m_s.q.val() >> self.s32.val()) & self.pmask.val();
         self.seg_j.next = (self.seg_i.val() + self.one32.val()) & self.pmask.val();
-        self.off_a.next = self.z32.val();
         self.off_o.next = self.pp.val();
         if self.active.q.val() {
-            self.off_a.next = self.pp.val();
             self.off_o.next = self.z32.val();
         }
         // The load request, held while one is pending: the entry width's value, saturated.
@@ -678,6 +709,15 @@ impl Logic for HarmonicLearner {
             self.m_s.d.next = self.angle.val();
             self.ps.d.next = self.pnew.val();
         }
+        // The start table's entry for Clear (cnt mod P), registered.
+        self.cidx.next = self.cnt.q.val() & self.pmask.val();
+        self.tx.next = self.z32.val();
+        for i in 0..self.seg.len() {
+            if self.cidx.val() == self.seg[i].val() {
+                self.tx.next = self.rom[i].val();
+            }
+        }
+        self.romq.d.next = self.tx.val() ^ (self.cidx.val() & self.rom_x.val());
         // The divider's step (LineDiv, ResDiv, MeanDiv).
         self.dt.next =
             (self.rem.q.val() << self.one64.val()) | (self.dvd.q.val() >> self.k63.val());
@@ -685,12 +725,10 @@ impl Logic for HarmonicLearner {
         self.abs.next = self.z64.val();
         match self.state.q.val() {
             LearnState::Clear => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.p2.val() + (self.cnt.q.val() & self.pmask.val()));
                 if self.cnt.q.val() != self.z32.val() {
                     self.we.next = true;
                     self.wa.next = self.cnt.q.val() - self.one32.val();
-                    self.wd.next = self.tab.read_data.val();
+                    self.wd.next = self.romq.q.val();
                 }
                 self.rn.write_address.next = bit_cast::<8, 32>(self.cnt.q.val() & self.pmask.val());
                 self.rsk.write_address.next =
@@ -735,13 +773,11 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::ReadI => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.off_a.val() | self.seg_i.val());
+                self.traddr.next = self.seg_i.val();
                 self.state.d.next = LearnState::ReadJ;
             }
             LearnState::ReadJ => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.off_a.val() | self.seg_j.val());
+                self.traddr.next = self.seg_j.val();
                 self.ci.d.next = self.tab_s.val();
                 self.state.d.next = LearnState::Diff;
             }
@@ -1067,8 +1103,7 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::UpdRead;
             }
             LearnState::UpdRead => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.off_a.val() | self.idx.q.val());
+                self.traddr.next = self.idx.q.val();
                 self.rn.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
                 self.rsp.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
                 self.state.d.next = LearnState::UpdDiff;
@@ -1160,9 +1195,16 @@ impl Logic for HarmonicLearner {
             self.pend.d.next = true;
         }
         // The table's write port and its copy on tw.
-        self.tab.write_enable.next = self.we.val();
-        self.tab.write_address.next = bit_cast::<10, 32>(self.wa.val());
-        self.tab.write_data.next = self.wd.val();
+        self.tab0.read_address.next = bit_cast::<8, 32>(self.traddr.val());
+        self.tab1.read_address.next = bit_cast::<8, 32>(self.traddr.val());
+        self.tab0.write_enable.next =
+            self.we.val() & ((self.wa.val() & self.pp.val()) == self.z32.val());
+        self.tab1.write_enable.next =
+            self.we.val() & ((self.wa.val() & self.pp.val()) != self.z32.val());
+        self.tab0.write_address.next = bit_cast::<8, 32>(self.wa.val() & self.pmask.val());
+        self.tab1.write_address.next = bit_cast::<8, 32>(self.wa.val() & self.pmask.val());
+        self.tab0.write_data.next = self.wd.val();
+        self.tab1.write_data.next = self.wd.val();
         self.twr.d.next = self.we.val();
         self.twa.d.next = self.z32.val();
         self.twd.d.next = self.z32.val();
@@ -1187,7 +1229,8 @@ impl Logic for HarmonicLearner {
             self.twr.d.next = false;
             self.twa.d.next = self.z32.val();
             self.twd.d.next = self.z32.val();
-            self.tab.write_enable.next = false;
+            self.tab0.write_enable.next = false;
+            self.tab1.write_enable.next = false;
             self.rn.write_enable.next = false;
             self.rsk.write_enable.next = false;
             self.rsp.write_enable.next = false;
