@@ -7,16 +7,17 @@
 //!   strobe, angle ──► delta = angle - prev (F+2 bits) ──► pos (w+F+2 bits)
 //!        │
 //!        ▼  Collect, one sample (s + 9 clocks):
-//!   Wait ─► ReadI ─► ReadJ ─► Diff ─► Mult x s ─► Corr ─► Bin ─► ReadBin ─► Acc ─► Sum ─┐
-//!    ▲ │    c_i      c_(i+1)  D       D f, one    c(m)     bin, q  n,sk,sp   +q, Sp    PS, k
+//!   Wait ─► ReadI ─► ReadJ ─► LatJ ─► Diff ─► Mult x s ─► Corr ─► Bin ─► ReadBin ─► LatBin ─►
+//!    ▲ │    c_i      c_(i+1)          D       D f, one    c(m)    bin, q  n,sk,sp   Acc ─► Sum ─┐
+//!    │ │                                                                        +q, Sp  PS, k  │
 //!    │ └► LoadA ─► LoadB (ld: entry into both banks)  bit of f                         │
-//!    └──────────────────────────────────────────────────────────────── k < N ◄────────┘
+//!    └────────────────────────────────────────────────────────────────────── k < N ◄────────┘
 //!   k = N: LineN1 ─► LineU ─► LineLoad ─► LineDiv x Kb ─► LineRnd ─► LineB ─► LineA1 ─► LineA2
 //!          (N+1)Sp   U        |U|           b's bits       (q+1)>>1    ±      moving     a
 //!   per bin: ResRead ─► ResLatch ─► ResMul x (2w-1) ─► ResZa ─► ResZb ─► ResX ─► ResAbs ─►
 //!            ResLoad ─► ResDiv x Kr ─► ResEnd ─► ResWrite ─► ResSum
 //!   MeanAbs ─► MeanLoad ─► MeanDiv x Kr ─► MeanEnd ─► MeanSign
-//!   per bin: UpdRead ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
+//!   per bin: UpdRead ─► UpdLat ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
 //!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
 //!
 //!   RAMs (P words each): the table's bank 0 and bank 1 (read both at entry i, take the
@@ -33,7 +34,13 @@
 //! counts are `Bits<32>`. No word is wider than 64 bits ([`super::sequencer::WORD_MAX`]).
 //! Every register-to-register path holds at most one carry chain (a compare beside it):
 //! the three-operand sums of the model are split over two states (LineN1/LineU,
-//! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd).
+//! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd), a RAM's output is registered before an
+//! adder (LatJ, LatBin, UpdLat, ResLatch), and `pos` moves a clock after its strobe (dl).
+//!
+//! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
+//! tests/blocks/harmonics_learner.rs): xc3sa 4863 LUT4, 2471 FF, 6 RAMB16, no MULT18X18;
+//! cycloneive 6354 LE, 2469 FF, 6 M9K, no multiplier. The RAMs are sized for 256 entries
+//! (`RAM<_, 8>`); the 64-bit registers hold narrower values that Yosys does not trim.
 //!
 //! Ports:
 //!
@@ -76,6 +83,8 @@ pub enum LearnState {
     ReadI,
     /// c_(i+1) read.
     ReadJ,
+    /// c_(i+1) latched (a RAM's output goes to a register before an adder).
+    LatJ,
     /// D = c_(i+1) - c_i.
     Diff,
     /// D f, one bit of f a clock.
@@ -86,6 +95,8 @@ pub enum LearnState {
     Bin,
     /// The bin's sums read.
     ReadBin,
+    /// The bin's sums latched.
+    LatBin,
     /// The bin's sums and Sp.
     Acc,
     /// PS and k.
@@ -142,6 +153,8 @@ pub enum LearnState {
     MeanSign,
     /// Entry idx, n_i, r_i read.
     UpdRead,
+    /// Latched.
+    UpdLat,
     /// r_i - r.
     UpdDiff,
     /// |r_i - r|.
@@ -228,6 +241,16 @@ pub struct HarmonicLearner {
     /// The previous sample's angle; the raw position since the window's first sample.
     prev: DFF<Bits<32>>,
     pos: DFF<Bits<64>>,
+    /// The pos update a clock after its strobe (the path from the angle's port through
+    /// two adders is cut here): delta, pending, the window starts, the sample is taken.
+    dl: DFF<Bits<64>>,
+    dlv: DFF<Bit>,
+    dls: DFF<Bit>,
+    dla: DFF<Bit>,
+    /// m 2^T + 2^(s+T-1): the sample's angle with the bin's rounding half.
+    mh: DFF<Bits<64>>,
+    /// c_(i+1).
+    cj: DFF<Bits<64>>,
     /// c_i; D shifted left a bit a clock; f shifted right; D f.
     ci: DFF<Bits<64>>,
     dd: DFF<Bits<64>>,
@@ -474,6 +497,12 @@ impl HarmonicLearner {
             ps: Default::default(),
             prev: Default::default(),
             pos: Default::default(),
+            dl: Default::default(),
+            dlv: Default::default(),
+            dls: Default::default(),
+            dla: Default::default(),
+            mh: Default::default(),
+            cj: Default::default(),
             ci: Default::default(),
             dd: Default::default(),
             fsh: Default::default(),
@@ -618,11 +647,11 @@ impl Logic for HarmonicLearner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, romq, state, cnt, idx, active, pend, ld_i, ld_v, got, m_s, ps, prev, pos,
-            ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, u, neg, mag, rem, dvd, quo, dsr, rm, b,
-            a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb, la, lb, z1, z2, x, big,
-            zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, twr, twa,
-            twd
+            self, clk, romq, dl, dlv, dls, dla, mh, cj, state, cnt, idx, active, pend, ld_i, ld_v,
+            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, u, neg, mag,
+            rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb,
+            la, lb, z1, z2, x, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg,
+            uax, udm, unw, twr, twa, twd
         );
         self.tab0.read_clock.next = self.clk.val();
         self.tab0.write_clock.next = self.clk.val();
@@ -693,21 +722,29 @@ impl Logic for HarmonicLearner {
         if (self.delta.val() & self.am_sign.val()).any() {
             self.delta.next = self.delta.val() | !self.am_mask.val();
         }
-        self.psum.next = self.pos.q.val() + self.delta.val();
+        self.psum.next = self.pos.q.val() + self.dl.q.val();
         self.pnew.next = self.psum.val() & self.pw_mask.val();
         if (self.psum.val() & self.pw_sign.val()).any() {
             self.pnew.next = self.psum.val() | !self.pw_mask.val();
         }
-        if self.accept.val() & (self.k.q.val() == self.z32.val()) {
+        if self.dls.q.val() {
             self.pnew.next = self.z64.val();
         }
+        if self.dlv.q.val() {
+            self.pos.d.next = self.pnew.val();
+        }
+        if self.dla.q.val() {
+            self.ps.d.next = self.pnew.val();
+        }
+        self.dl.d.next = self.delta.val();
+        self.dlv.d.next = self.strobe.val();
+        self.dls.d.next = self.accept.val() & (self.k.q.val() == self.z32.val());
+        self.dla.d.next = self.accept.val();
         if self.strobe.val() {
             self.prev.d.next = self.angle.val();
-            self.pos.d.next = self.pnew.val();
         }
         if self.accept.val() {
             self.m_s.d.next = self.angle.val();
-            self.ps.d.next = self.pnew.val();
         }
         // The start table's entry for Clear (cnt mod P), registered.
         self.cidx.next = self.cnt.q.val() & self.pmask.val();
@@ -779,10 +816,16 @@ impl Logic for HarmonicLearner {
             LearnState::ReadJ => {
                 self.traddr.next = self.seg_j.val();
                 self.ci.d.next = self.tab_s.val();
+                self.state.d.next = LearnState::LatJ;
+            }
+            LearnState::LatJ => {
+                self.cj.d.next = self.tab_s.val();
                 self.state.d.next = LearnState::Diff;
             }
             LearnState::Diff => {
-                self.dd.d.next = self.tab_s.val() - self.ci.q.val();
+                self.dd.d.next = self.cj.q.val() - self.ci.q.val();
+                self.mh.d.next =
+                    (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val()) + self.st_half.val();
                 self.fsh.d.next = self.m_s.q.val() & self.fmask.val();
                 self.acc.d.next = self.z64.val();
                 self.cnt.d.next = self.z32.val();
@@ -811,9 +854,7 @@ impl Logic for HarmonicLearner {
             }
             LearnState::Bin => {
                 // The bin: round((m 2^T - c) / 2^(s+T)) mod P; q = pos 2^T - c.
-                self.t64.next = (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val())
-                    - self.c.q.val()
-                    + self.st_half.val();
+                self.t64.next = self.mh.q.val() - self.c.q.val();
                 self.sbin.d.next =
                     bit_cast::<32, 64>(self.t64.val() >> self.st.val()) & self.pmask.val();
                 self.abs.next = (self.ps.q.val() << self.tf.val()) - self.c.q.val();
@@ -827,6 +868,12 @@ impl Logic for HarmonicLearner {
                 self.rn.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
                 self.rsk.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
                 self.rsp.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.state.d.next = LearnState::LatBin;
+            }
+            LearnState::LatBin => {
+                self.nn.d.next = self.rn.read_data.val();
+                self.sksh.d.next = self.rsk.read_data.val();
+                self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::Acc;
             }
             LearnState::Acc => {
@@ -836,9 +883,9 @@ impl Logic for HarmonicLearner {
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
-                self.rn.write_data.next = self.rn.read_data.val() + self.one32.val();
-                self.rsk.write_data.next = self.rsk.read_data.val() + self.k.q.val();
-                self.t64.next = self.sp_s.val() + self.q.q.val();
+                self.rn.write_data.next = self.nn.q.val() + self.one32.val();
+                self.rsk.write_data.next = self.sksh.q.val() + self.k.q.val();
+                self.t64.next = self.spv.q.val() + self.q.q.val();
                 self.rsp.write_data.next = self.t64.val() & self.sw_mask.val();
                 if (self.t64.val() & self.sw_sign.val()).any() {
                     self.rsp.write_data.next = self.t64.val() | !self.sw_mask.val();
@@ -1106,12 +1153,16 @@ impl Logic for HarmonicLearner {
                 self.traddr.next = self.idx.q.val();
                 self.rn.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
                 self.rsp.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.state.d.next = LearnState::UpdLat;
+            }
+            LearnState::UpdLat => {
+                self.ucur.d.next = self.tab_s.val();
+                self.unz.d.next = self.rn.read_data.val() != self.z32.val();
+                self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::UpdDiff;
             }
             LearnState::UpdDiff => {
-                self.ucur.d.next = self.tab_s.val();
-                self.unz.d.next = self.rn.read_data.val() != self.z32.val();
-                self.ux.d.next = self.sp_s.val() - self.mean.q.val();
+                self.ux.d.next = self.spv.q.val() - self.mean.q.val();
                 self.state.d.next = LearnState::UpdAbs;
             }
             LearnState::UpdAbs => {
@@ -1221,6 +1272,9 @@ impl Logic for HarmonicLearner {
             self.got.d.next = false;
             self.prev.d.next = self.z32.val();
             self.pos.d.next = self.z64.val();
+            self.dlv.d.next = false;
+            self.dls.d.next = false;
+            self.dla.d.next = false;
             self.k.d.next = self.z32.val();
             self.sum_p.d.next = self.z64.val();
             self.sum_ps.d.next = self.z64.val();
