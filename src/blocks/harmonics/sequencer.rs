@@ -71,9 +71,9 @@
 //! | sum r, r | the residuals' sum over <= P bins, their mean | q | F - 2 + T + 1 + p, F - 2 + T + 1 | 28, 21 |
 //!
 //! Bit growth: a sum of N = 2^w terms grows by w bits (sp_i, Sp), a sum of N running sums
-//! by 2w (PS), a product by the sum of the factors' widths. The window's S0 = N, S1 = N (N -
-//! 1) / 2 and S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the window falls
-//! in a bin). The line of the least-squares fit, b = round((N Skp - S1 Sp) 2^B / det) with
+//! by 2w (PS), a product by the sum of the factors' widths. The window's S0 = N,
+//! S1 = N (N - 1) / 2 and S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the
+//! window falls in a bin). The line of the least-squares fit, b = round((N Skp - S1 Sp) 2^B / det) with
 //! det = N S2 - S1^2 = N^2 (N^2 - 1) / 12, needs an 89-bit numerator and Skp = sum k q a
 //! product per sample; neither is built. Instead, with PS = sum_j (sum_(k<=j) q_k) = sum_k
 //! (N - k) q_k, Skp = N Sp - PS, and N Skp - S1 Sp = (N / 2) U with U = 2 Skp - (N - 1) Sp =
