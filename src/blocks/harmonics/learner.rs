@@ -7,21 +7,24 @@
 //!   strobe, angle ──► delta = angle - prev (F+2 bits) ──► pos (w+F+2 bits)
 //!        │
 //!        ▼  Collect, one sample (s + 9 clocks):
-//!   Wait ─► ReadI ─► ReadJ ─► Diff ─► Mult x s ─► Corr ─► Bin ─► ReadBin ─► Acc ─► Sum ─┐
-//!    ▲ │    c_i      c_(i+1)  D       D f, one    c(m)     bin, q  n,sk,sp   +q, Sp    PS, k
+//!   Wait ─► ReadI ─► ReadJ ─► LatJ ─► Diff ─► Mult x s ─► Corr ─► Bin ─► ReadBin ─► LatBin ─►
+//!    ▲ │    c_i      c_(i+1)          D       D f, one    c(m)    bin, q  n,sk,sp   Acc ─► Sum ─┐
+//!    │ │                                                                        +q, Sp  PS, k  │
 //!    │ └► LoadA ─► LoadB (ld: entry into both banks)  bit of f                         │
-//!    └──────────────────────────────────────────────────────────────── k < N ◄────────┘
+//!    └────────────────────────────────────────────────────────────────────── k < N ◄────────┘
 //!   k = N: LineN1 ─► LineU ─► LineLoad ─► LineDiv x Kb ─► LineRnd ─► LineB ─► LineA1 ─► LineA2
 //!          (N+1)Sp   U        |U|           b's bits       (q+1)>>1    ±      moving     a
 //!   per bin: ResRead ─► ResLatch ─► ResMul x (2w-1) ─► ResZa ─► ResZb ─► ResX ─► ResAbs ─►
 //!            ResLoad ─► ResDiv x Kr ─► ResEnd ─► ResWrite ─► ResSum
 //!   MeanAbs ─► MeanLoad ─► MeanDiv x Kr ─► MeanEnd ─► MeanSign
-//!   per bin: UpdRead ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
+//!   per bin: UpdRead ─► UpdLat ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
 //!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
 //!
-//!   RAMs: table (bank 0 at 0..P, bank 1 at P..2P, the start table at 2P..3P), n_i, sk_i,
-//!   sp_i (r_i after Residual); one synchronous read port each (data a clock after the
-//!   address), one write port. Divider: rem, dvd (the dividend's bits, MSB first), quo,
+//!   RAMs (P words each): the table's bank 0 and bank 1 (read both at entry i, take the
+//!   active one's word), n_i, sk_i, sp_i (r_i after Residual); one synchronous read port
+//!   each (data a clock after the address), one write port; none initialised (Clear writes
+//!   them first). The start table: a ROM of compares,
+//!   registered (romq), none for a zero table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
 //!   dsr; t = 2 rem + msb(dvd): t >= dsr ? (rem = t - dsr, quo = 2 quo + 1) : (rem = t,
 //!   quo = 2 quo).
 //! ```
@@ -31,7 +34,20 @@
 //! counts are `Bits<32>`. No word is wider than 64 bits ([`super::sequencer::WORD_MAX`]).
 //! Every register-to-register path holds at most one carry chain (a compare beside it):
 //! the three-operand sums of the model are split over two states (LineN1/LineU,
-//! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd).
+//! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd), a RAM's output is registered before an
+//! adder (LatJ, LatBin, UpdLat, ResLatch), and `pos` moves a clock after its strobe (dl).
+//!
+//! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
+//! tests/blocks/harmonics_learner.rs): xc3sa 4705 LUT4, 2538 FF, 6 RAMB16, no MULT18X18;
+//! cycloneive 6327 LE, 2536 FF, 6 M9K, no multiplier. The RAMs are sized for 256 entries
+//! (`RAM<_, 8>`); the 64-bit registers hold narrower values that Yosys does not trim.
+//!
+//! Timing (docs/timing.md's ECP5 flow, the learner alone at 133.33 MHz, seeds 1 / 2 / 3):
+//! 86.64 / 91.27 / 83.94 MHz, short of the rule's 166.7 MHz. Every critical path starts at
+//! a block RAM's output: Yosys maps the RAMs to DP16KD without its output register (the
+//! ECP5 library in Yosys offers none), whose clock-to-out is 5.61 ns, so even a RAM
+//! output straight into a flip-flop misses 6 ns. Not solved here (docs/correction.md,
+//! "Learning the table online": what is not built).
 //!
 //! Ports:
 //!
@@ -52,10 +68,15 @@
 //! | `ld_busy` | out | 1 | a load is pending (a new `ld` is dropped) |
 //! | `clearing` | out | 1 | the state was Clear a clock ago: with `tw`, the Clear's writes (registered) |
 use super::sequencer::{LearnParams, TABLE_FRAC};
+use crate::blocks::lutram::LutRam;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
-use std::collections::BTreeMap;
+
+/// Address bits of the learner's RAMs (P <= 128 words each: a bank of the table, the bins'
+/// sums). Distributed RAM ([`LutRam`]): a block RAM's read alone misses the timing rule on
+/// ECP5 (docs/timing.md).
+pub const LEARN_ADDR_BITS: usize = 7;
 
 fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
@@ -76,6 +97,8 @@ pub enum LearnState {
     ReadI,
     /// c_(i+1) read.
     ReadJ,
+    /// c_(i+1) latched (a RAM's output goes to a register before an adder).
+    LatJ,
     /// D = c_(i+1) - c_i.
     Diff,
     /// D f, one bit of f a clock.
@@ -86,6 +109,8 @@ pub enum LearnState {
     Bin,
     /// The bin's sums read.
     ReadBin,
+    /// The bin's sums latched.
+    LatBin,
     /// The bin's sums and Sp.
     Acc,
     /// PS and k.
@@ -142,6 +167,8 @@ pub enum LearnState {
     MeanSign,
     /// Entry idx, n_i, r_i read.
     UpdRead,
+    /// Latched.
+    UpdLat,
     /// r_i - r.
     UpdDiff,
     /// |r_i - r|.
@@ -189,14 +216,29 @@ pub struct HarmonicLearner {
     pub clearing: Signal<Out, Bit>,
     /// See `clearing`.
     clr: DFF<Bit>,
-    /// The table: bank 0, bank 1, the start table (entries masked to the entry width).
-    tab: RAM<Bits<32>, 10>,
+    /// The table's bank 0 and bank 1 (entries masked to the entry width; addresses bank P +
+    /// i on the tw port).
+    tab0: LutRam<Bits<32>, LEARN_ADDR_BITS>,
+    tab1: LutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: n_i.
-    rn: RAM<Bits<32>, 8>,
+    rn: LutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sk_i.
-    rsk: RAM<Bits<32>, 8>,
+    rsk: LutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sp_i, then r_i (64-bit two's complement).
-    rsp: RAM<Bits<64>, 8>,
+    rsp: LutRam<Bits<64>, LEARN_ADDR_BITS>,
+    /// The start table, entry i XOR-ed with i (the correction block's ROM, super::hdl: a
+    /// compare per entry, so that no synthesizer maps it to an initialised block RAM, which
+    /// Yosys 0.23 fails to map on Cyclone); none for a zero start table.
+    rom: Vec<Constant<Bits<32>>>,
+    /// The entry numbers 0..P the start table's index is compared with (none without it).
+    seg: Vec<Constant<Bits<32>>>,
+    /// All ones with a start table, zero without (undoes the XOR).
+    rom_x: Constant<Bits<32>>,
+    /// Clear's start entry, read a clock before its write (the pipeline of a RAM read).
+    romq: DFF<Bits<32>>,
+    /// The start table's index this clock; its entry, still XOR-ed.
+    cidx: Signal<Local, Bits<32>>,
+    tx: Signal<Local, Bits<32>>,
     /// The state.
     state: DFF<LearnState>,
     /// The clock of Clear, Mult and the divisions.
@@ -217,6 +259,16 @@ pub struct HarmonicLearner {
     /// The previous sample's angle; the raw position since the window's first sample.
     prev: DFF<Bits<32>>,
     pos: DFF<Bits<64>>,
+    /// The pos update a clock after its strobe (the path from the angle's port through
+    /// two adders is cut here): delta, pending, the window starts, the sample is taken.
+    dl: DFF<Bits<64>>,
+    dlv: DFF<Bit>,
+    dls: DFF<Bit>,
+    dla: DFF<Bit>,
+    /// m 2^T + 2^(s+T-1): the sample's angle with the bin's rounding half.
+    mh: DFF<Bits<64>>,
+    /// c_(i+1).
+    cj: DFF<Bits<64>>,
     /// c_i; D shifted left a bit a clock; f shifted right; D f.
     ci: DFF<Bits<64>>,
     dd: DFF<Bits<64>>,
@@ -297,10 +349,12 @@ pub struct HarmonicLearner {
     pnew: Signal<Local, Bits<64>>,
     seg_i: Signal<Local, Bits<32>>,
     seg_j: Signal<Local, Bits<32>>,
-    off_a: Signal<Local, Bits<32>>,
     off_o: Signal<Local, Bits<32>>,
     dt: Signal<Local, Bits<64>>,
     tab_s: Signal<Local, Bits<64>>,
+    /// The table's read address (the entry, both banks) and the active bank's data.
+    traddr: Signal<Local, Bits<32>>,
+    trd: Signal<Local, Bits<32>>,
     sp_s: Signal<Local, Bits<64>>,
     t64: Signal<Local, Bits<64>>,
     abs: Signal<Local, Bits<64>>,
@@ -312,7 +366,7 @@ pub struct HarmonicLearner {
     /// Zero, one (32-bit).
     z32: Constant<Bits<32>>,
     one32: Constant<Bits<32>>,
-    /// P - 1, P, 2P, 2P (read offset of the start table) (32-bit).
+    /// P - 1, P, 2P (32-bit).
     pmask: Constant<Bits<32>>,
     pp: Constant<Bits<32>>,
     p2: Constant<Bits<32>>,
@@ -409,21 +463,21 @@ impl HarmonicLearner {
         let neg = |v: u64| v.wrapping_neg();
         let fill = |n: u32| !(u64::MAX >> n);
         let g = p.gain_shift;
-        let mut tab = BTreeMap::new();
-        for a in 0..1024u64 {
-            let v = if a < 3 * pp {
-                start[(a % pp) as usize] as u64 & mask(ew)
-            } else {
-                0
-            };
-            tab.insert(Bits::<10>::from(a), Bits::<32>::from(v));
-        }
-        let zeros32: BTreeMap<Bits<8>, Bits<32>> = (0..256u64)
-            .map(|a| (Bits::<8>::from(a), Bits::<32>::from(0u64)))
-            .collect();
-        let zeros64: BTreeMap<Bits<8>, Bits<64>> = (0..256u64)
-            .map(|a| (Bits::<8>::from(a), Bits::<64>::from(0u64)))
-            .collect();
+        let zero = start.iter().all(|&c| c == 0);
+        let rom: Vec<Constant<Bits<32>>> = if zero {
+            Vec::new()
+        } else {
+            start
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| c32((c as u64 & mask(ew)) ^ i as u64))
+                .collect()
+        };
+        let seg = if zero {
+            Vec::new()
+        } else {
+            (0..pp).map(c32).collect()
+        };
         HarmonicLearner {
             clk: Default::default(),
             rst: Default::default(),
@@ -440,10 +494,17 @@ impl HarmonicLearner {
             ld_busy: Default::default(),
             clearing: Default::default(),
             clr: Default::default(),
-            tab: RAM::new(tab),
-            rn: RAM::new(zeros32.clone()),
-            rsk: RAM::new(zeros32),
-            rsp: RAM::new(zeros64),
+            tab0: Default::default(),
+            tab1: Default::default(),
+            rn: Default::default(),
+            rsk: Default::default(),
+            rsp: Default::default(),
+            rom,
+            seg,
+            rom_x: c32(if zero { 0 } else { u64::MAX }),
+            romq: Default::default(),
+            cidx: Default::default(),
+            tx: Default::default(),
             state: Default::default(),
             cnt: Default::default(),
             idx: Default::default(),
@@ -456,6 +517,12 @@ impl HarmonicLearner {
             ps: Default::default(),
             prev: Default::default(),
             pos: Default::default(),
+            dl: Default::default(),
+            dlv: Default::default(),
+            dls: Default::default(),
+            dla: Default::default(),
+            mh: Default::default(),
+            cj: Default::default(),
             ci: Default::default(),
             dd: Default::default(),
             fsh: Default::default(),
@@ -519,10 +586,11 @@ impl HarmonicLearner {
             pnew: Default::default(),
             seg_i: Default::default(),
             seg_j: Default::default(),
-            off_a: Default::default(),
             off_o: Default::default(),
             dt: Default::default(),
             tab_s: Default::default(),
+            traddr: Default::default(),
+            trd: Default::default(),
             sp_s: Default::default(),
             t64: Default::default(),
             abs: Default::default(),
@@ -599,14 +667,16 @@ impl Logic for HarmonicLearner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, state, cnt, idx, active, pend, ld_i, ld_v, got, m_s, ps, prev, pos, ci, dd,
-            fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag, rem, dvd, quo, dsr, rm, b, a,
-            moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb, la, lb, z1, z2, xres, big,
-            zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, twr, twa,
-            twd, clr
+            self, clk, romq, dl, dlv, dls, dla, mh, cj, state, cnt, idx, active, pend, ld_i, ld_v,
+            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag,
+            rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb,
+            la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg,
+            uax, udm, unw, twr, twa, twd, clr
         );
-        self.tab.read_clock.next = self.clk.val();
-        self.tab.write_clock.next = self.clk.val();
+        self.tab0.read_clock.next = self.clk.val();
+        self.tab0.write_clock.next = self.clk.val();
+        self.tab1.read_clock.next = self.clk.val();
+        self.tab1.write_clock.next = self.clk.val();
         self.rn.read_clock.next = self.clk.val();
         self.rn.write_clock.next = self.clk.val();
         self.rsk.read_clock.next = self.clk.val();
@@ -617,13 +687,13 @@ impl Logic for HarmonicLearner {
         self.we.next = false;
         self.wa.next = self.z32.val();
         self.wd.next = self.z32.val();
-        self.tab.read_address.next = bit_cast::<10, 32>(self.z32.val());
-        self.rn.read_address.next = bit_cast::<8, 32>(self.z32.val());
-        self.rsk.read_address.next = bit_cast::<8, 32>(self.z32.val());
-        self.rsp.read_address.next = bit_cast::<8, 32>(self.z32.val());
-        self.rn.write_address.next = bit_cast::<8, 32>(self.z32.val());
-        self.rsk.write_address.next = bit_cast::<8, 32>(self.z32.val());
-        self.rsp.write_address.next = bit_cast::<8, 32>(self.z32.val());
+        self.traddr.next = self.z32.val();
+        self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
+        self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
+        self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
+        self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
+        self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
+        self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
         self.rn.write_data.next = self.z32.val();
         self.rsk.write_data.next = self.z32.val();
         self.rsp.write_data.next = self.z64.val();
@@ -631,18 +701,20 @@ impl Logic for HarmonicLearner {
         self.rsk.write_enable.next = false;
         self.rsp.write_enable.next = false;
         // Sign-extended reads of the table and of sp_i.
-        self.tab_s.next = bit_cast::<64, 32>(self.tab.read_data.val());
-        if (self.tab.read_data.val() & self.ew_sign.val()).any() {
-            self.tab_s.next = bit_cast::<64, 32>(self.tab.read_data.val()) | self.ew_fill.val();
+        self.trd.next = self.tab0.read_data.val();
+        if self.active.q.val() {
+            self.trd.next = self.tab1.read_data.val();
+        }
+        self.tab_s.next = bit_cast::<64, 32>(self.trd.val());
+        if (self.trd.val() & self.ew_sign.val()).any() {
+            self.tab_s.next = bit_cast::<64, 32>(self.trd.val()) | self.ew_fill.val();
         }
         self.sp_s.next = self.rsp.read_data.val();
         // The sample's segment and the banks' offsets.
         self.seg_i.next = (self.m_s.q.val() >> self.s32.val()) & self.pmask.val();
         self.seg_j.next = (self.seg_i.val() + self.one32.val()) & self.pmask.val();
-        self.off_a.next = self.z32.val();
         self.off_o.next = self.pp.val();
         if self.active.q.val() {
-            self.off_a.next = self.pp.val();
             self.off_o.next = self.z32.val();
         }
         // The load request, held while one is pending: the entry width's value, saturated.
@@ -670,22 +742,39 @@ impl Logic for HarmonicLearner {
         if (self.delta.val() & self.am_sign.val()).any() {
             self.delta.next = self.delta.val() | !self.am_mask.val();
         }
-        self.psum.next = self.pos.q.val() + self.delta.val();
+        self.psum.next = self.pos.q.val() + self.dl.q.val();
         self.pnew.next = self.psum.val() & self.pw_mask.val();
         if (self.psum.val() & self.pw_sign.val()).any() {
             self.pnew.next = self.psum.val() | !self.pw_mask.val();
         }
-        if self.accept.val() & (self.k.q.val() == self.z32.val()) {
+        if self.dls.q.val() {
             self.pnew.next = self.z64.val();
         }
+        if self.dlv.q.val() {
+            self.pos.d.next = self.pnew.val();
+        }
+        if self.dla.q.val() {
+            self.ps.d.next = self.pnew.val();
+        }
+        self.dl.d.next = self.delta.val();
+        self.dlv.d.next = self.strobe.val();
+        self.dls.d.next = self.accept.val() & (self.k.q.val() == self.z32.val());
+        self.dla.d.next = self.accept.val();
         if self.strobe.val() {
             self.prev.d.next = self.angle.val();
-            self.pos.d.next = self.pnew.val();
         }
         if self.accept.val() {
             self.m_s.d.next = self.angle.val();
-            self.ps.d.next = self.pnew.val();
         }
+        // The start table's entry for Clear (cnt mod P), registered.
+        self.cidx.next = self.cnt.q.val() & self.pmask.val();
+        self.tx.next = self.z32.val();
+        for i in 0..self.seg.len() {
+            if self.cidx.val() == self.seg[i].val() {
+                self.tx.next = self.rom[i].val();
+            }
+        }
+        self.romq.d.next = self.tx.val() ^ (self.cidx.val() & self.rom_x.val());
         // The divider's step (LineDiv, ResDiv, MeanDiv).
         self.dt.next =
             (self.rem.q.val() << self.one64.val()) | (self.dvd.q.val() >> self.k63.val());
@@ -693,18 +782,16 @@ impl Logic for HarmonicLearner {
         self.abs.next = self.z64.val();
         match self.state.q.val() {
             LearnState::Clear => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.p2.val() + (self.cnt.q.val() & self.pmask.val()));
                 if self.cnt.q.val() != self.z32.val() {
                     self.we.next = true;
                     self.wa.next = self.cnt.q.val() - self.one32.val();
-                    self.wd.next = self.tab.read_data.val();
+                    self.wd.next = self.romq.q.val();
                 }
-                self.rn.write_address.next = bit_cast::<8, 32>(self.cnt.q.val() & self.pmask.val());
+                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
                 self.rsk.write_address.next =
-                    bit_cast::<8, 32>(self.cnt.q.val() & self.pmask.val());
+                    bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
                 self.rsp.write_address.next =
-                    bit_cast::<8, 32>(self.cnt.q.val() & self.pmask.val());
+                    bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
@@ -743,18 +830,22 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::ReadI => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.off_a.val() | self.seg_i.val());
+                self.traddr.next = self.seg_i.val();
                 self.state.d.next = LearnState::ReadJ;
             }
             LearnState::ReadJ => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.off_a.val() | self.seg_j.val());
+                self.traddr.next = self.seg_j.val();
                 self.ci.d.next = self.tab_s.val();
+                self.state.d.next = LearnState::LatJ;
+            }
+            LearnState::LatJ => {
+                self.cj.d.next = self.tab_s.val();
                 self.state.d.next = LearnState::Diff;
             }
             LearnState::Diff => {
-                self.dd.d.next = self.tab_s.val() - self.ci.q.val();
+                self.dd.d.next = self.cj.q.val() - self.ci.q.val();
+                self.mh.d.next =
+                    (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val()) + self.st_half.val();
                 self.fsh.d.next = self.m_s.q.val() & self.fmask.val();
                 self.acc.d.next = self.z64.val();
                 self.cnt.d.next = self.z32.val();
@@ -783,9 +874,7 @@ impl Logic for HarmonicLearner {
             }
             LearnState::Bin => {
                 // The bin: round((m 2^T - c) / 2^(s+T)) mod P; q = pos 2^T - c.
-                self.t64.next = (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val())
-                    - self.c.q.val()
-                    + self.st_half.val();
+                self.t64.next = self.mh.q.val() - self.c.q.val();
                 self.sbin.d.next =
                     bit_cast::<32, 64>(self.t64.val() >> self.st.val()) & self.pmask.val();
                 self.abs.next = (self.ps.q.val() << self.tf.val()) - self.c.q.val();
@@ -796,21 +885,27 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::ReadBin;
             }
             LearnState::ReadBin => {
-                self.rn.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
-                self.rsk.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
-                self.rsp.read_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+                self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+                self.state.d.next = LearnState::LatBin;
+            }
+            LearnState::LatBin => {
+                self.nn.d.next = self.rn.read_data.val();
+                self.sksh.d.next = self.rsk.read_data.val();
+                self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::Acc;
             }
             LearnState::Acc => {
-                self.rn.write_address.next = bit_cast::<8, 32>(self.sbin.q.val());
-                self.rsk.write_address.next = bit_cast::<8, 32>(self.sbin.q.val());
-                self.rsp.write_address.next = bit_cast::<8, 32>(self.sbin.q.val());
+                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+                self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
-                self.rn.write_data.next = self.rn.read_data.val() + self.one32.val();
-                self.rsk.write_data.next = self.rsk.read_data.val() + self.k.q.val();
-                self.t64.next = self.sp_s.val() + self.q.q.val();
+                self.rn.write_data.next = self.nn.q.val() + self.one32.val();
+                self.rsk.write_data.next = self.sksh.q.val() + self.k.q.val();
+                self.t64.next = self.spv.q.val() + self.q.q.val();
                 self.rsp.write_data.next = self.t64.val() & self.sw_mask.val();
                 if (self.t64.val() & self.sw_sign.val()).any() {
                     self.rsp.write_data.next = self.t64.val() | !self.sw_mask.val();
@@ -907,9 +1002,9 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::ResRead;
             }
             LearnState::ResRead => {
-                self.rn.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
-                self.rsk.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
-                self.rsp.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
                 self.state.d.next = LearnState::ResLatch;
             }
             LearnState::ResLatch => {
@@ -1018,7 +1113,7 @@ impl Logic for HarmonicLearner {
                     self.t64.next = self.z64.val() - self.rm.q.val();
                 }
                 self.r.d.next = self.t64.val();
-                self.rsp.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
                 self.rsp.write_data.next = self.t64.val();
                 self.rsp.write_enable.next = self.nn.q.val() != self.z32.val();
                 self.state.d.next = LearnState::ResSum;
@@ -1075,16 +1170,19 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::UpdRead;
             }
             LearnState::UpdRead => {
-                self.tab.read_address.next =
-                    bit_cast::<10, 32>(self.off_a.val() | self.idx.q.val());
-                self.rn.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
-                self.rsp.read_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.traddr.next = self.idx.q.val();
+                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.state.d.next = LearnState::UpdLat;
+            }
+            LearnState::UpdLat => {
+                self.ucur.d.next = self.tab_s.val();
+                self.unz.d.next = self.rn.read_data.val() != self.z32.val();
+                self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::UpdDiff;
             }
             LearnState::UpdDiff => {
-                self.ucur.d.next = self.tab_s.val();
-                self.unz.d.next = self.rn.read_data.val() != self.z32.val();
-                self.ux.d.next = self.sp_s.val() - self.mean.q.val();
+                self.ux.d.next = self.spv.q.val() - self.mean.q.val();
                 self.state.d.next = LearnState::UpdAbs;
             }
             LearnState::UpdAbs => {
@@ -1126,9 +1224,9 @@ impl Logic for HarmonicLearner {
                 self.we.next = true;
                 self.wa.next = self.off_o.val() | self.idx.q.val();
                 self.wd.next = bit_cast::<32, 64>(self.t64.val()) & self.ew_mask.val();
-                self.rn.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
-                self.rsk.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
-                self.rsp.write_address.next = bit_cast::<8, 32>(self.idx.q.val());
+                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
@@ -1168,9 +1266,16 @@ impl Logic for HarmonicLearner {
             self.pend.d.next = true;
         }
         // The table's write port and its copy on tw.
-        self.tab.write_enable.next = self.we.val();
-        self.tab.write_address.next = bit_cast::<10, 32>(self.wa.val());
-        self.tab.write_data.next = self.wd.val();
+        self.tab0.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.traddr.val());
+        self.tab1.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.traddr.val());
+        self.tab0.write_enable.next =
+            self.we.val() & ((self.wa.val() & self.pp.val()) == self.z32.val());
+        self.tab1.write_enable.next =
+            self.we.val() & ((self.wa.val() & self.pp.val()) != self.z32.val());
+        self.tab0.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
+        self.tab1.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
+        self.tab0.write_data.next = self.wd.val();
+        self.tab1.write_data.next = self.wd.val();
         self.twr.d.next = self.we.val();
         self.twa.d.next = self.z32.val();
         self.twd.d.next = self.z32.val();
@@ -1187,6 +1292,9 @@ impl Logic for HarmonicLearner {
             self.got.d.next = false;
             self.prev.d.next = self.z32.val();
             self.pos.d.next = self.z64.val();
+            self.dlv.d.next = false;
+            self.dls.d.next = false;
+            self.dla.d.next = false;
             self.k.d.next = self.z32.val();
             self.sum_p.d.next = self.z64.val();
             self.sum_ps.d.next = self.z64.val();
@@ -1195,7 +1303,8 @@ impl Logic for HarmonicLearner {
             self.twr.d.next = false;
             self.twa.d.next = self.z32.val();
             self.twd.d.next = self.z32.val();
-            self.tab.write_enable.next = false;
+            self.tab0.write_enable.next = false;
+            self.tab1.write_enable.next = false;
             self.rn.write_enable.next = false;
             self.rsk.write_enable.next = false;
             self.rsp.write_enable.next = false;

@@ -10,9 +10,10 @@
 //!                      │
 //!  strobe, angle m ──► Collect ──(N samples)──► Line ──► Residual[0..P) ──► Mean
 //!   (delta = m - m_prev,  Wait ─► ReadI, ReadJ,  (U, b by a      (per bin: four      (sum r /
-//!    F+2 bits, moves      Diff, Mult x s, Corr,  division, a by  products, one       bins with
-//!    pos on every         Bin, ReadBin, Acc, Sum shifts and      division, r_i into  samples)
-//!    strobe)              Wait ─► LoadA, LoadB   adds)           the bin's word)        │
+//!    F+2 bits, moves      LatJ, Diff, Mult x s,  division, a by  products, one       bins with
+//!    pos on every         Corr, Bin, ReadBin,    shifts and      division, r_i into  samples)
+//!    strobe)              LatBin, Acc, Sum       adds)           the bin's word)        │
+//!                         Wait ─► LoadA, LoadB                                          │
 //!               ▲          (ld: both banks)                                             │
 //!             Apply ◄──────────── Update[0..P): c'_i = c_i + clip(2^-g (r_i - r), ±step) ◄┘
 //!   (flip the bank: the new        into the other bank, one table write per entry;
@@ -36,8 +37,8 @@
 //!   into entry `ld_addr` of both banks (LoadA, LoadB: two writes) so that the next Update
 //!   starts from it; an `ld` while one is pending is dropped. `ld_data` is saturated to
 //!   +-2^(F-4) LSB. A strobe during LoadA or LoadB is latched and processed after them.
-//! - A sample takes [`LearnParams::collect_clocks`] (s + 9: 18 at F = 14, p = 7) from its
-//!   strobe in Wait; with a load's two writes [`LearnParams::min_sample_clocks`] (20) is the
+//! - A sample takes [`LearnParams::collect_clocks`] (s + 11: 20 at F = 14, p = 7) from its
+//!   strobe in Wait; with a load's two writes [`LearnParams::min_sample_clocks`] (22) is the
 //!   shortest sample spacing at which no sample of a window is lost, and the core refuses a
 //!   config whose sample period is shorter. A strobe that comes while a sample is in
 //!   process (or in Line .. Apply, or Clear) moves `pos` but is not collected; inside a
@@ -70,9 +71,9 @@
 //! | sum r, r | the residuals' sum over <= P bins, their mean | q | F - 2 + T + 1 + p, F - 2 + T + 1 | 28, 21 |
 //!
 //! Bit growth: a sum of N = 2^w terms grows by w bits (sp_i, Sp), a sum of N running sums
-//! by 2w (PS), a product by the sum of the factors' widths. The window's S0 = N, S1 = N (N -
-//! 1) / 2 and S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the window falls
-//! in a bin). The line of the least-squares fit, b = round((N Skp - S1 Sp) 2^B / det) with
+//! by 2w (PS), a product by the sum of the factors' widths. The window's S0 = N,
+//! S1 = N (N - 1) / 2 and S2 = (N - 1) N (2N - 1) / 6 are constants (every sample of the
+//! window falls in a bin). The line of the least-squares fit, b = round((N Skp - S1 Sp) 2^B / det) with
 //! det = N S2 - S1^2 = N^2 (N^2 - 1) / 12, needs an 89-bit numerator and Skp = sum k q a
 //! product per sample; neither is built. Instead, with PS = sum_j (sum_(k<=j) q_k) = sum_k
 //! (N - k) q_k, Skp = N Sp - PS, and N Skp - S1 Sp = (N / 2) U with U = 2 Skp - (N - 1) Sp =
@@ -111,10 +112,11 @@
 //! Clocks (the model counts them state by state, the RTL's named states): Collect
 //! [`LearnParams::collect_clocks`] per sample; [`LearnParams::line_clocks`] (Kb + 7 = 51),
 //! [`LearnParams::residual_clocks`] per bin (2w - 1 + Kr + 10 = 54),
-//! [`LearnParams::mean_clocks`] (Kr + 4 = 25), [`LearnParams::update_clocks`] per bin (6),
-//! Apply 1: [`LearnParams::solve_clocks`] = 7757 at F = 14, p = 7, w = 12, T = 8, i.e. 77
+//! [`LearnParams::mean_clocks`] (Kr + 4 = 25), [`LearnParams::update_clocks`] per bin (7),
+//! Apply 1: [`LearnParams::solve_clocks`] = 7885 at F = 14, p = 7, w = 12, T = 8, i.e. 78
 //! samples at 102 clocks per sample. Every register-to-register path of the RTL holds at
-//! most one carry chain, so three-operand sums take two states. Samples that arrive
+//! most one carry chain, so three-operand sums take two states and a RAM's output is
+//! latched before an adder. Samples that arrive
 //! outside Collect still move `pos` but are not collected: the next window starts at the
 //! first sample after Apply.
 //!
@@ -314,9 +316,9 @@ impl LearnParams {
     }
 
     /// Clocks of one sample in Collect, from its strobe to the next clock that takes one:
-    /// Wait, ReadI, ReadJ, Diff, s of Mult, Corr, Bin, ReadBin, Acc, Sum.
+    /// Wait, ReadI, ReadJ, LatJ, Diff, s of Mult, Corr, Bin, ReadBin, LatBin, Acc, Sum.
     pub fn collect_clocks(&self) -> u32 {
-        self.seg_bits() + 9
+        self.seg_bits() + 11
     }
 
     /// The shortest sample spacing, clocks, at which every sample of a window is collected:
@@ -344,10 +346,10 @@ impl LearnParams {
         self.res_div_bits() + 4
     }
 
-    /// Clocks of Update per bin: the read, r_i - r, its magnitude, the step, the sum, the
-    /// write.
+    /// Clocks of Update per bin: the read, the latch, r_i - r, its magnitude, the step, the
+    /// sum, the write.
     pub fn update_clocks(&self) -> u32 {
-        6
+        7
     }
 
     /// Clocks from the window's last sample's Sum to the first clock of the next Collect.
@@ -376,6 +378,8 @@ pub enum State {
     ReadI,
     /// c_(i+1) read.
     ReadJ,
+    /// c_(i+1) latched.
+    LatJ,
     /// D = c_(i+1) - c_i.
     Diff,
     /// D f, one bit of f a clock (s clocks).
@@ -386,6 +390,8 @@ pub enum State {
     Bin,
     /// The bin's sums read.
     ReadBin,
+    /// The bin's sums latched.
+    LatBin,
     /// n_i, sk_i, sp_i and Sp updated.
     Acc,
     /// PS += Sp, k += 1.
@@ -442,6 +448,8 @@ pub enum State {
     MeanSign,
     /// Entry `idx` and bin `idx`'s n_i and r_i read.
     UpdRead,
+    /// Latched.
+    UpdLat,
     /// r_i - r.
     UpdDiff,
     /// |r_i - r|.
@@ -866,7 +874,8 @@ impl Sequencer {
                 self.got = false;
             }
             State::ReadI => next = State::ReadJ,
-            State::ReadJ => next = State::Diff,
+            State::ReadJ => next = State::LatJ,
+            State::LatJ => next = State::Diff,
             State::Diff => {
                 self.cnt = 0;
                 next = State::Mult;
@@ -892,7 +901,8 @@ impl Sequencer {
                 ) as i64;
                 next = State::ReadBin;
             }
-            State::ReadBin => next = State::Acc,
+            State::ReadBin => next = State::LatBin,
+            State::LatBin => next = State::Acc,
             State::Acc => {
                 let (i, q) = (self.bin, i128::from(self.q));
                 self.n[i] += 1;
@@ -1015,7 +1025,8 @@ impl Sequencer {
                 self.change = 0;
                 next = State::UpdRead;
             }
-            State::UpdRead => next = State::UpdDiff,
+            State::UpdRead => next = State::UpdLat,
+            State::UpdLat => next = State::UpdDiff,
             State::UpdDiff => next = State::UpdAbs,
             State::UpdAbs => next = State::UpdStep,
             State::UpdStep => next = State::UpdAdd,
