@@ -668,10 +668,10 @@ impl Logic for HarmonicLearner {
     fn update(&mut self) {
         dff_setup!(
             self, clk, romq, dl, dlv, dls, dla, mh, cj, state, cnt, idx, active, pend, ld_i, ld_v,
-            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag,
-            rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb,
-            la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg,
-            uax, udm, unw, twr, twa, twd, clr
+            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg,
+            mag, rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa,
+            pb, la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux,
+            uneg, uax, udm, unw, twr, twa, twd, clr
         );
         self.tab0.read_clock.next = self.clk.val();
         self.tab0.write_clock.next = self.clk.val();
@@ -787,7 +787,8 @@ impl Logic for HarmonicLearner {
                     self.wa.next = self.cnt.q.val() - self.one32.val();
                     self.wd.next = self.romq.q.val();
                 }
-                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
+                self.rn.write_address.next =
+                    bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
                 self.rsk.write_address.next =
                     bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
                 self.rsp.write_address.next =
@@ -1272,8 +1273,10 @@ impl Logic for HarmonicLearner {
             self.we.val() & ((self.wa.val() & self.pp.val()) == self.z32.val());
         self.tab1.write_enable.next =
             self.we.val() & ((self.wa.val() & self.pp.val()) != self.z32.val());
-        self.tab0.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
-        self.tab1.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
+        self.tab0.write_address.next =
+            bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
+        self.tab1.write_address.next =
+            bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
         self.tab0.write_data.next = self.wd.val();
         self.tab1.write_data.next = self.wd.val();
         self.twr.d.next = self.we.val();
