@@ -69,12 +69,6 @@ fn option_tops() -> Vec<(&'static str, String)> {
             "auto-correction top",
             replace_once("mode = \"static\"", "mode = \"auto\""),
         ),
-        (
-            "learned harmonic table top (128 points) with the register map",
-            format!(
-                "{d}\n[harmonics]\nenabled = true\npoints = 128\n[registers]\nenabled = true\n"
-            ),
-        ),
     ];
     v.extend(registered);
     v

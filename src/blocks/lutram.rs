@@ -1,30 +1,40 @@
-//! A RAM with one write port and one registered read port, marked for distributed (LUT)
-//! RAM: rust-hdl's `RAM` (same ports, same simulation, same Verilog) plus the attribute
-//! `(* ram_style = "distributed" *)` on its array. Written here because rust-hdl's `RAM`
-//! has no way to carry an attribute.
-//!
-//! Why distributed: on the ECP5 of the timing rule (docs/timing.md) Yosys maps a block RAM
-//! to a DP16KD without its output register, whose clock-to-out alone (5.61 ns at speed 6)
-//! nearly fills the rule's 6.0 ns at 133.33 MHz; LUT RAM (TRELLIS_DPR16X4) reads in about
-//! 1 ns. Yosys honours the attribute on ECP5 and xc3sa (RAM16X1D); its Cyclone IV E flow
-//! ignores it and maps an M9K, cleanly when the words are 36 bits wide and at most 256
-//! deep (other widths have ports resized, a warning the synthesis flow refuses).
+//! A RAM with one write port and one read port that behaves as rust-hdl's `RAM` does (the
+//! word at the address of the last read edge, read before that edge's write), built for
+//! distributed (LUT) RAM: the read address is registered and the array read after it, and
+//! every write is held a clock in a write stage, so the word the read sees is the one
+//! before the write of its own edge:
 //!
 //! ```text
-//!  write_address, write_data, write_enable ──► mem[2^N] ──► read_data (registered)
-//!  read_address ───────────────────────────────────┘
+//!  read_address ──reg──► ra ──► mem[ra] ─────────────────────────────► read_data
+//!  write_address, write_data, write_enable ──reg──► (wa, wd, we) ──► mem[wa] <= wd
 //! ```
+//!
+//! After edge c the array holds every write presented before cycle c (one edge late), and
+//! `ra` the address of cycle c: `read_data` = M_(c-1)[addr_c], the registered read of
+//! rust-hdl's `RAM`, clock for clock. The array carries `(* ram_style = "distributed" *)`.
+//! Written here because rust-hdl's `RAM` has no way to carry an attribute and reads the
+//! array before its output register.
+//!
+//! Why: on the ECP5 of the timing rule (docs/timing.md) Yosys maps a block RAM to a DP16KD
+//! without its output register, whose clock-to-out alone (5.61 ns at speed 6) nearly fills
+//! the rule's 6.0 ns at 133.33 MHz; and a LUT RAM read at a computed address puts the
+//! address logic, its fan-out to every LUT RAM cell and the read mux in one path (the
+//! learner's state to its table: 83.8 MHz). Here the path starts at the address register.
+//! Yosys honours the attribute on ECP5 (TRELLIS_DPR16X4, the address register kept before
+//! the array) and xc3sa (RAM16X1D); its Cyclone IV E flow ignores it and maps an M9K, the
+//! address register merged into the M9K's read port. No register here has an initial
+//! value: one would keep Yosys from that merge (the array then becomes flip-flops).
 use rust_hdl::prelude::*;
 use std::collections::BTreeMap;
 
-/// One write port and one registered read port; read-during-write gives the old word.
+/// One write port and one read port, as rust-hdl's `RAM` (see the module doc).
 #[derive(LogicBlock, Default)]
 pub struct LutRam<D: Synth, const N: usize> {
     /// The word read at the next `read_clock` edge.
     pub read_address: Signal<In, Bits<N>>,
     /// The read port's clock.
     pub read_clock: Signal<In, Clock>,
-    /// The word at `read_address` at the last edge.
+    /// The word at `read_address` at the last edge, before that edge's write.
     pub read_data: Signal<Out, D>,
     /// The word written at the next `write_clock` edge when `write_enable` is high.
     pub write_address: Signal<In, Bits<N>>,
@@ -36,21 +46,37 @@ pub struct LutRam<D: Synth, const N: usize> {
     pub write_enable: Signal<In, bool>,
     /// The simulation's words (none known at power-up: they read as 0 here, `x` in
     /// Verilog).
-    _sim: Box<BTreeMap<Bits<N>, D>>,
+    _sim: BTreeMap<Bits<N>, D>,
+    /// The registered read address.
+    _ra: Bits<N>,
+    /// The write stage: the write presented a clock before, if any.
+    _wr: Option<(Bits<N>, D)>,
+    /// Each clock's edge acts once however often the simulator settles within it: armed
+    /// while the clock is low (write clock, read clock).
+    _warm: bool,
+    _rarm: bool,
 }
 
 impl<D: Synth, const N: usize> Logic for LutRam<D, N> {
     fn update(&mut self) {
-        if self.read_clock.pos_edge() {
-            self.read_data.next = *self
-                ._sim
-                .get(&self.read_address.val())
-                .unwrap_or(&D::default());
+        if !self.write_clock.val().clk {
+            self._warm = true;
+        } else if self._warm {
+            self._warm = false;
+            if let Some((a, d)) = self._wr.take() {
+                self._sim.insert(a, d);
+            }
+            if self.write_enable.val() {
+                self._wr = Some((self.write_address.val(), self.write_data.val()));
+            }
         }
-        if self.write_clock.pos_edge() && self.write_enable.val() {
-            self._sim
-                .insert(self.write_address.val(), self.write_data.val());
+        if !self.read_clock.val().clk {
+            self._rarm = true;
+        } else if self._rarm {
+            self._rarm = false;
+            self._ra = self.read_address.val();
         }
+        self.read_data.next = *self._sim.get(&self._ra).unwrap_or(&D::default());
     }
 
     fn connect(&mut self) {
@@ -61,18 +87,30 @@ impl<D: Synth, const N: usize> Logic for LutRam<D, N> {
         Verilog::Custom(format!(
             "\
 (* ram_style = \"distributed\" *) reg[{d}:0] mem[{a}:0];
+reg[{n}:0] ra;
+reg[{n}:0] wa;
+reg[{d}:0] wd;
+reg we;
 
 always @(posedge read_clock) begin
-   read_data <= mem[read_address];
+   ra <= read_address;
+end
+
+always @(*) begin
+   read_data = mem[ra];
 end
 
 always @(posedge write_clock) begin
-   if (write_enable) begin
-      mem[write_address] <= write_data;
+   we <= write_enable;
+   wa <= write_address;
+   wd <= write_data;
+   if (we) begin
+      mem[wa] <= wd;
    end
 end
 ",
             d = D::BITS - 1,
+            n = N - 1,
             a = (1usize << N) - 1,
         ))
     }

@@ -35,8 +35,8 @@ fn the_ram_arithmetic_equals_the_static_blocks_on_the_same_table() {
         let mut r = SplitMix64(seed);
         for k in 0..100_000u64 {
             let z = if k < 1000 {
-                (k % n as u64) << (ZW - p.points_log2)
-                    | (k / n as u64) % 2 * mask(ZW - p.points_log2)
+                ((k % n as u64) << (ZW - p.points_log2))
+                    | ((k / n as u64) % 2 * mask(ZW - p.points_log2))
             } else {
                 r.next_u64() & mask(ZW)
             };

@@ -229,9 +229,15 @@ fn describe(p: &HarmonicParams) -> String {
             p.z_guard
         ),
     };
+    // The learner misses the timing rule (docs/timing.md): said where the design is shown.
+    let timing = if p.learn.is_some() {
+        "harmonic correction timing  the learner misses the timing rule: 97.68 MHz median on the ECP5 flow for the default top at 133.33 MHz (0.733 x; docs/timing.md), its state's fan-out into the divider; run it at most 78 MHz or use mode = \"static\"\n"
+    } else {
+        ""
+    };
     format!(
         "harmonic correction         {how}\n\
-         harmonic correction latency {} clocks (in the core's latency: {})\n",
+         harmonic correction latency {} clocks (in the core's latency: {})\n{timing}",
         p.latency(),
         stages(p)
     )

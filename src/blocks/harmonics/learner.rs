@@ -38,16 +38,18 @@
 //! adder (LatJ, LatBin, UpdLat, ResLatch), and `pos` moves a clock after its strobe (dl).
 //!
 //! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
-//! tests/blocks/harmonics_learner.rs): xc3sa 4705 LUT4, 2538 FF, 6 RAMB16, no MULT18X18;
-//! cycloneive 6327 LE, 2536 FF, 6 M9K, no multiplier. The RAMs are sized for 256 entries
-//! (`RAM<_, 8>`); the 64-bit registers hold narrower values that Yosys does not trim.
+//! tests/blocks/harmonics_learner.rs): xc3sa 6186 LUT4 (1536 of them RAM16X1D), 2733 FF,
+//! no block RAM, no MULT18X18; cycloneive 6578 LE, 2735 FF, 6 M9K, no multiplier. The RAMs
+//! are [`LutRam`] of 2^[`LEARN_ADDR_BITS`] words (distributed on ECP5 and xc3sa); the
+//! 64-bit registers hold narrower values that Yosys does not trim.
 //!
-//! Timing (docs/timing.md's ECP5 flow, the learner alone at 133.33 MHz, seeds 1 / 2 / 3):
-//! 86.64 / 91.27 / 83.94 MHz, short of the rule's 166.7 MHz. Every critical path starts at
-//! a block RAM's output: Yosys maps the RAMs to DP16KD without its output register (the
-//! ECP5 library in Yosys offers none), whose clock-to-out is 5.61 ns, so even a RAM
-//! output straight into a flip-flop misses 6 ns. Not solved here (docs/correction.md,
-//! "Learning the table online": what is not built).
+//! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
+//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 96.45 / 97.68 / 101.53 MHz, short of the
+//! rule's 166.7 MHz. The critical path is the state register to the divider's quotient
+//! register, 8.5 ns of it routing: the state's fan-out into the selects of every 64-bit
+//! register. Decoding the state into registered flags beside the registers they steer
+//! (docs/timing.md, "Design rules learned") is the way out; not done. With block RAMs
+//! (DP16KD, 5.61 ns clock-to-out) the learner alone was at 83.94 to 91.27 MHz.
 //!
 //! Ports:
 //!

@@ -10,6 +10,7 @@ use super::{
     PRESET_WORD, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
 use crate::blocks::harmonics::hdl_ram::{RAM_ADDR_BITS, RAM_WORD_BITS};
+use crate::blocks::lutram::LutRam;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
@@ -1055,7 +1056,7 @@ pub struct TableMirror {
     pub waddr: Signal<In, Bits<32>>,
     /// Write data (its low [`RAM_WORD_BITS`] bits).
     pub wdata: Signal<In, Bits<32>>,
-    ram: RAM<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    ram: LutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
 }
 
 impl Logic for TableMirror {

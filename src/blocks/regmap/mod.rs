@@ -647,7 +647,9 @@ impl RegmapParams {
     /// `entry_width` bits (E, two's complement in 2^-8 LSB, 2..=24): HARM_CONTROL,
     /// HARM_INDEX and HARM_ENTRY decoded, the mirror RAM and the learner's ports used.
     pub fn with_harmonics(mut self, points: u32, entry_width: u32) -> crate::error::Result<Self> {
-        let range = crate::blocks::harmonics::POINTS_RANGE;
+        // A learned table has at most 128 entries (its two banks in one 256-word RAM).
+        let range = *crate::blocks::harmonics::POINTS_RANGE.start()
+            ..=crate::blocks::harmonics::hdl_ram::MAX_POINTS;
         let ok = range.contains(&points) && points.is_power_of_two();
         if !(ok && (2..=24).contains(&entry_width)) {
             return Err(crate::error::Error::block_params(
