@@ -84,7 +84,7 @@ fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
 }
 
-/// The learner's states, in the order of the model's [`super::sequencer::State`].
+/// The learner's states, which the model ([`super::sequencer::Sequencer`]) steps through too.
 #[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
 pub enum LearnState {
     /// The start table into both banks, the bins cleared (power-up and reset).
