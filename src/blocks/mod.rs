@@ -25,6 +25,7 @@ pub mod core;
 pub mod correction;
 pub mod counter;
 pub mod fallback;
+pub mod fsmreg;
 pub mod harmonics;
 pub mod init_bit;
 pub mod lutram;

@@ -159,3 +159,36 @@ fn check_prints_the_table_and_the_latency() {
     let quiet = Loaded::parse(&with("enabled = false\npoints = 100"), "q.toml").expect("off");
     assert!(quiet.derived.harmonics.is_none());
 }
+
+/// A learned table: the core's latency grows by the RAM lookup's clocks, and `check` says
+/// that the design misses the timing rule with the figures measured for it (the median of
+/// the three seeds, below the rule's 1.25 x, or the line would be wrong); a static table
+/// gets no such line.
+#[test]
+fn check_says_a_learned_table_misses_the_timing_rule() {
+    use sinedec::blocks::harmonics::block::LEARNED_TOP_MHZ;
+    let learn = Loaded::parse(&with("enabled = true\npoints = 128"), "l.toml").expect("learn");
+    let off = Loaded::default_config().expect("off");
+    let on = Loaded::parse(&format!("{DEFAULT_CONFIG}\n{HELD_CASE}"), "h.toml").expect("on");
+    let (d, d0) = (&learn.derived, &off.derived);
+    assert_eq!(
+        d.latency_cycles,
+        d0.latency_cycles + HarmonicParams::LATENCY_RAM
+    );
+    let s = d.describe();
+    let line = s
+        .lines()
+        .find(|l| l.starts_with("harmonic correction timing"))
+        .unwrap_or_else(|| panic!("no timing line in\n{s}"));
+    let mut seeds = LEARNED_TOP_MHZ;
+    seeds.sort_by(f64::total_cmp);
+    let median = seeds[1];
+    assert!(median / 133.33 < 1.25, "the figures meet the rule: {line}");
+    assert!(line.contains("misses the timing rule"), "{line}");
+    assert!(line.contains(&format!("median {median:.2} MHz")), "{line}");
+    assert!(
+        line.contains(&format!("{:.3} x", median / 133.33)),
+        "{line}"
+    );
+    assert!(!on.derived.describe().contains("harmonic correction timing"));
+}

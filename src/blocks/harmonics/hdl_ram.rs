@@ -6,11 +6,11 @@
 //!  tw, tw_addr, tw_data ──► (q ^ m) + half - m >> s ──reg──► RAM_A[bank P + i], RAM_B[...]
 //!  (the learner's writes,     (q units to z units)           (one copy each)
 //!   q units)
-//!            ┌──────────────┐ a=c_i  ┌──────────────┐ y, D  ┌────────────┐ s0..s3 ┌─────┐ ┌─────┐ ┌───────────┐
-//!  z_in ────►│ RAM_A[b,idx] ├───────►│ y=(z-a)<<R|h ├──────►│ 8 partial  ├───────►│ add ├►│ add ├►│ y - sum   ├─► z_out
-//!  (ZW b)    │ RAM_B[b,idx+1]│ b=c_j │ D=b-a (sext) │ f     │ products,  │        │pairs│ │pair │ │ >> R      │
-//!            └──reg─────────┘        └──reg─────────┘       │ pairs      │        └─reg─┘ └─reg─┘ └──reg──────┘
-//!  cycle:        1                       2                  └──reg───────┘3          4       5        6
+//!            ┌──────────────┐       ┌──────┐ a=c_i  ┌──────────────┐ y, D  ┌────────────┐ s0..s3 ┌─────┐ ┌─────┐ ┌───────────┐
+//!  z_in ────►│ RAM_A[b,idx] ├──────►│ a, b ├───────►│ y=(z-a)<<R|h ├──────►│ 8 partial  ├───────►│ add ├►│ add ├►│ y - sum   ├─► z_out
+//!  (ZW b)    │ RAM_B[b,idx+1]│       │      │ b=c_j  │ D=b-a (sext) │ f     │ products,  │        │pairs│ │pair │ │ >> R      │
+//!            └──reg─────────┘       └─reg──┘        └──reg─────────┘       │ pairs      │        └─reg─┘ └─reg─┘ └──reg──────┘
+//!  cycle:        1                    1r                   2                  └──reg───────┘3          4       5        6
 //! ```
 use super::{HarmonicParams, INTERP_BITS};
 use crate::blocks::lutram::LutRam;
@@ -29,7 +29,7 @@ pub const RAM_WORD_BITS: usize = 36;
 /// The most entries a learned table has: two banks of P in the RAM's 256 words.
 pub const MAX_POINTS: u32 = 128;
 
-/// The table lookup from RAM, the interpolation and the subtraction, six register stages.
+/// The table lookup from RAM, the interpolation and the subtraction, seven register stages.
 #[derive(LogicBlock)]
 pub struct HarmonicCorrectionRam {
     /// System clock.
@@ -53,11 +53,11 @@ pub struct HarmonicCorrectionRam {
     pub tw_addr: Signal<In, Bits<32>>,
     /// Its value, q units (2^-T LSB), two's complement in the learner's entry width.
     pub tw_data: Signal<In, Bits<32>>,
-    /// The corrected angle (ZW bits), six clocks after `z_in`.
+    /// The corrected angle (ZW bits), seven clocks after `z_in`.
     pub z_out: Signal<Out, Bits<32>>,
-    /// `x_in` six clocks later.
+    /// `x_in` seven clocks later.
     pub x_out: Signal<Out, Bits<32>>,
-    /// `v_in` six clocks later.
+    /// `v_in` seven clocks later.
     pub v_out: Signal<Out, Bit>,
     /// c_i (z units mod 2^ZW) at {bank, i}, read at the segment.
     ram_a: LutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
@@ -81,6 +81,16 @@ pub struct HarmonicCorrectionRam {
     c1: DFF<Bit>,
     x1: DFF<Bits<32>>,
     v1: DFF<Bit>,
+    /// Stage 1r: c_i and c_(i+1), the RAMs' read data registered (zeros during the Clear),
+    /// so that no adder follows a RAM read in one clock (the read path, docs/timing.md).
+    ar: DFF<Bits<32>>,
+    br: DFF<Bits<32>>,
+    zr: DFF<Bits<32>>,
+    xr: DFF<Bits<32>>,
+    vr: DFF<Bit>,
+    /// v1 a clock later, which a reset does not clear: an invalid sample's words are zeroed
+    /// by the valid bit it entered with, as the model does.
+    vz: DFF<Bit>,
     /// c_i and c_(i+1) of stage 1: the RAMs' read data, or zeros during the Clear.
     ca: Signal<Local, Bits<32>>,
     cb: Signal<Local, Bits<32>>,
@@ -190,6 +200,12 @@ impl HarmonicCorrectionRam {
             c1: Default::default(),
             x1: Default::default(),
             v1: Default::default(),
+            ar: Default::default(),
+            br: Default::default(),
+            zr: Default::default(),
+            xr: Default::default(),
+            vr: Default::default(),
+            vz: Default::default(),
             ca: Default::default(),
             cb: Default::default(),
             dz: Default::default(),
@@ -244,8 +260,8 @@ impl Logic for HarmonicCorrectionRam {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, wd, wa, we, cl, z1, c1, x1, v1, y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d,
-            x3, v3, y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
+            self, clk, wd, wa, we, cl, z1, c1, x1, v1, ar, br, zr, xr, vr, vz, y2, d2, f2, x2, v2,
+            y3, s3a, s3b, s3c, s3d, x3, v3, y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
         );
         // The write stage: the learner's entry in z units, rounded half up (a sign fill
         // and the half in one adder), at {bank, i} = bank P + i, as `tw_addr` holds it.
@@ -280,31 +296,38 @@ impl Logic for HarmonicCorrectionRam {
         self.c1.d.next = self.clearing.val() | self.cl.q.val();
         self.x1.d.next = self.x_in.val();
         self.v1.d.next = self.v_in.val() & !self.rst.val();
-        // Stage 2: y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i, sign-filled to W bits.
+        // Stage 1r: the words registered.
         self.ca.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val());
         self.cb.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_b.read_data.val());
         if self.c1.q.val() {
             self.ca.next = self.zero.val();
             self.cb.next = self.zero.val();
         }
-        self.y2.d.next = ((((self.z1.q.val() - self.ca.val()) & self.zmask.val())
+        self.ar.d.next = self.ca.val();
+        self.br.d.next = self.cb.val();
+        self.zr.d.next = self.z1.q.val();
+        self.xr.d.next = self.x1.q.val();
+        self.vr.d.next = self.v1.q.val() & !self.rst.val();
+        self.vz.d.next = self.v1.q.val();
+        // Stage 2: y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i, sign-filled to W bits.
+        self.y2.d.next = ((((self.zr.q.val() - self.ar.q.val()) & self.zmask.val())
             << self.rbits.val())
             | self.rhalf.val())
             & self.wmask.val();
-        self.dz.next = (self.cb.val() - self.ca.val()) & self.zmask.val();
+        self.dz.next = (self.br.q.val() - self.ar.q.val()) & self.zmask.val();
         self.d2.d.next = self.dz.val();
         if (self.dz.val() & self.dsign.val()) != self.zero.val() {
             self.d2.d.next = self.dz.val() | self.dfill.val();
         }
         // No sample: zeros, so that the RAMs' read registers (unknown in Verilog until
         // their first read) never reach z_out.
-        if !self.v1.q.val() {
+        if !self.vz.q.val() {
             self.y2.d.next = self.zero.val();
             self.d2.d.next = self.zero.val();
         }
-        self.f2.d.next = (self.z1.q.val() >> self.fshift.val()) & self.fmask.val();
-        self.x2.d.next = self.x1.q.val();
-        self.v2.d.next = self.v1.q.val() & !self.rst.val();
+        self.f2.d.next = (self.zr.q.val() >> self.fshift.val()) & self.fmask.val();
+        self.x2.d.next = self.xr.q.val();
+        self.v2.d.next = self.vr.q.val() & !self.rst.val();
         // Stage 3: the partial products of D f added in pairs.
         for k in 0..self.pp.len() {
             self.pp[k].next = self.zero.val();

@@ -20,11 +20,10 @@
 //!   per bin: UpdRead ─► UpdLat ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
 //!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
 //!
-//!   RAMs (P words each): the table's bank 0 and bank 1 (read both at entry i, take the
-//!   active one's word), n_i, sk_i, sp_i (r_i after Residual); one synchronous read port
-//!   each (data a clock after the address), one write port; none initialised (Clear writes
-//!   them first). The start table: a ROM of compares,
-//!   registered (romq), none for a zero table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
+//!   RAMs: the table (both banks, bank b's entry i at b 2^7 + i, read in the active bank),
+//!   n_i, sk_i, sp_i (r_i after Residual), P words each; one synchronous read port each
+//!   (data a clock after the address), one write port; none initialised (Clear writes them
+//!   first). The start table: a ROM of compares, registered (romq), none for a zero table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
 //!   dsr; t = 2 rem + msb(dvd): t >= dsr ? (rem = t - dsr, quo = 2 quo + 1) : (rem = t,
 //!   quo = 2 quo).
 //! ```
@@ -38,18 +37,25 @@
 //! adder (LatJ, LatBin, UpdLat, ResLatch), and `pos` moves a clock after its strobe (dl).
 //!
 //! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
-//! tests/blocks/harmonics_learner.rs): xc3sa 6186 LUT4 (1536 of them RAM16X1D), 2733 FF,
-//! no block RAM, no MULT18X18; cycloneive 6578 LE, 2735 FF, 6 M9K, no multiplier. The RAMs
-//! are [`LutRam`] of 2^[`LEARN_ADDR_BITS`] words (distributed on ECP5 and xc3sa); the
-//! 64-bit registers hold narrower values that Yosys does not trim.
+//! tests/blocks/harmonics_learner.rs): xc3sa 4535 LUT4 (1000 of them RAM16X1D), 2465 FF,
+//! no block RAM, no MULT18X18; cycloneive 5717 LE, 2533 FF, 5 M9K, no multiplier. The RAMs
+//! are [`LutRam`] (distributed on ECP5 and xc3sa), read in the widths their words hold
+//! (the entry width, w + 1 bits of n_i, 2w - 1 of sk_i, sp_i's), so that synthesis drops
+//! the other columns. The state is one-hot in synthesis ([`FsmReg`]); the counters' end
+//! tests compare [`CNT_BITS`] and p bits, the sample counts' w + 1; the divider keeps 2w + 1
+//! remainder bits and max(Kb, Kr) quotient bits. The other 64-bit registers hold narrower
+//! values that Yosys does not trim.
 //!
 //! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
-//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 96.45 / 97.68 / 101.53 MHz, short of the
-//! rule's 166.7 MHz. The critical path is the state register to the divider's quotient
-//! register, 8.5 ns of it routing: the state's fan-out into the selects of every 64-bit
-//! register. Decoding the state into registered flags beside the registers they steer
-//! (docs/timing.md, "Design rules learned") is the way out; not done. With block RAMs
-//! (DP16KD, 5.61 ns clock-to-out) the learner alone was at 83.94 to 91.27 MHz.
+//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 119.70 / 114.98 / 121.30 MHz
+//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz. The worst paths are
+//! LUT-RAM reads: the read address register through a 256-word RAM's cells and read
+//! multiplexer into a register, 1.7 ns of logic and 6.5 to 7.0 ns of routing (this table's
+//! RAM into c_i, the register map's mirror of it into the AXI read data). Before the
+//! one-hot state, narrow counters, the narrow divider and the lookup's registered words the
+//! top was at 96.45 / 97.68 / 101.53 MHz (the state's fan-out into every 64-bit register's
+//! select); with block RAMs (DP16KD, 5.61 ns clock-to-out) the learner alone was at 83.94
+//! to 91.27 MHz.
 //!
 //! Ports:
 //!
@@ -70,6 +76,7 @@
 //! | `ld_busy` | out | 1 | a load is pending (a new `ld` is dropped) |
 //! | `clearing` | out | 1 | the state was Clear a clock ago: with `tw`, the Clear's writes (registered) |
 use super::sequencer::{LearnParams, TABLE_FRAC};
+use crate::blocks::fsmreg::FsmReg;
 use crate::blocks::lutram::LutRam;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
@@ -79,6 +86,21 @@ use rust_hdl::prelude::*;
 /// sums). Distributed RAM ([`LutRam`]): a block RAM's read alone misses the timing rule on
 /// ECP5 (docs/timing.md).
 pub const LEARN_ADDR_BITS: usize = 7;
+
+/// Address bits of the table's RAM: the bank, then the entry.
+pub const TAB_ADDR_BITS: usize = LEARN_ADDR_BITS + 1;
+
+/// Bits of the learner's clock counter: Clear's 2P + 1 clocks (P <= 128) and the longest
+/// division's quotient bits (at most 64) fit.
+pub const CNT_BITS: usize = 10;
+
+fn cc(v: u64) -> Constant<Bits<CNT_BITS>> {
+    Constant::new(Bits::<CNT_BITS>::from(v))
+}
+
+fn ci(v: u64) -> Constant<Bits<LEARN_ADDR_BITS>> {
+    Constant::new(Bits::<LEARN_ADDR_BITS>::from(v))
+}
 
 fn c64(v: u64) -> Constant<Bits<64>> {
     Constant::new(Bits::<64>::from(v))
@@ -218,10 +240,9 @@ pub struct HarmonicLearner {
     pub clearing: Signal<Out, Bit>,
     /// See `clearing`.
     clr: DFF<Bit>,
-    /// The table's bank 0 and bank 1 (entries masked to the entry width; addresses bank P +
-    /// i on the tw port).
-    tab0: LutRam<Bits<32>, LEARN_ADDR_BITS>,
-    tab1: LutRam<Bits<32>, LEARN_ADDR_BITS>,
+    /// The table: bank b's entry i at word b 2^7 + i (the bank an address bit, so that no
+    /// select follows the read), entries in the entry width.
+    tab: LutRam<Bits<32>, TAB_ADDR_BITS>,
     /// Per bin: n_i.
     rn: LutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sk_i.
@@ -241,12 +262,14 @@ pub struct HarmonicLearner {
     /// The start table's index this clock; its entry, still XOR-ed.
     cidx: Signal<Local, Bits<32>>,
     tx: Signal<Local, Bits<32>>,
-    /// The state.
-    state: DFF<LearnState>,
-    /// The clock of Clear, Mult and the divisions.
-    cnt: DFF<Bits<32>>,
+    /// The state, one-hot in synthesis ([`FsmReg`]: the state's fan-out into every
+    /// 64-bit register's select).
+    state: FsmReg<LearnState>,
+    /// The clock of Clear, Mult and the divisions ([`CNT_BITS`] wide, so that its end tests
+    /// are narrow compares).
+    cnt: DFF<Bits<CNT_BITS>>,
     /// The bin of Residual and Update.
-    idx: DFF<Bits<32>>,
+    idx: DFF<Bits<LEARN_ADDR_BITS>>,
     /// The bank the correction reads.
     active: DFF<Bit>,
     /// The load: pending, its entry, its value (entry width).
@@ -354,9 +377,15 @@ pub struct HarmonicLearner {
     off_o: Signal<Local, Bits<32>>,
     dt: Signal<Local, Bits<64>>,
     tab_s: Signal<Local, Bits<64>>,
-    /// The table's read address (the entry, both banks) and the active bank's data.
+    /// The table's read entry; its RAM address with the active bank; the word read; the
+    /// write's RAM address.
     traddr: Signal<Local, Bits<32>>,
+    tra: Signal<Local, Bits<32>>,
+    /// n_i and sk_i read, in their widths.
+    rn_m: Signal<Local, Bits<32>>,
+    rsk_m: Signal<Local, Bits<32>>,
     trd: Signal<Local, Bits<32>>,
+    twm: Signal<Local, Bits<32>>,
     sp_s: Signal<Local, Bits<64>>,
     t64: Signal<Local, Bits<64>>,
     abs: Signal<Local, Bits<64>>,
@@ -371,11 +400,22 @@ pub struct HarmonicLearner {
     /// P - 1, P, 2P (32-bit).
     pmask: Constant<Bits<32>>,
     pp: Constant<Bits<32>>,
-    p2: Constant<Bits<32>>,
-    /// Entry width: mask, sign bit (32-bit); the sign fill (64-bit).
+    p2: Constant<Bits<CNT_BITS>>,
+    /// P - 1 (the bin counter's width); zero and one of the counters' widths.
+    ilast: Constant<Bits<LEARN_ADDR_BITS>>,
+    iz: Constant<Bits<LEARN_ADDR_BITS>>,
+    ione: Constant<Bits<LEARN_ADDR_BITS>>,
+    cz: Constant<Bits<CNT_BITS>>,
+    cone: Constant<Bits<CNT_BITS>>,
+    /// Entry width: mask, sign bit (32-bit).
     ew_mask: Constant<Bits<32>>,
     ew_sign: Constant<Bits<32>>,
+    /// The sign fill above the entry width (64-bit).
     ew_fill: Constant<Bits<64>>,
+    /// The 2w - 1 bits of sk_i.
+    skmask: Constant<Bits<32>>,
+    /// Bank 1's address bit in the table's RAM.
+    bank_hi: Constant<Bits<32>>,
     /// +entry_max, -entry_max as an entry-width code (32-bit).
     emax32: Constant<Bits<32>>,
     emin32: Constant<Bits<32>>,
@@ -406,7 +446,7 @@ pub struct HarmonicLearner {
     s32: Constant<Bits<32>>,
     s64: Constant<Bits<64>>,
     fmask: Constant<Bits<32>>,
-    s_last: Constant<Bits<32>>,
+    s_last: Constant<Bits<CNT_BITS>>,
     s_fill: Constant<Bits<64>>,
     /// T; s + T; 2^(s + T - 1) (the bin's rounding half).
     tf: Constant<Bits<64>>,
@@ -415,13 +455,23 @@ pub struct HarmonicLearner {
     /// w; N - 1 (32-bit); 5; 1; 63.
     w64: Constant<Bits<64>>,
     n_last: Constant<Bits<32>>,
+    /// The w + 1 bits a count of a window's samples (k, n_i) or of bins has: its tests
+    /// compare these only.
+    nmask: Constant<Bits<32>>,
     k5: Constant<Bits<64>>,
     k63: Constant<Bits<64>>,
     /// b's division: D, lead Kb - 6 and 64 - lead, the last quotient clock Kb - 1.
     dline: Constant<Bits<64>>,
     lb_lead: Constant<Bits<64>>,
     lb_up: Constant<Bits<64>>,
-    lb_last: Constant<Bits<32>>,
+    lb_last: Constant<Bits<CNT_BITS>>,
+    /// The divider's widths: the remainder's 2w + 1 bits (rem < dsr <= D < 2^(2w-1) when
+    /// the quotient fits; an r_i division that does not saturates r_i whatever its
+    /// quotient), the quotient's max(Kb, Kr) bits (a bit a clock from zero), the divisor's
+    /// 2w bits. Narrow words keep the divider's compare and subtract short (timing).
+    rem_mask: Constant<Bits<64>>,
+    quo_mask: Constant<Bits<64>>,
+    dsr_mask: Constant<Bits<64>>,
     /// One period of |b|: b >= it, b <= its negative.
     op_pos: Constant<Bits<64>>,
     op_neg: Constant<Bits<64>>,
@@ -429,7 +479,7 @@ pub struct HarmonicLearner {
     bf: Constant<Bits<64>>,
     bf_mask: Constant<Bits<64>>,
     bf_fill: Constant<Bits<64>>,
-    mul_last: Constant<Bits<32>>,
+    mul_last: Constant<Bits<CNT_BITS>>,
     /// H and -H.
     h_pos: Constant<Bits<64>>,
     h_neg: Constant<Bits<64>>,
@@ -437,7 +487,7 @@ pub struct HarmonicLearner {
     /// lim.
     lr_lead: Constant<Bits<64>>,
     lr_up: Constant<Bits<64>>,
-    lr_last: Constant<Bits<32>>,
+    lr_last: Constant<Bits<CNT_BITS>>,
     q_over: Constant<Bits<64>>,
     lim: Constant<Bits<64>>,
     /// r's division: lead Kr - 1 and 64 - lead.
@@ -496,8 +546,7 @@ impl HarmonicLearner {
             ld_busy: Default::default(),
             clearing: Default::default(),
             clr: Default::default(),
-            tab0: Default::default(),
-            tab1: Default::default(),
+            tab: Default::default(),
             rn: Default::default(),
             rsk: Default::default(),
             rsp: Default::default(),
@@ -592,7 +641,11 @@ impl HarmonicLearner {
             dt: Default::default(),
             tab_s: Default::default(),
             traddr: Default::default(),
+            tra: Default::default(),
+            rn_m: Default::default(),
+            rsk_m: Default::default(),
             trd: Default::default(),
+            twm: Default::default(),
             sp_s: Default::default(),
             t64: Default::default(),
             abs: Default::default(),
@@ -603,10 +656,17 @@ impl HarmonicLearner {
             one32: c32(1),
             pmask: c32(pp - 1),
             pp: c32(pp),
-            p2: c32(2 * pp),
+            p2: cc(2 * pp),
+            ilast: ci(pp - 1),
+            iz: ci(0),
+            ione: ci(1),
+            cz: cc(0),
+            cone: cc(1),
             ew_mask: c32(mask(ew)),
             ew_sign: c32(sign(ew)),
             ew_fill: c64(!mask(ew)),
+            skmask: c32(mask(2 * p.window_log2 - 1)),
+            bank_hi: c32(1 << LEARN_ADDR_BITS),
             emax32: c32(em),
             emin32: c32(neg(em) & mask(ew)),
             emax: c64(em),
@@ -629,30 +689,34 @@ impl HarmonicLearner {
             s32: c32(u64::from(s)),
             s64: c64(u64::from(s)),
             fmask: c32(mask(s)),
-            s_last: c32(u64::from(s - 1)),
+            s_last: cc(u64::from(s - 1)),
             s_fill: c64(fill(s)),
             tf: c64(u64::from(TABLE_FRAC)),
             st: c64(u64::from(s + TABLE_FRAC)),
             st_half: c64(1 << (s + TABLE_FRAC - 1)),
             w64: c64(u64::from(p.window_log2)),
             n_last: c32(p.window() - 1),
+            nmask: c32(mask(p.window_log2 + 1)),
             k5: c64(5),
             k63: c64(63),
             dline: c64(p.line_divisor()),
             lb_lead: c64(u64::from(kb - 6)),
             lb_up: c64(u64::from(64 - (kb - 6))),
-            lb_last: c32(u64::from(kb - 1)),
+            lb_last: cc(u64::from(kb - 1)),
+            rem_mask: c64(mask(2 * p.window_log2 + 1)),
+            quo_mask: c64(mask(kb.max(kr))),
+            dsr_mask: c64(mask(2 * p.window_log2)),
             op_pos: c64(p.one_period() as u64),
             op_neg: c64(neg(p.one_period() as u64)),
             bf: c64(u64::from(bfr)),
             bf_mask: c64(mask(bfr)),
             bf_fill: c64(fill(bfr)),
-            mul_last: c32(u64::from(2 * p.window_log2 - 2)),
+            mul_last: cc(u64::from(2 * p.window_log2 - 2)),
             h_pos: c64(p.big_limit() as u64),
             h_neg: c64(neg(p.big_limit() as u64)),
             lr_lead: c64(u64::from(kr + bfr - 1)),
             lr_up: c64(u64::from(64 - (kr + bfr - 1))),
-            lr_last: c32(u64::from(kr - 1)),
+            lr_last: cc(u64::from(kr - 1)),
             q_over: c64(2 * p.residual_max() as u64 + 1),
             lim: c64(p.residual_max() as u64),
             lm_lead: c64(u64::from(kr - 1)),
@@ -669,16 +733,16 @@ impl Logic for HarmonicLearner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, romq, dl, dlv, dls, dla, mh, cj, state, cnt, idx, active, pend, ld_i, ld_v,
-            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg,
-            mag, rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa,
-            pb, la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux,
-            uneg, uax, udm, unw, twr, twa, twd, clr
+            self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, idx, active, pend, ld_i, ld_v, got,
+            m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag,
+            rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb,
+            la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg,
+            uax, udm, unw, twr, twa, twd, clr
         );
-        self.tab0.read_clock.next = self.clk.val();
-        self.tab0.write_clock.next = self.clk.val();
-        self.tab1.read_clock.next = self.clk.val();
-        self.tab1.write_clock.next = self.clk.val();
+        self.state.clock.next = self.clk.val();
+        self.state.d.next = self.state.q.val();
+        self.tab.read_clock.next = self.clk.val();
+        self.tab.write_clock.next = self.clk.val();
         self.rn.read_clock.next = self.clk.val();
         self.rn.write_clock.next = self.clk.val();
         self.rsk.read_clock.next = self.clk.val();
@@ -703,15 +767,19 @@ impl Logic for HarmonicLearner {
         self.rsk.write_enable.next = false;
         self.rsp.write_enable.next = false;
         // Sign-extended reads of the table and of sp_i.
-        self.trd.next = self.tab0.read_data.val();
-        if self.active.q.val() {
-            self.trd.next = self.tab1.read_data.val();
-        }
+        // Reads keep the bits a word can hold, so that synthesis drops the RAMs' other
+        // columns (fewer cells around each read address: the read paths).
+        self.trd.next = self.tab.read_data.val() & self.ew_mask.val();
         self.tab_s.next = bit_cast::<64, 32>(self.trd.val());
         if (self.trd.val() & self.ew_sign.val()).any() {
             self.tab_s.next = bit_cast::<64, 32>(self.trd.val()) | self.ew_fill.val();
         }
-        self.sp_s.next = self.rsp.read_data.val();
+        self.rn_m.next = self.rn.read_data.val() & self.nmask.val();
+        self.rsk_m.next = self.rsk.read_data.val() & self.skmask.val();
+        self.sp_s.next = self.rsp.read_data.val() & self.sw_mask.val();
+        if (self.rsp.read_data.val() & self.sw_sign.val()).any() {
+            self.sp_s.next = self.rsp.read_data.val() | !self.sw_mask.val();
+        }
         // The sample's segment and the banks' offsets.
         self.seg_i.next = (self.m_s.q.val() >> self.s32.val()) & self.pmask.val();
         self.seg_j.next = (self.seg_i.val() + self.one32.val()) & self.pmask.val();
@@ -760,7 +828,8 @@ impl Logic for HarmonicLearner {
         }
         self.dl.d.next = self.delta.val();
         self.dlv.d.next = self.strobe.val();
-        self.dls.d.next = self.accept.val() & (self.k.q.val() == self.z32.val());
+        self.dls.d.next =
+            self.accept.val() & ((self.k.q.val() & self.nmask.val()) == self.z32.val());
         self.dla.d.next = self.accept.val();
         if self.strobe.val() {
             self.prev.d.next = self.angle.val();
@@ -769,7 +838,7 @@ impl Logic for HarmonicLearner {
             self.m_s.d.next = self.angle.val();
         }
         // The start table's entry for Clear (cnt mod P), registered.
-        self.cidx.next = self.cnt.q.val() & self.pmask.val();
+        self.cidx.next = bit_cast::<32, CNT_BITS>(self.cnt.q.val()) & self.pmask.val();
         self.tx.next = self.z32.val();
         for i in 0..self.seg.len() {
             if self.cidx.val() == self.seg[i].val() {
@@ -784,23 +853,20 @@ impl Logic for HarmonicLearner {
         self.abs.next = self.z64.val();
         match self.state.q.val() {
             LearnState::Clear => {
-                if self.cnt.q.val() != self.z32.val() {
+                if self.cnt.q.val().any() {
                     self.we.next = true;
-                    self.wa.next = self.cnt.q.val() - self.one32.val();
+                    self.wa.next = bit_cast::<32, CNT_BITS>(self.cnt.q.val()) - self.one32.val();
                     self.wd.next = self.romq.q.val();
                 }
-                self.rn.write_address.next =
-                    bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
-                self.rsk.write_address.next =
-                    bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
-                self.rsp.write_address.next =
-                    bit_cast::<LEARN_ADDR_BITS, 32>(self.cnt.q.val() & self.pmask.val());
+                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
+                self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
+                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
-                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
                 if self.cnt.q.val() == self.p2.val() {
-                    self.cnt.d.next = self.z32.val();
+                    self.cnt.d.next = self.cz.val();
                     self.state.d.next = LearnState::Wait;
                 }
             }
@@ -851,7 +917,7 @@ impl Logic for HarmonicLearner {
                     (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val()) + self.st_half.val();
                 self.fsh.d.next = self.m_s.q.val() & self.fmask.val();
                 self.acc.d.next = self.z64.val();
-                self.cnt.d.next = self.z32.val();
+                self.cnt.d.next = self.cz.val();
                 self.state.d.next = LearnState::Mult;
             }
             LearnState::Mult => {
@@ -860,9 +926,9 @@ impl Logic for HarmonicLearner {
                 }
                 self.fsh.d.next = self.fsh.q.val() >> self.one32.val();
                 self.dd.d.next = self.dd.q.val() << self.one64.val();
-                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
                 if self.cnt.q.val() == self.s_last.val() {
-                    self.cnt.d.next = self.z32.val();
+                    self.cnt.d.next = self.cz.val();
                     self.state.d.next = LearnState::Corr;
                 }
             }
@@ -894,8 +960,8 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::LatBin;
             }
             LearnState::LatBin => {
-                self.nn.d.next = self.rn.read_data.val();
-                self.sksh.d.next = self.rsk.read_data.val();
+                self.nn.d.next = self.rn_m.val();
+                self.sksh.d.next = self.rsk_m.val();
                 self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::Acc;
             }
@@ -927,7 +993,7 @@ impl Logic for HarmonicLearner {
                     self.sum_ps.d.next = self.t64.val() | !self.uw_mask.val();
                 }
                 self.k.d.next = self.k.q.val() + self.one32.val();
-                if self.k.q.val() == self.n_last.val() {
+                if (self.k.q.val() & self.nmask.val()) == self.n_last.val() {
                     self.state.d.next = LearnState::LineN1;
                 } else {
                     self.state.d.next = LearnState::Wait;
@@ -951,17 +1017,17 @@ impl Logic for HarmonicLearner {
                     self.abs.next = self.z64.val() - self.unum.q.val();
                 }
                 self.neg.d.next = (self.unum.q.val() & self.sign63.val()).any();
-                self.rem.d.next = self.abs.val() >> self.lb_lead.val();
+                self.rem.d.next = (self.abs.val() >> self.lb_lead.val()) & self.rem_mask.val();
                 self.dvd.d.next = self.abs.val() << self.lb_up.val();
                 self.dsr.d.next = self.dline.val();
                 self.quo.d.next = self.z64.val();
-                self.cnt.d.next = self.z32.val();
+                self.cnt.d.next = self.cz.val();
                 self.state.d.next = LearnState::LineDiv;
             }
             LearnState::LineDiv => {
-                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
                 if self.cnt.q.val() == self.lb_last.val() {
-                    self.cnt.d.next = self.z32.val();
+                    self.cnt.d.next = self.cz.val();
                     self.state.d.next = LearnState::LineRnd;
                 }
             }
@@ -1001,19 +1067,19 @@ impl Logic for HarmonicLearner {
                 if (self.abs.val() & self.aw_sign.val()).any() {
                     self.a.d.next = self.abs.val() | !self.aw_mask.val();
                 }
-                self.idx.d.next = self.z32.val();
+                self.idx.d.next = self.iz.val();
                 self.state.d.next = LearnState::ResRead;
             }
             LearnState::ResRead => {
-                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
-                self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
-                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rn.read_address.next = self.idx.q.val();
+                self.rsk.read_address.next = self.idx.q.val();
+                self.rsp.read_address.next = self.idx.q.val();
                 self.state.d.next = LearnState::ResLatch;
             }
             LearnState::ResLatch => {
-                self.nn.d.next = self.rn.read_data.val();
-                self.nsh.d.next = self.rn.read_data.val();
-                self.sksh.d.next = self.rsk.read_data.val();
+                self.nn.d.next = self.rn_m.val();
+                self.nsh.d.next = self.rn_m.val();
+                self.sksh.d.next = self.rsk_m.val();
                 self.spv.d.next = self.sp_s.val();
                 self.pa.d.next = self.z64.val();
                 self.pb.d.next = self.z64.val();
@@ -1030,7 +1096,7 @@ impl Logic for HarmonicLearner {
                 }
                 self.als.d.next = self.a.q.val() & self.bf_mask.val();
                 self.bls.d.next = self.b.q.val() & self.bf_mask.val();
-                self.cnt.d.next = self.z32.val();
+                self.cnt.d.next = self.cz.val();
                 self.state.d.next = LearnState::ResMul;
             }
             LearnState::ResMul => {
@@ -1048,9 +1114,9 @@ impl Logic for HarmonicLearner {
                 self.als.d.next = self.als.q.val() << self.one64.val();
                 self.bhs.d.next = self.bhs.q.val() << self.one64.val();
                 self.bls.d.next = self.bls.q.val() << self.one64.val();
-                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
                 if self.cnt.q.val() == self.mul_last.val() {
-                    self.cnt.d.next = self.z32.val();
+                    self.cnt.d.next = self.cz.val();
                     self.state.d.next = LearnState::ResZa;
                 }
             }
@@ -1083,19 +1149,19 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::ResLoad;
             }
             LearnState::ResLoad => {
-                self.rem.d.next = self.mag.q.val() >> self.lr_lead.val();
+                self.rem.d.next = (self.mag.q.val() >> self.lr_lead.val()) & self.rem_mask.val();
                 self.dvd.d.next = self.mag.q.val() << self.lr_up.val();
                 self.ovf.d.next =
                     (self.mag.q.val() >> self.lr_lead.val()) >= bit_cast::<64, 32>(self.nn.q.val());
-                self.dsr.d.next = bit_cast::<64, 32>(self.nn.q.val());
+                self.dsr.d.next = bit_cast::<64, 32>(self.nn.q.val()) & self.dsr_mask.val();
                 self.quo.d.next = self.z64.val();
-                self.cnt.d.next = self.z32.val();
+                self.cnt.d.next = self.cz.val();
                 self.state.d.next = LearnState::ResDiv;
             }
             LearnState::ResDiv => {
-                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
                 if self.cnt.q.val() == self.lr_last.val() {
-                    self.cnt.d.next = self.z32.val();
+                    self.cnt.d.next = self.cz.val();
                     self.state.d.next = LearnState::ResEnd;
                 }
             }
@@ -1116,19 +1182,19 @@ impl Logic for HarmonicLearner {
                     self.t64.next = self.z64.val() - self.rm.q.val();
                 }
                 self.r.d.next = self.t64.val();
-                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rsp.write_address.next = self.idx.q.val();
                 self.rsp.write_data.next = self.t64.val();
-                self.rsp.write_enable.next = self.nn.q.val() != self.z32.val();
+                self.rsp.write_enable.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
                 self.state.d.next = LearnState::ResSum;
             }
             LearnState::ResSum => {
-                if self.nn.q.val() != self.z32.val() {
+                if (self.nn.q.val() & self.nmask.val()) != self.z32.val() {
                     self.sum_r.d.next = self.sum_r.q.val() + self.r.q.val();
                     self.nbins.d.next = self.nbins.q.val() + self.one32.val();
                 }
-                self.idx.d.next = self.idx.q.val() + self.one32.val();
-                if self.idx.q.val() == self.pmask.val() {
-                    self.idx.d.next = self.z32.val();
+                self.idx.d.next = self.idx.q.val() + self.ione.val();
+                if self.idx.q.val() == self.ilast.val() {
+                    self.idx.d.next = self.iz.val();
                     self.state.d.next = LearnState::MeanAbs;
                 } else {
                     self.state.d.next = LearnState::ResRead;
@@ -1143,17 +1209,17 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::MeanLoad;
             }
             LearnState::MeanLoad => {
-                self.rem.d.next = self.mag.q.val() >> self.lm_lead.val();
+                self.rem.d.next = (self.mag.q.val() >> self.lm_lead.val()) & self.rem_mask.val();
                 self.dvd.d.next = self.mag.q.val() << self.lm_up.val();
-                self.dsr.d.next = bit_cast::<64, 32>(self.nbins.q.val());
+                self.dsr.d.next = bit_cast::<64, 32>(self.nbins.q.val()) & self.dsr_mask.val();
                 self.quo.d.next = self.z64.val();
-                self.cnt.d.next = self.z32.val();
+                self.cnt.d.next = self.cz.val();
                 self.state.d.next = LearnState::MeanDiv;
             }
             LearnState::MeanDiv => {
-                self.cnt.d.next = self.cnt.q.val() + self.one32.val();
+                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
                 if self.cnt.q.val() == self.lr_last.val() {
-                    self.cnt.d.next = self.z32.val();
+                    self.cnt.d.next = self.cz.val();
                     self.state.d.next = LearnState::MeanEnd;
                 }
             }
@@ -1166,26 +1232,28 @@ impl Logic for HarmonicLearner {
                 if self.neg.q.val() {
                     self.mean.d.next = self.z64.val() - self.rm.q.val();
                 }
-                if self.nbins.q.val() == self.z32.val() {
+                if (self.nbins.q.val() & self.nmask.val()) == self.z32.val() {
                     self.mean.d.next = self.z64.val();
                 }
-                self.idx.d.next = self.z32.val();
+                self.idx.d.next = self.iz.val();
                 self.state.d.next = LearnState::UpdRead;
             }
             LearnState::UpdRead => {
-                self.traddr.next = self.idx.q.val();
-                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
-                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.traddr.next = bit_cast::<32, LEARN_ADDR_BITS>(self.idx.q.val());
+                self.rn.read_address.next = self.idx.q.val();
+                self.rsp.read_address.next = self.idx.q.val();
                 self.state.d.next = LearnState::UpdLat;
             }
             LearnState::UpdLat => {
                 self.ucur.d.next = self.tab_s.val();
-                self.unz.d.next = self.rn.read_data.val() != self.z32.val();
+                self.nn.d.next = self.rn_m.val();
                 self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::UpdDiff;
             }
             LearnState::UpdDiff => {
                 self.ux.d.next = self.spv.q.val() - self.mean.q.val();
+                // n_i, registered a clock before its test (the RAM's read path).
+                self.unz.d.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
                 self.state.d.next = LearnState::UpdAbs;
             }
             LearnState::UpdAbs => {
@@ -1225,17 +1293,17 @@ impl Logic for HarmonicLearner {
                     self.t64.next = self.ucur.q.val();
                 }
                 self.we.next = true;
-                self.wa.next = self.off_o.val() | self.idx.q.val();
+                self.wa.next = self.off_o.val() | bit_cast::<32, LEARN_ADDR_BITS>(self.idx.q.val());
                 self.wd.next = bit_cast::<32, 64>(self.t64.val()) & self.ew_mask.val();
-                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
-                self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
-                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.idx.q.val());
+                self.rn.write_address.next = self.idx.q.val();
+                self.rsk.write_address.next = self.idx.q.val();
+                self.rsp.write_address.next = self.idx.q.val();
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
-                self.idx.d.next = self.idx.q.val() + self.one32.val();
-                if self.idx.q.val() == self.pmask.val() {
-                    self.idx.d.next = self.z32.val();
+                self.idx.d.next = self.idx.q.val() + self.ione.val();
+                if self.idx.q.val() == self.ilast.val() {
+                    self.idx.d.next = self.iz.val();
                     self.state.d.next = LearnState::Apply;
                 } else {
                     self.state.d.next = LearnState::UpdRead;
@@ -1258,40 +1326,38 @@ impl Logic for HarmonicLearner {
         {
             self.dvd.d.next = self.dvd.q.val() << self.one64.val();
             if self.dt.val() >= self.dsr.q.val() {
-                self.rem.d.next = self.dt.val() - self.dsr.q.val();
-                self.quo.d.next = (self.quo.q.val() << self.one64.val()) | self.one64.val();
+                self.rem.d.next = (self.dt.val() - self.dsr.q.val()) & self.rem_mask.val();
+                self.quo.d.next = ((self.quo.q.val() << self.one64.val()) | self.one64.val())
+                    & self.quo_mask.val();
             } else {
-                self.rem.d.next = self.dt.val();
-                self.quo.d.next = self.quo.q.val() << self.one64.val();
+                self.rem.d.next = self.dt.val() & self.rem_mask.val();
+                self.quo.d.next = (self.quo.q.val() << self.one64.val()) & self.quo_mask.val();
             }
         }
         if self.ld.val() & !self.pend.q.val() {
             self.pend.d.next = true;
         }
         // The table's write port and its copy on tw.
-        self.tab0.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.traddr.val());
-        self.tab1.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.traddr.val());
-        self.tab0.write_enable.next =
-            self.we.val() & ((self.wa.val() & self.pp.val()) == self.z32.val());
-        self.tab1.write_enable.next =
-            self.we.val() & ((self.wa.val() & self.pp.val()) != self.z32.val());
-        self.tab0.write_address.next =
-            bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
-        self.tab1.write_address.next =
-            bit_cast::<LEARN_ADDR_BITS, 32>(self.wa.val() & self.pmask.val());
-        self.tab0.write_data.next = self.wd.val();
-        self.tab1.write_data.next = self.wd.val();
-        self.twr.d.next = self.we.val();
-        self.twa.d.next = self.z32.val();
-        self.twd.d.next = self.z32.val();
-        if self.we.val() {
-            self.twa.d.next = self.wa.val();
-            self.twd.d.next = self.wd.val();
+        self.tra.next = self.traddr.val();
+        if self.active.q.val() {
+            self.tra.next = self.traddr.val() | self.bank_hi.val();
         }
+        self.tab.read_address.next = bit_cast::<TAB_ADDR_BITS, 32>(self.tra.val());
+        self.twm.next = self.wa.val() & self.pmask.val();
+        if (self.wa.val() & self.pp.val()).any() {
+            self.twm.next = (self.wa.val() & self.pmask.val()) | self.bank_hi.val();
+        }
+        self.tab.write_address.next = bit_cast::<TAB_ADDR_BITS, 32>(self.twm.val());
+        self.tab.write_enable.next = self.we.val();
+        self.tab.write_data.next = self.wd.val();
+        // wa and wd are zero without a write.
+        self.twr.d.next = self.we.val();
+        self.twa.d.next = self.wa.val();
+        self.twd.d.next = self.wd.val();
         if self.rst.val() {
             self.state.d.next = LearnState::Clear;
-            self.cnt.d.next = self.z32.val();
-            self.idx.d.next = self.z32.val();
+            self.cnt.d.next = self.cz.val();
+            self.idx.d.next = self.iz.val();
             self.active.d.next = false;
             self.pend.d.next = false;
             self.got.d.next = false;
@@ -1308,8 +1374,7 @@ impl Logic for HarmonicLearner {
             self.twr.d.next = false;
             self.twa.d.next = self.z32.val();
             self.twd.d.next = self.z32.val();
-            self.tab0.write_enable.next = false;
-            self.tab1.write_enable.next = false;
+            self.tab.write_enable.next = false;
             self.rn.write_enable.next = false;
             self.rsk.write_enable.next = false;
             self.rsp.write_enable.next = false;

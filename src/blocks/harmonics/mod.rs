@@ -55,8 +55,9 @@
 //! write stage rounds them, c = floor(q 2^(Gz-T) + 1/2), a sign fill and the half in one
 //! adder. Then y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i (a ZW-bit difference,
 //! sign-filled to W bits since |D| < 2^(F+Gz-3)) are the static block's y and D modulo
-//! 2^W, and the same partial products follow: [`HarmonicParams::LATENCY_RAM`] = 6 clocks
-//! (the RAM's read register, then the slope's subtract in a stage of its own). A bank the
+//! 2^W, and the same partial products follow: [`HarmonicParams::LATENCY_RAM`] = 7 clocks
+//! (the RAM's read address register, its words registered so that no adder follows a RAM
+//! read in the same clock, then the slope's subtract in a stage of its own). A bank the
 //! lookup reads changes only when the learner flips `bank` (at its Apply). The RAMs have no
 //! initial contents (Yosys 0.23 cannot map a RAM with them to an M9K): after a reset the
 //! learner's Clear writes the start table into both banks, and while it does (`clearing`,
@@ -120,8 +121,9 @@ impl HarmonicParams {
     pub const LATENCY: u32 = 5;
 
     /// Clocks from `z_in` to `z_out` with the table in RAM (the learned table): the RAM's
-    /// read register, then the slope's subtract before the partial products.
-    pub const LATENCY_RAM: u32 = 6;
+    /// read address register, its words registered, then the slope's subtract before the
+    /// partial products.
+    pub const LATENCY_RAM: u32 = 7;
 
     /// The block for a ZW-bit angle with Gz guard bits and F fine bits, and the table
     /// `table_lsb` (position LSB, one entry per point of the period from angle 0); the
