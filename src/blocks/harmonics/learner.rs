@@ -377,13 +377,13 @@ pub struct HarmonicLearner {
     off_o: Signal<Local, Bits<32>>,
     dt: Signal<Local, Bits<64>>,
     tab_s: Signal<Local, Bits<64>>,
-    /// The table's read entry; its RAM address with the active bank; the word read; the
-    /// write's RAM address.
+    /// The table's read entry; its RAM address with the active bank.
     traddr: Signal<Local, Bits<32>>,
     tra: Signal<Local, Bits<32>>,
     /// n_i and sk_i read, in their widths.
     rn_m: Signal<Local, Bits<32>>,
     rsk_m: Signal<Local, Bits<32>>,
+    /// The table's word read, in the entry width; the write's RAM address.
     trd: Signal<Local, Bits<32>>,
     twm: Signal<Local, Bits<32>>,
     sp_s: Signal<Local, Bits<64>>,
