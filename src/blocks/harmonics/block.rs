@@ -207,7 +207,7 @@ pub fn latency_cycles(p: Option<&HarmonicParams>) -> u32 {
 /// What the block's clocks do, for `check` and the report.
 fn stages(p: &HarmonicParams) -> &'static str {
     if p.learn.is_some() {
-        "table RAM read, slope, partial products, two adder levels, subtract"
+        "table RAM read, its words registered, slope, partial products, two adder levels, subtract"
     } else {
         "table lookup, partial products, two adder levels, subtract"
     }
