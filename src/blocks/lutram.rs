@@ -115,3 +115,103 @@ end
         ))
     }
 }
+
+/// [`LutRam`] with its read split over two clocks for a RAM too large to read in one (256
+/// words on the ECP5 of the timing rule: the address register's fan-out to every cell and a
+/// 16-to-1 read multiplexer, 6.5 to 7 ns of routing):
+///
+/// ```text
+///  read_address ──reg──► ra ─┬─► mem_0[ra low] ──reg──► q_0 ─┐
+///                            ├─► mem_1[ra low] ──reg──► q_1 ─┤
+///                            ├─► mem_2[ra low] ──reg──► q_2 ─┼─► q_(rb) ─► read_data
+///                            ├─► mem_3[ra low] ──reg──► q_3 ─┘
+///                            └─► ra's top two bits ──reg──► rb
+///  write_address, write_data, write_enable ──reg──► (wa, wd, we) ──► mem_(wa top)[wa low] <= wd
+/// ```
+///
+/// Four arrays of 2^(N-2) words, selected by the address's top two bits: the first clock reads
+/// each array's word into its register (`q_k`, the cells and a 4-to-1 multiplexer), the
+/// second selects one of them (a 4-to-1 multiplexer out of registers). `read_data` in clock
+/// c + 1 is [`LutRam`]'s `read_data` of clock c: the word at the address presented two clocks
+/// before, as the array held it before the write of the first of those clocks' edge. A
+/// write presented in the clock before an address is therefore not seen by its read (the
+/// write stage lands it one edge after the `q_k` registers have read). Yosys keeps each
+/// `q_k` as the array's read register and honours `ram_style` on ECP5 and xc3sa (four
+/// distributed RAMs); Cyclone IV E maps each array to an M9K.
+#[derive(LogicBlock, Default)]
+pub struct PipedLutRam<D: Synth, const N: usize> {
+    /// The word read two `clock` edges later.
+    pub read_address: Signal<In, Bits<N>>,
+    /// The word at `read_address` two edges before, before the first edge's write.
+    pub read_data: Signal<Out, D>,
+    /// The word written at the next edge when `write_enable` is high.
+    pub write_address: Signal<In, Bits<N>>,
+    /// The word written.
+    pub write_data: Signal<In, D>,
+    /// Write this clock.
+    pub write_enable: Signal<In, bool>,
+    /// The read and write ports' clock.
+    pub clock: Signal<In, Clock>,
+    /// The simulation's words (none known at power-up: they read as 0 here, `x` in
+    /// Verilog).
+    _sim: BTreeMap<Bits<N>, D>,
+    /// The registered read address.
+    _ra: Bits<N>,
+    /// The word read at `_ra` at the last edge (the selected `q_k`).
+    _q: D,
+    /// The write stage: the write presented a clock before, if any.
+    _wr: Option<(Bits<N>, D)>,
+    /// The clock's edge acts once however often the simulator settles within it: armed
+    /// while the clock is low.
+    _arm: bool,
+}
+
+impl<D: Synth, const N: usize> Logic for PipedLutRam<D, N> {
+    fn update(&mut self) {
+        if !self.clock.val().clk {
+            self._arm = true;
+        } else if self._arm {
+            self._arm = false;
+            // The read registers take the array before this edge's write lands.
+            self._q = *self._sim.get(&self._ra).unwrap_or(&D::default());
+            if let Some((a, d)) = self._wr.take() {
+                self._sim.insert(a, d);
+            }
+            if self.write_enable.val() {
+                self._wr = Some((self.write_address.val(), self.write_data.val()));
+            }
+            self._ra = self.read_address.val();
+        }
+        self.read_data.next = self._q;
+    }
+
+    fn connect(&mut self) {
+        self.read_data.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        let (d, n, lo, a) = (D::BITS - 1, N - 1, N - 3, (1usize << (N - 2)) - 1);
+        let mut v = String::new();
+        for k in 0..4 {
+            v += &format!("(* ram_style = \"distributed\" *) reg[{d}:0] mem_{k}[{a}:0];\n");
+            v += &format!("reg[{d}:0] q_{k};\n");
+        }
+        v += &format!("reg[{n}:0] ra;\nreg[1:0] rb;\nreg[{n}:0] wa;\nreg[{d}:0] wd;\nreg we;\n\n");
+        v += "always @(posedge clock) begin\n   ra <= read_address;\n";
+        v += &format!("   rb <= ra[{n}:{}];\n", N - 2);
+        for k in 0..4 {
+            v += &format!("   q_{k} <= mem_{k}[ra[{lo}:0]];\n");
+        }
+        v += "end\n\nalways @(*) begin\n   case (rb)\n";
+        for k in 0..4 {
+            v += &format!("      2'd{k}: read_data = q_{k};\n");
+        }
+        v += "   endcase\nend\n\n";
+        v += "always @(posedge clock) begin\n   we <= write_enable;\n   wa <= write_address;\n   wd <= write_data;\n";
+        for k in 0..4 {
+            v += &format!("   if (we && wa[{n}:{}] == 2'd{k}) begin\n      mem_{k}[wa[{lo}:0]] <= wd;\n   end\n", N - 2);
+        }
+        v += "end\n";
+        Verilog::Custom(v)
+    }
+}

@@ -77,7 +77,7 @@
 //! | `clearing` | out | 1 | the state was Clear a clock ago: with `tw`, the Clear's writes (registered) |
 use super::sequencer::{LearnParams, TABLE_FRAC};
 use crate::blocks::fsmreg::FsmReg;
-use crate::blocks::lutram::LutRam;
+use crate::blocks::lutram::{LutRam, PipedLutRam};
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
@@ -113,9 +113,9 @@ pub enum LearnState {
     Clear,
     /// Collect: waiting for a sample or a pending load.
     Wait,
-    /// The load into bank 0.
+    /// The load into the active bank.
     LoadA,
-    /// The load into bank 1.
+    /// The load into the other bank.
     LoadB,
     /// c_i read.
     ReadI,
@@ -242,7 +242,7 @@ pub struct HarmonicLearner {
     clr: DFF<Bit>,
     /// The table: bank b's entry i at word b 2^7 + i (the bank an address bit, so that no
     /// select follows the read), entries in the entry width.
-    tab: LutRam<Bits<32>, TAB_ADDR_BITS>,
+    tab: PipedLutRam<Bits<32>, TAB_ADDR_BITS>,
     /// Per bin: n_i.
     rn: LutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sk_i.
@@ -265,9 +265,13 @@ pub struct HarmonicLearner {
     /// The state, one-hot in synthesis ([`FsmReg`]: the state's fan-out into every
     /// 64-bit register's select).
     state: FsmReg<LearnState>,
-    /// The clock of Clear, Mult and the divisions ([`CNT_BITS`] wide, so that its end tests
-    /// are narrow compares).
+    /// The clock of Clear ([`CNT_BITS`] wide: 2P + 1 clocks).
     cnt: DFF<Bits<CNT_BITS>>,
+    /// The loops' clocks left (Mult, LineDiv, ResMul, ResDiv, MeanDiv), counting down from
+    /// the loop's last index loaded by the state before it, and whether it is 0 (registered:
+    /// the path from the count through a compare to the state's every bit).
+    dn: DFF<Bits<CNT_BITS>>,
+    dz: DFF<Bit>,
     /// The bin of Residual and Update.
     idx: DFF<Bits<LEARN_ADDR_BITS>>,
     /// The bank the correction reads.
@@ -350,14 +354,20 @@ pub struct HarmonicLearner {
     sum_r: DFF<Bits<64>>,
     nbins: DFF<Bits<32>>,
     mean: DFF<Bits<64>>,
-    /// Update: c_i, n_i != 0, r_i - r, its sign and magnitude, the step, c_i + step.
-    ucur: DFF<Bits<64>>,
+    /// Update, in 32 bits (|r_i - r| < 2^(F+T-1) <= 2^27, entries E <= 24 bits): c_i,
+    /// n_i != 0, r_i - r, its sign and magnitude, the step, c_i + step; the room to the
+    /// entry's limits, 2^(F-4) LSB - c_i and c_i + 2^(F-4) LSB, and whether the step
+    /// exceeds it (decided with the sum, so that no compare follows it in UpdWrite).
+    ucur: DFF<Bits<32>>,
     unz: DFF<Bit>,
-    ux: DFF<Bits<64>>,
+    ux: DFF<Bits<32>>,
     uneg: DFF<Bit>,
-    uax: DFF<Bits<64>>,
-    udm: DFF<Bits<64>>,
-    unw: DFF<Bits<64>>,
+    uax: DFF<Bits<32>>,
+    udm: DFF<Bits<32>>,
+    unw: DFF<Bits<32>>,
+    urhi: DFF<Bits<32>>,
+    urlo: DFF<Bits<32>>,
+    usat: DFF<Bit>,
     /// The write port's copy, a clock after the RAM write.
     twr: DFF<Bit>,
     twa: DFF<Bits<32>>,
@@ -372,8 +382,13 @@ pub struct HarmonicLearner {
     delta: Signal<Local, Bits<64>>,
     psum: Signal<Local, Bits<64>>,
     pnew: Signal<Local, Bits<64>>,
+    /// The segment of the sample a strobe of this clock or m_s holds (c_i's address,
+    /// presented the clock before ReadI: the table's read takes two clocks).
+    seg_n: Signal<Local, Bits<32>>,
     seg_i: Signal<Local, Bits<32>>,
     seg_j: Signal<Local, Bits<32>>,
+    /// The active bank's and the other bank's offsets.
+    off_a: Signal<Local, Bits<32>>,
     off_o: Signal<Local, Bits<32>>,
     dt: Signal<Local, Bits<64>>,
     tab_s: Signal<Local, Bits<64>>,
@@ -420,8 +435,6 @@ pub struct HarmonicLearner {
     emax32: Constant<Bits<32>>,
     emin32: Constant<Bits<32>>,
     /// +entry_max, -entry_max (64-bit).
-    emax: Constant<Bits<64>>,
-    emin: Constant<Bits<64>>,
     /// The angle's F + 2 bits: mask, sign bit, fill.
     am_mask: Constant<Bits<64>>,
     am_sign: Constant<Bits<64>>,
@@ -494,10 +507,11 @@ pub struct HarmonicLearner {
     lm_lead: Constant<Bits<64>>,
     lm_up: Constant<Bits<64>>,
     /// The update: g, 2^(g-1), the step, the magnitude that clips.
-    g: Constant<Bits<64>>,
-    g_half: Constant<Bits<64>>,
-    stepc: Constant<Bits<64>>,
-    clip_at: Constant<Bits<64>>,
+    g_half: Constant<Bits<32>>,
+    stepc: Constant<Bits<32>>,
+    clip_at: Constant<Bits<32>>,
+    g32: Constant<Bits<32>>,
+    sign31: Constant<Bits<32>>,
 }
 
 impl HarmonicLearner {
@@ -558,6 +572,8 @@ impl HarmonicLearner {
             tx: Default::default(),
             state: Default::default(),
             cnt: Default::default(),
+            dn: Default::default(),
+            dz: Default::default(),
             idx: Default::default(),
             active: Default::default(),
             pend: Default::default(),
@@ -625,6 +641,9 @@ impl HarmonicLearner {
             uax: Default::default(),
             udm: Default::default(),
             unw: Default::default(),
+            urhi: Default::default(),
+            urlo: Default::default(),
+            usat: Default::default(),
             twr: Default::default(),
             twa: Default::default(),
             twd: Default::default(),
@@ -635,8 +654,10 @@ impl HarmonicLearner {
             delta: Default::default(),
             psum: Default::default(),
             pnew: Default::default(),
+            seg_n: Default::default(),
             seg_i: Default::default(),
             seg_j: Default::default(),
+            off_a: Default::default(),
             off_o: Default::default(),
             dt: Default::default(),
             tab_s: Default::default(),
@@ -669,8 +690,6 @@ impl HarmonicLearner {
             bank_hi: c32(1 << LEARN_ADDR_BITS),
             emax32: c32(em),
             emin32: c32(neg(em) & mask(ew)),
-            emax: c64(em),
-            emin: c64(neg(em)),
             am_mask: c64(mask(p.fine_bits + 2)),
             am_sign: c64(sign(p.fine_bits + 2)),
             pw_mask: c64(mask(p.pos_width())),
@@ -721,10 +740,11 @@ impl HarmonicLearner {
             lim: c64(p.residual_max() as u64),
             lm_lead: c64(u64::from(kr - 1)),
             lm_up: c64(u64::from(64 - (kr - 1))),
-            g: c64(u64::from(g)),
-            g_half: c64(1 << (g - 1)),
-            stepc: c64(p.step as u64),
-            clip_at: c64((((p.step + 1) << g) - (1 << (g - 1))) as u64),
+            g_half: c32(1 << (g - 1)),
+            stepc: c32(p.step as u64),
+            clip_at: c32((((p.step + 1) << g) - (1 << (g - 1))) as u64),
+            g32: c32(u64::from(g)),
+            sign31: c32(1 << 31),
         }
     }
 }
@@ -733,16 +753,15 @@ impl Logic for HarmonicLearner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, idx, active, pend, ld_i, ld_v, got,
+            self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, dn, dz, idx, active, pend, ld_i, ld_v, got,
             m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag,
             rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb,
             la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg,
-            uax, udm, unw, twr, twa, twd, clr
+            uax, udm, unw, urhi, urlo, usat, twr, twa, twd, clr
         );
         self.state.clock.next = self.clk.val();
         self.state.d.next = self.state.q.val();
-        self.tab.read_clock.next = self.clk.val();
-        self.tab.write_clock.next = self.clk.val();
+        self.tab.clock.next = self.clk.val();
         self.rn.read_clock.next = self.clk.val();
         self.rn.write_clock.next = self.clk.val();
         self.rsk.read_clock.next = self.clk.val();
@@ -783,8 +802,14 @@ impl Logic for HarmonicLearner {
         // The sample's segment and the banks' offsets.
         self.seg_i.next = (self.m_s.q.val() >> self.s32.val()) & self.pmask.val();
         self.seg_j.next = (self.seg_i.val() + self.one32.val()) & self.pmask.val();
+        self.seg_n.next = (self.m_s.q.val() >> self.s32.val()) & self.pmask.val();
+        if self.accept.val() {
+            self.seg_n.next = (self.angle.val() >> self.s32.val()) & self.pmask.val();
+        }
+        self.off_a.next = self.z32.val();
         self.off_o.next = self.pp.val();
         if self.active.q.val() {
+            self.off_a.next = self.pp.val();
             self.off_o.next = self.z32.val();
         }
         // The load request, held while one is pending: the entry width's value, saturated.
@@ -851,6 +876,9 @@ impl Logic for HarmonicLearner {
             (self.rem.q.val() << self.one64.val()) | (self.dvd.q.val() >> self.k63.val());
         self.t64.next = self.z64.val();
         self.abs.next = self.z64.val();
+        // The loops' count runs down in every state; the state before a loop loads it.
+        self.dn.d.next = self.dn.q.val() - self.cone.val();
+        self.dz.d.next = self.dn.q.val() == self.cone.val();
         match self.state.q.val() {
             LearnState::Clear => {
                 if self.cnt.q.val().any() {
@@ -871,6 +899,8 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::Wait => {
+                // c_i's address a clock ahead (the table's read takes two).
+                self.traddr.next = self.seg_n.val();
                 if self.strobe.val() {
                     self.state.d.next = LearnState::ReadI;
                 } else if self.pend.q.val() {
@@ -878,8 +908,9 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::LoadA => {
+                // The active bank first: a sample's c_i read from LoadB on sees it.
                 self.we.next = true;
-                self.wa.next = self.ld_i.q.val();
+                self.wa.next = self.off_a.val() | self.ld_i.q.val();
                 self.wd.next = self.ld_v.q.val();
                 if self.strobe.val() {
                     self.got.d.next = true;
@@ -887,8 +918,9 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::LoadB;
             }
             LearnState::LoadB => {
+                self.traddr.next = self.seg_n.val();
                 self.we.next = true;
-                self.wa.next = self.ld_i.q.val() | self.pp.val();
+                self.wa.next = self.off_o.val() | self.ld_i.q.val();
                 self.wd.next = self.ld_v.q.val();
                 self.pend.d.next = false;
                 self.got.d.next = false;
@@ -899,11 +931,10 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::ReadI => {
-                self.traddr.next = self.seg_i.val();
+                self.traddr.next = self.seg_j.val();
                 self.state.d.next = LearnState::ReadJ;
             }
             LearnState::ReadJ => {
-                self.traddr.next = self.seg_j.val();
                 self.ci.d.next = self.tab_s.val();
                 self.state.d.next = LearnState::LatJ;
             }
@@ -917,7 +948,8 @@ impl Logic for HarmonicLearner {
                     (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val()) + self.st_half.val();
                 self.fsh.d.next = self.m_s.q.val() & self.fmask.val();
                 self.acc.d.next = self.z64.val();
-                self.cnt.d.next = self.cz.val();
+                self.dn.d.next = self.s_last.val();
+                self.dz.d.next = self.s_last.val() == self.cz.val();
                 self.state.d.next = LearnState::Mult;
             }
             LearnState::Mult => {
@@ -926,9 +958,7 @@ impl Logic for HarmonicLearner {
                 }
                 self.fsh.d.next = self.fsh.q.val() >> self.one32.val();
                 self.dd.d.next = self.dd.q.val() << self.one64.val();
-                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
-                if self.cnt.q.val() == self.s_last.val() {
-                    self.cnt.d.next = self.cz.val();
+                if self.dz.q.val() {
                     self.state.d.next = LearnState::Corr;
                 }
             }
@@ -1021,13 +1051,12 @@ impl Logic for HarmonicLearner {
                 self.dvd.d.next = self.abs.val() << self.lb_up.val();
                 self.dsr.d.next = self.dline.val();
                 self.quo.d.next = self.z64.val();
-                self.cnt.d.next = self.cz.val();
+                self.dn.d.next = self.lb_last.val();
+                self.dz.d.next = self.lb_last.val() == self.cz.val();
                 self.state.d.next = LearnState::LineDiv;
             }
             LearnState::LineDiv => {
-                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
-                if self.cnt.q.val() == self.lb_last.val() {
-                    self.cnt.d.next = self.cz.val();
+                if self.dz.q.val() {
                     self.state.d.next = LearnState::LineRnd;
                 }
             }
@@ -1096,7 +1125,8 @@ impl Logic for HarmonicLearner {
                 }
                 self.als.d.next = self.a.q.val() & self.bf_mask.val();
                 self.bls.d.next = self.b.q.val() & self.bf_mask.val();
-                self.cnt.d.next = self.cz.val();
+                self.dn.d.next = self.mul_last.val();
+                self.dz.d.next = self.mul_last.val() == self.cz.val();
                 self.state.d.next = LearnState::ResMul;
             }
             LearnState::ResMul => {
@@ -1114,9 +1144,7 @@ impl Logic for HarmonicLearner {
                 self.als.d.next = self.als.q.val() << self.one64.val();
                 self.bhs.d.next = self.bhs.q.val() << self.one64.val();
                 self.bls.d.next = self.bls.q.val() << self.one64.val();
-                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
-                if self.cnt.q.val() == self.mul_last.val() {
-                    self.cnt.d.next = self.cz.val();
+                if self.dz.q.val() {
                     self.state.d.next = LearnState::ResZa;
                 }
             }
@@ -1155,13 +1183,12 @@ impl Logic for HarmonicLearner {
                     (self.mag.q.val() >> self.lr_lead.val()) >= bit_cast::<64, 32>(self.nn.q.val());
                 self.dsr.d.next = bit_cast::<64, 32>(self.nn.q.val()) & self.dsr_mask.val();
                 self.quo.d.next = self.z64.val();
-                self.cnt.d.next = self.cz.val();
+                self.dn.d.next = self.lr_last.val();
+                self.dz.d.next = self.lr_last.val() == self.cz.val();
                 self.state.d.next = LearnState::ResDiv;
             }
             LearnState::ResDiv => {
-                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
-                if self.cnt.q.val() == self.lr_last.val() {
-                    self.cnt.d.next = self.cz.val();
+                if self.dz.q.val() {
                     self.state.d.next = LearnState::ResEnd;
                 }
             }
@@ -1213,13 +1240,12 @@ impl Logic for HarmonicLearner {
                 self.dvd.d.next = self.mag.q.val() << self.lm_up.val();
                 self.dsr.d.next = bit_cast::<64, 32>(self.nbins.q.val()) & self.dsr_mask.val();
                 self.quo.d.next = self.z64.val();
-                self.cnt.d.next = self.cz.val();
+                self.dn.d.next = self.lr_last.val();
+                self.dz.d.next = self.lr_last.val() == self.cz.val();
                 self.state.d.next = LearnState::MeanDiv;
             }
             LearnState::MeanDiv => {
-                self.cnt.d.next = self.cnt.q.val() + self.cone.val();
-                if self.cnt.q.val() == self.lr_last.val() {
-                    self.cnt.d.next = self.cz.val();
+                if self.dz.q.val() {
                     self.state.d.next = LearnState::MeanEnd;
                 }
             }
@@ -1245,28 +1271,32 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::UpdLat;
             }
             LearnState::UpdLat => {
-                self.ucur.d.next = self.tab_s.val();
                 self.nn.d.next = self.rn_m.val();
                 self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::UpdDiff;
             }
             LearnState::UpdDiff => {
-                self.ux.d.next = self.spv.q.val() - self.mean.q.val();
+                // The entry, two clocks after its address (the table's read).
+                self.ucur.d.next = bit_cast::<32, 64>(self.tab_s.val());
+                self.ux.d.next = bit_cast::<32, 64>(self.spv.q.val())
+                    - bit_cast::<32, 64>(self.mean.q.val());
                 // n_i, registered a clock before its test (the RAM's read path).
                 self.unz.d.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
                 self.state.d.next = LearnState::UpdAbs;
             }
             LearnState::UpdAbs => {
-                self.uneg.d.next = (self.ux.q.val() & self.sign63.val()).any();
+                self.uneg.d.next = (self.ux.q.val() & self.sign31.val()).any();
                 self.uax.d.next = self.ux.q.val();
-                if (self.ux.q.val() & self.sign63.val()).any() {
-                    self.uax.d.next = self.z64.val() - self.ux.q.val();
+                self.urhi.d.next = self.emax32.val() - self.ucur.q.val();
+                self.urlo.d.next = self.ucur.q.val() + self.emax32.val();
+                if (self.ux.q.val() & self.sign31.val()).any() {
+                    self.uax.d.next = self.z32.val() - self.ux.q.val();
                 }
                 self.state.d.next = LearnState::UpdStep;
             }
             LearnState::UpdStep => {
                 // 2^-g |r_i - r| rounded half up, clipped at the step.
-                self.udm.d.next = (self.uax.q.val() + self.g_half.val()) >> self.g.val();
+                self.udm.d.next = (self.uax.q.val() + self.g_half.val()) >> self.g32.val();
                 if self.uax.q.val() >= self.clip_at.val() {
                     self.udm.d.next = self.stepc.val();
                 }
@@ -1274,27 +1304,28 @@ impl Logic for HarmonicLearner {
             }
             LearnState::UpdAdd => {
                 self.unw.d.next = self.ucur.q.val() + self.udm.q.val();
+                self.usat.d.next = self.udm.q.val() > self.urhi.q.val();
                 if self.uneg.q.val() {
                     self.unw.d.next = self.ucur.q.val() - self.udm.q.val();
+                    self.usat.d.next = self.udm.q.val() > self.urlo.q.val();
                 }
                 self.state.d.next = LearnState::UpdWrite;
             }
             LearnState::UpdWrite => {
-                // The new entry saturated at +-2^(F-4) LSB, or the old one.
-                self.t64.next = self.unw.q.val();
-                if (self.unw.q.val() & self.sign63.val()).any() {
-                    if self.unw.q.val() < self.emin.val() {
-                        self.t64.next = self.emin.val();
+                // The new entry saturated at +-2^(F-4) LSB (the limit its step passed), or
+                // the old one; in the entry width.
+                self.wd.next = self.unw.q.val() & self.ew_mask.val();
+                if self.usat.q.val() {
+                    self.wd.next = self.emax32.val();
+                    if self.uneg.q.val() {
+                        self.wd.next = self.emin32.val();
                     }
-                } else if self.unw.q.val() > self.emax.val() {
-                    self.t64.next = self.emax.val();
                 }
                 if !(self.update.val() & self.moving.q.val() & self.unz.q.val()) {
-                    self.t64.next = self.ucur.q.val();
+                    self.wd.next = self.ucur.q.val() & self.ew_mask.val();
                 }
                 self.we.next = true;
                 self.wa.next = self.off_o.val() | bit_cast::<32, LEARN_ADDR_BITS>(self.idx.q.val());
-                self.wd.next = bit_cast::<32, 64>(self.t64.val()) & self.ew_mask.val();
                 self.rn.write_address.next = self.idx.q.val();
                 self.rsk.write_address.next = self.idx.q.val();
                 self.rsp.write_address.next = self.idx.q.val();

@@ -759,14 +759,15 @@ impl Sequencer {
                 }
             }
             State::LoadA => {
+                // The active bank first, then the other.
                 let (i, v) = (self.ld_i, self.ld_v);
-                write(&mut out, &mut self.banks, 0, i, v);
+                write(&mut out, &mut self.banks, self.active, i, v);
                 self.got |= x.strobe;
                 next = State::LoadB;
             }
             State::LoadB => {
                 let (i, v) = (self.ld_i, self.ld_v);
-                write(&mut out, &mut self.banks, 1, i, v);
+                write(&mut out, &mut self.banks, self.active ^ 1, i, v);
                 self.pend = false;
                 next = if self.got || x.strobe {
                     State::ReadI

@@ -9,8 +9,8 @@ use super::{
     flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, HARM_WORDS, ID, POSITION_WORD,
     PRESET_WORD, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
-use crate::blocks::harmonics::hdl_ram::{RAM_ADDR_BITS, RAM_WORD_BITS};
-use crate::blocks::lutram::LutRam;
+use crate::blocks::harmonics::hdl_ram::RAM_ADDR_BITS;
+use crate::blocks::lutram::PipedLutRam;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
@@ -156,6 +156,8 @@ pub struct RegisterMap {
     /// HARM_CONTROL.LEARN (reset 1), HARM_INDEX, HARM_ENTRY's staged bytes.
     h_learn: Vec<DFF<Bit>>,
     h_index: Vec<DFF<Bits<32>>>,
+    /// A HARM_ENTRY read has waited its clock (the mirror's read takes two).
+    h_wait: Vec<DFF<Bit>>,
     h_stage: Vec<DFF<Bits<32>>>,
     /// The mirror's clear after reset: the address cleared next, and the clear running.
     /// (Yosys 0.23's `synth_intel` cannot give an M9K initial contents, so the RAM has
@@ -245,6 +247,8 @@ pub struct RegisterMap {
     rs_axi: DFF<Bit>,
     /// An AXI read address is taken this clock.
     take: Signal<Local, Bit>,
+    /// The held address is HARM_ENTRY's and has not waited: no response this clock.
+    hold: Signal<Local, Bit>,
     /// The one-hot word of `s_axi_araddr`, and of `bus_addr` (none from byte 256 up).
     asel_n: Signal<Local, Bits<32>>,
     bsel_n: Signal<Local, Bits<32>>,
@@ -389,6 +393,7 @@ impl RegisterMap {
             h_ram: (0..h).map(|_| ram()).collect(),
             h_learn: (0..h).map(|_| DFF::default()).collect(),
             h_index: (0..h).map(|_| DFF::default()).collect(),
+            h_wait: (0..h).map(|_| DFF::default()).collect(),
             h_stage: (0..h).map(|_| DFF::default()).collect(),
             h_ldq: (0..h).map(|_| DFF::default()).collect(),
             h_clr: (0..h).map(|_| DFF::default()).collect(),
@@ -476,6 +481,7 @@ impl RegisterMap {
             rs_sel: Default::default(),
             rs_axi: Default::default(),
             take: Default::default(),
+            hold: Default::default(),
             asel_n: Default::default(),
             bsel_n: Default::default(),
             w5: Default::default(),
@@ -731,6 +737,7 @@ impl Logic for RegisterMap {
         for i in 0..self.h_ram.len() {
             self.h_learn[i].clock.next = self.clk.val();
             self.h_index[i].clock.next = self.clk.val();
+            self.h_wait[i].clock.next = self.clk.val();
             self.h_stage[i].clock.next = self.clk.val();
             self.h_ldq[i].clock.next = self.clk.val();
             self.h_lda[i].clock.next = self.clk.val();
@@ -793,6 +800,19 @@ impl Logic for RegisterMap {
         if self.rvalid.q.val() & self.s_axi_rready.val() {
             self.rvalid.d.next = false;
         }
+        // HARM_ENTRY answers a clock later than the other words: the mirror RAM's word is
+        // two clocks behind its address, and the address follows HARM_INDEX's write.
+        self.hold.next = false;
+        for i in 0..self.h_ram.len() {
+            self.h_wait[i].d.next = false;
+            if self.ar_full.q.val()
+                & (self.ar_sel.q.val() & (self.one.val() << self.h_went[i].val())).any()
+                & !self.h_wait[i].q.val()
+            {
+                self.hold.next = true;
+                self.h_wait[i].d.next = true;
+            }
+        }
         // The read select: AXI's held address, else (with the BiSS port) the port's, whose
         // POSITION, TURNS and VELOCITY are its own snapshot.
         self.rsel.next = self.ar_sel.q.val();
@@ -806,10 +826,13 @@ impl Logic for RegisterMap {
         }
         for _i in 0..self.bus.len() {
             // Next clock's select: the address AXI takes now, else the port's.
-            self.rs_axi.d.next = self.take.val();
+            self.rs_axi.d.next = self.take.val() | self.hold.val();
             self.rs_sel.d.next = self.bsel_n.val();
             if self.take.val() {
                 self.rs_sel.d.next = self.asel_n.val();
+            }
+            if self.hold.val() {
+                self.rs_sel.d.next = self.ar_sel.q.val();
             }
             self.rsel.next = self.rs_sel.q.val();
             if !self.rs_axi.q.val() {
@@ -819,7 +842,7 @@ impl Logic for RegisterMap {
             }
         }
         // The learned table's words: HARM_CONTROL, and HARM_ENTRY from the mirror RAM's
-        // read register (the entry at the address of the clock before).
+        // read registers (the entry at the RAM address of two clocks before).
         for i in 0..self.h_ram.len() {
             self.h_ctl[i].next = self.zero.val();
             if self.h_learn[i].q.val() {
@@ -912,7 +935,7 @@ impl Logic for RegisterMap {
                 self.rmux.next = self.rmux.val() | self.h_entry[i].val();
             }
         }
-        if self.ar_full.q.val() {
+        if self.ar_full.q.val() & !self.hold.val() {
             self.rdata.d.next = self.rmux.val();
             if (self.ar_sel.q.val() & (self.one.val() << self.w_position.val())).any() {
                 self.sh_turns.d.next = self.tur.val();
@@ -985,6 +1008,7 @@ impl Logic for RegisterMap {
             for i in 0..self.h_ram.len() {
                 self.h_learn[i].d.next = true;
                 self.h_index[i].d.next = self.zero.val();
+                self.h_wait[i].d.next = false;
                 self.h_stage[i].d.next = self.zero.val();
                 self.h_ldq[i].d.next = false;
                 self.h_lda[i].d.next = self.zero.val();
@@ -1038,37 +1062,40 @@ impl Logic for RegisterMap {
     }
 }
 
+/// Bits of a mirror word: the entries' E <= 24 ([`super::RegmapParams::with_harmonics`]).
+pub const MIRROR_WORD_BITS: usize = 24;
+
 /// The mirror of the learner's table: a RAM of 2^[`RAM_ADDR_BITS`] words of
-/// [`RAM_WORD_BITS`] bits (the entries' E <= 24 bits), without initial contents, with
-/// 32-bit ports (one clock of read latency: `rdata` is the word at the `raddr` of the clock
-/// before, before that clock's write).
+/// [`MIRROR_WORD_BITS`] bits, without initial contents, with 32-bit ports (two clocks of
+/// read latency, [`PipedLutRam`]: `rdata` is the word at the `raddr` of two clocks before,
+/// before the first clock's write; 256 words are too many to read in one clock of the
+/// timing rule).
 #[derive(LogicBlock, Default)]
 pub struct TableMirror {
     /// System clock.
     pub clk: Signal<In, Clock>,
     /// Read address (its low [`RAM_ADDR_BITS`] bits).
     pub raddr: Signal<In, Bits<32>>,
-    /// The word at the read address of the clock before, zero-extended.
+    /// The word at the read address of two clocks before, zero-extended.
     pub rdata: Signal<Out, Bits<32>>,
     /// Write `wdata` at `waddr` this clock.
     pub we: Signal<In, Bit>,
     /// Write address (its low [`RAM_ADDR_BITS`] bits).
     pub waddr: Signal<In, Bits<32>>,
-    /// Write data (its low [`RAM_WORD_BITS`] bits).
+    /// Write data (its low [`MIRROR_WORD_BITS`] bits).
     pub wdata: Signal<In, Bits<32>>,
-    ram: LutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    ram: PipedLutRam<Bits<MIRROR_WORD_BITS>, RAM_ADDR_BITS>,
 }
 
 impl Logic for TableMirror {
     #[hdl_gen]
     fn update(&mut self) {
-        self.ram.read_clock.next = self.clk.val();
-        self.ram.write_clock.next = self.clk.val();
+        self.ram.clock.next = self.clk.val();
         self.ram.read_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.raddr.val());
         self.ram.write_enable.next = self.we.val();
         self.ram.write_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.waddr.val());
-        self.ram.write_data.next = bit_cast::<RAM_WORD_BITS, 32>(self.wdata.val());
-        self.rdata.next = bit_cast::<32, RAM_WORD_BITS>(self.ram.read_data.val());
+        self.ram.write_data.next = bit_cast::<MIRROR_WORD_BITS, 32>(self.wdata.val());
+        self.rdata.next = bit_cast::<32, MIRROR_WORD_BITS>(self.ram.read_data.val());
     }
 }
 

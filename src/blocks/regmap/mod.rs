@@ -10,7 +10,8 @@
 //!  AR ─► [ar_full, ar_addr] ──► next clock: rdata := reg(ar_addr), rvalid until rready
 //!                                   reading POSITION latches TURNS, VELOCITY (shadows)
 //!  live flags ─► status |= faults (set wins over a clear in the same clock)
-//!  learner's writes (h_tw) ─► mirror RAM [2P] ─► HARM_ENTRY (read at {h_bank, index'})
+//!  learner's writes (h_tw) ─► mirror RAM [2P] ─► HARM_ENTRY (read at {h_bank, index'},
+//!                              two clocks: HARM_ENTRY's rdata a clock later than the others)
 //!  HARM_ENTRY write of byte 3 ─► h_ld, h_ld_addr, h_ld_data (two clocks after handshake)
 //! ```
 //!
@@ -22,8 +23,9 @@
 //!   a W1C or WO register acts on the bits written with their strobe), both holders empty,
 //!   and `s_axi_bvalid` rises and stays until `s_axi_bready`. Every response is OKAY.
 //! * Read: `s_axi_arready` = no address held and no data pending. The address is held for a
-//!   clock, then `s_axi_rdata` is loaded and `s_axi_rvalid` stays until `s_axi_rready`.
-//!   Every response is OKAY; an address with no register reads 0.
+//!   clock, then `s_axi_rdata` is loaded and `s_axi_rvalid` stays until `s_axi_rready`
+//!   (HARM_ENTRY's is held two clocks: its mirror RAM reads in two). Every response is
+//!   OKAY; an address with no register reads 0.
 //! * Reads and writes are independent: a write and a read in the same clock both proceed.
 //! * Every output is a register (the ready signals are the holders' empty flags).
 //!

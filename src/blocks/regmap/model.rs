@@ -4,7 +4,7 @@ use super::{
     flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, HARM_WORDS, ID, POSITION_WORD,
     PRESET_WORD, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
-use crate::blocks::harmonics::hdl_ram::RAM_WORD_BITS;
+use super::hdl::MIRROR_WORD_BITS;
 use crate::blocks::mask;
 
 /// Inputs of one clock cycle: the AXI4-Lite master's signals and the decoder's values.
@@ -279,11 +279,15 @@ struct Regs {
     /// load on its way (request, entry, value) and the mirror RAM's read register.
     h_learn: bool,
     h_index: u64,
+    /// A HARM_ENTRY read has waited its clock.
+    h_wait: bool,
     h_stage: u64,
     h_ld: bool,
     h_lda: u64,
     h_ldd: u64,
     h_rd: u64,
+    /// The word HARM_ENTRY reads: `h_rd` a clock later (the RAM's read takes two clocks).
+    h_rq: u64,
     /// The mirror's clear after reset: the next address, running.
     h_clr: u64,
     h_clring: bool,
@@ -377,7 +381,7 @@ impl RegisterModel {
             }
             w if w == HARM_WORDS[1] && p.harmonics().is_some() => self.r.h_index,
             w if w == HARM_WORDS[2] => match p.harmonics() {
-                Some((_, e)) => crate::blocks::sext(self.r.h_rd, e) as u64,
+                Some((_, e)) => crate::blocks::sext(self.r.h_rq, e) as u64,
                 None => 0,
             },
             _ => 0,
@@ -501,7 +505,13 @@ impl RegisterModel {
                 n.bvel = self.p.velocity32(i.velocity) as u64;
             }
         }
-        if o.ar_full {
+        // HARM_ENTRY answers a clock later (the mirror's read takes two clocks).
+        let hold = o.ar_full
+            && self.p.harmonics().is_some()
+            && word(o.ar_addr) == HARM_WORDS[2] as u64
+            && !o.h_wait;
+        n.h_wait = hold;
+        if o.ar_full && !hold {
             let w = word(o.ar_addr);
             n.rdata = self.word(w, &i);
             if w == POSITION_WORD as u64 {
@@ -524,18 +534,19 @@ impl RegisterModel {
         self.out()
     }
 
-    /// The mirror RAM's clock edge: its read register takes the word at {bank, `index`}
-    /// (before this clock's write), then the learner's write lands, else the clear's at
-    /// `clear`.
+    /// The mirror RAM's clock edge: its second read register takes the first's word, the
+    /// first the word at {bank, `index`} (before this clock's write), then the learner's
+    /// write lands, else the clear's at `clear`.
     fn table_ram(&mut self, i: &RegIn, index: u64, clear: Option<u64>) {
         let Some((points, _)) = self.p.harmonics() else {
             return;
         };
         let p = points as u64;
+        self.r.h_rq = self.r.h_rd;
         self.r.h_rd = self.ram[(i.h_bank as u64 * p + index) as usize];
         if i.h_tw {
             self.ram[(i.h_tw_addr & (2 * p - 1)) as usize] =
-                i.h_tw_data & mask(RAM_WORD_BITS as u32);
+                i.h_tw_data & mask(MIRROR_WORD_BITS as u32);
         } else if let Some(a) = clear {
             // Words beyond 2P are not read: the RTL's clear stops at 2P - 1.
             if let Some(w) = self.ram.get_mut(a as usize) {
