@@ -90,6 +90,10 @@ pub const LEARN_ADDR_BITS: usize = 7;
 /// Address bits of the table's RAM: the bank, then the entry.
 pub const TAB_ADDR_BITS: usize = LEARN_ADDR_BITS + 1;
 
+/// Bits of `sum_r`, the residuals' sum over at most P bins: F - 2 + T + 1 + p <= 34 at
+/// F <= 20, p <= 7.
+pub const SUMR_BITS: usize = 40;
+
 /// Bits of the learner's clock counter: Clear's 2P + 1 clocks (P <= 128) and the longest
 /// division's quotient bits (at most 64) fit.
 pub const CNT_BITS: usize = 10;
@@ -349,15 +353,15 @@ pub struct HarmonicLearner {
     ovf: DFF<Bit>,
     /// r_i's sign; r_i.
     rneg: DFF<Bit>,
-    r: DFF<Bits<64>>,
-    /// sum r, the bins with samples, r.
-    sum_r: DFF<Bits<64>>,
+    r: DFF<Bits<32>>,
+    /// sum r ([`SUMR_BITS`]: F + 7 + p <= 34 bits), the bins with samples, r (32 bits).
+    sum_r: DFF<Bits<SUMR_BITS>>,
     nbins: DFF<Bits<32>>,
-    mean: DFF<Bits<64>>,
+    mean: DFF<Bits<32>>,
     /// Update, in 32 bits (|r_i - r| < 2^(F+T-1) <= 2^27, entries E <= 24 bits): c_i,
     /// n_i != 0, r_i - r, its sign and magnitude, the step, c_i + step; the room to the
-    /// entry's limits, 2^(F-4) LSB - c_i and c_i + 2^(F-4) LSB, and whether the step
-    /// exceeds it (decided with the sum, so that no compare follows it in UpdWrite).
+    /// limit the step moves towards, 2^(F-4) LSB - c_i or c_i + 2^(F-4) LSB, and whether
+    /// the step exceeds it (decided with the sum, so that no compare precedes the write).
     ucur: DFF<Bits<32>>,
     unz: DFF<Bit>,
     ux: DFF<Bits<32>>,
@@ -365,8 +369,7 @@ pub struct HarmonicLearner {
     uax: DFF<Bits<32>>,
     udm: DFF<Bits<32>>,
     unw: DFF<Bits<32>>,
-    urhi: DFF<Bits<32>>,
-    urlo: DFF<Bits<32>>,
+    uroom: DFF<Bits<32>>,
     usat: DFF<Bit>,
     /// The write port's copy, a clock after the RAM write.
     twr: DFF<Bit>,
@@ -403,6 +406,12 @@ pub struct HarmonicLearner {
     twm: Signal<Local, Bits<32>>,
     sp_s: Signal<Local, Bits<64>>,
     t64: Signal<Local, Bits<64>>,
+    t32: Signal<Local, Bits<32>>,
+    /// r sign-extended to sum r's width.
+    r_x: Signal<Local, Bits<SUMR_BITS>>,
+    sr_z: Constant<Bits<SUMR_BITS>>,
+    sr_hi: Constant<Bits<SUMR_BITS>>,
+    sr_sign: Constant<Bits<SUMR_BITS>>,
     abs: Signal<Local, Bits<64>>,
     ldm: Signal<Local, Bits<32>>,
     /// Constants (64-bit unless marked).
@@ -512,6 +521,7 @@ pub struct HarmonicLearner {
     clip_at: Constant<Bits<32>>,
     g32: Constant<Bits<32>>,
     sign31: Constant<Bits<32>>,
+    hi32: Constant<Bits<64>>,
 }
 
 impl HarmonicLearner {
@@ -641,8 +651,7 @@ impl HarmonicLearner {
             uax: Default::default(),
             udm: Default::default(),
             unw: Default::default(),
-            urhi: Default::default(),
-            urlo: Default::default(),
+            uroom: Default::default(),
             usat: Default::default(),
             twr: Default::default(),
             twa: Default::default(),
@@ -669,6 +678,11 @@ impl HarmonicLearner {
             twm: Default::default(),
             sp_s: Default::default(),
             t64: Default::default(),
+            t32: Default::default(),
+            r_x: Default::default(),
+            sr_z: Constant::new(Bits::<SUMR_BITS>::from(0u64)),
+            sr_hi: Constant::new(Bits::<SUMR_BITS>::from(mask(SUMR_BITS as u32) & !mask(32))),
+            sr_sign: Constant::new(Bits::<SUMR_BITS>::from(1u64 << (SUMR_BITS - 1))),
             abs: Default::default(),
             ldm: Default::default(),
             z64: c64(0),
@@ -745,6 +759,7 @@ impl HarmonicLearner {
             clip_at: c32((((p.step + 1) << g) - (1 << (g - 1))) as u64),
             g32: c32(u64::from(g)),
             sign31: c32(1 << 31),
+            hi32: c64(0xffff_ffff_0000_0000),
         }
     }
 }
@@ -757,7 +772,7 @@ impl Logic for HarmonicLearner {
             m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag,
             rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb,
             la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg,
-            uax, udm, unw, urhi, urlo, usat, twr, twa, twd, clr
+            uax, udm, unw, uroom, usat, twr, twa, twd, clr
         );
         self.state.clock.next = self.clk.val();
         self.state.d.next = self.state.q.val();
@@ -875,6 +890,11 @@ impl Logic for HarmonicLearner {
         self.dt.next =
             (self.rem.q.val() << self.one64.val()) | (self.dvd.q.val() >> self.k63.val());
         self.t64.next = self.z64.val();
+        self.t32.next = self.z32.val();
+        self.r_x.next = bit_cast::<SUMR_BITS, 32>(self.r.q.val());
+        if (self.r.q.val() & self.sign31.val()).any() {
+            self.r_x.next = bit_cast::<SUMR_BITS, 32>(self.r.q.val()) | self.sr_hi.val();
+        }
         self.abs.next = self.z64.val();
         // The loops' count runs down in every state; the state before a loop loads it.
         self.dn.d.next = self.dn.q.val() - self.cone.val();
@@ -1149,6 +1169,8 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::ResZa => {
+                // n_i != 0, registered for ResWrite and ResSum (the path to sum r's enable).
+                self.unz.d.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
                 self.z1.d.next = self.spv.q.val() - self.pa.q.val();
                 self.z2.d.next = self.la.q.val() + self.lb.q.val();
                 self.state.d.next = LearnState::ResZb;
@@ -1204,19 +1226,23 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::ResWrite;
             }
             LearnState::ResWrite => {
-                self.t64.next = self.rm.q.val();
+                // r_i in 32 bits (|r_i| < 2^(F+T-2) <= 2^26), sign-extended into sp_i's word.
+                self.t32.next = bit_cast::<32, 64>(self.rm.q.val());
                 if self.rneg.q.val() {
-                    self.t64.next = self.z64.val() - self.rm.q.val();
+                    self.t32.next = self.z32.val() - bit_cast::<32, 64>(self.rm.q.val());
                 }
-                self.r.d.next = self.t64.val();
+                self.r.d.next = self.t32.val();
                 self.rsp.write_address.next = self.idx.q.val();
-                self.rsp.write_data.next = self.t64.val();
-                self.rsp.write_enable.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
+                self.rsp.write_data.next = bit_cast::<64, 32>(self.t32.val());
+                if (self.t32.val() & self.sign31.val()).any() {
+                    self.rsp.write_data.next = bit_cast::<64, 32>(self.t32.val()) | self.hi32.val();
+                }
+                self.rsp.write_enable.next = self.unz.q.val();
                 self.state.d.next = LearnState::ResSum;
             }
             LearnState::ResSum => {
-                if (self.nn.q.val() & self.nmask.val()) != self.z32.val() {
-                    self.sum_r.d.next = self.sum_r.q.val() + self.r.q.val();
+                if self.unz.q.val() {
+                    self.sum_r.d.next = self.sum_r.q.val() + self.r_x.val();
                     self.nbins.d.next = self.nbins.q.val() + self.one32.val();
                 }
                 self.idx.d.next = self.idx.q.val() + self.ione.val();
@@ -1228,10 +1254,10 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::MeanAbs => {
-                self.neg.d.next = (self.sum_r.q.val() & self.sign63.val()).any();
-                self.mag.d.next = self.sum_r.q.val();
-                if (self.sum_r.q.val() & self.sign63.val()).any() {
-                    self.mag.d.next = self.z64.val() - self.sum_r.q.val();
+                self.neg.d.next = (self.sum_r.q.val() & self.sr_sign.val()).any();
+                self.mag.d.next = bit_cast::<64, SUMR_BITS>(self.sum_r.q.val());
+                if (self.sum_r.q.val() & self.sr_sign.val()).any() {
+                    self.mag.d.next = bit_cast::<64, SUMR_BITS>(self.sr_z.val() - self.sum_r.q.val());
                 }
                 self.state.d.next = LearnState::MeanLoad;
             }
@@ -1254,12 +1280,12 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::MeanSign;
             }
             LearnState::MeanSign => {
-                self.mean.d.next = self.rm.q.val();
+                self.mean.d.next = bit_cast::<32, 64>(self.rm.q.val());
                 if self.neg.q.val() {
-                    self.mean.d.next = self.z64.val() - self.rm.q.val();
+                    self.mean.d.next = self.z32.val() - bit_cast::<32, 64>(self.rm.q.val());
                 }
                 if (self.nbins.q.val() & self.nmask.val()) == self.z32.val() {
-                    self.mean.d.next = self.z64.val();
+                    self.mean.d.next = self.z32.val();
                 }
                 self.idx.d.next = self.iz.val();
                 self.state.d.next = LearnState::UpdRead;
@@ -1279,7 +1305,7 @@ impl Logic for HarmonicLearner {
                 // The entry, two clocks after its address (the table's read).
                 self.ucur.d.next = bit_cast::<32, 64>(self.tab_s.val());
                 self.ux.d.next = bit_cast::<32, 64>(self.spv.q.val())
-                    - bit_cast::<32, 64>(self.mean.q.val());
+                    - self.mean.q.val();
                 // n_i, registered a clock before its test (the RAM's read path).
                 self.unz.d.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
                 self.state.d.next = LearnState::UpdAbs;
@@ -1287,9 +1313,9 @@ impl Logic for HarmonicLearner {
             LearnState::UpdAbs => {
                 self.uneg.d.next = (self.ux.q.val() & self.sign31.val()).any();
                 self.uax.d.next = self.ux.q.val();
-                self.urhi.d.next = self.emax32.val() - self.ucur.q.val();
-                self.urlo.d.next = self.ucur.q.val() + self.emax32.val();
+                self.uroom.d.next = self.emax32.val() - self.ucur.q.val();
                 if (self.ux.q.val() & self.sign31.val()).any() {
+                    self.uroom.d.next = self.ucur.q.val() + self.emax32.val();
                     self.uax.d.next = self.z32.val() - self.ux.q.val();
                 }
                 self.state.d.next = LearnState::UpdStep;
@@ -1304,10 +1330,9 @@ impl Logic for HarmonicLearner {
             }
             LearnState::UpdAdd => {
                 self.unw.d.next = self.ucur.q.val() + self.udm.q.val();
-                self.usat.d.next = self.udm.q.val() > self.urhi.q.val();
+                self.usat.d.next = self.udm.q.val() > self.uroom.q.val();
                 if self.uneg.q.val() {
                     self.unw.d.next = self.ucur.q.val() - self.udm.q.val();
-                    self.usat.d.next = self.udm.q.val() > self.urlo.q.val();
                 }
                 self.state.d.next = LearnState::UpdWrite;
             }
@@ -1345,7 +1370,7 @@ impl Logic for HarmonicLearner {
                 self.k.d.next = self.z32.val();
                 self.sum_p.d.next = self.z64.val();
                 self.sum_ps.d.next = self.z64.val();
-                self.sum_r.d.next = self.z64.val();
+                self.sum_r.d.next = self.sr_z.val();
                 self.nbins.d.next = self.z32.val();
                 self.state.d.next = LearnState::Wait;
             }
@@ -1400,7 +1425,7 @@ impl Logic for HarmonicLearner {
             self.k.d.next = self.z32.val();
             self.sum_p.d.next = self.z64.val();
             self.sum_ps.d.next = self.z64.val();
-            self.sum_r.d.next = self.z64.val();
+            self.sum_r.d.next = self.sr_z.val();
             self.nbins.d.next = self.z32.val();
             self.twr.d.next = false;
             self.twa.d.next = self.z32.val();
