@@ -20,42 +20,45 @@
 //!   per bin: UpdRead ─► UpdLat ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
 //!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
 //!
-//!   RAMs: the table (both banks, bank b's entry i at b 2^7 + i, read in the active bank),
-//!   n_i, sk_i, sp_i (r_i after Residual), P words each; one synchronous read port each
-//!   (data a clock after the address), one write port; none initialised (Clear writes them
-//!   first). The start table: a ROM of compares, registered (romq), none for a zero table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
+//!   RAMs: the table (both banks, bank b's entry i at b 2^7 + i, read in the active bank;
+//!   data two clocks after the address, [`PipedLutRam`]: c_i's address goes out in Wait or
+//!   LoadB, c_(i+1)'s in ReadI, entry idx's in UpdRead for UpdDiff), n_i, sk_i, sp_i (r_i
+//!   after Residual), P words each (data a clock after the address); one write port each;
+//!   none initialised (Clear writes them first). LoadA writes the active bank, so that a
+//!   sample's c_i read from LoadB on sees the load. The start table: a ROM of compares, registered (romq), none for a zero table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
 //!   dsr; t = 2 rem + msb(dvd): t >= dsr ? (rem = t - dsr, quo = 2 quo + 1) : (rem = t,
 //!   quo = 2 quo).
 //! ```
 //!
 //! Words: signed values are 64-bit two's complement (`Bits<64>`, sign-extended from the
-//! model's width at each register, so a register wraps as the model's does); unsigned
-//! counts are `Bits<32>`. No word is wider than 64 bits ([`super::sequencer::WORD_MAX`]).
+//! model's width at each register, so a register wraps as the model's does), except the
+//! residuals' r, r_i and Update's words (32 bits: |r_i - r| < 2^(F+T-1), entries <= 24
+//! bits) and sum r ([`SUMR_BITS`]); unsigned counts are `Bits<32>`. No word is wider than 64 bits ([`super::sequencer::WORD_MAX`]).
 //! Every register-to-register path holds at most one carry chain (a compare beside it):
 //! the three-operand sums of the model are split over two states (LineN1/LineU,
 //! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd), a RAM's output is registered before an
 //! adder (LatJ, LatBin, UpdLat, ResLatch), and `pos` moves a clock after its strobe (dl).
 //!
 //! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
-//! tests/blocks/harmonics_learner.rs): xc3sa 4535 LUT4 (1000 of them RAM16X1D), 2465 FF,
-//! no block RAM, no MULT18X18; cycloneive 5717 LE, 2533 FF, 5 M9K, no multiplier. The RAMs
-//! are [`LutRam`] (distributed on ECP5 and xc3sa), read in the widths their words hold
+//! tests/blocks/harmonics_learner.rs): xc3sa 4292 LUT4 (1000 of them RAM16X1D), 2359 FF,
+//! no block RAM, no MULT18X18; cycloneive 5244 LE, 2361 FF, 8 M9K (four for the table's
+//! arrays), no multiplier. The RAMs are distributed on ECP5 and xc3sa, read in the widths their words hold
 //! (the entry width, w + 1 bits of n_i, 2w - 1 of sk_i, sp_i's), so that synthesis drops
 //! the other columns. The state is one-hot in synthesis ([`FsmReg`]); the counters' end
-//! tests compare [`CNT_BITS`] and p bits, the sample counts' w + 1; the divider keeps 2w + 1
+//! tests compare p bits, the loops count down to a registered zero flag (`dn`, `dz`), the
+//! sample counts' tests compare w + 1 bits; the divider keeps 2w + 1
 //! remainder bits and max(Kb, Kr) quotient bits. The other 64-bit registers hold narrower
 //! values that Yosys does not trim.
 //!
 //! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
-//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 119.70 / 114.98 / 121.30 MHz
-//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz. The worst paths are
-//! LUT-RAM reads: the read address register through a 256-word RAM's cells and read
-//! multiplexer into a register, 1.7 ns of logic and 6.5 to 7.0 ns of routing (this table's
-//! RAM into c_i, the register map's mirror of it into the AXI read data). Before the
-//! one-hot state, narrow counters, the narrow divider and the lookup's registered words the
-//! top was at 96.45 / 97.68 / 101.53 MHz (the state's fan-out into every 64-bit register's
-//! select); with block RAMs (DP16KD, 5.61 ns clock-to-out) the learner alone was at 83.94
-//! to 91.27 MHz.
+//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 130.99 / 125.20 / 131.32 MHz
+//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz; this learner alone
+//! 138.73 / 137.82 MHz at seeds 1 / 2. The worst paths are the one-clock LUT-RAM reads left
+//! (n_i's RAM here, the lookup's table), 1.7 ns of logic and 5.9 to 6.3 ns of routing, then
+//! the divider's loads and the line's sums. Before the one-hot state, narrow counters, the
+//! narrow divider and the lookup's registered words the top was at 96.45 / 97.68 / 101.53
+//! MHz (the state's fan-out into every 64-bit register's select); with block RAMs (DP16KD,
+//! 5.61 ns clock-to-out) the learner alone was at 83.94 to 91.27 MHz.
 //!
 //! Ports:
 //!
@@ -768,11 +771,11 @@ impl Logic for HarmonicLearner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, dn, dz, idx, active, pend, ld_i, ld_v, got,
-            m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg, mag,
-            rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa, pb,
-            la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux, uneg,
-            uax, udm, unw, uroom, usat, twr, twa, twd, clr
+            self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, dn, dz, idx, active, pend, ld_i, ld_v,
+            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg,
+            mag, rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa,
+            pb, la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux,
+            uneg, uax, udm, unw, uroom, usat, twr, twa, twd, clr
         );
         self.state.clock.next = self.clk.val();
         self.state.d.next = self.state.q.val();
@@ -1257,7 +1260,8 @@ impl Logic for HarmonicLearner {
                 self.neg.d.next = (self.sum_r.q.val() & self.sr_sign.val()).any();
                 self.mag.d.next = bit_cast::<64, SUMR_BITS>(self.sum_r.q.val());
                 if (self.sum_r.q.val() & self.sr_sign.val()).any() {
-                    self.mag.d.next = bit_cast::<64, SUMR_BITS>(self.sr_z.val() - self.sum_r.q.val());
+                    self.mag.d.next =
+                        bit_cast::<64, SUMR_BITS>(self.sr_z.val() - self.sum_r.q.val());
                 }
                 self.state.d.next = LearnState::MeanLoad;
             }
@@ -1304,8 +1308,7 @@ impl Logic for HarmonicLearner {
             LearnState::UpdDiff => {
                 // The entry, two clocks after its address (the table's read).
                 self.ucur.d.next = bit_cast::<32, 64>(self.tab_s.val());
-                self.ux.d.next = bit_cast::<32, 64>(self.spv.q.val())
-                    - self.mean.q.val();
+                self.ux.d.next = bit_cast::<32, 64>(self.spv.q.val()) - self.mean.q.val();
                 // n_i, registered a clock before its test (the RAM's read path).
                 self.unz.d.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
                 self.state.d.next = LearnState::UpdAbs;

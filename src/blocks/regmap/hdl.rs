@@ -247,8 +247,9 @@ pub struct RegisterMap {
     rs_axi: DFF<Bit>,
     /// An AXI read address is taken this clock.
     take: Signal<Local, Bit>,
-    /// The held address is HARM_ENTRY's and has not waited: no response this clock.
-    hold: Signal<Local, Bit>,
+    /// The held address is HARM_ENTRY's and has not waited: no response this clock (a
+    /// `Vec` as the table's other logic, so that a map without one is unchanged).
+    h_hold: Vec<Signal<Local, Bit>>,
     /// The one-hot word of `s_axi_araddr`, and of `bus_addr` (none from byte 256 up).
     asel_n: Signal<Local, Bits<32>>,
     bsel_n: Signal<Local, Bits<32>>,
@@ -481,7 +482,7 @@ impl RegisterMap {
             rs_sel: Default::default(),
             rs_axi: Default::default(),
             take: Default::default(),
-            hold: Default::default(),
+            h_hold: (0..h).map(|_| Default::default()).collect(),
             asel_n: Default::default(),
             bsel_n: Default::default(),
             w5: Default::default(),
@@ -802,16 +803,11 @@ impl Logic for RegisterMap {
         }
         // HARM_ENTRY answers a clock later than the other words: the mirror RAM's word is
         // two clocks behind its address, and the address follows HARM_INDEX's write.
-        self.hold.next = false;
         for i in 0..self.h_ram.len() {
-            self.h_wait[i].d.next = false;
-            if self.ar_full.q.val()
+            self.h_hold[i].next = self.ar_full.q.val()
                 & (self.ar_sel.q.val() & (self.one.val() << self.h_went[i].val())).any()
-                & !self.h_wait[i].q.val()
-            {
-                self.hold.next = true;
-                self.h_wait[i].d.next = true;
-            }
+                & !self.h_wait[i].q.val();
+            self.h_wait[i].d.next = self.h_hold[i].val();
         }
         // The read select: AXI's held address, else (with the BiSS port) the port's, whose
         // POSITION, TURNS and VELOCITY are its own snapshot.
@@ -826,13 +822,17 @@ impl Logic for RegisterMap {
         }
         for _i in 0..self.bus.len() {
             // Next clock's select: the address AXI takes now, else the port's.
-            self.rs_axi.d.next = self.take.val() | self.hold.val();
+            self.rs_axi.d.next = self.take.val();
             self.rs_sel.d.next = self.bsel_n.val();
             if self.take.val() {
                 self.rs_sel.d.next = self.asel_n.val();
             }
-            if self.hold.val() {
-                self.rs_sel.d.next = self.ar_sel.q.val();
+            // A HARM_ENTRY read that waits keeps AXI's select a clock more.
+            for i in 0..self.h_ram.len() {
+                if self.h_hold[i].val() {
+                    self.rs_axi.d.next = true;
+                    self.rs_sel.d.next = self.ar_sel.q.val();
+                }
             }
             self.rsel.next = self.rs_sel.q.val();
             if !self.rs_axi.q.val() {
@@ -935,7 +935,7 @@ impl Logic for RegisterMap {
                 self.rmux.next = self.rmux.val() | self.h_entry[i].val();
             }
         }
-        if self.ar_full.q.val() & !self.hold.val() {
+        if self.ar_full.q.val() {
             self.rdata.d.next = self.rmux.val();
             if (self.ar_sel.q.val() & (self.one.val() << self.w_position.val())).any() {
                 self.sh_turns.d.next = self.tur.val();
@@ -943,6 +943,14 @@ impl Logic for RegisterMap {
             }
             self.ar_full.d.next = false;
             self.rvalid.d.next = true;
+        }
+        // HARM_ENTRY's wait: the address stays held, no data yet.
+        for i in 0..self.h_ram.len() {
+            if self.h_hold[i].val() {
+                self.rdata.d.next = self.rdata.q.val();
+                self.ar_full.d.next = true;
+                self.rvalid.d.next = false;
+            }
         }
         // The BiSS byte port: the address registered as a word select and a lane (bytes
         // 256 and above select nothing), the byte read while AXI leaves the select free,

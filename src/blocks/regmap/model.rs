@@ -1,10 +1,10 @@
 //! Bit-accurate model of the register map: the same registers as the RTL, updated once per
 //! clock edge; `step` returns what the outputs show after the edge.
+use super::hdl::MIRROR_WORD_BITS;
 use super::{
     flag_bit, RegmapParams, ADDR_BITS, CODE_WORDS, FLAGS_MASK, HARM_WORDS, ID, POSITION_WORD,
     PRESET_WORD, STATUS_MASK, STATUS_WORD, THRESHOLD_WORDS, VERSION,
 };
-use super::hdl::MIRROR_WORD_BITS;
 use crate::blocks::mask;
 
 /// Inputs of one clock cycle: the AXI4-Lite master's signals and the decoder's values.
