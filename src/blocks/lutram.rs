@@ -164,6 +164,21 @@ pub struct PipedLutRam<D: Synth, const N: usize> {
     /// The clock's edge acts once however often the simulator settles within it: armed
     /// while the clock is low.
     _arm: bool,
+    /// One array read into one register instead of four ([`PipedLutRam::one_array`]).
+    _one: bool,
+}
+
+impl<D: Synth, const N: usize> PipedLutRam<D, N> {
+    /// The same two-clock read from one array into one register, with no select after it:
+    /// for a RAM of at most 128 words, whose read (eight cells and an 8-to-1 multiplexer)
+    /// fits a clock on ECP5 once it ends at a register. Cyclone IV E maps it to one M9K per
+    /// 36 bits of word, where the four arrays take four.
+    pub fn one_array() -> Self {
+        Self {
+            _one: true,
+            ..Default::default()
+        }
+    }
 }
 
 impl<D: Synth, const N: usize> Logic for PipedLutRam<D, N> {
@@ -191,6 +206,36 @@ impl<D: Synth, const N: usize> Logic for PipedLutRam<D, N> {
 
     fn hdl(&self) -> Verilog {
         let (d, n, lo, a) = (D::BITS - 1, N - 1, N - 3, (1usize << (N - 2)) - 1);
+        if self._one {
+            return Verilog::Custom(format!(
+                "(* ram_style = \"distributed\" *) reg[{d}:0] mem[{a1}:0];
+reg[{d}:0] q;
+reg[{n}:0] ra;
+reg[{n}:0] wa;
+reg[{d}:0] wd;
+reg we;
+
+always @(posedge clock) begin
+   ra <= read_address;
+   q <= mem[ra];
+end
+
+always @(*) begin
+   read_data = q;
+end
+
+always @(posedge clock) begin
+   we <= write_enable;
+   wa <= write_address;
+   wd <= write_data;
+   if (we) begin
+      mem[wa] <= wd;
+   end
+end
+",
+                a1 = (1usize << N) - 1,
+            ));
+        }
         let mut v = String::new();
         for k in 0..4 {
             v += &format!("(* ram_style = \"distributed\" *) reg[{d}:0] mem_{k}[{a}:0];\n");

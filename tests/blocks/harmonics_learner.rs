@@ -407,8 +407,9 @@ fn the_learner_synthesizes_without_a_multiplier() {
     );
     assert_eq!(x.multipliers + c.multipliers, 0);
     // The table (both banks in one RAM, read in two clocks: four arrays, `PipedLutRam`) and
-    // the bins' three sums (`LutRam`) are LUT RAM on xc3sa, and M9K on Cyclone, which ignores
-    // the attribute: four for the table, one each for n_i and sk_i, two for sp_i's 64 bits.
+    // the bins' three sums (`PipedLutRam::one_array`: one array each) are LUT RAM on xc3sa,
+    // and M9K on Cyclone, which ignores the attribute: four for the table, one each for n_i
+    // and sk_i, two for sp_i's 64 bits (an M9K is at most 36 bits wide).
     assert_eq!(x.brams, 0);
     assert!(lutram > 0);
     assert_eq!(m9k, 8);

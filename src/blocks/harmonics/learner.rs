@@ -22,10 +22,14 @@
 //!
 //!   RAMs: the table (both banks, bank b's entry i at b 2^7 + i, read in the active bank;
 //!   data two clocks after the address, [`PipedLutRam`]: c_i's address goes out in Wait or
-//!   LoadB, c_(i+1)'s in ReadI, entry idx's in UpdRead for UpdDiff), n_i, sk_i, sp_i (r_i
-//!   after Residual), P words each (data a clock after the address); one write port each;
-//!   none initialised (Clear writes them first). LoadA writes the active bank, so that a
-//!   sample's c_i read from LoadB on sees the load. The start table: a ROM of compares, registered (romq), none for a zero table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
+//!   LoadB, c_(i+1)'s in ReadI, entry idx's in UpdRead for UpdDiff); n_i, sk_i, sp_i (r_i
+//!   after Residual), P words each, also read over two clocks, from one array each
+//!   ([`PipedLutRam::one_array`]: the address goes out in Bin, LineA2 or ResSum, MeanSign
+//!   or UpdWrite, the state before ReadBin, ResRead or UpdRead, and the data still latch in
+//!   LatBin, ResLatch, UpdLat); one write port each; none initialised (Clear writes them
+//!   first). LoadA writes the active bank, so that a sample's c_i read from LoadB on sees
+//!   the load. The start table: a ROM of compares, registered (romq), none for a zero
+//!   table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
 //!   dsr; t = 2 rem + msb(dvd): t >= dsr ? (rem = t - dsr, quo = 2 quo + 1) : (rem = t,
 //!   quo = 2 quo).
 //! ```
@@ -38,10 +42,13 @@
 //! the three-operand sums of the model are split over two states (LineN1/LineU,
 //! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd), a RAM's output is registered before an
 //! adder (LatJ, LatBin, UpdLat, ResLatch), and `pos` moves a clock after its strobe (dl).
+//! |U| and |x| select between the word and its negation, computed beside it in LineU and
+//! ResX (`unn`, `xng`); r_i's saturation is decided in ResEnd (`rsat`) and applied in
+//! ResWrite, and r_i reaches sp_i's word from its register in ResSum.
 //!
 //! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
-//! tests/blocks/harmonics_learner.rs): xc3sa 4292 LUT4 (1000 of them RAM16X1D), 2359 FF,
-//! no block RAM, no MULT18X18; cycloneive 5244 LE, 2361 FF, 8 M9K (four for the table's
+//! tests/blocks/harmonics_learner.rs): xc3sa 4080 LUT4 (1000 of them RAM16X1D), 2547 FF,
+//! no block RAM, no MULT18X18; cycloneive 5295 LE, 2378 FF, 8 M9K (four for the table's
 //! arrays), no multiplier. The RAMs are distributed on ECP5 and xc3sa, read in the widths their words hold
 //! (the entry width, w + 1 bits of n_i, 2w - 1 of sk_i, sp_i's), so that synthesis drops
 //! the other columns. The state is one-hot in synthesis ([`FsmReg`]); the counters' end
@@ -80,14 +87,14 @@
 //! | `clearing` | out | 1 | the state was Clear a clock ago: with `tw`, the Clear's writes (registered) |
 use super::sequencer::{LearnParams, TABLE_FRAC};
 use crate::blocks::fsmreg::FsmReg;
-use crate::blocks::lutram::{LutRam, PipedLutRam};
+use crate::blocks::lutram::PipedLutRam;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
 
 /// Address bits of the learner's RAMs (P <= 128 words each: a bank of the table, the bins'
-/// sums). Distributed RAM ([`LutRam`]): a block RAM's read alone misses the timing rule on
-/// ECP5 (docs/timing.md).
+/// sums). Distributed RAM read over two clocks ([`PipedLutRam`]): a block RAM's read alone
+/// misses the timing rule on ECP5 (docs/timing.md).
 pub const LEARN_ADDR_BITS: usize = 7;
 
 /// Address bits of the table's RAM: the bank, then the entry.
@@ -250,12 +257,14 @@ pub struct HarmonicLearner {
     /// The table: bank b's entry i at word b 2^7 + i (the bank an address bit, so that no
     /// select follows the read), entries in the entry width.
     tab: PipedLutRam<Bits<32>, TAB_ADDR_BITS>,
-    /// Per bin: n_i.
-    rn: LutRam<Bits<32>, LEARN_ADDR_BITS>,
+    /// Per bin: n_i. The bins' RAMs read over two clocks ([`PipedLutRam::one_array`]: the
+    /// one-clock read of 128 words was the learner's worst path): the address goes out in
+    /// the state before ReadBin, ResRead and UpdRead.
+    rn: PipedLutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sk_i.
-    rsk: LutRam<Bits<32>, LEARN_ADDR_BITS>,
+    rsk: PipedLutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sp_i, then r_i (64-bit two's complement).
-    rsp: LutRam<Bits<64>, LEARN_ADDR_BITS>,
+    rsp: PipedLutRam<Bits<64>, LEARN_ADDR_BITS>,
     /// The start table, entry i XOR-ed with i (the correction block's ROM, super::hdl: a
     /// compare per entry, so that no synthesizer maps it to an initialised block RAM, which
     /// Yosys 0.23 fails to map on Cyclone); none for a zero start table.
@@ -319,6 +328,9 @@ pub struct HarmonicLearner {
     sum_p: DFF<Bits<64>>,
     sum_ps: DFF<Bits<64>>,
     unum: DFF<Bits<64>>,
+    /// -U, beside U (LineU), so that LineLoad's |U| is a select, not a negation before the
+    /// divider's load (the path U -> rem, dvd).
+    unn: DFF<Bits<64>>,
     /// The divider: the dividend's sign, its magnitude, remainder, dividend bits,
     /// quotient, divisor.
     neg: DFF<Bit>,
@@ -351,11 +363,16 @@ pub struct HarmonicLearner {
     z1: DFF<Bits<64>>,
     z2: DFF<Bits<64>>,
     xres: DFF<Bits<64>>,
+    /// -x, beside x (ResX), so that ResAbs's |x| is a select (the path x -> mag).
+    xng: DFF<Bits<64>>,
     big: DFF<Bit>,
     zneg: DFF<Bit>,
     ovf: DFF<Bit>,
     /// r_i's sign; r_i.
     rneg: DFF<Bit>,
+    /// r_i saturates (|Z1| >= H, or its quotient overflowed), decided in ResEnd and applied
+    /// in ResWrite, so that no compare precedes rm's rounding (the path quo -> rm).
+    rsat: DFF<Bit>,
     r: DFF<Bits<32>>,
     /// sum r ([`SUMR_BITS`]: F + 7 + p <= 34 bits), the bins with samples, r (32 bits).
     sum_r: DFF<Bits<SUMR_BITS>>,
@@ -391,6 +408,8 @@ pub struct HarmonicLearner {
     /// The segment of the sample a strobe of this clock or m_s holds (c_i's address,
     /// presented the clock before ReadI: the table's read takes two clocks).
     seg_n: Signal<Local, Bits<32>>,
+    /// The bin Bin latches, as the bins' RAMs' address a clock before ReadBin.
+    bin_n: Signal<Local, Bits<32>>,
     seg_i: Signal<Local, Bits<32>>,
     seg_j: Signal<Local, Bits<32>>,
     /// The active bank's and the other bank's offsets.
@@ -508,13 +527,14 @@ pub struct HarmonicLearner {
     /// H and -H.
     h_pos: Constant<Bits<64>>,
     h_neg: Constant<Bits<64>>,
-    /// r_i's division: lead Kr + B - 1 and 64 - lead, the last quotient clock; 2 lim + 1;
-    /// lim.
+    /// r_i's division: lead Kr + B - 1 and 64 - lead, the last quotient clock; 2 lim + 1.
     lr_lead: Constant<Bits<64>>,
     lr_up: Constant<Bits<64>>,
     lr_last: Constant<Bits<CNT_BITS>>,
     q_over: Constant<Bits<64>>,
-    lim: Constant<Bits<64>>,
+    /// lim and -lim in 32 bits (r_i's saturated values).
+    lim32: Constant<Bits<32>>,
+    nlim32: Constant<Bits<32>>,
     /// r's division: lead Kr - 1 and 64 - lead.
     lm_lead: Constant<Bits<64>>,
     lm_up: Constant<Bits<64>>,
@@ -574,9 +594,9 @@ impl HarmonicLearner {
             clearing: Default::default(),
             clr: Default::default(),
             tab: Default::default(),
-            rn: Default::default(),
-            rsk: Default::default(),
-            rsp: Default::default(),
+            rn: PipedLutRam::one_array(),
+            rsk: PipedLutRam::one_array(),
+            rsp: PipedLutRam::one_array(),
             rom,
             seg,
             rom_x: c32(if zero { 0 } else { u64::MAX }),
@@ -614,6 +634,7 @@ impl HarmonicLearner {
             sum_p: Default::default(),
             sum_ps: Default::default(),
             unum: Default::default(),
+            unn: Default::default(),
             neg: Default::default(),
             mag: Default::default(),
             rem: Default::default(),
@@ -639,10 +660,12 @@ impl HarmonicLearner {
             z1: Default::default(),
             z2: Default::default(),
             xres: Default::default(),
+            xng: Default::default(),
             big: Default::default(),
             zneg: Default::default(),
             ovf: Default::default(),
             rneg: Default::default(),
+            rsat: Default::default(),
             r: Default::default(),
             sum_r: Default::default(),
             nbins: Default::default(),
@@ -667,6 +690,7 @@ impl HarmonicLearner {
             psum: Default::default(),
             pnew: Default::default(),
             seg_n: Default::default(),
+            bin_n: Default::default(),
             seg_i: Default::default(),
             seg_j: Default::default(),
             off_a: Default::default(),
@@ -754,7 +778,8 @@ impl HarmonicLearner {
             lr_up: c64(u64::from(64 - (kr + bfr - 1))),
             lr_last: cc(u64::from(kr - 1)),
             q_over: c64(2 * p.residual_max() as u64 + 1),
-            lim: c64(p.residual_max() as u64),
+            lim32: c32(p.residual_max() as u64),
+            nlim32: c32(neg(p.residual_max() as u64) & mask(32)),
             lm_lead: c64(u64::from(kr - 1)),
             lm_up: c64(u64::from(64 - (kr - 1))),
             g_half: c32(1 << (g - 1)),
@@ -772,25 +797,23 @@ impl Logic for HarmonicLearner {
     fn update(&mut self) {
         dff_setup!(
             self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, dn, dz, idx, active, pend, ld_i, ld_v,
-            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, neg,
-            mag, rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, pa,
-            pb, la, lb, z1, z2, xres, big, zneg, ovf, rneg, r, sum_r, nbins, mean, ucur, unz, ux,
-            uneg, uax, udm, unw, uroom, usat, twr, twa, twd, clr
+            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, unn,
+            neg, mag, rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls,
+            pa, pb, la, lb, z1, z2, xres, xng, big, zneg, ovf, rneg, rsat, r, sum_r, nbins, mean,
+            ucur, unz, ux, uneg, uax, udm, unw, uroom, usat, twr, twa, twd, clr
         );
         self.state.clock.next = self.clk.val();
         self.state.d.next = self.state.q.val();
         self.tab.clock.next = self.clk.val();
-        self.rn.read_clock.next = self.clk.val();
-        self.rn.write_clock.next = self.clk.val();
-        self.rsk.read_clock.next = self.clk.val();
-        self.rsk.write_clock.next = self.clk.val();
-        self.rsp.read_clock.next = self.clk.val();
-        self.rsp.write_clock.next = self.clk.val();
+        self.rn.clock.next = self.clk.val();
+        self.rsk.clock.next = self.clk.val();
+        self.rsp.clock.next = self.clk.val();
         // Defaults: no writes, reads at 0.
         self.we.next = false;
         self.wa.next = self.z32.val();
         self.wd.next = self.z32.val();
         self.traddr.next = self.z32.val();
+        self.bin_n.next = self.z32.val();
         self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
         self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
         self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
@@ -997,8 +1020,13 @@ impl Logic for HarmonicLearner {
             LearnState::Bin => {
                 // The bin: round((m 2^T - c) / 2^(s+T)) mod P; q = pos 2^T - c.
                 self.t64.next = self.mh.q.val() - self.c.q.val();
-                self.sbin.d.next =
+                self.bin_n.next =
                     bit_cast::<32, 64>(self.t64.val() >> self.st.val()) & self.pmask.val();
+                self.sbin.d.next = self.bin_n.val();
+                // The bin's address a clock ahead (the bins' RAMs read over two clocks).
+                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
+                self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
+                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
                 self.abs.next = (self.ps.q.val() << self.tf.val()) - self.c.q.val();
                 self.q.d.next = self.abs.val() & self.qw_mask.val();
                 if (self.abs.val() & self.qw_sign.val()).any() {
@@ -1007,9 +1035,6 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::ReadBin;
             }
             LearnState::ReadBin => {
-                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
-                self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
-                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
                 self.state.d.next = LearnState::LatBin;
             }
             LearnState::LatBin => {
@@ -1062,12 +1087,18 @@ impl Logic for HarmonicLearner {
                 if (self.t64.val() & self.uw_sign.val()).any() {
                     self.unum.d.next = self.t64.val() | !self.uw_mask.val();
                 }
+                // -U (|U| < 2^(uw-2): q's width bounds it, so -U never wraps).
+                self.abs.next = (self.sum_ps.q.val() << self.one64.val()) - self.unum.q.val();
+                self.unn.d.next = self.abs.val() & self.uw_mask.val();
+                if (self.abs.val() & self.uw_sign.val()).any() {
+                    self.unn.d.next = self.abs.val() | !self.uw_mask.val();
+                }
                 self.state.d.next = LearnState::LineLoad;
             }
             LearnState::LineLoad => {
                 self.abs.next = self.unum.q.val();
                 if (self.unum.q.val() & self.sign63.val()).any() {
-                    self.abs.next = self.z64.val() - self.unum.q.val();
+                    self.abs.next = self.unn.q.val();
                 }
                 self.neg.d.next = (self.unum.q.val() & self.sign63.val()).any();
                 self.rem.d.next = (self.abs.val() >> self.lb_lead.val()) & self.rem_mask.val();
@@ -1120,12 +1151,12 @@ impl Logic for HarmonicLearner {
                     self.a.d.next = self.abs.val() | !self.aw_mask.val();
                 }
                 self.idx.d.next = self.iz.val();
+                self.rn.read_address.next = self.iz.val();
+                self.rsk.read_address.next = self.iz.val();
+                self.rsp.read_address.next = self.iz.val();
                 self.state.d.next = LearnState::ResRead;
             }
             LearnState::ResRead => {
-                self.rn.read_address.next = self.idx.q.val();
-                self.rsk.read_address.next = self.idx.q.val();
-                self.rsp.read_address.next = self.idx.q.val();
                 self.state.d.next = LearnState::ResLatch;
             }
             LearnState::ResLatch => {
@@ -1191,13 +1222,15 @@ impl Logic for HarmonicLearner {
                     self.big.d.next = self.z1.q.val() >= self.h_pos.val();
                 }
                 self.xres.d.next = (self.z1.q.val() << self.bf.val()) - self.z2.q.val();
+                // -x: |x| < 2^63 unless |Z1| >= H, which saturates r_i whatever x is.
+                self.xng.d.next = self.z2.q.val() - (self.z1.q.val() << self.bf.val());
                 self.state.d.next = LearnState::ResAbs;
             }
             LearnState::ResAbs => {
                 self.neg.d.next = (self.xres.q.val() & self.sign63.val()).any();
                 self.mag.d.next = self.xres.q.val();
                 if (self.xres.q.val() & self.sign63.val()).any() {
-                    self.mag.d.next = self.z64.val() - self.xres.q.val();
+                    self.mag.d.next = self.xng.q.val();
                 }
                 self.state.d.next = LearnState::ResLoad;
             }
@@ -1219,9 +1252,8 @@ impl Logic for HarmonicLearner {
             }
             LearnState::ResEnd => {
                 self.rm.d.next = (self.quo.q.val() + self.one64.val()) >> self.one64.val();
-                if self.big.q.val() | self.ovf.q.val() | (self.quo.q.val() >= self.q_over.val()) {
-                    self.rm.d.next = self.lim.val();
-                }
+                self.rsat.d.next =
+                    self.big.q.val() | self.ovf.q.val() | (self.quo.q.val() >= self.q_over.val());
                 self.rneg.d.next = self.neg.q.val();
                 if self.big.q.val() {
                     self.rneg.d.next = self.zneg.q.val();
@@ -1229,21 +1261,33 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::ResWrite;
             }
             LearnState::ResWrite => {
-                // r_i in 32 bits (|r_i| < 2^(F+T-2) <= 2^26), sign-extended into sp_i's word.
+                // r_i in 32 bits (|r_i| < 2^(F+T-2) <= 2^26), or +-lim when it saturates.
                 self.t32.next = bit_cast::<32, 64>(self.rm.q.val());
                 if self.rneg.q.val() {
                     self.t32.next = self.z32.val() - bit_cast::<32, 64>(self.rm.q.val());
                 }
-                self.r.d.next = self.t32.val();
-                self.rsp.write_address.next = self.idx.q.val();
-                self.rsp.write_data.next = bit_cast::<64, 32>(self.t32.val());
-                if (self.t32.val() & self.sign31.val()).any() {
-                    self.rsp.write_data.next = bit_cast::<64, 32>(self.t32.val()) | self.hi32.val();
+                if self.rsat.q.val() {
+                    self.t32.next = self.lim32.val();
+                    if self.rneg.q.val() {
+                        self.t32.next = self.nlim32.val();
+                    }
                 }
-                self.rsp.write_enable.next = self.unz.q.val();
+                self.r.d.next = self.t32.val();
                 self.state.d.next = LearnState::ResSum;
             }
             LearnState::ResSum => {
+                // r_i sign-extended into sp_i's word (written from its register: the path
+                // from rm through r_i's negation ends at r).
+                self.rsp.write_address.next = self.idx.q.val();
+                self.rsp.write_data.next = bit_cast::<64, 32>(self.r.q.val());
+                if (self.r.q.val() & self.sign31.val()).any() {
+                    self.rsp.write_data.next = bit_cast::<64, 32>(self.r.q.val()) | self.hi32.val();
+                }
+                self.rsp.write_enable.next = self.unz.q.val();
+                // The next bin's address a clock ahead.
+                self.rn.read_address.next = self.idx.q.val() + self.ione.val();
+                self.rsk.read_address.next = self.idx.q.val() + self.ione.val();
+                self.rsp.read_address.next = self.idx.q.val() + self.ione.val();
                 if self.unz.q.val() {
                     self.sum_r.d.next = self.sum_r.q.val() + self.r_x.val();
                     self.nbins.d.next = self.nbins.q.val() + self.one32.val();
@@ -1292,12 +1336,12 @@ impl Logic for HarmonicLearner {
                     self.mean.d.next = self.z32.val();
                 }
                 self.idx.d.next = self.iz.val();
+                self.rn.read_address.next = self.iz.val();
+                self.rsp.read_address.next = self.iz.val();
                 self.state.d.next = LearnState::UpdRead;
             }
             LearnState::UpdRead => {
                 self.traddr.next = bit_cast::<32, LEARN_ADDR_BITS>(self.idx.q.val());
-                self.rn.read_address.next = self.idx.q.val();
-                self.rsp.read_address.next = self.idx.q.val();
                 self.state.d.next = LearnState::UpdLat;
             }
             LearnState::UpdLat => {
@@ -1333,7 +1377,9 @@ impl Logic for HarmonicLearner {
             }
             LearnState::UpdAdd => {
                 self.unw.d.next = self.ucur.q.val() + self.udm.q.val();
-                self.usat.d.next = self.udm.q.val() > self.uroom.q.val();
+                // In the entry width: udm <= step < 2^(E-1), 0 <= room <= 2 entry_max < 2^E.
+                self.usat.d.next = (self.udm.q.val() & self.ew_mask.val())
+                    > (self.uroom.q.val() & self.ew_mask.val());
                 if self.uneg.q.val() {
                     self.unw.d.next = self.ucur.q.val() - self.udm.q.val();
                 }
@@ -1360,6 +1406,9 @@ impl Logic for HarmonicLearner {
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
+                // The next bin's address a clock ahead.
+                self.rn.read_address.next = self.idx.q.val() + self.ione.val();
+                self.rsp.read_address.next = self.idx.q.val() + self.ione.val();
                 self.idx.d.next = self.idx.q.val() + self.ione.val();
                 if self.idx.q.val() == self.ilast.val() {
                     self.idx.d.next = self.iz.val();
