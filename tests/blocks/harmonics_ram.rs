@@ -4,7 +4,7 @@
 //! (`harmonics::model::correct`) on the same table; the write port's conversion from the
 //! learner's q units against a rounding in f64.
 use crate::common;
-use sinedec::blocks::harmonics::hdl_ram::HarmonicCorrectionRam;
+use sinedec::blocks::harmonics::hdl_ram::{HarmonicCorrectionRam, RAM_ADDR_BITS};
 use sinedec::blocks::harmonics::model::{
     correct, correct_ab, q_to_z, HarmonicIn, HarmonicRamIn, HarmonicRamModel,
 };
@@ -193,8 +193,8 @@ fn after_the_clear_either_bank_gives_the_static_blocks_angle() {
 }
 
 /// The block alone in Yosys with a 128-point table: no hard multiplier, at most one carry
-/// chain on every register-to-register path of the xc3sa mapping; the figures are printed
-/// for docs/correction.md.
+/// chain on every register-to-register path of the xc3sa mapping, the RAMs in the columns
+/// they are read in; the figures are printed.
 #[test]
 fn the_ram_block_synthesizes_with_one_carry_chain_per_path_and_no_multiplier() {
     let p = HarmonicParams::new(ZW, GZ, F, &random_table(128, 300.0, 41)).expect("params");
@@ -207,4 +207,13 @@ fn the_ram_block_synthesizes_with_one_carry_chain_per_path_and_no_multiplier() {
     );
     assert_eq!(x.multipliers + c.multipliers, 0);
     assert!(path.carry_chains <= 1, "{path:?}");
+    // The two RAMs (`PipedLutRam`, four 64-word arrays each) are LUT RAM on xc3sa, read in
+    // ZW bits: 2 RAMs x 256 / 16 words per RAM16X1D x ZW = 22 columns = 704 cells (the
+    // other RAM_WORD_BITS - ZW = 14 columns dropped). Cyclone ignores the attribute and
+    // maps each array to an M9K (Yosys 0.23's `altsyncram`, counted in `brams`): 2 x 4 = 8
+    // (the one-clock `LutRam` was one M9K per RAM).
+    let lutram = x.cells.get("RAM16X1D").copied().unwrap_or(0);
+    assert_eq!(x.brams, 0);
+    assert_eq!(lutram, 2 * ((1 << RAM_ADDR_BITS) / 16) * u64::from(ZW));
+    assert_eq!(c.brams, 2 * 4);
 }

@@ -6,14 +6,22 @@
 //!  tw, tw_addr, tw_data ──► (q ^ m) + half - m >> s ──reg──► RAM_A[bank P + i], RAM_B[...]
 //!  (the learner's writes,     (q units to z units)           (one copy each)
 //!   q units)
-//!            ┌──────────────┐       ┌──────┐ a=c_i  ┌──────────────┐ y, D  ┌────────────┐ s0..s3 ┌─────┐ ┌─────┐ ┌───────────┐
-//!  z_in ────►│ RAM_A[b,idx] ├──────►│ a, b ├───────►│ y=(z-a)<<R|h ├──────►│ 8 partial  ├───────►│ add ├►│ add ├►│ y - sum   ├─► z_out
-//!  (ZW b)    │ RAM_B[b,idx+1]│       │      │ b=c_j  │ D=b-a (sext) │ f     │ products,  │        │pairs│ │pair │ │ >> R      │
-//!            └──reg─────────┘       └─reg──┘        └──reg─────────┘       │ pairs      │        └─reg─┘ └─reg─┘ └──reg──────┘
-//!  cycle:        1                    1r                   2                  └──reg───────┘3          4       5        6
+//!            ┌────────────────┐    ┌──────────────┐    ┌────────────┐ a=c_i ┌──────────────┐ y, D ┌───────────┐ s0..s3 ┌───────┐    ┌──────┐    ┌─────────┐
+//!  z_in ────►│ RAM_A[b,idx]   │───►│ 4 arrays'    │───►│ 4:1 select │──────►│ y=(z-a)<<R|h │─────►│ 8 partial │───────►│ add   │───►│ add  │───►│ y - sum │─► z_out
+//!  (ZW b)    │ RAM_B[b,idx+1] │    │ words q_k    │    │ & ZW: a, b │ b=c_j │ D=b-a (sext) │ f    │ products, │        │ pairs │    │ pair │    │ >> R    │
+//!            │ (the address)  │    │ (in the RAM) │    │ (0: Clear) │       │              │      │ pairs     │        │       │    │      │    │         │
+//!            └──reg───────────┘    └──reg─────────┘    └──reg───────┘       └──reg─────────┘      └──reg──────┘        └──reg──┘    └──reg─┘    └──reg────┘
+//!  cycle:     1                     1q                  1r                   2                     3                    4            5           6
 //! ```
+//!
+//! The RAMs are [`PipedLutRam`]s (four arrays of 64 words): stage 1 registers the read
+//! address, stage 1q the four arrays' words at it (`q_k`, inside the RAM), and stage 1r
+//! the word the address's top two bits select, masked to ZW bits (synthesis drops the
+//! unused columns) and zeroed during the Clear: the word a
+//! [`LutRam`](crate::blocks::lutram::LutRam) gives a clock earlier (the arrays are read at
+//! the same edge), so the block is the one-clock read's, a clock later.
 use super::{HarmonicParams, INTERP_BITS};
-use crate::blocks::lutram::LutRam;
+use crate::blocks::lutram::PipedLutRam;
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
@@ -21,15 +29,16 @@ use rust_hdl::prelude::*;
 /// Address bits of a table RAM: the bank in bit p, the entry in bits p-1..0 (P <= 128).
 pub const RAM_ADDR_BITS: usize = 8;
 
-/// Bits of a RAM word: the entry in z units modulo 2^ZW (ZW <= 24) in the low bits. 256 x
-/// 36 is one Cyclone M9K in its widest mode, which Yosys 0.23 maps without resizing a port
-/// (a warning the synthesis flow counts as a failure).
+/// Bits of a RAM word: the entry in z units modulo 2^ZW (ZW <= 24) in the low bits, the
+/// only ones read (synthesis drops the other columns). 36 is a Cyclone M9K's widest mode;
+/// each of a RAM's four 64-word arrays is one M9K.
 pub const RAM_WORD_BITS: usize = 36;
 
 /// The most entries a learned table has: two banks of P in the RAM's 256 words.
 pub const MAX_POINTS: u32 = 128;
 
-/// The table lookup from RAM, the interpolation and the subtraction, seven register stages.
+/// The table lookup from RAM, the interpolation and the subtraction, eight register stages
+/// ([`HarmonicParams::LATENCY_RAM`]).
 #[derive(LogicBlock)]
 pub struct HarmonicCorrectionRam {
     /// System clock.
@@ -53,16 +62,16 @@ pub struct HarmonicCorrectionRam {
     pub tw_addr: Signal<In, Bits<32>>,
     /// Its value, q units (2^-T LSB), two's complement in the learner's entry width.
     pub tw_data: Signal<In, Bits<32>>,
-    /// The corrected angle (ZW bits), seven clocks after `z_in`.
+    /// The corrected angle (ZW bits), eight clocks after `z_in`.
     pub z_out: Signal<Out, Bits<32>>,
-    /// `x_in` seven clocks later.
+    /// `x_in` eight clocks later.
     pub x_out: Signal<Out, Bits<32>>,
-    /// `v_in` seven clocks later.
+    /// `v_in` eight clocks later.
     pub v_out: Signal<Out, Bit>,
-    /// c_i (z units mod 2^ZW) at {bank, i}, read at the segment.
-    ram_a: LutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    /// c_i (z units mod 2^ZW) at {bank, i}, read at the segment over two clocks.
+    ram_a: PipedLutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
     /// The same table, read at the next segment (i + 1 mod P).
-    ram_b: LutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
+    ram_b: PipedLutRam<Bits<RAM_WORD_BITS>, RAM_ADDR_BITS>,
     /// The write stage: the entry converted to z units, its RAM address, the enable.
     wd: DFF<Bits<32>>,
     wa: DFF<Bits<32>>,
@@ -75,23 +84,33 @@ pub struct HarmonicCorrectionRam {
     /// `clearing` a clock late: the Clear's last write reaches the RAMs a clock after it
     /// (the write stage), and a read in that clock still sees the word before it.
     cl: DFF<Bit>,
-    /// Stage 1: the angle (the RAMs' read data are c_i and c_(i+1)), and whether they
+    /// Stage 1: the angle (the RAMs' read addresses registered), and whether the RAMs
     /// were read during the Clear or the clock after it.
     z1: DFF<Bits<32>>,
     c1: DFF<Bit>,
     x1: DFF<Bits<32>>,
     v1: DFF<Bit>,
-    /// Stage 1r: c_i and c_(i+1), the RAMs' read data registered (zeros during the Clear),
-    /// so that no adder follows a RAM read in one clock (the read path, docs/timing.md).
+    /// Stage 1q: the RAMs' arrays read into their registers (inside [`PipedLutRam`]); the
+    /// angle, the clearing flag and the valid bits carried along.
+    zq: DFF<Bits<32>>,
+    cq: DFF<Bit>,
+    xq: DFF<Bits<32>>,
+    vq: DFF<Bit>,
+    /// v1 a clock later, which a reset does not clear: an invalid sample's words are zeroed
+    /// by the valid bit it entered with, as the model does.
+    vzq: DFF<Bit>,
+    /// Stage 1r: c_i and c_(i+1), the RAMs' selected words registered (zeros during the
+    /// Clear), so that no adder follows a RAM read in one clock (the read path,
+    /// docs/timing.md).
     ar: DFF<Bits<32>>,
     br: DFF<Bits<32>>,
     zr: DFF<Bits<32>>,
     xr: DFF<Bits<32>>,
     vr: DFF<Bit>,
-    /// v1 a clock later, which a reset does not clear: an invalid sample's words are zeroed
-    /// by the valid bit it entered with, as the model does.
+    /// vzq a clock later (v1 two clocks later, not cleared by a reset).
     vz: DFF<Bit>,
-    /// c_i and c_(i+1) of stage 1: the RAMs' read data, or zeros during the Clear.
+    /// c_i and c_(i+1) of stage 1q: the RAMs' read data in ZW bits, or zeros during the
+    /// Clear.
     ca: Signal<Local, Bits<32>>,
     cb: Signal<Local, Bits<32>>,
     /// The slope c_(i+1) - c_i modulo 2^ZW, before its sign fill.
@@ -200,6 +219,11 @@ impl HarmonicCorrectionRam {
             c1: Default::default(),
             x1: Default::default(),
             v1: Default::default(),
+            zq: Default::default(),
+            cq: Default::default(),
+            xq: Default::default(),
+            vq: Default::default(),
+            vzq: Default::default(),
             ar: Default::default(),
             br: Default::default(),
             zr: Default::default(),
@@ -260,8 +284,9 @@ impl Logic for HarmonicCorrectionRam {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, wd, wa, we, cl, z1, c1, x1, v1, ar, br, zr, xr, vr, vz, y2, d2, f2, x2, v2,
-            y3, s3a, s3b, s3c, s3d, x3, v3, y4, s4a, s4b, x4, v4, y5, s5, x5, v5, z6, x6, v6
+            self, clk, wd, wa, we, cl, z1, c1, x1, v1, zq, cq, xq, vq, vzq, ar, br, zr, xr, vr, vz,
+            y2, d2, f2, x2, v2, y3, s3a, s3b, s3c, s3d, x3, v3, y4, s4a, s4b, x4, v4, y5, s5, x5,
+            v5, z6, x6, v6
         );
         // The write stage: the learner's entry in z units, rounded half up (a sign fill
         // and the half in one adder), at {bank, i} = bank P + i, as `tw_addr` holds it.
@@ -270,23 +295,22 @@ impl Logic for HarmonicCorrectionRam {
             & self.zmask.val();
         self.wa.d.next = self.tw_addr.val() & self.amask.val();
         self.we.d.next = self.tw.val();
-        self.ram_a.write_clock.next = self.clk.val();
-        self.ram_b.write_clock.next = self.clk.val();
+        self.ram_a.clock.next = self.clk.val();
+        self.ram_b.clock.next = self.clk.val();
         self.ram_a.write_enable.next = self.we.q.val();
         self.ram_b.write_enable.next = self.we.q.val();
         self.ram_a.write_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.wa.q.val());
         self.ram_b.write_address.next = bit_cast::<RAM_ADDR_BITS, 32>(self.wa.q.val());
         self.ram_a.write_data.next = bit_cast::<RAM_WORD_BITS, 32>(self.wd.q.val());
         self.ram_b.write_data.next = bit_cast::<RAM_WORD_BITS, 32>(self.wd.q.val());
-        // Stage 1: c_i and c_(i+1 mod P) of the bank, read from the CORDIC's register.
+        // Stage 1: the addresses of c_i and c_(i+1 mod P) of the bank, from the CORDIC's
+        // register.
         self.idx.next = (self.z_in.val() >> self.ishift.val()) & self.imask.val();
         self.nxt.next = (self.idx.val() + self.one.val()) & self.imask.val();
         self.boff.next = self.zero.val();
         if self.bank.val() {
             self.boff.next = self.bankbit.val();
         }
-        self.ram_a.read_clock.next = self.clk.val();
-        self.ram_b.read_clock.next = self.clk.val();
         self.ram_a.read_address.next =
             bit_cast::<RAM_ADDR_BITS, 32>(self.boff.val() | self.idx.val());
         self.ram_b.read_address.next =
@@ -296,19 +320,25 @@ impl Logic for HarmonicCorrectionRam {
         self.c1.d.next = self.clearing.val() | self.cl.q.val();
         self.x1.d.next = self.x_in.val();
         self.v1.d.next = self.v_in.val() & !self.rst.val();
-        // Stage 1r: the words registered.
-        self.ca.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val());
-        self.cb.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_b.read_data.val());
-        if self.c1.q.val() {
+        // Stage 1q: the RAMs read their arrays into their registers; the rest follows.
+        self.zq.d.next = self.z1.q.val();
+        self.cq.d.next = self.c1.q.val();
+        self.xq.d.next = self.x1.q.val();
+        self.vq.d.next = self.v1.q.val() & !self.rst.val();
+        self.vzq.d.next = self.v1.q.val();
+        // Stage 1r: the selected words registered, in ZW bits.
+        self.ca.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_a.read_data.val()) & self.zmask.val();
+        self.cb.next = bit_cast::<32, RAM_WORD_BITS>(self.ram_b.read_data.val()) & self.zmask.val();
+        if self.cq.q.val() {
             self.ca.next = self.zero.val();
             self.cb.next = self.zero.val();
         }
         self.ar.d.next = self.ca.val();
         self.br.d.next = self.cb.val();
-        self.zr.d.next = self.z1.q.val();
-        self.xr.d.next = self.x1.q.val();
-        self.vr.d.next = self.v1.q.val() & !self.rst.val();
-        self.vz.d.next = self.v1.q.val();
+        self.zr.d.next = self.zq.q.val();
+        self.xr.d.next = self.xq.q.val();
+        self.vr.d.next = self.vq.q.val() & !self.rst.val();
+        self.vz.d.next = self.vzq.q.val();
         // Stage 2: y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i, sign-filled to W bits.
         self.y2.d.next = ((((self.zr.q.val() - self.ar.q.val()) & self.zmask.val())
             << self.rbits.val())

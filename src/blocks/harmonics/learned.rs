@@ -12,7 +12,7 @@
 //!                                               │ every table write, the bank, the Clear
 //!               ┌───────────────────────────────▼─────────────────────────────────────┐
 //!  z_in, x_in ─►│ HarmonicCorrectionRam: c_i, c_(i+1) of the bank, interpolate, subtract ├─► z_out, x_out, v_out
-//!  v_in         │ (7 clocks)                                                          │
+//!  v_in         │ (8 clocks)                                                          │
 //!               └─────────────────────────────────────────────────────────────────────┘
 //! ```
 //!

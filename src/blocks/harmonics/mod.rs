@@ -48,15 +48,16 @@
 //!
 //! The table in RAM (`mode = "learn"`, [`hdl_ram::HarmonicCorrectionRam`]). The learned
 //! table lives in two copies of a RAM of two banks (bank b, entry i at address b P + i;
-//! 256 words of 36 bits, one Cyclone M9K, so P <= [`hdl_ram::MAX_POINTS`] = 128),
-//! one read at the segment i, one at i + 1 mod P, so that one clock gives c_i and
-//! c_(i+1) of the bank the learner names. They hold c_i modulo 2^ZW (z units): the
+//! 256 words, so P <= [`hdl_ram::MAX_POINTS`] = 128; each four arrays of 64 words, four
+//! Cyclone M9Ks), one read at the segment i, one at i + 1 mod P, so that one read gives c_i
+//! and c_(i+1) of the bank the learner names. They hold c_i modulo 2^ZW (z units): the
 //! learner's writes arrive in q units (2^-T LSB, T = [`sequencer::TABLE_FRAC`]) and the
 //! write stage rounds them, c = floor(q 2^(Gz-T) + 1/2), a sign fill and the half in one
 //! adder. Then y = (z - c_i) 2^R + 2^(R-1) and D = c_(i+1) - c_i (a ZW-bit difference,
 //! sign-filled to W bits since |D| < 2^(F+Gz-3)) are the static block's y and D modulo
-//! 2^W, and the same partial products follow: [`HarmonicParams::LATENCY_RAM`] = 7 clocks
-//! (the RAM's read address register, its words registered so that no adder follows a RAM
+//! 2^W, and the same partial products follow: [`HarmonicParams::LATENCY_RAM`] = 8 clocks
+//! (the RAM's read address register, its read over two clocks, four arrays' words into
+//! registers and then one of them selected and registered, so that no adder follows a RAM
 //! read in the same clock, then the slope's subtract in a stage of its own). A bank the
 //! lookup reads changes only when the learner flips `bank` (at its Apply). The RAMs have no
 //! initial contents (Yosys 0.23 cannot map a RAM with them to an M9K): after a reset the
@@ -121,9 +122,9 @@ impl HarmonicParams {
     pub const LATENCY: u32 = 5;
 
     /// Clocks from `z_in` to `z_out` with the table in RAM (the learned table): the RAM's
-    /// read address register, its words registered, then the slope's subtract before the
-    /// partial products.
-    pub const LATENCY_RAM: u32 = 7;
+    /// read address register, its read over two clocks (the arrays' words registered, then
+    /// the selected word), then the slope's subtract before the partial products.
+    pub const LATENCY_RAM: u32 = 8;
 
     /// The block for a ZW-bit angle with Gz guard bits and F fine bits, and the table
     /// `table_lsb` (position LSB, one entry per point of the period from angle 0); the
