@@ -58,14 +58,13 @@
 //! values that Yosys does not trim.
 //!
 //! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
-//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 130.99 / 125.20 / 131.32 MHz
+//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 134.73 / 145.45 / 143.00 MHz
 //! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz; this learner alone
-//! 138.73 / 137.82 MHz at seeds 1 / 2. The worst paths are the one-clock LUT-RAM reads left
-//! (n_i's RAM here, the lookup's table), 1.7 ns of logic and 5.9 to 6.3 ns of routing, then
-//! the divider's loads and the line's sums. Before the one-hot state, narrow counters, the
-//! narrow divider and the lookup's registered words the top was at 96.45 / 97.68 / 101.53
-//! MHz (the state's fan-out into every 64-bit register's select); with block RAMs (DP16KD,
-//! 5.61 ns clock-to-out) the learner alone was at 83.94 to 91.27 MHz.
+//! 134.86 / 143.55 MHz at seeds 1 / 2. The worst paths are its wide sums (Sp -> a: a
+//! 54-bit carry chain and 4.25 ns of routing) and the bin RAMs' read, whose address register
+//! Yosys shares among the three RAMs. A 6.0 ns clock leaves room for a carry chain of about
+//! 20 bits with this routing: meeting the rule needs the wide words added in digits over
+//! several clocks (docs/timing.md, "What is left").
 //!
 //! Ports:
 //!
