@@ -205,56 +205,47 @@ impl<D: Synth, const N: usize> Logic for PipedLutRam<D, N> {
     }
 
     fn hdl(&self) -> Verilog {
-        let (d, n, lo, a) = (D::BITS - 1, N - 1, N - 3, (1usize << (N - 2)) - 1);
-        if self._one {
-            return Verilog::Custom(format!(
-                "(* ram_style = \"distributed\" *) reg[{d}:0] mem[{a1}:0];
-reg[{d}:0] q;
-reg[{n}:0] ra;
-reg[{n}:0] wa;
-reg[{d}:0] wd;
-reg we;
-
-always @(posedge clock) begin
-   ra <= read_address;
-   q <= mem[ra];
-end
-
-always @(*) begin
-   read_data = q;
-end
-
-always @(posedge clock) begin
-   we <= write_enable;
-   wa <= write_address;
-   wd <= write_data;
-   if (we) begin
-      mem[wa] <= wd;
-   end
-end
-",
-                a1 = (1usize << N) - 1,
-            ));
-        }
+        // Four arrays, selected by the address's top two bits a clock after their read, or
+        // one array and no select.
+        let (arrays, top) = if self._one { (1, 0) } else { (4, 2) };
+        let (d, n, lo) = (D::BITS - 1, N - 1, N - 1 - top);
+        let a = (1usize << (N - top)) - 1;
         let mut v = String::new();
-        for k in 0..4 {
+        for k in 0..arrays {
             v += &format!("(* ram_style = \"distributed\" *) reg[{d}:0] mem_{k}[{a}:0];\n");
             v += &format!("reg[{d}:0] q_{k};\n");
         }
-        v += &format!("reg[{n}:0] ra;\nreg[1:0] rb;\nreg[{n}:0] wa;\nreg[{d}:0] wd;\nreg we;\n\n");
+        v += &format!("reg[{n}:0] ra;\n");
+        if arrays > 1 {
+            v += "reg[1:0] rb;\n";
+        }
+        v += &format!("reg[{n}:0] wa;\nreg[{d}:0] wd;\nreg we;\n\n");
         v += "always @(posedge clock) begin\n   ra <= read_address;\n";
-        v += &format!("   rb <= ra[{n}:{}];\n", N - 2);
-        for k in 0..4 {
+        if arrays > 1 {
+            v += &format!("   rb <= ra[{n}:{}];\n", N - top);
+        }
+        for k in 0..arrays {
             v += &format!("   q_{k} <= mem_{k}[ra[{lo}:0]];\n");
         }
-        v += "end\n\nalways @(*) begin\n   case (rb)\n";
-        for k in 0..4 {
-            v += &format!("      2'd{k}: read_data = q_{k};\n");
+        v += "end\n\nalways @(*) begin\n";
+        if arrays > 1 {
+            v += "   case (rb)\n";
+            for k in 0..arrays {
+                v += &format!("      2'd{k}: read_data = q_{k};\n");
+            }
+            v += "   endcase\n";
+        } else {
+            v += "   read_data = q_0;\n";
         }
-        v += "   endcase\nend\n\n";
+        v += "end\n\n";
         v += "always @(posedge clock) begin\n   we <= write_enable;\n   wa <= write_address;\n   wd <= write_data;\n";
-        for k in 0..4 {
-            v += &format!("   if (we && wa[{n}:{}] == 2'd{k}) begin\n      mem_{k}[wa[{lo}:0]] <= wd;\n   end\n", N - 2);
+        for k in 0..arrays {
+            let sel = if arrays > 1 {
+                format!(" && wa[{n}:{}] == 2'd{k}", N - top)
+            } else {
+                String::new()
+            };
+            v += &format!("   if (we{sel}) begin\n      mem_{k}[wa[{lo}:0]] <= wd;\n   end\n");
         }
         v += "end\n";
         Verilog::Custom(v)

@@ -409,6 +409,8 @@ pub struct HarmonicLearner {
     seg_n: Signal<Local, Bits<32>>,
     /// The bin Bin latches, as the bins' RAMs' address a clock before ReadBin.
     bin_n: Signal<Local, Bits<32>>,
+    /// The bins' RAMs' read address (one for the three RAMs), a state ahead of its data.
+    bra: Signal<Local, Bits<LEARN_ADDR_BITS>>,
     seg_i: Signal<Local, Bits<32>>,
     seg_j: Signal<Local, Bits<32>>,
     /// The active bank's and the other bank's offsets.
@@ -690,6 +692,7 @@ impl HarmonicLearner {
             pnew: Default::default(),
             seg_n: Default::default(),
             bin_n: Default::default(),
+            bra: Default::default(),
             seg_i: Default::default(),
             seg_j: Default::default(),
             off_a: Default::default(),
@@ -813,9 +816,7 @@ impl Logic for HarmonicLearner {
         self.wd.next = self.z32.val();
         self.traddr.next = self.z32.val();
         self.bin_n.next = self.z32.val();
-        self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
-        self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
-        self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
+        self.bra.next = self.iz.val();
         self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
         self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
         self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
@@ -1023,9 +1024,7 @@ impl Logic for HarmonicLearner {
                     bit_cast::<32, 64>(self.t64.val() >> self.st.val()) & self.pmask.val();
                 self.sbin.d.next = self.bin_n.val();
                 // The bin's address a clock ahead (the bins' RAMs read over two clocks).
-                self.rn.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
-                self.rsk.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
-                self.rsp.read_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
+                self.bra.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
                 self.abs.next = (self.ps.q.val() << self.tf.val()) - self.c.q.val();
                 self.q.d.next = self.abs.val() & self.qw_mask.val();
                 if (self.abs.val() & self.qw_sign.val()).any() {
@@ -1150,9 +1149,7 @@ impl Logic for HarmonicLearner {
                     self.a.d.next = self.abs.val() | !self.aw_mask.val();
                 }
                 self.idx.d.next = self.iz.val();
-                self.rn.read_address.next = self.iz.val();
-                self.rsk.read_address.next = self.iz.val();
-                self.rsp.read_address.next = self.iz.val();
+                self.bra.next = self.iz.val();
                 self.state.d.next = LearnState::ResRead;
             }
             LearnState::ResRead => {
@@ -1284,9 +1281,7 @@ impl Logic for HarmonicLearner {
                 }
                 self.rsp.write_enable.next = self.unz.q.val();
                 // The next bin's address a clock ahead.
-                self.rn.read_address.next = self.idx.q.val() + self.ione.val();
-                self.rsk.read_address.next = self.idx.q.val() + self.ione.val();
-                self.rsp.read_address.next = self.idx.q.val() + self.ione.val();
+                self.bra.next = self.idx.q.val() + self.ione.val();
                 if self.unz.q.val() {
                     self.sum_r.d.next = self.sum_r.q.val() + self.r_x.val();
                     self.nbins.d.next = self.nbins.q.val() + self.one32.val();
@@ -1335,8 +1330,7 @@ impl Logic for HarmonicLearner {
                     self.mean.d.next = self.z32.val();
                 }
                 self.idx.d.next = self.iz.val();
-                self.rn.read_address.next = self.iz.val();
-                self.rsp.read_address.next = self.iz.val();
+                self.bra.next = self.iz.val();
                 self.state.d.next = LearnState::UpdRead;
             }
             LearnState::UpdRead => {
@@ -1406,8 +1400,7 @@ impl Logic for HarmonicLearner {
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
                 // The next bin's address a clock ahead.
-                self.rn.read_address.next = self.idx.q.val() + self.ione.val();
-                self.rsp.read_address.next = self.idx.q.val() + self.ione.val();
+                self.bra.next = self.idx.q.val() + self.ione.val();
                 self.idx.d.next = self.idx.q.val() + self.ione.val();
                 if self.idx.q.val() == self.ilast.val() {
                     self.idx.d.next = self.iz.val();
@@ -1450,6 +1443,9 @@ impl Logic for HarmonicLearner {
             self.tra.next = self.traddr.val() | self.bank_hi.val();
         }
         self.tab.read_address.next = bit_cast::<TAB_ADDR_BITS, 32>(self.tra.val());
+        self.rn.read_address.next = self.bra.val();
+        self.rsk.read_address.next = self.bra.val();
+        self.rsp.read_address.next = self.bra.val();
         self.twm.next = self.wa.val() & self.pmask.val();
         if (self.wa.val() & self.pp.val()).any() {
             self.twm.next = (self.wa.val() & self.pmask.val()) | self.bank_hi.val();
