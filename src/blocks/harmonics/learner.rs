@@ -58,7 +58,7 @@
 //! values that Yosys does not trim.
 //!
 //! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
-//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 134.73 / 145.45 / 143.00 MHz
+//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 136.05 / 132.08 / 141.34 MHz
 //! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz; this learner alone
 //! 134.86 / 143.55 MHz at seeds 1 / 2. The worst paths are its wide sums (Sp -> a: a
 //! 54-bit carry chain and 4.25 ns of routing) and the bin RAMs' read, whose address register
