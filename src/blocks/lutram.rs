@@ -22,8 +22,10 @@
 //! learner's state to its table: 83.8 MHz). Here the path starts at the address register.
 //! Yosys honours the attribute on ECP5 (TRELLIS_DPR16X4, the address register kept before
 //! the array) and xc3sa (RAM16X1D); its Cyclone IV E flow ignores it and maps an M9K, the
-//! address register merged into the M9K's read port. No register here has an initial
-//! value: one would keep Yosys from that merge (the array then becomes flip-flops).
+//! address register merged into the M9K's read port ([`PipedLutRam`] keeps its address
+//! registers, and the M9K registers their value again: the same two clocks). No register
+//! here has an initial value: one would keep Yosys from that merge (the array then becomes
+//! flip-flops).
 use rust_hdl::prelude::*;
 use std::collections::BTreeMap;
 
@@ -121,11 +123,11 @@ end
 /// 16-to-1 read multiplexer, 6.5 to 7 ns of routing):
 ///
 /// ```text
-///  read_address ──reg──► ra ─┬─► mem_0[ra low] ──reg──► q_0 ─┐
-///                            ├─► mem_1[ra low] ──reg──► q_1 ─┤
-///                            ├─► mem_2[ra low] ──reg──► q_2 ─┼─► q_(rb) ─► read_data
-///                            ├─► mem_3[ra low] ──reg──► q_3 ─┘
-///                            └─► ra's top two bits ──reg──► rb
+///  read_address ─┬─reg──► ra_0 ─► mem_0[ra_0 low] ──reg──► q_0 ─┐
+///                ├─reg──► ra_1 ─► mem_1[ra_1 low] ──reg──► q_1 ─┤
+///                ├─reg──► ra_2 ─► mem_2[ra_2 low] ──reg──► q_2 ─┼─► q_(rb) ─► read_data
+///                ├─reg──► ra_3 ─► mem_3[ra_3 low] ──reg──► q_3 ─┘
+///                └─ ra_0's top two bits ──reg──► rb
 ///  write_address, write_data, write_enable ──reg──► (wa, wd, we) ──► mem_(wa top)[wa low] <= wd
 /// ```
 ///
@@ -206,26 +208,34 @@ impl<D: Synth, const N: usize> Logic for PipedLutRam<D, N> {
 
     fn hdl(&self) -> Verilog {
         // Four arrays, selected by the address's top two bits a clock after their read, or
-        // one array and no select.
+        // one array and no select. Each array has its own read address register, and the RAM
+        // its own write stage, each in a `keep` block: Yosys would merge identical registers
+        // across arrays and RAMs that share an address or a write port, and the merged
+        // register then drives every cell (the read and write paths' fan-out).
         let (arrays, top) = if self._one { (1, 0) } else { (4, 2) };
         let (d, n, lo) = (D::BITS - 1, N - 1, N - 1 - top);
         let a = (1usize << (N - top)) - 1;
         let mut v = String::new();
         for k in 0..arrays {
             v += &format!("(* ram_style = \"distributed\" *) reg[{d}:0] mem_{k}[{a}:0];\n");
-            v += &format!("reg[{d}:0] q_{k};\n");
+            v += &format!("reg[{d}:0] q_{k};\nreg[{n}:0] ra_{k};\n");
         }
-        v += &format!("reg[{n}:0] ra;\n");
         if arrays > 1 {
             v += "reg[1:0] rb;\n";
         }
         v += &format!("reg[{n}:0] wa;\nreg[{d}:0] wd;\nreg we;\n\n");
-        v += "always @(posedge clock) begin\n   ra <= read_address;\n";
+        for k in 0..arrays {
+            v += &format!(
+                "(* keep *)\nalways @(posedge clock) begin\n   ra_{k} <= read_address;\nend\n\n"
+            );
+        }
+        v += "(* keep *)\nalways @(posedge clock) begin\n   we <= write_enable;\n   wa <= write_address;\n   wd <= write_data;\nend\n\n";
+        v += "always @(posedge clock) begin\n";
         if arrays > 1 {
-            v += &format!("   rb <= ra[{n}:{}];\n", N - top);
+            v += &format!("   rb <= ra_0[{n}:{}];\n", N - top);
         }
         for k in 0..arrays {
-            v += &format!("   q_{k} <= mem_{k}[ra[{lo}:0]];\n");
+            v += &format!("   q_{k} <= mem_{k}[ra_{k}[{lo}:0]];\n");
         }
         v += "end\n\nalways @(*) begin\n";
         if arrays > 1 {
@@ -237,8 +247,7 @@ impl<D: Synth, const N: usize> Logic for PipedLutRam<D, N> {
         } else {
             v += "   read_data = q_0;\n";
         }
-        v += "end\n\n";
-        v += "always @(posedge clock) begin\n   we <= write_enable;\n   wa <= write_address;\n   wd <= write_data;\n";
+        v += "end\n\nalways @(posedge clock) begin\n";
         for k in 0..arrays {
             let sel = if arrays > 1 {
                 format!(" && wa[{n}:{}] == 2'd{k}", N - top)

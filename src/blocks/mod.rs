@@ -40,6 +40,7 @@ pub mod registry;
 pub mod regmap;
 pub mod serial;
 pub mod spi_slave;
+pub mod splitadd;
 pub mod ssi;
 pub mod top;
 pub mod velocity;

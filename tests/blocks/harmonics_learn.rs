@@ -141,16 +141,18 @@ fn the_integer_learner_follows_the_float_model() {
 }
 
 /// The solve's clocks, counted by hand from the formats in docs/correction.md (F = 14, p =
-/// 7, w = 12, T = 8): Line 7 + 44 quotient bits (|U| < 2^60, D > 2^22: floor(2^6 |U| / D) <
-/// 2^44), Residual 23 product bits + 21 quotient bits + 10 per bin, Mean 21 + 4, Update 7
-/// per bin, Apply 1; a sample's Collect 11 + s = 20 clocks, 22 with a load's two writes.
+/// 7, w = 12, T = 8): Line 12 + 44 quotient bits (|U| < 2^60, D > 2^22: floor(2^6 |U| / D)
+/// < 2^44), Residual 23 product bits + 1 + 21 quotient bits + 14 per bin, Mean 21 + 5,
+/// Update 7 per bin, Apply 1 (each two-clock 64-bit sum, src/blocks/splitadd.rs, counted
+/// in the states it settles in); a sample's Collect 11 + s = 20 clocks, 22 with a load's
+/// two writes.
 #[test]
 fn the_solve_takes_the_documented_clocks() {
     let p = params();
-    assert_eq!(p.line_clocks(), 7 + 44);
-    assert_eq!(p.residual_clocks(), 23 + 21 + 10);
-    assert_eq!(p.mean_clocks(), 25);
-    assert_eq!(p.solve_clocks(), 51 + 54 * 128 + 25 + 7 * 128 + 1);
+    assert_eq!(p.line_clocks(), 12 + 44);
+    assert_eq!(p.residual_clocks(), 24 + 21 + 14);
+    assert_eq!(p.mean_clocks(), 26);
+    assert_eq!(p.solve_clocks(), 56 + 59 * 128 + 26 + 7 * 128 + 1);
     assert_eq!((p.collect_clocks(), p.min_sample_clocks()), (20, 22));
     assert_eq!(p.clear_clocks(), 257);
     assert_eq!(

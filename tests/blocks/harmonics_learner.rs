@@ -367,6 +367,43 @@ fn the_residual_in_64_bit_words_equals_the_i128_residual() {
     assert!(saturated > 1000, "{saturated}");
 }
 
+/// At the edges of the residual's 64-bit path, Z1 = -H - 1, -H, -H + 1, H - 1 and H: Z1 =
+/// -H takes the division (x still fits 64 bits), whose quotient overflows, and saturates
+/// as the i128 formula does; Z1 = H and -H - 1 saturate without it.
+#[test]
+fn the_residual_at_the_edges_of_its_64_bit_path_equals_the_i128_residual() {
+    let mut r = SplitMix64(12);
+    for w in [12u32, 13] {
+        let p = LearnParams::new(F, 128, 1 << w, 32).expect("params");
+        let (h, bf) = (p.big_limit(), p.line_frac());
+        let mut hits = [0usize; 5];
+        for _ in 0..4000 {
+            let nmax = 1i64 << w;
+            let n = 1 + r.range(0, nmax - 1);
+            let sk = r.range(0, (n * (2 * nmax - n - 1) / 2).max(1));
+            let b = wrap(i128::from(r.next_u64() as i64), p.b_width() - 2) as i64;
+            let bh = b >> bf;
+            for (j, z) in [-h - 1, -h, -h + 1, h - 1, h].into_iter().enumerate() {
+                // a_h n cancels Z1 + b_h sk to within n, so that sp is small.
+                let ah = -(z + bh * sk) / n + r.range(-2, 2);
+                let a = (ah << bf) | r.range(0, (1 << bf) - 1);
+                let sp = z + ah * n + bh * sk;
+                let fits = |v: i64, width: u32| wrap(i128::from(v), width) as i64 == v;
+                if !(fits(a, p.a_width()) && fits(sp, p.sum_p_width())) {
+                    continue;
+                }
+                hits[j] += 1;
+                assert_eq!(
+                    residual_serial(&p, sp, n, sk, a, b),
+                    residual(&p, sp, n, sk, i128::from(a), i128::from(b)),
+                    "w = {w}, Z1 = {z}: sp {sp}, n {n}, sk {sk}, a {a}, b {b}"
+                );
+            }
+        }
+        assert!(hits.iter().all(|&k| k > 100), "w = {w}: {hits:?}");
+    }
+}
+
 /// The restoring division with the dividend's low zeros shifted in: floor(x 2^(k - lead)
 /// / d) whenever the quotient fits k bits.
 #[test]
@@ -406,12 +443,12 @@ fn the_learner_synthesizes_without_a_multiplier() {
         x.luts, x.ffs, x.multipliers, x.brams, c.luts, c.ffs, c.multipliers, path.from, path.to, path.carry_chains, path.lut_levels
     );
     assert_eq!(x.multipliers + c.multipliers, 0);
-    // The table (both banks in one RAM, read in two clocks: four arrays, `PipedLutRam`) and
-    // the bins' three sums (`PipedLutRam::one_array`: one array each) are LUT RAM on xc3sa,
-    // and M9K on Cyclone, which ignores the attribute: four for the table, one each for n_i
-    // and sk_i, two for sp_i's 64 bits (an M9K is at most 36 bits wide).
+    // The table (both banks in one RAM) and the bins' sums (n_i, sk_i, and sp_i as two RAMs
+    // of 32 bits), each read in two clocks from four arrays (`PipedLutRam`), are LUT RAM on
+    // xc3sa, and M9K on Cyclone, which ignores the attribute: one per array (at most 36
+    // bits wide), 4 x 5.
     assert_eq!(x.brams, 0);
     assert!(lutram > 0);
-    assert_eq!(m9k, 8);
+    assert_eq!(m9k, 20);
     assert!(path.carry_chains <= 1, "{path:?}");
 }

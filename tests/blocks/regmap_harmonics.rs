@@ -554,11 +554,11 @@ fn synthesizes_for_both_families_with_the_mirror_in_ram() {
     );
     // LEARN, the index (6), the staged word (the 20 bits a load takes), the load on its
     // way (1 + 6 + 20), the clear's counter (32) and flag, three more bits in each one-hot
-    // select: about 100 flip-flops more; the LUT RAM's read address (8) and write stage
-    // (1 + 8 + the 20 entry bits): about 140; its four arrays' read registers (4 x 20), the
-    // array select (2) and HARM_ENTRY's wait (1): about 225.
+    // select: about 100 flip-flops more; the LUT RAM's read address, one per array (4 x
+    // 8), and write stage (1 + 8 + the 20 entry bits): about 160; its four arrays' read
+    // registers (4 x 20), the array select (2) and HARM_ENTRY's wait (1): about 245.
     let more = x1.ffs as i64 - x0.ffs as i64;
-    assert!((140..=240).contains(&more), "{more} FF more");
+    assert!((160..=260).contains(&more), "{more} FF more");
 }
 
 /// The map with a learned table as the top builds it (a `Vec` element of `<name>_top`, its

@@ -12,44 +12,64 @@
 //!    │ │                                                                        +q, Sp  PS, k  │
 //!    │ └► LoadA ─► LoadB (ld: entry into both banks)  bit of f                         │
 //!    └────────────────────────────────────────────────────────────────────── k < N ◄────────┘
-//!   k = N: LineN1 ─► LineU ─► LineLoad ─► LineDiv x Kb ─► LineRnd ─► LineB ─► LineA1 ─► LineA2
-//!          (N+1)Sp   U        |U|           b's bits       (q+1)>>1    ±      moving     a
-//!   per bin: ResRead ─► ResLatch ─► ResMul x (2w-1) ─► ResZa ─► ResZb ─► ResX ─► ResAbs ─►
-//!            ResLoad ─► ResDiv x Kr ─► ResEnd ─► ResWrite ─► ResSum
-//!   MeanAbs ─► MeanLoad ─► MeanDiv x Kr ─► MeanEnd ─► MeanSign
+//!   k = N: LineN1 ─► LineU ─► LineW1 ─► LineW2 ─► LineW3 ─► LineLoad ─► LineDiv x Kb ─►
+//!          PS += Sp  (N+1)Sp           U, -U       |U|       U's load    b's bits
+//!          LineRnd ─► LineRnd2 ─► LineB ─► LineA1 ─► LineA2 ─► LineA3
+//!          (q+1)>>1, (-q)>>1      ±        Sp 2^5 + b  moving   a
+//!   per bin: ResRead ─► ResLatch ─► ResMul x 2w ─► ResZa ─► ResZb ─► ResX ─► ResW1 ─►
+//!            ResW2 ─► ResW3 ─► ResAbs ─► ResLoad ─► ResDiv x Kr ─► ResEnd ─► ResEnd2 ─►
+//!            ResWrite ─► ResSum    (Z1 - pb settles in ResX, ResW1; x, -x in ResW2, ResW3)
+//!   MeanAbs ─► MeanLoad ─► MeanDiv x Kr ─► MeanEnd ─► MeanEnd2 ─► MeanSign
 //!   per bin: UpdRead ─► UpdLat ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
 //!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
 //!
 //!   RAMs: the table (both banks, bank b's entry i at b 2^7 + i, read in the active bank;
 //!   data two clocks after the address, [`PipedLutRam`]: c_i's address goes out in Wait or
 //!   LoadB, c_(i+1)'s in ReadI, entry idx's in UpdRead for UpdDiff); n_i, sk_i, sp_i (r_i
-//!   after Residual), P words each, also read over two clocks, from one array each
-//!   ([`PipedLutRam::one_array`]: the address goes out in Bin, LineA2 or ResSum, MeanSign
-//!   or UpdWrite, the state before ReadBin, ResRead or UpdRead, and the data still latch in
-//!   LatBin, ResLatch, UpdLat); one write port each; none initialised (Clear writes them
+//!   after Residual; two RAMs of 32 bits), P words each, also read over two clocks, from
+//!   four arrays each ([`PipedLutRam`], each its own address register): a
+//!   sample's bin goes out from its register in ReadBin, its words latch in Acc, and its
+//!   new sums go back two clocks after Sum (bw2); bin idx's goes out in LineA3 or ResSum, MeanSign or
+//!   UpdWrite, the state before ResRead or UpdRead, and its words latch in ResLatch,
+//!   UpdLat; one write port each; none initialised (Clear writes them
 //!   first). LoadA writes the active bank, so that a sample's c_i read from LoadB on sees
 //!   the load. The start table: a ROM of compares, registered (romq), none for a zero
-//!   table. Divider: rem, dvd (the dividend's bits, MSB first), quo,
-//!   dsr; t = 2 rem + msb(dvd): t >= dsr ? (rem = t - dsr, quo = 2 quo + 1) : (rem = t,
-//!   quo = 2 quo).
+//!   table. Divider (non-restoring, while dstep): rem (2w + 2 bits, two's complement), dvd
+//!   (the dividend's bits, MSB first), quo, dsr and -dsr; t = 2 rem + msb(dvd), rem = rem <
+//!   0 ? t + dsr : t - dsr, quo = 2 quo + (rem >= 0): the restoring division's quotient
+//!   bits (its remainder is rem, or rem + dsr when rem < 0). The loads (ldr, ldd) are
+//!   prepared a state before the load (LineW3, ResAbs, MeanAbs).
 //! ```
 //!
-//! Words: signed values are 64-bit two's complement (`Bits<64>`, sign-extended from the
-//! model's width at each register, so a register wraps as the model's does), except the
-//! residuals' r, r_i and Update's words (32 bits: |r_i - r| < 2^(F+T-1), entries <= 24
-//! bits) and sum r ([`SUMR_BITS`]); unsigned counts are `Bits<32>`. No word is wider than 64 bits ([`super::sequencer::WORD_MAX`]).
-//! Every register-to-register path holds at most one carry chain (a compare beside it):
-//! the three-operand sums of the model are split over two states (LineN1/LineU,
-//! LineA1/LineA2, ResZa/ResZb, UpdStep/UpdAdd), a RAM's output is registered before an
-//! adder (LatJ, LatBin, UpdLat, ResLatch), and `pos` moves a clock after its strobe (dl).
-//! |U| and |x| select between the word and its negation, computed beside it in LineU and
-//! ResX (`unn`, `xng`); r_i's saturation is decided in ResEnd (`rsat`) and applied in
-//! ResWrite, and r_i reaches sp_i's word from its register in ResSum.
+//! Words: signed values are 64-bit two's complement (`Bits<64>`), except the residuals'
+//! r, r_i and Update's words (32 bits: |r_i - r| < 2^(F+T-1), entries <= 24 bits) and sum
+//! r ([`SUMR_BITS`]); unsigned counts are `Bits<32>`. No word is wider than 64 bits
+//! ([`super::sequencer::WORD_MAX`]). `pos` wraps at the model's width, as the model's does
+//! (strobes outside Collect move it too); every word computed from it stays within the
+//! model's width by the bounds of the model's table (q, Sp, PS, U, b, a: [`super::sequencer`]),
+//! so the RTL adds them in 64 bits without re-wrapping, and equals the model.
+//!
+//! Timing: every register-to-register path holds at most one carry chain of at most 34
+//! bits (a compare beside it), and a sum goes into a register of its own with no select
+//! after its chain. A 64-bit sum is a [`SplitAdd`] (two 32-bit chains, the high one a
+//! clock after the low one) of operands that hold still, or a [`SplitAcc`] (Sp += q in Acc,
+//! PS += Sp the clock after Sum, the four products in ResMul): q, sp1 = sp_i + q, (N + 1)
+//! Sp (un1), U and -U (unum, unn), +-round(quo / 2) (rm, rmn), Sp 2^5 + b (asp), a, sp_i -
+//! a_h n_i (z0), Z1, Z2, x and -x (xres, xng), Z1 + H (zh). Each is right two clocks after
+//! its operands (a SplitAcc a clock after its last add), and the model's states count
+//! these clocks (LineW1-3, LineRnd2, LineA3, ResMul's last clock, ResW1-3, ResEnd2,
+//! MeanEnd2). Other free-running registers: b's one-period compares (mpos,
+//! mneg), |Z1| >= H as a test of Z1 + H's top bits (big, zneg), quo > 2 lim (qov), idx + 1
+//! (idx1), k's last-sample test (klast). c(m)'s product runs from f's LSB in 32 bits
+//! (acc = (acc + f_j D) >> 1). A RAM's output is registered before an adder (LatJ, UpdLat,
+//! ResLatch, Acc), `pos` moves a clock after its strobe (dl), sum r's negation is summed
+//! beside it (srn), r_i saturates in ResWrite and reaches sp_i's word from its register in
+//! ResSum.
 //!
 //! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
-//! tests/blocks/harmonics_learner.rs): xc3sa 4080 LUT4 (1000 of them RAM16X1D), 2547 FF,
-//! no block RAM, no MULT18X18; cycloneive 5295 LE, 2378 FF, 8 M9K (four for the table's
-//! arrays), no multiplier. The RAMs are distributed on ECP5 and xc3sa, read in the widths their words hold
+//! tests/blocks/harmonics_learner.rs): xc3sa 3945 LUT4 (1000 of them RAM16X1D), 3737 FF,
+//! no block RAM, no MULT18X18; cycloneive 5953 LE, 3278 FF, 20 M9K (four arrays each for
+//! the table, n_i, sk_i and sp_i's two halves), no multiplier. The RAMs are distributed on ECP5 and xc3sa, read in the widths their words hold
 //! (the entry width, w + 1 bits of n_i, 2w - 1 of sk_i, sp_i's), so that synthesis drops
 //! the other columns. The state is one-hot in synthesis ([`FsmReg`]); the counters' end
 //! tests compare p bits, the loops count down to a registered zero flag (`dn`, `dz`), the
@@ -58,13 +78,11 @@
 //! values that Yosys does not trim.
 //!
 //! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
-//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 136.05 / 132.08 / 141.34 MHz
-//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz; this learner alone
-//! 134.86 / 143.55 MHz at seeds 1 / 2. The worst paths are its wide sums (Sp -> a: a
-//! 54-bit carry chain and 4.25 ns of routing) and the bin RAMs' read, whose address register
-//! Yosys shares among the three RAMs. A 6.0 ns clock leaves room for a carry chain of about
-//! 20 bits with this routing: meeting the rule needs the wide words added in digits over
-//! several clocks (docs/timing.md, "What is left").
+//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 142.45 / 144.51 / 149.99 MHz
+//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz. The top's worst paths
+//! are routing in a design that fills 65 % of the device, in this learner and in other
+//! blocks; a smaller learner (one shared adder for the solve) is what is left
+//! (docs/timing.md, "Not held").
 //!
 //! Ports:
 //!
@@ -87,6 +105,7 @@
 use super::sequencer::{LearnParams, TABLE_FRAC};
 use crate::blocks::fsmreg::FsmReg;
 use crate::blocks::lutram::PipedLutRam;
+use crate::blocks::splitadd::{SplitAcc, SplitAdd};
 use crate::blocks::{c32, mask};
 use crate::cosim::Port;
 use rust_hdl::prelude::*;
@@ -156,18 +175,28 @@ pub enum LearnState {
     LineN1,
     /// U.
     LineU,
+    /// U settles (its two-clock sums, [`SplitAdd`]).
+    LineW1,
+    /// See LineW1.
+    LineW2,
+    /// |U| settles.
+    LineW3,
     /// b's division loaded.
     LineLoad,
     /// b's quotient bits.
     LineDiv,
     /// b's magnitude rounded.
     LineRnd,
+    /// See LineRnd (its two-clock sums).
+    LineRnd2,
     /// b signed.
     LineB,
     /// Sp 2^5 + b, the one-period test.
     LineA1,
-    /// a.
+    /// a's first sum settles; the one-period test.
     LineA2,
+    /// a settles.
+    LineA3,
     /// Bin idx's sums read.
     ResRead,
     /// Latched; the products set up.
@@ -178,8 +207,14 @@ pub enum LearnState {
     ResZa,
     /// Z1 -= b_h sk.
     ResZb,
-    /// x, |Z1| >= H.
+    /// Z2 and sp_i - a_h n_i settle.
     ResX,
+    /// Z1 settles.
+    ResW1,
+    /// See ResW1.
+    ResW2,
+    /// x, -x and Z1 + H settle.
+    ResW3,
     /// |x|.
     ResAbs,
     /// r_i's division loaded.
@@ -188,6 +223,8 @@ pub enum LearnState {
     ResDiv,
     /// r_i's magnitude.
     ResEnd,
+    /// See ResEnd (its two-clock sums).
+    ResEnd2,
     /// r_i into sp_i's word.
     ResWrite,
     /// sum r, bins.
@@ -200,6 +237,8 @@ pub enum LearnState {
     MeanDiv,
     /// r's magnitude.
     MeanEnd,
+    /// See MeanEnd (its two-clock sums).
+    MeanEnd2,
     /// r signed.
     MeanSign,
     /// Entry idx, n_i, r_i read.
@@ -256,14 +295,18 @@ pub struct HarmonicLearner {
     /// The table: bank b's entry i at word b 2^7 + i (the bank an address bit, so that no
     /// select follows the read), entries in the entry width.
     tab: PipedLutRam<Bits<32>, TAB_ADDR_BITS>,
-    /// Per bin: n_i. The bins' RAMs read over two clocks ([`PipedLutRam::one_array`]: the
-    /// one-clock read of 128 words was the learner's worst path): the address goes out in
-    /// the state before ReadBin, ResRead and UpdRead.
+    /// Per bin: n_i. The bins' RAMs read over two clocks in four arrays ([`PipedLutRam`]:
+    /// the one-clock read of 128 words, and a one-array read's eight-way select, were the
+    /// learner's worst paths): the address goes out in the state before ReadBin, ResRead
+    /// and UpdRead.
     rn: PipedLutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sk_i.
     rsk: PipedLutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// Per bin: sp_i, then r_i (64-bit two's complement).
-    rsp: PipedLutRam<Bits<64>, LEARN_ADDR_BITS>,
+    rsp: PipedLutRam<Bits<32>, LEARN_ADDR_BITS>,
+    /// sp_i's high 32 bits: two RAMs of 32 bits, each with its own address register (the
+    /// read path's fan-out into the LUT RAM cells).
+    rsph: PipedLutRam<Bits<32>, LEARN_ADDR_BITS>,
     /// The start table, entry i XOR-ed with i (the correction block's ROM, super::hdl: a
     /// compare per entry, so that no synthesizer maps it to an initialised block RAM, which
     /// Yosys 0.23 fails to map on Cyclone); none for a zero start table.
@@ -287,8 +330,9 @@ pub struct HarmonicLearner {
     /// the path from the count through a compare to the state's every bit).
     dn: DFF<Bits<CNT_BITS>>,
     dz: DFF<Bit>,
-    /// The bin of Residual and Update.
+    /// The bin of Residual and Update; the next one (registered: the bins' read address).
     idx: DFF<Bits<LEARN_ADDR_BITS>>,
+    idx1: DFF<Bits<LEARN_ADDR_BITS>>,
     /// The bank the correction reads.
     active: DFF<Bit>,
     /// The load: pending, its entry, its value (entry width).
@@ -315,21 +359,34 @@ pub struct HarmonicLearner {
     cj: DFF<Bits<64>>,
     /// c_i; D shifted left a bit a clock; f shifted right; D f.
     ci: DFF<Bits<64>>,
-    dd: DFF<Bits<64>>,
+    dd: DFF<Bits<32>>,
     fsh: DFF<Bits<32>>,
-    acc: DFF<Bits<64>>,
+    acc: DFF<Bits<32>>,
     /// The sample's c(m), bin, q.
     c: DFF<Bits<64>>,
     sbin: DFF<Bits<32>>,
-    q: DFF<Bits<64>>,
-    /// The window's samples k, Sp, PS, U.
+    q: SplitAdd,
+    /// The window's samples k, Sp, PS.
     k: DFF<Bits<32>>,
-    sum_p: DFF<Bits<64>>,
-    sum_ps: DFF<Bits<64>>,
-    unum: DFF<Bits<64>>,
-    /// -U, beside U (LineU), so that LineLoad's |U| is a select, not a negation before the
-    /// divider's load (the path U -> rem, dvd).
-    unn: DFF<Bits<64>>,
+    sum_p: SplitAcc,
+    sum_ps: SplitAcc,
+    /// k is the window's last sample (registered: the path from k through a compare to the
+    /// state).
+    klast: DFF<Bit>,
+    /// PS takes Sp (the clock after Sum, when Sp's high half has settled); the bin's new
+    /// sums go to its RAMs (two clocks after Sum, when sp1 has settled).
+    psa: DFF<Bit>,
+    bw1: DFF<Bit>,
+    bw2: DFF<Bit>,
+    /// The bin's new n_i, sk_i and sp_i, written two clocks after Sum (the path from the
+    /// sums' carry chains into the RAMs' write port).
+    n1: DFF<Bits<32>>,
+    sk1: DFF<Bits<32>>,
+    sp1: SplitAdd,
+    /// (N + 1) Sp; U and -U.
+    un1: SplitAdd,
+    unum: SplitAdd,
+    unn: SplitAdd,
     /// The divider: the dividend's sign, its magnitude, remainder, dividend bits,
     /// quotient, divisor.
     neg: DFF<Bit>,
@@ -338,11 +395,24 @@ pub struct HarmonicLearner {
     dvd: DFF<Bits<64>>,
     quo: DFF<Bits<64>>,
     dsr: DFF<Bits<64>>,
-    /// A rounded magnitude (b, r_i, r).
-    rm: DFF<Bits<64>>,
-    /// The line; the window moved at least one period.
+    /// -dsr; the divider steps (registered: set in a division's load, cleared at its last
+    /// step); the remainder's and the dividend's loads, prepared a state ahead (so that
+    /// rem has two sources: the path from the step's chain).
+    ndsr: DFF<Bits<64>>,
+    dstep: DFF<Bit>,
+    ldr: DFF<Bits<64>>,
+    ldd: DFF<Bits<64>>,
+    /// A rounded magnitude (b, r_i, r) and its negation (so that a sign is a select: the
+    /// paths from the quotient to b, r_i and r).
+    rm: SplitAdd,
+    rmn: SplitAdd,
+    /// The line; Sp 2^5 + b; b at least one period up, down; the window moved at least one
+    /// period.
     b: DFF<Bits<64>>,
-    a: DFF<Bits<64>>,
+    a: SplitAdd,
+    asp: SplitAdd,
+    mpos: DFF<Bit>,
+    mneg: DFF<Bit>,
     moving: DFF<Bit>,
     /// Residual: n_i; n_i and sk_i shifted right; sp_i; a_h, a_l, b_h, b_l shifted left.
     nn: DFF<Bits<32>>,
@@ -354,28 +424,37 @@ pub struct HarmonicLearner {
     bhs: DFF<Bits<64>>,
     bls: DFF<Bits<64>>,
     /// The products a_h n_i, b_h sk_i, a_l n_i, b_l sk_i.
-    pa: DFF<Bits<64>>,
-    pb: DFF<Bits<64>>,
-    la: DFF<Bits<64>>,
-    lb: DFF<Bits<64>>,
-    /// Z1, Z2, x = Z1 2^B - Z2; |Z1| >= H and Z1's sign; the division overflowed.
-    z1: DFF<Bits<64>>,
-    z2: DFF<Bits<64>>,
-    xres: DFF<Bits<64>>,
+    pa: SplitAcc,
+    pb: SplitAcc,
+    la: SplitAcc,
+    lb: SplitAcc,
+    /// sp_i - a_h n_i; Z1, Z2, x = Z1 2^B - Z2; |Z1| >= H and Z1's sign; the division
+    /// overflowed.
+    z0: SplitAdd,
+    z1: SplitAdd,
+    z2: SplitAdd,
+    xres: SplitAdd,
     /// -x, beside x (ResX), so that ResAbs's |x| is a select (the path x -> mag).
-    xng: DFF<Bits<64>>,
+    xng: SplitAdd,
     big: DFF<Bit>,
     zneg: DFF<Bit>,
+    /// Z1 + H (big = Z1 + H outside [0, 2H): a chain, then a test of its top bits, the
+    /// path from Z1 to big).
+    zh: SplitAdd,
     ovf: DFF<Bit>,
     /// r_i's sign; r_i.
     rneg: DFF<Bit>,
-    /// r_i saturates (|Z1| >= H, or its quotient overflowed), decided in ResEnd and applied
-    /// in ResWrite, so that no compare precedes rm's rounding (the path quo -> rm).
-    rsat: DFF<Bit>,
+    /// The quotient is above 2 lim (registered: the path from quo through the compare to
+    /// r); with big or ovf, r_i saturates in ResWrite.
+    qov: DFF<Bit>,
     r: DFF<Bits<32>>,
     /// sum r ([`SUMR_BITS`]: F + 7 + p <= 34 bits), the bins with samples, r (32 bits).
     sum_r: DFF<Bits<SUMR_BITS>>,
+    /// -sum r, summed beside it (so that MeanAbs's |sum r| is a select).
+    srn: DFF<Bits<SUMR_BITS>>,
     nbins: DFF<Bits<32>>,
+    /// No bin has samples (registered: the path from nbins through a compare to mean).
+    nb0: DFF<Bit>,
     mean: DFF<Bits<32>>,
     /// Update, in 32 bits (|r_i - r| < 2^(F+T-1) <= 2^27, entries E <= 24 bits): c_i,
     /// n_i != 0, r_i - r, its sign and magnitude, the step, c_i + step; the room to the
@@ -384,12 +463,17 @@ pub struct HarmonicLearner {
     ucur: DFF<Bits<32>>,
     unz: DFF<Bit>,
     ux: DFF<Bits<32>>,
+    /// r - r_i, beside r_i - r (so that UpdAbs's magnitude is a select).
+    uxn: DFF<Bits<32>>,
     uneg: DFF<Bit>,
     uax: DFF<Bits<32>>,
     udm: DFF<Bits<32>>,
     unw: DFF<Bits<32>>,
     uroom: DFF<Bits<32>>,
     usat: DFF<Bit>,
+    /// The window moved and bin idx has samples (registered in UpdAdd: the path from
+    /// moving to the table's write data).
+    mvz: DFF<Bit>,
     /// The write port's copy, a clock after the RAM write.
     twr: DFF<Bit>,
     twa: DFF<Bits<32>>,
@@ -407,7 +491,7 @@ pub struct HarmonicLearner {
     /// The segment of the sample a strobe of this clock or m_s holds (c_i's address,
     /// presented the clock before ReadI: the table's read takes two clocks).
     seg_n: Signal<Local, Bits<32>>,
-    /// The bin Bin latches, as the bins' RAMs' address a clock before ReadBin.
+    /// The bin Bin latches into sbin.
     bin_n: Signal<Local, Bits<32>>,
     /// The bins' RAMs' read address (one for the three RAMs), a state ahead of its data.
     bra: Signal<Local, Bits<LEARN_ADDR_BITS>>,
@@ -417,6 +501,9 @@ pub struct HarmonicLearner {
     off_a: Signal<Local, Bits<32>>,
     off_o: Signal<Local, Bits<32>>,
     dt: Signal<Local, Bits<64>>,
+    /// The step's operand (+-d) and its sum.
+    dop: Signal<Local, Bits<64>>,
+    dr: Signal<Local, Bits<64>>,
     tab_s: Signal<Local, Bits<64>>,
     /// The table's read entry; its RAM address with the active bank.
     traddr: Signal<Local, Bits<32>>,
@@ -428,7 +515,14 @@ pub struct HarmonicLearner {
     trd: Signal<Local, Bits<32>>,
     twm: Signal<Local, Bits<32>>,
     sp_s: Signal<Local, Bits<64>>,
+    /// sp_i's word read (both halves) and the word written.
+    spr: Signal<Local, Bits<64>>,
+    spw: Signal<Local, Bits<64>>,
     t64: Signal<Local, Bits<64>>,
+    /// a; +-round(quo / 2) (the two-clock sums' outputs shifted).
+    av: Signal<Local, Bits<64>>,
+    rmv: Signal<Local, Bits<64>>,
+    rmnv: Signal<Local, Bits<64>>,
     t32: Signal<Local, Bits<32>>,
     /// r sign-extended to sum r's width.
     r_x: Signal<Local, Bits<SUMR_BITS>>,
@@ -473,26 +567,15 @@ pub struct HarmonicLearner {
     /// pos's width: mask, sign bit.
     pw_mask: Constant<Bits<64>>,
     pw_sign: Constant<Bits<64>>,
-    /// q's width; sp's and Sp's width; PS's and U's width; b's; a's: mask, sign bit.
-    qw_mask: Constant<Bits<64>>,
-    qw_sign: Constant<Bits<64>>,
+    /// sp_i's width (its RAM's read): mask, sign bit.
     sw_mask: Constant<Bits<64>>,
     sw_sign: Constant<Bits<64>>,
-    uw_mask: Constant<Bits<64>>,
-    uw_sign: Constant<Bits<64>>,
-    bw_mask: Constant<Bits<64>>,
-    bw_sign: Constant<Bits<64>>,
-    aw_mask: Constant<Bits<64>>,
-    aw_sign: Constant<Bits<64>>,
     /// Bit 63.
     sign63: Constant<Bits<64>>,
-    /// s (32-bit and 64-bit shift), the mask of f (32-bit), s - 1 (the Mult's last clock),
-    /// the sign fill of >> s.
+    /// s (32-bit shift), the mask of f (32-bit), s - 1 (the Mult's last clock).
     s32: Constant<Bits<32>>,
-    s64: Constant<Bits<64>>,
     fmask: Constant<Bits<32>>,
     s_last: Constant<Bits<CNT_BITS>>,
-    s_fill: Constant<Bits<64>>,
     /// T; s + T; 2^(s + T - 1) (the bin's rounding half).
     tf: Constant<Bits<64>>,
     st: Constant<Bits<64>>,
@@ -505,6 +588,8 @@ pub struct HarmonicLearner {
     nmask: Constant<Bits<32>>,
     k5: Constant<Bits<64>>,
     k63: Constant<Bits<64>>,
+    /// 32 (sp_i's halves).
+    k32: Constant<Bits<64>>,
     /// b's division: D, lead Kb - 6 and 64 - lead, the last quotient clock Kb - 1.
     dline: Constant<Bits<64>>,
     lb_lead: Constant<Bits<64>>,
@@ -515,19 +600,22 @@ pub struct HarmonicLearner {
     /// quotient), the quotient's max(Kb, Kr) bits (a bit a clock from zero), the divisor's
     /// 2w bits. Narrow words keep the divider's compare and subtract short (timing).
     rem_mask: Constant<Bits<64>>,
+    /// The remainder's sign bit (2w + 1); -D.
+    rem_sgn: Constant<Bits<64>>,
+    ndline: Constant<Bits<64>>,
     quo_mask: Constant<Bits<64>>,
     dsr_mask: Constant<Bits<64>>,
     /// One period of |b|: b >= it, b <= its negative.
     op_pos: Constant<Bits<64>>,
     op_neg: Constant<Bits<64>>,
-    /// B; the mask of B bits; the sign fill of >> B; 2w - 2 (ResMul's last clock).
+    /// B; the mask of B bits; the sign fill of >> B; 2w - 1 (ResMul's last clock).
     bf: Constant<Bits<64>>,
     bf_mask: Constant<Bits<64>>,
     bf_fill: Constant<Bits<64>>,
     mul_last: Constant<Bits<CNT_BITS>>,
-    /// H and -H.
+    /// H = 2^(62-B); the bits of Z1 + H from 63 - B up.
     h_pos: Constant<Bits<64>>,
-    h_neg: Constant<Bits<64>>,
+    h2_hi: Constant<Bits<64>>,
     /// r_i's division: lead Kr + B - 1 and 64 - lead, the last quotient clock; 2 lim + 1.
     lr_lead: Constant<Bits<64>>,
     lr_up: Constant<Bits<64>>,
@@ -595,9 +683,10 @@ impl HarmonicLearner {
             clearing: Default::default(),
             clr: Default::default(),
             tab: Default::default(),
-            rn: PipedLutRam::one_array(),
-            rsk: PipedLutRam::one_array(),
-            rsp: PipedLutRam::one_array(),
+            rn: Default::default(),
+            rsk: Default::default(),
+            rsp: Default::default(),
+            rsph: Default::default(),
             rom,
             seg,
             rom_x: c32(if zero { 0 } else { u64::MAX }),
@@ -609,6 +698,7 @@ impl HarmonicLearner {
             dn: Default::default(),
             dz: Default::default(),
             idx: Default::default(),
+            idx1: Default::default(),
             active: Default::default(),
             pend: Default::default(),
             ld_i: Default::default(),
@@ -630,21 +720,37 @@ impl HarmonicLearner {
             acc: Default::default(),
             c: Default::default(),
             sbin: Default::default(),
-            q: Default::default(),
+            q: SplitAdd::sub(),
             k: Default::default(),
             sum_p: Default::default(),
             sum_ps: Default::default(),
-            unum: Default::default(),
-            unn: Default::default(),
+            klast: Default::default(),
+            psa: Default::default(),
+            bw1: Default::default(),
+            bw2: Default::default(),
+            n1: Default::default(),
+            sk1: Default::default(),
+            sp1: SplitAdd::add(),
+            un1: SplitAdd::add(),
+            unum: SplitAdd::sub(),
+            unn: SplitAdd::sub(),
             neg: Default::default(),
             mag: Default::default(),
             rem: Default::default(),
             dvd: Default::default(),
             quo: Default::default(),
             dsr: Default::default(),
-            rm: Default::default(),
+            ndsr: Default::default(),
+            dstep: Default::default(),
+            ldr: Default::default(),
+            ldd: Default::default(),
+            rm: SplitAdd::add(),
+            rmn: SplitAdd::sub(),
             b: Default::default(),
-            a: Default::default(),
+            a: SplitAdd::sub(),
+            asp: SplitAdd::add(),
+            mpos: Default::default(),
+            mneg: Default::default(),
             moving: Default::default(),
             nn: Default::default(),
             nsh: Default::default(),
@@ -658,28 +764,34 @@ impl HarmonicLearner {
             pb: Default::default(),
             la: Default::default(),
             lb: Default::default(),
-            z1: Default::default(),
-            z2: Default::default(),
-            xres: Default::default(),
-            xng: Default::default(),
+            z0: SplitAdd::sub(),
+            z1: SplitAdd::sub(),
+            z2: SplitAdd::add(),
+            xres: SplitAdd::sub(),
+            xng: SplitAdd::sub(),
             big: Default::default(),
             zneg: Default::default(),
+            zh: SplitAdd::add(),
             ovf: Default::default(),
             rneg: Default::default(),
-            rsat: Default::default(),
+            qov: Default::default(),
             r: Default::default(),
             sum_r: Default::default(),
+            srn: Default::default(),
             nbins: Default::default(),
+            nb0: Default::default(),
             mean: Default::default(),
             ucur: Default::default(),
             unz: Default::default(),
             ux: Default::default(),
+            uxn: Default::default(),
             uneg: Default::default(),
             uax: Default::default(),
             udm: Default::default(),
             unw: Default::default(),
             uroom: Default::default(),
             usat: Default::default(),
+            mvz: Default::default(),
             twr: Default::default(),
             twa: Default::default(),
             twd: Default::default(),
@@ -698,6 +810,8 @@ impl HarmonicLearner {
             off_a: Default::default(),
             off_o: Default::default(),
             dt: Default::default(),
+            dop: Default::default(),
+            dr: Default::default(),
             tab_s: Default::default(),
             traddr: Default::default(),
             tra: Default::default(),
@@ -706,7 +820,12 @@ impl HarmonicLearner {
             trd: Default::default(),
             twm: Default::default(),
             sp_s: Default::default(),
+            spr: Default::default(),
+            spw: Default::default(),
             t64: Default::default(),
+            av: Default::default(),
+            rmv: Default::default(),
+            rmnv: Default::default(),
             t32: Default::default(),
             r_x: Default::default(),
             sr_z: Constant::new(Bits::<SUMR_BITS>::from(0u64)),
@@ -737,22 +856,12 @@ impl HarmonicLearner {
             am_sign: c64(sign(p.fine_bits + 2)),
             pw_mask: c64(mask(p.pos_width())),
             pw_sign: c64(sign(p.pos_width())),
-            qw_mask: c64(mask(p.q_width())),
-            qw_sign: c64(sign(p.q_width())),
             sw_mask: c64(mask(p.sum_p_width())),
             sw_sign: c64(sign(p.sum_p_width())),
-            uw_mask: c64(mask(p.ps_width())),
-            uw_sign: c64(sign(p.ps_width())),
-            bw_mask: c64(mask(p.b_width())),
-            bw_sign: c64(sign(p.b_width())),
-            aw_mask: c64(mask(p.a_width())),
-            aw_sign: c64(sign(p.a_width())),
             sign63: c64(1 << 63),
             s32: c32(u64::from(s)),
-            s64: c64(u64::from(s)),
             fmask: c32(mask(s)),
             s_last: cc(u64::from(s - 1)),
-            s_fill: c64(fill(s)),
             tf: c64(u64::from(TABLE_FRAC)),
             st: c64(u64::from(s + TABLE_FRAC)),
             st_half: c64(1 << (s + TABLE_FRAC - 1)),
@@ -761,11 +870,14 @@ impl HarmonicLearner {
             nmask: c32(mask(p.window_log2 + 1)),
             k5: c64(5),
             k63: c64(63),
+            k32: c64(32),
             dline: c64(p.line_divisor()),
             lb_lead: c64(u64::from(kb - 6)),
             lb_up: c64(u64::from(64 - (kb - 6))),
             lb_last: cc(u64::from(kb - 1)),
-            rem_mask: c64(mask(2 * p.window_log2 + 1)),
+            rem_mask: c64(mask(2 * p.window_log2 + 2)),
+            rem_sgn: c64(1 << (2 * p.window_log2 + 1)),
+            ndline: c64(neg(p.line_divisor())),
             quo_mask: c64(mask(kb.max(kr))),
             dsr_mask: c64(mask(2 * p.window_log2)),
             op_pos: c64(p.one_period() as u64),
@@ -773,9 +885,9 @@ impl HarmonicLearner {
             bf: c64(u64::from(bfr)),
             bf_mask: c64(mask(bfr)),
             bf_fill: c64(fill(bfr)),
-            mul_last: cc(u64::from(2 * p.window_log2 - 2)),
+            mul_last: cc(u64::from(2 * p.window_log2 - 1)),
             h_pos: c64(p.big_limit() as u64),
-            h_neg: c64(neg(p.big_limit() as u64)),
+            h2_hi: c64(!(2 * p.big_limit() as u64 - 1)),
             lr_lead: c64(u64::from(kr + bfr - 1)),
             lr_up: c64(u64::from(64 - (kr + bfr - 1))),
             lr_last: cc(u64::from(kr - 1)),
@@ -799,10 +911,11 @@ impl Logic for HarmonicLearner {
     fn update(&mut self) {
         dff_setup!(
             self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, dn, dz, idx, active, pend, ld_i, ld_v,
-            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, q, k, sum_p, sum_ps, unum, unn,
-            neg, mag, rem, dvd, quo, dsr, rm, b, a, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls,
-            pa, pb, la, lb, z1, z2, xres, xng, big, zneg, ovf, rneg, rsat, r, sum_r, nbins, mean,
-            ucur, unz, ux, uneg, uax, udm, unw, uroom, usat, twr, twa, twd, clr
+            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, k, neg, mag, rem, dvd, quo, dsr, b,
+            moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, big, zneg, ovf, rneg, qov, r, sum_r,
+            nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, uroom, usat, twr, twa, twd, clr,
+            klast, n1, sk1, mpos, mneg, srn, uxn, idx1, mvz, psa, bw1, bw2, nb0, dstep, ndsr, ldr,
+            ldd
         );
         self.state.clock.next = self.clk.val();
         self.state.d.next = self.state.q.val();
@@ -810,6 +923,7 @@ impl Logic for HarmonicLearner {
         self.rn.clock.next = self.clk.val();
         self.rsk.clock.next = self.clk.val();
         self.rsp.clock.next = self.clk.val();
+        self.rsph.clock.next = self.clk.val();
         // Defaults: no writes, reads at 0.
         self.we.next = false;
         self.wa.next = self.z32.val();
@@ -822,7 +936,7 @@ impl Logic for HarmonicLearner {
         self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
         self.rn.write_data.next = self.z32.val();
         self.rsk.write_data.next = self.z32.val();
-        self.rsp.write_data.next = self.z64.val();
+        self.spw.next = self.z64.val();
         self.rn.write_enable.next = false;
         self.rsk.write_enable.next = false;
         self.rsp.write_enable.next = false;
@@ -836,9 +950,11 @@ impl Logic for HarmonicLearner {
         }
         self.rn_m.next = self.rn.read_data.val() & self.nmask.val();
         self.rsk_m.next = self.rsk.read_data.val() & self.skmask.val();
-        self.sp_s.next = self.rsp.read_data.val() & self.sw_mask.val();
-        if (self.rsp.read_data.val() & self.sw_sign.val()).any() {
-            self.sp_s.next = self.rsp.read_data.val() | !self.sw_mask.val();
+        self.spr.next = (bit_cast::<64, 32>(self.rsph.read_data.val()) << self.k32.val())
+            | bit_cast::<64, 32>(self.rsp.read_data.val());
+        self.sp_s.next = self.spr.val() & self.sw_mask.val();
+        if (self.spr.val() & self.sw_sign.val()).any() {
+            self.sp_s.next = self.spr.val() | !self.sw_mask.val();
         }
         // The sample's segment and the banks' offsets.
         self.seg_i.next = (self.m_s.q.val() >> self.s32.val()) & self.pmask.val();
@@ -922,6 +1038,115 @@ impl Logic for HarmonicLearner {
             self.r_x.next = bit_cast::<SUMR_BITS, 32>(self.r.q.val()) | self.sr_hi.val();
         }
         self.abs.next = self.z64.val();
+        // Free-running registers and two-clock sums ([`SplitAdd`], [`SplitAcc`]): each one
+        // carry chain or one select from registers that hold still until the state that
+        // reads the result (the module doc gives the clocks).
+        self.klast.d.next = (self.k.q.val() & self.nmask.val()) == self.n_last.val();
+        self.nb0.d.next = (self.nbins.q.val() & self.nmask.val()) == self.z32.val();
+        self.idx1.d.next = self.idx.q.val() + self.ione.val();
+        // The sample's q = pos 2^T - c; the bin's new sp_i.
+        self.q.clock.next = self.clk.val();
+        self.q.a.next = self.ps.q.val() << self.tf.val();
+        self.q.b.next = self.c.q.val();
+        self.sp1.clock.next = self.clk.val();
+        self.sp1.a.next = self.spv.q.val();
+        self.sp1.b.next = self.q.s.val();
+        // Sp += q in Acc; PS += Sp the clock after Sum; both cleared at Apply.
+        self.sum_p.clock.next = self.clk.val();
+        self.sum_p.add.next = self.state.q.val() == LearnState::Acc;
+        self.sum_p.x.next = self.q.s.val();
+        self.sum_p.clear.next = (self.state.q.val() == LearnState::Apply) | self.rst.val();
+        self.sum_ps.clock.next = self.clk.val();
+        self.sum_ps.add.next = self.psa.q.val();
+        self.sum_ps.x.next = self.sum_p.s.val();
+        self.sum_ps.clear.next = (self.state.q.val() == LearnState::Apply) | self.rst.val();
+        // (N + 1) Sp; U = un1 - 2 PS and -U; |U|.
+        self.un1.clock.next = self.clk.val();
+        self.un1.a.next = self.sum_p.s.val() << self.w64.val();
+        self.un1.b.next = self.sum_p.s.val();
+        self.unum.clock.next = self.clk.val();
+        self.unum.a.next = self.un1.s.val();
+        self.unum.b.next = self.sum_ps.s.val() << self.one64.val();
+        self.unn.clock.next = self.clk.val();
+        self.unn.a.next = self.sum_ps.s.val() << self.one64.val();
+        self.unn.b.next = self.un1.s.val();
+        // round(quo / 2) = (quo + 1) >> 1 and its negation, (-quo) >> 1 (arithmetic).
+        self.rm.clock.next = self.clk.val();
+        self.rm.a.next = self.quo.q.val();
+        self.rm.b.next = self.one64.val();
+        self.rmn.clock.next = self.clk.val();
+        self.rmn.a.next = self.z64.val();
+        self.rmn.b.next = self.quo.q.val();
+        self.rmv.next = self.rm.s.val() >> self.one64.val();
+        self.rmnv.next =
+            (self.rmn.s.val() >> self.one64.val()) | (self.rmn.s.val() & self.sign63.val());
+        self.qov.d.next = self.quo.q.val() >= self.q_over.val();
+        // a = (Sp 2^5 + b - b 2^w) >> 1 (arithmetic); b's one-period compares.
+        self.asp.clock.next = self.clk.val();
+        self.asp.a.next = self.sum_p.s.val() << self.k5.val();
+        self.asp.b.next = self.b.q.val();
+        self.a.clock.next = self.clk.val();
+        self.a.a.next = self.asp.s.val();
+        self.a.b.next = self.b.q.val() << self.w64.val();
+        self.av.next = (self.a.s.val() >> self.one64.val()) | (self.a.s.val() & self.sign63.val());
+        self.mpos.d.next = self.b.q.val() >= self.op_pos.val();
+        self.mneg.d.next = self.b.q.val() <= self.op_neg.val();
+        // The four products, a multiplier bit a clock in ResMul, cleared in ResLatch.
+        self.pa.clock.next = self.clk.val();
+        self.pa.add.next = (self.state.q.val() == LearnState::ResMul) & self.nsh.q.val().get_bit(0);
+        self.pa.x.next = self.ahs.q.val();
+        self.pa.clear.next = self.state.q.val() == LearnState::ResLatch;
+        self.la.clock.next = self.clk.val();
+        self.la.add.next = (self.state.q.val() == LearnState::ResMul) & self.nsh.q.val().get_bit(0);
+        self.la.x.next = self.als.q.val();
+        self.la.clear.next = self.state.q.val() == LearnState::ResLatch;
+        self.pb.clock.next = self.clk.val();
+        self.pb.add.next =
+            (self.state.q.val() == LearnState::ResMul) & self.sksh.q.val().get_bit(0);
+        self.pb.x.next = self.bhs.q.val();
+        self.pb.clear.next = self.state.q.val() == LearnState::ResLatch;
+        self.lb.clock.next = self.clk.val();
+        self.lb.add.next =
+            (self.state.q.val() == LearnState::ResMul) & self.sksh.q.val().get_bit(0);
+        self.lb.x.next = self.bls.q.val();
+        self.lb.clear.next = self.state.q.val() == LearnState::ResLatch;
+        // Z1 = sp_i - a_h n_i - b_h sk_i, Z2, x = Z1 2^B - Z2 and -x (|x| < 2^63 unless
+        // Z1 >= H or Z1 < -H, which saturates r_i whatever x is: Z1 + H outside [0, 2H)).
+        self.z0.clock.next = self.clk.val();
+        self.z0.a.next = self.spv.q.val();
+        self.z0.b.next = self.pa.s.val();
+        self.z1.clock.next = self.clk.val();
+        self.z1.a.next = self.z0.s.val();
+        self.z1.b.next = self.pb.s.val();
+        self.z2.clock.next = self.clk.val();
+        self.z2.a.next = self.la.s.val();
+        self.z2.b.next = self.lb.s.val();
+        self.xres.clock.next = self.clk.val();
+        self.xres.a.next = self.z1.s.val() << self.bf.val();
+        self.xres.b.next = self.z2.s.val();
+        self.xng.clock.next = self.clk.val();
+        self.xng.a.next = self.z2.s.val();
+        self.xng.b.next = self.z1.s.val() << self.bf.val();
+        self.zh.clock.next = self.clk.val();
+        self.zh.a.next = self.z1.s.val();
+        self.zh.b.next = self.h_pos.val();
+        self.big.d.next = (self.zh.s.val() & self.h2_hi.val()).any();
+        self.zneg.d.next = (self.z1.s.val() & self.sign63.val()).any();
+        // The bin's new sums into its RAMs two clocks after Sum (sp1 settled).
+        self.psa.d.next = false;
+        self.bw1.d.next = false;
+        self.bw2.d.next = self.bw1.q.val();
+        if self.bw2.q.val() {
+            self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+            self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+            self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+            self.rn.write_enable.next = true;
+            self.rsk.write_enable.next = true;
+            self.rsp.write_enable.next = true;
+            self.rn.write_data.next = self.n1.q.val();
+            self.rsk.write_data.next = self.sk1.q.val();
+            self.spw.next = self.sp1.s.val();
+        }
         // The loops' count runs down in every state; the state before a loop loads it.
         self.dn.d.next = self.dn.q.val() - self.cone.val();
         self.dz.d.next = self.dn.q.val() == self.cone.val();
@@ -989,119 +1214,111 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::Diff;
             }
             LearnState::Diff => {
-                self.dd.d.next = self.cj.q.val() - self.ci.q.val();
+                // D = c_(i+1) - c_i in 32 bits (|D| <= 2^(F-3+T) <= 2^25).
+                self.dd.d.next =
+                    bit_cast::<32, 64>(self.cj.q.val()) - bit_cast::<32, 64>(self.ci.q.val());
                 self.mh.d.next =
                     (bit_cast::<64, 32>(self.m_s.q.val()) << self.tf.val()) + self.st_half.val();
                 self.fsh.d.next = self.m_s.q.val() & self.fmask.val();
-                self.acc.d.next = self.z64.val();
+                self.acc.d.next = self.z32.val();
                 self.dn.d.next = self.s_last.val();
                 self.dz.d.next = self.s_last.val() == self.cz.val();
                 self.state.d.next = LearnState::Mult;
             }
             LearnState::Mult => {
+                // acc = floor(D (f mod 2^j) / 2^j): (acc + f_j D) >> 1, arithmetic, f's bits
+                // from the LSB (exact: an integer's floor halving ignores a fraction below
+                // one), in 32 bits (|acc| <= |D|).
+                self.t32.next = self.acc.q.val();
                 if self.fsh.q.val().get_bit(0) {
-                    self.acc.d.next = self.acc.q.val() + self.dd.q.val();
+                    self.t32.next = self.acc.q.val() + self.dd.q.val();
                 }
+                self.acc.d.next =
+                    (self.t32.val() >> self.one32.val()) | (self.t32.val() & self.sign31.val());
                 self.fsh.d.next = self.fsh.q.val() >> self.one32.val();
-                self.dd.d.next = self.dd.q.val() << self.one64.val();
                 if self.dz.q.val() {
                     self.state.d.next = LearnState::Corr;
                 }
             }
             LearnState::Corr => {
-                // c = (c_i 2^s + D f) >> s, arithmetic.
-                self.t64.next = (self.ci.q.val() << self.s64.val()) + self.acc.q.val();
-                self.c.d.next = self.t64.val() >> self.s64.val();
-                if (self.t64.val() & self.sign63.val()).any() {
-                    self.c.d.next = (self.t64.val() >> self.s64.val()) | self.s_fill.val();
+                // c = (c_i 2^s + D f) >> s = c_i + floor(D f / 2^s), in 32 bits.
+                self.t32.next = bit_cast::<32, 64>(self.ci.q.val()) + self.acc.q.val();
+                self.c.d.next = bit_cast::<64, 32>(self.t32.val());
+                if (self.t32.val() & self.sign31.val()).any() {
+                    self.c.d.next = bit_cast::<64, 32>(self.t32.val()) | self.hi32.val();
                 }
                 self.state.d.next = LearnState::Bin;
             }
             LearnState::Bin => {
-                // The bin: round((m 2^T - c) / 2^(s+T)) mod P; q = pos 2^T - c.
+                // The bin: round((m 2^T - c) / 2^(s+T)) mod P (q = pos 2^T - c settles).
                 self.t64.next = self.mh.q.val() - self.c.q.val();
                 self.bin_n.next =
                     bit_cast::<32, 64>(self.t64.val() >> self.st.val()) & self.pmask.val();
                 self.sbin.d.next = self.bin_n.val();
-                // The bin's address a clock ahead (the bins' RAMs read over two clocks).
-                self.bra.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.bin_n.val());
-                self.abs.next = (self.ps.q.val() << self.tf.val()) - self.c.q.val();
-                self.q.d.next = self.abs.val() & self.qw_mask.val();
-                if (self.abs.val() & self.qw_sign.val()).any() {
-                    self.q.d.next = self.abs.val() | !self.qw_mask.val();
-                }
                 self.state.d.next = LearnState::ReadBin;
             }
             LearnState::ReadBin => {
+                // The bin's address from its register (the bins' RAMs read over two clocks:
+                // the words come out in Acc).
+                self.bra.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
                 self.state.d.next = LearnState::LatBin;
             }
             LearnState::LatBin => {
-                self.nn.d.next = self.rn_m.val();
-                self.sksh.d.next = self.rsk_m.val();
-                self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::Acc;
             }
             LearnState::Acc => {
-                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
-                self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
-                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
-                self.rn.write_enable.next = true;
-                self.rsk.write_enable.next = true;
-                self.rsp.write_enable.next = true;
-                self.rn.write_data.next = self.nn.q.val() + self.one32.val();
-                self.rsk.write_data.next = self.sksh.q.val() + self.k.q.val();
-                self.t64.next = self.spv.q.val() + self.q.q.val();
-                self.rsp.write_data.next = self.t64.val() & self.sw_mask.val();
-                if (self.t64.val() & self.sw_sign.val()).any() {
-                    self.rsp.write_data.next = self.t64.val() | !self.sw_mask.val();
-                }
-                self.abs.next = self.sum_p.q.val() + self.q.q.val();
-                self.sum_p.d.next = self.abs.val() & self.sw_mask.val();
-                if (self.abs.val() & self.sw_sign.val()).any() {
-                    self.sum_p.d.next = self.abs.val() | !self.sw_mask.val();
-                }
+                // The bin's words latched (Sp += q, sum_p).
+                self.nn.d.next = self.rn_m.val();
+                self.sksh.d.next = self.rsk_m.val();
+                self.spv.d.next = self.sp_s.val();
                 self.state.d.next = LearnState::Sum;
             }
             LearnState::Sum => {
-                self.t64.next = self.sum_ps.q.val() + self.sum_p.q.val();
-                self.sum_ps.d.next = self.t64.val() & self.uw_mask.val();
-                if (self.t64.val() & self.uw_sign.val()).any() {
-                    self.sum_ps.d.next = self.t64.val() | !self.uw_mask.val();
-                }
+                // n_i + 1 and sk_i + k (k before its step); sp1 = sp_i + q settles. PS takes
+                // Sp the next clock (psa), the RAMs the new sums the clock after (bw2).
+                self.n1.d.next = self.nn.q.val() + self.one32.val();
+                self.sk1.d.next = self.sksh.q.val() + self.k.q.val();
+                self.psa.d.next = true;
+                self.bw1.d.next = true;
                 self.k.d.next = self.k.q.val() + self.one32.val();
-                if (self.k.q.val() & self.nmask.val()) == self.n_last.val() {
+                if self.klast.q.val() {
                     self.state.d.next = LearnState::LineN1;
                 } else {
                     self.state.d.next = LearnState::Wait;
                 }
             }
             LearnState::LineN1 => {
-                self.unum.d.next = (self.sum_p.q.val() << self.w64.val()) + self.sum_p.q.val();
+                // Sp has settled (its high half in Sum); PS takes it (psa).
                 self.state.d.next = LearnState::LineU;
             }
             LearnState::LineU => {
-                self.t64.next = self.unum.q.val() - (self.sum_ps.q.val() << self.one64.val());
-                self.unum.d.next = self.t64.val() & self.uw_mask.val();
-                if (self.t64.val() & self.uw_sign.val()).any() {
-                    self.unum.d.next = self.t64.val() | !self.uw_mask.val();
+                // un1 = (N + 1) Sp settles here and in LineW1, PS in LineW1.
+                self.state.d.next = LearnState::LineW1;
+            }
+            LearnState::LineW1 => {
+                self.state.d.next = LearnState::LineW2;
+            }
+            LearnState::LineW2 => {
+                // U = un1 - 2 PS and -U settle here and in LineW3.
+                self.state.d.next = LearnState::LineW3;
+            }
+            LearnState::LineW3 => {
+                // |U| split into the remainder's and the dividend's loads; U's sign.
+                self.abs.next = self.unum.s.val();
+                if (self.unum.s.val() & self.sign63.val()).any() {
+                    self.abs.next = self.unn.s.val();
                 }
-                // -U (|U| < 2^(uw-2): q's width bounds it, so -U never wraps).
-                self.abs.next = (self.sum_ps.q.val() << self.one64.val()) - self.unum.q.val();
-                self.unn.d.next = self.abs.val() & self.uw_mask.val();
-                if (self.abs.val() & self.uw_sign.val()).any() {
-                    self.unn.d.next = self.abs.val() | !self.uw_mask.val();
-                }
+                self.neg.d.next = (self.unum.s.val() & self.sign63.val()).any();
+                self.ldr.d.next = (self.abs.val() >> self.lb_lead.val()) & self.rem_mask.val();
+                self.ldd.d.next = self.abs.val() << self.lb_up.val();
                 self.state.d.next = LearnState::LineLoad;
             }
             LearnState::LineLoad => {
-                self.abs.next = self.unum.q.val();
-                if (self.unum.q.val() & self.sign63.val()).any() {
-                    self.abs.next = self.unn.q.val();
-                }
-                self.neg.d.next = (self.unum.q.val() & self.sign63.val()).any();
-                self.rem.d.next = (self.abs.val() >> self.lb_lead.val()) & self.rem_mask.val();
-                self.dvd.d.next = self.abs.val() << self.lb_up.val();
+                self.rem.d.next = self.ldr.q.val();
+                self.dvd.d.next = self.ldd.q.val();
                 self.dsr.d.next = self.dline.val();
+                self.ndsr.d.next = self.ndline.val();
+                self.dstep.d.next = true;
                 self.quo.d.next = self.z64.val();
                 self.dn.d.next = self.lb_last.val();
                 self.dz.d.next = self.lb_last.val() == self.cz.val();
@@ -1109,45 +1326,38 @@ impl Logic for HarmonicLearner {
             }
             LearnState::LineDiv => {
                 if self.dz.q.val() {
+                    self.dstep.d.next = false;
                     self.state.d.next = LearnState::LineRnd;
                 }
             }
             LearnState::LineRnd => {
-                self.rm.d.next = (self.quo.q.val() + self.one64.val()) >> self.one64.val();
+                // +-round(quo / 2) settle here and in LineRnd2.
+                self.state.d.next = LearnState::LineRnd2;
+            }
+            LearnState::LineRnd2 => {
                 self.state.d.next = LearnState::LineB;
             }
             LearnState::LineB => {
-                self.t64.next = self.rm.q.val();
+                self.b.d.next = self.rmv.val();
                 if self.neg.q.val() {
-                    self.t64.next = self.z64.val() - self.rm.q.val();
-                }
-                self.b.d.next = self.t64.val() & self.bw_mask.val();
-                if (self.t64.val() & self.bw_sign.val()).any() {
-                    self.b.d.next = self.t64.val() | !self.bw_mask.val();
+                    self.b.d.next = self.rmnv.val();
                 }
                 self.state.d.next = LearnState::LineA1;
             }
             LearnState::LineA1 => {
-                // One period per window: |b| >= 2^(F+2+T+B-w), two compares.
-                if (self.b.q.val() & self.sign63.val()).any() {
-                    self.moving.d.next = self.b.q.val() <= self.op_neg.val();
-                } else {
-                    self.moving.d.next = self.b.q.val() >= self.op_pos.val();
-                }
-                self.a.d.next = (self.sum_p.q.val() << self.k5.val()) + self.b.q.val();
+                // Sp 2^5 + b settles here and in LineA2; b's one-period compares here.
                 self.state.d.next = LearnState::LineA2;
             }
             LearnState::LineA2 => {
-                // a = (Sp 2^5 + b - b 2^w) >> 1 (arithmetic), in a's width.
-                self.t64.next = self.a.q.val() - (self.b.q.val() << self.w64.val());
-                self.abs.next = self.t64.val() >> self.one64.val();
-                if (self.t64.val() & self.sign63.val()).any() {
-                    self.abs.next = (self.t64.val() >> self.one64.val()) | self.sign63.val();
+                // One period per window: |b| >= 2^(F+2+T+B-w).
+                self.moving.d.next = self.mpos.q.val();
+                if (self.b.q.val() & self.sign63.val()).any() {
+                    self.moving.d.next = self.mneg.q.val();
                 }
-                self.a.d.next = self.abs.val() & self.aw_mask.val();
-                if (self.abs.val() & self.aw_sign.val()).any() {
-                    self.a.d.next = self.abs.val() | !self.aw_mask.val();
-                }
+                self.state.d.next = LearnState::LineA3;
+            }
+            LearnState::LineA3 => {
+                // a = (Sp 2^5 + b - b 2^w) >> 1 settles here and in ResRead.
                 self.idx.d.next = self.iz.val();
                 self.bra.next = self.iz.val();
                 self.state.d.next = LearnState::ResRead;
@@ -1160,34 +1370,25 @@ impl Logic for HarmonicLearner {
                 self.nsh.d.next = self.rn_m.val();
                 self.sksh.d.next = self.rsk_m.val();
                 self.spv.d.next = self.sp_s.val();
-                self.pa.d.next = self.z64.val();
-                self.pb.d.next = self.z64.val();
-                self.la.d.next = self.z64.val();
-                self.lb.d.next = self.z64.val();
-                // a = a_h 2^B + a_l, b = b_h 2^B + b_l (arithmetic >> B).
-                self.ahs.d.next = self.a.q.val() >> self.bf.val();
-                if (self.a.q.val() & self.sign63.val()).any() {
-                    self.ahs.d.next = (self.a.q.val() >> self.bf.val()) | self.bf_fill.val();
+                // The products cleared (pa, pb, la, lb); a = a_h 2^B + a_l, b = b_h 2^B + b_l
+                // (arithmetic >> B).
+                self.ahs.d.next = self.av.val() >> self.bf.val();
+                if (self.av.val() & self.sign63.val()).any() {
+                    self.ahs.d.next = (self.av.val() >> self.bf.val()) | self.bf_fill.val();
                 }
                 self.bhs.d.next = self.b.q.val() >> self.bf.val();
                 if (self.b.q.val() & self.sign63.val()).any() {
                     self.bhs.d.next = (self.b.q.val() >> self.bf.val()) | self.bf_fill.val();
                 }
-                self.als.d.next = self.a.q.val() & self.bf_mask.val();
+                self.als.d.next = self.av.val() & self.bf_mask.val();
                 self.bls.d.next = self.b.q.val() & self.bf_mask.val();
                 self.dn.d.next = self.mul_last.val();
                 self.dz.d.next = self.mul_last.val() == self.cz.val();
                 self.state.d.next = LearnState::ResMul;
             }
             LearnState::ResMul => {
-                if self.nsh.q.val().get_bit(0) {
-                    self.pa.d.next = self.pa.q.val() + self.ahs.q.val();
-                    self.la.d.next = self.la.q.val() + self.als.q.val();
-                }
-                if self.sksh.q.val().get_bit(0) {
-                    self.pb.d.next = self.pb.q.val() + self.bhs.q.val();
-                    self.lb.d.next = self.lb.q.val() + self.bls.q.val();
-                }
+                // pa += a_h 2^j, la += a_l 2^j when n_i's bit j is set; pb, lb with sk_i's
+                // (the last clock adds nothing and lets the last add settle).
                 self.nsh.d.next = self.nsh.q.val() >> self.one32.val();
                 self.sksh.d.next = self.sksh.q.val() >> self.one32.val();
                 self.ahs.d.next = self.ahs.q.val() << self.one64.val();
@@ -1199,40 +1400,45 @@ impl Logic for HarmonicLearner {
                 }
             }
             LearnState::ResZa => {
-                // n_i != 0, registered for ResWrite and ResSum (the path to sum r's enable).
+                // n_i != 0, registered for ResWrite and ResSum (the path to sum r's enable);
+                // sp_i - a_h n_i and Z2 settle here and in ResZb.
                 self.unz.d.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
-                self.z1.d.next = self.spv.q.val() - self.pa.q.val();
-                self.z2.d.next = self.la.q.val() + self.lb.q.val();
                 self.state.d.next = LearnState::ResZb;
             }
             LearnState::ResZb => {
-                self.z1.d.next = self.z1.q.val() - self.pb.q.val();
                 self.state.d.next = LearnState::ResX;
             }
             LearnState::ResX => {
-                // |Z1| >= H saturates r_i; else x = Z1 2^B - Z2 fits 64 bits.
-                self.zneg.d.next = (self.z1.q.val() & self.sign63.val()).any();
-                if (self.z1.q.val() & self.sign63.val()).any() {
-                    self.big.d.next = self.z1.q.val() <= self.h_neg.val();
-                } else {
-                    self.big.d.next = self.z1.q.val() >= self.h_pos.val();
-                }
-                self.xres.d.next = (self.z1.q.val() << self.bf.val()) - self.z2.q.val();
-                // -x: |x| < 2^63 unless |Z1| >= H, which saturates r_i whatever x is.
-                self.xng.d.next = self.z2.q.val() - (self.z1.q.val() << self.bf.val());
+                // Z1 = (sp_i - a_h n_i) - b_h sk_i settles here and in ResW1.
+                self.state.d.next = LearnState::ResW1;
+            }
+            LearnState::ResW1 => {
+                self.state.d.next = LearnState::ResW2;
+            }
+            LearnState::ResW2 => {
+                // x, -x and Z1 + H settle here and in ResW3 (big a clock later).
+                self.state.d.next = LearnState::ResW3;
+            }
+            LearnState::ResW3 => {
                 self.state.d.next = LearnState::ResAbs;
             }
             LearnState::ResAbs => {
-                self.neg.d.next = (self.xres.q.val() & self.sign63.val()).any();
-                self.mag.d.next = self.xres.q.val();
-                if (self.xres.q.val() & self.sign63.val()).any() {
-                    self.mag.d.next = self.xng.q.val();
+                self.neg.d.next = (self.xres.s.val() & self.sign63.val()).any();
+                self.abs.next = self.xres.s.val();
+                if (self.xres.s.val() & self.sign63.val()).any() {
+                    self.abs.next = self.xng.s.val();
                 }
+                self.mag.d.next = self.abs.val();
+                self.ldr.d.next = (self.abs.val() >> self.lr_lead.val()) & self.rem_mask.val();
+                self.ldd.d.next = self.abs.val() << self.lr_up.val();
                 self.state.d.next = LearnState::ResLoad;
             }
             LearnState::ResLoad => {
-                self.rem.d.next = (self.mag.q.val() >> self.lr_lead.val()) & self.rem_mask.val();
-                self.dvd.d.next = self.mag.q.val() << self.lr_up.val();
+                self.rem.d.next = self.ldr.q.val();
+                self.dvd.d.next = self.ldd.q.val();
+                self.ndsr.d.next =
+                    self.z64.val() - (bit_cast::<64, 32>(self.nn.q.val()) & self.dsr_mask.val());
+                self.dstep.d.next = true;
                 self.ovf.d.next =
                     (self.mag.q.val() >> self.lr_lead.val()) >= bit_cast::<64, 32>(self.nn.q.val());
                 self.dsr.d.next = bit_cast::<64, 32>(self.nn.q.val()) & self.dsr_mask.val();
@@ -1243,26 +1449,28 @@ impl Logic for HarmonicLearner {
             }
             LearnState::ResDiv => {
                 if self.dz.q.val() {
+                    self.dstep.d.next = false;
                     self.state.d.next = LearnState::ResEnd;
                 }
             }
             LearnState::ResEnd => {
-                self.rm.d.next = (self.quo.q.val() + self.one64.val()) >> self.one64.val();
-                self.rsat.d.next =
-                    self.big.q.val() | self.ovf.q.val() | (self.quo.q.val() >= self.q_over.val());
+                // +-round(quo / 2) settle here and in ResEnd2, qov here.
                 self.rneg.d.next = self.neg.q.val();
                 if self.big.q.val() {
                     self.rneg.d.next = self.zneg.q.val();
                 }
+                self.state.d.next = LearnState::ResEnd2;
+            }
+            LearnState::ResEnd2 => {
                 self.state.d.next = LearnState::ResWrite;
             }
             LearnState::ResWrite => {
                 // r_i in 32 bits (|r_i| < 2^(F+T-2) <= 2^26), or +-lim when it saturates.
-                self.t32.next = bit_cast::<32, 64>(self.rm.q.val());
+                self.t32.next = bit_cast::<32, 64>(self.rmv.val());
                 if self.rneg.q.val() {
-                    self.t32.next = self.z32.val() - bit_cast::<32, 64>(self.rm.q.val());
+                    self.t32.next = bit_cast::<32, 64>(self.rmnv.val());
                 }
-                if self.rsat.q.val() {
+                if self.big.q.val() | self.ovf.q.val() | self.qov.q.val() {
                     self.t32.next = self.lim32.val();
                     if self.rneg.q.val() {
                         self.t32.next = self.nlim32.val();
@@ -1275,15 +1483,16 @@ impl Logic for HarmonicLearner {
                 // r_i sign-extended into sp_i's word (written from its register: the path
                 // from rm through r_i's negation ends at r).
                 self.rsp.write_address.next = self.idx.q.val();
-                self.rsp.write_data.next = bit_cast::<64, 32>(self.r.q.val());
+                self.spw.next = bit_cast::<64, 32>(self.r.q.val());
                 if (self.r.q.val() & self.sign31.val()).any() {
-                    self.rsp.write_data.next = bit_cast::<64, 32>(self.r.q.val()) | self.hi32.val();
+                    self.spw.next = bit_cast::<64, 32>(self.r.q.val()) | self.hi32.val();
                 }
                 self.rsp.write_enable.next = self.unz.q.val();
                 // The next bin's address a clock ahead.
-                self.bra.next = self.idx.q.val() + self.ione.val();
+                self.bra.next = self.idx1.q.val();
                 if self.unz.q.val() {
                     self.sum_r.d.next = self.sum_r.q.val() + self.r_x.val();
+                    self.srn.d.next = self.srn.q.val() - self.r_x.val();
                     self.nbins.d.next = self.nbins.q.val() + self.one32.val();
                 }
                 self.idx.d.next = self.idx.q.val() + self.ione.val();
@@ -1296,16 +1505,20 @@ impl Logic for HarmonicLearner {
             }
             LearnState::MeanAbs => {
                 self.neg.d.next = (self.sum_r.q.val() & self.sr_sign.val()).any();
-                self.mag.d.next = bit_cast::<64, SUMR_BITS>(self.sum_r.q.val());
+                self.abs.next = bit_cast::<64, SUMR_BITS>(self.sum_r.q.val());
                 if (self.sum_r.q.val() & self.sr_sign.val()).any() {
-                    self.mag.d.next =
-                        bit_cast::<64, SUMR_BITS>(self.sr_z.val() - self.sum_r.q.val());
+                    self.abs.next = bit_cast::<64, SUMR_BITS>(self.srn.q.val());
                 }
+                self.ldr.d.next = (self.abs.val() >> self.lm_lead.val()) & self.rem_mask.val();
+                self.ldd.d.next = self.abs.val() << self.lm_up.val();
                 self.state.d.next = LearnState::MeanLoad;
             }
             LearnState::MeanLoad => {
-                self.rem.d.next = (self.mag.q.val() >> self.lm_lead.val()) & self.rem_mask.val();
-                self.dvd.d.next = self.mag.q.val() << self.lm_up.val();
+                self.rem.d.next = self.ldr.q.val();
+                self.dvd.d.next = self.ldd.q.val();
+                self.ndsr.d.next =
+                    self.z64.val() - (bit_cast::<64, 32>(self.nbins.q.val()) & self.dsr_mask.val());
+                self.dstep.d.next = true;
                 self.dsr.d.next = bit_cast::<64, 32>(self.nbins.q.val()) & self.dsr_mask.val();
                 self.quo.d.next = self.z64.val();
                 self.dn.d.next = self.lr_last.val();
@@ -1314,19 +1527,23 @@ impl Logic for HarmonicLearner {
             }
             LearnState::MeanDiv => {
                 if self.dz.q.val() {
+                    self.dstep.d.next = false;
                     self.state.d.next = LearnState::MeanEnd;
                 }
             }
             LearnState::MeanEnd => {
-                self.rm.d.next = (self.quo.q.val() + self.one64.val()) >> self.one64.val();
+                // +-round(quo / 2) settle here and in MeanEnd2.
+                self.state.d.next = LearnState::MeanEnd2;
+            }
+            LearnState::MeanEnd2 => {
                 self.state.d.next = LearnState::MeanSign;
             }
             LearnState::MeanSign => {
-                self.mean.d.next = bit_cast::<32, 64>(self.rm.q.val());
+                self.mean.d.next = bit_cast::<32, 64>(self.rmv.val());
                 if self.neg.q.val() {
-                    self.mean.d.next = self.z32.val() - bit_cast::<32, 64>(self.rm.q.val());
+                    self.mean.d.next = bit_cast::<32, 64>(self.rmnv.val());
                 }
-                if (self.nbins.q.val() & self.nmask.val()) == self.z32.val() {
+                if self.nb0.q.val() {
                     self.mean.d.next = self.z32.val();
                 }
                 self.idx.d.next = self.iz.val();
@@ -1346,6 +1563,7 @@ impl Logic for HarmonicLearner {
                 // The entry, two clocks after its address (the table's read).
                 self.ucur.d.next = bit_cast::<32, 64>(self.tab_s.val());
                 self.ux.d.next = bit_cast::<32, 64>(self.spv.q.val()) - self.mean.q.val();
+                self.uxn.d.next = self.mean.q.val() - bit_cast::<32, 64>(self.spv.q.val());
                 // n_i, registered a clock before its test (the RAM's read path).
                 self.unz.d.next = (self.nn.q.val() & self.nmask.val()) != self.z32.val();
                 self.state.d.next = LearnState::UpdAbs;
@@ -1356,7 +1574,7 @@ impl Logic for HarmonicLearner {
                 self.uroom.d.next = self.emax32.val() - self.ucur.q.val();
                 if (self.ux.q.val() & self.sign31.val()).any() {
                     self.uroom.d.next = self.ucur.q.val() + self.emax32.val();
-                    self.uax.d.next = self.z32.val() - self.ux.q.val();
+                    self.uax.d.next = self.uxn.q.val();
                 }
                 self.state.d.next = LearnState::UpdStep;
             }
@@ -1376,6 +1594,7 @@ impl Logic for HarmonicLearner {
                 if self.uneg.q.val() {
                     self.unw.d.next = self.ucur.q.val() - self.udm.q.val();
                 }
+                self.mvz.d.next = self.moving.q.val() & self.unz.q.val();
                 self.state.d.next = LearnState::UpdWrite;
             }
             LearnState::UpdWrite => {
@@ -1388,7 +1607,7 @@ impl Logic for HarmonicLearner {
                         self.wd.next = self.emin32.val();
                     }
                 }
-                if !(self.update.val() & self.moving.q.val() & self.unz.q.val()) {
+                if !(self.update.val() & self.mvz.q.val()) {
                     self.wd.next = self.ucur.q.val() & self.ew_mask.val();
                 }
                 self.we.next = true;
@@ -1400,8 +1619,8 @@ impl Logic for HarmonicLearner {
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
                 // The next bin's address a clock ahead.
-                self.bra.next = self.idx.q.val() + self.ione.val();
-                self.idx.d.next = self.idx.q.val() + self.ione.val();
+                self.bra.next = self.idx1.q.val();
+                self.idx.d.next = self.idx1.q.val();
                 if self.idx.q.val() == self.ilast.val() {
                     self.idx.d.next = self.iz.val();
                     self.state.d.next = LearnState::Apply;
@@ -1412,26 +1631,27 @@ impl Logic for HarmonicLearner {
             LearnState::Apply => {
                 self.active.d.next = !self.active.q.val();
                 self.k.d.next = self.z32.val();
-                self.sum_p.d.next = self.z64.val();
-                self.sum_ps.d.next = self.z64.val();
                 self.sum_r.d.next = self.sr_z.val();
+                self.srn.d.next = self.sr_z.val();
                 self.nbins.d.next = self.z32.val();
                 self.state.d.next = LearnState::Wait;
             }
         }
-        // The divider steps in its three states.
-        if (self.state.q.val() == LearnState::LineDiv)
-            | (self.state.q.val() == LearnState::ResDiv)
-            | (self.state.q.val() == LearnState::MeanDiv)
-        {
+        // The divider steps in its three states (dstep), non-restoring: r' = 2 r + bit -+ d
+        // as r >= 0 or r < 0, the quotient bit r' >= 0 (the restoring division's bits: its
+        // remainder is r, or r + d when r < 0); r in 2w + 2 bits, -d <= r < d.
+        self.dop.next = self.ndsr.q.val();
+        if (self.rem.q.val() & self.rem_sgn.val()).any() {
+            self.dop.next = self.dsr.q.val();
+        }
+        self.dr.next = (self.dt.val() + self.dop.val()) & self.rem_mask.val();
+        if self.dstep.q.val() {
             self.dvd.d.next = self.dvd.q.val() << self.one64.val();
-            if self.dt.val() >= self.dsr.q.val() {
-                self.rem.d.next = (self.dt.val() - self.dsr.q.val()) & self.rem_mask.val();
+            self.rem.d.next = self.dr.val();
+            self.quo.d.next = (self.quo.q.val() << self.one64.val()) & self.quo_mask.val();
+            if !(self.dr.val() & self.rem_sgn.val()).any() {
                 self.quo.d.next = ((self.quo.q.val() << self.one64.val()) | self.one64.val())
                     & self.quo_mask.val();
-            } else {
-                self.rem.d.next = self.dt.val() & self.rem_mask.val();
-                self.quo.d.next = (self.quo.q.val() << self.one64.val()) & self.quo_mask.val();
             }
         }
         if self.ld.val() & !self.pend.q.val() {
@@ -1446,6 +1666,11 @@ impl Logic for HarmonicLearner {
         self.rn.read_address.next = self.bra.val();
         self.rsk.read_address.next = self.bra.val();
         self.rsp.read_address.next = self.bra.val();
+        self.rsph.read_address.next = self.bra.val();
+        self.rsp.write_data.next = bit_cast::<32, 64>(self.spw.val());
+        self.rsph.write_data.next = bit_cast::<32, 64>(self.spw.val() >> self.k32.val());
+        self.rsph.write_address.next = self.rsp.write_address.val();
+        self.rsph.write_enable.next = self.rsp.write_enable.val();
         self.twm.next = self.wa.val() & self.pmask.val();
         if (self.wa.val() & self.pp.val()).any() {
             self.twm.next = (self.wa.val() & self.pmask.val()) | self.bank_hi.val();
@@ -1470,9 +1695,12 @@ impl Logic for HarmonicLearner {
             self.dls.d.next = false;
             self.dla.d.next = false;
             self.k.d.next = self.z32.val();
-            self.sum_p.d.next = self.z64.val();
-            self.sum_ps.d.next = self.z64.val();
+            self.psa.d.next = false;
+            self.bw1.d.next = false;
+            self.bw2.d.next = false;
+            self.dstep.d.next = false;
             self.sum_r.d.next = self.sr_z.val();
+            self.srn.d.next = self.sr_z.val();
             self.nbins.d.next = self.z32.val();
             self.twr.d.next = false;
             self.twa.d.next = self.z32.val();

@@ -101,22 +101,26 @@
 //! [`residual`]): a = a_h 2^B + a_l and b = b_h 2^B + b_l (arithmetic shift; 0 <= a_l, b_l <
 //! 2^B); Z1 = sp_i - a_h n_i - b_h sk_i (exact: < 2^(2w+F+T+4)), Z2 = a_l n_i + b_l sk_i (0
 //! <= Z2 < 2^B (n_i + sk_i)), so x = sp_i 2^B - a n_i - b sk_i = Z1 2^B - Z2. With H =
-//! 2^(62-B): if |Z1| < H, |x| < 2^62 + 2^(B+2w) < 2^63 fits and r_i = ±((floor((|x| >>
-//! (B-1)) / n_i) + 1) >> 1), saturated (floor(floor(y / 2^(B-1)) / n) = floor(y / (n
+//! 2^(62-B): if -H <= Z1 < H, |x| <= 2^62 + 2^(B+2w) < 2^63 fits and r_i =
+//! ±((floor((|x| >> (B-1)) / n_i) + 1) >> 1), saturated (floor(floor(y / 2^(B-1)) / n) = floor(y / (n
 //! 2^(B-1))); Kr = F - 1 + T quotient bits, an overflow of them saturates); if Z1 >= H, x /
 //! (n_i 2^B) > H / n_i - 1 - sk_i / n_i >= 2^(58-2w) - 2^w > 2^(F-2+T), so r_i saturates
-//! (likewise Z1 <= -H), which holds whenever 3w + F + T + 3 <= 64. The four products a_h
-//! n_i, b_h sk_i, a_l n_i, b_l sk_i are shift-add side by side, 2w - 1 clocks (sk_i's
-//! bits); c(m)'s (c_j - c_i) f likewise, s clocks (f's bits).
+//! (likewise Z1 < -H), which holds whenever 3w + F + T + 3 <= 64; at Z1 = -H the division
+//! overflows (|x| >> (Kr + B - 1) >= 2^(60-F-T-w) >= N), so r_i saturates there too, and
+//! the test is Z1 + H outside [0, 2H): a sum and a test of its top bits. The four products a_h
+//! n_i, b_h sk_i, a_l n_i, b_l sk_i are shift-add side by side, 2w clocks (sk_i's 2w - 1
+//! bits, and one for the last add to settle); c(m)'s (c_j - c_i) f likewise, s clocks (f's
+//! bits, from the LSB).
 //!
 //! Clocks (the model counts them state by state, the RTL's named states): Collect
-//! [`LearnParams::collect_clocks`] per sample; [`LearnParams::line_clocks`] (Kb + 7 = 51),
-//! [`LearnParams::residual_clocks`] per bin (2w - 1 + Kr + 10 = 54),
-//! [`LearnParams::mean_clocks`] (Kr + 4 = 25), [`LearnParams::update_clocks`] per bin (7),
-//! Apply 1: [`LearnParams::solve_clocks`] = 7885 at F = 14, p = 7, w = 12, T = 8, i.e. 78
+//! [`LearnParams::collect_clocks`] per sample; [`LearnParams::line_clocks`] (Kb + 12 = 56),
+//! [`LearnParams::residual_clocks`] per bin (2w + Kr + 14 = 59),
+//! [`LearnParams::mean_clocks`] (Kr + 5 = 26), [`LearnParams::update_clocks`] per bin (7),
+//! Apply 1: [`LearnParams::solve_clocks`] = 8531 at F = 14, p = 7, w = 12, T = 8, i.e. 84
 //! samples at 102 clocks per sample. Every register-to-register path of the RTL holds at
-//! most one carry chain, so three-operand sums take two states and a RAM's output is
-//! latched before an adder. Samples that arrive
+//! most one carry chain of at most 34 bits: a 64-bit sum takes two clocks (its halves,
+//! src/blocks/splitadd.rs), so the states of Line, Residual and Mean include the clocks in
+//! which these sums settle, and a RAM's output is latched before an adder. Samples that arrive
 //! outside Collect still move `pos` but are not collected: the next window starts at the
 //! first sample after Apply.
 //!
@@ -305,7 +309,7 @@ impl LearnParams {
         self.fine_bits - 1 + TABLE_FRAC
     }
 
-    /// H = 2^(62 - B): |Z1| >= H saturates r_i (module doc), else |x| < 2^63.
+    /// H = 2^(62 - B): Z1 >= H or Z1 < -H saturates r_i (module doc), else |x| < 2^63.
     pub fn big_limit(&self) -> i64 {
         1 << (62 - self.line_frac())
     }
@@ -328,22 +332,22 @@ impl LearnParams {
         self.collect_clocks() + 2
     }
 
-    /// Clocks of Line: (N + 1) Sp, U, the load, b's quotient bits, the rounding, the sign,
-    /// a in two subtractions.
+    /// Clocks of Line: Sp and PS settle, (N + 1) Sp and U (two-clock sums, five clocks),
+    /// the load, b's quotient bits, the rounding (two), the sign, a (three).
     pub fn line_clocks(&self) -> u32 {
-        self.line_div_bits() + 7
+        self.line_div_bits() + 12
     }
 
-    /// Clocks of Residual per bin: the read, the latch, the products (2w - 1 clocks, sk_i's
-    /// bits), Z1 in two subtractions, x, |x|, the load, r_i's quotient bits, the rounding,
-    /// the write, the sum.
+    /// Clocks of Residual per bin: the read, the latch, the products (2w clocks: sk_i's
+    /// 2w - 1 bits and one for the last sum to settle), Z1 and x (two-clock sums, six
+    /// clocks), |x|, the load, r_i's quotient bits, the rounding (two), the write, the sum.
     pub fn residual_clocks(&self) -> u32 {
-        (2 * self.window_log2 - 1) + self.res_div_bits() + 10
+        2 * self.window_log2 + self.res_div_bits() + 14
     }
 
-    /// Clocks of Mean: |sum r|, the load, the quotient bits, the rounding, the sign.
+    /// Clocks of Mean: |sum r|, the load, the quotient bits, the rounding (two), the sign.
     pub fn mean_clocks(&self) -> u32 {
-        self.res_div_bits() + 4
+        self.res_div_bits() + 5
     }
 
     /// Clocks of Update per bin: the read, the latch, r_i - r, its magnitude, the step, the
@@ -581,7 +585,7 @@ pub fn residual_serial(p: &LearnParams, sp: i64, n: i64, sk: i64, a: i64, b: i64
     let z2 = al.wrapping_mul(n).wrapping_add(bl.wrapping_mul(sk));
     let lim = p.residual_max();
     let h = p.big_limit();
-    if z1 >= h || z1 <= -h {
+    if z1 >= h || z1 < -h {
         return if z1 < 0 { -lim } else { lim };
     }
     let x = (z1 << bf).wrapping_sub(z2);
@@ -827,8 +831,11 @@ impl Sequencer {
             State::LineU => {
                 let n = i128::from(pr.window() as u32);
                 self.u = wrap((n + 1) * self.sum_p - 2 * self.sum_ps, pr.ps_width());
-                next = State::LineLoad;
+                next = State::LineW1;
             }
+            State::LineW1 => next = State::LineW2,
+            State::LineW2 => next = State::LineW3,
+            State::LineW3 => next = State::LineLoad,
             State::LineLoad => {
                 self.cnt = 0;
                 next = State::LineDiv;
@@ -840,7 +847,8 @@ impl Sequencer {
                     next = State::LineRnd;
                 }
             }
-            State::LineRnd => next = State::LineB,
+            State::LineRnd => next = State::LineRnd2,
+            State::LineRnd2 => next = State::LineB,
             State::LineB => {
                 self.b = line_b(&pr, self.u);
                 next = State::LineA1;
@@ -857,6 +865,9 @@ impl Sequencer {
                     ((self.sum_p << 5) - (self.b << w) + self.b) >> 1,
                     pr.a_width(),
                 );
+                next = State::LineA3;
+            }
+            State::LineA3 => {
                 self.idx = 0;
                 next = State::ResRead;
             }
@@ -867,14 +878,17 @@ impl Sequencer {
             }
             State::ResMul => {
                 self.cnt += 1;
-                if self.cnt == 2 * pr.window_log2 - 1 {
+                if self.cnt == 2 * pr.window_log2 {
                     self.cnt = 0;
                     next = State::ResZa;
                 }
             }
             State::ResZa => next = State::ResZb,
             State::ResZb => next = State::ResX,
-            State::ResX => next = State::ResAbs,
+            State::ResX => next = State::ResW1,
+            State::ResW1 => next = State::ResW2,
+            State::ResW2 => next = State::ResW3,
+            State::ResW3 => next = State::ResAbs,
             State::ResAbs => next = State::ResLoad,
             State::ResLoad => next = State::ResDiv,
             State::ResDiv => {
@@ -884,7 +898,8 @@ impl Sequencer {
                     next = State::ResEnd;
                 }
             }
-            State::ResEnd => next = State::ResWrite,
+            State::ResEnd => next = State::ResEnd2,
+            State::ResEnd2 => next = State::ResWrite,
             State::ResWrite => {
                 let i = self.idx;
                 if self.n[i] > 0 {
@@ -918,7 +933,8 @@ impl Sequencer {
                     next = State::MeanEnd;
                 }
             }
-            State::MeanEnd => next = State::MeanSign,
+            State::MeanEnd => next = State::MeanEnd2,
+            State::MeanEnd2 => next = State::MeanSign,
             State::MeanSign => {
                 self.mean = if self.bins > 0 {
                     div_round(i128::from(self.sum_r), i128::from(self.bins)) as i64
