@@ -78,11 +78,11 @@
 //! values that Yosys does not trim.
 //!
 //! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
-//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 142.45 / 144.51 / 149.99 MHz
-//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz. The top's worst paths
-//! are routing in a design that fills 65 % of the device, in this learner and in other
-//! blocks; a smaller learner (one shared adder for the solve) is what is left
-//! (docs/timing.md, "Not held").
+//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 154.58 / 153.70 / 152.14 MHz
+//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz median. The top's
+//! worst paths are mostly routing in a design that fills 65 % of the device (the divider's
+//! step, a state's fan-out); a smaller learner (one shared adder for the solve) is what is
+//! left (docs/timing.md, "Not held").
 //!
 //! Ports:
 //!
