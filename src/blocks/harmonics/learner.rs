@@ -49,9 +49,10 @@
 //! model's width by the bounds of the model's table (q, Sp, PS, U, b, a: [`super::sequencer`]),
 //! so the RTL adds them in 64 bits without re-wrapping, and equals the model.
 //!
-//! Timing: every register-to-register path holds at most one carry chain of at most 34
-//! bits (a compare beside it), and a sum goes into a register of its own with no select
-//! after its chain. A 64-bit sum is a [`SplitAdd`] (two 32-bit chains, the high one a
+//! Timing: every register-to-register path holds at most one carry chain (a compare beside
+//! it), and a sum goes into a register of its own with no select after its chain; no sum
+//! is wider than 40 bits (sum r), and the longer chains left are compares into one-bit
+//! registers (mpos, mneg, qov, ovf). A 64-bit sum is a [`SplitAdd`] (two 32-bit chains, the high one a
 //! clock after the low one) of operands that hold still, or a [`SplitAcc`] (Sp += q in Acc,
 //! PS += Sp the clock after Sum, the four products in ResMul): q, sp1 = sp_i + q, (N + 1)
 //! Sp (un1), U and -U (unum, unn), +-round(quo / 2) (rm, rmn), Sp 2^5 + b (asp), a, sp_i -

@@ -118,7 +118,7 @@
 //! [`LearnParams::mean_clocks`] (Kr + 5 = 26), [`LearnParams::update_clocks`] per bin (7),
 //! Apply 1: [`LearnParams::solve_clocks`] = 8531 at F = 14, p = 7, w = 12, T = 8, i.e. 84
 //! samples at 102 clocks per sample. Every register-to-register path of the RTL holds at
-//! most one carry chain of at most 34 bits: a 64-bit sum takes two clocks (its halves,
+//! most one carry chain, and a 64-bit sum takes two clocks (its 32-bit halves,
 //! src/blocks/splitadd.rs), so the states of Line, Residual and Mean include the clocks in
 //! which these sums settle, and a RAM's output is latched before an adder. Samples that arrive
 //! outside Collect still move `pos` but are not collected: the next window starts at the
