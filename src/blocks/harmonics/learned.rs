@@ -16,6 +16,15 @@
 //!               └─────────────────────────────────────────────────────────────────────┘
 //! ```
 //!
+//! The learner sits beside the position path, not in it, so its ports are registered at
+//! the block's edge: its reset (`rst_l`, a flop of its own: the core's reset net would
+//! otherwise reach the learner's every flop), its sample (`smp_v`, `smp_a`) and the table
+//! writes, bank and Clear flag the lookup takes (`lk_*`). The learner therefore sees each
+//! sample a clock later and the lookup each write and bank flip a clock later than the
+//! learner makes them; neither changes what is learned or which entries a sample reads
+//! between two flips. The register map's mirror takes the writes straight from the
+//! learner (its own timing, `super::super::regmap`).
+//!
 //! The learner takes the raw angle m = z >> Gz (F + 2 bits: the CORDIC's angle rounded to
 //! the position LSB, the combiner's own rounding), not the corrected one: it corrects its
 //! samples with its own copy of the table (q units), so the lookup's copy (z units, rounded
@@ -23,6 +32,7 @@
 use super::hdl_ram::HarmonicCorrectionRam;
 use super::learner::HarmonicLearner;
 use super::HarmonicParams;
+use crate::blocks::init_bit::InitBit;
 use crate::blocks::{c32, mask};
 use rust_hdl::prelude::*;
 
@@ -65,6 +75,20 @@ pub struct LearnedHarmonics {
     pub ld_busy: Signal<Out, Bit>,
     learner: HarmonicLearner,
     lookup: HarmonicCorrectionRam,
+    /// The learner's reset, `rst` a clock later (powered up asserted). Timing: the core's
+    /// reset register drove the core's and the learner's every flop (rst_core -> core).
+    rst_l: InitBit,
+    /// The sample the learner takes, a clock late: valid, raw angle. Timing: the CORDIC's
+    /// last stage -> the learner's first sum.
+    smp_v: DFF<Bit>,
+    smp_a: DFF<Bits<32>>,
+    /// The lookup's copy of the learner's table writes, bank and Clear flag, a clock late.
+    /// Timing: the learner's output registers -> the lookup's RAMs and read address.
+    lk_tw: DFF<Bit>,
+    lk_twa: DFF<Bits<32>>,
+    lk_twd: DFF<Bits<32>>,
+    lk_bank: DFF<Bit>,
+    lk_clr: DFF<Bit>,
     /// Gz: the shift from the angle word to the position LSB.
     gz: Constant<Bits<32>>,
     /// Mask of F + 2 bits (the raw angle within the period).
@@ -95,6 +119,14 @@ impl LearnedHarmonics {
             ld_busy: Default::default(),
             learner: HarmonicLearner::new(&lp, &vec![0; lp.points()]),
             lookup: HarmonicCorrectionRam::new(p, lp.entry_width()),
+            rst_l: InitBit::kept(true),
+            smp_v: Default::default(),
+            smp_a: Default::default(),
+            lk_tw: Default::default(),
+            lk_twa: Default::default(),
+            lk_twd: Default::default(),
+            lk_bank: Default::default(),
+            lk_clr: Default::default(),
             gz: c32(u64::from(p.z_guard)),
             amask: c32(mask(p.fine_bits + 2)),
         }
@@ -104,24 +136,34 @@ impl LearnedHarmonics {
 impl Logic for LearnedHarmonics {
     #[hdl_gen]
     fn update(&mut self) {
+        dff_setup!(self, clk, smp_v, smp_a, lk_tw, lk_twa, lk_twd, lk_bank, lk_clr);
+        self.rst_l.clock.next = self.clk.val();
+        self.rst_l.d.next = self.rst.val();
+        self.smp_v.d.next = self.v_in.val();
+        self.smp_a.d.next = (self.z_in.val() >> self.gz.val()) & self.amask.val();
         self.learner.clk.next = self.clk.val();
-        self.learner.rst.next = self.rst.val();
-        self.learner.strobe.next = self.v_in.val();
-        self.learner.angle.next = (self.z_in.val() >> self.gz.val()) & self.amask.val();
+        self.learner.rst.next = self.rst_l.q.val();
+        self.learner.strobe.next = self.smp_v.q.val();
+        self.learner.angle.next = self.smp_a.q.val();
         self.learner.update.next = self.update.val();
         self.learner.ld.next = self.ld.val();
         self.learner.ld_addr.next = self.ld_addr.val();
         self.learner.ld_data.next = self.ld_data.val();
+        self.lk_tw.d.next = self.learner.tw.val();
+        self.lk_twa.d.next = self.learner.tw_addr.val();
+        self.lk_twd.d.next = self.learner.tw_data.val();
+        self.lk_bank.d.next = self.learner.bank.val();
+        self.lk_clr.d.next = self.learner.clearing.val();
         self.lookup.clk.next = self.clk.val();
         self.lookup.rst.next = self.rst.val();
         self.lookup.z_in.next = self.z_in.val();
         self.lookup.x_in.next = self.x_in.val();
         self.lookup.v_in.next = self.v_in.val();
-        self.lookup.bank.next = self.learner.bank.val();
-        self.lookup.clearing.next = self.learner.clearing.val();
-        self.lookup.tw.next = self.learner.tw.val();
-        self.lookup.tw_addr.next = self.learner.tw_addr.val();
-        self.lookup.tw_data.next = self.learner.tw_data.val();
+        self.lookup.bank.next = self.lk_bank.q.val();
+        self.lookup.clearing.next = self.lk_clr.q.val();
+        self.lookup.tw.next = self.lk_tw.q.val();
+        self.lookup.tw_addr.next = self.lk_twa.q.val();
+        self.lookup.tw_data.next = self.lk_twd.q.val();
         self.z_out.next = self.lookup.z_out.val();
         self.x_out.next = self.lookup.x_out.val();
         self.v_out.next = self.lookup.v_out.val();

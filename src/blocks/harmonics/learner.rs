@@ -37,8 +37,9 @@
 //!   table. Divider (non-restoring, while dstep): rem (2w + 2 bits, two's complement), dvd
 //!   (the dividend's bits, MSB first), quo, dsr and -dsr; t = 2 rem + msb(dvd), rem = rem <
 //!   0 ? t + dsr : t - dsr, quo = 2 quo + (rem >= 0): the restoring division's quotient
-//!   bits (its remainder is rem, or rem + dsr when rem < 0). The loads (ldr, ldd) are
-//!   prepared a state before the load (LineW3, ResAbs, MeanAbs).
+//!   bits (its remainder is rem, or rem + dsr when rem < 0); both t + dsr and t - dsr are
+//!   built and rem's sign selects after them. The loads (ldr, ldd) are prepared a state
+//!   before the load (LineW3, ResAbs, MeanAbs), and `dload` flags the load a clock ahead.
 //! ```
 //!
 //! Words: signed values are 64-bit two's complement (`Bits<64>`), except the residuals'
@@ -50,17 +51,19 @@
 //! so the RTL adds them in 64 bits without re-wrapping, and equals the model.
 //!
 //! Timing: every register-to-register path holds at most one carry chain (a compare beside
-//! it), and a sum goes into a register of its own with no select after its chain; no sum
-//! is wider than 40 bits (sum r), and the longer chains left are compares into one-bit
-//! registers (mpos, mneg, qov, ovf). A 64-bit sum is a [`SplitAdd`] (two 32-bit chains, the high one a
+//! it), and a sum goes into a register of its own with no select after its chain but the
+//! divider's (its two sums, selected by a registered sign); no sum is wider than 40 bits
+//! (sum r), and the longer chains left are compares into one-bit registers (qov, ovf). A
+//! 64-bit sum is a [`SplitAdd`] (two 32-bit chains, the high one a
 //! clock after the low one) of operands that hold still, or a [`SplitAcc`] (Sp += q in Acc,
 //! PS += Sp the clock after Sum, the four products in ResMul): q, sp1 = sp_i + q, (N + 1)
 //! Sp (un1), U and -U (unum, unn), +-round(quo / 2) (rm, rmn), Sp 2^5 + b (asp), a, sp_i -
 //! a_h n_i (z0), Z1, Z2, x and -x (xres, xng), Z1 + H (zh). Each is right two clocks after
 //! its operands (a SplitAcc a clock after its last add), and the model's states count
 //! these clocks (LineW1-3, LineRnd2, LineA3, ResMul's last clock, ResW1-3, ResEnd2,
-//! MeanEnd2). Other free-running registers: b's one-period compares (mpos,
-//! mneg), |Z1| >= H as a test of Z1 + H's top bits (big, zneg), quo > 2 lim (qov), idx + 1
+//! MeanEnd2). Other free-running registers: b's one-period tests of its bits (mpos,
+//! mneg), the products' add flags a clock ahead (fpa, fla, fpb, flb), Clear's write
+//! address (cwa), |Z1| >= H as a test of Z1 + H's top bits (big, zneg), quo > 2 lim (qov), idx + 1
 //! (idx1), k's last-sample test (klast). c(m)'s product runs from f's LSB in 32 bits
 //! (acc = (acc + f_j D) >> 1). A RAM's output is registered before an adder (LatJ, UpdLat,
 //! ResLatch, Acc), `pos` moves a clock after its strobe (dl), sum r's negation is summed
@@ -68,8 +71,8 @@
 //! ResSum.
 //!
 //! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
-//! tests/blocks/harmonics_learner.rs): xc3sa 3945 LUT4 (1000 of them RAM16X1D), 3737 FF,
-//! no block RAM, no MULT18X18; cycloneive 5953 LE, 3278 FF, 20 M9K (four arrays each for
+//! tests/blocks/harmonics_learner.rs): xc3sa 3845 LUT4 (1000 of them RAM16X1D), 3750 FF,
+//! no block RAM, no MULT18X18; cycloneive 6133 LE, 3291 FF, 20 M9K (four arrays each for
 //! the table, n_i, sk_i and sp_i's two halves), no multiplier. The RAMs are distributed on ECP5 and xc3sa, read in the widths their words hold
 //! (the entry width, w + 1 bits of n_i, 2w - 1 of sk_i, sp_i's), so that synthesis drops
 //! the other columns. The state is one-hot in synthesis ([`FsmReg`]); the counters' end
@@ -78,12 +81,12 @@
 //! remainder bits and max(Kb, Kr) quotient bits. The other 64-bit registers hold narrower
 //! values that Yosys does not trim.
 //!
-//! Timing (docs/timing.md's ECP5 flow, the default top with a 128-point learned table and
-//! `[registers]` at 133.33 MHz, seeds 1 / 2 / 3): 154.58 / 153.70 / 152.14 MHz
-//! ([`super::block::LEARNED_TOP_MHZ`]), short of the rule's 166.7 MHz median. The top's
-//! worst paths are mostly routing in a design that fills 65 % of the device (the divider's
-//! step, a state's fan-out); a smaller learner (one shared adder for the solve) is what is
-//! left (docs/timing.md, "Not held").
+//! Timing (docs/timing.md's ECP5 flow at 133.33 MHz, seeds 1 / 2 / 3): the default top with
+//! a 64-point learned table 162.31 / 148.57 / 151.08 MHz, with 128 points and `[registers]`
+//! 160.49 / 150.35 / 154.25 MHz ([`super::block::LEARNED_TOPS`]), short of the rule's
+//! 166.7 MHz median. Placed alone the learner reaches 157.13 / 159.13 MHz (seeds 1 / 2),
+//! its worst paths 3 to 5 ns of routing around 2 to 3 ns of logic; a smaller learner (one shared adder for
+//! the solve) is what is left (docs/timing.md, "Not held").
 //!
 //! Ports:
 //!
@@ -105,6 +108,7 @@
 //! | `clearing` | out | 1 | the state was Clear a clock ago: with `tw`, the Clear's writes (registered) |
 use super::sequencer::{LearnParams, TABLE_FRAC};
 use crate::blocks::fsmreg::FsmReg;
+use crate::blocks::init_bit::InitBit;
 use crate::blocks::lutram::PipedLutRam;
 use crate::blocks::splitadd::{SplitAcc, SplitAdd};
 use crate::blocks::{c32, mask};
@@ -326,6 +330,9 @@ pub struct HarmonicLearner {
     state: FsmReg<LearnState>,
     /// The clock of Clear ([`CNT_BITS`] wide: 2P + 1 clocks).
     cnt: DFF<Bits<CNT_BITS>>,
+    /// cnt a clock ago: Clear's write address, cnt - 1 (Timing: cnt -> the table's write
+    /// address through a subtraction).
+    cwa: DFF<Bits<CNT_BITS>>,
     /// The loops' clocks left (Mult, LineDiv, ResMul, ResDiv, MeanDiv), counting down from
     /// the loop's last index loaded by the state before it, and whether it is 0 (registered:
     /// the path from the count through a compare to the state's every bit).
@@ -401,6 +408,10 @@ pub struct HarmonicLearner {
     /// rem has two sources: the path from the step's chain).
     ndsr: DFF<Bits<64>>,
     dstep: DFF<Bit>,
+    /// The state is a division's load (set in the state before it). Timing: the three
+    /// load states' bits fanned out to the remainder's, dividend's and quotient's
+    /// selects (state -> quo).
+    dload: InitBit,
     ldr: DFF<Bits<64>>,
     ldd: DFF<Bits<64>>,
     /// A rounded magnitude (b, r_i, r) and its negation (so that a sign is a select: the
@@ -424,6 +435,16 @@ pub struct HarmonicLearner {
     als: DFF<Bits<64>>,
     bhs: DFF<Bits<64>>,
     bls: DFF<Bits<64>>,
+    /// The products' add flags, one per accumulator (a clock ahead: ResMul's next clock
+    /// and n_i's or sk_i's next bit). Timing: the state and the multiplier's bit fanned
+    /// out to 128 operand gates each (nsh -> pa, la).
+    fpa: InitBit,
+    fla: InitBit,
+    fpb: InitBit,
+    flb: InitBit,
+    /// The flags' next value from n_i's and from sk_i's bits.
+    fn_n: Signal<Local, Bit>,
+    fn_sk: Signal<Local, Bit>,
     /// The products a_h n_i, b_h sk_i, a_l n_i, b_l sk_i.
     pa: SplitAcc,
     pb: SplitAcc,
@@ -502,8 +523,12 @@ pub struct HarmonicLearner {
     off_a: Signal<Local, Bits<32>>,
     off_o: Signal<Local, Bits<32>>,
     dt: Signal<Local, Bits<64>>,
-    /// The step's operand (+-d) and its sum.
-    dop: Signal<Local, Bits<64>>,
+    /// The step's two sums, t + d and t - d, the remainder's sign as a mask, and the sum
+    /// it selects. Timing: both chains run while the sign fans out to the select after
+    /// them (the path rem -> rem, quo), not in front of one chain.
+    drp: Signal<Local, Bits<64>>,
+    drm: Signal<Local, Bits<64>>,
+    rsm: Signal<Local, Bits<64>>,
     dr: Signal<Local, Bits<64>>,
     tab_s: Signal<Local, Bits<64>>,
     /// The table's read entry; its RAM address with the active bank.
@@ -607,8 +632,8 @@ pub struct HarmonicLearner {
     quo_mask: Constant<Bits<64>>,
     dsr_mask: Constant<Bits<64>>,
     /// One period of |b|: b >= it, b <= its negative.
-    op_pos: Constant<Bits<64>>,
-    op_neg: Constant<Bits<64>>,
+    op_hi: Constant<Bits<64>>,
+    op_lo: Constant<Bits<64>>,
     /// B; the mask of B bits; the sign fill of >> B; 2w - 1 (ResMul's last clock).
     bf: Constant<Bits<64>>,
     bf_mask: Constant<Bits<64>>,
@@ -696,6 +721,7 @@ impl HarmonicLearner {
             tx: Default::default(),
             state: Default::default(),
             cnt: Default::default(),
+            cwa: Default::default(),
             dn: Default::default(),
             dz: Default::default(),
             idx: Default::default(),
@@ -743,6 +769,7 @@ impl HarmonicLearner {
             dsr: Default::default(),
             ndsr: Default::default(),
             dstep: Default::default(),
+            dload: InitBit::kept(false),
             ldr: Default::default(),
             ldd: Default::default(),
             rm: SplitAdd::add(),
@@ -761,6 +788,12 @@ impl HarmonicLearner {
             als: Default::default(),
             bhs: Default::default(),
             bls: Default::default(),
+            fpa: InitBit::kept(false),
+            fn_n: Default::default(),
+            fn_sk: Default::default(),
+            fla: InitBit::kept(false),
+            fpb: InitBit::kept(false),
+            flb: InitBit::kept(false),
             pa: Default::default(),
             pb: Default::default(),
             la: Default::default(),
@@ -811,7 +844,9 @@ impl HarmonicLearner {
             off_a: Default::default(),
             off_o: Default::default(),
             dt: Default::default(),
-            dop: Default::default(),
+            drp: Default::default(),
+            drm: Default::default(),
+            rsm: Default::default(),
             dr: Default::default(),
             tab_s: Default::default(),
             traddr: Default::default(),
@@ -881,8 +916,8 @@ impl HarmonicLearner {
             ndline: c64(neg(p.line_divisor())),
             quo_mask: c64(mask(kb.max(kr))),
             dsr_mask: c64(mask(2 * p.window_log2)),
-            op_pos: c64(p.one_period() as u64),
-            op_neg: c64(neg(p.one_period() as u64)),
+            op_hi: c64(mask(63) & !(p.one_period() as u64 - 1)),
+            op_lo: c64(p.one_period() as u64 - 1),
             bf: c64(u64::from(bfr)),
             bf_mask: c64(mask(bfr)),
             bf_fill: c64(fill(bfr)),
@@ -911,12 +946,12 @@ impl Logic for HarmonicLearner {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, dn, dz, idx, active, pend, ld_i, ld_v,
-            got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, k, neg, mag, rem, dvd, quo, dsr, b,
-            moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, big, zneg, ovf, rneg, qov, r, sum_r,
-            nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, uroom, usat, twr, twa, twd, clr,
-            klast, n1, sk1, mpos, mneg, srn, uxn, idx1, mvz, psa, bw1, bw2, nb0, dstep, ndsr, ldr,
-            ldd
+            self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, cwa, dn, dz, idx, active, pend, ld_i,
+            ld_v, got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, k, neg, mag, rem, dvd, quo,
+            dsr, b, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, big, zneg, ovf, rneg, qov, r,
+            sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, uroom, usat, twr, twa, twd,
+            clr, klast, n1, sk1, mpos, mneg, srn, uxn, idx1, mvz, psa, bw1, bw2, nb0, dstep, ndsr,
+            ldr, ldd
         );
         self.state.clock.next = self.clk.val();
         self.state.d.next = self.state.q.val();
@@ -1090,25 +1125,46 @@ impl Logic for HarmonicLearner {
         self.a.a.next = self.asp.s.val();
         self.a.b.next = self.b.q.val() << self.w64.val();
         self.av.next = (self.a.s.val() >> self.one64.val()) | (self.a.s.val() & self.sign63.val());
-        self.mpos.d.next = self.b.q.val() >= self.op_pos.val();
-        self.mneg.d.next = self.b.q.val() <= self.op_neg.val();
-        // The four products, a multiplier bit a clock in ResMul, cleared in ResLatch.
+        // b >= 2^k (b >= 0) and b <= -2^k (b < 0) for the one period 2^k: tests of b's bits
+        // k..62 and k-1..0, no compare's chain (b -> mneg).
+        self.mpos.d.next = (self.b.q.val() & self.op_hi.val()).any();
+        self.mneg.d.next = ((self.b.q.val() & self.op_hi.val()) != self.op_hi.val())
+            | !(self.b.q.val() & self.op_lo.val()).any();
+        // The four products, a multiplier bit a clock in ResMul, cleared in ResLatch. The
+        // add flags are (state = ResMul) & the multiplier's bit 0, registered a clock
+        // ahead: ResLatch loads n_i and sk_i, ResMul shifts them right until its last clock.
+        self.fpa.clock.next = self.clk.val();
+        self.fla.clock.next = self.clk.val();
+        self.fpb.clock.next = self.clk.val();
+        self.flb.clock.next = self.clk.val();
+        self.fn_n.next = ((self.state.q.val() == LearnState::ResLatch)
+            & self.rn_m.val().get_bit(0))
+            | ((self.state.q.val() == LearnState::ResMul)
+                & !self.dz.q.val()
+                & self.nsh.q.val().get_bit(1));
+        self.fn_sk.next = ((self.state.q.val() == LearnState::ResLatch)
+            & self.rsk_m.val().get_bit(0))
+            | ((self.state.q.val() == LearnState::ResMul)
+                & !self.dz.q.val()
+                & self.sksh.q.val().get_bit(1));
+        self.fpa.d.next = self.fn_n.val() & !self.rst.val();
+        self.fla.d.next = self.fn_n.val() & !self.rst.val();
+        self.fpb.d.next = self.fn_sk.val() & !self.rst.val();
+        self.flb.d.next = self.fn_sk.val() & !self.rst.val();
         self.pa.clock.next = self.clk.val();
-        self.pa.add.next = (self.state.q.val() == LearnState::ResMul) & self.nsh.q.val().get_bit(0);
+        self.pa.add.next = self.fpa.q.val();
         self.pa.x.next = self.ahs.q.val();
         self.pa.clear.next = self.state.q.val() == LearnState::ResLatch;
         self.la.clock.next = self.clk.val();
-        self.la.add.next = (self.state.q.val() == LearnState::ResMul) & self.nsh.q.val().get_bit(0);
+        self.la.add.next = self.fla.q.val();
         self.la.x.next = self.als.q.val();
         self.la.clear.next = self.state.q.val() == LearnState::ResLatch;
         self.pb.clock.next = self.clk.val();
-        self.pb.add.next =
-            (self.state.q.val() == LearnState::ResMul) & self.sksh.q.val().get_bit(0);
+        self.pb.add.next = self.fpb.q.val();
         self.pb.x.next = self.bhs.q.val();
         self.pb.clear.next = self.state.q.val() == LearnState::ResLatch;
         self.lb.clock.next = self.clk.val();
-        self.lb.add.next =
-            (self.state.q.val() == LearnState::ResMul) & self.sksh.q.val().get_bit(0);
+        self.lb.add.next = self.flb.q.val();
         self.lb.x.next = self.bls.q.val();
         self.lb.clear.next = self.state.q.val() == LearnState::ResLatch;
         // Z1 = sp_i - a_h n_i - b_h sk_i, Z2, x = Z1 2^B - Z2 and -x (|x| < 2^63 unless
@@ -1148,6 +1204,7 @@ impl Logic for HarmonicLearner {
             self.rsk.write_data.next = self.sk1.q.val();
             self.spw.next = self.sp1.s.val();
         }
+        self.cwa.d.next = self.cnt.q.val();
         // The loops' count runs down in every state; the state before a loop loads it.
         self.dn.d.next = self.dn.q.val() - self.cone.val();
         self.dz.d.next = self.dn.q.val() == self.cone.val();
@@ -1155,7 +1212,7 @@ impl Logic for HarmonicLearner {
             LearnState::Clear => {
                 if self.cnt.q.val().any() {
                     self.we.next = true;
-                    self.wa.next = bit_cast::<32, CNT_BITS>(self.cnt.q.val()) - self.one32.val();
+                    self.wa.next = bit_cast::<32, CNT_BITS>(self.cwa.q.val());
                     self.wd.next = self.romq.q.val();
                 }
                 self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
@@ -1315,12 +1372,9 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::LineLoad;
             }
             LearnState::LineLoad => {
-                self.rem.d.next = self.ldr.q.val();
-                self.dvd.d.next = self.ldd.q.val();
                 self.dsr.d.next = self.dline.val();
                 self.ndsr.d.next = self.ndline.val();
                 self.dstep.d.next = true;
-                self.quo.d.next = self.z64.val();
                 self.dn.d.next = self.lb_last.val();
                 self.dz.d.next = self.lb_last.val() == self.cz.val();
                 self.state.d.next = LearnState::LineDiv;
@@ -1435,15 +1489,12 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::ResLoad;
             }
             LearnState::ResLoad => {
-                self.rem.d.next = self.ldr.q.val();
-                self.dvd.d.next = self.ldd.q.val();
                 self.ndsr.d.next =
                     self.z64.val() - (bit_cast::<64, 32>(self.nn.q.val()) & self.dsr_mask.val());
                 self.dstep.d.next = true;
                 self.ovf.d.next =
                     (self.mag.q.val() >> self.lr_lead.val()) >= bit_cast::<64, 32>(self.nn.q.val());
                 self.dsr.d.next = bit_cast::<64, 32>(self.nn.q.val()) & self.dsr_mask.val();
-                self.quo.d.next = self.z64.val();
                 self.dn.d.next = self.lr_last.val();
                 self.dz.d.next = self.lr_last.val() == self.cz.val();
                 self.state.d.next = LearnState::ResDiv;
@@ -1515,13 +1566,10 @@ impl Logic for HarmonicLearner {
                 self.state.d.next = LearnState::MeanLoad;
             }
             LearnState::MeanLoad => {
-                self.rem.d.next = self.ldr.q.val();
-                self.dvd.d.next = self.ldd.q.val();
                 self.ndsr.d.next =
                     self.z64.val() - (bit_cast::<64, 32>(self.nbins.q.val()) & self.dsr_mask.val());
                 self.dstep.d.next = true;
                 self.dsr.d.next = bit_cast::<64, 32>(self.nbins.q.val()) & self.dsr_mask.val();
-                self.quo.d.next = self.z64.val();
                 self.dn.d.next = self.lr_last.val();
                 self.dz.d.next = self.lr_last.val() == self.cz.val();
                 self.state.d.next = LearnState::MeanDiv;
@@ -1641,11 +1689,25 @@ impl Logic for HarmonicLearner {
         // The divider steps in its three states (dstep), non-restoring: r' = 2 r + bit -+ d
         // as r >= 0 or r < 0, the quotient bit r' >= 0 (the restoring division's bits: its
         // remainder is r, or r + d when r < 0); r in 2w + 2 bits, -d <= r < d.
-        self.dop.next = self.ndsr.q.val();
+        self.drp.next = (self.dt.val() + self.dsr.q.val()) & self.rem_mask.val();
+        self.drm.next = (self.dt.val() + self.ndsr.q.val()) & self.rem_mask.val();
+        self.rsm.next = self.z64.val();
         if (self.rem.q.val() & self.rem_sgn.val()).any() {
-            self.dop.next = self.dsr.q.val();
+            self.rsm.next = !self.z64.val();
         }
-        self.dr.next = (self.dt.val() + self.dop.val()) & self.rem_mask.val();
+        self.dr.next = (self.drp.val() & self.rsm.val()) | (self.drm.val() & !self.rsm.val());
+        // A division's load (LineLoad, ResLoad, MeanLoad, flagged a state ahead): the
+        // remainder, the dividend's bits, the quotient cleared.
+        self.dload.clock.next = self.clk.val();
+        self.dload.d.next = ((self.state.q.val() == LearnState::LineW3)
+            | (self.state.q.val() == LearnState::ResAbs)
+            | (self.state.q.val() == LearnState::MeanAbs))
+            & !self.rst.val();
+        if self.dload.q.val() {
+            self.rem.d.next = self.ldr.q.val();
+            self.dvd.d.next = self.ldd.q.val();
+            self.quo.d.next = self.z64.val();
+        }
         if self.dstep.q.val() {
             self.dvd.d.next = self.dvd.q.val() << self.one64.val();
             self.rem.d.next = self.dr.val();
