@@ -269,15 +269,17 @@ fn latency(loaded: &Loaded) -> Vec<LatencyRow> {
         "parallel (par_position)",
         pos,
         format!(
-            "CONV rise to par_valid: ADC {} + correction {} + core {}",
+            "{} to par_valid: ADC {} + correction {} + core {}",
+            d.adc.frame.start_edge(),
             d.adc.conv_to_valid_clocks(),
             d.correction.latency_cycles(),
             d.latency_cycles
         ),
     );
+    let start = d.adc.frame.start_edge();
     let latch = |l: u32| {
         format!(
-            "CONV to par_position, then the frame latches the newest position {l} clocks after the master's first edge (synchronizer); add the wait for that edge"
+            "{start} to par_position, then the frame latches the newest position {l} clocks after the master's first edge (synchronizer); add the wait for that edge"
         )
     };
     row(
@@ -304,7 +306,7 @@ fn latency(loaded: &Loaded) -> Vec<LatencyRow> {
             "ABZ first edge",
             pos + a.latency() as u64,
             format!(
-                "CONV to par_position, then {} clocks to the first A/B edge of the new position (emitter idle)",
+                "{start} to par_position, then {} clocks to the first A/B edge of the new position (emitter idle)",
                 a.latency()
             ),
         );

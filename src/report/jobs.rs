@@ -52,8 +52,10 @@ pub(crate) fn adc_job(l: &Loaded) -> Result<BlockJob> {
         latency_cycles: Some(a.conv_to_valid_clocks()),
         clocks_per_sample: Some(a.period_clocks),
         rate_sps: Some(a.sample_rate_hz()),
-        text: "conversion frame of P clocks per sample pair; latency = CONV rise to out_valid"
-            .into(),
+        text: format!(
+            "conversion frame of P clocks per sample pair; latency = {} to out_valid",
+            a.frame.start_edge()
+        ),
     };
     job(l, "adc", AdcController::new(a), t)
 }
@@ -278,7 +280,7 @@ pub(crate) fn top_job(l: &Loaded) -> Result<BlockJob> {
                     latency_cycles: Some(d.adc.conv_to_valid_clocks() + p.latency() + d.latency_cycles),
                     clocks_per_sample: Some(d.adc.period_clocks),
                     rate_sps: Some(k.sample_rate_hz),
-                    text: "latency = CONV rise to par_valid (plus one sample in the demodulator and the filters' group delay)".into(),
+                    text: format!("latency = {} to par_valid (plus one sample in the demodulator and the filters' group delay)", d.adc.frame.start_edge()),
                 },
                 note: String::new(),
             }),
@@ -295,7 +297,10 @@ pub(crate) fn top_job(l: &Loaded) -> Result<BlockJob> {
                 latency_cycles: Some(crate::blocks::top::hdl::conv_to_position_cycles(d)),
                 clocks_per_sample: Some(d.adc.period_clocks),
                 rate_sps: Some(d.sample_rate_hz),
-                text: "latency = CONV rise to par_valid; one position per ADC frame".into(),
+                text: format!(
+                    "latency = {} to par_valid; one position per ADC frame",
+                    d.adc.frame.start_edge()
+                ),
             },
             note: String::new(),
         }),

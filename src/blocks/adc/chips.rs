@@ -179,6 +179,16 @@ pub struct AdcFrame {
 }
 
 impl AdcFrame {
+    /// The edge of `adc_conv` that starts a conversion, as reports name it: "CONV rise" for
+    /// an active-high CONV pulse, "CS fall" for an active-low chip select.
+    pub fn start_edge(&self) -> &'static str {
+        if self.conv_active_high {
+            "CONV rise"
+        } else {
+            "CS fall"
+        }
+    }
+
     /// The LTC1407A-1 frame: 34 SCK, 2 idle, 14 bits channel 0, 2 idle, 14 bits channel 1,
     /// 2 idle; two's complement; SCK idle low, data shifted on rising edges; CONV pulse
     /// active high; data one conversion late.
