@@ -181,6 +181,20 @@ fn check_says_a_learned_table_misses_the_timing_rule() {
         .find(|l| l.starts_with("harmonic correction timing"))
         .unwrap_or_else(|| panic!("no timing line in\n{s}"));
     assert!(line.contains("misses the timing rule"), "{line}");
+    // The learning line gives a window's time and the solve's clocks (the model's count,
+    // harmonics_learn::the_solve_takes_the_documented_clocks) at the design's rates.
+    let lp = d.harmonics.as_ref().and_then(|h| h.learn).expect("learned");
+    let learning = s
+        .lines()
+        .find(|l| l.starts_with("harmonic correction  "))
+        .unwrap_or_else(|| panic!("no harmonic correction line in\n{s}"));
+    let window = format!(
+        "windows of 4096 samples = {:.2} ms, each followed by a solve of {} clocks = {:.1} us",
+        4096.0 / d.sample_rate_hz * 1e3,
+        lp.solve_clocks(),
+        f64::from(lp.solve_clocks()) / d.clock_hz * 1e6
+    );
+    assert!(learning.contains(&window), "{learning}");
     for t in LEARNED_TOPS {
         let median = median3(t.seeds_mhz);
         assert!(median / 133.33 < 1.25, "the figures meet the rule: {line}");

@@ -102,7 +102,7 @@ pub const BLOCK: BlockDef = BlockDef {
     enabled: |c| c.harmonics.enabled && c.capacitive.is_none(),
     ports: &[],
     io_group: "",
-    describe: |d| d.harmonics.as_ref().map(describe),
+    describe: |d| d.harmonics.as_ref().map(|h| describe(h, d)),
     build: report_job,
     timing_case: Some(HELD_CASE),
 };
@@ -245,7 +245,7 @@ fn stages(p: &HarmonicParams) -> &'static str {
 }
 
 /// The `[harmonics]` lines of `check`.
-fn describe(p: &HarmonicParams) -> String {
+fn describe(p: &HarmonicParams, d: &crate::blocks::params::Derived) -> String {
     let max = p.table.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0) as f64
         / (1u64 << p.z_guard) as f64;
     let how = match &p.learn {
@@ -257,14 +257,23 @@ fn describe(p: &HarmonicParams) -> String {
             max,
             p.bound_lsb()
         ),
-        Some(l) => format!(
-            "{} points over the signal period, learned online from zeros (windows of {} samples, at most {} LSB per entry per window; docs/correction.md), linear interpolation ({} fraction bits), entries in 2^-{} LSB",
-            p.points(),
-            l.window(),
-            l.step >> super::sequencer::TABLE_FRAC,
-            super::INTERP_BITS,
-            p.z_guard
-        ),
+        Some(l) => {
+            // A window's samples at the sample rate, then the solve, during which samples
+            // are not collected (super::sequencer::LearnParams::solve_clocks).
+            let solve_s = f64::from(l.solve_clocks()) / d.clock_hz;
+            format!(
+                "{} points over the signal period, learned online from zeros (windows of {} samples = {:.2} ms, each followed by a solve of {} clocks = {:.1} us in which up to {} samples are not collected; at most {} LSB per entry per window; docs/correction.md), linear interpolation ({} fraction bits), entries in 2^-{} LSB",
+                p.points(),
+                l.window(),
+                l.window() as f64 / d.sample_rate_hz * 1e3,
+                l.solve_clocks(),
+                solve_s * 1e6,
+                (solve_s * d.sample_rate_hz).ceil(),
+                l.step >> super::sequencer::TABLE_FRAC,
+                super::INTERP_BITS,
+                p.z_guard
+            )
+        }
     };
     // The learner misses the timing rule (docs/timing.md): said where the design is shown.
     let timing = if p.learn.is_some() {
