@@ -8,6 +8,7 @@ use crate::blocks::registry::BlockDef;
 use crate::config::{Config, ErrFn, Loaded};
 use crate::error::Result;
 use crate::report::blocks::{job, BlockJob, BlockTiming};
+use crate::report::nextpnr::{median_mhz, MEDIAN_MARGIN, SEED_MARGIN};
 use serde::Deserialize;
 
 /// How the table is had (`[harmonics] mode`).
@@ -82,16 +83,22 @@ pub const LEARNED_TOPS: [LearnedTop; 2] = [
     },
 ];
 
-/// The median of three seeds' figures.
-pub fn median3([a, b, c]: [f64; 3]) -> f64 {
-    a.max(b).min(a.min(b).max(c))
+/// The clock the learned tops were measured at, MHz (the default config's).
+pub const LEARNED_TOPS_CLOCK_MHZ: f64 = 133.33;
+
+/// The median of three seeds' figures (the timing rule's, `report::nextpnr::median_mhz`).
+pub fn learned_median_mhz(seeds: [f64; 3]) -> f64 {
+    median_mhz(&seeds.map(Some)).unwrap_or(0.0)
 }
 
 /// The highest whole-MHz clock f that three seeds' figures meet the timing rule at: the
-/// median at least 1.25 f and every seed at least 1.15 f (docs/timing.md).
+/// median at least `MEDIAN_MARGIN` f and every seed at least `SEED_MARGIN` f
+/// (docs/timing.md).
 pub fn rule_clock_mhz(seeds: [f64; 3]) -> f64 {
     let slowest = seeds[0].min(seeds[1]).min(seeds[2]);
-    (median3(seeds) / 1.25).min(slowest / 1.15).floor()
+    (learned_median_mhz(seeds) / MEDIAN_MARGIN)
+        .min(slowest / SEED_MARGIN)
+        .floor()
 }
 
 /// The registry entry: no pins (the block sits inside the core).
@@ -281,11 +288,11 @@ fn describe(p: &HarmonicParams, d: &crate::blocks::params::Derived) -> String {
             .iter()
             .map(|t| {
                 let [a, b, c] = t.seeds_mhz;
-                let m = median3(t.seeds_mhz);
+                let m = learned_median_mhz(t.seeds_mhz);
                 format!(
                     "{}: {a:.2} / {b:.2} / {c:.2} MHz (median {m:.2} MHz, {:.3} x)",
                     t.design,
-                    m / 133.33
+                    m / LEARNED_TOPS_CLOCK_MHZ
                 )
             })
             .collect();
@@ -294,7 +301,7 @@ fn describe(p: &HarmonicParams, d: &crate::blocks::params::Derived) -> String {
             .map(|t| rule_clock_mhz(t.seeds_mhz))
             .fold(f64::INFINITY, f64::min);
         format!(
-            "harmonic correction timing  the learned table misses the timing rule on the ECP5 flow at 133.33 MHz (docs/timing.md): {}; run it at most {most:.0} MHz or use mode = \"static\"\n",
+            "harmonic correction timing  the learned table misses the timing rule on the ECP5 flow at {LEARNED_TOPS_CLOCK_MHZ:.2} MHz (docs/timing.md): {}; run it at most {most:.0} MHz or use mode = \"static\"\n",
             tops.join(", ")
         )
     } else {
