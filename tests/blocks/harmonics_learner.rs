@@ -11,6 +11,7 @@ use sinedec::blocks::harmonics::sequencer::{
     LearnParams, Sequencer, State,
 };
 use sinedec::cosim::stimulus::SplitMix64;
+use sinedec::synth::SynthStats;
 use sinedec::verify::Simulators;
 use std::f64::consts::PI;
 
@@ -425,19 +426,28 @@ fn the_restoring_division_is_floor() {
     }
 }
 
+/// The learner of `points` entries (F = 14, windows of 4096 samples, a zero start table)
+/// alone in Yosys for xc3sa and Cyclone; with its xc3sa RAM16X1D cells.
+fn synth_learner(points: u32, name: &str) -> (SynthStats, SynthStats, u64) {
+    let p = LearnParams::new(F, points, 4096, 32).expect("a learner");
+    let (x, c) =
+        crate::correction_util::synth(HarmonicLearner::new(&p, &vec![0; p.points()]), name);
+    let lutram = x.cells.get("RAM16X1D").copied().unwrap_or(0);
+    (x, c, lutram)
+}
+
+/// The RAMs' 16 x 1 cells on xc3sa at 128 entries: the table (two banks, 256 words x 20
+/// bits) 320, n_i (128 x 13) 104, sk_i (128 x 23) 184 and sp_i (128 x 49, as 32 + 17) 392.
+const LUTRAM_128: u64 = 320 + 104 + 184 + 392;
+
 /// The learner alone in Yosys: no hard multiplier (the products are shift-add), its RAMs;
 /// the figures are printed for docs/correction.md.
 #[test]
 fn the_learner_synthesizes_without_a_multiplier() {
-    let p = LearnParams::new(F, 128, 4096, 32).expect("the design's learner");
-    let (x, c) = crate::correction_util::synth(
-        HarmonicLearner::new(&p, &vec![0; p.points()]),
-        "harmonics_learner_synth",
-    );
+    let (x, c, lutram) = synth_learner(128, "harmonics_learner_synth");
     let path = x.path.clone().expect("a register-to-register path");
     // Yosys 0.23 maps Cyclone IV's M9K as `altsyncram` (counted in `brams`).
     let m9k = c.brams;
-    let lutram = x.cells.get("RAM16X1D").copied().unwrap_or(0);
     eprintln!(
         "harmonics_learner_synth: xc3sa {} LUT ({lutram} RAM16X1D), {} FF, {} MULT18X18, {} BRAM; cycloneive {} LE, {} FF, {} multipliers, {m9k} M9K; worst path {} -> {}: {} carry chains, {} LUT levels",
         x.luts, x.ffs, x.multipliers, x.brams, c.luts, c.ffs, c.multipliers, path.from, path.to, path.carry_chains, path.lut_levels
@@ -448,7 +458,22 @@ fn the_learner_synthesizes_without_a_multiplier() {
     // xc3sa, and M9K on Cyclone, which ignores the attribute: one per array (at most 36
     // bits wide), 4 x 5.
     assert_eq!(x.brams, 0);
-    assert!(lutram > 0);
+    assert_eq!(lutram, LUTRAM_128);
     assert_eq!(m9k, 20);
     assert!(path.carry_chains <= 1, "{path:?}");
+}
+
+/// A 64-entry learner keeps half of each RAM's four arrays: its table's two banks are 128
+/// words and its bins 64 (the addresses' top bit is zero), so Yosys drops the arrays that
+/// are never written or read: half of [`LUTRAM_128`] on xc3sa, and on Cyclone, where each
+/// used array is one M9K, 5 RAMs x 2.
+#[test]
+fn a_64_entry_learner_keeps_half_of_its_ram() {
+    let (x, c, lutram) = synth_learner(64, "harmonics_learner64_synth");
+    eprintln!(
+        "harmonics_learner64_synth: xc3sa {} LUT ({lutram} RAM16X1D), {} FF; cycloneive {} LE, {} FF, {} M9K",
+        x.luts, x.ffs, c.luts, c.ffs, c.brams
+    );
+    assert_eq!(lutram, LUTRAM_128 / 2);
+    assert_eq!(c.brams, 10);
 }

@@ -75,11 +75,11 @@ pub struct LearnedTop {
 pub const LEARNED_TOPS: [LearnedTop; 2] = [
     LearnedTop {
         design: "the default top with 64 points",
-        seeds_mhz: [162.31, 148.57, 151.08],
+        seeds_mhz: [158.63, 137.27, 152.95],
     },
     LearnedTop {
         design: "with 128 points and [registers]",
-        seeds_mhz: [160.49, 150.35, 154.25],
+        seeds_mhz: [143.00, 151.03, 156.89],
     },
 ];
 

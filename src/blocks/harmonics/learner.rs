@@ -23,7 +23,7 @@
 //!   per bin: UpdRead ─► UpdLat ─► UpdDiff ─► UpdAbs ─► UpdStep ─► UpdAdd ─► UpdWrite (other bank)
 //!   Apply (bank flips) ─► Wait;   rst / power-up: Clear (start table into both banks) ─► Wait
 //!
-//!   RAMs: the table (both banks, bank b's entry i at b 2^7 + i, read in the active bank;
+//!   RAMs: the table (both banks, bank b's entry i at b P + i, read in the active bank;
 //!   data two clocks after the address, [`PipedLutRam`]: c_i's address goes out in Wait or
 //!   LoadB, c_(i+1)'s in ReadI, entry idx's in UpdRead for UpdDiff); n_i, sk_i, sp_i (r_i
 //!   after Residual; two RAMs of 32 bits), P words each, also read over two clocks, from
@@ -32,7 +32,9 @@
 //!   new sums go back two clocks after Sum (bw2); bin idx's goes out in LineA3 or ResSum, MeanSign or
 //!   UpdWrite, the state before ResRead or UpdRead, and its words latch in ResLatch,
 //!   UpdLat; one write port each; none initialised (Clear writes them
-//!   first). LoadA writes the active bank, so that a sample's c_i read from LoadB on sees
+//!   first). The RAMs are sized for P = 128; their addresses go out in p bits (the
+//!   table's in p + 1), so that below 128 entries synthesis drops the arrays no address
+//!   reaches (a 64-entry learner keeps two of each RAM's four). LoadA writes the active bank, so that a sample's c_i read from LoadB on sees
 //!   the load. The start table: a ROM of compares, registered (romq), none for a zero
 //!   table. Divider (non-restoring, while dstep): rem (2w + 2 bits, two's complement), dvd
 //!   (the dividend's bits, MSB first), quo, dsr and -dsr; t = 2 rem + msb(dvd), rem = rem <
@@ -53,7 +55,7 @@
 //! Timing: every register-to-register path holds at most one carry chain (a compare beside
 //! it), and a sum goes into a register of its own with no select after its chain but the
 //! divider's (its two sums, selected by a registered sign); no sum is wider than 40 bits
-//! (sum r), and the longer chains left are compares into one-bit registers (qov, ovf). A
+//! (sum r), and the longer chains left are compares into one-bit registers (ovf, cpos, cneg). A
 //! 64-bit sum is a [`SplitAdd`] (two 32-bit chains, the high one a
 //! clock after the low one) of operands that hold still, or a [`SplitAcc`] (Sp += q in Acc,
 //! PS += Sp the clock after Sum, the four products in ResMul): q, sp1 = sp_i + q, (N + 1)
@@ -63,7 +65,7 @@
 //! these clocks (LineW1-3, LineRnd2, LineA3, ResMul's last clock, ResW1-3, ResEnd2,
 //! MeanEnd2). Other free-running registers: b's one-period tests of its bits (mpos,
 //! mneg), the products' add flags a clock ahead (fpa, fla, fpb, flb), Clear's write
-//! address (cwa), |Z1| >= H as a test of Z1 + H's top bits (big, zneg), quo > 2 lim (qov), idx + 1
+//! address (cwa), |Z1| >= H as a test of Z1 + H's top bits (big, zneg), quo > 2 lim as a test of its bits (qov), idx + 1
 //! (idx1), k's last-sample test (klast). c(m)'s product runs from f's LSB in 32 bits
 //! (acc = (acc + f_j D) >> 1). A RAM's output is registered before an adder (LatJ, UpdLat,
 //! ResLatch, Acc), `pos` moves a clock after its strobe (dl), sum r's negation is summed
@@ -71,9 +73,10 @@
 //! ResSum.
 //!
 //! Resources alone in Yosys 0.23 at F = 14, 128 entries, N = 4096 (a zero start table;
-//! tests/blocks/harmonics_learner.rs): xc3sa 3845 LUT4 (1000 of them RAM16X1D), 3750 FF,
-//! no block RAM, no MULT18X18; cycloneive 6133 LE, 3291 FF, 20 M9K (four arrays each for
-//! the table, n_i, sk_i and sp_i's two halves), no multiplier. The RAMs are distributed on ECP5 and xc3sa, read in the widths their words hold
+//! tests/blocks/harmonics_learner.rs): xc3sa 3831 LUT4 (1000 of them RAM16X1D), 3741 FF,
+//! no block RAM, no MULT18X18; cycloneive 6142 LE, 3282 FF, 20 M9K (four arrays each for
+//! the table, n_i, sk_i and sp_i's two halves), no multiplier; at 64 entries half the RAM
+//! (500 RAM16X1D, 10 M9K): xc3sa 3314 LUT4, 3515 FF, cycloneive 5907 LE, 3266 FF. The RAMs are distributed on ECP5 and xc3sa, read in the widths their words hold
 //! (the entry width, w + 1 bits of n_i, 2w - 1 of sk_i, sp_i's), so that synthesis drops
 //! the other columns. The state is one-hot in synthesis ([`FsmReg`]); the counters' end
 //! tests compare p bits, the loops count down to a registered zero flag (`dn`, `dz`), the
@@ -82,11 +85,10 @@
 //! values that Yosys does not trim.
 //!
 //! Timing (docs/timing.md's ECP5 flow at 133.33 MHz, seeds 1 / 2 / 3): the default top with
-//! a 64-point learned table 162.31 / 148.57 / 151.08 MHz, with 128 points and `[registers]`
-//! 160.49 / 150.35 / 154.25 MHz ([`super::block::LEARNED_TOPS`]), short of the rule's
-//! 166.7 MHz median. Placed alone the learner reaches 157.13 / 159.13 MHz (seeds 1 / 2),
-//! its worst paths 3 to 5 ns of routing around 2 to 3 ns of logic; a smaller learner (one shared adder for
-//! the solve) is what is left (docs/timing.md, "Not held").
+//! a 64-point learned table 158.63 / 137.27 / 152.95 MHz, with 128 points and `[registers]`
+//! 143.00 / 151.03 / 156.89 MHz ([`super::block::LEARNED_TOPS`]), short of the rule's
+//! 166.7 MHz median; the worst paths are 3.7 to 5.6 ns of routing. A learner a fraction of
+//! this size is what is left (docs/timing.md, "Not held").
 //!
 //! Ports:
 //!
@@ -297,7 +299,7 @@ pub struct HarmonicLearner {
     pub clearing: Signal<Out, Bit>,
     /// See `clearing`.
     clr: DFF<Bit>,
-    /// The table: bank b's entry i at word b 2^7 + i (the bank an address bit, so that no
+    /// The table: bank b's entry i at word b P + i (the bank an address bit, so that no
     /// select follows the read), entries in the entry width.
     tab: PipedLutRam<Bits<32>, TAB_ADDR_BITS>,
     /// Per bin: n_i. The bins' RAMs read over two clocks in four arrays ([`PipedLutRam`]:
@@ -488,6 +490,10 @@ pub struct HarmonicLearner {
     /// r - r_i, beside r_i - r (so that UpdAbs's magnitude is a select).
     uxn: DFF<Bits<32>>,
     uneg: DFF<Bit>,
+    /// r_i - r and r - r_i at least the magnitude that clips (free-running from ux and
+    /// uxn, read in UpdStep: the path from |r_i - r| through a compare to the step).
+    cpos: DFF<Bit>,
+    cneg: DFF<Bit>,
     uax: DFF<Bits<32>>,
     udm: DFF<Bits<32>>,
     unw: DFF<Bits<32>>,
@@ -537,9 +543,10 @@ pub struct HarmonicLearner {
     /// n_i and sk_i read, in their widths.
     rn_m: Signal<Local, Bits<32>>,
     rsk_m: Signal<Local, Bits<32>>,
-    /// The table's word read, in the entry width; the write's RAM address.
+    /// The table's word read, in the entry width.
     trd: Signal<Local, Bits<32>>,
-    twm: Signal<Local, Bits<32>>,
+    /// The bins' RAMs' write address (the same for the three).
+    bwa: Signal<Local, Bits<LEARN_ADDR_BITS>>,
     sp_s: Signal<Local, Bits<64>>,
     /// sp_i's word read (both halves) and the word written.
     spr: Signal<Local, Bits<64>>,
@@ -581,8 +588,8 @@ pub struct HarmonicLearner {
     ew_fill: Constant<Bits<64>>,
     /// The 2w - 1 bits of sk_i.
     skmask: Constant<Bits<32>>,
-    /// Bank 1's address bit in the table's RAM.
-    bank_hi: Constant<Bits<32>>,
+    /// 2P - 1: the table's RAM address (both banks).
+    tmask: Constant<Bits<32>>,
     /// +entry_max, -entry_max as an entry-width code (32-bit).
     emax32: Constant<Bits<32>>,
     emin32: Constant<Bits<32>>,
@@ -642,7 +649,8 @@ pub struct HarmonicLearner {
     /// H = 2^(62-B); the bits of Z1 + H from 63 - B up.
     h_pos: Constant<Bits<64>>,
     h2_hi: Constant<Bits<64>>,
-    /// r_i's division: lead Kr + B - 1 and 64 - lead, the last quotient clock; 2 lim + 1.
+    /// r_i's division: lead Kr + B - 1 and 64 - lead, the last quotient clock; 2 lim + 1 =
+    /// 2^Kr - 1 (Kr ones).
     lr_lead: Constant<Bits<64>>,
     lr_up: Constant<Bits<64>>,
     lr_last: Constant<Bits<CNT_BITS>>,
@@ -820,6 +828,8 @@ impl HarmonicLearner {
             ux: Default::default(),
             uxn: Default::default(),
             uneg: Default::default(),
+            cpos: Default::default(),
+            cneg: Default::default(),
             uax: Default::default(),
             udm: Default::default(),
             unw: Default::default(),
@@ -854,7 +864,7 @@ impl HarmonicLearner {
             rn_m: Default::default(),
             rsk_m: Default::default(),
             trd: Default::default(),
-            twm: Default::default(),
+            bwa: Default::default(),
             sp_s: Default::default(),
             spr: Default::default(),
             spw: Default::default(),
@@ -885,7 +895,7 @@ impl HarmonicLearner {
             ew_sign: c32(sign(ew)),
             ew_fill: c64(!mask(ew)),
             skmask: c32(mask(2 * p.window_log2 - 1)),
-            bank_hi: c32(1 << LEARN_ADDR_BITS),
+            tmask: c32(2 * pp - 1),
             emax32: c32(em),
             emin32: c32(neg(em) & mask(ew)),
             am_mask: c64(mask(p.fine_bits + 2)),
@@ -949,9 +959,9 @@ impl Logic for HarmonicLearner {
             self, clk, romq, dl, dlv, dls, dla, mh, cj, cnt, cwa, dn, dz, idx, active, pend, ld_i,
             ld_v, got, m_s, ps, prev, pos, ci, dd, fsh, acc, c, sbin, k, neg, mag, rem, dvd, quo,
             dsr, b, moving, nn, nsh, sksh, spv, ahs, als, bhs, bls, big, zneg, ovf, rneg, qov, r,
-            sum_r, nbins, mean, ucur, unz, ux, uneg, uax, udm, unw, uroom, usat, twr, twa, twd,
-            clr, klast, n1, sk1, mpos, mneg, srn, uxn, idx1, mvz, psa, bw1, bw2, nb0, dstep, ndsr,
-            ldr, ldd
+            sum_r, nbins, mean, ucur, unz, ux, uneg, cpos, cneg, uax, udm, unw, uroom, usat, twr,
+            twa, twd, clr, klast, n1, sk1, mpos, mneg, srn, uxn, idx1, mvz, psa, bw1, bw2, nb0,
+            dstep, ndsr, ldr, ldd
         );
         self.state.clock.next = self.clk.val();
         self.state.d.next = self.state.q.val();
@@ -967,9 +977,7 @@ impl Logic for HarmonicLearner {
         self.traddr.next = self.z32.val();
         self.bin_n.next = self.z32.val();
         self.bra.next = self.iz.val();
-        self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
-        self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
-        self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
+        self.bwa.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.z32.val());
         self.rn.write_data.next = self.z32.val();
         self.rsk.write_data.next = self.z32.val();
         self.spw.next = self.z64.val();
@@ -1080,6 +1088,10 @@ impl Logic for HarmonicLearner {
         self.klast.d.next = (self.k.q.val() & self.nmask.val()) == self.n_last.val();
         self.nb0.d.next = (self.nbins.q.val() & self.nmask.val()) == self.z32.val();
         self.idx1.d.next = self.idx.q.val() + self.ione.val();
+        // |r_i - r| clips: UpdStep takes cpos or cneg by r_i - r's sign (uneg), the one
+        // whose operand is |r_i - r|.
+        self.cpos.d.next = self.ux.q.val() >= self.clip_at.val();
+        self.cneg.d.next = self.uxn.q.val() >= self.clip_at.val();
         // The sample's q = pos 2^T - c; the bin's new sp_i.
         self.q.clock.next = self.clk.val();
         self.q.a.next = self.ps.q.val() << self.tf.val();
@@ -1116,7 +1128,10 @@ impl Logic for HarmonicLearner {
         self.rmv.next = self.rm.s.val() >> self.one64.val();
         self.rmnv.next =
             (self.rmn.s.val() >> self.one64.val()) | (self.rmn.s.val() & self.sign63.val());
-        self.qov.d.next = self.quo.q.val() >= self.q_over.val();
+        // quo >= 2 lim + 1 = 2^Kr - 1: its low Kr bits all ones, or a bit above them (tests
+        // of bits, no compare's chain: the path quo -> qov).
+        self.qov.d.next = ((self.quo.q.val() & self.q_over.val()) == self.q_over.val())
+            | (self.quo.q.val() & !self.q_over.val()).any();
         // a = (Sp 2^5 + b - b 2^w) >> 1 (arithmetic); b's one-period compares.
         self.asp.clock.next = self.clk.val();
         self.asp.a.next = self.sum_p.s.val() << self.k5.val();
@@ -1194,9 +1209,7 @@ impl Logic for HarmonicLearner {
         self.bw1.d.next = false;
         self.bw2.d.next = self.bw1.q.val();
         if self.bw2.q.val() {
-            self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
-            self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
-            self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
+            self.bwa.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.sbin.q.val());
             self.rn.write_enable.next = true;
             self.rsk.write_enable.next = true;
             self.rsp.write_enable.next = true;
@@ -1215,9 +1228,7 @@ impl Logic for HarmonicLearner {
                     self.wa.next = bit_cast::<32, CNT_BITS>(self.cwa.q.val());
                     self.wd.next = self.romq.q.val();
                 }
-                self.rn.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
-                self.rsk.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
-                self.rsp.write_address.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
+                self.bwa.next = bit_cast::<LEARN_ADDR_BITS, 32>(self.cidx.val());
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
@@ -1534,7 +1545,7 @@ impl Logic for HarmonicLearner {
             LearnState::ResSum => {
                 // r_i sign-extended into sp_i's word (written from its register: the path
                 // from rm through r_i's negation ends at r).
-                self.rsp.write_address.next = self.idx.q.val();
+                self.bwa.next = self.idx.q.val();
                 self.spw.next = bit_cast::<64, 32>(self.r.q.val());
                 if (self.r.q.val() & self.sign31.val()).any() {
                     self.spw.next = bit_cast::<64, 32>(self.r.q.val()) | self.hi32.val();
@@ -1630,7 +1641,9 @@ impl Logic for HarmonicLearner {
             LearnState::UpdStep => {
                 // 2^-g |r_i - r| rounded half up, clipped at the step.
                 self.udm.d.next = (self.uax.q.val() + self.g_half.val()) >> self.g32.val();
-                if self.uax.q.val() >= self.clip_at.val() {
+                if (self.uneg.q.val() & self.cneg.q.val())
+                    | (!self.uneg.q.val() & self.cpos.q.val())
+                {
                     self.udm.d.next = self.stepc.val();
                 }
                 self.state.d.next = LearnState::UpdAdd;
@@ -1661,9 +1674,7 @@ impl Logic for HarmonicLearner {
                 }
                 self.we.next = true;
                 self.wa.next = self.off_o.val() | bit_cast::<32, LEARN_ADDR_BITS>(self.idx.q.val());
-                self.rn.write_address.next = self.idx.q.val();
-                self.rsk.write_address.next = self.idx.q.val();
-                self.rsp.write_address.next = self.idx.q.val();
+                self.bwa.next = self.idx.q.val();
                 self.rn.write_enable.next = true;
                 self.rsk.write_enable.next = true;
                 self.rsp.write_enable.next = true;
@@ -1721,24 +1732,24 @@ impl Logic for HarmonicLearner {
             self.pend.d.next = true;
         }
         // The table's write port and its copy on tw.
-        self.tra.next = self.traddr.val();
-        if self.active.q.val() {
-            self.tra.next = self.traddr.val() | self.bank_hi.val();
-        }
+        // The table's words: bank b's entry i at b P + i, in p + 1 bits.
+        self.tra.next = (self.traddr.val() | self.off_a.val()) & self.tmask.val();
         self.tab.read_address.next = bit_cast::<TAB_ADDR_BITS, 32>(self.tra.val());
-        self.rn.read_address.next = self.bra.val();
-        self.rsk.read_address.next = self.bra.val();
-        self.rsp.read_address.next = self.bra.val();
-        self.rsph.read_address.next = self.bra.val();
+        // The bins' RAMs' addresses in p bits (below P: Yosys drops the arrays a smaller
+        // table leaves unused).
+        self.rn.read_address.next = self.bra.val() & self.ilast.val();
+        self.rsk.read_address.next = self.bra.val() & self.ilast.val();
+        self.rsp.read_address.next = self.bra.val() & self.ilast.val();
+        self.rsph.read_address.next = self.bra.val() & self.ilast.val();
         self.rsp.write_data.next = bit_cast::<32, 64>(self.spw.val());
         self.rsph.write_data.next = bit_cast::<32, 64>(self.spw.val() >> self.k32.val());
-        self.rsph.write_address.next = self.rsp.write_address.val();
+        self.rn.write_address.next = self.bwa.val() & self.ilast.val();
+        self.rsk.write_address.next = self.bwa.val() & self.ilast.val();
+        self.rsp.write_address.next = self.bwa.val() & self.ilast.val();
+        self.rsph.write_address.next = self.bwa.val() & self.ilast.val();
         self.rsph.write_enable.next = self.rsp.write_enable.val();
-        self.twm.next = self.wa.val() & self.pmask.val();
-        if (self.wa.val() & self.pp.val()).any() {
-            self.twm.next = (self.wa.val() & self.pmask.val()) | self.bank_hi.val();
-        }
-        self.tab.write_address.next = bit_cast::<TAB_ADDR_BITS, 32>(self.twm.val());
+        self.tab.write_address.next =
+            bit_cast::<TAB_ADDR_BITS, 32>(self.wa.val() & self.tmask.val());
         self.tab.write_enable.next = self.we.val();
         self.tab.write_data.next = self.wd.val();
         // wa and wd are zero without a write.
