@@ -87,8 +87,9 @@
 //! Timing (docs/timing.md's ECP5 flow at 133.33 MHz, seeds 1 / 2 / 3): the default top with
 //! a 64-point learned table 158.63 / 137.27 / 152.95 MHz, with 128 points and `[registers]`
 //! 143.00 / 151.03 / 156.89 MHz ([`super::block::LEARNED_TOPS`]), short of the rule's
-//! 166.7 MHz median; the worst paths are 3.7 to 5.6 ns of routing. A learner a fraction of
-//! this size is what is left (docs/timing.md, "Not held").
+//! 166.7 MHz median; the worst paths are 3.7 to 5.6 ns of routing. Placed alone the learner
+//! reaches 171.44 / 166.06 MHz (seeds 1 / 2). A learner a fraction of this size is what is
+//! left (docs/timing.md, "Not held").
 //!
 //! Ports:
 //!
