@@ -238,16 +238,19 @@ fn the_learner_equals_its_model_four_ways() {
         .collect();
     let pl = small_plan(&start);
     // The stimulus reaches what it is meant to: windows applied, writes of every kind,
-    // lost strobes, the table moved.
+    // lost strobes, the table moved, and some update clipped at the step (Update's clip
+    // flags, cpos / cneg).
     assert!(pl.applied >= 10, "{}", pl.applied);
     assert!(pl.writes > 12 * p.points(), "{} writes", pl.writes);
     assert!(pl.lost > 0);
-    assert!(pl.moved > 0);
+    assert_eq!(pl.moved, p.step);
     eprintln!(
-        "harmonics_learner: {} clocks, {} table writes, {} strobes lost",
+        "harmonics_learner: {} clocks, {} table writes, {} strobes lost, largest change {} (step {})",
         pl.rows.len(),
         pl.writes,
-        pl.lost
+        pl.lost,
+        pl.moved,
+        p.step
     );
     four_ways(&p, &start, &pl, "harmonics_learner");
 }
