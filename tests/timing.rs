@@ -71,6 +71,12 @@ fn option_tops() -> Vec<(&'static str, String)> {
         ),
     ];
     v.extend(registered);
+    // A learned table is built up to 119 MHz (`harmonics::block::learned_clock_mhz`): the
+    // default top learning its 64 points online at 100 MHz.
+    v.push((
+        "learned harmonic table top at 100 MHz",
+        sinedec::blocks::harmonics::block::learned_case(d),
+    ));
     v
 }
 
