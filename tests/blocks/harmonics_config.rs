@@ -160,13 +160,11 @@ fn check_prints_the_table_and_the_latency() {
     assert!(quiet.derived.harmonics.is_none());
 }
 
-/// The default config at `mhz` with `body` in `[harmonics]`.
-fn at_clock(mhz: &str, body: &str) -> String {
-    use sinedec::blocks::harmonics::block::DEFAULT_CLOCK_TOML;
-    let text = with(body);
-    let from = format!("frequency_hz = {DEFAULT_CLOCK_TOML}");
-    assert_eq!(text.matches(&from).count(), 1, "{from:?} must be unique");
-    text.replace(&from, &format!("frequency_hz = {mhz}"))
+/// The default config at `hz` (TOML) with `body` in `[harmonics]`.
+fn at_clock(hz: &str, body: &str) -> String {
+    let text = sinedec::blocks::harmonics::block::with_clock(&with(body), hz);
+    assert_eq!(text.matches(&format!("frequency_hz = {hz}")).count(), 1);
+    text
 }
 
 /// A learned table: the core's latency grows by the RAM lookup's clocks, and `check` gives

@@ -9,7 +9,7 @@
 //! test can fail). And the learning top replayed in rust-hdl, Icarus, Verilator and the
 //! engine bit for bit over two learning windows.
 use crate::common;
-use sinedec::blocks::harmonics::block::learned_case;
+use sinedec::blocks::harmonics::block::{learned_case, with_clock, LEARNED_CLOCK_TOML};
 use sinedec::blocks::harmonics::sequencer::LearnParams;
 use sinedec::config::{Loaded, DEFAULT_CONFIG};
 use sinedec::sim::dut::EngineKind;
@@ -65,13 +65,12 @@ fn opts(rpm: f64, h3: f64, h5: f64) -> SimOptions {
 fn the_top_learns_the_table_from_a_cold_start_at_three_speeds_both_ways() {
     // All three at the learned top's clock (100 MHz: a learned table is built up to 119).
     let auto = DEFAULT_CONFIG.replace("mode = \"static\"", "mode = \"auto\"");
-    let learn = format!("{}points = 128\n", learned_case(&auto));
-    let off = Loaded::parse(
-        &learn.replace("enabled = true\npoints = 128", ""),
-        "auto.toml",
+    let off = Loaded::parse(&with_clock(&auto, LEARNED_CLOCK_TOML), "auto.toml").expect("auto");
+    let on = Loaded::parse(
+        &format!("{}points = 128\n", learned_case(&auto)),
+        "learn.toml",
     )
-    .expect("auto");
-    let on = Loaded::parse(&learn, "learn.toml").expect("learn");
+    .expect("learn");
     assert_eq!(off.derived.clock_hz, 100e6);
     let settle = 10e-3;
     let full = |rpm: f64, duration_s: f64, settle_s: f64| SimOptions {

@@ -117,10 +117,15 @@ pub fn learned_clock_mhz() -> f64 {
 pub fn learned_case(config: &str) -> String {
     format!(
         "{}\n[harmonics]\nenabled = true\n",
-        config.replace(
-            &format!("frequency_hz = {DEFAULT_CLOCK_TOML}"),
-            &format!("frequency_hz = {LEARNED_CLOCK_TOML}")
-        )
+        with_clock(config, LEARNED_CLOCK_TOML)
+    )
+}
+
+/// `config` (the default's text) with its clock written as `clock_toml` (TOML, Hz).
+pub fn with_clock(config: &str, clock_toml: &str) -> String {
+    config.replace(
+        &format!("frequency_hz = {DEFAULT_CLOCK_TOML}"),
+        &format!("frequency_hz = {clock_toml}"),
     )
 }
 

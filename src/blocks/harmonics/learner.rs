@@ -29,13 +29,13 @@
 //!   after Residual; two RAMs of 32 bits), P words each, also read over two clocks, from
 //!   four arrays each ([`PipedLutRam`], each its own address register): a
 //!   sample's bin goes out from its register in ReadBin, its words latch in Acc, and its
-//!   new sums go back two clocks after Sum (bw2); bin idx's goes out in LineA3 or ResSum, MeanSign or
-//!   UpdWrite, the state before ResRead or UpdRead, and its words latch in ResLatch,
-//!   UpdLat; one write port each; none initialised (Clear writes them
-//!   first). The RAMs are sized for P = 128; their addresses go out in p bits (the
-//!   table's in p + 1), so that below 128 entries synthesis drops the arrays no address
-//!   reaches (a 64-entry learner keeps two of each RAM's four). LoadA writes the active bank, so that a sample's c_i read from LoadB on sees
-//!   the load. The start table: a ROM of compares, registered (romq), none for a zero
+//!   new sums go back two clocks after Sum (bw2); bin idx's goes out in LineA3 or ResSum,
+//!   MeanSign or UpdWrite, the state before ResRead or UpdRead, and its words latch in
+//!   ResLatch, UpdLat; one write port each; none initialised (Clear writes them first).
+//!   The RAMs are sized for P = 128; their addresses go out in p bits (the table's in
+//!   p + 1), so that below 128 entries synthesis drops the arrays no address reaches (a
+//!   64-entry learner keeps two of each RAM's four). LoadA writes the active bank, so
+//!   that a sample's c_i read from LoadB on sees the load. The start table: a ROM of compares, registered (romq), none for a zero
 //!   table. Divider (non-restoring, while dstep): rem (2w + 2 bits, two's complement), dvd
 //!   (the dividend's bits, MSB first), quo, dsr and -dsr; t = 2 rem + msb(dvd), rem = rem <
 //!   0 ? t + dsr : t - dsr, quo = 2 quo + (rem >= 0): the restoring division's quotient
@@ -65,8 +65,8 @@
 //! these clocks (LineW1-3, LineRnd2, LineA3, ResMul's last clock, ResW1-3, ResEnd2,
 //! MeanEnd2). Other free-running registers: b's one-period tests of its bits (mpos,
 //! mneg), the products' add flags a clock ahead (fpa, fla, fpb, flb), Clear's write
-//! address (cwa), |Z1| >= H as a test of Z1 + H's top bits (big, zneg), quo > 2 lim as a test of its bits (qov), idx + 1
-//! (idx1), k's last-sample test (klast). c(m)'s product runs from f's LSB in 32 bits
+//! address (cwa), |Z1| >= H as a test of Z1 + H's top bits (big, zneg), quo > 2 lim as
+//! a test of its bits (qov), idx + 1 (idx1), k's last-sample test (klast). c(m)'s product runs from f's LSB in 32 bits
 //! (acc = (acc + f_j D) >> 1). A RAM's output is registered before an adder (LatJ, UpdLat,
 //! ResLatch, Acc), `pos` moves a clock after its strobe (dl), sum r's negation is summed
 //! beside it (srn), r_i saturates in ResWrite and reaches sp_i's word from its register in
@@ -1734,8 +1734,8 @@ impl Logic for HarmonicLearner {
         if self.ld.val() & !self.pend.q.val() {
             self.pend.d.next = true;
         }
-        // The table's write port and its copy on tw.
-        // The table's words: bank b's entry i at b P + i, in p + 1 bits.
+        // The table's ports and the copy of its write on tw; bank b's entry i at word
+        // b P + i, in p + 1 bits.
         self.tra.next = (self.traddr.val() | self.off_a.val()) & self.tmask.val();
         self.tab.read_address.next = bit_cast::<TAB_ADDR_BITS, 32>(self.tra.val());
         // The bins' RAMs' addresses in p bits (below P: Yosys drops the arrays a smaller
